@@ -1,0 +1,108 @@
+#include "mesh/mesh_import.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+
+#include "mesh/assimp_importer.h"
+#include "mesh/mapped_file.h"
+#include "mesh/mesh_sanitize.h"
+#include "mesh/obj_reader.h"
+
+namespace hs::mesh {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return e;
+}
+
+// Common tail of every reader: clean, fill normals, recentre, count.
+ImportResult finish(MeshData&& mesh, ImportReport&& report, const ImportOptions& options,
+                    const Progress* progress, std::chrono::steady_clock::time_point start) {
+  ImportResult r;
+  reportProgress(progress, 0.95, "Cleaning");
+  sanitize(mesh, report);
+  if (mesh.indices.empty()) {
+    r.error = report.file + ": every face was invalid; nothing to import" +
+              (report.warnings.empty() ? "" : " (" + report.warnings.front() + ")");
+    r.report = std::move(report);
+    return r;
+  }
+  if (mesh.normals.size() != mesh.positions.size()) {
+    computeVertexNormals(mesh);
+    report.normalsGenerated = true;
+  }
+  if (options.recenter) recenter(mesh);
+  report.verticesOut = mesh.vertexCount();
+  report.trianglesOut = mesh.triangleCount();
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  reportProgress(progress, 1.0, "Done");
+  r.mesh = std::move(mesh);
+  r.report = std::move(report);
+  return r;
+}
+
+ImportResult fail(ImportReport&& report, std::string error, const Progress* progress) {
+  ImportResult r;
+  r.cancelled = isCancelled(progress);
+  r.error = std::move(error);
+  r.report = std::move(report);
+  return r;
+}
+
+}  // namespace
+
+std::vector<std::string> supportedExtensions() {
+  return {".obj", ".fbx", ".ply", ".gltf", ".glb", ".dae", ".3ds", ".stl", ".off"};
+}
+
+ImportResult importObjFromMemory(std::string_view data, const std::string& name,
+                                 const std::string& baseDir, const ImportOptions& options,
+                                 const Progress* progress) {
+  const auto start = std::chrono::steady_clock::now();
+  ImportReport report;
+  report.file = name;
+  report.reader = "obj";
+  MeshData mesh;
+  std::string error;
+  if (!readObj(data, name, baseDir, options, progress, mesh, report, error))
+    return fail(std::move(report), std::move(error), progress);
+  return finish(std::move(mesh), std::move(report), options, progress, start);
+}
+
+ImportResult importMesh(const std::string& path, const ImportOptions& options,
+                        const Progress* progress) {
+  const auto start = std::chrono::steady_clock::now();
+  ImportReport report;
+  report.file = path;
+  const std::string ext = lowerExtension(path);
+
+  // Check the path before any reader sees it, so the message is ours.
+  MappedFile file;
+  std::string error;
+  if (!file.open(path, error)) return fail(std::move(report), std::move(error), progress);
+  if (file.size() == 0) return fail(std::move(report), path + ": file is empty (0 bytes)", progress);
+
+  const bool useObj =
+      options.reader == Reader::Obj || (options.reader == Reader::Auto && ext == ".obj");
+  MeshData mesh;
+  if (useObj) {
+    report.reader = "obj";
+    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    if (!readObj(file.view(), path, baseDir, options, progress, mesh, report, error))
+      return fail(std::move(report), std::move(error), progress);
+  } else {
+    report.reader = "assimp";
+    if (options.reader == Reader::Auto && !assimpSupportsExtension(ext))
+      return fail(std::move(report),
+                  path + ": '" + ext + "' is not a mesh format Hybridscape reads (use OBJ, FBX, PLY, glTF, DAE, 3DS, STL)",
+                  progress);
+    if (!readWithAssimp(path, options, progress, mesh, report, error))
+      return fail(std::move(report), std::move(error), progress);
+  }
+  return finish(std::move(mesh), std::move(report), options, progress, start);
+}
+
+}  // namespace hs::mesh

@@ -1,0 +1,69 @@
+#pragma once
+// Entry point for bringing a mesh file in. Picks the reader by extension
+// (our own streaming OBJ reader, Assimp for FBX/PLY/glTF/...), converts the
+// up axis, cleans the result and recentres it onto a double origin.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "mesh/mesh_data.h"
+#include "mesh/progress.h"
+
+namespace hs::mesh {
+
+enum class UpAxis { Auto, Y, Z };
+enum class Reader { Auto, Obj, Assimp };
+
+struct ImportOptions {
+  // Auto: the file's own declaration where it has one (FBX UpAxis, glTF is
+  // Y-up by specification); otherwise Y-up, the convention of DCC exports.
+  // Photogrammetry tools writing UTM coordinates are Z-up: pass Z.
+  UpAxis up = UpAxis::Auto;
+  Reader reader = Reader::Auto;
+  // Keep vertex data small floats around a double origin at the bbox centre.
+  bool recenter = true;
+  // Textures that fail to load become warnings, not errors (the mesh is
+  // still useful); set to make them errors.
+  bool strictTextures = false;
+};
+
+struct ImportReport {
+  std::string file;
+  std::string reader;  // "obj" or "assimp"
+  size_t verticesIn = 0, trianglesIn = 0;
+  size_t verticesOut = 0, trianglesOut = 0;
+  size_t nonFiniteVertices = 0;     // NaN/Inf positions (their faces dropped)
+  size_t outOfRangeFaces = 0;       // faces with an index past the vertex count
+  size_t degenerateFaces = 0;       // repeated index within one face
+  size_t polygonsTriangulated = 0;  // faces with more than 3 corners
+  size_t skippedLines = 0;          // unsupported statements (lines, points, ...)
+  bool normalsGenerated = false;
+  bool upAxisConverted = false;
+  std::vector<std::string> warnings;  // each names the file and place
+  double seconds = 0.0;
+};
+
+struct ImportResult {
+  std::optional<MeshData> mesh;  // set on success
+  ImportReport report;
+  std::string error;             // set on failure: names the file and place
+  bool cancelled = false;
+  bool ok() const { return mesh.has_value(); }
+};
+
+// Reads `path`. Never throws; on failure `error` says what and where.
+ImportResult importMesh(const std::string& path, const ImportOptions& options = {},
+                        const Progress* progress = nullptr);
+
+// Reads an OBJ held in memory (the demo scene's embedded bunny). `name` is
+// used in messages; relative material/texture paths resolve against `baseDir`.
+ImportResult importObjFromMemory(std::string_view data, const std::string& name,
+                                 const std::string& baseDir, const ImportOptions& options = {},
+                                 const Progress* progress = nullptr);
+
+// Extensions importMesh accepts, lower case with the dot (".obj", ".fbx", ...).
+std::vector<std::string> supportedExtensions();
+
+}  // namespace hs::mesh

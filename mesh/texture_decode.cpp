@@ -1,0 +1,129 @@
+#include "mesh/texture_decode.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+namespace hs::mesh {
+namespace {
+
+// Largest texture we accept: 32k x 32k (photogrammetry atlases reach 16k).
+constexpr int kMaxTextureSide = 32768;
+
+// Reads an open ImageInput into RGBA8, expanding grey/RGB and dropping
+// extra channels, converting float/16-bit data to 8-bit.
+bool readRgba8(OIIO::ImageInput& in, const std::string& what, Texture& out, std::string& error) {
+  const OIIO::ImageSpec& spec = in.spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSide ||
+      spec.height > kMaxTextureSide) {
+    error = what + ": image size " + std::to_string(spec.width) + "x" +
+            std::to_string(spec.height) + " is out of range (1 to " +
+            std::to_string(kMaxTextureSide) + " per side)";
+    return false;
+  }
+  const int nch = spec.nchannels;
+  std::vector<uint8_t> pixels(size_t(spec.width) * spec.height * nch);
+  if (!in.read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, pixels.data())) {
+    error = what + ": cannot decode image: " + in.geterror();
+    return false;
+  }
+  out.width = spec.width;
+  out.height = spec.height;
+  out.rgba.resize(size_t(spec.width) * spec.height * 4);
+  const size_t n = size_t(spec.width) * spec.height;
+  for (size_t i = 0; i < n; ++i) {
+    const uint8_t* s = &pixels[i * nch];
+    uint8_t* d = &out.rgba[i * 4];
+    if (nch == 1) {
+      d[0] = d[1] = d[2] = s[0];
+      d[3] = 255;
+    } else if (nch == 2) {  // grey + alpha
+      d[0] = d[1] = d[2] = s[0];
+      d[3] = s[1];
+    } else {
+      d[0] = s[0];
+      d[1] = s[1];
+      d[2] = s[2];
+      d[3] = nch >= 4 ? s[3] : 255;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool decodeTextureFile(const std::string& path, Texture& out, std::string& error) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    error = "texture file not found: " + path;
+    return false;
+  }
+  if (std::filesystem::is_directory(path, ec)) {
+    error = "texture path is a directory, not an image: " + path;
+    return false;
+  }
+  // Keep the original bytes: the scene file stores them instead of raw pixels.
+  std::ifstream f(path, std::ios::binary);
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  if (bytes.empty()) {
+    error = "texture file is empty (0 bytes): " + path;
+    return false;
+  }
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  Texture t;
+  t.name = std::filesystem::path(path).filename().string();
+  if (!decodeTextureMemory(bytes, ext, "texture " + path, t, error)) return false;
+  t.encoded = std::move(bytes);
+  out = std::move(t);
+  return true;
+}
+
+bool decodeTextureMemory(std::span<const uint8_t> bytes, const std::string& formatHint,
+                         const std::string& what, Texture& out, std::string& error) {
+  if (bytes.empty()) {
+    error = what + ": no image data";
+    return false;
+  }
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  // The file name only tells OIIO which format to try first.
+  const std::string pseudoName = "embedded." + (formatHint.empty() ? std::string("png") : formatHint);
+  auto in = OIIO::ImageInput::open(pseudoName, nullptr, &reader);
+  if (!in) {
+    // The hint may be wrong (an embedded JPEG tagged "png"): try the others.
+    for (const char* ext : {"png", "jpg", "tga", "bmp", "tif", "exr", "hdr", "webp"}) {
+      OIIO::Filesystem::IOMemReader retry(bytes.data(), bytes.size());
+      in = OIIO::ImageInput::open(std::string("embedded.") + ext, nullptr, &retry);
+      if (in) {
+        const bool ok = readRgba8(*in, what, out, error);
+        in->close();
+        return ok;
+      }
+    }
+    std::string reason = OIIO::geterror();
+    error = what + ": not a readable image" + (reason.empty() ? "" : " (" + reason + ")");
+    return false;
+  }
+  const bool ok = readRgba8(*in, what, out, error);
+  in->close();
+  return ok;
+}
+
+bool decodeTextureInPlace(Texture& texture, std::string& error) {
+  if (texture.encoded.empty()) return !texture.rgba.empty();
+  std::string ext = std::filesystem::path(texture.name).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  Texture decoded;
+  if (!decodeTextureMemory(texture.encoded, ext, "texture " + texture.name, decoded, error))
+    return false;
+  texture.width = decoded.width;
+  texture.height = decoded.height;
+  texture.rgba = std::move(decoded.rgba);
+  return true;
+}
+
+}  // namespace hs::mesh

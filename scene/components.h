@@ -1,0 +1,37 @@
+#pragma once
+// Components an entity can carry. Plain values: copying an entity copies its
+// components, which is what undo snapshots rely on. Their fields are listed
+// in fields.cpp, from which the property panel, the JSON file format and
+// animation tracks all work.
+#include <glm/glm.hpp>
+
+#include "scene/ids.h"
+
+namespace hs::scene {
+
+struct MeshInstance {
+  AssetId mesh = kNoAsset;
+  glm::vec3 tint{1.0f};  // multiplies the material colour (linear)
+  bool operator==(const MeshInstance&) const = default;
+};
+
+// A sun shines along the entity's local -Z axis (as in Blender); a point
+// light sits at the entity's position.
+struct Light {
+  enum class Type { Sun = 0, Point = 1 };
+  Type type = Type::Sun;
+  glm::vec3 color{1.0f, 0.96f, 0.9f};  // linear RGB
+  float intensity = 3.0f;              // sun: irradiance scale; point: at 1 m
+  float range = 100.0f;                // point lights: distance where they fade out
+  bool operator==(const Light&) const = default;
+};
+
+// Looks along local -Z with local +Y up (as in Blender).
+struct Camera {
+  double verticalFovDeg = 50.0;
+  double nearClip = 0.1;     // metres
+  double farClip = 50000.0;  // metres
+  bool operator==(const Camera&) const = default;
+};
+
+}  // namespace hs::scene

@@ -1,0 +1,66 @@
+#pragma once
+// The open scene: its state, its undo history and its file. Every change goes
+// through push() as a patch (see edit.h for how edits build them), so the
+// editor, the CLI and tests share one command API and one undo stack.
+#include <QObject>
+#include <QString>
+#include <QUndoStack>
+
+#include "scene/scene_patch.h"
+#include "scene/scene_state.h"
+
+namespace hs::scene {
+
+// What a change touched, so views refresh only what they show.
+struct ChangeSet {
+  std::vector<EntityId> entities;  // added, removed or modified
+  bool hierarchy = false;          // entities added/removed/reparented/renamed
+  bool assets = false;
+  bool settings = false;
+  bool reset = false;              // a whole new state (new/open)
+};
+
+class Document : public QObject {
+  Q_OBJECT
+ public:
+  explicit Document(QObject* parent = nullptr);
+  ~Document() override;
+
+  const SceneState& state() const { return state_; }
+  QUndoStack* undoStack() { return &undo_; }
+
+  // Pushes an undoable command that applies `patch`. Consecutive pushes with
+  // the same non-empty `mergeKey` fold into one undo step (a gizmo drag).
+  // Empty patches are dropped. Returns whether anything was pushed.
+  bool push(ScenePatch patch, const QString& text, const QString& mergeKey = {});
+
+  // Replaces the whole state (New, Open): clears history, marks clean.
+  void reset(SceneState state, const QString& filePath);
+
+  QString filePath() const { return filePath_; }
+  void setFilePath(const QString& path);
+  bool isModified() const { return !undo_.isClean(); }
+  void markSaved() { undo_.setClean(); }
+
+  EntityId allocateEntityId() { return nextEntity_++; }
+  AssetId allocateAssetId() { return nextAsset_++; }
+
+  // Called by the undo command; not for general use.
+  void applyFromCommand(const ScenePatch& patch, bool forward);
+
+ signals:
+  void changed(const hs::scene::ChangeSet& changes);
+  void filePathChanged(const QString& path);
+  void modifiedChanged(bool modified);
+
+ private:
+  SceneState state_;
+  QUndoStack undo_;
+  QString filePath_;
+  EntityId nextEntity_ = 1;
+  AssetId nextAsset_ = 1;
+};
+
+}  // namespace hs::scene
+
+Q_DECLARE_METATYPE(hs::scene::ChangeSet)

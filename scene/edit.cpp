@@ -1,0 +1,164 @@
+#include "scene/edit.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace hs::scene {
+
+Edit::Edit(Document& doc, QString text, QString mergeKey)
+    : doc_(doc), text_(std::move(text)), mergeKey_(std::move(mergeKey)) {}
+
+bool Edit::exists(EntityId id) const { return peek(id) != nullptr; }
+
+const Entity* Edit::peek(EntityId id) const {
+  auto it = patch_.entities.find(id);
+  if (it != patch_.entities.end()) return it->second.after ? &*it->second.after : nullptr;
+  return doc_.state().find(id);
+}
+
+Entity& Edit::entity(EntityId id) {
+  auto it = patch_.entities.find(id);
+  if (it == patch_.entities.end()) {
+    const Entity* e = doc_.state().find(id);
+    if (!e) throw std::out_of_range("no entity " + std::to_string(id));
+    it = patch_.entities.emplace(id, BeforeAfter<Entity>{*e, *e}).first;
+  }
+  if (!it->second.after) throw std::out_of_range("entity " + std::to_string(id) + " was removed");
+  return *it->second.after;
+}
+
+void Edit::touchRoots() {
+  if (!patch_.roots) patch_.roots.emplace(doc_.state().roots, doc_.state().roots);
+}
+
+std::vector<EntityId>& Edit::siblings(EntityId parent) {
+  if (parent == kNoEntity) {
+    touchRoots();
+    return patch_.roots->second;
+  }
+  return entity(parent).children;
+}
+
+EntityId Edit::addEntity(Entity e, EntityId parent, int index) {
+  if (e.id == kNoEntity) e.id = doc_.allocateEntityId();
+  if (parent != kNoEntity && !exists(parent)) parent = kNoEntity;
+  e.parent = parent;
+  e.children.clear();
+  const EntityId id = e.id;
+  auto& list = siblings(parent);
+  if (index < 0 || size_t(index) > list.size()) index = int(list.size());
+  list.insert(list.begin() + index, id);
+  auto it = patch_.entities.find(id);
+  if (it == patch_.entities.end())
+    patch_.entities.emplace(id, BeforeAfter<Entity>{std::nullopt, std::move(e)});
+  else
+    it->second.after = std::move(e);
+  return id;
+}
+
+void Edit::removeEntity(EntityId id) {
+  if (!exists(id)) return;
+  // Children first (copy: the list changes as they go).
+  const std::vector<EntityId> children = peek(id)->children;
+  for (EntityId c : children) removeEntity(c);
+  const EntityId parent = peek(id)->parent;
+  auto& list = siblings(parent);
+  list.erase(std::remove(list.begin(), list.end(), id), list.end());
+  entity(id);  // make sure the entity has a before/after entry
+  patch_.entities[id].after.reset();
+}
+
+bool Edit::reparent(EntityId id, EntityId newParent, int index, bool keepWorld) {
+  if (!exists(id)) return false;
+  if (newParent != kNoEntity && !exists(newParent)) return false;
+  // Refuse a cycle: newParent may not be id or below it.
+  for (EntityId p = newParent; p != kNoEntity; p = peek(p)->parent)
+    if (p == id) return false;
+
+  const glm::dmat4 world = worldMatrix(id);
+  const EntityId oldParent = peek(id)->parent;
+  auto& oldList = siblings(oldParent);
+  const auto oldPos = std::find(oldList.begin(), oldList.end(), id);
+  const int oldIndex = int(oldPos - oldList.begin());
+  oldList.erase(oldPos);
+  auto& newList = siblings(newParent);
+  // Moving down within the same list: the removal shifted the target.
+  if (oldParent == newParent && index > oldIndex) --index;
+  if (index < 0 || size_t(index) > newList.size()) index = int(newList.size());
+  newList.insert(newList.begin() + index, id);
+  Entity& e = entity(id);
+  e.parent = newParent;
+  if (keepWorld) {
+    const glm::dmat4 parentWorld = newParent == kNoEntity ? glm::dmat4(1.0) : worldMatrix(newParent);
+    e.transform = Transform::fromMatrix(glm::inverse(parentWorld) * world);
+  }
+  return true;
+}
+
+EntityId Edit::duplicate(EntityId id) {
+  const Entity* src = peek(id);
+  if (!src) return kNoEntity;
+  Entity copy = *src;
+  copy.id = kNoEntity;
+  const auto& list = src->parent == kNoEntity ? (patch_.roots ? patch_.roots->second : doc_.state().roots)
+                                              : peek(src->parent)->children;
+  const int index = int(std::find(list.begin(), list.end(), id) - list.begin()) + 1;
+  const std::vector<EntityId> children = src->children;
+  const EntityId newId = addEntity(copy, src->parent, index);
+  // Recreate the subtree under the copy, in order.
+  std::vector<std::pair<EntityId, EntityId>> stack;  // (source, new parent)
+  for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(*it, newId);
+  while (!stack.empty()) {
+    auto [s, p] = stack.back();
+    stack.pop_back();
+    Entity c = *peek(s);
+    const std::vector<EntityId> grand = c.children;
+    c.id = kNoEntity;
+    const EntityId n = addEntity(c, p);
+    for (auto it = grand.rbegin(); it != grand.rend(); ++it) stack.emplace_back(*it, n);
+  }
+  return newId;
+}
+
+AssetId Edit::addAsset(MeshAsset asset) {
+  if (asset.id == kNoAsset) asset.id = doc_.allocateAssetId();
+  const AssetId id = asset.id;
+  const MeshAsset* existing = doc_.state().findAsset(id);
+  patch_.assets[id] = BeforeAfter<MeshAsset>{existing ? std::optional(*existing) : std::nullopt,
+                                             std::move(asset)};
+  return id;
+}
+
+void Edit::removeAsset(AssetId id) {
+  auto it = patch_.assets.find(id);
+  if (it != patch_.assets.end()) {
+    it->second.after.reset();
+    return;
+  }
+  if (const MeshAsset* a = doc_.state().findAsset(id))
+    patch_.assets.emplace(id, BeforeAfter<MeshAsset>{*a, std::nullopt});
+}
+
+SceneSettings& Edit::settings() {
+  if (!patch_.settings) patch_.settings.emplace(doc_.state().settings, doc_.state().settings);
+  return patch_.settings->second;
+}
+
+glm::dmat4 Edit::worldMatrix(EntityId id) const {
+  glm::dmat4 m(1.0);
+  for (int depth = 0; depth < 10000 && id != kNoEntity; ++depth) {
+    const Entity* e = peek(id);
+    if (!e) break;
+    m = e->transform.matrix() * m;
+    id = e->parent;
+  }
+  return m;
+}
+
+bool Edit::commit() {
+  if (committed_) return false;
+  committed_ = true;
+  return doc_.push(std::move(patch_), text_, mergeKey_);
+}
+
+}  // namespace hs::scene

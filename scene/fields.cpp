@@ -1,0 +1,358 @@
+#include "scene/fields.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+namespace hs::scene {
+namespace {
+
+double clampFinite(double v, double lo, double hi, double fallback) {
+  if (!std::isfinite(v)) return fallback;
+  return std::clamp(v, lo, hi);
+}
+
+// Builders for the common field shapes. `Member` is a pointer-to-member
+// getter returning a reference, so one lambda serves get and set.
+template <class Target, class Access>
+FieldInfo<Target> doubleField(std::string key, std::string label, double min, double max,
+                              double step, std::string unit, Access access) {
+  FieldInfo<Target> f;
+  f.key = std::move(key);
+  f.label = std::move(label);
+  f.type = FieldType::Double;
+  f.min = min;
+  f.max = max;
+  f.step = step;
+  f.unit = std::move(unit);
+  f.get = [access](const Target& t) {
+    return FieldValue(double(access(const_cast<Target&>(t))));
+  };
+  f.set = [access, min, max](Target& t, const FieldValue& v) {
+    auto& ref = access(t);
+    using T = std::remove_reference_t<decltype(ref)>;
+    ref = T(clampFinite(std::get<double>(v), min, max, double(ref)));
+  };
+  return f;
+}
+
+template <class Target, class Access>
+FieldInfo<Target> boolField(std::string key, std::string label, Access access) {
+  FieldInfo<Target> f;
+  f.key = std::move(key);
+  f.label = std::move(label);
+  f.type = FieldType::Bool;
+  f.get = [access](const Target& t) { return FieldValue(bool(access(const_cast<Target&>(t)))); };
+  f.set = [access](Target& t, const FieldValue& v) { access(t) = std::get<bool>(v); };
+  return f;
+}
+
+template <class Target, class Access>
+FieldInfo<Target> colorField(std::string key, std::string label, Access access) {
+  FieldInfo<Target> f;
+  f.key = std::move(key);
+  f.label = std::move(label);
+  f.type = FieldType::Color;
+  f.min = 0.0;
+  f.max = 1000.0;  // HDR colours are allowed; negative ones are not
+  f.get = [access](const Target& t) {
+    return FieldValue(glm::dvec3(access(const_cast<Target&>(t))));
+  };
+  f.set = [access](Target& t, const FieldValue& v) {
+    auto& ref = access(t);
+    const glm::dvec3 c = std::get<glm::dvec3>(v);
+    for (int i = 0; i < 3; ++i) ref[i] = float(clampFinite(c[i], 0.0, 1000.0, double(ref[i])));
+  };
+  return f;
+}
+
+template <class Target, class Access>
+FieldInfo<Target> enumField(std::string key, std::string label, std::vector<std::string> names,
+                            Access access) {
+  FieldInfo<Target> f;
+  f.key = std::move(key);
+  f.label = std::move(label);
+  f.type = FieldType::Enum;
+  f.min = 0;
+  f.max = double(names.size() - 1);
+  f.enumNames = std::move(names);
+  f.animatable = false;
+  const int64_t count = int64_t(f.enumNames.size());
+  f.get = [access](const Target& t) {
+    return FieldValue(int64_t(access(const_cast<Target&>(t))));
+  };
+  f.set = [access, count](Target& t, const FieldValue& v) {
+    auto& ref = access(t);
+    using T = std::remove_reference_t<decltype(ref)>;
+    ref = T(std::clamp<int64_t>(std::get<int64_t>(v), 0, count - 1));
+  };
+  return f;
+}
+
+EntityField vec3Field(std::string key, std::string label, std::string unit, double step,
+                      std::function<glm::dvec3(const Entity&)> get,
+                      std::function<void(Entity&, glm::dvec3)> set) {
+  EntityField f;
+  f.key = std::move(key);
+  f.label = std::move(label);
+  f.type = FieldType::Vec3;
+  f.step = step;
+  f.unit = std::move(unit);
+  f.get = [get](const Entity& e) { return FieldValue(get(e)); };
+  f.set = [get, set](Entity& e, const FieldValue& v) {
+    glm::dvec3 x = std::get<glm::dvec3>(v);
+    const glm::dvec3 old = get(e);
+    for (int i = 0; i < 3; ++i)
+      if (!std::isfinite(x[i])) x[i] = old[i];  // NaN from a script never enters the document
+    set(e, x);
+  };
+  return f;
+}
+
+template <class C>
+ComponentInfo optionalComponent(std::string key, std::string label,
+                                std::optional<C> Entity::*member, std::vector<EntityField> fields) {
+  ComponentInfo c;
+  c.key = std::move(key);
+  c.label = std::move(label);
+  c.optional = true;
+  c.has = [member](const Entity& e) { return (e.*member).has_value(); };
+  c.add = [member](Entity& e) {
+    if (!(e.*member)) e.*member = C{};
+  };
+  c.remove = [member](Entity& e) { (e.*member).reset(); };
+  c.fields = std::move(fields);
+  return c;
+}
+
+std::vector<ComponentInfo> buildEntityComponents() {
+  std::vector<ComponentInfo> out;
+
+  ComponentInfo entity;
+  entity.key = "entity";
+  entity.label = "Entity";
+  entity.optional = false;
+  entity.has = [](const Entity&) { return true; };
+  {
+    EntityField name;
+    name.key = "name";
+    name.label = "Name";
+    name.type = FieldType::String;
+    name.animatable = false;
+    name.get = [](const Entity& e) { return FieldValue(e.name); };
+    name.set = [](Entity& e, const FieldValue& v) { e.name = std::get<std::string>(v); };
+    entity.fields.push_back(name);
+    entity.fields.push_back(boolField<Entity>("visible", "Visible", [](Entity& e) -> bool& { return e.visible; }));
+  }
+  out.push_back(entity);
+
+  ComponentInfo transform;
+  transform.key = "transform";
+  transform.label = "Transform";
+  transform.optional = false;
+  transform.has = [](const Entity&) { return true; };
+  transform.fields.push_back(vec3Field(
+      "translation", "Location", "m", 0.1, [](const Entity& e) { return e.transform.translation; },
+      [](Entity& e, glm::dvec3 v) { e.transform.translation = v; }));
+  transform.fields.push_back(vec3Field(
+      "rotation_deg", "Rotation", "°", 1.0,
+      [](const Entity& e) { return eulerDegrees(e.transform.rotation); },
+      [](Entity& e, glm::dvec3 v) { e.transform.rotation = fromEulerDegrees(v); }));
+  transform.fields.push_back(vec3Field(
+      "scale", "Scale", "", 0.01, [](const Entity& e) { return e.transform.scale; },
+      [](Entity& e, glm::dvec3 v) {
+        // A zero scale makes the matrix singular (no picking, no normals):
+        // keep a tiny positive or negative value instead.
+        for (int i = 0; i < 3; ++i)
+          if (std::abs(v[i]) < 1e-9) v[i] = v[i] < 0 ? -1e-9 : 1e-9;
+        e.transform.scale = v;
+      }));
+  out.push_back(transform);
+
+  {
+    EntityField asset;
+    asset.key = "asset";
+    asset.label = "Mesh asset";
+    asset.type = FieldType::AssetRef;
+    asset.animatable = false;
+    asset.get = [](const Entity& e) { return FieldValue(int64_t(e.mesh ? e.mesh->mesh : 0)); };
+    asset.set = [](Entity& e, const FieldValue& v) {
+      if (e.mesh) e.mesh->mesh = AssetId(std::max<int64_t>(0, std::get<int64_t>(v)));
+    };
+    out.push_back(optionalComponent<MeshInstance>(
+        "mesh", "Mesh", &Entity::mesh,
+        {asset, colorField<Entity>("tint", "Tint", [](Entity& e) -> glm::vec3& { return e.mesh->tint; })}));
+  }
+
+  out.push_back(optionalComponent<Light>(
+      "light", "Light", &Entity::light,
+      {enumField<Entity>("type", "Type", {"Sun", "Point"},
+                         [](Entity& e) -> Light::Type& { return e.light->type; }),
+       colorField<Entity>("color", "Colour", [](Entity& e) -> glm::vec3& { return e.light->color; }),
+       doubleField<Entity>("intensity", "Intensity", 0.0, 1e6, 0.1, "",
+                           [](Entity& e) -> float& { return e.light->intensity; }),
+       doubleField<Entity>("range", "Range", 0.01, 1e7, 1.0, "m",
+                           [](Entity& e) -> float& { return e.light->range; })}));
+
+  out.push_back(optionalComponent<Camera>(
+      "camera", "Camera", &Entity::camera,
+      {doubleField<Entity>("fov_deg", "Vertical field of view", 1.0, 170.0, 1.0, "°",
+                           [](Entity& e) -> double& { return e.camera->verticalFovDeg; }),
+       doubleField<Entity>("near_m", "Near clip", 1e-4, 1e5, 0.01, "m",
+                           [](Entity& e) -> double& { return e.camera->nearClip; }),
+       doubleField<Entity>("far_m", "Far clip", 1e-2, 1e8, 100.0, "m",
+                           [](Entity& e) -> double& { return e.camera->farClip; })}));
+  return out;
+}
+
+std::vector<SettingsField> buildSettingsFields() {
+  using S = SceneSettings;
+  return {
+      colorField<S>("sky_zenith", "Sky zenith", [](S& s) -> glm::vec3& { return s.skyZenith; }),
+      colorField<S>("sky_horizon", "Sky horizon", [](S& s) -> glm::vec3& { return s.skyHorizon; }),
+      colorField<S>("ground_color", "Ground", [](S& s) -> glm::vec3& { return s.groundColor; }),
+      doubleField<S>("ambient", "Sky ambient", 0.0, 100.0, 0.05, "",
+                     [](S& s) -> float& { return s.ambientIntensity; }),
+      doubleField<S>("exposure", "Exposure", 0.001, 1000.0, 0.05, "",
+                     [](S& s) -> float& { return s.exposure; }),
+      boolField<S>("show_grid", "Ground grid", [](S& s) -> bool& { return s.showGrid; }),
+      enumField<S>("antialiasing", "Anti-aliasing", {"None", "FXAA", "MSAA 4x"},
+                   [](S& s) -> Antialiasing& { return s.antialiasing; }),
+  };
+}
+
+}  // namespace
+
+const std::vector<ComponentInfo>& entityComponents() {
+  static const std::vector<ComponentInfo> table = buildEntityComponents();
+  return table;
+}
+
+const std::vector<SettingsField>& settingsFields() {
+  static const std::vector<SettingsField> table = buildSettingsFields();
+  return table;
+}
+
+const ComponentInfo* findComponent(std::string_view key) {
+  for (const auto& c : entityComponents())
+    if (c.key == key) return &c;
+  return nullptr;
+}
+
+const EntityField* findEntityField(std::string_view path) {
+  const size_t dot = path.find('.');
+  if (dot == std::string_view::npos) return nullptr;
+  const ComponentInfo* c = findComponent(path.substr(0, dot));
+  if (!c) return nullptr;
+  const std::string_view key = path.substr(dot + 1);
+  for (const auto& f : c->fields)
+    if (f.key == key) return &f;
+  return nullptr;
+}
+
+const SettingsField* findSettingsField(std::string_view key) {
+  for (const auto& f : settingsFields())
+    if (f.key == key) return &f;
+  return nullptr;
+}
+
+namespace {
+bool parseDouble(std::string_view s, double& v) {
+  while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
+  while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size() && std::isfinite(v);
+}
+}  // namespace
+
+template <class Target>
+std::optional<FieldValue> parseFieldValue(const FieldInfo<Target>& field, std::string_view text,
+                                          std::string& error) {
+  switch (field.type) {
+    case FieldType::Double: {
+      double v;
+      if (!parseDouble(text, v)) {
+        error = "'" + std::string(text) + "' is not a finite number";
+        return std::nullopt;
+      }
+      return FieldValue(v);
+    }
+    case FieldType::Bool:
+      if (text == "true" || text == "1" || text == "on" || text == "yes") return FieldValue(true);
+      if (text == "false" || text == "0" || text == "off" || text == "no") return FieldValue(false);
+      error = "'" + std::string(text) + "' is not true/false";
+      return std::nullopt;
+    case FieldType::Enum: {
+      for (size_t i = 0; i < field.enumNames.size(); ++i) {
+        std::string a = field.enumNames[i], b(text);
+        std::transform(a.begin(), a.end(), a.begin(), ::tolower);
+        std::transform(b.begin(), b.end(), b.begin(), ::tolower);
+        if (a == b) return FieldValue(int64_t(i));
+      }
+      double v;
+      if (parseDouble(text, v) && v >= 0 && v < double(field.enumNames.size()) && v == std::floor(v))
+        return FieldValue(int64_t(v));
+      error = "'" + std::string(text) + "' is not one of:";
+      for (const auto& n : field.enumNames) error += " " + n;
+      return std::nullopt;
+    }
+    case FieldType::Vec3:
+    case FieldType::Color: {
+      glm::dvec3 v;
+      size_t start = 0;
+      for (int i = 0; i < 3; ++i) {
+        const size_t comma = text.find(',', start);
+        if ((i < 2 && comma == std::string_view::npos) || (i == 2 && comma != std::string_view::npos) ||
+            !parseDouble(text.substr(start, i < 2 ? comma - start : std::string_view::npos), v[i])) {
+          error = "'" + std::string(text) + "' is not three finite numbers x,y,z";
+          return std::nullopt;
+        }
+        start = comma + 1;
+      }
+      return FieldValue(v);
+    }
+    case FieldType::String:
+      return FieldValue(std::string(text));
+    case FieldType::AssetRef: {
+      double v;
+      if (!parseDouble(text, v) || v < 0 || v != std::floor(v)) {
+        error = "'" + std::string(text) + "' is not an asset id";
+        return std::nullopt;
+      }
+      return FieldValue(int64_t(v));
+    }
+  }
+  return std::nullopt;
+}
+
+template std::optional<FieldValue> parseFieldValue(const EntityField&, std::string_view, std::string&);
+template std::optional<FieldValue> parseFieldValue(const SettingsField&, std::string_view, std::string&);
+
+std::string formatFieldValue(FieldType type, const FieldValue& v,
+                             const std::vector<std::string>& enumNames) {
+  std::ostringstream s;
+  s.precision(17);
+  switch (type) {
+    case FieldType::Double: s << std::get<double>(v); break;
+    case FieldType::Bool: s << (std::get<bool>(v) ? "true" : "false"); break;
+    case FieldType::Enum: {
+      const int64_t i = std::get<int64_t>(v);
+      if (i >= 0 && size_t(i) < enumNames.size()) s << enumNames[size_t(i)];
+      else s << i;
+      break;
+    }
+    case FieldType::Vec3:
+    case FieldType::Color: {
+      const auto& x = std::get<glm::dvec3>(v);
+      s << x.x << "," << x.y << "," << x.z;
+      break;
+    }
+    case FieldType::String: s << std::get<std::string>(v); break;
+    case FieldType::AssetRef: s << std::get<int64_t>(v); break;
+  }
+  return s.str();
+}
+
+}  // namespace hs::scene

@@ -1,0 +1,75 @@
+#pragma once
+// Reflection of every editable value: one table drives the property panel,
+// the JSON in .hscene files, `hybridscape-cli set`, and (later) animation
+// tracks, so a field added here is editable, saved and animatable at once.
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/entity.h"
+#include "scene/scene_state.h"
+
+namespace hs::scene {
+
+enum class FieldType {
+  Double,   // double
+  Bool,     // bool
+  Enum,     // int64 index into enumNames
+  Vec3,     // dvec3 (positions, angles, scales)
+  Color,    // dvec3, linear RGB 0..1
+  String,   // std::string
+  AssetRef  // int64 asset id
+};
+
+using FieldValue = std::variant<double, bool, int64_t, glm::dvec3, std::string>;
+
+template <class Target>
+struct FieldInfo {
+  std::string key;    // "fov_deg"; full path is "<component>.<key>"
+  std::string label;  // "Field of view"
+  FieldType type = FieldType::Double;
+  double min = -1e300, max = 1e300, step = 0.1;
+  std::string unit;   // "m", "°", ...
+  std::vector<std::string> enumNames;
+  std::function<FieldValue(const Target&)> get;
+  std::function<void(Target&, const FieldValue&)> set;  // clamps to [min,max]
+  bool animatable = true;
+};
+
+using EntityField = FieldInfo<Entity>;
+using SettingsField = FieldInfo<SceneSettings>;
+
+// A group of fields on an entity: "entity" (name, visible), "transform",
+// and one per optional component ("mesh", "light", "camera").
+struct ComponentInfo {
+  std::string key;
+  std::string label;
+  bool optional = true;  // false for entity/transform: always present
+  std::function<bool(const Entity&)> has;
+  std::function<void(Entity&)> add;     // default-constructed
+  std::function<void(Entity&)> remove;
+  std::vector<EntityField> fields;
+};
+
+const std::vector<ComponentInfo>& entityComponents();
+const std::vector<SettingsField>& settingsFields();
+
+const ComponentInfo* findComponent(std::string_view key);
+// "camera.fov_deg" -> the field; nullptr if unknown.
+const EntityField* findEntityField(std::string_view path);
+const SettingsField* findSettingsField(std::string_view key);
+
+// Parses a value for `type` from text ("1,2,3" for vectors, "true"/"1",
+// enum names or indices). Returns nullopt with `error` set if it does not fit.
+template <class Target>
+std::optional<FieldValue> parseFieldValue(const FieldInfo<Target>& field, std::string_view text,
+                                          std::string& error);
+std::string formatFieldValue(FieldType type, const FieldValue& v,
+                             const std::vector<std::string>& enumNames = {});
+
+}  // namespace hs::scene

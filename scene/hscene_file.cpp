@@ -1,0 +1,323 @@
+#include "scene/hscene_file.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include <QJsonDocument>
+#include <QJsonParseError>
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include "scene/mesh_blob.h"
+#include "scene/scene_json.h"
+#include "scene/sqlite_db.h"
+
+namespace hs::scene {
+namespace {
+
+constexpr const char* kFormatName = "hybridscape-scene";
+
+const char* kSchema = R"sql(
+CREATE TABLE IF NOT EXISTS meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS document(id INTEGER PRIMARY KEY CHECK (id = 1), json TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS blobs(key TEXT NOT NULL, part INTEGER NOT NULL, hash TEXT NOT NULL,
+                                 data BLOB NOT NULL, PRIMARY KEY(key, part));
+)sql";
+
+std::string hex(uint64_t h) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+std::string meshKey(AssetId id) { return "mesh/" + std::to_string(id); }
+
+// First 16 bytes of every SQLite 3 database.
+bool hasSqliteHeader(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  char header[16] = {};
+  f.read(header, sizeof header);
+  return f.gcount() == 16 && std::memcmp(header, "SQLite format 3\0", 16) == 0;
+}
+
+// Reads meta.format / meta.format_version; 0 if absent or not a scene.
+int readVersion(SqliteDb& db, std::string& format, std::string& error) {
+  SqliteStmt q(db, "SELECT key, value FROM meta WHERE key IN ('format', 'format_version')");
+  if (!q.ok()) {
+    error = db.lastError();
+    return 0;
+  }
+  int version = 0;
+  while (q.step(error)) {
+    if (q.text(0) == "format") format = q.text(1);
+    if (q.text(0) == "format_version") version = std::atoi(q.text(1).c_str());
+  }
+  return version;
+}
+
+// The logical blobs the state needs: key -> (hash, asset).
+std::map<std::string, std::pair<std::string, const MeshAsset*>> wantedBlobs(const SceneState& s) {
+  std::map<std::string, std::pair<std::string, const MeshAsset*>> out;
+  for (const auto& [id, a] : s.assets)
+    if (a.data) out[meshKey(id)] = {hex(a.contentHash), &a};
+  return out;
+}
+
+bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std::string& error) {
+  if (!db.exec(kSchema, error)) return false;
+  {
+    SqliteStmt m(db, "INSERT OR REPLACE INTO meta(key, value) VALUES (?1, ?2)");
+    for (const auto& [k, v] : {std::pair<std::string, std::string>{"format", kFormatName},
+                               {"format_version", std::to_string(kSceneFormatVersion)},
+                               {"writer", "Hybridscape 0.1"}}) {
+      m.bind(1, k);
+      m.bind(2, v);
+      m.step(error);
+      if (!error.empty()) return false;
+      m.reset();
+    }
+  }
+  {
+    SqliteStmt d(db, "INSERT OR REPLACE INTO document(id, json) VALUES (1, ?1)");
+    const QByteArray json = QJsonDocument(sceneToJson(state)).toJson(QJsonDocument::Indented);
+    d.bind(1, std::string_view(json.constData(), size_t(json.size())));
+    d.step(error);
+    if (!error.empty()) return false;
+  }
+
+  // Which blobs are already there with the right content?
+  std::map<std::string, std::string> existing;
+  {
+    SqliteStmt q(db, "SELECT key, hash FROM blobs WHERE part = 0");
+    while (q.step(error)) existing[q.text(0)] = q.text(1);
+    if (!error.empty()) return false;
+  }
+  const auto wanted = wantedBlobs(state);
+  SqliteStmt del(db, "DELETE FROM blobs WHERE key = ?1");
+  SqliteStmt ins(db, "INSERT INTO blobs(key, part, hash, data) VALUES (?1, ?2, ?3, ?4)");
+  for (const auto& [key, hashAsset] : wanted) {
+    const auto& [hash, asset] = hashAsset;
+    if (auto it = existing.find(key); it != existing.end() && it->second == hash) {
+      ++report.blobsUnchanged;
+      continue;
+    }
+    del.bind(1, key);
+    del.step(error);
+    del.reset();
+    if (!error.empty()) return false;
+    const std::vector<uint8_t> bytes = encodeMesh(*asset->data);
+    for (size_t off = 0, part = 0; off < bytes.size() || part == 0; off += kBlobPartBytes, ++part) {
+      const size_t n = std::min(kBlobPartBytes, bytes.size() - off);
+      ins.bind(1, key);
+      ins.bind(2, int64_t(part));
+      ins.bind(3, hash);
+      ins.bindBlob(4, {bytes.data() + off, n});
+      ins.step(error);
+      ins.reset();
+      if (!error.empty()) return false;
+    }
+    report.bytesWritten += bytes.size();
+    ++report.blobsWritten;
+  }
+  for (const auto& [key, hash] : existing) {
+    if (wanted.count(key)) continue;
+    del.bind(1, key);
+    del.step(error);
+    del.reset();
+    if (!error.empty()) return false;
+    ++report.blobsRemoved;
+  }
+  return true;
+}
+
+}  // namespace
+
+int sceneFileVersion(const std::string& path) {
+  if (!hasSqliteHeader(path)) return 0;
+  SqliteDb db;
+  std::string error, format;
+  if (!db.open(path, true, false, error)) return 0;
+  const int v = readVersion(db, format, error);
+  return format == kFormatName ? v : 0;
+}
+
+bool saveScene(const SceneState& state, const std::string& path, std::string& error,
+               SaveReport* reportOut) {
+  const auto start = std::chrono::steady_clock::now();
+  SaveReport report;
+  std::error_code ec;
+  namespace fs = std::filesystem;
+  if (fs::is_directory(path, ec)) {
+    error = path + ": is a directory; choose a file name ending in .hscene";
+    return false;
+  }
+
+  // An existing scene of our format and version: update it in place, in one
+  // transaction (SQLite's journal makes it all-or-nothing across a crash).
+  const int existingVersion = fs::exists(path, ec) ? sceneFileVersion(path) : 0;
+  if (existingVersion == kSceneFormatVersion) {
+    SqliteDb db;
+    std::string e;
+    if (!db.open(path, false, false, e)) {
+      error = path + ": cannot open for writing: " + e;
+      return false;
+    }
+    report.incremental = true;
+    if (!db.exec("BEGIN IMMEDIATE", e) || !writeContent(db, state, report, e) || !db.exec("COMMIT", e)) {
+      std::string ignored;
+      db.exec("ROLLBACK", ignored);
+      error = path + ": save failed, the file is unchanged: " + e;
+      return false;
+    }
+  } else {
+    // New file (or replacing something that is not a current scene): write a
+    // complete database beside it, then rename over the target atomically.
+    const std::string tmp = path + ".saving-" + std::to_string(::getpid());
+    fs::remove(tmp, ec);
+    {
+      SqliteDb db;
+      std::string e;
+      if (!db.open(tmp, false, true, e)) {
+        error = path + ": cannot create the file: " + e;
+        return false;
+      }
+      if (!db.exec("PRAGMA journal_mode=DELETE; BEGIN", e) || !writeContent(db, state, report, e) ||
+          !db.exec("COMMIT", e)) {
+        db.close();
+        fs::remove(tmp, ec);
+        error = path + ": save failed, nothing was written: " + e;
+        return false;
+      }
+    }
+    fs::rename(tmp, path, ec);
+    if (ec) {
+      fs::remove(tmp, ec);
+      error = path + ": cannot replace the file: " + ec.message();
+      return false;
+    }
+  }
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (reportOut) *reportOut = report;
+  return true;
+}
+
+std::optional<SceneState> loadScene(const std::string& path, std::string& error,
+                                    const Progress* progress) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    error = path + ": file not found";
+    return std::nullopt;
+  }
+  if (fs::is_directory(path, ec)) {
+    error = path + ": is a directory, not a scene file";
+    return std::nullopt;
+  }
+  if (fs::file_size(path, ec) == 0) {
+    error = path + ": file is empty (0 bytes), not a scene";
+    return std::nullopt;
+  }
+  if (!hasSqliteHeader(path)) {
+    error = path + ": not a Hybridscape scene (it is not an SQLite database)";
+    return std::nullopt;
+  }
+  SqliteDb db;
+  std::string e, format;
+  if (!db.open(path, true, false, e)) {
+    error = path + ": cannot open: " + e;
+    return std::nullopt;
+  }
+  const int version = readVersion(db, format, e);
+  if (!e.empty()) {
+    error = path + ": the scene file is damaged and was not opened (" + e + ")";
+    return std::nullopt;
+  }
+  if (format != kFormatName) {
+    error = path + ": an SQLite database, but not a Hybridscape scene (no scene format marker)";
+    return std::nullopt;
+  }
+  if (version > kSceneFormatVersion) {
+    error = path + ": written by a newer Hybridscape (scene format " + std::to_string(version) +
+            "; this build reads up to " + std::to_string(kSceneFormatVersion) +
+            "). Update Hybridscape to open it.";
+    return std::nullopt;
+  }
+  if (version < 1) {
+    error = path + ": invalid scene format version " + std::to_string(version);
+    return std::nullopt;
+  }
+
+  std::string jsonText;
+  {
+    SqliteStmt q(db, "SELECT json FROM document WHERE id = 1");
+    if (q.step(e)) jsonText = q.text(0);
+    if (!e.empty() || jsonText.empty()) {
+      error = path + ": the scene file is damaged and was not opened (" +
+              (e.empty() ? std::string("no scene description") : e) + ")";
+      return std::nullopt;
+    }
+  }
+  QJsonParseError perr;
+  const QJsonDocument doc = QJsonDocument::fromJson(QByteArray::fromStdString(jsonText), &perr);
+  if (perr.error != QJsonParseError::NoError || !doc.isObject()) {
+    error = path + ": the scene description is damaged (JSON error at character " +
+            std::to_string(perr.offset) + ": " + perr.errorString().toStdString() + ")";
+    return std::nullopt;
+  }
+  std::optional<SceneState> state = sceneFromJson(doc.object(), e);
+  if (!state) {
+    error = path + ": the scene description is invalid at " + e;
+    return std::nullopt;
+  }
+
+  // Bulk data: each asset's mesh, checked against the hash the description holds.
+  SqliteStmt q(db, "SELECT part, hash, data FROM blobs WHERE key = ?1 ORDER BY part");
+  size_t done = 0;
+  for (auto& [id, asset] : state->assets) {
+    reportProgress(progress, double(done++) / double(state->assets.size()), "Loading meshes");
+    if (isCancelled(progress)) {
+      error = path + ": opening cancelled";
+      return std::nullopt;
+    }
+    const std::string key = meshKey(id);
+    const std::string what = path + ": mesh asset " + std::to_string(id) + " ('" + asset.name + "')";
+    std::vector<uint8_t> bytes;
+    int64_t expectedPart = 0;
+    q.bind(1, key);
+    while (q.step(e)) {
+      if (q.integer(0) != expectedPart++) {
+        error = what + ": a part of its data is missing (damaged file)";
+        return std::nullopt;
+      }
+      const auto b = q.blob(2);
+      bytes.insert(bytes.end(), b.begin(), b.end());
+    }
+    q.reset();
+    if (!e.empty()) {
+      error = what + ": the scene file is damaged (" + e + ")";
+      return std::nullopt;
+    }
+    if (expectedPart == 0) {
+      error = what + ": its mesh data is missing from the file";
+      return std::nullopt;
+    }
+    std::optional<mesh::MeshData> mesh = decodeMesh(bytes.data(), bytes.size(), what, e);
+    if (!mesh) {
+      error = e;
+      return std::nullopt;
+    }
+    if (mesh::contentHash(*mesh) != asset.contentHash) {
+      error = what + ": its data does not match its checksum (damaged file)";
+      return std::nullopt;
+    }
+    asset.data = std::make_shared<const mesh::MeshData>(std::move(*mesh));
+  }
+  reportProgress(progress, 1.0, "Loaded");
+  return state;
+}
+
+}  // namespace hs::scene

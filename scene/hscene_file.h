@@ -1,0 +1,44 @@
+#pragma once
+// The .hscene file: one SQLite database (DESIGN.md).
+//
+//   meta(key TEXT PRIMARY KEY, value TEXT)        format, format_version, writer
+//   document(id INTEGER PRIMARY KEY, json TEXT)   the description (scene_json.h), one row
+//   blobs(key TEXT, part INTEGER, hash TEXT, data BLOB, PRIMARY KEY(key, part))
+//
+// Bulk data is a logical blob per key ("mesh/3"), split into parts of at most
+// kBlobPartBytes so no single SQLite value nears its 1 GB limit. A save is one
+// transaction that rewrites the description and only the blobs whose hash
+// changed; a new file is written beside the target and renamed over it.
+#include <optional>
+#include <string>
+
+#include "mesh/progress.h"
+#include "scene/scene_state.h"
+
+namespace hs::scene {
+
+constexpr size_t kBlobPartBytes = size_t(256) << 20;
+
+struct SaveReport {
+  size_t blobsWritten = 0;
+  size_t blobsUnchanged = 0;
+  size_t blobsRemoved = 0;
+  uint64_t bytesWritten = 0;
+  bool incremental = false;  // updated an existing scene file in place
+  double seconds = 0.0;
+};
+
+// Writes `state` to `path`. On failure returns false with `error` naming the
+// file, and whatever was at `path` before is unchanged.
+bool saveScene(const SceneState& state, const std::string& path, std::string& error,
+               SaveReport* report = nullptr);
+
+// Reads a scene. On failure returns nullopt with `error` saying what is wrong
+// with which file (not a scene, damaged, from a newer version, ...).
+std::optional<SceneState> loadScene(const std::string& path, std::string& error,
+                                    const Progress* progress = nullptr);
+
+// The format version of a file, without loading it (0 if it is not a scene).
+int sceneFileVersion(const std::string& path);
+
+}  // namespace hs::scene

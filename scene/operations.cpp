@@ -1,0 +1,166 @@
+#include "scene/operations.h"
+
+#include <algorithm>
+
+#include "scene/edit.h"
+#include "scene/report_json.h"
+
+namespace hs::scene::ops {
+
+EntityId addImportedMesh(Document& doc, mesh::MeshData meshData, const std::string& name,
+                         const std::string& sourcePath, const mesh::ImportReport& report,
+                         const Placement& placement) {
+  const mesh::Bounds b = meshData.bounds();
+  MeshAsset asset;
+  asset.name = name;
+  asset.sourcePath = sourcePath;
+  asset.contentHash = mesh::contentHash(meshData);
+  asset.importReportJson = importReportToJson(report);
+  const glm::dvec3 origin = meshData.origin;
+  asset.data = std::make_shared<const mesh::MeshData>(std::move(meshData));
+
+  Edit e(doc, QString("Import %1").arg(QString::fromStdString(name)));
+  const AssetId assetId = e.addAsset(std::move(asset));
+  Entity ent;
+  ent.name = name;
+  ent.mesh = MeshInstance{assetId};
+  // The mesh's vertices are relative to its origin: an entity at the origin
+  // puts it exactly where the file had it.
+  ent.transform.translation = origin;
+  if (placement.at) {
+    const glm::dvec3 baseCentre(b.center().x, b.center().y, b.min.z);
+    ent.transform.translation = *placement.at - baseCentre;
+  }
+  const EntityId id = e.addEntity(std::move(ent), placement.parent);
+  e.commit();
+  return id;
+}
+
+EntityId addEmpty(Document& doc, const std::string& name, const Transform& t, EntityId parent) {
+  Edit e(doc, QString("Add %1").arg(QString::fromStdString(name)));
+  Entity ent;
+  ent.name = name;
+  ent.transform = t;
+  const EntityId id = e.addEntity(std::move(ent), parent);
+  e.commit();
+  return id;
+}
+
+EntityId addCamera(Document& doc, const std::string& name, const Transform& t, const Camera& c) {
+  Edit e(doc, QString("Add camera %1").arg(QString::fromStdString(name)));
+  Entity ent;
+  ent.name = name;
+  ent.transform = t;
+  ent.camera = c;
+  const EntityId id = e.addEntity(std::move(ent));
+  e.commit();
+  return id;
+}
+
+EntityId addLight(Document& doc, const std::string& name, const Transform& t, const Light& l) {
+  Edit e(doc, QString("Add light %1").arg(QString::fromStdString(name)));
+  Entity ent;
+  ent.name = name;
+  ent.transform = t;
+  ent.light = l;
+  const EntityId id = e.addEntity(std::move(ent));
+  e.commit();
+  return id;
+}
+
+bool rename(Document& doc, EntityId id, const std::string& name) {
+  if (!doc.state().find(id) || name.empty()) return false;
+  Edit e(doc, QString("Rename to %1").arg(QString::fromStdString(name)));
+  e.entity(id).name = name;
+  return e.commit();
+}
+
+bool setTransforms(Document& doc, const std::vector<std::pair<EntityId, Transform>>& transforms,
+                   const QString& text, const QString& mergeKey) {
+  Edit e(doc, text, mergeKey);
+  for (const auto& [id, t] : transforms) {
+    if (!e.exists(id)) return false;
+    for (int i = 0; i < 3; ++i)
+      if (!std::isfinite(t.translation[i]) || !std::isfinite(t.scale[i])) return false;
+    e.entity(id).transform = t;
+  }
+  return e.commit();
+}
+
+bool setField(Document& doc, EntityId id, const EntityField& field, const FieldValue& value,
+              const QString& mergeKey) {
+  if (!doc.state().find(id)) return false;
+  Edit e(doc, QString("Set %1").arg(QString::fromStdString(field.label)), mergeKey);
+  Entity& ent = e.entity(id);
+  // A component field on an entity without that component: refuse.
+  for (const auto& c : entityComponents())
+    for (const auto& f : c.fields)
+      if (&f == &field && !c.has(ent)) return false;
+  field.set(ent, value);
+  return e.commit();
+}
+
+bool setSettingsField(Document& doc, const SettingsField& field, const FieldValue& value,
+                      const QString& mergeKey) {
+  Edit e(doc, QString("Set %1").arg(QString::fromStdString(field.label)), mergeKey);
+  field.set(e.settings(), value);
+  return e.commit();
+}
+
+bool addComponent(Document& doc, EntityId id, const ComponentInfo& component) {
+  if (!doc.state().find(id) || !component.optional) return false;
+  Edit e(doc, QString("Add %1").arg(QString::fromStdString(component.label)));
+  component.add(e.entity(id));
+  return e.commit();
+}
+
+bool removeComponent(Document& doc, EntityId id, const ComponentInfo& component) {
+  if (!doc.state().find(id) || !component.optional) return false;
+  Edit e(doc, QString("Remove %1").arg(QString::fromStdString(component.label)));
+  component.remove(e.entity(id));
+  return e.commit();
+}
+
+bool reparent(Document& doc, EntityId id, EntityId newParent, int index) {
+  Edit e(doc, "Reparent");
+  if (!e.reparent(id, newParent, index, true)) return false;
+  return e.commit();
+}
+
+std::vector<EntityId> topMost(const SceneState& state, const std::vector<EntityId>& ids) {
+  std::vector<EntityId> out;
+  for (EntityId id : ids) {
+    if (!state.find(id)) continue;
+    bool below = false;
+    for (EntityId other : ids)
+      if (other != id && state.isAncestorOrSelf(other, id)) below = true;
+    if (!below && std::find(out.begin(), out.end(), id) == out.end()) out.push_back(id);
+  }
+  return out;
+}
+
+bool remove(Document& doc, const std::vector<EntityId>& ids) {
+  const auto top = topMost(doc.state(), ids);
+  if (top.empty()) return false;
+  Edit e(doc, top.size() == 1 ? QString("Delete %1").arg(QString::fromStdString(doc.state().find(top[0])->name))
+                              : QString("Delete %1 entities").arg(top.size()));
+  for (EntityId id : top) e.removeEntity(id);
+  return e.commit();
+}
+
+std::vector<EntityId> duplicate(Document& doc, const std::vector<EntityId>& ids) {
+  const auto top = topMost(doc.state(), ids);
+  std::vector<EntityId> out;
+  if (top.empty()) return out;
+  Edit e(doc, top.size() == 1 ? QString("Duplicate %1").arg(QString::fromStdString(doc.state().find(top[0])->name))
+                              : QString("Duplicate %1 entities").arg(top.size()));
+  for (EntityId id : top) {
+    const EntityId copy = e.duplicate(id);
+    e.entity(copy).name = e.peek(id)->name + " copy";
+    out.push_back(copy);
+  }
+  e.commit();
+  return out;
+}
+
+}  // namespace hs::scene::ops

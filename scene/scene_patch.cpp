@@ -1,0 +1,60 @@
+#include "scene/scene_patch.h"
+
+namespace hs::scene {
+
+void ScenePatch::mergeLater(const ScenePatch& later) {
+  for (const auto& [id, ba] : later.entities) {
+    auto it = entities.find(id);
+    if (it == entities.end())
+      entities.emplace(id, ba);
+    else
+      it->second.after = ba.after;
+  }
+  if (later.roots) {
+    if (roots)
+      roots->second = later.roots->second;
+    else
+      roots = later.roots;
+  }
+  for (const auto& [id, ba] : later.assets) {
+    auto it = assets.find(id);
+    if (it == assets.end())
+      assets.emplace(id, ba);
+    else
+      it->second.after = ba.after;
+  }
+  if (later.settings) {
+    if (settings)
+      settings->second = later.settings->second;
+    else
+      settings = later.settings;
+  }
+}
+
+void ScenePatch::prune() {
+  std::erase_if(entities, [](const auto& kv) { return kv.second.before == kv.second.after; });
+  std::erase_if(assets, [](const auto& kv) { return kv.second.before == kv.second.after; });
+  if (roots && roots->first == roots->second) roots.reset();
+  if (settings && settings->first == settings->second) settings.reset();
+}
+
+void applyPatch(SceneState& state, const ScenePatch& patch, bool forward) {
+  for (const auto& [id, ba] : patch.entities) {
+    const auto& value = forward ? ba.after : ba.before;
+    if (value)
+      state.entities[id] = *value;
+    else
+      state.entities.erase(id);
+  }
+  if (patch.roots) state.roots = forward ? patch.roots->second : patch.roots->first;
+  for (const auto& [id, ba] : patch.assets) {
+    const auto& value = forward ? ba.after : ba.before;
+    if (value)
+      state.assets[id] = *value;
+    else
+      state.assets.erase(id);
+  }
+  if (patch.settings) state.settings = forward ? patch.settings->second : patch.settings->first;
+}
+
+}  // namespace hs::scene

@@ -1,0 +1,70 @@
+#pragma once
+// The document's content as a value: entities, assets and settings. Edits
+// replace parts of it through patches (edit.h); the renderer, the CLI and the
+// file writer only read it.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "mesh/mesh_data.h"
+#include "scene/entity.h"
+
+namespace hs::scene {
+
+struct MeshAsset {
+  AssetId id = kNoAsset;
+  std::string name;
+  std::string sourcePath;                       // where it was imported from
+  std::shared_ptr<const mesh::MeshData> data;   // immutable once imported: shared by undo
+  uint64_t contentHash = 0;                     // mesh::contentHash(*data)
+  std::string importReportJson;                 // what the importer said, for `info`
+  bool operator==(const MeshAsset& o) const {
+    return id == o.id && name == o.name && sourcePath == o.sourcePath &&
+           contentHash == o.contentHash && importReportJson == o.importReportJson;
+  }
+};
+
+enum class Antialiasing { None = 0, Fxaa = 1, Msaa4 = 2 };
+
+struct SceneSettings {
+  glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
+  glm::vec3 skyHorizon{0.62f, 0.72f, 0.82f};
+  glm::vec3 groundColor{0.22f, 0.2f, 0.18f};
+  float ambientIntensity = 0.6f;
+  float exposure = 1.0f;
+  bool showGrid = true;
+  Antialiasing antialiasing = Antialiasing::Msaa4;
+  bool operator==(const SceneSettings&) const = default;
+};
+
+struct SceneState {
+  std::map<EntityId, Entity> entities;  // ordered: deterministic iteration and files
+  std::vector<EntityId> roots;          // top-level entities in outliner order
+  std::map<AssetId, MeshAsset> assets;
+  SceneSettings settings;
+
+  const Entity* find(EntityId id) const;
+  const MeshAsset* findAsset(AssetId id) const;
+  // Parent chain composed in double precision.
+  glm::dmat4 worldMatrix(EntityId id) const;
+  // Visible only if it and every ancestor is visible.
+  bool effectivelyVisible(EntityId id) const;
+  // True if `ancestor` is `id` or one of its ancestors.
+  bool isAncestorOrSelf(EntityId ancestor, EntityId id) const;
+  // Depth-first, outliner order.
+  std::vector<EntityId> depthFirstOrder() const;
+  // Entities with a camera, depth-first order.
+  std::vector<EntityId> cameras() const;
+  EntityId findByName(const std::string& name) const;
+  EntityId maxEntityId() const;
+  AssetId maxAssetId() const;
+
+  // Checks parent/children/roots consistency; empty string if sound. Used
+  // by tests and after loading a file.
+  std::string validate() const;
+};
+
+}  // namespace hs::scene
