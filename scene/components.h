@@ -21,7 +21,7 @@ struct Light {
   enum class Type { Sun = 0, Point = 1 };
   Type type = Type::Sun;
   glm::vec3 color{1.0f, 0.96f, 0.9f};  // linear RGB
-  float intensity = 3.0f;              // sun: irradiance scale; point: at 1 m
+  float intensity = 2.2f;              // sun: irradiance scale; point: at 1 m
   float range = 100.0f;                // point lights: distance where they fade out
   bool operator==(const Light&) const = default;
 };

@@ -30,6 +30,21 @@ Transform at(glm::dvec3 t, glm::dvec3 eulerDeg = {0, 0, 0}, double scale = 1.0) 
 
 }  // namespace
 
+SceneState buildStarterScene() {
+  SceneState s;
+  Entity sun;
+  sun.name = "Sun";
+  sun.transform = at({0, 0, 20}, {40, 0, -35});
+  sun.light = Light{};
+  add(s, sun);
+  Entity cam;
+  cam.name = "Camera";
+  cam.transform = at({0.0, -12.0, 4.0}, {75, 0, 0});
+  cam.camera = Camera{};
+  add(s, cam);
+  return s;
+}
+
 std::optional<SceneState> buildDemoScene(std::string& error) {
   QFile f(":/demo/stanford-bunny.obj");
   if (!f.open(QIODevice::ReadOnly)) {

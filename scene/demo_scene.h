@@ -9,6 +9,10 @@
 
 namespace hs::scene {
 
+// What File > New and `hybridscape-cli new` start from: a sun and a camera
+// (as Blender's default scene has), no geometry.
+SceneState buildStarterScene();
+
 // Builds the demo from the files compiled into the binary. Fails (nullopt,
 // `error` set) only if those resources are missing from the build.
 std::optional<SceneState> buildDemoScene(std::string& error);

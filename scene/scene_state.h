@@ -33,7 +33,7 @@ struct SceneSettings {
   glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
   glm::vec3 skyHorizon{0.62f, 0.72f, 0.82f};
   glm::vec3 groundColor{0.22f, 0.2f, 0.18f};
-  float ambientIntensity = 0.6f;
+  float ambientIntensity = 0.5f;
   float exposure = 1.0f;
   bool showGrid = true;
   Antialiasing antialiasing = Antialiasing::Msaa4;

@@ -1,0 +1,137 @@
+#include <cstdio>
+
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+
+#include "cli/cli_args.h"
+#include "cli/commands.h"
+#include "scene/fields.h"
+#include "scene/hscene_file.h"
+#include "scene/scene_json.h"
+#include "scene/world_bounds.h"
+
+namespace hs::cli {
+namespace {
+
+QJsonArray arr(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+std::string componentList(const scene::Entity& e) {
+  std::string out;
+  for (const auto& c : scene::entityComponents())
+    if (c.optional && c.has(e)) out += (out.empty() ? "" : ", ") + c.key;
+  return out;
+}
+
+QJsonObject infoJson(const std::string& path, const scene::SceneState& s) {
+  QJsonObject o;
+  o["file"] = QString::fromStdString(path);
+  o["format_version"] = scene::sceneFileVersion(path);
+  QJsonArray entities;
+  for (scene::EntityId id : s.depthFirstOrder()) {
+    const scene::Entity& e = *s.find(id);
+    QJsonObject je;
+    je["id"] = double(id);
+    je["name"] = QString::fromStdString(e.name);
+    je["parent"] = double(e.parent);
+    je["visible"] = e.visible;
+    QJsonArray comps;
+    for (const auto& c : scene::entityComponents())
+      if (c.optional && c.has(e)) comps.append(QString::fromStdString(c.key));
+    je["components"] = comps;
+    je["world_position_m"] = arr(glm::dvec3(s.worldMatrix(id)[3]));
+    if (e.mesh) je["mesh_asset"] = double(e.mesh->mesh);
+    entities.append(je);
+  }
+  o["entities"] = entities;
+  QJsonArray assets;
+  for (const auto& [id, a] : s.assets) {
+    QJsonObject ja;
+    ja["id"] = double(id);
+    ja["name"] = QString::fromStdString(a.name);
+    ja["source"] = QString::fromStdString(a.sourcePath);
+    if (a.data) {
+      const mesh::Bounds b = a.data->bounds();
+      ja["vertices"] = double(a.data->vertexCount());
+      ja["triangles"] = double(a.data->triangleCount());
+      ja["textures"] = int(a.data->textures.size());
+      ja["materials"] = int(a.data->materials.size());
+      ja["size_m"] = arr(glm::dvec3(b.max - b.min));
+      ja["origin"] = arr(a.data->origin);
+    }
+    assets.append(ja);
+  }
+  o["assets"] = assets;
+  QJsonArray cameras;
+  for (scene::EntityId id : s.cameras()) cameras.append(QString::fromStdString(s.find(id)->name));
+  o["cameras"] = cameras;
+  o["terrains"] = QJsonArray();  // terrain arrives with the terrain capability
+  o["tracks"] = QJsonArray();    // and tracks with the sequencer
+  const scene::WorldBox box = scene::worldBounds(s);
+  QJsonObject bounds;
+  if (!box.empty) {
+    bounds["min"] = arr(box.min);
+    bounds["max"] = arr(box.max);
+    bounds["size"] = arr(box.size());
+  }
+  o["bounds_m"] = bounds;
+  o["settings"] = scene::sceneToJson(s)["settings"];
+  return o;
+}
+
+void printTree(const scene::SceneState& s, scene::EntityId id, int depth) {
+  const scene::Entity& e = *s.find(id);
+  const glm::dvec3 p(s.worldMatrix(id)[3]);
+  const std::string comps = componentList(e);
+  std::printf("  %*s%s%s%s  at %.3f, %.3f, %.3f%s\n", depth * 2, "", e.name.c_str(), comps.empty() ? "" : "  [",
+              comps.empty() ? "" : (comps + "]").c_str(), p.x, p.y, p.z, e.visible ? "" : "  (hidden)");
+  for (scene::EntityId c : e.children) printTree(s, c, depth + 1);
+}
+
+}  // namespace
+
+int runInfo(int argc, char** argv) {
+  const char* cmd = "info";
+  Args args;
+  std::string error;
+  if (!parseArgs(argc, argv, 0, {{"json", false}}, args, error)) return usage(cmd, error);
+  if (args.help) {
+    std::printf(
+        "usage: hybridscape-cli info <scene.hscene> [--json]\n\n"
+        "Lists the scene's entities (hierarchy, components, world positions), mesh\n"
+        "assets (triangles, vertices, textures, size in metres, origin), cameras,\n"
+        "terrains and tracks, and the scene's extent in metres.\n");
+    return 0;
+  }
+  if (args.positional.size() != 1) return usage(cmd, "expected one scene file");
+  const std::string path = args.positional[0];
+  std::optional<scene::SceneState> s = scene::loadScene(path, error);
+  if (!s) return fail(cmd, error);
+  if (args.has("json")) {
+    std::printf("%s", QJsonDocument(infoJson(path, *s)).toJson().constData());
+    return 0;
+  }
+  std::printf("%s (scene format %d)\n", path.c_str(), scene::sceneFileVersion(path));
+  std::printf("entities: %zu  mesh assets: %zu  cameras: %zu  terrains: 0  tracks: 0\n", s->entities.size(),
+              s->assets.size(), s->cameras().size());
+  const scene::WorldBox box = scene::worldBounds(*s);
+  if (!box.empty) {
+    const glm::dvec3 size = box.size();
+    std::printf("extent: %.3f x %.3f x %.3f m\n", size.x, size.y, size.z);
+  }
+  if (!s->assets.empty()) std::printf("mesh assets:\n");
+  for (const auto& [id, a] : s->assets) {
+    if (!a.data) continue;
+    const mesh::Bounds b = a.data->bounds();
+    const glm::vec3 sz = b.max - b.min;
+    std::printf("  %llu %s: %zu triangles, %zu vertices, %zu textures, %.3f x %.3f x %.3f m, origin %.3f, %.3f, %.3f (from %s)\n",
+                static_cast<unsigned long long>(id), a.name.c_str(), a.data->triangleCount(), a.data->vertexCount(),
+                a.data->textures.size(), double(sz.x), double(sz.y), double(sz.z), a.data->origin.x, a.data->origin.y,
+                a.data->origin.z, a.sourcePath.c_str());
+  }
+  std::printf("hierarchy:\n");
+  for (scene::EntityId r : s->roots) printTree(*s, r, 0);
+  return 0;
+}
+
+}  // namespace hs::cli

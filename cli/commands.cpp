@@ -1,0 +1,32 @@
+#include "cli/commands.h"
+
+#include <cstdio>
+#include <unistd.h>
+
+namespace hs::cli {
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> list = {
+      {"new", "create a scene with a sun and a camera", runNew},
+      {"demo", "write the built-in demo scene", runDemo},
+      {"import", "import a mesh (OBJ, FBX, PLY, glTF, ...) into a scene", runImport},
+      {"info", "show what a scene holds (--json for JSON)", runInfo},
+      {"render", "render a frame headless (PNG, EXR, JPEG, TIFF)", runRender},
+      {"set", "set an entity property or a scene setting", runSet},
+  };
+  return list;
+}
+
+Progress terminalProgress(const std::string& label) {
+  if (!isatty(STDERR_FILENO)) return Progress();
+  return Progress([label, last = -1](double f, std::string_view stage) mutable {
+    const int pct = int(f * 100.0);
+    if (pct == last) return;
+    last = pct;
+    std::fprintf(stderr, "\r%s: %-20.*s %3d%%%s", label.c_str(), int(stage.size()), stage.data(), pct,
+                 pct >= 100 ? "\n" : "");
+    std::fflush(stderr);
+  });
+}
+
+}  // namespace hs::cli

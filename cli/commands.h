@@ -1,0 +1,29 @@
+#pragma once
+// The subcommands of hybridscape-cli. Each takes argv after the subcommand
+// name and returns the process exit code (0 ok, 1 failure, 2 usage).
+#include <string>
+#include <vector>
+
+#include "mesh/progress.h"
+
+namespace hs::cli {
+
+struct Command {
+  const char* name;
+  const char* summary;
+  int (*run)(int argc, char** argv);
+};
+
+const std::vector<Command>& commands();
+
+int runNew(int argc, char** argv);
+int runDemo(int argc, char** argv);
+int runImport(int argc, char** argv);
+int runInfo(int argc, char** argv);
+int runRender(int argc, char** argv);
+int runSet(int argc, char** argv);
+
+// A progress line on stderr when it is a terminal ("Importing bunny.obj  42%").
+Progress terminalProgress(const std::string& label);
+
+}  // namespace hs::cli

@@ -1,0 +1,36 @@
+#pragma once
+// Headless rendering for the CLI, tests and render nodes: an EGL context, the
+// renderer and an output framebuffer, rendering a scene to a CPU image.
+#include <memory>
+#include <string>
+
+#include "render/image.h"
+#include "render/renderer.h"
+
+namespace hs::render {
+
+class OffscreenRenderer {
+ public:
+  OffscreenRenderer();
+  ~OffscreenRenderer();
+
+  // Creates the EGL context and the renderer. False with `error` if there is
+  // no usable GL.
+  bool initialize(std::string& error);
+  std::string glDescription() const { return glDescription_; }
+  const std::string& eglPlatform() const;
+
+  // Renders `view` and reads it back: 8-bit sRGB, or linear float with `hdr`.
+  Image render(const scene::SceneState& state, const RenderView& view, bool hdr = false,
+               FrameStats* stats = nullptr, const RenderOptions& options = {});
+  // Renders without reading back (benchmarks of the GPU side); waits for the GPU.
+  FrameStats renderOnly(const scene::SceneState& state, const RenderView& view, const RenderOptions& options = {});
+  Renderer& renderer();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> d_;
+  std::string glDescription_;
+};
+
+}  // namespace hs::render

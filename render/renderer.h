@@ -1,0 +1,80 @@
+#pragma once
+// The renderer: draws a SceneState from a RenderView into a framebuffer of
+// whatever OpenGL 4.5 core context is current, the editor's QOpenGLWidget
+// or a headless EGL context (egl_context.h). It calls GL through libepoxy
+// and holds no window-system code.
+//
+// A frame is a list of passes, and a pass the frame does not need is not
+// run and owns no memory (DESIGN.md): no MSAA buffers unless MSAA is on, no
+// FXAA pass unless FXAA is on, no grid pass without a grid, no overlay pass
+// without overlays.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "render/image.h"
+#include "render/overlay.h"
+#include "render/render_view.h"
+#include "scene/scene_state.h"
+
+namespace hs::render {
+
+struct FrameStats {
+  size_t trianglesDrawn = 0;
+  size_t drawCalls = 0;
+  size_t instancesDrawn = 0;
+  size_t instancesCulled = 0;
+  double cpuMs = 0.0;
+  double gpuMs = -1.0;     // from a timer query of an earlier frame; -1 until known
+  size_t gpuBytes = 0;     // meshes + frame buffers
+};
+
+struct RenderOptions {
+  bool showGrid = true;          // AND-ed with the scene setting
+  const Overlay* overlay = nullptr;
+  bool keepHdr = false;          // keep the linear HDR image for readHdr()
+  bool measureGpuTime = false;   // timer queries (editor status bar)
+};
+
+class Renderer {
+ public:
+  Renderer();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Needs a current GL 4.5 core context. False with `error` if the context
+  // lacks what the renderer needs or a shader fails to build.
+  bool initialize(std::string& error);
+  bool initialized() const;
+
+  // Renders into framebuffer `targetFbo` (0 = default) of size view.width x
+  // view.height, leaving it holding sRGB-encoded 8-bit colour.
+  FrameStats render(const scene::SceneState& state, const RenderView& view, unsigned targetFbo,
+                    const RenderOptions& options = {});
+
+  // Reads back what the last render() wrote to `targetFbo`.
+  Image readDisplay(unsigned targetFbo, int width, int height) const;
+  // Linear HDR (exposure applied, before tone mapping) of the last frame
+  // rendered with keepHdr.
+  Image readHdr() const;
+
+  // The entity under window pixel (x, y) (origin top-left), or 0. Renders an
+  // id pass for that pixel only.
+  scene::EntityId pick(const scene::SceneState& state, const RenderView& view, int x, int y);
+
+  // Frees GPU copies of assets that left the scene.
+  void collectGarbage(const scene::SceneState& state);
+
+  // Frees every GL object (call with the context current, before it goes).
+  void shutdown();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> d_;
+};
+
+// Which GL the current context is: "llvmpipe (LLVM 15) | 4.5 (Core Profile) Mesa 22.3.6".
+std::string currentGlDescription();
+
+}  // namespace hs::render

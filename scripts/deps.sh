@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Hybridscape builds and tests with, only
+# those missing. Runs apt-get as root (directly, or through sudo).
+set -euo pipefail
+
+BUILD_PACKAGES=(
+  build-essential cmake ninja-build pkg-config git
+  qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev libgl-dev
+  libglm-dev libassimp-dev libopenimageio-dev openimageio-tools libopenmesh-dev libgdal-dev
+  libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libsqlite3-dev libmeshoptimizer-dev
+)
+# Tests: an X server for the GUI smoke test, Mesa for headless EGL.
+TEST_PACKAGES=(xvfb xauth libgl1-mesa-dri libegl-mesa0 mesa-utils)
+
+want=("${BUILD_PACKAGES[@]}")
+if [[ "${1:-}" == "--with-tests" ]]; then want+=("${TEST_PACKAGES[@]}"); fi
+
+missing=()
+for p in "${want[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then missing+=("$p"); fi
+done
+if ((${#missing[@]} == 0)); then exit 0; fi
+
+echo "Installing: ${missing[*]}"
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
