@@ -357,7 +357,8 @@ FrameStats Renderer::render(const scene::SceneState& state, const RenderView& vi
     GlProgram& p = d.tonemapProg;
     p.use();
     p.set("uExposure", settings.exposure);
-    p.set("uFilmic", true);
+    p.set("uFilmic", settings.tonemap == scene::Tonemap::Aces);
+    p.set("uLumaInAlpha", fxaa);
     glBindFramebuffer(GL_FRAMEBUFFER, fxaa ? d.targets.ldrFbo() : targetFbo);
     glBindTextureUnit(0, hdrTexture);
     glDrawArrays(GL_TRIANGLES, 0, 3);

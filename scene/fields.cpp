@@ -219,6 +219,7 @@ std::vector<SettingsField> buildSettingsFields() {
       boolField<S>("show_grid", "Ground grid", [](S& s) -> bool& { return s.showGrid; }),
       enumField<S>("antialiasing", "Anti-aliasing", {"None", "FXAA", "MSAA 4x"},
                    [](S& s) -> Antialiasing& { return s.antialiasing; }),
+      enumField<S>("tonemap", "Tone mapping", {"ACES", "None"}, [](S& s) -> Tonemap& { return s.tonemap; }),
   };
 }
 

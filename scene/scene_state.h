@@ -28,6 +28,9 @@ struct MeshAsset {
 };
 
 enum class Antialiasing { None = 0, Fxaa = 1, Msaa4 = 2 };
+// ACES: filmic curve (highlights roll off); None: exposure then clamp, for
+// reference renders and colour checks.
+enum class Tonemap { Aces = 0, None = 1 };
 
 struct SceneSettings {
   glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
@@ -37,6 +40,7 @@ struct SceneSettings {
   float exposure = 1.0f;
   bool showGrid = true;
   Antialiasing antialiasing = Antialiasing::Msaa4;
+  Tonemap tonemap = Tonemap::Aces;
   bool operator==(const SceneSettings&) const = default;
 };
 

@@ -1,11 +1,13 @@
 #version 450 core
 // HDR linear scene -> display: exposure, optional ACES-fitted curve, sRGB
 // encoding (done here, so any 8-bit target, the Qt widget's included, shows
-// correct sRGB). Luma goes to alpha for FXAA.
+// correct sRGB). When FXAA follows, luma goes to alpha for it; otherwise
+// alpha is 1 (frames are opaque).
 in vec2 vUv;
 uniform sampler2D uScene;
 uniform float uExposure;
 uniform bool uFilmic;
+uniform bool uLumaInAlpha;
 layout(location = 0) out vec4 outColor;
 
 vec3 acesFitted(vec3 x) {
@@ -18,5 +20,5 @@ void main() {
   vec3 c = texture(uScene, vUv).rgb * uExposure;
   if (uFilmic) c = acesFitted(c);
   vec3 s = linearToSrgb(c);
-  outColor = vec4(s, dot(s, vec3(0.299, 0.587, 0.114)));
+  outColor = vec4(s, uLumaInAlpha ? dot(s, vec3(0.299, 0.587, 0.114)) : 1.0);
 }
