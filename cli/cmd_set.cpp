@@ -1,3 +1,4 @@
+#include <charconv>
 #include <cstdio>
 
 #include "cli/cli_args.h"
@@ -50,8 +51,12 @@ int runSet(int argc, char** argv) {
   } else {
     const std::string& who = args.positional[0];
     scene::EntityId id = doc.state().findByName(who);
-    if (id == scene::kNoEntity && !who.empty() && who.find_first_not_of("0123456789") == std::string::npos)
-      id = std::stoull(who);
+    if (id == scene::kNoEntity) {
+      // A number names an entity by id (from_chars: no exception on overflow).
+      scene::EntityId n = 0;
+      const auto r = std::from_chars(who.data(), who.data() + who.size(), n);
+      if (r.ec == std::errc() && r.ptr == who.data() + who.size()) id = n;
+    }
     if (!doc.state().find(id)) return fail(cmd, "no entity named or numbered '" + who + "' in " + scenePath);
     const scene::EntityField* f = scene::findEntityField(args.positional[1]);
     if (!f) return fail(cmd, "no property '" + args.positional[1] + "' (see --help)");
@@ -61,6 +66,9 @@ int runSet(int argc, char** argv) {
       return fail(cmd, "entity '" + who + "' has no " + comp + " component");
     const auto v = scene::parseFieldValue(*f, args.positional[2], error);
     if (!v) return fail(cmd, args.positional[1] + ": " + error);
+    if (f->type == scene::FieldType::AssetRef && std::get<int64_t>(*v) > 0 &&
+        !doc.state().findAsset(scene::AssetId(std::get<int64_t>(*v))))
+      return fail(cmd, args.positional[1] + ": no mesh asset " + args.positional[2] + " in " + scenePath);
     changed = scene::ops::setField(doc, id, *f, *v);
   }
   if (!changed) {

@@ -1,5 +1,8 @@
 #include "mesh/assimp_importer.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <unordered_map>
 
@@ -50,6 +53,9 @@ struct Builder {
   bool haveOrigin = false;
   bool anyUv = false, allNormals = true;
   size_t skippedPrimitives = 0;
+  // Assimp holds coordinates as 32-bit floats: the largest one read and the
+  // spacing of floats there (in world metres), to say what precision was lost.
+  double maxCoordinate = 0.0, floatSpacing = 0.0;
 
   void countUvsAndNormals(const aiNode& node) {
     for (unsigned i = 0; i < node.mNumMeshes; ++i) {
@@ -71,8 +77,10 @@ struct Builder {
         continue;
       }
       const uint32_t base = uint32_t(out.positions.size());
+      float meshMax = 0.0f;
       for (unsigned v = 0; v < m.mNumVertices; ++v) {
         const aiVector3D& p = m.mVertices[v];
+        meshMax = std::max({meshMax, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
         const glm::dvec3 wp = glm::dvec3(world * glm::dvec4(p.x, p.y, p.z, 1.0));
         if (!haveOrigin && std::isfinite(wp.x) && std::isfinite(wp.y) && std::isfinite(wp.z)) {
           origin = glm::round(wp);
@@ -89,6 +97,11 @@ struct Builder {
           out.uvs.push_back(m.HasTextureCoords(0)
                                 ? glm::vec2(m.mTextureCoords[0][v].x, m.mTextureCoords[0][v].y)
                                 : glm::vec2(0.0f));
+      }
+      if (std::isfinite(meshMax)) {
+        const double scale = std::max({glm::length(world[0]), glm::length(world[1]), glm::length(world[2])});
+        maxCoordinate = std::max(maxCoordinate, double(meshMax) * scale);
+        floatSpacing = std::max(floatSpacing, double(std::nextafter(meshMax, INFINITY) - meshMax) * scale);
       }
       Submesh sm{uint32_t(out.indices.size()), 0, int(m.mMaterialIndex)};
       for (unsigned f = 0; f < m.mNumFaces; ++f) {
@@ -123,9 +136,12 @@ bool readWithAssimp(const std::string& path, const ImportOptions& options,
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   // No normal generation here: importMesh fills missing normals the same way
   // for every reader, and reports that it did.
+  // GlobalScale applies the file's unit (FBX UnitScaleFactor): without it
+  // Assimp 5.2 ignores AI_CONFIG_FBX_CONVERT_TO_M and a centimetre FBX comes
+  // in 100 times too large. Formats without units keep a scale of 1.
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_SortByPType | aiProcess_FlipUVs |
-                         aiProcess_ValidateDataStructure;
+                         aiProcess_ValidateDataStructure | aiProcess_GlobalScale;
   const aiScene* scene = importer.ReadFile(path, flags);
   if (!scene) {
     if (isCancelled(progress)) {
@@ -166,6 +182,16 @@ bool readWithAssimp(const std::string& path, const ImportOptions& options,
   if (out.indices.empty()) {
     error = path + ": no triangles to import";
     return false;
+  }
+  if (b.floatSpacing > 0.001) {
+    char what[200];
+    std::snprintf(what, sizeof what,
+                  ": coordinates reach %.0f m; Assimp holds them as 32-bit floats, %.3g m apart "
+                  "there, so finer detail was lost",
+                  b.maxCoordinate, b.floatSpacing);
+    report.warnings.push_back(path + what +
+                              (ext == ".obj" ? " (the own OBJ reader keeps it: --reader obj)"
+                                             : " (move the model near the origin where it was made)"));
   }
 
   // Materials and their diffuse textures (glTF calls it base colour).

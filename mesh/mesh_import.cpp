@@ -18,11 +18,25 @@ std::string lowerExtension(const std::string& path) {
   return e;
 }
 
+ImportResult fail(ImportReport&& report, std::string error, const Progress* progress) {
+  ImportResult r;
+  r.cancelled = isCancelled(progress);
+  r.error = std::move(error);
+  r.report = std::move(report);
+  return r;
+}
+
 // Common tail of every reader: clean, fill normals, recentre, count.
 ImportResult finish(MeshData&& mesh, ImportReport&& report, const ImportOptions& options,
                     const Progress* progress, std::chrono::steady_clock::time_point start) {
   ImportResult r;
   reportProgress(progress, 0.95, "Cleaning");
+  // A Cancel pressed after the reader's last check (in its final stages, or
+  // in a reader that does not check) still stops the import.
+  if (isCancelled(progress)) {
+    std::string error = report.file + ": import cancelled";
+    return fail(std::move(report), std::move(error), progress);
+  }
   sanitize(mesh, report);
   if (mesh.indices.empty()) {
     r.error = report.file + ": every face was invalid; nothing to import" +
@@ -40,14 +54,6 @@ ImportResult finish(MeshData&& mesh, ImportReport&& report, const ImportOptions&
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   reportProgress(progress, 1.0, "Done");
   r.mesh = std::move(mesh);
-  r.report = std::move(report);
-  return r;
-}
-
-ImportResult fail(ImportReport&& report, std::string error, const Progress* progress) {
-  ImportResult r;
-  r.cancelled = isCancelled(progress);
-  r.error = std::move(error);
   r.report = std::move(report);
   return r;
 }

@@ -17,6 +17,10 @@ class PatchCommand : public QUndoCommand {
     const auto* o = dynamic_cast<const PatchCommand*>(other);
     if (!o || o->mergeKey_ != mergeKey_) return false;
     patch_.mergeLater(o->patch_);
+    // A gesture that ends where it started (a drag back to its start, a
+    // cancelled colour pick) changed nothing: QUndoStack drops the step.
+    patch_.prune();
+    setObsolete(patch_.empty());
     return true;
   }
 

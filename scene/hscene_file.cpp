@@ -46,6 +46,16 @@ bool hasSqliteHeader(const std::string& path) {
 
 // Reads meta.format / meta.format_version; 0 if absent or not a scene.
 int readVersion(SqliteDb& db, std::string& format, std::string& error) {
+  // Another program's database has no meta table: that is not damage, it is
+  // not a scene (format stays empty). A damaged file fails this read already.
+  {
+    SqliteStmt t(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'meta'");
+    if (!t.ok()) {
+      error = db.lastError();
+      return 0;
+    }
+    if (!t.step(error)) return 0;
+  }
   SqliteStmt q(db, "SELECT key, value FROM meta WHERE key IN ('format', 'format_version')");
   if (!q.ok()) {
     error = db.lastError();

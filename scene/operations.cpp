@@ -96,6 +96,11 @@ bool setField(Document& doc, EntityId id, const EntityField& field, const FieldV
   for (const auto& c : entityComponents())
     for (const auto& f : c.fields)
       if (&f == &field && !c.has(ent)) return false;
+  // A mesh reference must name an asset of this scene (0: none); anything
+  // else leaves a document that fails validate() and a file that will not open.
+  if (field.type == FieldType::AssetRef && std::get<int64_t>(value) > 0 &&
+      !doc.state().findAsset(AssetId(std::get<int64_t>(value))))
+    return false;
   field.set(ent, value);
   return e.commit();
 }

@@ -30,19 +30,18 @@ Transform Transform::fromMatrix(const glm::dmat4& m) {
 }
 
 glm::dvec3 eulerDegrees(const glm::dquat& q) {
-  // R = Rz * Ry * Rx; read the angles back from the rotation matrix.
+  // R = Rz * Ry * Rx (m[column][row]). Z comes first, from R's first column
+  // (0 in gimbal lock, where Z folds into X); X and Y then come from
+  // Rz^T * R = Ry * Rx, whose second row (0, cos x, -sin x) does not shrink
+  // as Y nears +-90 degrees, so the angles describe R exactly however close
+  // to the lock it is. (Snapping to the lock from 0.026 degrees away turned
+  // such rotations by up to that much.)
   const glm::dmat3 m = glm::mat3_cast(q);
-  const double sy = -m[0][2];  // -R[2][0] in row-major terms
-  double x, y, z;
-  if (std::abs(sy) < 0.9999999) {
-    y = std::asin(sy);
-    x = std::atan2(m[1][2], m[2][2]);
-    z = std::atan2(m[0][1], m[0][0]);
-  } else {  // gimbal lock: fold Z into X
-    y = sy > 0 ? M_PI / 2 : -M_PI / 2;
-    x = std::atan2(-m[2][1], m[1][1]);
-    z = 0.0;
-  }
+  const double cosY = std::hypot(m[0][0], m[0][1]);
+  const double z = cosY > 1e-9 ? std::atan2(m[0][1], m[0][0]) : 0.0;
+  const double cz = std::cos(z), sz = std::sin(z);
+  const double x = std::atan2(sz * m[2][0] - cz * m[2][1], cz * m[1][1] - sz * m[1][0]);
+  const double y = std::atan2(-m[0][2], cz * m[0][0] + sz * m[0][1]);
   return glm::degrees(glm::dvec3(x, y, z));
 }
 

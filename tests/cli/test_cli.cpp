@@ -1,0 +1,448 @@
+// hybridscape-cli as a user runs it: the built program through QProcess.
+// Each subcommand's work is checked through the file it wrote (read back
+// with the scene library or OpenImageIO), and every error must exit non-zero
+// with exactly one line on stderr that names the problem.
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <filesystem>
+
+#include <OpenImageIO/imageio.h>
+
+#include "file_bytes.h"
+#include "scene/hscene_file.h"
+#include "scene/scene_json.h"
+
+using namespace hs;
+namespace fs = std::filesystem;
+
+using hs::test::readFile;
+using hs::test::writeFile;
+
+namespace {
+
+const QString kCli = HS_BINARY_DIR "/cli/hybridscape-cli";
+const QString kMeshData = HS_TEST_DATA_DIR "/mesh";
+
+struct Run {
+  int code = -1;
+  QString out, err;
+  // stderr as lines, without the final newline's empty tail.
+  QStringList errLines() const { return err.split('\n', Qt::SkipEmptyParts); }
+};
+
+
+QJsonObject parseJson(const QByteArray& text) {
+  QJsonParseError err;
+  const QJsonDocument d = QJsonDocument::fromJson(text, &err);
+  if (err.error != QJsonParseError::NoError) qWarning("bad JSON: %s", qPrintable(err.errorString()));
+  return d.object();
+}
+
+// World-space box of the mesh vertices of the scene's entities (or of one).
+// A mesh's positions are relative to its own origin, and the entity that
+// shows it carries that origin in its transform (ops::addImportedMesh).
+struct Box {
+  glm::dvec3 min{INFINITY}, max{-INFINITY};
+  void add(const glm::dvec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+};
+Box vertexBox(const scene::SceneState& s, const std::string& onlyEntity = {}) {
+  Box b;
+  for (const auto& [id, e] : s.entities) {
+    if (!e.mesh || (!onlyEntity.empty() && e.name != onlyEntity)) continue;
+    const scene::MeshAsset* a = s.findAsset(e.mesh->mesh);
+    const glm::dmat4 w = s.worldMatrix(id);
+    for (const auto& p : a->data->positions) b.add(glm::dvec3(w * glm::dvec4(glm::dvec3(p), 1.0)));
+  }
+  return b;
+}
+
+glm::dvec3 vec3(const QJsonValue& v) {
+  const QJsonArray a = v.toArray();
+  return {a.at(0).toDouble(NAN), a.at(1).toDouble(NAN), a.at(2).toDouble(NAN)};
+}
+
+}  // namespace
+
+class TestCli : public QObject {
+  Q_OBJECT
+
+ private:
+  QTemporaryDir tmp_;
+  QString demo_;  // a demo scene written once
+
+  QString path(const QString& name) const { return tmp_.filePath(name); }
+
+  Run cli(const QStringList& args) {
+    QProcess p;
+    p.setWorkingDirectory(tmp_.path());
+    p.start(kCli, args);
+    Run r;
+    if (!p.waitForFinished(120000)) {
+      p.kill();
+      p.waitForFinished();
+      qWarning("hybridscape-cli %s did not finish", qPrintable(args.join(' ')));
+      return r;
+    }
+    r.code = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
+    r.out = QString::fromLocal8Bit(p.readAllStandardOutput());
+    r.err = QString::fromLocal8Bit(p.readAllStandardError());
+    return r;
+  }
+
+  // A failure: non-zero exit (`code`), one line on stderr containing each of `names`.
+  void expectError(const QStringList& args, int code, const QStringList& names) {
+    const Run r = cli(args);
+    const QString cmd = "hybridscape-cli " + args.join(' ');
+    QVERIFY2(r.code == code, qPrintable(QString("%1: exit %2, expected %3; stderr: %4").arg(cmd).arg(r.code).arg(code).arg(r.err)));
+    QVERIFY2(r.errLines().size() == 1 && r.err.endsWith('\n'),
+             qPrintable(QString("%1: expected one line on stderr, got:\n%2").arg(cmd, r.err)));
+    for (const QString& n : names)
+      QVERIFY2(r.err.contains(n), qPrintable(QString("%1: '%2' not in: %3").arg(cmd, n, r.err)));
+  }
+
+  std::optional<scene::SceneState> load(const QString& file) {
+    std::string error;
+    auto s = scene::loadScene(file.toStdString(), error);
+    if (!s) qWarning("%s", error.c_str());
+    return s;
+  }
+
+  QJsonObject infoJson(const QString& file) {
+    const Run r = cli({"info", file, "--json"});
+    if (r.code != 0) qWarning("info failed: %s", qPrintable(r.err));
+    return parseJson(r.out.toUtf8());
+  }
+
+ private slots:
+  void initTestCase() {
+    QVERIFY(tmp_.isValid());
+    QVERIFY2(QFileInfo(kCli).isExecutable(), qPrintable(kCli + " is not built"));
+    demo_ = path("demo.hscene");
+    const Run r = cli({"demo", demo_});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+  }
+
+  // ---- help ---------------------------------------------------------------------
+
+  void helpOnEveryCommand_data() {
+    QTest::addColumn<QString>("command");
+    for (const char* c : {"new", "demo", "import", "info", "render", "set"}) QTest::newRow(c) << QString(c);
+  }
+  void helpOnEveryCommand() {
+    QFETCH(QString, command);
+    for (const QString& flag : {QString("--help"), QString("-h")}) {
+      const Run r = cli({command, flag});
+      QCOMPARE(r.code, 0);
+      QVERIFY2(r.out.startsWith("usage: hybridscape-cli " + command), qPrintable(r.out));
+      QVERIFY2(r.err.isEmpty(), qPrintable(r.err));
+    }
+    // The top-level help lists the command.
+    const Run top = cli({"--help"});
+    QCOMPARE(top.code, 0);
+    QVERIFY(top.out.contains("  " + command + " "));
+  }
+
+  void noArgumentsPrintsUsage() {
+    const Run r = cli({});
+    QCOMPARE(r.code, 2);
+    QVERIFY(r.out.contains("usage: hybridscape-cli <command>"));
+    const Run v = cli({"--version"});
+    QCOMPARE(v.code, 0);
+    QVERIFY(v.out.startsWith("hybridscape-cli "));
+  }
+
+  // ---- commands -----------------------------------------------------------------
+
+  void newScene() {
+    const QString f = path("new.hscene");
+    const Run r = cli({"new", f});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const auto s = load(f);
+    QVERIFY(s);
+    QCOMPARE(s->entities.size(), size_t(2));
+    QCOMPARE(s->cameras().size(), size_t(1));
+    QVERIFY(s->assets.empty());
+    // Not over an existing file without --force; with it, yes.
+    const std::string before = readFile(f.toStdString());
+    expectError({"new", f}, 1, {f, "--force"});
+    QCOMPARE(readFile(f.toStdString()), before);
+    QCOMPARE(cli({"new", f, "--force"}).code, 0);
+    QVERIFY(load(f));
+  }
+
+  void demoAndInfoJson() {
+    const auto s = load(demo_);
+    QVERIFY(s);
+    const QJsonObject info = infoJson(demo_);
+    QCOMPARE(info["format_version"].toInt(), scene::kSceneFormatVersion);
+    // Entities: every one, with its name and components.
+    const QJsonArray entities = info["entities"].toArray();
+    QCOMPARE(size_t(entities.size()), s->entities.size());
+    QStringList names;
+    for (const auto& e : entities) names << e.toObject()["name"].toString();
+    for (const auto& [id, e] : s->entities) QVERIFY(names.contains(QString::fromStdString(e.name)));
+    for (const auto& v : entities) {
+      const QJsonObject e = v.toObject();
+      const scene::Entity* ent = s->find(scene::EntityId(e["id"].toDouble()));
+      QVERIFY(ent);
+      QCOMPARE(e["components"].toArray().contains("mesh"), ent->mesh.has_value());
+      QCOMPARE(e["components"].toArray().contains("camera"), ent->camera.has_value());
+      const glm::dvec3 wp = vec3(e["world_position_m"]);
+      QVERIFY(glm::length(wp - glm::dvec3(s->worldMatrix(ent->id)[3])) < 1e-9);
+    }
+    // Assets: the bunny, with the triangle count of the scan's OBJ file.
+    const QJsonArray assets = info["assets"].toArray();
+    QCOMPARE(assets.size(), 1);
+    const std::string bunny = readFile(HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj");
+    size_t faces = 0;
+    for (size_t pos = 0; (pos = bunny.find("\nf ", pos)) != std::string::npos; ++pos) ++faces;
+    QCOMPARE(size_t(assets[0].toObject()["triangles"].toDouble()), faces);
+    QVERIFY(assets[0].toObject()["vertices"].toDouble() > 30000);
+    // Cameras.
+    QCOMPARE(info["cameras"].toArray(), QJsonArray{"Main Camera"});
+    // Bounds: hold every vertex of every instance, and the size is max - min.
+    const QJsonObject bounds = info["bounds_m"].toObject();
+    const glm::dvec3 bmin = vec3(bounds["min"]), bmax = vec3(bounds["max"]), bsize = vec3(bounds["size"]);
+    const Box vb = vertexBox(*s);
+    for (int k = 0; k < 3; ++k) {
+      QVERIFY(bmin[k] <= vb.min[k] + 1e-6);
+      QVERIFY(bmax[k] >= vb.max[k] - 1e-6);
+      QVERIFY(std::abs(bsize[k] - (bmax[k] - bmin[k])) < 1e-9);
+      QVERIFY(bsize[k] < (vb.max[k] - vb.min[k]) * 1.5 + 0.5);  // a box around them, not far beyond
+    }
+    // The text form names the same things.
+    const Run text = cli({"info", demo_});
+    QCOMPARE(text.code, 0);
+    for (const auto& [id, e] : s->entities) QVERIFY(text.out.contains(QString::fromStdString(e.name)));
+    QVERIFY(text.out.contains("69451 triangles"));
+  }
+
+  void importWithOptions() {
+    const QString f = path("import.hscene");
+    QCOMPARE(cli({"new", f}).code, 0);
+    const QString report = path("report.json");
+    const Run r = cli({"import", kMeshData + "/textured_quad.obj", f, "--at", "1,2,3", "--up", "y", "--report", report});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.err.isEmpty(), qPrintable(r.err));
+    // The report: plain field names.
+    QFile rf(report);
+    QVERIFY(rf.open(QIODevice::ReadOnly));
+    const QJsonObject rep = parseJson(rf.readAll());
+    QCOMPARE(rep["file"].toString(), kMeshData + "/textured_quad.obj");
+    QCOMPARE(rep["reader"].toString(), QString("obj"));
+    QCOMPARE(rep["triangles_in"].toInt(), 2);
+    QCOMPARE(rep["triangles_out"].toInt(), 2);
+    QCOMPARE(rep["vertices_out"].toInt(), 4);
+    QCOMPARE(rep["polygons_triangulated"].toInt(), 1);
+    QCOMPARE(rep["up_axis_converted"].toBool(), true);
+    QVERIFY(rep["warnings"].isArray() && rep["warnings"].toArray().isEmpty());
+    for (const char* key : {"vertices_in", "non_finite_vertices", "out_of_range_faces", "degenerate_faces", "seconds"})
+      QVERIFY2(rep[key].isDouble(), key);
+    QVERIFY(!rep.contains("error"));
+    // --at: the centre of the base of the mesh's box lands there.
+    auto s = load(f);
+    QVERIFY(s);
+    QCOMPARE(s->assets.size(), size_t(1));
+    QVERIFY(s->findByName("textured_quad") != scene::kNoEntity);
+    const Box b = vertexBox(*s, "textured_quad");
+    QVERIFY(std::abs((b.min.x + b.max.x) / 2 - 1.0) < 1e-6);
+    QVERIFY(std::abs((b.min.y + b.max.y) / 2 - 2.0) < 1e-6);
+    QVERIFY(std::abs(b.min.z - 3.0) < 1e-6);
+    // Y-up: the file's 1 m of height is world Z.
+    QVERIFY(std::abs((b.max.z - b.min.z) - 1.0) < 1e-6);
+    QVERIFY(std::abs(b.max.y - b.min.y) < 1e-6);
+    QCOMPARE(s->assets.begin()->second.data->textures.size(), size_t(1));
+
+    // --up z --name --reader assimp: without --at the mesh stays at its file coordinates.
+    const Run z = cli({"import", kMeshData + "/textured_quad.obj", f, "--up", "z", "--name", "Upright", "--reader", "assimp"});
+    QVERIFY2(z.code == 0, qPrintable(z.err));
+    s = load(f);
+    QVERIFY(s);
+    QCOMPARE(s->assets.size(), size_t(2));
+    const Box bz = vertexBox(*s, "Upright");
+    QVERIFY(glm::length(bz.min - glm::dvec3(10, 20, 30)) < 1e-5);
+    QVERIFY(glm::length(bz.max - glm::dvec3(12, 21, 30)) < 1e-5);
+    const QJsonObject info = infoJson(f);
+    QCOMPARE(info["assets"].toArray().size(), 2);
+    QCOMPARE(info["assets"].toArray()[1].toObject()["source"].toString(), kMeshData + "/textured_quad.obj");
+    QCOMPARE(info["assets"].toArray()[1].toObject()["textures"].toInt(), 1);
+  }
+
+  void importWarningsDoNotFail() {
+    const QString f = path("warn.hscene");
+    QCOMPARE(cli({"new", f}).code, 0);
+    QFile obj(path("holes.obj"));
+    QVERIFY(obj.open(QIODevice::WriteOnly));
+    obj.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+    obj.close();
+    const Run r = cli({"import", path("holes.obj"), f});
+    QCOMPARE(r.code, 0);
+    QVERIFY2(r.err.contains("warning:") && r.err.contains("holes.obj:5:"), qPrintable(r.err));
+    QCOMPARE(load(f)->assets.begin()->second.data->triangleCount(), size_t(1));
+  }
+
+  void importOfABadFileLeavesTheScene() {
+    const QString f = path("keep.hscene");
+    QCOMPARE(cli({"new", f}).code, 0);
+    const std::string before = readFile(f.toStdString());
+    QFile bad(path("broken.obj"));
+    QVERIFY(bad.open(QIODevice::WriteOnly));
+    bad.write("v 0 0 0\nv 1 0 0\nv 0 one 0\nf 1 2 3\n");
+    bad.close();
+    const QString report = path("broken.json");
+    expectError({"import", path("broken.obj"), f, "--report", report}, 1, {"broken.obj:3:"});
+    QCOMPARE(readFile(f.toStdString()), before);  // byte for byte
+    // The report says what went wrong too.
+    QFile rf(report);
+    QVERIFY(rf.open(QIODevice::ReadOnly));
+    QVERIFY(parseJson(rf.readAll())["error"].toString().contains("broken.obj:3:"));
+    // A missing mesh file, and a file that is not a mesh.
+    expectError({"import", path("nothing.obj"), f}, 1, {"nothing.obj", "not found"});
+    expectError({"import", kMeshData + "/checker_4x2.png", f}, 1, {"checker_4x2.png", "'.png'"});
+    QCOMPARE(readFile(f.toStdString()), before);
+  }
+
+  void setFieldsAndSettings() {
+    const QString f = path("set.hscene");
+    QVERIFY(QFile::copy(demo_, f));
+    QCOMPARE(cli({"set", "Main Camera", "camera.fov_deg", "35", f}).code, 0);
+    QCOMPARE(cli({"set", "Stanford Bunny", "transform.translation", "10,0,-1.5", f}).code, 0);
+    QCOMPARE(cli({"set", "settings.antialiasing", "fxaa", f}).code, 0);
+    QCOMPARE(cli({"set", "settings.exposure", "1.5", f}).code, 0);
+    auto s = load(f);
+    QVERIFY(s);
+    const scene::EntityId sun = s->findByName("Sun");
+    QCOMPARE(cli({"set", QString::number(sun), "entity.visible", "false", f}).code, 0);  // by id
+    s = load(f);
+    QCOMPARE(s->find(s->findByName("Main Camera"))->camera->verticalFovDeg, 35.0);
+    QCOMPARE(s->find(s->findByName("Stanford Bunny"))->transform.translation, glm::dvec3(10, 0, -1.5));
+    QVERIFY(s->settings.antialiasing == scene::Antialiasing::Fxaa);
+    QCOMPARE(s->settings.exposure, 1.5f);
+    QVERIFY(!s->find(sun)->visible);
+    // The same value again changes nothing and says so.
+    const Run same = cli({"set", "settings.exposure", "1.5", f});
+    QCOMPARE(same.code, 0);
+    QVERIFY(same.out.contains("unchanged"));
+    // Errors leave the file as it was.
+    const std::string before = readFile(f.toStdString());
+    expectError({"set", "Nobody", "camera.fov_deg", "35", f}, 1, {"Nobody"});
+    expectError({"set", "Main Camera", "camera.zoom", "35", f}, 1, {"camera.zoom"});
+    expectError({"set", "Main Camera", "camera.fov_deg", "wide", f}, 1, {"wide"});
+    expectError({"set", "Main Camera", "camera.fov_deg", "nan", f}, 1, {"nan"});
+    expectError({"set", "Sun", "camera.fov_deg", "35", f}, 1, {"Sun", "camera"});
+    expectError({"set", "settings.colour", "1", f}, 1, {"colour"});
+    expectError({"set", "settings.antialiasing", "ssaa", f}, 1, {"ssaa"});
+    expectError({"set", "Stanford Bunny", "mesh.asset", "99", f}, 1, {"mesh.asset"});
+    expectError({"set", "99999999999999999999999", "entity.visible", "true", f}, 1, {"99999999999999999999999"});
+    expectError({"set", "Main Camera", "camera.fov_deg", f}, 2, {"expected"});
+    QCOMPARE(readFile(f.toStdString()), before);
+  }
+
+  void renderFormats_data() {
+    QTest::addColumn<QString>("ext");
+    QTest::addColumn<QString>("aa");
+    QTest::newRow("png") << "png" << "msaa4";
+    QTest::newRow("jpg") << "jpg" << "fxaa";
+    QTest::newRow("tif") << "tif" << "none";
+    QTest::newRow("exr") << "exr" << "msaa4";
+  }
+  void renderFormats() {
+    QFETCH(QString, ext);
+    QFETCH(QString, aa);
+    const QString out = path("frame." + ext);
+    const Run r = cli({"render", demo_, "--out", out, "--size", "96x54", "--camera", "Main Camera", "--aa", aa});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("96x54") && r.out.contains("Main Camera"), qPrintable(r.out));
+    auto in = OIIO::ImageInput::open(out.toStdString());
+    QVERIFY2(in, OIIO::geterror().c_str());
+    const OIIO::ImageSpec& spec = in->spec();
+    QCOMPARE(spec.width, 96);
+    QCOMPARE(spec.height, 54);
+    QVERIFY(spec.nchannels >= 3);
+    QCOMPARE(spec.format == OIIO::TypeDesc::HALF, ext == "exr");  // EXR is half float, the rest 8-bit
+    in->close();
+    // Written whole under a temporary name: nothing else is left in the folder.
+    for (const auto& entry : fs::directory_iterator(tmp_.path().toStdString()))
+      QVERIFY2(entry.path().filename().string().rfind(".tmp-", 0) != 0, entry.path().c_str());
+  }
+
+  void renderWithoutCameraFramesTheScene() {
+    auto s = load(demo_);
+    QVERIFY(s);
+    s->entities.at(s->findByName("Main Camera")).camera.reset();
+    std::string error;
+    const QString f = path("nocam.hscene");
+    QVERIFY2(scene::saveScene(*s, f.toStdString(), error), error.c_str());
+    const Run r = cli({"render", f, "--out", path("framed.png"), "--size", "40x30", "--no-grid"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("a view framing the scene"), qPrintable(r.out));
+    auto in = OIIO::ImageInput::open(path("framed.png").toStdString());
+    QVERIFY(in);
+    QCOMPARE(in->spec().width, 40);
+    QCOMPARE(in->spec().height, 30);
+  }
+
+  // ---- errors: non-zero exit, one line naming the problem ------------------------------
+
+  void unknownCommand() { expectError({"frobnicate", demo_}, 2, {"frobnicate"}); }
+
+  void unknownOption() {
+    expectError({"info", demo_, "--colour"}, 2, {"--colour"});
+    expectError({"render", demo_, "--out", path("x.png"), "--fast"}, 2, {"--fast"});
+    expectError({"import", kMeshData + "/textured_quad.obj", demo_, "--up", "sideways"}, 2, {"--up"});
+    expectError({"render", demo_, "--out"}, 2, {"--out"});  // option without its value
+  }
+
+  void missingScene() {
+    expectError({"info", path("missing.hscene")}, 1, {"missing.hscene", "not found"});
+    expectError({"render", path("missing.hscene"), "--out", path("m.png")}, 1, {"missing.hscene"});
+    expectError({"import", kMeshData + "/textured_quad.obj", path("missing.hscene")}, 1, {"missing.hscene"});
+    expectError({"set", "settings.exposure", "2", path("missing.hscene")}, 1, {"missing.hscene"});
+    QVERIFY(!fs::exists(path("missing.hscene").toStdString()));
+    QVERIFY(!fs::exists(path("m.png").toStdString()));
+  }
+
+  void badSize() {
+    for (const QString& size : {QString("10y"), QString("0x10"), QString("99999x10"), QString("x"), QString("-5x5"), QString("12x")})
+      expectError({"render", demo_, "--out", path("s.png"), "--size", size}, 2, {size});
+    QVERIFY(!fs::exists(path("s.png").toStdString()));
+  }
+
+  void unknownCamera() {
+    expectError({"render", demo_, "--out", path("c.png"), "--camera", "Drone"}, 1, {"Drone", "Main Camera"});
+    expectError({"render", demo_, "--out", path("c.png"), "--camera", "Sun"}, 1, {"Sun"});  // not a camera
+    QVERIFY(!fs::exists(path("c.png").toStdString()));
+  }
+
+  void renderToUnknownExtension() {
+    expectError({"render", demo_, "--out", path("frame.bmp")}, 1, {"frame.bmp", ".png"});
+    expectError({"render", demo_, "--out", path("frame")}, 1, {"frame"});
+    QVERIFY(!fs::exists(path("frame.bmp").toStdString()));
+  }
+
+  void renderIntoAMissingFolder() {
+    const QString out = path("no/such/folder/frame.png");
+    expectError({"render", demo_, "--out", out, "--size", "32x32"}, 1, {out, "does not exist"});
+    QVERIFY(!fs::exists(path("no").toStdString()));
+  }
+
+  void badSceneFile() {
+    QFile f(path("text.hscene"));
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write("not a scene\n");
+    f.close();
+    expectError({"info", path("text.hscene")}, 1, {"text.hscene", "not an SQLite database"});
+    expectError({"render", path("text.hscene"), "--out", path("t.png")}, 1, {"text.hscene"});
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCli)
+#include "test_cli.moc"

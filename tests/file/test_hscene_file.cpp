@@ -1,0 +1,600 @@
+// The .hscene file: exact round trips (description and mesh data bit for
+// bit), incremental saves that write only changed blobs, Save As, and every
+// kind of bad file, each refused with a message naming the file while the
+// open document stays as it was.
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include <sqlite3.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "file_bytes.h"
+#include "mesh/mesh_import.h"
+#include "scene/demo_scene.h"
+#include "scene/document.h"
+#include "scene/edit.h"
+#include "scene/hscene_file.h"
+#include "scene/operations.h"
+#include "scene/scene_json.h"
+
+using namespace hs;
+using namespace hs::scene;
+namespace fs = std::filesystem;
+
+using hs::test::readFile;
+using hs::test::writeFile;
+
+namespace {
+
+const std::string kMeshData = HS_TEST_DATA_DIR "/mesh";
+
+
+
+template <class T>
+bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// Bit-exact comparison of two meshes; returns what differs, or "".
+std::string meshDifference(const mesh::MeshData& a, const mesh::MeshData& b) {
+  if (std::memcmp(&a.origin, &b.origin, sizeof a.origin) != 0) return "origin";
+  if (!sameBytes(a.positions, b.positions)) return "positions";
+  if (!sameBytes(a.normals, b.normals)) return "normals";
+  if (!sameBytes(a.uvs, b.uvs)) return "uvs";
+  if (!sameBytes(a.indices, b.indices)) return "indices";
+  if (a.submeshes.size() != b.submeshes.size()) return "submesh count";
+  for (size_t i = 0; i < a.submeshes.size(); ++i)
+    if (a.submeshes[i].firstIndex != b.submeshes[i].firstIndex || a.submeshes[i].indexCount != b.submeshes[i].indexCount ||
+        a.submeshes[i].material != b.submeshes[i].material)
+      return "submesh " + std::to_string(i);
+  if (a.materials.size() != b.materials.size()) return "material count";
+  for (size_t i = 0; i < a.materials.size(); ++i)
+    if (a.materials[i].name != b.materials[i].name ||
+        std::memcmp(&a.materials[i].baseColor, &b.materials[i].baseColor, sizeof(glm::vec4)) != 0 ||
+        a.materials[i].diffuseTexture != b.materials[i].diffuseTexture)
+      return "material " + std::to_string(i);
+  if (a.textures.size() != b.textures.size()) return "texture count";
+  for (size_t i = 0; i < a.textures.size(); ++i) {
+    const auto &ta = a.textures[i], &tb = b.textures[i];
+    if (ta.name != tb.name || ta.width != tb.width || ta.height != tb.height || !sameBytes(ta.encoded, tb.encoded) ||
+        !sameBytes(ta.rgba, tb.rgba))
+      return "texture " + std::to_string(i);
+  }
+  return {};
+}
+
+// Everything a load must give back: the description and every mesh.
+std::string stateDifference(const SceneState& a, const SceneState& b) {
+  if (canonicalJson(a) != canonicalJson(b)) return "description (canonicalJson)";
+  if (a.entities != b.entities) return "entities";
+  if (a.roots != b.roots) return "roots";
+  if (!(a.settings == b.settings)) return "settings";
+  if (a.assets.size() != b.assets.size()) return "asset count";
+  for (const auto& [id, asset] : a.assets) {
+    const MeshAsset* other = b.findAsset(id);
+    if (!other || !(asset == *other)) return "asset " + std::to_string(id);
+    if (!asset.data || !other->data) return "asset " + std::to_string(id) + " has no data";
+    if (const std::string d = meshDifference(*asset.data, *other->data); !d.empty())
+      return "asset " + std::to_string(id) + ": " + d;
+  }
+  return {};
+}
+
+mesh::ImportResult importFixture(const std::string& name) {
+  return mesh::importMesh(kMeshData + "/" + name);
+}
+
+// The demo (the bunny, three instances) plus textured meshes: an OBJ with
+// its PNG, a glTF with an embedded PNG, and one whose texture has no source
+// bytes (raw pixels, as Assimp hands over uncompressed embedded textures).
+SceneState richScene() {
+  std::string error;
+  std::optional<SceneState> demo = buildDemoScene(error);
+  if (!demo) qFatal("demo scene: %s", error.c_str());
+  Document doc;
+  doc.reset(std::move(*demo), {});
+  for (const char* f : {"textured_quad.obj", "textured_quad.glb"}) {
+    mesh::ImportResult r = importFixture(f);
+    if (!r.ok()) qFatal("%s", r.error.c_str());
+    ops::addImportedMesh(doc, std::move(*r.mesh), f, f, r.report, {glm::dvec3(5, 5, 0), kNoEntity});
+  }
+  mesh::ImportResult raw = importFixture("textured_quad.obj");
+  raw.mesh->textures.at(0).encoded.clear();
+  raw.mesh->textures.at(0).name = "raw pixels";
+  ops::addImportedMesh(doc, std::move(*raw.mesh), "raw", "raw", raw.report);
+  // A hierarchy edit and a setting, so the description has more than defaults.
+  ops::rename(doc, doc.state().findByName("Scans"), "Scans (renamed)");
+  ops::setSettingsField(doc, *findSettingsField("antialiasing"), int64_t(1));
+  return doc.state();
+}
+
+// Runs SQL on a scene file the way a user with the sqlite3 shell would.
+void sql(const std::string& path, const std::string& statement) {
+  sqlite3* db = nullptr;
+  QVERIFY(sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK);
+  char* msg = nullptr;
+  const int rc = sqlite3_exec(db, statement.c_str(), nullptr, nullptr, &msg);
+  const std::string why = msg ? msg : "";
+  sqlite3_free(msg);
+  sqlite3_close(db);
+  QVERIFY2(rc == SQLITE_OK, why.c_str());
+}
+
+std::vector<uint8_t> readBlob(const std::string& path, const std::string& key) {
+  sqlite3* db = nullptr;
+  std::vector<uint8_t> out;
+  sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "SELECT data FROM blobs WHERE key = ?1 AND part = 0", -1, &st, nullptr);
+  sqlite3_bind_text(st, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  if (sqlite3_step(st) == SQLITE_ROW) {
+    const auto* p = static_cast<const uint8_t*>(sqlite3_column_blob(st, 0));
+    out.assign(p, p + sqlite3_column_bytes(st, 0));
+  }
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  return out;
+}
+
+void writeBlob(const std::string& path, const std::string& key, const std::vector<uint8_t>& bytes) {
+  sqlite3* db = nullptr;
+  sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "UPDATE blobs SET data = ?2 WHERE key = ?1 AND part = 0", -1, &st, nullptr);
+  sqlite3_bind_text(st, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_blob(st, 2, bytes.data(), int(bytes.size()), SQLITE_TRANSIENT);
+  QCOMPARE(sqlite3_step(st), SQLITE_DONE);
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+}
+
+int blobKeyCount(const std::string& path) {
+  sqlite3* db = nullptr;
+  sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "SELECT COUNT(DISTINCT key) FROM blobs", -1, &st, nullptr);
+  const int n = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int(st, 0) : -1;
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  return n;
+}
+
+// How the editor and the CLI open a file: load into a new state and replace
+// the open document only when that worked.
+bool openInto(Document& doc, const std::string& path, std::string& error) {
+  std::optional<SceneState> s = loadScene(path, error);
+  if (!s) return false;
+  doc.reset(std::move(*s), QString::fromStdString(path));
+  return true;
+}
+
+// Lowers this process's file size limit for one scope (a disk that fills up
+// while saving); root is bound by it too, unlike file permissions.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &old_);
+    oldHandler_ = std::signal(SIGXFSZ, SIG_IGN);  // EFBIG instead of a signal
+    rlimit lim = old_;
+    lim.rlim_cur = bytes;
+    ok_ = setrlimit(RLIMIT_FSIZE, &lim) == 0;
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &old_);
+    std::signal(SIGXFSZ, oldHandler_);
+  }
+  bool ok() const { return ok_; }
+
+ private:
+  rlimit old_{};
+  void (*oldHandler_)(int) = nullptr;
+  bool ok_ = false;
+};
+
+}  // namespace
+
+class TestHsceneFile : public QObject {
+  Q_OBJECT
+
+ private:
+  QTemporaryDir tmp_;
+  SceneState rich_;
+  std::string goodFile_;  // rich_ saved once, copied by the damage tests
+
+  std::string path(const std::string& name) const { return (fs::path(tmp_.path().toStdString()) / name).string(); }
+
+  // A copy of the good file to damage.
+  std::string copyOfGood(const std::string& name) {
+    const std::string p = path(name);
+    fs::copy_file(goodFile_, p, fs::copy_options::overwrite_existing);
+    return p;
+  }
+
+  // The bad-file check every damage test ends with: loading fails with a
+  // message naming the file (and containing `what`), and a document that
+  // holds a scene keeps it, its file name and its undo history.
+  void expectRefused(const std::string& file, const std::vector<std::string>& what) {
+    Document doc;
+    doc.reset(rich_, "open.hscene");
+    QVERIFY(ops::rename(doc, doc.state().findByName("Sun"), "Sun (edited)"));
+    const std::string before = canonicalJson(doc.state());
+    const int undoCount = doc.undoStack()->count();
+    std::string error;
+    QVERIFY2(!openInto(doc, file, error), "a bad file was opened");
+    QVERIFY2(error.find(file) != std::string::npos, error.c_str());
+    for (const auto& w : what) QVERIFY2(error.find(w) != std::string::npos, qPrintable(QString("'%1' not in: %2").arg(w.c_str(), error.c_str())));
+    QVERIFY(error.find('\n') == std::string::npos);  // one line
+    QCOMPARE(canonicalJson(doc.state()), before);
+    QCOMPARE(doc.filePath(), QString("open.hscene"));
+    QCOMPARE(doc.undoStack()->count(), undoCount);
+    QVERIFY(doc.isModified());
+    qInfo("refused as expected: %s", error.c_str());
+  }
+
+ private slots:
+  void initTestCase() {
+    QVERIFY(tmp_.isValid());
+    rich_ = richScene();
+    QCOMPARE(rich_.assets.size(), size_t(4));
+    goodFile_ = path("good.hscene");
+    std::string error;
+    QVERIFY2(saveScene(rich_, goodFile_, error), error.c_str());
+  }
+
+  // ---- round trips ------------------------------------------------------------
+
+  void saveLoadRoundTrip() {
+    const std::string p = path("roundtrip.hscene");
+    std::string error;
+    SaveReport report;
+    QVERIFY2(saveScene(rich_, p, error, &report), error.c_str());
+    QVERIFY(!report.incremental);
+    QCOMPARE(report.blobsWritten, rich_.assets.size());
+    QCOMPARE(report.blobsUnchanged, size_t(0));
+    QVERIFY(report.bytesWritten > 1000000);  // the bunny alone is over a megabyte
+    QVERIFY(!fs::exists(p + ".saving-" + std::to_string(::getpid())));  // the temporary is gone
+
+    std::optional<SceneState> loaded = loadScene(p, error);
+    QVERIFY2(loaded, error.c_str());
+    const std::string diff = stateDifference(rich_, *loaded);
+    QVERIFY2(diff.empty(), diff.c_str());
+    QVERIFY(loaded->validate().empty());
+    QCOMPARE(sceneFileVersion(p), kSceneFormatVersion);
+    // Textures came back decoded, with their source bytes where there were some.
+    int encoded = 0, raw = 0;
+    for (const auto& [id, a] : loaded->assets)
+      for (const auto& t : a.data->textures) {
+        QCOMPARE(t.rgba.size(), size_t(t.width) * size_t(t.height) * 4);
+        (t.encoded.empty() ? raw : encoded) += 1;
+      }
+    QCOMPARE(encoded, 2);
+    QCOMPARE(raw, 1);
+    // Saving what was loaded gives the same description again.
+    const std::string p2 = path("roundtrip2.hscene");
+    QVERIFY2(saveScene(*loaded, p2, error), error.c_str());
+    std::optional<SceneState> again = loadScene(p2, error);
+    QVERIFY2(again, error.c_str());
+    QVERIFY(stateDifference(rich_, *again).empty());
+  }
+
+  void descriptionJsonRoundTrip() {
+    std::string error;
+    const std::optional<SceneState> back = sceneFromJson(sceneToJson(rich_), error);
+    QVERIFY2(back, error.c_str());
+    QCOMPARE(canonicalJson(*back), canonicalJson(rich_));
+    QVERIFY(back->entities == rich_.entities);
+    QVERIFY(back->roots == rich_.roots);
+    QVERIFY(back->settings == rich_.settings);
+  }
+
+  void loadProgressAndCancel() {
+    std::string error;
+    int calls = 0;
+    Progress progress([&](double f, std::string_view) {
+      ++calls;
+      QVERIFY(f >= 0.0 && f <= 1.0);
+    });
+    QVERIFY2(loadScene(goodFile_, error, &progress), error.c_str());
+    QVERIFY(calls >= int(rich_.assets.size()));
+    Progress* self = nullptr;
+    Progress cancelling([&](double, std::string_view) { self->cancel(); });
+    self = &cancelling;
+    QVERIFY(!loadScene(goodFile_, error, &cancelling));
+    QVERIFY2(error.find(goodFile_) != std::string::npos && error.find("cancelled") != std::string::npos, error.c_str());
+  }
+
+  // ---- incremental saves ----------------------------------------------------------
+
+  void secondSaveWritesOnlyWhatChanged() {
+    const std::string p = path("incremental.hscene");
+    std::string error;
+    SaveReport first;
+    QVERIFY2(saveScene(rich_, p, error, &first), error.c_str());
+    QCOMPARE(first.blobsWritten, size_t(4));
+
+    Document doc;
+    QVERIFY2(openInto(doc, p, error), error.c_str());
+    doc.markSaved();
+
+    // One entity changes: the description is rewritten, no blob is.
+    QVERIFY(ops::setTransforms(doc, {{doc.state().findByName("Stanford Bunny"), Transform{}}}, "Move"));
+    SaveReport second;
+    QVERIFY2(saveScene(doc.state(), p, error, &second), error.c_str());
+    QVERIFY(second.incremental);
+    QCOMPARE(second.blobsWritten, size_t(0));
+    QCOMPARE(second.blobsUnchanged, size_t(4));
+    QCOMPARE(second.blobsRemoved, size_t(0));
+    QCOMPARE(second.bytesWritten, uint64_t(0));
+    std::optional<SceneState> loaded = loadScene(p, error);
+    QVERIFY2(loaded, error.c_str());
+    QVERIFY(stateDifference(doc.state(), *loaded).empty());
+
+    // One more mesh: one blob.
+    mesh::ImportResult ply = importFixture("quad_and_triangle.ply");
+    QVERIFY2(ply.ok(), ply.error.c_str());
+    ops::addImportedMesh(doc, std::move(*ply.mesh), "ply", "ply", ply.report);
+    SaveReport third;
+    QVERIFY2(saveScene(doc.state(), p, error, &third), error.c_str());
+    QVERIFY(third.incremental);
+    QCOMPARE(third.blobsWritten, size_t(1));
+    QCOMPARE(third.blobsUnchanged, size_t(4));
+    QVERIFY(third.bytesWritten > 0 && third.bytesWritten < 10000);
+    QCOMPARE(blobKeyCount(p), 5);
+
+    // An asset and the entities showing it go: its blob is removed.
+    {
+      const AssetId gone = doc.state().find(doc.state().findByName("textured_quad.glb"))->mesh->mesh;
+      Edit e(doc, "Delete asset");
+      for (const auto& [id, ent] : doc.state().entities)
+        if (ent.mesh && ent.mesh->mesh == gone) e.removeEntity(id);
+      e.removeAsset(gone);
+      QVERIFY(e.commit());
+    }
+    QVERIFY(doc.state().validate().empty());
+    SaveReport fourth;
+    QVERIFY2(saveScene(doc.state(), p, error, &fourth), error.c_str());
+    QCOMPARE(fourth.blobsWritten, size_t(0));
+    QCOMPARE(fourth.blobsRemoved, size_t(1));
+    QCOMPARE(fourth.blobsUnchanged, size_t(4));
+    QCOMPARE(blobKeyCount(p), 4);
+    loaded = loadScene(p, error);
+    QVERIFY2(loaded, error.c_str());
+    QVERIFY(stateDifference(doc.state(), *loaded).empty());
+    // Undo brings the asset back; the next save writes it again.
+    doc.undoStack()->undo();
+    SaveReport fifth;
+    QVERIFY2(saveScene(doc.state(), p, error, &fifth), error.c_str());
+    QCOMPARE(fifth.blobsWritten, size_t(1));
+    loaded = loadScene(p, error);
+    QVERIFY2(loaded, error.c_str());
+    QVERIFY(stateDifference(doc.state(), *loaded).empty());
+  }
+
+  void saveAsToANewPath() {
+    std::string error;
+    const std::string first = path("first.hscene"), second = path("second.hscene");
+    QVERIFY2(saveScene(rich_, first, error), error.c_str());
+    const std::string firstBytes = readFile(first);
+    Document doc;
+    QVERIFY2(openInto(doc, first, error), error.c_str());
+    QVERIFY(ops::rename(doc, doc.state().findByName("Main Camera"), "Shot 1"));
+    SaveReport report;
+    QVERIFY2(saveScene(doc.state(), second, error, &report), error.c_str());
+    QVERIFY(!report.incremental);
+    QCOMPARE(report.blobsWritten, size_t(4));  // a new file holds every blob
+    doc.setFilePath(QString::fromStdString(second));
+    QCOMPARE(readFile(first), firstBytes);  // the original is untouched
+    std::optional<SceneState> a = loadScene(first, error), b = loadScene(second, error);
+    QVERIFY(a && b);
+    QVERIFY(stateDifference(rich_, *a).empty());
+    QVERIFY(stateDifference(doc.state(), *b).empty());
+    QVERIFY(b->findByName("Shot 1") != kNoEntity && a->findByName("Shot 1") == kNoEntity);
+  }
+
+  // ---- bad files: each refused, the open document untouched ---------------------------
+
+  void corruptedInTheMiddle() {
+    // 8 KB of garbage over the middle of a real saved file (the bunny's blob lives there).
+    const std::string p = copyOfGood("corrupted.hscene");
+    std::string bytes = readFile(p);
+    std::mt19937 rng(99);
+    for (size_t i = bytes.size() / 2; i < bytes.size() / 2 + 8192; ++i) bytes[i] = char(rng() & 0xff);
+    writeFile(p, bytes);
+    expectRefused(p, {"damaged"});
+  }
+
+  void corruptedTablePages() {
+    // Garbage over the pages after the header page: SQLite's own structure is broken.
+    const std::string p = copyOfGood("corrupted_pages.hscene");
+    std::string bytes = readFile(p);
+    for (size_t i = 4096; i < 4 * 4096 && i < bytes.size(); ++i) bytes[i] = char(0x5a ^ (i & 0xff));
+    writeFile(p, bytes);
+    expectRefused(p, {"damaged"});
+  }
+
+  void truncated() {
+    const std::string p = copyOfGood("truncated.hscene");
+    const std::string bytes = readFile(p);
+    writeFile(p, bytes.substr(0, bytes.size() / 2));
+    expectRefused(p, {"damaged"});
+  }
+
+  void newerFormatVersion() {
+    const std::string p = copyOfGood("newer.hscene");
+    sql(p, "UPDATE meta SET value = '99' WHERE key = 'format_version'");
+    QCOMPARE(sceneFileVersion(p), 99);
+    expectRefused(p, {"newer", "99"});
+  }
+
+  void sqliteDatabaseThatIsNotAScene() {
+    const std::string p = path("other.sqlite");
+    sqlite3* db = nullptr;
+    QCOMPARE(sqlite3_open(p.c_str(), &db), SQLITE_OK);
+    QCOMPARE(sqlite3_exec(db, "CREATE TABLE photos(id INTEGER, name TEXT); INSERT INTO photos VALUES (1, 'x');", nullptr,
+                          nullptr, nullptr),
+             SQLITE_OK);
+    sqlite3_close(db);
+    QCOMPARE(sceneFileVersion(p), 0);
+    expectRefused(p, {"not a Hybridscape scene"});
+  }
+
+  void notAnSqliteFile_data() {
+    QTest::addColumn<QString>("name");
+    QTest::addColumn<QByteArray>("bytes");
+    QTest::newRow("png") << "picture.hscene" << QByteArray::fromStdString(readFile(kMeshData + "/checker_4x2.png"));
+    QTest::newRow("text") << "notes.hscene" << QByteArray("This is a text file, not a scene.\n");
+    QTest::newRow("short") << "short.hscene" << QByteArray("SQLite format");
+  }
+  void notAnSqliteFile() {
+    QFETCH(QString, name);
+    QFETCH(QByteArray, bytes);
+    const std::string p = path(name.toStdString());
+    writeFile(p, bytes.toStdString());
+    expectRefused(p, {"not an SQLite database"});
+  }
+
+  void emptyFile() {
+    const std::string p = path("empty.hscene");
+    writeFile(p, "");
+    expectRefused(p, {"empty"});
+  }
+
+  void directory() {
+    const std::string p = path("folder.hscene");
+    fs::create_directories(p);
+    expectRefused(p, {"directory"});
+  }
+
+  void missingFile() { expectRefused(path("nowhere.hscene"), {"not found"}); }
+
+  void blobHashMismatch() {
+    // One byte of the bunny's vertex data changed: still a well-formed mesh
+    // blob, but not the one the description's hash names.
+    const std::string p = copyOfGood("hash.hscene");
+    std::vector<uint8_t> blob = readBlob(p, "mesh/1");
+    QVERIFY(blob.size() > 1000);
+    blob[100] ^= 0x01;  // inside the positions array
+    writeBlob(p, "mesh/1", blob);
+    expectRefused(p, {"mesh asset 1", "checksum"});
+  }
+
+  void blobThatIsNotAMesh() {
+    const std::string p = copyOfGood("badblob.hscene");
+    std::vector<uint8_t> blob = readBlob(p, "mesh/1");
+    blob.resize(blob.size() / 3);  // a cut-off blob
+    writeBlob(p, "mesh/1", blob);
+    expectRefused(p, {"mesh asset 1", "truncated"});
+  }
+
+  void missingBlob() {
+    const std::string p = copyOfGood("noblob.hscene");
+    sql(p, "DELETE FROM blobs WHERE key = 'mesh/1'");
+    expectRefused(p, {"mesh asset 1", "missing"});
+  }
+
+  void damagedDescription() {
+    const std::string p = copyOfGood("badjson.hscene");
+    sql(p, "UPDATE document SET json = substr(json, 1, 200) WHERE id = 1");
+    expectRefused(p, {"description is damaged"});
+  }
+
+  void invalidDescriptionNamesThePlace() {
+    const std::string p = copyOfGood("badvalue.hscene");
+    // The first entity's scale becomes a string.
+    sql(p, "UPDATE document SET json = json_set(json, '$.entities[0].transform.scale', 'big') WHERE id = 1");
+    expectRefused(p, {"entities[0].transform.scale"});
+    const std::string q = copyOfGood("cycle.hscene");
+    // A root that claims a parent.
+    sql(q, "UPDATE document SET json = json_set(json, '$.entities[0].parent', 3) WHERE id = 1");
+    expectRefused(q, {"inconsistent hierarchy"});
+  }
+
+  // ---- saves that fail leave what was there ---------------------------------------------
+
+  void saveToADirectoryPath() {
+    const std::string dir = path("a_folder.hscene");
+    fs::create_directories(dir);
+    writeFile(dir + "/keep.txt", "keep me");
+    std::string error;
+    QVERIFY(!saveScene(rich_, dir, error));
+    QVERIFY2(error.find(dir) != std::string::npos && error.find("directory") != std::string::npos, error.c_str());
+    QVERIFY(fs::is_directory(dir));
+    QCOMPARE(readFile(dir + "/keep.txt"), std::string("keep me"));
+    QCOMPARE(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), std::ptrdiff_t(1));
+  }
+
+  void saveIntoAFolderThatCannotHoldIt_data() {
+    QTest::addColumn<QString>("target");
+    // /proc takes no new files, whoever asks (root included).
+    QTest::newRow("unwritable folder") << "/proc/hybridscape-test.hscene";
+    QTest::newRow("missing folder") << QString::fromStdString(path("no/such/folder/x.hscene"));
+    QTest::newRow("folder is a file") << QString::fromStdString(path("plain.txt/x.hscene"));
+  }
+  void saveIntoAFolderThatCannotHoldIt() {
+    QFETCH(QString, target);
+    writeFile(path("plain.txt"), "plain");
+    const std::string p = target.toStdString();
+    std::string error;
+    QVERIFY(!saveScene(rich_, p, error));
+    QVERIFY2(error.find(p) != std::string::npos, error.c_str());
+    QVERIFY(error.find('\n') == std::string::npos);
+    std::error_code ec;
+    QVERIFY(!fs::exists(p, ec));
+    QCOMPARE(readFile(path("plain.txt")), std::string("plain"));
+  }
+
+  void failedSaveKeepsThePreviousFile_data() {
+    QTest::addColumn<bool>("overCurrentScene");
+    QTest::newRow("in place, over a scene") << true;
+    QTest::newRow("new file, over something else") << false;
+  }
+  void failedSaveKeepsThePreviousFile() {
+    // The disk fills up in the middle of a save (a file size limit, which
+    // binds root too): the save fails and the file that was there is intact.
+    QFETCH(bool, overCurrentScene);
+    const std::string p = path(overCurrentScene ? "full_disk.hscene" : "full_disk_other.hscene");
+    std::string error;
+    if (overCurrentScene) {
+      SceneState small = buildStarterScene();
+      QVERIFY2(saveScene(small, p, error), error.c_str());
+    } else {
+      writeFile(p, "an older file that is not a current scene\n");
+    }
+    const std::string before = readFile(p);
+    bool saved = true;
+    {
+      FileSizeLimit limit(before.size() + 64 * 1024);  // far less than the bunny's blob
+      QVERIFY(limit.ok());
+      saved = saveScene(rich_, p, error);
+    }
+    QVERIFY2(!saved, "the save should have run out of space");
+    QVERIFY2(error.find(p) != std::string::npos, error.c_str());
+    qInfo("failed as expected: %s", error.c_str());
+    QCOMPARE(readFile(p), before);
+    // Nothing left beside it: no temporary, no journal.
+    for (const auto& entry : fs::directory_iterator(tmp_.path().toStdString())) {
+      const std::string name = entry.path().filename().string();
+      QVERIFY2(name.find(".saving-") == std::string::npos && name.find("-journal") == std::string::npos, name.c_str());
+    }
+    if (overCurrentScene) {
+      std::optional<SceneState> still = loadScene(p, error);
+      QVERIFY2(still, error.c_str());
+      QCOMPARE(canonicalJson(*still), canonicalJson(buildStarterScene()));
+    }
+    // With room again the same save works.
+    QVERIFY2(saveScene(rich_, p, error), error.c_str());
+    std::optional<SceneState> now = loadScene(p, error);
+    QVERIFY2(now, error.c_str());
+    QVERIFY(stateDifference(rich_, *now).empty());
+  }
+};
+
+QTEST_GUILESS_MAIN(TestHsceneFile)
+#include "test_hscene_file.moc"
