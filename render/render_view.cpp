@@ -19,8 +19,9 @@ glm::dmat4 RenderView::projection() const {
 }
 
 void RenderView::pixelRay(double x, double y, glm::dvec3& origin, glm::dvec3& direction) const {
-  const double ndcX = 2.0 * x / double(width) - 1.0 + projectionShift.x;
-  const double ndcY = 1.0 - 2.0 * y / double(height) + projectionShift.y;
+  // projection() adds the shift in NDC; undo it to get the view direction.
+  const double ndcX = 2.0 * x / double(width) - 1.0 - projectionShift.x;
+  const double ndcY = 1.0 - 2.0 * y / double(height) - projectionShift.y;
   const double t = std::tan(fovY * 0.5);
   const glm::dvec3 dirView(ndcX * t * aspect(), ndcY * t, -1.0);
   origin = eye;

@@ -9,8 +9,9 @@ BUILD_PACKAGES=(
   libglm-dev libassimp-dev libopenimageio-dev openimageio-tools libopenmesh-dev libgdal-dev
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libsqlite3-dev libmeshoptimizer-dev
 )
-# Tests: an X server for the GUI smoke test, Mesa for headless EGL.
-TEST_PACKAGES=(xvfb xauth libgl1-mesa-dri libegl-mesa0 mesa-utils)
+# Tests: an X server for the GUI smoke test, Mesa for headless EGL, ffmpeg
+# (and its ffprobe) for the sequencer's direct-video export test.
+TEST_PACKAGES=(xvfb xauth libgl1-mesa-dri libegl-mesa0 mesa-utils ffmpeg)
 
 want=("${BUILD_PACKAGES[@]}")
 if [[ "${1:-}" == "--with-tests" ]]; then want+=("${TEST_PACKAGES[@]}"); fi

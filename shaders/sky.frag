@@ -14,7 +14,7 @@ uniform bool uHasSun;
 layout(location = 0) out vec4 outColor;
 
 void main() {
-  vec2 ndc = vUv * 2.0 - 1.0 + uSubpixel;
+  vec2 ndc = vUv * 2.0 - 1.0 - uSubpixel;  // the projection added the shift
   vec3 dirView = normalize(vec3(ndc * uTanHalfFov, -1.0));
   vec3 dir = uInvViewRot * dirView;
   float z = dir.z;

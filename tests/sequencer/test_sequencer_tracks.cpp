@@ -1,0 +1,453 @@
+// Tracks and keys: interpolation exact at keys, clamped cubics that never
+// overshoot, eases, user and broken tangents, one key, coincident keys,
+// keys at huge times, quaternion shortest paths through 179/180/181 degrees,
+// JSON round trips, frame ranges and output names.
+#include <QtTest>
+
+#include <cmath>
+#include <random>
+
+#include "sequencer/interpolation.h"
+#include "sequencer/json.h"
+#include "sequencer/output_pattern.h"
+#include "sequencer/sequence_json.h"
+#include "sequencer/track.h"
+
+using namespace hs::sequencer;
+
+namespace {
+
+glm::dquat yaw(double degrees) { return glm::angleAxis(glm::radians(degrees), glm::dvec3(0, 0, 1)); }
+
+// Signed yaw angle (degrees) of a rotation about +Z.
+double yawOf(const glm::dquat& q) {
+  const glm::dvec3 x = q * glm::dvec3(1, 0, 0);
+  return glm::degrees(std::atan2(x.y, x.x));
+}
+
+ScalarKey key(double t, double v, Interpolation i = Interpolation::Cubic, Ease e = Ease::None) {
+  ScalarKey k;
+  k.time = t;
+  k.value = v;
+  k.interpolation = i;
+  k.ease = e;
+  return k;
+}
+
+RotationKey rkey(double t, const glm::dquat& q, Interpolation i = Interpolation::Linear) {
+  RotationKey k;
+  k.time = t;
+  k.value = q;
+  k.interpolation = i;
+  return k;
+}
+
+}  // namespace
+
+class TestTracks : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void easesAreDefinedAsDocumented() {
+    for (Ease e : {Ease::None, Ease::In, Ease::Out, Ease::InOut}) {
+      QCOMPARE(easeValue(e, 0.0), 0.0);
+      QCOMPARE(easeValue(e, 1.0), 1.0);
+      double prev = 0.0;
+      for (int i = 1; i <= 1000; ++i) {
+        const double u = i / 1000.0, v = easeValue(e, u);
+        QVERIFY2(v >= prev, "eases are monotone");
+        prev = v;
+        // The slope is the derivative of the value.
+        const double d = (easeValue(e, std::min(1.0, u + 1e-6)) - easeValue(e, u - 1e-6)) / (std::min(1.0, u + 1e-6) - (u - 1e-6));
+        QVERIFY(std::abs(d - easeSlope(e, u)) < 1e-4);
+      }
+    }
+    QCOMPARE(easeSlope(Ease::In, 0.0), 0.0);
+    QCOMPARE(easeSlope(Ease::In, 1.0), 1.0);
+    QCOMPARE(easeSlope(Ease::Out, 0.0), 1.0);
+    QCOMPARE(easeSlope(Ease::Out, 1.0), 0.0);
+    QCOMPARE(easeSlope(Ease::InOut, 0.0), 0.0);
+    QCOMPARE(easeSlope(Ease::InOut, 1.0), 0.0);
+    QCOMPARE(easeValue(Ease::InOut, 0.5), 0.5);
+  }
+
+  void exactAtKeys() {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> val(-1e3, 1e3), gap(0.001, 10.0);
+    for (int trial = 0; trial < 200; ++trial) {
+      ScalarTrack tr{"camera.fov_deg", {}};
+      VectorTrack vt{"transform.translation", {}};
+      double t = val(rng);
+      for (int i = 0; i < 12; ++i) {
+        ScalarKey k = key(t, val(rng), Interpolation(rng() % 3), Ease(rng() % 4));
+        k.tangentMode = TangentMode(rng() % 3);
+        k.inSlope = val(rng);
+        k.outSlope = val(rng);
+        tr.keys.push_back(k);
+        VectorKey vk;
+        vk.time = t;
+        vk.value = {val(rng), val(rng), val(rng)};
+        vk.interpolation = k.interpolation;
+        vt.keys.push_back(vk);
+        t += gap(rng);
+      }
+      for (size_t i = 0; i < tr.keys.size(); ++i) {
+        QCOMPARE(*evaluate(tr, tr.keys[i].time), tr.keys[i].value);  // bit for bit
+        QVERIFY(*evaluate(vt, vt.keys[i].time) == vt.keys[i].value);
+      }
+    }
+  }
+
+  void clampedCubicNeverLeavesItsKeys() {
+    // Random values at random (uneven) times, auto tangents: every sample of
+    // a segment lies between its two keys.
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> val(-100.0, 100.0), gap(0.01, 5.0), coin(0.0, 1.0);
+    double worst = 0.0;
+    for (int trial = 0; trial < 300; ++trial) {
+      ScalarTrack tr{"x", {}};
+      double t = 0.0;
+      const int n = 2 + int(rng() % 14);
+      for (int i = 0; i < n; ++i) {
+        // Some plateaus and repeated values: the classic overshoot cases.
+        const double v = (i > 0 && coin(rng) < 0.2) ? tr.keys.back().value : val(rng);
+        tr.keys.push_back(key(t, v, Interpolation::Cubic, coin(rng) < 0.3 ? Ease(rng() % 4) : Ease::None));
+        t += coin(rng) < 0.1 ? gap(rng) * 100.0 : gap(rng);  // very uneven spacing too
+      }
+      for (size_t i = 0; i + 1 < tr.keys.size(); ++i) {
+        const double lo = std::min(tr.keys[i].value, tr.keys[i + 1].value);
+        const double hi = std::max(tr.keys[i].value, tr.keys[i + 1].value);
+        for (int s = 0; s <= 400; ++s) {
+          const double tt = tr.keys[i].time + (tr.keys[i + 1].time - tr.keys[i].time) * s / 400.0;
+          const double v = *evaluate(tr, tt);
+          worst = std::max(worst, std::max(lo - v, v - hi));
+          QVERIFY2(v >= lo - 1e-12 && v <= hi + 1e-12, qPrintable(QString("overshoot %1 outside [%2, %3]").arg(v).arg(lo).arg(hi)));
+        }
+      }
+    }
+    qInfo("largest excursion past a neighbouring key: %.3g (0 = none)", std::max(0.0, worst));
+  }
+
+  void autoTangentsAreSmoothAndFlatAtExtremes() {
+    ScalarTrack tr{"x", {key(0, 0), key(1, 10), key(2, 5), key(4, 6)}};
+    // Key 1 is a maximum: flat there.
+    QCOMPARE(evaluateWithSlope(tr, 1.0)->slope, 0.0);
+    // Ends are flat (Blender's auto clamped).
+    QCOMPARE(evaluateWithSlope(tr, 0.0)->slope, 0.0);
+    // Key 2 sits between 10 and 6 (decreasing then increasing? 10 -> 5 -> 6 is a minimum): flat.
+    QCOMPARE(evaluateWithSlope(tr, 2.0)->slope, 0.0);
+    // C1 across a key that is not an extreme.
+    ScalarTrack mono{"x", {key(0, 0), key(1, 1), key(3, 4), key(4, 10)}};
+    const double left = evaluateWithSlope(mono, 1.0 - 1e-9)->slope, right = evaluateWithSlope(mono, 1.0)->slope;
+    QVERIFY(std::abs(left - right) < 1e-6);
+    QVERIFY(right > 0.0);
+  }
+
+  void userAndBrokenTangents() {
+    ScalarTrack tr{"x", {key(0, 0), key(1, 1), key(2, 0)}};
+    tr.keys[1].setSlope(2.5);
+    const double h = 1e-7;
+    QVERIFY(std::abs(evaluateWithSlope(tr, 1.0 - h)->slope - 2.5) < 1e-4);
+    QVERIFY(std::abs(evaluateWithSlope(tr, 1.0)->slope - 2.5) < 1e-9);
+    tr.keys[1].tangentMode = TangentMode::Broken;
+    tr.keys[1].inSlope = -3.0;
+    tr.keys[1].outSlope = 4.0;
+    QVERIFY(std::abs(evaluateWithSlope(tr, 1.0 - h)->slope - (-3.0)) < 1e-4);
+    QVERIFY(std::abs(evaluateWithSlope(tr, 1.0)->slope - 4.0) < 1e-9);
+    QCOMPARE(*evaluate(tr, 1.0), 1.0);
+    // User mode ignores inSlope (one slope, both sides).
+    tr.keys[1].tangentMode = TangentMode::User;
+    QVERIFY(std::abs(evaluateWithSlope(tr, 1.0 - h)->slope - 4.0) < 1e-4);
+  }
+
+  void linearConstantAndEasedSegments() {
+    ScalarTrack tr{"x", {key(0, 0, Interpolation::Linear), key(2, 10, Interpolation::Constant), key(3, 20)}};
+    QCOMPARE(*evaluate(tr, 1.0), 5.0);
+    QCOMPARE(*evaluate(tr, 2.5), 10.0);  // constant holds until the next key
+    QCOMPARE(*evaluate(tr, 3.0), 20.0);
+    QCOMPARE(*evaluate(tr, 99.0), 20.0);  // holds after the last key
+    QCOMPARE(*evaluate(tr, -5.0), 0.0);   // and before the first
+    tr.keys[0].ease = Ease::InOut;
+    QCOMPARE(*evaluate(tr, 1.0), 5.0);
+    QCOMPARE(evaluateWithSlope(tr, 0.0)->slope, 0.0);
+    QVERIFY(*evaluate(tr, 0.5) < 2.5);  // slow start
+  }
+
+  void oneKeyAndNoKeys() {
+    ScalarTrack none{"x", {}};
+    QVERIFY(!evaluate(none, 0.0));
+    ScalarTrack one{"x", {key(5, 3.25)}};
+    for (double t : {-1e9, 0.0, 5.0, 5.0 + 1e-12, 1e9}) {
+      QCOMPARE(*evaluate(one, t), 3.25);
+      QCOMPARE(evaluateWithSlope(one, t)->slope, 0.0);
+    }
+    RotationTrack r1{"transform.rotation", {rkey(1, yaw(30))}};
+    QVERIFY(std::abs(yawOf(*evaluate(r1, 100.0)) - 30.0) < 1e-12);
+    StepTrack s1{"entity.visible", {{3.0, false}}};
+    QCOMPARE(*evaluate(s1, 0.0), false);
+  }
+
+  void coincidentKeysMakeAJump() {
+    ScalarTrack tr{"x", {key(0, 0), key(1, 1), key(1, 5), key(1, 7), key(2, 5)}};
+    QCOMPARE(*evaluate(tr, 1.0), 7.0);  // the last key at that time holds
+    QVERIFY(std::abs(*evaluate(tr, 1.0 - 1e-9) - 1.0) < 1e-6);  // approached from the left: the first
+    for (int i = 0; i <= 2000; ++i) {
+      const double t = -0.5 + 3.0 * i / 2000.0;
+      const auto s = evaluateWithSlope(tr, t);
+      QVERIFY(std::isfinite(s->value) && std::isfinite(s->slope));
+    }
+    // Both sides of the jump are flat (their pieces end there).
+    QCOMPARE(evaluateWithSlope(tr, 1.0)->slope, 0.0);
+    // Rotations and vectors alike.
+    RotationTrack r{"transform.rotation", {rkey(0, yaw(0), Interpolation::Cubic), rkey(1, yaw(10), Interpolation::Cubic),
+                                           rkey(1, yaw(50), Interpolation::Cubic), rkey(2, yaw(60), Interpolation::Cubic)}};
+    QVERIFY(std::abs(yawOf(*evaluate(r, 1.0)) - 50.0) < 1e-9);
+    QVERIFY(std::abs(yawOf(*evaluate(r, 1.0 - 1e-9)) - 10.0) < 1e-6);
+    StepTrack s{"entity.visible", {{0.0, true}, {1.0, false}, {1.0, true}}};
+    QCOMPARE(*evaluate(s, 1.0), true);
+    QCOMPARE(*evaluate(s, 0.999), true);
+  }
+
+  void keysAtHugeTimes() {
+    // t = 1e6 s (11.6 days): double time and the relative segment parameter
+    // keep the same precision as near t = 0.
+    const FrameRate rate{60, 1};
+    QCOMPARE(frameTime(60000000, rate), 1e6);
+    QCOMPARE(frameTime(60000001, rate) - 1e6, 1.0 / 60.0 + (frameTime(60000001, rate) - 1e6 - 1.0 / 60.0));
+    const double base = 1e6;
+    ScalarTrack nearZero{"x", {}}, huge{"x", {}};
+    const double times[] = {0.0, 1.0 / 60.0, 2.0 / 60.0, 0.5, 3.0};
+    const double values[] = {0.0, 1.0, -2.0, 4.0, 4.5};
+    for (int i = 0; i < 5; ++i) {
+      nearZero.keys.push_back(key(times[i], values[i]));
+      huge.keys.push_back(key(base + times[i], values[i]));
+    }
+    for (int i = 0; i < 5; ++i) QCOMPARE(*evaluate(huge, base + times[i]), values[i]);
+    double worst = 0.0;
+    for (int64_t f = 0; f <= 180; ++f) {
+      const double a = *evaluate(nearZero, frameTime(f, rate));
+      const double b = *evaluate(huge, frameTime(f + 60000000, rate));
+      worst = std::max(worst, std::abs(a - b));
+    }
+    qInfo("largest difference between keys near 0 and near 1e6 s: %.3g", worst);
+    QVERIFY(worst < 1e-7);
+    // Distinct frames stay distinct: no two frames at 1e6 s collapse onto one time.
+    QVERIFY(frameTime(60000001, rate) > frameTime(60000000, rate));
+    QCOMPARE(frameAtTime(frameTime(60000123, rate), rate), int64_t(60000123));
+  }
+
+  void quaternionsTakeTheShortWay() {
+    // 0 -> 179: the long-looking way is the short one (+179).
+    RotationTrack a{"transform.rotation", {rkey(0, yaw(0)), rkey(1, yaw(179))}};
+    QVERIFY(std::abs(yawOf(*evaluate(a, 0.5)) - 89.5) < 1e-9);
+    // 0 -> 181 = -179: the short way is negative.
+    RotationTrack b{"transform.rotation", {rkey(0, yaw(0)), rkey(1, yaw(181))}};
+    QVERIFY(std::abs(yawOf(*evaluate(b, 0.5)) + 89.5) < 1e-9);
+    // 179 -> 181 crosses 180 and moves 2 degrees, never 358.
+    RotationTrack c{"transform.rotation", {rkey(0, yaw(179)), rkey(1, yaw(181))}};
+    glm::dquat prev = *evaluate(c, 0.0);
+    for (int i = 1; i <= 100; ++i) {
+      const glm::dquat q = *evaluate(c, i / 100.0);
+      QVERIFY(glm::degrees(rotationAngleBetween(prev, q)) < 0.0201);
+      prev = q;
+    }
+    QVERIFY(std::abs(std::abs(yawOf(*evaluate(c, 0.5))) - 180.0) < 1e-9);
+    // The stored sign of a quaternion never changes the path.
+    RotationTrack d{"transform.rotation", {rkey(0, -yaw(0)), rkey(1, yaw(181))}};
+    QVERIFY(std::abs(yawOf(*evaluate(d, 0.5)) + 89.5) < 1e-9);
+    // Cubic too.
+    RotationTrack e{"transform.rotation", {rkey(0, yaw(0), Interpolation::Cubic), rkey(1, yaw(181), Interpolation::Cubic)}};
+    QVERIFY(yawOf(*evaluate(e, 0.5)) < -80.0);
+  }
+
+  void halfTurnIsStable() {
+    // Exactly 180 degrees (and within rounding of it): the documented
+    // direction, counter-clockwise about +Z, whatever the quaternion signs
+    // and rounding noise.
+    const glm::dquat exact(0.0, 0.0, 0.0, 1.0);  // 180 about Z, w exactly 0
+    const glm::dquat variants[] = {exact, -exact, yaw(180.0), -yaw(180.0), yaw(180.0 + 1e-8), yaw(180.0 - 1e-8),
+                                   yaw(-180.0)};
+    for (const glm::dquat& target : variants)
+      for (const glm::dquat& start : {yaw(0), -yaw(0)}) {
+        RotationTrack t{"transform.rotation", {rkey(0, start), rkey(1, target)}};
+        const double mid = yawOf(*evaluate(t, 0.5));
+        QVERIFY2(std::abs(mid - 90.0) < 1e-5, qPrintable(QString("half turn went %1").arg(mid)));
+      }
+    // The rule is about the world axis, so it holds for any start orientation.
+    const glm::dquat start = yaw(37.0);
+    RotationTrack t{"transform.rotation", {rkey(0, start), rkey(1, yaw(37.0 + 180.0))}};
+    QVERIFY(std::abs(yawOf(*evaluate(t, 0.5)) - (37.0 + 90.0)) < 1e-6);
+    // Pitch half turn (axis X): positive about +X.
+    const glm::dquat pitch180 = glm::angleAxis(glm::pi<double>(), glm::dvec3(1, 0, 0));
+    RotationTrack p{"transform.rotation", {rkey(0, glm::dquat(1, 0, 0, 0)), rkey(1, -pitch180)}};
+    const glm::dvec3 up = *evaluate(p, 0.5) * glm::dvec3(0, 1, 0);
+    QVERIFY(std::abs(up.z - 1.0) < 1e-9);  // +90 about +X takes +Y to +Z
+  }
+
+  void continuousSpinNeverFlips() {
+    // Yaw keys every 90 degrees for three turns, cubic: the orientation
+    // moves forward in small steps, no jump back at 180 or 360.
+    RotationTrack t{"transform.rotation", {}};
+    for (int i = 0; i <= 12; ++i) t.keys.push_back(rkey(i, yaw(90.0 * i), Interpolation::Cubic));
+    glm::dquat prev = *evaluate(t, 0.0);
+    double travelled = 0.0;
+    for (int i = 1; i <= 1200; ++i) {
+      const glm::dquat q = *evaluate(t, i / 100.0);
+      const double step = glm::degrees(rotationAngleBetween(prev, q));
+      QVERIFY2(step < 2.0, qPrintable(QString("jump of %1 degrees at t=%2").arg(step).arg(i / 100.0)));
+      travelled += step;
+      prev = q;
+    }
+    QVERIFY(std::abs(travelled - 1080.0) < 1.0);
+  }
+
+  void singleAxisCubicMatchesScalarCubic() {
+    // About one axis the rotation curve is the scalar cubic of the angle.
+    ScalarTrack angle{"yaw", {key(0, 0), key(1, 40), key(2.5, 45), key(3, 120)}};
+    RotationTrack rot{"transform.rotation", {}};
+    for (const auto& k : angle.keys) rot.keys.push_back(rkey(k.time, yaw(k.value), Interpolation::Cubic));
+    for (int i = 0; i <= 300; ++i) {
+      const double t = i / 100.0;
+      QVERIFY(std::abs(yawOf(*evaluate(rot, t)) - *evaluate(angle, t)) < 1e-9);
+    }
+  }
+
+  void rotationsExactAtKeys() {
+    std::mt19937_64 rng(3);
+    std::normal_distribution<double> n(0.0, 1.0);
+    RotationTrack t{"transform.rotation", {}};
+    for (int i = 0; i < 20; ++i) {
+      const glm::dquat q = glm::normalize(glm::dquat(n(rng), n(rng), n(rng), n(rng)));
+      t.keys.push_back(rkey(i * 0.7, q, Interpolation(rng() % 3)));
+    }
+    for (const auto& k : t.keys) {
+      const glm::dquat q = *evaluate(t, k.time);
+      QVERIFY(q == k.value || q == -k.value);
+    }
+  }
+
+  void sequenceJsonRoundTrip() {
+    Sequence s;
+    s.rate = {60000, 1001};
+    s.startFrame = 10;
+    s.endFrame = 35999;
+    Binding cam;
+    cam.entity = 3;
+    cam.label = "Drone \"camera\"";
+    ScalarTrack fov{"camera.fov_deg", {key(0, 50), key(10, 35, Interpolation::Linear, Ease::InOut)}};
+    fov.keys[1].tangentMode = TangentMode::Broken;
+    fov.keys[1].inSlope = -0.1;
+    fov.keys[1].outSlope = 0.3;
+    fov.keys[0].setSlope(1.0 / 3.0);
+    cam.tracks.push_back(fov);
+    VectorTrack pos{"transform.translation", {}};
+    VectorKey vk;
+    vk.time = 1e6 + 1.0 / 60.0;
+    vk.value = {512345.123456789, 4412345.987654321, -0.1};
+    pos.keys.push_back(vk);
+    cam.tracks.push_back(pos);
+    cam.tracks.push_back(RotationTrack{"transform.rotation", {rkey(0, yaw(10)), rkey(2, yaw(200), Interpolation::Cubic)}});
+    cam.tracks.push_back(StepTrack{"entity.visible", {{0.0, true}, {5.5, false}}});
+    PathFollow path;
+    path.path.points = {{0, 0, 10}, {100, 0, 12}, {200, 50, 15}};
+    path.progress.keys = {key(0, 0, Interpolation::Linear), key(60, 1)};
+    path.aim = PathAim::Entity;
+    path.targetEntity = 7;
+    path.bank = true;
+    path.maxBankDeg = 20;
+    cam.path = path;
+    s.bindings.push_back(cam);
+    const std::string text = sequenceToJsonText(s);
+    std::string error;
+    const auto back = sequenceFromJsonText(text, error);
+    QVERIFY2(back, error.c_str());
+    QVERIFY(*back == s);
+    QCOMPARE(sequenceToJsonText(*back), text);  // stable text
+  }
+
+  void sequenceJsonErrorsNameThePlace() {
+    std::string error;
+    QVERIFY(!sequenceFromJsonText(R"({"format":"hybridscape-sequence","version":1,"rate":[60,1],"start":0,"end":9,
+      "bindings":[{"entity":1,"tracks":[{"type":"scalar","property":"x","keys":[{"t":0,"v":1,"interp":"cubc"}]}]}]})",
+                                  error));
+    QVERIFY2(error.find("bindings[0].tracks[0].keys[0].interp") != std::string::npos, error.c_str());
+    QVERIFY(error.find("cubc") != std::string::npos);
+    QVERIFY(!sequenceFromJsonText(R"({"format":"hybridscape-sequence","version":7,"rate":[60,1],"start":0,"end":9,"bindings":[]})", error));
+    QVERIFY2(error.find("newer") != std::string::npos, error.c_str());
+    QVERIFY(!sequenceFromJsonText("{\"format\": \"hybridscape-sequence\",\n \"version\": 1,,}", error));
+    QVERIFY2(error.find("line 2, column 15") != std::string::npos, error.c_str());
+  }
+
+  void jsonReaderAndWriter() {
+    std::string error;
+    const auto v = readJson("{\"a\": [1, -2.5e3, true, null, \"x\\\"\\u00e9\\ud83d\\ude00\"], \"b\": {}}", error);
+    QVERIFY2(v, error.c_str());
+    QCOMPARE(v->find("a")->asArray()[1].asNumber(), -2500.0);
+    QCOMPARE(v->find("a")->asArray()[4].asString(), std::string("x\"\xc3\xa9\xf0\x9f\x98\x80"));
+    const auto again = readJson(writeJson(*v), error);
+    QVERIFY(again && *again == *v);
+    // Doubles round-trip bit for bit.
+    for (double d : {0.1, 1.0 / 3.0, 1e-300, 4412345.987654321, -0.0}) {
+      const auto r = readJson(writeJson(JsonValue(d)), error);
+      QCOMPARE(r->asNumber(), d);
+    }
+    for (const char* bad : {"", "[1,]", "{\"a\" 1}", "01", "[1 2]", "\"abc", "tru", "[1]x"}) QVERIFY(!readJson(bad, error));
+  }
+
+  void frameRanges() {
+    std::string error;
+    auto all = FrameList::parse("0-35999", error);
+    QVERIFY(all);
+    QCOMPARE(all->count(), int64_t(36000));
+    QCOMPARE(all->toString(), std::string("0-35999"));
+    auto mixed = FrameList::parse("10, 20-30", error);
+    QCOMPARE(mixed->count(), int64_t(12));
+    QCOMPARE(mixed->toString(), std::string("10,20-30"));
+    QVERIFY(mixed->contains(25) && !mixed->contains(15));
+    auto stepped = FrameList::parse("0-100x10", error);
+    QCOMPARE(stepped->count(), int64_t(11));
+    QCOMPARE(stepped->toString(), std::string("0-100x10"));
+    auto merged = FrameList::parse("5-9,0-6,3", error);
+    QCOMPARE(merged->toString(), std::string("0-9"));
+    auto negative = FrameList::parse("-5--3", error);
+    QCOMPARE(negative->frames(), (std::vector<int64_t>{-5, -4, -3}));
+    QVERIFY(!FrameList::parse("10,,20", error));
+    QVERIFY2(error.find("character 4") != std::string::npos, error.c_str());
+    QVERIFY(!FrameList::parse("30-20", error));
+    QVERIFY(error.find("backwards") != std::string::npos);
+    QVERIFY(!FrameList::parse("abc", error));
+    QVERIFY(!FrameList::parse("", error));
+    QVERIFY(!FrameList::parse("1-5y2", error));
+    const auto chunks = all->chunks(600);
+    QCOMPARE(chunks.size(), size_t(60));
+    QCOMPARE(chunks.front().toString(), std::string("0-599"));
+    QCOMPARE(chunks.back().toString(), std::string("35400-35999"));
+    const auto small = mixed->chunks(5);
+    QCOMPARE(small.size(), size_t(3));
+    QCOMPARE(small[0].toString(), std::string("10,20-23"));
+    QCOMPARE(small[2].toString(), std::string("29-30"));
+    // Rates.
+    QCOMPARE(parseFrameRate("59.94", error)->num, int64_t(60000));
+    QCOMPARE(parseFrameRate("60000/1001", error)->den, int64_t(1001));
+    QCOMPARE(parseFrameRate("60", error)->fps(), 60.0);
+    QVERIFY(!parseFrameRate("fast", error));
+  }
+
+  void outputPatterns() {
+    std::string error;
+    auto p = OutputPattern::parse("frames/f_%05d.png", error);
+    QCOMPARE(p->path(42), std::string("frames/f_00042.png"));
+    QCOMPARE(p->path(42, Eye::Left), std::string("frames/f_00042_left.png"));
+    QCOMPARE(OutputPattern::parse("f_####.exr", error)->path(7), std::string("f_0007.exr"));
+    QCOMPARE(OutputPattern::parse("%V/f_%04d.png", error)->path(7, Eye::Right), std::string("right/f_0007.png"));
+    QCOMPARE(OutputPattern::parse("f_%d_%v.tif", error)->path(7, Eye::Left), std::string("f_7_l.tif"));
+    QCOMPARE(OutputPattern::parse("100%%_%03d.jpg", error)->path(1), std::string("100%_001.jpg"));
+    QVERIFY(!OutputPattern::parse("frames/f.png", error));
+    QVERIFY(error.find("no frame number") != std::string::npos);
+    QVERIFY(!OutputPattern::parse("f_%05d_%05d.png", error));
+    QVERIFY(!OutputPattern::parse("f_%s.png", error));
+  }
+};
+
+QTEST_APPLESS_MAIN(TestTracks)
+#include "test_sequencer_tracks.moc"
