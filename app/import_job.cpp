@@ -1,0 +1,70 @@
+#include "app/import_job.h"
+
+#include <QFileInfo>
+
+#include "app/background_job.h"
+#include "scene/operations.h"
+
+namespace hs::app {
+
+ImportJob::ImportJob(const QString& path, const mesh::ImportOptions& options, QWidget* dialogParent, QObject* parent)
+    : QObject(parent), path_(path), options_(options), result_(std::make_shared<mesh::ImportResult>()) {
+  job_ = std::make_unique<BackgroundJob>(dialogParent, "Import Mesh",
+                                         QString("Importing %1…").arg(QFileInfo(path).fileName()), true);
+  connect(job_.get(), &BackgroundJob::finished, this, &ImportJob::finished);
+}
+
+ImportJob::~ImportJob() = default;
+
+void ImportJob::start() {
+  const std::string file = path_.toStdString();
+  const mesh::ImportOptions options = options_;
+  std::shared_ptr<mesh::ImportResult> out = result_;
+  job_->start([file, options, out](const Progress& progress) { *out = mesh::importMesh(file, options, &progress); });
+}
+
+void ImportJob::waitForFinished() { job_->waitForFinished(); }
+bool ImportJob::isRunning() const { return job_->isRunning(); }
+void ImportJob::cancel() { job_->cancel(); }
+
+QString importFileFilter() {
+  QStringList patterns;
+  for (const std::string& ext : mesh::supportedExtensions()) patterns << "*" + QString::fromStdString(ext);
+  return QString("Mesh files (%1);;All files (*)").arg(patterns.join(' '));
+}
+
+QString entityNameForFile(const QString& path) {
+  const QString base = QFileInfo(path).completeBaseName();
+  return base.isEmpty() ? QString("Mesh") : base;
+}
+
+QString importSummary(const mesh::ImportReport& r) {
+  return QString("Imported %1: %L2 triangles, %L3 vertices (%4 reader) in %5 s")
+      .arg(QFileInfo(QString::fromStdString(r.file)).fileName())
+      .arg(r.trianglesOut)
+      .arg(r.verticesOut)
+      .arg(QString::fromStdString(r.reader))
+      .arg(r.seconds, 0, 'f', 2);
+}
+
+QStringList importWarnings(const mesh::ImportReport& r) {
+  QStringList out;
+  for (const std::string& w : r.warnings) out << QString::fromStdString(w);
+  const QString file = QFileInfo(QString::fromStdString(r.file)).fileName();
+  auto count = [&](size_t n, const char* what) {
+    if (n) out << QString("%1: %L2 %3").arg(file).arg(n).arg(what);
+  };
+  count(r.nonFiniteVertices, "vertices with NaN/Inf coordinates (their faces dropped)");
+  count(r.outOfRangeFaces, "faces with an index past the vertex count (dropped)");
+  count(r.degenerateFaces, "degenerate faces (dropped)");
+  count(r.skippedLines, "unsupported statements skipped (lines, points, ...)");
+  return out;
+}
+
+scene::EntityId addImportToDocument(scene::Document& doc, mesh::ImportResult& result, const QString& path) {
+  if (!result.ok()) return scene::kNoEntity;
+  return scene::ops::addImportedMesh(doc, std::move(*result.mesh), entityNameForFile(path).toStdString(),
+                                     path.toStdString(), result.report);
+}
+
+}  // namespace hs::app

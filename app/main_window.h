@@ -1,0 +1,154 @@
+#pragma once
+// The editor's main window: the viewport in the middle, Outliner, Properties,
+// Scene Settings and Messages docks around it, menus, toolbar and status bar.
+// Document operations (new, open, save, import, recovery) are public methods
+// without dialogs, which the menu actions call after their dialogs and the
+// GUI test calls directly, so both take the same path. They live in
+// main_window_files.cpp; this file builds the window.
+#include <functional>
+#include <memory>
+
+#include <QMainWindow>
+
+#include "app/gizmo.h"
+#include "mesh/mesh_import.h"
+#include "scene/document.h"
+
+class QAction;
+class QActionGroup;
+class QDoubleSpinBox;
+class QMenu;
+class QToolBar;
+
+namespace hs::app {
+
+class Autosave;
+class BackgroundJob;
+class ImportJob;
+class MessagePanel;
+class OutlinerPanel;
+class Prompts;
+class PropertyPanel;
+class Selection;
+class SettingsPanel;
+class StatusBarInfo;
+class ViewportWidget;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  scene::Document& document() { return doc_; }
+  Selection& selection() { return *selection_; }
+  ViewportWidget* viewport() const { return viewport_; }
+  OutlinerPanel* outliner() const { return outliner_; }
+  PropertyPanel* properties() const { return properties_; }
+  SettingsPanel* sceneSettings() const { return settings_; }
+  MessagePanel* messages() const { return messages_; }
+  Autosave* autosave() const { return autosave_; }
+  // Replaces the dialogs (tests answer questions without a modal loop).
+  void setPrompts(std::unique_ptr<Prompts> prompts);
+  Prompts& prompts() { return *prompts_; }
+
+  // --- Document operations, no dialogs (main_window_files.cpp) ---
+  // The built-in demo as an untitled document.
+  void loadDemoScene();
+  // File > New's content: scene::buildStarterScene(), untitled.
+  void newScene();
+  // Loads on a worker with progress; on success replaces the document, on
+  // failure reports and leaves it as it was. With `wait` it returns when
+  // done (the event loop keeps turning) and says whether it succeeded;
+  // without, it says whether the work started.
+  bool openSceneFile(const QString& path, bool wait);
+  // Saves a snapshot on a worker; the document stays modified on failure.
+  bool saveSceneTo(const QString& path, bool wait);
+  // Imports on a worker with progress and Cancel; on success adds the mesh
+  // (one undo step), selects and frames it, and lists warnings in Messages;
+  // on failure says why, naming the file, and changes nothing.
+  bool importMeshFile(const QString& path, bool wait);
+  // A job (open, save, import) is running: document-replacing commands wait.
+  bool isBusy() const;
+  mesh::ImportOptions importOptions() const;
+
+  // --- The same with their questions (what menus and shortcuts run) ---
+  void requestNew();
+  void requestOpen();
+  void requestOpenRecent(const QString& path);
+  bool requestSave();
+  bool requestSaveAs();
+  void requestImport();
+  // Save / Discard / Cancel when there are unsaved changes; false means stop.
+  bool maybeSave();
+  // Offers recovery copies left by sessions that did not end cleanly.
+  void offerRecovery();
+
+  // The window as shown, with the GL viewport's image composed in.
+  bool writeScreenshot(const QString& path);
+  bool selectByName(const QString& name);
+  QString documentTitle() const;
+
+ protected:
+  void closeEvent(QCloseEvent* e) override;
+  // Files dropped on the window: a .hscene opens, a mesh is imported.
+  void dragEnterEvent(QDragEnterEvent* e) override;
+  void dropEvent(QDropEvent* e) override;
+
+ private:
+  enum class Create { Empty, Camera, Sun, PointLight };
+
+  void createActions();
+  void createMenus();
+  void createToolBar();
+  void createDocks();
+  void createStatusBar();
+  void restoreLayout();
+  void saveLayout();
+  void resetLayout();
+  void rebuildRecentMenu();
+  void updateTitle();
+  void updateSelectionActions();
+  void setGizmoMode(GizmoMode mode);
+  void createEntity(Create what);
+  void deleteSelection();
+  void duplicateSelection();
+  void showControls();
+  void showAbout();
+  void editAutosaveInterval();
+  std::string uniqueName(const std::string& base) const;
+  bool openInternal(const QString& path, bool wait, bool remember, std::function<void()> onSuccess);
+  void onImportFinished(const QString& path, bool* ok);
+  QString lastDirectory() const;
+  void rememberDirectory(const QString& file);
+
+  scene::Document doc_;
+  Selection* selection_ = nullptr;
+  std::unique_ptr<Prompts> prompts_;
+  ViewportWidget* viewport_ = nullptr;
+  OutlinerPanel* outliner_ = nullptr;
+  PropertyPanel* properties_ = nullptr;
+  SettingsPanel* settings_ = nullptr;
+  MessagePanel* messages_ = nullptr;
+  StatusBarInfo* statusInfo_ = nullptr;
+  Autosave* autosave_ = nullptr;
+  std::unique_ptr<BackgroundJob> docJob_;
+  std::unique_ptr<ImportJob> importJob_;
+  QString untitledName_ = "Untitled";
+  quint64 revision_ = 0;  // bumps on every document change (save checks it)
+  QByteArray defaultState_;
+
+  QMenu* recentMenu_ = nullptr;
+  QToolBar* toolBar_ = nullptr;
+  QAction *newAct_ = nullptr, *openAct_ = nullptr, *saveAct_ = nullptr, *saveAsAct_ = nullptr,
+          *importAct_ = nullptr, *quitAct_ = nullptr;
+  QAction *undoAct_ = nullptr, *redoAct_ = nullptr, *deleteAct_ = nullptr, *duplicateAct_ = nullptr,
+          *renameAct_ = nullptr, *selectAllAct_ = nullptr, *selectNoneAct_ = nullptr;
+  QAction *frameAct_ = nullptr, *frameAllAct_ = nullptr, *gridAct_ = nullptr, *resetLayoutAct_ = nullptr;
+  QAction *selectModeAct_ = nullptr, *moveAct_ = nullptr, *rotateAct_ = nullptr, *scaleAct_ = nullptr,
+          *localAct_ = nullptr, *snapAct_ = nullptr;
+  QActionGroup* upAxisGroup_ = nullptr;
+  QDoubleSpinBox *snapMove_ = nullptr, *snapRotate_ = nullptr, *snapScale_ = nullptr;
+};
+
+}  // namespace hs::app

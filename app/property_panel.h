@@ -1,0 +1,62 @@
+#pragma once
+// The Properties dock: the primary selected entity's fields, one section per
+// component, generated from scene::entityComponents(). Edits go through
+// scene::ops::setField (undoable); with several entities selected an edit
+// applies to each of them that has the field, as one undo step, and a vector
+// edit changes only the component that was touched.
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <QWidget>
+
+#include "scene/document.h"
+#include "scene/fields.h"
+
+class QLabel;
+class QToolButton;
+class QVBoxLayout;
+
+namespace hs::app {
+
+class FieldEditor;
+class Selection;
+
+class PropertyPanel : public QWidget {
+  Q_OBJECT
+ public:
+  PropertyPanel(scene::Document& doc, Selection& selection, QWidget* parent = nullptr);
+
+  // The editor of "component.key" (e.g. "transform.translation"), or nullptr.
+  FieldEditor* editorFor(const std::string& path) const;
+
+ private:
+  struct Row {
+    const scene::ComponentInfo* component;
+    const scene::EntityField* field;
+    FieldEditor* editor;
+  };
+  void onDocumentChanged(const scene::ChangeSet& changes);
+  // The structure (which sections) depends on the primary entity and its components.
+  std::string structureKey() const;
+  void rebuild();
+  void refresh();
+  void apply(const scene::EntityField& field, const scene::ComponentInfo& component, const scene::FieldValue& v,
+             int vectorComponent, const QString& mergeKey);
+  QWidget* buildSection(const scene::ComponentInfo& c, const scene::Entity& e);
+
+  scene::Document& doc_;
+  Selection& selection_;
+  QWidget* content_ = nullptr;
+  QVBoxLayout* contentLayout_ = nullptr;
+  QLabel* header_ = nullptr;
+  QLabel* meshInfo_ = nullptr;
+  QToolButton* addButton_ = nullptr;
+  std::vector<Row> rows_;
+  std::map<std::string, FieldEditor*> byPath_;
+  std::set<std::string> collapsed_;
+  std::string structure_;
+};
+
+}  // namespace hs::app

@@ -1,0 +1,103 @@
+#pragma once
+// The 3D viewport: a QOpenGLWidget (4.5 core, see app_settings.h) that owns
+// an hs::render::Renderer and turns mouse and keys into camera moves,
+// selection and gizmo drags. It includes no GL headers itself: the renderer
+// works on whatever context is current, which is this widget's inside
+// initializeGL/paintGL and after makeCurrent().
+#include <QElapsedTimer>
+#include <QOpenGLWidget>
+#include <QTimer>
+
+#include "app/camera_controller.h"
+#include "app/gizmo.h"
+#include "render/renderer.h"
+#include "scene/document.h"
+
+class QLabel;
+
+namespace hs::app {
+
+class Selection;
+
+class ViewportWidget : public QOpenGLWidget {
+  Q_OBJECT
+ public:
+  ViewportWidget(scene::Document& doc, Selection& selection, QWidget* parent = nullptr);
+  ~ViewportWidget() override;
+
+  CameraController& camera() { return camera_; }
+  Gizmo& gizmo() { return gizmo_; }
+  bool rendererReady() const { return renderer_.initialized(); }
+  QString rendererError() const { return error_; }
+  QString glDescription() const { return glDescription_; }
+  int framesRendered() const { return frames_; }
+  const render::FrameStats& lastStats() const { return stats_; }
+  bool showGrid() const { return showGrid_; }
+  void setShowGrid(bool show);
+
+  // The entity under a widget position (logical pixels): a camera/light
+  // glyph, else a mesh through the renderer's id pass. Makes the context
+  // current, so it works outside paintGL.
+  scene::EntityId pickAt(const QPoint& pos);
+  // Click selection as the mouse does it: plain replaces, Shift adds, Ctrl toggles.
+  void clickSelect(const QPoint& pos, Qt::KeyboardModifiers modifiers);
+
+  void frameSelection();
+  void frameAll();
+  // After New/Open: look through the scene's first camera, else frame it all.
+  void resetViewForDocument();
+  // Window pixel of a world point in this view (for tests and tools).
+  bool projectToWidget(const glm::dvec3& world, QPoint& pos) const;
+  render::RenderView currentView() const;
+
+ signals:
+  void frameRendered(const hs::render::FrameStats& stats);
+  void rendererFailed(const QString& error);
+  void rendererStarted(const QString& glDescription);
+  void flySpeedChanged(double metresPerSecond);
+
+ protected:
+  void initializeGL() override;
+  void resizeGL(int w, int h) override;
+  void paintGL() override;
+  bool event(QEvent* e) override;
+  void mousePressEvent(QMouseEvent* e) override;
+  void mouseMoveEvent(QMouseEvent* e) override;
+  void mouseReleaseEvent(QMouseEvent* e) override;
+  void wheelEvent(QWheelEvent* e) override;
+  void keyPressEvent(QKeyEvent* e) override;
+  void keyReleaseEvent(QKeyEvent* e) override;
+  void focusOutEvent(QFocusEvent* e) override;
+
+ private:
+  enum class Drag { None, Click, Gizmo, Fly, Orbit, Pan, Dolly };
+  void releaseGl();
+  void onDocumentChanged(const scene::ChangeSet& changes);
+  void tickFly();
+  void endFly();
+  glm::dvec2 toPixel(const QPointF& p) const;
+  bool moveKey(int key, CameraController::MoveKey& out) const;
+  void showError(const QString& text);
+
+  scene::Document& doc_;
+  Selection& selection_;
+  render::Renderer renderer_;
+  CameraController camera_;
+  Gizmo gizmo_;
+  QMetaObject::Connection contextConnection_;
+  QString error_, glDescription_;
+  QLabel* errorLabel_ = nullptr;
+  render::FrameStats stats_;
+  int frames_ = 0;
+  bool showGrid_ = true;
+  bool collectGarbage_ = false;
+  bool needsViewReset_ = true;
+
+  Drag drag_ = Drag::None;
+  QPointF pressPos_, lastPos_;
+  Qt::KeyboardModifiers pressModifiers_;
+  QTimer flyTimer_;
+  QElapsedTimer flyClock_;
+};
+
+}  // namespace hs::app
