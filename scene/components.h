@@ -26,12 +26,24 @@ struct Light {
   bool operator==(const Light&) const = default;
 };
 
-// Looks along local -Z with local +Y up (as in Blender).
+// Looks along local -Z with local +Y up (as in Blender). Stereo settings
+// feed sequencer::stereoCameras(); Mono renders the camera itself.
 struct Camera {
+  enum class Stereo { Mono = 0, OffAxis = 1, Parallel = 2, ToeIn = 3 };
+  enum class Pivot { Left = 0, Centre = 1, Right = 2 };
   double verticalFovDeg = 50.0;
-  double nearClip = 0.1;     // metres
-  double farClip = 50000.0;  // metres
+  double nearClip = 0.1;        // metres
+  double farClip = 50000.0;     // metres
+  double focusDistance = 10.0;  // metres (depth of field)
+  double fStop = 8.0;           // aperture (depth of field)
+  Stereo stereo = Stereo::Mono;
+  double interaxial = 0.065;    // metres between the eyes
+  double convergence = 10.0;    // metres to the zero-parallax plane
+  Pivot pivot = Pivot::Centre;
   bool operator==(const Camera&) const = default;
 };
+
+// Full-frame sensor height (36 x 24 mm), for focal length <-> field of view.
+constexpr double kSensorHeightMm = 24.0;
 
 }  // namespace hs::scene

@@ -41,6 +41,7 @@ ChangeSet describe(const ScenePatch& patch) {
   if (patch.roots) c.hierarchy = true;
   c.assets = !patch.assets.empty();
   c.settings = patch.settings.has_value();
+  c.sequence = patch.sequence.has_value();
   return c;
 }
 
@@ -76,7 +77,7 @@ void Document::reset(SceneState state, const QString& filePath) {
   undo_.setClean();
   setFilePath(filePath);
   ChangeSet c;
-  c.reset = c.hierarchy = c.assets = c.settings = true;
+  c.reset = c.hierarchy = c.assets = c.settings = c.sequence = true;
   emit changed(c);
   emit modifiedChanged(false);
 }

@@ -17,6 +17,7 @@ struct ChangeSet {
   bool hierarchy = false;          // entities added/removed/reparented/renamed
   bool assets = false;
   bool settings = false;
+  bool sequence = false;           // tracks, keys, frame rate or range
   bool reset = false;              // a whole new state (new/open)
 };
 

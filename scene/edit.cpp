@@ -66,6 +66,9 @@ void Edit::removeEntity(EntityId id) {
   list.erase(std::remove(list.begin(), list.end(), id), list.end());
   entity(id);  // make sure the entity has a before/after entry
   patch_.entities[id].after.reset();
+  // Its tracks go with it (and come back with undo).
+  const sequencer::Sequence& seq = patch_.sequence ? patch_.sequence->second : doc_.state().sequence;
+  if (seq.findBinding(id)) std::erase_if(sequence().bindings, [id](const auto& b) { return b.entity == id; });
 }
 
 bool Edit::reparent(EntityId id, EntityId newParent, int index, bool keepWorld) {
@@ -105,6 +108,7 @@ EntityId Edit::duplicate(EntityId id) {
   const int index = int(std::find(list.begin(), list.end(), id) - list.begin()) + 1;
   const std::vector<EntityId> children = src->children;
   const EntityId newId = addEntity(copy, src->parent, index);
+  copyBinding(id, newId);
   // Recreate the subtree under the copy, in order.
   std::vector<std::pair<EntityId, EntityId>> stack;  // (source, new parent)
   for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(*it, newId);
@@ -115,9 +119,20 @@ EntityId Edit::duplicate(EntityId id) {
     const std::vector<EntityId> grand = c.children;
     c.id = kNoEntity;
     const EntityId n = addEntity(c, p);
+    copyBinding(s, n);
     for (auto it = grand.rbegin(); it != grand.rend(); ++it) stack.emplace_back(*it, n);
   }
   return newId;
+}
+
+void Edit::copyBinding(EntityId from, EntityId to) {
+  const sequencer::Sequence& seq = patch_.sequence ? patch_.sequence->second : doc_.state().sequence;
+  const sequencer::Binding* b = seq.findBinding(from);
+  if (!b) return;
+  sequencer::Binding copy = *b;
+  copy.entity = to;
+  copy.label = peek(to)->name;
+  sequence().bindings.push_back(std::move(copy));
 }
 
 AssetId Edit::addAsset(MeshAsset asset) {
@@ -137,6 +152,11 @@ void Edit::removeAsset(AssetId id) {
   }
   if (const MeshAsset* a = doc_.state().findAsset(id))
     patch_.assets.emplace(id, BeforeAfter<MeshAsset>{*a, std::nullopt});
+}
+
+sequencer::Sequence& Edit::sequence() {
+  if (!patch_.sequence) patch_.sequence.emplace(doc_.state().sequence, doc_.state().sequence);
+  return patch_.sequence->second;
 }
 
 SceneSettings& Edit::settings() {

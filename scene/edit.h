@@ -33,18 +33,21 @@ class Edit {
   // Adds `e` under `parent` (kNoEntity: a root) at `index` (-1: last).
   // Assigns a fresh id when e.id is 0. Returns the id.
   EntityId addEntity(Entity e, EntityId parent = kNoEntity, int index = -1);
-  // Removes the entity and its whole subtree.
+  // Removes the entity and its whole subtree, and their animation tracks.
   void removeEntity(EntityId id);
   // Moves `id` under `newParent` at `index` (-1: last). With `keepWorld` the
   // entity stays where it is in the world. Refuses (returns false) a move
   // under itself or one of its descendants.
   bool reparent(EntityId id, EntityId newParent, int index = -1, bool keepWorld = true);
-  // Copies the subtree of `id` (new ids, same assets) next to it; returns the copy's id.
+  // Copies the subtree of `id` (new ids, same assets, copies of their
+  // animation tracks) next to it; returns the copy's id.
   EntityId duplicate(EntityId id);
 
   AssetId addAsset(MeshAsset asset);
   void removeAsset(AssetId id);
   SceneSettings& settings();
+  // Working copy of the timeline (tracks, keys, rate, range).
+  sequencer::Sequence& sequence();
 
   glm::dmat4 worldMatrix(EntityId id) const;
 
@@ -53,6 +56,7 @@ class Edit {
 
  private:
   std::vector<EntityId>& siblings(EntityId parent);
+  void copyBinding(EntityId from, EntityId to);
   void touchRoots();
 
   Document& doc_;

@@ -110,6 +110,30 @@ EntityField vec3Field(std::string key, std::string label, std::string unit, doub
   return f;
 }
 
+// Focal length on a full-frame sensor, derived from the field of view: the
+// same value seen the way photographers set it.
+EntityField focalLengthField() {
+  EntityField f;
+  f.key = "focal_length_mm";
+  f.label = "Focal length";
+  f.type = FieldType::Double;
+  f.min = 1.0;
+  f.max = 5000.0;
+  f.step = 1.0;
+  f.unit = "mm";
+  f.serialized = false;
+  f.get = [](const Entity& e) {
+    const double fov = glm::radians(e.camera->verticalFovDeg);
+    return FieldValue(kSensorHeightMm / (2.0 * std::tan(fov * 0.5)));
+  };
+  f.set = [](Entity& e, const FieldValue& v) {
+    const double mm = clampFinite(std::get<double>(v), 1.0, 5000.0, 0.0);
+    if (mm <= 0.0) return;
+    e.camera->verticalFovDeg = std::clamp(glm::degrees(2.0 * std::atan(kSensorHeightMm / (2.0 * mm))), 1.0, 170.0);
+  };
+  return f;
+}
+
 template <class C>
 ComponentInfo optionalComponent(std::string key, std::string label,
                                 std::optional<C> Entity::*member, std::vector<EntityField> fields) {
@@ -199,10 +223,23 @@ std::vector<ComponentInfo> buildEntityComponents() {
       "camera", "Camera", &Entity::camera,
       {doubleField<Entity>("fov_deg", "Vertical field of view", 1.0, 170.0, 1.0, "°",
                            [](Entity& e) -> double& { return e.camera->verticalFovDeg; }),
+       focalLengthField(),
        doubleField<Entity>("near_m", "Near clip", 1e-4, 1e5, 0.01, "m",
                            [](Entity& e) -> double& { return e.camera->nearClip; }),
        doubleField<Entity>("far_m", "Far clip", 1e-2, 1e8, 100.0, "m",
-                           [](Entity& e) -> double& { return e.camera->farClip; })}));
+                           [](Entity& e) -> double& { return e.camera->farClip; }),
+       doubleField<Entity>("focus_distance_m", "Focus distance", 1e-3, 1e7, 0.1, "m",
+                           [](Entity& e) -> double& { return e.camera->focusDistance; }),
+       doubleField<Entity>("f_stop", "Aperture (f-stop)", 0.5, 128.0, 0.1, "",
+                           [](Entity& e) -> double& { return e.camera->fStop; }),
+       enumField<Entity>("stereo", "Stereo", {"Mono", "Off-axis", "Parallel", "Toe-in"},
+                         [](Entity& e) -> Camera::Stereo& { return e.camera->stereo; }),
+       doubleField<Entity>("interaxial_m", "Interaxial", 0.0, 1000.0, 0.001, "m",
+                           [](Entity& e) -> double& { return e.camera->interaxial; }),
+       doubleField<Entity>("convergence_m", "Convergence distance", 1e-3, 1e7, 0.1, "m",
+                           [](Entity& e) -> double& { return e.camera->convergence; }),
+       enumField<Entity>("pivot", "Rig pivot", {"Left", "Centre", "Right"},
+                         [](Entity& e) -> Camera::Pivot& { return e.camera->pivot; })}));
   return out;
 }
 

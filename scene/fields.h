@@ -39,6 +39,9 @@ struct FieldInfo {
   std::function<FieldValue(const Target&)> get;
   std::function<void(Target&, const FieldValue&)> set;  // clamps to [min,max]
   bool animatable = true;
+  // False for a field derived from another (focal length from field of
+  // view): shown and animatable, but not written to files twice.
+  bool serialized = true;
 };
 
 using EntityField = FieldInfo<Entity>;

@@ -6,6 +6,7 @@
 #include <QJsonDocument>
 
 #include "scene/fields.h"
+#include "sequencer/sequence_json.h"
 
 namespace hs::scene {
 namespace {
@@ -142,7 +143,8 @@ QJsonObject sceneToJson(const SceneState& state) {
     for (const auto& c : entityComponents()) {
       if (!c.optional || !c.has(e)) continue;
       QJsonObject co;
-      for (const auto& f : c.fields) co[QString::fromStdString(f.key)] = fieldToJson(f, e);
+      for (const auto& f : c.fields)
+        if (f.serialized) co[QString::fromStdString(f.key)] = fieldToJson(f, e);
       components[QString::fromStdString(c.key)] = co;
     }
     o["components"] = components;
@@ -162,6 +164,8 @@ QJsonObject sceneToJson(const SceneState& state) {
     assets.append(o);
   }
   root["assets"] = assets;
+  // The timeline, in the sequencer's own JSON (it has no Qt), embedded as an object.
+  root["sequence"] = QJsonDocument::fromJson(QByteArray::fromStdString(sequencer::sequenceToJsonText(state.sequence))).object();
   return root;
 }
 
@@ -238,6 +242,7 @@ std::optional<SceneState> sceneFromJson(const QJsonObject& json, std::string& er
       c->add(e);
       const QJsonObject co = it.value().toObject();
       for (const auto& f : c->fields) {
+        if (!f.serialized) continue;
         const QJsonValue v = co[QString::fromStdString(f.key)];
         if (v.isUndefined()) continue;
         if (!r.field(f, v, p + ".components." + key + "." + f.key, e)) return std::nullopt;
@@ -270,6 +275,17 @@ std::optional<SceneState> sceneFromJson(const QJsonObject& json, std::string& er
       r.fail(p + ".id", "duplicate asset id");
       return std::nullopt;
     }
+  }
+
+  if (json.contains("sequence")) {
+    const QByteArray text = QJsonDocument(json["sequence"].toObject()).toJson(QJsonDocument::Compact);
+    std::string seqError;
+    auto seq = sequencer::sequenceFromJsonText(std::string_view(text.constData(), size_t(text.size())), seqError);
+    if (!seq) {
+      r.fail("sequence", seqError);
+      return std::nullopt;
+    }
+    s.sequence = std::move(*seq);
   }
 
   if (const std::string problem = s.validate(); !problem.empty()) {

@@ -29,6 +29,12 @@ void ScenePatch::mergeLater(const ScenePatch& later) {
     else
       settings = later.settings;
   }
+  if (later.sequence) {
+    if (sequence)
+      sequence->second = later.sequence->second;
+    else
+      sequence = later.sequence;
+  }
 }
 
 void ScenePatch::prune() {
@@ -36,6 +42,7 @@ void ScenePatch::prune() {
   std::erase_if(assets, [](const auto& kv) { return kv.second.before == kv.second.after; });
   if (roots && roots->first == roots->second) roots.reset();
   if (settings && settings->first == settings->second) settings.reset();
+  if (sequence && sequence->first == sequence->second) sequence.reset();
 }
 
 void applyPatch(SceneState& state, const ScenePatch& patch, bool forward) {
@@ -55,6 +62,7 @@ void applyPatch(SceneState& state, const ScenePatch& patch, bool forward) {
       state.assets.erase(id);
   }
   if (patch.settings) state.settings = forward ? patch.settings->second : patch.settings->first;
+  if (patch.sequence) state.sequence = forward ? patch.sequence->second : patch.sequence->first;
 }
 
 }  // namespace hs::scene

@@ -22,8 +22,9 @@ struct ScenePatch {
   std::optional<std::pair<std::vector<EntityId>, std::vector<EntityId>>> roots;  // before, after
   std::map<AssetId, BeforeAfter<MeshAsset>> assets;
   std::optional<std::pair<SceneSettings, SceneSettings>> settings;
+  std::optional<std::pair<sequencer::Sequence, sequencer::Sequence>> sequence;  // before, after
 
-  bool empty() const { return entities.empty() && !roots && assets.empty() && !settings; }
+  bool empty() const { return entities.empty() && !roots && assets.empty() && !settings && !sequence; }
   // Folds a later patch into this one (gizmo drags merge into one undo step).
   void mergeLater(const ScenePatch& later);
   // Drops entries whose before equals after.

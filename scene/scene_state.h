@@ -11,6 +11,7 @@
 
 #include "mesh/mesh_data.h"
 #include "scene/entity.h"
+#include "sequencer/sequence.h"
 
 namespace hs::scene {
 
@@ -49,6 +50,8 @@ struct SceneState {
   std::vector<EntityId> roots;          // top-level entities in outliner order
   std::map<AssetId, MeshAsset> assets;
   SceneSettings settings;
+  // The timeline: tracks per entity, frame rate, playback/export range.
+  sequencer::Sequence sequence;
 
   const Entity* find(EntityId id) const;
   const MeshAsset* findAsset(AssetId id) const;
