@@ -1,0 +1,123 @@
+#include "terrain/erosion_common.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "terrain/brush_dab.h"
+#include "terrain/undo_step.h"
+
+namespace hs::terrain {
+
+ErosionMask ErosionMask::whole(const Heightfield& hf) { return ErosionMask{hf.bounds(), {}}; }
+
+ErosionMask ErosionMask::clipped(const Region& r) const {
+  ErosionMask m;
+  m.region = region.intersected(r);
+  if (weights.empty() || m.region == region) {
+    m.weights = m.region == region ? weights : std::vector<float>{};
+    return m;
+  }
+  m.weights.resize(m.region.samples());
+  for (int y = m.region.y0; y < m.region.y1; ++y)
+    for (int x = m.region.x0; x < m.region.x1; ++x)
+      m.weights[size_t(y - m.region.y0) * size_t(m.region.width()) + size_t(x - m.region.x0)] = at(x, y);
+  return m;
+}
+
+ErosionMask ErosionMask::circle(const Heightfield& hf, const glm::dvec2& c, double radius,
+                                const FalloffCurve& curve) {
+  ErosionMask m;
+  const glm::dvec2 sp = hf.spacing();
+  if (!(radius > 0.0) || !std::isfinite(radius) || !std::isfinite(c.x) || !std::isfinite(c.y)) return m;
+  const glm::dvec2 cs = c / sp, rs = glm::dvec2(radius) / sp;
+  m.region = dabRegion(hf, c, radius);
+  m.weights.resize(m.region.samples());
+  const FalloffTable table(curve);
+  for (int y = m.region.y0; y < m.region.y1; ++y)
+    for (int x = m.region.x0; x < m.region.x1; ++x) {
+      const double dx = (x - cs.x) / rs.x, dy = (y - cs.y) / rs.y;
+      m.weights[size_t(y - m.region.y0) * size_t(m.region.width()) + size_t(x - m.region.x0)] =
+          table.weight(float(dx * dx + dy * dy));
+    }
+  return m;
+}
+
+ErosionMask ErosionMask::fromPaintLayer(const PaintLayers& paint, int layer, const Region& region) {
+  ErosionMask m;
+  const Region all{0, 0, paint.samplesX(), paint.samplesY()};
+  m.region = region.empty() ? all : region.intersected(all);
+  if (layer < 0 || layer >= paint.layerCount()) {
+    m.region = {};
+    return m;
+  }
+  m.weights.resize(m.region.samples());
+  for (int y = m.region.y0; y < m.region.y1; ++y)
+    for (int x = m.region.x0; x < m.region.x1; ++x)
+      m.weights[size_t(y - m.region.y0) * size_t(m.region.width()) + size_t(x - m.region.x0)] =
+          paint.weight(layer, x, y);
+  return m;
+}
+
+namespace detail {
+
+size_t sanitizeHeights(std::vector<float>& h, int w, int hgt) {
+  size_t fixed = 0;
+  for (int y = 0; y < hgt; ++y)
+    for (int x = 0; x < w; ++x) {
+      float& v = h[size_t(y) * size_t(w) + size_t(x)];
+      if (std::isfinite(v)) continue;
+      double sum = 0.0;
+      int n = 0;
+      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+      for (int k = 0; k < 4; ++k) {
+        if (nx[k] < 0 || ny[k] < 0 || nx[k] >= w || ny[k] >= hgt) continue;
+        const float n4 = h[size_t(ny[k]) * size_t(w) + size_t(nx[k])];
+        if (std::isfinite(n4)) {
+          sum += double(n4);
+          ++n;
+        }
+      }
+      v = n ? float(sum / n) : 0.0f;
+      ++fixed;
+    }
+  return fixed;
+}
+
+double sumHeights(const std::vector<float>& h, int w, int hgt) {
+  double total = 0.0;
+  for (int y = 0; y < hgt; ++y) {
+    double row = 0.0;
+    const float* p = h.data() + size_t(y) * size_t(w);
+    for (int x = 0; x < w; ++x) row += double(p[x]);
+    total += row;
+  }
+  return total;
+}
+
+double clampParam(double v, double lo, double hi, double fallback, const char* name,
+                  std::vector<std::string>& warnings) {
+  if (std::isnan(v)) {
+    std::ostringstream s;
+    s << name << " was not a number; using " << fallback;
+    warnings.push_back(s.str());
+    return fallback;
+  }
+  if (v < lo || v > hi) {
+    const double c = std::clamp(v, lo, hi);
+    std::ostringstream s;
+    s << name << " " << v << " is outside [" << lo << ", " << hi << "]; using " << c;
+    warnings.push_back(s.str());
+    return c;
+  }
+  return v;
+}
+
+void commitWindow(Heightfield& hf, const Region& window, const std::vector<float>& values,
+                  UndoRecorder* recorder) {
+  if (recorder) recorder->recordHeights(window);
+  hf.write(window, values);
+}
+
+}  // namespace detail
+}  // namespace hs::terrain

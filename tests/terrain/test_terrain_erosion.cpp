@@ -1,0 +1,282 @@
+// Erosion: mass conservation, stability at extreme settings, determinism
+// across thread counts, masks, cancellation.
+#include <QtTest>
+
+#include <cmath>
+#include <random>
+
+#include "terrain/erosion_hydraulic.h"
+#include "terrain/erosion_thermal.h"
+#include "terrain/stroke.h"
+#include "terrain/undo_step.h"
+
+using namespace hs::terrain;
+
+namespace {
+
+// Rolling hills on a 100 m base: a field with slopes of every angle.
+std::vector<float> hills(int w, int h, unsigned seed = 1) {
+  std::vector<float> v(size_t(w) * size_t(h));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      v[size_t(y) * size_t(w) + size_t(x)] =
+          100.0f + 20.0f * std::sin(float(x) * 0.15f) * std::cos(float(y) * 0.11f) + float(x) * 0.2f + u(rng);
+  return v;
+}
+
+bool allFinite(const std::vector<float>& v) {
+  for (float x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+Terrain make(int n, double size) {
+  HeightfieldDesc d;
+  d.samplesX = d.samplesY = n;
+  d.sizeMetres = {size, size};
+  auto r = Terrain::create(d);
+  if (!r) qFatal("%s", r.error().c_str());
+  return r.take();
+}
+
+}  // namespace
+
+class TestErosion : public QObject {
+  Q_OBJECT
+ private slots:
+  void thermalConservesMass() {
+    std::vector<float> h = hills(64, 64);
+    ThermalParams p;
+    p.talusDegrees = 20.0;
+    p.iterations = 1000;
+    p.strength = 1.0f;
+    const ErosionReport r = erodeThermalGrid(h, 64, 64, {1.0, 1.0}, p, nullptr);
+    QCOMPARE(r.iterationsDone, 1000);
+    qInfo("thermal 1000 it: relative mass error %.3g (%.3g m^3)", r.relativeMassError, r.massError);
+    QVERIFY(r.relativeMassError < 1e-5);
+    // It did something: slopes now at most about the talus angle.
+    double steepest = 0;
+    for (int y = 0; y < 64; ++y)
+      for (int x = 1; x < 64; ++x)
+        steepest = std::max(steepest, double(std::abs(h[size_t(y) * 64 + size_t(x)] - h[size_t(y) * 64 + size_t(x) - 1])));
+    QVERIFY2(steepest < std::tan(20.0 * M_PI / 180.0) * 1.5, qPrintable(QString::number(steepest)));
+  }
+
+  void hydraulicConservesMass() {
+    std::vector<float> h = hills(64, 64);
+    HydraulicParams p;
+    p.iterations = 1000;
+    const ErosionReport r = erodeHydraulicGrid(h, 64, 64, {1.0, 1.0}, p, nullptr);
+    QCOMPARE(r.iterationsDone, 1000);
+    qInfo("hydraulic 1000 it: relative mass error %.3g (%.3g m^3), dt %.3g..%.3g, CFL-limited %d", r.relativeMassError,
+          r.massError, r.minDt, r.maxDt, r.cflLimitedIterations);
+    QVERIFY(r.relativeMassError < 1e-5);
+    const std::vector<float> h0 = hills(64, 64);
+    double moved = 0;
+    for (size_t i = 0; i < h.size(); ++i) moved += std::abs(double(h[i]) - double(h0[i]));
+    QVERIFY2(moved > 1.0, qPrintable(QString("material moved: %1 m^3").arg(moved)));
+  }
+
+  void extremeThermal() {
+    for (double talus : {0.0, 90.0, -45.0, 1e9, double(NAN)}) {
+      std::vector<float> h = hills(32, 32);
+      const std::vector<float> h0 = h;
+      ThermalParams p{talus, 200, 1.0f};
+      const ErosionReport r = erodeThermalGrid(h, 32, 32, {1.0, 1.0}, p, nullptr);
+      QVERIFY(allFinite(h));
+      QVERIFY(r.relativeMassError < 1e-5);
+      if (talus >= 90.0) QVERIFY(h == h0);  // nothing is steeper than vertical
+      if (!(talus >= 0.0 && talus <= 90.0)) QVERIFY(!r.warnings.empty());  // clamped and said so
+    }
+    // Talus 0 flattens toward the mean without overshoot: no new extremes.
+    std::vector<float> h = hills(32, 32);
+    const float lo = *std::min_element(h.begin(), h.end()), hi = *std::max_element(h.begin(), h.end());
+    erodeThermalGrid(h, 32, 32, {1.0, 1.0}, ThermalParams{0.0, 2000, 1.0f}, nullptr);
+    QVERIFY(*std::min_element(h.begin(), h.end()) >= lo);
+    QVERIFY(*std::max_element(h.begin(), h.end()) <= hi);
+  }
+
+  void extremeHydraulic() {
+    // Rain 1e6 m/s.
+    {
+      std::vector<float> h = hills(24, 24);
+      HydraulicParams p;
+      p.rain = 1e6;
+      p.iterations = 300;
+      const ErosionReport r = erodeHydraulicGrid(h, 24, 24, {1.0, 1.0}, p, nullptr);
+      QVERIFY(allFinite(h));
+      QVERIFY(r.cflLimitedIterations > 0);
+      QVERIFY(r.relativeMassError < 1e-5);
+    }
+    // 1e5 iterations on a small grid.
+    {
+      std::vector<float> h = hills(12, 12);
+      HydraulicParams p;
+      p.iterations = 100000;
+      const ErosionReport r = erodeHydraulicGrid(h, 12, 12, {1.0, 1.0}, p, nullptr);
+      QCOMPARE(r.iterationsDone, 100000);
+      QVERIFY(allFinite(h));
+      qInfo("hydraulic 1e5 it on 12x12: relative mass error %.3g", r.relativeMassError);
+      QVERIFY(r.relativeMassError < 1e-4);
+      std::vector<float> t = hills(12, 12);
+      const ErosionReport rt = erodeThermalGrid(t, 12, 12, {1.0, 1.0}, ThermalParams{30.0, 100000, 1.0f}, nullptr);
+      QVERIFY(allFinite(t));
+      QVERIFY(rt.relativeMassError < 1e-4);
+    }
+    // Every rate at its extreme, huge time step.
+    {
+      std::vector<float> h = hills(24, 24);
+      HydraulicParams p;
+      p.timeStep = 1e9;
+      p.evaporation = 1e9;
+      p.erosionRate = 1e9;
+      p.depositionRate = 1e9;
+      p.sedimentCapacity = 1e9;
+      p.iterations = 200;
+      erodeHydraulicGrid(h, 24, 24, {1.0, 1.0}, p, nullptr);
+      QVERIFY(allFinite(h));
+      p.evaporation = 0.0;
+      p.rain = 10.0;
+      erodeHydraulicGrid(h, 24, 24, {1.0, 1.0}, p, nullptr);
+      QVERIFY(allFinite(h));
+    }
+  }
+
+  void verticalCliffAndFlatField() {
+    // A 100 m wall between two plateaus, 1 m grid.
+    std::vector<float> cliff(40 * 40);
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 40; ++x) cliff[size_t(y) * 40 + size_t(x)] = x < 20 ? 100.0f : 0.0f;
+    std::vector<float> c1 = cliff, c2 = cliff;
+    const ErosionReport rt = erodeThermalGrid(c1, 40, 40, {1.0, 1.0}, ThermalParams{35.0, 500, 1.0f}, nullptr);
+    QVERIFY(allFinite(c1));
+    QVERIFY(rt.relativeMassError < 1e-5);
+    QVERIFY(c1[20 * 40 + 19] < 100.0f && c1[20 * 40 + 20] > 0.0f);  // the wall slumped
+    HydraulicParams hp;
+    hp.iterations = 500;
+    const ErosionReport rh = erodeHydraulicGrid(c2, 40, 40, {1.0, 1.0}, hp, nullptr);
+    QVERIFY(allFinite(c2));
+    QVERIFY(rh.relativeMassError < 1e-5);
+
+    // A perfectly flat field stays flat under thermal erosion, and finite
+    // (and level, since rain falls evenly) under hydraulic erosion.
+    std::vector<float> flat(32 * 32, 50.0f);
+    erodeThermalGrid(flat, 32, 32, {1.0, 1.0}, ThermalParams{0.0, 100, 1.0f}, nullptr);
+    for (float v : flat) QCOMPARE(v, 50.0f);
+    std::vector<float> flat2(32 * 32, 50.0f);
+    erodeHydraulicGrid(flat2, 32, 32, {1.0, 1.0}, HydraulicParams{}, nullptr);
+    for (float v : flat2) QVERIFY(std::abs(v - 50.0f) < 1e-3f);
+  }
+
+  void nanInputs() {
+    std::vector<float> h = hills(32, 32);
+    h[100] = NAN;
+    h[101] = INFINITY;
+    h[500] = -INFINITY;
+    HydraulicParams p;
+    p.rain = NAN;
+    p.timeStep = NAN;
+    p.iterations = 100;
+    p.cfl = NAN;
+    const ErosionReport r = erodeHydraulicGrid(h, 32, 32, {1.0, 1.0}, p, nullptr);
+    QVERIFY(allFinite(h));
+    QCOMPARE(r.nonFiniteHeightsFixed, size_t(3));
+    QVERIFY(r.warnings.size() >= 4);
+    std::vector<float> t = hills(32, 32);
+    t[7] = NAN;
+    const ErosionReport rt = erodeThermalGrid(t, 32, 32, {NAN, 1.0}, ThermalParams{NAN, 50, NAN}, nullptr);
+    QVERIFY(allFinite(t));
+    QCOMPARE(rt.nonFiniteHeightsFixed, size_t(1));
+  }
+
+  void deterministicAcrossThreadCounts() {
+    for (int solver = 0; solver < 2; ++solver) {
+      std::vector<float> a = hills(150, 130), b = a;
+      if (solver == 0) {
+        erodeThermalGrid(a, 150, 130, {2.0, 1.5}, ThermalParams{25.0, 100, 0.7f}, nullptr, nullptr, 1);
+        erodeThermalGrid(b, 150, 130, {2.0, 1.5}, ThermalParams{25.0, 100, 0.7f}, nullptr, nullptr, 2);
+      } else {
+        HydraulicParams p;
+        p.iterations = 100;
+        erodeHydraulicGrid(a, 150, 130, {2.0, 1.5}, p, nullptr, nullptr, 1);
+        erodeHydraulicGrid(b, 150, 130, {2.0, 1.5}, p, nullptr, nullptr, 2);
+      }
+      QVERIFY(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+    }
+  }
+
+  void maskedBrushTouchesOnlyItsRegion() {
+    Terrain t = make(257, 256.0);
+    const std::vector<float> h = hills(257, 257);
+    t.height.write(t.height.bounds(), h);
+    const Heightfield before = t.height.clone();
+    UndoRecorder rec(t);
+    FalloffCurve c;
+    const ErosionMask m = ErosionMask::circle(t.height, {128.0, 128.0}, 40.0, c);
+    const ErosionReport r = erodeHydraulic(t.height, HydraulicParams{}, m, &rec);
+    QCOMPARE(r.changed, m.region);
+    bool changed = false;
+    for (int y = 0; y < 257; ++y)
+      for (int x = 0; x < 257; ++x) {
+        if (!m.region.contains(x, y)) QCOMPARE(t.height.at(x, y), before.at(x, y));
+        changed |= t.height.at(x, y) != before.at(x, y);
+      }
+    QVERIFY(changed);
+    UndoStep step = rec.finish("erode");
+    step.swap(t);
+    for (int y = 0; y < 257; ++y)
+      for (int x = 0; x < 257; ++x) QCOMPARE(t.height.at(x, y), before.at(x, y));
+
+    // As a brush stroke.
+    BrushSettings s;
+    s.tool = BrushTool::ThermalErosion;
+    s.radius = 30.0;
+    s.strength = 1.0f;
+    s.thermal = {10.0, 20, 1.0f};
+    Stroke st(t, s);
+    const StrokeUpdate u = st.dabAt({100.0, 100.0});
+    QVERIFY(!u.changed.empty());
+    QVERIFY(u.erosionMassError < 1e-5 * 100.0 * 60.0 * 60.0);
+  }
+
+  void paintLayerMask() {
+    // Erode only where "Scree" (layer 4) is painted: the west half.
+    Terrain t = make(129, 128.0);
+    t.height.write(t.height.bounds(), hills(129, 129));
+    for (int y = 0; y < 129; ++y)
+      for (int x = 0; x < 64; ++x) t.paint.blend(x, y, 4, 1.0f);
+    const Heightfield before = t.height.clone();
+    const ErosionMask m = ErosionMask::fromPaintLayer(t.paint, 4);
+    QCOMPARE(m.region, t.height.bounds());
+    const ErosionReport r = erodeThermal(t.height, ThermalParams{10.0, 50, 1.0f}, m);
+    QVERIFY(r.relativeMassError < 1e-5);
+    bool west = false;
+    for (int y = 0; y < 129; ++y)
+      for (int x = 0; x < 129; ++x) {
+        if (x >= 64) QCOMPARE(t.height.at(x, y), before.at(x, y));
+        else west |= t.height.at(x, y) != before.at(x, y);
+      }
+    QVERIFY(west);
+  }
+
+  void cancelLeavesTerrainUnchanged() {
+    Terrain t = make(129, 128.0);
+    t.height.write(t.height.bounds(), hills(129, 129));
+    const Heightfield before = t.height.clone();
+    hs::Progress progress;
+    progress.cancel();
+    HydraulicParams p;
+    p.iterations = 1000;
+    const ErosionReport r = erodeHydraulic(t.height, p, ErosionMask::whole(t.height), nullptr, &progress);
+    QVERIFY(r.cancelled);
+    const ErosionReport r2 = erodeThermal(t.height, ThermalParams{}, ErosionMask::whole(t.height), nullptr, &progress);
+    QVERIFY(r2.cancelled);
+    for (int y = 0; y < 129; ++y)
+      for (int x = 0; x < 129; ++x) QCOMPARE(t.height.at(x, y), before.at(x, y));
+  }
+};
+
+QTEST_GUILESS_MAIN(TestErosion)
+#include "test_terrain_erosion.moc"
