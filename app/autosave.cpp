@@ -15,6 +15,7 @@
 
 #include "app/app_settings.h"
 #include "scene/hscene_file.h"
+#include "scene/terrain_file.h"
 
 namespace hs::app {
 namespace {
@@ -111,7 +112,9 @@ bool Autosave::saveNow(bool wait) {
   savingRevision_ = revision_;
   saveError_ = std::make_shared<std::string>();
   // A snapshot: entities are copied, mesh data is shared and immutable.
-  auto snapshot = std::make_shared<scene::SceneState>(doc_.state());
+  // Terrain tiles are shared, not copied: freeze them copy-on-write so the
+  // worker writes this moment while the user keeps painting.
+  auto snapshot = std::make_shared<scene::SceneState>(scene::snapshotForSave(doc_.state()));
   const std::string path = recoveryFile().toStdString();
   std::shared_ptr<std::string> error = saveError_;
   watcher_.setFuture(QtConcurrent::run([snapshot, path, error] {

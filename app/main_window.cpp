@@ -34,6 +34,8 @@
 #include "app/selection.h"
 #include "app/settings_panel.h"
 #include "app/status_bar.h"
+#include "app/timeline_clock.h"
+#include "app/terrain_panel.h"
 #include "app/viewport_widget.h"
 #include "render/renderer.h"
 #include "scene/operations.h"
@@ -46,10 +48,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setWindowIcon(icon(Icon::Mesh));
   prompts_ = std::make_unique<DialogPrompts>();
   selection_ = new Selection(this);
+  // Before the panels: the clock must see each document change first, so a
+  // panel refreshing on the same change reads the new animated state.
+  clock_ = new TimelineClock(doc_, this);
 
   viewport_ = new ViewportWidget(doc_, *selection_, this);
   setCentralWidget(viewport_);
   createDocks();
+  createTimeline();
   createActions();
   createMenus();
   createToolBar();
@@ -124,6 +130,10 @@ void MainWindow::createDocks() {
   QDockWidget* settingsDock = dock("Scene Settings", "settingsDock", settings_, Qt::RightDockWidgetArea);
   QDockWidget* messagesDock = dock("Messages", "messagesDock", messages_, Qt::BottomDockWidgetArea);
   splitDockWidget(propertiesDock, settingsDock, Qt::Vertical);
+  // Terrain: a tab beside Scene Settings; its brush draws in the viewport.
+  terrain_ = new TerrainPanel(*this);
+  tabifyDockWidget(settingsDock, dock("Terrain", "terrainDock", terrain_, Qt::RightDockWidgetArea));
+  viewport_->setTerrainTool(terrain_->tool());
   setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
   setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
   resizeDocks({outlinerDock, propertiesDock}, {270, 360}, Qt::Horizontal);
@@ -267,6 +277,7 @@ void MainWindow::createMenus() {
   view->addSeparator();
   view->addAction(gridAct_);
   view->addSeparator();
+  addTimelineMenus(file, view);
   QMenu* panels = view->addMenu("&Panels");
   for (QDockWidget* d : findChildren<QDockWidget*>()) panels->addAction(d->toggleViewAction());
   view->addSeparator();
@@ -277,6 +288,8 @@ void MainWindow::createMenus() {
   create->addAction(icon(Icon::Camera), "&Camera (from View)", this, [this] { createEntity(Create::Camera); });
   create->addAction(icon(Icon::Sun), "&Sun", this, [this] { createEntity(Create::Sun); });
   create->addAction(icon(Icon::PointLight), "&Point Light", this, [this] { createEntity(Create::PointLight); });
+
+  terrain_->populateMenu(menuBar()->addMenu("Te&rrain"));
 
   QMenu* tools = menuBar()->addMenu("&Transform");
   tools->addAction(selectModeAct_);

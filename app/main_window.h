@@ -24,6 +24,12 @@ namespace hs::app {
 
 class Autosave;
 class BackgroundJob;
+class ExportDialog;
+class Keying;
+class StereoPreviewSettings;
+class TimelineClock;
+class TimelinePanel;
+class TerrainPanel;
 class ImportJob;
 class MessagePanel;
 class OutlinerPanel;
@@ -48,6 +54,15 @@ class MainWindow : public QMainWindow {
   SettingsPanel* sceneSettings() const { return settings_; }
   MessagePanel* messages() const { return messages_; }
   Autosave* autosave() const { return autosave_; }
+  // The timeline side (main_window_timeline.cpp).
+  TimelineClock* timelineClock() const { return clock_; }
+  TimelinePanel* timeline() const { return timeline_; }
+  // The Terrain panel and its brush (terrain_panel.h).
+  TerrainPanel* terrainPanel() const { return terrain_; }
+  Keying* keying() const { return keying_; }
+  StereoPreviewSettings* stereoPreview() const { return stereo_; }
+  // File > Export Frames…: the dialog, made on first use.
+  ExportDialog* exportDialog();
   // Replaces the dialogs (tests answer questions without a modal loop).
   void setPrompts(std::unique_ptr<Prompts> prompts);
   Prompts& prompts() { return *prompts_; }
@@ -103,6 +118,8 @@ class MainWindow : public QMainWindow {
   void createToolBar();
   void createDocks();
   void createStatusBar();
+  void createTimeline();                                  // main_window_timeline.cpp
+  void addTimelineMenus(QMenu* file, QMenu* view);        // Export Frames…, Stereo Preview, playback
   void restoreLayout();
   void saveLayout();
   void resetLayout();
@@ -132,6 +149,12 @@ class MainWindow : public QMainWindow {
   MessagePanel* messages_ = nullptr;
   StatusBarInfo* statusInfo_ = nullptr;
   Autosave* autosave_ = nullptr;
+  TimelineClock* clock_ = nullptr;
+  Keying* keying_ = nullptr;
+  StereoPreviewSettings* stereo_ = nullptr;
+  TimelinePanel* timeline_ = nullptr;
+  ExportDialog* exportDialog_ = nullptr;
+  TerrainPanel* terrain_ = nullptr;
   std::unique_ptr<BackgroundJob> docJob_;
   std::unique_ptr<ImportJob> importJob_;
   QString untitledName_ = "Untitled";

@@ -28,6 +28,7 @@
 #include "app/viewport_widget.h"
 #include "scene/demo_scene.h"
 #include "scene/hscene_file.h"
+#include "scene/terrain_file.h"
 
 namespace hs::app {
 namespace {
@@ -144,7 +145,9 @@ bool MainWindow::saveSceneTo(const QString& path, bool wait) {
   auto ok = std::make_shared<bool>(false);
   // The worker writes a snapshot; edits made meanwhile stay unsaved (the
   // revision check below), so "saved" never claims more than the file holds.
-  auto snapshot = std::make_shared<scene::SceneState>(doc_.state());
+  // Terrain tiles are shared, not copied: freeze them copy-on-write so the
+  // worker writes this moment while the user keeps painting.
+  auto snapshot = std::make_shared<scene::SceneState>(scene::snapshotForSave(doc_.state()));
   const quint64 revision = revision_;
   const QString abs = QFileInfo(path).absoluteFilePath();
   const QString name = QFileInfo(path).fileName();
@@ -157,12 +160,15 @@ bool MainWindow::saveSceneTo(const QString& path, bool wait) {
       RecentFiles::add(abs);
       rememberDirectory(abs);
       const scene::SaveReport& r = result->report;
-      messages_->info(QString("Saved %1 (%2 blobs written, %3 unchanged, %4 in %5 s)")
+      messages_->info(QString("Saved %1 (%2 blobs written, %3 unchanged, %4 in %5 s%6)")
                           .arg(name)
                           .arg(r.blobsWritten)
                           .arg(r.blobsUnchanged)
                           .arg(QLocale().formattedDataSize(qint64(r.bytesWritten)))
-                          .arg(r.seconds, 0, 'f', 2));
+                          .arg(r.seconds, 0, 'f', 2)
+                          .arg(r.tilesWritten + r.tilesUnchanged
+                                   ? QString("; terrain tiles: %1 written, %2 unchanged").arg(r.tilesWritten).arg(r.tilesUnchanged)
+                                   : QString()));
       statusBar()->showMessage("Saved " + name, 3000);
       *ok = true;
       updateTitle();

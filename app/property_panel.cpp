@@ -116,7 +116,7 @@ QWidget* PropertyPanel::buildSection(const scene::ComponentInfo& c, const scene:
     });
     auto* label = new QLabel(QString::fromStdString(f.label), body);
     label->setStyleSheet("QLabel { color: #a9aaae; }");
-    form->addRow(label, ed);
+    form->addRow(label, decorator_ ? decorator_(path, ed, body) : static_cast<QWidget*>(ed));
     rows_.push_back({comp, field, ed});
     byPath_[path] = ed;
   }
@@ -190,7 +190,7 @@ void PropertyPanel::rebuild() {
 }
 
 void PropertyPanel::refresh() {
-  const scene::SceneState& s = doc_.state();
+  const scene::SceneState& s = shown();
   const scene::Entity* e = s.find(selection_.primary());
   if (!e) return;
   if (header_) {
@@ -217,15 +217,35 @@ void PropertyPanel::refresh() {
   }
 }
 
+void PropertyPanel::setStateSource(std::function<const scene::SceneState&()> source) {
+  stateSource_ = std::move(source);
+  refresh();
+}
+
+void PropertyPanel::setRowDecorator(std::function<QWidget*(const std::string&, QWidget*, QWidget*)> decorator) {
+  decorator_ = std::move(decorator);
+  rebuild();
+  refresh();
+}
+
+void PropertyPanel::setEditedHook(
+    std::function<void(const std::vector<scene::EntityId>&, const std::string&, const QString&)> hook) {
+  edited_ = std::move(hook);
+}
+
 void PropertyPanel::apply(const scene::EntityField& field, const scene::ComponentInfo& component,
                           const scene::FieldValue& v, int vectorComponent, const QString& mergeKey) {
-  const scene::SceneState& s = doc_.state();
+  const scene::SceneState& s = shown();
   std::vector<scene::EntityId> targets;
   // A name is one entity's; everything else applies to the whole selection.
   if (field.type == scene::FieldType::String) targets = {selection_.primary()};
   else targets = selection_.ids();
   // Several entities in one edit share a key, so they fold into one undo step.
-  const QString key = !mergeKey.isEmpty() || targets.size() < 2 ? mergeKey : QString("prop-%1").arg(++editCounter);
+  // (With the timeline's hook every edit has a key: its keys join the step.)
+  const QString key = !mergeKey.isEmpty() || (targets.size() < 2 && !edited_) ? mergeKey
+                                                                              : QString("prop-%1").arg(++editCounter);
+  // Values first: an edit refreshes the shown state, which `s` refers to.
+  std::vector<std::pair<scene::EntityId, scene::FieldValue>> edits;
   for (scene::EntityId id : targets) {
     const scene::Entity* e = s.find(id);
     if (!e || !component.has(*e)) continue;
@@ -235,7 +255,13 @@ void PropertyPanel::apply(const scene::EntityField& field, const scene::Componen
       current[vectorComponent] = std::get<glm::dvec3>(v)[vectorComponent];
       value = current;
     }
-    scene::ops::setField(doc_, id, field, value, key);
+    edits.emplace_back(id, std::move(value));
+  }
+  for (const auto& [id, value] : edits) scene::ops::setField(doc_, id, field, value, key);
+  if (edited_ && !edits.empty()) {
+    std::vector<scene::EntityId> ids;
+    for (const auto& edit : edits) ids.push_back(edit.first);
+    edited_(ids, component.key + "." + field.key, key);
   }
 }
 

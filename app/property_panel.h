@@ -4,6 +4,7 @@
 // scene::ops::setField (undoable); with several entities selected an edit
 // applies to each of them that has the field, as one undo step, and a vector
 // edit changes only the component that was touched.
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -31,6 +32,18 @@ class PropertyPanel : public QWidget {
   // The editor of "component.key" (e.g. "transform.translation"), or nullptr.
   FieldEditor* editorFor(const std::string& path) const;
 
+  // Timeline hooks (set by the main window). The values shown and edited
+  // (the scene at the timeline's current time; default: the document).
+  void setStateSource(std::function<const scene::SceneState&()> source);
+  // A widget around each field's editor (the key button beside it).
+  void setRowDecorator(std::function<QWidget*(const std::string& path, QWidget* editor, QWidget* parent)> decorator);
+  // After an edit of `path` on entities, with the merge key it was pushed
+  // with (keys set by the timeline join that undo step).
+  void setEditedHook(
+      std::function<void(const std::vector<scene::EntityId>& ids, const std::string& path, const QString& mergeKey)> hook);
+  // Shows the values again (the timeline's time moved).
+  void refreshValues() { refresh(); }
+
  private:
   struct Row {
     const scene::ComponentInfo* component;
@@ -57,6 +70,10 @@ class PropertyPanel : public QWidget {
   std::map<std::string, FieldEditor*> byPath_;
   std::set<std::string> collapsed_;
   std::string structure_;
+  std::function<const scene::SceneState&()> stateSource_;
+  std::function<QWidget*(const std::string&, QWidget*, QWidget*)> decorator_;
+  std::function<void(const std::vector<scene::EntityId>&, const std::string&, const QString&)> edited_;
+  const scene::SceneState& shown() const { return stateSource_ ? stateSource_() : doc_.state(); }
 };
 
 }  // namespace hs::app

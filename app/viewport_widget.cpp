@@ -14,6 +14,10 @@
 
 #include "app/overlay_builder.h"
 #include "app/selection.h"
+#include "app/terrain_tool.h"
+#include "app/timeline_clock.h"
+#include "app/timeline_path_overlay.h"
+#include "scene/sequence_edits.h"
 #include "scene/world_bounds.h"
 
 namespace hs::app {
@@ -52,6 +56,7 @@ void ViewportWidget::releaseGl() {
   const bool haveContext = context() && context()->isValid();
   if (haveContext) makeCurrent();
   // Without a current context there is nothing left to free GL objects in.
+  if (haveContext) stereoRenderer_.release();
   if (haveContext) renderer_.shutdown();
   if (haveContext) doneCurrent();
 }
@@ -107,7 +112,8 @@ void ViewportWidget::paintGL() {
     gl->glClear(0x00004000);  // GL_COLOR_BUFFER_BIT; no GL headers here on purpose
     return;
   }
-  const scene::SceneState& state = doc_.state();
+  if (paintStereo()) return;
+  const scene::SceneState& state = displayedState();
   if (collectGarbage_) {
     renderer_.collectGarbage(state);
     collectGarbage_ = false;
@@ -115,7 +121,9 @@ void ViewportWidget::paintGL() {
   const render::RenderView& view = camera_.view();
   render::Overlay overlay;
   buildSceneOverlay(state, selection_.ids(), view, overlay);
+  if (clock_) buildTimelineOverlay(doc_.state(), clock_->compiled(), selection_.ids(), view, overlay);
   gizmo_.draw(state, selection_.ids(), view, overlay);
+  if (terrainTool_) terrainTool_->drawOverlay(state, overlay);
   render::RenderOptions options;
   options.showGrid = showGrid_;
   options.overlay = overlay.empty() ? nullptr : &overlay;
@@ -169,7 +177,7 @@ void ViewportWidget::resetViewForDocument() {
 }
 
 void ViewportWidget::frameSelection() {
-  const scene::SceneState& state = doc_.state();
+  const scene::SceneState& state = displayedState();
   if (selection_.empty()) return frameAll();
   scene::WorldBox box = scene::worldBounds(state, selection_.ids());
   if (box.empty) {
@@ -208,7 +216,7 @@ bool ViewportWidget::projectToWidget(const glm::dvec3& world, QPoint& pos) const
 }
 
 scene::EntityId ViewportWidget::pickAt(const QPoint& pos) {
-  const scene::SceneState& state = doc_.state();
+  const scene::SceneState& state = displayedState();
   const glm::dvec2 px = toPixel(QPointF(pos) + QPointF(0.5, 0.5));
   const render::RenderView& view = camera_.view();
   if (const scene::EntityId glyph = pickGlyph(state, view, px); glyph != scene::kNoEntity) return glyph;
@@ -260,6 +268,7 @@ bool ViewportWidget::event(QEvent* e) {
 void ViewportWidget::mousePressEvent(QMouseEvent* e) {
   setFocus(Qt::MouseFocusReason);
   if (drag_ != Drag::None) return;  // a second button during a drag changes nothing
+  if (stereoPreviewActive()) return;  // looking through a camera: turn the preview off to move or edit
   pressPos_ = lastPos_ = e->position();
   pressModifiers_ = e->modifiers();
   const bool alt = e->modifiers() & Qt::AltModifier;
@@ -280,9 +289,11 @@ void ViewportWidget::mousePressEvent(QMouseEvent* e) {
         drag_ = Drag::Orbit;
       } else {
         const glm::dvec2 px = toPixel(e->position());
-        const GizmoHandle h = gizmo_.hitTest(doc_.state(), selection_.ids(), camera_.view(), px);
-        if (h != GizmoHandle::None && gizmo_.beginDrag(doc_.state(), selection_.ids(), camera_.view(), h, px)) {
+        if (terrainPress(e->position())) break;  // a terrain brush stroke begins
+        const GizmoHandle h = gizmo_.hitTest(displayedState(), selection_.ids(), camera_.view(), px);
+        if (h != GizmoHandle::None && gizmo_.beginDrag(displayedState(), selection_.ids(), camera_.view(), h, px)) {
           drag_ = Drag::Gizmo;
+          gizmoStartSequence_ = doc_.state().sequence;
           update();
         } else {
           drag_ = Drag::Click;
@@ -320,11 +331,13 @@ void ViewportWidget::mouseMoveEvent(QMouseEvent* e) {
       update();
       break;
     case Drag::Gizmo:
-      gizmo_.dragTo(doc_, camera_.view(), toPixel(pos), e->modifiers() & Qt::ControlModifier);
+      if (gizmo_.dragTo(doc_, camera_.view(), toPixel(pos), e->modifiers() & Qt::ControlModifier)) emitTransformsEdited();
       break;
     case Drag::Click: break;
+    case Drag::Terrain: terrainMove(pos); break;
     case Drag::None: {
-      const GizmoHandle h = gizmo_.hitTest(doc_.state(), selection_.ids(), camera_.view(), toPixel(pos));
+      terrainMove(pos);  // the brush circle follows the cursor
+      const GizmoHandle h = gizmo_.hitTest(displayedState(), selection_.ids(), camera_.view(), toPixel(pos));
       if (h != gizmo_.hover()) {
         gizmo_.setHover(h);
         update();
@@ -338,8 +351,10 @@ void ViewportWidget::mouseReleaseEvent(QMouseEvent* e) {
   const Qt::MouseButton b = e->button();
   const bool ends = (b == Qt::RightButton && (drag_ == Drag::Fly || drag_ == Drag::Dolly)) ||
                     (b == Qt::MiddleButton && drag_ == Drag::Pan) ||
-                    (b == Qt::LeftButton && (drag_ == Drag::Orbit || drag_ == Drag::Gizmo || drag_ == Drag::Click));
+                    (b == Qt::LeftButton && (drag_ == Drag::Orbit || drag_ == Drag::Gizmo || drag_ == Drag::Click ||
+                                             drag_ == Drag::Terrain));
   if (!ends) return;
+  if (drag_ == Drag::Terrain) terrainEnd();
   if (drag_ == Drag::Fly) endFly();
   if (drag_ == Drag::Gizmo) gizmo_.endDrag();
   if (drag_ == Drag::Click && QLineF(e->position(), pressPos_).length() <= kClickSlopPixels)
@@ -378,7 +393,10 @@ void ViewportWidget::keyPressEvent(QKeyEvent* e) {
     }
   }
   if (drag_ == Drag::Gizmo && e->key() == Qt::Key_Escape) {
+    const QString key = gizmo_.mergeKey();
     gizmo_.cancelDrag(doc_);
+    // Keys the drag set go too: the whole step then holds no change.
+    if (clock_) scene::ops::replaceSequence(doc_, gizmoStartSequence_, gizmo_.undoText(), key);
     drag_ = Drag::None;
     update();
     return;
@@ -402,6 +420,7 @@ void ViewportWidget::keyReleaseEvent(QKeyEvent* e) {
 }
 
 void ViewportWidget::focusOutEvent(QFocusEvent* e) {
+  if (drag_ == Drag::Terrain) terrainEnd();
   if (drag_ == Drag::Fly) {
     endFly();
     drag_ = Drag::None;

@@ -11,13 +11,18 @@
 #include "app/camera_controller.h"
 #include "app/gizmo.h"
 #include "render/renderer.h"
+#include "render/stereo_preview_renderer.h"
 #include "scene/document.h"
 
 class QLabel;
 
 namespace hs::app {
 
+class ComfortReadout;
 class Selection;
+class TerrainTool;
+class StereoPreviewSettings;
+class TimelineClock;
 
 class ViewportWidget : public QOpenGLWidget {
   Q_OBJECT
@@ -50,11 +55,28 @@ class ViewportWidget : public QOpenGLWidget {
   bool projectToWidget(const glm::dvec3& world, QPoint& pos) const;
   render::RenderView currentView() const;
 
+  // The timeline (the viewport then shows the scene at its current time,
+  // draws camera paths and motion, and can preview stereo through a camera).
+  void setTimeline(TimelineClock* clock, StereoPreviewSettings* stereo);
+  // The terrain brush: while it has a tool, left-mouse strokes sculpt and
+  // paint the terrain under the cursor (viewport_terrain.cpp).
+  void setTerrainTool(TerrainTool* tool) { terrainTool_ = tool; }
+  // What the viewport shows: the document at the timeline's current time.
+  const scene::SceneState& displayedState() const;
+  bool stereoPreviewActive() const;
+  // The comfort check of the last stereo preview frame.
+  const std::optional<sequencer::ComfortResult>& lastComfort() const { return lastComfort_; }
+
  signals:
   void frameRendered(const hs::render::FrameStats& stats);
   void rendererFailed(const QString& error);
   void rendererStarted(const QString& glDescription);
   void flySpeedChanged(double metresPerSecond);
+  // A gizmo drag changed these transform fields ("transform.translation",
+  // "transform.rotation_deg", "transform.scale") with this undo merge key:
+  // the timeline keys them where they are animated or Auto Key is on.
+  void transformsEdited(const std::vector<hs::scene::EntityId>& ids, const std::vector<std::string>& fields,
+                        const QString& mergeKey);
 
  protected:
   void initializeGL() override;
@@ -70,7 +92,7 @@ class ViewportWidget : public QOpenGLWidget {
   void focusOutEvent(QFocusEvent* e) override;
 
  private:
-  enum class Drag { None, Click, Gizmo, Fly, Orbit, Pan, Dolly };
+  enum class Drag { None, Click, Gizmo, Fly, Orbit, Pan, Dolly, Terrain };
   void releaseGl();
   void onDocumentChanged(const scene::ChangeSet& changes);
   void tickFly();
@@ -97,7 +119,20 @@ class ViewportWidget : public QOpenGLWidget {
   QPointF pressPos_, lastPos_;
   Qt::KeyboardModifiers pressModifiers_;
   QTimer flyTimer_;
+  TerrainTool* terrainTool_ = nullptr;
+  bool terrainPress(const QPointF& pos);  // viewport_terrain.cpp
+  void terrainMove(const QPointF& pos);
+  void terrainEnd();
   QElapsedTimer flyClock_;
+
+  TimelineClock* clock_ = nullptr;
+  StereoPreviewSettings* stereo_ = nullptr;
+  render::StereoPreviewRenderer stereoRenderer_;
+  ComfortReadout* comfortReadout_ = nullptr;
+  std::optional<sequencer::ComfortResult> lastComfort_;
+  sequencer::Sequence gizmoStartSequence_;  // put back when a drag is cancelled (auto keys included)
+  bool paintStereo();
+  void emitTransformsEdited();
 };
 
 }  // namespace hs::app

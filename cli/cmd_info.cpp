@@ -6,6 +6,7 @@
 
 #include "cli/cli_args.h"
 #include "cli/commands.h"
+#include "cli/terrain_info.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
 #include "scene/scene_json.h"
@@ -65,7 +66,7 @@ QJsonObject infoJson(const std::string& path, const scene::SceneState& s) {
   QJsonArray cameras;
   for (scene::EntityId id : s.cameras()) cameras.append(QString::fromStdString(s.find(id)->name));
   o["cameras"] = cameras;
-  o["terrains"] = QJsonArray();  // terrain arrives with the terrain capability
+  o["terrains"] = terrainInfoJson(s);
   o["tracks"] = QJsonArray();    // and tracks with the sequencer
   const scene::WorldBox box = scene::worldBounds(s);
   QJsonObject bounds;
@@ -112,8 +113,8 @@ int runInfo(int argc, char** argv) {
     return 0;
   }
   std::printf("%s (scene format %d)\n", path.c_str(), scene::sceneFileVersion(path));
-  std::printf("entities: %zu  mesh assets: %zu  cameras: %zu  terrains: 0  tracks: 0\n", s->entities.size(),
-              s->assets.size(), s->cameras().size());
+  std::printf("entities: %zu  mesh assets: %zu  cameras: %zu  terrains: %zu  tracks: 0\n", s->entities.size(),
+              s->assets.size(), s->cameras().size(), scene::terrainEntities(*s, false).size());
   const scene::WorldBox box = scene::worldBounds(*s);
   if (!box.empty) {
     const glm::dvec3 size = box.size();
@@ -129,6 +130,7 @@ int runInfo(int argc, char** argv) {
                 a.data->textures.size(), double(sz.x), double(sz.y), double(sz.z), a.data->origin.x, a.data->origin.y,
                 a.data->origin.z, a.sourcePath.c_str());
   }
+  printTerrainInfo(*s);
   std::printf("hierarchy:\n");
   for (scene::EntityId r : s->roots) printTree(*s, r, 0);
   return 0;

@@ -3,6 +3,8 @@
 
 #include "cli/cli_args.h"
 #include "cli/commands.h"
+#include "cli/render_frames.h"
+#include "cli/sequence_options.h"
 #include "render/offscreen_renderer.h"
 #include "scene/hscene_file.h"
 #include "scene/world_bounds.h"
@@ -14,11 +16,13 @@ int runRender(int argc, char** argv) {
   const char* cmd = "render";
   Args args;
   std::string error;
-  if (!parseArgs(argc, argv, 0, {{"out"}, {"size"}, {"camera"}, {"aa"}, {"no-grid", false}, {"quality"}}, args, error))
-    return usage(cmd, error);
+  std::vector<OptionSpec> specs = {{"out"}, {"size"}, {"camera"}, {"aa"}, {"no-grid", false}, {"quality"}};
+  for (const OptionSpec& o : renderFramesOptionSpecs()) specs.push_back(o);
+  if (!parseArgs(argc, argv, 0, specs, args, error)) return usage(cmd, error);
   if (args.help) {
     std::printf(
-        "usage: hybridscape-cli render <scene.hscene> --out FILE [options]\n\n"
+        "usage: hybridscape-cli render <scene.hscene> --out FILE [options]\n"
+        "       hybridscape-cli render <scene.hscene> --frames LIST --out PATTERN [options]\n\n"
         "Renders one frame headless (EGL, no X server needed). The image type follows\n"
         "the extension: .png, .jpg, .tif (8-bit sRGB) or .exr (linear half float).\n\n"
         "  --out FILE       the image to write (required)\n"
@@ -28,8 +32,11 @@ int runRender(int argc, char** argv) {
         "  --aa none|fxaa|msaa4   override the scene's anti-aliasing setting\n"
         "  --no-grid        hide the ground grid\n"
         "  --quality N      JPEG quality 1-100 (default 92)\n");
+    std::printf("%s", renderFramesHelp());
     return 0;
   }
+  // Any sequence option (--frames, --layout, --video, ...) makes it a sequence render.
+  if (isSequenceRender(args)) return renderFrames(args);
   if (args.positional.size() != 1) return usage(cmd, "expected one scene file");
   const auto out = args.get("out");
   if (!out) return usage(cmd, "--out FILE is required");

@@ -11,8 +11,12 @@ const std::vector<Command>& commands() {
       {"demo", "write the built-in demo scene", runDemo},
       {"import", "import a mesh (OBJ, FBX, PLY, glTF, ...) into a scene", runImport},
       {"info", "show what a scene holds (--json for JSON)", runInfo},
-      {"render", "render a frame headless (PNG, EXR, JPEG, TIFF)", runRender},
+      {"render", "render a frame or a stereo frame sequence headless (PNG, EXR, JPEG, TIFF, MP4)", runRender},
       {"set", "set an entity property or a scene setting", runSet},
+      {"terrain", "terrains: new, import (DEM), erode, paint-rules, export", runTerrain},
+      {"key", "set a key on the timeline (an entity property at a time)", runKey},
+      {"sequence", "show or set the timeline's frame rate and range", runSequence},
+      {"farm", "render-farm runs: write/submit a Slurm job array, verify frames", runFarm},
   };
   return list;
 }

@@ -22,6 +22,10 @@ int runImport(int argc, char** argv);
 int runInfo(int argc, char** argv);
 int runRender(int argc, char** argv);
 int runSet(int argc, char** argv);
+int runTerrain(int argc, char** argv);
+int runKey(int argc, char** argv);
+int runSequence(int argc, char** argv);
+int runFarm(int argc, char** argv);
 
 // A progress line on stderr when it is a terminal ("Importing bunny.obj  42%").
 Progress terminalProgress(const std::string& label);

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <mutex>
 
 #include <epoxy/egl.h>
 
@@ -25,6 +27,13 @@ std::string eglErrorName(EGLint e) {
 bool hasClientExtension(const char* name) {
   return epoxy_has_egl_extension(EGL_NO_DISPLAY, name);
 }
+
+// EGL hands every caller the same display for a platform, and
+// eglTerminate() on it ends every context made on it: a display is
+// terminated only when the last context of this process on it goes (two
+// renderers at once: an export beside a preview, tests).
+std::mutex displayUsersMutex;
+std::map<void*, int> displayUsers;
 
 }  // namespace
 
@@ -60,6 +69,10 @@ bool EglContext::create(std::string& error) {
     return false;
   }
   display_ = dpy;
+  {
+    std::lock_guard lock(displayUsersMutex);
+    ++displayUsers[display_];
+  }
   if (!eglBindAPI(EGL_OPENGL_API)) {
     error = "EGL (" + platform_ + "): desktop OpenGL is not available: " + eglErrorName(eglGetError());
     return false;
@@ -92,7 +105,11 @@ void EglContext::destroy() {
   if (display_) {
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (context_) eglDestroyContext(display_, context_);
-    eglTerminate(display_);
+    std::lock_guard lock(displayUsersMutex);
+    if (--displayUsers[display_] <= 0) {
+      displayUsers.erase(display_);
+      eglTerminate(display_);
+    }
   }
   display_ = context_ = nullptr;
 }

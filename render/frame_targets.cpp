@@ -83,11 +83,26 @@ GLuint FrameTargets::resolve() {
   return hdrColor_;
 }
 
+GLuint FrameTargets::depthReadFbo() {
+  if (samples_ <= 1) return hdrFbo_;
+  if (!depthResolveFbo_) {
+    depthResolve_ = renderbuffer(GL_DEPTH_COMPONENT32F, width_, height_, 1);
+    glCreateFramebuffers(1, &depthResolveFbo_);
+    glNamedFramebufferRenderbuffer(depthResolveFbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthResolve_);
+  }
+  // Depth is not averaged: one sample per pixel, which is what a parallax
+  // extreme should come from (an averaged edge depth belongs to no surface).
+  glBlitNamedFramebuffer(msaaFbo_, depthResolveFbo_, 0, 0, width_, height_, 0, 0, width_, height_,
+                         GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  return depthResolveFbo_;
+}
+
 size_t FrameTargets::gpuBytes() const {
   const size_t px = size_t(width_) * size_t(height_);
   size_t n = hdrFbo_ ? px * 8 : 0;                       // RGBA16F resolve/scene colour
   if (samples_ > 1) n += px * size_t(samples_) * (8 + 4);  // MSAA colour + depth
   else if (hdrDepth_) n += px * 4;
+  if (depthResolve_) n += px * 4;
   if (ldrFbo_) n += px * 4;
   return n;
 }
@@ -101,6 +116,8 @@ void FrameTargets::releaseMain() {
   deleteRb(hdrDepth_);
   deleteFbo(ldrFbo_);
   deleteTex(ldrColor_);
+  deleteFbo(depthResolveFbo_);
+  deleteRb(depthResolve_);
   width_ = height_ = samples_ = 0;
 }
 

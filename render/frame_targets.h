@@ -21,6 +21,10 @@ class FrameTargets {
   GLuint ldrFbo() const { return ldrFbo_; }
   GLuint ldrTexture() const { return ldrColor_; }
   GLuint pickFbo() const { return pickFbo_; }
+  // A single-sample framebuffer holding the last frame's depth: the scene
+  // buffer itself, or with MSAA a resolve target made on first use (only
+  // frames whose depth is read need it).
+  GLuint depthReadFbo();
   int width() const { return width_; }
   int height() const { return height_; }
   size_t gpuBytes() const;
@@ -33,6 +37,7 @@ class FrameTargets {
   GLuint hdrFbo_ = 0, hdrColor_ = 0, hdrDepth_ = 0;
   GLuint ldrFbo_ = 0, ldrColor_ = 0;
   GLuint pickFbo_ = 0, pickColor_ = 0, pickDepth_ = 0;
+  GLuint depthResolveFbo_ = 0, depthResolve_ = 0;
 };
 
 }  // namespace hs::render

@@ -43,6 +43,7 @@ bool OffscreenRenderer::initialize(std::string& error) {
 
 const std::string& OffscreenRenderer::eglPlatform() const { return d_->egl.platform(); }
 Renderer& OffscreenRenderer::renderer() { return d_->renderer; }
+bool OffscreenRenderer::makeCurrent() { return d_->egl.makeCurrent(); }
 
 Image OffscreenRenderer::render(const scene::SceneState& state, const RenderView& view, bool hdr,
                                 FrameStats* stats, const RenderOptions& options) {

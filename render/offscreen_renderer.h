@@ -19,6 +19,9 @@ class OffscreenRenderer {
   bool initialize(std::string& error);
   std::string glDescription() const { return glDescription_; }
   const std::string& eglPlatform() const;
+  // Makes the context current on the calling thread (for render/ code that
+  // draws through renderer() into its own buffers).
+  bool makeCurrent();
 
   // Renders `view` and reads it back: 8-bit sRGB, or linear float with `hdr`.
   Image render(const scene::SceneState& state, const RenderView& view, bool hdr = false,

@@ -11,6 +11,7 @@
 #include "render/frame_targets.h"
 #include "render/gl_program.h"
 #include "render/gpu_mesh_cache.h"
+#include "render/terrain_pass.h"
 
 namespace hs::render {
 namespace {
@@ -34,6 +35,7 @@ struct Renderer::Impl {
   bool ready = false;
   GlProgram meshProg, pickProg, skyProg, gridProg, overlayProg, tonemapProg, fxaaProg;
   GpuMeshCache cache;
+  TerrainPass terrain;  // runs only for scenes with a visible terrain
   FrameTargets targets;
   GLuint emptyVao = 0;
   GLuint overlayVao = 0, overlayVbo = 0;
@@ -216,6 +218,7 @@ bool Renderer::initialize(std::string& error) {
                      P{&d_->tonemapProg, "fullscreen.vert", "tonemap.frag"},
                      P{&d_->fxaaProg, "fullscreen.vert", "fxaa.frag"}})
     if (!p.prog->build(p.vs, p.fs, error)) return false;
+  if (!d_->terrain.initialize(error)) return false;
   glCreateVertexArrays(1, &d_->emptyVao);
   glCreateVertexArrays(1, &d_->overlayVao);
   glVertexArrayAttribFormat(d_->overlayVao, 0, 3, GL_FLOAT, GL_FALSE, 0);
@@ -304,6 +307,29 @@ FrameStats Renderer::render(const scene::SceneState& state, const RenderView& vi
     d.drawMeshes(items, stats);
   }
 
+  // Terrains, lit like the meshes (terrain_pass.h).
+  if (const std::vector<scene::EntityId> terrains = TerrainPass::visibleTerrains(state); !terrains.empty()) {
+    TerrainLighting tl;
+    tl.hasSun = lights.hasSun;
+    tl.sunDirView = glm::vec3(viewRotD * lights.sunDirWorld);
+    tl.sunColor = lights.sunColor;
+    tl.upView = glm::vec3(viewRotD * glm::dvec3(0, 0, 1));
+    tl.sky = settings.skyZenith;
+    tl.ground = settings.groundColor;
+    tl.ambient = settings.ambientIntensity;
+    tl.pointCount = lights.pointCount;
+    tl.pointPosView = lights.pointPosView;
+    tl.pointColor = lights.pointColor;
+    tl.pointRange = lights.pointRange;
+    const TerrainFrameStats ts = d.terrain.draw(state, terrains, view, tl);
+    stats.trianglesDrawn += ts.triangles;
+    stats.drawCalls += ts.terrains;
+    stats.terrainTriangles = ts.triangles;
+    stats.terrainPatches = ts.patches;
+    stats.terrainUploadBytes = ts.upload.bytes;
+    stats.terrainUploadMs = ts.upload.cpuMs;
+  }
+
   // Sky where nothing was drawn (depth still at the cleared far value).
   {
     GlProgram& p = d.skyProg;
@@ -384,7 +410,7 @@ FrameStats Renderer::render(const scene::SceneState& state, const RenderView& vi
   glBindTextureUnit(0, 0);
 
   stats.gpuMs = d.lastGpuMs;
-  stats.gpuBytes = d.cache.gpuBytes() + d.targets.gpuBytes();
+  stats.gpuBytes = d.cache.gpuBytes() + d.targets.gpuBytes() + d.terrain.gpuBytes();
   stats.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return stats;
 }
@@ -423,6 +449,18 @@ Image Renderer::readHdr() const {
     std::swap_ranges(img.rgbaF.begin() + ptrdiff_t(size_t(y) * row), img.rgbaF.begin() + ptrdiff_t(size_t(y + 1) * row),
                      img.rgbaF.begin() + ptrdiff_t(size_t(img.height - 1 - y) * row));
   return img;
+}
+
+void Renderer::readHdrInto(void* dst, size_t bytes) const {
+  if (!d_->hdrKept) return;
+  glGetTextureImage(d_->targets.resolvedTexture(), 0, GL_RGBA, GL_FLOAT, GLsizei(bytes), dst);
+}
+
+void Renderer::readDepth(void* dst) {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, d_->targets.depthReadFbo());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, d_->targets.width(), d_->targets.height(), GL_DEPTH_COMPONENT, GL_FLOAT, dst);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
 }
 
 scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView& view, int x, int y) {
@@ -464,20 +502,52 @@ scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView&
       glDrawElements(GL_TRIANGLES, GLsizei(sm.indexCount), GL_UNSIGNED_INT,
                      reinterpret_cast<const void*>(uintptr_t(sm.firstIndex) * sizeof(uint32_t)));
   }
+  // Terrains after the meshes, ids following theirs (holes are not hit).
+  const std::vector<scene::EntityId> terrains = TerrainPass::visibleTerrains(state);
+  if (!terrains.empty()) d.terrain.drawPick(state, terrains, view, toFloat(narrow * view.projection()), unsigned(items.size() + 1));
   GLuint id = 0;
   glReadPixels(0, 0, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &id);
   glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
   glDepthFunc(GL_LESS);
   glBindVertexArray(0);
   glUseProgram(0);
+  if (id > items.size() && id <= items.size() + terrains.size()) return terrains[id - items.size() - 1];
   return id > 0 && id <= items.size() ? items[id - 1].id : scene::kNoEntity;
 }
 
 void Renderer::collectGarbage(const scene::SceneState& state) { d_->cache.collect(state); }
 
+TerrainUpload Renderer::syncTerrain(const scene::TerrainData& data, bool measureGpu) {
+  GLuint query = 0;
+  if (measureGpu) {
+    glCreateQueries(GL_TIME_ELAPSED, 1, &query);
+    glBeginQuery(GL_TIME_ELAPSED, query);
+  }
+  const TerrainUploadStats s = d_->terrain.sync(data);
+  TerrainUpload out{s.bytes, s.regions, s.cpuMs, s.lodMs, s.full};
+  if (measureGpu) {
+    glEndQuery(GL_TIME_ELAPSED);
+    const auto t0 = std::chrono::steady_clock::now();
+    glFinish();
+    out.finishMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
+    out.gpuMs = double(ns) * 1e-6;
+    glDeleteQueries(1, &query);
+  }
+  return out;
+}
+
+LodSelection Renderer::terrainLod(const scene::SceneState& state, scene::EntityId entity, const RenderView& view) {
+  return d_->terrain.select(state, entity, view);
+}
+
+std::vector<std::string> Renderer::terrainMaterialProblems() const { return d_->terrain.materialProblems(); }
+
 void Renderer::shutdown() {
   if (!d_->ready) return;
   d_->cache.clear();
+  d_->terrain.release();
   d_->targets.release();
   glDeleteVertexArrays(1, &d_->emptyVao);
   glDeleteVertexArrays(1, &d_->overlayVao);

@@ -15,6 +15,7 @@
 #include "render/image.h"
 #include "render/overlay.h"
 #include "render/render_view.h"
+#include "render/terrain_lod.h"
 #include "scene/scene_state.h"
 
 namespace hs::render {
@@ -24,6 +25,10 @@ struct FrameStats {
   size_t drawCalls = 0;
   size_t instancesDrawn = 0;
   size_t instancesCulled = 0;
+  size_t terrainTriangles = 0;   // included in trianglesDrawn
+  size_t terrainPatches = 0;     // CDLOD quadrants drawn
+  size_t terrainUploadBytes = 0; // tile data uploaded this frame (a brush dab: its region)
+  double terrainUploadMs = 0.0;  // CPU time of those uploads and the LOD bookkeeping
   double cpuMs = 0.0;
   double gpuMs = -1.0;     // from a timer query of an earlier frame; -1 until known
   size_t gpuBytes = 0;     // meshes + frame buffers
@@ -34,6 +39,17 @@ struct RenderOptions {
   const Overlay* overlay = nullptr;
   bool keepHdr = false;          // keep the linear HDR image for readHdr()
   bool measureGpuTime = false;   // timer queries (editor status bar)
+};
+
+// What bringing a terrain's GPU copy up to date did (Renderer::syncTerrain).
+struct TerrainUpload {
+  size_t bytes = 0;
+  size_t regions = 0;
+  double cpuMs = 0.0;    // on the calling thread: the GL upload calls and the LOD bookkeeping
+  double lodMs = 0.0;    // of which the CDLOD bounds and LOD errors
+  bool full = false;
+  double gpuMs = -1.0;   // with measureGpu: GL_TIME_ELAPSED around the uploads (waits for the result)
+  double finishMs = -1.0;  // with measureGpu: glFinish after them (until the GPU has the data)
 };
 
 class Renderer {
@@ -58,6 +74,16 @@ class Renderer {
   // Linear HDR (exposure applied, before tone mapping) of the last frame
   // rendered with keepHdr.
   Image readHdr() const;
+  // The same into `dst`, or, with a GL_PIXEL_PACK_BUFFER bound, at offset
+  // `dst` in it without waiting (the export's asynchronous readback).
+  // RGBA32F, bottom row first.
+  void readHdrInto(void* dst, size_t bytes) const;
+  // Reversed-Z depth of the last frame (32-bit float: 1 at the near plane,
+  // 0 at the far plane and where nothing was drawn), bottom row first, into
+  // `dst` or the bound pixel pack buffer, for the stereo comfort check.
+  // Only frames that need it ask: with MSAA the depth is resolved into a
+  // buffer made on the first call.
+  void readDepth(void* dst);
 
   // The entity under window pixel (x, y) (origin top-left), or 0. Renders an
   // id pass for that pixel only.
@@ -65,6 +91,16 @@ class Renderer {
 
   // Frees GPU copies of assets that left the scene.
   void collectGarbage(const scene::SceneState& state);
+
+  // Terrains (terrain_pass.h). Uploads what changed in `data` since the GPU
+  // copy was last synced, without drawing (render() does this itself; the
+  // benchmarks time it alone).
+  TerrainUpload syncTerrain(const scene::TerrainData& data, bool measureGpu = false);
+  // The CDLOD selection render() would draw for a terrain entity (tests,
+  // benchmarks, the editor's statistics).
+  LodSelection terrainLod(const scene::SceneState& state, scene::EntityId entity, const RenderView& view);
+  // Terrain material textures that could not be read ("path: reason").
+  std::vector<std::string> terrainMaterialProblems() const;
 
   // Frees every GL object (call with the context current, before it goes).
   void shutdown();

@@ -89,6 +89,17 @@ SceneState animatedState(const SceneState& base, const sequencer::CompiledSequen
     }
     if (!applyPropertyValue(it->second, s.property, s.value, error) && warnings) warnings->push_back(error);
   }
+  // A camera path gives world positions and orientations: an entity under a
+  // parent gets them in its parent's (animated) space.
+  for (const sequencer::Binding& b : compiled.sequence().bindings) {
+    auto it = out.entities.find(b.entity);
+    if (!b.path || it == out.entities.end() || it->second.parent == kNoEntity) continue;
+    Transform world = it->second.transform;
+    world.scale = glm::dvec3(1.0);
+    const Transform local = Transform::fromMatrix(glm::inverse(out.worldMatrix(it->second.parent)) * world.matrix());
+    it->second.transform.translation = local.translation;
+    it->second.transform.rotation = local.rotation;
+  }
   if (warnings) warnings->insert(warnings->end(), values.warnings.begin(), values.warnings.end());
   return out;
 }

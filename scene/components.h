@@ -43,6 +43,17 @@ struct Camera {
   bool operator==(const Camera&) const = default;
 };
 
+// Shows a terrain of the document (SceneState::terrains). The entity's world
+// translation moves it (added to the terrain's own double origin); rotation
+// and scale are ignored: heights are elevations on a north-up grid of true
+// ground size, which DEM exports, erosion and slope rules rely on
+// (docs/terrain.md). Several entities may show the same terrain.
+struct TerrainInstance {
+  TerrainId terrain = kNoTerrain;
+  double lodErrorPixels = 1.0;  // screen-space error bound of the LOD, pixels
+  bool operator==(const TerrainInstance&) const = default;
+};
+
 // Full-frame sensor height (36 x 24 mm), for focal length <-> field of view.
 constexpr double kSensorHeightMm = 24.0;
 

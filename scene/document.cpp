@@ -40,6 +40,7 @@ ChangeSet describe(const ScenePatch& patch) {
   }
   if (patch.roots) c.hierarchy = true;
   c.assets = !patch.assets.empty();
+  for (const auto& [id, ba] : patch.terrains) c.terrains.push_back(id);
   c.settings = patch.settings.has_value();
   c.sequence = patch.sequence.has_value();
   return c;
@@ -74,12 +75,19 @@ void Document::reset(SceneState state, const QString& filePath) {
   state_ = std::move(state);
   nextEntity_ = state_.maxEntityId() + 1;
   nextAsset_ = state_.maxAssetId() + 1;
+  nextTerrain_ = state_.maxTerrainId() + 1;
   undo_.setClean();
   setFilePath(filePath);
   ChangeSet c;
   c.reset = c.hierarchy = c.assets = c.settings = c.sequence = true;
   emit changed(c);
   emit modifiedChanged(false);
+}
+
+void Document::notifyTerrainChanged(TerrainId id) {
+  ChangeSet c;
+  c.terrains.push_back(id);
+  emit changed(c);
 }
 
 void Document::setFilePath(const QString& path) {

@@ -8,6 +8,7 @@
 
 #include "scene/scene_patch.h"
 #include "scene/scene_state.h"
+#include "scene/terrain_undo_budget.h"
 
 namespace hs::scene {
 
@@ -18,6 +19,7 @@ struct ChangeSet {
   bool assets = false;
   bool settings = false;
   bool sequence = false;           // tracks, keys, frame rate or range
+  std::vector<TerrainId> terrains; // terrains whose values or tiles changed
   bool reset = false;              // a whole new state (new/open)
 };
 
@@ -45,6 +47,12 @@ class Document : public QObject {
 
   EntityId allocateEntityId() { return nextEntity_++; }
   AssetId allocateAssetId() { return nextAsset_++; }
+  TerrainId allocateTerrainId() { return nextTerrain_++; }
+
+  // Terrain tile edits (scene/terrain_edits.h) and their undo memory cap.
+  TerrainUndoBudget& terrainUndo() { return terrainUndo_; }
+  // Tells views that terrain `id`'s tiles changed (a stroke, a terrain undo).
+  void notifyTerrainChanged(TerrainId id);
 
   // Called by the undo command; not for general use.
   void applyFromCommand(const ScenePatch& patch, bool forward);
@@ -60,6 +68,8 @@ class Document : public QObject {
   QString filePath_;
   EntityId nextEntity_ = 1;
   AssetId nextAsset_ = 1;
+  TerrainId nextTerrain_ = 1;
+  TerrainUndoBudget terrainUndo_;  // outlives undo_'s commands (cleared in ~Document)
 };
 
 }  // namespace hs::scene

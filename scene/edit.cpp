@@ -64,8 +64,11 @@ void Edit::removeEntity(EntityId id) {
   const EntityId parent = peek(id)->parent;
   auto& list = siblings(parent);
   list.erase(std::remove(list.begin(), list.end(), id), list.end());
-  entity(id);  // make sure the entity has a before/after entry
+  const Entity& removed = entity(id);  // make sure the entity has a before/after entry
+  const TerrainId shown = removed.terrain ? removed.terrain->terrain : kNoTerrain;
   patch_.entities[id].after.reset();
+  // A terrain nothing else shows goes with it (its tiles stay in the undo step).
+  removeTerrainIfUnused(shown);
   // Its tracks go with it (and come back with undo).
   const sequencer::Sequence& seq = patch_.sequence ? patch_.sequence->second : doc_.state().sequence;
   if (seq.findBinding(id)) std::erase_if(sequence().bindings, [id](const auto& b) { return b.entity == id; });
@@ -152,6 +155,53 @@ void Edit::removeAsset(AssetId id) {
   }
   if (const MeshAsset* a = doc_.state().findAsset(id))
     patch_.assets.emplace(id, BeforeAfter<MeshAsset>{*a, std::nullopt});
+}
+
+TerrainId Edit::addTerrain(TerrainAsset terrain) {
+  if (terrain.id == kNoTerrain) terrain.id = doc_.allocateTerrainId();
+  const TerrainId id = terrain.id;
+  const TerrainAsset* existing = doc_.state().findTerrain(id);
+  patch_.terrains[id] = BeforeAfter<TerrainAsset>{existing ? std::optional(*existing) : std::nullopt, std::move(terrain)};
+  return id;
+}
+
+void Edit::removeTerrain(TerrainId id) {
+  auto it = patch_.terrains.find(id);
+  if (it != patch_.terrains.end()) {
+    it->second.after.reset();
+    return;
+  }
+  if (const TerrainAsset* t = doc_.state().findTerrain(id))
+    patch_.terrains.emplace(id, BeforeAfter<TerrainAsset>{*t, std::nullopt});
+}
+
+const TerrainAsset* Edit::peekTerrain(TerrainId id) const {
+  auto it = patch_.terrains.find(id);
+  if (it != patch_.terrains.end()) return it->second.after ? &*it->second.after : nullptr;
+  return doc_.state().findTerrain(id);
+}
+
+TerrainAsset& Edit::terrain(TerrainId id) {
+  auto it = patch_.terrains.find(id);
+  if (it == patch_.terrains.end()) {
+    const TerrainAsset* t = doc_.state().findTerrain(id);
+    if (!t) throw std::out_of_range("no terrain " + std::to_string(id));
+    it = patch_.terrains.emplace(id, BeforeAfter<TerrainAsset>{*t, *t}).first;
+  }
+  if (!it->second.after) throw std::out_of_range("terrain " + std::to_string(id) + " was removed");
+  return *it->second.after;
+}
+
+void Edit::removeTerrainIfUnused(TerrainId id) {
+  if (id == kNoTerrain || !peekTerrain(id)) return;
+  // Entities as this edit leaves them: the document's, with the patch's on top.
+  for (const auto& [eid, e] : doc_.state().entities) {
+    const Entity* now = peek(eid);
+    if (now && now->terrain && now->terrain->terrain == id) return;
+  }
+  for (const auto& [eid, ba] : patch_.entities)
+    if (ba.after && ba.after->terrain && ba.after->terrain->terrain == id) return;
+  removeTerrain(id);
 }
 
 sequencer::Sequence& Edit::sequence() {

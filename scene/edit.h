@@ -45,6 +45,15 @@ class Edit {
 
   AssetId addAsset(MeshAsset asset);
   void removeAsset(AssetId id);
+  // Terrains: add (assigns an id when 0), remove, or change a working copy
+  // of the small values (name, materials, rules). Tiles are shared, not
+  // copied (terrain_asset.h).
+  TerrainId addTerrain(TerrainAsset terrain);
+  void removeTerrain(TerrainId id);
+  TerrainAsset& terrain(TerrainId id);  // throws std::out_of_range if unknown
+  const TerrainAsset* peekTerrain(TerrainId id) const;
+  // Removes terrain `id` if no entity (as this edit leaves them) shows it.
+  void removeTerrainIfUnused(TerrainId id);
   SceneSettings& settings();
   // Working copy of the timeline (tracks, keys, rate, range).
   sequencer::Sequence& sequence();

@@ -20,6 +20,7 @@ struct Entity {
   std::optional<MeshInstance> mesh;
   std::optional<Light> light;
   std::optional<Camera> camera;
+  std::optional<TerrainInstance> terrain;
 
   bool operator==(const Entity&) const = default;
 };

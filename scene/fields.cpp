@@ -240,6 +240,14 @@ std::vector<ComponentInfo> buildEntityComponents() {
                            [](Entity& e) -> double& { return e.camera->convergence; }),
        enumField<Entity>("pivot", "Rig pivot", {"Left", "Centre", "Right"},
                          [](Entity& e) -> Camera::Pivot& { return e.camera->pivot; })}));
+
+  // Which terrain it shows is a reference, written by scene_json next to
+  // these fields ("terrain_id"), not an editable value: the Terrain panel
+  // and the terrain commands manage it.
+  out.push_back(optionalComponent<TerrainInstance>(
+      "terrain", "Terrain", &Entity::terrain,
+      {doubleField<Entity>("lod_error_px", "LOD error bound", 0.1, 64.0, 0.1, "px",
+                           [](Entity& e) -> double& { return e.terrain->lodErrorPixels; })}));
   return out;
 }
 

@@ -15,6 +15,7 @@
 #include "scene/mesh_blob.h"
 #include "scene/scene_json.h"
 #include "scene/sqlite_db.h"
+#include "scene/terrain_file.h"
 
 namespace hs::scene {
 namespace {
@@ -69,11 +70,13 @@ int readVersion(SqliteDb& db, std::string& format, std::string& error) {
   return version;
 }
 
-// The logical blobs the state needs: key -> (hash, asset).
-std::map<std::string, std::pair<std::string, const MeshAsset*>> wantedBlobs(const SceneState& s) {
-  std::map<std::string, std::pair<std::string, const MeshAsset*>> out;
+// The logical blobs the state needs: key -> (hash, how to encode it).
+// Meshes, and terrain tiles (terrain_file.h).
+std::map<std::string, BlobSource> wantedBlobs(const SceneState& s) {
+  std::map<std::string, BlobSource> out;
   for (const auto& [id, a] : s.assets)
-    if (a.data) out[meshKey(id)] = {hex(a.contentHash), &a};
+    if (a.data) out[meshKey(id)] = {hex(a.contentHash), [data = a.data] { return encodeMesh(*data); }, false};
+  addTerrainBlobs(s, out);
   return out;
 }
 
@@ -109,17 +112,17 @@ bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std
   const auto wanted = wantedBlobs(state);
   SqliteStmt del(db, "DELETE FROM blobs WHERE key = ?1");
   SqliteStmt ins(db, "INSERT INTO blobs(key, part, hash, data) VALUES (?1, ?2, ?3, ?4)");
-  for (const auto& [key, hashAsset] : wanted) {
-    const auto& [hash, asset] = hashAsset;
+  for (const auto& [key, source] : wanted) {
+    const std::string& hash = source.hash;
     if (auto it = existing.find(key); it != existing.end() && it->second == hash) {
-      ++report.blobsUnchanged;
+      ++(source.terrainTile ? report.tilesUnchanged : report.blobsUnchanged);
       continue;
     }
     del.bind(1, key);
     del.step(error);
     del.reset();
     if (!error.empty()) return false;
-    const std::vector<uint8_t> bytes = encodeMesh(*asset->data);
+    const std::vector<uint8_t> bytes = source.bytes();
     for (size_t off = 0, part = 0; off < bytes.size() || part == 0; off += kBlobPartBytes, ++part) {
       const size_t n = std::min(kBlobPartBytes, bytes.size() - off);
       ins.bind(1, key);
@@ -131,7 +134,12 @@ bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std
       if (!error.empty()) return false;
     }
     report.bytesWritten += bytes.size();
-    ++report.blobsWritten;
+    if (source.terrainTile) {
+      ++report.tilesWritten;
+      report.tileBytesWritten += bytes.size();
+    } else {
+      ++report.blobsWritten;
+    }
   }
   for (const auto& [key, hash] : existing) {
     if (wanted.count(key)) continue;
@@ -139,7 +147,7 @@ bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std
     del.step(error);
     del.reset();
     if (!error.empty()) return false;
-    ++report.blobsRemoved;
+    ++(key.rfind("terrain/", 0) == 0 ? report.tilesRemoved : report.blobsRemoved);
   }
   return true;
 }
@@ -180,6 +188,13 @@ bool saveScene(const SceneState& state, const std::string& path, std::string& er
     if (!db.exec("BEGIN IMMEDIATE", e) || !writeContent(db, state, report, e) || !db.exec("COMMIT", e)) {
       std::string ignored;
       db.exec("ROLLBACK", ignored);
+      // A large save spills pages into the file before COMMIT; after an I/O
+      // error (a full disk) SQLite leaves their originals in a hot journal
+      // that the next connection plays back. Open one now, so the file is
+      // back to what it was before this function returns.
+      db.close();
+      SqliteDb recover;
+      if (recover.open(path, false, false, ignored)) recover.exec("SELECT count(*) FROM sqlite_master", ignored);
       error = path + ": save failed, the file is unchanged: " + e;
       return false;
     }
@@ -199,6 +214,7 @@ bool saveScene(const SceneState& state, const std::string& path, std::string& er
           !db.exec("COMMIT", e)) {
         db.close();
         fs::remove(tmp, ec);
+        fs::remove(tmp + "-journal", ec);  // left by a failed spill of a large save
         error = path + ": save failed, nothing was written: " + e;
         return false;
       }
@@ -326,6 +342,10 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
     }
     asset.data = std::make_shared<const mesh::MeshData>(std::move(*mesh));
   }
+  // Terrains' tiles, checked against their hashes and the description.
+  if (!state->terrains.empty() &&
+      !loadTerrainTiles(db, *state, path, error, progress))
+    return std::nullopt;
   reportProgress(progress, 1.0, "Loaded");
   return state;
 }

@@ -20,16 +20,25 @@ namespace hs::scene {
 constexpr size_t kBlobPartBytes = size_t(256) << 20;
 
 struct SaveReport {
+  // Asset blobs (meshes).
   size_t blobsWritten = 0;
   size_t blobsUnchanged = 0;
   size_t blobsRemoved = 0;
-  uint64_t bytesWritten = 0;
+  // Terrain tile blobs (terrain_file.h), counted apart: an 8k terrain has
+  // thousands, and what matters is how few a save after an edit writes.
+  size_t tilesWritten = 0;
+  size_t tilesUnchanged = 0;
+  size_t tilesRemoved = 0;
+  uint64_t tileBytesWritten = 0;
+  uint64_t bytesWritten = 0;  // everything, tiles included
   bool incremental = false;  // updated an existing scene file in place
   double seconds = 0.0;
 };
 
 // Writes `state` to `path`. On failure returns false with `error` naming the
-// file, and whatever was at `path` before is unchanged.
+// file, and whatever was at `path` before is unchanged. Reads terrain tiles
+// while it runs: on a worker thread, pass snapshotForSave(state)
+// (terrain_file.h) so the user can keep editing the live terrains.
 bool saveScene(const SceneState& state, const std::string& path, std::string& error,
                SaveReport* report = nullptr);
 

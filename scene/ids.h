@@ -7,7 +7,9 @@ namespace hs::scene {
 // pointers, so undo after delete and restore finds the same entity. 0 = none.
 using EntityId = uint64_t;
 using AssetId = uint64_t;
+using TerrainId = uint64_t;  // a terrain's data in the document (scene/terrain_asset.h)
 constexpr EntityId kNoEntity = 0;
 constexpr AssetId kNoAsset = 0;
+constexpr TerrainId kNoTerrain = 0;
 
 }  // namespace hs::scene

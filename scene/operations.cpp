@@ -122,7 +122,10 @@ bool addComponent(Document& doc, EntityId id, const ComponentInfo& component) {
 bool removeComponent(Document& doc, EntityId id, const ComponentInfo& component) {
   if (!doc.state().find(id) || !component.optional) return false;
   Edit e(doc, QString("Remove %1").arg(QString::fromStdString(component.label)));
+  const auto& shown = e.entity(id).terrain;
+  const TerrainId terrain = shown ? shown->terrain : kNoTerrain;
   component.remove(e.entity(id));
+  e.removeTerrainIfUnused(terrain);  // a terrain nothing shows leaves the document (undo brings it back)
   return e.commit();
 }
 

@@ -6,6 +6,7 @@
 #include <QJsonDocument>
 
 #include "scene/fields.h"
+#include "scene/terrain_json.h"
 #include "sequencer/sequence_json.h"
 
 namespace hs::scene {
@@ -145,6 +146,8 @@ QJsonObject sceneToJson(const SceneState& state) {
       QJsonObject co;
       for (const auto& f : c.fields)
         if (f.serialized) co[QString::fromStdString(f.key)] = fieldToJson(f, e);
+      // A reference, not a field (fields.cpp says why).
+      if (c.key == "terrain") co["terrain_id"] = double(e.terrain->terrain);
       components[QString::fromStdString(c.key)] = co;
     }
     o["components"] = components;
@@ -164,6 +167,7 @@ QJsonObject sceneToJson(const SceneState& state) {
     assets.append(o);
   }
   root["assets"] = assets;
+  root["terrains"] = terrainsToJson(state);
   // The timeline, in the sequencer's own JSON (it has no Qt), embedded as an object.
   root["sequence"] = QJsonDocument::fromJson(QByteArray::fromStdString(sequencer::sequenceToJsonText(state.sequence))).object();
   return root;
@@ -247,6 +251,9 @@ std::optional<SceneState> sceneFromJson(const QJsonObject& json, std::string& er
         if (v.isUndefined()) continue;
         if (!r.field(f, v, p + ".components." + key + "." + f.key, e)) return std::nullopt;
       }
+      if (key == "terrain" && co.contains("terrain_id") &&
+          !r.id(co["terrain_id"], p + ".components.terrain.terrain_id", e.terrain->terrain))
+        return std::nullopt;
     }
     if (!s.entities.emplace(e.id, std::move(e)).second) {
       r.fail(p + ".id", "duplicate entity id");
@@ -276,6 +283,8 @@ std::optional<SceneState> sceneFromJson(const QJsonObject& json, std::string& er
       return std::nullopt;
     }
   }
+
+  if (json.contains("terrains") && !terrainsFromJson(json["terrains"].toArray(), s, error)) return std::nullopt;
 
   if (json.contains("sequence")) {
     const QByteArray text = QJsonDocument(json["sequence"].toObject()).toJson(QJsonDocument::Compact);

@@ -11,7 +11,9 @@
 
 namespace hs::scene {
 
-constexpr int kSceneFormatVersion = 1;
+// 2: terrains (description "terrains", tile blobs "terrain/<id>/..."). A
+// version-1 reader would drop them silently, so it is told the file is newer.
+constexpr int kSceneFormatVersion = 2;
 
 QJsonObject sceneToJson(const SceneState& state);
 // Canonical compact text of sceneToJson (stable key order and number format).

@@ -23,6 +23,13 @@ void ScenePatch::mergeLater(const ScenePatch& later) {
     else
       it->second.after = ba.after;
   }
+  for (const auto& [id, ba] : later.terrains) {
+    auto it = terrains.find(id);
+    if (it == terrains.end())
+      terrains.emplace(id, ba);
+    else
+      it->second.after = ba.after;
+  }
   if (later.settings) {
     if (settings)
       settings->second = later.settings->second;
@@ -40,6 +47,7 @@ void ScenePatch::mergeLater(const ScenePatch& later) {
 void ScenePatch::prune() {
   std::erase_if(entities, [](const auto& kv) { return kv.second.before == kv.second.after; });
   std::erase_if(assets, [](const auto& kv) { return kv.second.before == kv.second.after; });
+  std::erase_if(terrains, [](const auto& kv) { return kv.second.before == kv.second.after; });
   if (roots && roots->first == roots->second) roots.reset();
   if (settings && settings->first == settings->second) settings.reset();
   if (sequence && sequence->first == sequence->second) sequence.reset();
@@ -60,6 +68,13 @@ void applyPatch(SceneState& state, const ScenePatch& patch, bool forward) {
       state.assets[id] = *value;
     else
       state.assets.erase(id);
+  }
+  for (const auto& [id, ba] : patch.terrains) {
+    const auto& value = forward ? ba.after : ba.before;
+    if (value)
+      state.terrains[id] = *value;
+    else
+      state.terrains.erase(id);
   }
   if (patch.settings) state.settings = forward ? patch.settings->second : patch.settings->first;
   if (patch.sequence) state.sequence = forward ? patch.sequence->second : patch.sequence->first;

@@ -21,10 +21,15 @@ struct ScenePatch {
   std::map<EntityId, BeforeAfter<Entity>> entities;
   std::optional<std::pair<std::vector<EntityId>, std::vector<EntityId>>> roots;  // before, after
   std::map<AssetId, BeforeAfter<MeshAsset>> assets;
+  // Terrains' small values and which tiles they point to (not the tiles'
+  // content: stroke-like edits are TerrainCommands, terrain_command.h).
+  std::map<TerrainId, BeforeAfter<TerrainAsset>> terrains;
   std::optional<std::pair<SceneSettings, SceneSettings>> settings;
   std::optional<std::pair<sequencer::Sequence, sequencer::Sequence>> sequence;  // before, after
 
-  bool empty() const { return entities.empty() && !roots && assets.empty() && !settings && !sequence; }
+  bool empty() const {
+    return entities.empty() && !roots && assets.empty() && terrains.empty() && !settings && !sequence;
+  }
   // Folds a later patch into this one (gizmo drags merge into one undo step).
   void mergeLater(const ScenePatch& later);
   // Drops entries whose before equals after.

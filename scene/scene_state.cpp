@@ -16,6 +16,11 @@ const MeshAsset* SceneState::findAsset(AssetId id) const {
   return it == assets.end() ? nullptr : &it->second;
 }
 
+const TerrainAsset* SceneState::findTerrain(TerrainId id) const {
+  auto it = terrains.find(id);
+  return it == terrains.end() ? nullptr : &it->second;
+}
+
 glm::dmat4 SceneState::worldMatrix(EntityId id) const {
   glm::dmat4 m(1.0);
   // Walk up, multiplying on the left; a depth limit guards against a cycle
@@ -80,6 +85,7 @@ EntityId SceneState::findByName(const std::string& name) const {
 
 EntityId SceneState::maxEntityId() const { return entities.empty() ? 0 : entities.rbegin()->first; }
 AssetId SceneState::maxAssetId() const { return assets.empty() ? 0 : assets.rbegin()->first; }
+TerrainId SceneState::maxTerrainId() const { return terrains.empty() ? 0 : terrains.rbegin()->first; }
 
 std::string SceneState::validate() const {
   std::set<EntityId> seen;
@@ -107,6 +113,8 @@ std::string SceneState::validate() const {
     }
     if (e.mesh && e.mesh->mesh != kNoAsset && !findAsset(e.mesh->mesh))
       return "entity " + std::to_string(id) + " uses missing mesh asset " + std::to_string(e.mesh->mesh);
+    if (e.terrain && e.terrain->terrain != kNoTerrain && !findTerrain(e.terrain->terrain))
+      return "entity " + std::to_string(id) + " shows missing terrain " + std::to_string(e.terrain->terrain);
   }
   // Every entity reachable exactly once from the roots (no cycles).
   const auto order = depthFirstOrder();

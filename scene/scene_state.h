@@ -11,6 +11,7 @@
 
 #include "mesh/mesh_data.h"
 #include "scene/entity.h"
+#include "scene/terrain_asset.h"
 #include "sequencer/sequence.h"
 
 namespace hs::scene {
@@ -49,12 +50,15 @@ struct SceneState {
   std::map<EntityId, Entity> entities;  // ordered: deterministic iteration and files
   std::vector<EntityId> roots;          // top-level entities in outliner order
   std::map<AssetId, MeshAsset> assets;
+  // Terrains (scene/terrain_asset.h): small values here, tiles shared.
+  std::map<TerrainId, TerrainAsset> terrains;
   SceneSettings settings;
   // The timeline: tracks per entity, frame rate, playback/export range.
   sequencer::Sequence sequence;
 
   const Entity* find(EntityId id) const;
   const MeshAsset* findAsset(AssetId id) const;
+  const TerrainAsset* findTerrain(TerrainId id) const;
   // Parent chain composed in double precision.
   glm::dmat4 worldMatrix(EntityId id) const;
   // Visible only if it and every ancestor is visible.
@@ -68,6 +72,7 @@ struct SceneState {
   EntityId findByName(const std::string& name) const;
   EntityId maxEntityId() const;
   AssetId maxAssetId() const;
+  TerrainId maxTerrainId() const;
 
   // Checks parent/children/roots consistency; empty string if sound. Used
   // by tests and after loading a file.

@@ -25,6 +25,13 @@ void addEntity(const SceneState& s, EntityId id, WorldBox& box, bool visibleOnly
       const glm::dvec3 corner((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z);
       box.extend(glm::dvec3(w * glm::dvec4(corner, 1.0)));
     }
+  } else if (const TerrainAsset* t = terrainOf(s, id)) {
+    // Terrains ignore rotation and scale (components.h): translation only.
+    const terrain::Heightfield& hf = t->data->heights();
+    const terrain::HeightRange r = hf.range();
+    const glm::dvec3 o = glm::dvec3(w[3]) + hf.origin();
+    box.extend(o + glm::dvec3(0.0, 0.0, double(r.min)));
+    box.extend(o + glm::dvec3(hf.sizeMetres(), double(r.max)));
   } else if (!e->light && !e->camera) {
     box.extend(glm::dvec3(w[3]));
   }

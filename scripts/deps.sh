@@ -10,8 +10,9 @@ BUILD_PACKAGES=(
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libsqlite3-dev libmeshoptimizer-dev
 )
 # Tests: an X server for the GUI smoke test, Mesa for headless EGL, ffmpeg
-# (and its ffprobe) for the sequencer's direct-video export test.
-TEST_PACKAGES=(xvfb xauth libgl1-mesa-dri libegl-mesa0 mesa-utils ffmpeg)
+# (and its ffprobe) for the sequencer's direct-video export test, Slurm and
+# munge for the render-farm test (a one-node Slurm it starts on localhost).
+TEST_PACKAGES=(xvfb xauth libgl1-mesa-dri libegl-mesa0 mesa-utils ffmpeg slurm-wlm munge)
 
 want=("${BUILD_PACKAGES[@]}")
 if [[ "${1:-}" == "--with-tests" ]]; then want+=("${TEST_PACKAGES[@]}"); fi

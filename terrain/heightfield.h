@@ -12,6 +12,7 @@
 // A cell (quad) (i, j) spans samples i..i+1, j..j+1 and is drawn as two
 // triangles split along (i, j)-(i+1, j+1); it is a hole when any of its four
 // corner samples is marked.
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -69,6 +70,12 @@ class Heightfield {
   int samplesY() const { return heights_.height(); }
   Region bounds() const { return {0, 0, samplesX(), samplesY()}; }
   glm::dvec2 spacing() const { return spacing_; }
+  // Restores a spacing exactly (a file keeps the double itself: size / (n-1)
+  // recomputed from a saved size need not give back the same bits). Ignores
+  // non-finite or non-positive values.
+  void setSpacing(const glm::dvec2& s) {
+    if (std::isfinite(s.x) && std::isfinite(s.y) && s.x > 0.0 && s.y > 0.0) spacing_ = s;
+  }
   glm::dvec2 sizeMetres() const { return spacing_ * glm::dvec2(samplesX() - 1, samplesY() - 1); }
   const glm::dvec3& origin() const { return origin_; }
   void setOrigin(const glm::dvec3& o) { origin_ = o; }

@@ -30,6 +30,7 @@ struct Material {
   std::string normalTexture;       // path, may be empty
   float roughness = 0.8f;
   float tilingMetres = 4.0f;       // world size of one texture repeat
+  bool operator==(const Material&) const = default;
 };
 
 // The eight materials of a new terrain (the Meteora job's palette).

@@ -24,6 +24,7 @@ struct PaintRule {
   bool useSlope = false;
   double slopeMin = 0.0, slopeMax = 30.0, slopeBlend = 5.0;
   float strength = 1.0f;  // 0..1, how far toward the layer where the rule fully applies
+  bool operator==(const PaintRule&) const = default;
 };
 
 // Weight of one rule at a given altitude (world metres) and slope (degrees).

@@ -14,7 +14,15 @@
 // fill value: a paint layer nobody painted or a holes mask with no holes costs
 // nothing. Each tile has a revision number that changes whenever it is written,
 // which is how the scene file finds the tiles to save.
+//
+// Tiles are shared copy-on-write: clone() copies tile pointers, not samples,
+// and the first write to a shared tile copies it. That makes a snapshot of a
+// whole 8k terrain O(tiles) (the editor saves and erodes from snapshots on
+// worker threads while the user keeps painting), and a new flat terrain is
+// one shared tile until it is edited. Thread rule: one thread writes a grid
+// (and takes snapshots of it); other threads may read and drop snapshots.
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -32,7 +40,7 @@ constexpr int kTileSamples = kTileSize * kTileSize;
 template <class T>
 class TileGrid {
  public:
-  using TilePtr = std::unique_ptr<T[]>;
+  using TilePtr = std::shared_ptr<T[]>;
 
   TileGrid() = default;
   TileGrid(int width, int height, T fill, bool dense)
@@ -41,18 +49,21 @@ class TileGrid {
     tilesY_ = (height + kTileSize - 1) >> kTileShift;
     tiles_.resize(size_t(tilesX_) * size_t(tilesY_));
     revision_.assign(tiles_.size(), 0);
-    if (dense)
-      for (auto& t : tiles_) t = newTile();
+    if (dense) {
+      // One tile of fill values shared by all; writes copy it (see above).
+      const TilePtr shared = newTile();
+      for (auto& t : tiles_) t = shared;
+    }
   }
 
   TileGrid(TileGrid&&) noexcept = default;
   TileGrid& operator=(TileGrid&&) noexcept = default;
+  // Same samples and revisions; tiles are shared until either side writes.
   TileGrid clone() const {
     TileGrid g;
     g.width_ = width_; g.height_ = height_; g.tilesX_ = tilesX_; g.tilesY_ = tilesY_;
     g.fill_ = fill_; g.revision_ = revision_; g.revisionCounter_ = revisionCounter_;
-    g.tiles_.resize(tiles_.size());
-    for (size_t i = 0; i < tiles_.size(); ++i) g.tiles_[i] = copyTile(int(i));
+    g.tiles_ = tiles_;
     return g;
   }
 
@@ -84,10 +95,22 @@ class TileGrid {
 
   // Read access; nullptr means "every sample is fill()".
   const T* tile(int t) const { return tiles_[size_t(t)].get(); }
-  // Write access: allocates the tile if needed and bumps its revision.
+  // Write access: allocates the tile if needed (copies it if it is shared
+  // with a clone) and bumps its revision.
   T* tileForWrite(int t) {
     auto& p = tiles_[size_t(t)];
-    if (!p) p = newTile();
+    if (!p) {
+      p = newTile();
+    } else if (p.use_count() > 1) {
+      TilePtr copy(new T[kTileSamples]);
+      std::memcpy(copy.get(), p.get(), sizeof(T) * kTileSamples);
+      p = std::move(copy);
+    } else {
+      // use_count() is a relaxed load; the fence pairs it with the release
+      // of the last other owner (a worker dropping its snapshot), so that
+      // worker's reads happen before this write.
+      std::atomic_thread_fence(std::memory_order_acquire);
+    }
     touch(t);
     return p.get();
   }
@@ -95,6 +118,9 @@ class TileGrid {
   // thread prepared the tile with tileForWrite() (which is not thread-safe).
   T* preparedTile(int t) { return tiles_[size_t(t)].get(); }
   bool allocated(int t) const { return tiles_[size_t(t)] != nullptr; }
+  // The tile's storage itself (shared, read-only), for snapshots and for
+  // moving a worker's result into the live grid (setTile).
+  const TilePtr& sharedTile(int t) const { return tiles_[size_t(t)]; }
 
   TilePtr copyTile(int t) const {
     const T* src = tiles_[size_t(t)].get();

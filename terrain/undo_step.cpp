@@ -26,6 +26,30 @@ Region UndoStep::swap(Terrain& terrain) {
   return region_;
 }
 
+bool UndoStep::unchangedSince(const Terrain& live, const Terrain& base) const {
+  // A write to a tile shared with `base` copies it, and a swap exchanges it:
+  // either way the live tile is no longer the pointer `base` holds.
+  for (const auto& t : heights_)
+    if (live.height.heights().sharedTile(t.tile) != base.height.heights().sharedTile(t.tile)) return false;
+  for (const auto& t : holes_)
+    if (live.height.holes().sharedTile(t.tile) != base.height.holes().sharedTile(t.tile)) return false;
+  for (const auto& t : paint_) {
+    if (t.layer >= live.paint.layerCount() || t.layer >= base.paint.layerCount()) return false;
+    if (live.paint.grid(t.layer).sharedTile(t.tile) != base.paint.grid(t.layer).sharedTile(t.tile)) return false;
+  }
+  return true;
+}
+
+Region UndoStep::adopt(Terrain& live, const Terrain& result) const {
+  for (const auto& t : heights_) live.height.heights().setTile(t.tile, result.height.heights().sharedTile(t.tile));
+  for (const auto& t : holes_) live.height.holes().setTile(t.tile, result.height.holes().sharedTile(t.tile));
+  for (const auto& t : paint_)
+    if (t.layer < live.paint.layerCount() && t.layer < result.paint.layerCount())
+      live.paint.grid(t.layer).setTile(t.tile, result.paint.grid(t.layer).sharedTile(t.tile));
+  if (!heights_.empty()) live.height.updateBounds(region_);
+  return region_;
+}
+
 UndoRecorder::UndoRecorder(Terrain& terrain) : terrain_(&terrain) {
   const size_t tiles = size_t(terrain.height.heights().tileCount());
   heightSlot_.assign(tiles, -1);

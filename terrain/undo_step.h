@@ -29,6 +29,22 @@ class UndoStep {
   void setLabel(std::string l) { label_ = std::move(l); }
   // Tile indices of the stored height tiles (what the scene file re-saves).
   std::vector<int> heightTiles() const;
+  // Which kinds of tiles the edit touched (what a renderer re-uploads).
+  bool touchesHeights() const { return !heights_.empty(); }
+  bool touchesHoles() const { return !holes_.empty(); }
+  bool touchesPaint() const { return !paint_.empty(); }
+
+  // Edits that run on a worker thread work on a copy-on-write clone of the
+  // live terrain (Terrain::clone() shares tiles). Then, on the thread that
+  // owns the live terrain:
+  //  - unchangedSince(live, base): none of the step's tiles was written in
+  //    `live` since `base` (the clone's starting point, kept alive meanwhile)
+  //    was taken, so the result still applies;
+  //  - adopt(live, result): moves the step's tiles from `result` (the edited
+  //    clone) into `live`, which then shows the edit, and this step (holding
+  //    the befores) undoes it there. Returns the changed region.
+  bool unchangedSince(const Terrain& live, const Terrain& base) const;
+  Region adopt(Terrain& live, const Terrain& result) const;
 
   // Exchanges the stored tiles with the terrain's: the first call undoes the
   // edit, the second redoes it, and so on. Refreshes tile bounds; returns the

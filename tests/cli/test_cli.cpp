@@ -61,6 +61,14 @@ Box vertexBox(const scene::SceneState& s, const std::string& onlyEntity = {}) {
     const glm::dmat4 w = s.worldMatrix(id);
     for (const auto& p : a->data->positions) b.add(glm::dvec3(w * glm::dvec4(glm::dvec3(p), 1.0)));
   }
+  // Terrains' boxes too (the demo's valley): every sample lies within them.
+  for (scene::EntityId id : scene::terrainEntities(s, true)) {
+    if (!onlyEntity.empty() && s.find(id)->name != onlyEntity) continue;
+    const terrain::Heightfield& hf = scene::terrainOf(s, id)->data->heights();
+    const glm::dvec3 o = scene::terrainWorldOrigin(s, id);
+    b.add(o + glm::dvec3(0.0, 0.0, double(hf.range().min)));
+    b.add(o + glm::dvec3(hf.sizeMetres(), double(hf.range().max)));
+  }
   return b;
 }
 
@@ -134,7 +142,8 @@ class TestCli : public QObject {
 
   void helpOnEveryCommand_data() {
     QTest::addColumn<QString>("command");
-    for (const char* c : {"new", "demo", "import", "info", "render", "set"}) QTest::newRow(c) << QString(c);
+    for (const char* c : {"new", "demo", "import", "info", "render", "set", "key", "sequence", "farm"})
+      QTest::newRow(c) << QString(c);
   }
   void helpOnEveryCommand() {
     QFETCH(QString, command);
@@ -207,7 +216,7 @@ class TestCli : public QObject {
     QCOMPARE(size_t(assets[0].toObject()["triangles"].toDouble()), faces);
     QVERIFY(assets[0].toObject()["vertices"].toDouble() > 30000);
     // Cameras.
-    QCOMPARE(info["cameras"].toArray(), QJsonArray{"Main Camera"});
+    QCOMPARE(info["cameras"].toArray(), (QJsonArray{"Main Camera", "Flight Camera"}));  // the stereo flight's too
     // Bounds: hold every vertex of every instance, and the size is max - min.
     const QJsonObject bounds = info["bounds_m"].toObject();
     const glm::dvec3 bmin = vec3(bounds["min"]), bmax = vec3(bounds["max"]), bsize = vec3(bounds["size"]);
@@ -377,7 +386,7 @@ class TestCli : public QObject {
   void renderWithoutCameraFramesTheScene() {
     auto s = load(demo_);
     QVERIFY(s);
-    s->entities.at(s->findByName("Main Camera")).camera.reset();
+    for (scene::EntityId cam : s->cameras()) s->entities.at(cam).camera.reset();
     std::string error;
     const QString f = path("nocam.hscene");
     QVERIFY2(scene::saveScene(*s, f.toStdString(), error), error.c_str());

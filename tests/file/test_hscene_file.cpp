@@ -159,7 +159,8 @@ int blobKeyCount(const std::string& path) {
   sqlite3* db = nullptr;
   sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
   sqlite3_stmt* st = nullptr;
-  sqlite3_prepare_v2(db, "SELECT COUNT(DISTINCT key) FROM blobs", -1, &st, nullptr);
+  // Asset blobs: the demo's terrain tiles have their own suite (test_terrain_file).
+  sqlite3_prepare_v2(db, "SELECT COUNT(DISTINCT key) FROM blobs WHERE key NOT LIKE 'terrain/%'", -1, &st, nullptr);
   const int n = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int(st, 0) : -1;
   sqlite3_finalize(st);
   sqlite3_close(db);

@@ -139,7 +139,8 @@ class TestRender : public QObject {
     QCOMPARE(img.height, 360);
     // Three instances of the 69,451-triangle bunny, all in view.
     QCOMPARE(stats.instancesDrawn, size_t(3));
-    QCOMPARE(stats.trianglesDrawn, size_t(3 * 69451));
+    QCOMPARE(stats.trianglesDrawn - stats.terrainTriangles, size_t(3 * 69451));
+    QVERIFY(stats.terrainTriangles > 0);  // and the valley they stand in
     golden(std::string("demo_") + QTest::currentDataTag(), img);
   }
 

@@ -1,5 +1,6 @@
-// Frame export: complete and valid sequences, resume after a simulated and
-// after a real kill (byte-identical to an uninterrupted run), split runs,
+// Frame export: complete and valid sequences, resume after a simulated kill
+// (byte-identical to an uninterrupted run; the real SIGKILL of a real
+// hybridscape-cli is in tests/cli/test_cli_sequence.cpp), split runs,
 // job tags, unwritable folders and full disks (clear errors with the frame
 // number, finished frames kept), formats, layouts, progress, verification,
 // and direct video with stereo metadata checked by ffprobe.
@@ -173,47 +174,8 @@ class TestExport : public QObject {
     QCOMPARE(countTemporaries(d), 0);
   }
 
-  void resumeAfterRealKill() {
-    // A real process, killed with SIGKILL while it exports.
-    const std::string d = dir("killed");
-    const QString tool = QString(HS_BINARY_DIR) + "/tests/sequencer/hs_sequencer_tool";
-    QVERIFY2(QFileInfo::exists(tool), "build hs_sequencer_tool");
-    const QStringList args = {"render", "scene.hscene", "--frames", "0-59", "--layout", "sbs", "--size",
-                              QString("%1x%2").arg(kEyeW).arg(kEyeH), "--out", QString::fromStdString(d + "/f_%05d.png"),
-                              "--slow", "40"};
-    QProcess p;
-    p.start(tool, args);
-    QVERIFY(p.waitForStarted());
-    QElapsedTimer timer;
-    timer.start();
-    auto finalFiles = [&] {
-      int n = 0;
-      for (const auto& e : fs::directory_iterator(d))
-        if (!isTemporaryName(e.path().filename().string())) ++n;
-      return n;
-    };
-    while (finalFiles() < 15 && timer.elapsed() < 20000) QTest::qWait(5);
-    p.kill();  // SIGKILL: no cleanup of any kind
-    QVERIFY(p.waitForFinished());
-    const int before = finalFiles();
-    qInfo("killed after %d frames (%d temporary file(s) left behind)", before, countTemporaries(d));
-    QVERIFY(before >= 15 && before < 60);
-    // Every file under a final name is a whole, valid image.
-    for (const auto& e : fs::directory_iterator(d)) {
-      if (isTemporaryName(e.path().filename().string())) continue;
-      const FrameCheck c = checkFrameFile(e.path().string(), 2 * kEyeW, kEyeH, {}, true);
-      QVERIFY2(c.ok, c.problem.c_str());
-    }
-    // Resume (in this process) and compare with an uninterrupted run.
-    const ExportResult resumed = run(settingsFor(d, "0-59"));
-    QVERIFY2(resumed.ok, resumed.error.c_str());
-    QCOMPARE(resumed.kept, int64_t(before));
-    QCOMPARE(countTemporaries(d), 0);
-    const std::string ref = dir("reference60");
-    QVERIFY(run(settingsFor(ref, "0-59")).ok);
-    std::string why;
-    QVERIFY2(sameFrames(ref, d, 0, 59, why), why.c_str());
-  }
+  // A real export process killed with SIGKILL and resumed is tested with the
+  // real CLI and renderer: tests/cli/test_cli_sequence.cpp, killedMidFrameThenResumed.
 
   void splitRunsAreByteIdentical() {
     const std::string d = dir("split");

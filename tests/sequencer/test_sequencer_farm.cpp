@@ -1,7 +1,7 @@
 // Render-farm scripts: the job array's shape and command lines, quoting,
-// and a whole farm run acted out with bash (every array task, then the
-// check) using hs_sequencer_tool as the CLI. The real Slurm run is
-// tests/sequencer/slurm_local.sh (phase 2 turns it into a test).
+// valid bash. Runs of the scripts (acted out with bash, and on a real Slurm)
+// use the real hybridscape-cli: tests/cli/test_cli_sequence.cpp and
+// tests/farm/test_farm_slurm.cpp.
 #include <QtTest>
 
 #include <filesystem>
@@ -22,19 +22,6 @@ FarmJob filmJob() {
   job.outputPattern = "frames/f_%05d.png";
   job.workDir = "/farm/films/meteora";
   return job;
-}
-
-QString runBash(const QString& script, const QStringList& env, const QString& cwd, int& exitCode) {
-  QProcess p;
-  p.setProcessChannelMode(QProcess::MergedChannels);
-  QProcessEnvironment e = QProcessEnvironment::systemEnvironment();
-  for (const QString& kv : env) e.insert(kv.section('=', 0, 0), kv.section('=', 1));
-  p.setProcessEnvironment(e);
-  p.setWorkingDirectory(cwd);
-  p.start("bash", {script});
-  p.waitForFinished(60000);
-  exitCode = p.exitCode();
-  return QString::fromUtf8(p.readAll());
 }
 
 }  // namespace
@@ -122,45 +109,10 @@ class TestFarm : public QObject {
     QVERIFY(fs::status((tmp.path() + "/submit.sh").toStdString()).permissions() & fs::perms::owner_exec);
   }
 
-  void farmRunActedOutWithBash() {
-    // Every array task as Slurm would start it (SLURM_ARRAY_TASK_ID), then
-    // the final check, with the phase-1 stand-in CLI.
-    QTemporaryDir tmp;
-    const std::string work = tmp.path().toStdString() + "/work dir";
-    fs::create_directories(work + "/frames");
-    FarmJob job;
-    std::string error;
-    job.scenePath = "demo.hscene";
-    job.frames = *FrameList::parse("0-47", error);
-    job.chunkSize = 10;
-    job.eyeWidth = 32;
-    job.eyeHeight = 18;
-    job.workDir = work;
-    job.cli = std::string(HS_BINARY_DIR) + "/tests/sequencer/hs_sequencer_tool";
-    const FarmScripts s = makeSlurmScripts(job, error);
-    QVERIFY(writeSlurmScripts(s, work, error));
-    int code = 0;
-    for (size_t task = 0; task < s.chunks.size(); ++task) {
-      const QString out = runBash(QString::fromStdString(work + "/render.sbatch"),
-                                  {QString("SLURM_ARRAY_TASK_ID=%1").arg(task), "SLURM_ARRAY_JOB_ID=1"}, "/", code);
-      QVERIFY2(code == 0, qPrintable(out));
-    }
-    QString out = runBash(QString::fromStdString(work + "/verify.sbatch"), {}, "/", code);
-    QVERIFY2(code == 0, qPrintable(out));
-    QVERIFY(out.contains("48 of 48 frames valid"));
-    // A lost frame: the check fails and names the chunk to run again.
-    fs::remove(work + "/frames/f_00025.png");
-    out = runBash(QString::fromStdString(work + "/verify.sbatch"), {}, "/", code);
-    QCOMPARE(code, 1);
-    qInfo("%s", qPrintable(out.trimmed()));
-    QVERIFY(out.contains("missing frames: 25"));
-    QVERIFY(out.contains("chunks (job-array tasks) to run again: 2"));
-    // Running that task again (a requeue) repairs it.
-    out = runBash(QString::fromStdString(work + "/render.sbatch"), {"SLURM_ARRAY_TASK_ID=2", "SLURM_ARRAY_JOB_ID=1"}, "/", code);
-    QVERIFY2(code == 0 && out.contains("rendered 1, kept 9"), qPrintable(out));
-    runBash(QString::fromStdString(work + "/verify.sbatch"), {}, "/", code);
-    QCOMPARE(code, 0);
-  }
+  // The farm run acted out with bash (every array task, then the check) uses
+  // the real CLI now: tests/cli/test_cli_sequence.cpp,
+  // farmSlurmScriptsActedOutWithBash; the run on a real Slurm is
+  // tests/farm/test_farm_slurm.cpp.
 };
 
 QTEST_APPLESS_MAIN(TestFarm)

@@ -1,0 +1,673 @@
+#include "app/terrain_panel.h"
+
+#include <chrono>
+
+#include <QAction>
+#include <QButtonGroup>
+#include <QCheckBox>
+#include <QColorDialog>
+#include <QComboBox>
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QLabel>
+#include <QLocale>
+#include <QMenu>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSettings>
+#include <QSpinBox>
+#include <QToolButton>
+#include <QVBoxLayout>
+
+#include "app/background_job.h"
+#include "app/field_editors.h"
+#include "app/main_window.h"
+#include "app/message_panel.h"
+#include "app/prompts.h"
+#include "app/selection.h"
+#include "app/viewport_widget.h"
+#include "scene/fields.h"
+#include "scene/operations.h"
+#include "scene/terrain_ops.h"
+
+namespace hs::app {
+namespace {
+
+const TerrainToolKind kKinds[] = {TerrainToolKind::Off,     TerrainToolKind::Raise,          TerrainToolKind::Lower,
+                                  TerrainToolKind::Smooth,  TerrainToolKind::Flatten,        TerrainToolKind::Ramp,
+                                  TerrainToolKind::Noise,   TerrainToolKind::Terrace,        TerrainToolKind::ThermalErosion,
+                                  TerrainToolKind::HydraulicErosion, TerrainToolKind::Paint, TerrainToolKind::Holes};
+
+const char* kCurves[] = {"Smooth", "Linear", "Spherical", "Tip", "Constant"};
+
+QString mib(size_t bytes) { return QLocale().formattedDataSize(qint64(bytes)); }
+
+QDoubleSpinBox* spin(QWidget* parent, double min, double max, double step, int decimals, const QString& suffix,
+                     const QString& tip) {
+  auto* s = new QDoubleSpinBox(parent);
+  s->setRange(min, max);
+  s->setSingleStep(step);
+  s->setDecimals(decimals);
+  s->setSuffix(suffix);
+  s->setToolTip(tip);
+  s->setKeyboardTracking(false);
+  return s;
+}
+
+}  // namespace
+
+TerrainPanel::TerrainPanel(MainWindow& window)
+    : QWidget(&window), window_(window), doc_(window.document()), tool_(new TerrainTool(doc_, this)) {
+  setObjectName("terrainPanel");
+  // The brush of the last session.
+  QSettings s;
+  terrain::BrushSettings b = tool_->settings();
+  b.radius = s.value("terrain/radius", 20.0).toDouble();
+  b.strength = s.value("terrain/strength", 0.5).toFloat();
+  b.falloff.falloff = s.value("terrain/falloff", 0.5).toFloat();
+  b.spacing = s.value("terrain/spacing", 0.25).toFloat();
+  std::vector<std::string> ignored;  // settings files hold what the widgets allowed
+  tool_->setSettings(b.sanitized(glm::dvec2(1.0), 1e6, ignored));
+  buildUi();
+  connect(&doc_, &scene::Document::changed, this, [this](const scene::ChangeSet&) { refresh(); });
+  connect(doc_.undoStack(), &QUndoStack::indexChanged, this, [this] { refresh(); });
+  connect(&window_.selection(), &Selection::changed, this, [this] { refresh(); });
+  connect(tool_, &TerrainTool::settingsChanged, this, [this] {
+    refreshBrush();
+    window_.viewport()->update();
+  });
+  connect(tool_, &TerrainTool::strokeFinished, this, [this](const QString& text, bool warning) {
+    if (!text.isEmpty()) warning ? window_.messages()->warning(text) : window_.messages()->info(text);
+    refresh();
+  });
+  refreshBrush();
+  refresh();
+}
+
+TerrainPanel::~TerrainPanel() {
+  // A running job commits into the document: wait for it while it exists.
+  if (job_ && job_->isRunning()) {
+    job_->cancel();
+    job_->waitForFinished();
+  }
+  QSettings s;
+  s.setValue("terrain/radius", tool_->settings().radius);
+  s.setValue("terrain/strength", double(tool_->settings().strength));
+  s.setValue("terrain/falloff", double(tool_->settings().falloff.falloff));
+  s.setValue("terrain/spacing", double(tool_->settings().spacing));
+}
+
+bool TerrainPanel::busy() const { return job_ && job_->isRunning(); }
+
+scene::EntityId TerrainPanel::current() const {
+  const scene::SceneState& s = doc_.state();
+  const auto& sel = window_.selection().ids();
+  for (auto it = sel.rbegin(); it != sel.rend(); ++it)
+    if (scene::terrainOf(s, *it)) return *it;
+  const auto all = scene::terrainEntities(s, false);
+  return all.empty() ? scene::kNoEntity : all.front();
+}
+
+void TerrainPanel::buildUi() {
+  auto* content = new QWidget;
+  auto* v = new QVBoxLayout(content);
+  info_ = new QLabel(content);
+  info_->setObjectName("terrainInfo");
+  info_->setWordWrap(true);
+  info_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  v->addWidget(info_);
+
+  auto* brush = new QGroupBox("Brush", content);
+  auto* bl = new QVBoxLayout(brush);
+  auto* grid = new QGridLayout;
+  tools_ = new QButtonGroup(this);
+  tools_->setExclusive(true);
+  for (int i = 0; i < int(std::size(kKinds)); ++i) {
+    auto* b = new QToolButton(brush);
+    b->setText(terrainToolLabel(kKinds[i]));
+    b->setObjectName(QString("terrainTool_%1").arg(terrainToolLabel(kKinds[i])));
+    b->setCheckable(true);
+    b->setToolButtonStyle(Qt::ToolButtonTextOnly);
+    // The dock is narrow beside Properties: buttons share the width they get.
+    b->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
+    b->setMinimumWidth(0);
+    tools_->addButton(b, i);
+    grid->addWidget(b, i / 3, i % 3);
+  }
+  tools_->button(0)->setToolTip("No brush: clicks select and the gizmo moves things");
+  connect(tools_, &QButtonGroup::idClicked, this, [this](int id) { tool_->setKind(kKinds[id]); });
+  bl->addLayout(grid);
+  auto* form = new QFormLayout;
+  radius_ = spin(brush, 0.05, 100000.0, 1.0, 2, " m", "Brush radius ([ and ])");
+  radius_->setObjectName("terrainRadius");
+  strength_ = spin(brush, 0.001, 1000.0, 0.05, 3, "", "Raise/Lower/Noise: metres at the centre per dab; others: 0..1 (Shift+[ and Shift+])");
+  strength_->setObjectName("terrainStrength");
+  falloff_ = spin(brush, 0.0, 1.0, 0.05, 2, "", "Share of the radius over which the effect fades");
+  curve_ = new QComboBox(brush);
+  for (const char* c : kCurves) curve_->addItem(c);
+  spacing_ = spin(brush, 0.01, 4.0, 0.05, 2, "× radius", "Distance between dabs along the stroke");
+  layer_ = new QComboBox(brush);
+  layer_->setObjectName("terrainLayer");
+  layer_->setToolTip("Paint: the layer painted");
+  erase_ = new QCheckBox("Erase", brush);
+  erase_->setToolTip("Paint: paint the layer away; Holes: fill holes");
+  flattenMode_ = new QComboBox(brush);
+  flattenMode_->addItems({"To the height under the first dab", "Along the slope under the first dab"});
+  terraceStep_ = spin(brush, 0.01, 10000.0, 0.5, 2, " m", "Terrace step height");
+  noiseScale_ = spin(brush, 0.01, 100000.0, 1.0, 2, " m", "Noise feature size");
+  form->addRow("Radius", radius_);
+  form->addRow("Strength", strength_);
+  form->addRow("Falloff", falloff_);
+  form->addRow("Falloff curve", curve_);
+  form->addRow("Spacing", spacing_);
+  form->addRow("Layer", layer_);
+  form->addRow("", erase_);
+  form->addRow("Flatten", flattenMode_);
+  form->addRow("Terrace step", terraceStep_);
+  form->addRow("Noise scale", noiseScale_);
+  bl->addLayout(form);
+  for (QDoubleSpinBox* w : {radius_, strength_, falloff_, spacing_, terraceStep_, noiseScale_})
+    connect(w, &QDoubleSpinBox::valueChanged, this, [this] { brushFromWidgets(); });
+  for (QComboBox* w : {curve_, layer_, flattenMode_})
+    connect(w, &QComboBox::currentIndexChanged, this, [this] { brushFromWidgets(); });
+  connect(erase_, &QCheckBox::toggled, this, [this] { brushFromWidgets(); });
+  v->addWidget(brush);
+
+  auto* undo = new QGroupBox("Terrain undo", content);
+  auto* ul = new QFormLayout(undo);
+  undo_ = new QLabel(undo);
+  undo_->setObjectName("terrainUndoMemory");
+  undo_->setWordWrap(true);
+  undoCap_ = new QSpinBox(undo);
+  undoCap_->setRange(0, 65536);
+  undoCap_->setSuffix(" MiB");
+  undoCap_->setToolTip("Most memory terrain undo may hold; the oldest steps are dropped first");
+  undoCap_->setValue(int(QSettings().value("terrain/undoCapMiB", 512).toInt()));
+  doc_.terrainUndo().setCap(size_t(undoCap_->value()) << 20);
+  connect(undoCap_, &QSpinBox::valueChanged, this, [this](int miB) {
+    const size_t dropped = doc_.terrainUndo().setCap(size_t(miB) << 20);
+    QSettings().setValue("terrain/undoCapMiB", miB);
+    if (dropped) window_.messages()->info(QString("Terrain undo: %1 oldest step(s) dropped to fit %2 MiB").arg(dropped).arg(miB));
+    refresh();
+  });
+  ul->addRow(undo_);
+  ul->addRow("Memory cap", undoCap_);
+  v->addWidget(undo);
+
+  auto* whole = new QGroupBox("Whole terrain", content);
+  auto* wl = new QGridLayout(whole);
+  auto button = [&](const QString& text, const char* name, auto fn, int r, int c) {
+    auto* b = new QPushButton(text, whole);
+    b->setObjectName(name);
+    connect(b, &QPushButton::clicked, this, fn);
+    wl->addWidget(b, r, c);
+    needTerrain_ << b;
+    return b;
+  };
+  // One column: the dock is narrow.
+  button("Thermal Erosion…", "terrainErodeThermal", [this] { requestErode(false); }, 0, 0);
+  button("Hydraulic Erosion…", "terrainErodeHydraulic", [this] { requestErode(true); }, 1, 0);
+  button("Apply Paint Rules", "terrainPaintRules", [this] { applyPaintRules(false); }, 2, 0);
+  button("Export Heightmap…", "terrainExport", [this] { requestExportHeightmap(); }, 3, 0);
+  lodError_ = spin(whole, 0.1, 64.0, 0.25, 2, " px", "Screen-space error bound of the LOD (the terrain component's field)");
+  connect(lodError_, &QDoubleSpinBox::valueChanged, this, [this](double px) {
+    if (updating_ || current() == scene::kNoEntity) return;
+    scene::ops::setField(doc_, current(), *scene::findEntityField("terrain.lod_error_px"), scene::FieldValue(px),
+                         "terrainLodError");
+  });
+  wl->addWidget(new QLabel("LOD error bound", whole), 4, 0);
+  wl->addWidget(lodError_, 5, 0);
+  needTerrain_ << lodError_;
+  v->addWidget(whole);
+
+  auto* mats = new QGroupBox("Materials", content);
+  auto* ml = new QFormLayout(mats);
+  material_ = new QComboBox(mats);
+  albedo_ = new QPushButton(mats);
+  albedo_->setToolTip("Albedo colour (linear; tints the texture)");
+  roughness_ = spin(mats, 0.0, 1.0, 0.05, 2, "", "Roughness");
+  tiling_ = spin(mats, 0.01, 10000.0, 0.5, 2, " m", "World size of one texture repeat");
+  albedoTexture_ = new QPushButton("(none)", mats);
+  normalTexture_ = new QPushButton("(none)", mats);
+  ml->addRow("Layer", material_);
+  ml->addRow("Colour", albedo_);
+  ml->addRow("Roughness", roughness_);
+  ml->addRow("Tiling", tiling_);
+  ml->addRow("Albedo texture", albedoTexture_);
+  ml->addRow("Normal map", normalTexture_);
+  connect(material_, &QComboBox::currentIndexChanged, this, [this] { refreshMaterial(); });
+  connect(roughness_, &QDoubleSpinBox::valueChanged, this, [this] { materialEdited(); });
+  connect(tiling_, &QDoubleSpinBox::valueChanged, this, [this] { materialEdited(); });
+  connect(albedo_, &QPushButton::clicked, this, [this] {
+    const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
+    const int l = material_->currentIndex();
+    if (!t || l < 0 || l >= int(t->materials.size())) return;
+    const QColor c = QColorDialog::getColor(linearToDisplay(glm::dvec3(t->materials[size_t(l)].albedo)), this, "Layer colour");
+    if (!c.isValid()) return;
+    terrain::Material m = t->materials[size_t(l)];
+    m.albedo = glm::vec3(displayToLinear(c));
+    scene::ops::setTerrainMaterial(doc_, t->id, l, m);
+  });
+  auto pickTexture = [this](bool normal) {
+    const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
+    const int l = material_->currentIndex();
+    if (!t || l < 0 || l >= int(t->materials.size())) return;
+    const QString path = window_.prompts().askOpenFile(this, normal ? "Normal Map" : "Albedo Texture", QDir::homePath(),
+                                                       "Images (*.png *.jpg *.jpeg *.tif *.tiff *.exr);;All files (*)");
+    terrain::Material m = t->materials[size_t(l)];
+    (normal ? m.normalTexture : m.albedoTexture) = path.toStdString();  // empty (cancel) clears it
+    scene::ops::setTerrainMaterial(doc_, t->id, l, m);
+  };
+  connect(albedoTexture_, &QPushButton::clicked, this, [pickTexture] { pickTexture(false); });
+  connect(normalTexture_, &QPushButton::clicked, this, [pickTexture] { pickTexture(true); });
+  needTerrain_ << mats;
+  v->addWidget(mats);
+  v->addStretch(1);
+  // Combo boxes would otherwise be as wide as their longest entry.
+  for (QComboBox* c : content->findChildren<QComboBox*>()) {
+    c->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    c->setMinimumContentsLength(6);
+  }
+
+  auto* scroll = new QScrollArea(this);
+  scroll->setWidgetResizable(true);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setWidget(content);
+  auto* outer = new QVBoxLayout(this);
+  outer->setContentsMargins(0, 0, 0, 0);
+  outer->addWidget(scroll);
+}
+
+void TerrainPanel::populateMenu(QMenu* menu) {
+  menu->addAction("&New Terrain…", this, &TerrainPanel::requestNewTerrain);
+  menu->addAction("&Import DEM…", this, &TerrainPanel::requestImportDem);
+  menu->addSeparator();
+  menu->addAction("Export &Heightmap…", this, &TerrainPanel::requestExportHeightmap);
+  menu->addAction("Export Paint &Weights…", this, &TerrainPanel::requestExportWeights);
+  menu->addSeparator();
+  menu->addAction("&Thermal Erosion…", this, [this] { requestErode(false); });
+  menu->addAction("H&ydraulic Erosion…", this, [this] { requestErode(true); });
+  menu->addAction("Apply &Paint Rules", this, [this] { applyPaintRules(false); });
+  menu->addSeparator();
+  auto shortcut = [&](const QString& text, QList<QKeySequence> keys, auto fn) {
+    QAction* a = menu->addAction(text, this, fn);
+    a->setShortcuts(keys);
+    window_.addAction(a);  // active wherever the focus is in the window
+  };
+  shortcut("Brush Radius Smaller", {QKeySequence(Qt::Key_BracketLeft)}, [this] { tool_->scaleRadius(1.0 / 1.25); });
+  shortcut("Brush Radius Larger", {QKeySequence(Qt::Key_BracketRight)}, [this] { tool_->scaleRadius(1.25); });
+  // Shift+[ is '{' on most layouts: both are listed.
+  shortcut("Brush Strength Lower", {QKeySequence(Qt::SHIFT | Qt::Key_BracketLeft), QKeySequence(Qt::Key_BraceLeft)},
+           [this] { tool_->scaleStrength(1.0 / 1.25); });
+  shortcut("Brush Strength Higher", {QKeySequence(Qt::SHIFT | Qt::Key_BracketRight), QKeySequence(Qt::Key_BraceRight)},
+           [this] { tool_->scaleStrength(1.25); });
+}
+
+void TerrainPanel::refreshBrush() {
+  updating_ = true;
+  const terrain::BrushSettings& b = tool_->settings();
+  for (int i = 0; i < int(std::size(kKinds)); ++i)
+    if (kKinds[i] == tool_->kind()) tools_->button(i)->setChecked(true);
+  radius_->setValue(b.radius);
+  strength_->setValue(double(b.strength));
+  falloff_->setValue(double(b.falloff.falloff));
+  curve_->setCurrentIndex(std::min(int(b.falloff.shape), int(std::size(kCurves)) - 1));
+  spacing_->setValue(double(b.spacing));
+  if (b.paintLayer < layer_->count()) layer_->setCurrentIndex(b.paintLayer);
+  erase_->setChecked(b.erase);
+  flattenMode_->setCurrentIndex(b.flattenMode == terrain::FlattenMode::Slope ? 1 : 0);
+  terraceStep_->setValue(double(b.terrace.stepHeight));
+  noiseScale_->setValue(b.noise.scale);
+  const TerrainToolKind k = tool_->kind();
+  layer_->setEnabled(k == TerrainToolKind::Paint);
+  erase_->setEnabled(k == TerrainToolKind::Paint || k == TerrainToolKind::Holes);
+  flattenMode_->setEnabled(k == TerrainToolKind::Flatten);
+  terraceStep_->setEnabled(k == TerrainToolKind::Terrace);
+  noiseScale_->setEnabled(k == TerrainToolKind::Noise);
+  updating_ = false;
+}
+
+void TerrainPanel::brushFromWidgets() {
+  if (updating_) return;
+  terrain::BrushSettings b = tool_->settings();
+  b.radius = radius_->value();
+  b.strength = float(strength_->value());
+  b.falloff.falloff = float(falloff_->value());
+  b.falloff.shape = terrain::FalloffShape(curve_->currentIndex());
+  b.spacing = float(spacing_->value());
+  if (layer_->currentIndex() >= 0) b.paintLayer = layer_->currentIndex();
+  b.erase = erase_->isChecked();
+  b.flattenMode = flattenMode_->currentIndex() == 1 ? terrain::FlattenMode::Slope : terrain::FlattenMode::Height;
+  b.terrace.stepHeight = float(terraceStep_->value());
+  b.noise.scale = noiseScale_->value();
+  tool_->setSettings(b);
+}
+
+void TerrainPanel::refresh() {
+  const scene::EntityId e = current();
+  const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), e);
+  for (QWidget* w : needTerrain_) w->setEnabled(t != nullptr && !busy());
+  const scene::TerrainUndoBudget& budget = doc_.terrainUndo();
+  undo_->setText(QString("%1 of %2 in %3 step(s)%4")
+                     .arg(mib(budget.bytesUsed()), mib(budget.cap()))
+                     .arg(budget.steps())
+                     .arg(budget.droppedTotal() ? QString("; %1 oldest dropped").arg(budget.droppedTotal()) : QString()));
+  if (!t) {
+    info_->setText("No terrain in the scene. Terrain > New Terrain… or Import DEM… makes one.");
+    return;
+  }
+  const terrain::Heightfield& hf = t->data->heights();
+  const terrain::HeightRange r = hf.range();
+  const auto& geo = hf.geo();
+  info_->setText(QString("<b>%1</b><br>%2 × %3 m, %4 × %5 samples (%6 m)<br>heights %7 … %8 m<br>%9<br>%10 in memory")
+                     .arg(QString::fromStdString(t->name).toHtmlEscaped())
+                     .arg(hf.sizeMetres().x, 0, 'f', 1)
+                     .arg(hf.sizeMetres().y, 0, 'f', 1)
+                     .arg(hf.samplesX())
+                     .arg(hf.samplesY())
+                     .arg(hf.spacing().x, 0, 'g', 4)
+                     .arg(double(r.min), 0, 'f', 2)
+                     .arg(double(r.max), 0, 'f', 2)
+                     .arg(geo.valid() ? QString::fromStdString(geo.crsName).toHtmlEscaped() : QString("local coordinates (no CRS)"))
+                     .arg(mib(t->data->terrain().memoryBytes())));
+  // Layers (names change through materials).
+  QStringList names;
+  for (const auto& m : t->materials) names << QString::fromStdString(m.name);
+  QStringList current;
+  for (int i = 0; i < layer_->count(); ++i) current << layer_->itemText(i);
+  if (names != current) {
+    updating_ = true;
+    const int keepLayer = layer_->currentIndex(), keepMaterial = material_->currentIndex();
+    layer_->clear();
+    layer_->addItems(names);
+    material_->clear();
+    material_->addItems(names);
+    layer_->setCurrentIndex(std::clamp(keepLayer, 0, int(names.size()) - 1));
+    material_->setCurrentIndex(std::clamp(keepMaterial, 0, int(names.size()) - 1));
+    updating_ = false;
+  }
+  updating_ = true;
+  lodError_->setValue(doc_.state().find(e)->terrain->lodErrorPixels);
+  updating_ = false;
+  refreshMaterial();
+}
+
+void TerrainPanel::refreshMaterial() {
+  if (updating_ && material_->count() == 0) return;
+  const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
+  const int l = material_->currentIndex();
+  if (!t || l < 0 || l >= int(t->materials.size())) return;
+  const terrain::Material& m = t->materials[size_t(l)];
+  const bool was = updating_;
+  updating_ = true;
+  const QColor c = linearToDisplay(glm::dvec3(m.albedo));
+  albedo_->setText(c.name());
+  albedo_->setStyleSheet(QString("QPushButton { background: %1; color: %2; }")
+                             .arg(c.name(), c.lightness() > 128 ? "black" : "white"));
+  roughness_->setValue(double(m.roughness));
+  tiling_->setValue(double(m.tilingMetres));
+  albedoTexture_->setText(m.albedoTexture.empty() ? "(none)" : QFileInfo(QString::fromStdString(m.albedoTexture)).fileName());
+  normalTexture_->setText(m.normalTexture.empty() ? "(none)" : QFileInfo(QString::fromStdString(m.normalTexture)).fileName());
+  updating_ = was;
+}
+
+void TerrainPanel::materialEdited() {
+  if (updating_) return;
+  const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
+  const int l = material_->currentIndex();
+  if (!t || l < 0 || l >= int(t->materials.size())) return;
+  terrain::Material m = t->materials[size_t(l)];
+  m.roughness = float(roughness_->value());
+  m.tilingMetres = float(tiling_->value());
+  scene::ops::setTerrainMaterial(doc_, t->id, l, m, QString("terrainMaterial%1").arg(l));
+}
+
+// --- commands ---------------------------------------------------------------
+
+scene::EntityId TerrainPanel::createTerrain(const scene::ops::NewTerrain& spec) {
+  std::string error;
+  const scene::EntityId id = scene::ops::addTerrain(doc_, spec, error);
+  if (id == scene::kNoEntity) {
+    window_.messages()->error("New terrain: " + QString::fromStdString(error));
+    window_.prompts().showError(this, "New Terrain", QString::fromStdString(error));
+    return id;
+  }
+  window_.selection().select(id);
+  window_.viewport()->frameSelection();
+  const terrain::Heightfield& hf = scene::terrainOf(doc_.state(), id)->data->heights();
+  window_.messages()->info(QString("New terrain '%1': %2 × %3 m, %4 × %5 samples")
+                               .arg(QString::fromStdString(spec.name))
+                               .arg(hf.sizeMetres().x)
+                               .arg(hf.sizeMetres().y)
+                               .arg(hf.samplesX())
+                               .arg(hf.samplesY()));
+  return id;
+}
+
+void TerrainPanel::report(const scene::TerrainJobOutcome& out, const QString& title) {
+  for (const std::string& w : out.warnings) window_.messages()->warning(title + ": " + QString::fromStdString(w));
+  if (out.cancelled) {
+    window_.messages()->info(title + " was cancelled; the terrain is unchanged.");
+  } else if (!out.ok) {
+    window_.messages()->error(title + ": " + QString::fromStdString(out.error));
+    window_.prompts().showError(this, title, QString::fromStdString(out.error));
+  } else {
+    window_.messages()->info(QString::fromStdString(out.summary));
+    if (!out.push.kept)
+      window_.messages()->warning(title + " touched more tiles than the whole terrain undo memory holds: it cannot be undone.");
+    else if (out.push.dropped)
+      window_.messages()->info(QString("Terrain undo memory is full: the %1 oldest terrain step(s) can no longer be undone.")
+                                   .arg(out.push.dropped));
+  }
+  refresh();
+}
+
+void TerrainPanel::runJob(std::unique_ptr<scene::TerrainJob> job, const QString& title, bool wait,
+                          std::shared_ptr<bool> ok) {
+  if (busy()) {
+    window_.messages()->warning("A terrain operation is still running; try again when it has finished.");
+    return;
+  }
+  if (!job->valid()) {
+    window_.messages()->error(title + ": " + QString::fromStdString(job->invalidReason()));
+    return;
+  }
+  std::shared_ptr<scene::TerrainJob> shared(std::move(job));
+  // Window-modal from the start: Undo and brush strokes wait for the result.
+  job_ = std::make_unique<BackgroundJob>(&window_, title, title + "…", true, 0);
+  connect(job_.get(), &BackgroundJob::finished, this, [this, shared, title, ok] {
+    const scene::TerrainJobOutcome out = shared->commit(doc_);
+    report(out, title);
+    if (ok) *ok = out.ok;
+  });
+  job_->start([shared](const Progress& p) { shared->run(&p); });
+  refresh();
+  if (wait) job_->waitForFinished();
+}
+
+bool TerrainPanel::erode(bool hydraulic, const terrain::ThermalParams& thermal,
+                         const terrain::HydraulicParams& hydraulicParams, scene::TerrainJobMask mask, bool wait) {
+  const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
+  if (!t) return false;
+  auto ok = std::make_shared<bool>(false);
+  runJob(hydraulic ? scene::TerrainJob::hydraulic(doc_, t->id, hydraulicParams, mask)
+                   : scene::TerrainJob::thermal(doc_, t->id, thermal, mask),
+         hydraulic ? "Hydraulic Erosion" : "Thermal Erosion", wait, ok);
+  return wait ? *ok : true;
+}
+
+bool TerrainPanel::applyPaintRules(bool wait) {
+  const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
+  if (!t) return false;
+  auto ok = std::make_shared<bool>(false);
+  runJob(scene::TerrainJob::paintRules(doc_, t->id), "Paint Rules", wait, ok);
+  return wait ? *ok : true;
+}
+
+bool TerrainPanel::importDem(const QString& path, const DemImportRequest& request, bool wait) {
+  if (busy()) {
+    window_.messages()->warning("A terrain operation is still running; try again when it has finished.");
+    return false;
+  }
+  const QString name = QFileInfo(path).completeBaseName();
+  if (request.intoSelected) {
+    const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
+    if (!t) return false;
+    auto ok = std::make_shared<bool>(false);
+    runJob(scene::TerrainJob::demInto(doc_, t->id, path.toStdString(), request.options), "Import DEM into terrain",
+           wait, ok);
+    return wait ? *ok : true;
+  }
+  auto result = std::make_shared<terrain::DemImportResult>();
+  auto ok = std::make_shared<bool>(false);
+  job_ = std::make_unique<BackgroundJob>(&window_, "Import DEM", QString("Importing %1…").arg(QFileInfo(path).fileName()),
+                                         true, 0);
+  connect(job_.get(), &BackgroundJob::finished, this, [this, result, ok, name, path] {
+    const terrain::DemImportReport& r = result->report;
+    for (const std::string& w : r.warnings) window_.messages()->warning(QString::fromStdString(w));
+    if (result->cancelled) {
+      window_.messages()->info("Import of " + path + " was cancelled; the scene is unchanged.");
+      return;
+    }
+    if (!result->ok()) {
+      const QString error = QString::fromStdString(result->error.empty() ? path.toStdString() + ": could not be imported" : result->error);
+      window_.messages()->error(error);
+      window_.prompts().showError(this, "Import DEM", error);
+      return;
+    }
+    std::string unique = name.toStdString();
+    for (int i = 2; doc_.state().findByName(unique) != scene::kNoEntity; ++i) unique = name.toStdString() + " " + std::to_string(i);
+    std::string error;
+    const scene::EntityId id = scene::ops::addTerrainFromHeightfield(doc_, std::move(*result->heightfield), unique, error);
+    if (id == scene::kNoEntity) {
+      window_.messages()->error("Import DEM: " + QString::fromStdString(error));
+      return;
+    }
+    window_.messages()->info(QString::fromStdString(terrain::summary(r)));
+    // The nodata report, always (also when nothing was missing).
+    window_.messages()->info(QString("%1: nodata: %2 samples in %3 void(s), largest %4 samples%5")
+                                 .arg(QFileInfo(path).fileName())
+                                 .arg(r.fill.filled)
+                                 .arg(r.fill.voids)
+                                 .arg(r.fill.largestVoid)
+                                 .arg(r.fill.filled ? QString(", filled by %1").arg(QString::fromStdString(r.fill.method)) : QString()));
+    window_.selection().select(id);
+    window_.viewport()->frameSelection();
+    *ok = true;
+  });
+  const std::string file = path.toStdString();
+  const terrain::DemImportOptions options = request.options;
+  job_->start([result, file, options](const Progress& p) { *result = terrain::importDem(file, options, &p); });
+  if (wait) job_->waitForFinished();
+  return wait ? *ok : true;
+}
+
+bool TerrainPanel::runExport(const QString& title, std::function<std::string(const Progress&)> work, bool wait) {
+  if (busy()) {
+    window_.messages()->warning("A terrain operation is still running; try again when it has finished.");
+    return false;
+  }
+  auto result = std::make_shared<std::string>();
+  auto ok = std::make_shared<bool>(false);
+  job_ = std::make_unique<BackgroundJob>(&window_, title, title + "…", false, 300);
+  connect(job_.get(), &BackgroundJob::finished, this, [this, result, ok, title] {
+    if (result->rfind("error:", 0) == 0) {
+      const QString e = QString::fromStdString(result->substr(6));
+      window_.messages()->error(title + ": " + e);
+      window_.prompts().showError(this, title, e);
+    } else {
+      window_.messages()->info(QString::fromStdString(*result));
+      *ok = true;
+    }
+  });
+  job_->start([result, work](const Progress& p) { *result = work(p); });
+  if (wait) job_->waitForFinished();
+  return wait ? *ok : true;
+}
+
+bool TerrainPanel::exportHeightmap(const QString& path, bool wait) {
+  const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
+  if (!t) return false;
+  // A copy-on-write snapshot: painting may go on while the file is written.
+  std::shared_ptr<const scene::TerrainData> snap = t->data->snapshot();
+  const std::string file = path.toStdString();
+  return runExport("Export Heightmap", [snap, file](const Progress&) -> std::string {
+    auto r = terrain::exportHeightmap(snap->heights(), file);
+    if (!r) return "error:" + r.error();
+    std::string s = "Exported " + r->file + ": " + std::to_string(r->width) + " × " + std::to_string(r->height) + " samples";
+    if (r->quantisationStep > 0.0) s += ", 16-bit step " + std::to_string(r->quantisationStep) + " m";
+    if (!r->sidecar.empty()) s += ", sidecar " + r->sidecar;
+    return s;
+  }, wait);
+}
+
+bool TerrainPanel::exportWeights(const QString& dir, bool wait) {
+  const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
+  if (!t) return false;
+  scene::TerrainAsset copy = *t;
+  copy.data = t->data->snapshot();
+  const std::string folder = dir.toStdString();
+  return runExport("Export Paint Weights", [copy, folder](const Progress&) -> std::string {
+    auto r = scene::ops::exportPaintWeights(copy, folder);
+    if (!r) return "error:" + r.error();
+    return "Exported " + std::to_string(r->size()) + " paint weight images (16-bit PNG) into " + folder;
+  }, wait);
+}
+
+// --- with dialogs ---------------------------------------------------------------
+
+void TerrainPanel::requestNewTerrain() {
+  std::string name = "Terrain";
+  for (int i = 2; doc_.state().findByName(name) != scene::kNoEntity; ++i) name = "Terrain " + std::to_string(i);
+  NewTerrainDialog d(&window_, QString::fromStdString(name));
+  if (d.exec() != QDialog::Accepted) return;
+  scene::ops::NewTerrain spec = d.spec();
+  spec.centre = window_.viewport()->camera().pivot();
+  spec.centre.z = 0.0;
+  createTerrain(spec);
+}
+
+void TerrainPanel::requestImportDem() {
+  const QString path = window_.prompts().askOpenFile(
+      &window_, "Import DEM", QSettings().value("terrain/lastDemDirectory", QDir::homePath()).toString(),
+      "Elevation models (*.tif *.tiff *.dt0 *.dt1 *.dt2 *.hgt *.asc *.img *.dem *.bil *.vrt *.nc);;All files (*)");
+  if (path.isEmpty()) return;
+  QSettings().setValue("terrain/lastDemDirectory", QFileInfo(path).absolutePath());
+  DemImportDialog d(&window_, path, scene::terrainOf(doc_.state(), current()) != nullptr);
+  if (d.exec() != QDialog::Accepted) return;
+  importDem(path, d.request(), false);
+}
+
+void TerrainPanel::requestErode(bool hydraulic) {
+  const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
+  if (!t) return;
+  QStringList layers;
+  for (const auto& m : t->materials) layers << QString::fromStdString(m.name);
+  ErosionDialog d(&window_, hydraulic, layers);
+  if (d.exec() != QDialog::Accepted) return;
+  erode(hydraulic, d.thermal(), d.hydraulic(), d.mask(), false);
+}
+
+void TerrainPanel::requestExportHeightmap() {
+  if (!scene::terrainOf(doc_.state(), current())) return;
+  QString path = window_.prompts().askSaveFile(
+      &window_, "Export Heightmap", QDir::homePath() + "/heights.png",
+      "16-bit PNG (*.png);;32-bit float EXR (*.exr);;GeoTIFF (*.tif *.tiff);;RAW 16-bit (*.r16)");
+  if (path.isEmpty()) return;
+  if (QFileInfo(path).suffix().isEmpty()) path += ".png";
+  exportHeightmap(path, false);
+}
+
+void TerrainPanel::requestExportWeights() {
+  if (!scene::terrainOf(doc_.state(), current())) return;
+  const QString dir = QFileDialog::getExistingDirectory(&window_, "Export Paint Weights Into", QDir::homePath());
+  if (!dir.isEmpty()) exportWeights(dir, false);
+}
+
+}  // namespace hs::app

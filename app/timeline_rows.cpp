@@ -1,0 +1,39 @@
+#include "app/timeline_rows.h"
+
+#include "scene/fields.h"
+
+namespace hs::app {
+
+QString propertyLabel(const std::string& property) {
+  if (property == "transform.rotation") return "Rotation";
+  if (property == sequencer::kPathProgress) return "Path progress";
+  if (const scene::EntityField* f = scene::findEntityField(property)) return QString::fromStdString(f->label);
+  return QString::fromStdString(property);
+}
+
+std::vector<TimelineRow> timelineRows(const scene::SceneState& state, const std::set<scene::EntityId>& collapsed) {
+  std::vector<TimelineRow> rows;
+  for (const sequencer::Binding& b : state.sequence.bindings) {
+    const scene::Entity* e = state.find(b.entity);
+    QString name = QString::fromStdString(e ? e->name : b.label);
+    if (!e) name += " (missing)";
+    rows.push_back({b.entity, {}, name});
+    if (collapsed.count(b.entity)) continue;
+    for (const std::string& p : sequencer::trackProperties(b)) rows.push_back({b.entity, p, propertyLabel(p)});
+  }
+  return rows;
+}
+
+std::vector<sequencer::KeyRef> rowKeys(const sequencer::Sequence& sequence, const TimelineRow& row) {
+  std::vector<sequencer::KeyRef> out;
+  const sequencer::Binding* b = sequence.findBinding(row.entity);
+  if (!b) return out;
+  for (const std::string& p : sequencer::trackProperties(*b)) {
+    if (!row.isEntity() && p != row.property) continue;
+    const size_t n = sequencer::keyTimes(sequence, row.entity, p).size();
+    for (size_t i = 0; i < n; ++i) out.push_back({row.entity, p, i});
+  }
+  return out;
+}
+
+}  // namespace hs::app

@@ -1,0 +1,229 @@
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <unistd.h>
+
+#include "cli/commands.h"
+#include "cli/render_frames.h"
+#include "cli/sequence_options.h"
+#include "render/export_job_tag.h"
+#include "render/offscreen_renderer.h"
+#include "render/stereo_frame_source.h"
+#include "scene/hscene_file.h"
+#include "sequencer/ffmpeg_writer.h"
+
+namespace hs::cli {
+
+namespace {
+
+std::atomic<bool> gInterrupted{false};
+
+// Ctrl-C stops after the frames already rendered are written (they are
+// whole files; running again resumes). A second Ctrl-C ends at once.
+void onInterrupt(int) {
+  gInterrupted = true;
+  std::signal(SIGINT, SIG_DFL);
+}
+
+std::string percent(double share) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%+.2f%%", share * 100.0);
+  return buf;
+}
+
+std::string metres(double d) {
+  if (!std::isfinite(d)) return "infinity (sky)";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f m", d);
+  return buf;
+}
+
+// Progress on stderr: a line rewritten in place on a terminal; in a log
+// (a farm task's) a line every 10 s, so short runs print none.
+class ProgressPrinter {
+ public:
+  void operator()(const sequencer::ExportProgress& p) {
+    const auto now = std::chrono::steady_clock::now();
+    const bool done = p.written + p.kept >= p.total;
+    if (!tty_ && !done && now - last_ < std::chrono::seconds(10)) return;
+    if (!tty_ && done && !printedAny_) return;
+    if (done && printedDone_) return;
+    printedDone_ = done;
+    last_ = now;
+    printedAny_ = true;
+    std::string eta = p.etaSeconds >= 0.0 ? formatDuration(p.etaSeconds) : std::string("?");
+    std::fprintf(stderr, "%sframe %lld: %lld/%lld done (%lld kept), %.2f fps, elapsed %s, ETA %s%s",
+                 tty_ ? "\r" : "", static_cast<long long>(p.lastFrame), static_cast<long long>(p.written + p.kept),
+                 static_cast<long long>(p.total), static_cast<long long>(p.kept), p.framesPerSecond,
+                 formatDuration(p.elapsedSeconds).c_str(), eta.c_str(), tty_ ? "   " : "\n");
+    std::fflush(stderr);
+  }
+  void end() {
+    if (tty_ && printedAny_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool tty_ = isatty(STDERR_FILENO);
+  bool printedAny_ = false;
+  bool printedDone_ = false;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
+std::vector<OptionSpec> renderFramesOptionSpecs() {
+  return {{"frames"},  {"layout"}, {"fps"},  {"png16", false}, {"video"},   {"codec"},
+          {"crf"},     {"preset"}, {"comfort", false},         {"budget"},  {"overwrite", false},
+          {"writers"}};
+}
+
+const char* renderFramesHelp() {
+  return "\nA frame sequence (any of these options; the scene's timeline plays, and the camera's\n"
+         "stereo rig gives the two eyes):\n"
+         "  --frames LIST    frames to render: 0-35999, 10,20-30, 0-100x10 (default: the scene's range)\n"
+         "  --out PATTERN    frame files, e.g. frames/f_%05d.png or f_#####.exr (%v/%V: eye name)\n"
+         "  --layout L       sbs (2W x H), sbs-squeezed, tb, tb-squeezed, separate, anaglyph, mono\n"
+         "                   (default sbs)\n"
+         "  --size WxH       size of one eye (default 1920x1080)\n"
+         "  --camera NAME    default: the first camera the timeline animates, else the first camera\n"
+         "  --fps RATE       override the scene's frame rate (60, 59.94, 60000/1001)\n"
+         "  --quality N      JPEG quality 1-100 (default 92)\n"
+         "  --png16          16-bit PNG\n"
+         "  --video FILE     a film instead of images: .mp4 or .mkv, H.264/H.265 through ffmpeg,\n"
+         "                   with side-by-side / top-bottom stereo metadata (not resumable)\n"
+         "  --codec C        h264 (default) or h265;  --crf N (default 18);  --preset P (default medium)\n"
+         "  --comfort        print each frame's nearest and farthest screen parallax (share of the\n"
+         "                   width) and flag frames outside the budget\n"
+         "  --budget N,F     the budget in percent of the width (default -1,2)\n"
+         "  --overwrite      render every frame again (default: valid frames of an earlier run are\n"
+         "                   kept and only the rest is rendered, so an interrupted run resumes)\n"
+         "  --writers N      encoder threads (default 2)\n"
+         "Progress and an ETA go to stderr. Ctrl-C stops after the frames in flight are written.\n";
+}
+
+int renderFrames(const Args& args) {
+  const char* cmd = "render";
+  std::string error;
+  if (args.positional.size() != 1) return usage(cmd, "expected one scene file");
+  const std::string scenePath = args.positional[0];
+
+  sequencer::ExportSettings s;
+  if (!parseLayout(args, s.layout, error) || !parseEyeSize(args, s.eyeWidth, s.eyeHeight, error))
+    return usage(cmd, error);
+  const auto out = args.get("out"), video = args.get("video");
+  if (out && video) return usage(cmd, "give --out PATTERN for frames or --video FILE for a film, not both");
+  if (!out && !video) return usage(cmd, "--out PATTERN (frame files) or --video FILE (a film) is required");
+  s.output = video ? *video : *out;
+  const bool film = sequencer::videoContainerFromPath(s.output).has_value();
+  if (video && !film) return fail(cmd, *video + ": a film must end in .mp4 or .mkv");
+  if (!film && !sequencer::imageFormatFromPath(s.output))
+    return fail(cmd, s.output + ": unknown image type; use .png, .exr, .jpg, .tif, or .mp4 / .mkv for a film");
+  if (film && s.layout == sequencer::StereoLayout::Separate)
+    return fail(cmd, s.output + ": a film holds one picture a frame, not --layout separate; use sbs, tb or "
+                           "another single-image layout");
+  if (auto codec = args.get("codec")) {
+    if (*codec == "h264") s.video.codec = sequencer::VideoCodec::H264;
+    else if (*codec == "h265" || *codec == "hevc") s.video.codec = sequencer::VideoCodec::H265;
+    else return usage(cmd, "--codec takes h264 or h265");
+  }
+  if (!parseIntOption(args, "crf", 0, 51, s.video.crf, error) ||
+      !parseIntOption(args, "quality", 1, 100, s.image.jpegQuality, error) ||
+      !parseIntOption(args, "writers", 1, 64, s.writerThreads, error))
+    return usage(cmd, error);
+  if (auto preset = args.get("preset")) s.video.preset = *preset;
+  s.image.png16 = args.has("png16");
+  if (s.image.png16 && sequencer::imageFormatFromPath(s.output) != sequencer::ImageFormat::Png)
+    return usage(cmd, "--png16 needs a .png output");
+  s.resume = !args.has("overwrite");
+  sequencer::ComfortBudget budget;
+  if (!parseBudget(args, budget, error)) return usage(cmd, error);
+
+  std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
+  if (!state) return fail(cmd, error);
+  if (!applyAntialiasing(args, *state, error)) return usage(cmd, error);
+  if (auto fps = args.get("fps")) {
+    const auto rate = sequencer::parseFrameRate(*fps, error);
+    if (!rate) return usage(cmd, "--fps: " + error);
+    state->sequence.rate = *rate;
+  }
+  s.rate = state->sequence.rate;
+  if (!parseFrames(args, &*state, s.frames, error)) return usage(cmd, error);
+  if (s.frames.empty()) return fail(cmd, "no frames to render");
+  const scene::EntityId camera = findCamera(*state, args.get("camera").value_or(""), scenePath, error);
+  if (camera == scene::kNoEntity) return fail(cmd, error);
+  const scene::Entity& cam = *state->find(camera);
+  if (film && !sequencer::ffmpegAvailable(s.video.ffmpeg))
+    return fail(cmd, s.output + ": direct video needs ffmpeg, which is not installed (apt-get install ffmpeg)");
+
+  render::StereoFrameOptions frameOptions;
+  frameOptions.camera = camera;
+  frameOptions.showGrid = !args.has("no-grid");
+  frameOptions.displayBits16 = s.image.png16;
+  if (args.has("comfort")) {
+    sequencer::ComfortOptions co;
+    co.budget = budget;
+    frameOptions.comfort = co;
+  }
+  s.jobTag = render::exportJobTag(*state, camera, s, frameOptions);
+  if (!film && (frameOptions.comfort || !s.resume)) {
+    // Frames kept by resume are not rendered again, so the comfort check
+    // would not see them: a comfort run renders every frame.
+    if (frameOptions.comfort && s.resume)
+      std::printf("note: --comfort renders every frame (nothing is kept from an earlier run)\n");
+    s.resume = false;
+  }
+  if (!cam.camera || cam.camera->stereo == scene::Camera::Stereo::Mono) {
+    if (sequencer::layoutRendersBothEyes(s.layout))
+      std::printf("note: camera '%s' is mono (no stereo rig): both eyes show its view; set its Stereo "
+                  "field (camera.stereo) for a stereo pair\n", cam.name.c_str());
+  }
+
+  render::OffscreenRenderer renderer;
+  if (!renderer.initialize(error)) return fail(cmd, "cannot start headless OpenGL: " + error);
+  render::StereoFrameSource source(renderer, *state, frameOptions);
+  if (frameOptions.comfort)
+    source.onComfort = [](const sequencer::FrameComfort& fc) {
+      const sequencer::ComfortResult& r = fc.result;
+      std::printf("frame %lld: nearest %s at %s, farthest %s at %s%s%s\n", static_cast<long long>(fc.frame),
+                  percent(r.nearestParallax).c_str(), metres(r.nearestDepth).c_str(),
+                  percent(r.farthestParallax).c_str(), metres(r.farthestDepth).c_str(),
+                  r.withinBudget ? "" : "  OUTSIDE BUDGET: ", r.withinBudget ? "" : r.message.c_str());
+    };
+
+  ProgressPrinter printer;
+  sequencer::ExportCallbacks callbacks;
+  callbacks.progress = [&printer](const sequencer::ExportProgress& p) { printer(p); };
+  callbacks.cancel = &gInterrupted;
+  gInterrupted = false;
+  std::signal(SIGINT, onInterrupt);
+  const sequencer::ExportResult r = sequencer::runExport(s, source, callbacks);
+  std::signal(SIGINT, SIG_DFL);
+  printer.end();
+
+  // Notes and warnings go to stdout: stderr carries progress and, on
+  // failure, exactly one line with the reason.
+  for (const std::string& w : source.warnings()) std::printf("warning: %s\n", w.c_str());
+  for (const std::string& n : r.notes) std::printf("%s\n", n.c_str());
+  if (frameOptions.comfort) {
+    const std::vector<int64_t> bad = sequencer::framesOutsideBudget(source.comfort());
+    std::printf("comfort: %zu of %zu frame(s) outside the budget %s .. %s%s%s\n", bad.size(), source.comfort().size(),
+                percent(budget.nearest).c_str(), percent(budget.farthest).c_str(), bad.empty() ? "" : ": ",
+                bad.empty() ? "" : sequencer::FrameList::fromFrames(bad).toString().c_str());
+  }
+  if (!r.ok && !r.cancelled) return fail(cmd, r.error);
+  const double fps = r.seconds > 0.0 ? double(r.rendered) / r.seconds : 0.0;
+  std::printf("%s %lld frame(s), kept %lld, of %lld (%s %dx%d per eye, camera '%s') in %.2f s, %.2f fps "
+              "(rendering %.2f s, encoding %.2f s on %d writer(s)) -> %s\n",
+              r.cancelled ? "interrupted after" : "rendered", static_cast<long long>(r.written),
+              static_cast<long long>(r.kept), static_cast<long long>(r.total), sequencer::layoutName(s.layout),
+              s.eyeWidth, s.eyeHeight, cam.name.c_str(), r.seconds, fps, r.renderSeconds, r.writeSeconds,
+              s.writerThreads, s.output.c_str());
+  if (r.cancelled) {
+    std::fprintf(stderr, "hybridscape-cli render: interrupted; run the same command again to resume\n");
+    return 130;
+  }
+  return 0;
+}
+
+}  // namespace hs::cli

@@ -1,0 +1,71 @@
+#include "cli/terrain_info.h"
+
+#include <cstdio>
+
+#include <QJsonObject>
+
+namespace hs::cli {
+namespace {
+
+QJsonArray arr2(const glm::dvec2& v) { return {v.x, v.y}; }
+QJsonArray arr3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+QJsonArray terrainInfoJson(const scene::SceneState& s) {
+  QJsonArray out;
+  for (scene::EntityId id : scene::terrainEntities(s, false)) {
+    const scene::TerrainAsset& t = *scene::terrainOf(s, id);
+    const terrain::Terrain& tr = t.data->terrain();
+    const terrain::Heightfield& hf = tr.height;
+    const terrain::HeightRange r = hf.range();
+    QJsonObject o;
+    o["name"] = QString::fromStdString(t.name);
+    o["entity"] = double(id);
+    o["entity_name"] = QString::fromStdString(s.find(id)->name);
+    o["terrain_id"] = double(t.id);
+    o["samples"] = QJsonArray{hf.samplesX(), hf.samplesY()};
+    o["size_m"] = arr2(hf.sizeMetres());
+    o["spacing_m"] = arr2(hf.spacing());
+    o["origin"] = arr3(hf.origin());
+    o["world_origin"] = arr3(scene::terrainWorldOrigin(s, id));
+    o["height_range_m"] = QJsonArray{double(r.min), double(r.max)};
+    QJsonObject crs;
+    crs["name"] = QString::fromStdString(hf.geo().crsName);
+    crs["epsg"] = hf.geo().epsg;
+    crs["georeferenced"] = hf.geo().valid();
+    o["crs"] = crs;
+    QJsonArray layers;
+    for (const auto& m : t.materials) layers.append(QString::fromStdString(m.name));
+    o["layers"] = layers;
+    o["paint_rules"] = int(t.paintRules.size());
+    o["hole_tiles"] = double(hf.holes().allocatedTiles());
+    o["tiles"] = QJsonArray{hf.heights().tilesX(), hf.heights().tilesY()};
+    o["memory_bytes"] = double(tr.memoryBytes());
+    o["lod_error_px"] = s.find(id)->terrain->lodErrorPixels;
+    out.append(o);
+  }
+  return out;
+}
+
+void printTerrainInfo(const scene::SceneState& s) {
+  const auto ids = scene::terrainEntities(s, false);
+  if (ids.empty()) return;
+  std::printf("terrains:\n");
+  for (scene::EntityId id : ids) {
+    const scene::TerrainAsset& t = *scene::terrainOf(s, id);
+    const terrain::Heightfield& hf = t.data->heights();
+    const terrain::HeightRange r = hf.range();
+    const glm::dvec3 o = scene::terrainWorldOrigin(s, id);
+    std::printf("  %s: %.3f x %.3f m, %d x %d samples (spacing %.4g x %.4g m), heights %.2f..%.2f m, origin %.3f, %.3f, %.3f, "
+                "CRS %s, %zu layers\n",
+                t.name.c_str(), hf.sizeMetres().x, hf.sizeMetres().y, hf.samplesX(), hf.samplesY(), hf.spacing().x,
+                hf.spacing().y, double(r.min), double(r.max), o.x, o.y, o.z,
+                hf.geo().valid() ? (hf.geo().crsName + (hf.geo().epsg ? " (EPSG:" + std::to_string(hf.geo().epsg) + ")" : ""))
+                                       .c_str()
+                                 : "none (local)",
+                t.materials.size());
+  }
+}
+
+}  // namespace hs::cli

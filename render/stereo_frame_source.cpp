@@ -1,0 +1,263 @@
+#include "render/stereo_frame_source.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <set>
+
+#include <epoxy/gl.h>
+
+#include "render/pixel_readback.h"
+#include "render/stereo_views.h"
+#include "scene/animation.h"
+#include "sequencer/srgb.h"
+
+namespace hs::render {
+
+namespace {
+
+enum class PixelKind { Display8, Display16, LinearFloat };
+
+size_t bytesPerPixel(PixelKind k) {
+  switch (k) {
+    case PixelKind::Display8: return 4;
+    case PixelKind::Display16: return 8;
+    case PixelKind::LinearFloat: return 16;
+  }
+  return 4;
+}
+
+// GL rows run bottom-up, images top-down.
+sequencer::Image imageFrom(const uint8_t* src, int w, int h, PixelKind kind) {
+  const size_t rowPixels = size_t(w);
+  switch (kind) {
+    case PixelKind::Display8: {
+      sequencer::Image img = sequencer::Image::make8(w, h);
+      for (int y = 0; y < h; ++y)
+        std::memcpy(img.rgba8.data() + size_t(y) * rowPixels * 4, src + size_t(h - 1 - y) * rowPixels * 4, rowPixels * 4);
+      return img;
+    }
+    case PixelKind::Display16: {
+      // 16-bit sRGB display values to linear float: the writer encodes them
+      // back (16-bit PNG) with nothing lost, and layouts mix in linear light.
+      sequencer::Image img = sequencer::Image::makeF(w, h);
+      for (int y = 0; y < h; ++y) {
+        const auto* row = reinterpret_cast<const uint16_t*>(src + size_t(h - 1 - y) * rowPixels * 8);
+        float* dst = img.rgbaF.data() + size_t(y) * rowPixels * 4;
+        for (size_t i = 0; i < rowPixels * 4; ++i)
+          dst[i] = (i % 4) == 3 ? 1.0f : sequencer::srgbFloatToLinear(float(row[i]) / 65535.0f);
+      }
+      return img;
+    }
+    case PixelKind::LinearFloat: {
+      sequencer::Image img = sequencer::Image::makeF(w, h);
+      for (int y = 0; y < h; ++y)
+        std::memcpy(img.rgbaF.data() + size_t(y) * rowPixels * 4, src + size_t(h - 1 - y) * rowPixels * 16,
+                    rowPixels * 16);
+      return img;
+    }
+  }
+  return {};
+}
+
+std::vector<float> depthFrom(const uint8_t* src, int w, int h) {
+  std::vector<float> out(size_t(w) * size_t(h));
+  for (int y = 0; y < h; ++y)
+    std::memcpy(out.data() + size_t(y) * size_t(w), src + size_t(h - 1 - y) * size_t(w) * 4, size_t(w) * 4);
+  return out;
+}
+
+}  // namespace
+
+struct StereoFrameSource::Impl {
+  OffscreenRenderer& offscreen;
+  const scene::SceneState base;  // a copy: meshes are shared, so it costs the entity table only
+  StereoFrameOptions options;
+  sequencer::CompiledSequence compiled;
+  scene::EntityId camera = scene::kNoEntity;
+
+  // The output framebuffer the renderer tone-maps into, per eye size.
+  GLuint fbo = 0, color = 0;
+  int width = 0, height = 0;
+  GLenum colorFormat = 0;
+
+  struct Slot {
+    PixelReadback buffer;
+    int64_t frame = -1;
+    int views = 0;          // 1 (mono) or 2 (eyes)
+    bool duplicate = false; // a mono camera in a stereo layout: the one view is both eyes
+    PixelKind kind = PixelKind::Display8;
+    int width = 0, height = 0;
+    bool depth = false;
+    sequencer::StereoCameras eyes;
+  };
+  Slot slots[2];
+  int64_t begun = 0, finished = 0;
+
+  std::vector<sequencer::FrameComfort> comfort;
+  std::vector<std::string> warnings;
+  std::set<std::string> seenWarnings;
+  double waitSeconds = 0.0;
+
+  Impl(OffscreenRenderer& r, const scene::SceneState& s, const StereoFrameOptions& o)
+      : offscreen(r), base(s), options(o), compiled(scene::compileSequence(s)) {
+    camera = o.camera != scene::kNoEntity ? o.camera : shotCamera(s);
+    for (const std::string& p : compiled.problems()) warn(p);
+  }
+
+  void warn(const std::string& w) {
+    if (seenWarnings.insert(w).second) warnings.push_back(w);
+  }
+
+  void ensureOutput(int w, int h, GLenum format) {
+    if (fbo && w == width && h == height && format == colorFormat) return;
+    releaseOutput();
+    glCreateRenderbuffers(1, &color);
+    glNamedRenderbufferStorage(color, format, w, h);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferRenderbuffer(fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
+    width = w;
+    height = h;
+    colorFormat = format;
+  }
+  void releaseOutput() {
+    if (fbo) glDeleteFramebuffers(1, &fbo);
+    if (color) glDeleteRenderbuffers(1, &color);
+    fbo = color = 0;
+  }
+
+  size_t colorBytes(const Slot& s) const { return size_t(s.width) * size_t(s.height) * bytesPerPixel(s.kind); }
+  size_t depthBytes(const Slot& s) const { return size_t(s.width) * size_t(s.height) * 4; }
+  // Layout of a slot's buffer: colour of each view, then depth of each view.
+  size_t colorOffset(const Slot& s, int view) const { return colorBytes(s) * size_t(view); }
+  size_t depthOffset(const Slot& s, int view) const {
+    return colorBytes(s) * size_t(s.views) + depthBytes(s) * size_t(view);
+  }
+
+  // Renders one view and queues its reads into the slot's buffer.
+  void renderView(const scene::SceneState& state, const RenderView& view, Slot& slot, int index) {
+    RenderOptions ro;
+    ro.showGrid = options.showGrid;
+    ro.keepHdr = slot.kind == PixelKind::LinearFloat;
+    offscreen.renderer().render(state, view, fbo, ro);
+    slot.buffer.bindForPack();
+    auto* colorAt = reinterpret_cast<void*>(colorOffset(slot, index));
+    if (slot.kind == PixelKind::LinearFloat) {
+      offscreen.renderer().readHdrInto(colorAt, colorBytes(slot));
+    } else {
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+      glPixelStorei(GL_PACK_ALIGNMENT, 4);
+      glReadPixels(0, 0, slot.width, slot.height, GL_RGBA,
+                   slot.kind == PixelKind::Display16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE, colorAt);
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    }
+    if (slot.depth) offscreen.renderer().readDepth(reinterpret_cast<void*>(depthOffset(slot, index)));
+    PixelReadback::unbindPack();
+  }
+};
+
+StereoFrameSource::StereoFrameSource(OffscreenRenderer& renderer, const scene::SceneState& scene,
+                                     const StereoFrameOptions& options)
+    : d_(std::make_unique<Impl>(renderer, scene, options)) {}
+
+StereoFrameSource::~StereoFrameSource() {
+  if (d_->offscreen.makeCurrent()) {
+    for (auto& s : d_->slots) s.buffer.release();
+    d_->releaseOutput();
+  }
+}
+
+int StereoFrameSource::framesInFlight() const { return std::clamp(d_->options.framesInFlight, 1, 2); }
+scene::EntityId StereoFrameSource::camera() const { return d_->camera; }
+const std::vector<sequencer::FrameComfort>& StereoFrameSource::comfort() const { return d_->comfort; }
+const std::vector<std::string>& StereoFrameSource::warnings() const { return d_->warnings; }
+double StereoFrameSource::readbackWaitSeconds() const { return d_->waitSeconds; }
+
+bool StereoFrameSource::begin(const sequencer::FrameJob& job, std::string& error) {
+  Impl& d = *d_;
+  if (!d.offscreen.makeCurrent()) {
+    error = "the headless OpenGL context could not be made current";
+    return false;
+  }
+  if (d.camera == scene::kNoEntity || !d.base.find(d.camera) || !d.base.find(d.camera)->camera) {
+    error = "the scene has no camera to render through (add one, or name one with --camera)";
+    return false;
+  }
+  std::vector<std::string> warnings;
+  const scene::SceneState state = scene::animatedState(d.base, d.compiled, job.time, &warnings);
+  for (const std::string& w : warnings) d.warn(w);
+  const EyeViews views = eyeViews(state, d.camera, job.eyeWidth, job.eyeHeight);
+
+  Impl::Slot& slot = d.slots[d.begun % 2];
+  slot.buffer.unmap();
+  slot.frame = job.frame;
+  slot.kind = job.floatPixels ? PixelKind::LinearFloat
+                              : d.options.displayBits16 ? PixelKind::Display16 : PixelKind::Display8;
+  slot.width = job.eyeWidth;
+  slot.height = job.eyeHeight;
+  const bool twoViews = job.bothEyes && views.stereo;
+  slot.views = twoViews ? 2 : 1;
+  slot.duplicate = job.bothEyes && !views.stereo;
+  slot.depth = d.options.comfort.has_value();
+  slot.eyes = views.eyes;
+  d.ensureOutput(job.eyeWidth, job.eyeHeight, slot.kind == PixelKind::Display16 ? GL_RGBA16 : GL_RGBA8);
+  slot.buffer.reserve(d.colorBytes(slot) * size_t(slot.views) + (slot.depth ? d.depthBytes(slot) * size_t(slot.views) : 0));
+  if (twoViews) {
+    d.renderView(state, views.left, slot, 0);
+    d.renderView(state, views.right, slot, 1);
+  } else {
+    d.renderView(state, views.mono, slot, 0);
+  }
+  slot.buffer.fence();
+  ++d.begun;
+  const GLenum err = glGetError();
+  if (err != GL_NO_ERROR) {
+    error = "OpenGL error " + std::to_string(err) + " while rendering frame " + std::to_string(job.frame);
+    return false;
+  }
+  return true;
+}
+
+bool StereoFrameSource::finish(const sequencer::FrameJob& job, sequencer::EyeImages& out, std::string& error) {
+  Impl& d = *d_;
+  if (d.finished >= d.begun) {
+    error = "finish() without a frame begun";
+    return false;
+  }
+  Impl::Slot& slot = d.slots[d.finished % 2];
+  if (slot.frame != job.frame) {
+    error = "frames finished out of order (" + std::to_string(job.frame) + " after " + std::to_string(slot.frame) + ")";
+    return false;
+  }
+  d.offscreen.makeCurrent();
+  const auto t0 = std::chrono::steady_clock::now();
+  const uint8_t* p = slot.buffer.map();
+  d.waitSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!p) {
+    error = "could not map the pixel buffer of frame " + std::to_string(job.frame);
+    return false;
+  }
+  out.left = imageFrom(p + d.colorOffset(slot, 0), slot.width, slot.height, slot.kind);
+  if (slot.views == 2) out.right = imageFrom(p + d.colorOffset(slot, 1), slot.width, slot.height, slot.kind);
+  else if (slot.duplicate) out.right = out.left;
+  if (slot.depth) {
+    const std::vector<float> left = depthFrom(p + d.depthOffset(slot, 0), slot.width, slot.height);
+    std::vector<float> right;
+    if (slot.views == 2) right = depthFrom(p + d.depthOffset(slot, 1), slot.width, slot.height);
+    auto image = [&](const std::vector<float>& px, const sequencer::CameraModel& cam) {
+      return sequencer::DepthImage{slot.width, slot.height, px.data(), sequencer::DepthKind::ReversedZ, cam.nearClip,
+                                   cam.farClip};
+    };
+    const sequencer::DepthImage l = image(left, slot.eyes.left);
+    const sequencer::DepthImage r = image(right, slot.eyes.right);
+    sequencer::FrameComfort fc{job.frame, sequencer::checkComfort(slot.eyes, l, right.empty() ? nullptr : &r,
+                                                                  *d.options.comfort)};
+    d.comfort.push_back(fc);
+    if (onComfort) onComfort(fc);
+  }
+  slot.buffer.unmap();
+  ++d.finished;
+  return true;
+}
+
+}  // namespace hs::render

@@ -1,0 +1,57 @@
+#pragma once
+// Named terrain edits for the editor, the CLI and tests (as operations.h is
+// for the rest): each is one undo step. Tile edits that take long (erosion,
+// paint rules, DEM import into a terrain) are terrain_jobs.h.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <QString>
+
+#include "scene/document.h"
+#include "terrain/heightfield.h"
+#include "terrain/heightmap_image.h"
+
+namespace hs::scene::ops {
+
+struct NewTerrain {
+  std::string name = "Terrain";
+  int samplesX = 1025, samplesY = 1025;         // 2..8193 per side
+  glm::dvec2 sizeMetres{1024.0, 1024.0};        // first to last sample
+  glm::dvec3 centre{0.0};                       // world position of the terrain's centre at height 0
+  // What it starts as: flat at heightRange.min, or fractal hills spanning
+  // heightRange (New Terrain dialog: a base to sculpt and erode).
+  enum class Start { Flat, Hills };
+  Start start = Start::Flat;
+  terrain::HeightRange heightRange{0.0f, 100.0f};  // metres, relative to the centre's height
+  uint64_t seed = 1;
+  std::vector<terrain::Material> materials;     // empty: terrain::defaultMaterials()
+  double lodErrorPixels = 1.0;
+};
+
+// A flat terrain and an entity showing it (its translation at `centre`), in
+// one undo step. Returns the entity, or 0 with `error` (bad sizes, ...).
+EntityId addTerrain(Document& doc, const NewTerrain& spec, std::string& error);
+
+// A terrain from a heightfield made elsewhere (a DEM import keeps its CRS
+// origin in the heightfield, so the entity stays at 0 and the terrain lands
+// at its georeferenced place). Default materials and paint rules.
+EntityId addTerrainFromHeightfield(Document& doc, terrain::Heightfield hf, const std::string& name,
+                                   std::string& error, double lodErrorPixels = 1.0);
+
+// Small values of a terrain (undoable like any field; `mergeKey` folds a
+// drag or a colour pick into one step).
+bool setTerrainMaterial(Document& doc, TerrainId id, int layer, const terrain::Material& m,
+                        const QString& mergeKey = {});
+bool setTerrainPaintRules(Document& doc, TerrainId id, std::vector<terrain::PaintRule> rules);
+
+// The terrain entity named `name` (entity or terrain name), or, with an
+// empty name, the only terrain of the scene. 0 with `error` otherwise.
+EntityId findTerrainEntity(const SceneState& state, const std::string& name, std::string& error);
+
+// Writes every paint layer as a 16-bit PNG (or 8-bit, or EXR by extension)
+// into `dir`: "<terrain>_<layer>_<material>.<ext>". Returns the files.
+terrain::Result<std::vector<std::string>> exportPaintWeights(const TerrainAsset& t, const std::string& dir,
+                                                             const std::string& extension = "png", int bits = 16);
+
+}  // namespace hs::scene::ops

@@ -1,0 +1,122 @@
+#version 450 core
+// Terrain shading: holes and the area past the last sample discarded,
+// per-pixel normals from the height texture, splat materials blended by the
+// paint weights (albedo colour x texture, tangent-space normal maps,
+// roughness, tiling), lit like the meshes (sun, sky ambient, point lights).
+in vec3 vViewPos;
+in vec2 vSample;
+in vec2 vLocal;
+
+uniform sampler2D uHeight;
+uniform ivec2 uSamples;
+uniform vec2 uSpacing;
+uniform bool uHasHoles;
+uniform usampler2D uHoles;
+uniform mat3 uViewRot;
+
+const int MAX_LAYERS = 16;
+uniform int uLayerCount;
+uniform int uWeightSlice[MAX_LAYERS];    // slice of uWeights, or -1: constant uWeightConst
+uniform float uWeightConst[MAX_LAYERS];
+uniform sampler2DArray uWeights;
+uniform vec3 uAlbedo[MAX_LAYERS];        // linear
+uniform float uRoughness[MAX_LAYERS];
+uniform float uTiling[MAX_LAYERS];       // metres per texture repeat
+uniform int uAlbedoLayer[MAX_LAYERS];    // slice of uAlbedoTex, or -1
+uniform int uNormalLayer[MAX_LAYERS];    // slice of uNormalTex, or -1
+uniform sampler2DArray uAlbedoTex;       // sRGB: sampled as linear
+uniform sampler2DArray uNormalTex;
+
+uniform vec3 uSunDirView;
+uniform vec3 uSunColor;
+uniform bool uHasSun;
+uniform vec3 uUpView;
+uniform vec3 uSkyColor;
+uniform vec3 uGroundColor;
+uniform float uAmbient;
+const int MAX_POINT_LIGHTS = 8;
+uniform int uPointLightCount;
+uniform vec3 uPointPosView[MAX_POINT_LIGHTS];
+uniform vec3 uPointColor[MAX_POINT_LIGHTS];
+uniform float uPointRange[MAX_POINT_LIGHTS];
+
+layout(location = 0) out vec4 outColor;
+
+float h(vec2 s) { return textureLod(uHeight, (s + 0.5) / vec2(uSamples), 0.0).r; }
+
+vec3 light(vec3 albedo, vec3 n, float roughness) {
+  vec3 v = normalize(-vViewPos);
+  float up = dot(n, uUpView) * 0.5 + 0.5;
+  vec3 color = albedo * mix(uGroundColor, uSkyColor, up) * uAmbient;
+  // Roughness to a Blinn-Phong exponent and a dielectric highlight.
+  float r2 = max(roughness * roughness, 0.02);
+  float shininess = clamp(2.0 / (r2 * r2) - 2.0, 2.0, 512.0);
+  float specular = 0.04 * (1.0 - roughness) * (shininess + 8.0) / 8.0;
+  if (uHasSun) {
+    float ndl = max(dot(n, uSunDirView), 0.0);
+    vec3 hv = normalize(uSunDirView + v);
+    float spec = ndl > 0.0 ? pow(max(dot(n, hv), 0.0), shininess) * specular : 0.0;
+    color += (albedo * ndl + vec3(spec)) * uSunColor;
+  }
+  for (int i = 0; i < uPointLightCount; ++i) {
+    vec3 toLight = uPointPosView[i] - vViewPos;
+    float d = length(toLight);
+    vec3 l = toLight / max(d, 1e-4);
+    float window = clamp(1.0 - pow(d / uPointRange[i], 4.0), 0.0, 1.0);
+    float atten = window * window / max(d * d, 1e-4);
+    float ndl = max(dot(n, l), 0.0);
+    vec3 hv = normalize(l + v);
+    float spec = ndl > 0.0 ? pow(max(dot(n, hv), 0.0), shininess) * specular : 0.0;
+    color += (albedo * ndl + vec3(spec)) * uPointColor[i] * atten;
+  }
+  return color;
+}
+
+void main() {
+  // The grid extends past the last sample where a level's quads do not fit.
+  const vec2 last = vec2(uSamples - 1);
+  if (any(lessThan(vSample, vec2(-1e-3))) || any(greaterThan(vSample, last + 1e-3))) discard;
+  if (uHasHoles) {
+    // A cell is a hole when any of its corners is marked (heightfield.h).
+    ivec2 c = clamp(ivec2(floor(vSample)), ivec2(0), uSamples - 2);
+    if (texelFetch(uHoles, c, 0).r + texelFetch(uHoles, c + ivec2(1, 0), 0).r +
+        texelFetch(uHoles, c + ivec2(0, 1), 0).r + texelFetch(uHoles, c + ivec2(1, 1), 0).r > 0u)
+      discard;
+  }
+  // Bilinear central differences (linear in the samples: the same as
+  // interpolating the per-sample gradients, as Heightfield::normalAtLocal).
+  float gx = (h(vSample + vec2(1, 0)) - h(vSample - vec2(1, 0))) / (2.0 * uSpacing.x);
+  float gy = (h(vSample + vec2(0, 1)) - h(vSample - vec2(0, 1))) / (2.0 * uSpacing.y);
+  vec3 N = normalize(vec3(-gx, -gy, 1.0));
+  vec3 T = normalize(vec3(1.0, 0.0, gx));
+  vec3 B = normalize(cross(N, T));
+
+  vec3 albedo = vec3(0.0);
+  vec3 tn = vec3(0.0);
+  float rough = 0.0, total = 0.0;
+  vec2 wuv = (vSample + 0.5) / vec2(uSamples);
+  for (int i = 0; i < uLayerCount; ++i) {
+    float w = uWeightSlice[i] < 0 ? uWeightConst[i] : texture(uWeights, vec3(wuv, float(uWeightSlice[i]))).r;
+    if (w < 1e-3) continue;
+    vec2 uv = vLocal / uTiling[i];
+    vec3 a = uAlbedo[i];
+    if (uAlbedoLayer[i] >= 0) a *= texture(uAlbedoTex, vec3(uv, float(uAlbedoLayer[i]))).rgb;
+    vec3 n = vec3(0.0, 0.0, 1.0);
+    if (uNormalLayer[i] >= 0) n = texture(uNormalTex, vec3(uv, float(uNormalLayer[i]))).rgb * 2.0 - 1.0;
+    albedo += w * a;
+    tn += w * n;
+    rough += w * uRoughness[i];
+    total += w;
+  }
+  if (total > 0.0) {
+    albedo /= total;
+    rough /= total;
+    tn /= total;
+  } else {
+    albedo = vec3(0.5);
+    rough = 0.8;
+    tn = vec3(0.0, 0.0, 1.0);
+  }
+  vec3 n = normalize(T * tn.x + B * tn.y + N * max(tn.z, 1e-3));
+  outColor = vec4(light(albedo, normalize(uViewRot * n), rough), 1.0);
+}

@@ -1,0 +1,320 @@
+// The CDLOD terrain renderer through the headless EGL backend on llvmpipe:
+// no cracks where levels meet (no sky through a continuous surface), the
+// UTM-coordinate equality (camera-relative: a terrain at 500 km / 4400 km
+// renders as at the origin), the measured screen-space error against the
+// full-resolution mesh within the bound, a brush dab uploading exactly its
+// region, holes drawn as holes and not pickable, and scenes without terrain
+// not running the pass.
+#include <QtTest>
+
+#include <algorithm>
+#include <cmath>
+
+#include "image_compare.h"
+#include "render/offscreen_renderer.h"
+#include "scene/document.h"
+#include "scene/fields.h"
+#include "scene/operations.h"
+#include "scene/terrain_pick.h"
+#include "scene/terrain_edits.h"
+#include "scene/terrain_ops.h"
+#include "terrain/noise.h"
+#include "terrain/stroke.h"
+
+using namespace hs;
+
+namespace {
+
+const glm::vec3 kSky(1.0f, 0.0f, 1.0f);  // magenta: no terrain colour is anywhere near it
+
+test::Rgba8Image toTest(const render::Image& img) { return {img.width, img.height, img.rgba8}; }
+
+scene::Transform lookFrom(glm::dvec3 eye, glm::dvec3 target) {
+  const glm::dvec3 f = glm::normalize(target - eye);
+  const glm::dvec3 r = glm::normalize(glm::cross(f, glm::dvec3(0, 0, 1)));
+  const glm::dvec3 u = glm::cross(r, f);
+  scene::Transform t;
+  t.translation = eye;
+  t.rotation = glm::quat_cast(glm::dmat3(r, u, -f));
+  return t;
+}
+
+// A rough terrain (ridged noise, 60 m of relief) with a sun and a camera;
+// the sky, horizon and ground colours all magenta, no grid, no tone curve.
+struct TerrainScene {
+  scene::Document doc;
+  scene::EntityId terrain = scene::kNoEntity;
+  scene::EntityId camera = scene::kNoEntity;
+  explicit TerrainScene(int samples, double size, glm::dvec3 at = glm::dvec3(0.0), double lodError = 1.0) {
+    scene::SceneState s;
+    s.settings.showGrid = false;
+    s.settings.tonemap = scene::Tonemap::None;
+    s.settings.antialiasing = scene::Antialiasing::None;
+    s.settings.skyZenith = s.settings.skyHorizon = s.settings.groundColor = kSky;
+    s.settings.ambientIntensity = 0.0f;  // the ambient light is magenta too: keep it off the terrain
+    doc.reset(std::move(s), {});
+    scene::ops::addLight(doc, "Sun", lookFrom({0, 0, 0}, {0.4, 0.3, -1.0}), scene::Light{});
+    scene::ops::NewTerrain spec;
+    spec.samplesX = spec.samplesY = samples;
+    spec.sizeMetres = glm::dvec2(size);
+    spec.centre = at;
+    spec.lodErrorPixels = lodError;
+    std::string error;
+    terrain = scene::ops::addTerrain(doc, spec, error);
+    if (!terrain) qFatal("%s", error.c_str());
+    terrain::Heightfield& hf = data().terrain().height;
+    terrain::FractalNoise n;
+    n.seed = 5;
+    n.scale = size / 6.0;
+    n.octaves = 8;
+    std::vector<float> h(size_t(samples) * size_t(samples));
+    for (int y = 0; y < samples; ++y)
+      for (int x = 0; x < samples; ++x)
+        h[size_t(y) * size_t(samples) + size_t(x)] =
+            60.0f * (1.0f - std::abs(n.at(x * hf.spacing().x, y * hf.spacing().y)));
+    hf.write(hf.bounds(), h);
+    data().noteChanged(hf.bounds(), scene::kTerrainAll);
+    scene::Camera c;
+    c.verticalFovDeg = 40.0;
+    c.nearClip = 0.5;
+    camera = scene::ops::addCamera(doc, "Camera", scene::Transform{}, c);
+  }
+  scene::TerrainData& data() { return *scene::terrainOf(doc.state(), terrain)->data; }
+  const scene::SceneState& state() const { return doc.state(); }
+  glm::dvec3 origin() const { return scene::terrainWorldOrigin(doc.state(), terrain); }
+  void look(glm::dvec3 eye, glm::dvec3 target) { scene::ops::setTransforms(doc, {{camera, lookFrom(eye, target)}}, "look"); }
+  render::RenderView view(int w, int h) const { return render::viewFromCamera(doc.state(), camera, w, h); }
+};
+
+bool isSky(const render::Image& img, int x, int y) {
+  const uint8_t* p = &img.rgba8[(size_t(y) * size_t(img.width) + size_t(x)) * 4];
+  return p[0] > 250 && p[1] < 5 && p[2] > 250;
+}
+
+size_t skyPixels(const render::Image& img) {
+  size_t n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) n += isSky(img, x, y);
+  return n;
+}
+
+struct ErrorStats {
+  double maxPx = 0.0, p99 = 0.0, mean = 0.0;
+  size_t pixels = 0;
+};
+
+// For every pixel the terrain covers: the LOD surface point (from the depth
+// buffer), the full-resolution mesh's height at the same x, y, and the
+// distance in pixels between the two points on screen.
+ErrorStats measureError(render::OffscreenRenderer& r, const TerrainScene& s, const render::RenderView& v) {
+  std::vector<float> depth(size_t(v.width) * size_t(v.height));
+  r.renderer().readDepth(depth.data());
+  const glm::dmat4 p = v.projection();
+  const terrain::Heightfield& hf = scene::terrainOf(s.state(), s.terrain)->data->heights();
+  const glm::dvec3 o = s.origin();
+  std::vector<double> errors;
+  for (int y = 0; y < v.height; ++y)
+    for (int x = 0; x < v.width; ++x) {
+      const float d = depth[size_t(v.height - 1 - y) * size_t(v.width) + size_t(x)];
+      if (d <= 0.0f) continue;
+      // Reversed Z: depth = -p22 - p32 / zView.
+      const double zView = -p[3][2] / (double(d) + p[2][2]);
+      glm::dvec3 ro, dir;
+      v.pixelRay(x + 0.5, y + 0.5, ro, dir);
+      const glm::dvec3 hit = ro + dir * (-zView / glm::dot(dir, v.forward()));
+      const glm::dvec2 sample = (glm::dvec2(hit) - glm::dvec2(o)) / hf.spacing();
+      if (sample.x < 0 || sample.y < 0 || sample.x > hf.samplesX() - 1 || sample.y > hf.samplesY() - 1) continue;
+      const double full = o.z + double(render::fullMeshHeightAt(hf, sample));
+      glm::dvec2 a, b;
+      if (!v.project(hit, a) || !v.project(glm::dvec3(hit.x, hit.y, full), b)) continue;
+      errors.push_back(glm::length(a - b));
+    }
+  ErrorStats e;
+  e.pixels = errors.size();
+  if (errors.empty()) return e;
+  std::sort(errors.begin(), errors.end());
+  e.maxPx = errors.back();
+  e.p99 = errors[size_t(double(errors.size() - 1) * 0.99)];
+  double sum = 0.0;
+  for (double x : errors) sum += x;
+  e.mean = sum / double(errors.size());
+  return e;
+}
+
+}  // namespace
+
+class TestTerrainRender : public QObject {
+  Q_OBJECT
+  render::OffscreenRenderer r_;
+
+ private slots:
+  void initTestCase() {
+    std::string error;
+    QVERIFY2(r_.initialize(error), error.c_str());
+  }
+
+  // Looking down at a rough terrain that fills the whole view: every pixel
+  // is terrain, so one sky pixel is a crack. The view spans several levels
+  // (checked), with their morph zones in view.
+  void noCracksWhereLevelsMeet_data() {
+    QTest::addColumn<double>("lodError");
+    QTest::newRow("1 px") << 1.0;
+    QTest::newRow("4 px") << 4.0;
+    QTest::newRow("16 px") << 16.0;
+  }
+  void noCracksWhereLevelsMeet() {
+    QFETCH(double, lodError);
+    TerrainScene s(2049, 4096.0, glm::dvec3(0.0), lodError);
+    s.look({0.0, -300.0, 320.0}, {0.0, 200.0, 0.0});  // the view's top edge meets the ground 1.4 km away
+    const render::RenderView v = s.view(640, 360);
+    render::FrameStats stats;
+    const render::Image img = r_.render(s.state(), v, false, &stats);
+    const render::LodSelection lod = r_.renderer().terrainLod(s.state(), s.terrain, v);
+    int minLevel = 99, maxLevel = -1;
+    for (const auto& p : lod.patches) {
+      minLevel = std::min(minLevel, p.level);
+      maxLevel = std::max(maxLevel, p.level);
+    }
+    qInfo("error bound %.0f px: %zu quadrants, levels %d..%d, %zu triangles (full resolution: %d)", lodError,
+          lod.patches.size(), minLevel, maxLevel, stats.terrainTriangles, 2 * 2048 * 2048);
+    QVERIFY(maxLevel > minLevel);  // level boundaries in view (where cracks would be)
+    QCOMPARE(stats.terrainTriangles, lod.triangles());
+    const size_t sky = skyPixels(img);
+    if (sky) {
+      QDir().mkpath(HS_TEST_OUT_DIR);
+      test::writePng(HS_TEST_OUT_DIR "/terrain_cracks.png", toTest(img));
+    }
+    QVERIFY2(sky == 0, qPrintable(QString("%1 sky pixels through the terrain").arg(sky)));
+
+    // The check can fail: cut a hole, and the sky shows through it.
+    terrain::BrushSettings b;
+    b.tool = terrain::BrushTool::Holes;
+    b.radius = 40.0;
+    b.strength = 1.0f;
+    terrain::Stroke st(s.data().terrain(), b);
+    const terrain::StrokeUpdate u = st.dabAt(glm::dvec2(2048.0, 2048.0 + 500.0));
+    scene::noteTerrainChange(s.doc, scene::terrainOf(s.state(), s.terrain)->id, s.data(), u.changed, scene::kTerrainHoles);
+    const render::Image holed = r_.render(s.state(), v);
+    QVERIFY(skyPixels(holed) > 100);
+  }
+
+  // DESIGN.md: a terrain at UTM coordinates renders as it does at the origin.
+  void largeCoordinatesMatchOrigin() {
+    TerrainScene a(513, 512.0), b(513, 512.0, glm::dvec3(500000.0, 4400000.0, 300.0));
+    const glm::dvec3 eye(20.0, -30.0, 0.0), target(40.0, 5.0, 0.0);
+    auto place = [&](TerrainScene& s, glm::dvec3 shift) {
+      // A 4 m checkerboard painted on (sharp edges: shifts show), seen
+      // from 25 m above the ground under the eye.
+      terrain::PaintLayers& paint = s.data().terrain().paint;
+      for (int y = 0; y < paint.samplesY(); ++y)
+        for (int x = 0; x < paint.samplesX(); ++x)
+          if (((x / 4) + (y / 4)) % 2) paint.blend(x, y, 7, 1.0f);
+      s.data().noteChanged(s.data().heights().bounds(), scene::kTerrainPaint);
+      const double ground = *scene::terrainSurfaceAt(s.state(), s.terrain, glm::dvec2(eye + shift));
+      s.look(glm::dvec3(eye.x, eye.y, ground + 25.0) + glm::dvec3(shift.x, shift.y, 0.0),
+             glm::dvec3(target.x, target.y, ground - 10.0) + glm::dvec3(shift.x, shift.y, 0.0));
+    };
+    place(a, glm::dvec3(0.0));
+    place(b, glm::dvec3(500000.0, 4400000.0, 300.0));
+    const render::Image ia = r_.render(a.state(), a.view(480, 360));
+    const render::Image ib = r_.render(b.state(), b.view(480, 360));
+    const test::CompareResult cmp = test::compareImages(toTest(ia), toTest(ib), 2);
+    qInfo("origin vs UTM: %s", cmp.summary().c_str());
+    QVERIFY(cmp.sizeMatches);
+    QVERIFY2(cmp.maxChannelDiff <= 8 && cmp.differingShare <= 0.001, cmp.summary().c_str());
+    QVERIFY(skyPixels(ia) < size_t(480 * 360) / 2);  // mostly terrain: the comparison means something
+    // And it could fail: the camera 5 mm off.
+    scene::Transform t = b.state().find(b.camera)->transform;
+    t.translation.x += 0.005;
+    scene::ops::setTransforms(b.doc, {{b.camera, t}}, "nudge");
+    const render::Image ic = r_.render(b.state(), b.view(480, 360));
+    QDir().mkpath(HS_TEST_OUT_DIR);
+    test::writePng(HS_TEST_OUT_DIR "/terrain_utm.png", toTest(ib));
+    test::writePng(HS_TEST_OUT_DIR "/terrain_utm_shifted.png", toTest(ic));
+    QVERIFY2(test::compareImages(toTest(ia), toTest(ic), 2).differingShare > 0.001, "a 5 mm shift should show");
+  }
+
+  // The measured screen-space error of the LOD against the full-resolution
+  // mesh, from the depth buffer, per pixel: within the bound.
+  void screenSpaceErrorWithinBound() {
+    TerrainScene s(2049, 4096.0, glm::dvec3(0.0), 1.0);
+    s.look({0.0, -1500.0, 260.0}, {0.0, 900.0, 0.0});
+    const render::RenderView v = s.view(960, 540);
+    render::FrameStats lodStats;
+    r_.render(s.state(), v, false, &lodStats);
+    const ErrorStats lod = measureError(r_, s, v);
+    scene::ops::setField(s.doc, s.terrain, *scene::findEntityField("terrain.lod_error_px"), scene::FieldValue(0.1));
+    render::FrameStats fineStats;
+    r_.render(s.state(), v, false, &fineStats);
+    const ErrorStats fine = measureError(r_, s, v);
+    qInfo("bound 1 px: %zu triangles, error max %.3f px, 99%% %.3f px, mean %.4f px over %zu pixels; "
+          "bound 0.1 px: %zu triangles, max %.3f px",
+          lodStats.terrainTriangles, lod.maxPx, lod.p99, lod.mean, lod.pixels, fineStats.terrainTriangles, fine.maxPx);
+    QVERIFY(lod.pixels > 100000);
+    QVERIFY2(lod.p99 <= 1.0, qPrintable(QString::number(lod.p99)));
+    QVERIFY2(lod.maxPx <= 1.5, qPrintable(QString::number(lod.maxPx)));  // depth-buffer and rasterisation noise above 1
+    QVERIFY(fine.maxPx < lod.maxPx + 0.25);
+    QVERIFY(fineStats.terrainTriangles > lodStats.terrainTriangles);
+    QVERIFY(lodStats.terrainTriangles < size_t(2) * 2048 * 2048 / 4);  // far fewer than the full mesh
+  }
+
+  // A brush dab uploads its region (4 bytes per height sample), nothing more.
+  void dabUploadsOnlyItsRegion() {
+    TerrainScene s(1025, 1024.0);
+    s.look({0.0, -600.0, 400.0}, {0.0, 0.0, 0.0});
+    render::FrameStats first;
+    const render::Image before = r_.render(s.state(), s.view(320, 180), false, &first);
+    QVERIFY(first.terrainUploadBytes >= size_t(1025) * 1025 * 4);  // the first frame uploads it all
+    terrain::BrushSettings b;
+    b.tool = terrain::BrushTool::Raise;
+    b.radius = 128.0;
+    b.strength = 30.0f;
+    terrain::Stroke st(s.data().terrain(), b);
+    const terrain::StrokeUpdate u = st.dabAt(glm::dvec2(512.0, 512.0));
+    scene::noteTerrainChange(s.doc, scene::terrainOf(s.state(), s.terrain)->id, s.data(), u.changed, scene::kTerrainHeights);
+    r_.makeCurrent();
+    const render::TerrainUpload up = r_.renderer().syncTerrain(s.data());
+    qInfo("radius-128 dab: changed %dx%d samples, uploaded %zu bytes in %zu sub-images (%.3f ms CPU incl. LOD bookkeeping)",
+          u.changed.width(), u.changed.height(), up.bytes, up.regions, up.cpuMs);
+    QCOMPARE(up.bytes, u.changed.samples() * 4);
+    QVERIFY(!up.full);
+    QVERIFY(up.regions <= 9);
+    render::FrameStats after;
+    const render::Image img = r_.render(s.state(), s.view(320, 180), false, &after);
+    QCOMPARE(after.terrainUploadBytes, size_t(0));  // already up to date
+    QVERIFY(img.rgba8 != before.rgba8);             // and it shows
+  }
+
+  void holesAreNotDrawnAndNotPicked() {
+    TerrainScene s(257, 256.0);
+    s.look({0.0, 0.0, 300.0}, {0.0, 0.01, 0.0});  // straight down on the centre
+    const render::RenderView v = s.view(200, 200);
+    QCOMPARE(r_.renderer().pick(s.state(), v, 100, 100), s.terrain);
+    terrain::BrushSettings b;
+    b.tool = terrain::BrushTool::Holes;
+    b.radius = 20.0;
+    b.strength = 1.0f;
+    terrain::Stroke st(s.data().terrain(), b);
+    const terrain::StrokeUpdate u = st.dabAt(glm::dvec2(128.0, 128.0));
+    scene::noteTerrainChange(s.doc, scene::terrainOf(s.state(), s.terrain)->id, s.data(), u.changed, scene::kTerrainHoles);
+    const render::Image img = r_.render(s.state(), v);
+    QVERIFY(isSky(img, 100, 100));
+    QVERIFY(!isSky(img, 10, 10));
+    QCOMPARE(r_.renderer().pick(s.state(), v, 100, 100), scene::kNoEntity);
+    QCOMPARE(r_.renderer().pick(s.state(), v, 10, 10), s.terrain);
+  }
+
+  void noTerrainNoPass() {
+    scene::SceneState s;
+    render::RenderView v;
+    v.width = v.height = 64;
+    render::FrameStats stats;
+    r_.render(s, v, false, &stats);
+    QCOMPARE(stats.terrainPatches, size_t(0));
+    QCOMPARE(stats.terrainTriangles, size_t(0));
+    QCOMPARE(stats.terrainUploadBytes, size_t(0));
+  }
+};
+
+QTEST_GUILESS_MAIN(TestTerrainRender)
+#include "test_terrain_render.moc"
