@@ -26,6 +26,37 @@ ImportResult fail(ImportReport&& report, std::string error, const Progress* prog
   return r;
 }
 
+// The georeferencing offset: only the double origin moves, so the float
+// positions (and every test of the reader) are untouched.
+bool applyGeoOffset(MeshData& mesh, ImportReport& report, const ImportOptions& options, std::string& error) {
+  GeoOffset g;
+  switch (options.geoOffsetMode) {
+    case ImportOptions::GeoOffsetMode::None:
+      return true;
+    case ImportOptions::GeoOffsetMode::Manual:
+      g.offset = options.geoOffset;
+      g.source = "set by hand";
+      break;
+    case ImportOptions::GeoOffsetMode::File:
+      if (!readGeoOffsetFile(options.geoOffsetFile, g, error)) return false;
+      break;
+    case ImportOptions::GeoOffsetMode::Auto: {
+      std::vector<std::string> tried;
+      const auto found = findGeoOffsetSidecar(report.file, &tried);
+      for (const auto& t : tried)
+        if (t.find(": used") == std::string::npos) report.warnings.push_back(t + " (offset file ignored)");
+      if (!found) return true;
+      g = *found;
+      break;
+    }
+  }
+  mesh.origin += g.offset;
+  report.geoOffset = g.offset;
+  report.geoOffsetSource = g.source;
+  report.geoOffsetCrs = g.crs;
+  return true;
+}
+
 // Common tail of every reader: clean, fill normals, recentre, count.
 ImportResult finish(MeshData&& mesh, ImportReport&& report, const ImportOptions& options,
                     const Progress* progress, std::chrono::steady_clock::time_point start) {
@@ -49,6 +80,10 @@ ImportResult finish(MeshData&& mesh, ImportReport&& report, const ImportOptions&
     report.normalsGenerated = true;
   }
   if (options.recenter) recenter(mesh);
+  if (!applyGeoOffset(mesh, report, options, r.error)) {
+    r.report = std::move(report);
+    return r;
+  }
   report.verticesOut = mesh.vertexCount();
   report.trianglesOut = mesh.triangleCount();
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -97,7 +132,7 @@ ImportResult importMesh(const std::string& path, const ImportOptions& options,
   if (useObj) {
     report.reader = "obj";
     const std::string baseDir = std::filesystem::path(path).parent_path().string();
-    if (!readObj(file.view(), path, baseDir, options, progress, mesh, report, error))
+    if (!readObj(file.view(), path, baseDir, options, progress, mesh, report, error, /*releaseInput=*/true))
       return fail(std::move(report), std::move(error), progress);
   } else {
     report.reader = "assimp";

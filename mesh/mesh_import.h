@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "mesh/georef_sidecar.h"
 #include "mesh/mesh_data.h"
 #include "mesh/progress.h"
 
@@ -27,6 +28,17 @@ struct ImportOptions {
   // Textures that fail to load become warnings, not errors (the mesh is
   // still useful); set to make them errors.
   bool strictTextures = false;
+
+  // Georeferencing offset added (in double) to the mesh's origin: the
+  // file's coordinates are relative to it (georef_sidecar.h).
+  //   None:   the file's coordinates are taken as they are (the default)
+  //   Auto:   a sidecar beside the file if there is one (Pix4D, ODM, plain)
+  //   File:   read from `geoOffsetFile`
+  //   Manual: `geoOffset`, set by hand
+  enum class GeoOffsetMode { None, Auto, File, Manual };
+  GeoOffsetMode geoOffsetMode = GeoOffsetMode::None;
+  std::string geoOffsetFile;
+  glm::dvec3 geoOffset{0.0};
 };
 
 struct ImportReport {
@@ -43,6 +55,10 @@ struct ImportReport {
   bool upAxisConverted = false;
   std::vector<std::string> warnings;  // each names the file and place
   double seconds = 0.0;
+  // The georeferencing offset that was applied (zero and empty if none).
+  glm::dvec3 geoOffset{0.0};
+  std::string geoOffsetSource;  // file it came from, or "set by hand"
+  std::string geoOffsetCrs;     // coordinate system the sidecar named, if any
 };
 
 struct ImportResult {

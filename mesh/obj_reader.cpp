@@ -1,18 +1,42 @@
 #include "mesh/obj_reader.h"
 
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
 #include <charconv>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <unordered_map>
 
 #include "mesh/mtl_reader.h"
+#include "mesh/parallel.h"
 #include "mesh/texture_decode.h"
+
+// How the reader scales (photogrammetry OBJs run to gigabytes):
+//   1. the text is cut into chunks at line starts;
+//   2. pass A, in parallel: each chunk counts its lines and its v, vt, vn and
+//      triangle corners (a cheap scan, no number parsing);
+//   3. prefix sums give every chunk the line number, vertex numbers and
+//      corner offset it starts at, and the output arrays are allocated once
+//      at their final size;
+//   4. pass B, in parallel: each chunk parses its lines straight into those
+//      arrays at its offsets, resolving face indices (absolute and relative)
+//      against the global counts it now knows;
+//   5. serially: materials, submeshes, messages in file order, then the
+//      vertex build, which writes the final indices over the corner array.
+// No per-chunk copies are merged, so memory stays near the final mesh; when
+// the text is a file mapping, each chunk's pages are dropped from memory as
+// soon as a pass is done with them. Results, messages and line numbers are
+// the same for any number of threads, and the same as a single pass.
 
 namespace hs::mesh {
 namespace {
 
 constexpr uint32_t kInvalid = UINT32_MAX;
+constexpr uint32_t kAbsent = kInvalid - 1;  // corner written without vt / vn
 
 struct Cursor {
   const char* p;
@@ -82,11 +106,73 @@ struct ComboHash {
   }
 };
 
+enum class Key { None, V, Vt, Vn, F, Usemtl, Mtllib, Skipped, Other };
+
+Key classify(std::string_view key) {
+  if (key == "v") return Key::V;
+  if (key == "vt") return Key::Vt;
+  if (key == "vn") return Key::Vn;
+  if (key == "f") return Key::F;
+  if (key == "usemtl") return Key::Usemtl;
+  if (key == "mtllib") return Key::Mtllib;
+  if (key == "l" || key == "p" || key == "curv" || key == "surf") return Key::Skipped;
+  return Key::Other;  // o, g, s, vp and others carry nothing we draw
+}
+
+// Calls fn(lineBegin, contentEnd, lineEnd) for every line of [begin, end);
+// contentEnd excludes a trailing '\r'. Stops early when fn returns false.
+template <class Fn>
+void forEachLine(const char* begin, const char* end, Fn&& fn) {
+  for (const char* p = begin; p < end;) {
+    const char* nl = static_cast<const char*>(memchr(p, '\n', size_t(end - p)));
+    const char* lineEnd = nl ? nl : end;
+    const char* contentEnd = lineEnd;
+    if (contentEnd > p && contentEnd[-1] == '\r') --contentEnd;
+    if (!fn(p, contentEnd, lineEnd)) return;
+    p = nl ? nl + 1 : end;
+  }
+}
+
+struct Chunk {
+  const char* begin = nullptr;
+  const char* end = nullptr;
+  // Pass A: what the chunk holds.
+  size_t newlines = 0, v = 0, vt = 0, vn = 0, corners = 0;
+  bool vtRefs = false, vnRefs = false;
+  // Where it starts in the file (prefix sums of the above).
+  size_t line0 = 0, v0 = 0, vt0 = 0, vn0 = 0, corner0 = 0;
+  // Pass B: what happened, merged in file order afterwards.
+  std::string error;  // first fatal problem (messages name the line)
+  size_t firstOutOfRangeLine = 0;
+  size_t polygons = 0, skipped = 0;
+  bool anyTexcoordRef = false, anyNormalRef = false;
+  struct Usemtl {
+    size_t corner;  // faces from this corner on use the material
+    std::string name;
+  };
+  struct Mtllib {
+    size_t line;
+    std::string name;
+  };
+  std::vector<Usemtl> usemtl;
+  std::vector<Mtllib> mtllib;
+};
+
+// Drops the whole pages of [b, e) from this process's memory: the file
+// stays in the page cache, but its pages stop counting towards our peak
+// memory once a pass is done with them. Only valid on a file mapping.
+void releasePages(const char* b, const char* e) {
+  static const size_t page = size_t(sysconf(_SC_PAGESIZE));
+  const uintptr_t lo = (reinterpret_cast<uintptr_t>(b) + page - 1) & ~(page - 1);
+  const uintptr_t hi = reinterpret_cast<uintptr_t>(e) & ~(page - 1);
+  if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_DONTNEED);
+}
+
 }  // namespace
 
 bool readObj(std::string_view text, const std::string& name, const std::string& baseDir,
              const ImportOptions& options, const Progress* progress, MeshData& out,
-             ImportReport& report, std::string& error) {
+             ImportReport& report, std::string& error, bool releaseInput) {
   // A binary file (a renamed image, an FBX) is not an OBJ: say so instead of
   // reporting the first garbage line as malformed.
   const size_t probe = std::min<size_t>(text.size(), 4096);
@@ -99,167 +185,314 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
   const bool zUp = options.up == UpAxis::Z;  // OBJ declares no axis: Y-up unless told
   report.upAxisConverted = !zUp;
   auto toZUp = [zUp](glm::dvec3 p) { return zUp ? p : glm::dvec3(p.x, -p.z, p.y); };
+  const char* const textBegin = text.data();
+  const char* const textEnd = text.data() + text.size();
 
-  std::vector<glm::vec3> positions;       // relative to `origin`
-  std::vector<glm::vec2> texcoords;
-  std::vector<glm::vec3> fileNormals;
+  auto lineError = [&](size_t lineNo, const char* lineBegin, const char* lineEnd, const std::string& what) {
+    const bool lastLine = lineEnd >= textEnd;
+    const bool noNewline = text.empty() || text.back() != '\n';
+    std::string shown(lineBegin, std::min<size_t>(size_t(lineEnd - lineBegin), 60));
+    if (lastLine && noNewline)
+      return name + ":" + std::to_string(lineNo) +
+             ": file is truncated: the last line stops in the middle of a statement ('" + shown + "')";
+    return name + ":" + std::to_string(lineNo) + ": " + what + " ('" + shown + "')";
+  };
+
+  // Provisional origin: the first finite vertex, rounded, keeps floats small
+  // from the first vertex on, so UTM coordinates never pass through single
+  // precision. Found before the parallel passes, which all need it.
   glm::dvec3 origin(0.0);
-  bool haveOrigin = false;
+  size_t originVertex = SIZE_MAX;  // vertices before it are NaN/Inf, stored as read
+  size_t scanned = 0;
+  forEachLine(textBegin, textEnd, [&](const char* b, const char* ce, const char*) {
+    Cursor c{b, ce};
+    c.skipSpace();
+    if (c.p >= ce || *c.p == '#' || c.token() != "v") return true;
+    glm::dvec3 v;
+    if (!c.number(v.x) || !c.number(v.y) || !c.number(v.z)) return false;  // pass B reports it
+    v = toZUp(v);
+    if (std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) {
+      origin = glm::round(v);
+      originVertex = scanned;
+      return false;
+    }
+    ++scanned;
+    return true;
+  });
 
-  // Faces as resolved (position, texcoord, normal) index triples, fanned into triangles.
-  std::vector<ComboKey> corners;
-  std::vector<Submesh> submeshes;
+  // Chunks: about eight per worker so uneven chunks balance, never smaller
+  // than 4 MB (a small file is one chunk, read exactly like a single pass).
+  const unsigned threads = resolveThreads(0);
+  const size_t target = std::max<size_t>(size_t(4) << 20, text.size() / (size_t(threads) * 8) + 1);
+  std::vector<Chunk> chunks;
+  for (const char* p = textBegin; p < textEnd || chunks.empty();) {
+    Chunk ch;
+    ch.begin = p;
+    const char* cut = p + std::min<size_t>(target, size_t(textEnd - p));
+    if (cut < textEnd) {
+      const char* nl = static_cast<const char*>(memchr(cut, '\n', size_t(textEnd - cut)));
+      cut = nl ? nl + 1 : textEnd;
+    }
+    ch.end = cut;
+    chunks.push_back(ch);
+    p = cut;
+    if (p >= textEnd) break;
+  }
+
+  // Pass A: counts.
+  std::atomic<bool> stop{false};
+  parallelTasks(chunks.size(), threads, [&](size_t k, unsigned) {
+    if (stop) return;
+    Chunk& ch = chunks[k];
+    forEachLine(ch.begin, ch.end, [&](const char* b, const char* ce, const char* le) {
+      ch.newlines += le < ch.end;
+      Cursor c{b, ce};
+      c.skipSpace();
+      if (c.p >= ce || *c.p == '#') return true;
+      switch (classify(c.token())) {
+        case Key::V: ++ch.v; break;
+        case Key::Vt: ++ch.vt; break;
+        case Key::Vn: ++ch.vn; break;
+        case Key::F: {
+          size_t n = 0;
+          while (!c.atEnd()) {
+            const std::string_view tok = c.token();
+            ++n;
+            const size_t s1 = tok.find('/');
+            if (s1 == std::string_view::npos) continue;
+            const size_t s2 = tok.find('/', s1 + 1);
+            ch.vtRefs |= (s2 == std::string_view::npos ? tok.size() : s2) > s1 + 1;
+            ch.vnRefs |= s2 != std::string_view::npos && s2 + 1 < tok.size();
+          }
+          if (n >= 3) ch.corners += (n - 2) * 3;
+          break;
+        }
+        default: break;
+      }
+      return true;
+    });
+    if (releaseInput) releasePages(ch.begin, ch.end);
+    if (isCancelled(progress)) stop = true;
+  });
+  // One report once the file is scanned, whatever the timing of the
+  // workers below (only the calling thread reports, and it may finish its
+  // chunks before the others cross a reporting step).
+  if (!stop) reportProgress(progress, 0.05, "Reading OBJ");
+  if (stop || isCancelled(progress)) {
+    error = name + ": import cancelled";
+    return false;
+  }
+
+  // Where each chunk starts, and the arrays at their final size.
+  size_t nv = 0, nvt = 0, nvn = 0, nc = 0, lines = 0;
+  bool vtRefs = false, vnRefs = false;
+  for (Chunk& ch : chunks) {
+    ch.line0 = lines, ch.v0 = nv, ch.vt0 = nvt, ch.vn0 = nvn, ch.corner0 = nc;
+    lines += ch.newlines, nv += ch.v, nvt += ch.vt, nvn += ch.vn, nc += ch.corners;
+    vtRefs |= ch.vtRefs, vnRefs |= ch.vnRefs;
+  }
+  std::vector<glm::vec3> positions(nv);  // relative to `origin`
+  std::vector<glm::vec2> texcoords(nvt);
+  std::vector<glm::vec3> fileNormals(nvn);
+  // Resolved corners, three per triangle (faces fanned). Texture and normal
+  // indices are kept only if some face uses them.
+  std::vector<uint32_t> cornerV(nc), cornerVt(vtRefs ? nc : 0), cornerVn(vnRefs ? nc : 0);
+
+  // Pass B: parse into place.
+  std::atomic<size_t> bytesDone{0};
+  const size_t progressStep = 4u << 20;
+  std::atomic<size_t> nextReport{progressStep};
+  parallelTasks(chunks.size(), threads, [&](size_t k, unsigned worker) {
+    Chunk& ch = chunks[k];
+    size_t lineNo = ch.line0, v = ch.v0, vt = ch.vt0, vn = ch.vn0, corner = ch.corner0;
+    std::vector<Corner> faceCorners;
+    const char* reported = ch.begin;
+    forEachLine(ch.begin, ch.end, [&](const char* lineBegin, const char* contentEnd, const char*) {
+      ++lineNo;
+      if (size_t(lineBegin - reported) >= (1u << 20)) {
+        const size_t done = bytesDone.fetch_add(size_t(lineBegin - reported)) + size_t(lineBegin - reported);
+        reported = lineBegin;
+        if (stop || isCancelled(progress)) {
+          stop = true;
+          return false;
+        }
+        // Only the calling thread reports (the callback need not be
+        // thread-safe), in file-size steps like a single pass would.
+        size_t due = nextReport.load();
+        if (worker == 0 && done >= due && nextReport.compare_exchange_strong(due, done - done % progressStep + progressStep)) {
+          reportProgress(progress, 0.9 * double(done) / double(text.size()), "Reading OBJ");
+          if (isCancelled(progress)) {
+            stop = true;
+            return false;
+          }
+        }
+      }
+      Cursor c{lineBegin, contentEnd};
+      c.skipSpace();
+      if (c.p >= contentEnd || *c.p == '#') return true;
+      switch (classify(c.token())) {
+        case Key::V: {
+          glm::dvec3 p;
+          if (!c.number(p.x) || !c.number(p.y) || !c.number(p.z)) {
+            ch.error = lineError(lineNo, lineBegin, contentEnd, "cannot read three vertex coordinates");
+            return false;
+          }
+          positions[v] = glm::vec3(v < originVertex ? toZUp(p) : toZUp(p) - origin);
+          ++v;
+          break;
+        }
+        case Key::Vt: {
+          double u, w = 0.0;
+          if (!c.number(u) || (!c.atEnd() && !c.number(w))) {
+            ch.error = lineError(lineNo, lineBegin, contentEnd, "cannot read texture coordinate");
+            return false;
+          }
+          // Stored with v = 0 at the image's top row (the order images are read in).
+          texcoords[vt++] = glm::vec2(float(u), float(1.0 - w));
+          break;
+        }
+        case Key::Vn: {
+          glm::dvec3 n;
+          if (!c.number(n.x) || !c.number(n.y) || !c.number(n.z)) {
+            ch.error = lineError(lineNo, lineBegin, contentEnd, "cannot read three normal components");
+            return false;
+          }
+          fileNormals[vn++] = glm::vec3(toZUp(n));
+          break;
+        }
+        case Key::F: {
+          faceCorners.clear();
+          while (!c.atEnd()) {
+            Corner cc;
+            const std::string_view tok = c.token();
+            if (!parseCorner(tok, cc)) {
+              ch.error = lineError(lineNo, lineBegin, contentEnd, "cannot read face corner '" + std::string(tok) + "'");
+              return false;
+            }
+            faceCorners.push_back(cc);
+          }
+          if (faceCorners.size() < 3) {
+            ch.error = lineError(lineNo, lineBegin, contentEnd, "a face needs at least 3 corners");
+            return false;
+          }
+          if (faceCorners.size() > 3) ++ch.polygons;
+          // Indices resolve against what the file has defined so far, as
+          // a single pass sees it. Once a corner is out of range, the rest
+          // of the polygon's fan is marked invalid (earlier triangles of it
+          // stay), exactly as before.
+          bool outOfRange = false;
+          auto resolveCorner = [&](const Corner& kc) {
+            ComboKey r{resolve(kc.v, v), kc.vt ? resolve(kc.vt, vt) : kAbsent, kc.vn ? resolve(kc.vn, vn) : kAbsent};
+            if (r.v == kInvalid || r.vt == kInvalid || r.vn == kInvalid) outOfRange = true;
+            ch.anyTexcoordRef |= kc.vt != 0;
+            ch.anyNormalRef |= kc.vn != 0;
+            return r;
+          };
+          ComboKey resolved[3];
+          resolved[0] = resolveCorner(faceCorners[0]);
+          for (size_t i = 1; i + 1 < faceCorners.size(); ++i) {
+            resolved[1] = resolveCorner(faceCorners[i]);
+            resolved[2] = resolveCorner(faceCorners[i + 1]);
+            for (const auto& r : resolved) {
+              cornerV[corner] = outOfRange ? kInvalid : r.v;
+              if (vtRefs) cornerVt[corner] = outOfRange ? 0 : r.vt;
+              if (vnRefs) cornerVn[corner] = outOfRange ? 0 : r.vn;
+              ++corner;
+            }
+          }
+          if (outOfRange && !ch.firstOutOfRangeLine) ch.firstOutOfRangeLine = lineNo;
+          break;
+        }
+        case Key::Usemtl:
+          c.skipSpace();
+          ch.usemtl.push_back({corner, std::string(c.p, contentEnd)});
+          break;
+        case Key::Mtllib:
+          c.skipSpace();
+          ch.mtllib.push_back({lineNo, std::string(c.p, contentEnd)});
+          break;
+        case Key::Skipped:
+          ++ch.skipped;  // lines, points and free-form geometry are not meshes
+          break;
+        default:
+          break;
+      }
+      return true;
+    });
+    bytesDone.fetch_add(size_t(ch.end - reported));
+    if (releaseInput) releasePages(ch.begin, ch.end);
+  });
+  if (stop && isCancelled(progress)) {
+    error = name + ": import cancelled";
+    return false;
+  }
   std::vector<MtlMaterial> mtl;
+  auto readLibraries = [&](const Chunk& ch) {
+    for (const auto& lib : ch.mtllib) {
+      std::string mtlError;
+      const auto path = (std::filesystem::path(baseDir) / lib.name).string();
+      if (!readMtl(path, mtl, mtlError))
+        report.warnings.push_back(name + ":" + std::to_string(lib.line) + ": " + mtlError);
+    }
+  };
+  for (size_t k = 0; k < chunks.size(); ++k)
+    if (!chunks[k].error.empty()) {
+      // The first in the file; libraries named before it were read (and
+      // their problems reported) by then, as in a single pass.
+      for (size_t j = 0; j <= k; ++j) {
+        readLibraries(chunks[j]);
+        report.polygonsTriangulated += chunks[j].polygons;
+        report.skippedLines += chunks[j].skipped;
+      }
+      error = chunks[k].error;
+      return false;
+    }
+
+  // Materials, submeshes and messages in file order.
+  std::vector<Submesh> submeshes;
   std::unordered_map<std::string, int> materialIndex;  // name -> index in out.materials
   int currentMaterial = -1;
   bool anyTexcoordRef = false, anyNormalRef = false;
   size_t firstOutOfRangeLine = 0;
-
-  auto lineError = [&](size_t lineNo, const char* lineBegin, const char* lineEnd,
-                       const std::string& what) {
-    const bool lastLine = lineEnd >= text.data() + text.size();
-    const bool noNewline = text.empty() || text.back() != '\n';
-    std::string shown(lineBegin, std::min<size_t>(size_t(lineEnd - lineBegin), 60));
-    if (lastLine && noNewline)
-      error = name + ":" + std::to_string(lineNo) +
-              ": file is truncated: the last line stops in the middle of a statement ('" + shown +
-              "')";
-    else
-      error = name + ":" + std::to_string(lineNo) + ": " + what + " ('" + shown + "')";
+  // Faces of [from, to) use the current material: a new submesh starts
+  // where the material differs from the last submesh's (as a single pass
+  // starts one at the first face after such a change).
+  auto facesUpTo = [&](size_t from, size_t to) {
+    if (to <= from) return;
+    if (submeshes.empty() || submeshes.back().material != currentMaterial)
+      submeshes.push_back({uint32_t(from), 0, currentMaterial});
   };
-
-  const char* p = text.data();
-  const char* end = text.data() + text.size();
-  size_t lineNo = 0;
-  const size_t progressStep = 4u << 20;
-  size_t nextProgress = progressStep;
-  std::vector<Corner> faceCorners;
-
-  while (p < end) {
-    ++lineNo;
-    const char* lineBegin = p;
-    const char* nl = static_cast<const char*>(memchr(p, '\n', size_t(end - p)));
-    const char* lineEnd = nl ? nl : end;
-    p = nl ? nl + 1 : end;
-    const char* contentEnd = lineEnd;
-    if (contentEnd > lineBegin && contentEnd[-1] == '\r') --contentEnd;
-
-    if (size_t(lineBegin - text.data()) >= nextProgress) {
-      nextProgress += progressStep;
-      reportProgress(progress, 0.9 * double(lineBegin - text.data()) / double(text.size()),
-                     "Reading OBJ");
-      if (isCancelled(progress)) {
-        error = name + ": import cancelled";
-        return false;
-      }
-    }
-
-    Cursor c{lineBegin, contentEnd};
-    c.skipSpace();
-    if (c.p >= contentEnd || *c.p == '#') continue;
-    const std::string_view key = c.token();
-
-    if (key == "v") {
-      glm::dvec3 v;
-      if (!c.number(v.x) || !c.number(v.y) || !c.number(v.z)) {
-        lineError(lineNo, lineBegin, contentEnd, "cannot read three vertex coordinates");
-        return false;
-      }
-      v = toZUp(v);
-      if (!haveOrigin && std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) {
-        // Provisional origin: keeps floats small from the first vertex on,
-        // so UTM coordinates never pass through single precision.
-        origin = glm::round(v);
-        haveOrigin = true;
-      }
-      positions.emplace_back(v - origin);
-    } else if (key == "vt") {
-      double u, w = 0.0;
-      if (!c.number(u)) {
-        lineError(lineNo, lineBegin, contentEnd, "cannot read texture coordinate");
-        return false;
-      }
-      if (!c.atEnd() && !c.number(w)) {
-        lineError(lineNo, lineBegin, contentEnd, "cannot read texture coordinate");
-        return false;
-      }
-      // Stored with v = 0 at the image's top row (the order images are read in).
-      texcoords.emplace_back(float(u), float(1.0 - w));
-    } else if (key == "vn") {
-      glm::dvec3 n;
-      if (!c.number(n.x) || !c.number(n.y) || !c.number(n.z)) {
-        lineError(lineNo, lineBegin, contentEnd, "cannot read three normal components");
-        return false;
-      }
-      fileNormals.emplace_back(toZUp(n));
-    } else if (key == "f") {
-      faceCorners.clear();
-      while (!c.atEnd()) {
-        Corner corner;
-        const std::string_view tok = c.token();
-        if (!parseCorner(tok, corner)) {
-          lineError(lineNo, lineBegin, contentEnd,
-                    "cannot read face corner '" + std::string(tok) + "'");
-          return false;
-        }
-        faceCorners.push_back(corner);
-      }
-      if (faceCorners.size() < 3) {
-        lineError(lineNo, lineBegin, contentEnd, "a face needs at least 3 corners");
-        return false;
-      }
-      if (faceCorners.size() > 3) ++report.polygonsTriangulated;
-      if (submeshes.empty() || submeshes.back().material != currentMaterial)
-        submeshes.push_back({uint32_t(corners.size()), 0, currentMaterial});
-      bool outOfRange = false;
-      ComboKey resolved[3];
-      auto resolveCorner = [&](const Corner& k) {
-        ComboKey r{resolve(k.v, positions.size()),
-                   k.vt ? resolve(k.vt, texcoords.size()) : kInvalid - 1,
-                   k.vn ? resolve(k.vn, fileNormals.size()) : kInvalid - 1};
-        if (r.v == kInvalid || r.vt == kInvalid || r.vn == kInvalid) outOfRange = true;
-        anyTexcoordRef |= k.vt != 0;
-        anyNormalRef |= k.vn != 0;
-        return r;
-      };
-      resolved[0] = resolveCorner(faceCorners[0]);
-      for (size_t i = 1; i + 1 < faceCorners.size(); ++i) {
-        resolved[1] = resolveCorner(faceCorners[i]);
-        resolved[2] = resolveCorner(faceCorners[i + 1]);
-        for (const auto& r : resolved) corners.push_back(outOfRange ? ComboKey{kInvalid, 0, 0} : r);
-      }
-      if (outOfRange && !firstOutOfRangeLine) firstOutOfRangeLine = lineNo;
-    } else if (key == "usemtl") {
-      c.skipSpace();
-      const std::string mname(c.p, contentEnd);
-      auto it = materialIndex.find(mname);
+  for (const Chunk& ch : chunks) {
+    // A chunk's usemtl and mtllib statements interleave with its faces;
+    // mtllib only adds definitions, so its position among faces does not
+    // matter, only among other mtllib statements and messages.
+    size_t at = ch.corner0;
+    for (const auto& u : ch.usemtl) {
+      facesUpTo(at, u.corner);
+      at = u.corner;
+      auto it = materialIndex.find(u.name);
       if (it == materialIndex.end()) {
         Material m;
-        m.name = mname;
-        it = materialIndex.emplace(mname, int(out.materials.size())).first;
+        m.name = u.name;
+        it = materialIndex.emplace(u.name, int(out.materials.size())).first;
         out.materials.push_back(m);
       }
       currentMaterial = it->second;
-    } else if (key == "mtllib") {
-      c.skipSpace();
-      const std::string lib(c.p, contentEnd);
-      std::string mtlError;
-      const auto path = (std::filesystem::path(baseDir) / lib).string();
-      if (!readMtl(path, mtl, mtlError))
-        report.warnings.push_back(name + ":" + std::to_string(lineNo) + ": " + mtlError);
-    } else if (key == "l" || key == "p" || key == "curv" || key == "surf") {
-      ++report.skippedLines;  // lines, points and free-form geometry are not meshes
     }
-    // o, g, s, vp, and other statements carry nothing we draw.
+    facesUpTo(at, ch.corner0 + ch.corners);
+    readLibraries(ch);
+    report.polygonsTriangulated += ch.polygons;
+    report.skippedLines += ch.skipped;
+    anyTexcoordRef |= ch.anyTexcoordRef;
+    anyNormalRef |= ch.anyNormalRef;
+    if (!firstOutOfRangeLine) firstOutOfRangeLine = ch.firstOutOfRangeLine;
   }
-  if (!submeshes.empty())
-    for (size_t i = 0; i < submeshes.size(); ++i)
-      submeshes[i].indexCount =
-          uint32_t((i + 1 < submeshes.size() ? submeshes[i + 1].firstIndex : corners.size()) -
-                   submeshes[i].firstIndex);
+  for (size_t i = 0; i < submeshes.size(); ++i)
+    submeshes[i].indexCount =
+        uint32_t((i + 1 < submeshes.size() ? submeshes[i + 1].firstIndex : nc) - submeshes[i].firstIndex);
 
   report.verticesIn = positions.size();
-  report.trianglesIn = corners.size() / 3;
+  report.trianglesIn = nc / 3;
   if (firstOutOfRangeLine)
     report.warnings.push_back(name + ":" + std::to_string(firstOutOfRangeLine) +
                               ": face index out of range (first such face; the file has " +
@@ -267,7 +500,7 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
   if (report.skippedLines)
     report.warnings.push_back(name + ": " + std::to_string(report.skippedLines) +
                               " line/point/curve statements were skipped (not triangles)");
-  if (corners.empty()) {
+  if (nc == 0) {
     error = text.empty() ? name + ": file is empty (0 bytes)"
                          : name + ": no faces to import (" + std::to_string(positions.size()) +
                                " vertices, 0 faces)";
@@ -275,13 +508,13 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
   }
 
   // Build output vertices: one per distinct (position, texcoord, normal).
-  // Scans without texcoords/normals map positions straight through.
+  // Scans without texcoords/normals map positions straight through. The
+  // final indices are written over the corner array they are built from.
   reportProgress(progress, 0.9, "Building vertices");
   out.origin = origin;
-  out.indices.resize(corners.size());
   if (!anyTexcoordRef && !anyNormalRef) {
     out.positions = std::move(positions);
-    for (size_t i = 0; i < corners.size(); ++i) out.indices[i] = corners[i].v;
+    out.indices = std::move(cornerV);
   } else {
     std::unordered_map<ComboKey, uint32_t, ComboHash> combos;
     // Most positions have one (texcoord, normal) pair: remember the first
@@ -289,12 +522,9 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
     std::vector<uint32_t> first(positions.size(), kInvalid);
     std::vector<ComboKey> outKey;
     outKey.reserve(positions.size());
-    for (size_t i = 0; i < corners.size(); ++i) {
-      const ComboKey k = corners[i];
-      if (k.v == kInvalid) {
-        out.indices[i] = kInvalid;
-        continue;
-      }
+    for (size_t i = 0; i < nc; ++i) {
+      const ComboKey k{cornerV[i], vtRefs ? cornerVt[i] : kAbsent, vnRefs ? cornerVn[i] : kAbsent};
+      if (k.v == kInvalid) continue;  // stays kInvalid: sanitize() drops the face
       uint32_t idx = first[k.v];
       if (idx == kInvalid) {
         idx = first[k.v] = uint32_t(outKey.size());
@@ -304,8 +534,12 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
         if (inserted) outKey.push_back(k);
         idx = it->second;
       }
-      out.indices[i] = idx;
+      cornerV[i] = idx;
     }
+    cornerVt = {};
+    cornerVn = {};
+    first = {};
+    combos = {};
     out.positions.resize(outKey.size());
     if (anyTexcoordRef) out.uvs.resize(outKey.size(), glm::vec2(0.0f));
     if (anyNormalRef) out.normals.resize(outKey.size(), glm::vec3(0.0f));
@@ -323,6 +557,7 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
     }
     // Normals on some faces only: regenerate them all rather than mix.
     if (partialNormals) out.normals.clear();
+    out.indices = std::move(cornerV);
   }
   out.submeshes = std::move(submeshes);
 

@@ -1,0 +1,276 @@
+// Decimation benchmark: error vs triangle count vs time, our decimator side
+// by side with meshoptimizer's meshopt_simplify (same input, same triangle
+// counts) and OpenMesh's stock DecimaterT + ModQuadricT, in one run, with
+// ratios; on the Stanford bunny and on a synthetic 5M-triangle scan tile.
+// Errors come from the project's error report (seeded surface sampling,
+// symmetric Hausdorff). Also draws the error-vs-time curves as a PNG.
+//
+//   bench_decimate [--bunny PATH] [--terrain-quads 1580] [--runs 5]
+//                  [--terrain-samples 1] [--stock-terrain 0.1|all|none]
+//                  [--threads 2] [--plot bench_decimate.png] [--skip-terrain] [--skip-bunny]
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+#include <algorithm>
+
+#include <meshoptimizer.h>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+
+#include "mesh/decimate.h"
+#include "mesh/error_metrics.h"
+#include "mesh/mesh_import.h"
+#include "plot_png.h"
+#include "scan_terrain.h"
+
+using namespace hs::mesh;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+struct Row {
+  std::string method;
+  double ratio = 0;
+  size_t triangles = 0;
+  double time = 0;
+  ErrorReport error;
+  double buildTime = 0;  // stock OpenMesh: building its mesh (not in `time`)
+};
+
+MeshData withIndices(const MeshData& base, std::vector<uint32_t> indices) {
+  MeshData m;
+  m.origin = base.origin;
+  m.positions = base.positions;
+  m.uvs = base.uvs;
+  m.materials = base.materials;
+  m.indices = std::move(indices);
+  m.submeshes.push_back({0, uint32_t(m.indices.size()), base.submeshes.empty() ? -1 : base.submeshes[0].material});
+  return m;
+}
+
+Row runOurs(const MeshData& in, double ratio, int runs, unsigned threads, MeshData& out) {
+  Row r;
+  r.method = "ours (2 threads)";
+  r.ratio = ratio;
+  if (threads != 2) r.method = "ours (" + std::to_string(threads) + " threads)";
+  DecimateOptions o;
+  o.targetRatio = ratio;
+  o.threads = threads;
+  r.time = HUGE_VAL;
+  DecimateResult best;
+  for (int i = 0; i < runs; ++i) {
+    const auto t0 = Clock::now();
+    DecimateResult d = decimate(in, o);
+    const double t = seconds(t0, Clock::now());
+    if (!d.ok()) {
+      std::fprintf(stderr, "decimate failed: %s\n", d.error.c_str());
+      std::exit(1);
+    }
+    if (t < r.time) r.time = t;
+    if (i == 0) best = std::move(d);
+  }
+  r.triangles = best.mesh.triangleCount();
+  out = std::move(best.mesh);
+  return r;
+}
+
+Row runMeshopt(const MeshData& in, size_t triangles, double ratio, int runs, MeshData& out) {
+  Row r;
+  r.method = "meshopt_simplify (1 thread)";
+  r.ratio = ratio;
+  std::vector<uint32_t> dst(in.indices.size());
+  size_t n = 0;
+  r.time = HUGE_VAL;
+  for (int i = 0; i < runs; ++i) {
+    const auto t0 = Clock::now();
+    n = meshopt_simplify(dst.data(), in.indices.data(), in.indices.size(), &in.positions[0].x, in.positions.size(),
+                         sizeof(glm::vec3), triangles * 3, 1e30f, 0, nullptr);
+    r.time = std::min(r.time, seconds(t0, Clock::now()));
+  }
+  dst.resize(n);
+  r.triangles = n / 3;
+  out = withIndices(in, std::move(dst));
+  return r;
+}
+
+Row runStock(const MeshData& in, size_t triangles, double ratio, MeshData& out) {
+  using Mesh = OpenMesh::TriMesh_ArrayKernelT<>;
+  Row r;
+  r.method = "OpenMesh DecimaterT+ModQuadricT";
+  r.ratio = ratio;
+  const auto t0 = Clock::now();
+  Mesh mesh;
+  mesh.reserve(in.positions.size(), in.indices.size() / 2, in.indices.size() / 3);
+  std::vector<Mesh::VertexHandle> vh;
+  vh.reserve(in.positions.size());
+  for (const auto& p : in.positions) vh.push_back(mesh.add_vertex(Mesh::Point(p.x, p.y, p.z)));
+  for (size_t i = 0; i < in.indices.size(); i += 3)
+    mesh.add_face(vh[in.indices[i]], vh[in.indices[i + 1]], vh[in.indices[i + 2]]);
+  const auto t1 = Clock::now();
+  OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
+  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
+  dec.add(quadric);
+  dec.initialize();
+  dec.decimate_to_faces(0, triangles);
+  mesh.garbage_collection();
+  const auto t2 = Clock::now();
+  r.buildTime = seconds(t0, t1);
+  r.time = seconds(t1, t2);
+  std::vector<uint32_t> idx;
+  MeshData m;
+  m.origin = in.origin;
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    m.positions.emplace_back(p[0], p[1], p[2]);
+  }
+  for (auto f : mesh.faces())
+    for (auto v : mesh.fv_range(f)) m.indices.push_back(uint32_t(v.idx()));
+  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
+  r.triangles = m.triangleCount();
+  out = std::move(m);
+  return r;
+}
+
+void printHeader(const char* name, const MeshData& m, const ErrorMeter&, double samplesPerFace) {
+  std::printf("\n## %s: %zu triangles, %zu vertices (error: %.0f samples per original face each way, seed 1)\n\n",
+              name, m.triangleCount(), m.vertexCount(), samplesPerFace);
+  std::printf("| target | method | triangles | time s | input Mtri/s | Hausdorff m | Hausdorff / diag | mean m | RMS m | flips | time / meshopt | Hausdorff / meshopt |\n");
+  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+}
+
+void printRow(const Row& r, const MeshData& in, const Row* meshopt) {
+  char timeRatio[32] = "", hausRatio[32] = "";
+  if (meshopt && meshopt != &r) {
+    std::snprintf(timeRatio, sizeof timeRatio, "%.2fx", r.time / meshopt->time);
+    std::snprintf(hausRatio, sizeof hausRatio, "%.2fx", r.error.hausdorff / meshopt->error.hausdorff);
+  }
+  std::printf("| %g%% | %s | %zu | %.4f | %.2f | %.3e | %.3e | %.3e | %.3e | %zu | %s | %s |\n", r.ratio * 100,
+              r.method.c_str(), r.triangles, r.time, double(in.triangleCount()) / r.time / 1e6, r.error.hausdorff,
+              r.error.rel(r.error.hausdorff), r.error.mean, r.error.rms, r.error.flippedNormals, timeRatio, hausRatio);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string bunnyPath = HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj";
+  std::string plotPath = "bench_decimate.png", stockTerrain = "0.1";
+  int terrainQuads = 1580, runs = 5;
+  double terrainSamples = 1.0;
+  unsigned threads = 2;
+  bool skipTerrain = false, skipBunny = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
+    if (a == "--bunny") bunnyPath = next();
+    else if (a == "--terrain-quads") terrainQuads = std::atoi(next().c_str());
+    else if (a == "--runs") runs = std::max(1, std::atoi(next().c_str()));
+    else if (a == "--terrain-samples") terrainSamples = std::atof(next().c_str());
+    else if (a == "--stock-terrain") stockTerrain = next();
+    else if (a == "--threads") threads = unsigned(std::atoi(next().c_str()));
+    else if (a == "--plot") plotPath = next();
+    else if (a == "--skip-terrain") skipTerrain = true;
+    else if (a == "--skip-bunny") skipBunny = true;
+    else {
+      std::fprintf(stderr, "usage: %s [--bunny PATH] [--terrain-quads N] [--runs K] [--terrain-samples S] "
+                           "[--stock-terrain 0.1|all|none] [--threads T] [--plot PNG] [--skip-terrain] [--skip-bunny]\n", argv[0]);
+      return 2;
+    }
+  }
+  const std::vector<double> ratios = {0.5, 0.25, 0.1, 0.05, 0.01};
+  std::printf("# Decimation: ours vs meshopt_simplify %d.%d vs OpenMesh DecimaterT (machine: %u hardware threads)\n",
+              MESHOPTIMIZER_VERSION / 100, MESHOPTIMIZER_VERSION % 100, std::thread::hardware_concurrency());
+  std::ifstream load("/proc/loadavg");
+  std::string loadavg;
+  std::getline(load, loadavg);
+  std::printf("load average at start: %s\n", loadavg.c_str());
+
+  struct Dataset {
+    std::string name, shortName;
+    MeshData mesh;
+    double samples;
+    int runs;
+    bool stockAll, stockTen;
+  };
+  std::vector<Dataset> sets;
+  if (!skipBunny) {
+    ImportOptions io;
+    io.up = UpAxis::Z;
+    ImportResult r = importMesh(bunnyPath, io);
+    if (!r.ok()) {
+      std::fprintf(stderr, "%s\n", r.error.c_str());
+      return 1;
+    }
+    sets.push_back({"Stanford bunny", "Stanford bunny 69k", std::move(*r.mesh), 10.0, runs, true, true});
+  }
+  if (!skipTerrain) {
+    const auto t0 = Clock::now();
+    MeshData t = hs::bench::scanTerrain(terrainQuads, 500.0);
+    t.origin = glm::dvec3(656000.0, 5514000.0, 300.0);
+    recenter(t);
+    std::printf("generated the scan tile in %.1f s\n", seconds(t0, Clock::now()));
+    const std::string k = std::to_string(t.triangleCount() / 1000) + "k";
+    sets.push_back({"synthetic scan tile (" + k + " triangles, UV atlas 8x8, holes)", "scan tile " + k, std::move(t),
+                    terrainSamples, 1, stockTerrain == "all", stockTerrain == "0.1" || stockTerrain == "all"});
+  }
+
+  std::vector<std::vector<hs::bench::Series>> panels;
+  for (const Dataset& ds : sets) {
+    ErrorOptions eo;
+    eo.samplesPerFace = ds.samples;
+    const ErrorMeter meter(ds.mesh, eo);
+    printHeader(ds.name.c_str(), ds.mesh, meter, ds.samples);
+    hs::bench::Series sOurs{"ours (2 threads)", {200, 40, 40}, 0, false, {}, {}},
+        sMeshopt{"meshopt_simplify", {40, 90, 200}, 1, false, {}, {}},
+        sStock{"OpenMesh DecimaterT", {40, 150, 60}, 2, false, {}, {}};
+    for (double ratio : ds.mesh.triangleCount() ? ratios : std::vector<double>{}) {
+      MeshData oursOut;
+      Row ours = runOurs(ds.mesh, ratio, ds.runs, threads, oursOut);
+      ours.error = meter.measure(oursOut);
+      MeshData mo;
+      Row meshopt = runMeshopt(ds.mesh, ours.triangles, ratio, ds.runs, mo);
+      meshopt.error = meter.measure(mo);
+      printRow(meshopt, ds.mesh, nullptr);
+      printRow(ours, ds.mesh, &meshopt);
+      char label[16];
+      std::snprintf(label, sizeof label, "%g%%", ratio * 100);
+      sOurs.points.push_back({ours.time, ours.error.rel(ours.error.hausdorff)});
+      sOurs.labels.push_back(label);
+      sMeshopt.points.push_back({meshopt.time, meshopt.error.rel(meshopt.error.hausdorff)});
+      sMeshopt.labels.push_back(label);
+      if (ds.stockAll || (ds.stockTen && ratio == 0.1)) {
+        MeshData so;
+        Row stock = runStock(ds.mesh, ours.triangles, ratio, so);
+        stock.error = meter.measure(so);
+        printRow(stock, ds.mesh, &meshopt);
+        std::printf("|  | (OpenMesh: building its mesh with add_face took %.3f s more) | | | | | | | | | | |\n",
+                    stock.buildTime);
+        sStock.points.push_back({stock.time, stock.error.rel(stock.error.hausdorff)});
+        sStock.labels.push_back(label);
+      }
+    }
+    panels.push_back({sOurs, sMeshopt});
+    if (!sStock.points.empty()) panels.back().push_back(sStock);
+  }
+
+  if (!plotPath.empty() && !panels.empty()) {
+    hs::bench::Canvas canvas(900 * int(panels.size()), 640);
+    for (size_t p = 0; p < panels.size(); ++p)
+      hs::bench::plotLogLog(canvas, int(p) * 900, 0, int(p + 1) * 900, 640, sets[p].shortName,
+                            "DECIMATION TIME (S), TARGETS LABELLED", "HAUSDORFF / BBOX DIAGONAL", panels[p]);
+    std::string err;
+    if (canvas.savePng(plotPath, err))
+      std::printf("\nerror-vs-time plot: %s\n", plotPath.c_str());
+    else
+      std::fprintf(stderr, "%s\n", err.c_str());
+  }
+  return 0;
+}

@@ -1,0 +1,691 @@
+#include "mesh/decimate.h"
+
+#include <algorithm>
+#include <barrier>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <unordered_map>
+
+#include "mesh/collapse_engine.h"
+#include "mesh/decimation_state.h"
+#include "mesh/parallel.h"
+#include "mesh/radix_sort.h"
+#include "mesh/weld.h"
+
+namespace hs::mesh {
+namespace {
+
+using OpenMesh::EdgeHandle;
+using OpenMesh::FaceHandle;
+using OpenMesh::HalfedgeHandle;
+using OpenMesh::VertexHandle;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Per input face: which submesh (group) it belongs to. Faces no submesh
+// covers get one extra group with the default material.
+std::vector<uint16_t> faceGroups(const MeshData& in, std::vector<Submesh>& groups) {
+  const size_t nf = in.triangleCount();
+  groups = in.submeshes;
+  std::vector<uint16_t> group(nf, UINT16_MAX);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const size_t b = groups[g].firstIndex / 3, e = std::min(nf, size_t(groups[g].firstIndex + groups[g].indexCount) / 3);
+    for (size_t f = b; f < e; ++f)
+      if (group[f] == UINT16_MAX) group[f] = uint16_t(std::min<size_t>(g, UINT16_MAX - 1));
+  }
+  if (std::find(group.begin(), group.end(), UINT16_MAX) != group.end()) {
+    const uint16_t extra = uint16_t(std::min<size_t>(groups.size(), UINT16_MAX - 1));
+    groups.push_back({0, 0, -1});
+    for (auto& g : group)
+      if (g == UINT16_MAX) g = extra;
+  }
+  return group;
+}
+
+struct Setup {
+  std::vector<uint32_t> omFaceOrig;  // OpenMesh face -> input face
+  std::vector<uint32_t> wedgeRep;    // wedge -> an input vertex with its position and UV
+  size_t degenerate = 0;
+};
+
+// Welds, orders spatially, splits non-manifold spots and builds the
+// OpenMesh mesh plus every side array. Returns false with `error` set.
+bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, DecimationState& st, Setup& su,
+           DecimateReport& rep, std::string& error) {
+  const size_t nfIn = in.triangleCount(), nvIn = in.vertexCount();
+  const bool hasUv = in.uvs.size() == nvIn && nvIn > 0;
+
+  // Topology is by exact position, so UV seams do not cut the surface;
+  // wedges are by position + UV, so seams are known.
+  uint32_t nPos = 0, nWedge = 0;
+  std::vector<uint32_t> posOf, wedgeOf;
+  weldPositionsAndWedges(in.positions, hasUv ? std::span<const glm::vec2>(in.uvs) : std::span<const glm::vec2>(),
+                         posOf, nPos, wedgeOf, nWedge, threads);
+  su.wedgeRep.assign(nWedge, UINT32_MAX);
+  std::vector<uint32_t> posRep(nPos, UINT32_MAX);
+  for (size_t v = nvIn; v-- > 0;) su.wedgeRep[wedgeOf[v]] = uint32_t(v), posRep[posOf[v]] = uint32_t(v);
+
+  // Spatial (Morton) order of the faces: regions become contiguous ranges,
+  // and neighbours sit close in memory, which matters more than anything
+  // else for speed at millions of triangles.
+  glm::vec3 lo(HUGE_VALF), hi(-HUGE_VALF);
+  for (const auto& p : in.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  st.center = (glm::dvec3(lo) + glm::dvec3(hi)) * 0.5;
+  const glm::vec3 extent = glm::max(hi - lo, glm::vec3(1e-30f));
+  const glm::vec3 scale = 1023.0f / extent;
+  // Codes in parallel (degenerate faces marked), then compacted in order.
+  constexpr uint64_t kDegenerate = ~uint64_t(0);
+  std::vector<uint64_t> order(nfIn);
+  parallelRanges(nfIn, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t f = b; f < e; ++f) {
+      const uint32_t* t = &in.indices[f * 3];
+      const uint32_t pa = posOf[t[0]], pb = posOf[t[1]], pc = posOf[t[2]];
+      if (pa == pb || pb == pc || pa == pc) {
+        order[f] = kDegenerate;
+        continue;
+      }
+      const glm::vec3 centroid = (in.positions[t[0]] + in.positions[t[1]] + in.positions[t[2]]) / 3.0f;
+      const glm::uvec3 q = glm::uvec3(glm::clamp((centroid - lo) * scale, glm::vec3(0.0f), glm::vec3(1023.0f)));
+      order[f] = (uint64_t(mortonCode10(q.x, q.y, q.z)) << 32) | f;
+    }
+  });
+  {
+    size_t n = 0;
+    for (size_t f = 0; f < nfIn; ++f)
+      if (order[f] != kDegenerate) order[n++] = order[f];
+    su.degenerate = nfIn - n;
+    order.resize(n);
+  }
+  radixSortByKey(order, 30);
+  const size_t nf = order.size();
+  if (nf == 0) {
+    error = "every face is degenerate (two corners at the same point); nothing to decimate";
+    return false;
+  }
+
+  // Vertices numbered by first use in that order.
+  std::vector<uint32_t> omOfPos(nPos, UINT32_MAX), posOfOm;
+  posOfOm.reserve(nPos);
+  std::vector<uint32_t> tris(nf * 3), wedges(nf * 3);
+  su.omFaceOrig.resize(nf);
+  for (size_t i = 0; i < nf; ++i) {
+    const uint32_t f = uint32_t(order[i]);
+    su.omFaceOrig[i] = f;
+    for (size_t k = 0; k < 3; ++k) {
+      const uint32_t iv = in.indices[size_t(f) * 3 + k], p = posOf[iv];
+      if (omOfPos[p] == UINT32_MAX) omOfPos[p] = uint32_t(posOfOm.size()), posOfOm.push_back(p);
+      tris[i * 3 + k] = omOfPos[p];
+      wedges[i * 3 + k] = wedgeOf[iv];
+    }
+  }
+  order = {};
+  uint32_t nv = uint32_t(posOfOm.size());
+
+  CornerTopology topo = analyzeCorners(tris, nv, threads);
+  if (!topo.manifold()) {
+    std::vector<uint32_t> copiedFrom;
+    rep.nonManifold = splitNonManifold(tris, nv, copiedFrom, topo, threads);
+    if (!topo.manifold()) {
+      error = "the mesh has non-manifold edges that could not be split (" +
+              std::to_string(topo.nonManifoldEdges) + " left)";
+      return false;
+    }
+    // A split vertex's copies need wedges of their own: a wedge belongs to
+    // one vertex, because a vertex that moves takes its wedges along.
+    std::unordered_map<uint64_t, uint32_t> copyWedge;
+    for (size_t c = 0; c < tris.size(); ++c) {
+      if (tris[c] < nv) continue;
+      const uint64_t key = (uint64_t(tris[c]) << 32) | wedges[c];
+      auto [it, added] = copyWedge.try_emplace(key, uint32_t(su.wedgeRep.size()));
+      if (added) su.wedgeRep.push_back(su.wedgeRep[wedges[c]]);
+      wedges[c] = it->second;
+    }
+    for (uint32_t from : copiedFrom) posOfOm.push_back(posOfOm[from]);
+    nv = uint32_t(posOfOm.size());
+  }
+
+  std::vector<OpenMesh::Vec3d> points(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    const glm::dvec3 p = glm::dvec3(in.positions[posRep[posOfOm[v]]]) - st.center;
+    points[v] = OpenMesh::Vec3d(p.x, p.y, p.z);
+  }
+  buildDecimationMesh(tris, topo.twin, points, st.mesh, threads);
+  st.bindArrays();
+
+  std::vector<Submesh> groups;
+  const std::vector<uint16_t> group = faceGroups(in, groups);
+  st.hasSeams = hasUv || groups.size() > 1;
+  st.fmaterial.resize(nf);
+  for (size_t f = 0; f < nf; ++f) st.fmaterial[f] = group[su.omFaceOrig[f]];
+  st.fv = std::move(tris);
+  st.fw = std::move(wedges);
+  if (hasUv) {
+    st.wedgeUv.resize(su.wedgeRep.size());
+    for (size_t w = 0; w < st.wedgeUv.size(); ++w) st.wedgeUv[w] = in.uvs[su.wedgeRep[w]];
+  }
+
+  // Locks by input vertex, carried to every vertex at that position.
+  std::vector<uint8_t> lockedPos(nPos, 0);
+  if (opt.lockedVertices.size() == nvIn)
+    for (size_t v = 0; v < nvIn; ++v)
+      if (opt.lockedVertices[v]) lockedPos[posOf[v]] = 1;
+
+  // Classes, and quadrics: each vertex sums the planes of its own faces and
+  // constrained edges, so vertices are independent and run in parallel.
+  // Face planes are computed once (each serves three vertices).
+  auto& m = st.mesh;
+  st.vd.reset(nv);
+  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t v = b; v < e; ++v) {
+      auto& d = st.vd[v];
+      d.q = Quadric{};
+      d.p = glm::dvec3(points[v][0], points[v][1], points[v][2]);
+      d.cls = VertexClass::Free;
+      d.region = kSharedRegion;
+    }
+  });
+  points = {};
+  struct Plane {
+    glm::dvec3 n;
+    double d, w;
+  };
+  UninitArray<Plane> planes(nf);
+  parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t f = b; f < e; ++f) {
+      const glm::dvec3 pa = st.point(int(st.fv[f * 3])), pb = st.point(int(st.fv[f * 3 + 1])),
+                       pc = st.point(int(st.fv[f * 3 + 2]));
+      const glm::dvec3 n = glm::cross(pb - pa, pc - pa);
+      const double len = glm::length(n);
+      // Weight sqrt(area), not area: the error then scales linearly with
+      // size, so small features (a spike, a thin fin) are not outvoted by
+      // the large faces around them (the weighting meshoptimizer uses;
+      // measured lower Hausdorff on the bunny at every ratio than area).
+      if (len > 0)
+        planes[f] = {n / len, -glm::dot(n / len, pa), std::sqrt(0.5 * len)};
+      else
+        planes[f] = {glm::dvec3(0.0), 0.0, 0.0};
+    }
+  });
+  // Vertices whose corners all use one wedge and one material cannot end a
+  // seam edge: only edges at a "mixed" vertex need the full seam test.
+  std::vector<uint8_t> mixed(nv, 0);
+  {
+    std::vector<uint32_t> firstWedge(nv, UINT32_MAX);
+    std::vector<uint16_t> firstMaterial(nv, 0);
+    for (size_t c = 0; c < st.fv.size(); ++c) {
+      const uint32_t v = st.fv[c];
+      if (firstWedge[v] == UINT32_MAX)
+        firstWedge[v] = st.fw[c], firstMaterial[v] = st.fmaterial[c / 3];
+      else if (firstWedge[v] != st.fw[c] || firstMaterial[v] != st.fmaterial[c / 3])
+        mixed[v] = 1;
+    }
+  }
+  std::atomic<size_t> nBoundary{0}, nSeam{0}, nFixed{0}, nLocked{0};
+  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
+    size_t cb = 0, cs = 0, cf = 0, cl = 0;
+    for (size_t vi = b; vi < e; ++vi) {
+      const VertexHandle v{int(vi)};
+      const HalfedgeHandle start = m.halfedge_handle(v);
+      if (!start.is_valid()) {
+        st.vd[vi].cls = VertexClass::Fixed;
+        continue;
+      }
+      const glm::dvec3 pv = st.point(int(vi));
+      int boundaryEdges = 0, seamEdges = 0;
+      Quadric q{};
+      HalfedgeHandle it = start;
+      do {
+        const FaceHandle f = m.face_handle(it);
+        if (f.is_valid()) {
+          const Plane& pl = planes[size_t(f.idx())];
+          if (pl.w > 0) q += Quadric::plane(pl.n, pl.d, pl.w);
+        }
+        const HalfedgeHandle back = m.opposite_halfedge_handle(it);
+        const EdgeKind kind = !f.is_valid() || !m.face_handle(back).is_valid() ? EdgeKind::Boundary
+                              : mixed[vi] || mixed[size_t(m.to_vertex_handle(it).idx())] ? st.edgeKind(it)
+                                                                                         : EdgeKind::Interior;
+        if (kind != EdgeKind::Interior) {
+          (kind == EdgeKind::Boundary ? boundaryEdges : seamEdges)++;
+          // A plane through the edge, perpendicular to each face beside it:
+          // moving the polyline sideways costs, so boundaries and seams are
+          // simplified by how far they bend, not left to chance.
+          const glm::dvec3 edge = st.point(m.to_vertex_handle(it).idx()) - pv;
+          const double len2 = glm::dot(edge, edge);
+          for (const FaceHandle g : {f, m.face_handle(m.opposite_halfedge_handle(it))}) {
+            if (!g.is_valid()) continue;
+            glm::dvec3 side = glm::cross(edge, planes[size_t(g.idx())].n);
+            const double sl = glm::length(side);
+            if (!(sl > 0)) continue;
+            side /= sl;
+            const double cw = std::sqrt(len2);  // the edge length, to match the faces' sqrt(area)
+            q += Quadric::plane(side, -glm::dot(side, pv), kind == EdgeKind::Boundary ? cw : 0.5 * cw);
+          }
+        }
+        it = m.next_halfedge_handle(m.opposite_halfedge_handle(it));
+      } while (it != start);
+      st.vd[vi].q = q;
+
+      VertexClass c = VertexClass::Free;
+      if (boundaryEdges == 2 && seamEdges == 0)
+        c = opt.lockBoundaries ? VertexClass::Fixed : VertexClass::BoundaryLine;
+      else if (seamEdges == 2 && boundaryEdges == 0)
+        c = VertexClass::SeamLine;
+      else if (boundaryEdges || seamEdges)
+        c = VertexClass::Fixed;
+      if (lockedPos[posOfOm[vi]]) c = VertexClass::Fixed, ++cl;
+      st.vd[vi].cls = c;
+      cb += boundaryEdges > 0;
+      cs += seamEdges > 0;
+      cf += c == VertexClass::Fixed;
+    }
+    nBoundary += cb, nSeam += cs, nFixed += cf, nLocked += cl;
+  });
+  rep.boundaryVertices = nBoundary, rep.seamVertices = nSeam, rep.fixedVertices = nFixed;
+  rep.lockedVertices = nLocked;
+  st.estate.assign(m.n_edges(), 0);
+  rep.degenerateFacesRemoved = su.degenerate;
+  return true;
+}
+
+// Writes the surviving faces back in input order, grouped by the input's
+// submeshes, with vertices (wedges) in input order: at 100% the output is
+// the input.
+MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su, bool keepTextures) {
+  MeshData out;
+  out.origin = in.origin;
+  out.materials = in.materials;
+  if (keepTextures) out.textures = in.textures;
+  const auto& m = st.mesh;
+  const size_t nfIn = in.triangleCount();
+  std::vector<uint32_t> omOfInput(nfIn, UINT32_MAX);
+  for (size_t f = 0; f < m.n_faces(); ++f)
+    if (!m.status(FaceHandle(int(f))).deleted()) omOfInput[su.omFaceOrig[f]] = uint32_t(f);
+
+  const size_t nWedge = su.wedgeRep.size();
+  std::vector<uint32_t> wedgeVertex(nWedge, UINT32_MAX);
+  for (size_t f = 0; f < m.n_faces(); ++f)
+    if (!m.status(FaceHandle(int(f))).deleted())
+      for (size_t k = 0; k < 3; ++k) wedgeVertex[st.fw[f * 3 + k]] = st.fv[f * 3 + k];
+  std::vector<uint32_t> outOf(nWedge, UINT32_MAX);
+  const bool hasUv = !st.wedgeUv.empty();
+  for (size_t w = 0; w < nWedge; ++w) {
+    if (wedgeVertex[w] == UINT32_MAX) continue;
+    outOf[w] = uint32_t(out.positions.size());
+    out.positions.emplace_back(st.vd[wedgeVertex[w]].p + st.center);
+    if (hasUv) out.uvs.push_back(st.wedgeUv[w]);
+  }
+
+  std::vector<Submesh> groups;
+  const std::vector<uint16_t> group = faceGroups(in, groups);
+  std::vector<std::vector<uint32_t>> perGroup(groups.size());
+  for (size_t f = 0; f < nfIn; ++f) {
+    const uint32_t o = omOfInput[f];
+    if (o == UINT32_MAX) continue;
+    auto& dst = perGroup[group[f]];
+    for (size_t k = 0; k < 3; ++k) dst.push_back(outOf[st.fw[size_t(o) * 3 + k]]);
+  }
+  for (size_t g = 0; g < groups.size(); ++g) {
+    if (perGroup[g].empty()) continue;
+    out.submeshes.push_back({uint32_t(out.indices.size()), uint32_t(perGroup[g].size()), groups[g].material});
+    out.indices.insert(out.indices.end(), perGroup[g].begin(), perGroup[g].end());
+  }
+  computeVertexNormals(out);
+  return out;
+}
+
+}  // namespace
+
+DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Progress* progress) {
+  const auto t0 = Clock::now();
+  DecimateResult result;
+  DecimateReport& rep = result.report;
+  const size_t nfIn = in.triangleCount(), nvIn = in.vertexCount();
+  rep.trianglesIn = nfIn;
+  rep.verticesIn = nvIn;
+  const unsigned threads = resolveThreads(opt.threads);
+  rep.threads = threads;
+
+  if (in.indices.size() % 3 != 0) {
+    result.error = "the index list is not a whole number of triangles";
+    return result;
+  }
+  for (uint32_t idx : in.indices)
+    if (idx >= nvIn) {
+      result.error = "a face refers to vertex " + std::to_string(idx) + " of " + std::to_string(nvIn) +
+                     "; clean the mesh first (cleanMesh quarantines such faces)";
+      return result;
+    }
+  for (const auto& p : in.positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      result.error = "the mesh has NaN or infinite coordinates; clean the mesh first (cleanMesh quarantines them)";
+      return result;
+    }
+  if (nfIn == 0) {
+    result.error = "the mesh has no faces";
+    return result;
+  }
+
+  const double ratio = std::clamp(std::isfinite(opt.targetRatio) ? opt.targetRatio : 1.0, 0.0, 1.0);
+  size_t target = opt.targetTriangles > 0 ? std::min(opt.targetTriangles, nfIn) : size_t(std::llround(ratio * double(nfIn)));
+  rep.targetTriangles = target;
+  if (target >= nfIn) {
+    // Nothing to remove: the input is the answer, unchanged.
+    result.mesh = in;
+    rep.trianglesOut = nfIn, rep.verticesOut = nvIn, rep.targetReached = true;
+    rep.secondsTotal = since(t0);
+    return result;
+  }
+
+  reportProgress(progress, 0.0, "Preparing decimation");
+  DecimationState st;
+  st.cosMaxNormalDeviation = std::cos(std::clamp(opt.maxNormalDeviationDeg, 0.0, 180.0) * std::numbers::pi / 180.0);
+  st.minQuality = std::clamp(opt.minTriangleQuality, 0.0, 1.0);
+  st.maxErrorSq = std::isfinite(opt.maxError) ? opt.maxError * opt.maxError : HUGE_VAL;
+  Setup su;
+  if (!setUp(in, opt, threads, st, su, rep, result.error)) return result;
+  auto& m = st.mesh;
+  const size_t nf = m.n_faces(), ne = m.n_edges();
+  rep.secondsSetup = since(t0);
+  if (isCancelled(progress)) {
+    result.cancelled = true;
+    return result;
+  }
+
+  // Regions: equal runs of the Morton-ordered faces. Their number depends on
+  // the mesh only, so the output does not depend on the thread count.
+  const size_t per = std::max<size_t>(1000, opt.facesPerRegion);
+  // At most 64: more regions than that only lengthen the border strips
+  // (and the serial border pass that finishes them) with no more cores to
+  // use; 64 still balances well over the threads (measured on the 5M scan
+  // tile: 200 regions of 25k faces spent 2.2 s in the border pass at 50%,
+  // 64 regions 0.65 s).
+  const size_t regions = std::clamp<size_t>((nf + per / 2) / per, 1, 64);
+  rep.regions = unsigned(regions);
+  const bool countTarget = target > 0;
+  std::atomic<size_t> done{0};
+  const size_t expected = nf > target ? (nf - target) / 2 : 0;
+  std::atomic<bool> cancelled{false};
+  std::vector<EngineStats> stats;
+  size_t liveFaces = nf;
+  st.fregion.resize(nf);
+  const auto t1 = Clock::now();
+
+  // Regions decimate in parallel, in rounds sharing one error threshold:
+  // within a round every region runs its own greedy queue up to the
+  // threshold, and since regions share no vertex that is what one greedy
+  // queue over the whole mesh would do up to that cost. So the triangle
+  // budget goes where the surface needs it, not split by region size. A
+  // round's threshold is the key below which the remaining collapses
+  // should lie (sampled from the queues, corrected by how many the last
+  // round achieved), and a round never takes a region below its share of
+  // the stopping count.
+  //
+  // A region only removes vertices whose faces are all its own, so a strip
+  // along its border stays at full resolution; the parallel phase stops
+  // with that strip's share of the work left, and never goes below
+  // kMinFacesPerRegion a region: regions decimated to a handful of large
+  // triangles would meet the dense strips in long slivers that no later
+  // collapse can repair. The serial pass below then finishes with one
+  // queue over everything.
+  constexpr size_t kMinFacesPerRegion = 3000;
+  auto runPartition = [&]() {
+    parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
+      for (size_t f = b; f < e; ++f) st.fregion[f] = uint16_t(f * regions / nf);
+    });
+    parallelRanges(m.n_vertices(), threads, [&](size_t b, size_t e, unsigned) {
+      for (size_t vi = b; vi < e; ++vi) {
+        const VertexHandle vh{int(vi)};
+        st.vd[vi].region = kSharedRegion;
+        if (st.vertexStatus[vi].deleted()) continue;
+        const HalfedgeHandle start = m.halfedge_handle(vh);
+        if (!start.is_valid()) continue;
+        uint16_t r = kSharedRegion;
+        bool shared = false;
+        HalfedgeHandle it = start;
+        do {
+          const FaceHandle f = m.face_handle(it);
+          if (f.is_valid()) {
+            const uint16_t fr = st.fregion[size_t(f.idx())];
+            if (r == kSharedRegion) r = fr;
+            else if (fr != r) shared = true;
+          }
+          it = m.next_halfedge_handle(m.opposite_halfedge_handle(it));
+        } while (it != start);
+        st.vd[vi].region = shared ? kSharedRegion : r;
+      }
+    });
+    // Per region, in parallel: its edges (an edge inside a region has both
+    // faces there, so its owning face is in the region's face run, and
+    // edge ids follow faces: bisect for the run's edges), its live faces,
+    // and those on its border strip (touching a shared vertex), which wait
+    // for the border pass.
+    auto faceBegin = [&](size_t r) { return nf * r / regions; };
+    auto edgeBegin = [&](size_t r) {
+      if (r == regions) return ne;
+      const int fb = int(faceBegin(r));
+      size_t lo = 0, hi = ne;
+      while (lo < hi) {
+        const size_t mid = (lo + hi) / 2;
+        if (m.face_handle(HalfedgeHandle{int(2 * mid)}).idx() < fb) lo = mid + 1;
+        else hi = mid;
+      }
+      return lo;
+    };
+    std::vector<size_t> edgeStart(regions + 1);
+    for (size_t r = 0; r <= regions; ++r) edgeStart[r] = edgeBegin(r);
+    std::vector<std::vector<uint32_t>> edgesOf(regions);
+    std::vector<size_t> live(regions, 0), stripOf(regions, 0);
+    parallelTasks(regions, threads, [&](size_t r, unsigned) {
+      for (size_t e = edgeStart[r]; e < edgeStart[r + 1]; ++e) {
+        if (st.edgeStatus[e].deleted()) continue;
+        const HalfedgeHandle h{int(2 * e)};
+        if (st.vd[size_t(m.to_vertex_handle(h).idx())].region == r &&
+            st.vd[size_t(m.from_vertex_handle(h).idx())].region == r)
+          edgesOf[r].push_back(uint32_t(e));
+      }
+      for (size_t f = faceBegin(r); f < faceBegin(r + 1); ++f) {
+        if (st.faceStatus[f].deleted()) continue;
+        ++live[r];
+        for (size_t k = 0; k < 3; ++k)
+          if (st.vd[st.fv[f * 3 + k]].region == kSharedRegion) {
+            ++stripOf[r];
+            break;
+          }
+      }
+    });
+    size_t strip = 0, alive = 0;
+    for (size_t r = 0; r < regions; ++r) strip += stripOf[r], alive += live[r];
+    const double keepShare = alive > 0 ? double(target) / double(alive) : 1.0;
+    const size_t stopAt = std::max(target + size_t(double(strip) * (1.0 - keepShare)), regions * kMinFacesPerRegion);
+    std::fill(st.estate.begin(), st.estate.end(), uint8_t(0));
+    std::vector<std::unique_ptr<CollapseEngine>> engines(regions);
+    parallelTasks(regions, threads, [&](size_t r, unsigned) {
+      engines[r] = std::make_unique<CollapseEngine>(st, uint16_t(r));
+      engines[r]->seedList(edgesOf[r]);
+    });
+    edgesOf = {};
+    auto total = [&] {
+      size_t n = 0;
+      for (size_t x : live) n += x;
+      return n;
+    };
+    // Rounds run on one set of workers for the whole phase; between rounds
+    // the barrier's completion step (one thread, the others waiting)
+    // chooses the next threshold: spawning threads and sampling every queue
+    // per round cost more than a small mesh's whole round.
+    //
+    // A round never takes a region below its share of the stopping count,
+    // so one round cannot overshoot the target whatever the threshold.
+    float limit = HUGE_VALF;
+    size_t now = total(), roundStart = now;
+    bool finished = false;
+    double effectiveness = 0.5, wanted = 1.0;
+    std::vector<float> keys;
+    std::atomic<size_t> nextRegion{0};
+    auto chooseRound = [&]() noexcept {
+      const size_t before = roundStart;
+      now = total();
+      if (rep.rounds > 0) {
+        if (now == before || !countTarget) {
+          finished = true;  // nothing under the threshold could go, or maxError's single round is done
+          return;
+        }
+        effectiveness = double(before - now) / 2.0 / std::max(1.0, wanted);
+      }
+      // The last percent is left to the serial pass: rounds there would
+      // each remove a few faces for the cost of a synchronisation, and
+      // where the regions are held at their minimum size, late rounds stop
+      // them at proportional shares instead of one error level (measured
+      // on the 5M scan tile at 1%: leaving half a percent gave 1.8x the
+      // Hausdorff and 2.4x the time of leaving one).
+      if (cancelled || rep.rounds >= 100 || (countTarget && now <= stopAt + nf / 100)) {
+        finished = true;
+        return;
+      }
+      if (countTarget) {
+        size_t queued = 0;
+        for (const auto& e : engines) queued += e->queued();
+        if (queued == 0) {
+          finished = true;
+          return;
+        }
+        keys.clear();
+        const size_t stride = std::max<size_t>(1, queued / 4096);
+        for (const auto& e : engines) e->sampleKeys(stride, keys);
+        const double remaining = double(now - stopAt) / 2.0;  // collapses
+        // Half of what is left, scaled up by how short the last round fell.
+        // Larger steps overshoot: regions then stop at their proportional
+        // shares instead of at one error level (measured on the scan tile:
+        // 0.7 of the rest gave 3x the Hausdorff at 5%).
+        wanted = std::min(remaining, 0.5 * remaining / std::max(effectiveness, 0.05));
+        const size_t k = std::min(keys.size() - 1, size_t(wanted / double(queued) * double(keys.size())));
+        std::nth_element(keys.begin(), keys.begin() + long(k), keys.end());
+        limit = keys[k];
+      }  // else maxError alone: one round, everything within it, everywhere
+      roundStart = now;
+      nextRegion = 0;
+      ++rep.rounds;
+    };
+    const unsigned workers = unsigned(std::min<size_t>(threads, regions));
+    std::barrier sync(std::ptrdiff_t(workers), chooseRound);
+    detail::runWorkers(workers, [&](unsigned worker) {
+      try {
+        for (;;) {
+          sync.arrive_and_wait();
+          if (finished) return;
+          for (size_t r = nextRegion++; r < regions; r = nextRegion++) {
+            const size_t floor =
+                countTarget ? size_t(std::ceil(double(live[r]) * double(stopAt) / double(std::max<size_t>(now, 1)))) : 0;
+            if (!engines[r]->run(live[r], floor, limit, progress, done, expected, worker == 0)) cancelled = true;
+          }
+        }
+      } catch (...) {
+        // Leave the barrier so the others are not left waiting for this
+        // worker; runWorkers rethrows once all have joined.
+        cancelled = true;
+        sync.arrive_and_drop();
+        throw;
+      }
+    });
+    for (auto& e : engines) stats.push_back(e->stats());
+    liveFaces = total();
+  };
+  if (regions > 1 || !countTarget) runPartition();
+  rep.secondsRegions = since(t1);
+  if (cancelled) {
+    result.cancelled = true;
+    return result;
+  }
+
+  // Border pass: every live edge, evaluated in parallel, then one queue,
+  // down to the exact target (with one region this is the whole run).
+  // Queueing only the edges near the region borders was tried: it made the
+  // pass 3x cheaper and the result 2-3x worse at 1-5%, because collapses
+  // of regions' own edges are still wanted there.
+  const auto t2 = Clock::now();
+  if (regions > 1 || liveFaces > target) {
+    std::fill(st.estate.begin(), st.estate.end(), uint8_t(0));
+    CollapseEngine border(st, kSharedRegion);
+    std::vector<std::vector<CollapseEngine::Entry>> parts(threads);
+    parallelRanges(ne, threads, [&](size_t b, size_t e, unsigned w) {
+      CollapseEngine::Entry entry;
+      for (size_t edge = b; edge < e; ++edge)
+        if (border.entryFor(uint32_t(edge), entry)) parts[w].push_back(entry);
+    });
+    std::vector<CollapseEngine::Entry> all;
+    for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+    parts = {};
+    border.seedEntries(std::move(all));
+    if (!border.run(liveFaces, target, HUGE_VALF, progress, done, expected, true)) {
+      result.cancelled = true;
+      return result;
+    }
+    stats.push_back(border.stats());
+  }
+  rep.secondsBorders = since(t2);
+
+  for (const auto& s : stats) {
+    rep.collapses += s.collapses;
+    rep.rejectedTopology += s.rejectedTopology;
+    rep.rejectedFlip += s.rejectedFlip;
+    rep.rejectedSliver += s.rejectedSliver;
+    rep.maxEstimatedError = std::max(rep.maxEstimatedError, std::sqrt(s.maxErrorSq));
+  }
+
+  reportProgress(progress, 0.92, "Writing decimated mesh");
+  const auto t3 = Clock::now();
+  result.mesh = extract(in, st, su, opt.copyTextures);
+  rep.trianglesOut = result.mesh.triangleCount();
+  rep.verticesOut = result.mesh.vertexCount();
+  rep.targetReached = !countTarget || rep.trianglesOut <= target;
+  rep.secondsOutput = since(t3);
+  rep.secondsTotal = since(t0);
+  reportProgress(progress, 1.0, "Decimated");
+  return result;
+}
+
+bool parseDecimateTarget(std::string_view text, DecimateOptions& options, std::string& error) {
+  auto trim = [](std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+    return s;
+  };
+  std::string_view t = trim(text);
+  if (t.empty()) {
+    error = "empty decimation target (use e.g. 500k, 2M, 120000 or 10%)";
+    return false;
+  }
+  double scale = 1.0;
+  bool percent = false;
+  const char last = t.back();
+  if (last == '%') percent = true, t.remove_suffix(1);
+  else if (last == 'k' || last == 'K') scale = 1e3, t.remove_suffix(1);
+  else if (last == 'm' || last == 'M') scale = 1e6, t.remove_suffix(1);
+  double v = 0;
+  const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (r.ec != std::errc() || r.ptr != t.data() + t.size() || !(v > 0)) {
+    error = "cannot read decimation target '" + std::string(text) + "' (use e.g. 500k, 2M, 120000 or 10%)";
+    return false;
+  }
+  if (percent) {
+    if (v > 100) {
+      error = "decimation target '" + std::string(text) + "' is above 100%";
+      return false;
+    }
+    options.targetRatio = v / 100.0;
+    options.targetTriangles = 0;
+  } else {
+    options.targetTriangles = size_t(std::llround(v * scale));
+    if (options.targetTriangles == 0) {
+      error = "decimation target '" + std::string(text) + "' is less than one triangle";
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace hs::mesh

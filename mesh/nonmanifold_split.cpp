@@ -1,0 +1,282 @@
+#include "mesh/nonmanifold_split.h"
+
+#include <algorithm>
+#include <atomic>
+
+#include "mesh/parallel.h"
+
+namespace hs::mesh {
+namespace {
+
+bool validFace(std::span<const uint32_t> tris, size_t f, uint32_t nv) {
+  const uint32_t a = tris[f * 3], b = tris[f * 3 + 1], c = tris[f * 3 + 2];
+  return a < nv && b < nv && c < nv && a != b && b != c && a != c;
+}
+
+// Outgoing corners of every vertex, each entry packed as (to << 32 | corner)
+// so scanning a vertex's list needs no lookup into the triangle array.
+struct OutgoingLists {
+  std::vector<uint32_t> offset;  // vertexCount + 1
+  std::vector<uint64_t> entry;
+  std::span<const uint64_t> of(uint32_t v) const {
+    return {entry.data() + offset[v], entry.data() + offset[v + 1]};
+  }
+};
+
+OutgoingLists buildOutgoing(std::span<const uint32_t> tris, uint32_t nv) {
+  OutgoingLists l;
+  l.offset.assign(size_t(nv) + 1, 0);
+  const size_t nf = tris.size() / 3;
+  for (size_t f = 0; f < nf; ++f)
+    if (validFace(tris, f, nv))
+      for (int k = 0; k < 3; ++k) ++l.offset[tris[f * 3 + k] + 1];
+  for (size_t v = 0; v < nv; ++v) l.offset[v + 1] += l.offset[v];
+  l.entry.resize(l.offset[nv]);
+  std::vector<uint32_t> cursor(l.offset.begin(), l.offset.end() - 1);
+  for (size_t f = 0; f < nf; ++f) {
+    if (!validFace(tris, f, nv)) continue;
+    for (uint32_t k = 0; k < 3; ++k) {
+      const uint32_t c = uint32_t(f * 3 + k);
+      l.entry[cursor[tris[c]]++] = (uint64_t(tris[nextCorner(c)]) << 32) | c;
+    }
+  }
+  return l;
+}
+
+inline uint32_t entryTo(uint64_t e) { return uint32_t(e >> 32); }
+inline uint32_t entryCorner(uint64_t e) { return uint32_t(e); }
+
+struct EdgeCorners {
+  uint32_t same = 0, opposite = 0;  // corners a->b and b->a
+  uint32_t oppositeCorner = kNoCorner;
+  uint32_t minCorner = kNoCorner;
+};
+
+EdgeCorners edgeCorners(const OutgoingLists& l, uint32_t a, uint32_t b) {
+  EdgeCorners e;
+  for (uint64_t x : l.of(a))
+    if (entryTo(x) == b) ++e.same, e.minCorner = std::min(e.minCorner, entryCorner(x));
+  for (uint64_t x : l.of(b))
+    if (entryTo(x) == a) {
+      ++e.opposite;
+      e.oppositeCorner = entryCorner(x);
+      e.minCorner = std::min(e.minCorner, entryCorner(x));
+    }
+  return e;
+}
+
+CornerTopology analyze(std::span<const uint32_t> tris, uint32_t nv, const OutgoingLists& l, unsigned threads) {
+  CornerTopology t;
+  t.twin.assign(tris.size(), kNoCorner);
+  std::atomic<size_t> nmEdges{0}, boundary{0}, nmVertices{0};
+  // Twins: every vertex resolves its own outgoing corners, so the writes of
+  // different workers never touch the same corner.
+  parallelRanges(nv, threads, [&](size_t begin, size_t end, unsigned) {
+    size_t nm = 0, open = 0;
+    for (size_t a = begin; a < end; ++a) {
+      const auto la = l.of(uint32_t(a));
+      // Does a's list name any vertex twice? A 64-bit mask of the ids' low
+      // bits answers "certainly not" in one pass for almost every vertex.
+      uint64_t mask = 0;
+      bool maybeRepeats = false;
+      for (uint64_t x : la) {
+        const uint64_t bit = uint64_t(1) << (entryTo(x) & 63);
+        maybeRepeats |= (mask & bit) != 0;
+        mask |= bit;
+      }
+      for (size_t i = 0; i < la.size(); ++i) {
+        const uint32_t b = entryTo(la[i]), c = entryCorner(la[i]);
+        // The common case first: b's list holds exactly one corner back to
+        // a, and a's list no other corner to b.
+        uint32_t back = kNoCorner, backs = 0;
+        for (uint64_t y : l.of(b))
+          if (entryTo(y) == uint32_t(a)) back = entryCorner(y), ++backs;
+        bool repeated = false;
+        if (maybeRepeats)
+          for (size_t j = 0; j < la.size(); ++j) repeated |= j != i && entryTo(la[j]) == b;
+        if (!repeated && backs == 1) {
+          t.twin[c] = back;
+          continue;
+        }
+        if (!repeated && backs == 0) {
+          ++open;
+          continue;
+        }
+        if (c == edgeCorners(l, uint32_t(a), b).minCorner) ++nm;  // counted once, by the edge's lowest corner
+      }
+    }
+    nmEdges += nm;
+    boundary += open;
+  });
+  // Fans: walk around each vertex through twins; fewer faces reached than
+  // the vertex has means its faces form more than one fan. Vertices on a
+  // non-manifold edge are split by that edge already and not counted again.
+  auto onNonManifoldEdge = [&](uint32_t c) {
+    if (t.twin[c] != kNoCorner) return false;
+    const EdgeCorners e = edgeCorners(l, tris[c], tris[nextCorner(c)]);
+    return !(e.same == 1 && e.opposite == 0);
+  };
+  parallelRanges(nv, threads, [&](size_t begin, size_t end, unsigned) {
+    size_t nm = 0;
+    for (size_t v = begin; v < end; ++v) {
+      const auto list = l.of(uint32_t(v));
+      const size_t k = list.size();
+      if (k < 2) continue;
+      bool touchesNonManifold = false;
+      for (uint64_t x : list)
+        if (onNonManifoldEdge(entryCorner(x)) || onNonManifoldEdge(prevCorner(entryCorner(x)))) {
+          touchesNonManifold = true;
+          break;
+        }
+      if (touchesNonManifold) continue;
+      const uint32_t start = entryCorner(list[0]);
+      size_t count = 1;
+      bool closed = false;
+      for (uint32_t c = start; count <= k;) {
+        const uint32_t n = t.twin[prevCorner(c)];
+        if (n == kNoCorner) break;
+        if (n == start) {
+          closed = true;
+          break;
+        }
+        ++count;
+        c = n;
+      }
+      if (!closed)
+        for (uint32_t c = start; count <= k;) {
+          const uint32_t tw = t.twin[c];
+          if (tw == kNoCorner) break;
+          c = nextCorner(tw);
+          ++count;
+        }
+      if (count < k) ++nm;
+    }
+    nmVertices += nm;
+  });
+  t.nonManifoldEdges = nmEdges;
+  t.boundaryEdges = boundary;
+  t.nonManifoldVertices = nmVertices;
+  return t;
+}
+
+// Union-find over corners; the smaller index becomes the root so the result
+// does not depend on the order unions happen in.
+struct DisjointSets {
+  std::vector<uint32_t> parent;
+  explicit DisjointSets(size_t n) : parent(n) {
+    for (size_t i = 0; i < n; ++i) parent[i] = uint32_t(i);
+  }
+  uint32_t find(uint32_t x) {
+    while (parent[x] != x) {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  }
+  void unite(uint32_t a, uint32_t b) {
+    a = find(a), b = find(b);
+    if (a == b) return;
+    if (a < b)
+      parent[b] = a;
+    else
+      parent[a] = b;
+  }
+};
+
+}  // namespace
+
+CornerTopology analyzeCorners(std::span<const uint32_t> tris, uint32_t vertexCount, unsigned threads) {
+  const OutgoingLists l = buildOutgoing(tris, vertexCount);
+  return analyze(tris, vertexCount, l, threads);
+}
+
+NonManifoldSplitStats splitNonManifold(std::vector<uint32_t>& tris, uint32_t vertexCount,
+                                       std::vector<uint32_t>& copiedFrom, CornerTopology& topology,
+                                       unsigned threads) {
+  NonManifoldSplitStats stats;
+  const uint32_t originalCount = vertexCount;
+  uint32_t nv = vertexCount;
+  const size_t nc = tris.size();
+  // Round 0 pairs the faces of each non-manifold edge and splits every vertex
+  // into its fans. A face left unpaired can still hang on both ends of its
+  // edge through other faces (a fin glued along a fold); round 1 detaches
+  // such faces completely, and round 2 splits the fans that leaves behind.
+  for (int round = 0; round < 4; ++round) {
+    const OutgoingLists l = buildOutgoing(tris, nv);
+    topology = analyze(tris, nv, l, threads);
+    if (round == 0) {
+      stats.nonManifoldEdges = topology.nonManifoldEdges;
+      stats.nonManifoldVertices = topology.nonManifoldVertices;
+    }
+    if (topology.manifold() || round == 3) break;
+
+    std::vector<uint32_t> twin = topology.twin;
+    std::vector<uint8_t> detached(nc / 3, 0);
+    for (uint32_t a = 0; a < nv; ++a)
+      for (uint64_t x : l.of(a)) {
+        const uint32_t b = entryTo(x), c = entryCorner(x);
+        if (twin[c] != kNoCorner) continue;
+        const EdgeCorners e = edgeCorners(l, a, b);
+        if ((e.same == 1 && e.opposite == 0) || c != e.minCorner) continue;
+        // All corners of this non-manifold edge, both directions, by index.
+        std::vector<std::pair<uint32_t, bool>> corners;  // (corner, runs a->b)
+        for (uint64_t y : l.of(a))
+          if (entryTo(y) == b) corners.push_back({entryCorner(y), true});
+        for (uint64_t y : l.of(b))
+          if (entryTo(y) == a) corners.push_back({entryCorner(y), false});
+        std::sort(corners.begin(), corners.end());
+        std::vector<uint8_t> paired(corners.size(), 0);
+        bool firstPairMade = false;
+        for (size_t i = 0; i < corners.size(); ++i) {
+          if (paired[i]) continue;
+          for (size_t j = i + 1; j < corners.size(); ++j)
+            if (!paired[j] && corners[j].second != corners[i].second) {
+              if (round == 0 || !firstPairMade) {
+                twin[corners[i].first] = corners[j].first;
+                twin[corners[j].first] = corners[i].first;
+                paired[i] = paired[j] = 1;
+                firstPairMade = true;
+              }
+              break;
+            }
+        }
+        if (round > 0)
+          for (size_t i = 0; i < corners.size(); ++i) {
+            // Without any pair the first face keeps the edge as its boundary.
+            if (paired[i] || (!firstPairMade && i == 0)) continue;
+            detached[corners[i].first / 3] = 1;
+          }
+      }
+
+    DisjointSets sets(nc);
+    for (uint32_t c = 0; c < nc; ++c) {
+      const uint32_t t = twin[c];
+      if (t == kNoCorner || t < c || detached[c / 3] || detached[t / 3]) continue;
+      sets.unite(c, nextCorner(t));  // both leave tris[c]
+      sets.unite(nextCorner(c), t);  // both leave tris[t]
+    }
+    std::vector<uint32_t> idOfRoot(nc, UINT32_MAX);
+    std::vector<uint8_t> claimed(nv, 0);
+    for (uint32_t c = 0; c < nc; ++c) {
+      const uint32_t v = tris[c];
+      if (v >= nv) continue;
+      const uint32_t r = sets.find(c);
+      if (idOfRoot[r] == UINT32_MAX) {
+        if (!claimed[v]) {
+          claimed[v] = 1;
+          idOfRoot[r] = v;
+        } else {
+          idOfRoot[r] = originalCount + uint32_t(copiedFrom.size());
+          copiedFrom.push_back(v < originalCount ? v : copiedFrom[v - originalCount]);
+        }
+      }
+      tris[c] = idOfRoot[r];
+    }
+    for (uint8_t d : detached) stats.facesDetached += d;
+    nv = originalCount + uint32_t(copiedFrom.size());
+  }
+  stats.verticesAdded = nv - originalCount;
+  return stats;
+}
+
+}  // namespace hs::mesh

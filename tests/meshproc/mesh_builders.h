@@ -1,0 +1,126 @@
+#pragma once
+// Meshes with known shape for the mesh-processing tests: a gently curved
+// grid (optionally with a UV seam along a staircase line), an icosphere, and
+// OBJ writing with exact decimal coordinates.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "mesh/mesh_data.h"
+
+namespace hs::test {
+
+using hs::mesh::MeshData;
+
+// n x n quads over [0, size]^2, z = amplitude * sin(x) * cos(y) (0 = flat),
+// each quad split along its (i,j)-(i+1,j+1) diagonal. With `seam`, a UV
+// seam runs through the grid as a staircase of vertical and diagonal edges
+// (column seamColumn(n, j) at row j): faces left of it map UV (0.5 x, y),
+// faces right of it (0.5 x + 0.5, y), so the vertices on the line exist
+// twice, once per side.
+inline int seamColumn(int n, int j) { return n / 4 + j / 2; }
+
+inline MeshData curvedGrid(int n, double size, double amplitude, bool seam) {
+  MeshData m;
+  auto z = [&](double x, double y) { return amplitude * std::sin(x * 3.1 / size) * std::cos(y * 2.3 / size); };
+  std::map<std::tuple<int, int, int>, uint32_t> id;
+  auto vertex = [&](int i, int j, int side) {
+    const auto key = std::make_tuple(i, j, side);
+    if (auto it = id.find(key); it != id.end()) return it->second;
+    const double x = size * i / n, y = size * j / n;
+    m.positions.emplace_back(float(x), float(y), float(z(x, y)));
+    m.uvs.emplace_back(float(0.5 * i / n + (side ? 0.5 : 0.0)), float(double(j) / n));
+    return id[key] = uint32_t(m.positions.size() - 1);
+  };
+  // Which side of the seam a triangle with this centroid (grid units) is on.
+  auto sideOf = [&](double cx, double cy) {
+    if (!seam) return 0;
+    const int j = std::min(int(cy), n - 1);
+    const double line = seamColumn(n, j) + (seamColumn(n, j + 1) - seamColumn(n, j)) * (cy - j);
+    return cx > line ? 1 : 0;
+  };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int s1 = sideOf(i + 2.0 / 3.0, j + 1.0 / 3.0), s2 = sideOf(i + 1.0 / 3.0, j + 2.0 / 3.0);
+      m.indices.insert(m.indices.end(), {vertex(i, j, s1), vertex(i + 1, j, s1), vertex(i + 1, j + 1, s1)});
+      m.indices.insert(m.indices.end(), {vertex(i, j, s2), vertex(i + 1, j + 1, s2), vertex(i, j + 1, s2)});
+    }
+  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
+  hs::mesh::computeVertexNormals(m);
+  return m;
+}
+
+// Icosahedron subdivided `levels` times onto a sphere of `radius`
+// (20 * 4^levels faces).
+inline MeshData icosphere(int levels, double radius) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<glm::dvec3> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                               {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for (auto& v : p) v = glm::normalize(v);
+  std::vector<uint32_t> f = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6,
+                             7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7,
+                             9, 8, 1};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+      const auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      p.push_back(glm::normalize(p[a] + p[b]));
+      return mid[key] = uint32_t(p.size() - 1);
+    };
+    std::vector<uint32_t> g;
+    for (size_t i = 0; i < f.size(); i += 3) {
+      const uint32_t a = f[i], b = f[i + 1], c = f[i + 2];
+      const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      g.insert(g.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+    }
+    f = std::move(g);
+  }
+  MeshData m;
+  for (const auto& v : p) m.positions.emplace_back(glm::vec3(v * radius));
+  m.indices = f;
+  m.submeshes.push_back({0, uint32_t(f.size()), -1});
+  hs::mesh::computeVertexNormals(m);
+  return m;
+}
+
+// Writes `m` as OBJ with positions origin + local + `offset` printed with
+// `decimals` digits (20 prints a dyadic fraction exactly), Z-up as stored.
+inline void writeObj(const std::string& path, const MeshData& m, glm::dvec3 offset = glm::dvec3(0.0),
+                     int decimals = 9, bool withUv = true) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  for (const auto& p : m.positions) {
+    const glm::dvec3 w = m.origin + glm::dvec3(p) + offset;
+    std::fprintf(f, "v %.*f %.*f %.*f\n", decimals, w.x, decimals, w.y, decimals, w.z);
+  }
+  const bool uv = withUv && m.uvs.size() == m.positions.size();
+  if (uv)
+    for (const auto& t : m.uvs) std::fprintf(f, "vt %.9g %.9g\n", double(t.x), 1.0 - double(t.y));
+  for (size_t i = 0; i < m.indices.size(); i += 3) {
+    if (uv)
+      std::fprintf(f, "f %u/%u %u/%u %u/%u\n", m.indices[i] + 1, m.indices[i] + 1, m.indices[i + 1] + 1,
+                   m.indices[i + 1] + 1, m.indices[i + 2] + 1, m.indices[i + 2] + 1);
+    else
+      std::fprintf(f, "f %u %u %u\n", m.indices[i] + 1, m.indices[i + 1] + 1, m.indices[i + 2] + 1);
+  }
+  std::fclose(f);
+}
+
+inline void writeText(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f.write(text.data(), std::streamsize(text.size()));
+}
+
+inline std::vector<glm::dvec3> world(const MeshData& m) {
+  std::vector<glm::dvec3> w;
+  for (const auto& p : m.positions) w.push_back(m.origin + glm::dvec3(p));
+  return w;
+}
+
+}  // namespace hs::test

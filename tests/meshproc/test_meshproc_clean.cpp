@@ -1,0 +1,210 @@
+// Cleaning: every kind of bad input is removed, quarantined, welded or
+// split, counted, and named in plain words; nothing is dropped silently.
+#include <QtTest>
+
+#include "mesh/decimate.h"
+#include "mesh/mesh_clean.h"
+#include "mesh/nonmanifold_split.h"
+#include "mesh/weld.h"
+#include "mesh_builders.h"
+
+using namespace hs::mesh;
+
+namespace {
+
+bool anyWarning(const CleanReport& r, const std::string& a, const std::string& b = "") {
+  for (const auto& w : r.warnings)
+    if (w.find(a) != std::string::npos && w.find(b) != std::string::npos) return true;
+  return false;
+}
+
+std::string joined(const CleanReport& r) {
+  std::string s;
+  for (const auto& w : r.warnings) s += w + "\n";
+  return s;
+}
+
+MeshData quadSoup() {
+  // A unit quad as two triangles with six vertices (two exact duplicates).
+  MeshData m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  m.indices = {0, 1, 2, 3, 4, 5};
+  return m;
+}
+
+}  // namespace
+
+class TestMeshprocClean : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void weldsExactDuplicates() {
+    MeshData m = quadSoup();
+    CleanReport r;
+    std::string err;
+    QVERIFY2(cleanMesh(m, {}, r, err), err.c_str());
+    QCOMPARE(m.vertexCount(), size_t(4));
+    QCOMPARE(m.triangleCount(), size_t(2));
+    QCOMPARE(r.duplicateVerticesWelded, size_t(2));
+    QVERIFY(anyWarning(r, "2 exact duplicate vertices"));
+    // Same position but different UV is a seam, not a duplicate.
+    MeshData s = quadSoup();
+    s.uvs = {{0, 0}, {1, 0}, {1, 1}, {0.5f, 0}, {1, 1}, {0, 1}};
+    CleanReport rs;
+    QVERIFY(cleanMesh(s, {}, rs, err));
+    QCOMPARE(s.vertexCount(), size_t(5));
+  }
+
+  // The decimator's sort-based welds give the same ids as the hash-based
+  // weldMap, for any number of threads (first-occurrence order).
+  void weldsAgreeForAnyThreadCount() {
+    MeshData m = hs::test::curvedGrid(60, 10.0, 0.3, true);
+    for (size_t i = 0; i < m.vertexCount(); i += 5) {  // exact duplicates, some with another UV
+      m.positions.push_back(m.positions[i]);
+      m.uvs.push_back(m.uvs[(i * 13) % m.uvs.size()]);
+    }
+    uint32_t np = 0, nw = 0;
+    const auto pos = weldMap(m.positions, {}, {}, np, 1);
+    const auto wedge = weldMap(m.positions, m.uvs, {}, nw, 1);
+    QVERIFY(np < nw && nw < m.vertexCount());
+    for (unsigned threads : {1u, 2u, 3u}) {
+      uint32_t a = 0, b = 0, c = 0;
+      QVERIFY(weldMap(m.positions, m.uvs, {}, a, threads) == wedge);
+      std::vector<uint32_t> p2, w2;
+      weldPositionsAndWedges(m.positions, m.uvs, p2, b, w2, c, threads);
+      QCOMPARE(b, np);
+      QCOMPARE(c, nw);
+      QVERIFY(p2 == pos);
+      QVERIFY(w2 == wedge);
+    }
+  }
+
+  void nanCoordinatesAreQuarantined() {
+    MeshData m = hs::test::curvedGrid(4, 1.0, 0.0, false);
+    const size_t faces = m.triangleCount();
+    m.positions[7] = glm::vec3(NAN, 0, 0);
+    m.positions[8].z = INFINITY;
+    CleanReport r;
+    std::string err;
+    QVERIFY2(cleanMesh(m, {}, r, err), err.c_str());
+    QCOMPARE(r.nonFiniteVertices, size_t(2));
+    QVERIFY(r.facesOnNonFiniteVertices > 0);
+    QCOMPARE(m.triangleCount(), faces - r.facesOnNonFiniteVertices);
+    QCOMPARE(r.nonFiniteVertexIndices, (std::vector<uint32_t>{7, 8}));
+    QVERIFY2(anyWarning(r, "NaN or infinite", "first: 7, 8"), joined(r).c_str());
+    for (const auto& p : m.positions) QVERIFY(std::isfinite(p.x + p.y + p.z));
+  }
+
+  void indicesOutOfRangeAreQuarantined() {
+    MeshData m = hs::test::curvedGrid(4, 1.0, 0.0, false);
+    m.indices[3 * 5 + 1] = 100000;
+    CleanReport r;
+    std::string err;
+    QVERIFY(cleanMesh(m, {}, r, err));
+    QCOMPARE(r.outOfRangeFaces, size_t(1));
+    QCOMPARE(r.outOfRangeFaceIndices, (std::vector<uint32_t>{5}));
+    QVERIFY2(anyWarning(r, "past the end of the vertex list", "first face: 5"), joined(r).c_str());
+    QCOMPARE(m.triangleCount(), size_t(31));
+  }
+
+  void bowTieVerticesAreSplitNotDropped() {
+    // Two triangles meeting in one vertex only.
+    MeshData m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+    m.indices = {0, 1, 2, 0, 3, 4};
+    CleanReport r;
+    std::string err;
+    QVERIFY(cleanMesh(m, {}, r, err));
+    QCOMPARE(m.triangleCount(), size_t(2));
+    QCOMPARE(r.nonManifoldVertices, size_t(1));
+    QCOMPARE(r.verticesAddedBySplit, size_t(1));
+    QCOMPARE(m.vertexCount(), size_t(6));
+    QVERIFY(analyzeCorners(m.indices, uint32_t(m.vertexCount())).manifold());
+    QVERIFY2(anyWarning(r, "bow-tie"), joined(r).c_str());
+  }
+
+  void edgesWithThreeFacesAreSplitNotDropped() {
+    // A fin: three triangles on the edge (0,1).
+    MeshData m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1}};
+    m.indices = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+    CleanReport r;
+    std::string err;
+    QVERIFY(cleanMesh(m, {}, r, err));
+    QCOMPARE(m.triangleCount(), size_t(3));
+    QCOMPARE(r.nonManifoldEdges, size_t(1));
+    QVERIFY(r.verticesAddedBySplit >= 2);
+    QVERIFY(analyzeCorners(m.indices, uint32_t(m.vertexCount())).manifold());
+    QVERIFY2(anyWarning(r, "non-manifold edges"), joined(r).c_str());
+    // And the decimator takes it (it splits again at position level).
+    MeshData raw;
+    raw.positions = m.positions;
+    raw.indices = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+    DecimateOptions o;
+    o.targetTriangles = 2;
+    const DecimateResult d = decimate(raw, o);
+    QVERIFY2(d.ok(), d.error.c_str());
+    QCOMPARE(d.report.nonManifold.nonManifoldEdges, size_t(1));
+  }
+
+  void degenerateAndDuplicateFacesAreRemoved() {
+    MeshData m = hs::test::curvedGrid(4, 1.0, 0.0, false);
+    const size_t faces = m.triangleCount();
+    m.indices.insert(m.indices.end(), {0, 0, 1});                // repeated index
+    // Three vertices along the grid's first row: collinear, zero area.
+    std::vector<uint32_t> row;
+    for (uint32_t v = 0; v < m.vertexCount(); ++v)
+      if (m.positions[v].y == 0.0f) row.push_back(v);
+    QVERIFY(row.size() >= 3);
+    m.indices.insert(m.indices.end(), {row[0], row[1], row[2]});
+    m.indices.insert(m.indices.end(), {m.indices[3], m.indices[4], m.indices[5]});  // duplicate face
+    m.submeshes = {{0, uint32_t(m.indices.size()), -1}};
+    CleanReport r;
+    std::string err;
+    QVERIFY(cleanMesh(m, {}, r, err));
+    QCOMPARE(r.repeatedIndexFaces, size_t(1));
+    QCOMPARE(r.zeroAreaFaces, size_t(1));
+    QCOMPARE(r.duplicateFaces, size_t(1));
+    QCOMPARE(m.triangleCount(), faces);
+    QVERIFY2(anyWarning(r, "zero area"), joined(r).c_str());
+  }
+
+  void allDegenerateIsRefusedWithAMessage() {
+    MeshData m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+    m.indices = {0, 1, 2, 1, 2, 3, 0, 0, 3};
+    CleanReport r;
+    std::string err;
+    QVERIFY(!cleanMesh(m, {}, r, err));
+    QVERIFY2(err.find("every face was removed") != std::string::npos && err.find("3 degenerate") != std::string::npos,
+             err.c_str());
+    QCOMPARE(r.zeroAreaFaces + r.repeatedIndexFaces, size_t(3));
+  }
+
+  void noFacesIsRefusedWithAMessage() {
+    MeshData m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}};
+    CleanReport r;
+    std::string err;
+    QVERIFY(!cleanMesh(m, {}, r, err));
+    QVERIFY2(err.find("no faces") != std::string::npos && err.find("2 vertices") != std::string::npos, err.c_str());
+  }
+
+  void submeshesAndMaterialsSurvive() {
+    MeshData m = hs::test::curvedGrid(4, 1.0, 0.0, false);
+    m.materials.resize(2);
+    const uint32_t half = uint32_t(m.indices.size() / 2);
+    m.submeshes = {{0, half, 1}, {half, half, 0}};
+    m.indices[0] = m.indices[1];  // one degenerate face in the first submesh
+    CleanReport r;
+    std::string err;
+    QVERIFY(cleanMesh(m, {}, r, err));
+    QCOMPARE(m.submeshes.size(), size_t(2));
+    QCOMPARE(m.submeshes[0].material, 1);
+    QCOMPARE(m.submeshes[0].indexCount, half - 3);
+    QCOMPARE(m.submeshes[1].firstIndex, half - 3);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestMeshprocClean)
+#include "test_meshproc_clean.moc"

@@ -1,0 +1,281 @@
+// Decimation: round trip at 100%, targets, UTM-offset invariance, seams and
+// boundaries on their polylines, no flips on a sphere, determinism across
+// thread counts, locked tile borders, Cancel.
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "mesh/decimate.h"
+#include "mesh/error_metrics.h"
+#include "mesh/mesh_import.h"
+#include "mesh_builders.h"
+
+using namespace hs::mesh;
+using hs::test::curvedGrid;
+using hs::test::icosphere;
+
+namespace {
+
+const std::string kBunny = HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj";
+
+MeshData bunny() {
+  ImportOptions o;
+  o.up = UpAxis::Z;
+  ImportResult r = importMesh(kBunny, o);
+  if (!r.ok()) qFatal("cannot read the bunny: %s", r.error.c_str());
+  return std::move(*r.mesh);
+}
+
+std::set<std::tuple<float, float, float>> pointSet(const std::vector<glm::vec3>& pts) {
+  std::set<std::tuple<float, float, float>> s;
+  for (const auto& p : pts) s.insert({p.x, p.y, p.z});
+  return s;
+}
+
+}  // namespace
+
+class TestMeshprocDecimate : public QObject {
+  Q_OBJECT
+  QTemporaryDir tmp_;
+
+ private slots:
+  void hundredPercentChangesNothing() {
+    const MeshData in = bunny();
+    DecimateOptions o;
+    o.targetRatio = 1.0;
+    const DecimateResult r = decimate(in, o);
+    QVERIFY2(r.ok(), r.error.c_str());
+    QCOMPARE(r.mesh.triangleCount(), in.triangleCount());
+    QVERIFY(r.mesh.positions == in.positions);
+    QVERIFY(r.mesh.indices == in.indices);
+    QVERIFY(r.mesh.normals == in.normals);
+    QCOMPARE(r.report.collapses, size_t(0));
+    QVERIFY(r.report.targetReached);
+    // And the error metric agrees: nothing moved.
+    const ErrorReport e = measureError(in, r.mesh);
+    QCOMPARE(e.hausdorff, 0.0);
+  }
+
+  void ratioCountAndErrorTargets() {
+    const MeshData in = bunny();
+    DecimateOptions ratio;
+    ratio.targetRatio = 0.25;
+    const DecimateResult a = decimate(in, ratio);
+    QVERIFY2(a.ok(), a.error.c_str());
+    const size_t want = size_t(std::llround(0.25 * double(in.triangleCount())));
+    QVERIFY(a.mesh.triangleCount() <= want && a.mesh.triangleCount() + 2 >= want);
+    QVERIFY(a.report.targetReached);
+
+    DecimateOptions count;
+    count.targetTriangles = 5000;
+    const DecimateResult b = decimate(in, count);
+    QVERIFY(b.mesh.triangleCount() <= 5000 && b.mesh.triangleCount() >= 4998);
+
+    // Maximum error alone: every collapse stays within it (estimate), and
+    // the measured Hausdorff is of the same order.
+    DecimateOptions err;
+    err.targetRatio = 0.0;
+    err.maxError = 0.0002;  // 0.2 mm on a 0.2 m scan
+    const DecimateResult c = decimate(in, err);
+    QVERIFY2(c.ok(), c.error.c_str());
+    QVERIFY(c.mesh.triangleCount() < in.triangleCount() / 2);
+    QVERIFY(c.report.maxEstimatedError <= 0.0002);
+    const ErrorReport e = measureError(in, c.mesh);
+    QVERIFY2(e.hausdorff < 4 * 0.0002, qPrintable(QString::number(e.hausdorff)));
+  }
+
+  void parseTargets() {
+    DecimateOptions o;
+    std::string err;
+    QVERIFY(parseDecimateTarget("500k", o, err));
+    QCOMPARE(o.targetTriangles, size_t(500000));
+    QVERIFY(parseDecimateTarget("2.5M", o, err));
+    QCOMPARE(o.targetTriangles, size_t(2500000));
+    QVERIFY(parseDecimateTarget("10%", o, err));
+    QCOMPARE(o.targetTriangles, size_t(0));
+    QCOMPARE(o.targetRatio, 0.1);
+    QVERIFY(!parseDecimateTarget("lots", o, err));
+    QVERIFY2(err.find("lots") != std::string::npos, err.c_str());
+    QVERIFY(!parseDecimateTarget("150%", o, err));
+  }
+
+  // The same scan at the origin and at UTM coordinates: the decimator works
+  // relative to the mesh's own origin in double, so the shapes agree.
+  void utmOffsetGivesTheSameShape() {
+    const glm::dvec3 offset(656059.0, 5514553.0, 1713.0);
+    MeshData a = bunny();
+    // Coordinates on a 2^-20 m grid: exact in decimal and in double at
+    // both places, so the file itself carries no rounding difference.
+    for (auto& p : a.positions) p = glm::round(p * 1048576.0f) / 1048576.0f;
+    a.origin = glm::dvec3(0.0);
+    const std::string pa = tmp_.filePath("near.obj").toStdString(), pb = tmp_.filePath("utm.obj").toStdString();
+    hs::test::writeObj(pa, a, glm::dvec3(0.0), 20, false);
+    hs::test::writeObj(pb, a, offset, 20, false);
+    ImportOptions io;
+    io.up = UpAxis::Z;
+    const ImportResult ra = importMesh(pa, io), rb = importMesh(pb, io);
+    QVERIFY2(ra.ok() && rb.ok(), (ra.error + rb.error).c_str());
+    QVERIFY(std::abs(rb.mesh->origin.y - offset.y) < 1.0);  // really at UTM northing
+
+    DecimateOptions o;
+    o.targetRatio = 0.1;
+    const DecimateResult da = decimate(*ra.mesh, o), db = decimate(*rb.mesh, o);
+    QVERIFY(da.ok() && db.ok());
+    QCOMPARE(da.mesh.triangleCount(), db.mesh.triangleCount());
+    const double diag = measureError(*ra.mesh, da.mesh).bboxDiagonal;
+    double worst = 0;
+    for (size_t v = 0; v < da.mesh.vertexCount(); ++v) {
+      const glm::dvec3 wa = da.mesh.origin + glm::dvec3(da.mesh.positions[v]);
+      const glm::dvec3 wb = db.mesh.origin + glm::dvec3(db.mesh.positions[v]) - offset;
+      worst = std::max(worst, glm::length(wa - wb));
+    }
+    QVERIFY2(worst <= 1e-6 * diag, qPrintable(QString("vertex difference %1 m of %2 m").arg(worst).arg(diag)));
+    // Shape against shape (independent of vertex order).
+    MeshData shifted = db.mesh;
+    shifted.origin -= offset;
+    const ErrorReport e = measureError(da.mesh, shifted);
+    QVERIFY2(e.hausdorff <= 1e-6 * diag, qPrintable(QString::number(e.hausdorff)));
+  }
+
+  // Boundary and UV-seam vertices only merge along their polyline and never
+  // move: every boundary/seam vertex left is an original one, and the
+  // texture lands where it did.
+  void seamsAndBoundariesStayOnTheirPolylines() {
+    const MeshData in = curvedGrid(60, 10.0, 0.4, true);
+    // The seam really is one: vertices on it exist twice with different UVs.
+    QVERIFY(in.vertexCount() > 61 * 61);
+    DecimateOptions o;
+    o.targetRatio = 0.05;
+    const DecimateResult r = decimate(in, o);
+    QVERIFY2(r.ok(), r.error.c_str());
+    QVERIFY(r.report.seamVertices > 0 && r.report.boundaryVertices > 0);
+    ErrorOptions eo;
+    eo.textureWidth = eo.textureHeight = 1024;
+    const ErrorReport e = measureError(in, r.mesh, eo);
+    QVERIFY(e.constrainedVerticesOut > 8);
+    QCOMPARE(e.constrainedVerticesMoved, size_t(0));
+    QVERIFY(e.uvMeasured);
+    QVERIFY2(e.uvP95Texels < 1.0, qPrintable(QString::number(e.uvP95Texels)));
+    // Every output vertex sitting at a seam/boundary position is one of the
+    // input's vertices there, exactly.
+    const auto original = pointSet(in.positions);
+    for (const auto& p : r.mesh.positions) {
+      const bool onBorder = p.x == 0.0f || p.y == 0.0f || p.x == 10.0f || p.y == 10.0f;
+      if (onBorder) QVERIFY(original.count({p.x, p.y, p.z}));
+    }
+    // Seam vertices keep both their UVs: some output positions still carry two.
+    std::map<std::tuple<float, float, float>, int> uvCount;
+    for (const auto& p : r.mesh.positions) ++uvCount[{p.x, p.y, p.z}];
+    QVERIFY(std::any_of(uvCount.begin(), uvCount.end(), [](const auto& kv) { return kv.second == 2; }));
+  }
+
+  void noFlippedNormalsOnASphereAtOnePercent() {
+    const MeshData in = icosphere(6, 1.0);  // 81920 faces
+    DecimateOptions o;
+    o.targetRatio = 0.01;
+    const DecimateResult r = decimate(in, o);
+    QVERIFY2(r.ok(), r.error.c_str());
+    QVERIFY(r.mesh.triangleCount() <= 820);
+    for (size_t f = 0; f < r.mesh.triangleCount(); ++f) {
+      const glm::dvec3 a(r.mesh.positions[r.mesh.indices[f * 3]]), b(r.mesh.positions[r.mesh.indices[f * 3 + 1]]),
+          c(r.mesh.positions[r.mesh.indices[f * 3 + 2]]);
+      QVERIFY2(glm::dot(glm::cross(b - a, c - a), a + b + c) > 0, qPrintable(QString("face %1 faces inwards").arg(f)));
+    }
+    const ErrorReport e = measureError(in, r.mesh);
+    QCOMPARE(e.flippedNormals, size_t(0));
+    QVERIFY(e.hausdorff < 0.05);  // an 820-face sphere of radius 1
+  }
+
+  // Output depends on the input only, not on the number of threads, also
+  // when the mesh is cut into many regions.
+  void deterministicForAnyThreadCount() {
+    const MeshData in = bunny();
+    for (size_t perRegion : {size_t(1000000), size_t(8000)}) {
+      uint64_t first = 0;
+      for (unsigned threads : {1u, 2u, 3u}) {
+        DecimateOptions o;
+        o.targetRatio = 0.1;
+        o.threads = threads;
+        o.facesPerRegion = perRegion;
+        const DecimateResult r = decimate(in, o);
+        QVERIFY(r.ok());
+        if (perRegion == 8000) QVERIFY(r.report.regions > 4);
+        const uint64_t h = contentHash(r.mesh);
+        if (threads == 1) first = h;
+        QCOMPARE(h, first);
+      }
+    }
+  }
+
+  // Tile borders: with lockBoundaries every boundary vertex stays.
+  void lockedBoundariesStay() {
+    const MeshData in = curvedGrid(40, 10.0, 0.5, false);
+    DecimateOptions o;
+    o.targetRatio = 0.05;
+    o.lockBoundaries = true;
+    const DecimateResult r = decimate(in, o);
+    QVERIFY(r.ok());
+    size_t border = 0;
+    const auto out = pointSet(r.mesh.positions);
+    for (const auto& p : in.positions)
+      if (p.x == 0.0f || p.y == 0.0f || p.x == 10.0f || p.y == 10.0f) {
+        ++border;
+        QVERIFY(out.count({p.x, p.y, p.z}));
+      }
+    QCOMPARE(border, size_t(160));
+    QCOMPARE(r.report.fixedVertices, size_t(160));
+  }
+
+  void badInputIsRefusedWithAMessage() {
+    MeshData m = curvedGrid(4, 1.0, 0.0, false);
+    m.indices[5] = 999;
+    DecimateResult r = decimate(m, {});
+    QVERIFY(!r.ok());
+    QVERIFY2(r.error.find("999") != std::string::npos && r.error.find("clean") != std::string::npos, r.error.c_str());
+    m = curvedGrid(4, 1.0, 0.0, false);
+    m.positions[3].x = NAN;
+    r = decimate(m, {});
+    QVERIFY2(!r.ok() && r.error.find("NaN") != std::string::npos, r.error.c_str());
+    MeshData empty;
+    empty.positions = {{0, 0, 0}};
+    r = decimate(empty, {});
+    QVERIFY2(!r.ok() && r.error.find("no faces") != std::string::npos, r.error.c_str());
+    // All faces degenerate (every corner of each face at one point).
+    MeshData flat;
+    flat.positions = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}};
+    flat.indices = {0, 1, 2, 3, 4, 5};
+    DecimateOptions half;
+    half.targetRatio = 0.5;
+    r = decimate(flat, half);
+    QVERIFY2(!r.ok() && r.error.find("degenerate") != std::string::npos, r.error.c_str());
+  }
+
+  void cancelStopsIt() {
+    const MeshData in = bunny();
+    hs::Progress progress;
+    progress.cancel();
+    const DecimateResult r = decimate(in, {}, &progress);
+    QVERIFY(r.cancelled);
+    QVERIFY(!r.ok());
+  }
+
+  void progressIsReported() {
+    const MeshData in = bunny();
+    std::vector<double> seen;
+    hs::Progress progress([&](double f, std::string_view) { seen.push_back(f); });
+    DecimateOptions o;
+    o.targetRatio = 0.05;
+    o.threads = 2;
+    const DecimateResult r = decimate(in, o, &progress);
+    QVERIFY(r.ok());
+    QVERIFY(seen.size() >= 3);
+    QCOMPARE(seen.back(), 1.0);
+    QVERIFY(std::is_sorted(seen.begin(), seen.end()));
+  }
+};
+
+QTEST_GUILESS_MAIN(TestMeshprocDecimate)
+#include "test_meshproc_decimate.moc"
