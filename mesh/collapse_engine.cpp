@@ -471,7 +471,7 @@ void CollapseEngine::collapse(const Plan& plan, const uint32_t (&from)[2], const
       if (s_.estate[e] & kQueued)
         s_.estate[e] |= kDirty;  // re-evaluated if and when it reaches the top
       else if (entryFor(e, entry))
-        push(entry);             // was refused before; the new neighbourhood may allow it
+        push(entry), ++stats_.pushed;            // was refused before; the new neighbourhood may allow it
     }
     it = m_.next_halfedge_handle(m_.opposite_halfedge_handle(it));
   } while (it != start);
@@ -494,7 +494,9 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
   size_t sinceReport = 0;
   while (liveFaces > targetFaces && !heap_.empty() && heap_[0].key() <= keyLimit) {
     const uint32_t edge = heap_[0].edge();
+    ++stats_.tops;
     if (s_.edgeStatus[edge].deleted()) {
+      ++stats_.deletedTops;
       popTop();
       continue;
     }
@@ -511,6 +513,7 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
       bool stays = true;
       for (size_t c = 1; c < std::min<size_t>(5, heap_.size()); ++c) stays &= before(fresh, heap_[c]);
       if (!stays) {
+        ++stats_.sank;
         heap_[0] = fresh;
         siftDown(0);
         continue;
@@ -521,8 +524,11 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
       // The faces beyond the two that vanish get rewired too: their third
       // vertices must be ours as well, or the edge waits for the border pass.
       const HalfedgeHandle o = m_.opposite_halfedge_handle(plan.h);
-      if (!m_.is_boundary(plan.h) && !mayTouch(m_.to_vertex_handle(m_.next_halfedge_handle(plan.h)))) continue;
-      if (!m_.is_boundary(o) && !mayTouch(m_.to_vertex_handle(m_.next_halfedge_handle(o)))) continue;
+      if ((!m_.is_boundary(plan.h) && !mayTouch(m_.to_vertex_handle(m_.next_halfedge_handle(plan.h)))) ||
+          (!m_.is_boundary(o) && !mayTouch(m_.to_vertex_handle(m_.next_halfedge_handle(o))))) {
+        ++stats_.notOurs;
+        continue;
+      }
     }
     uint32_t from[2], to[2];
     int count = 0;
@@ -532,7 +538,7 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
     }
     if (!geometryOk(plan)) continue;
     collapse(plan, from, to, count, liveFaces);
-    if (tombstones_ * 2 > heap_.size()) compact();
+    if (tombstones_ * 2 > heap_.size()) compact(), ++stats_.compactions;
     ++stats_.collapses;
     stats_.maxErrorSq = std::max(stats_.maxErrorSq, plan.errSq);
     if (++sinceReport == 1024) {

@@ -27,6 +27,10 @@ struct EngineStats {
   size_t collapses = 0;
   size_t rejectedTopology = 0, rejectedFlip = 0, rejectedSliver = 0;
   double maxErrorSq = 0.0;
+  // Where the loop's time goes (profiling): heap tops looked at, of them
+  // entries of deleted edges, dirty entries that sank, edges left for the
+  // border pass, entries pushed by collapses, compactions.
+  size_t tops = 0, deletedTops = 0, sank = 0, notOurs = 0, pushed = 0, compactions = 0;
 };
 
 class CollapseEngine {

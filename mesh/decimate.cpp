@@ -4,6 +4,9 @@
 #include <barrier>
 #include <charconv>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -25,6 +28,29 @@ using OpenMesh::VertexHandle;
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Step timings on stderr when HS_DECIMATE_TRACE is set (wall and process
+// CPU seconds since the previous mark): for profiling, off otherwise.
+struct Trace {
+  bool on = std::getenv("HS_DECIMATE_TRACE") != nullptr;
+  Clock::time_point wall = Clock::now();
+  double cpu = cpuNow();
+  static double cpuNow() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+  }
+  void mark(const char* what) {
+    if (!on) return;
+    const double c = cpuNow();
+    std::fprintf(stderr, "  [decimate] %-28s wall %7.3f  cpu %7.3f\n", what, since(wall), c - cpu);
+    wall = Clock::now(), cpu = c;
+  }
+};
+thread_local Trace* gTrace = nullptr;
+inline void traceMark(const char* what) {
+  if (gTrace) gTrace->mark(what);
+}
 
 // Per input face: which submesh (group) it belongs to. Faces no submesh
 // covers get one extra group with the default material.
@@ -68,6 +94,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   su.wedgeRep.assign(nWedge, UINT32_MAX);
   std::vector<uint32_t> posRep(nPos, UINT32_MAX);
   for (size_t v = nvIn; v-- > 0;) su.wedgeRep[wedgeOf[v]] = uint32_t(v), posRep[posOf[v]] = uint32_t(v);
+  traceMark("weld");
 
   // Spatial (Morton) order of the faces: regions become contiguous ranges,
   // and neighbours sit close in memory, which matters more than anything
@@ -101,6 +128,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     order.resize(n);
   }
   radixSortByKey(order, 30);
+  traceMark("morton sort");
   const size_t nf = order.size();
   if (nf == 0) {
     error = "every face is degenerate (two corners at the same point); nothing to decimate";
@@ -124,8 +152,10 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   }
   order = {};
   uint32_t nv = uint32_t(posOfOm.size());
+  traceMark("first-use numbering");
 
   CornerTopology topo = analyzeCorners(tris, nv, threads);
+  traceMark("analyzeCorners");
   if (!topo.manifold()) {
     std::vector<uint32_t> copiedFrom;
     rep.nonManifold = splitNonManifold(tris, nv, copiedFrom, topo, threads);
@@ -154,6 +184,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     points[v] = OpenMesh::Vec3d(p.x, p.y, p.z);
   }
   buildDecimationMesh(tris, topo.twin, points, st.mesh, threads);
+  traceMark("buildDecimationMesh");
   st.bindArrays();
 
   std::vector<Submesh> groups;
@@ -168,6 +199,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     for (size_t w = 0; w < st.wedgeUv.size(); ++w) st.wedgeUv[w] = in.uvs[su.wedgeRep[w]];
   }
 
+  traceMark("groups/wedgeUv");
   // Locks by input vertex, carried to every vertex at that position.
   std::vector<uint8_t> lockedPos(nPos, 0);
   if (opt.lockedVertices.size() == nvIn)
@@ -189,6 +221,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     }
   });
   points = {};
+  traceMark("vd init");
   struct Plane {
     glm::dvec3 n;
     double d, w;
@@ -210,6 +243,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
         planes[f] = {glm::dvec3(0.0), 0.0, 0.0};
     }
   });
+  traceMark("planes");
   // Vertices whose corners all use one wedge and one material cannot end a
   // seam edge: only edges at a "mixed" vertex need the full seam test.
   std::vector<uint8_t> mixed(nv, 0);
@@ -225,6 +259,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     }
   }
   std::atomic<size_t> nBoundary{0}, nSeam{0}, nFixed{0}, nLocked{0};
+  traceMark("mixed");
   parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
     size_t cb = 0, cs = 0, cf = 0, cl = 0;
     for (size_t vi = b; vi < e; ++vi) {
@@ -287,7 +322,8 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   rep.boundaryVertices = nBoundary, rep.seamVertices = nSeam, rep.fixedVertices = nFixed;
   rep.lockedVertices = nLocked;
   st.estate.assign(m.n_edges(), 0);
-  rep.degenerateFacesRemoved = su.degenerate;
+  rep.degenerateFacesRemoved = su.degenerate;  traceMark("quadrics+classes");
+
   return true;
 }
 
@@ -381,6 +417,12 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   }
 
   reportProgress(progress, 0.0, "Preparing decimation");
+  Trace trace;
+  gTrace = &trace;
+  struct ClearTrace {
+    ~ClearTrace() { gTrace = nullptr; }
+  } clearTrace;
+  traceMark("validate");
   DecimationState st;
   st.cosMaxNormalDeviation = std::cos(std::clamp(opt.maxNormalDeviationDeg, 0.0, 180.0) * std::numbers::pi / 180.0);
   st.minQuality = std::clamp(opt.minTriangleQuality, 0.0, 1.0);
@@ -502,12 +544,14 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
     const double keepShare = alive > 0 ? double(target) / double(alive) : 1.0;
     const size_t stopAt = std::max(target + size_t(double(strip) * (1.0 - keepShare)), regions * kMinFacesPerRegion);
     std::fill(st.estate.begin(), st.estate.end(), uint8_t(0));
+    traceMark("regions: partition");
     std::vector<std::unique_ptr<CollapseEngine>> engines(regions);
     parallelTasks(regions, threads, [&](size_t r, unsigned) {
       engines[r] = std::make_unique<CollapseEngine>(st, uint16_t(r));
       engines[r]->seedList(edgesOf[r]);
     });
     edgesOf = {};
+    traceMark("regions: seed");
     auto total = [&] {
       size_t n = 0;
       for (size_t x : live) n += x;
@@ -591,6 +635,21 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
         throw;
       }
     });
+    traceMark("regions: rounds");
+    if (gTrace && gTrace->on) {
+      EngineStats sum;
+      size_t maxQueue = 0;
+      for (auto& e : engines) {
+        const EngineStats& x = e->stats();
+        sum.collapses += x.collapses, sum.tops += x.tops, sum.deletedTops += x.deletedTops, sum.sank += x.sank;
+        sum.notOurs += x.notOurs, sum.pushed += x.pushed, sum.compactions += x.compactions;
+        sum.rejectedTopology += x.rejectedTopology, sum.rejectedFlip += x.rejectedFlip, sum.rejectedSliver += x.rejectedSliver;
+        maxQueue = std::max(maxQueue, e->queued());
+      }
+      std::fprintf(stderr, "  regions: %zu rounds %u, collapses %zu tops %zu deleted %zu sank %zu notOurs %zu pushed %zu compactions %zu topo %zu flip %zu sliver %zu live %zu stopAt %zu strip %zu\n",
+                   regions, rep.rounds, sum.collapses, sum.tops, sum.deletedTops, sum.sank, sum.notOurs, sum.pushed, sum.compactions,
+                   sum.rejectedTopology, sum.rejectedFlip, sum.rejectedSliver, total(), stopAt, strip);
+    }
     for (auto& e : engines) stats.push_back(e->stats());
     liveFaces = total();
   };
@@ -619,12 +678,21 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
     std::vector<CollapseEngine::Entry> all;
     for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
     parts = {};
+    traceMark("border: evaluate");
     border.seedEntries(std::move(all));
+    traceMark("border: heapify");
     if (!border.run(liveFaces, target, HUGE_VALF, progress, done, expected, true)) {
       result.cancelled = true;
       return result;
     }
     stats.push_back(border.stats());
+    traceMark("border: run");
+    if (gTrace && gTrace->on) {
+      const EngineStats& x = border.stats();
+      std::fprintf(stderr, "  border: collapses %zu tops %zu deleted %zu sank %zu pushed %zu compactions %zu topo %zu flip %zu sliver %zu queued %zu\n",
+                   x.collapses, x.tops, x.deletedTops, x.sank, x.pushed, x.compactions, x.rejectedTopology,
+                   x.rejectedFlip, x.rejectedSliver, border.queued());
+    }
   }
   rep.secondsBorders = since(t2);
 
@@ -643,6 +711,7 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   rep.verticesOut = result.mesh.vertexCount();
   rep.targetReached = !countTarget || rep.trianglesOut <= target;
   rep.secondsOutput = since(t3);
+  traceMark("output");
   rep.secondsTotal = since(t0);
   reportProgress(progress, 1.0, "Decimated");
   return result;

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -43,6 +44,8 @@ struct Row {
   double time = 0;
   ErrorReport error;
   double buildTime = 0;  // stock OpenMesh: building its mesh (not in `time`)
+  DecimateReport report;  // ours: the phases of the best run
+  double errorTime = 0;   // measuring the error (not part of `time`)
 };
 
 MeshData withIndices(const MeshData& base, std::vector<uint32_t> indices) {
@@ -56,16 +59,30 @@ MeshData withIndices(const MeshData& base, std::vector<uint32_t> indices) {
   return m;
 }
 
-Row runOurs(const MeshData& in, double ratio, int runs, unsigned threads, MeshData& out) {
-  Row r;
-  r.method = "ours (2 threads)";
-  r.ratio = ratio;
-  if (threads != 2) r.method = "ours (" + std::to_string(threads) + " threads)";
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Ours and meshopt_simplify at the same triangle count, their runs
+// interleaved (ours, meshopt, ours, ...) so both see the same load on a
+// shared machine; times are medians. Ours must give the same mesh on every
+// run (checked: deterministic output).
+void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& ours, MeshData& oursOut, Row& meshopt,
+             MeshData& meshoptOut) {
+  ours = Row{};
+  ours.method = "ours (" + std::to_string(threads) + " threads)";
+  ours.ratio = ratio;
+  meshopt = Row{};
+  meshopt.method = "meshopt_simplify (1 thread)";
+  meshopt.ratio = ratio;
   DecimateOptions o;
   o.targetRatio = ratio;
   o.threads = threads;
-  r.time = HUGE_VAL;
-  DecimateResult best;
+  std::vector<double> tOurs, tMeshopt, tSetup, tRegions, tBorders, tOutput;
+  std::vector<uint32_t> dst(in.indices.size());
+  size_t n = 0;
   for (int i = 0; i < runs; ++i) {
     const auto t0 = Clock::now();
     DecimateResult d = decimate(in, o);
@@ -74,31 +91,30 @@ Row runOurs(const MeshData& in, double ratio, int runs, unsigned threads, MeshDa
       std::fprintf(stderr, "decimate failed: %s\n", d.error.c_str());
       std::exit(1);
     }
-    if (t < r.time) r.time = t;
-    if (i == 0) best = std::move(d);
-  }
-  r.triangles = best.mesh.triangleCount();
-  out = std::move(best.mesh);
-  return r;
-}
-
-Row runMeshopt(const MeshData& in, size_t triangles, double ratio, int runs, MeshData& out) {
-  Row r;
-  r.method = "meshopt_simplify (1 thread)";
-  r.ratio = ratio;
-  std::vector<uint32_t> dst(in.indices.size());
-  size_t n = 0;
-  r.time = HUGE_VAL;
-  for (int i = 0; i < runs; ++i) {
-    const auto t0 = Clock::now();
+    tOurs.push_back(t);
+    tSetup.push_back(d.report.secondsSetup), tRegions.push_back(d.report.secondsRegions);
+    tBorders.push_back(d.report.secondsBorders), tOutput.push_back(d.report.secondsOutput);
+    if (i == 0) {
+      ours.report = d.report;
+      oursOut = std::move(d.mesh);
+    } else if (d.mesh.indices != oursOut.indices || d.mesh.positions != oursOut.positions) {
+      std::fprintf(stderr, "ours: run %d gave a different mesh than run 0 (not deterministic)\n", i);
+      std::exit(1);
+    }
+    const size_t triangles = oursOut.triangleCount();
+    const auto t1 = Clock::now();
     n = meshopt_simplify(dst.data(), in.indices.data(), in.indices.size(), &in.positions[0].x, in.positions.size(),
                          sizeof(glm::vec3), triangles * 3, 1e30f, 0, nullptr);
-    r.time = std::min(r.time, seconds(t0, Clock::now()));
+    tMeshopt.push_back(seconds(t1, Clock::now()));
   }
+  ours.time = median(tOurs);
+  ours.triangles = oursOut.triangleCount();
+  ours.report.secondsSetup = median(tSetup), ours.report.secondsRegions = median(tRegions);
+  ours.report.secondsBorders = median(tBorders), ours.report.secondsOutput = median(tOutput);
+  meshopt.time = median(tMeshopt);
   dst.resize(n);
-  r.triangles = n / 3;
-  out = withIndices(in, std::move(dst));
-  return r;
+  meshopt.triangles = n / 3;
+  meshoptOut = withIndices(in, std::move(dst));
 }
 
 Row runStock(const MeshData& in, size_t triangles, double ratio, MeshData& out) {
@@ -139,11 +155,11 @@ Row runStock(const MeshData& in, size_t triangles, double ratio, MeshData& out) 
   return r;
 }
 
-void printHeader(const char* name, const MeshData& m, const ErrorMeter&, double samplesPerFace) {
+void printHeader(const char* name, const MeshData& m, double samplesPerFace) {
   std::printf("\n## %s: %zu triangles, %zu vertices (error: %.0f samples per original face each way, seed 1)\n\n",
               name, m.triangleCount(), m.vertexCount(), samplesPerFace);
-  std::printf("| target | method | triangles | time s | input Mtri/s | Hausdorff m | Hausdorff / diag | mean m | RMS m | flips | time / meshopt | Hausdorff / meshopt |\n");
-  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("| target | method | triangles | time s | input Mtri/s | Hausdorff m | Hausdorff / diag | mean m | RMS m | flips | time / meshopt | Hausdorff / meshopt | phases s: setup / regions / border / output | error measure s |\n");
+  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
 }
 
 void printRow(const Row& r, const MeshData& in, const Row* meshopt) {
@@ -152,9 +168,14 @@ void printRow(const Row& r, const MeshData& in, const Row* meshopt) {
     std::snprintf(timeRatio, sizeof timeRatio, "%.2fx", r.time / meshopt->time);
     std::snprintf(hausRatio, sizeof hausRatio, "%.2fx", r.error.hausdorff / meshopt->error.hausdorff);
   }
-  std::printf("| %g%% | %s | %zu | %.4f | %.2f | %.3e | %.3e | %.3e | %.3e | %zu | %s | %s |\n", r.ratio * 100,
+  char phases[96] = "";
+  if (r.report.trianglesIn)
+    std::snprintf(phases, sizeof phases, "%.3f / %.3f / %.3f / %.3f", r.report.secondsSetup, r.report.secondsRegions,
+                  r.report.secondsBorders, r.report.secondsOutput);
+  std::printf("| %g%% | %s | %zu | %.4f | %.2f | %.3e | %.3e | %.3e | %.3e | %zu | %s | %s | %s | %.2f |\n", r.ratio * 100,
               r.method.c_str(), r.triangles, r.time, double(in.triangleCount()) / r.time / 1e6, r.error.hausdorff,
-              r.error.rel(r.error.hausdorff), r.error.mean, r.error.rms, r.error.flippedNormals, timeRatio, hausRatio);
+              r.error.rel(r.error.hausdorff), r.error.mean, r.error.rms, r.error.flippedNormals, timeRatio, hausRatio,
+              phases, r.errorTime);
   std::fflush(stdout);
 }
 
@@ -163,7 +184,9 @@ void printRow(const Row& r, const MeshData& in, const Row* meshopt) {
 int main(int argc, char** argv) {
   std::string bunnyPath = HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj";
   std::string plotPath = "bench_decimate.png", stockTerrain = "0.1";
-  int terrainQuads = 1580, runs = 5;
+  int terrainQuads = 1580, runs = 5, terrainRuns = 3;
+  bool measureErrors = true;
+  std::vector<double> ratios = {0.5, 0.25, 0.1, 0.05, 0.01};
   double terrainSamples = 1.0;
   unsigned threads = 2;
   bool skipTerrain = false, skipBunny = false;
@@ -173,6 +196,18 @@ int main(int argc, char** argv) {
     if (a == "--bunny") bunnyPath = next();
     else if (a == "--terrain-quads") terrainQuads = std::atoi(next().c_str());
     else if (a == "--runs") runs = std::max(1, std::atoi(next().c_str()));
+    else if (a == "--terrain-runs") terrainRuns = std::max(1, std::atoi(next().c_str()));
+    else if (a == "--no-error") measureErrors = false;
+    else if (a == "--ratios") {
+      ratios.clear();
+      const std::string list = next();
+      for (size_t b = 0; b < list.size();) {
+        size_t e = list.find(',', b);
+        if (e == std::string::npos) e = list.size();
+        ratios.push_back(std::atof(list.substr(b, e - b).c_str()) / 100.0);
+        b = e + 1;
+      }
+    }
     else if (a == "--terrain-samples") terrainSamples = std::atof(next().c_str());
     else if (a == "--stock-terrain") stockTerrain = next();
     else if (a == "--threads") threads = unsigned(std::atoi(next().c_str()));
@@ -181,13 +216,14 @@ int main(int argc, char** argv) {
     else if (a == "--skip-bunny") skipBunny = true;
     else {
       std::fprintf(stderr, "usage: %s [--bunny PATH] [--terrain-quads N] [--runs K] [--terrain-samples S] "
-                           "[--stock-terrain 0.1|all|none] [--threads T] [--plot PNG] [--skip-terrain] [--skip-bunny]\n", argv[0]);
+                           "[--stock-terrain 0.1|all|none] [--threads T] [--plot PNG] [--skip-terrain] [--skip-bunny] "
+                           "[--terrain-runs K] [--ratios 50,25,10,5,1] [--no-error]\n", argv[0]);
       return 2;
     }
   }
-  const std::vector<double> ratios = {0.5, 0.25, 0.1, 0.05, 0.01};
+  // MESHOPTIMIZER_VERSION is major*1000 + minor*10 (180 = 0.18).
   std::printf("# Decimation: ours vs meshopt_simplify %d.%d vs OpenMesh DecimaterT (machine: %u hardware threads)\n",
-              MESHOPTIMIZER_VERSION / 100, MESHOPTIMIZER_VERSION % 100, std::thread::hardware_concurrency());
+              MESHOPTIMIZER_VERSION / 1000, (MESHOPTIMIZER_VERSION % 1000) / 10, std::thread::hardware_concurrency());
   std::ifstream load("/proc/loadavg");
   std::string loadavg;
   std::getline(load, loadavg);
@@ -219,25 +255,35 @@ int main(int argc, char** argv) {
     std::printf("generated the scan tile in %.1f s\n", seconds(t0, Clock::now()));
     const std::string k = std::to_string(t.triangleCount() / 1000) + "k";
     sets.push_back({"synthetic scan tile (" + k + " triangles, UV atlas 8x8, holes)", "scan tile " + k, std::move(t),
-                    terrainSamples, 1, stockTerrain == "all", stockTerrain == "0.1" || stockTerrain == "all"});
+                    terrainSamples, terrainRuns, stockTerrain == "all", stockTerrain == "0.1" || stockTerrain == "all"});
   }
 
   std::vector<std::vector<hs::bench::Series>> panels;
   for (const Dataset& ds : sets) {
     ErrorOptions eo;
     eo.samplesPerFace = ds.samples;
-    const ErrorMeter meter(ds.mesh, eo);
-    printHeader(ds.name.c_str(), ds.mesh, meter, ds.samples);
+    std::optional<ErrorMeter> meterStore;
+    if (measureErrors) meterStore.emplace(ds.mesh, eo);
+    const ErrorMeter* meter = meterStore ? &*meterStore : nullptr;
+    printHeader(ds.name.c_str(), ds.mesh, ds.samples);
     hs::bench::Series sOurs{"ours (2 threads)", {200, 40, 40}, 0, false, {}, {}},
         sMeshopt{"meshopt_simplify", {40, 90, 200}, 1, false, {}, {}},
         sStock{"OpenMesh DecimaterT", {40, 150, 60}, 2, false, {}, {}};
     for (double ratio : ds.mesh.triangleCount() ? ratios : std::vector<double>{}) {
-      MeshData oursOut;
-      Row ours = runOurs(ds.mesh, ratio, ds.runs, threads, oursOut);
-      ours.error = meter.measure(oursOut);
-      MeshData mo;
-      Row meshopt = runMeshopt(ds.mesh, ours.triangles, ratio, ds.runs, mo);
-      meshopt.error = meter.measure(mo);
+      MeshData oursOut, mo;
+      Row ours, meshopt;
+      runPair(ds.mesh, ratio, ds.runs, threads, ours, oursOut, meshopt, mo);
+      if (measureErrors) {
+        auto t0 = Clock::now();
+        ours.error = meter->measure(oursOut);
+        ours.errorTime = seconds(t0, Clock::now());
+        t0 = Clock::now();
+        meshopt.error = meter->measure(mo);
+        meshopt.errorTime = seconds(t0, Clock::now());
+        if (ours.error.constrainedVerticesMoved)
+          std::printf("| | ours: %zu boundary/seam vertices off their polylines | | | | | | | | | | | | |\n",
+                      ours.error.constrainedVerticesMoved);
+      }
       printRow(meshopt, ds.mesh, nullptr);
       printRow(ours, ds.mesh, &meshopt);
       char label[16];
@@ -249,9 +295,13 @@ int main(int argc, char** argv) {
       if (ds.stockAll || (ds.stockTen && ratio == 0.1)) {
         MeshData so;
         Row stock = runStock(ds.mesh, ours.triangles, ratio, so);
-        stock.error = meter.measure(so);
+        if (measureErrors) {
+          const auto t0 = Clock::now();
+          stock.error = meter->measure(so);
+          stock.errorTime = seconds(t0, Clock::now());
+        }
         printRow(stock, ds.mesh, &meshopt);
-        std::printf("|  | (OpenMesh: building its mesh with add_face took %.3f s more) | | | | | | | | | | |\n",
+        std::printf("|  | (OpenMesh: building its mesh with add_face took %.3f s more) | | | | | | | | | | | | |\n",
                     stock.buildTime);
         sStock.points.push_back({stock.time, stock.error.rel(stock.error.hausdorff)});
         sStock.labels.push_back(label);
