@@ -7,20 +7,23 @@
 
 namespace hs::app {
 
-ImportJob::ImportJob(const QString& path, const mesh::ImportOptions& options, QWidget* dialogParent, QObject* parent)
-    : QObject(parent), path_(path), options_(options), result_(std::make_shared<mesh::ImportResult>()) {
-  job_ = std::make_unique<BackgroundJob>(dialogParent, "Import Mesh",
-                                         QString("Importing %1…").arg(QFileInfo(path).fileName()), true);
+ImportJob::ImportJob(const scene::MeshImportRequest& request, QWidget* dialogParent, QObject* parent)
+    : QObject(parent),
+      path_(QString::fromStdString(request.files.empty() ? std::string() : request.files.front())),
+      request_(request),
+      result_(std::make_shared<scene::ImportedMesh>()) {
+  const QString what = request.files.size() > 1 ? QString("%1 and %2 more tiles").arg(QFileInfo(path_).fileName()).arg(request.files.size() - 1)
+                                                : QFileInfo(path_).fileName();
+  job_ = std::make_unique<BackgroundJob>(dialogParent, "Import Mesh", QString("Importing %1…").arg(what), true);
   connect(job_.get(), &BackgroundJob::finished, this, &ImportJob::finished);
 }
 
 ImportJob::~ImportJob() = default;
 
 void ImportJob::start() {
-  const std::string file = path_.toStdString();
-  const mesh::ImportOptions options = options_;
-  std::shared_ptr<mesh::ImportResult> out = result_;
-  job_->start([file, options, out](const Progress& progress) { *out = mesh::importMesh(file, options, &progress); });
+  const scene::MeshImportRequest request = request_;
+  std::shared_ptr<scene::ImportedMesh> out = result_;
+  job_->start([request, out](const Progress& progress) { *out = scene::importMeshFiles(request, &progress); });
 }
 
 void ImportJob::waitForFinished() { job_->waitForFinished(); }
@@ -61,10 +64,9 @@ QStringList importWarnings(const mesh::ImportReport& r) {
   return out;
 }
 
-scene::EntityId addImportToDocument(scene::Document& doc, mesh::ImportResult& result, const QString& path) {
+scene::EntityId addImportToDocument(scene::Document& doc, scene::ImportedMesh& result, const QString& path) {
   if (!result.ok()) return scene::kNoEntity;
-  return scene::ops::addImportedMesh(doc, std::move(*result.mesh), entityNameForFile(path).toStdString(),
-                                     path.toStdString(), result.report);
+  return scene::ops::addImportedMesh(doc, std::move(result), entityNameForFile(path).toStdString(), path.toStdString());
 }
 
 }  // namespace hs::app

@@ -1,6 +1,7 @@
 #pragma once
-// Import Mesh off the UI thread: mesh::importMesh runs on a worker with its
-// progress in a dialog (Cancel stops the reader), and the result is turned
+// Import Mesh off the UI thread: scene::importMeshFiles (reading, and with
+// the Import dialog's options cleaning, decimation and LODs) runs on a worker
+// with its progress in a dialog (Cancel stops it), and the result is turned
 // into one undoable scene edit on the UI thread.
 #include <memory>
 
@@ -10,6 +11,7 @@
 
 #include "mesh/mesh_import.h"
 #include "scene/document.h"
+#include "scene/import_pipeline.h"
 
 class QWidget;
 
@@ -20,25 +22,24 @@ class BackgroundJob;
 class ImportJob : public QObject {
   Q_OBJECT
  public:
-  ImportJob(const QString& path, const mesh::ImportOptions& options, QWidget* dialogParent,
-            QObject* parent = nullptr);
+  ImportJob(const scene::MeshImportRequest& request, QWidget* dialogParent, QObject* parent = nullptr);
   ~ImportJob() override;
 
   void start();
   void waitForFinished();
   bool isRunning() const;
   void cancel();
-  const QString& path() const { return path_; }
+  const QString& path() const { return path_; }  // the first file
   // Valid once finished() was emitted.
-  mesh::ImportResult& result() { return *result_; }
+  scene::ImportedMesh& result() { return *result_; }
 
  signals:
   void finished();
 
  private:
   QString path_;
-  mesh::ImportOptions options_;
-  std::shared_ptr<mesh::ImportResult> result_;
+  scene::MeshImportRequest request_;
+  std::shared_ptr<scene::ImportedMesh> result_;
   std::unique_ptr<BackgroundJob> job_;
 };
 
@@ -50,8 +51,9 @@ QString entityNameForFile(const QString& path);
 QString importSummary(const mesh::ImportReport& report);
 // The reader's warnings plus a line for each kind of repair it made.
 QStringList importWarnings(const mesh::ImportReport& report);
-// Adds the mesh as an asset and an entity at the file's own coordinates
-// (scene::ops::addImportedMesh, one undo step). Returns the entity id.
-scene::EntityId addImportToDocument(scene::Document& doc, mesh::ImportResult& result, const QString& path);
+// Adds the mesh (with its LODs and reports) as an asset and an entity at the
+// file's own coordinates (scene::ops::addImportedMesh, one undo step).
+// Returns the entity id.
+scene::EntityId addImportToDocument(scene::Document& doc, scene::ImportedMesh& result, const QString& path);
 
 }  // namespace hs::app

@@ -9,10 +9,12 @@
 #include <memory>
 
 #include <QMainWindow>
+#include <QStringList>
 
 #include "app/gizmo.h"
 #include "mesh/mesh_import.h"
 #include "scene/document.h"
+#include "scene/import_pipeline.h"
 
 class QAction;
 class QActionGroup;
@@ -23,6 +25,8 @@ class QToolBar;
 namespace hs::app {
 
 class Autosave;
+class CameraPathPanel;
+class PathEditor;
 class BackgroundJob;
 class ExportDialog;
 class Keying;
@@ -30,6 +34,7 @@ class StereoPreviewSettings;
 class TimelineClock;
 class TimelinePanel;
 class TerrainPanel;
+class ImportDialog;
 class ImportJob;
 class MessagePanel;
 class OutlinerPanel;
@@ -61,6 +66,9 @@ class MainWindow : public QMainWindow {
   TerrainPanel* terrainPanel() const { return terrain_; }
   Keying* keying() const { return keying_; }
   StereoPreviewSettings* stereoPreview() const { return stereo_; }
+  // Camera paths: the editing state and actions, and the Camera Path dock.
+  PathEditor* pathEditor() const { return pathEditor_; }
+  CameraPathPanel* cameraPathPanel() const { return cameraPath_; }
   // File > Export Frames…: the dialog, made on first use.
   ExportDialog* exportDialog();
   // Replaces the dialogs (tests answer questions without a modal loop).
@@ -81,8 +89,16 @@ class MainWindow : public QMainWindow {
   bool saveSceneTo(const QString& path, bool wait);
   // Imports on a worker with progress and Cancel; on success adds the mesh
   // (one undo step), selects and frames it, and lists warnings in Messages;
-  // on failure says why, naming the file, and changes nothing.
+  // on failure says why, naming the file, and changes nothing. Reads with
+  // importOptions() and no processing (main_window_import.cpp).
   bool importMeshFile(const QString& path, bool wait);
+  // The same for one file or the tiles of one scan with the Import dialog's
+  // options (cleaning, decimation, LODs); after a decimation the error
+  // report is shown and summarised in Messages.
+  bool importMeshFiles(const scene::MeshImportRequest& request, bool wait);
+  // File > Import Mesh… after the file choice: the Import dialog for
+  // `paths`, shown without blocking; its Import runs importMeshFiles.
+  ImportDialog* openImportDialog(const QStringList& paths);
   // A job (open, save, import) is running: document-replacing commands wait.
   bool isBusy() const;
   mesh::ImportOptions importOptions() const;
@@ -119,6 +135,7 @@ class MainWindow : public QMainWindow {
   void createDocks();
   void createStatusBar();
   void createTimeline();                                  // main_window_timeline.cpp
+  void createCameraPathDock();                            // main_window_timeline.cpp
   void addTimelineMenus(QMenu* file, QMenu* view);        // Export Frames…, Stereo Preview, playback
   void restoreLayout();
   void saveLayout();
@@ -135,7 +152,7 @@ class MainWindow : public QMainWindow {
   void editAutosaveInterval();
   std::string uniqueName(const std::string& base) const;
   bool openInternal(const QString& path, bool wait, bool remember, std::function<void()> onSuccess);
-  void onImportFinished(const QString& path, bool* ok);
+  void onImportFinished(bool* ok);
   QString lastDirectory() const;
   void rememberDirectory(const QString& file);
 
@@ -153,6 +170,8 @@ class MainWindow : public QMainWindow {
   Keying* keying_ = nullptr;
   StereoPreviewSettings* stereo_ = nullptr;
   TimelinePanel* timeline_ = nullptr;
+  PathEditor* pathEditor_ = nullptr;
+  CameraPathPanel* cameraPath_ = nullptr;
   ExportDialog* exportDialog_ = nullptr;
   TerrainPanel* terrain_ = nullptr;
   std::unique_ptr<BackgroundJob> docJob_;

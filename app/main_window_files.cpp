@@ -1,7 +1,7 @@
-// MainWindow's document operations: new, open, save, import, unsaved-changes
-// questions, crash recovery and the screenshot. Everything slow runs in a
-// BackgroundJob; the document is only touched here, on the UI thread, once
-// the work has finished.
+// MainWindow's document operations: new, open, save, unsaved-changes
+// questions, crash recovery and the screenshot (importing is in
+// main_window_import.cpp). Everything slow runs in a BackgroundJob; the
+// document is only touched here, on the UI thread, once the work has finished.
 #include <chrono>
 #include <optional>
 
@@ -190,50 +190,6 @@ bool MainWindow::saveSceneTo(const QString& path, bool wait) {
   return *ok;
 }
 
-bool MainWindow::importMeshFile(const QString& path, bool wait) {
-  if (isBusy()) {
-    messages_->warning("Another operation is still running; try again when it has finished.");
-    return false;
-  }
-  auto ok = std::make_shared<bool>(false);
-  importJob_ = std::make_unique<ImportJob>(path, importOptions(), this);
-  connect(importJob_.get(), &ImportJob::finished, this, [this, path, ok] { onImportFinished(path, ok.get()); });
-  importJob_->start();
-  if (!wait) return true;
-  importJob_->waitForFinished();
-  return *ok;
-}
-
-void MainWindow::onImportFinished(const QString& path, bool* ok) {
-  mesh::ImportResult& r = importJob_->result();
-  const QString name = QFileInfo(path).fileName();
-  if (r.cancelled) {
-    messages_->info(QString("Import of %1 was cancelled; the scene is unchanged.").arg(name));
-    return;
-  }
-  if (!r.ok()) {
-    const QString error = r.error.empty() ? QString("%1: the file could not be read").arg(path)
-                                          : QString::fromStdString(r.error);
-    messages_->error(error);
-    prompts_->showError(this, "Import Mesh",
-                        QString("Could not import %1\n%2").arg(QDir::toNativeSeparators(path), error));
-    return;
-  }
-  for (const QString& w : importWarnings(r.report)) messages_->warning(w);
-  const QString summary = importSummary(r.report);
-  const scene::EntityId id = addImportToDocument(doc_, r, path);
-  if (id == scene::kNoEntity) {
-    messages_->error(QString("%1 was read but could not be added to the scene.").arg(name));
-    return;
-  }
-  rememberDirectory(path);
-  selection_->select(id);
-  viewport_->frameSelection();
-  messages_->info(summary);
-  statusBar()->showMessage(summary, 5000);
-  *ok = true;
-}
-
 bool MainWindow::maybeSave() {
   if (!doc_.isModified()) return true;
   switch (prompts_->askSaveChanges(this, documentTitle())) {
@@ -278,12 +234,6 @@ bool MainWindow::requestSaveAs() {
   if (path.isEmpty()) return false;
   if (QFileInfo(path).suffix().isEmpty()) path += ".hscene";
   return saveSceneTo(path, true);
-}
-
-void MainWindow::requestImport() {
-  if (isBusy()) return;
-  const QString path = prompts_->askOpenFile(this, "Import Mesh", lastDirectory(), importFileFilter());
-  if (!path.isEmpty()) importMeshFile(path, false);
 }
 
 void MainWindow::rebuildRecentMenu() {

@@ -1,8 +1,9 @@
 // MainWindow's timeline side: the clock (current frame, playback), keying
 // (key buttons in Properties, keys that follow edits, Auto Key), the Timeline
-// dock, the viewport's animated view and stereo preview, and File > Export
-// Frames…. Kept apart from main_window.cpp, which builds the rest of the
-// window.
+// dock, the viewport's animated view and stereo preview, camera paths (the
+// Camera Path dock, path points in the viewport, the timeline's Follow
+// Path), and File > Export Frames…. Kept apart from main_window.cpp, which
+// builds the rest of the window.
 #include <QAction>
 #include <QActionGroup>
 #include <QDockWidget>
@@ -12,9 +13,11 @@
 
 #include <set>
 
+#include "app/camera_path_panel.h"
 #include "app/export_dialog.h"
 #include "app/main_window.h"
 #include "app/message_panel.h"
+#include "app/path_editor.h"
 #include "app/property_panel.h"
 #include "app/selection.h"
 #include "app/stereo_preview.h"
@@ -66,6 +69,8 @@ void MainWindow::createTimeline() {
     resizeDocks({messages, dock}, {320, 1000}, Qt::Horizontal);
     resizeDocks({dock}, {230}, Qt::Vertical);
   }
+  createCameraPathDock();
+
   // What the timeline cannot apply (a track for a missing entity, an aim at
   // nothing), each message once.
   connect(clock_, &TimelineClock::stateChanged, this, [this] {
@@ -73,6 +78,25 @@ void MainWindow::createTimeline() {
     clock_->state();
     for (const std::string& w : clock_->warnings())
       if (reported.insert(w).second) messages_->warning("Timeline: " + QString::fromStdString(w));
+  });
+}
+
+void MainWindow::createCameraPathDock() {
+  pathEditor_ = new PathEditor(doc_, *clock_, *selection_, this);
+  viewport_->setPathEditor(pathEditor_);
+  connect(pathEditor_, &PathEditor::problem, messages_, &MessagePanel::warning);
+  cameraPath_ = new CameraPathPanel(*pathEditor_, [this] { return viewport_->currentView().eye; }, this);
+  auto* dock = new QDockWidget("Camera Path", this);
+  dock->setObjectName("cameraPathDock");
+  dock->setWidget(cameraPath_);
+  dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable | QDockWidget::DockWidgetClosable);
+  addDockWidget(Qt::RightDockWidgetArea, dock);
+  // Beside Scene Settings (a tab), so the Properties above stay in view.
+  if (QDockWidget* settings = findChild<QDockWidget*>("settingsDock")) tabifyDockWidget(settings, dock);
+  connect(timeline_, &TimelinePanel::followPathRequested, this, [this, dock] {
+    if (pathEditor_->entity() != scene::kNoEntity && !pathEditor_->path()) pathEditor_->createAhead();
+    dock->show();
+    dock->raise();
   });
 }
 

@@ -53,6 +53,11 @@ QString DialogPrompts::askOpenFile(QWidget* parent, const QString& caption, cons
   return QFileDialog::getOpenFileName(parent, caption, dir, filter);
 }
 
+QStringList DialogPrompts::askOpenFiles(QWidget* parent, const QString& caption, const QString& dir,
+                                        const QString& filter) {
+  return QFileDialog::getOpenFileNames(parent, caption, dir, filter);
+}
+
 QString DialogPrompts::askSaveFile(QWidget* parent, const QString& caption, const QString& dir,
                                    const QString& filter) {
   QFileDialog dialog(parent, caption, dir, filter);

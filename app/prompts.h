@@ -3,6 +3,7 @@
 // so a test can answer them (RecordingPrompts-style) instead of a modal
 // dialog waiting for a click that never comes.
 #include <QString>
+#include <QStringList>
 
 class QWidget;
 
@@ -22,6 +23,13 @@ class Prompts {
                               const QString& filter) = 0;
   virtual QString askSaveFile(QWidget* parent, const QString& caption, const QString& dir,
                               const QString& filter) = 0;
+  // Several files at once (the tiles of a scan); empty: cancelled. By
+  // default one file through askOpenFile, so answering prompts stay simple.
+  virtual QStringList askOpenFiles(QWidget* parent, const QString& caption, const QString& dir,
+                                   const QString& filter) {
+    const QString f = askOpenFile(parent, caption, dir, filter);
+    return f.isEmpty() ? QStringList() : QStringList{f};
+  }
 };
 
 // The real dialogs.
@@ -33,6 +41,7 @@ class DialogPrompts : public Prompts {
                 const QString& noText) override;
   QString askOpenFile(QWidget* parent, const QString& caption, const QString& dir, const QString& filter) override;
   QString askSaveFile(QWidget* parent, const QString& caption, const QString& dir, const QString& filter) override;
+  QStringList askOpenFiles(QWidget* parent, const QString& caption, const QString& dir, const QString& filter) override;
 };
 
 // For unattended runs (--screenshot): errors go to stderr, questions get

@@ -6,12 +6,15 @@
 #include <QFrame>
 #include <QLabel>
 #include <QMenu>
+#include <QPushButton>
 #include <QScrollArea>
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include "app/error_report_dialog.h"
 #include "app/field_editors.h"
 #include "app/selection.h"
+#include "app/terrain_component_picker.h"
 #include "scene/operations.h"
 
 namespace hs::app {
@@ -20,6 +23,15 @@ namespace {
 std::atomic<int> editCounter{0};
 
 QString formatCount(size_t n) { return QString("%L1").arg(n); }
+
+// "\nLODs: 17,363 (0.12 mm), 4,340 (0.6 mm), ..." for an asset with levels.
+QString lodText(const scene::MeshAsset& a) {
+  if (a.lods.empty()) return {};
+  QStringList levels;
+  for (const scene::MeshLod& l : a.lods)
+    levels << QString("%1 (%2 mm)").arg(formatCount(l.data ? l.data->triangleCount() : 0)).arg(l.hausdorff * 1000.0, 0, 'g', 3);
+  return "\nLODs: " + levels.join(", ");
+}
 
 }  // namespace
 
@@ -120,12 +132,24 @@ QWidget* PropertyPanel::buildSection(const scene::ComponentInfo& c, const scene:
     rows_.push_back({comp, field, ed});
     byPath_[path] = ed;
   }
+  // Which terrain it shows is a reference, not a field: its own row.
+  if (c.key == "terrain") form->insertRow(0, "Terrain", new TerrainPicker(doc_, e.id, newTerrain_, body));
   if (c.key == "mesh") {
     meshInfo_ = new QLabel(body);
     meshInfo_->setWordWrap(true);
     meshInfo_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     meshInfo_->setStyleSheet("QLabel { color: #8f9095; }");
     form->addRow(meshInfo_);
+    // The asset's processing report (error_report_dialog.h), when it has one.
+    meshReport_ = new QPushButton("Mesh Report…", body);
+    meshReport_->setObjectName("meshReport");
+    meshReport_->setToolTip("Decimation error, cleaning counts, LOD errors and run times of this mesh's import");
+    connect(meshReport_, &QPushButton::clicked, this, [this] {
+      const scene::Entity* ent = doc_.state().find(selection_.primary());
+      const scene::MeshAsset* a = ent && ent->mesh ? doc_.state().findAsset(ent->mesh->mesh) : nullptr;
+      if (a) showErrorReport(this, QString::fromStdString(a->name), a->processReportJson);
+    });
+    form->addRow(meshReport_);
   }
   v->addWidget(body);
   body->setVisible(toggle->isChecked());
@@ -145,6 +169,7 @@ void PropertyPanel::rebuild() {
   byPath_.clear();
   header_ = nullptr;
   meshInfo_ = nullptr;
+  meshReport_ = nullptr;
   addButton_ = nullptr;
   while (QLayoutItem* item = contentLayout_->takeAt(0)) {
     if (QWidget* w = item->widget()) w->deleteLater();
@@ -180,6 +205,10 @@ void PropertyPanel::rebuild() {
   const scene::EntityId id = e->id;
   for (const auto& c : scene::entityComponents()) {
     if (!c.optional || c.has(*e)) continue;
+    if (c.key == "terrain") {  // without a terrain to show it would draw nothing: choose one
+      fillTerrainComponentMenu(menu->addMenu(QString::fromStdString(c.label)), doc_, id, newTerrain_);
+      continue;
+    }
     const scene::ComponentInfo* comp = &c;
     menu->addAction(QString::fromStdString(c.label), this, [this, id, comp] { scene::ops::addComponent(doc_, id, *comp); });
   }
@@ -211,9 +240,11 @@ void PropertyPanel::refresh() {
       meshInfo_->setText(QString("%1 triangles, %2 vertices, %3 material(s)\nSource: %4")
                              .arg(formatCount(a->data->triangleCount()), formatCount(a->data->vertexCount()))
                              .arg(a->data->materials.size())
-                             .arg(QString::fromStdString(a->sourcePath)));
+                             .arg(QString::fromStdString(a->sourcePath)) +
+                         lodText(*a));
     else
       meshInfo_->setText("No mesh asset assigned.");
+    if (meshReport_) meshReport_->setEnabled(a && !a->processReportJson.empty());
   }
 }
 
@@ -224,6 +255,12 @@ void PropertyPanel::setStateSource(std::function<const scene::SceneState&()> sou
 
 void PropertyPanel::setRowDecorator(std::function<QWidget*(const std::string&, QWidget*, QWidget*)> decorator) {
   decorator_ = std::move(decorator);
+  rebuild();
+  refresh();
+}
+
+void PropertyPanel::setNewTerrainHook(std::function<void(scene::EntityId)> hook) {
+  newTerrain_ = std::move(hook);
   rebuild();
   refresh();
 }

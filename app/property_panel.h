@@ -16,6 +16,7 @@
 #include "scene/fields.h"
 
 class QLabel;
+class QPushButton;
 class QToolButton;
 class QVBoxLayout;
 
@@ -43,6 +44,10 @@ class PropertyPanel : public QWidget {
       std::function<void(const std::vector<scene::EntityId>& ids, const std::string& path, const QString& mergeKey)> hook);
   // Shows the values again (the timeline's time moved).
   void refreshValues() { refresh(); }
+  // Terrain components: "New Terrain…" in Add Component > Terrain and in the
+  // component's terrain row calls this with the entity (set by the Terrain
+  // panel, which owns the dialog; terrain_component_picker.h).
+  void setNewTerrainHook(std::function<void(scene::EntityId showOn)> hook);
 
  private:
   struct Row {
@@ -65,6 +70,7 @@ class PropertyPanel : public QWidget {
   QVBoxLayout* contentLayout_ = nullptr;
   QLabel* header_ = nullptr;
   QLabel* meshInfo_ = nullptr;
+  QPushButton* meshReport_ = nullptr;  // the asset's processing report
   QToolButton* addButton_ = nullptr;
   std::vector<Row> rows_;
   std::map<std::string, FieldEditor*> byPath_;
@@ -73,6 +79,7 @@ class PropertyPanel : public QWidget {
   std::function<const scene::SceneState&()> stateSource_;
   std::function<QWidget*(const std::string&, QWidget*, QWidget*)> decorator_;
   std::function<void(const std::vector<scene::EntityId>&, const std::string&, const QString&)> edited_;
+  std::function<void(scene::EntityId)> newTerrain_;
   const scene::SceneState& shown() const { return stateSource_ ? stateSource_() : doc_.state(); }
 };
 

@@ -30,6 +30,9 @@
 #include "app/message_panel.h"
 #include "app/prompts.h"
 #include "app/selection.h"
+#include "app/property_panel.h"
+#include "app/terrain_layers_editor.h"
+#include "app/terrain_rules_editor.h"
 #include "app/viewport_widget.h"
 #include "scene/fields.h"
 #include "scene/operations.h"
@@ -85,6 +88,12 @@ TerrainPanel::TerrainPanel(MainWindow& window)
     if (!text.isEmpty()) warning ? window_.messages()->warning(text) : window_.messages()->info(text);
     refresh();
   });
+  // The renderer finds unreadable texture files when it draws; Messages
+  // must hear of them (naming the file and the layer) or the layer just
+  // shows its flat colour without a word.
+  connect(window_.viewport(), &ViewportWidget::frameRendered, this, [this] { reportMaterialProblems(); });
+  // Properties > Add Component > Terrain > New Terrain… opens our dialog.
+  window_.properties()->setNewTerrainHook([this](scene::EntityId showOn) { requestNewTerrain(showOn); });
   refreshBrush();
   refresh();
 }
@@ -103,6 +112,14 @@ TerrainPanel::~TerrainPanel() {
 }
 
 bool TerrainPanel::busy() const { return job_ && job_->isRunning(); }
+
+const scene::TerrainAsset* TerrainPanel::currentTerrain() const { return scene::terrainOf(doc_.state(), current()); }
+
+void TerrainPanel::reportMaterialProblems() {
+  for (const std::string& p : window_.viewport()->takeTerrainMaterialProblems())
+    window_.messages()->warning("Terrain texture not loaded: " + QString::fromStdString(p) +
+                                " (the layer shows its colour alone)");
+}
 
 scene::EntityId TerrainPanel::current() const {
   const scene::SceneState& s = doc_.state();
@@ -212,61 +229,31 @@ void TerrainPanel::buildUi() {
   // One column: the dock is narrow.
   button("Thermal Erosion…", "terrainErodeThermal", [this] { requestErode(false); }, 0, 0);
   button("Hydraulic Erosion…", "terrainErodeHydraulic", [this] { requestErode(true); }, 1, 0);
-  button("Apply Paint Rules", "terrainPaintRules", [this] { applyPaintRules(false); }, 2, 0);
-  button("Export Heightmap…", "terrainExport", [this] { requestExportHeightmap(); }, 3, 0);
+  button("Export Heightmap…", "terrainExport", [this] { requestExportHeightmap(); }, 2, 0);
   lodError_ = spin(whole, 0.1, 64.0, 0.25, 2, " px", "Screen-space error bound of the LOD (the terrain component's field)");
   connect(lodError_, &QDoubleSpinBox::valueChanged, this, [this](double px) {
     if (updating_ || current() == scene::kNoEntity) return;
     scene::ops::setField(doc_, current(), *scene::findEntityField("terrain.lod_error_px"), scene::FieldValue(px),
                          "terrainLodError");
   });
-  wl->addWidget(new QLabel("LOD error bound", whole), 4, 0);
-  wl->addWidget(lodError_, 5, 0);
+  wl->addWidget(new QLabel("LOD error bound", whole), 3, 0);
+  wl->addWidget(lodError_, 4, 0);
   needTerrain_ << lodError_;
   v->addWidget(whole);
 
-  auto* mats = new QGroupBox("Materials", content);
-  auto* ml = new QFormLayout(mats);
-  material_ = new QComboBox(mats);
-  albedo_ = new QPushButton(mats);
-  albedo_->setToolTip("Albedo colour (linear; tints the texture)");
-  roughness_ = spin(mats, 0.0, 1.0, 0.05, 2, "", "Roughness");
-  tiling_ = spin(mats, 0.01, 10000.0, 0.5, 2, " m", "World size of one texture repeat");
-  albedoTexture_ = new QPushButton("(none)", mats);
-  normalTexture_ = new QPushButton("(none)", mats);
-  ml->addRow("Layer", material_);
-  ml->addRow("Colour", albedo_);
-  ml->addRow("Roughness", roughness_);
-  ml->addRow("Tiling", tiling_);
-  ml->addRow("Albedo texture", albedoTexture_);
-  ml->addRow("Normal map", normalTexture_);
-  connect(material_, &QComboBox::currentIndexChanged, this, [this] { refreshMaterial(); });
-  connect(roughness_, &QDoubleSpinBox::valueChanged, this, [this] { materialEdited(); });
-  connect(tiling_, &QDoubleSpinBox::valueChanged, this, [this] { materialEdited(); });
-  connect(albedo_, &QPushButton::clicked, this, [this] {
-    const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
-    const int l = material_->currentIndex();
-    if (!t || l < 0 || l >= int(t->materials.size())) return;
-    const QColor c = QColorDialog::getColor(linearToDisplay(glm::dvec3(t->materials[size_t(l)].albedo)), this, "Layer colour");
-    if (!c.isValid()) return;
-    terrain::Material m = t->materials[size_t(l)];
-    m.albedo = glm::vec3(displayToLinear(c));
-    scene::ops::setTerrainMaterial(doc_, t->id, l, m);
+  // Layers and materials, then the rules that paint them.
+  layers_ = new TerrainLayersEditor(doc_, window_.prompts(), *window_.messages(), [this] { return currentTerrain(); },
+                                    content);
+  connect(layers_, &TerrainLayersEditor::layerRemoved, this, [this](int removed) {
+    // The brush keeps painting the same material: layers above move down one.
+    terrain::BrushSettings b = tool_->settings();
+    if (b.paintLayer > removed) --b.paintLayer;
+    else if (b.paintLayer == removed) b.paintLayer = 0;
+    tool_->setSettings(b);
   });
-  auto pickTexture = [this](bool normal) {
-    const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
-    const int l = material_->currentIndex();
-    if (!t || l < 0 || l >= int(t->materials.size())) return;
-    const QString path = window_.prompts().askOpenFile(this, normal ? "Normal Map" : "Albedo Texture", QDir::homePath(),
-                                                       "Images (*.png *.jpg *.jpeg *.tif *.tiff *.exr);;All files (*)");
-    terrain::Material m = t->materials[size_t(l)];
-    (normal ? m.normalTexture : m.albedoTexture) = path.toStdString();  // empty (cancel) clears it
-    scene::ops::setTerrainMaterial(doc_, t->id, l, m);
-  };
-  connect(albedoTexture_, &QPushButton::clicked, this, [pickTexture] { pickTexture(false); });
-  connect(normalTexture_, &QPushButton::clicked, this, [pickTexture] { pickTexture(true); });
-  needTerrain_ << mats;
-  v->addWidget(mats);
+  v->addWidget(layers_);
+  rules_ = new TerrainRulesEditor(doc_, [this] { return currentTerrain(); }, [this] { applyPaintRules(false); }, content);
+  v->addWidget(rules_);
   v->addStretch(1);
   // Combo boxes would otherwise be as wide as their longest entry.
   for (QComboBox* c : content->findChildren<QComboBox*>()) {
@@ -285,7 +272,7 @@ void TerrainPanel::buildUi() {
 }
 
 void TerrainPanel::populateMenu(QMenu* menu) {
-  menu->addAction("&New Terrain…", this, &TerrainPanel::requestNewTerrain);
+  menu->addAction("&New Terrain…", this, [this] { requestNewTerrain(); });
   menu->addAction("&Import DEM…", this, &TerrainPanel::requestImportDem);
   menu->addSeparator();
   menu->addAction("Export &Heightmap…", this, &TerrainPanel::requestExportHeightmap);
@@ -358,6 +345,8 @@ void TerrainPanel::refresh() {
                      .arg(mib(budget.bytesUsed()), mib(budget.cap()))
                      .arg(budget.steps())
                      .arg(budget.droppedTotal() ? QString("; %1 oldest dropped").arg(budget.droppedTotal()) : QString()));
+  layers_->refresh();
+  rules_->refresh();
   if (!t) {
     info_->setText("No terrain in the scene. Terrain > New Terrain… or Import DEM… makes one.");
     return;
@@ -376,56 +365,21 @@ void TerrainPanel::refresh() {
                      .arg(double(r.max), 0, 'f', 2)
                      .arg(geo.valid() ? QString::fromStdString(geo.crsName).toHtmlEscaped() : QString("local coordinates (no CRS)"))
                      .arg(mib(t->data->terrain().memoryBytes())));
-  // Layers (names change through materials).
+  // The brush's layers (names change through materials; layers come and go).
   QStringList names;
   for (const auto& m : t->materials) names << QString::fromStdString(m.name);
   QStringList current;
   for (int i = 0; i < layer_->count(); ++i) current << layer_->itemText(i);
   if (names != current) {
     updating_ = true;
-    const int keepLayer = layer_->currentIndex(), keepMaterial = material_->currentIndex();
     layer_->clear();
     layer_->addItems(names);
-    material_->clear();
-    material_->addItems(names);
-    layer_->setCurrentIndex(std::clamp(keepLayer, 0, int(names.size()) - 1));
-    material_->setCurrentIndex(std::clamp(keepMaterial, 0, int(names.size()) - 1));
+    layer_->setCurrentIndex(std::clamp(tool_->settings().paintLayer, 0, int(names.size()) - 1));
     updating_ = false;
   }
   updating_ = true;
   lodError_->setValue(doc_.state().find(e)->terrain->lodErrorPixels);
   updating_ = false;
-  refreshMaterial();
-}
-
-void TerrainPanel::refreshMaterial() {
-  if (updating_ && material_->count() == 0) return;
-  const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
-  const int l = material_->currentIndex();
-  if (!t || l < 0 || l >= int(t->materials.size())) return;
-  const terrain::Material& m = t->materials[size_t(l)];
-  const bool was = updating_;
-  updating_ = true;
-  const QColor c = linearToDisplay(glm::dvec3(m.albedo));
-  albedo_->setText(c.name());
-  albedo_->setStyleSheet(QString("QPushButton { background: %1; color: %2; }")
-                             .arg(c.name(), c.lightness() > 128 ? "black" : "white"));
-  roughness_->setValue(double(m.roughness));
-  tiling_->setValue(double(m.tilingMetres));
-  albedoTexture_->setText(m.albedoTexture.empty() ? "(none)" : QFileInfo(QString::fromStdString(m.albedoTexture)).fileName());
-  normalTexture_->setText(m.normalTexture.empty() ? "(none)" : QFileInfo(QString::fromStdString(m.normalTexture)).fileName());
-  updating_ = was;
-}
-
-void TerrainPanel::materialEdited() {
-  if (updating_) return;
-  const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
-  const int l = material_->currentIndex();
-  if (!t || l < 0 || l >= int(t->materials.size())) return;
-  terrain::Material m = t->materials[size_t(l)];
-  m.roughness = float(roughness_->value());
-  m.tilingMetres = float(tiling_->value());
-  scene::ops::setTerrainMaterial(doc_, t->id, l, m, QString("terrainMaterial%1").arg(l));
 }
 
 // --- commands ---------------------------------------------------------------
@@ -622,14 +576,16 @@ bool TerrainPanel::exportWeights(const QString& dir, bool wait) {
 
 // --- with dialogs ---------------------------------------------------------------
 
-void TerrainPanel::requestNewTerrain() {
+void TerrainPanel::requestNewTerrain(scene::EntityId showOn) {
   std::string name = "Terrain";
   for (int i = 2; doc_.state().findByName(name) != scene::kNoEntity; ++i) name = "Terrain " + std::to_string(i);
+  if (const scene::Entity* e = doc_.state().find(showOn)) name = e->name;
   NewTerrainDialog d(&window_, QString::fromStdString(name));
   if (d.exec() != QDialog::Accepted) return;
   scene::ops::NewTerrain spec = d.spec();
   spec.centre = window_.viewport()->camera().pivot();
   spec.centre.z = 0.0;
+  spec.showOn = showOn;  // centred on that entity instead
   createTerrain(spec);
 }
 

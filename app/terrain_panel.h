@@ -2,9 +2,12 @@
 // The Terrain panel (a dock): the terrain being worked on (the selected
 // terrain entity, else the scene's first), its size, resolution and CRS, the
 // brush (tool, radius, strength, falloff curve, spacing, target layer and
-// the tool's options), the terrain undo memory, whole-terrain erosion and
-// paint rules (on a worker with progress and Cancel), the materials, and the
-// Terrain menu: New Terrain, Import DEM, Export Heightmap / Weights.
+// the tool's options), the terrain undo memory, whole-terrain erosion (on a
+// worker with progress and Cancel), the paint layers and their materials
+// (terrain_layers_editor.h), the paint rules and Apply Paint Rules
+// (terrain_rules_editor.h; on a worker), and the Terrain menu: New Terrain,
+// Import DEM, Export Heightmap / Weights. Material texture files the
+// viewport's renderer cannot read are reported in Messages.
 //
 // Like MainWindow, every command has a form without dialogs (createTerrain,
 // importDem, erode, applyPaintRules, exportHeightmap, exportWeights), which
@@ -33,6 +36,8 @@ class QStackedWidget;
 namespace hs::app {
 
 class BackgroundJob;
+class TerrainLayersEditor;
+class TerrainRulesEditor;
 class MainWindow;
 
 class TerrainPanel : public QWidget {
@@ -49,6 +54,7 @@ class TerrainPanel : public QWidget {
   bool busy() const;
 
   // --- commands without dialogs (tests, and the request*() forms) ---------
+  // With spec.showOn: on that entity (Properties > Add Component > Terrain).
   scene::EntityId createTerrain(const scene::ops::NewTerrain& spec);
   // DEM import on a worker; with `wait`, returns when done (whether it worked).
   bool importDem(const QString& path, const DemImportRequest& request, bool wait);
@@ -59,7 +65,8 @@ class TerrainPanel : public QWidget {
   bool exportWeights(const QString& dir, bool wait);
 
   // --- with their dialogs ---------------------------------------------------
-  void requestNewTerrain();
+  // With `showOn`, the terrain goes on that entity instead of a new one.
+  void requestNewTerrain(scene::EntityId showOn = scene::kNoEntity);
   void requestImportDem();
   void requestErode(bool hydraulic);
   void requestExportHeightmap();
@@ -70,8 +77,8 @@ class TerrainPanel : public QWidget {
   void refresh();          // the terrain's facts, layers, undo memory
   void refreshBrush();     // widgets from the tool's settings
   void brushFromWidgets();
-  void refreshMaterial();
-  void materialEdited();
+  const scene::TerrainAsset* currentTerrain() const;
+  void reportMaterialProblems();
   void runJob(std::unique_ptr<scene::TerrainJob> job, const QString& title, bool wait, std::shared_ptr<bool> ok);
   bool runExport(const QString& title, std::function<std::string(const Progress&)> work, bool wait);
   void report(const scene::TerrainJobOutcome& out, const QString& title);
@@ -89,9 +96,8 @@ class TerrainPanel : public QWidget {
   QCheckBox* erase_ = nullptr;
   QDoubleSpinBox *terraceStep_ = nullptr, *noiseScale_ = nullptr;
   QSpinBox* undoCap_ = nullptr;
-  QComboBox* material_ = nullptr;
-  QPushButton *albedo_ = nullptr, *albedoTexture_ = nullptr, *normalTexture_ = nullptr;
-  QDoubleSpinBox *roughness_ = nullptr, *tiling_ = nullptr;
+  TerrainLayersEditor* layers_ = nullptr;
+  TerrainRulesEditor* rules_ = nullptr;
   QDoubleSpinBox* lodError_ = nullptr;
   QList<QWidget*> needTerrain_;
 };

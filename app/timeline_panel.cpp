@@ -105,6 +105,10 @@ TimelinePanel::TimelinePanel(scene::Document& doc, TimelineClock& clock, Keying&
   autoKey_->setObjectName("timelineAutoKey");
   autoKey_->setCheckable(true);
   button("◆ Key Transform", "Key the selection's location, rotation and scale at the playhead", [this] { keyTransform(); });
+  button("⤳ Follow Path", "The selected camera follows a path at constant speed (made ahead of it if it has none); "
+                          "edit the path in the Camera Path panel and by dragging its points in the viewport",
+         [this] { emit followPathRequested(); })
+      ->setObjectName("timelineFollowPath");
   bar->addSpacing(10);
   bar->addWidget(new QLabel("Stereo", this));
   stereoMode_ = new QComboBox(this);

@@ -40,6 +40,11 @@ class TimelinePanel : public QWidget {
   // Shows the sequence's range (after New/Open).
   void frameRange();
 
+ signals:
+  // "Follow Path" was pressed: the window makes the selected camera follow
+  // a path (if it has none) and shows the Camera Path panel.
+  void followPathRequested();
+
  private:
   void refreshFields();
   void applyRate();

@@ -32,13 +32,15 @@ glm::dvec3 parentWorld(const scene::SceneState& s, scene::EntityId id, const glm
 }  // namespace
 
 void buildTimelineOverlay(const scene::SceneState& base, const sequencer::CompiledSequence& compiled,
-                          const std::vector<scene::EntityId>& selection, const render::RenderView& view,
+                          const std::vector<scene::EntityId>& selection, double time, const render::RenderView& view,
                           render::Overlay& out) {
   const sequencer::Sequence& seq = compiled.sequence();
   const glm::vec4 pathColor = overlayColor({0.95f, 0.8f, 0.3f}, 0.85f, base.settings);
   const glm::vec4 faint = overlayColor({0.95f, 0.8f, 0.3f}, 0.45f, base.settings);
   const glm::vec4 pointColor = overlayColor({1.0f, 0.55f, 0.12f}, 1.0f, base.settings);
   const glm::vec4 keyColor = overlayColor({1.0f, 1.0f, 1.0f}, 1.0f, base.settings);
+  const glm::vec4 nowColor = overlayColor({0.3f, 1.0f, 0.45f}, 1.0f, base.settings);
+  const glm::vec4 aimColor = overlayColor({0.35f, 0.85f, 1.0f}, 0.9f, base.settings);
   auto selected = [&](scene::EntityId id) { return std::find(selection.begin(), selection.end(), id) != selection.end(); };
   const double t0 = sequencer::frameTime(seq.startFrame, seq.rate), t1 = sequencer::frameTime(seq.endFrame, seq.rate);
   for (size_t i = 0; i < seq.bindings.size(); ++i) {
@@ -59,6 +61,13 @@ void buildTimelineOverlay(const scene::SceneState& base, const sequencer::Compil
       // Where the progress keys put the camera.
       for (const sequencer::ScalarKey& k : b.path->progress.keys)
         marker(out, sampler->position(std::clamp(k.value, 0.0, 1.0) * length), view, 7.0, keyColor);
+      // Where the camera is now, and for the path being edited what it looks at.
+      const sequencer::PathPose now = sequencer::evaluatePath(*b.path, *sampler, time);
+      marker(out, now.position, view, sel ? 13.0 : 9.0, nowColor);
+      if (sel && b.path->aim == sequencer::PathAim::Point) {
+        out.line(now.position, b.path->targetPoint, aimColor);
+        marker(out, b.path->targetPoint, view, 10.0, aimColor);
+      }
       continue;
     }
     if (!sel) continue;

@@ -121,8 +121,9 @@ void ViewportWidget::paintGL() {
   const render::RenderView& view = camera_.view();
   render::Overlay overlay;
   buildSceneOverlay(state, selection_.ids(), view, overlay);
-  if (clock_) buildTimelineOverlay(doc_.state(), clock_->compiled(), selection_.ids(), view, overlay);
-  gizmo_.draw(state, selection_.ids(), view, overlay);
+  if (clock_) buildTimelineOverlay(doc_.state(), clock_->compiled(), selection_.ids(), clock_->time(), view, overlay);
+  drawPathOverlay(state, view, overlay);
+  if (!pathOwnsGizmo()) gizmo_.draw(state, selection_.ids(), view, overlay);
   if (terrainTool_) terrainTool_->drawOverlay(state, overlay);
   render::RenderOptions options;
   options.showGrid = showGrid_;
@@ -257,7 +258,7 @@ bool ViewportWidget::event(QEvent* e) {
     auto* k = static_cast<QKeyEvent*>(e);
     CameraController::MoveKey unused;
     if ((drag_ == Drag::Fly && (moveKey(k->key(), unused) || k->key() == Qt::Key_Shift)) ||
-        (drag_ == Drag::Gizmo && k->key() == Qt::Key_Escape)) {
+        (drag_ == Drag::Gizmo && k->key() == Qt::Key_Escape) || pathKey(k, true)) {
       e->accept();
       return true;
     }
@@ -290,7 +291,9 @@ void ViewportWidget::mousePressEvent(QMouseEvent* e) {
       } else {
         const glm::dvec2 px = toPixel(e->position());
         if (terrainPress(e->position())) break;  // a terrain brush stroke begins
-        const GizmoHandle h = gizmo_.hitTest(displayedState(), selection_.ids(), camera_.view(), px);
+        if (pathPress(e->position())) break;     // a camera path's point is grabbed
+        const GizmoHandle h =
+            pathOwnsGizmo() ? GizmoHandle::None : gizmo_.hitTest(displayedState(), selection_.ids(), camera_.view(), px);
         if (h != GizmoHandle::None && gizmo_.beginDrag(displayedState(), selection_.ids(), camera_.view(), h, px)) {
           drag_ = Drag::Gizmo;
           gizmoStartSequence_ = doc_.state().sequence;
@@ -335,9 +338,12 @@ void ViewportWidget::mouseMoveEvent(QMouseEvent* e) {
       break;
     case Drag::Click: break;
     case Drag::Terrain: terrainMove(pos); break;
+    case Drag::PathPoint: pathMove(pos, e->modifiers()); break;
     case Drag::None: {
       terrainMove(pos);  // the brush circle follows the cursor
-      const GizmoHandle h = gizmo_.hitTest(displayedState(), selection_.ids(), camera_.view(), toPixel(pos));
+      pathMove(pos, e->modifiers());  // the path point handles' highlight
+      const GizmoHandle h = pathOwnsGizmo() ? GizmoHandle::None
+                                            : gizmo_.hitTest(displayedState(), selection_.ids(), camera_.view(), toPixel(pos));
       if (h != gizmo_.hover()) {
         gizmo_.setHover(h);
         update();
@@ -352,11 +358,12 @@ void ViewportWidget::mouseReleaseEvent(QMouseEvent* e) {
   const bool ends = (b == Qt::RightButton && (drag_ == Drag::Fly || drag_ == Drag::Dolly)) ||
                     (b == Qt::MiddleButton && drag_ == Drag::Pan) ||
                     (b == Qt::LeftButton && (drag_ == Drag::Orbit || drag_ == Drag::Gizmo || drag_ == Drag::Click ||
-                                             drag_ == Drag::Terrain));
+                                             drag_ == Drag::Terrain || drag_ == Drag::PathPoint));
   if (!ends) return;
   if (drag_ == Drag::Terrain) terrainEnd();
   if (drag_ == Drag::Fly) endFly();
   if (drag_ == Drag::Gizmo) gizmo_.endDrag();
+  if (drag_ == Drag::PathPoint) pathEnd();
   if (drag_ == Drag::Click && QLineF(e->position(), pressPos_).length() <= kClickSlopPixels)
     clickSelect(e->position().toPoint(), pressModifiers_ | e->modifiers());
   drag_ = Drag::None;
@@ -392,6 +399,7 @@ void ViewportWidget::keyPressEvent(QKeyEvent* e) {
       return;
     }
   }
+  if (pathKey(e, false)) return;  // Esc during a point drag, Delete on a selected point
   if (drag_ == Drag::Gizmo && e->key() == Qt::Key_Escape) {
     const QString key = gizmo_.mergeKey();
     gizmo_.cancelDrag(doc_);

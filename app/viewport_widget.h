@@ -19,6 +19,8 @@ class QLabel;
 namespace hs::app {
 
 class ComfortReadout;
+class PathEditor;
+class PathPointDrag;
 class Selection;
 class TerrainTool;
 class StereoPreviewSettings;
@@ -37,6 +39,9 @@ class ViewportWidget : public QOpenGLWidget {
   QString glDescription() const { return glDescription_; }
   int framesRendered() const { return frames_; }
   const render::FrameStats& lastStats() const { return stats_; }
+  // Terrain material textures the renderer could not read, found since the
+  // last call (the Terrain panel passes them to Messages after each frame).
+  std::vector<std::string> takeTerrainMaterialProblems() { return renderer_.takeTerrainMaterialProblems(); }
   bool showGrid() const { return showGrid_; }
   void setShowGrid(bool show);
 
@@ -61,6 +66,10 @@ class ViewportWidget : public QOpenGLWidget {
   // The terrain brush: while it has a tool, left-mouse strokes sculpt and
   // paint the terrain under the cursor (viewport_terrain.cpp).
   void setTerrainTool(TerrainTool* tool) { terrainTool_ = tool; }
+  // Camera paths: the drawn points can be picked and dragged, the selected
+  // point with move handles (viewport_path.cpp).
+  void setPathEditor(PathEditor* editor);
+  PathPointDrag* pathPointDrag() const { return pathDrag_; }
   // What the viewport shows: the document at the timeline's current time.
   const scene::SceneState& displayedState() const;
   bool stereoPreviewActive() const;
@@ -92,7 +101,7 @@ class ViewportWidget : public QOpenGLWidget {
   void focusOutEvent(QFocusEvent* e) override;
 
  private:
-  enum class Drag { None, Click, Gizmo, Fly, Orbit, Pan, Dolly, Terrain };
+  enum class Drag { None, Click, Gizmo, Fly, Orbit, Pan, Dolly, Terrain, PathPoint };
   void releaseGl();
   void onDocumentChanged(const scene::ChangeSet& changes);
   void tickFly();
@@ -133,6 +142,14 @@ class ViewportWidget : public QOpenGLWidget {
   sequencer::Sequence gizmoStartSequence_;  // put back when a drag is cancelled (auto keys included)
   bool paintStereo();
   void emitTransformsEdited();
+
+  PathPointDrag* pathDrag_ = nullptr;  // viewport_path.cpp
+  bool pathOwnsGizmo() const;          // a path point is selected: its handles replace the entity gizmo
+  bool pathPress(const QPointF& pos);
+  void pathMove(const QPointF& pos, Qt::KeyboardModifiers modifiers);
+  void pathEnd();
+  bool pathKey(QKeyEvent* e, bool shortcutOverride);
+  void drawPathOverlay(const scene::SceneState& state, const render::RenderView& view, render::Overlay& overlay);
 };
 
 }  // namespace hs::app

@@ -9,6 +9,7 @@
 #include "cli/terrain_info.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
+#include "scene/mesh_report_text.h"
 #include "scene/scene_json.h"
 #include "scene/world_bounds.h"
 
@@ -22,6 +23,30 @@ std::string componentList(const scene::Entity& e) {
   for (const auto& c : scene::entityComponents())
     if (c.optional && c.has(e)) out += (out.empty() ? "" : ", ") + c.key;
   return out;
+}
+
+// Every level, 0 (the asset's mesh) first: triangles and Hausdorff error in metres.
+QJsonArray lodsJson(const scene::MeshAsset& a) {
+  QJsonArray out;
+  const std::vector<double> errors = a.lodErrors();
+  for (size_t k = 0; k < errors.size(); ++k) {
+    const mesh::MeshData* m = k == 0 ? a.data.get() : a.lods[k - 1].data.get();
+    QJsonObject l;
+    l["level"] = double(k);
+    l["triangles"] = double(m ? m->triangleCount() : 0);
+    l["hausdorff_m"] = errors[k];
+    out.append(l);
+  }
+  return out;
+}
+
+void printLods(const scene::MeshAsset& a) {
+  if (a.lods.empty()) return;
+  std::printf("    LODs: 0: %zu triangles", a.data->triangleCount());
+  for (size_t k = 0; k < a.lods.size(); ++k)
+    std::printf("; %zu: %zu triangles, hausdorff_m %.4g", k + 1, a.lods[k].data ? a.lods[k].data->triangleCount() : 0,
+                a.lods[k].hausdorff);
+  std::printf("\n");
 }
 
 QJsonObject infoJson(const std::string& path, const scene::SceneState& s) {
@@ -59,7 +84,10 @@ QJsonObject infoJson(const std::string& path, const scene::SceneState& s) {
       ja["materials"] = int(a.data->materials.size());
       ja["size_m"] = arr(glm::dvec3(b.max - b.min));
       ja["origin"] = arr(a.data->origin);
+      ja["lods"] = lodsJson(a);
     }
+    if (!a.processReportJson.empty())
+      ja["process_report"] = QJsonDocument::fromJson(QByteArray::fromStdString(a.processReportJson)).object();
     assets.append(ja);
   }
   o["assets"] = assets;
@@ -100,7 +128,8 @@ int runInfo(int argc, char** argv) {
     std::printf(
         "usage: hybridscape-cli info <scene.hscene> [--json]\n\n"
         "Lists the scene's entities (hierarchy, components, world positions), mesh\n"
-        "assets (triangles, vertices, textures, size in metres, origin), cameras,\n"
+        "assets (triangles, vertices, textures, size in metres, origin, LOD levels with\n"
+        "their triangles and Hausdorff error, the processing summary), cameras,\n"
         "terrains and tracks, and the scene's extent in metres.\n");
     return 0;
   }
@@ -129,6 +158,9 @@ int runInfo(int argc, char** argv) {
                 static_cast<unsigned long long>(id), a.name.c_str(), a.data->triangleCount(), a.data->vertexCount(),
                 a.data->textures.size(), double(sz.x), double(sz.y), double(sz.z), a.data->origin.x, a.data->origin.y,
                 a.data->origin.z, a.sourcePath.c_str());
+    printLods(a);
+    if (const std::string summary = scene::processReportSummary(a.processReportJson); !summary.empty())
+      std::printf("    processed: %s\n", summary.c_str());
   }
   printTerrainInfo(*s);
   std::printf("hierarchy:\n");

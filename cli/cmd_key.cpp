@@ -1,44 +1,16 @@
 // `hybridscape-cli key`: sets one key on the timeline through the same
 // undoable edit the editor's key buttons use (scene::ops::setKeys), then saves.
-#include <charconv>
-#include <cmath>
 #include <cstdio>
 
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "cli/entity_lookup.h"
+#include "cli/time_arg.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
 #include "scene/sequence_edits.h"
 
 namespace hs::cli {
-
-namespace {
-
-// "2.5" (seconds), "150f" (a frame at the scene's rate).
-bool parseKeyTime(const std::string& text, sequencer::FrameRate rate, double& t, std::string& error) {
-  std::string s = text;
-  const bool frame = !s.empty() && (s.back() == 'f' || s.back() == 'F');
-  if (frame) s.pop_back();
-  double v = 0.0;
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v)) {
-    error = "time '" + text + "' is not seconds (2.5) or a frame (150f)";
-    return false;
-  }
-  if (frame) {
-    if (v != std::floor(v)) {
-      error = "frame '" + text + "' is not a whole frame";
-      return false;
-    }
-    t = sequencer::frameTime(int64_t(v), rate);
-  } else {
-    t = v;
-  }
-  return true;
-}
-
-}  // namespace
 
 int runKey(int argc, char** argv) {
   const char* cmd = "key";
@@ -78,7 +50,7 @@ int runKey(int argc, char** argv) {
   const scene::EntityId id = findEntity(*state, who);
   if (id == scene::kNoEntity) return fail(cmd, "no entity named or numbered '" + who + "' in " + scenePath);
   double t = 0.0;
-  if (!parseKeyTime(args.positional[2], state->sequence.rate, t, error)) return usage(cmd, error);
+  if (!parseTimeArg(args.positional[2], state->sequence.rate, t, error)) return usage(cmd, error);
   const auto value = scene::parseKeyValue(*target, args.positional[3], error);
   if (!value) return fail(cmd, property + ": " + error);
 

@@ -16,6 +16,7 @@ const std::vector<Command>& commands() {
       {"terrain", "terrains: new, import (DEM), erode, paint-rules, export", runTerrain},
       {"key", "set a key on the timeline (an entity property at a time)", runKey},
       {"sequence", "show or set the timeline's frame rate and range", runSequence},
+      {"path", "make a camera follow a path at constant speed (look-at or banking), edit or clear it", runPath},
       {"farm", "render-farm runs: write/submit a Slurm job array, verify frames", runFarm},
   };
   return list;

@@ -25,6 +25,7 @@ int runSet(int argc, char** argv);
 int runTerrain(int argc, char** argv);
 int runKey(int argc, char** argv);
 int runSequence(int argc, char** argv);
+int runPath(int argc, char** argv);
 int runFarm(int argc, char** argv);
 
 // A progress line on stderr when it is a terminal ("Importing bunny.obj  42%").

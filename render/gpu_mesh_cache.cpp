@@ -8,13 +8,22 @@ namespace hs::render {
 void GpuMesh::release() {
   if (vao) glDeleteVertexArrays(1, &vao);
   glDeleteBuffers(4, buffers);
-  if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
+  if (ownsTextures && !textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
   vao = 0;
   textures.clear();
 }
 
+void GpuMeshCache::Entry::release() {
+  // Levels first: they borrow the base's textures.
+  for (auto& l : lods)
+    if (l) l->release();
+  lods.clear();
+  if (base) base->release();
+  base.reset();
+}
+
 void GpuMeshCache::clear() {
-  for (auto& [id, g] : meshes_) g->release();
+  for (auto& [id, e] : meshes_) e.release();
   meshes_.clear();
 }
 
@@ -40,21 +49,13 @@ GLuint uploadTexture(const mesh::Texture& t) {
   return tex;
 }
 
-}  // namespace
-
-const GpuMesh* GpuMeshCache::get(const scene::MeshAsset& asset) {
-  if (!asset.data || asset.data->indices.empty()) return nullptr;
-  auto it = meshes_.find(asset.id);
-  if (it != meshes_.end()) {
-    if (it->second->hash == asset.contentHash) return it->second.get();
-    it->second->release();
-  }
-
+// Buffers and vertex array for `m`; textures are the caller's business.
+std::unique_ptr<GpuMesh> uploadGeometry(const std::shared_ptr<const mesh::MeshData>& data, uint64_t hash) {
   auto g = std::make_unique<GpuMesh>();
-  const mesh::MeshData& m = *asset.data;
-  g->data = asset.data;
+  const mesh::MeshData& m = *data;
+  g->data = data;
   g->bounds = m.bounds();
-  g->hash = asset.contentHash;
+  g->hash = hash;
   g->hasUvs = m.uvs.size() == m.positions.size();
   glCreateBuffers(4, g->buffers);
   glNamedBufferStorage(g->buffers[0], GLsizeiptr(m.positions.size() * sizeof(glm::vec3)), m.positions.data(), 0);
@@ -81,28 +82,66 @@ const GpuMesh* GpuMeshCache::get(const scene::MeshAsset& asset) {
     glEnableVertexArrayAttrib(g->vao, 2);
   }
   glVertexArrayElementBuffer(g->vao, g->buffers[3]);
+  return g;
+}
 
-  for (const auto& t : m.textures) {
-    g->textures.push_back(uploadTexture(t));
-    g->gpuBytes += size_t(t.width) * size_t(t.height) * 4 * 4 / 3;
+}  // namespace
+
+const GpuMesh* GpuMeshCache::get(const scene::MeshAsset& asset, int level) {
+  if (!asset.data || asset.data->indices.empty()) return nullptr;
+  Entry& e = meshes_[asset.id];
+  if (e.base && e.base->hash != asset.contentHash) e.release();
+  if (!e.base) {
+    e.base = uploadGeometry(asset.data, asset.contentHash);
+    for (const auto& t : asset.data->textures) {
+      e.base->textures.push_back(uploadTexture(t));
+      e.base->gpuBytes += size_t(t.width) * size_t(t.height) * 4 * 4 / 3;
+    }
   }
-  const GpuMesh* out = g.get();
-  meshes_[asset.id] = std::move(g);
-  return out;
+  if (level <= 0 || size_t(level) > asset.lods.size()) return e.base.get();
+
+  const scene::MeshLod& lod = asset.lods[size_t(level) - 1];
+  if (!lod.data || lod.data->indices.empty()) return e.base.get();
+  if (e.lods.size() < asset.lods.size()) e.lods.resize(asset.lods.size());
+  std::unique_ptr<GpuMesh>& g = e.lods[size_t(level) - 1];
+  if (g && g->hash != lod.contentHash) {
+    g->release();
+    g.reset();
+  }
+  if (!g) {
+    g = uploadGeometry(lod.data, lod.contentHash);
+    g->textures = e.base->textures;  // material indices match level 0's
+    g->ownsTextures = false;
+  }
+  return g.get();
 }
 
 void GpuMeshCache::collect(const scene::SceneState& state) {
-  std::erase_if(meshes_, [&](const auto& kv) {
-    const scene::MeshAsset* a = state.findAsset(kv.first);
-    const bool stale = !a || a->contentHash != kv.second->hash;
-    if (stale) kv.second->release();
-    return stale;
-  });
+  for (auto it = meshes_.begin(); it != meshes_.end();) {
+    Entry& e = it->second;
+    const scene::MeshAsset* a = state.findAsset(it->first);
+    if (!a || !e.base || a->contentHash != e.base->hash) {
+      e.release();
+      it = meshes_.erase(it);
+      continue;
+    }
+    // Levels the asset no longer has, or has with other data.
+    for (size_t k = 0; k < e.lods.size(); ++k)
+      if (e.lods[k] && (k >= a->lods.size() || a->lods[k].contentHash != e.lods[k]->hash)) {
+        e.lods[k]->release();
+        e.lods[k].reset();
+      }
+    ++it;
+  }
 }
 
 size_t GpuMeshCache::gpuBytes() const {
   size_t n = 0;
-  for (const auto& [id, g] : meshes_) n += g->gpuBytes;
+  for (const auto& [id, e] : meshes_) {
+    if (e.base) n += e.base->gpuBytes;
+    for (const auto& l : e.lods)
+      if (l) n += l->gpuBytes;
+  }
   return n;
 }
 

@@ -2,7 +2,8 @@
 // GPU copies of mesh assets (vertex/index buffers, textures), uploaded on
 // first use and dropped when the asset leaves the scene. Keyed by asset id
 // and content hash, so a changed asset is re-uploaded and an unchanged one
-// never is.
+// never is. LOD levels are uploaded when an instance first draws them, and
+// draw with level 0's textures (they have none of their own).
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -24,20 +25,28 @@ struct GpuMesh {
   uint64_t hash = 0;
   size_t gpuBytes = 0;
   bool hasUvs = false;
+  bool ownsTextures = true;  // false for LOD levels: `textures` are level 0's
   void release();  // GL objects; not in a destructor, the context may be gone
 };
 
 class GpuMeshCache {
  public:
-  // The GPU mesh for `asset`, uploading it if needed. Null if it has no data.
-  const GpuMesh* get(const scene::MeshAsset& asset);
-  // Frees meshes whose asset is gone from `state`.
+  // The GPU mesh for level `level` of `asset` (0: MeshAsset::data; k: lods[k-1]),
+  // uploading it if needed. Null if it has no data; level 0 for a level the
+  // asset does not have.
+  const GpuMesh* get(const scene::MeshAsset& asset, int level = 0);
+  // Frees meshes (and levels) whose asset is gone from `state` or changed.
   void collect(const scene::SceneState& state);
   void clear();
   size_t gpuBytes() const;
 
  private:
-  std::map<scene::AssetId, std::unique_ptr<GpuMesh>> meshes_;
+  struct Entry {
+    std::unique_ptr<GpuMesh> base;               // level 0, owns the textures
+    std::vector<std::unique_ptr<GpuMesh>> lods;  // levels 1.., null until drawn
+    void release();
+  };
+  std::map<scene::AssetId, Entry> meshes_;
 };
 
 }  // namespace hs::render

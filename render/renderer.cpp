@@ -11,6 +11,7 @@
 #include "render/frame_targets.h"
 #include "render/gl_program.h"
 #include "render/gpu_mesh_cache.h"
+#include "render/mesh_lod.h"
 #include "render/terrain_pass.h"
 
 namespace hs::render {
@@ -123,6 +124,15 @@ struct Renderer::Impl {
       if (!frustum.intersectsSphere(centreRel, double(g->bounds.radius()) * maxScale)) {
         ++stats.instancesCulled;
         continue;
+      }
+      // The coarsest LOD within the scene's pixel bound (mesh_lod.h).
+      if (!asset->lods.empty()) {
+        const MeshLodChoice lod = chooseMeshLod(asset->lodErrors(), centreRel, double(g->bounds.radius()), maxScale,
+                                                view, s.settings.meshLodErrorPixels);
+        if (lod.level > 0) {
+          if (const GpuMesh* coarser = cache.get(*asset, lod.level)) g = coarser;
+          ++stats.instancesAtCoarserLod;
+        }
       }
       const glm::dmat4 mv = viewRot4 * rel;
       items.push_back({id, g, toFloat(mv), glm::mat3(glm::inverseTranspose(glm::dmat3(mv))), e.mesh->tint});
@@ -542,7 +552,7 @@ LodSelection Renderer::terrainLod(const scene::SceneState& state, scene::EntityI
   return d_->terrain.select(state, entity, view);
 }
 
-std::vector<std::string> Renderer::terrainMaterialProblems() const { return d_->terrain.materialProblems(); }
+std::vector<std::string> Renderer::takeTerrainMaterialProblems() { return d_->terrain.takeMaterialProblems(); }
 
 void Renderer::shutdown() {
   if (!d_->ready) return;

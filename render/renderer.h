@@ -25,6 +25,7 @@ struct FrameStats {
   size_t drawCalls = 0;
   size_t instancesDrawn = 0;
   size_t instancesCulled = 0;
+  size_t instancesAtCoarserLod = 0;  // drawn with a mesh LOD level above 0 (mesh_lod.h)
   size_t terrainTriangles = 0;   // included in trianglesDrawn
   size_t terrainPatches = 0;     // CDLOD quadrants drawn
   size_t terrainUploadBytes = 0; // tile data uploaded this frame (a brush dab: its region)
@@ -99,8 +100,9 @@ class Renderer {
   // The CDLOD selection render() would draw for a terrain entity (tests,
   // benchmarks, the editor's statistics).
   LodSelection terrainLod(const scene::SceneState& state, scene::EntityId entity, const RenderView& view);
-  // Terrain material textures that could not be read ("path: reason").
-  std::vector<std::string> terrainMaterialProblems() const;
+  // Terrain material textures that could not be read, as found since the
+  // last call (each names the terrain, material and file; terrain_pass.h).
+  std::vector<std::string> takeTerrainMaterialProblems();
 
   // Frees every GL object (call with the context current, before it goes).
   void shutdown();

@@ -47,7 +47,16 @@ size_t TerrainMaterialTextures::gpuBytes() const {
   return size_t(albedoSlices_ + normalSlices_) * size_t(kSize) * size_t(kSize) * 4 * 4 / 3;
 }
 
-GLuint TerrainMaterialTextures::build(const std::vector<std::string>& paths, bool srgb, std::vector<int>& slices) {
+std::vector<std::string> TerrainMaterialTextures::problems() const {
+  std::vector<std::string> out = albedoProblems_;
+  out.insert(out.end(), normalProblems_.begin(), normalProblems_.end());
+  return out;
+}
+
+GLuint TerrainMaterialTextures::build(const std::vector<std::string>& paths, const std::vector<std::string>& names,
+                                      bool normal, std::vector<int>& slices, std::vector<std::string>& problems) {
+  const bool srgb = !normal;  // colour is sRGB-encoded; normal maps are data
+  problems.clear();
   slices.assign(paths.size(), -1);
   std::vector<std::vector<uint8_t>> images;
   for (size_t i = 0; i < paths.size(); ++i) {
@@ -55,7 +64,8 @@ GLuint TerrainMaterialTextures::build(const std::vector<std::string>& paths, boo
     mesh::Texture t;
     std::string error;
     if (!mesh::decodeTextureFile(paths[i], t, error) || t.width <= 0 || t.height <= 0) {
-      problems_.push_back(paths[i] + ": " + (error.empty() ? "cannot be read" : error));
+      problems.push_back("material '" + names[i] + "': " + (normal ? "normal map " : "albedo texture ") + paths[i] +
+                         ": " + (error.empty() ? "cannot be read" : error));
       continue;
     }
     slices[i] = int(images.size());
@@ -78,24 +88,28 @@ GLuint TerrainMaterialTextures::build(const std::vector<std::string>& paths, boo
   return tex;
 }
 
-void TerrainMaterialTextures::update(const std::vector<terrain::Material>& materials) {
-  std::vector<std::string> albedo, normal;
+std::vector<std::string> TerrainMaterialTextures::update(const std::vector<terrain::Material>& materials) {
+  std::vector<std::string> albedo, normal, names, found;
   for (const auto& m : materials) {
     albedo.push_back(m.albedoTexture);
     normal.push_back(m.normalTexture);
+    names.push_back(m.name);
   }
   if (albedo != albedoPaths_) {
     if (albedo_) glDeleteTextures(1, &albedo_);
-    albedo_ = build(albedo, true, albedoSlice_);
+    albedo_ = build(albedo, names, false, albedoSlice_, albedoProblems_);
+    found.insert(found.end(), albedoProblems_.begin(), albedoProblems_.end());
     albedoSlices_ = int(std::count_if(albedoSlice_.begin(), albedoSlice_.end(), [](int s) { return s >= 0; }));
     albedoPaths_ = albedo;
   }
   if (normal != normalPaths_) {
     if (normal_) glDeleteTextures(1, &normal_);
-    normal_ = build(normal, false, normalSlice_);
+    normal_ = build(normal, names, true, normalSlice_, normalProblems_);
+    found.insert(found.end(), normalProblems_.begin(), normalProblems_.end());
     normalSlices_ = int(std::count_if(normalSlice_.begin(), normalSlice_.end(), [](int s) { return s >= 0; }));
     normalPaths_ = normal;
   }
+  return found;
 }
 
 }  // namespace hs::render

@@ -204,7 +204,8 @@ TerrainFrameStats TerrainPass::draw(const scene::SceneState& state, const std::v
     const auto& mats = t.asset->materials;
     const int layers = std::min({int(mats.size()), t.asset->data->terrain().paint.layerCount(), 16});
     TerrainMaterialTextures& tex = materials_[t.asset->data->instance()];
-    tex.update(mats);
+    for (const std::string& problem : tex.update(mats))
+      newProblems_.push_back("terrain '" + t.asset->name + "', " + problem);
     int slice[16], albedoLayer[16], normalLayer[16];
     float weightConst[16], rough[16], tiling[16];
     glm::vec3 albedo[16];
@@ -273,9 +274,9 @@ size_t TerrainPass::gpuBytes() const {
   return b;
 }
 
-std::vector<std::string> TerrainPass::materialProblems() const {
+std::vector<std::string> TerrainPass::takeMaterialProblems() {
   std::vector<std::string> out;
-  for (const auto& [id, m] : materials_) out.insert(out.end(), m.problems().begin(), m.problems().end());
+  out.swap(newProblems_);
   return out;
 }
 

@@ -62,8 +62,11 @@ class TerrainPass {
   LodSelection select(const scene::SceneState& state, scene::EntityId entity, const RenderView& view);
 
   size_t gpuBytes() const;
-  // Material texture files that could not be read.
-  std::vector<std::string> materialProblems() const;
+  // Material texture files that could not be read, each once, as found
+  // since the last call ("terrain 'Valley', material 'Grass': albedo
+  // texture PATH: reason"); a renderer finds them when it (re)loads a
+  // terrain's textures, i.e. when a path changes.
+  std::vector<std::string> takeMaterialProblems();
 
  private:
   struct Prepared {
@@ -86,6 +89,7 @@ class TerrainPass {
   GLsizei gridIndices_ = 0;
   GpuTerrainCache cache_;
   std::map<uint64_t, TerrainMaterialTextures> materials_;  // by TerrainData::instance()
+  std::vector<std::string> newProblems_;
 };
 
 }  // namespace hs::render

@@ -265,6 +265,9 @@ std::vector<SettingsField> buildSettingsFields() {
       enumField<S>("antialiasing", "Anti-aliasing", {"None", "FXAA", "MSAA 4x"},
                    [](S& s) -> Antialiasing& { return s.antialiasing; }),
       enumField<S>("tonemap", "Tone mapping", {"ACES", "None"}, [](S& s) -> Tonemap& { return s.tonemap; }),
+      // Screen-space error of mesh LODs (mesh/lod_chain.h selectLod); 0 draws full resolution.
+      doubleField<S>("mesh_lod_error_px", "Mesh LOD error bound", 0.0, 64.0, 0.1, "px",
+                     [](S& s) -> double& { return s.meshLodErrorPixels; }),
   };
 }
 

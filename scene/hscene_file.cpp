@@ -36,6 +36,8 @@ std::string hex(uint64_t h) {
 }
 
 std::string meshKey(AssetId id) { return "mesh/" + std::to_string(id); }
+// LOD levels 1, 2, ... of an asset; level 0 is meshKey (files before LODs had only that).
+std::string lodKey(AssetId id, size_t level) { return meshKey(id) + "/lod" + std::to_string(level); }
 
 // First 16 bytes of every SQLite 3 database.
 bool hasSqliteHeader(const std::string& path) {
@@ -74,8 +76,12 @@ int readVersion(SqliteDb& db, std::string& format, std::string& error) {
 // Meshes, and terrain tiles (terrain_file.h).
 std::map<std::string, BlobSource> wantedBlobs(const SceneState& s) {
   std::map<std::string, BlobSource> out;
-  for (const auto& [id, a] : s.assets)
+  for (const auto& [id, a] : s.assets) {
     if (a.data) out[meshKey(id)] = {hex(a.contentHash), [data = a.data] { return encodeMesh(*data); }, false};
+    for (size_t k = 0; k < a.lods.size(); ++k)
+      if (const auto& data = a.lods[k].data)
+        out[lodKey(id, k + 1)] = {hex(a.lods[k].contentHash), [data] { return encodeMesh(*data); }, false};
+  }
   addTerrainBlobs(s, out);
   return out;
 }
@@ -300,24 +306,20 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
     return std::nullopt;
   }
 
-  // Bulk data: each asset's mesh, checked against the hash the description holds.
+  // Bulk data: each asset's mesh and its LOD levels, each checked against
+  // the hash the description holds.
   SqliteStmt q(db, "SELECT part, hash, data FROM blobs WHERE key = ?1 ORDER BY part");
-  size_t done = 0;
-  for (auto& [id, asset] : state->assets) {
-    reportProgress(progress, double(done++) / double(state->assets.size()), "Loading meshes");
-    if (isCancelled(progress)) {
-      error = path + ": opening cancelled";
-      return std::nullopt;
-    }
-    const std::string key = meshKey(id);
-    const std::string what = path + ": mesh asset " + std::to_string(id) + " ('" + asset.name + "')";
+  // One logical blob decoded and checked; `what` names the asset (and level).
+  auto loadMesh = [&](const std::string& key, const std::string& what, uint64_t hash,
+                      std::shared_ptr<const mesh::MeshData>& out) {
     std::vector<uint8_t> bytes;
     int64_t expectedPart = 0;
     q.bind(1, key);
     while (q.step(e)) {
       if (q.integer(0) != expectedPart++) {
+        q.reset();
         error = what + ": a part of its data is missing (damaged file)";
-        return std::nullopt;
+        return false;
       }
       const auto b = q.blob(2);
       bytes.insert(bytes.end(), b.begin(), b.end());
@@ -325,22 +327,37 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
     q.reset();
     if (!e.empty()) {
       error = what + ": the scene file is damaged (" + e + ")";
-      return std::nullopt;
+      return false;
     }
     if (expectedPart == 0) {
       error = what + ": its mesh data is missing from the file";
-      return std::nullopt;
+      return false;
     }
     std::optional<mesh::MeshData> mesh = decodeMesh(bytes.data(), bytes.size(), what, e);
     if (!mesh) {
       error = e;
-      return std::nullopt;
+      return false;
     }
-    if (mesh::contentHash(*mesh) != asset.contentHash) {
+    if (mesh::contentHash(*mesh) != hash) {
       error = what + ": its data does not match its checksum (damaged file)";
+      return false;
+    }
+    out = std::make_shared<const mesh::MeshData>(std::move(*mesh));
+    return true;
+  };
+  size_t done = 0;
+  for (auto& [id, asset] : state->assets) {
+    reportProgress(progress, double(done++) / double(state->assets.size()), "Loading meshes");
+    if (isCancelled(progress)) {
+      error = path + ": opening cancelled";
       return std::nullopt;
     }
-    asset.data = std::make_shared<const mesh::MeshData>(std::move(*mesh));
+    const std::string what = path + ": mesh asset " + std::to_string(id) + " ('" + asset.name + "')";
+    if (!loadMesh(meshKey(id), what, asset.contentHash, asset.data)) return std::nullopt;
+    for (size_t k = 0; k < asset.lods.size(); ++k)
+      if (!loadMesh(lodKey(id, k + 1), what + ", LOD " + std::to_string(k + 1), asset.lods[k].contentHash,
+                    asset.lods[k].data))
+        return std::nullopt;
   }
   // Terrains' tiles, checked against their hashes and the description.
   if (!state->terrains.empty() &&

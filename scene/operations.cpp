@@ -3,22 +3,18 @@
 #include <algorithm>
 
 #include "scene/edit.h"
+#include "scene/import_pipeline.h"
 #include "scene/report_json.h"
 
 namespace hs::scene::ops {
 
-EntityId addImportedMesh(Document& doc, mesh::MeshData meshData, const std::string& name,
-                         const std::string& sourcePath, const mesh::ImportReport& report,
-                         const Placement& placement) {
-  const mesh::Bounds b = meshData.bounds();
-  MeshAsset asset;
-  asset.name = name;
-  asset.sourcePath = sourcePath;
-  asset.contentHash = mesh::contentHash(meshData);
-  asset.importReportJson = importReportToJson(report);
-  const glm::dvec3 origin = meshData.origin;
-  asset.data = std::make_shared<const mesh::MeshData>(std::move(meshData));
+namespace {
 
+// One undo step: the asset (with whatever levels and reports it carries)
+// and an entity showing it.
+EntityId addMeshAsset(Document& doc, MeshAsset asset, const std::string& name, const Placement& placement) {
+  const mesh::Bounds b = asset.data->bounds();
+  const glm::dvec3 origin = asset.data->origin;
   Edit e(doc, QString("Import %1").arg(QString::fromStdString(name)));
   const AssetId assetId = e.addAsset(std::move(asset));
   Entity ent;
@@ -34,6 +30,34 @@ EntityId addImportedMesh(Document& doc, mesh::MeshData meshData, const std::stri
   const EntityId id = e.addEntity(std::move(ent), placement.parent);
   e.commit();
   return id;
+}
+
+}  // namespace
+
+EntityId addImportedMesh(Document& doc, mesh::MeshData meshData, const std::string& name,
+                         const std::string& sourcePath, const mesh::ImportReport& report,
+                         const Placement& placement) {
+  MeshAsset asset;
+  asset.name = name;
+  asset.sourcePath = sourcePath;
+  asset.contentHash = mesh::contentHash(meshData);
+  asset.importReportJson = importReportToJson(report);
+  asset.data = std::make_shared<const mesh::MeshData>(std::move(meshData));
+  return addMeshAsset(doc, std::move(asset), name, placement);
+}
+
+EntityId addImportedMesh(Document& doc, ImportedMesh imported, const std::string& name,
+                         const std::string& sourcePath, const Placement& placement) {
+  if (!imported.mesh) return kNoEntity;
+  MeshAsset asset;
+  asset.name = name;
+  asset.sourcePath = sourcePath;
+  asset.contentHash = mesh::contentHash(*imported.mesh);
+  asset.importReportJson = std::move(imported.importReportJson);
+  asset.processReportJson = std::move(imported.processReportJson);
+  asset.lods = std::move(imported.lods);
+  asset.data = std::make_shared<const mesh::MeshData>(std::move(*imported.mesh));
+  return addMeshAsset(doc, std::move(asset), name, placement);
 }
 
 EntityId addEmpty(Document& doc, const std::string& name, const Transform& t, EntityId parent) {

@@ -11,6 +11,10 @@
 #include "scene/document.h"
 #include "scene/fields.h"
 
+namespace hs::scene {
+struct ImportedMesh;
+}
+
 namespace hs::scene::ops {
 
 struct Placement {
@@ -25,6 +29,11 @@ struct Placement {
 EntityId addImportedMesh(Document& doc, mesh::MeshData mesh, const std::string& name,
                          const std::string& sourcePath, const mesh::ImportReport& report,
                          const Placement& placement = {});
+// The same for what scene::importMeshFiles made (import_pipeline.h): the
+// asset carries its LOD levels and processing report too. Undo removes
+// all of it. Returns kNoEntity (and changes nothing) if `imported` has no mesh.
+EntityId addImportedMesh(Document& doc, ImportedMesh imported, const std::string& name,
+                         const std::string& sourcePath, const Placement& placement = {});
 
 EntityId addEmpty(Document& doc, const std::string& name, const Transform& t = {},
                   EntityId parent = kNoEntity);

@@ -21,6 +21,14 @@ QJsonObject importReportToJsonObject(const mesh::ImportReport& r) {
   o["normals_generated"] = r.normalsGenerated;
   o["up_axis_converted"] = r.upAxisConverted;
   o["seconds"] = r.seconds;
+  // The georeferencing offset added to the mesh's origin, and where it came from.
+  if (!r.geoOffsetSource.empty()) {
+    QJsonObject g;
+    g["offset_m"] = QJsonArray{r.geoOffset.x, r.geoOffset.y, r.geoOffset.z};
+    g["source"] = QString::fromStdString(r.geoOffsetSource);
+    g["crs"] = QString::fromStdString(r.geoOffsetCrs);
+    o["geo_offset"] = g;
+  }
   QJsonArray w;
   for (const auto& s : r.warnings) w.append(QString::fromStdString(s));
   o["warnings"] = w;

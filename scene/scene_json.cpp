@@ -164,6 +164,22 @@ QJsonObject sceneToJson(const SceneState& state) {
     o["hash"] = hashHex(a.contentHash);
     if (!a.importReportJson.empty())
       o["import_report"] = QJsonDocument::fromJson(QByteArray::fromStdString(a.importReportJson)).object();
+    // Coarser levels: their blobs are "mesh/<id>/lod<level>" (hscene_file.cpp).
+    if (!a.lods.empty()) {
+      QJsonArray lods;
+      for (size_t k = 0; k < a.lods.size(); ++k) {
+        const MeshLod& l = a.lods[k];
+        QJsonObject lo;
+        lo["level"] = double(k + 1);
+        lo["hash"] = hashHex(l.contentHash);
+        lo["triangles"] = double(l.triangles);
+        lo["hausdorff_m"] = l.hausdorff;
+        lods.append(lo);
+      }
+      o["lods"] = lods;
+    }
+    if (!a.processReportJson.empty())
+      o["process_report"] = QJsonDocument::fromJson(QByteArray::fromStdString(a.processReportJson)).object();
     assets.append(o);
   }
   root["assets"] = assets;
@@ -278,6 +294,43 @@ std::optional<SceneState> sceneFromJson(const QJsonObject& json, std::string& er
     if (o.contains("import_report"))
       a.importReportJson =
           QJsonDocument(o["import_report"].toObject()).toJson(QJsonDocument::Compact).toStdString();
+    // LOD levels (format 3): hash and error here, the data from their blobs.
+    const QJsonArray lods = o["lods"].toArray();
+    double previous = 0.0;
+    for (int k = 0; k < lods.size(); ++k) {
+      const std::string lp = p + ".lods[" + std::to_string(k) + "]";
+      const QJsonObject lo = lods[k].toObject();
+      MeshLod l;
+      double level = 0;
+      if (!r.number(lo["level"], lp + ".level", level)) return std::nullopt;
+      if (level != double(k + 1)) {
+        r.fail(lp + ".level", "expected level " + std::to_string(k + 1) + " (levels are numbered from 1 in order)");
+        return std::nullopt;
+      }
+      l.contentHash = lo["hash"].toString().toULongLong(&ok, 16);
+      if (!ok) {
+        r.fail(lp + ".hash", "expected a hexadecimal content hash");
+        return std::nullopt;
+      }
+      if (!r.number(lo["hausdorff_m"], lp + ".hausdorff_m", l.hausdorff)) return std::nullopt;
+      double triangles = 0;
+      if (!r.number(lo["triangles"], lp + ".triangles", triangles)) return std::nullopt;
+      if (triangles < 0 || triangles != std::floor(triangles)) {
+        r.fail(lp + ".triangles", "expected a whole number of triangles");
+        return std::nullopt;
+      }
+      l.triangles = size_t(triangles);
+      // The renderer's choice relies on errors growing along the chain.
+      if (l.hausdorff < previous) {
+        r.fail(lp + ".hausdorff_m", "smaller than the previous level's (errors must not decrease)");
+        return std::nullopt;
+      }
+      previous = l.hausdorff;
+      a.lods.push_back(std::move(l));
+    }
+    if (o.contains("process_report"))
+      a.processReportJson =
+          QJsonDocument(o["process_report"].toObject()).toJson(QJsonDocument::Compact).toStdString();
     if (!s.assets.emplace(a.id, std::move(a)).second) {
       r.fail(p + ".id", "duplicate asset id");
       return std::nullopt;

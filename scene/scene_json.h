@@ -13,7 +13,9 @@ namespace hs::scene {
 
 // 2: terrains (description "terrains", tile blobs "terrain/<id>/..."). A
 // version-1 reader would drop them silently, so it is told the file is newer.
-constexpr int kSceneFormatVersion = 2;
+// 3: mesh LODs (assets' "lods", blobs "mesh/<id>/lod<k>") and processing
+// reports; a version-2 reader would drop the LODs on its next save.
+constexpr int kSceneFormatVersion = 3;
 
 QJsonObject sceneToJson(const SceneState& state);
 // Canonical compact text of sceneToJson (stable key order and number format).

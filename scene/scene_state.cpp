@@ -16,6 +16,12 @@ const MeshAsset* SceneState::findAsset(AssetId id) const {
   return it == assets.end() ? nullptr : &it->second;
 }
 
+std::vector<double> MeshAsset::lodErrors() const {
+  std::vector<double> out{0.0};
+  for (const MeshLod& l : lods) out.push_back(l.hausdorff);
+  return out;
+}
+
 const TerrainAsset* SceneState::findTerrain(TerrainId id) const {
   auto it = terrains.find(id);
   return it == terrains.end() ? nullptr : &it->second;

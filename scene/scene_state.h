@@ -16,16 +16,37 @@
 
 namespace hs::scene {
 
+// A coarser level of detail of a mesh asset (levels 1, 2, ...; level 0 is
+// MeshAsset::data). Its own blob in the file ("mesh/<id>/lod<k>"); it has no
+// textures of its own and draws with level 0's (mesh/lod_chain.h).
+struct MeshLod {
+  std::shared_ptr<const mesh::MeshData> data;  // immutable, shared by undo
+  uint64_t contentHash = 0;                    // mesh::contentHash(*data)
+  double hausdorff = 0.0;                      // metres, symmetric, against level 0
+  size_t triangles = 0;                        // data->triangleCount(), kept for the description
+  bool operator==(const MeshLod& o) const {
+    return contentHash == o.contentHash && hausdorff == o.hausdorff && triangles == o.triangles;
+  }
+};
+
 struct MeshAsset {
   AssetId id = kNoAsset;
   std::string name;
   std::string sourcePath;                       // where it was imported from
-  std::shared_ptr<const mesh::MeshData> data;   // immutable once imported: shared by undo
+  std::shared_ptr<const mesh::MeshData> data;   // immutable once imported: shared by undo (LOD 0)
   uint64_t contentHash = 0;                     // mesh::contentHash(*data)
   std::string importReportJson;                 // what the importer said, for `info`
+  std::vector<MeshLod> lods;                    // coarser levels after `data`, errors non-decreasing
+  // Cleaning, decimation error report, per-LOD errors and times as JSON
+  // (scene/import_pipeline.h); empty when the mesh was imported as read.
+  std::string processReportJson;
+  // Hausdorff error per level in metres, level 0 (= 0) first: what
+  // mesh::selectLod takes.
+  std::vector<double> lodErrors() const;
   bool operator==(const MeshAsset& o) const {
     return id == o.id && name == o.name && sourcePath == o.sourcePath &&
-           contentHash == o.contentHash && importReportJson == o.importReportJson;
+           contentHash == o.contentHash && importReportJson == o.importReportJson && lods == o.lods &&
+           processReportJson == o.processReportJson;
   }
 };
 
@@ -43,6 +64,9 @@ struct SceneSettings {
   bool showGrid = true;
   Antialiasing antialiasing = Antialiasing::Msaa4;
   Tonemap tonemap = Tonemap::Aces;
+  // Mesh LODs: each instance draws the coarsest level whose error, projected
+  // to the screen, is at most this many pixels (0: always full resolution).
+  double meshLodErrorPixels = 1.0;
   bool operator==(const SceneSettings&) const = default;
 };
 

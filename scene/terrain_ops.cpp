@@ -12,7 +12,7 @@ namespace hs::scene::ops {
 namespace {
 
 EntityId addTerrainAsset(Document& doc, terrain::Terrain tr, const std::string& name, const glm::dvec3& at,
-                         double lodErrorPixels, const QString& text) {
+                         double lodErrorPixels, const QString& text, EntityId showOn = kNoEntity) {
   TerrainAsset t;
   t.name = name;
   t.materials.reserve(size_t(tr.paint.layerCount()));
@@ -21,6 +21,14 @@ EntityId addTerrainAsset(Document& doc, terrain::Terrain tr, const std::string& 
   t.data = std::make_shared<TerrainData>(std::move(tr));
   Edit e(doc, text);
   const TerrainId id = e.addTerrain(std::move(t));
+  if (showOn != kNoEntity) {
+    auto& shown = e.entity(showOn).terrain;
+    const TerrainId before = shown ? shown->terrain : kNoTerrain;
+    shown = TerrainInstance{id, shown ? shown->lodErrorPixels : std::clamp(lodErrorPixels, 0.1, 64.0)};
+    e.removeTerrainIfUnused(before);
+    e.commit();
+    return showOn;
+  }
   Entity ent;
   ent.name = name;
   ent.transform.translation = at;
@@ -39,6 +47,10 @@ std::string fileSafe(std::string s) {
 }  // namespace
 
 EntityId addTerrain(Document& doc, const NewTerrain& spec, std::string& error) {
+  if (spec.showOn != kNoEntity && !doc.state().find(spec.showOn)) {
+    error = "no entity " + std::to_string(spec.showOn) + " to show the terrain on";
+    return kNoEntity;
+  }
   if (!(spec.heightRange.max >= spec.heightRange.min) || !std::isfinite(spec.heightRange.min) ||
       !std::isfinite(spec.heightRange.max)) {
     error = "the height range must be two finite heights, the first not above the second";
@@ -75,7 +87,7 @@ EntityId addTerrain(Document& doc, const NewTerrain& spec, std::string& error) {
     hf.write(hf.bounds(), all);
   }
   return addTerrainAsset(doc, std::move(tr), spec.name, spec.centre, spec.lodErrorPixels,
-                         QString("New terrain %1").arg(QString::fromStdString(spec.name)));
+                         QString("New terrain %1").arg(QString::fromStdString(spec.name)), spec.showOn);
 }
 
 EntityId addTerrainFromHeightfield(Document& doc, terrain::Heightfield hf, const std::string& name,
@@ -97,18 +109,38 @@ bool setTerrainMaterial(Document& doc, TerrainId id, int layer, const terrain::M
   if (!(v.tilingMetres > 0.0f) || !std::isfinite(v.tilingMetres)) v.tilingMetres = t->materials[size_t(layer)].tilingMetres;
   for (int c = 0; c < 3; ++c)
     v.albedo[c] = std::isfinite(v.albedo[c]) ? std::clamp(v.albedo[c], 0.0f, 1.0f) : t->materials[size_t(layer)].albedo[c];
+  // A layer needs a name: exports and menus are labelled with it.
+  if (v.name.find_first_not_of(" \t") == std::string::npos) v.name = t->materials[size_t(layer)].name;
   Edit e(doc, QString("Terrain material %1").arg(QString::fromStdString(v.name)), mergeKey);
   e.terrain(id).materials[size_t(layer)] = v;
   return e.commit();
 }
 
-bool setTerrainPaintRules(Document& doc, TerrainId id, std::vector<terrain::PaintRule> rules) {
+bool setTerrainPaintRules(Document& doc, TerrainId id, std::vector<terrain::PaintRule> rules, const QString& mergeKey) {
   const TerrainAsset* t = doc.state().findTerrain(id);
   if (!t) return false;
-  for (const auto& r : rules)
+  for (auto& r : rules) {
     if (r.layer < 0 || r.layer >= int(t->materials.size())) return false;
-  Edit e(doc, "Terrain paint rules");
+    for (double v : {r.altitudeMin, r.altitudeMax, r.altitudeBlend, r.slopeMin, r.slopeMax, r.slopeBlend})
+      if (!std::isfinite(v)) return false;
+    if (!std::isfinite(r.strength)) return false;
+    r.altitudeBlend = std::max(0.0, r.altitudeBlend);
+    r.slopeBlend = std::max(0.0, r.slopeBlend);
+    r.strength = std::clamp(r.strength, 0.0f, 1.0f);
+  }
+  Edit e(doc, "Terrain paint rules", mergeKey);
   e.terrain(id).paintRules = std::move(rules);
+  return e.commit();
+}
+
+bool setShownTerrain(Document& doc, EntityId entity, TerrainId terrain) {
+  if (!doc.state().find(entity) || !doc.state().findTerrain(terrain)) return false;
+  Edit e(doc, "Show terrain");
+  auto& shown = e.entity(entity).terrain;
+  const TerrainId before = shown ? shown->terrain : kNoTerrain;
+  if (shown) shown->terrain = terrain;
+  else shown = TerrainInstance{terrain, 1.0};
+  e.removeTerrainIfUnused(before);
   return e.commit();
 }
 

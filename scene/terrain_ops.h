@@ -27,10 +27,15 @@ struct NewTerrain {
   uint64_t seed = 1;
   std::vector<terrain::Material> materials;     // empty: terrain::defaultMaterials()
   double lodErrorPixels = 1.0;
+  // Show it on this existing entity (Properties > Add Component > Terrain)
+  // instead of making a new one: centred on the entity, `centre` unused.
+  EntityId showOn = kNoEntity;
 };
 
 // A flat terrain and an entity showing it (its translation at `centre`), in
 // one undo step. Returns the entity, or 0 with `error` (bad sizes, ...).
+// With `spec.showOn`, that entity shows the new terrain instead (a terrain
+// it showed before goes if nothing else shows it, as with setShownTerrain).
 EntityId addTerrain(Document& doc, const NewTerrain& spec, std::string& error);
 
 // A terrain from a heightfield made elsewhere (a DEM import keeps its CRS
@@ -43,7 +48,16 @@ EntityId addTerrainFromHeightfield(Document& doc, terrain::Heightfield hf, const
 // drag or a colour pick into one step).
 bool setTerrainMaterial(Document& doc, TerrainId id, int layer, const terrain::Material& m,
                         const QString& mergeKey = {});
-bool setTerrainPaintRules(Document& doc, TerrainId id, std::vector<terrain::PaintRule> rules);
+// Rules are checked (known layer, finite values); blends and strength are
+// clamped to their ranges. `mergeKey` folds a scrubbed spin box into one step.
+bool setTerrainPaintRules(Document& doc, TerrainId id, std::vector<terrain::PaintRule> rules,
+                          const QString& mergeKey = {});
+
+// Which terrain entity `entity`'s terrain component shows (adding the
+// component if it has none), one undo step. A terrain nothing shows any more
+// leaves the document in the same step, as when its last entity is deleted
+// (undo brings it back).
+bool setShownTerrain(Document& doc, EntityId entity, TerrainId terrain);
 
 // The terrain entity named `name` (entity or terrain name), or, with an
 // empty name, the only terrain of the scene. 0 with `error` otherwise.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "terrain/parallel.h"
+
 namespace hs::terrain {
 
 std::vector<Material> defaultMaterials() {
@@ -64,16 +66,56 @@ Result<int> PaintLayers::addLayer(Material m) {
 Status PaintLayers::removeLayer(int layer) {
   if (layer < 0 || layer >= layerCount()) return Status::failure("no paint layer " + std::to_string(layer));
   if (layerCount() == 1) return Status::failure("a terrain keeps at least one paint layer");
-  // Erase the layer completely everywhere it has weight, then drop it.
-  const Region all{0, 0, samplesX_, samplesY_};
-  prepareBlend(all, -1 - layer);
-  for (int y = 0; y < samplesY_; ++y)
-    for (int x = 0; x < samplesX_; ++x)
-      if (raw(layer, x, y)) blendPrepared(x, y, layer, -1.0f);
+  // Erase the layer completely wherever it has weight, then drop it. Only
+  // tiles where it can have weight are visited (an unpainted tile of a layer
+  // other than 0 holds none), so removing a layer painted in one corner of an
+  // 8k terrain costs that corner. Tiles are prepared on this thread, then
+  // blended on the pool (each sample written once: same bits on any count).
+  const TileGrid<uint16_t>& g = weights_[size_t(layer)];
+  std::vector<int> tiles;
+  for (int t = 0; t < g.tileCount(); ++t)
+    if (g.allocated(t) || g.fill() != 0) tiles.push_back(t);
+  for (int t : tiles) prepareBlend(g.tileRegion(t), -1 - layer);
+  parallelFor(int(tiles.size()), 0, 4, [&](int b, int e) {
+    for (int i = b; i < e; ++i) {
+      const Region r = g.tileRegion(tiles[size_t(i)]);
+      for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x)
+          if (raw(layer, x, y)) blendPrepared(x, y, layer, -1.0f);
+    }
+  });
   materials_.erase(materials_.begin() + layer);
   weights_.erase(weights_.begin() + layer);
-  releaseUniformTiles(all);
+  // Layer 0 reads 1 where it has no tile and every other layer 0 (the file
+  // format and the renderer rely on it): when layer 0 itself went, the new
+  // first layer takes that fill.
+  if (layer == 0) weights_[0] = withFill(weights_[0], kWeightOne);
+  releaseUniformTiles(Region{0, 0, samplesX_, samplesY_});
   return {};
+}
+
+TileGrid<uint16_t> PaintLayers::withFill(const TileGrid<uint16_t>& g, uint16_t fill) {
+  TileGrid<uint16_t> out(g.width(), g.height(), fill, false);
+  for (int t = 0; t < g.tileCount(); ++t) {
+    if (g.allocated(t)) {
+      out.setTile(t, g.sharedTile(t));
+      const Region r = out.tileRegion(t);
+      if (g.fill() != fill && (r.width() < kTileSize || r.height() < kTileSize)) {
+        // Samples past the grid's edge still hold the old fill: give them
+        // the new one, or a tile reading `fill` everywhere is never released.
+        uint16_t* p = out.tileForWrite(t);
+        for (int y = 0; y < kTileSize; ++y)
+          for (int x = 0; x < kTileSize; ++x)
+            if (x >= r.width() || y >= r.height()) p[(y << kTileShift) | x] = fill;
+      }
+    } else if (g.fill() != fill) {
+      // It read g.fill(): write that inside the grid (the rest keeps `fill`).
+      uint16_t* p = out.tileForWrite(t);
+      const Region r = out.tileRegion(t);
+      for (int y = 0; y < r.height(); ++y) std::fill_n(p + (y << kTileShift), r.width(), g.fill());
+    }
+  }
+  return out;
 }
 
 float PaintLayers::weightAt(int layer, const glm::dvec2& s) const {

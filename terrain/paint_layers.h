@@ -53,7 +53,8 @@ class PaintLayers {
   // A new layer with weight 0 everywhere.
   Result<int> addLayer(Material m);
   // Removes a layer; its weight goes to the other layers in proportion (to
-  // layer 0 where no other layer has weight). Cannot remove the last layer.
+  // layer 0, or layer 1 when removing layer 0, where no other layer has
+  // weight). Cannot remove the last layer. Layers above it move down one.
   Status removeLayer(int layer);
 
   uint16_t raw(int layer, int x, int y) const { return weights_[size_t(layer)].get(x, y); }
@@ -81,6 +82,8 @@ class PaintLayers {
   size_t memoryBytes() const;
 
  private:
+  // A copy of `g` (tiles shared) whose unallocated tiles read `fill`.
+  static TileGrid<uint16_t> withFill(const TileGrid<uint16_t>& g, uint16_t fill);
   int fallbackFor(int layer) const { return layer == 0 ? (layerCount() > 1 ? 1 : 0) : 0; }
   int samplesX_ = 0, samplesY_ = 0;
   std::vector<Material> materials_;

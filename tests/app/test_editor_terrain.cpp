@@ -2,12 +2,21 @@
 // through the Terrain panel, a Raise stroke painted with the mouse in the
 // viewport (one undo step; undo gives back the heights bit for bit), the
 // brush shortcuts, a paint stroke, whole-terrain erosion on a worker, a DEM
-// import with its nodata report, export, and save/reopen keeping the tiles.
+// import with its nodata report, export, and save/reopen keeping the tiles;
+// then the paint rules editor, adding/removing/editing layers, a texture
+// that cannot be read reaching Messages, and choosing the terrain a
+// Terrain component shows (Properties).
 #include <QApplication>
 #include <QComboBox>
 #include <QDir>
 #include <QDoubleSpinBox>
+#include <QCheckBox>
 #include <QLabel>
+#include <QLineEdit>
+#include <QListWidget>
+#include <QMenu>
+#include <QScrollArea>
+#include <QPushButton>
 
 #include <glm/gtc/quaternion.hpp>
 #include <QSpinBox>
@@ -19,9 +28,15 @@
 #include "app/main_window.h"
 #include "app/message_panel.h"
 #include "app/prompts.h"
+#include "app/property_panel.h"
+#include "app/terrain_component_picker.h"
+#include "app/terrain_layers_editor.h"
+#include "app/terrain_rules_editor.h"
 #include "app/selection.h"
 #include "app/terrain_panel.h"
 #include "app/viewport_widget.h"
+#include "scene/operations.h"
+#include "scene/scene_json.h"
 #include "scene/terrain_ops.h"
 #include "terrain_compare.h"
 
@@ -210,11 +225,182 @@ class EditorTerrainTest : public QObject {
     QVERIFY2(diff.isEmpty(), qPrintable(diff));
   }
 
+  // The rules editor: add, edit (a stepped spin box is one step), reorder,
+  // turn off, remove, each one undo step; undo gives the rules back exactly;
+  // Apply Paint Rules paints on a worker as one step.
+  void paintRulesEditor() {
+    auto* rules = panel_->findChild<app::TerrainRulesEditor*>("terrainRulesEditor");
+    QVERIFY(rules);
+    {
+      QTest::qWait(100);
+      QWidget* content = panel_->findChild<QScrollArea*>()->widget();
+      content->resize(340, content->sizeHint().height());
+      content->grab().save("/tmp/terrain_panel.png");
+      w_->properties()->grab().save("/tmp/props.png");
+    }
+    const std::vector<terrain::PaintRule> original = asset().paintRules;
+    QCOMPARE(rules->findChild<QListWidget*>("terrainRules")->count(), int(original.size()));
+    const int base = doc().undoStack()->index();
+
+    rules->findChild<QToolButton*>("terrainRuleAdd")->click();
+    QCOMPARE(asset().paintRules.size(), original.size() + 1);
+    QCOMPARE(doc().undoStack()->index(), base + 1);
+    QCOMPARE(rules->currentRule(), int(original.size()));
+    // Three steps up of the slope minimum and one of the layer: two undo steps.
+    auto* slopeMin = rules->findChild<QDoubleSpinBox*>("terrainRuleSlopeMin");
+    for (int i = 0; i < 3; ++i) slopeMin->stepBy(1);
+    QCOMPARE(asset().paintRules.back().slopeMin, 33.0);
+    rules->findChild<QComboBox*>("terrainRuleLayer")->setCurrentIndex(3);
+    QCOMPARE(asset().paintRules.back().layer, 3);
+    QCOMPARE(doc().undoStack()->index(), base + 3);
+    // The preview follows the rule: steep ground covers part of the hills.
+    QVERIFY(rules->previewCoverage() >= 0.0 && rules->previewCoverage() < 1.0);
+    QVERIFY(!rules->findChild<QLabel*>("terrainRuleCoverage")->text().isEmpty());
+    // Earlier in the order, then off (its check box), then gone.
+    rules->findChild<QToolButton*>("terrainRuleUp")->click();
+    QCOMPARE(asset().paintRules[original.size() - 1].layer, 3);
+    QCOMPARE(rules->currentRule(), int(original.size()) - 1);
+    auto* list = rules->findChild<QListWidget*>("terrainRules");
+    list->item(int(original.size()) - 1)->setCheckState(Qt::Unchecked);
+    QVERIFY(!asset().paintRules[original.size() - 1].enabled);
+    QVERIFY(rules->removeRule(0));
+    QCOMPARE(asset().paintRules.size(), original.size());
+    QCOMPARE(doc().undoStack()->index(), base + 6);
+    while (doc().undoStack()->index() > base) doc().undoStack()->undo();
+    QCOMPARE(asset().paintRules, original);
+    QCOMPARE(list->count(), int(original.size()));
+    // Apply: one step on a worker; undo gives the weights back.
+    const terrain::Terrain before = data().terrain().clone();
+    const int steps = doc().undoStack()->index();
+    QVERIFY(panel_->applyPaintRules(true));
+    QCOMPARE(doc().undoStack()->index(), steps + 1);
+    QVERIFY(w_->messages()->lastText().contains("paint rules"));
+    doc().undoStack()->undo();
+    QVERIFY(test::terrainDifference(data().terrain(), before).empty());
+  }
+
+  // Layers: add, rename, edit, remove from the panel, each one undo step;
+  // weights still sum to exactly 1 after a removal; the brush's layer list
+  // follows; undo gives everything back.
+  void paintLayersEditor() {
+    auto* layers = panel_->findChild<app::TerrainLayersEditor*>("terrainLayers");
+    QVERIFY(layers);
+    const std::string json = scene::canonicalJson(doc().state());
+    const terrain::Terrain before = data().terrain().clone();
+    const int base = doc().undoStack()->index();
+    layers->findChild<QToolButton*>("terrainLayerAdd")->click();
+    QCOMPARE(asset().materials.size(), size_t(9));
+    QCOMPARE(data().terrain().paint.layerCount(), 9);
+    QCOMPARE(layers->currentLayer(), 8);
+    QCOMPARE(panel_->findChild<QComboBox*>("terrainLayer")->count(), 9);  // the brush can paint it
+    auto* name = layers->findChild<QLineEdit*>("terrainMaterialName");
+    name->setText("Lichen");
+    emit name->editingFinished();
+    QCOMPARE(asset().materials[8].name, std::string("Lichen"));
+    layers->findChild<QDoubleSpinBox*>("terrainMaterialTiling")->setValue(12.5);
+    QCOMPARE(asset().materials[8].tilingMetres, 12.5f);
+    QCOMPARE(doc().undoStack()->index(), base + 3);
+    // Remove the layer painted earlier (2, sandstone): its weight goes to the others.
+    layers->setCurrentLayer(2);
+    QVERIFY(data().terrain().paint.weight(2, 98, 148) > 0.9f);
+    layers->findChild<QToolButton*>("terrainLayerRemove")->click();
+    QCOMPARE(asset().materials.size(), size_t(8));
+    QCOMPARE(asset().materials[2].name, std::string("Conglomerate"));
+    QCOMPARE(test::paintSumError(data().terrain().paint), 0L);
+    QCOMPARE(doc().undoStack()->index(), base + 4);
+    QVERIFY(w_->messages()->lastText().contains("Removed paint layer 'Sandstone'"));
+    QTRY_VERIFY(w_->viewport()->lastStats().terrainTriangles > 0);  // draws the new layers
+    while (doc().undoStack()->index() > base) doc().undoStack()->undo();
+    QCOMPARE(scene::canonicalJson(doc().state()), json);
+    const QString diff = QString::fromStdString(test::terrainDifference(data().terrain(), before));
+    QVERIFY2(diff.isEmpty(), qPrintable(diff));
+    QCOMPARE(panel_->findChild<QComboBox*>("terrainLayer")->count(), 8);
+  }
+
+  // A texture the renderer cannot read reaches Messages, naming the file
+  // and the layer; clearing it is one more undo step.
+  void unreadableTextureReachesMessages() {
+    auto* layers = panel_->findChild<app::TerrainLayersEditor*>("terrainLayers");
+    layers->setCurrentLayer(1);
+    const QString missing = tmp_.filePath("no_such_grass.png");
+    QVERIFY(layers->setTexture(false, missing));
+    QCOMPARE(asset().materials[1].albedoTexture, missing.toStdString());
+    w_->viewport()->update();
+    auto reported = [&] {
+      for (int i = 0; i < w_->messages()->total(); ++i) {
+        const QString t = w_->messages()->text(i);
+        if (t.contains("no_such_grass.png") && t.contains("'Grass'")) return true;
+      }
+      return false;
+    };
+    QTRY_VERIFY_WITH_TIMEOUT(reported(), 20000);
+    QVERIFY(layers->setTexture(false, {}));
+    QVERIFY(asset().materials[1].albedoTexture.empty());
+    doc().undoStack()->undo();
+    doc().undoStack()->undo();
+    QVERIFY(asset().materials[1].albedoTexture.empty());
+  }
+
+  // Properties: Add Component > Terrain offers the scene's terrains (and New
+  // Terrain…); the component's Terrain row chooses which one it shows.
+  void terrainComponentChoosesItsTerrain() {
+    const scene::EntityId marker = scene::ops::addEmpty(doc(), "Marker");
+    w_->selection().select(marker);
+    settle();
+    auto* add = w_->properties()->findChild<QToolButton*>("addComponent");
+    QVERIFY(add && add->menu());
+    QMenu* sub = add->menu()->findChild<QMenu*>("addTerrainComponentMenu");
+    QVERIFY(sub);
+    QAction* show = nullptr;
+    bool offersNew = false;
+    for (QAction* a : sub->actions()) {
+      if (a->text() == "Show Valley") show = a;
+      offersNew = offersNew || a->objectName() == "addNewTerrainComponent";
+    }
+    QVERIFY(show);
+    QVERIFY(offersNew);
+    const int steps = doc().undoStack()->index();
+    show->trigger();
+    QCOMPARE(doc().undoStack()->index(), steps + 1);
+    QCOMPARE(scene::terrainOf(doc().state(), marker), &asset());
+    settle();
+    auto* picker = w_->properties()->findChild<app::TerrainPicker*>("terrainPicker");
+    QVERIFY(picker);
+    QCOMPARE(picker->currentText(), QString("Valley"));
+    // A new terrain made on the entity (what the dialog's OK does), then back to Valley.
+    scene::ops::NewTerrain spec;
+    spec.name = "Ridge";
+    spec.samplesX = spec.samplesY = 65;
+    spec.sizeMetres = glm::dvec2(64.0);
+    spec.showOn = marker;
+    QCOMPARE(panel_->createTerrain(spec), marker);
+    QCOMPARE(QString::fromStdString(scene::terrainOf(doc().state(), marker)->name), QString("Ridge"));
+    QTRY_COMPARE(picker->currentText(), QString("Ridge"));
+    const int valley = picker->findText("Valley");
+    QVERIFY(valley >= 0);
+    picker->setCurrentIndex(valley);
+    emit picker->activated(valley);
+    QCOMPARE(scene::terrainOf(doc().state(), marker), &asset());
+    QCOMPARE(doc().state().terrains.size(), size_t(1));  // nothing shows Ridge any more
+    doc().undoStack()->undo();
+    QCOMPARE(doc().state().terrains.size(), size_t(2));
+    doc().undoStack()->undo();
+    doc().undoStack()->undo();
+    QVERIFY(!doc().state().find(marker)->terrain);
+    w_->selection().select(terrain_);
+  }
+
   void cleanupTestCase() { w_.reset(); }
 
  private:
   scene::Document& doc() { return w_->document(); }
   scene::TerrainData& data() { return *scene::terrainOf(doc().state(), terrain_)->data; }
+  const scene::TerrainAsset& asset() { return *scene::terrainOf(doc().state(), terrain_); }
+  // Widgets the panels replaced are deleted later: let that happen.
+  static void settle() {
+    QCoreApplication::processEvents();
+    QCoreApplication::sendPostedEvents(nullptr, QEvent::DeferredDelete);
+  }
 
   std::unique_ptr<MainWindow> w_;
   QuietPrompts* prompts_ = nullptr;

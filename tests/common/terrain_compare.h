@@ -2,6 +2,8 @@
 // Bitwise comparison of terrains for the scene, file and GUI suites: every
 // sample of heights, holes and paint weights (an unallocated tile compares as
 // its fill value), plus spacing and origin.
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -28,6 +30,20 @@ inline std::string terrainDifference(const terrain::Terrain& a, const terrain::T
           return "weight of layer " + std::to_string(l) + " at " + std::to_string(x) + "," + std::to_string(y);
     }
   return {};
+}
+
+// Largest |sum of the 16-bit weights - 65535| over every sample: 0 when
+// weights sum to exactly 1 (PaintLayers::maxSumError sums floats, which
+// round).
+inline long paintSumError(const terrain::PaintLayers& p) {
+  long worst = 0;
+  for (int y = 0; y < p.samplesY(); ++y)
+    for (int x = 0; x < p.samplesX(); ++x) {
+      long sum = 0;
+      for (int l = 0; l < p.layerCount(); ++l) sum += p.raw(l, x, y);
+      worst = std::max(worst, std::abs(sum - long(terrain::kWeightOne)));
+    }
+  return worst;
 }
 
 }  // namespace hs::test

@@ -16,6 +16,7 @@
 #include "scene/scene_json.h"
 #include "scene/terrain_edits.h"
 #include "scene/terrain_file.h"
+#include "scene/terrain_layer_ops.h"
 #include "scene/terrain_ops.h"
 #include "terrain/stroke.h"
 #include "terrain_compare.h"
@@ -243,6 +244,32 @@ class TestTerrainFile : public QObject {
     sql(p, "ATTACH DATABASE '" + oldCopy + "' AS old; UPDATE document SET json = (SELECT json FROM old.document)");
     QVERIFY(!loadScene(p, error));
     QVERIFY2(error.find("terrain 'T'") != std::string::npos && error.find("damaged") != std::string::npos, error.c_str());
+  }
+
+  // Adding and removing paint layers (the base layer included) saves and
+  // reopens exactly, and the save drops the blobs of the layer that went.
+  void layerEditsRoundTrip() {
+    Document doc;
+    const EntityId e = makeTerrain(doc, 200, 199.0, "Layers");
+    const TerrainId tid = doc.state().find(e)->terrain->terrain;
+    dab(doc, e, terrain::BrushTool::Paint, {60.0, 60.0}, 30.0, 2);
+    dab(doc, e, terrain::BrushTool::Paint, {140.0, 140.0}, 30.0, 7);
+    const std::string p = path("layers.hscene");
+    std::string error;
+    QVERIFY2(saveScene(doc.state(), p, error), error.c_str());
+    QVERIFY2(ops::removeTerrainLayer(doc, tid, 0, error), error.c_str());  // the base layer
+    QVERIFY2(ops::removeTerrainLayer(doc, tid, 6, error), error.c_str());  // was 7
+    QVERIFY(ops::addTerrainLayer(doc, tid, terrain::Material{}, error) == 6);
+    dab(doc, e, terrain::BrushTool::Paint, {100.0, 30.0}, 20.0, 6);
+    SaveReport r;
+    QVERIFY2(saveScene(doc.state(), p, error, &r), error.c_str());
+    QVERIFY(r.tilesRemoved > 0);  // the old layer 7's tiles
+    std::optional<SceneState> back = loadScene(p, error);
+    QVERIFY2(back, error.c_str());
+    QCOMPARE(canonicalJson(*back), canonicalJson(doc.state()));
+    const std::string diff = test::terrainDifference(back->findTerrain(tid)->data->terrain(), data(doc, e).terrain());
+    QVERIFY2(diff.empty(), diff.c_str());
+    QCOMPARE(back->findTerrain(tid)->data->terrain().paint.layerCount(), 7);
   }
 };
 

@@ -133,6 +133,8 @@ class TestRender : public QObject {
     auto s = scene::buildDemoScene(error);
     QVERIFY2(s, error.c_str());
     s->settings.antialiasing = scene::Antialiasing(aa);
+    // The goldens are at full resolution (LOD bound 0).
+    s->settings.meshLodErrorPixels = 0.0;
     render::FrameStats stats;
     const render::Image img = r_.render(*s, cameraView(*s, 640, 360), false, &stats);
     QCOMPARE(img.width, 640);
@@ -140,8 +142,21 @@ class TestRender : public QObject {
     // Three instances of the 69,451-triangle bunny, all in view.
     QCOMPARE(stats.instancesDrawn, size_t(3));
     QCOMPARE(stats.trianglesDrawn - stats.terrainTriangles, size_t(3 * 69451));
+    QCOMPARE(stats.instancesAtCoarserLod, size_t(0));
     QVERIFY(stats.terrainTriangles > 0);  // and the valley they stand in
     golden(std::string("demo_") + QTest::currentDataTag(), img);
+
+    // With the default 1-pixel bound the distant bunnies draw coarser
+    // levels, and the picture stays the full-resolution one up to edge pixels.
+    s->settings.meshLodErrorPixels = 1.0;
+    render::FrameStats lodStats;
+    const render::Image lod = r_.render(*s, cameraView(*s, 640, 360), false, &lodStats);
+    QVERIFY(lodStats.instancesAtCoarserLod > 0);
+    QVERIFY(lodStats.trianglesDrawn < stats.trianglesDrawn);
+    const test::CompareResult cmp = test::compareImages(toTest(lod), toTest(img), 16);
+    qInfo("demo at the 1-pixel LOD bound: %zu vs %zu mesh triangles, %s", lodStats.trianglesDrawn - lodStats.terrainTriangles,
+          stats.trianglesDrawn - stats.terrainTriangles, cmp.summary().c_str());
+    QVERIFY2(cmp.differingShare <= 0.01, cmp.summary().c_str());
   }
 
   // DESIGN.md: a scan at UTM coordinates renders as it does at the origin.

@@ -14,6 +14,7 @@
 #include "scene/scene_json.h"
 #include "scene/terrain_edits.h"
 #include "scene/terrain_jobs.h"
+#include "scene/terrain_layer_ops.h"
 #include "scene/terrain_ops.h"
 #include "scene/terrain_pick.h"
 #include "terrain/stroke.h"
@@ -308,6 +309,159 @@ class TestSceneTerrain : public QObject {
     // The LOD bound is a field like any other.
     QVERIFY(ops::setField(doc, e, *findEntityField("terrain.lod_error_px"), FieldValue(2.5)));
     QCOMPARE(doc.state().find(e)->terrain->lodErrorPixels, 2.5);
+  }
+
+  // Adding and removing paint layers: one undo step each, undo gives back
+  // the terrain exactly (description and every weight), weights still sum
+  // to 1 exactly after a removal, rules follow the layers, and tile edits
+  // before and after the layer edits undo and redo through it.
+  void paintLayerEditsAreExactUndoSteps() {
+    Document doc;
+    const EntityId e = makeTerrain(doc);
+    const TerrainId tid = terrainId(doc, e);
+    std::mt19937 rng(7);
+    for (int i = 0; i < 6; ++i) stroke(doc, e, terrain::BrushTool::Paint, rng, 40.0);
+    const std::string originalJson = canonicalJson(doc.state());
+    const terrain::Terrain original = data(doc, e).terrain().clone();
+    const std::vector<terrain::PaintRule> rules = doc.state().findTerrain(tid)->paintRules;  // layers 1, 4, 2, 7
+    const int base = doc.undoStack()->count();
+
+    std::string error;
+    QVERIFY2(ops::removeTerrainLayer(doc, tid, 2, error), error.c_str());
+    QCOMPARE(doc.undoStack()->count(), base + 1);
+    const TerrainAsset* t = doc.state().findTerrain(tid);
+    QCOMPARE(t->materials.size(), size_t(7));
+    QCOMPARE(t->data->terrain().paint.layerCount(), 7);
+    QCOMPARE(t->materials[2].name, std::string("Conglomerate"));
+    QCOMPARE(test::paintSumError(t->data->terrain().paint), 0L);  // exactly 1, not nearly
+    // The sandstone rule went; later layers' rules moved down one.
+    QCOMPARE(t->paintRules.size(), rules.size() - 1);
+    QCOMPARE(t->paintRules[1].layer, 3);  // scree, was 4
+    QCOMPARE(t->paintRules[2].layer, 6);  // snow, was 7
+    QVERIFY(doc.state().validate().empty());
+    const std::string removedJson = canonicalJson(doc.state());
+
+    // A stroke on the new layers, then the base layer goes too.
+    stroke(doc, e, terrain::BrushTool::Paint, rng, 40.0);
+    stroke(doc, e, terrain::BrushTool::Raise, rng);
+    QVERIFY2(ops::removeTerrainLayer(doc, tid, 0, error), error.c_str());
+    t = doc.state().findTerrain(tid);
+    QCOMPARE(test::paintSumError(t->data->terrain().paint), 0L);
+    QCOMPARE(t->data->terrain().paint.grid(0).fill(), terrain::kWeightOne);  // the base layer reads 1 untouched
+    const int added = ops::addTerrainLayer(doc, tid, terrain::Material{}, error);
+    QCOMPARE(added, 6);
+    QCOMPARE(doc.state().findTerrain(tid)->data->terrain().paint.layerCount(), 7);
+    QCOMPARE(test::paintSumError(doc.state().findTerrain(tid)->data->terrain().paint), 0L);
+    const std::string editedJson = canonicalJson(doc.state());
+    const terrain::Terrain edited = data(doc, e).terrain().clone();
+
+    // Undo everything: bit for bit the original, and the description too.
+    while (doc.undoStack()->index() > base) doc.undoStack()->undo();
+    QString diff = QString::fromStdString(test::terrainDifference(data(doc, e).terrain(), original));
+    QVERIFY2(diff.isEmpty(), qPrintable(diff));
+    QCOMPARE(canonicalJson(doc.state()), originalJson);
+    QCOMPARE(doc.state().findTerrain(tid)->paintRules, rules);
+    doc.undoStack()->redo();
+    QCOMPARE(canonicalJson(doc.state()), removedJson);
+    while (doc.undoStack()->canRedo()) doc.undoStack()->redo();
+    diff = QString::fromStdString(test::terrainDifference(data(doc, e).terrain(), edited));
+    QVERIFY2(diff.isEmpty(), qPrintable(diff));
+    QCOMPARE(canonicalJson(doc.state()), editedJson);
+
+    // Refusals change nothing and say why.
+    const int steps = doc.undoStack()->count();
+    QVERIFY(!ops::removeTerrainLayer(doc, tid, 42, error));
+    QVERIFY2(error.find("no paint layer") != std::string::npos, error.c_str());
+    while (doc.state().findTerrain(tid)->materials.size() < size_t(terrain::kMaxPaintLayers))
+      QVERIFY(ops::addTerrainLayer(doc, tid, terrain::Material{}, error) > 0);
+    QCOMPARE(ops::addTerrainLayer(doc, tid, terrain::Material{}, error), -1);
+    QVERIFY2(error.find("16") != std::string::npos, error.c_str());
+    while (doc.state().findTerrain(tid)->materials.size() > 1) QVERIFY(ops::removeTerrainLayer(doc, tid, 0, error));
+    QVERIFY(!ops::removeTerrainLayer(doc, tid, 0, error));
+    QVERIFY2(error.find("at least one") != std::string::npos, error.c_str());
+    QCOMPARE(doc.state().findTerrain(tid)->data->terrain().paint.weight(0, 10, 10), 1.0f);
+    while (doc.undoStack()->index() > steps) doc.undoStack()->undo();
+    QCOMPARE(canonicalJson(doc.state()), editedJson);
+    // A job running on the terrain keeps its tiles object: layer edits wait.
+    auto job = TerrainJob::paintRules(doc, tid);
+    QVERIFY(job->valid());
+    QCOMPARE(ops::addTerrainLayer(doc, tid, terrain::Material{}, error), -1);
+    QVERIFY2(error.find("busy") != std::string::npos, error.c_str());
+  }
+
+  // Rule edits: checked and clamped values; a scrubbed spin box (one merge
+  // key) is one undo step; layers' names may change but not to nothing.
+  void ruleAndMaterialEdits() {
+    Document doc;
+    const EntityId e = makeTerrain(doc);
+    const TerrainId tid = terrainId(doc, e);
+    const std::vector<terrain::PaintRule> rules = doc.state().findTerrain(tid)->paintRules;
+    const int base = doc.undoStack()->count();
+    for (int i = 0; i < 5; ++i) {
+      std::vector<terrain::PaintRule> r = rules;
+      r[0].slopeMax = 20.0 + i;
+      QVERIFY(ops::setTerrainPaintRules(doc, tid, r, "scrub-slope"));
+    }
+    QCOMPARE(doc.undoStack()->count(), base + 1);
+    QCOMPARE(doc.state().findTerrain(tid)->paintRules[0].slopeMax, 24.0);
+    std::vector<terrain::PaintRule> r = rules;
+    r[1].strength = 7.0f;
+    r[1].slopeBlend = -3.0;
+    QVERIFY(ops::setTerrainPaintRules(doc, tid, r));
+    QCOMPARE(doc.state().findTerrain(tid)->paintRules[1].strength, 1.0f);
+    QCOMPARE(doc.state().findTerrain(tid)->paintRules[1].slopeBlend, 0.0);
+    r[1].altitudeMin = std::nan("");
+    QVERIFY(!ops::setTerrainPaintRules(doc, tid, r));
+    doc.undoStack()->undo();
+    doc.undoStack()->undo();
+    QCOMPARE(doc.state().findTerrain(tid)->paintRules, rules);
+
+    terrain::Material m = doc.state().findTerrain(tid)->materials[3];
+    m.name = "  ";
+    m.roughness = 0.25f;
+    QVERIFY(ops::setTerrainMaterial(doc, tid, 3, m));
+    QCOMPARE(doc.state().findTerrain(tid)->materials[3].name, std::string("Conglomerate"));
+    m.name = "Pillar rock";
+    m.albedoTexture = "/textures/rock.png";
+    QVERIFY(ops::setTerrainMaterial(doc, tid, 3, m));
+    QCOMPARE(doc.state().findTerrain(tid)->materials[3].name, std::string("Pillar rock"));
+    doc.undoStack()->undo();
+    doc.undoStack()->undo();
+    QCOMPARE(doc.state().findTerrain(tid)->materials[3], terrain::defaultMaterials()[3]);
+  }
+
+  // Which terrain a terrain component shows: chosen, or made on the entity;
+  // a terrain nothing shows any more goes in the same step.
+  void terrainComponentShowsAChosenTerrain() {
+    Document doc;
+    const EntityId valley = makeTerrain(doc, 129, 128.0, "Valley");
+    const TerrainId valleyId = terrainId(doc, valley);
+    const EntityId empty = ops::addEmpty(doc, "Marker");
+    QVERIFY(empty != kNoEntity);
+    QVERIFY(ops::setShownTerrain(doc, empty, valleyId));
+    QCOMPARE(terrainOf(doc.state(), empty), doc.state().findTerrain(valleyId));
+    QVERIFY(!ops::setShownTerrain(doc, empty, 999));
+    // A new terrain on that entity: centred on it, one step; Valley stays (Valley's entity shows it).
+    const int steps = doc.undoStack()->count();
+    ops::NewTerrain spec;
+    spec.name = "Ridge";
+    spec.samplesX = spec.samplesY = 65;
+    spec.sizeMetres = glm::dvec2(64.0);
+    spec.showOn = empty;
+    std::string error;
+    QCOMPARE(ops::addTerrain(doc, spec, error), empty);
+    QCOMPARE(doc.undoStack()->count(), steps + 1);
+    const TerrainId ridge = terrainId(doc, empty);
+    QVERIFY(ridge != valleyId);
+    QCOMPARE(doc.state().terrains.size(), size_t(2));
+    QCOMPARE(terrainWorldOrigin(doc.state(), empty), glm::dvec3(-32.0, -32.0, 0.0));
+    // Showing Valley instead leaves Ridge unshown: it goes, undo brings it back.
+    QVERIFY(ops::setShownTerrain(doc, empty, valleyId));
+    QVERIFY(!doc.state().findTerrain(ridge));
+    QVERIFY(doc.state().validate().empty());
+    doc.undoStack()->undo();
+    QVERIFY(doc.state().findTerrain(ridge));
+    QCOMPARE(terrainId(doc, empty), ridge);
   }
 
   void pickingFollowsTheEntityAndSkipsHoles() {

@@ -4,8 +4,10 @@
 
 #include <random>
 
+#include "terrain/paint_rule_preview.h"
 #include "terrain/paint_rules.h"
 #include "terrain/stroke.h"
+#include "terrain_compare.h"
 
 using namespace hs::terrain;
 
@@ -173,6 +175,61 @@ class TestPaint : public QObject {
     QVERIFY(t.paint.maxSumError(t.height.bounds()) < 1e-6);
     while (t.paint.layerCount() < kMaxPaintLayers) QVERIFY(t.paint.addLayer(Material{}).ok());
     QVERIFY(!t.paint.addLayer(Material{}).ok());
+  }
+
+  // Removing the base layer: its weight goes to the others, and the new
+  // base layer reads 1 where nothing is stored (what files and the renderer
+  // assume of layer 0). Removing a layer painted in one corner touches only
+  // that corner's tiles.
+  void removingTheBaseLayer() {
+    Terrain t = make(300, 299.0);
+    BrushSettings s;
+    s.tool = BrushTool::Paint;
+    s.paintLayer = 3;
+    s.radius = 30.0;
+    s.strength = 0.6f;
+    Stroke st(t, s);
+    st.dabAt({40.0, 40.0});
+    st.finish();
+    const float before3 = t.paint.weight(3, 40, 40);
+    QVERIFY(before3 > 0.5f && before3 < 1.0f);
+    QVERIFY(t.paint.removeLayer(0).ok());
+    QCOMPARE(t.paint.layerCount(), 7);
+    QCOMPARE(t.paint.grid(0).fill(), kWeightOne);
+    QCOMPARE(hs::test::paintSumError(t.paint), 0L);  // the 16-bit weights sum to exactly 65535
+    QCOMPARE(t.paint.weight(2, 40, 40), 1.0f);        // old layer 3 had all the rest there
+    QCOMPARE(t.paint.weight(0, 250, 250), 1.0f);      // far away: the new base layer
+    QCOMPARE(t.paint.grid(0).allocatedTiles(), size_t(1));  // only the painted tile is stored
+    QVERIFY(t.paint.removeLayer(2).ok());              // the painted one: back to the base layer
+    QCOMPARE(t.paint.weight(0, 40, 40), 1.0f);
+    QCOMPARE(t.paint.memoryBytes(), size_t(0));
+  }
+
+  // The rules editor's preview reads the samples applyPaintRules reads.
+  void rulePreviewMatchesTheRule() {
+    Terrain t = make(201, 200.0);
+    for (int y = 0; y < 201; ++y)
+      for (int x = 0; x < 201; ++x) t.height.heights().set(x, y, x < 100 ? 10.0f : 10.0f + float(x - 100));
+    t.height.updateAllBounds();
+    PaintRule rock;
+    rock.layer = 2;
+    rock.useSlope = true;
+    rock.slopeMin = 35.0;
+    rock.slopeMax = 90.0;
+    rock.slopeBlend = 0.0;
+    const RulePreview p = previewRule(t.height, rock, 51);
+    QCOMPARE(p.width, 51);
+    QCOMPARE(p.height, 51);
+    // The east half is a 45-degree ramp: about half the terrain.
+    QVERIFY2(p.coverage > 0.45 && p.coverage < 0.55, qPrintable(QString::number(p.coverage)));
+    QCOMPARE(p.full, p.coverage);
+    QCOMPARE(p.weights[size_t(25) * 51 + 50], 1.0f);  // east edge
+    QCOMPARE(p.weights[size_t(25) * 51 + 0], 0.0f);   // west edge
+    rock.enabled = false;
+    QCOMPARE(previewRule(t.height, rock, 51).coverage, 0.0);
+    // Smaller terrains than the preview are read sample for sample.
+    Terrain small = make(17, 16.0);
+    QCOMPARE(previewRule(small.height, rock, 96).width, 17);
   }
 };
 

@@ -1,0 +1,60 @@
+#pragma once
+// Bringing mesh files into a document the way the editor's Import dialog and
+// `hybridscape-cli import` do it: read one file, or the tiles of one scan
+// welded into one mesh (mesh/tile_merge.h), then optionally clean, decimate
+// and build LODs (mesh/mesh_process.h), under one Progress. It runs on any
+// thread and touches no document, so the editor runs it on a worker;
+// ops::addImportedMesh then commits the result as one undo step.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <QJsonObject>
+
+#include "mesh/mesh_import.h"
+#include "mesh/mesh_process.h"
+#include "mesh/progress.h"
+#include "scene/scene_state.h"
+
+namespace hs::scene {
+
+struct MeshImportRequest {
+  std::vector<std::string> files;    // one file, or the tiles of one scan
+  mesh::ImportOptions import;        // applied to every file (each finds its own sidecar)
+  double tileWeldTolerance = 1e-3;   // metres: tile border vertices this close are one point
+  // Off: the mesh is used as read (what a plain import always did). On: it
+  // is cleaned, and decimated / given LODs as `processing` says.
+  bool process = false;
+  mesh::ProcessOptions processing;
+};
+
+struct ImportedMesh {
+  std::optional<mesh::MeshData> mesh;  // level 0: as read, or cleaned and decimated
+  std::vector<MeshLod> lods;           // coarser levels with their hashes and errors
+  mesh::ImportReport import;           // the file's; for tiles the counts summed (per tile in `tiles`)
+  std::vector<mesh::ImportReport> tiles;  // one per file when there were several
+  size_t tileBorderVertices = 0, tileBorderVerticesSnapped = 0, tileBorderVerticesMerged = 0;
+  bool processed = false;
+  mesh::ProcessReport process;
+  std::string importReportJson;        // stored with the asset (MeshAsset::importReportJson)
+  std::string processReportJson;       // stored with the asset; empty when not processed
+  std::string error;                   // names the file and the place
+  bool cancelled = false;
+  bool ok() const { return mesh.has_value() && error.empty() && !cancelled; }
+};
+
+// Never throws for bad input: `error` says what went wrong where.
+ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* progress = nullptr);
+
+// The processing report as an asset stores it (MeshAsset::processReportJson):
+// mesh::processReportJson without the import part (stored beside it), plus
+// the options that made it.
+std::string storedProcessReportJson(const mesh::ProcessReport& report, const mesh::ProcessOptions& options);
+
+// What `hybridscape-cli import --report` writes: the import report's fields at
+// the top (as before processing existed), "processing" (the processing
+// report, or null), "tiles" (one import report per file, when several) and,
+// on failure, "error".
+QJsonObject importReportFileJson(const ImportedMesh& result);
+
+}  // namespace hs::scene

@@ -1,0 +1,216 @@
+// The Import dialog as a user drives it: File > Import Mesh… opens it after
+// the file choice; Preview decimates at several targets on a worker (the
+// dialog keeps answering, Cancel stops it) and fills the table and curve;
+// Import commits a decimated mesh with 2 LODs as one undo step, shows the
+// error report and its summary in Messages; the Properties panel reopens the
+// report; undo removes everything the import added.
+#include <QApplication>
+#include <QPushButton>
+#include <QRegularExpression>
+#include <QSignalSpy>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QTreeWidget>
+
+#include "app/app_settings.h"
+#include "app/error_curve.h"
+#include "app/error_report_dialog.h"
+#include "app/import_dialog.h"
+#include "app/import_preview.h"
+#include "app/main_window.h"
+#include "app/message_panel.h"
+#include "app/prompts.h"
+#include "app/property_panel.h"
+#include "app/selection.h"
+#include "app/viewport_widget.h"
+
+using namespace hs;
+using hs::app::MainWindow;
+
+namespace {
+
+const QString kBunny = QString(HS_SOURCE_DIR) + "/resources/demo/stanford-bunny.obj";
+
+class AnsweringPrompts : public app::Prompts {
+ public:
+  QString openAnswer;
+  QStringList errors;
+  SaveChoice askSaveChanges(QWidget*, const QString&) override { return SaveChoice::Discard; }
+  void showError(QWidget*, const QString& title, const QString& text) override { errors << title + ": " + text; }
+  bool askYesNo(QWidget*, const QString&, const QString&, const QString&, const QString&) override { return false; }
+  QString askOpenFile(QWidget*, const QString&, const QString&, const QString&) override { return openAnswer; }
+  QString askSaveFile(QWidget*, const QString&, const QString&, const QString&) override { return {}; }
+};
+
+// Every visible error report window (they delete themselves when closed).
+QList<app::ErrorReportDialog*> reportWindows() {
+  QList<app::ErrorReportDialog*> out;
+  for (QWidget* w : QApplication::topLevelWidgets())
+    if (auto* d = qobject_cast<app::ErrorReportDialog*>(w); d && d->isVisible()) out << d;
+  return out;
+}
+
+bool treeHasField(QTreeWidget* tree, const QString& key) {
+  for (int i = 0; i < tree->topLevelItemCount(); ++i)
+    for (int j = 0; j < tree->topLevelItem(i)->childCount(); ++j)
+      if (tree->topLevelItem(i)->child(j)->text(2) == key) return true;
+  return false;
+}
+
+}  // namespace
+
+class EditorImportTest : public QObject {
+  Q_OBJECT
+ public:
+  static void initMain() {
+    qputenv("HS_SETTINGS_SANDBOX", "1");
+    app::applyDefaultSurfaceFormat();
+  }
+
+ private slots:
+  void initTestCase() {
+    app::initApplicationSettings();
+    QVERIFY(app::settingsSandboxed());
+    w_ = std::make_unique<MainWindow>();
+    auto prompts = std::make_unique<AnsweringPrompts>();
+    prompts_ = prompts.get();
+    w_->setPrompts(std::move(prompts));
+    w_->resize(1000, 700);
+    w_->newScene();
+    w_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w_.get()));
+  }
+
+  void fileMenuOpensTheDialogAfterTheFileChoice() {
+    prompts_->openAnswer = kBunny;
+    w_->requestImport();
+    QTRY_VERIFY(w_->findChild<app::ImportDialog*>() != nullptr);
+    auto* dialog = w_->findChild<app::ImportDialog*>();
+    QVERIFY(dialog->isVisible());
+    QCOMPARE(dialog->files(), QStringList{kBunny});
+    // Cancel commits nothing.
+    const size_t entities = w_->document().state().entities.size();
+    dialog->reject();
+    QTRY_VERIFY(w_->findChild<app::ImportDialog*>() == nullptr);  // deleted on close
+    QCOMPARE(w_->document().state().entities.size(), entities);
+  }
+
+  void previewCanBeCancelled() {
+    app::ImportDialog* dialog = w_->openImportDialog({kBunny});
+    QVERIFY(dialog);
+    auto* previewButton = dialog->findChild<QPushButton*>("previewButton");
+    auto* cancelButton = dialog->findChild<QPushButton*>("cancelPreviewButton");
+    QVERIFY(previewButton && cancelButton);
+    QSignalSpy finished(dialog->preview(), &app::ImportPreview::finished);
+    QTest::mouseClick(previewButton, Qt::LeftButton);
+    QVERIFY(dialog->preview()->isRunning());
+    QVERIFY(cancelButton->isEnabled() && !previewButton->isEnabled());
+    QTest::mouseClick(cancelButton, Qt::LeftButton);
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, 30000);
+    QVERIFY(dialog->preview()->cancelled());
+    QVERIFY(dialog->preview()->points().empty());
+    QVERIFY(previewButton->isEnabled());
+    dialog->reject();
+  }
+
+  void previewCommitReportAndUndo() {
+    app::ImportDialog* dialog = w_->openImportDialog({kBunny});
+    QVERIFY(dialog);
+    dialog->setDecimation(true, app::ImportDialog::Target::Ratio, 20.0);
+    dialog->setLodLevels(2);
+    const scene::MeshImportRequest request = dialog->request();
+    QVERIFY(request.process && request.processing.decimate);
+    QCOMPARE(request.processing.decimation.targetRatio, 0.2);
+    QCOMPARE(request.processing.lodLevels, 2);
+
+    // Preview on a worker: the dialog keeps handling events meanwhile.
+    QSignalSpy progress(dialog->preview(), &app::ImportPreview::progress);
+    QSignalSpy finished(dialog->preview(), &app::ImportPreview::finished);
+    QTest::mouseClick(dialog->findChild<QPushButton*>("previewButton"), Qt::LeftButton);
+    int turns = 0;
+    while (dialog->preview()->isRunning() && turns < 6000) {
+      QTest::qWait(5);  // the event loop turns: the UI is not blocked
+      ++turns;
+    }
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, 30000);
+    QVERIFY(progress.count() > 0);
+    QVERIFY2(dialog->preview()->error().isEmpty(), qPrintable(dialog->preview()->error()));
+    const auto& points = dialog->preview()->points();
+    QCOMPARE(points.size(), size_t(7));  // 50% .. 1% and the chosen 20%
+    auto* table = dialog->findChild<QTableWidget*>("previewTable");
+    QCOMPARE(table->rowCount(), 7);
+    int chosen = 0;
+    for (const auto& p : points) {
+      QVERIFY(p.hausdorff > 0 && p.hausdorffRel > 0);
+      chosen += p.chosen;
+    }
+    QCOMPARE(chosen, 1);
+    // Fewer triangles, more error: the ends of the curve say so.
+    QVERIFY(points.front().triangles > points.back().triangles);
+    QVERIFY(points.front().hausdorff < points.back().hausdorff);
+    QCOMPARE(dialog->findChild<app::ErrorCurve*>()->points().size(), size_t(7));
+    QVERIFY(table->item(0, 1)->text().remove(QRegularExpression("[^0-9]")).toULongLong() == points.front().triangles);
+
+    // Import: one undo step with the decimated mesh, two levels and the report.
+    const scene::SceneState before = w_->document().state();
+    const int steps = w_->document().undoStack()->count();
+    QTest::mouseClick(dialog->findChild<QPushButton*>("importButton"), Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(!w_->isBusy() && w_->document().state().assets.size() == before.assets.size() + 1, 60000);
+    QCOMPARE(w_->document().undoStack()->count(), steps + 1);
+    const scene::EntityId id = w_->selection().primary();
+    const scene::Entity* e = w_->document().state().find(id);
+    QVERIFY(e && e->mesh);
+    QCOMPARE(e->name, std::string("stanford-bunny"));
+    const scene::MeshAsset* a = w_->document().state().findAsset(e->mesh->mesh);
+    QVERIFY(a && a->data);
+    QVERIFY2(std::abs(double(a->data->triangleCount()) - 0.2 * 69451) < 0.01 * 69451,
+             qPrintable(QString::number(a->data->triangleCount())));
+    QCOMPARE(a->lods.size(), size_t(2));
+    QVERIFY(a->lods[0].data->triangleCount() < a->data->triangleCount());
+    QVERIFY(a->lods[1].hausdorff >= a->lods[0].hausdorff && a->lods[0].hausdorff > 0);
+    QVERIFY(a->processReportJson.find("\"hausdorff_m\"") != std::string::npos);
+
+    // The error report is shown, and its summary is in Messages.
+    QTRY_COMPARE(reportWindows().size(), 1);
+    app::ErrorReportDialog* report = reportWindows().front();
+    for (const char* key : {"hausdorff_m", "hausdorff_rel", "mean_m", "rms_m", "p95_m", "flipped_normals",
+                            "uv_displacement_texels", "boundary_seam_vertices_moved", "area_change_rel"})
+      QVERIFY2(treeHasField(report->tree(), key), key);
+    report->close();
+    QTRY_COMPARE(reportWindows().size(), 0);
+    QVERIFY2(w_->messages()->lastText().contains("hausdorff_m"), qPrintable(w_->messages()->lastText()));
+    QVERIFY(w_->messages()->lastText().contains("2 LOD levels"));
+
+    // The Properties panel reopens it (Mesh section).
+    auto* again = w_->properties()->findChild<QPushButton*>("meshReport");
+    QVERIFY(again);
+    QTRY_VERIFY(again->isEnabled());
+    QTest::mouseClick(again, Qt::LeftButton);
+    QTRY_COMPARE(reportWindows().size(), 1);
+    QCOMPARE(reportWindows().front()->json(), a->processReportJson);
+    reportWindows().front()->close();
+    QTRY_COMPARE(reportWindows().size(), 0);
+
+    // The viewport draws it (at some level of detail).
+    QTRY_VERIFY_WITH_TIMEOUT(w_->viewport()->lastStats().trianglesDrawn > 0 || !w_->viewport()->rendererReady(), 30000);
+
+    // Undo: the entity, the asset, its levels and its report are gone.
+    const scene::AssetId assetId = a->id;
+    w_->document().undoStack()->undo();
+    QCOMPARE(w_->document().state().assets.size(), before.assets.size());
+    QCOMPARE(w_->document().state().entities.size(), before.entities.size());
+    QVERIFY(w_->document().state().roots == before.roots);
+    QVERIFY(w_->document().state().findAsset(assetId) == nullptr);
+    QVERIFY(w_->document().state().find(id) == nullptr);
+  }
+
+  void cleanupTestCase() { w_.reset(); }
+
+ private:
+  std::unique_ptr<MainWindow> w_;
+  AnsweringPrompts* prompts_ = nullptr;
+};
+
+QTEST_MAIN(EditorImportTest)
+#include "test_editor_import.moc"

@@ -1,0 +1,327 @@
+// Mesh LODs and processing reports in the document and the .hscene file: an
+// import with decimation and LODs carries them as one undo step, they round
+// trip bit for bit as blobs of their own ("mesh/<id>/lod<k>") written only
+// when changed, a damaged level is refused with a message naming the asset
+// and the level, and files of formats 1 and 2 (no LODs) still open.
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include <sqlite3.h>
+
+#include "scene/document.h"
+#include "scene/edit.h"
+#include "scene/hscene_file.h"
+#include "scene/import_pipeline.h"
+#include "scene/operations.h"
+#include "scene/scene_json.h"
+
+using namespace hs;
+using namespace hs::scene;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kBunny = HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj";
+
+void sql(const std::string& path, const std::string& statement) {
+  sqlite3* db = nullptr;
+  QVERIFY(sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK);
+  char* msg = nullptr;
+  const int rc = sqlite3_exec(db, statement.c_str(), nullptr, nullptr, &msg);
+  const std::string why = msg ? msg : "";
+  sqlite3_free(msg);
+  sqlite3_close(db);
+  QVERIFY2(rc == SQLITE_OK, why.c_str());
+}
+
+std::vector<uint8_t> readBlob(const std::string& path, const std::string& key) {
+  sqlite3* db = nullptr;
+  std::vector<uint8_t> out;
+  sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "SELECT data FROM blobs WHERE key = ?1 AND part = 0", -1, &st, nullptr);
+  sqlite3_bind_text(st, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  if (sqlite3_step(st) == SQLITE_ROW) {
+    const auto* p = static_cast<const uint8_t*>(sqlite3_column_blob(st, 0));
+    out.assign(p, p + sqlite3_column_bytes(st, 0));
+  }
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  return out;
+}
+
+void writeBlob(const std::string& path, const std::string& key, const std::vector<uint8_t>& bytes) {
+  sqlite3* db = nullptr;
+  sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "UPDATE blobs SET data = ?2 WHERE key = ?1 AND part = 0", -1, &st, nullptr);
+  sqlite3_bind_text(st, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_blob(st, 2, bytes.data(), int(bytes.size()), SQLITE_TRANSIENT);
+  QCOMPARE(sqlite3_step(st), SQLITE_DONE);
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+}
+
+bool sameMesh(const mesh::MeshData& a, const mesh::MeshData& b) {
+  auto same = [](const auto& x, const auto& y) {
+    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0);
+  };
+  return std::memcmp(&a.origin, &b.origin, sizeof a.origin) == 0 && same(a.positions, b.positions) &&
+         same(a.normals, b.normals) && same(a.uvs, b.uvs) && same(a.indices, b.indices) &&
+         a.submeshes.size() == b.submeshes.size() && a.materials.size() == b.materials.size();
+}
+
+// The bunny cleaned, decimated to half and given two coarser levels, as the
+// Import dialog and `import --decimate-to 50% --lods 2` make it.
+ImportedMesh decimatedBunny() {
+  MeshImportRequest r;
+  r.files = {kBunny};
+  r.process = true;
+  r.processing.decimate = true;
+  r.processing.decimation.targetRatio = 0.5;
+  r.processing.lodLevels = 2;
+  r.processing.error.samplesPerFace = 2;  // quick; the numbers are not what is tested here
+  return importMeshFiles(r);
+}
+
+}  // namespace
+
+class TestHsceneLods : public QObject {
+  Q_OBJECT
+  QTemporaryDir tmp_;
+  Document doc_;
+  EntityId bunny_ = kNoEntity;
+
+  std::string path(const std::string& name) const { return (fs::path(tmp_.path().toStdString()) / name).string(); }
+  const MeshAsset& asset() const { return *doc_.state().findAsset(doc_.state().find(bunny_)->mesh->mesh); }
+
+  // A saved copy of doc_ to damage.
+  std::string saved(const std::string& name) {
+    std::string error;
+    const std::string p = path(name);
+    if (!saveScene(doc_.state(), p, error)) qFatal("%s", error.c_str());
+    return p;
+  }
+  void expectRefused(const std::string& file, const std::vector<std::string>& what) {
+    std::string error;
+    QVERIFY2(!loadScene(file, error), "a damaged file was opened");
+    QVERIFY2(error.find(file) != std::string::npos, error.c_str());
+    for (const auto& w : what)
+      QVERIFY2(error.find(w) != std::string::npos, qPrintable(QString("'%1' not in: %2").arg(w.c_str(), error.c_str())));
+    QVERIFY(error.find('\n') == std::string::npos);
+    qInfo("refused as expected: %s", error.c_str());
+  }
+
+ private slots:
+  void initTestCase() { QVERIFY(tmp_.isValid()); }
+
+  void importCarriesLodsAndReportInOneUndoStep() {
+    doc_.reset(SceneState{}, {});
+    ImportedMesh m = decimatedBunny();
+    QVERIFY2(m.ok(), m.error.c_str());
+    QVERIFY(m.processed);
+    QCOMPARE(m.lods.size(), size_t(2));
+    const size_t lod0 = m.mesh->triangleCount();
+    QVERIFY(lod0 > 30000 && lod0 < 40000);  // half of 69,451
+    bunny_ = ops::addImportedMesh(doc_, std::move(m), "bunny", kBunny);
+    QVERIFY(bunny_ != kNoEntity);
+    QCOMPARE(doc_.undoStack()->count(), 1);
+
+    const MeshAsset& a = asset();
+    QCOMPARE(a.lods.size(), size_t(2));
+    // Each level about a quarter of the previous one, its error measured and
+    // never below the previous level's.
+    size_t previous = a.data->triangleCount();
+    const std::vector<double> errors = a.lodErrors();
+    QCOMPARE(errors.size(), size_t(3));
+    QCOMPARE(errors[0], 0.0);
+    for (size_t k = 0; k < a.lods.size(); ++k) {
+      const size_t t = a.lods[k].data->triangleCount();
+      QVERIFY(t < previous / 3 && t > previous / 5);
+      QVERIFY(a.lods[k].hausdorff > 0 && a.lods[k].hausdorff >= errors[k]);
+      QCOMPARE(a.lods[k].contentHash, mesh::contentHash(*a.lods[k].data));
+      QVERIFY(a.lods[k].data->textures.empty());  // levels draw with level 0's
+      previous = t;
+    }
+    // The report: cleaning counts, the decimation's error, per-level errors, times.
+    const QJsonObject rep = QJsonDocument::fromJson(QByteArray::fromStdString(a.processReportJson)).object();
+    QVERIFY(rep["cleaning"].isObject());
+    QVERIFY(rep["decimation"].toObject()["triangles_out"].toInt() == int(a.data->triangleCount()));
+    const QJsonObject e = rep["error"].toObject();
+    for (const char* key : {"hausdorff_m", "hausdorff_rel", "mean_m", "rms_m", "p95_m", "area_change_rel", "seconds"})
+      QVERIFY2(e[key].isDouble(), key);
+    QVERIFY(e["hausdorff_m"].toDouble() > 0 && e["hausdorff_rel"].toDouble() < 0.01);
+    const QJsonArray lods = rep["lods"].toArray();
+    QCOMPARE(lods.size(), 3);
+    for (int k = 1; k < 3; ++k)  // the report prints 9 significant digits
+      QVERIFY(std::abs(lods[k].toObject()["hausdorff_m"].toDouble() - a.lods[size_t(k - 1)].hausdorff) <=
+              1e-8 * a.lods[size_t(k - 1)].hausdorff);
+    QCOMPARE(rep["options"].toObject()["lod_levels"].toInt(), 2);
+
+    // Undo removes the entity, the asset and with it every level and the report.
+    doc_.undoStack()->undo();
+    QVERIFY(doc_.state().assets.empty());
+    QVERIFY(doc_.state().entities.empty());
+    doc_.undoStack()->redo();
+    QCOMPARE(asset().lods.size(), size_t(2));
+    QVERIFY(!asset().processReportJson.empty());
+  }
+
+  void roundTripWithLodsAndReport() {
+    const std::string p = path("lods.hscene");
+    std::string error;
+    SaveReport report;
+    QVERIFY2(saveScene(doc_.state(), p, error, &report), error.c_str());
+    QCOMPARE(report.blobsWritten, size_t(3));  // the mesh and its two levels
+    QCOMPARE(readBlob(p, "mesh/1/lod1").empty(), false);
+    QCOMPARE(readBlob(p, "mesh/1/lod2").empty(), false);
+    QVERIFY(readBlob(p, "mesh/1/lod3").empty());
+    QCOMPARE(sceneFileVersion(p), kSceneFormatVersion);
+    QCOMPARE(kSceneFormatVersion, 3);
+
+    const std::optional<SceneState> back = loadScene(p, error);
+    QVERIFY2(back, error.c_str());
+    QCOMPARE(canonicalJson(*back), canonicalJson(doc_.state()));
+    const MeshAsset& a = asset();
+    const MeshAsset& b = back->assets.begin()->second;
+    QVERIFY(a == b);  // hashes, errors, reports
+    QVERIFY(sameMesh(*a.data, *b.data));
+    QCOMPARE(b.lods.size(), a.lods.size());
+    for (size_t k = 0; k < a.lods.size(); ++k) {
+      QVERIFY(sameMesh(*a.lods[k].data, *b.lods[k].data));
+      QCOMPARE(b.lods[k].hausdorff, a.lods[k].hausdorff);  // the double itself
+    }
+    QCOMPARE(b.processReportJson, a.processReportJson);
+  }
+
+  void lodBlobsAreWrittenOnlyWhenChanged() {
+    const std::string p = path("incremental.hscene");
+    std::string error;
+    QVERIFY2(saveScene(doc_.state(), p, error), error.c_str());
+    // An edit elsewhere: no blob is written.
+    QVERIFY(ops::rename(doc_, bunny_, "bunny (renamed)"));
+    SaveReport second;
+    QVERIFY2(saveScene(doc_.state(), p, error, &second), error.c_str());
+    QVERIFY(second.incremental);
+    QCOMPARE(second.blobsWritten, size_t(0));
+    QCOMPARE(second.blobsUnchanged, size_t(3));
+    // The asset loses its coarsest level: that blob goes, nothing is written.
+    {
+      Edit e(doc_, "Drop a level");
+      MeshAsset a = asset();
+      a.lods.pop_back();
+      e.addAsset(std::move(a));
+      QVERIFY(e.commit());
+    }
+    SaveReport third;
+    QVERIFY2(saveScene(doc_.state(), p, error, &third), error.c_str());
+    QCOMPARE(third.blobsWritten, size_t(0));
+    QCOMPARE(third.blobsRemoved, size_t(1));
+    QVERIFY(readBlob(p, "mesh/1/lod2").empty());
+    const std::optional<SceneState> back = loadScene(p, error);
+    QVERIFY2(back, error.c_str());
+    QCOMPARE(back->assets.begin()->second.lods.size(), size_t(1));
+    // Undo brings it back; the next save writes that one level.
+    doc_.undoStack()->undo();
+    doc_.undoStack()->undo();
+    SaveReport fourth;
+    QVERIFY2(saveScene(doc_.state(), p, error, &fourth), error.c_str());
+    QCOMPARE(fourth.blobsWritten, size_t(1));
+    QCOMPARE(asset().lods.size(), size_t(2));
+  }
+
+  // ---- damaged levels: refused, naming the asset and the level ------------------
+
+  void lodBlobChecksumMismatch() {
+    const std::string p = saved("lodhash.hscene");
+    std::vector<uint8_t> blob = readBlob(p, "mesh/1/lod2");
+    QVERIFY(blob.size() > 1000);
+    blob[100] ^= 0x01;  // inside the positions: still a mesh, not the one hashed
+    writeBlob(p, "mesh/1/lod2", blob);
+    expectRefused(p, {"mesh asset 1 ('bunny')", "LOD 2", "checksum"});
+  }
+
+  void truncatedLodBlob() {
+    const std::string p = saved("lodcut.hscene");
+    std::vector<uint8_t> blob = readBlob(p, "mesh/1/lod1");
+    blob.resize(blob.size() / 2);
+    writeBlob(p, "mesh/1/lod1", blob);
+    expectRefused(p, {"mesh asset 1", "LOD 1", "truncated"});
+  }
+
+  void missingLodBlob() {
+    const std::string p = saved("lodgone.hscene");
+    sql(p, "DELETE FROM blobs WHERE key = 'mesh/1/lod1'");
+    expectRefused(p, {"mesh asset 1", "LOD 1", "missing"});
+  }
+
+  void lodErrorsThatShrinkAreRefused() {
+    const std::string p = saved("lodorder.hscene");
+    sql(p, "UPDATE document SET json = json_set(json, '$.assets[0].lods[1].hausdorff_m', 0) WHERE id = 1");
+    expectRefused(p, {"assets[0].lods[1].hausdorff_m", "must not decrease"});
+  }
+
+  // ---- older formats ------------------------------------------------------------------
+
+  void formatsOneAndTwoStillOpen_data() {
+    QTest::addColumn<int>("version");
+    QTest::newRow("format 1") << 1;
+    QTest::newRow("format 2") << 2;
+  }
+  void formatsOneAndTwoStillOpen() {
+    QFETCH(int, version);
+    // What an older build wrote: meshes without levels, reports or the LOD
+    // setting, under its own version number.
+    Document old;
+    old.reset(SceneState{}, {});
+    mesh::ImportResult r = mesh::importMesh(kBunny);
+    QVERIFY(r.ok());
+    ops::addImportedMesh(old, std::move(*r.mesh), "bunny", kBunny, r.report);
+    const std::string p = path("old" + std::to_string(version) + ".hscene");
+    std::string error;
+    QVERIFY2(saveScene(old.state(), p, error), error.c_str());
+    sql(p, "UPDATE meta SET value = '" + std::to_string(version) + "' WHERE key = 'format_version'");
+    sql(p, "UPDATE document SET json = json_remove(json, '$.settings.mesh_lod_error_px') WHERE id = 1");
+    QCOMPARE(sceneFileVersion(p), version);
+
+    std::optional<SceneState> back = loadScene(p, error);
+    QVERIFY2(back, error.c_str());
+    QCOMPARE(back->assets.size(), size_t(1));
+    QVERIFY(back->assets.begin()->second.lods.empty());
+    QVERIFY(back->assets.begin()->second.processReportJson.empty());
+    QCOMPARE(back->settings.meshLodErrorPixels, 1.0);  // the default
+    // Saving over it writes the current format (a whole new file: an older
+    // build must not half-understand it).
+    SaveReport report;
+    QVERIFY2(saveScene(*back, p, error, &report), error.c_str());
+    QVERIFY(!report.incremental);
+    QCOMPARE(sceneFileVersion(p), kSceneFormatVersion);
+    QVERIFY(loadScene(p, error));
+  }
+
+  void lodSettingIsSaved() {
+    Document d;
+    d.reset(SceneState{}, {});
+    QVERIFY(ops::setSettingsField(d, *findSettingsField("mesh_lod_error_px"), 2.5));
+    QCOMPARE(d.state().settings.meshLodErrorPixels, 2.5);
+    const std::string p = path("setting.hscene");
+    std::string error;
+    QVERIFY2(saveScene(d.state(), p, error), error.c_str());
+    const std::optional<SceneState> back = loadScene(p, error);
+    QVERIFY2(back, error.c_str());
+    QCOMPARE(back->settings.meshLodErrorPixels, 2.5);
+    // Clamped to its range like every field.
+    QVERIFY(ops::setSettingsField(d, *findSettingsField("mesh_lod_error_px"), -3.0));
+    QCOMPARE(d.state().settings.meshLodErrorPixels, 0.0);
+  }
+};
+
+QTEST_GUILESS_MAIN(TestHsceneLods)
+#include "test_hscene_lods.moc"
