@@ -15,6 +15,7 @@
 #include <QToolButton>
 
 #include "app/field_editors.h"
+#include "app/form_widgets.h"
 #include "app/message_panel.h"
 #include "app/prompts.h"
 #include "scene/terrain_layer_ops.h"
@@ -25,22 +26,11 @@ namespace {
 
 QDoubleSpinBox* spin(QWidget* parent, double min, double max, double step, int decimals, const QString& suffix,
                      const QString& tip) {
-  auto* s = new QDoubleSpinBox(parent);
-  s->setRange(min, max);
-  s->setSingleStep(step);
-  s->setDecimals(decimals);
-  s->setSuffix(suffix);
-  s->setToolTip(tip);
-  s->setKeyboardTracking(false);
-  return s;
+  return numberSpin(parent, min, max, step, decimals, suffix, tip);
 }
 
 QToolButton* smallButton(QWidget* parent, const QString& text, const char* name, const QString& tip) {
-  auto* b = new QToolButton(parent);
-  b->setText(text);
-  b->setObjectName(name);
-  b->setToolTip(tip);
-  return b;
+  return namedToolButton(parent, text, name, tip);
 }
 
 // A file button beside its clear button, as one form row.

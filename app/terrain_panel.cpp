@@ -26,6 +26,7 @@
 
 #include "app/background_job.h"
 #include "app/field_editors.h"
+#include "app/form_widgets.h"
 #include "app/main_window.h"
 #include "app/message_panel.h"
 #include "app/prompts.h"
@@ -52,14 +53,7 @@ QString mib(size_t bytes) { return QLocale().formattedDataSize(qint64(bytes)); }
 
 QDoubleSpinBox* spin(QWidget* parent, double min, double max, double step, int decimals, const QString& suffix,
                      const QString& tip) {
-  auto* s = new QDoubleSpinBox(parent);
-  s->setRange(min, max);
-  s->setSingleStep(step);
-  s->setDecimals(decimals);
-  s->setSuffix(suffix);
-  s->setToolTip(tip);
-  s->setKeyboardTracking(false);
-  return s;
+  return numberSpin(parent, min, max, step, decimals, suffix, tip);
 }
 
 }  // namespace

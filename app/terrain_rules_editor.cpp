@@ -18,6 +18,7 @@
 #include <QVBoxLayout>
 
 #include "app/field_editors.h"
+#include "app/form_widgets.h"
 #include "scene/terrain_asset.h"
 #include "scene/terrain_ops.h"
 #include "terrain/paint_rule_preview.h"
@@ -29,14 +30,8 @@ constexpr int kPreviewPixels = 96;
 
 QDoubleSpinBox* spin(QWidget* parent, const char* name, double min, double max, double step, int decimals,
                      const QString& suffix, const QString& tip) {
-  auto* s = new QDoubleSpinBox(parent);
+  QDoubleSpinBox* s = numberSpin(parent, min, max, step, decimals, suffix, tip);
   s->setObjectName(name);
-  s->setRange(min, max);
-  s->setSingleStep(step);
-  s->setDecimals(decimals);
-  s->setSuffix(suffix);
-  s->setToolTip(tip);
-  s->setKeyboardTracking(false);
   // Three to a row in a narrow dock: let them shrink.
   s->setMinimumWidth(0);
   s->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
@@ -44,11 +39,7 @@ QDoubleSpinBox* spin(QWidget* parent, const char* name, double min, double max, 
 }
 
 QToolButton* toolButton(QWidget* parent, const QString& text, const char* name, const QString& tip) {
-  auto* b = new QToolButton(parent);
-  b->setText(text);
-  b->setObjectName(name);
-  b->setToolTip(tip);
-  return b;
+  return namedToolButton(parent, text, name, tip);
 }
 
 // min, max and blend side by side under their captions.

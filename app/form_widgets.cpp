@@ -1,0 +1,28 @@
+#include "app/form_widgets.h"
+
+#include <QDoubleSpinBox>
+#include <QToolButton>
+
+namespace hs::app {
+
+QDoubleSpinBox* numberSpin(QWidget* parent, double min, double max, double step, int decimals, const QString& suffix,
+                           const QString& tip) {
+  auto* s = new QDoubleSpinBox(parent);
+  s->setRange(min, max);
+  s->setSingleStep(step);
+  s->setDecimals(decimals);
+  s->setSuffix(suffix);
+  s->setToolTip(tip);
+  s->setKeyboardTracking(false);
+  return s;
+}
+
+QToolButton* namedToolButton(QWidget* parent, const QString& text, const char* name, const QString& tip) {
+  auto* b = new QToolButton(parent);
+  b->setText(text);
+  b->setObjectName(name);
+  b->setToolTip(tip);
+  return b;
+}
+
+}  // namespace hs::app
