@@ -88,6 +88,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   const QRect screen = QApplication::primaryScreen() ? QApplication::primaryScreen()->availableGeometry()
                                                        : QRect(0, 0, 1600, 1000);
   resize(std::min(1600, screen.width() * 9 / 10), std::min(1000, screen.height() * 9 / 10));
+  // Side widths again now that every dock is in (the timeline's came later).
+  if (auto* o = findChild<QDockWidget*>("outlinerDock"), *p = findChild<QDockWidget*>("propertiesDock"); o && p)
+    resizeDocks({o, p}, {270, 360}, Qt::Horizontal);
+  if (auto* settings = findChild<QDockWidget*>("settingsDock")) settings->raise();  // of the tabs below Properties
   defaultState_ = saveState();
   restoreLayout();
   updateTitle();
@@ -134,8 +138,10 @@ void MainWindow::createDocks() {
   terrain_ = new TerrainPanel(*this);
   tabifyDockWidget(settingsDock, dock("Terrain", "terrainDock", terrain_, Qt::RightDockWidgetArea));
   viewport_->setTerrainTool(terrain_->tool());
-  setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
-  setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
+  // The bottom (Timeline, Messages) spans the whole width, as Blender's
+  // timeline does: its tool row then never squeezes the side panels.
+  setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);
+  setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
   resizeDocks({outlinerDock, propertiesDock}, {270, 360}, Qt::Horizontal);
   resizeDocks({propertiesDock, settingsDock}, {520, 260}, Qt::Vertical);
   resizeDocks({messagesDock}, {150}, Qt::Vertical);

@@ -172,6 +172,7 @@ class MainWindow : public QMainWindow {
   TimelinePanel* timeline_ = nullptr;
   PathEditor* pathEditor_ = nullptr;
   CameraPathPanel* cameraPath_ = nullptr;
+  int errorsShown_ = 0;  // errors the Messages tab was raised for (main_window_timeline.cpp)
   ExportDialog* exportDialog_ = nullptr;
   TerrainPanel* terrain_ = nullptr;
   std::unique_ptr<BackgroundJob> docJob_;

@@ -64,10 +64,24 @@ void MainWindow::createTimeline() {
   dock->setWidget(timeline_);
   dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable | QDockWidget::DockWidgetClosable);
   addDockWidget(Qt::BottomDockWidgetArea, dock);
+  // Messages and Timeline share the bottom as tabs (as Unreal's Output Log
+  // and Sequencer do): side by side, the timeline's tool row and the
+  // messages' width forced the window wider than a 1600-pixel screen and
+  // squeezed the Outliner and Properties. The Messages tab names its
+  // warnings and errors, and an error brings it to the front.
   if (QDockWidget* messages = findChild<QDockWidget*>("messagesDock")) {
-    splitDockWidget(messages, dock, Qt::Horizontal);
-    resizeDocks({messages, dock}, {320, 1000}, Qt::Horizontal);
-    resizeDocks({dock}, {230}, Qt::Vertical);
+    tabifyDockWidget(messages, dock);
+    resizeDocks({dock}, {260}, Qt::Vertical);  // the rows it showed before the tab bar came
+    dock->raise();
+    connect(messages_, &MessagePanel::countsChanged, messages, [this, messages] {
+      const int w = messages_->count(MessageLevel::Warning), e = messages_->count(MessageLevel::Error);
+      QStringList parts;
+      if (w) parts << tr("%n warning(s)", nullptr, w);
+      if (e) parts << tr("%n error(s)", nullptr, e);
+      messages->setWindowTitle(parts.isEmpty() ? tr("Messages") : tr("Messages (%1)").arg(parts.join(", ")));
+      if (e > errorsShown_) messages->raise();
+      errorsShown_ = e;
+    });
   }
   createCameraPathDock();
 
