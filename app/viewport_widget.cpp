@@ -161,8 +161,10 @@ void ViewportWidget::resetViewForDocument() {
     double pivot = 10.0;
     if (!box.empty) pivot = std::max(glm::dot(box.centre() - v.eye, v.forward()), 1.0);
     camera_.setView(v, pivot);
-    const double extent = box.empty ? 10.0 : glm::length(box.size());
-    camera_.setFlySpeed(std::clamp(extent * 0.5, 0.5, 5000.0));
+    // From the distance to what the camera looks at, as framing does: the
+    // whole scene's extent (a valley terrain) gave hundreds of m/s next to
+    // a 2-metre scan.
+    camera_.setFlySpeed(std::clamp(pivot * 0.5, 0.5, 5000.0));
   } else {
     const glm::dvec3 mn = box.empty ? glm::dvec3(-5.0, -5.0, 0.0) : box.min;
     const glm::dvec3 mx = box.empty ? glm::dvec3(5.0, 5.0, 3.0) : box.max;
