@@ -24,6 +24,7 @@
 #include "app/property_panel.h"
 #include "app/selection.h"
 #include "app/viewport_widget.h"
+#include "editor_fixture.h"
 
 using namespace hs;
 using hs::app::MainWindow;
@@ -31,17 +32,6 @@ using hs::app::MainWindow;
 namespace {
 
 const QString kBunny = QString(HS_SOURCE_DIR) + "/resources/demo/stanford-bunny.obj";
-
-class AnsweringPrompts : public app::Prompts {
- public:
-  QString openAnswer;
-  QStringList errors;
-  SaveChoice askSaveChanges(QWidget*, const QString&) override { return SaveChoice::Discard; }
-  void showError(QWidget*, const QString& title, const QString& text) override { errors << title + ": " + text; }
-  bool askYesNo(QWidget*, const QString&, const QString&, const QString&, const QString&) override { return false; }
-  QString askOpenFile(QWidget*, const QString&, const QString&, const QString&) override { return openAnswer; }
-  QString askSaveFile(QWidget*, const QString&, const QString&, const QString&) override { return {}; }
-};
 
 // Every visible error report window (they delete themselves when closed).
 QList<app::ErrorReportDialog*> reportWindows() {
@@ -63,19 +53,14 @@ bool treeHasField(QTreeWidget* tree, const QString& key) {
 class EditorImportTest : public QObject {
   Q_OBJECT
  public:
-  static void initMain() {
-    qputenv("HS_SETTINGS_SANDBOX", "1");
-    app::applyDefaultSurfaceFormat();
-  }
+  static void initMain() { test::initEditorMain(); }
 
  private slots:
   void initTestCase() {
     app::initApplicationSettings();
     QVERIFY(app::settingsSandboxed());
     w_ = std::make_unique<MainWindow>();
-    auto prompts = std::make_unique<AnsweringPrompts>();
-    prompts_ = prompts.get();
-    w_->setPrompts(std::move(prompts));
+    prompts_ = test::setQuietPrompts(*w_);
     w_->resize(1000, 700);
     w_->newScene();
     w_->show();
@@ -209,7 +194,7 @@ class EditorImportTest : public QObject {
 
  private:
   std::unique_ptr<MainWindow> w_;
-  AnsweringPrompts* prompts_ = nullptr;
+  test::QuietPrompts* prompts_ = nullptr;
 };
 
 QTEST_MAIN(EditorImportTest)

@@ -29,6 +29,7 @@
 #include "app/selection.h"
 #include "app/settings_panel.h"
 #include "app/viewport_widget.h"
+#include "editor_fixture.h"
 #include "mesh/mesh_import.h"
 #include "scene/operations.h"
 #include "scene/transform.h"
@@ -68,10 +69,7 @@ class EditorSmokeTest : public QObject {
   Q_OBJECT
  public:
   // Runs before QApplication exists (QTEST_MAIN calls it).
-  static void initMain() {
-    qputenv("HS_SETTINGS_SANDBOX", "1");  // never touch the user's settings, even when run by hand
-    app::applyDefaultSurfaceFormat();
-  }
+  static void initMain() { test::initEditorMain(); }
 
  private slots:
   void initTestCase();

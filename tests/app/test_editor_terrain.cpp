@@ -38,41 +38,23 @@
 #include "scene/operations.h"
 #include "scene/scene_json.h"
 #include "scene/terrain_ops.h"
+#include "editor_fixture.h"
 #include "terrain_compare.h"
 
 using namespace hs;
 using hs::app::MainWindow;
 
-namespace {
-
-class QuietPrompts : public app::Prompts {
- public:
-  QStringList errors;
-  SaveChoice askSaveChanges(QWidget*, const QString&) override { return SaveChoice::Discard; }
-  void showError(QWidget*, const QString& title, const QString& text) override { errors << title + ": " + text; }
-  bool askYesNo(QWidget*, const QString&, const QString&, const QString&, const QString&) override { return false; }
-  QString askOpenFile(QWidget*, const QString&, const QString&, const QString&) override { return {}; }
-  QString askSaveFile(QWidget*, const QString&, const QString&, const QString&) override { return {}; }
-};
-
-}  // namespace
-
 class EditorTerrainTest : public QObject {
   Q_OBJECT
  public:
-  static void initMain() {
-    qputenv("HS_SETTINGS_SANDBOX", "1");
-    app::applyDefaultSurfaceFormat();
-  }
+  static void initMain() { test::initEditorMain(); }
 
  private slots:
   void initTestCase() {
     app::initApplicationSettings();
     QVERIFY(tmp_.isValid());
     w_ = std::make_unique<MainWindow>();
-    auto prompts = std::make_unique<QuietPrompts>();
-    prompts_ = prompts.get();
-    w_->setPrompts(std::move(prompts));
+    prompts_ = test::setQuietPrompts(*w_);
     w_->resize(1000, 700);
     w_->newScene();
     w_->show();
@@ -403,7 +385,7 @@ class EditorTerrainTest : public QObject {
   }
 
   std::unique_ptr<MainWindow> w_;
-  QuietPrompts* prompts_ = nullptr;
+  test::QuietPrompts* prompts_ = nullptr;
   app::TerrainPanel* panel_ = nullptr;
   QTemporaryDir tmp_;
   scene::EntityId terrain_ = scene::kNoEntity;

@@ -28,6 +28,7 @@
 #include "app/timeline_keying.h"
 #include "app/timeline_panel.h"
 #include "app/viewport_widget.h"
+#include "editor_fixture.h"
 #include "file_bytes.h"
 #include "scene/animation.h"
 
@@ -36,17 +37,6 @@ using hs::app::MainWindow;
 using sequencer::KeyRef;
 
 namespace {
-
-class QuietPrompts : public app::Prompts {
- public:
-  SaveChoice askSaveChanges(QWidget*, const QString&) override { return SaveChoice::Discard; }
-  void showError(QWidget*, const QString& title, const QString& text) override {
-    qWarning("error dialog: %s: %s", qPrintable(title), qPrintable(text));
-  }
-  bool askYesNo(QWidget*, const QString&, const QString&, const QString&, const QString&) override { return false; }
-  QString askOpenFile(QWidget*, const QString&, const QString&, const QString&) override { return {}; }
-  QString askSaveFile(QWidget*, const QString&, const QString&, const QString&) override { return {}; }
-};
 
 // Transforms and camera fields of every entity, compared exactly.
 bool sameAnimatedValues(const scene::SceneState& a, const scene::SceneState& b, QString& why) {
@@ -65,10 +55,7 @@ bool sameAnimatedValues(const scene::SceneState& a, const scene::SceneState& b, 
 class TimelineTest : public QObject {
   Q_OBJECT
  public:
-  static void initMain() {
-    qputenv("HS_SETTINGS_SANDBOX", "1");
-    app::applyDefaultSurfaceFormat();
-  }
+  static void initMain() { test::initEditorMain(); }
 
  private slots:
   void initTestCase();
@@ -91,11 +78,7 @@ class TimelineTest : public QObject {
   std::vector<double> times(scene::EntityId e, const std::string& p) {
     return sequencer::keyTimes(doc().state().sequence, e, p);
   }
-  void waitForFrame() {
-    const int before = w_->viewport()->framesRendered();
-    w_->viewport()->update();
-    QTRY_VERIFY_WITH_TIMEOUT(w_->viewport()->framesRendered() > before, 20000);
-  }
+  void waitForFrame() { test::waitForNextFrame(*w_->viewport()); }
 
   std::unique_ptr<MainWindow> w_;
   QTemporaryDir tmp_;
@@ -106,7 +89,7 @@ void TimelineTest::initTestCase() {
   QVERIFY(app::settingsSandboxed());
   QVERIFY(tmp_.isValid());
   w_ = std::make_unique<MainWindow>();
-  w_->setPrompts(std::make_unique<QuietPrompts>());
+  test::setQuietPrompts(*w_, test::QuietPrompts::Errors::Warn);
   w_->resize(1100, 760);
   w_->loadDemoScene();
   w_->show();

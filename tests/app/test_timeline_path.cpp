@@ -24,6 +24,7 @@
 #include "app/timeline_clock.h"
 #include "app/timeline_panel.h"
 #include "app/viewport_widget.h"
+#include "editor_fixture.h"
 #include "scene/animation.h"
 #include "scene/camera_path_edits.h"
 #include "scene/world_bounds.h"
@@ -31,28 +32,10 @@
 using namespace hs;
 using hs::app::MainWindow;
 
-namespace {
-
-class QuietPrompts : public app::Prompts {
- public:
-  SaveChoice askSaveChanges(QWidget*, const QString&) override { return SaveChoice::Discard; }
-  void showError(QWidget*, const QString& title, const QString& text) override {
-    qWarning("error dialog: %s: %s", qPrintable(title), qPrintable(text));
-  }
-  bool askYesNo(QWidget*, const QString&, const QString&, const QString&, const QString&) override { return false; }
-  QString askOpenFile(QWidget*, const QString&, const QString&, const QString&) override { return {}; }
-  QString askSaveFile(QWidget*, const QString&, const QString&, const QString&) override { return {}; }
-};
-
-}  // namespace
-
 class TimelinePathTest : public QObject {
   Q_OBJECT
  public:
-  static void initMain() {
-    qputenv("HS_SETTINGS_SANDBOX", "1");
-    app::applyDefaultSurfaceFormat();
-  }
+  static void initMain() { test::initEditorMain(); }
 
  private slots:
   void initTestCase();
@@ -85,9 +68,7 @@ class TimelinePathTest : public QObject {
       box.extend(p + glm::dvec3(1.0));
     }
     w_->viewport()->camera().frame(box);
-    const int before = w_->viewport()->framesRendered();
-    w_->viewport()->update();
-    QTRY_VERIFY_WITH_TIMEOUT(w_->viewport()->framesRendered() > before, 20000);
+    test::waitForNextFrame(*w_->viewport());
   }
 
   std::unique_ptr<MainWindow> w_;
@@ -100,7 +81,7 @@ void TimelinePathTest::initTestCase() {
   app::initApplicationSettings();
   QVERIFY(app::settingsSandboxed());
   w_ = std::make_unique<MainWindow>();
-  w_->setPrompts(std::make_unique<QuietPrompts>());
+  test::setQuietPrompts(*w_, test::QuietPrompts::Errors::Warn);
   w_->resize(1200, 800);
   w_->newScene();
   w_->show();

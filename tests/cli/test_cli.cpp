@@ -5,7 +5,6 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <QProcess>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -13,6 +12,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "cli_runner.h"
 #include "file_bytes.h"
 #include "scene/hscene_file.h"
 #include "scene/scene_json.h"
@@ -20,21 +20,15 @@
 using namespace hs;
 namespace fs = std::filesystem;
 
+using hs::test::kCli;
 using hs::test::readFile;
 using hs::test::writeFile;
 
 namespace {
 
-const QString kCli = HS_BINARY_DIR "/cli/hybridscape-cli";
 const QString kMeshData = HS_TEST_DATA_DIR "/mesh";
 
-struct Run {
-  int code = -1;
-  QString out, err;
-  // stderr as lines, without the final newline's empty tail.
-  QStringList errLines() const { return err.split('\n', Qt::SkipEmptyParts); }
-};
-
+using Run = hs::test::CliRun;
 
 QJsonObject parseJson(const QByteArray& text) {
   QJsonParseError err;
@@ -88,22 +82,7 @@ class TestCli : public QObject {
 
   QString path(const QString& name) const { return tmp_.filePath(name); }
 
-  Run cli(const QStringList& args) {
-    QProcess p;
-    p.setWorkingDirectory(tmp_.path());
-    p.start(kCli, args);
-    Run r;
-    if (!p.waitForFinished(120000)) {
-      p.kill();
-      p.waitForFinished();
-      qWarning("hybridscape-cli %s did not finish", qPrintable(args.join(' ')));
-      return r;
-    }
-    r.code = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
-    r.out = QString::fromLocal8Bit(p.readAllStandardOutput());
-    r.err = QString::fromLocal8Bit(p.readAllStandardError());
-    return r;
-  }
+  Run cli(const QStringList& args) { return test::runCli(args, tmp_.path()); }
 
   // A failure: non-zero exit (`code`), one line on stderr containing each of `names`.
   void expectError(const QStringList& args, int code, const QStringList& names) {

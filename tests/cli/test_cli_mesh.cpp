@@ -6,27 +6,24 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <QProcess>
 #include <QTemporaryDir>
 #include <QtTest>
 
 #include <cmath>
 
+#include "cli_runner.h"
 #include "file_bytes.h"
 #include "scene/hscene_file.h"
 
 using namespace hs;
+using hs::test::kCli;
 using hs::test::readFile;
 
 namespace {
 
-const QString kCli = HS_BINARY_DIR "/cli/hybridscape-cli";
 const QString kBunny = HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj";
 
-struct Run {
-  int code = -1;
-  QString out, err;
-};
+using Run = hs::test::CliRun;
 
 QJsonObject parseJson(const QByteArray& text) { return QJsonDocument::fromJson(text).object(); }
 
@@ -59,28 +56,9 @@ class TestCliMesh : public QObject {
 
   QString path(const QString& name) const { return tmp_.filePath(name); }
 
-  Run cli(const QStringList& args) {
-    QProcess p;
-    p.setWorkingDirectory(tmp_.path());
-    p.start(kCli, args);
-    Run r;
-    if (!p.waitForFinished(120000)) {
-      p.kill();
-      p.waitForFinished();
-      return r;
-    }
-    r.code = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
-    r.out = QString::fromLocal8Bit(p.readAllStandardOutput());
-    r.err = QString::fromLocal8Bit(p.readAllStandardError());
-    return r;
-  }
+  Run cli(const QStringList& args) { return test::runCli(args, tmp_.path()); }
 
-  QString newScene(const QString& name) {
-    const QString f = path(name);
-    const Run r = cli({"new", f});
-    if (r.code != 0) qWarning("new: %s", qPrintable(r.err));
-    return f;
-  }
+  QString newScene(const QString& name) { return test::newSceneWithCli(path(name), tmp_.path()); }
 
   std::optional<scene::SceneState> load(const QString& file) {
     std::string error;

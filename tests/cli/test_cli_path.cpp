@@ -5,10 +5,10 @@
 // changing the aim (entity, along), banking, timing and points of an existing
 // path; --clear; --help; and one-line errors for bad input, which leave the
 // scene file as it was.
-#include <QProcess>
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include "cli_runner.h"
 #include "file_bytes.h"
 #include "scene/animation.h"
 #include "scene/camera_path_edits.h"
@@ -18,12 +18,7 @@ using namespace hs;
 
 namespace {
 
-const QString kCli = HS_BINARY_DIR "/cli/hybridscape-cli";
-
-struct Run {
-  int code = -1;
-  QString out, err;
-};
+using Run = hs::test::CliRun;
 
 glm::dvec3 cameraAt(const scene::SceneState& s, scene::EntityId id, double t) {
   const scene::SceneState at = scene::animatedState(s, scene::compileSequence(s), t);
@@ -38,21 +33,7 @@ class TestCliPath : public QObject {
   QTemporaryDir tmp_;
   QString scene_;
 
-  Run cli(const QStringList& args) {
-    QProcess p;
-    p.setWorkingDirectory(tmp_.path());
-    p.start(kCli, args);
-    Run r;
-    if (!p.waitForFinished(120000)) {
-      p.kill();
-      p.waitForFinished();
-      return r;
-    }
-    r.code = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
-    r.out = QString::fromLocal8Bit(p.readAllStandardOutput());
-    r.err = QString::fromLocal8Bit(p.readAllStandardError());
-    return r;
-  }
+  Run cli(const QStringList& args) { return test::runCli(args, tmp_.path()); }
 
   scene::SceneState load() {
     std::string error;

@@ -15,6 +15,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "cli_runner.h"
 #include "file_bytes.h"
 #include "scene/hscene_file.h"
 #include "sequencer/frame_verify.h"
@@ -23,21 +24,17 @@
 #include "sequencer/slurm_script.h"
 
 using namespace hs;
+using hs::test::kCli;
 namespace fs = std::filesystem;
 
 namespace {
 
-const QString kCli = HS_BINARY_DIR "/cli/hybridscape-cli";
 const QString kSize = "64x36";  // per eye
 // No MSAA: on llvmpipe a frame of the demo costs its 420,000 triangles, and
 // 4x MSAA triples that; what the tests check does not depend on it.
 const QStringList kFast = {"--aa", "none"};
 
-struct Run {
-  int code = -1;
-  QString out, err;
-  QStringList errLines() const { return err.split('\n', Qt::SkipEmptyParts); }
-};
+using Run = hs::test::CliRun;
 
 // A tmpfs mounted for the test (root only: CI runs as root); unmounted when it goes.
 struct TmpfsMount {
@@ -84,22 +81,7 @@ class TestCliSequence : public QObject {
   QString path(const QString& name) const { return tmp_.filePath(name); }
   std::string dir(const QString& name) const { return path(name).toStdString(); }
 
-  Run cli(const QStringList& args, int timeoutMs = 120000) {
-    QProcess p;
-    p.setWorkingDirectory(tmp_.path());
-    p.start(kCli, args);
-    Run r;
-    if (!p.waitForFinished(timeoutMs)) {
-      p.kill();
-      p.waitForFinished();
-      qWarning("hybridscape-cli %s did not finish", qPrintable(args.join(' ')));
-      return r;
-    }
-    r.code = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
-    r.out = QString::fromLocal8Bit(p.readAllStandardOutput());
-    r.err = QString::fromLocal8Bit(p.readAllStandardError());
-    return r;
-  }
+  Run cli(const QStringList& args, int timeoutMs = 120000) { return test::runCli(args, tmp_.path(), timeoutMs); }
 
   void expectError(const QStringList& args, int code, const QStringList& names) {
     const Run r = cli(args);

@@ -5,25 +5,22 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <QProcess>
 #include <QTemporaryDir>
 #include <QtTest>
 
 #include <OpenImageIO/imageio.h>
 
+#include "cli_runner.h"
 #include "scene/hscene_file.h"
 
 using namespace hs;
+using hs::test::kCli;
 
 namespace {
 
-const QString kCli = HS_BINARY_DIR "/cli/hybridscape-cli";
 const QString kDem = HS_TEST_DATA_DIR "/terrain/dem_wgs84.tif";
 
-struct Run {
-  int code = -1;
-  QString out, err;
-};
+using Run = hs::test::CliRun;
 
 }  // namespace
 
@@ -32,21 +29,7 @@ class TestCliTerrain : public QObject {
   QTemporaryDir tmp_;
   QString path(const QString& name) const { return tmp_.filePath(name); }
 
-  Run cli(const QStringList& args) {
-    QProcess p;
-    p.setWorkingDirectory(tmp_.path());
-    p.start(kCli, args);
-    Run r;
-    if (!p.waitForFinished(120000)) {
-      p.kill();
-      p.waitForFinished();
-      return r;
-    }
-    r.code = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
-    r.out = QString::fromLocal8Bit(p.readAllStandardOutput());
-    r.err = QString::fromLocal8Bit(p.readAllStandardError());
-    return r;
-  }
+  Run cli(const QStringList& args) { return test::runCli(args, tmp_.path()); }
 
   void ok(const QStringList& args, Run* out = nullptr) {
     const Run r = cli(args);
@@ -71,12 +54,7 @@ class TestCliTerrain : public QObject {
     return QJsonDocument::fromJson(r.out.toUtf8()).object()["terrains"].toArray();
   }
 
-  QString newScene(const QString& name) {
-    const QString f = path(name);
-    const Run r = cli({"new", f});
-    if (r.code != 0) qWarning("new: %s", qPrintable(r.err));
-    return f;
-  }
+  QString newScene(const QString& name) { return test::newSceneWithCli(path(name), tmp_.path()); }
 
  private slots:
   void initTestCase() {

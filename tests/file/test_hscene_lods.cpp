@@ -13,8 +13,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include <sqlite3.h>
-
+#include "hscene_sql.h"
 #include "scene/document.h"
 #include "scene/edit.h"
 #include "scene/hscene_file.h"
@@ -25,49 +24,13 @@
 using namespace hs;
 using namespace hs::scene;
 namespace fs = std::filesystem;
+using hs::test::readBlob;
+using hs::test::sql;
+using hs::test::writeBlob;
 
 namespace {
 
 const std::string kBunny = HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj";
-
-void sql(const std::string& path, const std::string& statement) {
-  sqlite3* db = nullptr;
-  QVERIFY(sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK);
-  char* msg = nullptr;
-  const int rc = sqlite3_exec(db, statement.c_str(), nullptr, nullptr, &msg);
-  const std::string why = msg ? msg : "";
-  sqlite3_free(msg);
-  sqlite3_close(db);
-  QVERIFY2(rc == SQLITE_OK, why.c_str());
-}
-
-std::vector<uint8_t> readBlob(const std::string& path, const std::string& key) {
-  sqlite3* db = nullptr;
-  std::vector<uint8_t> out;
-  sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
-  sqlite3_stmt* st = nullptr;
-  sqlite3_prepare_v2(db, "SELECT data FROM blobs WHERE key = ?1 AND part = 0", -1, &st, nullptr);
-  sqlite3_bind_text(st, 1, key.c_str(), -1, SQLITE_TRANSIENT);
-  if (sqlite3_step(st) == SQLITE_ROW) {
-    const auto* p = static_cast<const uint8_t*>(sqlite3_column_blob(st, 0));
-    out.assign(p, p + sqlite3_column_bytes(st, 0));
-  }
-  sqlite3_finalize(st);
-  sqlite3_close(db);
-  return out;
-}
-
-void writeBlob(const std::string& path, const std::string& key, const std::vector<uint8_t>& bytes) {
-  sqlite3* db = nullptr;
-  sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr);
-  sqlite3_stmt* st = nullptr;
-  sqlite3_prepare_v2(db, "UPDATE blobs SET data = ?2 WHERE key = ?1 AND part = 0", -1, &st, nullptr);
-  sqlite3_bind_text(st, 1, key.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_blob(st, 2, bytes.data(), int(bytes.size()), SQLITE_TRANSIENT);
-  QCOMPARE(sqlite3_step(st), SQLITE_DONE);
-  sqlite3_finalize(st);
-  sqlite3_close(db);
-}
 
 bool sameMesh(const mesh::MeshData& a, const mesh::MeshData& b) {
   auto same = [](const auto& x, const auto& y) {

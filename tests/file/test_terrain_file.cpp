@@ -9,8 +9,7 @@
 #include <filesystem>
 #include <random>
 
-#include <sqlite3.h>
-
+#include "hscene_sql.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
 #include "scene/scene_json.h"
@@ -24,6 +23,7 @@
 using namespace hs;
 using namespace hs::scene;
 namespace fs = std::filesystem;
+using hs::test::sql;
 
 namespace {
 
@@ -55,27 +55,7 @@ void dab(Document& doc, EntityId e, terrain::BrushTool tool, glm::dvec2 local, d
   pushTerrainStep(doc, doc.state().find(e)->terrain->terrain, st.finish(), "dab");
 }
 
-void sql(const std::string& path, const std::string& statement) {
-  sqlite3* db = nullptr;
-  QVERIFY(sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK);
-  char* msg = nullptr;
-  const int rc = sqlite3_exec(db, statement.c_str(), nullptr, nullptr, &msg);
-  const std::string why = msg ? msg : "";
-  sqlite3_free(msg);
-  sqlite3_close(db);
-  QVERIFY2(rc == SQLITE_OK, why.c_str());
-}
-
-int tileCount(const std::string& path) {
-  sqlite3* db = nullptr;
-  sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
-  sqlite3_stmt* st = nullptr;
-  sqlite3_prepare_v2(db, "SELECT COUNT(DISTINCT key) FROM blobs WHERE key LIKE 'terrain/%'", -1, &st, nullptr);
-  const int n = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int(st, 0) : -1;
-  sqlite3_finalize(st);
-  sqlite3_close(db);
-  return n;
-}
+int tileCount(const std::string& path) { return test::countBlobKeys(path, "key LIKE 'terrain/%'"); }
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "image_compare.h"
+#include "look_from.h"
 #include "mesh/mesh_import.h"
 #include "mesh/mesh_process.h"
 #include "render/mesh_lod.h"
@@ -15,6 +16,7 @@
 #include "scene/transform.h"
 
 using namespace hs;
+using hs::test::lookFrom;
 
 namespace {
 
@@ -51,16 +53,6 @@ const scene::MeshAsset& bunnyAsset() {
 
 size_t trianglesOf(const scene::MeshAsset& a, int level) {
   return level == 0 ? a.data->triangleCount() : a.lods[size_t(level) - 1].data->triangleCount();
-}
-
-scene::Transform lookFrom(glm::dvec3 eye, glm::dvec3 target) {
-  const glm::dvec3 f = glm::normalize(target - eye);
-  const glm::dvec3 r = glm::normalize(glm::cross(f, glm::dvec3(0, 0, 1)));
-  const glm::dvec3 u = glm::cross(r, f);
-  scene::Transform t;
-  t.translation = eye;
-  t.rotation = glm::quat_cast(glm::dmat3(r, u, -f));
-  return t;
 }
 
 // One bunny (scaled `scale` times) at the origin, a sun, and a camera

@@ -6,12 +6,14 @@
 #include <cmath>
 
 #include "image_compare.h"
+#include "look_from.h"
 #include "mesh/mesh_import.h"
 #include "render/offscreen_renderer.h"
 #include "scene/demo_scene.h"
 #include "scene/world_bounds.h"
 
 using namespace hs;
+using hs::test::lookFrom;
 
 namespace {
 
@@ -61,17 +63,6 @@ scene::AssetId addAsset(scene::SceneState& s, std::shared_ptr<const mesh::MeshDa
   a.data = std::move(data);
   s.assets.emplace(a.id, a);
   return a.id;
-}
-
-scene::Transform lookFrom(glm::dvec3 eye, glm::dvec3 target) {
-  // Camera looks down local -Z with +Y up; build the basis from the direction.
-  const glm::dvec3 f = glm::normalize(target - eye);
-  const glm::dvec3 r = glm::normalize(glm::cross(f, glm::dvec3(0, 0, 1)));
-  const glm::dvec3 u = glm::cross(r, f);
-  scene::Transform t;
-  t.translation = eye;
-  t.rotation = glm::quat_cast(glm::dmat3(r, u, -f));
-  return t;
 }
 
 // The bunny on the ground at `offset`, a sun, a camera 1 m in front at the same offset.

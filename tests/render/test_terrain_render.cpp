@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "image_compare.h"
+#include "look_from.h"
 #include "render/offscreen_renderer.h"
 #include "scene/document.h"
 #include "scene/fields.h"
@@ -22,22 +23,13 @@
 #include "terrain/stroke.h"
 
 using namespace hs;
+using hs::test::lookFrom;
 
 namespace {
 
 const glm::vec3 kSky(1.0f, 0.0f, 1.0f);  // magenta: no terrain colour is anywhere near it
 
 test::Rgba8Image toTest(const render::Image& img) { return {img.width, img.height, img.rgba8}; }
-
-scene::Transform lookFrom(glm::dvec3 eye, glm::dvec3 target) {
-  const glm::dvec3 f = glm::normalize(target - eye);
-  const glm::dvec3 r = glm::normalize(glm::cross(f, glm::dvec3(0, 0, 1)));
-  const glm::dvec3 u = glm::cross(r, f);
-  scene::Transform t;
-  t.translation = eye;
-  t.rotation = glm::quat_cast(glm::dmat3(r, u, -f));
-  return t;
-}
 
 // A rough terrain (ridged noise, 60 m of relief) with a sun and a camera;
 // the sky, horizon and ground colours all magenta, no grid, no tone curve.
