@@ -136,7 +136,8 @@ TileImportResult importTiles(const std::vector<std::string>& paths, const TileIm
       if (self && isCancelled(progress)) self->cancel();
     });
     self = &sub;
-    ImportResult r = importMesh(paths[i], options.import, progress ? &sub : nullptr);
+    ImportResult r = options.readTile ? options.readTile(paths[i], options.import, progress ? &sub : nullptr)
+                                      : importMesh(paths[i], options.import, progress ? &sub : nullptr);
     result.tiles.push_back(r.report);
     if (!r.ok()) {
       result.cancelled = r.cancelled || isCancelled(progress);

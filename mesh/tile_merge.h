@@ -6,6 +6,7 @@
 // are welded: border vertices of different tiles closer than the
 // tolerance are snapped onto one position (and merged where their UV and
 // normal agree too), so the decimator sees one connected surface.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,9 @@ namespace hs::mesh {
 struct TileImportOptions {
   ImportOptions import;           // applied to every tile
   double weldTolerance = 1e-3;    // metres: border vertices this close are the same point
+  // Reads one tile; empty: importMesh. (The document's pipeline reads
+  // Assimp's formats in a worker process: scene/import_isolation.h.)
+  std::function<ImportResult(const std::string& path, const ImportOptions&, const Progress*)> readTile;
 };
 
 struct TileImportResult {

@@ -7,6 +7,7 @@
 
 #include "mesh/report_json.h"
 #include "mesh/tile_merge.h"
+#include "scene/import_isolation.h"
 #include "scene/report_json.h"
 
 namespace hs::scene {
@@ -96,7 +97,7 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
   {
     Slice read(progress, 0.0, readShare);
     if (request.files.size() == 1) {
-      mesh::ImportResult r = mesh::importMesh(request.files.front(), request.import, read.get());
+      mesh::ImportResult r = importMeshIsolated(request.files.front(), request.import, read.get());
       out.import = std::move(r.report);
       out.cancelled = r.cancelled;
       out.error = std::move(r.error);
@@ -105,6 +106,7 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
       mesh::TileImportOptions t;
       t.import = request.import;
       t.weldTolerance = request.tileWeldTolerance;
+      t.readTile = importMeshIsolated;
       mesh::TileImportResult r = mesh::importTiles(request.files, t, read.get());
       out.cancelled = r.cancelled;
       out.error = std::move(r.error);

@@ -3,7 +3,8 @@
 // dialog keeps answering, Cancel stops it) and fills the table and curve;
 // Import commits a decimated mesh with 2 LODs as one undo step, shows the
 // error report and its summary in Messages; the Properties panel reopens the
-// report; undo removes everything the import added.
+// report; undo removes everything the import added; a file that crashes
+// the reader costs an error message, not the session.
 #include <QApplication>
 #include <QPushButton>
 #include <QRegularExpression>
@@ -188,6 +189,29 @@ class EditorImportTest : public QObject {
     QVERIFY(w_->document().state().roots == before.roots);
     QVERIFY(w_->document().state().findAsset(assetId) == nullptr);
     QVERIFY(w_->document().state().find(id) == nullptr);
+  }
+
+  // A file that crashes Assimp (double free) is read in the import worker:
+  // the editor stays up, says which file and why, and the document, its undo
+  // history and its unsaved changes are as they were.
+  void readerCrashKeepsTheSession() {
+    const QString crashing = QString(HS_TEST_DATA_DIR) + "/mesh/crashes_assimp_embedded_texture.fbx";
+    const scene::SceneState before = w_->document().state();
+    const int undoSteps = w_->document().undoStack()->count(), undoIndex = w_->document().undoStack()->index();
+    const int errorsBefore = int(prompts_->errors.size());
+    QVERIFY(!w_->importMeshFile(crashing, true));
+    QCOMPARE(int(prompts_->errors.size()), errorsBefore + 1);
+    const QString error = prompts_->errors.back();
+    QVERIFY2(error.contains("crashes_assimp_embedded_texture.fbx") && error.contains("crashed on this file (SIGABRT)"),
+             qPrintable(error));
+    QVERIFY2(w_->messages()->lastText().contains("Nothing was imported"), qPrintable(w_->messages()->lastText()));
+    QCOMPARE(w_->document().undoStack()->count(), undoSteps);
+    QCOMPARE(w_->document().undoStack()->index(), undoIndex);
+    QCOMPARE(w_->document().state().entities.size(), before.entities.size());
+    QCOMPARE(w_->document().state().assets.size(), before.assets.size());
+    // And the next import works.
+    QVERIFY(w_->importMeshFile(QString(HS_TEST_DATA_DIR) + "/mesh/textured_quad.glb", true));
+    QCOMPARE(w_->document().undoStack()->index(), undoIndex + 1);
   }
 
   void cleanupTestCase() { w_.reset(); }

@@ -272,6 +272,23 @@ class TestCliMesh : public QObject {
     expectRefused({"import", kBunny, path("broken.obj"), f, "--decimate-to", "50%"}, 1, {"broken.obj:3:"}, f);
     expectRefused({"import", path("missing.obj"), f, "--lods", "2"}, 1, {"missing.obj"}, f);
   }
+
+  // A file that crashes the reader (Assimp 5.2.5, double free): read in the
+  // import worker, so the crash is one line naming the file, and the scene
+  // stays byte for byte; the next import works.
+  void readerCrashIsOneLine() {
+    const QString f = newScene("crash.hscene");
+    const QString crashing = HS_TEST_DATA_DIR "/mesh/crashes_assimp_embedded_texture.fbx";
+    expectRefused({"import", crashing, f}, 1,
+                  {"crashes_assimp_embedded_texture.fbx: the FBX reader (Assimp) crashed on this file (SIGABRT)",
+                   "Nothing was imported."},
+                  f);
+    expectRefused({"import", crashing, f, "--decimate-to", "50%", "--lods", "1"}, 1,
+                  {"crashes_assimp_embedded_texture.fbx", "crashed"}, f);
+    const Run ok = cli({"import", HS_TEST_DATA_DIR "/mesh/textured_quad.fbx", f});
+    QVERIFY2(ok.code == 0, qPrintable(ok.err));
+    QVERIFY2(ok.out.contains("reader assimp"), qPrintable(ok.out));
+  }
 };
 
 QTEST_GUILESS_MAIN(TestCliMesh)

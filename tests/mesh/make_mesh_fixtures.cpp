@@ -1,6 +1,9 @@
 // Writes the small mesh files under tests/data/mesh/ that test_mesh_import
 // reads: a textured quad as glTF binary (glb2, PNG texture embedded) and as
-// FBX (ASCII, texture beside it), and the PNG itself.
+// FBX (ASCII, texture beside it), and the PNG itself; and the same FBX with
+// the texture embedded (base64), which crashes Assimp 5.2.5's reader: the
+// import isolation tests (tests/scene/test_import_isolation.cpp, test_cli_mesh)
+// check that this costs a clear error, not the process.
 //
 // Why the FBX is ASCII with an external texture: Assimp 5.2.5 (Debian 12)
 // cannot read back the binary FBX its own exporter writes ("FBX-Tokenize
@@ -129,8 +132,14 @@ int main(int argc, char** argv) {
 
   Assimp::Exporter exporter;
   int rc = 0;
-  for (const auto& [format, file] : {std::pair{"glb2", "textured_quad.glb"}, {"fbxa", "textured_quad.fbx"}}) {
-    aiScene* scene = buildScene(png, std::string_view(format) == "glb2");
+  struct Output {
+    const char* format;
+    const char* file;
+    bool embed;
+  };
+  for (const auto& [format, file, embed] : {Output{"glb2", "textured_quad.glb", true}, Output{"fbxa", "textured_quad.fbx", false},
+                                            Output{"fbxa", "crashes_assimp_embedded_texture.fbx", true}}) {
+    aiScene* scene = buildScene(png, embed);
     const fs::path out = dir / file;
     if (exporter.Export(scene, format, out.string()) != AI_SUCCESS) {
       std::fprintf(stderr, "%s: %s\n", out.c_str(), exporter.GetErrorString());

@@ -1,0 +1,343 @@
+#include "scene/import_isolation.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+#include "scene/import_wire.h"
+
+extern char** environ;
+
+namespace hs::scene {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kWorkerName = "hybridscape-import-worker";
+
+std::string lowerExtension(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return e;
+}
+
+// What users call the format: "FBX", "glTF", "PLY", ...
+std::string formatName(const std::string& path) {
+  const std::string e = lowerExtension(path);
+  if (e == ".gltf" || e == ".glb") return "glTF";
+  if (e == ".dae") return "COLLADA";
+  std::string n = e.empty() ? std::string("mesh") : e.substr(1);
+  std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return char(std::toupper(c)); });
+  return n;
+}
+
+std::string signalName(int sig) {
+#if defined(__GLIBC__) && __GLIBC_PREREQ(2, 32)
+  if (const char* abbrev = sigabbrev_np(sig)) return std::string("SIG") + abbrev;
+#endif
+  return "signal " + std::to_string(sig);
+}
+
+bool isExecutable(const std::string& path) {
+  struct stat st {};
+  return !path.empty() && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(path.c_str(), X_OK) == 0;
+}
+
+// Moves `fd` to a number of at least 10 (close-on-exec), so that handing it
+// to the child as 0..3 never meets the same number.
+int highFd(int fd) {
+  if (fd < 0) return fd;
+  const int high = ::fcntl(fd, F_DUPFD_CLOEXEC, 10);
+  ::close(fd);
+  return high;
+}
+
+// An anonymous temporary file (gone when the last descriptor closes, even if
+// this process dies).
+int anonymousTempFile() {
+  const char* env = std::getenv("TMPDIR");
+  const std::string dir = env && *env ? env : "/tmp";
+#ifdef O_TMPFILE
+  int fd = ::open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (fd >= 0) return highFd(fd);
+#endif
+  std::string templ = dir + "/hybridscape-import-XXXXXX";
+  int fd2 = ::mkostemp(templ.data(), O_CLOEXEC);
+  if (fd2 < 0) return -1;
+  ::unlink(templ.c_str());
+  return highFd(fd2);
+}
+
+// The last non-empty line the worker wrote to stderr (at most 200 characters).
+std::string lastLine(int fd) {
+  if (fd < 0) return {};
+  const off_t size = ::lseek(fd, 0, SEEK_END);
+  if (size <= 0) return {};
+  const off_t from = std::max<off_t>(0, size - 4096);
+  std::string text(size_t(size - from), '\0');
+  const ssize_t n = ::pread(fd, text.data(), text.size(), from);
+  text.resize(n > 0 ? size_t(n) : 0);
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  const size_t nl = text.find_last_of('\n');
+  std::string line = nl == std::string::npos ? text : text.substr(nl + 1);
+  if (line.size() > 200) line = line.substr(0, 200) + "...";
+  return line;
+}
+
+struct Fds {
+  int result = -1, err = -1, progressRead = -1, progressWrite = -1, stdinRead = -1, stdinWrite = -1;
+  ~Fds() {
+    for (int fd : {result, err, progressRead, progressWrite, stdinRead, stdinWrite})
+      if (fd >= 0) ::close(fd);
+  }
+  static void closeOne(int& fd) {
+    if (fd >= 0) ::close(fd);
+    fd = -1;
+  }
+};
+
+bool makePipe(int& readEnd, int& writeEnd) {
+  int p[2];
+  if (::pipe2(p, O_CLOEXEC) != 0) return false;
+  readEnd = highFd(p[0]);
+  writeEnd = highFd(p[1]);
+  return readEnd >= 0 && writeEnd >= 0;
+}
+
+int waitForChild(pid_t pid, int& status) {
+  for (;;) {
+    const pid_t r = ::waitpid(pid, &status, 0);
+    if (r == pid) return 0;
+    if (r < 0 && errno == EINTR) continue;
+    return -1;  // ECHILD: someone else reaped it (SIGCHLD ignored); the result file still tells
+  }
+}
+
+enum class Outcome { Done, SpawnFailed };
+
+Outcome runWorker(const std::string& worker, const std::string& path, const mesh::ImportOptions& options,
+                  const Progress* progress, mesh::ImportResult& out, std::string& spawnError) {
+  const auto start = Clock::now();
+  auto failed = [&](std::string error) {
+    out = {};
+    out.report.file = path;
+    out.report.reader = "assimp";
+    out.error = std::move(error);
+    return Outcome::Done;
+  };
+
+  Fds fds;
+  fds.result = anonymousTempFile();
+  fds.err = anonymousTempFile();
+  if (fds.result < 0 || fds.err < 0 || !makePipe(fds.progressRead, fds.progressWrite) ||
+      !makePipe(fds.stdinRead, fds.stdinWrite)) {
+    spawnError = std::string("cannot make the worker's files: ") + std::strerror(errno);
+    return Outcome::SpawnFailed;
+  }
+
+  std::vector<std::string> args = {worker, "--result-fd", "3", "--watch-stdin"};
+  for (auto& a : importWorkerArguments(path, options)) args.push_back(std::move(a));
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  // glibc's fatal messages ("double free detected") go to stderr, not the tty.
+  std::string fatalToStderr = "LIBC_FATAL_STDERR_=1";
+  std::vector<char*> envp;
+  for (char** e = environ; e && *e; ++e)
+    if (std::strncmp(*e, "LIBC_FATAL_STDERR_=", 19) != 0) envp.push_back(*e);
+  envp.push_back(fatalToStderr.data());
+  envp.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds.stdinRead, 0);
+  posix_spawn_file_actions_adddup2(&actions, fds.progressWrite, 1);
+  posix_spawn_file_actions_adddup2(&actions, fds.err, 2);
+  posix_spawn_file_actions_adddup2(&actions, fds.result, 3);
+#if defined(__GLIBC__) && __GLIBC_PREREQ(2, 34)
+  posix_spawn_file_actions_addclosefrom_np(&actions, 4);
+#endif
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t none, all;
+  sigemptyset(&none);
+  sigfillset(&all);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setsigdefault(&attr, &all);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  pid_t pid = -1;
+  const int rc = ::posix_spawn(&pid, worker.c_str(), &actions, &attr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
+  if (rc != 0) {
+    spawnError = worker + ": cannot start it: " + std::strerror(rc);
+    return Outcome::SpawnFailed;
+  }
+  Fds::closeOne(fds.stdinRead);
+  Fds::closeOne(fds.progressWrite);
+
+  // Progress lines until the worker closes its stdout (it ended). Cancel is
+  // polled all the while: the worker is killed, not asked.
+  double lastFraction = 0.0;
+  std::string lastStage = "Reading with Assimp";
+  reportProgress(progress, 0.0, lastStage);
+  auto lastReport = Clock::now();
+  std::string buffer;
+  char chunk[4096];
+  auto cancelled = [&] {
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    waitForChild(pid, status);
+    out = {};
+    out.report.file = path;
+    out.report.reader = "assimp";
+    out.cancelled = true;
+    out.error = path + ": import cancelled";
+    return Outcome::Done;
+  };
+  for (;;) {
+    if (isCancelled(progress)) return cancelled();
+    pollfd p{fds.progressRead, POLLIN, 0};
+    const int n = ::poll(&p, 1, 50);
+    if (n < 0 && errno != EINTR) break;
+    if (n > 0) {
+      const ssize_t got = ::read(fds.progressRead, chunk, sizeof chunk);
+      if (got < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+      if (got <= 0) break;  // end: the worker is gone
+      buffer.append(chunk, size_t(got));
+      size_t nl;
+      while ((nl = buffer.find('\n')) != std::string::npos) {
+        double f;
+        std::string stage;
+        if (parseImportProgressLine(std::string_view(buffer).substr(0, nl), f, stage)) {
+          lastFraction = std::clamp(f, 0.0, 1.0);
+          lastStage = std::move(stage);
+          reportProgress(progress, lastFraction, lastStage);
+          lastReport = Clock::now();
+        }
+        buffer.erase(0, nl + 1);
+      }
+    }
+    // Readers report seldom; the caller's Cancel reaches this Progress only
+    // through its callback (a Slice of a larger bar), so call it now and then.
+    if (Clock::now() - lastReport > std::chrono::milliseconds(100)) {
+      reportProgress(progress, lastFraction, lastStage);
+      lastReport = Clock::now();
+    }
+  }
+  // Its stdout is closed, so it is ending; Cancel still holds while it does.
+  int status = 0;
+  bool reaped = false;
+  for (;;) {
+    const pid_t w = ::waitpid(pid, &status, WNOHANG);
+    if (w == pid) {
+      reaped = true;
+      break;
+    }
+    if (w < 0 && errno != EINTR) break;  // ECHILD: someone else reaped it (SIGCHLD ignored); the result tells
+    if (isCancelled(progress)) return cancelled();
+    if (w == 0) ::poll(nullptr, 0, 5);
+  }
+
+  const std::string reader = "the " + formatName(path) + " reader (Assimp)";
+  if (reaped && WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    if (sig == SIGKILL)
+      return failed(path + ": " + reader + " was killed (SIGKILL) while reading this file, perhaps for using too much memory. Nothing was imported.");
+    return failed(path + ": " + reader + " crashed on this file (" + signalName(sig) +
+                  "); it is probably damaged. Nothing was imported.");
+  }
+  const int code = reaped && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::string readError;
+  mesh::ImportResult r;
+  bool haveResult = false;
+  if (code == 0 || !reaped) {
+    const int dupFd = ::dup(fds.result);
+    if (std::FILE* in = dupFd >= 0 ? ::fdopen(dupFd, "rb") : nullptr) {
+      haveResult = readImportResult(in, r, readError);
+      std::fclose(in);
+    } else {
+      if (dupFd >= 0) ::close(dupFd);
+      readError = std::strerror(errno);
+    }
+  }
+  if (!haveResult) {
+    std::string why = code >= 0 ? "exit code " + std::to_string(code) : std::string("its exit status is unknown");
+    const std::string said = lastLine(fds.err);
+    if (!said.empty()) why += ": " + said;
+    else if (!readError.empty()) why += ": " + readError;
+    return failed(path + ": " + reader + " stopped without a result (" + why + "). Nothing was imported.");
+  }
+  r.report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  out = std::move(r);
+  return Outcome::Done;
+}
+
+}  // namespace
+
+bool readsWithAssimp(const std::string& path, const mesh::ImportOptions& options) {
+  if (options.reader == mesh::Reader::Obj) return false;
+  if (options.reader == mesh::Reader::Assimp) return true;
+  return lowerExtension(path) != ".obj";
+}
+
+std::string findImportWorker(std::string* lookedAt) {
+  std::vector<std::string> tried;
+  auto found = [&](const std::string& p) {
+    tried.push_back(p);
+    return isExecutable(p);
+  };
+  std::string result;
+  if (const char* env = std::getenv("HS_IMPORT_WORKER"); env && *env) {
+    if (found(env)) result = env;
+  } else {
+#ifdef HS_IMPORT_WORKER_PATH
+    if (found(HS_IMPORT_WORKER_PATH)) result = HS_IMPORT_WORKER_PATH;
+#endif
+    if (result.empty()) {
+      std::error_code ec;
+      const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+      if (!ec) {
+        const std::string beside = (self.parent_path() / kWorkerName).string();
+        if (found(beside)) result = beside;
+      }
+    }
+  }
+  if (lookedAt) {
+    lookedAt->clear();
+    for (const auto& t : tried) *lookedAt += (lookedAt->empty() ? "" : ", ") + t;
+  }
+  return result;
+}
+
+mesh::ImportResult importMeshIsolated(const std::string& path, const mesh::ImportOptions& options,
+                                      const Progress* progress) {
+  if (!readsWithAssimp(path, options)) return mesh::importMesh(path, options, progress);
+  std::string lookedAt, why;
+  const std::string worker = findImportWorker(&lookedAt);
+  if (!worker.empty()) {
+    mesh::ImportResult r;
+    if (runWorker(worker, path, options, progress, r, why) == Outcome::Done) return r;
+  } else {
+    why = std::string(kWorkerName) + " not found" + (lookedAt.empty() ? "" : " (looked at " + lookedAt + ")");
+  }
+  mesh::ImportResult r = mesh::importMesh(path, options, progress);
+  r.report.warnings.push_back(path + ": read inside this process, not in the import worker (" + why +
+                              "); a reader crash on a damaged file would end the program");
+  return r;
+}
+
+}  // namespace hs::scene

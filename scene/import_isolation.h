@@ -1,0 +1,33 @@
+#pragma once
+// Reading mesh files that go through Assimp in a process of their own.
+// Debian 12's Assimp 5.2.5 crashes (double free, abort, segfault) on some
+// damaged files; in the editor that would end the session with its unsaved
+// work. So every file importMesh would hand to Assimp (FBX, PLY, glTF, DAE,
+// 3DS, STL, ...) is read by `hybridscape-import-worker`
+// (tools/import_worker), which sends back the mesh with its textures, the
+// report and progress (scene/import_wire.h). A crash becomes an error naming
+// the file; Cancel kills the worker. The own OBJ reader and
+// importObjFromMemory stay in this process. docs/meshes.md, "Isolation".
+#include <string>
+
+#include "mesh/mesh_import.h"
+#include "mesh/progress.h"
+
+namespace hs::scene {
+
+// True if importMesh would read `path` with Assimp (not the own OBJ reader):
+// such files are read by the worker.
+bool readsWithAssimp(const std::string& path, const mesh::ImportOptions& options);
+
+// The worker program: $HS_IMPORT_WORKER when set (and not empty), else the
+// one built with this program, else one beside the running executable.
+// Empty if none is there; `lookedAt` then lists where it looked.
+std::string findImportWorker(std::string* lookedAt = nullptr);
+
+// mesh::importMesh, with the files Assimp reads read by the worker. Without a
+// worker the file is read here, with a warning in the report saying so. The
+// report's `seconds` is the whole time, starting the worker included.
+mesh::ImportResult importMeshIsolated(const std::string& path, const mesh::ImportOptions& options,
+                                      const Progress* progress = nullptr);
+
+}  // namespace hs::scene

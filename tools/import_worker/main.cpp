@@ -1,0 +1,125 @@
+// hybridscape-import-worker: reads one mesh file with mesh::importMesh in a
+// process of its own, so a reader that crashes on a damaged file (Assimp
+// 5.2.5 does: double free, abort, segfault) takes only this process down.
+// Started by scene/import_isolation.cpp; the protocol is scene/import_wire.h.
+//
+//   hybridscape-import-worker (--result-fd N | --out FILE) [--watch-stdin]
+//                             [import options] -- <mesh-file>
+//
+// Progress goes to stdout as "progress <fraction> <stage>" lines; the result
+// (mesh, report, or the reader's error) to the descriptor or file. Exit code
+// 0 when a result was written (also for a file that could not be read: the
+// error is in the result), 2 for bad arguments, 3 if the result could not be
+// written. --watch-stdin: stop when stdin reaches its end (the parent closed
+// its side, or died), so no worker outlives the program that wanted it.
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "mesh/mesh_import.h"
+#include "scene/import_wire.h"
+
+namespace {
+
+int usage(const std::string& why) {
+  std::fprintf(stderr,
+               "hybridscape-import-worker: %s\n"
+               "usage: hybridscape-import-worker (--result-fd N | --out FILE) [--watch-stdin] [options] -- <mesh-file>\n"
+               "(started by Hybridscape to read a mesh in a process of its own)\n",
+               why.c_str());
+  return 2;
+}
+
+void writeAll(int fd, const std::string& s) {
+  size_t done = 0;
+  while (done < s.size()) {
+    const ssize_t n = ::write(fd, s.data() + done, s.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;  // the parent stopped listening; the import goes on
+    done += size_t(n);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // A crash here is expected now and then (that is why this process exists):
+  // no core file for it.
+  const rlimit noCore{0, 0};
+  setrlimit(RLIMIT_CORE, &noCore);
+
+  int resultFd = -1;
+  std::string outPath, path;
+  bool watchStdin = false;
+  hs::mesh::ImportOptions options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--") {
+      if (i + 2 != argc) return usage("expected exactly one file after --");
+      path = argv[i + 1];
+      break;
+    }
+    if (a == "--watch-stdin") {
+      watchStdin = true;
+      continue;
+    }
+    if (i + 1 >= argc) return usage(a + " needs a value");
+    const std::string v = argv[++i];
+    std::string error;
+    if (a == "--result-fd") {
+      char* end = nullptr;
+      resultFd = int(std::strtol(v.c_str(), &end, 10));
+      if (!end || *end || resultFd < 0) return usage("--result-fd: bad value '" + v + "'");
+    } else if (a == "--out") {
+      outPath = v;
+    } else if (!hs::scene::parseImportWorkerOptionArgument(a, v, options, error)) {
+      return usage(error);
+    }
+  }
+  if (path.empty()) return usage("no mesh file given");
+  if ((resultFd < 0) == outPath.empty()) return usage("give one of --result-fd and --out");
+
+  if (watchStdin)
+    std::thread([] {
+      char buf[256];
+      for (;;) {
+        const ssize_t n = ::read(STDIN_FILENO, buf, sizeof buf);
+        if (n == 0 || (n < 0 && errno != EINTR)) _exit(4);
+      }
+    }).detach();
+
+  // Progress lines: only changes of 0.5% or a new stage, whole lines at once.
+  std::mutex mutex;
+  int lastPermille = -10;
+  std::string lastStage;
+  hs::Progress progress([&](double f, std::string_view stage) {
+    std::lock_guard lock(mutex);
+    const int permille = int(f * 1000.0);
+    if (permille - lastPermille < 5 && stage == lastStage) return;
+    lastPermille = permille;
+    lastStage = stage;
+    writeAll(STDOUT_FILENO, hs::scene::importProgressLine(f, stage));
+  });
+
+  const hs::mesh::ImportResult result = hs::mesh::importMesh(path, options, &progress);
+
+  std::FILE* out = resultFd >= 0 ? fdopen(resultFd, "wb") : std::fopen(outPath.c_str(), "wb");
+  if (!out) {
+    std::fprintf(stderr, "hybridscape-import-worker: cannot write the result: %s\n", std::strerror(errno));
+    return 3;
+  }
+  const bool written = hs::scene::writeImportResult(out, result);
+  const int savedErrno = errno;
+  if (std::fclose(out) != 0 || !written) {
+    std::fprintf(stderr, "hybridscape-import-worker: cannot write the result: %s\n", std::strerror(savedErrno));
+    return 3;
+  }
+  return 0;
+}
