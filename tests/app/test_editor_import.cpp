@@ -6,6 +6,7 @@
 // report; undo removes everything the import added; a file that crashes
 // the reader costs an error message, not the session.
 #include <QApplication>
+#include <QPointer>
 #include <QPushButton>
 #include <QRegularExpression>
 #include <QSignalSpy>
@@ -169,9 +170,14 @@ class EditorImportTest : public QObject {
     QVERIFY(w_->messages()->lastText().contains("2 LOD levels"));
 
     // The Properties panel reopens it (Mesh section).
-    auto* again = w_->properties()->findChild<QPushButton*>("meshReport");
+    // Looked up afresh until it is shown: the panel rebuilds its sections
+    // after the import's selection change, and under load that can come late.
+    QPointer<QPushButton> again;
+    QTRY_VERIFY_WITH_TIMEOUT((again = w_->properties()->findChild<QPushButton*>("meshReport")) && again->isEnabled() &&
+                                 again->isVisible(),
+                             10000);
+    QTest::qWait(50);  // let a pending rebuild run before the click
     QVERIFY(again);
-    QTRY_VERIFY(again->isEnabled());
     QTest::mouseClick(again, Qt::LeftButton);
     QTRY_COMPARE(reportWindows().size(), 1);
     QCOMPARE(reportWindows().front()->json(), a->processReportJson);
