@@ -90,7 +90,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   resize(std::min(1600, screen.width() * 9 / 10), std::min(1000, screen.height() * 9 / 10));
   // Side widths again now that every dock is in (the timeline's came later).
   if (auto* o = findChild<QDockWidget*>("outlinerDock"), *p = findChild<QDockWidget*>("propertiesDock"); o && p)
-    resizeDocks({o, p}, {270, 360}, Qt::Horizontal);
+    resizeDocks({o, p}, {260, 400}, Qt::Horizontal);
+  if (auto* p = findChild<QDockWidget*>("propertiesDock"), *st = findChild<QDockWidget*>("settingsDock"); p && st)
+    resizeDocks({p, st}, {600, 260}, Qt::Vertical);  // Properties is the one that grows with a selection
   if (auto* settings = findChild<QDockWidget*>("settingsDock")) settings->raise();  // of the tabs below Properties
   defaultState_ = saveState();
   restoreLayout();
