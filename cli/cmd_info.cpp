@@ -12,6 +12,7 @@
 #include "scene/mesh_report_text.h"
 #include "scene/scene_json.h"
 #include "scene/world_bounds.h"
+#include "sequencer/key_edit.h"
 
 namespace hs::cli {
 namespace {
@@ -47,6 +48,75 @@ void printLods(const scene::MeshAsset& a) {
     std::printf("; %zu: %zu triangles, hausdorff_m %.4g", k + 1, a.lods[k].data ? a.lods[k].data->triangleCount() : 0,
                 a.lods[k].hausdorff);
   std::printf("\n");
+}
+
+// Every animated property of every entity: tracks, and a camera path as
+// one more (its "path.progress" keys).
+size_t trackCount(const sequencer::Sequence& q) {
+  size_t n = 0;
+  for (const sequencer::Binding& b : q.bindings) n += b.tracks.size() + (b.path ? 1 : 0);
+  return n;
+}
+
+std::string entityName(const scene::SceneState& s, const sequencer::Binding& b) {
+  const scene::Entity* e = s.find(b.entity);
+  return e ? e->name : b.label + " [missing]";
+}
+
+QJsonObject sequenceJson(const scene::SceneState& s) {
+  const sequencer::Sequence& q = s.sequence;
+  QJsonObject o;
+  o["fps"] = q.rate.fps();
+  o["fps_rational"] = QString::number(q.rate.num) + "/" + QString::number(q.rate.den);
+  o["start_frame"] = double(q.startFrame);
+  o["end_frame"] = double(q.endFrame);
+  o["duration_s"] = double(q.endFrame - q.startFrame + 1) / q.rate.fps();
+  return o;
+}
+
+QJsonArray tracksJson(const scene::SceneState& s) {
+  QJsonArray out;
+  for (const sequencer::Binding& b : s.sequence.bindings) {
+    auto add = [&](const std::string& property, const std::vector<double>& times, QJsonObject t) {
+      t["entity_id"] = double(b.entity);
+      t["entity"] = QString::fromStdString(entityName(s, b));
+      t["property"] = QString::fromStdString(property);
+      t["keys"] = double(times.size());
+      if (!times.empty()) {
+        t["first_key_s"] = times.front();
+        t["last_key_s"] = times.back();
+      }
+      out.append(t);
+    };
+    if (b.path) {
+      std::vector<double> times;
+      for (const auto& k : b.path->progress.keys) times.push_back(k.time);
+      QJsonObject t;
+      t["path_points"] = double(b.path->path.points.size());
+      add("path.progress", times, t);
+    }
+    for (const sequencer::Track& t : b.tracks) {
+      const std::string& property = sequencer::trackProperty(t);
+      add(property, sequencer::keyTimes(s.sequence, b.entity, property), {});
+    }
+  }
+  return out;
+}
+
+void printTracks(const scene::SceneState& s) {
+  const sequencer::Sequence& q = s.sequence;
+  if (q.bindings.empty()) return;
+  std::printf("timeline: %.6g fps, frames %lld-%lld (%.2f s)\n", q.rate.fps(), static_cast<long long>(q.startFrame),
+              static_cast<long long>(q.endFrame), double(q.endFrame - q.startFrame + 1) / q.rate.fps());
+  for (const QJsonValue& v : tracksJson(s)) {
+    const QJsonObject t = v.toObject();
+    std::printf("  %s  %s: %d key%s", t["entity"].toString().toUtf8().constData(),
+                t["property"].toString().toUtf8().constData(), t["keys"].toInt(), t["keys"].toInt() == 1 ? "" : "s");
+    if (t.contains("first_key_s"))
+      std::printf(" (%.3f..%.3f s)", t["first_key_s"].toDouble(), t["last_key_s"].toDouble());
+    if (t.contains("path_points")) std::printf(", path through %d points", t["path_points"].toInt());
+    std::printf("\n");
+  }
 }
 
 QJsonObject infoJson(const std::string& path, const scene::SceneState& s) {
@@ -95,7 +165,8 @@ QJsonObject infoJson(const std::string& path, const scene::SceneState& s) {
   for (scene::EntityId id : s.cameras()) cameras.append(QString::fromStdString(s.find(id)->name));
   o["cameras"] = cameras;
   o["terrains"] = terrainInfoJson(s);
-  o["tracks"] = QJsonArray();    // and tracks with the sequencer
+  o["sequence"] = sequenceJson(s);
+  o["tracks"] = tracksJson(s);
   const scene::WorldBox box = scene::worldBounds(s);
   QJsonObject bounds;
   if (!box.empty) {
@@ -142,8 +213,9 @@ int runInfo(int argc, char** argv) {
     return 0;
   }
   std::printf("%s (scene format %d)\n", path.c_str(), scene::sceneFileVersion(path));
-  std::printf("entities: %zu  mesh assets: %zu  cameras: %zu  terrains: %zu  tracks: 0\n", s->entities.size(),
-              s->assets.size(), s->cameras().size(), scene::terrainEntities(*s, false).size());
+  std::printf("entities: %zu  mesh assets: %zu  cameras: %zu  terrains: %zu  tracks: %zu\n", s->entities.size(),
+              s->assets.size(), s->cameras().size(), scene::terrainEntities(*s, false).size(),
+              trackCount(s->sequence));
   const scene::WorldBox box = scene::worldBounds(*s);
   if (!box.empty) {
     const glm::dvec3 size = box.size();
@@ -163,6 +235,7 @@ int runInfo(int argc, char** argv) {
       std::printf("    processed: %s\n", summary.c_str());
   }
   printTerrainInfo(*s);
+  printTracks(*s);
   std::printf("hierarchy:\n");
   for (scene::EntityId r : s->roots) printTree(*s, r, 0);
   return 0;

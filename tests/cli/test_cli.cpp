@@ -16,6 +16,7 @@
 #include "file_bytes.h"
 #include "scene/hscene_file.h"
 #include "scene/scene_json.h"
+#include "sequencer/key_edit.h"
 
 using namespace hs;
 namespace fs = std::filesystem;
@@ -121,7 +122,7 @@ class TestCli : public QObject {
 
   void helpOnEveryCommand_data() {
     QTest::addColumn<QString>("command");
-    for (const char* c : {"new", "demo", "import", "info", "render", "set", "key", "sequence", "farm"})
+    for (const char* c : {"new", "demo", "import", "info", "render", "set", "key", "sequence", "path", "farm", "terrain"})
       QTest::newRow(c) << QString(c);
   }
   void helpOnEveryCommand() {
@@ -206,11 +207,32 @@ class TestCli : public QObject {
       QVERIFY(std::abs(bsize[k] - (bmax[k] - bmin[k])) < 1e-9);
       QVERIFY(bsize[k] < (vb.max[k] - vb.min[k]) * 1.5 + 0.5);  // a box around them, not far beyond
     }
+    // The timeline: the range, and every track (a camera path counts as its
+    // progress track) with its number of keys.
+    QCOMPARE(info["sequence"].toObject()["start_frame"].toInt(), int(s->sequence.startFrame));
+    QCOMPARE(info["sequence"].toObject()["end_frame"].toInt(), int(s->sequence.endFrame));
+    size_t expectedTracks = 0;
+    for (const sequencer::Binding& b : s->sequence.bindings) expectedTracks += b.tracks.size() + (b.path ? 1 : 0);
+    QVERIFY(expectedTracks >= 3);  // the demo's flight path, interaxial, the spinning bunny
+    const QJsonArray tracks = info["tracks"].toArray();
+    QCOMPARE(size_t(tracks.size()), expectedTracks);
+    for (const QJsonValue& v : tracks) {
+      const QJsonObject t = v.toObject();
+      const auto entity = scene::EntityId(t["entity_id"].toDouble());
+      QCOMPARE(t["entity"].toString().toStdString(), s->find(entity)->name);
+      const std::string property = t["property"].toString().toStdString();
+      const size_t keys = property == "path.progress"
+                              ? s->sequence.findBinding(entity)->path->progress.keys.size()
+                              : sequencer::keyTimes(s->sequence, entity, property).size();
+      QCOMPARE(size_t(t["keys"].toInt()), keys);
+    }
     // The text form names the same things.
     const Run text = cli({"info", demo_});
     QCOMPARE(text.code, 0);
     for (const auto& [id, e] : s->entities) QVERIFY(text.out.contains(QString::fromStdString(e.name)));
     QVERIFY(text.out.contains("69451 triangles"));
+    QVERIFY2(text.out.contains(QString("tracks: %1").arg(expectedTracks)), qPrintable(text.out));
+    QVERIFY(text.out.contains("transform.rotation: 13 keys"));
   }
 
   void importWithOptions() {
