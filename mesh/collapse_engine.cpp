@@ -167,20 +167,66 @@ void CollapseEngine::push(const Entry& e) {
   siftUp(heap_.size() - 1);
 }
 
-void CollapseEngine::seedList(const std::vector<uint32_t>& edges) {
+void CollapseEngine::seedRange(uint32_t begin, uint32_t end) {
   std::vector<Entry> entries;
-  entries.reserve(edges.size());
+  entries.reserve(end - begin);
   Entry e;
-  for (uint32_t edge : edges)
+  for (uint32_t edge = begin; edge < end; ++edge)
     if (entryFor(edge, e)) entries.push_back(e);
   seedEntries(std::move(entries));
 }
 
-void CollapseEngine::seedEntries(std::vector<Entry>&& entries) {
+void CollapseEngine::seedEntries(std::vector<Entry>&& entries, size_t heapTarget) {
   heap_ = std::move(entries);
-  for (const Entry& e : heap_) s_.estate[e.edge()] = kQueued;
+  rest_.clear();
+  restAbove_ = UINT64_MAX;
+  // |=: entries taken over from the regions' queues may be dirty (their
+  // keys stale), and stay so until they reach the top.
+  for (const Entry& e : heap_) s_.estate[e.edge()] |= kQueued;
+  if (heapTarget < heap_.size() / 2) {
+    // The split: the heapTarget-th smallest of a sample (deterministic).
+    const size_t stride = std::max<size_t>(1, heap_.size() / 65536);
+    std::vector<uint64_t> sample;
+    sample.reserve(heap_.size() / stride + 1);
+    for (size_t i = stride / 2; i < heap_.size(); i += stride) sample.push_back(heap_[i].packed);
+    const size_t k = std::min(sample.size() - 1, heapTarget / stride);
+    std::nth_element(sample.begin(), sample.begin() + long(k), sample.end());
+    restAbove_ = sample[k];
+    size_t n = 0;
+    for (const Entry& e : heap_) {
+      if (e.packed <= restAbove_)
+        heap_[n++] = e;
+      else
+        rest_.push_back(e);
+    }
+    heap_.resize(n);
+  }
   for (size_t i = heap_.size() / 4 + 1; i-- > 0;)
     if (i < heap_.size()) siftDown(i);
+}
+
+void CollapseEngine::mergeRest() {
+  // Every entry left in the heap is above restAbove_ now, as is all of
+  // rest_: one heap again.
+  for (const Entry& e : rest_) {
+    if (s_.edgeStatus[e.edge()].deleted()) {
+      s_.estate[e.edge()] = 0;
+      tombstones_ -= std::min<size_t>(tombstones_, 1);
+    } else {
+      heap_.push_back(e);
+    }
+  }
+  rest_ = {};
+  restAbove_ = UINT64_MAX;
+  for (size_t i = heap_.size() / 4 + 1; i-- > 0;)
+    if (i < heap_.size()) siftDown(i);
+}
+
+void CollapseEngine::appendLiveEntries(std::vector<Entry>& out) const {
+  for (const Entry& e : heap_)
+    if (!s_.edgeStatus[e.edge()].deleted()) out.push_back(e);
+  for (const Entry& e : rest_)
+    if (!s_.edgeStatus[e.edge()].deleted()) out.push_back(e);
 }
 
 bool CollapseEngine::topologyOk(const Plan& plan) {
@@ -478,7 +524,15 @@ void CollapseEngine::collapse(const Plan& plan, const uint32_t (&from)[2], const
 }
 
 void CollapseEngine::sampleKeys(size_t stride, std::vector<float>& out) const {
-  for (size_t i = 0; i < heap_.size(); i += stride) out.push_back(heap_[i].key());
+  // Entries of deleted edges are skipped: they are most of a busy queue's
+  // low keys (edges beside cheap collapses), and counting them set the
+  // thresholds far too low (100 rounds at 50% on the scan tile).
+  // Starting mid-stride: index 0 is the queue's minimum, and with 64
+  // queues their 64 minima, each standing for `stride` entries, were the
+  // whole low end of the sample (thresholds crept up by one collapse a
+  // region per round).
+  for (size_t i = stride / 2; i < heap_.size(); i += stride)
+    if (!s_.edgeStatus[heap_[i].edge()].deleted()) out.push_back(heap_[i].key());
 }
 
 bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimit, const Progress* progress,
@@ -492,7 +546,10 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
     ~WriteBack() { to = from; }
   } writeBack{liveFaces, liveFacesOut};
   size_t sinceReport = 0;
-  while (liveFaces > targetFaces && !heap_.empty() && heap_[0].key() <= keyLimit) {
+  for (;;) {
+    if (liveFaces <= targetFaces) break;
+    if (!rest_.empty() && (heap_.empty() || heap_[0].packed > restAbove_)) mergeRest();
+    if (heap_.empty() || heap_[0].key() > keyLimit) break;
     const uint32_t edge = heap_[0].edge();
     ++stats_.tops;
     if (s_.edgeStatus[edge].deleted()) {
@@ -549,6 +606,7 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
         reportProgress(progress, 0.1 + 0.8 * std::min(1.0, double(total) / double(expectedTotal)), "Decimating");
     }
   }
+  stoppedAtTarget_ = liveFaces <= targetFaces;
   done.fetch_add(sinceReport);
   return !isCancelled(progress);
 }

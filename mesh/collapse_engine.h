@@ -38,8 +38,8 @@ class CollapseEngine {
   // region: the region this engine may touch, or kSharedRegion for all.
   CollapseEngine(DecimationState& state, uint16_t region);
 
-  // Queues the listed edges that this engine may collapse.
-  void seedList(const std::vector<uint32_t>& edges);
+  // Queues the edges of [begin, end) that this engine may collapse.
+  void seedRange(uint32_t begin, uint32_t end);
   // Queues prepared entries (the border pass evaluates in parallel first).
   // Key and edge packed in one integer: a non-negative float's bits order
   // like the float, so one unsigned compare orders by key and then by edge
@@ -61,7 +61,18 @@ class CollapseEngine {
     uint32_t edge() const { return uint32_t(packed); }
   };
   static constexpr uint8_t kQueued = 1, kDirty = 2;
-  void seedEntries(std::vector<Entry>&& entries);
+  // With heapTarget set and many more entries than that, only about the
+  // heapTarget cheapest go into the heap and the rest wait beside it until
+  // the heap's top passes them (then they are merged in): the same order
+  // of collapses as one heap, but the sifts stay in a heap that fits the
+  // cache (the border pass of a 5M-triangle mesh queues millions of edges
+  // and collapses a few per cent of them).
+  void seedEntries(std::vector<Entry>&& entries, size_t heapTarget = SIZE_MAX);
+  // Appends the queued entries whose edges are still alive, dirty ones
+  // with their stale keys (re-evaluated when they reach the top, as in the
+  // engine that queued them): the border pass takes them over instead of
+  // evaluating those edges again.
+  void appendLiveEntries(std::vector<Entry>& out) const;
   // Evaluates one edge into an entry; false if it cannot collapse at all.
   bool entryFor(uint32_t edge, Entry& out) const;
 
@@ -75,6 +86,10 @@ class CollapseEngine {
   // Every `stride`-th key in the queue (for choosing a shared threshold).
   void sampleKeys(size_t stride, std::vector<float>& out) const;
   size_t queued() const { return heap_.size(); }
+  // Whether the last run() stopped at its face target (not at keyLimit or
+  // an empty queue): such a queue still holds keys below the limit that
+  // this round was not allowed to take.
+  bool stoppedAtTarget() const { return stoppedAtTarget_; }
 
   const EngineStats& stats() const { return stats_; }
 
@@ -105,13 +120,17 @@ class CollapseEngine {
   void siftDown(size_t i);
   void siftUp(size_t i);
   void popTop();
+  void mergeRest();
 
   DecimationState& s_;
   DecimationMesh& m_;
   uint16_t region_;
   std::vector<Entry> heap_;
+  std::vector<Entry> rest_;             // entries above restAbove_, not yet in the heap
+  uint64_t restAbove_ = UINT64_MAX;
   std::vector<int> ring_;  // scratch for the link condition
   size_t tombstones_ = 0;  // queued entries of deleted edges
+  bool stoppedAtTarget_ = false;
   EngineStats stats_;
 };
 

@@ -76,7 +76,21 @@ struct Setup {
   std::vector<uint32_t> omFaceOrig;  // OpenMesh face -> input face
   std::vector<uint32_t> wedgeRep;    // wedge -> an input vertex with its position and UV
   size_t degenerate = 0;
+  size_t regions = 1;                // vd[].region is set for this partition (see regionCount)
 };
+
+// Regions: equal runs of the Morton-ordered faces. Their number depends on
+// the mesh only, so the output does not depend on the thread count. At
+// most 64: more regions than that only lengthen the border strips (and the
+// serial border pass that finishes them) with no more cores to use; 64
+// still balances well over the threads (measured on the 5M scan tile: 200
+// regions of 25k faces spent 2.2 s in the border pass at 50%, 64 regions
+// 0.65 s).
+size_t regionCount(size_t nf, const DecimateOptions& opt) {
+  const size_t per = std::max<size_t>(1000, opt.facesPerRegion);
+  return std::clamp<size_t>((nf + per / 2) / per, 1, 64);
+}
+inline uint16_t regionOfFace(size_t f, size_t regions, size_t nf) { return uint16_t(f * regions / nf); }
 
 // Welds, orders spatially, splits non-manifold spots and builds the
 // OpenMesh mesh plus every side array. Returns false with `error` set.
@@ -130,27 +144,67 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   radixSortByKey(order, 30);
   traceMark("morton sort");
   const size_t nf = order.size();
+  std::vector<uint32_t> posOfOm, firstCorner;
   if (nf == 0) {
     error = "every face is degenerate (two corners at the same point); nothing to decimate";
     return false;
   }
 
+  su.regions = regionCount(nf, opt);
+
   // Vertices numbered by first use in that order.
-  std::vector<uint32_t> omOfPos(nPos, UINT32_MAX), posOfOm;
-  posOfOm.reserve(nPos);
-  std::vector<uint32_t> tris(nf * 3), wedges(nf * 3);
+  // The corner where each vertex is numbered is its first corner, which
+  // gives it its outgoing halfedge in buildDecimationMesh for free. In
+  // parallel, the same numbers as one pass in corner order: each position
+  // finds its first corner (an atomic minimum), the first corners are
+  // counted per range and numbered in order, then every corner looks its
+  // vertex up.
+  const size_t nc = nf * 3;
+  std::vector<uint32_t> tris(nc), wedges(nc);
   su.omFaceOrig.resize(nf);
-  for (size_t i = 0; i < nf; ++i) {
-    const uint32_t f = uint32_t(order[i]);
-    su.omFaceOrig[i] = f;
-    for (size_t k = 0; k < 3; ++k) {
-      const uint32_t iv = in.indices[size_t(f) * 3 + k], p = posOf[iv];
-      if (omOfPos[p] == UINT32_MAX) omOfPos[p] = uint32_t(posOfOm.size()), posOfOm.push_back(p);
-      tris[i * 3 + k] = omOfPos[p];
-      wedges[i * 3 + k] = wedgeOf[iv];
-    }
+  {
+    const auto firstOfPos = std::make_unique_for_overwrite<std::atomic<uint32_t>[]>(nPos);
+    parallelRanges(nPos, threads, [&](size_t b, size_t e, unsigned) {
+      for (size_t p = b; p < e; ++p) firstOfPos[p].store(UINT32_MAX, std::memory_order_relaxed);
+    });
+    parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
+      for (size_t i = b; i < e; ++i) {
+        const uint32_t f = uint32_t(order[i]);
+        su.omFaceOrig[i] = f;
+        for (size_t k = 0; k < 3; ++k) {
+          const uint32_t iv = in.indices[size_t(f) * 3 + k], p = posOf[iv], c = uint32_t(i * 3 + k);
+          tris[c] = p;  // a position for now
+          wedges[c] = wedgeOf[iv];
+          uint32_t cur = firstOfPos[p].load(std::memory_order_relaxed);
+          while (c < cur && !firstOfPos[p].compare_exchange_weak(cur, c, std::memory_order_relaxed)) {
+          }
+        }
+      }
+    });
+    order = {};
+    const unsigned workers = std::max(1u, threads);
+    std::vector<size_t> firsts(workers + 1, 0);
+    parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
+      size_t n = 0;
+      for (size_t c = b; c < e; ++c) n += firstOfPos[tris[c]].load(std::memory_order_relaxed) == c;
+      firsts[w + 1] = n;
+    }, 1);
+    for (unsigned w = 0; w < workers; ++w) firsts[w + 1] += firsts[w];
+    posOfOm.resize(firsts[workers]);
+    firstCorner.resize(firsts[workers]);
+    std::vector<uint32_t> omOfPos(nPos, UINT32_MAX);
+    parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
+      uint32_t next = uint32_t(firsts[w]);
+      for (size_t c = b; c < e; ++c) {
+        const uint32_t p = tris[c];
+        if (firstOfPos[p].load(std::memory_order_relaxed) == c)
+          omOfPos[p] = next, posOfOm[next] = p, firstCorner[next] = uint32_t(c), ++next;
+      }
+    }, 1);
+    parallelRanges(nc, threads, [&](size_t b, size_t e, unsigned) {
+      for (size_t c = b; c < e; ++c) tris[c] = omOfPos[tris[c]];
+    });
   }
-  order = {};
   uint32_t nv = uint32_t(posOfOm.size());
   traceMark("first-use numbering");
 
@@ -176,6 +230,8 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     }
     for (uint32_t from : copiedFrom) posOfOm.push_back(posOfOm[from]);
     nv = uint32_t(posOfOm.size());
+    firstCorner.assign(nv, UINT32_MAX);
+    for (size_t c = tris.size(); c-- > 0;) firstCorner[tris[c]] = uint32_t(c);
   }
 
   std::vector<OpenMesh::Vec3d> points(nv);
@@ -183,7 +239,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     const glm::dvec3 p = glm::dvec3(in.positions[posRep[posOfOm[v]]]) - st.center;
     points[v] = OpenMesh::Vec3d(p.x, p.y, p.z);
   }
-  buildDecimationMesh(tris, topo.twin, points, st.mesh, threads);
+  buildDecimationMesh(tris, topo.twin, points, st.mesh, threads, firstCorner);
   traceMark("buildDecimationMesh");
   st.bindArrays();
 
@@ -210,18 +266,9 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   // constrained edges, so vertices are independent and run in parallel.
   // Face planes are computed once (each serves three vertices).
   auto& m = st.mesh;
-  st.vd.reset(nv);
-  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
-    for (size_t v = b; v < e; ++v) {
-      auto& d = st.vd[v];
-      d.q = Quadric{};
-      d.p = glm::dvec3(points[v][0], points[v][1], points[v][2]);
-      d.cls = VertexClass::Free;
-      d.region = kSharedRegion;
-    }
-  });
-  points = {};
-  traceMark("vd init");
+  // Positions are read from `points` (24 bytes a vertex) until the vertex
+  // records are written, in one pass with their quadrics.
+  auto pointOf = [&](size_t v) { return glm::dvec3(points[v][0], points[v][1], points[v][2]); };
   struct Plane {
     glm::dvec3 n;
     double d, w;
@@ -229,8 +276,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   UninitArray<Plane> planes(nf);
   parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
     for (size_t f = b; f < e; ++f) {
-      const glm::dvec3 pa = st.point(int(st.fv[f * 3])), pb = st.point(int(st.fv[f * 3 + 1])),
-                       pc = st.point(int(st.fv[f * 3 + 2]));
+      const glm::dvec3 pa = pointOf(st.fv[f * 3]), pb = pointOf(st.fv[f * 3 + 1]), pc = pointOf(st.fv[f * 3 + 2]);
       const glm::dvec3 n = glm::cross(pb - pa, pc - pa);
       const double len = glm::length(n);
       // Weight sqrt(area), not area: the error then scales linearly with
@@ -246,31 +292,40 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   traceMark("planes");
   // Vertices whose corners all use one wedge and one material cannot end a
   // seam edge: only edges at a "mixed" vertex need the full seam test.
-  std::vector<uint8_t> mixed(nv, 0);
-  {
-    std::vector<uint32_t> firstWedge(nv, UINT32_MAX);
-    std::vector<uint16_t> firstMaterial(nv, 0);
-    for (size_t c = 0; c < st.fv.size(); ++c) {
-      const uint32_t v = st.fv[c];
-      if (firstWedge[v] == UINT32_MAX)
-        firstWedge[v] = st.fw[c], firstMaterial[v] = st.fmaterial[c / 3];
-      else if (firstWedge[v] != st.fw[c] || firstMaterial[v] != st.fmaterial[c / 3])
-        mixed[v] = 1;
+  // (Every corner against its vertex's first corner, in parallel: the
+  // stores all write 1, relaxed atomics keep that race defined.)
+  const auto mixed = std::make_unique<std::atomic<uint8_t>[]>(nv);
+  parallelRanges(st.fv.size(), threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t c = b; c < e; ++c) {
+      const uint32_t v = st.fv[c], fc = firstCorner[v];
+      if (st.fw[c] != st.fw[fc] || st.fmaterial[c / 3] != st.fmaterial[fc / 3]) mixed[v].store(1, std::memory_order_relaxed);
     }
-  }
+  });
+  firstCorner = {};
   std::atomic<size_t> nBoundary{0}, nSeam{0}, nFixed{0}, nLocked{0};
   traceMark("mixed");
+  // One pass writes each vertex's whole record: quadric, position, class,
+  // and its region of the partition (decimate() cuts the Morton order into
+  // su.regions equal runs; a vertex with faces in two is shared).
+  const size_t regions = su.regions;
+  st.vd.reset(nv);
   parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
     size_t cb = 0, cs = 0, cf = 0, cl = 0;
     for (size_t vi = b; vi < e; ++vi) {
       const VertexHandle v{int(vi)};
       const HalfedgeHandle start = m.halfedge_handle(v);
+      auto& d = st.vd[vi];
+      d.p = pointOf(vi);
+      d.region = kSharedRegion;
       if (!start.is_valid()) {
-        st.vd[vi].cls = VertexClass::Fixed;
+        d.q = Quadric{};
+        d.cls = VertexClass::Fixed;
         continue;
       }
-      const glm::dvec3 pv = st.point(int(vi));
+      const glm::dvec3 pv = d.p;
       int boundaryEdges = 0, seamEdges = 0;
+      uint16_t region = kSharedRegion;
+      bool shared = false;
       Quadric q{};
       HalfedgeHandle it = start;
       do {
@@ -278,17 +333,22 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
         if (f.is_valid()) {
           const Plane& pl = planes[size_t(f.idx())];
           if (pl.w > 0) q += Quadric::plane(pl.n, pl.d, pl.w);
+          const uint16_t fr = regionOfFace(size_t(f.idx()), regions, nf);
+          if (region == kSharedRegion) region = fr;
+          else if (fr != region) shared = true;
         }
         const HalfedgeHandle back = m.opposite_halfedge_handle(it);
         const EdgeKind kind = !f.is_valid() || !m.face_handle(back).is_valid() ? EdgeKind::Boundary
-                              : mixed[vi] || mixed[size_t(m.to_vertex_handle(it).idx())] ? st.edgeKind(it)
+                              : mixed[vi].load(std::memory_order_relaxed) ||
+                                        mixed[size_t(m.to_vertex_handle(it).idx())].load(std::memory_order_relaxed)
+                                    ? st.edgeKind(it)
                                                                                          : EdgeKind::Interior;
         if (kind != EdgeKind::Interior) {
           (kind == EdgeKind::Boundary ? boundaryEdges : seamEdges)++;
           // A plane through the edge, perpendicular to each face beside it:
           // moving the polyline sideways costs, so boundaries and seams are
           // simplified by how far they bend, not left to chance.
-          const glm::dvec3 edge = st.point(m.to_vertex_handle(it).idx()) - pv;
+          const glm::dvec3 edge = pointOf(size_t(m.to_vertex_handle(it).idx())) - pv;
           const double len2 = glm::dot(edge, edge);
           for (const FaceHandle g : {f, m.face_handle(m.opposite_halfedge_handle(it))}) {
             if (!g.is_valid()) continue;
@@ -302,7 +362,8 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
         }
         it = m.next_halfedge_handle(m.opposite_halfedge_handle(it));
       } while (it != start);
-      st.vd[vi].q = q;
+      d.q = q;
+      d.region = shared ? kSharedRegion : region;
 
       VertexClass c = VertexClass::Free;
       if (boundaryEdges == 2 && seamEdges == 0)
@@ -312,7 +373,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
       else if (boundaryEdges || seamEdges)
         c = VertexClass::Fixed;
       if (lockedPos[posOfOm[vi]]) c = VertexClass::Fixed, ++cl;
-      st.vd[vi].cls = c;
+      d.cls = c;
       cb += boundaryEdges > 0;
       cs += seamEdges > 0;
       cf += c == VertexClass::Fixed;
@@ -321,8 +382,10 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   });
   rep.boundaryVertices = nBoundary, rep.seamVertices = nSeam, rep.fixedVertices = nFixed;
   rep.lockedVertices = nLocked;
+  points = {};
   st.estate.assign(m.n_edges(), 0);
-  rep.degenerateFacesRemoved = su.degenerate;  traceMark("quadrics+classes");
+  rep.degenerateFacesRemoved = su.degenerate;
+  traceMark("quadrics+classes");
 
   return true;
 }
@@ -330,45 +393,78 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
 // Writes the surviving faces back in input order, grouped by the input's
 // submeshes, with vertices (wedges) in input order: at 100% the output is
 // the input.
-MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su, bool keepTextures) {
+MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su, bool keepTextures, unsigned threads) {
   MeshData out;
   out.origin = in.origin;
   out.materials = in.materials;
   if (keepTextures) out.textures = in.textures;
-  const auto& m = st.mesh;
-  const size_t nfIn = in.triangleCount();
-  std::vector<uint32_t> omOfInput(nfIn, UINT32_MAX);
-  for (size_t f = 0; f < m.n_faces(); ++f)
-    if (!m.status(FaceHandle(int(f))).deleted()) omOfInput[su.omFaceOrig[f]] = uint32_t(f);
-
+  const size_t nfIn = in.triangleCount(), nf = st.fv.size() / 3;
   const size_t nWedge = su.wedgeRep.size();
+  std::vector<uint32_t> omOfInput(nfIn, UINT32_MAX);
   std::vector<uint32_t> wedgeVertex(nWedge, UINT32_MAX);
-  for (size_t f = 0; f < m.n_faces(); ++f)
-    if (!m.status(FaceHandle(int(f))).deleted())
+  size_t liveFaces = 0;
+  for (size_t f = 0; f < nf; ++f)
+    if (!st.faceStatus[f].deleted()) {
+      omOfInput[su.omFaceOrig[f]] = uint32_t(f);
       for (size_t k = 0; k < 3; ++k) wedgeVertex[st.fw[f * 3 + k]] = st.fv[f * 3 + k];
+      ++liveFaces;
+    }
+  traceMark("output: faces");
   std::vector<uint32_t> outOf(nWedge, UINT32_MAX);
   const bool hasUv = !st.wedgeUv.empty();
-  for (size_t w = 0; w < nWedge; ++w) {
-    if (wedgeVertex[w] == UINT32_MAX) continue;
-    outOf[w] = uint32_t(out.positions.size());
-    out.positions.emplace_back(st.vd[wedgeVertex[w]].p + st.center);
-    if (hasUv) out.uvs.push_back(st.wedgeUv[w]);
-  }
+  uint32_t nOut = 0;
+  for (size_t w = 0; w < nWedge; ++w)
+    if (wedgeVertex[w] != UINT32_MAX) outOf[w] = nOut++;
+  out.positions.resize(nOut);
+  if (hasUv) out.uvs.resize(nOut);
+  parallelRanges(nWedge, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t w = b; w < e; ++w) {
+      if (outOf[w] == UINT32_MAX) continue;
+      out.positions[outOf[w]] = glm::vec3(st.vd[wedgeVertex[w]].p + st.center);
+      if (hasUv) out.uvs[outOf[w]] = st.wedgeUv[w];
+    }
+  });
+  traceMark("output: vertices");
 
   std::vector<Submesh> groups;
   const std::vector<uint16_t> group = faceGroups(in, groups);
-  std::vector<std::vector<uint32_t>> perGroup(groups.size());
-  for (size_t f = 0; f < nfIn; ++f) {
-    const uint32_t o = omOfInput[f];
-    if (o == UINT32_MAX) continue;
-    auto& dst = perGroup[group[f]];
-    for (size_t k = 0; k < 3; ++k) dst.push_back(outOf[st.fw[size_t(o) * 3 + k]]);
+  if (groups.size() == 1) {
+    // One group: straight into the index list, in parallel (each range
+    // starts where the live faces of the ranges before it end).
+    out.indices.resize(liveFaces * 3);
+    const unsigned workers = std::max(1u, threads);
+    std::vector<size_t> start(workers + 1, 0);
+    parallelRanges(nfIn, workers, [&](size_t b, size_t e, unsigned w) {
+      size_t n = 0;
+      for (size_t f = b; f < e; ++f) n += omOfInput[f] != UINT32_MAX;
+      start[w + 1] = n;
+    }, 1);
+    for (unsigned w = 0; w < workers; ++w) start[w + 1] += start[w];
+    parallelRanges(nfIn, workers, [&](size_t b, size_t e, unsigned w) {
+      size_t n = start[w] * 3;
+      for (size_t f = b; f < e; ++f) {
+        const uint32_t o = omOfInput[f];
+        if (o == UINT32_MAX) continue;
+        for (size_t k = 0; k < 3; ++k) out.indices[n++] = outOf[st.fw[size_t(o) * 3 + k]];
+      }
+    }, 1);
+    if (!out.indices.empty()) out.submeshes.push_back({0, uint32_t(out.indices.size()), groups[0].material});
+  } else {
+    std::vector<std::vector<uint32_t>> perGroup(groups.size());
+    for (size_t f = 0; f < nfIn; ++f) {
+      const uint32_t o = omOfInput[f];
+      if (o == UINT32_MAX) continue;
+      auto& dst = perGroup[group[f]];
+      for (size_t k = 0; k < 3; ++k) dst.push_back(outOf[st.fw[size_t(o) * 3 + k]]);
+    }
+    out.indices.reserve(liveFaces * 3);
+    for (size_t g = 0; g < groups.size(); ++g) {
+      if (perGroup[g].empty()) continue;
+      out.submeshes.push_back({uint32_t(out.indices.size()), uint32_t(perGroup[g].size()), groups[g].material});
+      out.indices.insert(out.indices.end(), perGroup[g].begin(), perGroup[g].end());
+    }
   }
-  for (size_t g = 0; g < groups.size(); ++g) {
-    if (perGroup[g].empty()) continue;
-    out.submeshes.push_back({uint32_t(out.indices.size()), uint32_t(perGroup[g].size()), groups[g].material});
-    out.indices.insert(out.indices.end(), perGroup[g].begin(), perGroup[g].end());
-  }
+  traceMark("output: indices");
   computeVertexNormals(out);
   return out;
 }
@@ -437,15 +533,8 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
     return result;
   }
 
-  // Regions: equal runs of the Morton-ordered faces. Their number depends on
-  // the mesh only, so the output does not depend on the thread count.
-  const size_t per = std::max<size_t>(1000, opt.facesPerRegion);
-  // At most 64: more regions than that only lengthen the border strips
-  // (and the serial border pass that finishes them) with no more cores to
-  // use; 64 still balances well over the threads (measured on the 5M scan
-  // tile: 200 regions of 25k faces spent 2.2 s in the border pass at 50%,
-  // 64 regions 0.65 s).
-  const size_t regions = std::clamp<size_t>((nf + per / 2) / per, 1, 64);
+  // Regions (regionCount): the setup already gave every vertex its region.
+  const size_t regions = su.regions;
   rep.regions = unsigned(regions);
   const bool countTarget = target > 0;
   std::atomic<size_t> done{0};
@@ -453,8 +542,10 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   std::atomic<bool> cancelled{false};
   std::vector<EngineStats> stats;
   size_t liveFaces = nf;
-  st.fregion.resize(nf);
   const auto t1 = Clock::now();
+  // The regions' engines outlive their rounds: the border pass takes over
+  // their queues.
+  std::vector<std::unique_ptr<CollapseEngine>> engines;
 
   // Regions decimate in parallel, in rounds sharing one error threshold:
   // within a round every region runs its own greedy queue up to the
@@ -474,32 +565,18 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   // collapse can repair. The serial pass below then finishes with one
   // queue over everything.
   constexpr size_t kMinFacesPerRegion = 3000;
+  // What the rounds leave to the serial pass beyond the strips: one
+  // percent of the faces; a quarter of that on large meshes when the
+  // target keeps a quarter or more (the regions' floors are then far away
+  // and the serial pass is most of what is left to save: 0.12 s of 0.36 at
+  // 50% on the 5M scan tile, same Hausdorff; on the bunny the extra rounds
+  // cost more than they save). Below a quarter, less slack let late rounds
+  // stop regions at their floors instead of one error level: at 1% on the
+  // scan tile, 0.5% slack gave 1.9x the Hausdorff, 0.25% 6x.
+  const size_t slack = target * 4 >= nf && nf >= 1000000 ? nf / 400 : nf / 100;
   auto runPartition = [&]() {
-    parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
-      for (size_t f = b; f < e; ++f) st.fregion[f] = uint16_t(f * regions / nf);
-    });
-    parallelRanges(m.n_vertices(), threads, [&](size_t b, size_t e, unsigned) {
-      for (size_t vi = b; vi < e; ++vi) {
-        const VertexHandle vh{int(vi)};
-        st.vd[vi].region = kSharedRegion;
-        if (st.vertexStatus[vi].deleted()) continue;
-        const HalfedgeHandle start = m.halfedge_handle(vh);
-        if (!start.is_valid()) continue;
-        uint16_t r = kSharedRegion;
-        bool shared = false;
-        HalfedgeHandle it = start;
-        do {
-          const FaceHandle f = m.face_handle(it);
-          if (f.is_valid()) {
-            const uint16_t fr = st.fregion[size_t(f.idx())];
-            if (r == kSharedRegion) r = fr;
-            else if (fr != r) shared = true;
-          }
-          it = m.next_halfedge_handle(m.opposite_halfedge_handle(it));
-        } while (it != start);
-        st.vd[vi].region = shared ? kSharedRegion : r;
-      }
-    });
+    // Vertex regions were set by the setup's vertex pass (nothing has
+    // collapsed yet: the partition is made once, before any round).
     // Per region, in parallel: its edges (an edge inside a region has both
     // faces there, so its owning face is in the region's face run, and
     // edge ids follow faces: bisect for the run's edges), its live faces,
@@ -519,16 +596,14 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
     };
     std::vector<size_t> edgeStart(regions + 1);
     for (size_t r = 0; r <= regions; ++r) edgeStart[r] = edgeBegin(r);
-    std::vector<std::vector<uint32_t>> edgesOf(regions);
     std::vector<size_t> live(regions, 0), stripOf(regions, 0);
+    std::fill(st.estate.begin(), st.estate.end(), uint8_t(0));
+    engines.resize(regions);
+    // One task a region: its engine queues the run's edges it may collapse
+    // (both ends its own: entryFor's test), and counts its faces.
     parallelTasks(regions, threads, [&](size_t r, unsigned) {
-      for (size_t e = edgeStart[r]; e < edgeStart[r + 1]; ++e) {
-        if (st.edgeStatus[e].deleted()) continue;
-        const HalfedgeHandle h{int(2 * e)};
-        if (st.vd[size_t(m.to_vertex_handle(h).idx())].region == r &&
-            st.vd[size_t(m.from_vertex_handle(h).idx())].region == r)
-          edgesOf[r].push_back(uint32_t(e));
-      }
+      engines[r] = std::make_unique<CollapseEngine>(st, uint16_t(r));
+      engines[r]->seedRange(uint32_t(edgeStart[r]), uint32_t(edgeStart[r + 1]));
       for (size_t f = faceBegin(r); f < faceBegin(r + 1); ++f) {
         if (st.faceStatus[f].deleted()) continue;
         ++live[r];
@@ -543,15 +618,7 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
     for (size_t r = 0; r < regions; ++r) strip += stripOf[r], alive += live[r];
     const double keepShare = alive > 0 ? double(target) / double(alive) : 1.0;
     const size_t stopAt = std::max(target + size_t(double(strip) * (1.0 - keepShare)), regions * kMinFacesPerRegion);
-    std::fill(st.estate.begin(), st.estate.end(), uint8_t(0));
-    traceMark("regions: partition");
-    std::vector<std::unique_ptr<CollapseEngine>> engines(regions);
-    parallelTasks(regions, threads, [&](size_t r, unsigned) {
-      engines[r] = std::make_unique<CollapseEngine>(st, uint16_t(r));
-      engines[r]->seedList(edgesOf[r]);
-    });
-    edgesOf = {};
-    traceMark("regions: seed");
+    traceMark("regions: partition+seed");
     auto total = [&] {
       size_t n = 0;
       for (size_t x : live) n += x;
@@ -586,7 +653,7 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
       // them at proportional shares instead of one error level (measured
       // on the 5M scan tile at 1%: leaving half a percent gave 1.8x the
       // Hausdorff and 2.4x the time of leaving one).
-      if (cancelled || rep.rounds >= 100 || (countTarget && now <= stopAt + nf / 100)) {
+      if (cancelled || rep.rounds >= 100 || (countTarget && now <= stopAt + slack)) {
         finished = true;
         return;
       }
@@ -599,17 +666,39 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
         }
         keys.clear();
         const size_t stride = std::max<size_t>(1, queued / 4096);
-        for (const auto& e : engines) e->sampleKeys(stride, keys);
+        // Queues of regions held at their floor last round still hold keys
+        // under the old threshold that only the floor kept: sampled, they
+        // pinned the threshold where the other regions had nothing left
+        // (dozens of rounds removing almost nothing at 50% on the scan
+        // tile). The threshold comes from the regions that ran out of keys.
+        for (const auto& e : engines)
+          if (rep.rounds == 0 || !e->stoppedAtTarget()) e->sampleKeys(stride, keys);
+        if (keys.empty())
+          for (const auto& e : engines) e->sampleKeys(stride, keys);
         const double remaining = double(now - stopAt) / 2.0;  // collapses
         // Half of what is left, scaled up by how short the last round fell.
         // Larger steps overshoot: regions then stop at their proportional
         // shares instead of at one error level (measured on the scan tile:
-        // 0.7 of the rest gave 3x the Hausdorff at 5%).
-        wanted = std::min(remaining, 0.5 * remaining / std::max(effectiveness, 0.05));
-        const size_t k = std::min(keys.size() - 1, size_t(wanted / double(queued) * double(keys.size())));
+        // 0.7 of the rest gave 3x the Hausdorff at 5%). The scale-up may
+        // ask for up to 1.6x the rest: stale (dirty) keys below the
+        // threshold make a round achieve a fifth or so of what it asks, and
+        // a cap of 1x took 20-22 rounds at 1-5% (bunny and scan tile), 1.6x
+        // 12-14 with the same Hausdorff on the tile (3% more at 1% on the
+        // bunny); 2.5x took 7-9 but had 16% more Hausdorff at 1% on the
+        // tile.
+        wanted = std::min(1.6 * remaining, 0.5 * remaining / std::max(effectiveness, 0.05));
+        if (keys.empty()) {
+          finished = true;
+          return;
+        }
+        // Each sample stands for `stride` live entries.
+        const size_t k = std::min(keys.size() - 1, size_t(wanted / double(stride)));
         std::nth_element(keys.begin(), keys.begin() + long(k), keys.end());
         limit = keys[k];
       }  // else maxError alone: one round, everything within it, everywhere
+      if (gTrace && gTrace->on && std::getenv("HS_DECIMATE_ROUNDS"))
+        std::fprintf(stderr, "  round %u: live %zu stopAt %zu eff %.3f wanted %.0f limit %g keys %zu\n", rep.rounds, now,
+                     stopAt, effectiveness, wanted, double(limit), keys.size());
       roundStart = now;
       nextRegion = 0;
       ++rep.rounds;
@@ -667,19 +756,36 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   // of regions' own edges are still wanted there.
   const auto t2 = Clock::now();
   if (regions > 1 || liveFaces > target) {
-    std::fill(st.estate.begin(), st.estate.end(), uint8_t(0));
     CollapseEngine border(st, kSharedRegion);
-    std::vector<std::vector<CollapseEngine::Entry>> parts(threads);
+    // Every live edge that may collapse, as one queue. The regions' queued
+    // entries are taken over as they are, dirty ones with their stale keys
+    // (re-evaluated when they reach the top, as in the rounds); only the
+    // rest is evaluated: edges of the strips and those popped and refused.
+    // (Evaluating every edge afresh cost 0.25 s of 2 cores at 50% on the
+    // 5M scan tile, mostly for edges that never reach the top.)
+    std::vector<std::vector<CollapseEngine::Entry>> parts(threads + engines.size());
+    parallelTasks(engines.size(), threads, [&](size_t r, unsigned) { engines[r]->appendLiveEntries(parts[threads + r]); });
     parallelRanges(ne, threads, [&](size_t b, size_t e, unsigned w) {
       CollapseEngine::Entry entry;
-      for (size_t edge = b; edge < e; ++edge)
+      for (size_t edge = b; edge < e; ++edge) {
+        const uint8_t state = st.estate[edge];
+        if ((state & CollapseEngine::kQueued) && !st.edgeStatus[edge].deleted()) continue;  // taken over
+        st.estate[edge] = 0;
         if (border.entryFor(uint32_t(edge), entry)) parts[w].push_back(entry);
+      }
     });
+    engines.clear();
+    size_t count = 0;
+    for (auto& p : parts) count += p.size();
     std::vector<CollapseEngine::Entry> all;
+    all.reserve(count);
     for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
     parts = {};
     traceMark("border: evaluate");
-    border.seedEntries(std::move(all));
+    // The heap holds about 8x the collapses still to make; the rest waits
+    // beside it (merged in only if the heap's top passes it).
+    const size_t toGo = liveFaces > target ? (liveFaces - target) / 2 : 0;
+    border.seedEntries(std::move(all), std::max<size_t>(65536, 8 * toGo));
     traceMark("border: heapify");
     if (!border.run(liveFaces, target, HUGE_VALF, progress, done, expected, true)) {
       result.cancelled = true;
@@ -706,7 +812,7 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
 
   reportProgress(progress, 0.92, "Writing decimated mesh");
   const auto t3 = Clock::now();
-  result.mesh = extract(in, st, su, opt.copyTextures);
+  result.mesh = extract(in, st, su, opt.copyTextures, threads);
   rep.trianglesOut = result.mesh.triangleCount();
   rep.verticesOut = result.mesh.vertexCount();
   rep.targetReached = !countTarget || rep.trianglesOut <= target;

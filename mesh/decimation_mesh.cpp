@@ -6,7 +6,8 @@
 namespace hs::mesh {
 
 void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_t> twin,
-                         std::span<const OpenMesh::Vec3d> points, DecimationMesh& mesh, unsigned threads) {
+                         std::span<const OpenMesh::Vec3d> points, DecimationMesh& mesh, unsigned threads,
+                         std::span<const uint32_t> firstCorner) {
   using OpenMesh::FaceHandle;
   using OpenMesh::HalfedgeHandle;
   using OpenMesh::VertexHandle;
@@ -68,6 +69,17 @@ void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_
   // Outgoing halfedge per vertex: the boundary one where there is one (an
   // OpenMesh invariant), else the first corner in triangle order, so ring
   // iteration starts at the same place on every run.
+  if (firstCorner.size() == nv) {
+    parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
+      for (size_t v = b; v < e; ++v) {
+        const VertexHandle vh{int(v)};
+        const int out = boundaryOut[v] >= 0 ? boundaryOut[v] : firstCorner[v] < nc ? int(heOf[firstCorner[v]]) : -1;
+        mesh.set_halfedge_handle(vh, HalfedgeHandle(out));
+        mesh.point(vh) = points[v];
+      }
+    });
+    return;
+  }
   std::vector<int> out(boundaryOut);
   for (size_t c = 0; c < nc; ++c)
     if (out[tris[c]] < 0) out[tris[c]] = int(heOf[c]);

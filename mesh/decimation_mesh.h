@@ -34,7 +34,12 @@ using DecimationMesh = OpenMesh::TriMesh_ArrayKernelT<DecimationTraits>;
 // Numbering: face f is triangle f; edge ids follow the first corner of each
 // edge in triangle order; halfedge 2e runs along that corner, 2e+1 against
 // it (inside the neighbouring face or on the boundary).
+//
+// firstCorner[v]: the first corner (in triangle order) that starts at v,
+// which gives an interior vertex its outgoing halfedge; empty to have it
+// searched here (a serial pass over every corner).
 void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_t> twin,
-                         std::span<const OpenMesh::Vec3d> points, DecimationMesh& mesh, unsigned threads);
+                         std::span<const OpenMesh::Vec3d> points, DecimationMesh& mesh, unsigned threads,
+                         std::span<const uint32_t> firstCorner = {});
 
 }  // namespace hs::mesh

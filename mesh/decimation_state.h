@@ -47,7 +47,6 @@ struct DecimationState {
   std::vector<uint32_t> fv;           // per face: 3 vertex ids, in winding order
   std::vector<uint32_t> fw;           // per face: the wedge (vertex+UV) of each corner
   std::vector<uint16_t> fmaterial;    // per face: input submesh index
-  std::vector<uint16_t> fregion;      // per face: region
   std::vector<uint8_t> estate;        // per edge: kQueued | kDirty (collapse_engine.h)
   std::vector<glm::vec2> wedgeUv;     // per wedge (empty without UVs)
 

@@ -8,6 +8,8 @@
 //   bench_decimate [--bunny PATH] [--terrain-quads 1580] [--runs 5]
 //                  [--terrain-samples 1] [--stock-terrain 0.1|all|none]
 //                  [--threads 2] [--plot bench_decimate.png] [--skip-terrain] [--skip-bunny]
+//                  [--terrain-runs 3] [--ratios 50,25,10,5,1] [--no-error] [--no-stock]
+//                  [--faces-per-region N]   (our output's content hash goes to stderr)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -69,6 +71,8 @@ double median(std::vector<double> v) {
 // interleaved (ours, meshopt, ours, ...) so both see the same load on a
 // shared machine; times are medians. Ours must give the same mesh on every
 // run (checked: deterministic output).
+size_t gFacesPerRegion = 0;  // --faces-per-region (0: the decimator's default)
+
 void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& ours, MeshData& oursOut, Row& meshopt,
              MeshData& meshoptOut) {
   ours = Row{};
@@ -80,6 +84,7 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
   DecimateOptions o;
   o.targetRatio = ratio;
   o.threads = threads;
+  if (gFacesPerRegion) o.facesPerRegion = gFacesPerRegion;
   std::vector<double> tOurs, tMeshopt, tSetup, tRegions, tBorders, tOutput;
   std::vector<uint32_t> dst(in.indices.size());
   size_t n = 0;
@@ -106,6 +111,19 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
     n = meshopt_simplify(dst.data(), in.indices.data(), in.indices.size(), &in.positions[0].x, in.positions.size(),
                          sizeof(glm::vec3), triangles * 3, 1e30f, 0, nullptr);
     tMeshopt.push_back(seconds(t1, Clock::now()));
+  }
+  {
+    // Content hash of our output on stderr: optimisations that must not
+    // change the result are checked against it.
+    uint64_t h = 1469598103934665603ull;
+    auto mixIn = [&](const void* data, size_t bytes) {
+      const auto* b = static_cast<const unsigned char*>(data);
+      for (size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    };
+    mixIn(oursOut.indices.data(), oursOut.indices.size() * sizeof(uint32_t));
+    mixIn(oursOut.positions.data(), oursOut.positions.size() * sizeof(glm::vec3));
+    std::fprintf(stderr, "ours %g%%: %zu triangles, output hash %016llx\n", ratio * 100, oursOut.triangleCount(),
+                 (unsigned long long)h);
   }
   ours.time = median(tOurs);
   ours.triangles = oursOut.triangleCount();
@@ -189,7 +207,7 @@ int main(int argc, char** argv) {
   std::vector<double> ratios = {0.5, 0.25, 0.1, 0.05, 0.01};
   double terrainSamples = 1.0;
   unsigned threads = 2;
-  bool skipTerrain = false, skipBunny = false;
+  bool skipTerrain = false, skipBunny = false, noStock = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
@@ -212,12 +230,15 @@ int main(int argc, char** argv) {
     else if (a == "--stock-terrain") stockTerrain = next();
     else if (a == "--threads") threads = unsigned(std::atoi(next().c_str()));
     else if (a == "--plot") plotPath = next();
+    else if (a == "--no-stock") noStock = true;
+    else if (a == "--faces-per-region") gFacesPerRegion = size_t(std::atoll(next().c_str()));
     else if (a == "--skip-terrain") skipTerrain = true;
     else if (a == "--skip-bunny") skipBunny = true;
     else {
       std::fprintf(stderr, "usage: %s [--bunny PATH] [--terrain-quads N] [--runs K] [--terrain-samples S] "
                            "[--stock-terrain 0.1|all|none] [--threads T] [--plot PNG] [--skip-terrain] [--skip-bunny] "
-                           "[--terrain-runs K] [--ratios 50,25,10,5,1] [--no-error]\n", argv[0]);
+                           "[--terrain-runs K] [--ratios 50,25,10,5,1] [--no-error] [--no-stock] "
+                           "[--faces-per-region N]\n", argv[0]);
       return 2;
     }
   }
@@ -292,7 +313,7 @@ int main(int argc, char** argv) {
       sOurs.labels.push_back(label);
       sMeshopt.points.push_back({meshopt.time, meshopt.error.rel(meshopt.error.hausdorff)});
       sMeshopt.labels.push_back(label);
-      if (ds.stockAll || (ds.stockTen && ratio == 0.1)) {
+      if (!noStock && (ds.stockAll || (ds.stockTen && ratio == 0.1))) {
         MeshData so;
         Row stock = runStock(ds.mesh, ours.triangles, ratio, so);
         if (measureErrors) {
