@@ -184,7 +184,8 @@ void printRow(const Row& r, const MeshData& in, const Row* meshopt) {
   char timeRatio[32] = "", hausRatio[32] = "";
   if (meshopt && meshopt != &r) {
     std::snprintf(timeRatio, sizeof timeRatio, "%.2fx", r.time / meshopt->time);
-    std::snprintf(hausRatio, sizeof hausRatio, "%.2fx", r.error.hausdorff / meshopt->error.hausdorff);
+    if (meshopt->error.hausdorff > 0)  // not measured with --no-error
+      std::snprintf(hausRatio, sizeof hausRatio, "%.2fx", r.error.hausdorff / meshopt->error.hausdorff);
   }
   char phases[96] = "";
   if (r.report.trianglesIn)
