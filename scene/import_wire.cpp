@@ -5,6 +5,8 @@
 #include <cinttypes>
 #include <cstring>
 
+#include "scene/mesh_geometry_codec.h"
+
 namespace hs::scene {
 namespace {
 
@@ -113,18 +115,7 @@ void readReport(Reader& rd, mesh::ImportReport& r) {
 }
 
 void writeMesh(Writer& w, const mesh::MeshData& m) {
-  w.pod(m.origin);
-  w.vec(m.positions);
-  w.vec(m.normals);
-  w.vec(m.uvs);
-  w.vec(m.indices);
-  w.vec(m.submeshes);
-  w.pod(uint64_t(m.materials.size()));
-  for (const auto& mat : m.materials) {
-    w.str(mat.name);
-    w.pod(mat.baseColor);
-    w.pod(int32_t(mat.diffuseTexture));
-  }
+  writeMeshGeometry(w, m);
   // Both the source bytes and the decoded pixels: decoding again here would
   // cost as much as the worker's decoding did.
   w.pod(uint64_t(m.textures.size()));
@@ -138,20 +129,7 @@ void writeMesh(Writer& w, const mesh::MeshData& m) {
 }
 
 bool readMesh(Reader& rd, mesh::MeshData& m) {
-  m.origin = rd.pod<glm::dvec3>("origin");
-  m.positions = rd.vec<glm::vec3>("positions");
-  m.normals = rd.vec<glm::vec3>("normals");
-  m.uvs = rd.vec<glm::vec2>("uvs");
-  m.indices = rd.vec<uint32_t>("indices");
-  m.submeshes = rd.vec<mesh::Submesh>("submeshes");
-  const uint64_t nMaterials = rd.pod<uint64_t>("material count");
-  for (uint64_t i = 0; rd.ok && i < nMaterials; ++i) {
-    mesh::Material mat;
-    mat.name = rd.str("material name");
-    mat.baseColor = rd.pod<glm::vec4>("material colour");
-    mat.diffuseTexture = rd.pod<int32_t>("material texture");
-    m.materials.push_back(std::move(mat));
-  }
+  readMeshGeometry(rd, m);
   const uint64_t nTextures = rd.pod<uint64_t>("texture count");
   for (uint64_t i = 0; rd.ok && i < nTextures; ++i) {
     mesh::Texture t;

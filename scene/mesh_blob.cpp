@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "mesh/texture_decode.h"
+#include "scene/mesh_geometry_codec.h"
 
 namespace hs::scene {
 namespace {
@@ -84,18 +85,7 @@ std::vector<uint8_t> encodeMesh(const mesh::MeshData& m) {
   w.out.reserve(64 + m.memoryBytes());
   w.raw(kMagic, sizeof kMagic);
   w.pod(kVersion);
-  w.pod(m.origin);
-  w.vec(m.positions);
-  w.vec(m.normals);
-  w.vec(m.uvs);
-  w.vec(m.indices);
-  w.vec(m.submeshes);
-  w.pod(uint64_t(m.materials.size()));
-  for (const auto& mat : m.materials) {
-    w.str(mat.name);
-    w.pod(mat.baseColor);
-    w.pod(int32_t(mat.diffuseTexture));
-  }
+  writeMeshGeometry(w, m);
   w.pod(uint64_t(m.textures.size()));
   for (const auto& t : m.textures) {
     w.str(t.name);
@@ -127,20 +117,7 @@ std::optional<mesh::MeshData> decodeMesh(const uint8_t* data, size_t size, const
     return std::nullopt;
   }
   mesh::MeshData m;
-  m.origin = r.pod<glm::dvec3>("origin");
-  m.positions = r.vec<glm::vec3>("positions");
-  m.normals = r.vec<glm::vec3>("normals");
-  m.uvs = r.vec<glm::vec2>("uvs");
-  m.indices = r.vec<uint32_t>("indices");
-  m.submeshes = r.vec<mesh::Submesh>("submeshes");
-  const uint64_t nMaterials = r.pod<uint64_t>("material count");
-  for (uint64_t i = 0; r.ok && i < nMaterials; ++i) {
-    mesh::Material mat;
-    mat.name = r.str("material name");
-    mat.baseColor = r.pod<glm::vec4>("material colour");
-    mat.diffuseTexture = r.pod<int32_t>("material texture");
-    m.materials.push_back(std::move(mat));
-  }
+  readMeshGeometry(r, m);
   const uint64_t nTextures = r.pod<uint64_t>("texture count");
   for (uint64_t i = 0; r.ok && i < nTextures; ++i) {
     mesh::Texture t;
