@@ -104,7 +104,9 @@ struct Renderer::Impl {
 
   std::vector<DrawItem> collectDraws(const scene::SceneState& s,
                                      const std::unordered_map<scene::EntityId, glm::dmat4>& world,
-                                     const RenderView& view, FrameStats& stats) {
+                                     const RenderView& view, FrameStats& stats, const RenderView* lodView = nullptr) {
+    const RenderView& lv = lodView ? *lodView : view;
+    const glm::dvec3 lodEyeShift = view.eye - lv.eye;  // eye-relative to lodView-relative
     std::vector<DrawItem> items;
     const Frustum frustum = frustumOf(view);
     const glm::dmat4 viewRot4(view.viewRotation());
@@ -127,8 +129,8 @@ struct Renderer::Impl {
       }
       // The coarsest LOD within the scene's pixel bound (mesh_lod.h).
       if (!asset->lods.empty()) {
-        const MeshLodChoice lod = chooseMeshLod(asset->lodErrors(), centreRel, double(g->bounds.radius()), maxScale,
-                                                view, s.settings.meshLodErrorPixels);
+        const MeshLodChoice lod = chooseMeshLod(asset->lodErrors(), centreRel + lodEyeShift, double(g->bounds.radius()),
+                                                maxScale, lv, s.settings.meshLodErrorPixels);
         if (lod.level > 0) {
           if (const GpuMesh* coarser = cache.get(*asset, lod.level)) g = coarser;
           ++stats.instancesAtCoarserLod;
@@ -294,7 +296,7 @@ FrameStats Renderer::render(const scene::SceneState& state, const RenderView& vi
   const glm::mat4 proj = toFloat(view.projection());
 
   // Opaque meshes.
-  const std::vector<DrawItem> items = d.collectDraws(state, world, view, stats);
+  const std::vector<DrawItem> items = d.collectDraws(state, world, view, stats, options.lodView);
   if (!items.empty()) {
     GlProgram& p = d.meshProg;
     p.use();

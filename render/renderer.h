@@ -40,6 +40,12 @@ struct RenderOptions {
   const Overlay* overlay = nullptr;
   bool keepHdr = false;          // keep the linear HDR image for readHdr()
   bool measureGpuTime = false;   // timer queries (editor status bar)
+  // Mesh LOD levels are chosen as seen from this view when set, not from the
+  // one drawn: the two eyes of a stereo pair pass their camera's (mono)
+  // view, so both draw the same level of every mesh (a level switching in
+  // one eye only is a flicker the viewer sees as rivalry). Culling stays
+  // per eye. Terrain LOD is still chosen per eye.
+  const RenderView* lodView = nullptr;
 };
 
 // What bringing a terrain's GPU copy up to date did (Renderer::syncTerrain).

@@ -135,8 +135,10 @@ struct StereoFrameSource::Impl {
   }
 
   // Renders one view and queues its reads into the slot's buffer.
-  void renderView(const scene::SceneState& state, const RenderView& view, Slot& slot, int index) {
+  void renderView(const scene::SceneState& state, const RenderView& view, Slot& slot, int index,
+                  const RenderView* lodView = nullptr) {
     RenderOptions ro;
+    ro.lodView = lodView;  // both eyes: their camera's levels of detail
     ro.showGrid = options.showGrid;
     ro.keepHdr = slot.kind == PixelKind::LinearFloat;
     offscreen.renderer().render(state, view, fbo, ro);
@@ -203,8 +205,8 @@ bool StereoFrameSource::begin(const sequencer::FrameJob& job, std::string& error
   d.ensureOutput(job.eyeWidth, job.eyeHeight, slot.kind == PixelKind::Display16 ? GL_RGBA16 : GL_RGBA8);
   slot.buffer.reserve(d.colorBytes(slot) * size_t(slot.views) + (slot.depth ? d.depthBytes(slot) * size_t(slot.views) : 0));
   if (twoViews) {
-    d.renderView(state, views.left, slot, 0);
-    d.renderView(state, views.right, slot, 1);
+    d.renderView(state, views.left, slot, 0, &views.mono);
+    d.renderView(state, views.right, slot, 1, &views.mono);
   } else {
     d.renderView(state, views.mono, slot, 0);
   }

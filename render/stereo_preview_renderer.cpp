@@ -101,6 +101,7 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
   std::vector<float> depth[2];
   RenderOptions options;
   options.showGrid = true;
+  options.lodView = &views.mono;  // both eyes draw the same mesh levels (renderer.h)
   if (needLeft) {
     result.stats = renderer.render(state, views.left, eyes_[0].fbo, options);
     if (comfort) depth[0] = readDepth(renderer, eyeW, eyeH);

@@ -206,6 +206,40 @@ class TestMeshLod : public QObject {
     QCOMPARE(stats.trianglesDrawn, size_t(0));
   }
 
+  // A stereo pair draws the same level in both eyes when it passes its
+  // camera's view as RenderOptions::lodView (the export and the stereo
+  // preview do); left to itself each eye would choose on its own and, near
+  // a switch distance, differently.
+  void stereoEyesShareMeshLevels() {
+    // Eyes 1.5 m apart, the left one at the camera (a rig pivoting on the
+    // left eye), so the right eye is farther from the bunny than the left.
+    double found = -1.0;
+    for (double d = 2.0; d < 40.0 && found < 0; d += 0.05) {
+      const auto s = bunnyScene(d, 10.0, 1.0);
+      const render::RenderView mono = cameraView(s, 320, 240);
+      render::RenderView right = mono;
+      right.eye += 1.5 * mono.right();
+      if (choice(s, mono).level != choice(s, right).level) found = d;
+    }
+    QVERIFY2(found > 0, "no distance where the eyes would choose different levels");
+    const auto s = bunnyScene(found, 10.0, 1.0);
+    const render::RenderView mono = cameraView(s, 320, 240);
+    render::RenderView right = mono;
+    right.eye += 1.5 * mono.right();
+    const int monoLevel = choice(s, mono).level;
+    const size_t left = r_.renderOnly(s, mono).trianglesDrawn;
+    const size_t rightAlone = r_.renderOnly(s, right).trianglesDrawn;
+    QCOMPARE(left, trianglesOf(bunnyAsset(), monoLevel));
+    QVERIFY(rightAlone != left);  // on its own the right eye picks another level
+    render::RenderOptions shared;
+    shared.lodView = &mono;
+    const render::FrameStats rightShared = r_.renderOnly(s, right, shared);
+    qInfo("at %.2f m: left eye level %d (%zu triangles), right eye alone %zu, with the camera's levels %zu", found,
+          monoLevel, left, rightAlone, rightShared.trianglesDrawn);
+    QCOMPARE(rightShared.trianglesDrawn, left);
+    QCOMPARE(rightShared.instancesDrawn, size_t(1));
+  }
+
   // Golden-free: at the 1-pixel bound the image is the full-resolution
   // image up to a few edge pixels, while the coarsest level at the same
   // spot differs visibly more (so the comparison can tell).
