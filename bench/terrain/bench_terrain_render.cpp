@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "bench/terrain/bench_util.h"
+#include "tests/common/terrain_screen_error.h"
 #include "render/offscreen_renderer.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
@@ -97,45 +98,12 @@ struct Bench {
   }
 };
 
-struct ErrorStats {
-  double maxPx = 0.0, p99 = 0.0, p999 = 0.0, mean = 0.0;
-  size_t pixels = 0;
-};
+using ErrorStats = test::TerrainScreenError;
 
 ErrorStats measureError(render::OffscreenRenderer& r, Bench& b, const render::RenderView& v) {
   std::vector<float> depth(size_t(v.width) * size_t(v.height));
   r.renderer().readDepth(depth.data());
-  const glm::dmat4 p = v.projection();
-  const terrain::Heightfield& hf = b.data().heights();
-  const glm::dvec3 o = scene::terrainWorldOrigin(b.doc.state(), b.terrain);
-  std::vector<double> errors;
-  errors.reserve(depth.size());
-  for (int y = 0; y < v.height; ++y)
-    for (int x = 0; x < v.width; ++x) {
-      const float d = depth[size_t(v.height - 1 - y) * size_t(v.width) + size_t(x)];
-      if (d <= 0.0f) continue;
-      const double zView = -p[3][2] / (double(d) + p[2][2]);
-      glm::dvec3 ro, dir;
-      v.pixelRay(x + 0.5, y + 0.5, ro, dir);
-      const glm::dvec3 hit = ro + dir * (-zView / glm::dot(dir, v.forward()));
-      const glm::dvec2 sample = (glm::dvec2(hit) - glm::dvec2(o)) / hf.spacing();
-      if (sample.x < 0 || sample.y < 0 || sample.x > hf.samplesX() - 1 || sample.y > hf.samplesY() - 1) continue;
-      const double full = o.z + double(render::fullMeshHeightAt(hf, sample));
-      glm::dvec2 a, bp;
-      if (!v.project(hit, a) || !v.project(glm::dvec3(hit.x, hit.y, full), bp)) continue;
-      errors.push_back(glm::length(a - bp));
-    }
-  ErrorStats e;
-  e.pixels = errors.size();
-  if (errors.empty()) return e;
-  std::sort(errors.begin(), errors.end());
-  e.maxPx = errors.back();
-  e.p99 = errors[size_t(double(errors.size() - 1) * 0.99)];
-  e.p999 = errors[size_t(double(errors.size() - 1) * 0.999)];
-  double sum = 0.0;
-  for (double x : errors) sum += x;
-  e.mean = sum / double(errors.size());
-  return e;
+  return test::terrainScreenError(depth, v, b.data().heights(), scene::terrainWorldOrigin(b.doc.state(), b.terrain));
 }
 
 double ms(double s0) { return (nowSeconds() - s0) * 1e3; }

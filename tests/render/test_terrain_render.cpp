@@ -12,6 +12,7 @@
 
 #include "image_compare.h"
 #include "look_from.h"
+#include "terrain_screen_error.h"
 #include "render/offscreen_renderer.h"
 #include "scene/document.h"
 #include "scene/fields.h"
@@ -90,47 +91,12 @@ size_t skyPixels(const render::Image& img) {
   return n;
 }
 
-struct ErrorStats {
-  double maxPx = 0.0, p99 = 0.0, mean = 0.0;
-  size_t pixels = 0;
-};
+using ErrorStats = test::TerrainScreenError;
 
-// For every pixel the terrain covers: the LOD surface point (from the depth
-// buffer), the full-resolution mesh's height at the same x, y, and the
-// distance in pixels between the two points on screen.
 ErrorStats measureError(render::OffscreenRenderer& r, const TerrainScene& s, const render::RenderView& v) {
   std::vector<float> depth(size_t(v.width) * size_t(v.height));
   r.renderer().readDepth(depth.data());
-  const glm::dmat4 p = v.projection();
-  const terrain::Heightfield& hf = scene::terrainOf(s.state(), s.terrain)->data->heights();
-  const glm::dvec3 o = s.origin();
-  std::vector<double> errors;
-  for (int y = 0; y < v.height; ++y)
-    for (int x = 0; x < v.width; ++x) {
-      const float d = depth[size_t(v.height - 1 - y) * size_t(v.width) + size_t(x)];
-      if (d <= 0.0f) continue;
-      // Reversed Z: depth = -p22 - p32 / zView.
-      const double zView = -p[3][2] / (double(d) + p[2][2]);
-      glm::dvec3 ro, dir;
-      v.pixelRay(x + 0.5, y + 0.5, ro, dir);
-      const glm::dvec3 hit = ro + dir * (-zView / glm::dot(dir, v.forward()));
-      const glm::dvec2 sample = (glm::dvec2(hit) - glm::dvec2(o)) / hf.spacing();
-      if (sample.x < 0 || sample.y < 0 || sample.x > hf.samplesX() - 1 || sample.y > hf.samplesY() - 1) continue;
-      const double full = o.z + double(render::fullMeshHeightAt(hf, sample));
-      glm::dvec2 a, b;
-      if (!v.project(hit, a) || !v.project(glm::dvec3(hit.x, hit.y, full), b)) continue;
-      errors.push_back(glm::length(a - b));
-    }
-  ErrorStats e;
-  e.pixels = errors.size();
-  if (errors.empty()) return e;
-  std::sort(errors.begin(), errors.end());
-  e.maxPx = errors.back();
-  e.p99 = errors[size_t(double(errors.size() - 1) * 0.99)];
-  double sum = 0.0;
-  for (double x : errors) sum += x;
-  e.mean = sum / double(errors.size());
-  return e;
+  return test::terrainScreenError(depth, v, scene::terrainOf(s.state(), s.terrain)->data->heights(), s.origin());
 }
 
 }  // namespace
