@@ -113,10 +113,31 @@ double clampParam(double v, double lo, double hi, double fallback, const char* n
   return v;
 }
 
-void commitWindow(Heightfield& hf, const Region& window, const std::vector<float>& values,
-                  UndoRecorder* recorder) {
-  if (recorder) recorder->recordHeights(window);
-  hf.write(window, values);
+void finishReport(ErosionReport& rep, const std::vector<float>& h, int w, int hgt, double cellArea, double absSum,
+                  std::chrono::steady_clock::time_point start) {
+  rep.massAfter = sumHeights(h, w, hgt) * cellArea;
+  rep.massError = std::abs(rep.massAfter - rep.massBefore);
+  rep.relativeMassError = absSum > 0.0 ? rep.massError / (absSum * cellArea) : rep.massError;
+  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  rep.cellIterationsPerSecond =
+      rep.seconds > 0.0 ? double(w) * double(hgt) * double(rep.iterationsDone) / rep.seconds : 0.0;
+}
+
+ErosionReport erodeWindow(Heightfield& hf, const ErosionMask& maskIn, UndoRecorder* recorder, const GridSolver& solve) {
+  const ErosionMask mask = maskIn.clipped(hf.bounds());
+  const Region win = mask.region;
+  if (win.width() < 2 || win.height() < 2) {
+    ErosionReport r;
+    r.warnings.push_back("erosion region is smaller than 2x2 samples; nothing to do");
+    return r;
+  }
+  std::vector<float> h = hf.read(win);
+  ErosionReport rep = solve(h, win.width(), win.height(), mask.weights.empty() ? nullptr : mask.weights.data());
+  if (rep.cancelled) return rep;
+  if (recorder) recorder->recordHeights(win);
+  hf.write(win, h);
+  rep.changed = win;
+  return rep;
 }
 
 }  // namespace detail

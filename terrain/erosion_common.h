@@ -2,7 +2,9 @@
 // What every erosion solver shares: the mask that says where it works, the
 // report it returns (mass error, time step limits, what was clamped), and the
 // window plumbing (read heights, sanitise, write back with undo).
+#include <chrono>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -70,9 +72,18 @@ double sumHeights(const std::vector<float>& h, int w, int hgt);
 // notes the change in `warnings`.
 double clampParam(double v, double lo, double hi, double fallback, const char* name,
                   std::vector<std::string>& warnings);
-// Writes the eroded window back through `recorder` (before-copies for undo).
-void commitWindow(Heightfield& hf, const Region& window, const std::vector<float>& values,
-                  UndoRecorder* recorder);
+// What both solvers do around their grid run: clip the mask to the
+// terrain, copy its window out, run `solve(heights, width, height,
+// weights or nullptr)` on the copy, and unless cancelled write the window
+// back through `recorder` (before-copies for undo). A window under 2x2
+// samples is refused with a warning.
+// The end of a grid run: mass after, its error (absolute and relative to
+// the mass the solver started with, `absSum` = sum of |h| then), the run
+// time since `start` and the throughput in cell-iterations per second.
+void finishReport(ErosionReport& rep, const std::vector<float>& h, int w, int hgt, double cellArea, double absSum,
+                  std::chrono::steady_clock::time_point start);
+using GridSolver = std::function<ErosionReport(std::vector<float>& heights, int width, int height, const float* weights)>;
+ErosionReport erodeWindow(Heightfield& hf, const ErosionMask& mask, UndoRecorder* recorder, const GridSolver& solve);
 }  // namespace detail
 
 }  // namespace hs::terrain

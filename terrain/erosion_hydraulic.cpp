@@ -225,35 +225,19 @@ ErosionReport erodeHydraulicGrid(std::vector<float>& b, int w, int hgt, glm::dve
   // Suspended sediment settles where it is.
   for (size_t i = 0; i < n; ++i) b[i] = float(double(b[i]) + (double(delta[i]) + double(s[i])));
   if (waterOut) *waterOut = d;
-  rep.massAfter = detail::sumHeights(b, w, hgt) * cellArea;
-  rep.massError = std::abs(rep.massAfter - rep.massBefore);
-  rep.relativeMassError = absSum > 0.0 ? rep.massError / (absSum * cellArea) : rep.massError;
   if (rep.cflLimitedIterations)
     rep.warnings.push_back("time step shortened by the CFL limit in " + std::to_string(rep.cflLimitedIterations) +
                            " of " + std::to_string(rep.iterationsDone) + " iterations (simulated " +
                            std::to_string(rep.simulatedTime) + " s of " + std::to_string(rep.requestedTime) + " s)");
-  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  rep.cellIterationsPerSecond =
-      rep.seconds > 0.0 ? double(w) * double(hgt) * double(rep.iterationsDone) / rep.seconds : 0.0;
+  detail::finishReport(rep, b, w, hgt, cellArea, absSum, t0);
   return rep;
 }
 
-ErosionReport erodeHydraulic(Heightfield& hf, const HydraulicParams& params, const ErosionMask& maskIn,
+ErosionReport erodeHydraulic(Heightfield& hf, const HydraulicParams& params, const ErosionMask& mask,
                              UndoRecorder* recorder, const Progress* progress, int threads) {
-  const ErosionMask mask = maskIn.clipped(hf.bounds());
-  const Region win = mask.region;
-  if (win.width() < 2 || win.height() < 2) {
-    ErosionReport r;
-    r.warnings.push_back("erosion region is smaller than 2x2 samples; nothing to do");
-    return r;
-  }
-  std::vector<float> h = hf.read(win);
-  ErosionReport rep = erodeHydraulicGrid(h, win.width(), win.height(), hf.spacing(), params,
-                                         mask.weights.empty() ? nullptr : mask.weights.data(), progress, threads);
-  if (rep.cancelled) return rep;
-  detail::commitWindow(hf, win, h, recorder);
-  rep.changed = win;
-  return rep;
+  return detail::erodeWindow(hf, mask, recorder, [&](std::vector<float>& h, int w, int hgt, const float* weights) {
+    return erodeHydraulicGrid(h, w, hgt, hf.spacing(), params, weights, progress, threads);
+  });
 }
 
 }  // namespace hs::terrain

@@ -159,32 +159,15 @@ ErosionReport erodeThermalGrid(std::vector<float>& h, int w, int hgt, glm::dvec2
   }
 
   for (size_t i = 0; i < h.size(); ++i) h[i] = float(double(h[i]) + double(delta[i]));
-  rep.massAfter = detail::sumHeights(h, w, hgt) * cellArea;
-  rep.massError = std::abs(rep.massAfter - rep.massBefore);
-  rep.relativeMassError = absSum > 0.0 ? rep.massError / (absSum * cellArea) : rep.massError;
-  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  rep.cellIterationsPerSecond =
-      rep.seconds > 0.0 ? double(w) * double(hgt) * double(rep.iterationsDone) / rep.seconds : 0.0;
+  detail::finishReport(rep, h, w, hgt, cellArea, absSum, t0);
   return rep;
 }
 
-ErosionReport erodeThermal(Heightfield& hf, const ThermalParams& params, const ErosionMask& maskIn,
+ErosionReport erodeThermal(Heightfield& hf, const ThermalParams& params, const ErosionMask& mask,
                            UndoRecorder* recorder, const Progress* progress, int threads) {
-  const ErosionMask mask = maskIn.clipped(hf.bounds());
-  const Region win = mask.region;
-  if (win.width() < 2 || win.height() < 2) {
-    ErosionReport r;
-    r.warnings.push_back("erosion region is smaller than 2x2 samples; nothing to do");
-    return r;
-  }
-  std::vector<float> h = hf.read(win);
-  const std::vector<float>* weights = mask.weights.empty() ? nullptr : &mask.weights;
-  ErosionReport rep = erodeThermalGrid(h, win.width(), win.height(), hf.spacing(), params,
-                                       weights ? weights->data() : nullptr, progress, threads);
-  if (rep.cancelled) return rep;
-  detail::commitWindow(hf, win, h, recorder);
-  rep.changed = win;
-  return rep;
+  return detail::erodeWindow(hf, mask, recorder, [&](std::vector<float>& h, int w, int hgt, const float* weights) {
+    return erodeThermalGrid(h, w, hgt, hf.spacing(), params, weights, progress, threads);
+  });
 }
 
 }  // namespace hs::terrain
