@@ -26,6 +26,7 @@
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 
+#include "bench/common/bench_util.h"
 #include "mesh/decimate.h"
 #include "mesh/error_metrics.h"
 #include "mesh/mesh_import.h"
@@ -34,6 +35,7 @@
 
 using namespace hs::mesh;
 using Clock = std::chrono::steady_clock;
+using hs::bench::median;
 
 namespace {
 
@@ -59,12 +61,6 @@ MeshData withIndices(const MeshData& base, std::vector<uint32_t> indices) {
   m.indices = std::move(indices);
   m.submeshes.push_back({0, uint32_t(m.indices.size()), base.submeshes.empty() ? -1 : base.submeshes[0].material});
   return m;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 // Ours and meshopt_simplify at the same triangle count, their runs
@@ -246,10 +242,7 @@ int main(int argc, char** argv) {
   // MESHOPTIMIZER_VERSION is major*1000 + minor*10 (180 = 0.18).
   std::printf("# Decimation: ours vs meshopt_simplify %d.%d vs OpenMesh DecimaterT (machine: %u hardware threads)\n",
               MESHOPTIMIZER_VERSION / 1000, (MESHOPTIMIZER_VERSION % 1000) / 10, std::thread::hardware_concurrency());
-  std::ifstream load("/proc/loadavg");
-  std::string loadavg;
-  std::getline(load, loadavg);
-  std::printf("load average at start: %s\n", loadavg.c_str());
+  std::printf("load average at start: %s\n", hs::bench::loadAverageLine().c_str());
 
   struct Dataset {
     std::string name, shortName;

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/common/bench_util.h"
 #include "mesh/mesh_import.h"
 #include "scan_terrain.h"
 
@@ -137,10 +138,8 @@ int main(int argc, char** argv) {
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   const double mb = double(std::filesystem::file_size(path)) / 1e6;
-  std::ifstream load("/proc/loadavg");
-  std::string loadavg;
-  std::getline(load, loadavg);
-  std::printf("# OBJ import: %s, %.1f MB (load average at start: %s)\n\n", path.c_str(), mb, loadavg.c_str());
+  std::printf("# OBJ import: %s, %.1f MB (load average at start: %s)\n\n", path.c_str(), mb,
+              hs::bench::loadAverageLine().c_str());
   std::printf("| reader | seconds | MB/s | Mtriangles/s | triangles | vertices | mesh MB | peak RSS MB | RSS before MB | (peak - before) / mesh | peak / mesh | speed vs Assimp |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   Measurement best[2];

@@ -30,6 +30,7 @@
 
 #include <sys/resource.h>
 
+#include "bench/common/bench_util.h"
 #include "sequencer/export_loop.h"
 #include "sequencer/ffmpeg_writer.h"
 #include "sequencer/image_writer.h"
@@ -37,21 +38,14 @@
 
 using namespace hs::sequencer;
 namespace fs = std::filesystem;
+using hs::bench::cpuSeconds;
+using hs::bench::loadAverage;
 using Clock = std::chrono::steady_clock;
 
 namespace {
 
 double seconds(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// CPU time (user + system) of this process, or of its waited-for children
-// (ffmpeg). The machine is shared: wall times move with other people's
-// load, CPU time per frame much less, so the tables give both and estimate
-// an idle 2-core machine from CPU time.
-double cpuSeconds(int who) {
-  rusage u{};
-  getrusage(who, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + double(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-6;
-}
 constexpr int kCores = 2;  // the project's machines
 
 uint32_t hash(uint32_t x) {
@@ -172,15 +166,6 @@ std::string hms(double s) {
   const int h = int(s / 3600), m = int(std::fmod(s, 3600) / 60);
   std::snprintf(buf, sizeof buf, "%dh %02dm", h, m);
   return buf;
-}
-
-double loadAverage() {
-  double l = 0;
-  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
-    if (std::fscanf(f, "%lf", &l) != 1) l = 0;
-    std::fclose(f);
-  }
-  return l;
 }
 
 }  // namespace

@@ -27,6 +27,7 @@
 
 #include <sys/resource.h>
 
+#include "bench/common/bench_util.h"
 #include "render/offscreen_renderer.h"
 #include "render/stereo_frame_source.h"
 #include "render/stereo_views.h"
@@ -39,28 +40,15 @@
 using namespace hs;
 using namespace hs::sequencer;
 namespace fs = std::filesystem;
+using hs::bench::cpuSeconds;
+using hs::bench::loadAverage;
 using Clock = std::chrono::steady_clock;
 
 namespace {
 
 double seconds(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-double cpuSeconds(int who) {
-  rusage u{};
-  getrusage(who, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + double(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-6;
-}
-
 constexpr int kCores = 2;  // the project's machines
-
-double loadAverage() {
-  double l = 0;
-  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
-    if (std::fscanf(f, "%lf", &l) != 1) l = 0;
-    std::fclose(f);
-  }
-  return l;
-}
 
 std::string hms(double s) {
   char buf[64];

@@ -24,6 +24,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "bench/common/bench_util.h"
 #include "mesh/mesh_import.h"
 
 namespace fs = std::filesystem;
@@ -182,8 +183,7 @@ int main(int argc, char** argv) {
   std::error_code ec;
   fs::remove(scan, ec);
 
-  double load = -1;
-  std::ifstream("/proc/loadavg") >> load;
+  const double load = hs::bench::loadAverage();
   std::printf("\nOBJ import, best of %d (Release build; %u hardware threads; load average %.2f)\n\n", runs,
               std::thread::hardware_concurrency(), load);
   std::printf("| file | MB | triangles | reader | best s | MB/s | M triangles/s | own / Assimp | max position error |\n");

@@ -22,26 +22,16 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "../../tests/common/image_compare.h"
+#include "bench/common/bench_util.h"
+#include "tests/common/image_compare.h"
 #include "render/offscreen_renderer.h"
 #include "scene/demo_scene.h"
 
 using namespace hs;
+using bench::loadAverage;
+using bench::median;
 
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-double loadAverage() {
-  std::ifstream f("/proc/loadavg");
-  double one = -1;
-  f >> one;
-  return one;
-}
 
 test::Rgba8Image toTest(const render::Image& img) { return {img.width, img.height, img.rgba8}; }
 

@@ -16,28 +16,14 @@
 #include <thread>
 #include <vector>
 
+#include "bench/common/bench_util.h"
 #include "render/offscreen_renderer.h"
 #include "scene/demo_scene.h"
 
 using namespace hs;
+using bench::median;
 
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// The machine's load while measuring (benchmarks on shared machines vary with it).
-std::string loadAverage() {
-  std::ifstream f("/proc/loadavg");
-  double one = -1;
-  f >> one;
-  char b[64];
-  std::snprintf(b, sizeof b, "load average %.2f on %u hardware threads", one, std::thread::hardware_concurrency());
-  return b;
-}
 
 template <class F>
 double millis(F&& f) {
@@ -84,9 +70,9 @@ int main(int argc, char** argv) {
     const char* name;
     scene::Antialiasing aa;
   };
-  std::printf("demo scene at %dx%d from '%s', %s (EGL %s)\nmedian of %d frames after %d warm-up frames; %s\n\n",
+  std::printf("demo scene at %dx%d from '%s', %s (EGL %s)\nmedian of %d frames after %d warm-up frames; load average %.2f on %u hardware threads\n\n",
               width, height, demo->find(cams.front())->name.c_str(), renderer.glDescription().c_str(),
-              renderer.eglPlatform().c_str(), frames, warmup, loadAverage().c_str());
+              renderer.eglPlatform().c_str(), frames, warmup, bench::loadAverage(), std::thread::hardware_concurrency());
   std::printf("| anti-aliasing | renderOnly ms | render + readback ms | difference ms | frames/s (with readback) | triangles drawn | draw calls |\n");
   std::printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   for (const Mode& m : {Mode{"none", scene::Antialiasing::None}, Mode{"FXAA", scene::Antialiasing::Fxaa},

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/terrain/bench_util.h"
+#include "bench/common/bench_util.h"
 #include "terrain/noise.h"
 #include "terrain/parallel.h"
 #include "terrain/stroke.h"
@@ -54,8 +54,8 @@ int main(int argc, char** argv) {
     }
     t.height.updateAllBounds();
   }
-  std::printf("Terrain brush dabs on %dx%d (1 m spacing), %d hardware threads, tile %d^2, load average %s\n", n, n,
-              resolveThreads(0), kTileSize, hs::bench::loadAverage().c_str());
+  std::printf("Terrain brush dabs on %dx%d (1 m spacing), %d hardware threads, tile %d^2, load average %.2f\n", n, n,
+              resolveThreads(0), kTileSize, hs::bench::loadAverage());
   std::printf("times in ms: median over repeated dabs; 'first' = first dab of a stroke (with undo before-copies)\n\n");
 
   const Tool tools[] = {
@@ -146,7 +146,7 @@ int main(int argc, char** argv) {
     std::printf("\ntile blobs (heights of this terrain): %d tiles, %.1f KiB per tile on average (raw 64 KiB), "
                 "%.3f ms per tile to encode\n",
                 tiles, double(bytes) / tiles / 1024.0, sec * 1e3 / tiles);
-    std::printf("load average at the end: %s\n", hs::bench::loadAverage().c_str());
+    std::printf("load average at the end: %.2f\n", hs::bench::loadAverage());
   }
   return 0;
 }

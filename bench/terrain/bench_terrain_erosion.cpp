@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/terrain/bench_util.h"
+#include "bench/common/bench_util.h"
 #include "bench/terrain/plot.h"
 #include "terrain/erosion_hydraulic.h"
 #include "terrain/erosion_thermal.h"
@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--quick") == 0) quick = true;
     if (std::strcmp(argv[i], "--plot") == 0 && i + 1 < argc) plotPath = argv[++i];
   }
-  std::printf("Terrain erosion, %d hardware threads, load average at start: %s\n", resolveThreads(0),
-              hs::bench::loadAverage().c_str());
+  std::printf("Terrain erosion, %d hardware threads, load average at start: %.2f\n", resolveThreads(0),
+              hs::bench::loadAverage());
 
   // --- 1. throughput -------------------------------------------------------
   std::printf("1. Throughput (cell-iterations per second, best of 3; 1 m grid, fractal hills: 60 m relief, 300 m features)\n\n");
@@ -166,7 +166,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "plot: %s\n", err.c_str());
     return 1;
   }
-  std::printf("\nplot written to %s; load average at the end: %s\n", plotPath.c_str(),
-              hs::bench::loadAverage().c_str());
+  std::printf("\nplot written to %s; load average at the end: %.2f\n", plotPath.c_str(),
+              hs::bench::loadAverage());
   return 0;
 }

@@ -23,7 +23,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "bench/terrain/bench_util.h"
+#include "bench/common/bench_util.h"
 #include "tests/common/terrain_screen_error.h"
 #include "render/offscreen_renderer.h"
 #include "scene/document.h"
@@ -260,10 +260,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "no headless OpenGL: %s\n", error.c_str());
     return 1;
   }
-  std::printf("Terrain rendering benchmark on %s, %d hardware threads, load average %s\n\n", r.glDescription().c_str(),
-              terrain::resolveThreads(0), bench::loadAverage().c_str());
+  std::printf("Terrain rendering benchmark on %s, %d hardware threads, load average %.2f\n\n", r.glDescription().c_str(),
+              terrain::resolveThreads(0), bench::loadAverage());
   dabBench(r, quick ? 2049 : 4097);
   lodBench(r, quick ? 4097 : 8193);
-  std::printf("load average at the end: %s\n", bench::loadAverage().c_str());
+  std::printf("load average at the end: %.2f\n", bench::loadAverage());
   return 0;
 }

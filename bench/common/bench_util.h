@@ -1,0 +1,56 @@
+#pragma once
+// Small helpers every benchmark shares: clocks, medians and percentiles,
+// the machine's load (the machines are shared, so each table says how busy
+// the machine was while it was measured) and CPU time.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace hs::bench {
+
+inline double nowSeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+inline double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+inline double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
+}
+
+// The 1-minute load average (-1 if unknown).
+inline double loadAverage() {
+  double l = -1.0;
+  std::ifstream("/proc/loadavg") >> l;
+  return l;
+}
+
+// /proc/loadavg as it stands: the 1, 5 and 15-minute averages and the
+// running/total tasks.
+inline std::string loadAverageLine() {
+  std::ifstream f("/proc/loadavg");
+  std::string line;
+  std::getline(f, line);
+  return line;
+}
+
+// CPU time (user + system) of this process (RUSAGE_SELF) or of its
+// waited-for children (RUSAGE_CHILDREN, e.g. ffmpeg). Wall times move with
+// other people's load, CPU time much less.
+inline double cpuSeconds(int who) {
+  rusage u{};
+  getrusage(who, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + double(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-6;
+}
+
+}  // namespace hs::bench
