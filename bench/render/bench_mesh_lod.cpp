@@ -26,6 +26,7 @@
 #include "tests/common/image_compare.h"
 #include "render/offscreen_renderer.h"
 #include "scene/demo_scene.h"
+#include "sequencer/camera_path.h"
 
 using namespace hs;
 using bench::loadAverage;
@@ -78,9 +79,7 @@ scene::SceneState field(const scene::SceneState& demo, int grid, double spacing)
   const glm::dvec3 eye(-4.0, -4.0, 1.7);
   const glm::dvec3 dir = glm::normalize(glm::dvec3(1.0, 1.0, -0.07));
   cam.transform.translation = eye;
-  // Cameras look along local -Z with +Y up.
-  const glm::dvec3 back = -dir, right = glm::normalize(glm::cross(dir, glm::dvec3(0, 0, 1)));
-  cam.transform.rotation = glm::quat_cast(glm::dmat3(right, glm::cross(back, right), back));
+  cam.transform.rotation = sequencer::lookRotation(dir);
   add(cam);
   return s;
 }

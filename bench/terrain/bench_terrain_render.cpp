@@ -25,6 +25,7 @@
 
 #include "bench/common/bench_util.h"
 #include "tests/common/terrain_screen_error.h"
+#include "tests/render/look_from.h"
 #include "render/offscreen_renderer.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
@@ -43,16 +44,6 @@ using bench::nowSeconds;
 
 namespace {
 
-scene::Transform lookFrom(glm::dvec3 eye, glm::dvec3 target) {
-  const glm::dvec3 f = glm::normalize(target - eye);
-  const glm::dvec3 r = glm::normalize(glm::cross(f, glm::dvec3(0, 0, 1)));
-  const glm::dvec3 u = glm::cross(r, f);
-  scene::Transform t;
-  t.translation = eye;
-  t.rotation = glm::quat_cast(glm::dmat3(r, u, -f));
-  return t;
-}
-
 // A document with a sun, a camera and an n^2 terrain of fractal hills at
 // 1 m spacing (heights 180..420 m), painted by the default rules.
 struct Bench {
@@ -63,7 +54,7 @@ struct Bench {
     s.settings.showGrid = false;
     s.settings.antialiasing = scene::Antialiasing::None;
     doc.reset(std::move(s), {});
-    scene::ops::addLight(doc, "Sun", lookFrom({0, 0, 0}, {0.4, 0.3, -1.0}), scene::Light{});
+    scene::ops::addLight(doc, "Sun", test::lookFrom({0, 0, 0}, {0.4, 0.3, -1.0}), scene::Light{});
     scene::ops::NewTerrain spec;
     spec.samplesX = spec.samplesY = n;
     spec.sizeMetres = glm::dvec2(double(n - 1));
@@ -93,7 +84,7 @@ struct Bench {
   scene::TerrainData& data() { return *scene::terrainOf(doc.state(), terrain)->data; }
   scene::TerrainId id() const { return doc.state().find(terrain)->terrain->terrain; }
   render::RenderView look(glm::dvec3 eye, glm::dvec3 target, int w, int h) {
-    scene::ops::setTransforms(doc, {{camera, lookFrom(eye, target)}}, "look");
+    scene::ops::setTransforms(doc, {{camera, test::lookFrom(eye, target)}}, "look");
     return render::viewFromCamera(doc.state(), camera, w, h);
   }
 };
