@@ -14,6 +14,7 @@
 #include <QVBoxLayout>
 
 #include "app/field_editors.h"
+#include "app/form_widgets.h"
 #include "app/path_editor.h"
 
 namespace hs::app {
@@ -50,16 +51,10 @@ QString pointText(size_t i, const glm::dvec3& p) {
 CameraPathPanel::CameraPathPanel(PathEditor& pathEditor, std::function<glm::dvec3()> viewEye, QWidget* parent)
     : QWidget(parent), editor_(pathEditor), viewEye_(std::move(viewEye)) {
   setObjectName("cameraPathPanel");
-  auto* outer = new QVBoxLayout(this);
-  outer->setContentsMargins(0, 0, 0, 0);
-  auto* scroll = new QScrollArea(this);
-  scroll->setWidgetResizable(true);
-  scroll->setFrameShape(QFrame::NoFrame);
-  outer->addWidget(scroll);
   auto* content = new QWidget;
   auto* v = new QVBoxLayout(content);
   v->setContentsMargins(6, 6, 6, 6);
-  scroll->setWidget(content);
+  putInScrollArea(this, content, true);
 
   header_ = new QLabel(content);
   header_->setObjectName("pathHeader");

@@ -1,7 +1,9 @@
 #include "app/form_widgets.h"
 
 #include <QDoubleSpinBox>
+#include <QScrollArea>
 #include <QToolButton>
+#include <QVBoxLayout>
 
 namespace hs::app {
 
@@ -15,6 +17,17 @@ QDoubleSpinBox* numberSpin(QWidget* parent, double min, double max, double step,
   s->setToolTip(tip);
   s->setKeyboardTracking(false);
   return s;
+}
+
+void putInScrollArea(QWidget* panel, QWidget* content, bool horizontalScroll) {
+  auto* outer = new QVBoxLayout(panel);
+  outer->setContentsMargins(0, 0, 0, 0);
+  auto* scroll = new QScrollArea(panel);
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  if (!horizontalScroll) scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  scroll->setWidget(content);
+  outer->addWidget(scroll);
 }
 
 QToolButton* namedToolButton(QWidget* parent, const QString& text, const char* name, const QString& tip) {

@@ -14,6 +14,11 @@ namespace hs::app {
 QDoubleSpinBox* numberSpin(QWidget* parent, double min, double max, double step, int decimals, const QString& suffix,
                            const QString& tip);
 
+// Fills `panel` with a frameless scroll area holding `content` (a dock's
+// panel scrolls when the dock is shorter than it). Without
+// `horizontalScroll` the content is squeezed to the dock's width instead.
+void putInScrollArea(QWidget* panel, QWidget* content, bool horizontalScroll = false);
+
 // A text tool button with an object name (tests find it by name) and a tip.
 QToolButton* namedToolButton(QWidget* parent, const QString& text, const char* name, const QString& tip);
 

@@ -13,6 +13,7 @@
 
 #include "app/error_report_dialog.h"
 #include "app/field_editors.h"
+#include "app/form_widgets.h"
 #include "app/selection.h"
 #include "app/terrain_component_picker.h"
 #include "scene/operations.h"
@@ -38,18 +39,11 @@ QString lodText(const scene::MeshAsset& a) {
 PropertyPanel::PropertyPanel(scene::Document& doc, Selection& selection, QWidget* parent)
     : QWidget(parent), doc_(doc), selection_(selection) {
   setObjectName("propertyPanel");
-  auto* outer = new QVBoxLayout(this);
-  outer->setContentsMargins(0, 0, 0, 0);
-  auto* scroll = new QScrollArea(this);
-  scroll->setWidgetResizable(true);
-  scroll->setFrameShape(QFrame::NoFrame);
-  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-  outer->addWidget(scroll);
   content_ = new QWidget;
   contentLayout_ = new QVBoxLayout(content_);
   contentLayout_->setContentsMargins(6, 6, 6, 6);
   contentLayout_->setSpacing(6);
-  scroll->setWidget(content_);
+  putInScrollArea(this, content_);
 
   connect(&doc_, &scene::Document::changed, this, &PropertyPanel::onDocumentChanged);
   connect(&selection_, &Selection::changed, this, [this] {

@@ -6,19 +6,13 @@
 #include <QVBoxLayout>
 
 #include "app/field_editors.h"
+#include "app/form_widgets.h"
 #include "scene/operations.h"
 
 namespace hs::app {
 
 SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(parent), doc_(doc) {
   setObjectName("settingsPanel");
-  auto* outer = new QVBoxLayout(this);
-  outer->setContentsMargins(0, 0, 0, 0);
-  auto* scroll = new QScrollArea(this);
-  scroll->setWidgetResizable(true);
-  scroll->setFrameShape(QFrame::NoFrame);
-  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-  outer->addWidget(scroll);
   auto* content = new QWidget;
   auto* form = new QFormLayout(content);
   form->setContentsMargins(8, 8, 8, 8);
@@ -43,7 +37,7 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
     rows_.emplace_back(field, ed);
     byKey_[f.key] = ed;
   }
-  scroll->setWidget(content);
+  putInScrollArea(this, content);
   connect(&doc_, &scene::Document::changed, this, [this](const scene::ChangeSet& c) {
     if (c.settings || c.reset) refresh();
   });

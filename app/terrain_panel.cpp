@@ -255,14 +255,7 @@ void TerrainPanel::buildUi() {
     c->setMinimumContentsLength(6);
   }
 
-  auto* scroll = new QScrollArea(this);
-  scroll->setWidgetResizable(true);
-  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-  scroll->setFrameShape(QFrame::NoFrame);
-  scroll->setWidget(content);
-  auto* outer = new QVBoxLayout(this);
-  outer->setContentsMargins(0, 0, 0, 0);
-  outer->addWidget(scroll);
+  putInScrollArea(this, content);
 }
 
 void TerrainPanel::populateMenu(QMenu* menu) {
