@@ -6,6 +6,7 @@
 #include <QJsonDocument>
 
 #include "scene/fields.h"
+#include "scene/json_path_reader.h"
 #include "scene/terrain_json.h"
 #include "sequencer/sequence_json.h"
 
@@ -36,31 +37,16 @@ QJsonValue fieldToJson(const FieldInfo<Target>& f, const Target& t) {
 }
 
 // Reading: each helper names the JSON path of what it could not read.
-struct Reader {
-  std::string& error;
-
-  bool fail(const std::string& path, const std::string& what) {
-    if (error.empty()) error = path + ": " + what;
-    return false;
-  }
-  bool number(const QJsonValue& v, const std::string& path, double& out) {
-    if (!v.isDouble() || !std::isfinite(v.toDouble())) return fail(path, "expected a finite number");
-    out = v.toDouble();
-    return true;
-  }
+struct Reader : JsonPathReader {
   bool id(const QJsonValue& v, const std::string& path, uint64_t& out) {
-    double d;
+    double d = 0.0;
     if (!number(v, path, d)) return false;
     if (d < 0 || d != std::floor(d) || d > 9007199254740992.0) return fail(path, "expected an id (whole number >= 0)");
     out = uint64_t(d);
     return true;
   }
   bool vec3(const QJsonValue& v, const std::string& path, glm::dvec3& out) {
-    const QJsonArray a = v.toArray();
-    if (!v.isArray() || a.size() != 3) return fail(path, "expected [x, y, z]");
-    for (int i = 0; i < 3; ++i)
-      if (!number(a[i], path + "[" + std::to_string(i) + "]", out[i])) return false;
-    return true;
+    return numbers(v, path, &out[0], 3, "[x, y, z]");
   }
   template <class Target>
   bool field(const FieldInfo<Target>& f, const QJsonValue& v, const std::string& path, Target& t) {
@@ -194,7 +180,7 @@ std::string canonicalJson(const SceneState& state) {
 }
 
 std::optional<SceneState> sceneFromJson(const QJsonObject& json, std::string& error) {
-  Reader r{error};
+  Reader r{{error}};
   SceneState s;
   if (json["format"].toString() != "hybridscape-scene") {
     r.fail("format", "not a Hybridscape scene description");

@@ -4,6 +4,8 @@
 
 #include <QByteArray>
 
+#include "scene/json_path_reader.h"
+
 namespace hs::scene {
 namespace {
 
@@ -38,24 +40,8 @@ QJsonObject ruleJson(const terrain::PaintRule& r) {
   return o;
 }
 
-struct Reader {
-  std::string& error;
-  bool fail(const std::string& path, const std::string& what) {
-    if (error.empty()) error = path + ": " + what;
-    return false;
-  }
-  bool number(const QJsonValue& v, const std::string& path, double& out) {
-    if (!v.isDouble() || !std::isfinite(v.toDouble())) return fail(path, "expected a finite number");
-    out = v.toDouble();
-    return true;
-  }
-  bool vec(const QJsonValue& v, const std::string& path, double* out, int n) {
-    const QJsonArray a = v.toArray();
-    if (!v.isArray() || a.size() != n) return fail(path, "expected " + std::to_string(n) + " numbers");
-    for (int i = 0; i < n; ++i)
-      if (!number(a[i], path + "[" + std::to_string(i) + "]", out[i])) return false;
-    return true;
-  }
+struct Reader : JsonPathReader {
+  bool vec(const QJsonValue& v, const std::string& path, double* out, int n) { return numbers(v, path, out, n); }
   bool material(const QJsonValue& v, const std::string& path, terrain::Material& m) {
     if (!v.isObject()) return fail(path, "expected a material object");
     const QJsonObject o = v.toObject();
@@ -102,7 +88,7 @@ QJsonArray paintRulesToJson(const std::vector<terrain::PaintRule>& rules) {
 }
 
 bool paintRulesFromJson(const QJsonArray& json, int layers, std::vector<terrain::PaintRule>& out, std::string& error) {
-  Reader r{error};
+  Reader r{{error}};
   out.clear();
   for (int k = 0; k < json.size(); ++k) {
     terrain::PaintRule rule;
@@ -185,7 +171,7 @@ QJsonArray terrainsToJson(const SceneState& state) {
 }
 
 bool terrainsFromJson(const QJsonArray& json, SceneState& state, std::string& error) {
-  Reader r{error};
+  Reader r{{error}};
   for (int i = 0; i < json.size(); ++i) {
     const std::string p = "terrains[" + std::to_string(i) + "]";
     const QJsonObject o = json[i].toObject();
