@@ -13,7 +13,7 @@
 #include <QPointer>
 #include <QString>
 
-#include "mesh/progress.h"
+#include "core/progress.h"
 
 class QProgressDialog;
 class QWidget;

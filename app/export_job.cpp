@@ -25,11 +25,11 @@ ExportJob::~ExportJob() {
 }
 
 void ExportJob::cancel() {
-  if (cancel_) cancel_->store(true);
+  if (cancel_) cancel_->cancel();
 }
 
 void ExportJob::start(ExportRequest request) {
-  cancel_ = std::make_shared<std::atomic<bool>>(false);
+  cancel_ = std::make_shared<Progress>();
   outcome_ = std::make_shared<ExportOutcome>();
   running_ = true;
   auto cancel = cancel_;
@@ -45,9 +45,9 @@ void ExportJob::start(ExportRequest request) {
     }
     render::StereoFrameSource source(renderer, request.scene, request.frame);
     sequencer::ExportCallbacks callbacks;
-    callbacks.cancel = cancel.get();
+    callbacks.progress = cancel.get();
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
-    callbacks.progress = [&last, self](const sequencer::ExportProgress& p) {
+    callbacks.onFrame = [&last, self](const sequencer::ExportProgress& p) {
       // At most ten updates a second reach the UI thread (and always the last).
       const auto now = std::chrono::steady_clock::now();
       if (now - last < std::chrono::milliseconds(100) && p.written + p.kept < p.total) return;

@@ -6,12 +6,12 @@
 // so the editor and the CLI write the same files and resume each other's
 // runs. Progress arrives on the UI thread; cancel() stops after the frames in
 // flight are written.
-#include <atomic>
 #include <memory>
 
 #include <QFutureWatcher>
 #include <QObject>
 
+#include "core/progress.h"
 #include "render/stereo_frame_source.h"
 #include "scene/scene_state.h"
 #include "sequencer/export_loop.h"
@@ -49,7 +49,7 @@ class ExportJob : public QObject {
   void finished();
 
  private:
-  std::shared_ptr<std::atomic<bool>> cancel_;
+  std::shared_ptr<Progress> cancel_;
   std::shared_ptr<ExportOutcome> outcome_;
   QFutureWatcher<void> watcher_;
   bool running_ = false;

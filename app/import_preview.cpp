@@ -8,8 +8,8 @@
 
 #include <QtConcurrent/QtConcurrentRun>
 
-#include "mesh/decimate.h"
-#include "mesh/error_metrics.h"
+#include "meshproc/decimate.h"
+#include "meshproc/error_metrics.h"
 
 namespace hs::app {
 namespace {

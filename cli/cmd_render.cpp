@@ -85,9 +85,9 @@ int runRender(int argc, char** argv) {
   render::RenderOptions options;
   options.showGrid = !args.has("no-grid");
   const bool hdr = *format == sequencer::ImageFormat::Exr;
-  const render::Image img = renderer.render(*state, view, hdr, &stats, options);
+  const hs::Image img = renderer.render(*state, view, hdr, &stats, options);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  sequencer::ImageView iv{img.width, img.height, img.rgba8.empty() ? nullptr : img.rgba8.data(),
+  hs::ImageView iv{img.width, img.height, img.rgba8.empty() ? nullptr : img.rgba8.data(),
                           img.rgbaF.empty() ? nullptr : img.rgbaF.data()};
   if (!sequencer::writeImage(*out, iv, error, writeOptions)) return fail(cmd, error);
   std::printf("rendered %dx%d from %s: %zu triangles, %zu draw calls, %.1f ms (%s) -> %s\n", width, height,

@@ -17,12 +17,13 @@ namespace hs::cli {
 
 namespace {
 
-std::atomic<bool> gInterrupted{false};
+// Ctrl-C cancels the export through it (Progress::cancel is signal-safe).
+Progress gInterrupted;
 
 // Ctrl-C stops after the frames already rendered are written (they are
 // whole files; running again resumes). A second Ctrl-C ends at once.
 void onInterrupt(int) {
-  gInterrupted = true;
+  gInterrupted.cancel();
   std::signal(SIGINT, SIG_DFL);
 }
 
@@ -193,9 +194,8 @@ int renderFrames(const Args& args) {
 
   ProgressPrinter printer;
   sequencer::ExportCallbacks callbacks;
-  callbacks.progress = [&printer](const sequencer::ExportProgress& p) { printer(p); };
-  callbacks.cancel = &gInterrupted;
-  gInterrupted = false;
+  callbacks.onFrame = [&printer](const sequencer::ExportProgress& p) { printer(p); };
+  callbacks.progress = &gInterrupted;
   std::signal(SIGINT, onInterrupt);
   const sequencer::ExportResult r = sequencer::runExport(s, source, callbacks);
   std::signal(SIGINT, SIG_DFL);

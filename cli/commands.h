@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/progress.h"
+#include "core/progress.h"
 
 namespace hs::cli {
 

@@ -10,7 +10,7 @@
 
 #include "mesh/georef_sidecar.h"
 #include "mesh/mesh_data.h"
-#include "mesh/progress.h"
+#include "core/progress.h"
 
 namespace hs::mesh {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <atomic>
 
-#include "mesh/parallel.h"
+#include "core/parallel.h"
 
 namespace hs::mesh {
 namespace {

@@ -12,7 +12,7 @@
 #include <unordered_map>
 
 #include "mesh/mtl_reader.h"
-#include "mesh/parallel.h"
+#include "core/parallel.h"
 #include "mesh/texture_decode.h"
 
 // How the reader scales (photogrammetry OBJs run to gigabytes):

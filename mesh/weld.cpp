@@ -8,7 +8,7 @@
 #include <cstring>
 #include <memory>
 
-#include "mesh/parallel.h"
+#include "core/parallel.h"
 #include "mesh/radix_sort.h"
 
 namespace hs::mesh {
@@ -156,7 +156,7 @@ void weldPositionsAndWedges(std::span<const glm::vec3> positions, std::span<cons
     cut.push_back(std::max(cut.back(), at));
   }
   cut.push_back(n);
-  detail::runWorkers(workers, [&](unsigned w) {
+  parallelTasks(workers, workers, [&](size_t w, unsigned) {
     std::vector<uint32_t> run;
     for (size_t r = cut[w]; r < cut[w + 1];) {
       size_t e = r + 1;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mesh/lod_chain.h"
+#include "meshproc/lod_chain.h"
 
 namespace hs::render {
 

@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "render/image.h"
+#include "core/image.h"
 #include "render/renderer.h"
 
 namespace hs::render {

@@ -12,7 +12,7 @@
 #include <memory>
 #include <string>
 
-#include "render/image.h"
+#include "core/image.h"
 #include "render/overlay.h"
 #include "render/render_view.h"
 #include "render/terrain_lod.h"

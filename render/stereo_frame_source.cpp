@@ -10,7 +10,7 @@
 #include "render/pixel_readback.h"
 #include "render/stereo_views.h"
 #include "scene/animation.h"
-#include "sequencer/srgb.h"
+#include "core/srgb.h"
 
 namespace hs::render {
 
@@ -28,11 +28,11 @@ size_t bytesPerPixel(PixelKind k) {
 }
 
 // GL rows run bottom-up, images top-down.
-sequencer::Image imageFrom(const uint8_t* src, int w, int h, PixelKind kind) {
+hs::Image imageFrom(const uint8_t* src, int w, int h, PixelKind kind) {
   const size_t rowPixels = size_t(w);
   switch (kind) {
     case PixelKind::Display8: {
-      sequencer::Image img = sequencer::Image::make8(w, h);
+      hs::Image img = hs::Image::make8(w, h);
       for (int y = 0; y < h; ++y)
         std::memcpy(img.rgba8.data() + size_t(y) * rowPixels * 4, src + size_t(h - 1 - y) * rowPixels * 4, rowPixels * 4);
       return img;
@@ -40,17 +40,17 @@ sequencer::Image imageFrom(const uint8_t* src, int w, int h, PixelKind kind) {
     case PixelKind::Display16: {
       // 16-bit sRGB display values to linear float: the writer encodes them
       // back (16-bit PNG) with nothing lost, and layouts mix in linear light.
-      sequencer::Image img = sequencer::Image::makeF(w, h);
+      hs::Image img = hs::Image::makeF(w, h);
       for (int y = 0; y < h; ++y) {
         const auto* row = reinterpret_cast<const uint16_t*>(src + size_t(h - 1 - y) * rowPixels * 8);
         float* dst = img.rgbaF.data() + size_t(y) * rowPixels * 4;
         for (size_t i = 0; i < rowPixels * 4; ++i)
-          dst[i] = (i % 4) == 3 ? 1.0f : sequencer::srgbFloatToLinear(float(row[i]) / 65535.0f);
+          dst[i] = (i % 4) == 3 ? 1.0f : srgbFloatToLinear(float(row[i]) / 65535.0f);
       }
       return img;
     }
     case PixelKind::LinearFloat: {
-      sequencer::Image img = sequencer::Image::makeF(w, h);
+      hs::Image img = hs::Image::makeF(w, h);
       for (int y = 0; y < h; ++y)
         std::memcpy(img.rgbaF.data() + size_t(y) * rowPixels * 4, src + size_t(h - 1 - y) * rowPixels * 16,
                     rowPixels * 16);

@@ -14,8 +14,8 @@ namespace {
 
 // A picture of the eye's pixels (GL rows bottom-up, kept as they are: the
 // anaglyph is per pixel, and the texture goes back to GL).
-sequencer::Image readEye(unsigned fbo, int w, int h) {
-  sequencer::Image img = sequencer::Image::make8(w, h);
+hs::Image readEye(unsigned fbo, int w, int h) {
+  hs::Image img = hs::Image::make8(w, h);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba8.data());
@@ -138,8 +138,8 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
     }
     case StereoPreviewMode::Anaglyph: {
       // The export's composition on the CPU: the preview shows the film's colours.
-      const sequencer::Image l = readEye(eyes_[0].fbo, eyeW, eyeH), r = readEye(eyes_[1].fbo, eyeW, eyeH);
-      const std::vector<sequencer::Image> out = sequencer::composeLayout(sequencer::StereoLayout::Anaglyph, l, r);
+      const hs::Image l = readEye(eyes_[0].fbo, eyeW, eyeH), r = readEye(eyes_[1].fbo, eyeW, eyeH);
+      const std::vector<hs::Image> out = sequencer::composeLayout(sequencer::StereoLayout::Anaglyph, l, r);
       if (out.empty()) break;
       ensureAnaglyph(eyeW, eyeH);
       glPixelStorei(GL_UNPACK_ALIGNMENT, 4);

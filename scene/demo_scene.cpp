@@ -5,7 +5,7 @@
 #include <QFile>
 
 #include "mesh/mesh_import.h"
-#include "mesh/mesh_process.h"
+#include "meshproc/mesh_process.h"
 #include "scene/demo_terrain.h"
 #include "scene/import_pipeline.h"
 #include "scene/report_json.h"

@@ -12,7 +12,7 @@
 #include <optional>
 #include <string>
 
-#include "mesh/progress.h"
+#include "core/progress.h"
 #include "scene/scene_state.h"
 
 namespace hs::scene {

@@ -16,7 +16,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "scene/import_wire.h"
+#include "mesh/import_wire.h"
 
 extern char** environ;
 
@@ -149,7 +149,7 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
   }
 
   std::vector<std::string> args = {worker, "--result-fd", "3", "--watch-stdin"};
-  for (auto& a : importWorkerArguments(path, options)) args.push_back(std::move(a));
+  for (auto& a : mesh::importWorkerArguments(path, options)) args.push_back(std::move(a));
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -222,7 +222,7 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
       while ((nl = buffer.find('\n')) != std::string::npos) {
         double f;
         std::string stage;
-        if (parseImportProgressLine(std::string_view(buffer).substr(0, nl), f, stage)) {
+        if (mesh::parseImportProgressLine(std::string_view(buffer).substr(0, nl), f, stage)) {
           lastFraction = std::clamp(f, 0.0, 1.0);
           lastStage = std::move(stage);
           reportProgress(progress, lastFraction, lastStage);
@@ -267,7 +267,7 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
   if (code == 0 || !reaped) {
     const int dupFd = ::dup(fds.result);
     if (std::FILE* in = dupFd >= 0 ? ::fdopen(dupFd, "rb") : nullptr) {
-      haveResult = readImportResult(in, r, readError);
+      haveResult = mesh::readImportResult(in, r, readError);
       std::fclose(in);
     } else {
       if (dupFd >= 0) ::close(dupFd);

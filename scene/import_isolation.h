@@ -11,7 +11,7 @@
 #include <string>
 
 #include "mesh/mesh_import.h"
-#include "mesh/progress.h"
+#include "core/progress.h"
 
 namespace hs::scene {
 

@@ -5,7 +5,7 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 
-#include "mesh/report_json.h"
+#include "meshproc/report_json.h"
 #include "mesh/tile_merge.h"
 #include "scene/import_isolation.h"
 #include "scene/report_json.h"

@@ -12,8 +12,8 @@
 #include <QJsonObject>
 
 #include "mesh/mesh_import.h"
-#include "mesh/mesh_process.h"
-#include "mesh/progress.h"
+#include "meshproc/mesh_process.h"
+#include "core/progress.h"
 #include "scene/scene_state.h"
 
 namespace hs::scene {

@@ -3,7 +3,7 @@
 #include <cstring>
 
 #include "mesh/texture_decode.h"
-#include "scene/mesh_geometry_codec.h"
+#include "mesh/mesh_geometry_codec.h"
 
 namespace hs::scene {
 namespace {

@@ -19,7 +19,7 @@
 
 #include <QJsonArray>
 
-#include "mesh/progress.h"
+#include "core/progress.h"
 #include "scene/scene_state.h"
 #include "scene/sqlite_db.h"
 

@@ -19,7 +19,7 @@
 
 #include <QString>
 
-#include "mesh/progress.h"
+#include "core/progress.h"
 #include "scene/document.h"
 #include "scene/terrain_edits.h"
 #include "terrain/dem_import.h"

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "sequencer/srgb.h"
+#include "core/srgb.h"
 
 namespace hs::sequencer {
 

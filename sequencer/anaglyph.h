@@ -4,7 +4,7 @@
 #include <optional>
 #include <string_view>
 
-#include "sequencer/image.h"
+#include "core/image.h"
 
 namespace hs::sequencer {
 

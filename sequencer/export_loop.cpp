@@ -312,7 +312,7 @@ ExportResult runExport(const ExportSettings& s, FrameSource& source, const Expor
   for (int i = 0; i < threads; ++i) pool.emplace_back(writer);
 
   auto report = [&] {
-    if (!cb.progress) return;
+    if (!cb.onFrame && !cb.progress) return;
     ExportProgress p;
     p.total = result.total;
     p.kept = result.kept;
@@ -327,7 +327,8 @@ ExportResult runExport(const ExportSettings& s, FrameSource& source, const Expor
     }
     const int64_t remaining = int64_t(plan.toRender.size()) - p.written;
     if (p.framesPerSecond > 0.0) p.etaSeconds = double(remaining) / p.framesPerSecond;
-    cb.progress(p);
+    if (p.total > 0) reportProgress(cb.progress, double(p.kept + p.written) / double(p.total), "Rendering frames");
+    if (cb.onFrame) cb.onFrame(p);
   };
 
   // The render loop, on the caller's thread.
@@ -355,7 +356,7 @@ ExportResult runExport(const ExportSettings& s, FrameSource& source, const Expor
     return true;
   };
   for (size_t i = 0; i < plan.toRender.size(); ++i) {
-    if (stopAfter != kRunning || renderFailed || (cb.cancel && cb.cancel->load())) break;
+    if (stopAfter != kRunning || renderFailed || isCancelled(cb.progress)) break;
     FrameJob job;
     job.frame = plan.toRender[i];
     job.time = frameTime(job.frame, s.rate);
@@ -394,10 +395,10 @@ ExportResult runExport(const ExportSettings& s, FrameSource& source, const Expor
   result.writeSeconds = writeSeconds;
   result.waitSeconds = waitSeconds;
   if (film) {
-    if (firstError.empty() && !(cb.cancel && cb.cancel->load()) && !film->close(error)) firstError = error;
+    if (firstError.empty() && !isCancelled(cb.progress) && !film->close(error)) firstError = error;
     film.reset();  // an unfinished film is removed: it would not play to the end
   }
-  result.cancelled = cb.cancel && cb.cancel->load() && firstError.empty();
+  result.cancelled = isCancelled(cb.progress) && firstError.empty();
   if (!firstError.empty()) {
     result.error = firstError;
     result.failedFrame = failedFrame;

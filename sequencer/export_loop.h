@@ -22,9 +22,10 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.h"
 #include "sequencer/ffmpeg_writer.h"
 #include "sequencer/frame_range.h"
-#include "sequencer/image.h"
+#include "core/image.h"
 #include "sequencer/image_writer.h"
 #include "sequencer/stereo_layout.h"
 
@@ -118,9 +119,13 @@ struct ExportResult {
 using ImageSink = std::function<bool(const std::string& path, const Image& image, std::string& error)>;
 
 struct ExportCallbacks {
-  std::function<void(const ExportProgress&)> progress;  // on the caller's thread, after each frame and while draining
-  const std::atomic<bool>* cancel = nullptr;            // stops after the frames already rendered are written
-  ImageSink sink;                                       // default: encode and write atomically
+  // Cancel (the export stops after the frames already rendered are
+  // written) and the share of frames finished.
+  const Progress* progress = nullptr;
+  // Frame counts, speed and ETA: on the caller's thread, after each frame
+  // and while draining.
+  std::function<void(const ExportProgress&)> onFrame;
+  ImageSink sink;  // default: encode and write atomically
 };
 
 // What a resumed export would do: the frames to render, after making the

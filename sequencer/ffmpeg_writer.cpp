@@ -14,7 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "sequencer/srgb.h"
+#include "core/srgb.h"
 
 extern char** environ;
 

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "sequencer/frame_range.h"
-#include "sequencer/image.h"
+#include "core/image.h"
 #include "sequencer/stereo_layout.h"
 
 namespace hs::sequencer {

@@ -1,13 +1,11 @@
 #include "sequencer/frame_verify.h"
 
 #include <algorithm>
-#include <atomic>
 #include <filesystem>
-#include <mutex>
-#include <thread>
 
 #include <OpenImageIO/imageio.h>
 
+#include "core/parallel.h"
 #include "sequencer/output_pattern.h"
 
 namespace hs::sequencer {
@@ -63,23 +61,16 @@ VerifyReport verifyFrames(const VerifySettings& s) {
   r.expectedFrames = int64_t(frames.size());
   const glm::ivec2 size = layoutFrameSize(s.layout, s.eyeWidth, s.eyeHeight);
   std::vector<FrameCheck> results(frames.size());
-  std::atomic<size_t> next{0};
-  auto work = [&] {
-    for (size_t i = next++; i < frames.size(); i = next++) {
-      FrameCheck worst;
-      worst.ok = true;
-      const int files = layoutFilesPerFrame(s.layout);
-      for (int e = 0; e < files && worst.ok; ++e) {
-        const Eye eye = files == 1 ? Eye::Both : (e == 0 ? Eye::Left : Eye::Right);
-        worst = checkFrameFile(pattern->path(frames[i], eye), size.x, size.y, s.jobTag, s.deep);
-      }
-      results[i] = worst;
+  parallelTasks(frames.size(), unsigned(std::max(1, s.threads)), [&](size_t i, unsigned) {
+    FrameCheck worst;
+    worst.ok = true;
+    const int files = layoutFilesPerFrame(s.layout);
+    for (int e = 0; e < files && worst.ok; ++e) {
+      const Eye eye = files == 1 ? Eye::Both : (e == 0 ? Eye::Left : Eye::Right);
+      worst = checkFrameFile(pattern->path(frames[i], eye), size.x, size.y, s.jobTag, s.deep);
     }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(1, s.threads); ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+    results[i] = worst;
+  });
 
   std::vector<bool> badChunk;
   for (size_t i = 0; i < frames.size(); ++i) {

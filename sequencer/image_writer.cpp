@@ -12,7 +12,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include "sequencer/srgb.h"
+#include "core/srgb.h"
 
 namespace hs::sequencer {
 

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "core/image.h"
+
 namespace hs::sequencer {
 
 enum class ImageFormat { Png, Exr, Jpeg, Tiff };
@@ -17,13 +19,6 @@ enum class ImageFormat { Png, Exr, Jpeg, Tiff };
 // From the file extension (case-insensitive); nullopt for anything else.
 std::optional<ImageFormat> imageFormatFromPath(const std::string& path);
 const char* imageFormatName(ImageFormat f);
-
-struct ImageView {
-  int width = 0;
-  int height = 0;
-  const uint8_t* rgba8 = nullptr;  // sRGB display pixels, top row first, or
-  const float* rgbaF = nullptr;    // linear HDR pixels, top row first
-};
 
 struct WriteOptions {
   int jpegQuality = 92;   // 1..100

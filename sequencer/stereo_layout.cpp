@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "sequencer/srgb.h"
+#include "core/srgb.h"
 
 namespace hs::sequencer {
 

@@ -10,7 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "sequencer/anaglyph.h"
-#include "sequencer/image.h"
+#include "core/image.h"
 
 namespace hs::sequencer {
 

@@ -8,7 +8,7 @@
 
 #include "terrain/brush.h"
 #include "terrain/heightfield.h"
-#include "terrain/parallel.h"
+#include "core/parallel.h"
 
 namespace hs::terrain {
 

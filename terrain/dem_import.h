@@ -32,7 +32,7 @@
 
 #include <glm/glm.hpp>
 
-#include "mesh/progress.h"
+#include "core/progress.h"
 #include "terrain/grid_resample.h"
 #include "terrain/heightfield.h"
 #include "terrain/nodata_fill.h"

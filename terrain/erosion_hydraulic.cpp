@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "terrain/parallel.h"
+#include "core/parallel.h"
 #include "terrain/undo_step.h"
 
 namespace hs::terrain {

@@ -29,7 +29,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "mesh/progress.h"
+#include "core/progress.h"
 #include "terrain/erosion_common.h"
 
 namespace hs::terrain {

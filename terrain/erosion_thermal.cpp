@@ -6,7 +6,7 @@
 #include <limits>
 #include <type_traits>
 
-#include "terrain/parallel.h"
+#include "core/parallel.h"
 #include "terrain/undo_step.h"
 
 namespace hs::terrain {

@@ -17,7 +17,7 @@
 // mass is conserved up to float rounding, which the report measures.
 #include <vector>
 
-#include "mesh/progress.h"
+#include "core/progress.h"
 #include "terrain/erosion_common.h"
 
 namespace hs::terrain {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "terrain/parallel.h"
+#include "core/parallel.h"
 
 namespace hs::terrain {
 namespace {

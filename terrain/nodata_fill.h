@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/progress.h"
+#include "core/progress.h"
 
 namespace hs::terrain {
 

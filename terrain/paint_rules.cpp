@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "terrain/parallel.h"
+#include "core/parallel.h"
 
 namespace hs::terrain {
 namespace {

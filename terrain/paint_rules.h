@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/progress.h"
+#include "core/progress.h"
 #include "terrain/region.h"
 #include "terrain/terrain.h"
 #include "terrain/undo_step.h"

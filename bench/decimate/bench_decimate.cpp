@@ -27,8 +27,8 @@
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 
 #include "bench/common/bench_util.h"
-#include "mesh/decimate.h"
-#include "mesh/error_metrics.h"
+#include "meshproc/decimate.h"
+#include "meshproc/error_metrics.h"
 #include "mesh/mesh_import.h"
 #include "plot_png.h"
 #include "scan_terrain.h"

@@ -37,6 +37,8 @@
 #include "sequencer/stereo_layout.h"
 
 using namespace hs::sequencer;
+using hs::Image;
+using hs::ImageView;
 namespace fs = std::filesystem;
 using hs::bench::cpuSeconds;
 using hs::bench::loadAverage;

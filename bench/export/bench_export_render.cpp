@@ -39,6 +39,8 @@
 
 using namespace hs;
 using namespace hs::sequencer;
+using hs::Image;
+using hs::ImageView;
 namespace fs = std::filesystem;
 using hs::bench::cpuSeconds;
 using hs::bench::loadAverage;

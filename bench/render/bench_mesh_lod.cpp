@@ -34,7 +34,7 @@ using bench::median;
 
 namespace {
 
-test::Rgba8Image toTest(const render::Image& img) { return {img.width, img.height, img.rgba8}; }
+test::Rgba8Image toTest(const hs::Image& img) { return {img.width, img.height, img.rgba8}; }
 
 // The demo's bunny asset (with its LOD chain) on a grid x grid field,
 // `spacing` metres apart, each 2 m tall and turned its own way, plus a sun
@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
   const std::vector<double> bounds = {0.0, 0.5, 1.0, 2.0, 4.0, 8.0};
   std::vector<std::vector<double>> times(bounds.size());
   std::vector<render::FrameStats> stats(bounds.size());
-  std::vector<render::Image> images(bounds.size());
+  std::vector<hs::Image> images(bounds.size());
   for (size_t k = 0; k < bounds.size(); ++k) {  // warm-up, the images, GPU caches filled
     s.settings.meshLodErrorPixels = bounds[k];
     images[k] = renderer.render(s, view, false, &stats[k]);

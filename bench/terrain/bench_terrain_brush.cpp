@@ -11,7 +11,7 @@
 
 #include "bench/common/bench_util.h"
 #include "terrain/noise.h"
-#include "terrain/parallel.h"
+#include "core/parallel.h"
 #include "terrain/stroke.h"
 #include "terrain/tile_blob.h"
 
@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
     t.height.updateAllBounds();
   }
   std::printf("Terrain brush dabs on %dx%d (1 m spacing), %d hardware threads, tile %d^2, load average %.2f\n", n, n,
-              resolveThreads(0), kTileSize, hs::bench::loadAverage());
+              hs::resolveThreads(0), kTileSize, hs::bench::loadAverage());
   std::printf("times in ms: median over repeated dabs; 'first' = first dab of a stroke (with undo before-copies)\n\n");
 
   const Tool tools[] = {

@@ -17,7 +17,7 @@
 #include "terrain/erosion_hydraulic.h"
 #include "terrain/erosion_thermal.h"
 #include "terrain/noise.h"
-#include "terrain/parallel.h"
+#include "core/parallel.h"
 
 using namespace hs::terrain;
 using hs::bench::nowSeconds;
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--quick") == 0) quick = true;
     if (std::strcmp(argv[i], "--plot") == 0 && i + 1 < argc) plotPath = argv[++i];
   }
-  std::printf("Terrain erosion, %d hardware threads, load average at start: %.2f\n", resolveThreads(0),
+  std::printf("Terrain erosion, %d hardware threads, load average at start: %.2f\n", hs::resolveThreads(0),
               hs::bench::loadAverage());
 
   // --- 1. throughput -------------------------------------------------------

@@ -25,7 +25,7 @@
 
 #include "bench/common/bench_util.h"
 #include "tests/common/terrain_screen_error.h"
-#include "tests/render/look_from.h"
+#include "tests/common/look_from.h"
 #include "render/offscreen_renderer.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
@@ -35,7 +35,7 @@
 #include "scene/terrain_ops.h"
 #include "scene/terrain_pick.h"
 #include "terrain/noise.h"
-#include "terrain/parallel.h"
+#include "core/parallel.h"
 #include "terrain/stroke.h"
 
 using namespace hs;
@@ -67,7 +67,7 @@ struct Bench {
     fn.scale = 800.0;
     fn.octaves = 9;
     std::vector<float> all(size_t(n) * size_t(n));
-    terrain::parallelFor(n, 0, 16, [&](int b, int e) {
+    hs::parallelFor(n, 0, 16, [&](int b, int e) {
       for (int y = b; y < e; ++y) {
         fn.row(0.0, 1.0, double(y), n, all.data() + size_t(y) * size_t(n));
         for (int x = 0; x < n; ++x) all[size_t(y) * size_t(n) + size_t(x)] = 300.0f + 120.0f * all[size_t(y) * size_t(n) + size_t(x)];
@@ -152,7 +152,7 @@ void dabBench(render::OffscreenRenderer& r, int n) {
               "   calls, so this is the GPU-side copy too). glFinish: waiting for the GPU afterwards. vs 2 ms:\n"
               "   (dab + GL upload + glFinish) / 2 ms. LOD bkpg: the renderer's CDLOD min/max and LOD-error\n"
               "   refresh of the region (once per frame for all the frame's dabs). all: everything. Medians of 13.\n\n",
-              terrain::resolveThreads(0));
+              hs::resolveThreads(0));
 }
 
 void lodBench(render::OffscreenRenderer& r, int n) {
@@ -252,7 +252,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf("Terrain rendering benchmark on %s, %d hardware threads, load average %.2f\n\n", r.glDescription().c_str(),
-              terrain::resolveThreads(0), bench::loadAverage());
+              hs::resolveThreads(0), bench::loadAverage());
   dabBench(r, quick ? 2049 : 4097);
   lodBench(r, quick ? 4097 : 8193);
   std::printf("load average at the end: %.2f\n", bench::loadAverage());

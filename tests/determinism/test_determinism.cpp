@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <random>
 
-#include "mesh/decimate.h"
+#include "meshproc/decimate.h"
 #include "mesh/mesh_import.h"
 #include "terrain/erosion_hydraulic.h"
 #include "terrain/erosion_thermal.h"

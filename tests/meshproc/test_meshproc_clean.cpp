@@ -2,8 +2,8 @@
 // split, counted, and named in plain words; nothing is dropped silently.
 #include <QtTest>
 
-#include "mesh/decimate.h"
-#include "mesh/mesh_clean.h"
+#include "meshproc/decimate.h"
+#include "meshproc/mesh_clean.h"
 #include "mesh/nonmanifold_split.h"
 #include "mesh/weld.h"
 #include "mesh_builders.h"

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <set>
 
-#include "mesh/decimate.h"
-#include "mesh/error_metrics.h"
+#include "meshproc/decimate.h"
+#include "meshproc/error_metrics.h"
 #include "mesh/mesh_import.h"
 #include "mesh_builders.h"
 

@@ -4,10 +4,10 @@
 #include <QJsonObject>
 #include <QtTest>
 
-#include "mesh/decimate.h"
-#include "mesh/error_metrics.h"
-#include "mesh/mesh_process.h"
-#include "mesh/report_json.h"
+#include "meshproc/decimate.h"
+#include "meshproc/error_metrics.h"
+#include "meshproc/mesh_process.h"
+#include "meshproc/report_json.h"
 #include "mesh_builders.h"
 
 using namespace hs::mesh;

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "mesh/mesh_import.h"
-#include "mesh/mesh_process.h"
+#include "meshproc/mesh_process.h"
 #include "mesh/tile_merge.h"
 #include "mesh_builders.h"
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "mesh/lod_chain.h"
+#include "meshproc/lod_chain.h"
 #include "mesh_builders.h"
 
 using namespace hs::mesh;

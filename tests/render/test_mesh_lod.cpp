@@ -10,7 +10,7 @@
 #include "image_compare.h"
 #include "look_from.h"
 #include "mesh/mesh_import.h"
-#include "mesh/mesh_process.h"
+#include "meshproc/mesh_process.h"
 #include "render/mesh_lod.h"
 #include "render/offscreen_renderer.h"
 #include "scene/transform.h"
@@ -20,7 +20,7 @@ using hs::test::lookFrom;
 
 namespace {
 
-test::Rgba8Image toTest(const render::Image& img) { return {img.width, img.height, img.rgba8}; }
+test::Rgba8Image toTest(const hs::Image& img) { return {img.width, img.height, img.rgba8}; }
 
 // The bunny with three coarser levels (17k, 4.3k, 1.1k triangles), as the
 // import with --lods 3 makes them.
@@ -252,9 +252,9 @@ class TestMeshLod : public QObject {
       const int level = choice(lod, v).level;
       QVERIFY(level > 0 && level < 3);  // the comparison is about a coarser, not the coarsest, level
       render::FrameStats a, b, c;
-      const render::Image imgLod = r_.render(lod, v, false, &a);
-      const render::Image imgFull = r_.render(full, v, false, &b);
-      const render::Image imgCoarsest = r_.render(coarsest, v, false, &c);
+      const hs::Image imgLod = r_.render(lod, v, false, &a);
+      const hs::Image imgFull = r_.render(full, v, false, &b);
+      const hs::Image imgCoarsest = r_.render(coarsest, v, false, &c);
       QVERIFY(a.trianglesDrawn < b.trianglesDrawn && c.trianglesDrawn < a.trianglesDrawn);
       const test::CompareResult cmp = test::compareImages(toTest(imgLod), toTest(imgFull), 16);
       const test::CompareResult worst = test::compareImages(toTest(imgCoarsest), toTest(imgFull), 16);

@@ -17,7 +17,7 @@ using hs::test::lookFrom;
 
 namespace {
 
-test::Rgba8Image toTest(const render::Image& img) { return {img.width, img.height, img.rgba8}; }
+test::Rgba8Image toTest(const hs::Image& img) { return {img.width, img.height, img.rgba8}; }
 
 std::shared_ptr<const mesh::MeshData> bunnyMesh() {
   static std::shared_ptr<const mesh::MeshData> mesh = [] {
@@ -100,7 +100,7 @@ class TestRender : public QObject {
   Q_OBJECT
   render::OffscreenRenderer r_;
 
-  void golden(const std::string& name, const render::Image& img, const test::GoldenTolerance& tol = {}) {
+  void golden(const std::string& name, const hs::Image& img, const test::GoldenTolerance& tol = {}) {
     const std::string problem = test::checkGolden(HS_GOLDEN_DIR, HS_TEST_OUT_DIR, name, toTest(img), tol);
     QVERIFY2(problem.empty(), problem.c_str());
   }
@@ -127,7 +127,7 @@ class TestRender : public QObject {
     // The goldens are at full resolution (LOD bound 0).
     s->settings.meshLodErrorPixels = 0.0;
     render::FrameStats stats;
-    const render::Image img = r_.render(*s, cameraView(*s, 640, 360), false, &stats);
+    const hs::Image img = r_.render(*s, cameraView(*s, 640, 360), false, &stats);
     QCOMPARE(img.width, 640);
     QCOMPARE(img.height, 360);
     // Three instances of the 69,451-triangle bunny, all in view.
@@ -141,7 +141,7 @@ class TestRender : public QObject {
     // levels, and the picture stays the full-resolution one up to edge pixels.
     s->settings.meshLodErrorPixels = 1.0;
     render::FrameStats lodStats;
-    const render::Image lod = r_.render(*s, cameraView(*s, 640, 360), false, &lodStats);
+    const hs::Image lod = r_.render(*s, cameraView(*s, 640, 360), false, &lodStats);
     QVERIFY(lodStats.instancesAtCoarserLod > 0);
     QVERIFY(lodStats.trianglesDrawn < stats.trianglesDrawn);
     const test::CompareResult cmp = test::compareImages(toTest(lod), toTest(img), 16);
@@ -154,8 +154,8 @@ class TestRender : public QObject {
   void largeCoordinatesMatchOrigin() {
     const auto atOrigin = bunnyScene({0, 0, 0});
     const auto atUtm = bunnyScene({500000.0, 4400000.0, 300.0});
-    const render::Image a = r_.render(atOrigin, cameraView(atOrigin, 480, 360));
-    const render::Image b = r_.render(atUtm, cameraView(atUtm, 480, 360));
+    const hs::Image a = r_.render(atOrigin, cameraView(atOrigin, 480, 360));
+    const hs::Image b = r_.render(atUtm, cameraView(atUtm, 480, 360));
     const test::CompareResult cmp = test::compareImages(toTest(a), toTest(b), 2);
     QVERIFY(cmp.sizeMatches);
     // Allow a grey level at a handful of edge pixels; no visible shift.
@@ -169,8 +169,8 @@ class TestRender : public QObject {
     auto atUtm = bunnyScene({500000.0, 4400000.0, 300.0});
     const auto atOrigin = bunnyScene({0, 0, 0});
     atUtm.entities.at(atUtm.cameras().front()).transform.translation.x += 0.005;
-    const render::Image a = r_.render(atOrigin, cameraView(atOrigin, 480, 360));
-    const render::Image b = r_.render(atUtm, cameraView(atUtm, 480, 360));
+    const hs::Image a = r_.render(atOrigin, cameraView(atOrigin, 480, 360));
+    const hs::Image b = r_.render(atUtm, cameraView(atUtm, 480, 360));
     const test::CompareResult cmp = test::compareImages(toTest(a), toTest(b), 2);
     QVERIFY2(cmp.differingShare > 0.001, cmp.summary().c_str());
   }
@@ -187,16 +187,16 @@ class TestRender : public QObject {
     render::RenderView v;
     v.width = 64;
     v.height = 64;
-    const render::Image img = r_.render(s, v);
+    const hs::Image img = r_.render(s, v);
     for (size_t i = 0; i < img.rgba8.size(); i += 4)
       for (int ch = 0; ch < 3; ++ch) QVERIFY(std::abs(int(img.rgba8[i + size_t(ch)]) - 128) <= 1);
     // The HDR readback holds the linear value itself.
-    const render::Image hdr = r_.render(s, v, true);
+    const hs::Image hdr = r_.render(s, v, true);
     QVERIFY(hdr.isFloat());
     QVERIFY(std::abs(hdr.rgbaF[0] - 0.21404114f) < 1e-3f);
     // Exposure scales linear light before encoding: x2 gives linear 0.428 -> sRGB 174.
     s.settings.exposure = 2.0f;
-    const render::Image bright = r_.render(s, v);
+    const hs::Image bright = r_.render(s, v);
     QVERIFY(std::abs(int(bright.rgba8[0]) - 174) <= 1);
   }
 
@@ -230,7 +230,7 @@ class TestRender : public QObject {
     v.fovY = glm::radians(60.0);
     v.eye = {0, -3, 0};
     v.orientation = lookFrom(v.eye, {0, 0, 0}).rotation;
-    const render::Image img = r_.render(s, v);
+    const hs::Image img = r_.render(s, v);
     auto px = [&](int x, int y) {
       const uint8_t* p = &img.rgba8[(size_t(y) * 200 + size_t(x)) * 4];
       return glm::ivec3(p[0], p[1], p[2]);
@@ -282,7 +282,7 @@ class TestRender : public QObject {
   void oddSizesAndResizes() {
     const auto s = bunnyScene({0, 0, 0});
     for (auto [w, h] : {std::pair{333, 177}, {1, 1}, {1024, 64}, {64, 1024}}) {
-      const render::Image img = r_.render(s, cameraView(s, w, h));
+      const hs::Image img = r_.render(s, cameraView(s, w, h));
       QCOMPARE(img.width, w);
       QCOMPARE(img.height, h);
       QCOMPARE(img.rgba8.size(), size_t(w) * size_t(h) * 4);
@@ -311,7 +311,7 @@ class TestRender : public QObject {
     v.width = v.height = 128;
     v.eye = {0, -6, 0};
     v.orientation = lookFrom(v.eye, {0, 0, 0}).rotation;
-    const render::Image img = r_.render(s, v);
+    const hs::Image img = r_.render(s, v);
     const int centre = img.rgba8[(64 * 128 + 64) * 4];
     const int edge = img.rgba8[(64 * 128 + 20) * 4];
     QVERIFY2(centre > edge + 40, qPrintable(QString("centre %1 edge %2").arg(centre).arg(edge)));

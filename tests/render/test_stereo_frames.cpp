@@ -19,7 +19,7 @@
 #include "scene/demo_scene.h"
 #include "scene/transform.h"
 #include "sequencer/export_loop.h"
-#include "sequencer/srgb.h"
+#include "core/srgb.h"
 
 using namespace hs;
 namespace fs = std::filesystem;
@@ -136,7 +136,7 @@ scene::SceneState stripScene(double convergence, double interaxial, const std::v
 }
 
 // Horizontal centre of the dark pixels of row y (darkness-weighted), or NaN.
-double darkCentre(const sequencer::Image& img, int y) {
+double darkCentre(const hs::Image& img, int y) {
   double sum = 0.0, weighted = 0.0;
   for (int x = 0; x < img.width; ++x) {
     const uint8_t* p = &img.rgba8[(size_t(y) * size_t(img.width) + size_t(x)) * 4];
@@ -195,7 +195,7 @@ class TestStereoFrames : public QObject {
     const render::EyeViews v = render::eyeViews(at, cam, kW, kH);
     QVERIFY(v.stereo);
     QVERIFY(v.left.projectionShift.x < 0.0 && v.right.projectionShift.x > 0.0);
-    const render::Image l = r_.render(at, v.left), r = r_.render(at, v.right);
+    const hs::Image l = r_.render(at, v.left), r = r_.render(at, v.right);
     QVERIFY(eyes.left.rgba8 == l.rgba8);
     QVERIFY(eyes.right.rgba8 == r.rgba8);
     QVERIFY(eyes.left.rgba8 != eyes.right.rgba8);  // a stereo pair, not one view twice
@@ -280,7 +280,7 @@ class TestStereoFrames : public QObject {
     const sequencer::EyeImages both = sourceFrame(r_, s, o, 0);
     QVERIFY(both.left.rgba8 == both.right.rgba8);
     const scene::SceneState at = scene::animatedState(s, scene::compileSequence(s), 0.0);
-    const render::Image plain = r_.render(at, render::viewFromCamera(at, o.camera, kW, kH));
+    const hs::Image plain = r_.render(at, render::viewFromCamera(at, o.camera, kW, kH));
     QVERIFY(both.left.rgba8 == plain.rgba8);
     // The mono layout of a stereo camera renders the rig's centre view only.
     const sequencer::EyeImages mono = sourceFrame(r_, s, {}, 0, kW, kH, false);
@@ -325,7 +325,7 @@ class TestStereoFrames : public QObject {
     int worst = 0;
     for (size_t i = 0; i < eight.left.rgba8.size(); ++i) {
       if (i % 4 == 3) continue;
-      const int v16 = int(std::lround(sequencer::linearToSrgbFloat(deep.left.rgbaF[i]) * 255.0f));
+      const int v16 = int(std::lround(hs::linearToSrgbFloat(deep.left.rgbaF[i]) * 255.0f));
       worst = std::max(worst, std::abs(v16 - int(eight.left.rgba8[i])));
     }
     QVERIFY2(worst <= 1, qPrintable(QString("16-bit and 8-bit differ by %1").arg(worst)));

@@ -30,7 +30,7 @@ namespace {
 
 const glm::vec3 kSky(1.0f, 0.0f, 1.0f);  // magenta: no terrain colour is anywhere near it
 
-test::Rgba8Image toTest(const render::Image& img) { return {img.width, img.height, img.rgba8}; }
+test::Rgba8Image toTest(const hs::Image& img) { return {img.width, img.height, img.rgba8}; }
 
 // A rough terrain (ridged noise, 60 m of relief) with a sun and a camera;
 // the sky, horizon and ground colours all magenta, no grid, no tone curve.
@@ -79,12 +79,12 @@ struct TerrainScene {
   render::RenderView view(int w, int h) const { return render::viewFromCamera(doc.state(), camera, w, h); }
 };
 
-bool isSky(const render::Image& img, int x, int y) {
+bool isSky(const hs::Image& img, int x, int y) {
   const uint8_t* p = &img.rgba8[(size_t(y) * size_t(img.width) + size_t(x)) * 4];
   return p[0] > 250 && p[1] < 5 && p[2] > 250;
 }
 
-size_t skyPixels(const render::Image& img) {
+size_t skyPixels(const hs::Image& img) {
   size_t n = 0;
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) n += isSky(img, x, y);
@@ -126,7 +126,7 @@ class TestTerrainRender : public QObject {
     s.look({0.0, -300.0, 320.0}, {0.0, 200.0, 0.0});  // the view's top edge meets the ground 1.4 km away
     const render::RenderView v = s.view(640, 360);
     render::FrameStats stats;
-    const render::Image img = r_.render(s.state(), v, false, &stats);
+    const hs::Image img = r_.render(s.state(), v, false, &stats);
     const render::LodSelection lod = r_.renderer().terrainLod(s.state(), s.terrain, v);
     int minLevel = 99, maxLevel = -1;
     for (const auto& p : lod.patches) {
@@ -152,7 +152,7 @@ class TestTerrainRender : public QObject {
     terrain::Stroke st(s.data().terrain(), b);
     const terrain::StrokeUpdate u = st.dabAt(glm::dvec2(2048.0, 2048.0 + 500.0));
     scene::noteTerrainChange(s.doc, scene::terrainOf(s.state(), s.terrain)->id, s.data(), u.changed, scene::kTerrainHoles);
-    const render::Image holed = r_.render(s.state(), v);
+    const hs::Image holed = r_.render(s.state(), v);
     QVERIFY(skyPixels(holed) > 100);
   }
 
@@ -174,8 +174,8 @@ class TestTerrainRender : public QObject {
     };
     place(a, glm::dvec3(0.0));
     place(b, glm::dvec3(500000.0, 4400000.0, 300.0));
-    const render::Image ia = r_.render(a.state(), a.view(480, 360));
-    const render::Image ib = r_.render(b.state(), b.view(480, 360));
+    const hs::Image ia = r_.render(a.state(), a.view(480, 360));
+    const hs::Image ib = r_.render(b.state(), b.view(480, 360));
     const test::CompareResult cmp = test::compareImages(toTest(ia), toTest(ib), 2);
     qInfo("origin vs UTM: %s", cmp.summary().c_str());
     QVERIFY(cmp.sizeMatches);
@@ -185,7 +185,7 @@ class TestTerrainRender : public QObject {
     scene::Transform t = b.state().find(b.camera)->transform;
     t.translation.x += 0.005;
     scene::ops::setTransforms(b.doc, {{b.camera, t}}, "nudge");
-    const render::Image ic = r_.render(b.state(), b.view(480, 360));
+    const hs::Image ic = r_.render(b.state(), b.view(480, 360));
     QDir().mkpath(HS_TEST_OUT_DIR);
     test::writePng(HS_TEST_OUT_DIR "/terrain_utm.png", toTest(ib));
     test::writePng(HS_TEST_OUT_DIR "/terrain_utm_shifted.png", toTest(ic));
@@ -221,7 +221,7 @@ class TestTerrainRender : public QObject {
     TerrainScene s(1025, 1024.0);
     s.look({0.0, -600.0, 400.0}, {0.0, 0.0, 0.0});
     render::FrameStats first;
-    const render::Image before = r_.render(s.state(), s.view(320, 180), false, &first);
+    const hs::Image before = r_.render(s.state(), s.view(320, 180), false, &first);
     QVERIFY(first.terrainUploadBytes >= size_t(1025) * 1025 * 4);  // the first frame uploads it all
     terrain::BrushSettings b;
     b.tool = terrain::BrushTool::Raise;
@@ -238,7 +238,7 @@ class TestTerrainRender : public QObject {
     QVERIFY(!up.full);
     QVERIFY(up.regions <= 9);
     render::FrameStats after;
-    const render::Image img = r_.render(s.state(), s.view(320, 180), false, &after);
+    const hs::Image img = r_.render(s.state(), s.view(320, 180), false, &after);
     QCOMPARE(after.terrainUploadBytes, size_t(0));  // already up to date
     QVERIFY(img.rgba8 != before.rgba8);             // and it shows
   }
@@ -255,7 +255,7 @@ class TestTerrainRender : public QObject {
     terrain::Stroke st(s.data().terrain(), b);
     const terrain::StrokeUpdate u = st.dabAt(glm::dvec2(128.0, 128.0));
     scene::noteTerrainChange(s.doc, scene::terrainOf(s.state(), s.terrain)->id, s.data(), u.changed, scene::kTerrainHoles);
-    const render::Image img = r_.render(s.state(), v);
+    const hs::Image img = r_.render(s.state(), v);
     QVERIFY(isSky(img, 100, 100));
     QVERIFY(!isSky(img, 10, 10));
     QCOMPARE(r_.renderer().pick(s.state(), v, 100, 100), scene::kNoEntity);

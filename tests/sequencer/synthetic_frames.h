@@ -9,9 +9,9 @@
 
 namespace hs::test {
 
-inline void syntheticEye(const sequencer::FrameJob& job, int eye, sequencer::Image& out) {
+inline void syntheticEye(const sequencer::FrameJob& job, int eye, hs::Image& out) {
   const int w = job.eyeWidth, h = job.eyeHeight;
-  out = job.floatPixels ? sequencer::Image::makeF(w, h) : sequencer::Image::make8(w, h);
+  out = job.floatPixels ? hs::Image::makeF(w, h) : hs::Image::make8(w, h);
   const int64_t f = job.frame;
   const int bar = int((f * 7 + eye * 3) % w);  // a bar that moves with the frame, offset per eye
   for (int y = 0; y < h; ++y)

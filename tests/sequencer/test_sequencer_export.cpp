@@ -20,6 +20,8 @@
 #include "synthetic_frames.h"
 
 using namespace hs::sequencer;
+using hs::Image;
+using hs::ImageView;
 namespace fs = std::filesystem;
 
 namespace {
@@ -140,13 +142,13 @@ class TestExport : public QObject {
   void resumeAfterSimulatedKill() {
     const std::string d = dir("resume");
     ExportSettings s = settingsFor(d, "0-29");
-    std::atomic<bool> cancel{false};
+    hs::Progress cancel;
     auto source = makeCallbackSource([&](const FrameJob& job, EyeImages& out, std::string& err) {
-      if (job.frame == 12) cancel = true;  // stop mid-run
+      if (job.frame == 12) cancel.cancel();  // stop mid-run
       return hs::test::syntheticRender(job, out, err);
     });
     ExportCallbacks cb;
-    cb.cancel = &cancel;
+    cb.progress = &cancel;
     const ExportResult first = runExport(s, *source, cb);
     QVERIFY(first.cancelled && !first.ok);
     QCOMPARE(first.written, int64_t(13));  // frames already rendered are written
@@ -356,7 +358,7 @@ class TestExport : public QObject {
     const std::string d = dir("progress");
     std::vector<ExportProgress> seen;
     ExportCallbacks cb;
-    cb.progress = [&](const ExportProgress& p) { seen.push_back(p); };
+    cb.onFrame = [&](const ExportProgress& p) { seen.push_back(p); };
     const ExportResult r = run(settingsFor(d, "0-19"), cb);
     QVERIFY(r.ok);
     QVERIFY(seen.size() >= 20);

@@ -9,6 +9,8 @@
 #include "sequencer/slurm_script.h"
 
 using namespace hs::sequencer;
+using hs::Image;
+using hs::ImageView;
 namespace fs = std::filesystem;
 
 namespace {

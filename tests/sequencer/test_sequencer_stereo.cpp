@@ -8,11 +8,13 @@
 
 #include "sequencer/anaglyph.h"
 #include "sequencer/comfort_check.h"
-#include "sequencer/srgb.h"
+#include "core/srgb.h"
 #include "sequencer/stereo_layout.h"
 #include "sequencer/stereo_rig.h"
 
 using namespace hs::sequencer;
+using hs::Image;
+using hs::ImageView;
 
 namespace {
 
@@ -304,7 +306,7 @@ class TestStereo : public QObject {
       stripes.rgba8[i * 4 + 3] = 255;
     }
     const Image half = composeLayout(StereoLayout::SideBySideSqueezed, stripes, stripes)[0];
-    QCOMPARE(int(half.rgba8[0]), int(linearToSrgb8(0.5f)));  // 188, not 128
+    QCOMPARE(int(half.rgba8[0]), int(hs::linearToSrgb8(0.5f)));  // 188, not 128
     QCOMPARE(int(half.rgba8[0]), 188);
     const Image tbh = composeLayout(StereoLayout::TopBottomSqueezed, solid8(w, h, 1, 2, 3), solid8(w, h, 4, 5, 6))[0];
     QCOMPARE(tbh.rgba8[0], uint8_t(1));

@@ -24,7 +24,7 @@
 #include <thread>
 
 #include "mesh/mesh_import.h"
-#include "scene/import_wire.h"
+#include "mesh/import_wire.h"
 
 namespace {
 
@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
       if (!end || *end || resultFd < 0) return usage("--result-fd: bad value '" + v + "'");
     } else if (a == "--out") {
       outPath = v;
-    } else if (!hs::scene::parseImportWorkerOptionArgument(a, v, options, error)) {
+    } else if (!hs::mesh::parseImportWorkerOptionArgument(a, v, options, error)) {
       return usage(error);
     }
   }
@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
     if (permille - lastPermille < 5 && stage == lastStage) return;
     lastPermille = permille;
     lastStage = stage;
-    writeAll(STDOUT_FILENO, hs::scene::importProgressLine(f, stage));
+    writeAll(STDOUT_FILENO, hs::mesh::importProgressLine(f, stage));
   });
 
   const hs::mesh::ImportResult result = hs::mesh::importMesh(path, options, &progress);
@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "hybridscape-import-worker: cannot write the result: %s\n", std::strerror(errno));
     return 3;
   }
-  const bool written = hs::scene::writeImportResult(out, result);
+  const bool written = hs::mesh::writeImportResult(out, result);
   const int savedErrno = errno;
   if (std::fclose(out) != 0 || !written) {
     std::fprintf(stderr, "hybridscape-import-worker: cannot write the result: %s\n", std::strerror(savedErrno));

@@ -1,0 +1,187 @@
+#include "meshproc/closest_point_bvh.h"
+
+#include <algorithm>
+#include <bit>
+
+#include "core/parallel.h"
+#include "mesh/radix_sort.h"
+
+namespace hs::mesh {
+
+double closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                              const glm::dvec3& c, glm::dvec3& closest, glm::dvec3& bary) {
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  auto done = [&](const glm::dvec3& w) {
+    bary = w;
+    closest = w.x * a + w.y * b + w.z * c;
+    const glm::dvec3 d = p - closest;
+    return glm::dot(d, d);
+  };
+  if (d1 <= 0 && d2 <= 0) return done({1, 0, 0});
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return done({0, 1, 0});
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return done({1 - v, v, 0});
+  }
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return done({0, 0, 1});
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return done({1 - w, 0, w});
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return done({0, 1 - w, w});
+  }
+  const double denom = va + vb + vc;
+  if (!(std::abs(denom) > 0)) {
+    // Degenerate (zero-area) triangle: the nearest of its three edges.
+    glm::dvec3 bestPoint, bestBary;
+    double best = HUGE_VAL;
+    const glm::dvec3 v[3] = {a, b, c};
+    for (int e = 0; e < 3; ++e) {
+      const glm::dvec3 s = v[e], t = v[(e + 1) % 3], st = t - s;
+      const double len2 = glm::dot(st, st);
+      const double u = len2 > 0 ? std::clamp(glm::dot(p - s, st) / len2, 0.0, 1.0) : 0.0;
+      const glm::dvec3 q = s + u * st;
+      const double d = glm::dot(p - q, p - q);
+      if (d < best) {
+        best = d, bestPoint = q;
+        bestBary = glm::dvec3(0.0);
+        bestBary[e] = 1 - u;
+        bestBary[(e + 1) % 3] = u;
+      }
+    }
+    closest = bestPoint, bary = bestBary;
+    return best;
+  }
+  const double v = vb / denom, w = vc / denom;
+  return done({1 - v - w, v, w});
+}
+
+ClosestPointBvh::ClosestPointBvh(const MeshData& mesh, unsigned threads) {
+  const size_t nf = mesh.triangleCount();
+  if (nf == 0) return;
+  const auto& pos = mesh.positions;
+  glm::vec3 lo(HUGE_VALF), hi(-HUGE_VALF);
+  for (const auto& p : pos) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec3 scale = 1023.0f / glm::max(hi - lo, glm::vec3(1e-30f));
+  std::vector<uint64_t> order(nf);
+  parallelRanges(nf, resolveThreads(threads), [&](size_t b, size_t e, unsigned) {
+    for (size_t f = b; f < e; ++f) {
+      const glm::vec3 c = (pos[mesh.indices[f * 3]] + pos[mesh.indices[f * 3 + 1]] + pos[mesh.indices[f * 3 + 2]]) / 3.0f;
+      const glm::uvec3 q = glm::uvec3(glm::clamp((c - lo) * scale, glm::vec3(0.0f), glm::vec3(1023.0f)));
+      order[f] = (uint64_t(mortonCode10(q.x, q.y, q.z)) << 32) | f;
+    }
+  });
+  radixSortByKey(order, 30);
+  std::vector<uint32_t> codes(nf);
+  faceOfSlot_.resize(nf);
+  slotOfFace_.resize(nf);
+  corners_.resize(nf * 3);
+  for (size_t s = 0; s < nf; ++s) {
+    const uint32_t f = uint32_t(order[s]);
+    codes[s] = uint32_t(order[s] >> 32);
+    faceOfSlot_[s] = f;
+    slotOfFace_[f] = uint32_t(s);
+    for (size_t k = 0; k < 3; ++k) corners_[s * 3 + k] = pos[mesh.indices[size_t(f) * 3 + k]];
+  }
+  nodes_.reserve(nf / 2 + 16);
+  nodes_.push_back({});
+  build(0, 0, uint32_t(nf), codes, 29);
+}
+
+// Splits a Morton-sorted range where its highest differing bit changes
+// (the octree cell boundary), or in the middle once the codes run out.
+// Children are stored next to each other, so an inner node needs one index.
+void ClosestPointBvh::build(uint32_t slot, uint32_t begin, uint32_t end, const std::vector<uint32_t>& codes, int bit) {
+  constexpr uint32_t kLeafSize = 4;
+  Node n{};
+  if (end - begin <= kLeafSize) {
+    n.first = begin, n.count = end - begin;
+    for (int a = 0; a < 3; ++a) n.lo[a] = HUGE_VALF, n.hi[a] = -HUGE_VALF;
+    for (uint32_t s = begin * 3; s < end * 3; ++s)
+      for (int a = 0; a < 3; ++a) n.lo[a] = std::min(n.lo[a], corners_[s][a]), n.hi[a] = std::max(n.hi[a], corners_[s][a]);
+    nodes_[slot] = n;
+    return;
+  }
+  uint32_t split = begin + (end - begin) / 2;
+  for (; bit >= 0; --bit) {
+    const uint32_t mask = 1u << bit;
+    if ((codes[begin] & mask) != (codes[end - 1] & mask)) {
+      // Codes are sorted, so the ones with the bit set form the upper run.
+      split = uint32_t(std::partition_point(codes.begin() + begin, codes.begin() + end,
+                                            [&](uint32_t c) { return !(c & mask); }) - codes.begin());
+      break;
+    }
+  }
+  const uint32_t left = uint32_t(nodes_.size());
+  nodes_.push_back({});
+  nodes_.push_back({});
+  build(left, begin, split, codes, bit - 1);
+  build(left + 1, split, end, codes, bit - 1);
+  n.first = left, n.count = 0;
+  for (int a = 0; a < 3; ++a) {
+    n.lo[a] = std::min(nodes_[left].lo[a], nodes_[left + 1].lo[a]);
+    n.hi[a] = std::max(nodes_[left].hi[a], nodes_[left + 1].hi[a]);
+  }
+  nodes_[slot] = n;
+}
+
+void ClosestPointBvh::testSlot(uint32_t slot, const glm::dvec3& q, Hit& best) const {
+  const glm::dvec3 a(corners_[slot * 3]), b(corners_[slot * 3 + 1]), c(corners_[slot * 3 + 2]);
+  glm::dvec3 point, bary;
+  const double d = closestPointOnTriangle(q, a, b, c, point, bary);
+  if (d < best.distanceSq || (d == best.distanceSq && faceOfSlot_[slot] < best.face)) {
+    best.distanceSq = d;
+    best.face = faceOfSlot_[slot];
+    best.point = point;
+    best.bary = bary;
+  }
+}
+
+ClosestPointBvh::Hit ClosestPointBvh::closest(const glm::dvec3& q, uint32_t hintFace) const {
+  Hit best;
+  if (nodes_.empty()) return best;
+  if (hintFace < slotOfFace_.size()) testSlot(slotOfFace_[hintFace], q, best);
+  auto boxDistSq = [&](const Node& n) {
+    double d = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double v = q[a];
+      const double lo = double(n.lo[a]), hi = double(n.hi[a]);
+      const double e = v < lo ? lo - v : v > hi ? v - hi : 0.0;
+      d += e * e;
+    }
+    return d;
+  };
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (boxDistSq(n) > best.distanceSq) continue;
+    if (n.count > 0) {
+      for (uint32_t s = n.first; s < n.first + n.count; ++s) testSlot(s, q, best);
+      continue;
+    }
+    const double dl = boxDistSq(nodes_[n.first]), dr = boxDistSq(nodes_[n.first + 1]);
+    // Push the farther child first so the nearer one is searched first.
+    if (dl <= dr) {
+      if (dr <= best.distanceSq) stack[top++] = n.first + 1;
+      if (dl <= best.distanceSq) stack[top++] = n.first;
+    } else {
+      if (dl <= best.distanceSq) stack[top++] = n.first;
+      if (dr <= best.distanceSq) stack[top++] = n.first + 1;
+    }
+  }
+  return best;
+}
+
+}  // namespace hs::mesh

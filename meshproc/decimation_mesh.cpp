@@ -1,0 +1,95 @@
+#include "meshproc/decimation_mesh.h"
+
+#include "mesh/nonmanifold_split.h"
+#include "core/parallel.h"
+
+namespace hs::mesh {
+
+void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_t> twin,
+                         std::span<const OpenMesh::Vec3d> points, DecimationMesh& mesh, unsigned threads,
+                         std::span<const uint32_t> firstCorner) {
+  using OpenMesh::FaceHandle;
+  using OpenMesh::HalfedgeHandle;
+  using OpenMesh::VertexHandle;
+  const size_t nv = points.size(), nc = tris.size(), nf = nc / 3;
+  auto owns = [&](size_t c) { return twin[c] == kNoCorner || c < twin[c]; };
+
+  // Edge ids: a prefix count of owning corners, per range then combined, so
+  // the numbering is the same for any number of workers.
+  std::vector<uint32_t> heOf(nc);
+  const unsigned workers = std::max(1u, threads);
+  std::vector<size_t> rangeOwners(workers + 1, 0);
+  parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
+    size_t n = 0;
+    for (size_t c = b; c < e; ++c) n += owns(c);
+    rangeOwners[w + 1] = n;
+  }, 1);
+  // parallelRanges may use fewer workers than asked; unused ranges count 0.
+  for (unsigned w = 0; w < workers; ++w) rangeOwners[w + 1] += rangeOwners[w];
+  const size_t ne = rangeOwners[workers];
+  parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
+    uint32_t next = uint32_t(rangeOwners[w]);
+    for (size_t c = b; c < e; ++c)
+      if (owns(c)) heOf[c] = 2 * next++;
+  }, 1);
+  parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned) {
+    for (size_t c = b; c < e; ++c)
+      if (!owns(c)) heOf[c] = heOf[twin[c]] ^ 1u;
+  }, 1);
+
+  mesh.clean();
+  mesh.resize(nv, ne, nf);
+
+  // Inner halfedges: each face writes its own three, so workers never meet.
+  parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t f = b; f < e; ++f) {
+      const FaceHandle fh{int(f)};
+      for (uint32_t k = 0; k < 3; ++k) {
+        const uint32_t c = uint32_t(f * 3 + k);
+        const HalfedgeHandle h{int(heOf[c])};
+        mesh.set_vertex_handle(h, VertexHandle(int(tris[nextCorner(c)])));
+        mesh.set_face_handle(h, fh);
+        mesh.set_next_halfedge_handle(h, HalfedgeHandle(int(heOf[nextCorner(c)])));
+      }
+      mesh.set_halfedge_handle(fh, HalfedgeHandle(int(heOf[f * 3])));
+    }
+  });
+
+  // Boundary halfedges run against their inner corner; on a manifold mesh
+  // each boundary vertex has exactly one leaving it, which links the loops.
+  std::vector<int> boundaryOut(nv, -1);
+  for (size_t c = 0; c < nc; ++c)
+    if (twin[c] == kNoCorner) boundaryOut[tris[nextCorner(uint32_t(c))]] = int(heOf[c] ^ 1u);
+  for (size_t c = 0; c < nc; ++c)
+    if (twin[c] == kNoCorner) {
+      const HalfedgeHandle bh{int(heOf[c] ^ 1u)};
+      mesh.set_vertex_handle(bh, VertexHandle(int(tris[c])));
+      mesh.set_next_halfedge_handle(bh, HalfedgeHandle(boundaryOut[tris[c]]));
+    }
+  // Outgoing halfedge per vertex: the boundary one where there is one (an
+  // OpenMesh invariant), else the first corner in triangle order, so ring
+  // iteration starts at the same place on every run.
+  if (firstCorner.size() == nv) {
+    parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
+      for (size_t v = b; v < e; ++v) {
+        const VertexHandle vh{int(v)};
+        const int out = boundaryOut[v] >= 0 ? boundaryOut[v] : firstCorner[v] < nc ? int(heOf[firstCorner[v]]) : -1;
+        mesh.set_halfedge_handle(vh, HalfedgeHandle(out));
+        mesh.point(vh) = points[v];
+      }
+    });
+    return;
+  }
+  std::vector<int> out(boundaryOut);
+  for (size_t c = 0; c < nc; ++c)
+    if (out[tris[c]] < 0) out[tris[c]] = int(heOf[c]);
+  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t v = b; v < e; ++v) {
+      const VertexHandle vh{int(v)};
+      mesh.set_halfedge_handle(vh, HalfedgeHandle(out[v]));
+      mesh.point(vh) = points[v];
+    }
+  });
+}
+
+}  // namespace hs::mesh

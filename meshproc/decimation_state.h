@@ -1,0 +1,93 @@
+#pragma once
+// Everything the decimator keeps beside the OpenMesh mesh, in flat arrays
+// indexed by OpenMesh handle index. Shared by the setup (decimate.cpp) and
+// the collapse loops (collapse_engine.cpp).
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "meshproc/decimation_mesh.h"
+#include "meshproc/quadric.h"
+#include "meshproc/uninit_array.h"
+
+namespace hs::mesh {
+
+// What a vertex may do in a collapse.
+enum class VertexClass : uint8_t {
+  Free,          // interior, single wedge: may go anywhere the error allows
+  BoundaryLine,  // on one open boundary, two boundary edges: slides along it onto a neighbour
+  SeamLine,      // on one UV seam or material border, two seam edges: same, along the seam
+  Fixed,         // locked, or where polylines meet, end or branch: never moves or goes
+};
+
+// What an edge is.
+enum class EdgeKind : uint8_t { Interior, Boundary, Seam };
+
+constexpr uint16_t kSharedRegion = UINT16_MAX;  // vertex with faces in more than one region
+
+struct DecimationState {
+  DecimationMesh mesh;
+  glm::dvec3 center{0.0};  // mesh.point() is relative to this (input-local coordinates)
+
+  // Per vertex, everything a cost evaluation reads, in one 128-byte record
+  // (two cache lines) instead of three arrays: evaluations are most of the
+  // decimator's time, and at millions of vertices they wait on memory.
+  // Positions live here, relative to `center`; OpenMesh's point property
+  // keeps the input positions and is not updated by collapses.
+  // Allocated without zeroing (hundreds of MB at scale) and filled by the
+  // setup's parallel passes.
+  struct alignas(64) Vertex {
+    Quadric q;
+    glm::dvec3 p;
+    VertexClass cls;
+    uint16_t region;  // its region, or kSharedRegion
+  };
+  UninitArray<Vertex> vd;
+  std::vector<uint32_t> fv;           // per face: 3 vertex ids, in winding order
+  std::vector<uint32_t> fw;           // per face: the wedge (vertex+UV) of each corner
+  std::vector<uint16_t> fmaterial;    // per face: input submesh index
+  std::vector<uint8_t> estate;        // per edge: kQueued | kDirty (collapse_engine.h)
+  std::vector<glm::vec2> wedgeUv;     // per wedge (empty without UVs)
+
+  // Raw views into OpenMesh's status arrays (set once the mesh is built;
+  // collapses never reallocate them). A property lookup by handle walks
+  // the property container on every access, which showed in profiles.
+  OpenMesh::Attributes::StatusInfo* vertexStatus = nullptr;
+  OpenMesh::Attributes::StatusInfo* edgeStatus = nullptr;
+  OpenMesh::Attributes::StatusInfo* faceStatus = nullptr;
+  bool hasSeams = true;  // false: no UVs and one material, so no edge is a seam
+
+  void bindArrays() {
+    vertexStatus = mesh.property(mesh.vertex_status_pph()).data_vector().data();
+    edgeStatus = mesh.property(mesh.edge_status_pph()).data_vector().data();
+    faceStatus = mesh.property(mesh.face_status_pph()).data_vector().data();
+  }
+  const glm::dvec3& point(int v) const { return vd[size_t(v)].p; }
+
+  double cosMaxNormalDeviation = 0.5;
+  double minQuality = 0.1;
+  double maxErrorSq = 1e300;
+  double lengthWeight = 1e-4;  // share of squared edge length in the heap key (see engine)
+
+  uint32_t wedgeAt(uint32_t f, uint32_t v) const {
+    const uint32_t* p = &fv[size_t(f) * 3];
+    return fw[size_t(f) * 3 + (p[0] == v ? 0 : p[1] == v ? 1 : 2)];
+  }
+
+  // Boundary: one face. Seam: the faces differ in material, or in the wedge
+  // (vertex + UV) they use at either end, i.e. the texture is cut there.
+  EdgeKind edgeKind(OpenMesh::HalfedgeHandle h) const {
+    const OpenMesh::HalfedgeHandle o = mesh.opposite_halfedge_handle(h);
+    const OpenMesh::FaceHandle f = mesh.face_handle(h), g = mesh.face_handle(o);
+    if (!f.is_valid() || !g.is_valid()) return EdgeKind::Boundary;
+    if (!hasSeams) return EdgeKind::Interior;
+    const uint32_t fi = uint32_t(f.idx()), gi = uint32_t(g.idx());
+    if (fmaterial[fi] != fmaterial[gi]) return EdgeKind::Seam;
+    const uint32_t a = uint32_t(mesh.to_vertex_handle(o).idx()), b = uint32_t(mesh.to_vertex_handle(h).idx());
+    if (wedgeAt(fi, a) != wedgeAt(gi, a) || wedgeAt(fi, b) != wedgeAt(gi, b)) return EdgeKind::Seam;
+    return EdgeKind::Interior;
+  }
+};
+
+}  // namespace hs::mesh

@@ -1,0 +1,313 @@
+#include "meshproc/error_metrics.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "mesh/nonmanifold_split.h"
+#include "core/parallel.h"
+#include "meshproc/surface_sampling.h"
+#include "mesh/weld.h"
+
+namespace hs::mesh {
+namespace {
+
+glm::dvec3 corner(const MeshData& m, size_t f, size_t k) { return glm::dvec3(m.positions[m.indices[f * 3 + k]]); }
+
+// Per face: the submesh it belongs to (material groups decide seams and
+// which texture a face's UVs refer to).
+std::vector<int> faceMaterial(const MeshData& m) {
+  std::vector<int> mat(m.triangleCount(), -1);
+  for (const Submesh& s : m.submeshes)
+    for (size_t f = s.firstIndex / 3; f < std::min(m.triangleCount(), size_t(s.firstIndex + s.indexCount) / 3); ++f)
+      mat[f] = s.material;
+  return mat;
+}
+
+struct Polylines {
+  std::vector<uint8_t> constrainedPos;  // per welded position
+  std::vector<uint32_t> posOf;          // per vertex
+  uint32_t positions = 0;
+  MeshData segments;                    // each constrained edge as a zero-area triangle (a, b, b)
+  NonManifoldCounts nonManifold;
+};
+
+// Boundary edges, seams (the faces on either side use different UVs or
+// materials) and non-manifold edges, found on the position-welded topology.
+Polylines findPolylines(const MeshData& m, unsigned threads) {
+  Polylines pl;
+  pl.posOf = weldMap(m.positions, {}, {}, pl.positions);
+  uint32_t nWedge = 0;
+  const bool hasUv = m.uvs.size() == m.positions.size() && !m.uvs.empty();
+  const std::vector<uint32_t> wedgeOf = hasUv ? weldMap(m.positions, m.uvs, {}, nWedge) : pl.posOf;
+  const size_t nf = m.triangleCount();
+  std::vector<uint32_t> tris(nf * 3);
+  for (size_t c = 0; c < tris.size(); ++c) tris[c] = pl.posOf[m.indices[c]];
+  const CornerTopology topo = analyzeCorners(tris, pl.positions, threads);
+  pl.nonManifold = {topo.nonManifoldEdges, topo.nonManifoldVertices};
+  const std::vector<int> mat = faceMaterial(m);
+  pl.constrainedPos.assign(pl.positions, 0);
+  pl.segments.origin = m.origin;
+  for (uint32_t c = 0; c < tris.size(); ++c) {
+    const uint32_t a = tris[c], b = tris[nextCorner(c)];
+    if (a == b || a == tris[nextCorner(nextCorner(c))] || b == tris[nextCorner(nextCorner(c))]) continue;
+    const uint32_t t = topo.twin[c];
+    bool constrained = t == kNoCorner;
+    if (!constrained) {
+      if (t < c) continue;  // seen from the twin
+      constrained = mat[c / 3] != mat[t / 3] || wedgeOf[m.indices[c]] != wedgeOf[m.indices[nextCorner(t)]] ||
+                    wedgeOf[m.indices[nextCorner(c)]] != wedgeOf[m.indices[t]];
+    }
+    if (!constrained) continue;
+    pl.constrainedPos[a] = pl.constrainedPos[b] = 1;
+    const uint32_t base = uint32_t(pl.segments.positions.size());
+    pl.segments.positions.push_back(m.positions[m.indices[c]]);
+    pl.segments.positions.push_back(m.positions[m.indices[nextCorner(c)]]);
+    pl.segments.indices.insert(pl.segments.indices.end(), {base, base + 1, base + 1});
+  }
+  return pl;
+}
+
+double area(const MeshData& m) {
+  double a = 0;
+  for (size_t f = 0; f < m.triangleCount(); ++f) a += 0.5 * faceDoubleArea(m, f);
+  return a;
+}
+
+// Signed volume by the divergence theorem, relative to `ref` in m's frame.
+double signedVolume(const MeshData& m, const glm::dvec3& ref) {
+  double v = 0;
+  for (size_t f = 0; f < m.triangleCount(); ++f)
+    v += glm::dot(corner(m, f, 0) - ref, glm::cross(corner(m, f, 1) - ref, corner(m, f, 2) - ref));
+  return v / 6.0;
+}
+
+// Distances from `total` seeded samples on `from` (plus its vertices, for the
+// maximum) to the surface in `target`. `offset` takes `from`'s local
+// coordinates into the target's. Face samples land in `out`.
+bool sampleDistances(const MeshData& from, const std::vector<uint64_t>& first, uint64_t seed,
+                     const ClosestPointBvh& target, const glm::dvec3& offset, float* out, double& maxDist,
+                     unsigned threads, const Progress* progress) {
+  const size_t nf = from.triangleCount();
+  std::vector<double> maxOf(std::max(1u, threads), 0.0);
+  std::atomic<bool> stop{false};
+  parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned w) {
+    uint32_t hint = UINT32_MAX;
+    double mx = 0;
+    for (size_t f = b; f < e && !stop; ++f) {
+      if ((f & 4095) == 0 && isCancelled(progress)) stop = true;
+      const glm::dvec3 pa = corner(from, f, 0) + offset, pb = corner(from, f, 1) + offset,
+                       pc = corner(from, f, 2) + offset;
+      for (uint64_t k = first[f]; k < first[f + 1]; ++k) {
+        const glm::dvec3 bc = sampleBarycentric(seed, uint32_t(f), k - first[f]);
+        const auto hit = target.closest(bc.x * pa + bc.y * pb + bc.z * pc, hint);
+        hint = hit.face;
+        const double d = std::sqrt(hit.distanceSq);
+        out[k] = float(d);
+        mx = std::max(mx, d);
+      }
+    }
+    maxOf[w] = std::max(maxOf[w], mx);
+  }, 256);
+  parallelRanges(from.vertexCount(), threads, [&](size_t b, size_t e, unsigned w) {
+    uint32_t hint = UINT32_MAX;
+    double mx = 0;
+    for (size_t v = b; v < e; ++v) {
+      const auto hit = target.closest(glm::dvec3(from.positions[v]) + offset, hint);
+      hint = hit.face;
+      mx = std::max(mx, std::sqrt(hit.distanceSq));
+    }
+    maxOf[w] = std::max(maxOf[w], mx);
+  });
+  for (double m : maxOf) maxDist = std::max(maxDist, m);
+  return !stop;
+}
+
+// Mean, RMS and 95th percentile of d[0..n) (reorders d).
+void summarize(float* d, uint64_t n, DistanceStats& s) {
+  s.samples = n;
+  if (n == 0) return;
+  double sum = 0, sumSq = 0;
+  for (uint64_t i = 0; i < n; ++i) {
+    const double v = double(d[i]);
+    sum += v, sumSq += v * v;
+  }
+  s.mean = sum / double(n);
+  s.rms = std::sqrt(sumSq / double(n));
+  const uint64_t k = std::min<uint64_t>(n - 1, uint64_t(std::ceil(0.95 * double(n))) - 1);
+  std::nth_element(d, d + k, d + n);
+  s.p95 = d[k];
+}
+
+}  // namespace
+
+NonManifoldCounts countNonManifold(const MeshData& mesh, unsigned threads) {
+  uint32_t n = 0;
+  const std::vector<uint32_t> posOf = weldMap(mesh.positions, {}, {}, n);
+  std::vector<uint32_t> tris(mesh.indices.size());
+  for (size_t c = 0; c < tris.size(); ++c) tris[c] = mesh.indices[c] < posOf.size() ? posOf[mesh.indices[c]] : UINT32_MAX;
+  const CornerTopology t = analyzeCorners(tris, n, resolveThreads(threads));
+  return {t.nonManifoldEdges, t.nonManifoldVertices};
+}
+
+struct ErrorMeter::Original {
+  const MeshData& mesh;
+  ErrorOptions opt;
+  unsigned threads = 1;
+  ClosestPointBvh bvh;
+  Polylines polylines;
+  ClosestPointBvh polylineBvh;
+  std::vector<int> material;
+  double diagonal = 0, area = 0, volume = 0;
+  glm::dvec3 volumeRef{0.0};
+  uint64_t total = 0;
+  std::vector<uint64_t> first;
+  Original(const MeshData& m, const ErrorOptions& o) : mesh(m), opt(o) {}
+};
+
+ErrorMeter::ErrorMeter(const MeshData& original, const ErrorOptions& options)
+    : o_(std::make_unique<Original>(original, options)) {
+  Original& o = *o_;
+  o.threads = resolveThreads(options.threads);
+  o.bvh = ClosestPointBvh(original, o.threads);
+  o.polylines = findPolylines(original, o.threads);
+  if (!o.polylines.segments.indices.empty()) o.polylineBvh = ClosestPointBvh(o.polylines.segments, o.threads);
+  o.material = faceMaterial(original);
+  const Bounds b = original.bounds();
+  o.diagonal = b.empty ? 0.0 : glm::length(glm::dvec3(b.max) - glm::dvec3(b.min));
+  o.volumeRef = b.empty ? glm::dvec3(0.0) : (glm::dvec3(b.min) + glm::dvec3(b.max)) * 0.5;
+  o.area = area(original);
+  o.volume = signedVolume(original, o.volumeRef);
+  const double wanted = std::max(0.0, options.samplesPerFace) * double(original.triangleCount());
+  o.total = std::min<uint64_t>(options.maxSamples, uint64_t(std::llround(wanted)));
+  o.first = allocateSamples(original, o.total);
+}
+
+ErrorMeter::~ErrorMeter() = default;
+
+ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Original& o = *o_;
+  const MeshData& orig = o.mesh;
+  ErrorReport r;
+  r.seed = o.opt.seed;
+  r.bboxDiagonal = o.diagonal;
+  r.samplesPerFace = orig.triangleCount() ? double(o.total) / double(orig.triangleCount()) : 0.0;
+  r.areaIn = o.area;
+  r.volumeIn = o.volume;
+  r.nonManifoldIn = o.polylines.nonManifold;
+  // s's local coordinates -> the original's frame, in double.
+  const glm::dvec3 toOrig = s.origin - orig.origin;
+  r.areaOut = area(s);
+  r.volumeOut = signedVolume(s, o.volumeRef - toOrig);
+
+  const ClosestPointBvh sBvh(s, o.threads);
+  const std::vector<uint64_t> sFirst = allocateSamples(s, o.total);
+  const uint64_t nFwd = o.first.back(), nBwd = sFirst.back();
+  std::vector<float> d(nFwd + nBwd);
+  reportProgress(progress, 0.1, "Measuring error (original to result)");
+  double fwdMax = 0, bwdMax = 0;
+  bool ok = sampleDistances(orig, o.first, o.opt.seed, sBvh, -toOrig, d.data(), fwdMax, o.threads, progress);
+  reportProgress(progress, 0.5, "Measuring error (result to original)");
+  ok = ok && sampleDistances(s, sFirst, o.opt.seed + 1, o.bvh, toOrig, d.data() + nFwd, bwdMax, o.threads, progress);
+  if (!ok) {
+    r.cancelled = true;
+    return r;
+  }
+  // Symmetric mean and RMS before the percentile passes reorder the array.
+  summarize(d.data(), nFwd, r.forward);
+  summarize(d.data() + nFwd, nBwd, r.backward);
+  r.forward.max = fwdMax;
+  r.backward.max = bwdMax;
+  DistanceStats both;
+  summarize(d.data(), nFwd + nBwd, both);
+  r.hausdorff = std::max(fwdMax, bwdMax);
+  r.mean = both.mean, r.rms = both.rms, r.p95 = both.p95;
+  d = {};
+
+  // Per simplified face, at its centre: orientation against the original
+  // surface there, and where the texture lands.
+  reportProgress(progress, 0.85, "Checking normals and texture coordinates");
+  const size_t nf = s.triangleCount();
+  const std::vector<int> sMat = faceMaterial(s);
+  const bool uvBoth = !s.uvs.empty() && s.uvs.size() == s.positions.size() && !orig.uvs.empty() &&
+                      orig.uvs.size() == orig.positions.size();
+  auto texSize = [&](int material) -> glm::ivec2 {
+    if (o.opt.textureWidth > 0 && o.opt.textureHeight > 0) return {o.opt.textureWidth, o.opt.textureHeight};
+    if (material < 0 || size_t(material) >= s.materials.size()) return {0, 0};
+    const int t = s.materials[size_t(material)].diffuseTexture;
+    const auto& texSrc = size_t(t) < s.textures.size() ? s.textures : orig.textures;
+    if (t < 0 || size_t(t) >= texSrc.size()) return {0, 0};
+    return {texSrc[size_t(t)].width, texSrc[size_t(t)].height};
+  };
+  std::vector<uint8_t> flipped(nf, 0), checked(nf, 0);
+  std::vector<float> uvDisp(uvBoth ? nf : 0, -1.0f);
+  parallelRanges(nf, o.threads, [&](size_t b, size_t e, unsigned) {
+    uint32_t hint = UINT32_MAX;
+    for (size_t f = b; f < e; ++f) {
+      const glm::dvec3 a = corner(s, f, 0) + toOrig, bb = corner(s, f, 1) + toOrig, c = corner(s, f, 2) + toOrig;
+      const glm::dvec3 n = glm::cross(bb - a, c - a);
+      if (!(glm::dot(n, n) > 0)) continue;
+      const auto hit = o.bvh.closest((a + bb + c) / 3.0, hint);
+      if (!hit.found()) continue;
+      hint = hit.face;
+      const glm::dvec3 on = glm::cross(corner(orig, hit.face, 1) - corner(orig, hit.face, 0),
+                                       corner(orig, hit.face, 2) - corner(orig, hit.face, 0));
+      checked[f] = 1;
+      flipped[f] = glm::dot(n, on) < 0;
+      if (uvBoth && sMat[f] == o.material[hit.face]) {
+        const glm::ivec2 size = texSize(sMat[f]);
+        if (size.x > 0 && size.y > 0) {
+          const glm::dvec2 uvS = (glm::dvec2(s.uvs[s.indices[f * 3]]) + glm::dvec2(s.uvs[s.indices[f * 3 + 1]]) +
+                                  glm::dvec2(s.uvs[s.indices[f * 3 + 2]])) / 3.0;
+          const glm::dvec2 uvO = hit.bary.x * glm::dvec2(orig.uvs[orig.indices[hit.face * 3]]) +
+                                 hit.bary.y * glm::dvec2(orig.uvs[orig.indices[hit.face * 3 + 1]]) +
+                                 hit.bary.z * glm::dvec2(orig.uvs[orig.indices[hit.face * 3 + 2]]);
+          uvDisp[f] = float(glm::length((uvS - uvO) * glm::dvec2(size)));
+        }
+      }
+    }
+  }, 256);
+  for (size_t f = 0; f < nf; ++f) r.facesChecked += checked[f], r.flippedNormals += flipped[f];
+  std::vector<float> uv;
+  for (float v : uvDisp)
+    if (v >= 0) uv.push_back(v);
+  if (!uv.empty()) {
+    DistanceStats us;
+    us.max = *std::max_element(uv.begin(), uv.end());
+    summarize(uv.data(), uv.size(), us);
+    r.uvMeasured = true;
+    r.uvMaxTexels = us.max, r.uvMeanTexels = us.mean, r.uvP95Texels = us.p95, r.uvSamples = uv.size();
+    const glm::ivec2 size = texSize(s.submeshes.empty() ? -1 : s.submeshes[0].material);
+    r.textureWidth = size.x, r.textureHeight = size.y;
+  }
+
+  // Boundary and seam vertices of the result against the original polylines.
+  const Polylines sp = findPolylines(s, o.threads);
+  r.nonManifoldOut = sp.nonManifold;
+  std::vector<uint8_t> seen(sp.positions, 0);
+  const double tol = 1e-6 * o.diagonal;
+  for (size_t v = 0; v < s.vertexCount(); ++v) {
+    const uint32_t p = sp.posOf[v];
+    if (!sp.constrainedPos[p] || seen[p]) continue;
+    seen[p] = 1;
+    ++r.constrainedVerticesOut;
+    const glm::dvec3 q = glm::dvec3(s.positions[v]) + toOrig;
+    const double dist = o.polylineBvh.empty() ? HUGE_VAL : std::sqrt(o.polylineBvh.closest(q).distanceSq);
+    if (dist > tol) {
+      ++r.constrainedVerticesMoved;
+      if (std::isfinite(dist)) r.constrainedMaxDeviation = std::max(r.constrainedMaxDeviation, dist);
+    }
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  reportProgress(progress, 1.0, "Error measured");
+  return r;
+}
+
+ErrorReport measureError(const MeshData& original, const MeshData& simplified, const ErrorOptions& options,
+                         const Progress* progress) {
+  return ErrorMeter(original, options).measure(simplified, progress);
+}
+
+}  // namespace hs::mesh

@@ -1,0 +1,96 @@
+#pragma once
+// How far a simplified mesh is from its original: the reference that every
+// decimation (and every benchmark against other decimators) reports next to
+// its run time.
+//
+// Surface distance is estimated by seeded surface sampling in both
+// directions (original -> simplified and back), with exact point-to-triangle
+// distances through a BVH; the vertices of each mesh are added to its
+// samples so the maximum sees the corners. Everything is in metres, in the
+// original's frame (double), and relative to its bounding-box diagonal.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "meshproc/closest_point_bvh.h"
+#include "mesh/mesh_data.h"
+#include "core/progress.h"
+
+namespace hs::mesh {
+
+struct ErrorOptions {
+  double samplesPerFace = 10.0;    // per original face; each direction draws that many in total
+  uint64_t seed = 1;
+  uint64_t maxSamples = 20'000'000;  // per direction; the report says when this capped the rate
+  // Texture size for UV displacement in texels; 0 = the size of the
+  // material's decoded texture (no texture: UV displacement not measured).
+  int textureWidth = 0, textureHeight = 0;
+  unsigned threads = 0;
+};
+
+struct DistanceStats {
+  double max = 0, mean = 0, rms = 0, p95 = 0;  // metres
+  uint64_t samples = 0;                        // face samples (vertices come on top, for max)
+};
+
+struct NonManifoldCounts {
+  size_t edges = 0;     // edges with 3+ faces or two faces running the same way
+  size_t vertices = 0;  // bow-ties: faces around the vertex form 2+ fans
+};
+
+struct ErrorReport {
+  double samplesPerFace = 0;  // effective rate after the cap
+  uint64_t seed = 0;
+  double bboxDiagonal = 0;    // metres, of the original
+  DistanceStats forward;      // original -> simplified
+  DistanceStats backward;     // simplified -> original
+  // Symmetric: Hausdorff is the larger maximum; mean, RMS and 95th
+  // percentile are over both directions' samples together.
+  double hausdorff = 0, mean = 0, rms = 0, p95 = 0;
+
+  size_t flippedNormals = 0;  // simplified faces facing against the original surface at their centre
+  size_t facesChecked = 0;
+
+  bool uvMeasured = false;
+  int textureWidth = 0, textureHeight = 0;
+  double uvMaxTexels = 0, uvMeanTexels = 0, uvP95Texels = 0;
+  size_t uvSamples = 0;
+
+  // Vertices of the simplified mesh on a boundary or seam, and how many of
+  // them are off the original's boundary/seam polylines (more than 1e-6 of
+  // the diagonal), with the largest such distance.
+  size_t constrainedVerticesOut = 0, constrainedVerticesMoved = 0;
+  double constrainedMaxDeviation = 0;
+
+  double areaIn = 0, areaOut = 0;      // m^2
+  double volumeIn = 0, volumeOut = 0;  // m^3, signed (meaningful for closed meshes)
+  NonManifoldCounts nonManifoldIn, nonManifoldOut;
+  double seconds = 0;
+  bool cancelled = false;
+
+  double rel(double metres) const { return bboxDiagonal > 0 ? metres / bboxDiagonal : 0.0; }
+};
+
+// Non-manifold edges and vertices at welded-position level (UV seams do not
+// count as cuts).
+NonManifoldCounts countNonManifold(const MeshData& mesh, unsigned threads = 0);
+
+// Holds what depends on the original only (its BVH, polylines, area), so
+// one original can be compared with many results (LOD chains, benchmarks).
+class ErrorMeter {
+ public:
+  ErrorMeter(const MeshData& original, const ErrorOptions& options = {});
+  ~ErrorMeter();
+  ErrorReport measure(const MeshData& simplified, const Progress* progress = nullptr) const;
+
+ private:
+  struct Original;
+  std::unique_ptr<Original> o_;
+};
+
+// One-off comparison.
+ErrorReport measureError(const MeshData& original, const MeshData& simplified,
+                         const ErrorOptions& options = {}, const Progress* progress = nullptr);
+
+}  // namespace hs::mesh

@@ -1,0 +1,117 @@
+#include "meshproc/mesh_process.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace hs::mesh {
+namespace {
+
+// Progress of a sub-step mapped into [from, to] of the caller's bar; the
+// caller's Cancel reaches the sub-step's own flag.
+class SubProgress {
+ public:
+  SubProgress(const Progress* parent, double from, double to)
+      : parent_(parent), progress_([this, from, to](double f, std::string_view stage) {
+          reportProgress(parent_, from + (to - from) * f, stage);
+          if (isCancelled(parent_)) progress_.cancel();
+        }) {
+    if (isCancelled(parent_)) progress_.cancel();
+  }
+  const Progress* get() const { return parent_ ? &progress_ : nullptr; }
+
+ private:
+  const Progress* parent_;
+  Progress progress_;
+};
+
+}  // namespace
+
+ProcessResult processMesh(MeshData input, const ProcessOptions& options, const Progress* progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ProcessResult result;
+  ProcessReport& rep = result.report;
+  auto done = [&]() -> ProcessResult {
+    rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.cancelled = result.cancelled || isCancelled(progress);
+    return std::move(result);
+  };
+
+  if (options.clean) {
+    SubProgress sub(progress, 0.0, 0.1);
+    rep.cleaned = true;
+    if (!cleanMesh(input, options.cleaning, rep.cleaning, result.error, sub.get())) return done();
+  } else if (input.triangleCount() == 0) {
+    result.error = "the mesh has no faces";
+    return done();
+  }
+
+  if (options.decimate) {
+    rep.decimated = true;
+    DecimateOptions d = options.decimation;
+    const double wanted = d.maxError;
+    const bool errorTarget = std::isfinite(wanted) && wanted > 0;
+    const int passes = errorTarget ? 1 + std::max(0, options.maxErrorRetries) : 1;
+    std::optional<ErrorMeter> meter;
+    for (int pass = 0; pass < passes; ++pass) {
+      SubProgress sub(progress, 0.1 + 0.5 * pass / passes, 0.1 + 0.5 * (pass + 1) / passes);
+      DecimateResult r = decimate(input, d, sub.get());
+      if (r.cancelled) {
+        result.cancelled = true;
+        return done();
+      }
+      if (!r.ok()) {
+        result.error = r.error;
+        return done();
+      }
+      rep.decimation = r.report;
+      rep.maxErrorPasses = pass + 1;
+      result.mesh = std::move(r.mesh);
+      if (!options.measureError && !errorTarget) break;
+      if (!meter) meter.emplace(input, options.error);
+      SubProgress subE(progress, 0.6, 0.8);
+      rep.error = meter->measure(result.mesh, subE.get());
+      rep.errorMeasured = !rep.error.cancelled;
+      if (rep.error.cancelled) {
+        result.cancelled = true;
+        return done();
+      }
+      // Met, or nothing more to tighten: keep this one.
+      if (!errorTarget || rep.error.hausdorff <= wanted || rep.error.hausdorff <= 0) break;
+      d.maxError *= 0.9 * wanted / rep.error.hausdorff;
+    }
+  } else {
+    result.mesh = std::move(input);
+  }
+
+  if (options.lodLevels > 0) {
+    SubProgress sub(progress, 0.8, 1.0);
+    LodOptions lo;
+    lo.levels = options.lodLevels;
+    lo.ratio = options.lodRatio;
+    lo.decimate = options.decimation;
+    lo.decimate.maxError = std::numeric_limits<double>::infinity();
+    lo.decimate.lockedVertices.clear();  // per input vertex: meaningless on later levels
+    lo.error = options.error;
+    LodChain chain = buildLodChain(result.mesh, lo, sub.get());
+    if (chain.cancelled) {
+      result.cancelled = true;
+      return done();
+    }
+    if (!chain.error.empty()) {
+      result.error = chain.error;
+      return done();
+    }
+    for (size_t i = 0; i < chain.levels.size(); ++i) {
+      Lod& l = chain.levels[i];
+      rep.lods.push_back({l.triangles, l.hausdorff, l.hausdorffRel, l.decimateSeconds + l.errorSeconds});
+      if (i > 0) result.lods.push_back(std::move(l.mesh));
+    }
+  }
+  reportProgress(progress, 1.0, "Processed");
+  return done();
+}
+
+}  // namespace hs::mesh

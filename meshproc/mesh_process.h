@@ -1,0 +1,74 @@
+#pragma once
+// The one call the import dialog and `hybridscape-cli import` make after
+// reading a mesh: clean it, optionally decimate it (to a ratio, a triangle
+// count or a maximum error in metres), measure what the decimation cost,
+// and build LODs, with Progress/Cancel throughout and one report that
+// serialises to JSON (report_json.h).
+//
+//   ProcessOptions o;
+//   o.decimate = true;
+//   parseDecimateTarget("500k", o.decimation, err);   // or "10%", or o.decimation.maxError = 0.02
+//   o.lodLevels = 3;
+//   ProcessResult r = processMesh(std::move(*imported.mesh), o, &progress);
+//   writeText("report.json", processReportJson(r.report, &imported.report));
+#include <string>
+#include <vector>
+
+#include "meshproc/decimate.h"
+#include "meshproc/error_metrics.h"
+#include "meshproc/lod_chain.h"
+#include "meshproc/mesh_clean.h"
+#include "mesh/mesh_data.h"
+#include "core/progress.h"
+
+namespace hs::mesh {
+
+struct ProcessOptions {
+  bool clean = true;
+  CleanOptions cleaning;
+
+  bool decimate = false;
+  DecimateOptions decimation;
+  // With a finite decimation.maxError the quadric estimate steers the
+  // decimator; the measured Hausdorff decides. When it comes out above
+  // maxError, decimation reruns with a proportionally tighter estimate,
+  // at most this many extra times, and the report says how many it took.
+  int maxErrorRetries = 3;
+
+  bool measureError = true;  // the error report for the decimated result
+  ErrorOptions error;
+
+  int lodLevels = 0;         // coarser levels after the result (lod_chain.h)
+  double lodRatio = 0.25;
+};
+
+struct LodSummary {
+  size_t triangles = 0;
+  double hausdorff = 0, hausdorffRel = 0;  // against level 0 (the processed mesh)
+  double seconds = 0;                      // decimation + measurement
+};
+
+struct ProcessReport {
+  bool cleaned = false;
+  CleanReport cleaning;
+  bool decimated = false;
+  DecimateReport decimation;
+  int maxErrorPasses = 0;    // decimation runs it took to meet maxError (1 = first try)
+  bool errorMeasured = false;
+  ErrorReport error;         // original (after cleaning) -> decimated
+  std::vector<LodSummary> lods;  // level 0 first
+  double seconds = 0;
+};
+
+struct ProcessResult {
+  MeshData mesh;             // the processed mesh (= LOD 0)
+  std::vector<MeshData> lods;  // coarser levels, sharing `mesh`'s textures
+  ProcessReport report;
+  bool cancelled = false;
+  std::string error;         // plain words; the report says what was found
+  bool ok() const { return error.empty() && !cancelled; }
+};
+
+ProcessResult processMesh(MeshData input, const ProcessOptions& options, const Progress* progress = nullptr);
+
+}  // namespace hs::mesh
