@@ -15,6 +15,8 @@
 #include <QToolButton>
 #include <QWheelEvent>
 
+#include "core/srgb.h"
+
 namespace hs::app {
 namespace {
 
@@ -37,12 +39,6 @@ void configure(ScrubSpinBox* s, const FieldSpec& spec) {
   s->setDecimals(decimalsFor(spec));
   if (!spec.unit.empty()) s->setSuffix((spec.unit == "°" ? "" : " ") + QString::fromStdString(spec.unit));
 }
-
-double srgbEncode(double c) {
-  c = std::clamp(c, 0.0, 1.0);
-  return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-}
-double srgbDecode(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 class DoubleEditor : public FieldEditor {
  public:
@@ -356,11 +352,11 @@ FieldEditor* createFieldEditor(const FieldSpec& spec, QWidget* parent) {
 }
 
 QColor linearToDisplay(const glm::dvec3& linear) {
-  return QColor::fromRgbF(float(srgbEncode(linear.x)), float(srgbEncode(linear.y)), float(srgbEncode(linear.z)));
+  return QColor::fromRgbF(float(linearToSrgb(linear.x)), float(linearToSrgb(linear.y)), float(linearToSrgb(linear.z)));
 }
 
 glm::dvec3 displayToLinear(const QColor& c) {
-  return {srgbDecode(double(c.redF())), srgbDecode(double(c.greenF())), srgbDecode(double(c.blueF()))};
+  return {srgbToLinear(double(c.redF())), srgbToLinear(double(c.greenF())), srgbToLinear(double(c.blueF()))};
 }
 
 }  // namespace hs::app

@@ -31,22 +31,6 @@ QString targetText(const mesh::DecimateOptions& d) {
   return t;
 }
 
-// A slice [from, to] of the preview's bar; the user's Cancel reaches the step.
-class Slice {
- public:
-  Slice(const Progress& parent, double from, double to)
-      : own_([&parent, from, to, this](double f, std::string_view stage) {
-          parent.report(from + (to - from) * f, stage);
-          if (parent.cancelled()) own_.cancel();
-        }) {
-    if (parent.cancelled()) own_.cancel();
-  }
-  const Progress* get() const { return &own_; }
-
- private:
-  Progress own_;
-};
-
 }  // namespace
 
 struct ImportPreview::Run {
@@ -66,8 +50,8 @@ struct ImportPreview::Run {
     request.processing.lodLevels = 0;
     scene::ImportedMesh read;
     {
-      Slice s(progress, 0.0, 0.3);
-      read = scene::importMeshFiles(request, s.get());
+      Progress s(&progress, 0.0, 0.3);
+      read = scene::importMeshFiles(request, &s);
     }
     if (read.cancelled || progress.cancelled()) {
       cancelled = true;
@@ -95,9 +79,9 @@ struct ImportPreview::Run {
     const mesh::ErrorMeter meter(original, eo);
     for (size_t i = 0; i < targets.size(); ++i) {
       const auto& [d, isChosen] = targets[i];
-      Slice s(progress, 0.3 + 0.7 * double(i) / double(targets.size()), 0.3 + 0.7 * double(i + 1) / double(targets.size()));
+      Progress s(&progress, 0.3 + 0.7 * double(i) / double(targets.size()), 0.3 + 0.7 * double(i + 1) / double(targets.size()));
       const auto t0 = std::chrono::steady_clock::now();
-      mesh::DecimateResult r = mesh::decimate(original, d, s.get());
+      mesh::DecimateResult r = mesh::decimate(original, d, &s);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (r.cancelled || progress.cancelled()) {
         cancelled = true;
@@ -107,7 +91,7 @@ struct ImportPreview::Run {
         error = read.import.file + ": " + r.error;
         return;
       }
-      const mesh::ErrorReport e = meter.measure(r.mesh, s.get());
+      const mesh::ErrorReport e = meter.measure(r.mesh, &s);
       if (e.cancelled) {
         cancelled = true;
         return;

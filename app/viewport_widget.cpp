@@ -8,7 +8,6 @@
 #include <QLabel>
 #include <QMouseEvent>
 #include <QOpenGLContext>
-#include <QOpenGLFunctions>
 #include <QVBoxLayout>
 #include <QWheelEvent>
 
@@ -107,9 +106,7 @@ void ViewportWidget::paintGL() {
   const qreal dpr = devicePixelRatioF();
   camera_.setViewportSize(int(std::lround(width() * dpr)), int(std::lround(height() * dpr)));
   if (!renderer_.initialized()) {
-    QOpenGLFunctions* gl = context()->functions();
-    gl->glClearColor(0.1f, 0.08f, 0.08f, 1.0f);
-    gl->glClear(0x00004000);  // GL_COLOR_BUFFER_BIT; no GL headers here on purpose
+    render::Renderer::clearTarget(defaultFramebufferObject(), 0.1f, 0.08f, 0.08f);
     return;
   }
   if (paintStereo()) return;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/content_hash.h"
+
 namespace hs::mesh {
 
 void Bounds::extend(const glm::vec3& p) {
@@ -57,62 +59,20 @@ void recenter(MeshData& mesh) {
   mesh.origin += glm::dvec3(shift);
 }
 
-namespace {
-// FNV-1a style, but over 8-byte words so hashing a 50M-triangle scan before a
-// save costs tens of milliseconds, not seconds. Not cryptographic: it only
-// answers "did this blob change since the last save".
-struct WordHash {
-  uint64_t h = 1469598103934665603ull;
-  void mix(uint64_t w) {
-    h ^= w;
-    h *= 1099511628211ull;
-    h ^= h >> 29;
-  }
-  void bytes(const void* data, size_t n) {
-    const auto* p = static_cast<const uint8_t*>(data);
-    size_t i = 0;
-    for (; i + 8 <= n; i += 8) {
-      uint64_t w;
-      std::memcpy(&w, p + i, 8);
-      mix(w);
-    }
-    uint64_t tail = 0;
-    std::memcpy(&tail, p + i, n - i);
-    mix(tail ^ (uint64_t(n) << 56));
-  }
-  template <class T>
-  void vec(const std::vector<T>& v) {
-    mix(v.size());
-    if (!v.empty()) bytes(v.data(), v.size() * sizeof(T));
-  }
-};
-}  // namespace
-
 uint64_t contentHash(const MeshData& mesh) {
-  WordHash f;
-  f.bytes(&mesh.origin, sizeof mesh.origin);
-  f.vec(mesh.positions);
-  f.vec(mesh.normals);
-  f.vec(mesh.uvs);
-  f.vec(mesh.indices);
-  for (const auto& s : mesh.submeshes) {
-    f.bytes(&s.firstIndex, sizeof s.firstIndex);
-    f.bytes(&s.indexCount, sizeof s.indexCount);
-    f.bytes(&s.material, sizeof s.material);
-  }
-  for (const auto& m : mesh.materials) {
-    f.bytes(m.name.data(), m.name.size());
-    f.bytes(&m.baseColor, sizeof m.baseColor);
-    f.bytes(&m.diffuseTexture, sizeof m.diffuseTexture);
-  }
+  ContentHasher f;
+  f.value(mesh.origin);
+  f.array(mesh.positions).array(mesh.normals).array(mesh.uvs).array(mesh.indices);
+  f.value(uint64_t(mesh.submeshes.size()));
+  for (const auto& s : mesh.submeshes) f.value(s.firstIndex).value(s.indexCount).value(s.material);
+  f.value(uint64_t(mesh.materials.size()));
+  for (const auto& m : mesh.materials) f.text(m.name).value(m.baseColor).value(m.diffuseTexture);
+  f.value(uint64_t(mesh.textures.size()));
   for (const auto& t : mesh.textures) {
-    f.bytes(t.name.data(), t.name.size());
-    f.vec(t.encoded);
-    f.bytes(&t.width, sizeof t.width);
-    f.bytes(&t.height, sizeof t.height);
-    if (t.encoded.empty()) f.vec(t.rgba);
+    f.text(t.name).array(t.encoded).value(t.width).value(t.height);
+    if (t.encoded.empty()) f.array(t.rgba);
   }
-  return f.h;
+  return f.digest();
 }
 
 }  // namespace hs::mesh

@@ -66,8 +66,8 @@ void computeVertexNormals(MeshData& mesh);
 // floats; the world position of every vertex stays the same to double precision.
 void recenter(MeshData& mesh);
 
-// 64-bit content hash (FNV-1a over all arrays): detects whether a mesh blob
-// changed since the last save.
+// 64-bit content hash (XXH3, core/content_hash.h) of everything a mesh blob
+// stores: detects whether it changed since the last save, and checks it on load.
 uint64_t contentHash(const MeshData& mesh);
 
 }  // namespace hs::mesh

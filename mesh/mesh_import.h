@@ -8,9 +8,9 @@
 
 #include <glm/glm.hpp>
 
+#include "core/progress.h"
 #include "mesh/georef_sidecar.h"
 #include "mesh/mesh_data.h"
-#include "core/progress.h"
 
 namespace hs::mesh {
 

@@ -11,8 +11,8 @@
 #include <filesystem>
 #include <unordered_map>
 
-#include "mesh/mtl_reader.h"
 #include "core/parallel.h"
+#include "mesh/mtl_reader.h"
 #include "mesh/texture_decode.h"
 
 // How the reader scales (photogrammetry OBJs run to gigabytes):
@@ -573,8 +573,10 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
                                   "' is used but not defined in the material library");
       continue;
     }
-    // Kd is a display colour (sRGB); the renderer shades in linear light.
-    m.baseColor = glm::vec4(glm::pow(src->kd, glm::vec3(2.2f)), src->opacity);
+    // Kd is a reflectance, taken as linear RGB as it is written: what
+    // Blender's OBJ importer and exporter do, and what Assimp's OBJ reader
+    // gives, so an OBJ has the same colours through either reader.
+    m.baseColor = glm::vec4(src->kd, src->opacity);
     if (!src->diffuseMap.empty()) {
       const auto texPath = (std::filesystem::path(baseDir) / src->diffuseMap).string();
       if (auto it = textureByPath.find(texPath); it != textureByPath.end()) {

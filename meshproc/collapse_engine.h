@@ -18,8 +18,8 @@
 #include <cstring>
 #include <vector>
 
-#include "meshproc/decimation_state.h"
 #include "core/progress.h"
+#include "meshproc/decimation_state.h"
 
 namespace hs::mesh {
 

@@ -11,11 +11,11 @@
 #include <numbers>
 #include <unordered_map>
 
-#include "meshproc/collapse_engine.h"
-#include "meshproc/decimation_state.h"
 #include "core/parallel.h"
 #include "mesh/radix_sort.h"
 #include "mesh/weld.h"
+#include "meshproc/collapse_engine.h"
+#include "meshproc/decimation_state.h"
 
 namespace hs::mesh {
 namespace {

@@ -21,9 +21,9 @@
 #include <string_view>
 #include <vector>
 
+#include "core/progress.h"
 #include "mesh/mesh_data.h"
 #include "mesh/nonmanifold_split.h"
-#include "core/progress.h"
 
 namespace hs::mesh {
 

@@ -1,7 +1,7 @@
 #include "meshproc/decimation_mesh.h"
 
-#include "mesh/nonmanifold_split.h"
 #include "core/parallel.h"
+#include "mesh/nonmanifold_split.h"
 
 namespace hs::mesh {
 

@@ -5,10 +5,10 @@
 #include <chrono>
 #include <cmath>
 
-#include "mesh/nonmanifold_split.h"
 #include "core/parallel.h"
-#include "meshproc/surface_sampling.h"
+#include "mesh/nonmanifold_split.h"
 #include "mesh/weld.h"
+#include "meshproc/surface_sampling.h"
 
 namespace hs::mesh {
 namespace {

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "meshproc/closest_point_bvh.h"
-#include "mesh/mesh_data.h"
 #include "core/progress.h"
+#include "mesh/mesh_data.h"
+#include "meshproc/closest_point_bvh.h"
 
 namespace hs::mesh {
 

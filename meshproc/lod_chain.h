@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/progress.h"
+#include "mesh/mesh_data.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
-#include "mesh/mesh_data.h"
-#include "core/progress.h"
 
 namespace hs::mesh {
 

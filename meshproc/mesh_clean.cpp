@@ -5,8 +5,8 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "mesh/nonmanifold_split.h"
 #include "core/parallel.h"
+#include "mesh/nonmanifold_split.h"
 #include "mesh/weld.h"
 
 namespace hs::mesh {

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh_data.h"
 #include "core/progress.h"
+#include "mesh/mesh_data.h"
 
 namespace hs::mesh {
 

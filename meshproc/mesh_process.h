@@ -14,12 +14,12 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.h"
+#include "mesh/mesh_data.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
 #include "meshproc/lod_chain.h"
 #include "meshproc/mesh_clean.h"
-#include "mesh/mesh_data.h"
-#include "core/progress.h"
 
 namespace hs::mesh {
 

@@ -5,10 +5,10 @@
 // it. No dependency: the library has no Qt, and the format is small.
 #include <string>
 
+#include "mesh/mesh_import.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
 #include "meshproc/mesh_clean.h"
-#include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
 
 namespace hs::mesh {

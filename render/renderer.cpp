@@ -427,6 +427,12 @@ FrameStats Renderer::render(const scene::SceneState& state, const RenderView& vi
   return stats;
 }
 
+void Renderer::clearTarget(unsigned fbo, float r, float g, float b) {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glClearColor(r, g, b, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+}
+
 Image Renderer::readDisplay(unsigned targetFbo, int width, int height) const {
   Image img;
   img.width = width;
@@ -435,16 +441,7 @@ Image Renderer::readDisplay(unsigned targetFbo, int width, int height) const {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, targetFbo);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba8.data());
-  // GL rows are bottom-up; images are top-down.
-  const size_t row = size_t(width) * 4;
-  std::vector<uint8_t> tmp(row);
-  for (int y = 0; y < height / 2; ++y) {
-    uint8_t* a = img.rgba8.data() + size_t(y) * row;
-    uint8_t* b = img.rgba8.data() + size_t(height - 1 - y) * row;
-    std::memcpy(tmp.data(), a, row);
-    std::memcpy(a, b, row);
-    std::memcpy(b, tmp.data(), row);
-  }
+  flipRows(img.rgba8.data(), size_t(width) * 4, size_t(height));  // GL rows are bottom-up
   return img;
 }
 
@@ -456,10 +453,7 @@ Image Renderer::readHdr() const {
   img.rgbaF.resize(size_t(img.width) * size_t(img.height) * 4);
   glGetTextureImage(d_->targets.resolvedTexture(), 0, GL_RGBA, GL_FLOAT, GLsizei(img.rgbaF.size() * sizeof(float)),
                     img.rgbaF.data());
-  const size_t row = size_t(img.width) * 4;
-  for (int y = 0; y < img.height / 2; ++y)
-    std::swap_ranges(img.rgbaF.begin() + ptrdiff_t(size_t(y) * row), img.rgbaF.begin() + ptrdiff_t(size_t(y + 1) * row),
-                     img.rgbaF.begin() + ptrdiff_t(size_t(img.height - 1 - y) * row));
+  flipRows(img.rgbaF.data(), size_t(img.width) * 4 * sizeof(float), size_t(img.height));  // GL rows are bottom-up
   return img;
 }
 

@@ -4,10 +4,12 @@
 // or a headless EGL context (egl_context.h). It calls GL through libepoxy
 // and holds no window-system code.
 //
-// A frame is a list of passes, and a pass the frame does not need is not
-// run and owns no memory (DESIGN.md): no MSAA buffers unless MSAA is on, no
-// FXAA pass unless FXAA is on, no grid pass without a grid, no overlay pass
-// without overlays.
+// Today a frame is one function (Renderer::render) that runs its steps in
+// a fixed order, each behind an `if`: a step the frame does not need is
+// skipped and its buffers are not allocated (no MSAA buffers unless MSAA is
+// on, no FXAA pass unless FXAA is on, no grid without a grid, no overlay
+// pass without overlays). DESIGN.md asks for a frame graph of passes that
+// declare their resources; the renderer-core work builds it.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -70,6 +72,10 @@ class Renderer {
   // lacks what the renderer needs or a shader fails to build.
   bool initialize(std::string& error);
   bool initialized() const;
+  // Fills framebuffer `fbo` with one colour, on any current context, also
+  // one initialize() refused (the viewport's background when the scene
+  // cannot be drawn): only calls every GL 3.0 context has.
+  static void clearTarget(unsigned fbo, float r, float g, float b);
 
   // Renders into framebuffer `targetFbo` (0 = default) of size view.width x
   // view.height, leaving it holding sRGB-encoded 8-bit colour.

@@ -7,10 +7,11 @@
 
 #include <epoxy/gl.h>
 
+#include "core/srgb.h"
+#include "render/output_target.h"
 #include "render/pixel_readback.h"
 #include "render/stereo_views.h"
 #include "scene/animation.h"
-#include "core/srgb.h"
 
 namespace hs::render {
 
@@ -33,8 +34,7 @@ hs::Image imageFrom(const uint8_t* src, int w, int h, PixelKind kind) {
   switch (kind) {
     case PixelKind::Display8: {
       hs::Image img = hs::Image::make8(w, h);
-      for (int y = 0; y < h; ++y)
-        std::memcpy(img.rgba8.data() + size_t(y) * rowPixels * 4, src + size_t(h - 1 - y) * rowPixels * 4, rowPixels * 4);
+      copyRowsFlipped(src, img.rgba8.data(), rowPixels * 4, size_t(h));
       return img;
     }
     case PixelKind::Display16: {
@@ -51,9 +51,7 @@ hs::Image imageFrom(const uint8_t* src, int w, int h, PixelKind kind) {
     }
     case PixelKind::LinearFloat: {
       hs::Image img = hs::Image::makeF(w, h);
-      for (int y = 0; y < h; ++y)
-        std::memcpy(img.rgbaF.data() + size_t(y) * rowPixels * 4, src + size_t(h - 1 - y) * rowPixels * 16,
-                    rowPixels * 16);
+      copyRowsFlipped(src, img.rgbaF.data(), rowPixels * 16, size_t(h));
       return img;
     }
   }
@@ -62,8 +60,7 @@ hs::Image imageFrom(const uint8_t* src, int w, int h, PixelKind kind) {
 
 std::vector<float> depthFrom(const uint8_t* src, int w, int h) {
   std::vector<float> out(size_t(w) * size_t(h));
-  for (int y = 0; y < h; ++y)
-    std::memcpy(out.data() + size_t(y) * size_t(w), src + size_t(h - 1 - y) * size_t(w) * 4, size_t(w) * 4);
+  copyRowsFlipped(src, out.data(), size_t(w) * sizeof(float), size_t(h));
   return out;
 }
 
@@ -77,9 +74,7 @@ struct StereoFrameSource::Impl {
   scene::EntityId camera = scene::kNoEntity;
 
   // The output framebuffer the renderer tone-maps into, per eye size.
-  GLuint fbo = 0, color = 0;
-  int width = 0, height = 0;
-  GLenum colorFormat = 0;
+  OutputTarget output;
 
   struct Slot {
     PixelReadback buffer;
@@ -109,23 +104,6 @@ struct StereoFrameSource::Impl {
     if (seenWarnings.insert(w).second) warnings.push_back(w);
   }
 
-  void ensureOutput(int w, int h, GLenum format) {
-    if (fbo && w == width && h == height && format == colorFormat) return;
-    releaseOutput();
-    glCreateRenderbuffers(1, &color);
-    glNamedRenderbufferStorage(color, format, w, h);
-    glCreateFramebuffers(1, &fbo);
-    glNamedFramebufferRenderbuffer(fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
-    width = w;
-    height = h;
-    colorFormat = format;
-  }
-  void releaseOutput() {
-    if (fbo) glDeleteFramebuffers(1, &fbo);
-    if (color) glDeleteRenderbuffers(1, &color);
-    fbo = color = 0;
-  }
-
   size_t colorBytes(const Slot& s) const { return size_t(s.width) * size_t(s.height) * bytesPerPixel(s.kind); }
   size_t depthBytes(const Slot& s) const { return size_t(s.width) * size_t(s.height) * 4; }
   // Layout of a slot's buffer: colour of each view, then depth of each view.
@@ -141,13 +119,13 @@ struct StereoFrameSource::Impl {
     ro.lodView = lodView;  // both eyes: their camera's levels of detail
     ro.showGrid = options.showGrid;
     ro.keepHdr = slot.kind == PixelKind::LinearFloat;
-    offscreen.renderer().render(state, view, fbo, ro);
+    offscreen.renderer().render(state, view, output.fbo(), ro);
     slot.buffer.bindForPack();
     auto* colorAt = reinterpret_cast<void*>(colorOffset(slot, index));
     if (slot.kind == PixelKind::LinearFloat) {
       offscreen.renderer().readHdrInto(colorAt, colorBytes(slot));
     } else {
-      glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, output.fbo());
       glPixelStorei(GL_PACK_ALIGNMENT, 4);
       glReadPixels(0, 0, slot.width, slot.height, GL_RGBA,
                    slot.kind == PixelKind::Display16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE, colorAt);
@@ -165,7 +143,7 @@ StereoFrameSource::StereoFrameSource(OffscreenRenderer& renderer, const scene::S
 StereoFrameSource::~StereoFrameSource() {
   if (d_->offscreen.makeCurrent()) {
     for (auto& s : d_->slots) s.buffer.release();
-    d_->releaseOutput();
+    d_->output.release();
   }
 }
 
@@ -202,7 +180,7 @@ bool StereoFrameSource::begin(const sequencer::FrameJob& job, std::string& error
   slot.duplicate = job.bothEyes && !views.stereo;
   slot.depth = d.options.comfort.has_value();
   slot.eyes = views.eyes;
-  d.ensureOutput(job.eyeWidth, job.eyeHeight, slot.kind == PixelKind::Display16 ? GL_RGBA16 : GL_RGBA8);
+  d.output.ensure(job.eyeWidth, job.eyeHeight, slot.kind == PixelKind::Display16 ? GL_RGBA16 : GL_RGBA8);
   slot.buffer.reserve(d.colorBytes(slot) * size_t(slot.views) + (slot.depth ? d.depthBytes(slot) * size_t(slot.views) : 0));
   if (twoViews) {
     d.renderView(state, views.left, slot, 0, &views.mono);

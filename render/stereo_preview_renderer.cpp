@@ -27,10 +27,7 @@ std::vector<float> readDepth(Renderer& r, int w, int h) {
   r.readDepth(d.data());
   // Rows bottom-up; the comfort check of off-axis and parallel rigs only
   // needs the depth range, toe-in reprojects pixels: flip to top-down.
-  for (int y = 0; y < h / 2; ++y)
-    std::swap_ranges(d.begin() + std::ptrdiff_t(size_t(y) * size_t(w)),
-                     d.begin() + std::ptrdiff_t(size_t(y + 1) * size_t(w)),
-                     d.begin() + std::ptrdiff_t(size_t(h - 1 - y) * size_t(w)));
+  flipRows(d.data(), size_t(w) * sizeof(float), size_t(h));
   return d;
 }
 
@@ -57,15 +54,7 @@ FitRect fitAspect(double aspect, int width, int height) {
 }
 
 void StereoPreviewRenderer::ensureEyes(int w, int h) {
-  if (eyes_[0].fbo && w == width_ && h == height_) return;
-  for (Eye& e : eyes_) {
-    if (e.fbo) glDeleteFramebuffers(1, &e.fbo);
-    if (e.color) glDeleteRenderbuffers(1, &e.color);
-    glCreateRenderbuffers(1, &e.color);
-    glNamedRenderbufferStorage(e.color, GL_RGBA8, w, h);
-    glCreateFramebuffers(1, &e.fbo);
-    glNamedFramebufferRenderbuffer(e.fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, e.color);
-  }
+  for (Eye& e : eyes_) e.target.ensure(w, h);
   width_ = w;
   height_ = h;
 }
@@ -103,11 +92,11 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
   options.showGrid = true;
   options.lodView = &views.mono;  // both eyes draw the same mesh levels (renderer.h)
   if (needLeft) {
-    result.stats = renderer.render(state, views.left, eyes_[0].fbo, options);
+    result.stats = renderer.render(state, views.left, eyes_[0].target.fbo(), options);
     if (comfort) depth[0] = readDepth(renderer, eyeW, eyeH);
   }
   if (needRight) {
-    result.stats = renderer.render(state, views.right, eyes_[1].fbo, options);
+    result.stats = renderer.render(state, views.right, eyes_[1].target.fbo(), options);
     if (comfort && !depth[0].empty() && views.eyes.mode == sequencer::StereoMode::ToeIn)
       depth[1] = readDepth(renderer, eyeW, eyeH);
   }
@@ -126,19 +115,19 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
   const float bars[4] = {0.09f, 0.09f, 0.1f, 1.0f};
   glClearNamedFramebufferfv(targetFbo, GL_COLOR, 0, bars);
   switch (mode) {
-    case StereoPreviewMode::Left: blit(eyes_[0].fbo, eyeW, eyeH, targetFbo, area); break;
-    case StereoPreviewMode::Right: blit(eyes_[1].fbo, eyeW, eyeH, targetFbo, area); break;
+    case StereoPreviewMode::Left: blit(eyes_[0].target.fbo(), eyeW, eyeH, targetFbo, area); break;
+    case StereoPreviewMode::Right: blit(eyes_[1].target.fbo(), eyeW, eyeH, targetFbo, area); break;
     case StereoPreviewMode::SideBySide: {
       FitRect l = area, r = area;
       l.width = r.width = eyeW;
       r.x = area.x + eyeW;
-      blit(eyes_[0].fbo, eyeW, eyeH, targetFbo, l);
-      blit(eyes_[1].fbo, eyeW, eyeH, targetFbo, r);
+      blit(eyes_[0].target.fbo(), eyeW, eyeH, targetFbo, l);
+      blit(eyes_[1].target.fbo(), eyeW, eyeH, targetFbo, r);
       break;
     }
     case StereoPreviewMode::Anaglyph: {
       // The export's composition on the CPU: the preview shows the film's colours.
-      const hs::Image l = readEye(eyes_[0].fbo, eyeW, eyeH), r = readEye(eyes_[1].fbo, eyeW, eyeH);
+      const hs::Image l = readEye(eyes_[0].target.fbo(), eyeW, eyeH), r = readEye(eyes_[1].target.fbo(), eyeW, eyeH);
       const std::vector<hs::Image> out = sequencer::composeLayout(sequencer::StereoLayout::Anaglyph, l, r);
       if (out.empty()) break;
       ensureAnaglyph(eyeW, eyeH);
@@ -156,11 +145,7 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
 }
 
 void StereoPreviewRenderer::release() {
-  for (Eye& e : eyes_) {
-    if (e.fbo) glDeleteFramebuffers(1, &e.fbo);
-    if (e.color) glDeleteRenderbuffers(1, &e.color);
-    e = {};
-  }
+  for (Eye& e : eyes_) e.target.release();
   if (anaglyphFbo_) glDeleteFramebuffers(1, &anaglyphFbo_);
   if (anaglyphTexture_) glDeleteTextures(1, &anaglyphTexture_);
   anaglyphFbo_ = anaglyphTexture_ = 0;

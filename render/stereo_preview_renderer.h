@@ -7,6 +7,7 @@
 // comfort budget it also reads the eyes' depth and checks the frame.
 #include <optional>
 
+#include "render/output_target.h"
 #include "render/renderer.h"
 #include "render/stereo_views.h"
 #include "sequencer/comfort_check.h"
@@ -40,7 +41,7 @@ class StereoPreviewRenderer {
 
  private:
   struct Eye {
-    unsigned fbo = 0, color = 0;
+    OutputTarget target;
   };
   void ensureEyes(int width, int height);
   void ensureAnaglyph(int width, int height);

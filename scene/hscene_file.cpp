@@ -12,6 +12,8 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include "core/content_hash.h"
+#include "scene/legacy_hashes.h"
 #include "scene/mesh_blob.h"
 #include "scene/scene_json.h"
 #include "scene/sqlite_db.h"
@@ -28,12 +30,6 @@ CREATE TABLE IF NOT EXISTS document(id INTEGER PRIMARY KEY CHECK (id = 1), json 
 CREATE TABLE IF NOT EXISTS blobs(key TEXT NOT NULL, part INTEGER NOT NULL, hash TEXT NOT NULL,
                                  data BLOB NOT NULL, PRIMARY KEY(key, part));
 )sql";
-
-std::string hex(uint64_t h) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
 
 std::string meshKey(AssetId id) { return "mesh/" + std::to_string(id); }
 // LOD levels 1, 2, ... of an asset; level 0 is meshKey (files before LODs had only that).
@@ -77,10 +73,10 @@ int readVersion(SqliteDb& db, std::string& format, std::string& error) {
 std::map<std::string, BlobSource> wantedBlobs(const SceneState& s) {
   std::map<std::string, BlobSource> out;
   for (const auto& [id, a] : s.assets) {
-    if (a.data) out[meshKey(id)] = {hex(a.contentHash), [data = a.data] { return encodeMesh(*data); }, false};
+    if (a.data) out[meshKey(id)] = {toHex(a.contentHash), [data = a.data] { return encodeMesh(*data); }, false};
     for (size_t k = 0; k < a.lods.size(); ++k)
       if (const auto& data = a.lods[k].data)
-        out[lodKey(id, k + 1)] = {hex(a.lods[k].contentHash), [data] { return encodeMesh(*data); }, false};
+        out[lodKey(id, k + 1)] = {toHex(a.lods[k].contentHash), [data] { return encodeMesh(*data); }, false};
   }
   addTerrainBlobs(s, out);
   return out;
@@ -338,7 +334,8 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
       error = e;
       return false;
     }
-    if (mesh::contentHash(*mesh) != hash) {
+    // Files before format 4 hold the hand-written hash of their time.
+    if ((version < kFirstXxh3Format ? legacyMeshHash(*mesh) : mesh::contentHash(*mesh)) != hash) {
       error = what + ": its data does not match its checksum (damaged file)";
       return false;
     }
@@ -358,10 +355,14 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
       if (!loadMesh(lodKey(id, k + 1), what + ", LOD " + std::to_string(k + 1), asset.lods[k].contentHash,
                     asset.lods[k].data))
         return std::nullopt;
+    if (version < kFirstXxh3Format) {  // checked by the old hash; the document holds the current one
+      asset.contentHash = mesh::contentHash(*asset.data);
+      for (auto& lod : asset.lods) lod.contentHash = mesh::contentHash(*lod.data);
+    }
   }
   // Terrains' tiles, checked against their hashes and the description.
   if (!state->terrains.empty() &&
-      !loadTerrainTiles(db, *state, path, error, progress))
+      !loadTerrainTiles(db, *state, path, version, error, progress))
     return std::nullopt;
   reportProgress(progress, 1.0, "Loaded");
   return state;

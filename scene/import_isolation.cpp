@@ -3,7 +3,6 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,9 +15,8 @@
 #include <cstring>
 #include <filesystem>
 
+#include "core/subprocess.h"
 #include "mesh/import_wire.h"
-
-extern char** environ;
 
 namespace hs::scene {
 namespace {
@@ -117,15 +115,6 @@ bool makePipe(int& readEnd, int& writeEnd) {
   return readEnd >= 0 && writeEnd >= 0;
 }
 
-int waitForChild(pid_t pid, int& status) {
-  for (;;) {
-    const pid_t r = ::waitpid(pid, &status, 0);
-    if (r == pid) return 0;
-    if (r < 0 && errno == EINTR) continue;
-    return -1;  // ECHILD: someone else reaped it (SIGCHLD ignored); the result file still tells
-  }
-}
-
 enum class Outcome { Done, SpawnFailed };
 
 Outcome runWorker(const std::string& worker, const std::string& path, const mesh::ImportOptions& options,
@@ -150,42 +139,14 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
 
   std::vector<std::string> args = {worker, "--result-fd", "3", "--watch-stdin"};
   for (auto& a : mesh::importWorkerArguments(path, options)) args.push_back(std::move(a));
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  SpawnOptions spawn;
+  spawn.args = std::move(args);
+  spawn.fds = {{0, fds.stdinRead}, {1, fds.progressWrite}, {2, fds.err}, {3, fds.result}};
+  spawn.closeFrom = 4;
   // glibc's fatal messages ("double free detected") go to stderr, not the tty.
-  std::string fatalToStderr = "LIBC_FATAL_STDERR_=1";
-  std::vector<char*> envp;
-  for (char** e = environ; e && *e; ++e)
-    if (std::strncmp(*e, "LIBC_FATAL_STDERR_=", 19) != 0) envp.push_back(*e);
-  envp.push_back(fatalToStderr.data());
-  envp.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds.stdinRead, 0);
-  posix_spawn_file_actions_adddup2(&actions, fds.progressWrite, 1);
-  posix_spawn_file_actions_adddup2(&actions, fds.err, 2);
-  posix_spawn_file_actions_adddup2(&actions, fds.result, 3);
-#if defined(__GLIBC__) && __GLIBC_PREREQ(2, 34)
-  posix_spawn_file_actions_addclosefrom_np(&actions, 4);
-#endif
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  sigset_t none, all;
-  sigemptyset(&none);
-  sigfillset(&all);
-  posix_spawnattr_setsigmask(&attr, &none);
-  posix_spawnattr_setsigdefault(&attr, &all);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-  pid_t pid = -1;
-  const int rc = ::posix_spawn(&pid, worker.c_str(), &actions, &attr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attr);
-  if (rc != 0) {
-    spawnError = worker + ": cannot start it: " + std::strerror(rc);
-    return Outcome::SpawnFailed;
-  }
+  spawn.environment = {"LIBC_FATAL_STDERR_=1"};
+  const pid_t pid = spawnProcess(spawn, spawnError);
+  if (pid < 0) return Outcome::SpawnFailed;
   Fds::closeOne(fds.stdinRead);
   Fds::closeOne(fds.progressWrite);
 
@@ -194,13 +155,11 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
   double lastFraction = 0.0;
   std::string lastStage = "Reading with Assimp";
   reportProgress(progress, 0.0, lastStage);
-  auto lastReport = Clock::now();
   std::string buffer;
   char chunk[4096];
   auto cancelled = [&] {
     ::kill(pid, SIGKILL);
-    int status = 0;
-    waitForChild(pid, status);
+    waitProcess(pid);
     out = {};
     out.report.file = path;
     out.report.reader = "assimp";
@@ -226,16 +185,9 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
           lastFraction = std::clamp(f, 0.0, 1.0);
           lastStage = std::move(stage);
           reportProgress(progress, lastFraction, lastStage);
-          lastReport = Clock::now();
         }
         buffer.erase(0, nl + 1);
       }
-    }
-    // Readers report seldom; the caller's Cancel reaches this Progress only
-    // through its callback (a Slice of a larger bar), so call it now and then.
-    if (Clock::now() - lastReport > std::chrono::milliseconds(100)) {
-      reportProgress(progress, lastFraction, lastStage);
-      lastReport = Clock::now();
     }
   }
   // Its stdout is closed, so it is ending; Cancel still holds while it does.

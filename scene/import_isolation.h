@@ -10,8 +10,8 @@
 // importObjFromMemory stay in this process. docs/meshes.md, "Isolation".
 #include <string>
 
-#include "mesh/mesh_import.h"
 #include "core/progress.h"
+#include "mesh/mesh_import.h"
 
 namespace hs::scene {
 

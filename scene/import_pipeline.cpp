@@ -5,31 +5,13 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 
-#include "meshproc/report_json.h"
 #include "mesh/tile_merge.h"
+#include "meshproc/report_json.h"
 #include "scene/import_isolation.h"
 #include "scene/report_json.h"
 
 namespace hs::scene {
 namespace {
-
-// A slice [from, to] of the caller's progress bar; the caller's Cancel
-// reaches the step through this Progress's own flag.
-class Slice {
- public:
-  Slice(const Progress* parent, double from, double to)
-      : parent_(parent), own_([this, from, to](double f, std::string_view stage) {
-          reportProgress(parent_, from + (to - from) * f, stage);
-          if (isCancelled(parent_)) own_.cancel();
-        }) {
-    if (isCancelled(parent_)) own_.cancel();
-  }
-  const Progress* get() const { return parent_ ? &own_ : nullptr; }
-
- private:
-  const Progress* parent_;
-  Progress own_;
-};
 
 // Several tiles: one report with the counts summed, named after the first
 // tile (each tile's own report is kept beside it).
@@ -95,9 +77,9 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
   }
   const double readShare = request.process ? 0.35 : 1.0;
   {
-    Slice read(progress, 0.0, readShare);
+    Progress read(progress, 0.0, readShare);
     if (request.files.size() == 1) {
-      mesh::ImportResult r = importMeshIsolated(request.files.front(), request.import, read.get());
+      mesh::ImportResult r = importMeshIsolated(request.files.front(), request.import, &read);
       out.import = std::move(r.report);
       out.cancelled = r.cancelled;
       out.error = std::move(r.error);
@@ -107,7 +89,7 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
       t.import = request.import;
       t.weldTolerance = request.tileWeldTolerance;
       t.readTile = importMeshIsolated;
-      mesh::TileImportResult r = mesh::importTiles(request.files, t, read.get());
+      mesh::TileImportResult r = mesh::importTiles(request.files, t, &read);
       out.cancelled = r.cancelled;
       out.error = std::move(r.error);
       out.tiles = std::move(r.tiles);
@@ -134,8 +116,8 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
   out.importReportJson = compact(importJson);
   if (!request.process) return out;
 
-  Slice work(progress, readShare, 1.0);
-  mesh::ProcessResult p = mesh::processMesh(std::move(*out.mesh), request.processing, work.get());
+  Progress work(progress, readShare, 1.0);
+  mesh::ProcessResult p = mesh::processMesh(std::move(*out.mesh), request.processing, &work);
   out.mesh.reset();
   if (p.cancelled || isCancelled(progress)) {
     out.cancelled = true;

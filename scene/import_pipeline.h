@@ -11,9 +11,9 @@
 
 #include <QJsonObject>
 
+#include "core/progress.h"
 #include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
-#include "core/progress.h"
 #include "scene/scene_state.h"
 
 namespace hs::scene {

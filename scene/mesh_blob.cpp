@@ -2,8 +2,8 @@
 
 #include <cstring>
 
-#include "mesh/texture_decode.h"
 #include "mesh/mesh_geometry_codec.h"
+#include "mesh/texture_decode.h"
 
 namespace hs::scene {
 namespace {

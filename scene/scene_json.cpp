@@ -5,6 +5,7 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 
+#include "core/content_hash.h"
 #include "scene/fields.h"
 #include "scene/json_path_reader.h"
 #include "scene/terrain_json.h"
@@ -15,7 +16,6 @@ namespace {
 
 QJsonArray vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
-QString hashHex(uint64_t h) { return QString("%1").arg(h, 16, 16, QChar('0')); }
 
 template <class Target>
 QJsonValue fieldToJson(const FieldInfo<Target>& f, const Target& t) {
@@ -147,7 +147,7 @@ QJsonObject sceneToJson(const SceneState& state) {
     o["id"] = double(id);
     o["name"] = QString::fromStdString(a.name);
     o["source"] = QString::fromStdString(a.sourcePath);
-    o["hash"] = hashHex(a.contentHash);
+    o["hash"] = QString::fromStdString(toHex(a.contentHash));
     if (!a.importReportJson.empty())
       o["import_report"] = QJsonDocument::fromJson(QByteArray::fromStdString(a.importReportJson)).object();
     // Coarser levels: their blobs are "mesh/<id>/lod<level>" (hscene_file.cpp).
@@ -157,7 +157,7 @@ QJsonObject sceneToJson(const SceneState& state) {
         const MeshLod& l = a.lods[k];
         QJsonObject lo;
         lo["level"] = double(k + 1);
-        lo["hash"] = hashHex(l.contentHash);
+        lo["hash"] = QString::fromStdString(toHex(l.contentHash));
         lo["triangles"] = double(l.triangles);
         lo["hausdorff_m"] = l.hausdorff;
         lods.append(lo);

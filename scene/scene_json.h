@@ -15,7 +15,7 @@ namespace hs::scene {
 // version-1 reader would drop them silently, so it is told the file is newer.
 // 3: mesh LODs (assets' "lods", blobs "mesh/<id>/lod<k>") and processing
 // reports; a version-2 reader would drop the LODs on its next save.
-constexpr int kSceneFormatVersion = 3;
+constexpr int kSceneFormatVersion = 4;
 
 QJsonObject sceneToJson(const SceneState& state);
 // Canonical compact text of sceneToJson (stable key order and number format).

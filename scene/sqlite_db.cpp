@@ -37,7 +37,6 @@ bool SqliteDb::exec(const std::string& sql, std::string& error) {
 }
 
 std::string SqliteDb::lastError() const { return db_ ? sqlite3_errmsg(db_) : "no database"; }
-int SqliteDb::lastErrorCode() const { return db_ ? sqlite3_extended_errcode(db_) : SQLITE_MISUSE; }
 
 SqliteStmt::SqliteStmt(SqliteDb& db, const std::string& sql) : db_(db) {
   if (sqlite3_prepare_v2(db.handle(), sql.c_str(), int(sql.size()), &stmt_, nullptr) != SQLITE_OK)

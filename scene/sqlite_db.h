@@ -23,7 +23,6 @@ class SqliteDb {
   void close();
   bool exec(const std::string& sql, std::string& error);
   std::string lastError() const;
-  int lastErrorCode() const;
   sqlite3* handle() const { return db_; }
 
  private:

@@ -31,12 +31,18 @@ uint64_t TileHashCache::get(hs::terrain::TileKind kind, int layer, int tile, uin
     if (e.revision == revision) return e.hash;
   }
   // Hash outside the lock: two threads may both compute it; same result.
+  const uint64_t h = compute(&hs::terrain::tileContentHash, kind, layer, tile, data, bytes, fill, sampleBytes);
+  put(kind, layer, tile, revision, h);
+  return h;
+}
+
+uint64_t TileHashCache::compute(HashFunction hash, hs::terrain::TileKind kind, int layer, int tile, const void* data,
+                                size_t bytes, const void* fill, size_t sampleBytes) {
+  if (!data) return 0;
   bool onlyFill = fill != nullptr;
   const auto* p = static_cast<const unsigned char*>(data);
   for (size_t i = 0; onlyFill && i < bytes; i += sampleBytes) onlyFill = std::memcmp(p + i, fill, sampleBytes) == 0;
-  const uint64_t h = onlyFill ? 0 : hs::terrain::tileContentHash(kind, layer, tile, data, bytes);
-  put(kind, layer, tile, revision, h);
-  return h;
+  return onlyFill ? 0 : hash(kind, layer, tile, data, bytes);
 }
 
 void TileHashCache::put(hs::terrain::TileKind kind, int layer, int tile, uint64_t revision, uint64_t hash) {
@@ -73,33 +79,35 @@ std::shared_ptr<TerrainData> TerrainData::snapshot() const {
   return s;
 }
 
-uint64_t TerrainData::tileHash(hs::terrain::TileKind kind, int layer, int tile) const {
+uint64_t TerrainData::tileHash(hs::terrain::TileKind kind, int layer, int tile,
+                              TileHashCache::HashFunction legacy) const {
+  auto hash = [&](const auto& grid, int l, const void* fill, size_t sampleBytes) {
+    if (legacy) return TileHashCache::compute(legacy, kind, l, tile, grid.tile(tile), grid.tileBytes(), fill, sampleBytes);
+    return hashes_->get(kind, l, tile, grid.revision(tile), grid.tile(tile), grid.tileBytes(), fill, sampleBytes);
+  };
   switch (kind) {
-    case hs::terrain::TileKind::Height: {
-      const auto& g = terrain_.height.heights();
-      return hashes_->get(kind, 0, tile, g.revision(tile), g.tile(tile), g.tileBytes());
-    }
+    case hs::terrain::TileKind::Height:
+      return hash(terrain_.height.heights(), 0, nullptr, 0);
     case hs::terrain::TileKind::Holes: {
-      const auto& g = terrain_.height.holes();
-      const uint8_t fill = g.fill();
-      return hashes_->get(kind, 0, tile, g.revision(tile), g.tile(tile), g.tileBytes(), &fill, sizeof fill);
+      const uint8_t fill = terrain_.height.holes().fill();
+      return hash(terrain_.height.holes(), 0, &fill, sizeof fill);
     }
     case hs::terrain::TileKind::Paint: {
-      const auto& g = terrain_.paint.grid(layer);
-      const uint16_t fill = g.fill();
-      return hashes_->get(kind, layer, tile, g.revision(tile), g.tile(tile), g.tileBytes(), &fill, sizeof fill);
+      const uint16_t fill = terrain_.paint.grid(layer).fill();
+      return hash(terrain_.paint.grid(layer), layer, &fill, sizeof fill);
     }
   }
   return 0;
 }
 
-uint64_t TerrainData::contentHash() const {
+uint64_t TerrainData::contentHash(TileHashCache::HashFunction legacy) const {
+  using hs::terrain::TileKind;
   uint64_t h = 0x5445525241494eull;  // "TERRAIN"
   const int tiles = terrain_.height.heights().tileCount();
-  for (int t = 0; t < tiles; ++t) h = hs::terrain::hashCombine(h, tileHash(hs::terrain::TileKind::Height, 0, t));
-  for (int t = 0; t < tiles; ++t) h = hs::terrain::hashCombine(h, tileHash(hs::terrain::TileKind::Holes, 0, t));
+  for (int t = 0; t < tiles; ++t) h = hs::terrain::hashCombine(h, tileHash(TileKind::Height, 0, t, legacy));
+  for (int t = 0; t < tiles; ++t) h = hs::terrain::hashCombine(h, tileHash(TileKind::Holes, 0, t, legacy));
   for (int l = 0; l < terrain_.paint.layerCount(); ++l)
-    for (int t = 0; t < tiles; ++t) h = hs::terrain::hashCombine(h, tileHash(hs::terrain::TileKind::Paint, l, t));
+    for (int t = 0; t < tiles; ++t) h = hs::terrain::hashCombine(h, tileHash(TileKind::Paint, l, t, legacy));
   return h;
 }
 

@@ -55,6 +55,11 @@ class TileHashCache {
   // round trip (which leaves it unallocated) keeps the document's hash.
   uint64_t get(hs::terrain::TileKind kind, int layer, int tile, uint64_t revision, const void* data, size_t bytes,
                const void* fill = nullptr, size_t sampleBytes = 0);
+  // The same rule with another hash function and no caching (checking the
+  // tiles of files before format 4, scene/legacy_hashes.h).
+  using HashFunction = uint64_t (*)(hs::terrain::TileKind kind, int layer, int tile, const void* data, size_t bytes);
+  static uint64_t compute(HashFunction hash, hs::terrain::TileKind kind, int layer, int tile, const void* data,
+                          size_t bytes, const void* fill = nullptr, size_t sampleBytes = 0);
   // Records a hash already known (the file's, checked at load).
   void put(hs::terrain::TileKind kind, int layer, int tile, uint64_t revision, uint64_t hash);
 
@@ -92,10 +97,12 @@ class TerrainData {
   // A frozen copy sharing tiles (copy-on-write) and the hash cache.
   std::shared_ptr<TerrainData> snapshot() const;
   TileHashCache& hashCache() const { return *hashes_; }
-  // Hash of one tile's current content (0 for an unallocated sparse tile).
-  uint64_t tileHash(hs::terrain::TileKind kind, int layer, int tile) const;
+  // Hash of one tile's current content (0 for an unallocated sparse tile);
+  // with `legacy`, by that function instead of the current one, uncached.
+  uint64_t tileHash(hs::terrain::TileKind kind, int layer, int tile,
+                    TileHashCache::HashFunction legacy = nullptr) const;
   // All tile hashes combined in order: the terrain's content, in one number.
-  uint64_t contentHash() const;
+  uint64_t contentHash(TileHashCache::HashFunction legacy = nullptr) const;
 
   // What a scene description says the tiles hold (terrain_json.h), kept
   // from sceneFromJson until the file loader has read and checked the

@@ -6,18 +6,14 @@
 
 #include <QJsonObject>
 
+#include "core/content_hash.h"
+#include "scene/legacy_hashes.h"
 #include "scene/terrain_json.h"
 #include "terrain/tile_blob.h"
 #include "terrain/tile_hash.h"
 
 namespace hs::scene {
 namespace {
-
-std::string hex(uint64_t h) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
 
 std::string prefixOf(TerrainId id) { return "terrain/" + std::to_string(id) + "/"; }
 
@@ -77,13 +73,13 @@ void addTerrainBlobs(const SceneState& state, std::map<std::string, BlobSource>&
     for (int i = 0; i < tiles; ++i) {
       BlobSource b;
       b.terrainTile = true;
-      b.hash = hex(data->tileHash(terrain::TileKind::Height, 0, i));
+      b.hash = toHex(data->tileHash(terrain::TileKind::Height, 0, i));
       b.bytes = [data, i] { return terrain::encodeHeightTile(data->terrain().height, i); };
       out[terrainTileKey(id, terrain::TileKind::Height, 0, i % tilesX, i / tilesX)] = std::move(b);
       if (const uint64_t h = data->tileHash(terrain::TileKind::Holes, 0, i)) {
         BlobSource hb;
         hb.terrainTile = true;
-        hb.hash = hex(h);
+        hb.hash = toHex(h);
         hb.bytes = [data, i] { return terrain::encodeHolesTile(data->terrain().height, i); };
         out[terrainTileKey(id, terrain::TileKind::Holes, 0, i % tilesX, i / tilesX)] = std::move(hb);
       }
@@ -92,7 +88,7 @@ void addTerrainBlobs(const SceneState& state, std::map<std::string, BlobSource>&
         if (!h) continue;
         BlobSource pb;
         pb.terrainTile = true;
-        pb.hash = hex(h);
+        pb.hash = toHex(h);
         pb.bytes = [data, l, i] { return terrain::encodePaintTile(data->terrain().paint, l, i); };
         out[terrainTileKey(id, terrain::TileKind::Paint, l, i % tilesX, i / tilesX)] = std::move(pb);
       }
@@ -107,8 +103,10 @@ SceneState snapshotForSave(const SceneState& state) {
   return s;
 }
 
-bool loadTerrainTiles(SqliteDb& db, SceneState& state, const std::string& path, std::string& error,
+bool loadTerrainTiles(SqliteDb& db, SceneState& state, const std::string& path, int formatVersion, std::string& error,
                       const Progress* progress) {
+  // Files before format 4 hold the hand-written hashes of their time.
+  const TileHashCache::HashFunction legacy = formatVersion < kFirstXxh3Format ? &legacyTileHash : nullptr;
   size_t done = 0;
   for (auto& [id, t] : state.terrains) {
     reportProgress(progress, double(done++) / double(state.terrains.size()), "Loading terrain tiles");
@@ -164,10 +162,9 @@ bool loadTerrainTiles(SqliteDb& db, SceneState& state, const std::string& path, 
         return false;
       }
       // The blob's header names its own tile: it must be the one its key says.
-      const uint64_t h = decodedHash(data, kind, layer, tile);
-      bool ok = false;
-      const uint64_t expected = QString::fromStdString(q.text(2)).toULongLong(&ok, 16);
-      if (!ok || h != expected) {
+      const uint64_t h = legacy ? data.tileHash(kind, layer, tile, legacy) : decodedHash(data, kind, layer, tile);
+      uint64_t expected = 0;
+      if (!fromHex(q.text(2), expected) || h != expected) {
         error = what + ": " + name + " does not match its checksum (damaged file)";
         return false;
       }
@@ -220,7 +217,7 @@ bool loadTerrainTiles(SqliteDb& db, SceneState& state, const std::string& path, 
     // Last, everything together: tiles from another save of the same
     // terrain would pass every check above but this one.
     data.setDescribed(std::nullopt);  // the tiles speak for themselves now
-    if (summary.contentHash != data.contentHash()) {
+    if (summary.contentHash != data.contentHash(legacy)) {
       error = what + ": its tiles do not add up to the content the description records (damaged file)";
       return false;
     }

@@ -41,7 +41,7 @@ void addTerrainBlobs(const SceneState& state, std::map<std::string, BlobSource>&
 
 // Fills the tiles of the terrains sceneFromJson made, from the blobs table,
 // checked against the tile summaries the description gave them.
-bool loadTerrainTiles(SqliteDb& db, SceneState& state, const std::string& path, std::string& error,
+bool loadTerrainTiles(SqliteDb& db, SceneState& state, const std::string& path, int formatVersion, std::string& error,
                       const Progress* progress);
 
 // A copy of `state` whose terrains are frozen copy-on-write snapshots, for

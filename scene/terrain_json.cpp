@@ -4,6 +4,7 @@
 
 #include <QByteArray>
 
+#include "core/content_hash.h"
 #include "scene/json_path_reader.h"
 
 namespace hs::scene {
@@ -11,7 +12,6 @@ namespace {
 
 QJsonArray vec2Json(const glm::dvec2& v) { return {v.x, v.y}; }
 QJsonArray vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-QString hex(uint64_t h) { return QString("%1").arg(h, 16, 16, QChar('0')); }
 
 QJsonObject materialJson(const terrain::Material& m) {
   QJsonObject o;
@@ -151,7 +151,7 @@ QJsonArray terrainsToJson(const SceneState& state) {
       QJsonArray paint;
       for (const auto& p : d->paint) paint.append(QString::fromStdString(p));
       ts["paint"] = paint;
-      ts["content_hash"] = hex(d->contentHash);
+      ts["content_hash"] = QString::fromStdString(toHex(d->contentHash));
     } else {
       std::vector<bool> present(static_cast<size_t>(tiles));
       for (int i = 0; i < tiles; ++i) present[size_t(i)] = t.data->tileHash(terrain::TileKind::Holes, 0, i) != 0;
@@ -162,7 +162,7 @@ QJsonArray terrainsToJson(const SceneState& state) {
         paint.append(QString::fromStdString(tileBitmap(present)));
       }
       ts["paint"] = paint;
-      ts["content_hash"] = hex(t.data->contentHash());
+      ts["content_hash"] = QString::fromStdString(toHex(t.data->contentHash()));
     }
     o["tiles"] = ts;
     out.append(o);

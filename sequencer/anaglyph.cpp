@@ -15,12 +15,6 @@ const char* anaglyphMethodName(AnaglyphMethod m) {
   return "?";
 }
 
-std::optional<AnaglyphMethod> anaglyphMethodFromName(std::string_view s) {
-  for (auto m : {AnaglyphMethod::Dubois, AnaglyphMethod::Color, AnaglyphMethod::Gray})
-    if (s == anaglyphMethodName(m)) return m;
-  return std::nullopt;
-}
-
 const AnaglyphMatrices& anaglyphMatrices(AnaglyphMethod m) {
   // Dubois 2009, red/cyan. Each output row sums (left + right) to ~1, so
   // grey stays grey: white maps to (1.000, 0.999, 1.000).

@@ -23,7 +23,6 @@ enum class AnaglyphMethod : uint8_t {
 };
 
 const char* anaglyphMethodName(AnaglyphMethod m);  // "dubois", "color", "gray"
-std::optional<AnaglyphMethod> anaglyphMethodFromName(std::string_view s);
 
 // The 3x3 matrices (row-major: output row r = sum over c of M[r][c] * input[c])
 // applied to the left and right linear RGB.

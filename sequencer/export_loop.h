@@ -1,6 +1,7 @@
 #pragma once
 // The frame export loop: renders each frame through a caller-supplied
-// source (phase 2: render/ with GL and pixel buffers), and composes, encodes
+// source (render::StereoFrameSource: GL and pixel buffers; tests use
+// synthetic sources), and composes, encodes
 // and writes on writer threads behind a bounded queue, so writing overlaps
 // rendering and an export costs little more than its rendering.
 //
@@ -22,10 +23,10 @@
 #include <string>
 #include <vector>
 
+#include "core/image.h"
 #include "core/progress.h"
 #include "sequencer/ffmpeg_writer.h"
 #include "sequencer/frame_range.h"
-#include "core/image.h"
 #include "sequencer/image_writer.h"
 #include "sequencer/stereo_layout.h"
 
@@ -80,9 +81,10 @@ struct ExportSettings {
   int writerThreads = 2;
   int queueDepth = 0;    // frames waiting for a writer; 0 = writerThreads + 1
   bool resume = true;    // false: render and overwrite every frame
-  // Identifies the settings that made the frames (phase 2: a hash of the
-  // scene content and render settings). Written into each image's
-  // description; resume keeps only frames with the same tag. "" = size only.
+  // Identifies the settings that made the frames (render::exportJobTag: a
+  // hash of the scene content and render settings). Written into each
+  // image's description; resume keeps only frames with the same tag. "" =
+  // size only.
   std::string jobTag;
 };
 

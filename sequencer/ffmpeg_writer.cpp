@@ -10,13 +10,11 @@
 
 #include <fcntl.h>
 #include <pthread.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "core/srgb.h"
-
-extern char** environ;
+#include "core/subprocess.h"
 
 namespace hs::sequencer {
 
@@ -34,31 +32,11 @@ namespace {
 
 // Starts `args` with stdin from `in` (or /dev/null) and stdout+stderr to `log`.
 pid_t spawn(const std::vector<std::string>& args, int in, int log, std::string& error) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  if (in >= 0) posix_spawn_file_actions_adddup2(&fa, in, 0);
-  else posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&fa, log, 1);
-  posix_spawn_file_actions_adddup2(&fa, log, 2);
-  pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, args[0].c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) {
-    error = "cannot start " + args[0] + ": " + std::strerror(rc) +
-            (rc == ENOENT ? " (install it: apt-get install ffmpeg)" : "");
-    return -1;
-  }
-  return pid;
-}
-
-int waitExit(pid_t pid) {
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  SpawnOptions o;
+  o.args = args;
+  o.searchPath = true;
+  o.fds = {{0, in}, {1, log}, {2, log}};
+  return spawnProcess(o, error, " (install it: apt-get install ffmpeg)");
 }
 
 // write() that reports a dead reader as EPIPE instead of killing the whole
@@ -118,7 +96,7 @@ bool ffmpegAvailable(const std::string& program) {
   if (devnull < 0) return false;
   const pid_t pid = spawn({program, "-hide_banner", "-version"}, -1, devnull, error);
   ::close(devnull);
-  return pid > 0 && waitExit(pid) == 0;
+  return pid > 0 && waitProcess(pid) == 0;
 }
 
 std::vector<std::string> ffmpegEncodeArguments(const std::string& output, const VideoSettings& s) {
@@ -230,7 +208,7 @@ bool VideoWriter::writeFrame(const Image& frame, std::string& error) {
     // ffmpeg stopped reading: it failed (disk full, bad option); say what it said.
     ::close(pipe_);
     pipe_ = -1;
-    const int code = waitExit(pid_);
+    const int code = waitProcess(pid_);
     pid_ = -1;
     const std::string log = lastLog();
     error = path_ + ": ffmpeg stopped at frame " + std::to_string(frames_) + " (exit " + std::to_string(code) +
@@ -246,7 +224,7 @@ bool VideoWriter::finishProcess(std::string& error) {
   if (pipe_ >= 0) ::close(pipe_);
   pipe_ = -1;
   if (pid_ < 0) return false;
-  const int code = waitExit(pid_);
+  const int code = waitProcess(pid_);
   pid_ = -1;
   if (code != 0) {
     const std::string log = lastLog();
@@ -277,7 +255,7 @@ bool VideoWriter::close(std::string& error) {
     args.insert(args.end(), {"-f", "mp4", mp4});
     pid_ = spawn(args, -1, log < 0 ? 2 : log, error);
     if (log >= 0) ::close(log);
-    if (pid_ < 0 || waitExit(pid_) != 0) {
+    if (pid_ < 0 || waitProcess(pid_) != 0) {
       pid_ = -1;
       error = path_ + ": remuxing to MP4 failed" + (lastLog().empty() ? "" : ": " + lastLog());
       fs::remove(mp4, ec);
@@ -305,7 +283,7 @@ void VideoWriter::abort() {
   pipe_ = -1;
   if (pid_ > 0) {
     ::kill(pid_, SIGTERM);
-    waitExit(pid_);
+    waitProcess(pid_);
     pid_ = -1;
   }
   std::error_code ec;

@@ -20,8 +20,8 @@
 #include <sys/types.h>
 #include <vector>
 
-#include "sequencer/frame_range.h"
 #include "core/image.h"
+#include "sequencer/frame_range.h"
 #include "sequencer/stereo_layout.h"
 
 namespace hs::sequencer {

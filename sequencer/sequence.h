@@ -51,8 +51,8 @@ struct PropertySample {
 };
 
 // Everything the sequence sets at one time: what the scene applies before
-// rendering a frame (phase 2: scene/ writes each sample through fields.h,
-// and "transform.rotation" straight into Transform::rotation).
+// rendering a frame (scene/animation.h writes each sample through
+// scene/fields.h, and "transform.rotation" straight into Transform::rotation).
 struct SequenceState {
   double time = 0.0;
   std::vector<PropertySample> values;    // in binding order, tracks in track order
@@ -66,8 +66,8 @@ struct SequenceState {
 };
 
 // World position of an entity at time t, for paths that aim at an entity.
-// Phase 2 (scene/) supplies one that walks the hierarchy with the
-// sequence's values applied. nullopt: unknown entity.
+// scene/ supplies one that walks the hierarchy with the sequence's values
+// applied. nullopt: unknown entity.
 using EntityPositionFn = std::function<std::optional<glm::dvec3>(uint64_t entity, double t,
                                                                  const SequenceState& animated)>;
 

@@ -1,6 +1,6 @@
 #pragma once
 // Sequences to and from JSON (sequencer/json.h). This is the form a
-// sequence takes inside the .hscene document (phase 2: scene_json embeds
+// sequence takes inside the .hscene document (scene_json embeds
 // sequenceToJson()'s object under "sequence") and in exported text files.
 //
 // Shape (members at their default value are left out, so files stay short

@@ -9,8 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "sequencer/anaglyph.h"
 #include "core/image.h"
+#include "sequencer/anaglyph.h"
 
 namespace hs::sequencer {
 

@@ -15,12 +15,6 @@ const char* stereoModeName(StereoMode m) {
   return "?";
 }
 
-std::optional<StereoMode> stereoModeFromName(std::string_view s) {
-  for (auto m : {StereoMode::OffAxis, StereoMode::Parallel, StereoMode::ToeIn})
-    if (s == stereoModeName(m)) return m;
-  return std::nullopt;
-}
-
 const char* rigPivotName(RigPivot p) {
   switch (p) {
     case RigPivot::Left: return "left";

@@ -2,8 +2,8 @@
 // Stereo rig maths: from one (mono) camera and the rig settings to the two
 // eye cameras the renderer draws. No GL; the eye projection has the same
 // layout as render::RenderView::projection() (reversed Z, [0,1] depth, the
-// off-axis shift added to NDC x), so phase 2 copies ndcShiftX into
-// RenderView::projectionShift.x.
+// off-axis shift added to NDC x), so render/stereo_views.cpp copies
+// ndcShiftX into RenderView::projectionShift.x.
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,7 +33,6 @@ struct StereoRig {
 };
 
 const char* stereoModeName(StereoMode m);  // "off_axis", "parallel", "toe_in"
-std::optional<StereoMode> stereoModeFromName(std::string_view s);
 const char* rigPivotName(RigPivot p);      // "left", "centre", "right"
 std::optional<RigPivot> rigPivotFromName(std::string_view s);
 

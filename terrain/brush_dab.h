@@ -6,9 +6,9 @@
 // microseconds.
 #include <cmath>
 
+#include "core/parallel.h"
 #include "terrain/brush.h"
 #include "terrain/heightfield.h"
-#include "core/parallel.h"
 
 namespace hs::terrain {
 

@@ -124,10 +124,6 @@ bool Heightfield::cellIsHole(int cx, int cy) const {
   return isHole(cx, cy) || isHole(x1, cy) || isHole(cx, y1) || isHole(x1, y1);
 }
 
-glm::dvec3 Heightfield::sampleToWorld(int x, int y) const {
-  return origin_ + glm::dvec3(x * spacing_.x, y * spacing_.y, double(at(x, y)));
-}
-
 float Heightfield::heightAtLocal(const glm::dvec2& local) const {
   const double fx = std::clamp(local.x / spacing_.x, 0.0, double(samplesX() - 1));
   const double fy = std::clamp(local.y / spacing_.y, 0.0, double(samplesY() - 1));

@@ -78,7 +78,6 @@ class Heightfield {
   }
   glm::dvec2 sizeMetres() const { return spacing_ * glm::dvec2(samplesX() - 1, samplesY() - 1); }
   const glm::dvec3& origin() const { return origin_; }
-  void setOrigin(const glm::dvec3& o) { origin_ = o; }
   const GeoReference& geo() const { return geo_; }
   void setGeo(GeoReference g) { geo_ = std::move(g); }
   HeightfieldDesc desc() const;
@@ -103,7 +102,6 @@ class Heightfield {
   // --- queries (local metres: relative to origin; world: absolute) --------
   glm::dvec2 worldToLocal(const glm::dvec2& w) const { return w - glm::dvec2(origin_); }
   glm::dvec2 localToSample(const glm::dvec2& l) const { return l / spacing_; }
-  glm::dvec3 sampleToWorld(int x, int y) const;
   // Bilinear height at a local position, clamped to the grid; ignores holes.
   float heightAtLocal(const glm::dvec2& local) const;
   // Surface height (world Z) at a world XY, or nullopt outside the terrain or in a hole.

@@ -27,9 +27,9 @@
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 
 #include "bench/common/bench_util.h"
+#include "mesh/mesh_import.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
-#include "mesh/mesh_import.h"
 #include "plot_png.h"
 #include "scan_terrain.h"
 

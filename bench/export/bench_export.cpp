@@ -3,8 +3,9 @@
 //
 //   build/bench/export/bench_export [--frames N] [--render-ms MS] [--video-frames N] [--out DIR]
 //
-// Phase 1 has no renderer hooked up (render/ comes in phase 2), so frames
-// come from a synthetic source: crops of a procedural valley image (sky,
+// This benchmark measures the export loop and the writers alone, so frames
+// come from a synthetic source (bench_export_render measures the real
+// renderer): crops of a procedural valley image (sky,
 // fbm terrain, fine grain, so encoders see realistic detail), one crop per
 // eye with a disparity shift, moving every frame. "Render" time is that
 // copy plus a fresh grain per frame (renders are not pure translations of
@@ -190,7 +191,7 @@ int main(int argc, char** argv) {
               std::thread::hardware_concurrency(), loadAverage(), outDir.c_str());
   auto t0 = Clock::now();
   const Valley valley(4800, 1080);
-  std::printf("synthetic valley image built in %.2f s (stands in for render/, which comes in phase 2)\n\n", seconds(t0));
+  std::printf("synthetic valley image built in %.2f s (stands in for render/; bench_export_render measures it)\n\n", seconds(t0));
   const Synthetic cpuOnly{valley, 0};
 
   // 1. Encode-only per format.
@@ -370,7 +371,7 @@ int main(int argc, char** argv) {
 
   // 5. The film.
   std::printf("\n5. The 10-minute film: 36,000 frames at the rates measured above\n");
-  std::printf("   (render is synthetic in phase 1; these are the export's own costs, which a renderer\n"
+  std::printf("   (render is synthetic here; these are the export's own costs, which a renderer\n"
               "   faster than them hides completely and a slower one hides behind its own time; the\n"
               "   estimate divides the measured CPU time per frame by the 2 cores of an idle machine)\n");
   const double renderRef = 7.0 * 3600 / kFilm;
@@ -389,8 +390,8 @@ int main(int argc, char** argv) {
     row(std::string("export, 2 writers: ") + formats[i].name, 1.0 / exportFps2[i], exportCpu[i] / kCores);
   for (const VideoRow& v : videos)
     if (v.perFrame > 0) row(std::string("direct video: ") + v.name, v.perFrame, v.cpu / kCores);
-  std::printf("(%.2f s/frame is the reference's own render pace, 7 h / 36,000 frames; phase 2 measures\n"
-              "hybridscape's render. The stand-in render of table 3 gave %.3f s/frame measured.)\n",
+  std::printf("(%.2f s/frame is the reference's own render pace, 7 h / 36,000 frames; bench_export_render\n"
+              "measures hybridscape's render. The stand-in render of table 3 gave %.3f s/frame measured.)\n",
               renderRef, export2);
   std::printf("\nload average at the end: %.2f\n", loadAverage());
   fs::remove_all(outDir);

@@ -23,10 +23,10 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "bench/common/bench_util.h"
-#include "tests/common/image_compare.h"
 #include "render/offscreen_renderer.h"
 #include "scene/demo_scene.h"
 #include "sequencer/camera_path.h"
+#include "tests/common/image_compare.h"
 
 using namespace hs;
 using bench::loadAverage;

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "bench/common/bench_util.h"
-#include "terrain/noise.h"
 #include "core/parallel.h"
+#include "terrain/noise.h"
 #include "terrain/stroke.h"
 #include "terrain/tile_blob.h"
 

@@ -14,10 +14,10 @@
 
 #include "bench/common/bench_util.h"
 #include "bench/terrain/plot.h"
+#include "core/parallel.h"
 #include "terrain/erosion_hydraulic.h"
 #include "terrain/erosion_thermal.h"
 #include "terrain/noise.h"
-#include "core/parallel.h"
 
 using namespace hs::terrain;
 using hs::bench::nowSeconds;

@@ -24,8 +24,7 @@
 #include <vector>
 
 #include "bench/common/bench_util.h"
-#include "tests/common/terrain_screen_error.h"
-#include "tests/common/look_from.h"
+#include "core/parallel.h"
 #include "render/offscreen_renderer.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
@@ -35,8 +34,9 @@
 #include "scene/terrain_ops.h"
 #include "scene/terrain_pick.h"
 #include "terrain/noise.h"
-#include "core/parallel.h"
 #include "terrain/stroke.h"
+#include "tests/common/look_from.h"
+#include "tests/common/terrain_screen_error.h"
 
 using namespace hs;
 using bench::median;

@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <random>
 
-#include "meshproc/decimate.h"
 #include "mesh/mesh_import.h"
+#include "meshproc/decimate.h"
 #include "terrain/erosion_hydraulic.h"
 #include "terrain/erosion_thermal.h"
 #include "terrain/paint_rules.h"

@@ -2,7 +2,7 @@
 // import with decimation and LODs carries them as one undo step, they round
 // trip bit for bit as blobs of their own ("mesh/<id>/lod<k>") written only
 // when changed, a damaged level is refused with a message naming the asset
-// and the level, and files of formats 1 and 2 (no LODs) still open.
+// and the level, and files of formats 1 to 3 still open.
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -147,7 +147,6 @@ class TestHsceneLods : public QObject {
     QCOMPARE(readBlob(p, "mesh/1/lod2").empty(), false);
     QVERIFY(readBlob(p, "mesh/1/lod3").empty());
     QCOMPARE(sceneFileVersion(p), kSceneFormatVersion);
-    QCOMPARE(kSceneFormatVersion, 3);
 
     const std::optional<SceneState> back = loadScene(p, error);
     QVERIFY2(back, error.c_str());
@@ -241,15 +240,12 @@ class TestHsceneLods : public QObject {
   void formatsOneAndTwoStillOpen() {
     QFETCH(int, version);
     // What an older build wrote: meshes without levels, reports or the LOD
-    // setting, under its own version number.
-    Document old;
-    old.reset(SceneState{}, {});
-    mesh::ImportResult r = mesh::importMesh(kBunny);
-    QVERIFY(r.ok());
-    ops::addImportedMesh(old, std::move(*r.mesh), "bunny", kBunny, r.report);
+    // setting, under its own version number. The file is a real one of an
+    // older build (tests/data/file/README.md), so its blobs carry the hashes
+    // of their time.
     const std::string p = path("old" + std::to_string(version) + ".hscene");
+    fs::copy_file(HS_TEST_DATA_DIR "/file/format3_plain.hscene", p, fs::copy_options::overwrite_existing);
     std::string error;
-    QVERIFY2(saveScene(old.state(), p, error), error.c_str());
     sql(p, "UPDATE meta SET value = '" + std::to_string(version) + "' WHERE key = 'format_version'");
     sql(p, "UPDATE document SET json = json_remove(json, '$.settings.mesh_lod_error_px') WHERE id = 1");
     QCOMPARE(sceneFileVersion(p), version);
@@ -267,6 +263,58 @@ class TestHsceneLods : public QObject {
     QVERIFY(!report.incremental);
     QCOMPARE(sceneFileVersion(p), kSceneFormatVersion);
     QVERIFY(loadScene(p, error));
+  }
+
+  // A real format-3 file (tests/data/file/README.md: a decimated mesh with a
+  // LOD level, a painted terrain, keys): it opens, every blob checked against
+  // the hash that file holds, and is saved whole in the current format.
+  void format3FromAnOlderBuildOpens() {
+    const std::string p = path("format3.hscene");
+    fs::copy_file(HS_TEST_DATA_DIR "/file/format3.hscene", p, fs::copy_options::overwrite_existing);
+    QCOMPARE(sceneFileVersion(p), 3);
+    std::string error;
+    const std::optional<SceneState> first = loadScene(p, error);
+    QVERIFY2(first, error.c_str());
+    QCOMPARE(first->assets.size(), size_t(1));
+    const MeshAsset& a = first->assets.begin()->second;
+    QCOMPARE(a.data->triangleCount(), size_t(760));
+    QCOMPARE(a.lods.size(), size_t(1));
+    QCOMPARE(a.lods[0].data->triangleCount(), size_t(198));
+    QCOMPARE(a.contentHash, mesh::contentHash(*a.data));  // the document holds the current hash
+    QCOMPARE(first->terrains.size(), size_t(1));
+    const terrain::Terrain& t = first->terrains.begin()->second.data->terrain();
+    QCOMPARE(t.height.samplesX(), 129);
+    // Painted: somewhere a layer other than the base holds weight.
+    bool painted = false;
+    for (int y = 0; y < 129 && !painted; y += 8)
+      for (int x = 0; x < 129 && !painted; x += 8) painted = t.paint.weight(0, x, y) < 1.0f;
+    QVERIFY(painted);
+    QCOMPARE(first->sequence.bindings.size(), size_t(1));
+
+    SaveReport report;
+    QVERIFY2(saveScene(*first, p, error, &report), error.c_str());
+    QVERIFY(!report.incremental);
+    QCOMPARE(sceneFileVersion(p), kSceneFormatVersion);
+    const std::optional<SceneState> again = loadScene(p, error);
+    QVERIFY2(again, error.c_str());
+    QCOMPARE(canonicalJson(*again), canonicalJson(*first));
+  }
+
+  // The old hashes are really checked: a changed byte in a format-3 file's
+  // mesh or terrain tile is refused.
+  void format3DamageIsRefused() {
+    for (const std::string key : {"mesh/1", "mesh/1/lod1", "terrain/1/h/0_0"}) {
+      const std::string p = path("format3-damaged.hscene");
+      fs::copy_file(HS_TEST_DATA_DIR "/file/format3.hscene", p, fs::copy_options::overwrite_existing);
+      std::vector<uint8_t> bytes = readBlob(p, key);
+      QVERIFY2(bytes.size() > 200, key.c_str());
+      bytes[bytes.size() - 100] ^= 0x01;  // inside the data, past every header
+      writeBlob(p, key, bytes);
+      std::string error;
+      QVERIFY2(!loadScene(p, error), key.c_str());
+      QVERIFY2(error.find("checksum") != std::string::npos || error.find("damaged") != std::string::npos,
+               error.c_str());
+    }
   }
 
   void lodSettingIsSaved() {

@@ -529,10 +529,15 @@ class TestMeshImport : public QObject {
     QVERIFY2(r.ok(), r.error.c_str());
     QVERIFY2(r.report.warnings.empty(), joinWarnings(r.report).c_str());
     QCOMPARE(r.report.polygonsTriangulated, size_t(1));
-    // MTL's Kd is a display (sRGB-like) colour; the mesh holds linear values
-    // (gamma 2.2, the convention of OBJ exporters).
-    const glm::vec4 expected(std::pow(0.25f, 2.2f), std::pow(0.5f, 2.2f), std::pow(0.75f, 2.2f), 1.0f);
+    // MTL's Kd is taken as linear RGB as written (Blender's convention).
+    const glm::vec4 expected(0.25f, 0.5f, 0.75f, 1.0f);
     checkTexturedQuad(*r.mesh, expected);
+    // Assimp's OBJ reader gives the same colour: the reader does not change it.
+    ImportOptions viaAssimp;
+    viaAssimp.reader = Reader::Assimp;
+    const ImportResult assimp = importMesh(kData + "/textured_quad.obj", viaAssimp);
+    QVERIFY2(assimp.ok(), assimp.error.c_str());
+    checkTexturedQuad(*assimp.mesh, expected);
     QCOMPARE(r.mesh->materials.front().name, std::string(fx::kMaterialName));
     QCOMPARE(r.mesh->textures.front().name, std::string("checker_4x2.png"));
     // The kept bytes are the PNG file's.

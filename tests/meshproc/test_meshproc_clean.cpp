@@ -2,10 +2,10 @@
 // split, counted, and named in plain words; nothing is dropped silently.
 #include <QtTest>
 
-#include "meshproc/decimate.h"
-#include "meshproc/mesh_clean.h"
 #include "mesh/nonmanifold_split.h"
 #include "mesh/weld.h"
+#include "meshproc/decimate.h"
+#include "meshproc/mesh_clean.h"
 #include "mesh_builders.h"
 
 using namespace hs::mesh;

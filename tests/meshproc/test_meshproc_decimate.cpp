@@ -8,9 +8,9 @@
 #include <cmath>
 #include <set>
 
+#include "mesh/mesh_import.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
-#include "mesh/mesh_import.h"
 #include "mesh_builders.h"
 
 using namespace hs::mesh;

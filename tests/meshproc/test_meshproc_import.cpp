@@ -10,8 +10,8 @@
 #include <sstream>
 
 #include "mesh/mesh_import.h"
-#include "meshproc/mesh_process.h"
 #include "mesh/tile_merge.h"
+#include "meshproc/mesh_process.h"
 #include "mesh_builders.h"
 
 using namespace hs::mesh;

@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "file_bytes.h"
+#include "core/srgb.h"
 #include "mesh/mesh_data.h"
 #include "render/export_job_tag.h"
 #include "render/offscreen_renderer.h"
@@ -19,7 +20,6 @@
 #include "scene/demo_scene.h"
 #include "scene/transform.h"
 #include "sequencer/export_loop.h"
-#include "core/srgb.h"
 
 using namespace hs;
 namespace fs = std::filesystem;

@@ -17,9 +17,9 @@
 #include "scene/document.h"
 #include "scene/fields.h"
 #include "scene/operations.h"
-#include "scene/terrain_pick.h"
 #include "scene/terrain_edits.h"
 #include "scene/terrain_ops.h"
+#include "scene/terrain_pick.h"
 #include "terrain/noise.h"
 #include "terrain/stroke.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// A deterministic stand-in for the renderer (phase 1 has no render/ hook):
+// A deterministic stand-in for the renderer (the sequencer's tests run without GL):
 // each eye's pixels are a pure function of (frame, eye, x, y), like a real
 // render of a pure sequence, so runs can be compared byte for byte.
 #include <cstdint>

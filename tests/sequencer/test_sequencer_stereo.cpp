@@ -6,9 +6,9 @@
 #include <cmath>
 #include <random>
 
+#include "core/srgb.h"
 #include "sequencer/anaglyph.h"
 #include "sequencer/comfort_check.h"
-#include "core/srgb.h"
 #include "sequencer/stereo_layout.h"
 #include "sequencer/stereo_rig.h"
 

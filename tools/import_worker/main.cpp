@@ -23,8 +23,8 @@
 #include <string>
 #include <thread>
 
-#include "mesh/mesh_import.h"
 #include "mesh/import_wire.h"
+#include "mesh/mesh_import.h"
 
 namespace {
 

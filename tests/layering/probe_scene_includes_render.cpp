@@ -1,0 +1,2 @@
+// Must not compile: render sits above scene.
+#include "render/renderer.h"

@@ -1,0 +1,2 @@
+// Must not compile: the domain libraries use no Qt.
+#include <QString>
