@@ -2,29 +2,25 @@
 
 #include <vector>
 
+#include "render/gl/shader_library.h"
+
 namespace hs::render {
 namespace {
 
-// Splices common.glsl in after the #version line.
-std::string withCommon(std::string_view src) {
-  const std::string_view common = embeddedShader("common.glsl");
-  const size_t eol = src.find('\n');
-  if (eol == std::string_view::npos) return std::string(src);
-  std::string out(src.substr(0, eol + 1));
-  out += common;
-  // Keep error line numbers pointing at the original file.
-  out += "\n#line 2\n";
-  out += src.substr(eol + 1);
-  return out;
+std::string infoLog(GLuint object, bool program) {
+  GLint len = 0;
+  if (program) glGetProgramiv(object, GL_INFO_LOG_LENGTH, &len);
+  else glGetShaderiv(object, GL_INFO_LOG_LENGTH, &len);
+  std::vector<char> log(size_t(std::max(len, 1)), '\0');
+  if (program) glGetProgramInfoLog(object, len, nullptr, log.data());
+  else glGetShaderInfoLog(object, len, nullptr, log.data());
+  return log.data();
 }
 
-GLuint compile(GLenum type, std::string_view name, std::string& error) {
-  const std::string_view raw = embeddedShader(name);
-  if (raw.empty()) {
-    error = "shader source shaders/" + std::string(name) + " is not in this build";
-    return 0;
-  }
-  const std::string src = type == GL_FRAGMENT_SHADER ? withCommon(raw) : std::string(raw);
+GLuint compile(GLenum type, const std::string& file, const std::vector<std::string>& defines, std::string& error) {
+  std::string src;
+  std::vector<std::string> files;
+  if (!gl::preprocessShader(file, defines, src, files, error)) return 0;
   const GLuint s = glCreateShader(type);
   const char* p = src.c_str();
   glShaderSource(s, 1, &p, nullptr);
@@ -32,11 +28,10 @@ GLuint compile(GLenum type, std::string_view name, std::string& error) {
   GLint ok = 0;
   glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
   if (!ok) {
-    GLint len = 0;
-    glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
-    std::vector<char> log(size_t(std::max(len, 1)));
-    glGetShaderInfoLog(s, len, nullptr, log.data());
-    error = "shaders/" + std::string(name) + ": " + log.data();
+    // Messages say "N:line(col)": N is the source number of #line.
+    std::string legend;
+    for (size_t i = 0; i < files.size(); ++i) legend += (i ? ", " : "") + std::to_string(i) + " = shaders/" + files[i];
+    error = "shaders/" + file + " (sources " + legend + "): " + infoLog(s, false);
     glDeleteShader(s);
     return 0;
   }
@@ -51,28 +46,31 @@ void GlProgram::release() {
   locations_.clear();
 }
 
-bool GlProgram::build(std::string_view vert, std::string_view frag, std::string& error) {
-  const GLuint vs = compile(GL_VERTEX_SHADER, vert, error);
-  if (!vs) return false;
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, frag, error);
-  if (!fs) {
-    glDeleteShader(vs);
+bool GlProgram::build(const gl::ProgramDesc& desc, std::string& error) {
+  release();
+  std::vector<GLuint> stages;
+  auto add = [&](GLenum type, const std::string& file) {
+    if (file.empty()) return true;
+    const GLuint s = compile(type, file, desc.defines, error);
+    if (!s) return false;
+    stages.push_back(s);
+    return true;
+  };
+  const bool compiled = desc.compute.empty()
+                            ? add(GL_VERTEX_SHADER, desc.vertex) && add(GL_FRAGMENT_SHADER, desc.fragment)
+                            : add(GL_COMPUTE_SHADER, desc.compute);
+  if (!compiled) {
+    for (GLuint s : stages) glDeleteShader(s);
     return false;
   }
   id_ = glCreateProgram();
-  glAttachShader(id_, vs);
-  glAttachShader(id_, fs);
+  for (GLuint s : stages) glAttachShader(id_, s);
   glLinkProgram(id_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
+  for (GLuint s : stages) glDeleteShader(s);
   GLint ok = 0;
   glGetProgramiv(id_, GL_LINK_STATUS, &ok);
   if (!ok) {
-    GLint len = 0;
-    glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &len);
-    std::vector<char> log(size_t(std::max(len, 1)));
-    glGetProgramInfoLog(id_, len, nullptr, log.data());
-    error = "linking " + std::string(vert) + " + " + std::string(frag) + ": " + log.data();
+    error = "linking " + desc.name() + ": " + infoLog(id_, true);
     glDeleteProgram(id_);
     id_ = 0;
     return false;

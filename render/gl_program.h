@@ -1,6 +1,9 @@
 #pragma once
-// A linked GLSL program built from the embedded shader sources (shaders/),
-// with uniform locations looked up once. Include only inside render/.
+// A linked GLSL program (render/gl/shader_library.h builds and keeps them),
+// with uniform locations looked up once. Per-frame and per-view values
+// reach shaders through uniform buffers (render/frame_blocks.h); the
+// setters here are for values of one pass or one draw. Include only inside
+// render/.
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -10,21 +13,24 @@
 
 namespace hs::render {
 
+namespace gl {
+struct ProgramDesc;
+}
+
 // The embedded text of shaders/<name>; empty if there is no such file.
 std::string_view embeddedShader(std::string_view name);
 
 class GlProgram {
  public:
   GlProgram() = default;
-  // No GL in the destructor (the context may be gone): call release().
+  ~GlProgram() { release(); }
   void release();
   GlProgram(const GlProgram&) = delete;
   GlProgram& operator=(const GlProgram&) = delete;
 
-  // Compiles shaders/<vert> and shaders/<frag> (common.glsl is inserted after
-  // the #version line of the fragment shader). False with a log that names
-  // the file and line on failure.
-  bool build(std::string_view vert, std::string_view frag, std::string& error);
+  // Compiles and links the stages `desc` names (vertex + fragment, or
+  // compute). False with the compiler's log, naming files and lines.
+  bool build(const gl::ProgramDesc& desc, std::string& error);
   void use() const { glUseProgram(id_); }
   GLuint id() const { return id_; }
 
@@ -36,6 +42,7 @@ class GlProgram {
   void set(const char* name, const glm::vec2& v) { glProgramUniform2f(id_, loc(name), v.x, v.y); }
   void set(const char* name, const glm::vec3& v) { glProgramUniform3f(id_, loc(name), v.x, v.y, v.z); }
   void set(const char* name, const glm::vec4& v) { glProgramUniform4f(id_, loc(name), v.x, v.y, v.z, v.w); }
+  void set(const char* name, const glm::ivec2& v) { glProgramUniform2i(id_, loc(name), v.x, v.y); }
   void set(const char* name, const glm::mat3& m) { glProgramUniformMatrix3fv(id_, loc(name), 1, GL_FALSE, &m[0][0]); }
   void set(const char* name, const glm::mat4& m) { glProgramUniformMatrix4fv(id_, loc(name), 1, GL_FALSE, &m[0][0]); }
 

@@ -49,8 +49,18 @@ GLuint uploadTexture(const mesh::Texture& t) {
   return tex;
 }
 
+// Attribute 7: one uint per instance from `buffer` (the object index).
+void bindObjectIndices(GLuint vao, GLuint buffer) {
+  glVertexArrayVertexBuffer(vao, 7, buffer, 0, sizeof(uint32_t));
+  glVertexArrayAttribIFormat(vao, 7, 1, GL_UNSIGNED_INT, 0);
+  glVertexArrayAttribBinding(vao, 7, 7);
+  glVertexArrayBindingDivisor(vao, 7, 1);
+  glEnableVertexArrayAttrib(vao, 7);
+}
+
 // Buffers and vertex array for `m`; textures are the caller's business.
-std::unique_ptr<GpuMesh> uploadGeometry(const std::shared_ptr<const mesh::MeshData>& data, uint64_t hash) {
+std::unique_ptr<GpuMesh> uploadGeometry(const std::shared_ptr<const mesh::MeshData>& data, uint64_t hash,
+                                        GLuint objectIndices) {
   auto g = std::make_unique<GpuMesh>();
   const mesh::MeshData& m = *data;
   g->data = data;
@@ -82,6 +92,7 @@ std::unique_ptr<GpuMesh> uploadGeometry(const std::shared_ptr<const mesh::MeshDa
     glEnableVertexArrayAttrib(g->vao, 2);
   }
   glVertexArrayElementBuffer(g->vao, g->buffers[3]);
+  if (objectIndices) bindObjectIndices(g->vao, objectIndices);
   return g;
 }
 
@@ -92,7 +103,7 @@ const GpuMesh* GpuMeshCache::get(const scene::MeshAsset& asset, int level) {
   Entry& e = meshes_[asset.id];
   if (e.base && e.base->hash != asset.contentHash) e.release();
   if (!e.base) {
-    e.base = uploadGeometry(asset.data, asset.contentHash);
+    e.base = uploadGeometry(asset.data, asset.contentHash, objectIndices_);
     for (const auto& t : asset.data->textures) {
       e.base->textures.push_back(uploadTexture(t));
       e.base->gpuBytes += size_t(t.width) * size_t(t.height) * 4 * 4 / 3;
@@ -109,7 +120,7 @@ const GpuMesh* GpuMeshCache::get(const scene::MeshAsset& asset, int level) {
     g.reset();
   }
   if (!g) {
-    g = uploadGeometry(lod.data, lod.contentHash);
+    g = uploadGeometry(lod.data, lod.contentHash, objectIndices_);
     g->textures = e.base->textures;  // material indices match level 0's
     g->ownsTextures = false;
   }
@@ -132,6 +143,15 @@ void GpuMeshCache::collect(const scene::SceneState& state) {
         e.lods[k].reset();
       }
     ++it;
+  }
+}
+
+void GpuMeshCache::setObjectIndexBuffer(GLuint buffer) {
+  objectIndices_ = buffer;
+  for (auto& [id, e] : meshes_) {
+    if (e.base) bindObjectIndices(e.base->vao, buffer);
+    for (auto& l : e.lods)
+      if (l) bindObjectIndices(l->vao, buffer);
   }
 }
 

@@ -39,6 +39,10 @@ class GpuMeshCache {
   void collect(const scene::SceneState& state);
   void clear();
   size_t gpuBytes() const;
+  // The per-instance stream every mesh VAO reads at attribute 7 (the
+  // object index of a draw: glDraw*BaseInstance picks it); set again when
+  // the buffer grows.
+  void setObjectIndexBuffer(GLuint buffer);
 
  private:
   struct Entry {
@@ -47,6 +51,7 @@ class GpuMeshCache {
     void release();
   };
   std::map<scene::AssetId, Entry> meshes_;
+  GLuint objectIndices_ = 0;
 };
 
 }  // namespace hs::render

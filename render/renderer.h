@@ -4,15 +4,18 @@
 // or a headless EGL context (egl_context.h). It calls GL through libepoxy
 // and holds no window-system code.
 //
-// Today a frame is one function (Renderer::render) that runs its steps in
-// a fixed order, each behind an `if`: a step the frame does not need is
-// skipped and its buffers are not allocated (no MSAA buffers unless MSAA is
-// on, no FXAA pass unless FXAA is on, no grid without a grid, no overlay
-// pass without overlays). DESIGN.md asks for a frame graph of passes that
-// declare their resources; the renderer-core work builds it.
+// A frame is a graph of passes (frame_graph.h), built each frame for what
+// the frame needs: a pass the frame does not need is not added or is culled,
+// and its resources are never allocated (no MSAA targets unless MSAA is on,
+// no FXAA pass unless FXAA is on, no terrain pass without terrains, no grid
+// without a grid, no overlay pass without overlays). The scene's data for
+// the GPU (matrices, lights, the visible set) is built once per frame and
+// shared by every view of it: renderViews() draws both eyes of a stereo pair
+// in one frame.
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "render/overlay.h"
@@ -21,6 +24,27 @@
 #include "scene/scene_state.h"
 
 namespace hs::render {
+
+// One pass of the last frame (frame_graph.h): CPU time around its
+// commands, GPU time between timestamps (with RenderOptions::passTimings),
+// and the bytes of the transient resources it brought into use.
+struct PassStats {
+  std::string name;
+  double cpuMs = 0.0;
+  double gpuMs = -1.0;
+  size_t gpuBytes = 0;
+};
+
+// What the renderer holds on the GPU, one entry per allocation: the frame
+// graph's pooled and persistent textures and buffers, and the mesh and
+// terrain caches. The source of truth for "a pass the frame does not need
+// holds no memory" (tests read it) and for `render --stats`.
+struct GpuAllocation {
+  std::string name;
+  std::string kind;  // "texture", "buffer", "meshes", "terrains"
+  size_t bytes = 0;
+  bool transient = false;  // from the frame graph's pool (not persistent)
+};
 
 struct FrameStats {
   size_t trianglesDrawn = 0;
@@ -34,7 +58,8 @@ struct FrameStats {
   double terrainUploadMs = 0.0;  // CPU time of those uploads and the LOD bookkeeping
   double cpuMs = 0.0;
   double gpuMs = -1.0;     // from a timer query of an earlier frame; -1 until known
-  size_t gpuBytes = 0;     // meshes + frame buffers
+  size_t gpuBytes = 0;     // everything the renderer holds (resourceRegistry())
+  std::vector<PassStats> passes;  // the passes that ran, in order
 };
 
 struct RenderOptions {
@@ -48,6 +73,15 @@ struct RenderOptions {
   // one eye only is a flicker the viewer sees as rivalry). Culling stays
   // per eye. Terrain LOD is still chosen per eye.
   const RenderView* lodView = nullptr;
+  bool passTimings = false;      // GPU timestamps per pass; waits for them (stats, benchmarks)
+  bool keepDepth = false;        // keep a single-sample depth for readDepth()
+};
+
+// One view of a frame and the framebuffer it ends in.
+struct ViewTarget {
+  RenderView view;
+  unsigned fbo = 0;
+  std::string name;  // names its passes ("left" -> "opaque[left]"); empty for one view
 };
 
 // What bringing a terrain's GPU copy up to date did (Renderer::syncTerrain).
@@ -81,22 +115,29 @@ class Renderer {
   // view.height, leaving it holding sRGB-encoded 8-bit colour.
   FrameStats render(const scene::SceneState& state, const RenderView& view, unsigned targetFbo,
                     const RenderOptions& options = {});
+  // Several views of one frame (the eyes of a stereo pair): the frame's data
+  // and visible set are built once; levels of detail come from
+  // options.lodView (views[0] when it is null). Stats are the frame's.
+  FrameStats renderViews(const scene::SceneState& state, const std::vector<ViewTarget>& views,
+                         const RenderOptions& options = {});
 
   // Reads back what the last render() wrote to `targetFbo`.
   Image readDisplay(unsigned targetFbo, int width, int height) const;
-  // Linear HDR (exposure applied, before tone mapping) of the last frame
-  // rendered with keepHdr.
-  Image readHdr() const;
+  // Linear HDR (exposure applied, before tone mapping) of view `view` of the
+  // last frame rendered with keepHdr.
+  Image readHdr(size_t view = 0) const;
   // The same into `dst`, or, with a GL_PIXEL_PACK_BUFFER bound, at offset
   // `dst` in it without waiting (the export's asynchronous readback).
   // RGBA32F, bottom row first.
-  void readHdrInto(void* dst, size_t bytes) const;
-  // Reversed-Z depth of the last frame (32-bit float: 1 at the near plane,
-  // 0 at the far plane and where nothing was drawn), bottom row first, into
-  // `dst` or the bound pixel pack buffer, for the stereo comfort check.
-  // Only frames that need it ask: with MSAA the depth is resolved into a
-  // buffer made on the first call.
-  void readDepth(void* dst);
+  void readHdrInto(void* dst, size_t bytes, size_t view = 0) const;
+  // Reversed-Z depth of view `view` of the last frame rendered with
+  // keepDepth (32-bit float: 1 at the near plane, 0 at the far plane and
+  // where nothing was drawn), bottom row first, into `dst` or the bound pixel
+  // pack buffer, for the stereo comfort check.
+  void readDepth(void* dst, size_t view = 0);
+
+  // Everything the renderer holds on the GPU now (see GpuAllocation).
+  std::vector<GpuAllocation> resourceRegistry() const;
 
   // The entity under window pixel (x, y) (origin top-left), or 0. Renders an
   // id pass for that pixel only.

@@ -74,7 +74,7 @@ struct StereoFrameSource::Impl {
   scene::EntityId camera = scene::kNoEntity;
 
   // The output framebuffer the renderer tone-maps into, per eye size.
-  OutputTarget output;
+  OutputTarget output[2];  // one per view: both eyes render in one frame
 
   struct Slot {
     PixelReadback buffer;
@@ -112,26 +112,34 @@ struct StereoFrameSource::Impl {
     return colorBytes(s) * size_t(s.views) + depthBytes(s) * size_t(view);
   }
 
-  // Renders one view and queues its reads into the slot's buffer.
-  void renderView(const scene::SceneState& state, const RenderView& view, Slot& slot, int index,
-                  const RenderView* lodView = nullptr) {
+  // Renders the views of one frame (both eyes in one frame graph, so what
+  // does not depend on the eye is done once) and queues their reads into
+  // the slot's buffer. Levels of detail come from `lodView`.
+  void renderViews(const scene::SceneState& state, const std::vector<RenderView>& views, Slot& slot,
+                   const RenderView& lodView) {
     RenderOptions ro;
-    ro.lodView = lodView;  // both eyes: their camera's levels of detail
+    ro.lodView = &lodView;  // both eyes: their camera's levels of detail
     ro.showGrid = options.showGrid;
     ro.keepHdr = slot.kind == PixelKind::LinearFloat;
-    offscreen.renderer().render(state, view, output.fbo(), ro);
+    ro.keepDepth = slot.depth;
+    std::vector<ViewTarget> targets;
+    for (size_t i = 0; i < views.size(); ++i)
+      targets.push_back({views[i], output[i].fbo(), views.size() == 2 ? (i == 0 ? "left" : "right") : ""});
+    offscreen.renderer().renderViews(state, targets, ro);
     slot.buffer.bindForPack();
-    auto* colorAt = reinterpret_cast<void*>(colorOffset(slot, index));
-    if (slot.kind == PixelKind::LinearFloat) {
-      offscreen.renderer().readHdrInto(colorAt, colorBytes(slot));
-    } else {
-      glBindFramebuffer(GL_READ_FRAMEBUFFER, output.fbo());
-      glPixelStorei(GL_PACK_ALIGNMENT, 4);
-      glReadPixels(0, 0, slot.width, slot.height, GL_RGBA,
-                   slot.kind == PixelKind::Display16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE, colorAt);
-      glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    for (size_t i = 0; i < views.size(); ++i) {
+      auto* colorAt = reinterpret_cast<void*>(colorOffset(slot, int(i)));
+      if (slot.kind == PixelKind::LinearFloat) {
+        offscreen.renderer().readHdrInto(colorAt, colorBytes(slot), i);
+      } else {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, output[i].fbo());
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glReadPixels(0, 0, slot.width, slot.height, GL_RGBA,
+                     slot.kind == PixelKind::Display16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE, colorAt);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+      }
+      if (slot.depth) offscreen.renderer().readDepth(reinterpret_cast<void*>(depthOffset(slot, int(i))), i);
     }
-    if (slot.depth) offscreen.renderer().readDepth(reinterpret_cast<void*>(depthOffset(slot, index)));
     PixelReadback::unbindPack();
   }
 };
@@ -143,7 +151,7 @@ StereoFrameSource::StereoFrameSource(OffscreenRenderer& renderer, const scene::S
 StereoFrameSource::~StereoFrameSource() {
   if (d_->offscreen.makeCurrent()) {
     for (auto& s : d_->slots) s.buffer.release();
-    d_->output.release();
+    for (auto& o : d_->output) o.release();
   }
 }
 
@@ -180,14 +188,11 @@ bool StereoFrameSource::begin(const sequencer::FrameJob& job, std::string& error
   slot.duplicate = job.bothEyes && !views.stereo;
   slot.depth = d.options.comfort.has_value();
   slot.eyes = views.eyes;
-  d.output.ensure(job.eyeWidth, job.eyeHeight, slot.kind == PixelKind::Display16 ? GL_RGBA16 : GL_RGBA8);
+  for (int i = 0; i < slot.views; ++i)
+    d.output[i].ensure(job.eyeWidth, job.eyeHeight, slot.kind == PixelKind::Display16 ? GL_RGBA16 : GL_RGBA8);
   slot.buffer.reserve(d.colorBytes(slot) * size_t(slot.views) + (slot.depth ? d.depthBytes(slot) * size_t(slot.views) : 0));
-  if (twoViews) {
-    d.renderView(state, views.left, slot, 0, &views.mono);
-    d.renderView(state, views.right, slot, 1, &views.mono);
-  } else {
-    d.renderView(state, views.mono, slot, 0);
-  }
+  if (twoViews) d.renderViews(state, {views.left, views.right}, slot, views.mono);
+  else d.renderViews(state, {views.mono}, slot, views.mono);
   slot.buffer.fence();
   ++d.begun;
   const GLenum err = glGetError();

@@ -22,9 +22,9 @@ hs::Image readEye(unsigned fbo, int w, int h) {
   return img;
 }
 
-std::vector<float> readDepth(Renderer& r, int w, int h) {
+std::vector<float> readDepth(Renderer& r, int w, int h, size_t view) {
   std::vector<float> d(size_t(w) * size_t(h));
-  r.readDepth(d.data());
+  r.readDepth(d.data(), view);
   // Rows bottom-up; the comfort check of off-axis and parallel rigs only
   // needs the depth range, toe-in reprojects pixels: flip to top-down.
   flipRows(d.data(), size_t(w) * sizeof(float), size_t(h));
@@ -91,14 +91,16 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
   RenderOptions options;
   options.showGrid = true;
   options.lodView = &views.mono;  // both eyes draw the same mesh levels (renderer.h)
-  if (needLeft) {
-    result.stats = renderer.render(state, views.left, eyes_[0].target.fbo(), options);
-    if (comfort) depth[0] = readDepth(renderer, eyeW, eyeH);
-  }
-  if (needRight) {
-    result.stats = renderer.render(state, views.right, eyes_[1].target.fbo(), options);
-    if (comfort && !depth[0].empty() && views.eyes.mode == sequencer::StereoMode::ToeIn)
-      depth[1] = readDepth(renderer, eyeW, eyeH);
+  options.keepDepth = comfort != nullptr;
+  // The eyes the mode shows, in one frame (what does not depend on the eye
+  // is done once).
+  std::vector<ViewTarget> targets;
+  if (needLeft) targets.push_back({views.left, eyes_[0].target.fbo(), "left"});
+  if (needRight) targets.push_back({views.right, eyes_[1].target.fbo(), "right"});
+  result.stats = renderer.renderViews(state, targets, options);
+  if (comfort && needLeft) {
+    depth[0] = readDepth(renderer, eyeW, eyeH, 0);
+    if (needRight && views.eyes.mode == sequencer::StereoMode::ToeIn) depth[1] = readDepth(renderer, eyeW, eyeH, 1);
   }
   if (comfort && !depth[0].empty()) {
     auto image = [&](const std::vector<float>& d, const sequencer::CameraModel& c) {

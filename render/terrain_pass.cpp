@@ -14,10 +14,11 @@ enum Unit { kUnitHeight = 0, kUnitHoles = 1, kUnitWeights = 2, kUnitAlbedo = 3, 
 
 }  // namespace
 
-bool TerrainPass::initialize(std::string& error) {
+bool TerrainPass::initialize(gl::ShaderLibrary& shaders, std::string& error) {
   if (ready_) return true;
-  if (!shade_.build("terrain.vert", "terrain.frag", error) || !pick_.build("terrain.vert", "terrain_pick.frag", error))
-    return false;
+  shade_ = shaders.get({"terrain.vert", "terrain.frag", "", {}}, error);
+  pick_ = shade_ ? shaders.get({"terrain.vert", "terrain_pick.frag", "", {}}, error) : nullptr;
+  if (!shade_ || !pick_) return false;
   // The quadrant grid: (Q+1)^2 vertices on integer grid positions; two
   // triangles per quad split (i,j)-(i+1,j+1), as the full-resolution mesh,
   // so level 0 is that mesh exactly and morphed quads fold into the next
@@ -47,13 +48,13 @@ bool TerrainPass::initialize(std::string& error) {
   glVertexArrayBindingDivisor(vao_, 1, 1);
   glEnableVertexArrayAttrib(vao_, 1);
   glVertexArrayElementBuffer(vao_, gridIbo_);
-  for (GlProgram* p : {&shade_, &pick_}) {
+  for (GlProgram* p : {shade_, pick_}) {
     p->set("uHeight", kUnitHeight);
     p->set("uHoles", kUnitHoles);
   }
-  shade_.set("uWeights", kUnitWeights);
-  shade_.set("uAlbedoTex", kUnitAlbedo);
-  shade_.set("uNormalTex", kUnitNormal);
+  shade_->set("uWeights", kUnitWeights);
+  shade_->set("uAlbedoTex", kUnitAlbedo);
+  shade_->set("uNormalTex", kUnitNormal);
   ready_ = true;
   return true;
 }
@@ -68,8 +69,7 @@ void TerrainPass::release() {
   glDeleteBuffers(3, buffers);
   vao_ = gridVbo_ = gridIbo_ = instanceVbo_ = 0;
   instanceCapacity_ = 0;
-  shade_.release();
-  pick_.release();
+  shade_ = pick_ = nullptr;  // the library owns them
   ready_ = false;
 }
 
@@ -108,6 +108,7 @@ bool TerrainPass::prepare(const scene::SceneState& state, scene::EntityId entity
   const glm::dvec2 whole = glm::clamp(glm::floor(glm::dvec2(camLocal) / sp), glm::dvec2(-limit), glm::dvec2(limit));
   out.cameraSample = glm::ivec2(whole);
   out.cameraRest = glm::vec3(glm::dvec3(glm::dvec2(camLocal) - whole * sp, camLocal.z));
+  out.lodEye = view.eye;
 
   const auto t0 = std::chrono::steady_clock::now();
   const Frustum frustum = frustumOf(view);
@@ -149,7 +150,7 @@ void TerrainPass::bindCommon(GlProgram& p, const Prepared& t, const RenderView& 
                            : glm::vec2(3.0e38f, 0.0f);
   }
   glProgramUniform2fv(p.id(), p.loc("uMorph"), kTerrainMaxLevels, &morph[0].x);
-  p.set("uViewRot", glm::mat3(view.viewRotation()));
+  p.set("uEyeFromLod", glm::vec3(view.eye - t.lodEye));
   p.set("uHasHoles", t.gpu->holesTexture() != 0);
   glBindTextureUnit(kUnitHeight, t.gpu->heightTexture());
   glBindTextureUnit(kUnitHoles, t.gpu->holesTexture());
@@ -176,29 +177,15 @@ size_t TerrainPass::drawInstances(const Prepared& t) {
 }
 
 TerrainFrameStats TerrainPass::draw(const scene::SceneState& state, const std::vector<scene::EntityId>& entities,
-                                    const RenderView& view, const TerrainLighting& lights) {
+                                    const RenderView& view, const RenderView& lodView) {
   TerrainFrameStats stats;
   if (!ready_) return stats;
   collect(state);
-  GlProgram& p = shade_;
+  GlProgram& p = *shade_;
   p.use();
-  p.set("uProjection", glm::mat4(view.projection()));
-  p.set("uHasSun", lights.hasSun);
-  p.set("uSunDirView", lights.sunDirView);
-  p.set("uSunColor", lights.sunColor);
-  p.set("uUpView", lights.upView);
-  p.set("uSkyColor", lights.sky);
-  p.set("uGroundColor", lights.ground);
-  p.set("uAmbient", lights.ambient);
-  p.set("uPointLightCount", lights.pointCount);
-  if (lights.pointCount) {
-    glProgramUniform3fv(p.id(), p.loc("uPointPosView"), lights.pointCount, &lights.pointPosView[0].x);
-    glProgramUniform3fv(p.id(), p.loc("uPointColor"), lights.pointCount, &lights.pointColor[0].x);
-    glProgramUniform1fv(p.id(), p.loc("uPointRange"), lights.pointCount, lights.pointRange);
-  }
   for (scene::EntityId id : entities) {
     Prepared t;
-    if (!prepare(state, id, view, t, &stats)) continue;
+    if (!prepare(state, id, lodView, t, &stats)) continue;
     bindCommon(p, t, view);
     // Materials: the document's values; weights from the GPU copy.
     const auto& mats = t.asset->materials;
@@ -240,11 +227,10 @@ TerrainFrameStats TerrainPass::draw(const scene::SceneState& state, const std::v
 }
 
 void TerrainPass::drawPick(const scene::SceneState& state, const std::vector<scene::EntityId>& entities,
-                           const RenderView& lodView, const glm::mat4& projection, unsigned firstId) {
+                           const RenderView& lodView, unsigned firstId) {
   if (!ready_) return;
-  GlProgram& p = pick_;
+  GlProgram& p = *pick_;
   p.use();
-  p.set("uProjection", projection);
   for (size_t i = 0; i < entities.size(); ++i) {
     Prepared t;
     if (!prepare(state, entities[i], lodView, t, nullptr)) continue;

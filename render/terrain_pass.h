@@ -1,9 +1,10 @@
 #pragma once
-// The terrain pass: every visible terrain entity of the scene, CDLOD-
-// selected (terrain_lod.h) and drawn with one instanced call each, after the
-// opaque meshes and before the sky. A scene without terrains does not run it
-// (no programs bound, no buffers touched, nothing uploaded). Include only
-// inside render/.
+// Terrains on the GPU: every visible terrain entity of the scene, CDLOD-
+// selected (terrain_lod.h) and drawn with one instanced call each. The
+// frame graph's terrain pass (passes/scene_passes.cpp) calls draw(); a
+// scene without terrains does not add that pass (no programs bound, no
+// buffers touched, nothing uploaded). Lighting comes from the frame's
+// blocks (lighting.glsl), as for meshes. Include only inside render/.
 #include <map>
 #include <memory>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include <epoxy/gl.h>
 
+#include "render/gl/shader_library.h"
 #include "render/gl_program.h"
 #include "render/gpu_terrain.h"
 #include "render/render_view.h"
@@ -18,18 +20,6 @@
 #include "scene/scene_state.h"
 
 namespace hs::render {
-
-// The frame's lights as the mesh pass sees them (view space).
-struct TerrainLighting {
-  bool hasSun = false;
-  glm::vec3 sunDirView{0, 0, 1}, sunColor{0.0f}, upView{0, 0, 1};
-  glm::vec3 sky{0.5f}, ground{0.2f};
-  float ambient = 0.5f;
-  int pointCount = 0;
-  const glm::vec3* pointPosView = nullptr;
-  const glm::vec3* pointColor = nullptr;
-  const float* pointRange = nullptr;
-};
 
 struct TerrainFrameStats {
   size_t terrains = 0;
@@ -42,19 +32,22 @@ struct TerrainFrameStats {
 
 class TerrainPass {
  public:
-  bool initialize(std::string& error);
+  // Builds its programs through `shaders`.
+  bool initialize(gl::ShaderLibrary& shaders, std::string& error);
   void release();
 
   // Visible terrain entities of the scene (empty: the pass does not run).
   static std::vector<scene::EntityId> visibleTerrains(const scene::SceneState& state);
 
-  // Draws into the bound framebuffer (depth test GREATER, reversed Z).
+  // Draws into the bound framebuffer (depth test GREATER, reversed Z) with
+  // the view block of `view` bound. Levels of detail and morphing come from
+  // `lodView` (the frame's mono camera: both eyes draw the same levels).
   TerrainFrameStats draw(const scene::SceneState& state, const std::vector<scene::EntityId>& entities,
-                         const RenderView& view, const TerrainLighting& lights);
-  // The id pass: `lodView` chooses the levels (the real view), `projection`
-  // draws (narrowed to one pixel). Terrain i gets id firstId + i.
+                         const RenderView& view, const RenderView& lodView);
+  // The id pass, with a (one-pixel) view block bound: `lodView` chooses the
+  // levels (the real view). Terrain i gets id firstId + i.
   void drawPick(const scene::SceneState& state, const std::vector<scene::EntityId>& entities,
-                const RenderView& lodView, const glm::mat4& projection, unsigned firstId);
+                const RenderView& lodView, unsigned firstId);
 
   // Uploads what changed without drawing (benchmarks measure the upload alone).
   TerrainUploadStats sync(const scene::TerrainData& data);
@@ -75,6 +68,7 @@ class TerrainPass {
     LodSelection lod;
     glm::ivec2 cameraSample{0};
     glm::vec3 cameraRest{0.0f};
+    glm::dvec3 lodEye{0.0};  // the view the levels were chosen from
   };
   bool prepare(const scene::SceneState& state, scene::EntityId entity, const RenderView& view, Prepared& out,
                TerrainFrameStats* stats);
@@ -83,7 +77,8 @@ class TerrainPass {
   void collect(const scene::SceneState& state);
 
   bool ready_ = false;
-  GlProgram shade_, pick_;
+  GlProgram* shade_ = nullptr;
+  GlProgram* pick_ = nullptr;
   GLuint vao_ = 0, gridVbo_ = 0, gridIbo_ = 0, instanceVbo_ = 0;
   size_t instanceCapacity_ = 0;
   GLsizei gridIndices_ = 0;

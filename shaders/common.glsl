@@ -1,4 +1,4 @@
-// Shared by the shaders that include it (the renderer prepends it).
+// Colour helpers for the shaders that include it.
 // Colours are linear until tonemap.frag encodes them to sRGB.
 
 vec3 linearToSrgb(vec3 c) {

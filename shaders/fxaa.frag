@@ -2,7 +2,7 @@
 // FXAA (after Lottes' FXAA 3.11 quality preset idea, simplified): find
 // edges by luma contrast, blend along them. Input is sRGB with luma in alpha.
 in vec2 vUv;
-uniform sampler2D uImage;
+layout(binding = 0) uniform sampler2D uImage;
 uniform vec2 uTexel;  // 1 / size
 layout(location = 0) out vec4 outColor;
 

@@ -1,23 +1,25 @@
 #version 450 core
-// Camera-relative: uModelView was formed in double precision on the CPU
-// (world transform minus the camera position), so vertices far from the
-// world origin arrive here as small floats.
+// Meshes, camera-relative (frame_blocks.glsl): the object's matrix is
+// relative to the frame origin, formed in double on the CPU, so vertices far
+// from the world origin arrive here as small floats.
+#include "frame_blocks.glsl"
+
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
+layout(location = 7) in uint aObject;  // per instance: index into objects[]
 
-uniform mat4 uModelView;
-uniform mat3 uNormalMatrix;
-uniform mat4 uProjection;
-
-out vec3 vViewPos;
-out vec3 vViewNormal;
+out vec3 vEyePos;
+out vec3 vNormal;
 out vec2 vUv;
+flat out uint vObject;
 
 void main() {
-  vec4 viewPos = uModelView * vec4(aPosition, 1.0);
-  vViewPos = viewPos.xyz;
-  vViewNormal = uNormalMatrix * aNormal;
+  Object o = objects[aObject];
+  vec3 p = (o.model * vec4(aPosition, 1.0)).xyz - view.eyeOffset.xyz;
+  vEyePos = p;
+  vNormal = mat3(o.normalMatrix) * aNormal;
   vUv = aUv;
-  gl_Position = uProjection * viewPos;
+  vObject = aObject;
+  gl_Position = view.projection * (view.viewRotation * vec4(p, 1.0));
 }

@@ -3,10 +3,9 @@
 // prepared on the CPU, flat colour per vertex.
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec4 aColor;
-uniform mat4 uViewRot;
-uniform mat4 uProjection;
+#include "frame_blocks.glsl"
 out vec4 vColor;
 void main() {
   vColor = aColor;
-  gl_Position = uProjection * uViewRot * vec4(aPosition, 1.0);
+  gl_Position = view.projection * view.viewRotation * vec4(aPosition, 1.0);
 }

@@ -2,8 +2,10 @@
 // Terrain shading: holes and the area past the last sample discarded,
 // per-pixel normals from the height texture, splat materials blended by the
 // paint weights (albedo colour x texture, tangent-space normal maps,
-// roughness, tiling), lit like the meshes (sun, sky ambient, point lights).
-in vec3 vViewPos;
+// roughness, tiling), lit like the meshes (lighting.glsl).
+#include "lighting.glsl"
+
+in vec3 vEyePos;
 in vec2 vSample;
 in vec2 vLocal;
 
@@ -12,7 +14,6 @@ uniform ivec2 uSamples;
 uniform vec2 uSpacing;
 uniform bool uHasHoles;
 uniform usampler2D uHoles;
-uniform mat3 uViewRot;
 
 const int MAX_LAYERS = 16;
 uniform int uLayerCount;
@@ -27,50 +28,9 @@ uniform int uNormalLayer[MAX_LAYERS];    // slice of uNormalTex, or -1
 uniform sampler2DArray uAlbedoTex;       // sRGB: sampled as linear
 uniform sampler2DArray uNormalTex;
 
-uniform vec3 uSunDirView;
-uniform vec3 uSunColor;
-uniform bool uHasSun;
-uniform vec3 uUpView;
-uniform vec3 uSkyColor;
-uniform vec3 uGroundColor;
-uniform float uAmbient;
-const int MAX_POINT_LIGHTS = 8;
-uniform int uPointLightCount;
-uniform vec3 uPointPosView[MAX_POINT_LIGHTS];
-uniform vec3 uPointColor[MAX_POINT_LIGHTS];
-uniform float uPointRange[MAX_POINT_LIGHTS];
-
 layout(location = 0) out vec4 outColor;
 
 float h(vec2 s) { return textureLod(uHeight, (s + 0.5) / vec2(uSamples), 0.0).r; }
-
-vec3 light(vec3 albedo, vec3 n, float roughness) {
-  vec3 v = normalize(-vViewPos);
-  float up = dot(n, uUpView) * 0.5 + 0.5;
-  vec3 color = albedo * mix(uGroundColor, uSkyColor, up) * uAmbient;
-  // Roughness to a Blinn-Phong exponent and a dielectric highlight.
-  float r2 = max(roughness * roughness, 0.02);
-  float shininess = clamp(2.0 / (r2 * r2) - 2.0, 2.0, 512.0);
-  float specular = 0.04 * (1.0 - roughness) * (shininess + 8.0) / 8.0;
-  if (uHasSun) {
-    float ndl = max(dot(n, uSunDirView), 0.0);
-    vec3 hv = normalize(uSunDirView + v);
-    float spec = ndl > 0.0 ? pow(max(dot(n, hv), 0.0), shininess) * specular : 0.0;
-    color += (albedo * ndl + vec3(spec)) * uSunColor;
-  }
-  for (int i = 0; i < uPointLightCount; ++i) {
-    vec3 toLight = uPointPosView[i] - vViewPos;
-    float d = length(toLight);
-    vec3 l = toLight / max(d, 1e-4);
-    float window = clamp(1.0 - pow(d / uPointRange[i], 4.0), 0.0, 1.0);
-    float atten = window * window / max(d * d, 1e-4);
-    float ndl = max(dot(n, l), 0.0);
-    vec3 hv = normalize(l + v);
-    float spec = ndl > 0.0 ? pow(max(dot(n, hv), 0.0), shininess) * specular : 0.0;
-    color += (albedo * ndl + vec3(spec)) * uPointColor[i] * atten;
-  }
-  return color;
-}
 
 void main() {
   // The grid extends past the last sample where a level's quads do not fit.
@@ -118,5 +78,9 @@ void main() {
     tn = vec3(0.0, 0.0, 1.0);
   }
   vec3 n = normalize(T * tn.x + B * tn.y + N * max(tn.z, 1e-3));
-  outColor = vec4(light(albedo, normalize(uViewRot * n), rough), 1.0);
+  // Roughness to a Blinn-Phong exponent and a dielectric highlight.
+  float r2 = max(rough * rough, 0.02);
+  float shininess = clamp(2.0 / (r2 * r2) - 2.0, 2.0, 512.0);
+  float specular = 0.04 * (1.0 - rough) * (shininess + 8.0) / 8.0;
+  outColor = vec4(lightSurface(albedo, vEyePos, n, shininess, specular), 1.0);
 }

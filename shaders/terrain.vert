@@ -5,23 +5,26 @@
 // approaches the end of their level's range.
 //
 // Camera-relative without a large number in sight: a vertex's position
-// relative to the camera is (its sample - the camera's whole sample) *
+// relative to the LOD camera is (its sample - the camera's whole sample) *
 // spacing - the camera's remainder. Both differences are small near the
 // camera, and a vertex shared by two quadrants is computed from the same
 // integers in both, so they agree to the bit (no cracks from rounding).
+// The LOD camera is the frame's (mono) camera: both eyes of a stereo pair
+// morph alike and differ only by their small eye offset (uEyeFromLod).
+#include "frame_blocks.glsl"
+
 layout(location = 0) in ivec2 aGrid;   // 0..G/2
 layout(location = 1) in ivec4 aPatch;  // per instance: x0, y0 (samples), scale (samples per quad), level
 
 uniform sampler2D uHeight;             // R32F: heights relative to the terrain origin
 uniform ivec2 uSamples;
 uniform vec2 uSpacing;                 // metres per sample
-uniform ivec2 uCameraSample;           // the camera's position in whole samples
-uniform vec3 uCameraRest;              // camera position minus uCameraSample * spacing (z: height above the origin)
+uniform ivec2 uCameraSample;           // the LOD camera's position in whole samples
+uniform vec3 uCameraRest;              // LOD camera position minus uCameraSample * spacing (z: height above the origin)
+uniform vec3 uEyeFromLod;              // this view's eye minus the LOD camera (metres)
 uniform vec2 uMorph[16];               // per level: morph start (m), 1 / (range end - start)
-uniform mat3 uViewRot;
-uniform mat4 uProjection;
 
-out vec3 vViewPos;
+out vec3 vEyePos;
 out vec2 vSample;   // sample-space position (normals, paint weights, holes)
 out vec2 vLocal;    // metres from the terrain origin (material tiling)
 
@@ -41,9 +44,9 @@ void main() {
   const ivec2 t = s - odd * scale;
   const float ht = heightAt(t);
   const vec2 rel = mix(relS, vec2(t - uCameraSample), k);
-  const vec3 p = vec3(rel * uSpacing - uCameraRest.xy, mix(h, ht, k) - uCameraRest.z);
+  const vec3 p = vec3(rel * uSpacing - uCameraRest.xy, mix(h, ht, k) - uCameraRest.z) - uEyeFromLod;
   vSample = mix(vec2(s), vec2(t), k);
   vLocal = vSample * uSpacing;
-  vViewPos = uViewRot * p;
-  gl_Position = uProjection * vec4(vViewPos, 1.0);
+  vEyePos = p;
+  gl_Position = view.projection * (view.viewRotation * vec4(p, 1.0));
 }

@@ -1,7 +1,7 @@
 #version 450 core
 // The terrain in the viewport's id pass: holes and the area past the last
 // sample are not there, so they cannot be picked (terrain.frag's rules).
-in vec3 vViewPos;
+in vec3 vEyePos;
 in vec2 vSample;
 in vec2 vLocal;
 uniform ivec2 uSamples;

@@ -3,8 +3,9 @@
 // encoding (done here, so any 8-bit target, the Qt widget's included, shows
 // correct sRGB). When FXAA follows, luma goes to alpha for it; otherwise
 // alpha is 1 (frames are opaque).
+#include "common.glsl"
 in vec2 vUv;
-uniform sampler2D uScene;
+layout(binding = 0) uniform sampler2D uScene;
 uniform float uExposure;
 uniform bool uFilmic;
 uniform bool uLumaInAlpha;

@@ -195,7 +195,11 @@ class TestStereoFrames : public QObject {
     const render::EyeViews v = render::eyeViews(at, cam, kW, kH);
     QVERIFY(v.stereo);
     QVERIFY(v.left.projectionShift.x < 0.0 && v.right.projectionShift.x > 0.0);
-    const hs::Image l = r_.render(at, v.left), r = r_.render(at, v.right);
+    // As the export draws each eye: levels of detail and the frame origin
+    // from the mono camera (renderer.h).
+    render::RenderOptions o;
+    o.lodView = &v.mono;
+    const hs::Image l = r_.render(at, v.left, false, nullptr, o), r = r_.render(at, v.right, false, nullptr, o);
     QVERIFY(eyes.left.rgba8 == l.rgba8);
     QVERIFY(eyes.right.rgba8 == r.rgba8);
     QVERIFY(eyes.left.rgba8 != eyes.right.rgba8);  // a stereo pair, not one view twice

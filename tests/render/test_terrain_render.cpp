@@ -199,11 +199,13 @@ class TestTerrainRender : public QObject {
     s.look({0.0, -1500.0, 260.0}, {0.0, 900.0, 0.0});
     const render::RenderView v = s.view(960, 540);
     render::FrameStats lodStats;
-    r_.render(s.state(), v, false, &lodStats);
+    render::RenderOptions keepDepth;
+    keepDepth.keepDepth = true;
+    r_.render(s.state(), v, false, &lodStats, keepDepth);
     const ErrorStats lod = measureError(r_, s, v);
     scene::ops::setField(s.doc, s.terrain, *scene::findEntityField("terrain.lod_error_px"), scene::FieldValue(0.1));
     render::FrameStats fineStats;
-    r_.render(s.state(), v, false, &fineStats);
+    r_.render(s.state(), v, false, &fineStats, keepDepth);
     const ErrorStats fine = measureError(r_, s, v);
     qInfo("bound 1 px: %zu triangles, error max %.3f px, 99%% %.3f px, mean %.4f px over %zu pixels; "
           "bound 0.1 px: %zu triangles, max %.3f px",

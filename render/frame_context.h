@@ -1,0 +1,36 @@
+#pragma once
+// What the passes of one frame share while the frame graph is built: the
+// renderer's resources, the frame's world and visible set, its options and
+// the statistics the passes add to. Include only inside render/.
+#include <string>
+
+#include "render/frame_graph.h"
+#include "render/render_resources.h"
+#include "render/render_world.h"
+#include "render/renderer.h"
+#include "render/visible_set.h"
+
+namespace hs::render {
+
+struct FrameContext {
+  RenderResources& res;
+  const RenderWorld& world;
+  const VisibleSet& visible;
+  const scene::SceneSettings& settings;
+  const RenderOptions& options;
+  const RenderView& lodView;  // chooses every level of detail of the frame
+  FrameStats& stats;
+};
+
+// One view of the frame: its camera, its index in the view block buffer,
+// the caller's framebuffer it ends in, and the suffix its passes' and
+// resources' names carry ("[left]"; empty for a mono frame).
+struct ViewContext {
+  const RenderView& view;
+  size_t index = 0;
+  unsigned target = 0;
+  std::string suffix;
+  std::string named(const std::string& what) const { return what + suffix; }
+};
+
+}  // namespace hs::render

@@ -1,0 +1,52 @@
+#pragma once
+// GLSL programs from the embedded sources in shaders/, with `#include` and
+// `#define` variants, built once and kept (ProgramDesc is the cache key).
+//
+// One source, several programs: lighting code exists once
+// (shaders/lighting.glsl) and every shader that lights includes it; a
+// variant is the same files with other defines ("SHADING_GOURAUD",
+// "HAS_NORMAL_MAP", "MAX_LIGHTS 64"), so a feature costs nothing in
+// programs that leave it out.
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "render/gl_program.h"
+
+namespace hs::render::gl {
+
+struct ProgramDesc {
+  std::string vertex;    // file names under shaders/ ("mesh.vert"), or
+  std::string fragment;  // empty for a compute program
+  std::string compute;
+  std::vector<std::string> defines;  // "NAME" or "NAME VALUE"
+
+  std::string key() const;
+  std::string name() const;  // for messages: "mesh.vert + mesh.frag [SHADING_GOURAUD]"
+};
+
+// The text of `file` with its #includes expanded (each file once), the
+// defines inserted after the #version line and #line directives that keep
+// compiler messages pointing at the right file and line: GLSL names a
+// source by number, so `files` receives the file of each number.
+// False with `error` for a missing file or an include cycle.
+bool preprocessShader(std::string_view file, const std::vector<std::string>& defines, std::string& out,
+                      std::vector<std::string>& files, std::string& error);
+
+class ShaderLibrary {
+ public:
+  // The program for `desc`, built on its first use; nullptr with `error`
+  // (the compiler's log with file names) if it does not build.
+  GlProgram* get(const ProgramDesc& desc, std::string& error);
+  // Builds every program in `descs` now (initialisation checks them all).
+  bool prebuild(const std::vector<ProgramDesc>& descs, std::string& error);
+  size_t programCount() const { return programs_.size(); }
+  void release();
+
+ private:
+  std::map<std::string, std::unique_ptr<GlProgram>> programs_;
+};
+
+}  // namespace hs::render::gl

@@ -1,0 +1,20 @@
+#pragma once
+// The passes that fill a view's scene colour and depth: opaque meshes (which
+// also create and clear the targets) and terrains. Include only inside
+// render/.
+#include "render/frame_context.h"
+
+namespace hs::render {
+
+struct SceneTargets {
+  TextureRef color;  // linear HDR (RGBA16F), multisampled with MSAA
+  TextureRef depth;  // reversed-Z float depth
+  int samples = 1;
+};
+
+// Creates the view's scene targets, clears them, draws the visible meshes.
+SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewContext& view);
+// Draws the visible terrains into `targets` (only added when there are any).
+void addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const SceneTargets& targets);
+
+}  // namespace hs::render

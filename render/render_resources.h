@@ -1,0 +1,56 @@
+#pragma once
+// What the renderer keeps from frame to frame on the GPU, shared by its
+// passes: the shader library, the transient-resource pool (and registry),
+// the mesh and terrain caches, and the buffers every frame fills (frame and
+// view uniforms, lights, object data). Include only inside render/.
+#include <cstddef>
+#include <vector>
+
+#include "render/frame_blocks.h"
+#include "render/gl/gl_handle.h"
+#include "render/gl/shader_library.h"
+#include "render/gpu_mesh_cache.h"
+#include "render/resource_pool.h"
+#include "render/terrain_pass.h"
+
+namespace hs::render {
+
+// A buffer that grows to what a frame needs and keeps its size.
+struct GrowingBuffer {
+  gl::Buffer buffer;
+  size_t capacity = 0;
+  // Makes room for `bytes` (at least `minimum`); true if the buffer is new.
+  bool reserve(size_t bytes, size_t minimum = 4096);
+  void upload(const void* data, size_t bytes, size_t offset = 0);
+};
+
+struct RenderResources {
+  gl::ShaderLibrary shaders;
+  ResourcePool pool;
+  GpuMeshCache meshes;
+  TerrainPass terrain;  // runs only for scenes with a visible terrain
+
+  GrowingBuffer frameBlock;     // FrameBlock
+  GrowingBuffer viewBlocks;     // one ViewBlock per view, at viewStride
+  size_t viewStride = 256;      // GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT rounded up
+  GrowingBuffer lights;         // GpuLight[]
+  GrowingBuffer objects;        // GpuObject[]
+  GrowingBuffer objectIndices;  // uint 0..N-1: the per-instance attribute 7 of mesh VAOs
+  size_t objectIndexCount = 0;
+
+  gl::VertexArray emptyVao;     // full-screen triangles, generated quads
+  gl::VertexArray overlayVao;
+  GrowingBuffer overlayVertices;
+
+  // The program of `desc` (all are built at initialisation, so this never
+  // fails at draw time; it returns nullptr only for a desc that was not).
+  GlProgram& program(const gl::ProgramDesc& desc);
+
+  // Makes sure object indices 0..count-1 exist for the mesh VAOs.
+  void ensureObjectIndices(size_t count);
+  // Binds view `index`'s block at its binding point.
+  void bindView(size_t index) const;
+  void bindFrame() const;
+};
+
+}  // namespace hs::render
