@@ -8,6 +8,8 @@
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 
+#include "render/gl/gl_debug.h"
+
 namespace hs::app {
 namespace {
 
@@ -35,6 +37,7 @@ void applyDefaultSurfaceFormat() {
   f.setDepthBufferSize(24);
   f.setStencilBufferSize(8);
   f.setSamples(0);
+  if (render::gl::debugOutputRequested()) f.setOption(QSurfaceFormat::DebugContext);  // Messages gets GL's reports
   QSurfaceFormat::setDefaultFormat(f);
 }
 

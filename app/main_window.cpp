@@ -75,6 +75,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
           [this](const QString& gl) { messages_->info("OpenGL: " + gl); });
   connect(viewport_, &ViewportWidget::rendererFailed, this,
           [this](const QString& error) { messages_->error("The viewport cannot render: " + error); });
+  // OpenGL's debug output (debug builds, HS_GL_DEBUG) after each frame.
+  connect(viewport_, &ViewportWidget::frameRendered, this, [this] {
+    for (const std::string& m : viewport_->takeGlMessages()) messages_->warning(QString::fromStdString(m));
+  });
 
   autosave_ = new Autosave(doc_, this);
   connect(autosave_, &Autosave::saved, this,

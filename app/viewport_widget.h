@@ -42,6 +42,7 @@ class ViewportWidget : public QOpenGLWidget {
   // Terrain material textures the renderer could not read, found since the
   // last call (the Terrain panel passes them to Messages after each frame).
   std::vector<std::string> takeTerrainMaterialProblems() { return renderer_.takeTerrainMaterialProblems(); }
+  std::vector<std::string> takeGlMessages() { return renderer_.takeGlMessages(); }
   bool showGrid() const { return showGrid_; }
   void setShowGrid(bool show);
 

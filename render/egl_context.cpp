@@ -7,6 +7,8 @@
 
 #include <epoxy/egl.h>
 
+#include "render/gl/gl_debug.h"
+
 namespace hs::render {
 namespace {
 
@@ -81,8 +83,10 @@ bool EglContext::create(std::string& error) {
   EGLConfig config = nullptr;
   EGLint n = 0;
   eglChooseConfig(dpy, configAttribs, &config, 1, &n);
+  // A debug context when debug output is wanted (gl/gl_debug.h).
   const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                               EGL_CONTEXT_OPENGL_DEBUG, gl::debugOutputRequested() ? EGL_TRUE : EGL_FALSE, EGL_NONE};
   // No config is fine where EGL_KHR_no_config_context exists: we draw into FBOs only.
   EGLContext ctx = eglCreateContext(dpy, n > 0 ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctxAttribs);
   if (ctx == EGL_NO_CONTEXT) {

@@ -9,6 +9,7 @@
 
 #include "render/frame_context.h"
 #include "render/frame_graph.h"
+#include "render/gl/gl_debug.h"
 #include "render/passes/background_passes.h"
 #include "render/passes/output_passes.h"
 #include "render/passes/scene_passes.h"
@@ -46,6 +47,7 @@ ViewBlock viewBlockOf(const RenderView& v, const glm::dvec3& origin) {
 struct Renderer::Impl {
   bool ready = false;
   RenderResources res;
+  gl::DebugMessages debug;
   // Timer queries in a ring so reading one never stalls on the current frame.
   gl::Query timers[3];
   int timerFrame = 0;
@@ -106,6 +108,7 @@ bool Renderer::initialize(std::string& error) {
     return false;
   }
   RenderResources& res = d_->res;
+  d_->debug.install();
   if (!res.shaders.prebuild(allPrograms(), error)) return false;
   if (!res.terrain.initialize(res.shaders, error)) return false;
   GLint align = 256;
@@ -371,6 +374,8 @@ LodSelection Renderer::terrainLod(const scene::SceneState& state, scene::EntityI
 }
 
 std::vector<std::string> Renderer::takeTerrainMaterialProblems() { return d_->res.terrain.takeMaterialProblems(); }
+
+std::vector<std::string> Renderer::takeGlMessages() { return d_->debug.take(); }
 
 void Renderer::shutdown() {
   if (!d_->ready) return;

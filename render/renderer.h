@@ -156,6 +156,9 @@ class Renderer {
   // Terrain material textures that could not be read, as found since the
   // last call (each names the terrain, material and file; terrain_pass.h).
   std::vector<std::string> takeTerrainMaterialProblems();
+  // OpenGL debug output since the last call (gl/gl_debug.h: debug builds,
+  // or HS_GL_DEBUG set), one line each.
+  std::vector<std::string> takeGlMessages();
 
   // Frees every GL object (call with the context current, before it goes).
   void shutdown();

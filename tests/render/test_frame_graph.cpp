@@ -1,0 +1,319 @@
+// The frame graph and the renderer's resource registry, on a headless EGL
+// context: culling (a pass nothing reads does not run and its resources are
+// never allocated), versions of read-modify-write resources, pooling of
+// transient textures between passes, eyes and frames, freeing what a frame
+// no longer uses, kept outputs; and, through the real renderer, that each
+// optional pass and its buffers exist only in frames that need them. Every
+// check reads the pool's registry or the graph's records (what really ran
+// and was allocated), not counters the passes keep about themselves.
+#include <QtTest>
+
+#include <algorithm>
+#include <set>
+
+#include <epoxy/gl.h>
+
+#include "render/frame_graph.h"
+#include "render/offscreen_renderer.h"
+#include "render/resource_pool.h"
+#include "scene/demo_scene.h"
+#include "scene/demo_terrain.h"
+
+using namespace hs;
+using namespace hs::render;
+
+namespace {
+
+const TextureDesc kSmall{64, 32, GL_RGBA16F};
+
+bool ran(const FrameGraph& g, const std::string& name) {
+  for (const PassRecord& r : g.records())
+    if (r.name == name) return r.ran;
+  return false;
+}
+
+size_t allocated(const ResourcePool& pool, const std::string& prefix) {
+  size_t n = 0;
+  for (const PoolAllocation& a : pool.registry()) n += a.name.rfind(prefix, 0) == 0;
+  return n;
+}
+
+struct NoData {};
+
+// A pass writing into a texture it creates; returns the reference.
+TextureRef producer(FrameGraph& g, const std::string& name, const std::string& texture, std::vector<std::string>* log) {
+  struct D {
+    TextureRef t;
+  };
+  return g
+      .addPass<D>(
+          name, [&](PassBuilder& b, D& d) { d.t = b.create(texture, kSmall); },
+          [log, name](const D&, const PassResources&) {
+            if (log) log->push_back(name);
+          })
+      .t;
+}
+
+void consumer(FrameGraph& g, const std::string& name, TextureRef t, std::vector<std::string>* log,
+              GLuint* seen = nullptr) {
+  struct D {
+    TextureRef t;
+  };
+  g.addPass<D>(
+      name,
+      [&](PassBuilder& b, D& d) {
+        d.t = b.read(t);
+        b.sideEffect();
+      },
+      [log, name, seen](const D& d, const PassResources& r) {
+        if (log) log->push_back(name);
+        if (seen) *seen = r.texture(d.t);
+      });
+}
+
+std::vector<std::string> passNames(const FrameStats& s) {
+  std::vector<std::string> n;
+  for (const PassStats& p : s.passes) n.push_back(p.name);
+  return n;
+}
+
+bool has(const std::vector<std::string>& v, const std::string& x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+
+size_t registryBytes(const std::vector<GpuAllocation>& reg, const std::string& prefix) {
+  size_t b = 0;
+  for (const auto& a : reg)
+    if (a.name.rfind(prefix, 0) == 0) b += a.bytes;
+  return b;
+}
+size_t registryCount(const std::vector<GpuAllocation>& reg, const std::string& prefix) {
+  size_t n = 0;
+  for (const auto& a : reg) n += a.name.rfind(prefix, 0) == 0;
+  return n;
+}
+
+}  // namespace
+
+class TestFrameGraph : public QObject {
+  Q_OBJECT
+  OffscreenRenderer r_;
+  scene::SceneState demo_;
+
+ private slots:
+  void initTestCase() {
+    // Debug output on (gl/gl_debug.h): the context becomes a debug context.
+    qputenv("HS_GL_DEBUG", "1");
+    std::string error;
+    QVERIFY2(r_.initialize(error), error.c_str());
+    std::optional<scene::SceneState> d = scene::buildDemoScene(error);
+    QVERIFY2(d, error.c_str());
+    demo_ = std::move(*d);
+  }
+
+  // ---- the graph ---------------------------------------------------------------
+
+  void unusedPassesAreCulledAndTheirResourcesNeverMade() {
+    r_.makeCurrent();
+    ResourcePool pool;
+    std::vector<std::string> log;
+    {
+      FrameGraph g(pool);
+      const TextureRef a = producer(g, "a", "tex_a", &log);
+      producer(g, "unread", "tex_unread", &log);  // nothing reads it
+      consumer(g, "out", a, &log);
+      g.execute();
+      QCOMPARE(log, (std::vector<std::string>{"a", "out"}));
+      QVERIFY(!ran(g, "unread"));
+      QCOMPARE(allocated(pool, "tex_unread"), size_t(0));
+      QCOMPARE(allocated(pool, "tex_a"), size_t(1));
+    }
+    // A pass with no side effect whose output nothing reads, alone: nothing runs.
+    log.clear();
+    FrameGraph g(pool);
+    producer(g, "lonely", "tex_lonely", &log);
+    g.execute();
+    QVERIFY(log.empty());
+    QCOMPARE(allocated(pool, "tex_lonely"), size_t(0));
+  }
+
+  // Writes make versions: a pass whose version is overwritten before anyone
+  // reads it is dead, a read-modify-write keeps its producer alive.
+  void versionsDecideWhoIsNeeded() {
+    r_.makeCurrent();
+    ResourcePool pool;
+    std::vector<std::string> log;
+    FrameGraph g(pool);
+    struct D {
+      TextureRef t;
+    };
+    const TextureRef t = producer(g, "first", "tex", &log);  // version 1
+    g.addPass<D>(
+        "blend", [&](PassBuilder& b, D& d) { d.t = b.write(b.read(t)); },  // reads 1, writes 2
+        [&](const D&, const PassResources&) { log.push_back("blend"); });
+    g.addPass<D>(
+        "overwrite", [&](PassBuilder& b, D& d) { d.t = b.write(t); },  // writes 3 without reading 2
+        [&](const D&, const PassResources&) { log.push_back("overwrite"); });
+    consumer(g, "out", t, &log);  // reads 3
+    g.execute();
+    QCOMPARE(log, (std::vector<std::string>{"overwrite", "out"}));
+
+    // Without the overwrite, the chain first -> blend -> out is needed.
+    log.clear();
+    FrameGraph h(pool);
+    const TextureRef u = producer(h, "first", "tex", &log);
+    h.addPass<D>(
+        "blend", [&](PassBuilder& b, D& d) { d.t = b.write(b.read(u)); },
+        [&](const D&, const PassResources&) { log.push_back("blend"); });
+    consumer(h, "out", u, &log);
+    h.execute();
+    QCOMPARE(log, (std::vector<std::string>{"first", "blend", "out"}));
+  }
+
+  // A transient goes back to the pool after its last pass; the next pass
+  // (another eye) asking for the same description gets the same texture.
+  void transientsArePooledAcrossPassesAndFrames() {
+    r_.makeCurrent();
+    ResourcePool pool;
+    GLuint left = 0, right = 0, nextFrame = 0;
+    {
+      FrameGraph g(pool);
+      consumer(g, "left_out", producer(g, "left", "color[left]", nullptr), nullptr, &left);
+      consumer(g, "right_out", producer(g, "right", "color[right]", nullptr), nullptr, &right);
+      g.execute();
+    }
+    QVERIFY(left != 0);
+    QCOMPARE(right, left);
+    QCOMPARE(pool.registry().size(), size_t(1));
+    pool.endFrame();
+    {
+      FrameGraph g(pool);
+      consumer(g, "out", producer(g, "p", "color", nullptr), nullptr, &nextFrame);
+      g.execute();
+    }
+    QCOMPARE(nextFrame, left);  // the next frame reuses it too
+    pool.endFrame();
+    // A frame that does not use it: freed at its end.
+    {
+      FrameGraph g(pool);
+      g.execute();
+    }
+    pool.endFrame();
+    QCOMPARE(pool.registry().size(), size_t(0));
+    QCOMPARE(pool.bytes(), size_t(0));
+  }
+
+  void keptResourcesOutliveTheFrame() {
+    r_.makeCurrent();
+    ResourcePool pool;
+    auto g = std::make_unique<FrameGraph>(pool);
+    const TextureRef t = producer(*g, "p", "kept", nullptr);
+    g->keep(t);
+    g->execute();
+    QVERIFY(g->keptTexture(t) != 0);
+    QVERIFY(ran(*g, "p"));  // kept counts as read
+    const auto reg = pool.registry();
+    QCOMPARE(reg.size(), size_t(1));
+    QVERIFY(reg.front().inUse);
+    g.reset();  // back to the pool
+    QVERIFY(!pool.registry().front().inUse);
+    QCOMPARE(pool.registry().front().bytes, kSmall.bytes());
+    QCOMPARE(kSmall.bytes(), size_t(64 * 32 * 8));
+  }
+
+  // OpenGL's own reports reach the caller (the editor shows them in Messages).
+  void glDebugOutputIsCollected() {
+    r_.makeCurrent();
+    r_.renderer().takeGlMessages();
+    glBindTexture(GL_TEXTURE_2D, 0x7fffffff);  // not a texture name: GL_INVALID_OPERATION
+    const std::vector<std::string> m = r_.renderer().takeGlMessages();
+    QVERIFY2(!m.empty(), "no debug message for an invalid texture name");
+    QVERIFY2(m.front().find("OpenGL error") == 0, m.front().c_str());
+    glGetError();
+  }
+
+  // ---- the renderer: optional passes and their memory -------------------------
+
+  void msaaTargetsOnlyWithMsaa() {
+    const render::RenderView v = render::frameBox(glm::dvec3(-5), glm::dvec3(5), 96, 64);
+    scene::SceneState s = demo_;
+    s.settings.antialiasing = scene::Antialiasing::None;
+    render::FrameStats st;
+    r_.render(s, v, false, &st);
+    auto reg = r_.renderer().resourceRegistry();
+    QCOMPARE(registryBytes(reg, "scene_color"), size_t(96 * 64 * 8));  // one sample
+    QVERIFY(!has(passNames(st), "resolve"));
+    QVERIFY(!has(passNames(st), "fxaa"));
+    QCOMPARE(registryCount(reg, "ldr_color"), size_t(0));
+    s.settings.antialiasing = scene::Antialiasing::Msaa4;
+    r_.render(s, v, false, &st);
+    reg = r_.renderer().resourceRegistry();
+    QCOMPARE(registryBytes(reg, "scene_color"), size_t(96 * 64 * 8 * 4));  // four samples
+    QVERIFY(has(passNames(st), "resolve"));
+    QCOMPARE(registryCount(reg, "hdr_color"), size_t(1));
+    s.settings.antialiasing = scene::Antialiasing::Fxaa;
+    r_.render(s, v, false, &st);
+    reg = r_.renderer().resourceRegistry();
+    QVERIFY(has(passNames(st), "fxaa"));
+    QCOMPARE(registryBytes(reg, "ldr_color"), size_t(96 * 64 * 4));
+    // MSAA's targets went with the frame that stopped using them.
+    QCOMPARE(registryBytes(reg, "scene_color"), size_t(96 * 64 * 8));
+    QCOMPARE(registryCount(reg, "hdr_color"), size_t(0));
+  }
+
+  void terrainGridAndOverlayPassesOnlyWhenThere() {
+    const render::RenderView v = render::frameBox(glm::dvec3(-5), glm::dvec3(5), 96, 64);
+    scene::SceneState s = demo_;
+    // The demo has a terrain: without its entities there is no terrain pass.
+    render::FrameStats st;
+    r_.render(s, v, false, &st);
+    const bool demoHasTerrain = !s.terrains.empty();
+    QCOMPARE(has(passNames(st), "terrain"), demoHasTerrain);
+    for (auto& [id, e] : s.entities) e.terrain.reset();
+    s.settings.showGrid = false;
+    r_.render(s, v, false, &st);
+    QVERIFY(!has(passNames(st), "terrain"));
+    QVERIFY(!has(passNames(st), "grid"));
+    QVERIFY(!has(passNames(st), "overlay"));
+    QVERIFY(has(passNames(st), "opaque"));
+    QVERIFY(has(passNames(st), "tonemap"));
+  }
+
+  // Both eyes in one frame: passes per eye, targets reused from eye to eye.
+  void stereoFrameSharesPooledTargets() {
+    r_.makeCurrent();
+    const render::RenderView v = render::frameBox(glm::dvec3(-5), glm::dvec3(5), 96, 64);
+    render::RenderView right = v;
+    right.eye += right.right() * 0.065;
+    OutputTargetPair out;
+    out.make(96, 64);
+    render::RenderOptions o;
+    o.lodView = &v;
+    const render::FrameStats st =
+        r_.renderer().renderViews(demo_, {{v, out.fbo[0], "left"}, {right, out.fbo[1], "right"}}, o);
+    const auto names = passNames(st);
+    QVERIFY(has(names, "opaque[left]") && has(names, "opaque[right]"));
+    QVERIFY(has(names, "tonemap[left]") && has(names, "tonemap[right]"));
+    // One scene colour texture served both eyes.
+    QCOMPARE(registryCount(r_.renderer().resourceRegistry(), "scene_color"), size_t(1));
+    out.release();
+  }
+
+ private:
+  struct OutputTargetPair {
+    GLuint fbo[2] = {0, 0}, rb[2] = {0, 0};
+    void make(int w, int h) {
+      glCreateRenderbuffers(2, rb);
+      glCreateFramebuffers(2, fbo);
+      for (int i = 0; i < 2; ++i) {
+        glNamedRenderbufferStorage(rb[i], GL_RGBA8, w, h);
+        glNamedFramebufferRenderbuffer(fbo[i], GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[i]);
+      }
+    }
+    void release() {
+      glDeleteFramebuffers(2, fbo);
+      glDeleteRenderbuffers(2, rb);
+    }
+  };
+};
+
+QTEST_GUILESS_MAIN(TestFrameGraph)
+#include "test_frame_graph.moc"
