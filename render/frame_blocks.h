@@ -10,10 +10,21 @@
 namespace hs::render {
 
 enum Binding : unsigned {
-  kFrameBlockBinding = 0,   // uniform FrameBlock
-  kViewBlockBinding = 1,    // uniform ViewBlock
-  kLightBufferBinding = 2,  // buffer LightBlock
-  kObjectBufferBinding = 3, // buffer ObjectBlock
+  kFrameBlockBinding = 0,        // uniform FrameBlock
+  kViewBlockBinding = 1,         // uniform ViewBlock
+  kLightBufferBinding = 2,       // buffer LightBlock
+  kObjectBufferBinding = 3,      // buffer ObjectBlock
+  kMaterialBufferBinding = 4,    // buffer MaterialBlock
+  kShadowBlockBinding = 5,       // uniform ShadowBlock
+  kEnvironmentBlockBinding = 6,  // uniform EnvironmentBlock
+  kLightGridBinding = 7,         // buffer LightGrid (clustered light lists)
+};
+
+// Texture units: a material's textures, then the frame's shared maps.
+enum TextureUnit : unsigned {
+  kMaterialTextureUnit = 0,      // 0..7
+  kShadowTextureUnit = 8,        // 8..11
+  kEnvironmentTextureUnit = 12,  // 12..15
 };
 
 struct FrameBlock {

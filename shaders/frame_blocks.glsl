@@ -8,6 +8,13 @@
 // view adds its small eye offset. So a scene at UTM coordinates reaches the
 // GPU as small floats, and both eyes of a stereo pair share one set of
 // object and light data.
+//
+// Binding points (render/frame_blocks.h, enum Binding): uniform blocks 0
+// frame, 1 view, 5 shadows, 6 environment; storage buffers 2 lights,
+// 3 objects, 4 materials, 7 the light grid. Texture units: 0-7 a material's
+// textures, 8-11 shadow maps, 12-15 environment maps.
+#ifndef HS_FRAME_BLOCKS_GLSL
+#define HS_FRAME_BLOCKS_GLSL
 
 layout(std140, binding = 0) uniform FrameBlock {
   vec4 sunDir;        // xyz: towards the sun (world); w: 1 if the scene has a sun
@@ -39,3 +46,5 @@ struct Object {
   vec4 tint;          // rgb
 };
 layout(std430, binding = 3) readonly buffer ObjectBlock { Object objects[]; };
+
+#endif

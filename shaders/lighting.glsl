@@ -1,33 +1,36 @@
 // The lighting of every lit surface (meshes, terrain; later foliage and
-// particles), written once. Eye space (frame_blocks.glsl): world axes,
-// origin at the eye, so no view rotation enters the lighting.
-#include "frame_blocks.glsl"
+// particles), written once and split by concern:
+//   surface.glsl      what a material's shader fills in
+//   brdf.glsl         the lighting models (reflectance for one direction)
+//   lights.glsl       direct light from the sun and the scene's lights
+//   shadows.glsl      visibility of each light
+//   environment.glsl  sky and surroundings (ambient)
+//   fog.glsl          atmosphere towards the eye
+#ifndef HS_LIGHTING_GLSL
+#define HS_LIGHTING_GLSL
+#include "environment.glsl"
+#include "fog.glsl"
+#include "lights.glsl"
 
-// Blinn-Phong from the sun and the point lights with a hemispheric sky
-// ambient. `p` is the surface position and `n` its unit normal (eye space).
-vec3 lightSurface(vec3 albedo, vec3 p, vec3 n, float shininess, float specular) {
-  vec3 v = normalize(-p);
-  float up = n.z * 0.5 + 0.5;
-  vec3 color = albedo * mix(frame.groundColor.rgb, frame.skyZenith.rgb, up) * frame.params.x;
-  if (frame.sunDir.w > 0.5) {
-    vec3 l = frame.sunDir.xyz;
-    float ndl = max(dot(n, l), 0.0);
-    vec3 h = normalize(l + v);
-    float spec = ndl > 0.0 ? pow(max(dot(n, h), 0.0), shininess) * specular : 0.0;
-    color += (albedo * ndl + vec3(spec)) * frame.sunColor.rgb;
-  }
-  int count = int(frame.params.z);
-  for (int i = 0; i < count; ++i) {
-    vec3 toLight = lights[i].position.xyz - view.eyeOffset.xyz - p;
-    float d = length(toLight);
-    vec3 l = toLight / max(d, 1e-4);
-    // Inverse square, windowed to zero at the range (no hard cut-off).
-    float window = clamp(1.0 - pow(d / lights[i].position.w, 4.0), 0.0, 1.0);
-    float atten = window * window / max(d * d, 1e-4);
-    float ndl = max(dot(n, l), 0.0);
-    vec3 h = normalize(l + v);
-    float spec = ndl > 0.0 ? pow(max(dot(n, h), 0.0), shininess) * specular : 0.0;
-    color += (albedo * ndl + vec3(spec)) * lights[i].color.rgb * atten;
-  }
-  return color;
+vec3 shadeSurface(Surface s) {
+  return applyFog(s.emission + directLighting(s) + ambientLighting(s), s.position);
 }
+
+// A Blinn-Phong surface from its colour, position, normal and highlight
+// (what the mesh and terrain shaders pass today).
+vec3 lightSurface(vec3 albedo, vec3 p, vec3 n, float shininess, float specular) {
+  Surface s;
+  s.position = p;
+  s.normal = n;
+  s.view = normalize(-p);
+  s.albedo = albedo;
+  s.roughness = 0.5;
+  s.metallic = 0.0;
+  s.specular = specular;
+  s.shininess = shininess;
+  s.emission = vec3(0.0);
+  s.model = MODEL_BLINN_PHONG;
+  return shadeSurface(s);
+}
+
+#endif
