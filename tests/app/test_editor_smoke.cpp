@@ -314,20 +314,25 @@ void EditorSmokeTest::cameraFlyOrbitDollyAndIdle() {
 
   // Fly: right mouse held + E (up) and W (forward). The keys steer the
   // camera instead of switching gizmo tools while flying.
+  // Each key is held until the camera has moved (a loaded machine may take
+  // long for the first frame), so the test does not depend on timing.
   const render::RenderView v0 = vp->currentView();
   QTest::mousePress(vp, Qt::RightButton, Qt::NoModifier, c);
   QTest::keyPress(vp, Qt::Key_W);
-  QTest::qWait(150);
+  QTRY_VERIFY_WITH_TIMEOUT(glm::dot(vp->currentView().eye - v0.eye, v0.forward()) > 1e-3, 10000);
   QTest::keyRelease(vp, Qt::Key_W);
+  QTest::qWait(50);
+  const render::RenderView vw = vp->currentView();
   QTest::keyPress(vp, Qt::Key_E);
-  QTest::qWait(150);
+  QTRY_VERIFY_WITH_TIMEOUT(vp->currentView().eye.z - vw.eye.z > 1e-3, 10000);
   QTest::keyRelease(vp, Qt::Key_E);
   QTest::mouseRelease(vp, Qt::RightButton, Qt::NoModifier, c);
+  QTest::qWait(50);
   const render::RenderView v1 = vp->currentView();
   QCOMPARE(vp->gizmo().mode(), app::GizmoMode::Translate);
-  const glm::dvec3 moved = v1.eye - v0.eye;
-  QVERIFY2(glm::dot(moved, v0.forward()) > 0.0, "W flies forward");
-  QVERIFY2(moved.z > glm::dot(moved, v0.forward()) * v0.forward().z, "E flies up");
+  QVERIFY2(glm::dot(vw.eye - v0.eye, v0.forward()) > 0.0, "W flies forward");
+  const glm::dvec3 up = v1.eye - vw.eye;
+  QVERIFY2(up.z > 0.0 && glm::length(glm::dvec2(up)) < 1e-9 * (1.0 + up.z), "E flies straight up");
   QVERIFY(v1.orientation == v0.orientation);  // no mouse movement: no turn
 
   // Idle: nothing moves, nothing is drawn.
