@@ -83,11 +83,21 @@ bool ByteSource::read(uint64_t offset, size_t n, std::string& buffer, std::strin
     return true;
   }
   // resize() would zero the bytes pread overwrites anyway; the buffer is
-  // reused chunk after chunk, so this costs only on growth.
+  // reused read after read, so this costs only on growth.
   if (buffer.size() < n) buffer.resize(n);
+  if (!readInto(offset, n, buffer.data(), error)) return false;
+  out = std::string_view(buffer.data(), n);
+  return true;
+}
+
+bool ByteSource::readInto(uint64_t offset, size_t n, char* out, std::string& error) const {
+  if (fd_ < 0) {
+    std::memcpy(out, text_.data() + offset, n);
+    return true;
+  }
   size_t got = 0;
   while (got < n) {
-    const ssize_t r = ::pread(fd_, buffer.data() + got, n - got, off_t(offset + got));
+    const ssize_t r = ::pread(fd_, out + got, n - got, off_t(offset + got));
     if (r < 0 && errno == EINTR) continue;
     if (r < 0) {
       error = name_ + ": read failed at byte " + std::to_string(offset + got) + ": " + std::strerror(errno);
@@ -101,7 +111,6 @@ bool ByteSource::read(uint64_t offset, size_t n, std::string& buffer, std::strin
     }
     got += size_t(r);
   }
-  out = std::string_view(buffer.data(), n);
   return true;
 }
 

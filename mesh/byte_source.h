@@ -6,6 +6,7 @@
 // reader cannot catch, while a short read here is an error naming the file.
 // Reading in pieces also bounds memory: a multi-GB scan is never held whole.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -35,10 +36,18 @@ class ByteSource {
   const std::string& name() const { return name_; }
   uint64_t size() const { return size_; }
 
+  // The whole text when the source is text in memory; nullopt for a file.
+  std::optional<std::string_view> inMemory() const {
+    return fd_ < 0 ? std::optional<std::string_view>(text_) : std::nullopt;
+  }
+
   // The bytes [offset, offset + n) (n clipped to the size): a view into the
   // text, or into `buffer` for a file. False with `error` naming the file
   // when it holds fewer bytes than when it was opened, or cannot be read.
   bool read(uint64_t offset, size_t n, std::string& buffer, std::string_view& out, std::string& error) const;
+  // The same bytes copied to `out`, which has room for n; [offset, offset +
+  // n) must lie within the size.
+  bool readInto(uint64_t offset, size_t n, char* out, std::string& error) const;
 
   // False with `error` naming the file when its size or modification time
   // differs from when it was opened: it was written while we read it, so

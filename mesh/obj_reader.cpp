@@ -8,15 +8,17 @@
 #include <filesystem>
 #include <unordered_map>
 
+#include "mesh/line_blocks.h"
 #include "mesh/mtl_reader.h"
 #include "core/parallel.h"
 #include "mesh/texture_decode.h"
 
 // How the reader scales (photogrammetry OBJs run to gigabytes):
 //   1. the file is cut into chunks at line starts;
-//   2. pass A, in parallel: each chunk is read (pread, into its worker's
-//      buffer) and counts its lines and its v, vt, vn and triangle corners
-//      (a cheap scan; only its first vertex is parsed, for the origin);
+//   2. pass A, in parallel: each chunk is read (pread, 256 kB at a time,
+//      into its worker's buffer: line_blocks.h) and counts its lines and
+//      its v, vt, vn and triangle corners (a cheap scan; only its first
+//      vertex is parsed, for the origin);
 //   3. prefix sums give every chunk the line number, vertex numbers and
 //      corner offset it starts at, and the output arrays are allocated once
 //      at their final size;
@@ -26,13 +28,14 @@
 //   5. serially: materials, submeshes, messages in file order, then the
 //      vertex build, which writes the final indices over the corner array.
 // No per-chunk copies are merged, so memory stays near the final mesh plus
-// one chunk (at most 16 MB) per worker. The file is read, not mapped: a
+// a 256 kB piece of the file per worker. The file is read, not mapped: a
 // mapped file that shrinks kills the process with SIGBUS, while here a
 // short read, a chunk that counts differently the second time, or a size
 // or time that changed by the end is an error naming the file
-// (byte_source.h). Reading each chunk twice costs no more than mapping did
-// (bench/decimate/README.md). Results, messages and line numbers are the
-// same for any number of threads, and the same as a single pass.
+// (byte_source.h). The price is the kernel copying the file into the
+// buffers, once per pass: about 4% more CPU time for the whole import than
+// mapping (bench/decimate/README.md). Results, messages and line numbers
+// are the same for any number of threads, and the same as a single pass.
 
 namespace hs::mesh {
 namespace {
@@ -56,7 +59,10 @@ struct Cursor {
     while (p < end && *p != ' ' && *p != '\t') ++p;
     return {b, size_t(p - b)};
   }
-  bool number(double& v) {
+  // Inlined by force, as parseCorner: they run for every number of the
+  // file, and GCC 12 stops inlining them into the line parser once it
+  // grows a little (8% more instructions for the whole import, callgrind).
+  [[gnu::always_inline]] bool number(double& v) {
     skipSpace();
     if (p < end && *p == '+') ++p;  // from_chars rejects a leading '+'
     const auto r = std::from_chars(p, end, v);
@@ -71,7 +77,7 @@ struct Corner {
   int64_t v = 0, vt = 0, vn = 0;
 };
 
-bool parseCorner(std::string_view tok, Corner& c) {
+[[gnu::always_inline]] inline bool parseCorner(std::string_view tok, Corner& c) {
   auto parseInt = [](std::string_view s, int64_t& out) {
     if (s.empty()) {
       out = 0;
@@ -121,18 +127,20 @@ Key classify(std::string_view key) {
   return Key::Other;  // o, g, s, vp and others carry nothing we draw
 }
 
-// Calls fn(lineBegin, contentEnd, lineEnd) for every line of [begin, end);
-// contentEnd excludes a trailing '\r'. Stops early when fn returns false.
+// Calls fn(lineBegin, contentEnd, terminated) for every line of [begin,
+// end); contentEnd excludes the line end and a '\r' before it, and only the
+// last line can lack a line end (terminated false). Returns false when fn
+// stopped it by returning false.
 template <class Fn>
-void forEachLine(const char* begin, const char* end, Fn&& fn) {
+bool forEachLine(const char* begin, const char* end, Fn&& fn) {
   for (const char* p = begin; p < end;) {
     const char* nl = static_cast<const char*>(memchr(p, '\n', size_t(end - p)));
-    const char* lineEnd = nl ? nl : end;
-    const char* contentEnd = lineEnd;
+    const char* contentEnd = nl ? nl : end;
     if (contentEnd > p && contentEnd[-1] == '\r') --contentEnd;
-    if (!fn(p, contentEnd, lineEnd)) return;
+    if (!fn(p, contentEnd, nl != nullptr)) return false;
     p = nl ? nl + 1 : end;
   }
+  return true;
 }
 
 struct Chunk {
@@ -193,6 +201,34 @@ bool cutChunks(const ByteSource& source, uint64_t target, std::vector<Chunk>& ch
   return true;
 }
 
+// The cold paths of the line parsers, kept out of them so they stay small
+// (see Cursor::number).
+
+[[gnu::noinline, gnu::cold]] void noteChanged(Chunk& ch, const std::string& name, size_t lineNo) {
+  ch.error = name + ":" + std::to_string(lineNo) +
+             ": the file changed while it was read (this part holds other statements than it did a moment "
+             "before); read it again once whatever writes it has finished";
+}
+
+[[gnu::noinline, gnu::cold]] void noteUnterminated(Chunk& ch, size_t lineNo, const char* begin, const char* end) {
+  ch.unterminatedLine = lineNo;
+  ch.unterminatedText.assign(begin, std::min<size_t>(size_t(end - begin), 60));
+}
+
+// The chunk's first vertex, for the provisional origin (`c` is past "v").
+template <class ToZUp>
+[[gnu::noinline, gnu::cold]] void noteFirstVertex(Chunk& ch, Cursor c, const ToZUp& toZUp) {
+  glm::dvec3 v;
+  if (!c.number(v.x) || !c.number(v.y) || !c.number(v.z)) {
+    ch.firstVertex = Chunk::FirstVertex::Malformed;
+  } else if (v = toZUp(v); std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) {
+    ch.firstVertex = Chunk::FirstVertex::Finite;
+    ch.firstFinite = glm::round(v);
+  } else {
+    ++ch.nonFiniteBefore;
+  }
+}
+
 }  // namespace
 
 bool readObj(const ByteSource& source, const std::string& baseDir, const ImportOptions& options,
@@ -227,14 +263,13 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
   };
 
   // Chunks: about eight per worker so uneven chunks balance, never smaller
-  // than 4 MB (a small file is one chunk, read exactly like a single pass)
-  // and never larger than 16 MB, which bounds what a file's chunks hold in
-  // memory at once to 16 MB a thread, however large the file.
+  // than 4 MB (a small file is one chunk, read exactly like a single pass).
+  // A worker reads its chunk a piece at a time into its own buffer, once
+  // per pass (line_blocks.h), so it holds ~256 kB of the file, not a chunk.
   const unsigned threads = resolveThreads(0);
-  const uint64_t target = std::clamp<uint64_t>(size / (uint64_t(threads) * 8) + 1, 4u << 20, 16u << 20);
+  const uint64_t target = std::max<uint64_t>(uint64_t(4) << 20, size / (uint64_t(threads) * 8) + 1);
   std::vector<Chunk> chunks;
   if (!cutChunks(source, target, chunks, error)) return false;
-  // Each worker reads its chunk into its own buffer, once per pass.
   std::vector<std::string> buffers(threads);
 
   // Pass A: counts.
@@ -242,14 +277,8 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
   parallelTasks(chunks.size(), threads, [&](size_t k, unsigned slot) {
     if (stop) return;
     Chunk& ch = chunks[k];
-    std::string_view text;
-    if (!source.read(ch.begin, size_t(ch.end - ch.begin), buffers[slot], text, ch.error)) {
-      stop = true;
-      return;
-    }
-    const char* const end = text.data() + text.size();
-    forEachLine(text.data(), end, [&](const char* b, const char* ce, const char* le) {
-      ch.newlines += le < end;
+    auto countLine = [&](const char* b, const char* ce, bool terminated) {
+      ch.newlines += terminated;
       Cursor c{b, ce};
       c.skipSpace();
       if (c.p >= ce || *c.p == '#') return true;
@@ -257,17 +286,8 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
         case Key::V:
           // The provisional origin needs the first finite vertex of the
           // file: each chunk finds its own first one.
-          if (ch.firstVertex == Chunk::FirstVertex::NotYet) {
-            glm::dvec3 v;
-            if (!c.number(v.x) || !c.number(v.y) || !c.number(v.z)) {
-              ch.firstVertex = Chunk::FirstVertex::Malformed;
-            } else if (v = toZUp(v); std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) {
-              ch.firstVertex = Chunk::FirstVertex::Finite;
-              ch.firstFinite = glm::round(v);
-            } else {
-              ++ch.nonFiniteBefore;
-            }
-          }
+          if (ch.firstVertex == Chunk::FirstVertex::NotYet) [[unlikely]]
+            noteFirstVertex(ch, c, toZUp);
           ++ch.v;
           break;
         case Key::Vt: ++ch.vt; break;
@@ -289,8 +309,12 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
         default: break;
       }
       return true;
+    };
+    const bool read = forEachLineBlock(source, ch.begin, ch.end, buffers[slot], ch.error, [&](std::string_view piece) {
+      forEachLine(piece.data(), piece.data() + piece.size(), countLine);
+      return !isCancelled(progress);
     });
-    if (isCancelled(progress)) stop = true;
+    if (!read || isCancelled(progress)) stop = true;
   });
   for (const Chunk& ch : chunks)
     if (!ch.error.empty()) {  // the file could not be read
@@ -344,55 +368,26 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
   parallelTasks(chunks.size(), threads, [&](size_t k, unsigned worker) {
     Chunk& ch = chunks[k];
     if (stop) return;
-    std::string_view text;
-    if (!source.read(ch.begin, size_t(ch.end - ch.begin), buffers[worker], text, ch.error)) {
-      stop = true;
-      return;
-    }
-    const char* const end = text.data() + text.size();
     size_t lineNo = ch.line0, v = ch.v0, vt = ch.vt0, vn = ch.vn0, corner = ch.corner0;
     auto changed = [&]() {
-      ch.error = name + ":" + std::to_string(lineNo) +
-                 ": the file changed while it was read (this part holds other statements than it did a moment "
-                 "before); read it again once whatever writes it has finished";
+      noteChanged(ch, name, lineNo);
       stop = true;
       return false;
     };
     std::vector<Corner> faceCorners;
-    const char* reported = text.data();
-    forEachLine(text.data(), end, [&](const char* lineBegin, const char* contentEnd, const char* lineEnd) {
+    auto parseLine = [&](const char* lineBegin, const char* contentEnd, bool terminated) {
       ++lineNo;
-      if (size_t(lineBegin - reported) >= (1u << 20)) {
-        const size_t done = bytesDone.fetch_add(size_t(lineBegin - reported)) + size_t(lineBegin - reported);
-        reported = lineBegin;
-        if (stop || isCancelled(progress)) {
-          stop = true;
-          return false;
-        }
-        // Only the calling thread reports (the callback need not be
-        // thread-safe), in file-size steps like a single pass would.
-        size_t due = nextReport.load();
-        if (worker == 0 && done >= due && nextReport.compare_exchange_strong(due, done - done % progressStep + progressStep)) {
-          reportProgress(progress, 0.9 * double(done) / double(size), "Reading OBJ");
-          if (isCancelled(progress)) {
-            stop = true;
-            return false;
-          }
-        }
-      }
       // Only the file's last line can end without a line end (chunks end
       // after one).
-      const bool unterminated = lineEnd == end;
+      const bool unterminated = !terminated;
       Cursor c{lineBegin, contentEnd};
       c.skipSpace();
-      if (unterminated && c.p < contentEnd) {
-        ch.unterminatedLine = lineNo;
-        ch.unterminatedText.assign(lineBegin, std::min<size_t>(size_t(contentEnd - lineBegin), 60));
-      }
+      if (unterminated && c.p < contentEnd) [[unlikely]]
+        noteUnterminated(ch, lineNo, lineBegin, contentEnd);
       if (c.p >= contentEnd || *c.p == '#') return true;
       switch (classify(c.token())) {
         case Key::V: {
-          if (v >= ch.v0 + ch.v) return changed();
+          if (v >= ch.v0 + ch.v) [[unlikely]] return changed();
           glm::dvec3 p;
           if (!c.number(p.x) || !c.number(p.y) || !c.number(p.z)) {
             ch.error = lineError(lineNo, lineBegin, contentEnd, unterminated, "cannot read three vertex coordinates");
@@ -403,7 +398,7 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
           break;
         }
         case Key::Vt: {
-          if (vt >= ch.vt0 + ch.vt) return changed();
+          if (vt >= ch.vt0 + ch.vt) [[unlikely]] return changed();
           double u, w = 0.0;
           if (!c.number(u) || (!c.atEnd() && !c.number(w))) {
             ch.error = lineError(lineNo, lineBegin, contentEnd, unterminated, "cannot read texture coordinate");
@@ -414,7 +409,7 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
           break;
         }
         case Key::Vn: {
-          if (vn >= ch.vn0 + ch.vn) return changed();
+          if (vn >= ch.vn0 + ch.vn) [[unlikely]] return changed();
           glm::dvec3 n;
           if (!c.number(n.x) || !c.number(n.y) || !c.number(n.z)) {
             ch.error = lineError(lineNo, lineBegin, contentEnd, unterminated, "cannot read three normal components");
@@ -439,7 +434,7 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
             ch.error = lineError(lineNo, lineBegin, contentEnd, unterminated, "a face needs at least 3 corners");
             return false;
           }
-          if (corner + (faceCorners.size() - 2) * 3 > ch.corner0 + ch.corners) return changed();
+          if (corner + (faceCorners.size() - 2) * 3 > ch.corner0 + ch.corners) [[unlikely]] return changed();
           if (faceCorners.size() > 3) ++ch.polygons;
           // Indices resolve against what the file has defined so far, as
           // a single pass sees it. Once a corner is out of range, the rest
@@ -483,13 +478,35 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
           break;
       }
       return true;
+    };
+    const bool read = forEachLineBlock(source, ch.begin, ch.end, buffers[worker], ch.error, [&](std::string_view piece) {
+      if (!forEachLine(piece.data(), piece.data() + piece.size(), parseLine)) return false;
+      const size_t done = bytesDone.fetch_add(piece.size()) + piece.size();
+      if (stop || isCancelled(progress)) {
+        stop = true;
+        return false;
+      }
+      // Only the calling thread reports (the callback need not be
+      // thread-safe), in file-size steps like a single pass would.
+      size_t due = nextReport.load();
+      if (worker == 0 && done >= due && nextReport.compare_exchange_strong(due, done - done % progressStep + progressStep)) {
+        reportProgress(progress, 0.9 * double(done) / double(size), "Reading OBJ");
+        if (isCancelled(progress)) {
+          stop = true;
+          return false;
+        }
+      }
+      return true;
     });
+    if (!read) {
+      stop = true;
+      return;
+    }
     // Fewer statements than pass A counted: the rest of the chunk's space
     // would stay unwritten.
     if (ch.error.empty() && !stop && (v != ch.v0 + ch.v || vt != ch.vt0 + ch.vt || vn != ch.vn0 + ch.vn ||
                                       corner != ch.corner0 + ch.corners))
       changed();
-    bytesDone.fetch_add(size_t(end - reported));
   });
   buffers = {};
   if (stop && isCancelled(progress)) {
