@@ -258,6 +258,30 @@ class TestMeshTruncation : public QObject {
     QCOMPARE(contentHash(*after.mesh), contentHash(w));
   }
 
+  // The file is read in pieces of 256 kB (line_blocks.h); text in memory is
+  // not copied. Both give the same mesh and report, with lines longer than
+  // a piece (a 600 kB comment, a 40,000-corner polygon) and a last line
+  // without a line end.
+  void fileAndMemoryReadTheSame() {
+    std::string text = gridObj(150);
+    const size_t middle = text.find('\n', text.size() / 2) + 1;
+    std::string longPolygon = "f";
+    for (int i = 0; i < 40000; ++i) longPolygon += " " + std::to_string(1 + i % 5000);
+    text.insert(middle, "# " + std::string(600 << 10, 'x') + "\n" + longPolygon + "\n");
+    text += "v 656000.5 5514000.5 301.25";  // no line end
+    const std::string p = path("pieces.obj");
+    writeFile(p, text);
+    const ImportResult fromFile = importMesh(p, objReader());
+    const ImportResult fromMemory = importObjFromMemory(text, p, tmp_.path().toStdString(), objReader());
+    QVERIFY2(fromFile.ok(), fromFile.error.c_str());
+    QVERIFY2(fromMemory.ok(), fromMemory.error.c_str());
+    QCOMPARE(contentHash(*fromFile.mesh), contentHash(*fromMemory.mesh));
+    QCOMPARE(fromFile.report.trianglesIn, fromMemory.report.trianglesIn);
+    QCOMPARE(fromFile.report.trianglesIn, size_t(150 * 150 * 2 + 39998));
+    QCOMPARE(fromFile.report.warnings, fromMemory.report.warnings);
+    QVERIFY2(anyWarning(fromFile.report, p, "cut short"), joined(fromFile.report.warnings).c_str());
+  }
+
   // ---- MTL ---------------------------------------------------------------------
 
   void mtlCutAtEveryByte() {
