@@ -33,7 +33,7 @@
 // short read, a chunk that counts differently the second time, or a size
 // or time that changed by the end is an error naming the file
 // (byte_source.h). The price is the kernel copying the file into the
-// buffers, once per pass: about 4% more CPU time for the whole import than
+// buffers, once per pass: about 5% more CPU time for the whole import than
 // mapping (bench/decimate/README.md). Results, messages and line numbers
 // are the same for any number of threads, and the same as a single pass.
 
