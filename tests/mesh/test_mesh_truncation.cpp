@@ -228,11 +228,19 @@ class TestMeshTruncation : public QObject {
     const ImportResult whole = importMesh(p, o);
     QVERIFY2(whole.ok(), whole.error.c_str());
     const MeshData& w = *whole.mesh;
-    auto startsLikeWhole = [&](const MeshData& m) {
-      return m.positions.size() <= w.positions.size() && m.indices.size() <= w.indices.size() &&
-             std::equal(m.positions.begin(), m.positions.end(), w.positions.begin()) &&
-             std::equal(m.uvs.begin(), m.uvs.end(), w.uvs.begin()) &&
-             std::equal(m.indices.begin(), m.indices.end(), w.indices.begin());
+    // A file read while it was being written back can end inside a face
+    // line (said by a warning); that face may then read as another one
+    // (`f 7/7 8/8 91/91` cut to `f 7/7 8/8 9`), with a vertex of its own:
+    // the last triangle and vertex are then left out of the comparison.
+    auto startsLikeWhole = [&](const ImportResult& r) {
+      const MeshData& m = *r.mesh;
+      const size_t slack = anyWarning(r.report, p, "cut short") ? 1 : 0;
+      const size_t nv = m.positions.size() - std::min(m.positions.size(), slack);
+      const size_t ni = m.indices.size() - std::min(m.indices.size(), 3 * slack);
+      return nv <= w.positions.size() && ni <= w.indices.size() && m.uvs.size() == m.positions.size() &&
+             std::equal(m.positions.begin(), m.positions.begin() + long(nv), w.positions.begin()) &&
+             std::equal(m.uvs.begin(), m.uvs.begin() + long(nv), w.uvs.begin()) &&
+             std::equal(m.indices.begin(), m.indices.begin() + long(ni), w.indices.begin());
     };
     const size_t shortLength = text.find('\n', text.size() / 3) + 4;  // inside a line
     size_t errors = 0, wholes = 0, parts = 0;
@@ -246,7 +254,7 @@ class TestMeshTruncation : public QObject {
           ++errors;
           continue;
         }
-        QVERIFY2(startsLikeWhole(*r.mesh), "the mesh is not what the file held at any one moment");
+        QVERIFY2(startsLikeWhole(r), "the mesh is not what the file held at any one moment");
         if (r.mesh->indices.size() == w.indices.size()) ++wholes;
         else ++parts;
       }
