@@ -14,6 +14,7 @@
 #include <assimp/scene.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "mesh/ply_check.h"
 #include "mesh/texture_decode.h"
 
 namespace hs::mesh {
@@ -142,6 +143,12 @@ bool readWithAssimp(const std::string& path, const ImportOptions& options,
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_SortByPType | aiProcess_FlipUVs |
                          aiProcess_ValidateDataStructure | aiProcess_GlobalScale;
+  const std::string ext = [&] {
+    std::string e = std::filesystem::path(path).extension().string();
+    for (auto& ch : e) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    return e;
+  }();
+  if (ext == ".ply" && !checkPlyComplete(path, error)) return false;
   const aiScene* scene = importer.ReadFile(path, flags);
   if (!scene) {
     if (isCancelled(progress)) {
@@ -158,11 +165,6 @@ bool readWithAssimp(const std::string& path, const ImportOptions& options,
     return false;
   }
 
-  const std::string ext = [&] {
-    std::string e = std::filesystem::path(path).extension().string();
-    for (auto& ch : e) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-    return e;
-  }();
   bool zUp = options.up == UpAxis::Z || (options.up == UpAxis::Auto && fileIsZUp(*scene, ext));
   report.upAxisConverted = !zUp;
   // Y-up to Z-up: x stays, file y becomes z, file z becomes -y.

@@ -4,8 +4,8 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+
+#include "mesh/byte_source.h"
 
 namespace hs::mesh {
 namespace {
@@ -40,27 +40,22 @@ std::string lower(std::string s) {
 }  // namespace
 
 bool readGeoOffsetFile(const std::string& path, GeoOffset& out, std::string& error) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
-    error = path + ": cannot open the offset file";
-    return false;
-  }
-  std::stringstream ss;
-  ss << f.rdbuf();
-  const std::string text = ss.str();
+  std::string text;
+  if (!readWholeFile(path, text, error)) return false;
   if (text.find('\0') != std::string::npos) {
     error = path + ": not a text offset file (binary data)";
     return false;
   }
   const std::string name = lower(fs::path(path).filename().string());
   const bool odm = name.find("odm_georeferencing_model_geo") != std::string::npos;
-  std::istringstream lines(text);
-  std::string line;
   int lineNo = 0;
   std::string firstText;
-  while (std::getline(lines, line)) {
+  for (size_t at = 0; at < text.size();) {
+    const size_t nl = text.find('\n', at);
+    const bool terminated = nl != std::string::npos;
+    std::string_view v(text.data() + at, (terminated ? nl : text.size()) - at);
+    at = terminated ? nl + 1 : text.size();
     ++lineNo;
-    std::string_view v(line);
     while (!v.empty() && (v.front() == ' ' || v.front() == '\t')) v.remove_prefix(1);
     while (!v.empty() && (v.back() == '\r' || v.back() == ' ' || v.back() == '\t')) v.remove_suffix(1);
     if (v.empty() || v.front() == '#') continue;
@@ -75,6 +70,12 @@ bool readGeoOffsetFile(const std::string& path, GeoOffset& out, std::string& err
       out.kind = odm ? "odm" : name.size() > 11 && name.ends_with("_offset.xyz") ? "pix4d" : "xyz";
       out.source = path;
       out.crs = odm ? firstText : std::string();
+      // A number cut short still reads (`300.125` cut to `30`), and the
+      // mesh would land hundreds of metres off without a word.
+      out.warning = terminated ? std::string()
+                               : path + ":" + std::to_string(lineNo) +
+                                     ": the offset line has no line end, so the file may have been cut short; the "
+                                     "offset was read as it stands ('" + std::string(v.substr(0, 60)) + "')";
       return true;
     }
     // ODM names its coordinate system on the line before the offset.

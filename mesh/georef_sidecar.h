@@ -21,6 +21,7 @@ struct GeoOffset {
   std::string kind;    // "pix4d", "odm", "xyz" or "manual"
   std::string source;  // the file read, or "set by hand"
   std::string crs;     // coordinate system named by the file (ODM), else empty
+  std::string warning;  // for the import report: the offset may be cut short, else empty
 };
 
 // Reads an offset file of any of the kinds above (the kind is told by the

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "mesh/assimp_importer.h"
-#include "mesh/mapped_file.h"
+#include "mesh/byte_source.h"
 #include "mesh/mesh_sanitize.h"
 #include "mesh/obj_reader.h"
 
@@ -50,6 +50,7 @@ bool applyGeoOffset(MeshData& mesh, ImportReport& report, const ImportOptions& o
       break;
     }
   }
+  if (!g.warning.empty()) report.warnings.push_back(g.warning);
   mesh.origin += g.offset;
   report.geoOffset = g.offset;
   report.geoOffsetSource = g.source;
@@ -108,7 +109,8 @@ ImportResult importObjFromMemory(std::string_view data, const std::string& name,
   report.reader = "obj";
   MeshData mesh;
   std::string error;
-  if (!readObj(data, name, baseDir, options, progress, mesh, report, error))
+  const ByteSource source(data, name);
+  if (!readObj(source, baseDir, options, progress, mesh, report, error))
     return fail(std::move(report), std::move(error), progress);
   return finish(std::move(mesh), std::move(report), options, progress, start);
 }
@@ -121,7 +123,7 @@ ImportResult importMesh(const std::string& path, const ImportOptions& options,
   const std::string ext = lowerExtension(path);
 
   // Check the path before any reader sees it, so the message is ours.
-  MappedFile file;
+  ByteSource file;
   std::string error;
   if (!file.open(path, error)) return fail(std::move(report), std::move(error), progress);
   if (file.size() == 0) return fail(std::move(report), path + ": file is empty (0 bytes)", progress);
@@ -132,7 +134,7 @@ ImportResult importMesh(const std::string& path, const ImportOptions& options,
   if (useObj) {
     report.reader = "obj";
     const std::string baseDir = std::filesystem::path(path).parent_path().string();
-    if (!readObj(file.view(), path, baseDir, options, progress, mesh, report, error, /*releaseInput=*/true))
+    if (!readObj(file, baseDir, options, progress, mesh, report, error))
       return fail(std::move(report), std::move(error), progress);
   } else {
     report.reader = "assimp";

@@ -1,8 +1,9 @@
 #include "mesh/mtl_reader.h"
 
 #include <charconv>
-#include <fstream>
 #include <sstream>
+
+#include "mesh/byte_source.h"
 
 namespace hs::mesh {
 namespace {
@@ -50,12 +51,14 @@ std::string mapFileName(const std::string& rest) {
 
 }  // namespace
 
-bool readMtl(const std::string& path, std::vector<MtlMaterial>& out, std::string& error) {
-  std::ifstream in(path);
-  if (!in) {
-    error = "material library not found: " + path;
+bool readMtl(const std::string& path, std::vector<MtlMaterial>& out, std::string& error,
+             std::vector<std::string>* warnings) {
+  std::string text, readError;
+  if (!readWholeFile(path, text, readError)) {
+    error = "material library " + readError;  // "material library a.mtl: file not found"
     return false;
   }
+  std::istringstream in(text);
   std::string line;
   int lineNo = 0;
   MtlMaterial* cur = nullptr;
@@ -93,6 +96,14 @@ bool readMtl(const std::string& path, std::vector<MtlMaterial>& out, std::string
       cur->diffuseMap = mapFileName(rest);
     }
   }
+  // Cut short mid-line, `Kd 0.8 0.6 0.25` still reads as `Kd 0.8 0.6 0.`:
+  // a missing final line end is said, never silent.
+  const size_t lastLineStart = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
+  const std::string lastLine = trim(text.substr(lastLineStart));
+  if (warnings && !lastLine.empty())
+    warnings->push_back(path + ":" + std::to_string(lineNo) +
+                        ": the file does not end with a line end, so it may have been cut short; its last line ('" +
+                        lastLine.substr(0, 60) + "') was read as it stands");
   return true;
 }
 

@@ -16,7 +16,10 @@ struct MtlMaterial {
 };
 
 // Appends the materials of `path` to `out`. Returns false with `error` (file
-// and line) if the file cannot be read; unknown statements are ignored.
-bool readMtl(const std::string& path, std::vector<MtlMaterial>& out, std::string& error);
+// and line) if the file cannot be read or changed while it was read;
+// unknown statements are ignored. `warnings` (optional) gets what was read
+// but may be wrong: a last line without a line end (a file cut short).
+bool readMtl(const std::string& path, std::vector<MtlMaterial>& out, std::string& error,
+             std::vector<std::string>* warnings = nullptr);
 
 }  // namespace hs::mesh

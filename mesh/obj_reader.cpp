@@ -1,8 +1,5 @@
 #include "mesh/obj_reader.h"
 
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <charconv>
@@ -12,25 +9,33 @@
 #include <unordered_map>
 
 #include "core/parallel.h"
+#include "mesh/line_blocks.h"
 #include "mesh/mtl_reader.h"
 #include "mesh/texture_decode.h"
 
 // How the reader scales (photogrammetry OBJs run to gigabytes):
-//   1. the text is cut into chunks at line starts;
-//   2. pass A, in parallel: each chunk counts its lines and its v, vt, vn and
-//      triangle corners (a cheap scan, no number parsing);
+//   1. the file is cut into chunks at line starts;
+//   2. pass A, in parallel: each chunk is read (pread, 256 kB at a time,
+//      into its worker's buffer: line_blocks.h) and counts its lines and
+//      its v, vt, vn and triangle corners (a cheap scan; only its first
+//      vertex is parsed, for the origin);
 //   3. prefix sums give every chunk the line number, vertex numbers and
 //      corner offset it starts at, and the output arrays are allocated once
 //      at their final size;
-//   4. pass B, in parallel: each chunk parses its lines straight into those
-//      arrays at its offsets, resolving face indices (absolute and relative)
-//      against the global counts it now knows;
+//   4. pass B, in parallel: each chunk is read again and parses its lines
+//      straight into those arrays at its offsets, resolving face indices
+//      (absolute and relative) against the global counts it now knows;
 //   5. serially: materials, submeshes, messages in file order, then the
 //      vertex build, which writes the final indices over the corner array.
-// No per-chunk copies are merged, so memory stays near the final mesh; when
-// the text is a file mapping, each chunk's pages are dropped from memory as
-// soon as a pass is done with them. Results, messages and line numbers are
-// the same for any number of threads, and the same as a single pass.
+// No per-chunk copies are merged, so memory stays near the final mesh plus
+// a 256 kB piece of the file per worker. The file is read, not mapped: a
+// mapped file that shrinks kills the process with SIGBUS, while here a
+// short read, a chunk that counts differently the second time, or a size
+// or time that changed by the end is an error naming the file
+// (byte_source.h). The price is the kernel copying the file into the
+// buffers, once per pass: about 5% more CPU time for the whole import than
+// mapping (bench/decimate/README.md). Results, messages and line numbers
+// are the same for any number of threads, and the same as a single pass.
 
 namespace hs::mesh {
 namespace {
@@ -54,7 +59,10 @@ struct Cursor {
     while (p < end && *p != ' ' && *p != '\t') ++p;
     return {b, size_t(p - b)};
   }
-  bool number(double& v) {
+  // Inlined by force, as parseCorner: they run for every number of the
+  // file, and GCC 12 stops inlining them into the line parser once it
+  // grows a little (8% more instructions for the whole import, callgrind).
+  [[gnu::always_inline]] bool number(double& v) {
     skipSpace();
     if (p < end && *p == '+') ++p;  // from_chars rejects a leading '+'
     const auto r = std::from_chars(p, end, v);
@@ -69,7 +77,7 @@ struct Corner {
   int64_t v = 0, vt = 0, vn = 0;
 };
 
-bool parseCorner(std::string_view tok, Corner& c) {
+[[gnu::always_inline]] inline bool parseCorner(std::string_view tok, Corner& c) {
   auto parseInt = [](std::string_view s, int64_t& out) {
     if (s.empty()) {
       out = 0;
@@ -119,26 +127,33 @@ Key classify(std::string_view key) {
   return Key::Other;  // o, g, s, vp and others carry nothing we draw
 }
 
-// Calls fn(lineBegin, contentEnd, lineEnd) for every line of [begin, end);
-// contentEnd excludes a trailing '\r'. Stops early when fn returns false.
+// Calls fn(lineBegin, contentEnd, terminated) for every line of [begin,
+// end); contentEnd excludes the line end and a '\r' before it, and only the
+// last line can lack a line end (terminated false). Returns false when fn
+// stopped it by returning false.
 template <class Fn>
-void forEachLine(const char* begin, const char* end, Fn&& fn) {
+bool forEachLine(const char* begin, const char* end, Fn&& fn) {
   for (const char* p = begin; p < end;) {
     const char* nl = static_cast<const char*>(memchr(p, '\n', size_t(end - p)));
-    const char* lineEnd = nl ? nl : end;
-    const char* contentEnd = lineEnd;
+    const char* contentEnd = nl ? nl : end;
     if (contentEnd > p && contentEnd[-1] == '\r') --contentEnd;
-    if (!fn(p, contentEnd, lineEnd)) return;
+    if (!fn(p, contentEnd, nl != nullptr)) return false;
     p = nl ? nl + 1 : end;
   }
+  return true;
 }
 
 struct Chunk {
-  const char* begin = nullptr;
-  const char* end = nullptr;
+  uint64_t begin = 0, end = 0;  // byte offsets in the file
   // Pass A: what the chunk holds.
   size_t newlines = 0, v = 0, vt = 0, vn = 0, corners = 0;
   bool vtRefs = false, vnRefs = false;
+  // The chunk's first vertex, for the provisional origin: whether one was
+  // read (finite, or malformed, which pass B reports), how many NaN/Inf
+  // vertices came before it in the chunk, and the rounded position.
+  enum class FirstVertex : uint8_t { NotYet, Finite, Malformed } firstVertex = FirstVertex::NotYet;
+  size_t nonFiniteBefore = 0;
+  glm::dvec3 firstFinite{0.0};
   // Where it starts in the file (prefix sums of the above).
   size_t line0 = 0, v0 = 0, vt0 = 0, vn0 = 0, corner0 = 0;
   // Pass B: what happened, merged in file order afterwards.
@@ -146,6 +161,8 @@ struct Chunk {
   size_t firstOutOfRangeLine = 0;
   size_t polygons = 0, skipped = 0;
   bool anyTexcoordRef = false, anyNormalRef = false;
+  size_t unterminatedLine = 0;  // the file's last line, when it has no line end
+  std::string unterminatedText;
   struct Usemtl {
     size_t corner;  // faces from this corner on use the material
     std::string name;
@@ -158,99 +175,121 @@ struct Chunk {
   std::vector<Mtllib> mtllib;
 };
 
-// Drops the whole pages of [b, e) from this process's memory: the file
-// stays in the page cache, but its pages stop counting towards our peak
-// memory once a pass is done with them. Only valid on a file mapping.
-void releasePages(const char* b, const char* e) {
-  static const size_t page = size_t(sysconf(_SC_PAGESIZE));
-  const uintptr_t lo = (reinterpret_cast<uintptr_t>(b) + page - 1) & ~(page - 1);
-  const uintptr_t hi = reinterpret_cast<uintptr_t>(e) & ~(page - 1);
-  if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_DONTNEED);
+// Cuts [0, size) into chunks of about `target` bytes that end after a line
+// end (or at the end of the file); only the bytes around each cut are read.
+bool cutChunks(const ByteSource& source, uint64_t target, std::vector<Chunk>& chunks, std::string& error) {
+  const uint64_t size = source.size();
+  std::string buffer;
+  std::string_view window;
+  uint64_t p = 0;
+  do {
+    Chunk ch;
+    ch.begin = p;
+    uint64_t cut = p + std::min(target, size - p);
+    while (cut < size) {
+      if (!source.read(cut, 64 << 10, buffer, window, error)) return false;
+      if (const void* nl = memchr(window.data(), '\n', window.size())) {
+        cut += uint64_t(static_cast<const char*>(nl) - window.data()) + 1;
+        break;
+      }
+      cut += window.size();
+    }
+    ch.end = std::min(cut, size);
+    chunks.push_back(std::move(ch));
+    p = chunks.back().end;
+  } while (p < size);
+  return true;
+}
+
+// The cold paths of the line parsers, kept out of them so they stay small
+// (see Cursor::number).
+
+[[gnu::noinline, gnu::cold]] void noteChanged(Chunk& ch, const std::string& name, size_t lineNo) {
+  ch.error = name + ":" + std::to_string(lineNo) +
+             ": the file changed while it was read (this part holds other statements than it did a moment "
+             "before); read it again once whatever writes it has finished";
+}
+
+[[gnu::noinline, gnu::cold]] void noteUnterminated(Chunk& ch, size_t lineNo, const char* begin, const char* end) {
+  ch.unterminatedLine = lineNo;
+  ch.unterminatedText.assign(begin, std::min<size_t>(size_t(end - begin), 60));
+}
+
+// The chunk's first vertex, for the provisional origin (`c` is past "v").
+template <class ToZUp>
+[[gnu::noinline, gnu::cold]] void noteFirstVertex(Chunk& ch, Cursor c, const ToZUp& toZUp) {
+  glm::dvec3 v;
+  if (!c.number(v.x) || !c.number(v.y) || !c.number(v.z)) {
+    ch.firstVertex = Chunk::FirstVertex::Malformed;
+  } else if (v = toZUp(v); std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) {
+    ch.firstVertex = Chunk::FirstVertex::Finite;
+    ch.firstFinite = glm::round(v);
+  } else {
+    ++ch.nonFiniteBefore;
+  }
 }
 
 }  // namespace
 
-bool readObj(std::string_view text, const std::string& name, const std::string& baseDir,
-             const ImportOptions& options, const Progress* progress, MeshData& out,
-             ImportReport& report, std::string& error, bool releaseInput) {
+bool readObj(const ByteSource& source, const std::string& baseDir, const ImportOptions& options,
+             const Progress* progress, MeshData& out, ImportReport& report, std::string& error) {
+  const std::string& name = source.name();
+  const uint64_t size = source.size();
   // A binary file (a renamed image, an FBX) is not an OBJ: say so instead of
   // reporting the first garbage line as malformed.
-  const size_t probe = std::min<size_t>(text.size(), 4096);
-  for (size_t i = 0; i < probe; ++i)
-    if (text[i] == '\0') {
-      error = name + ": not a text OBJ file (binary data at byte " + std::to_string(i) + ")";
+  {
+    std::string buffer;
+    std::string_view head;
+    if (!source.read(0, 4096, buffer, head, error)) return false;
+    if (const void* zero = memchr(head.data(), '\0', head.size())) {
+      error = name + ": not a text OBJ file (binary data at byte " +
+              std::to_string(static_cast<const char*>(zero) - head.data()) + ")";
       return false;
     }
+  }
 
   const bool zUp = options.up == UpAxis::Z;  // OBJ declares no axis: Y-up unless told
   report.upAxisConverted = !zUp;
   auto toZUp = [zUp](glm::dvec3 p) { return zUp ? p : glm::dvec3(p.x, -p.z, p.y); };
-  const char* const textBegin = text.data();
-  const char* const textEnd = text.data() + text.size();
 
-  auto lineError = [&](size_t lineNo, const char* lineBegin, const char* lineEnd, const std::string& what) {
-    const bool lastLine = lineEnd >= textEnd;
-    const bool noNewline = text.empty() || text.back() != '\n';
+  // `unterminated`: the line is the file's last and has no line end.
+  auto lineError = [&](size_t lineNo, const char* lineBegin, const char* lineEnd, bool unterminated,
+                       const std::string& what) {
     std::string shown(lineBegin, std::min<size_t>(size_t(lineEnd - lineBegin), 60));
-    if (lastLine && noNewline)
+    if (unterminated)
       return name + ":" + std::to_string(lineNo) +
              ": file is truncated: the last line stops in the middle of a statement ('" + shown + "')";
     return name + ":" + std::to_string(lineNo) + ": " + what + " ('" + shown + "')";
   };
 
-  // Provisional origin: the first finite vertex, rounded, keeps floats small
-  // from the first vertex on, so UTM coordinates never pass through single
-  // precision. Found before the parallel passes, which all need it.
-  glm::dvec3 origin(0.0);
-  size_t originVertex = SIZE_MAX;  // vertices before it are NaN/Inf, stored as read
-  size_t scanned = 0;
-  forEachLine(textBegin, textEnd, [&](const char* b, const char* ce, const char*) {
-    Cursor c{b, ce};
-    c.skipSpace();
-    if (c.p >= ce || *c.p == '#' || c.token() != "v") return true;
-    glm::dvec3 v;
-    if (!c.number(v.x) || !c.number(v.y) || !c.number(v.z)) return false;  // pass B reports it
-    v = toZUp(v);
-    if (std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) {
-      origin = glm::round(v);
-      originVertex = scanned;
-      return false;
-    }
-    ++scanned;
-    return true;
-  });
-
   // Chunks: about eight per worker so uneven chunks balance, never smaller
   // than 4 MB (a small file is one chunk, read exactly like a single pass).
+  // A worker reads its chunk a piece at a time into its own buffer, once
+  // per pass (line_blocks.h), so it holds ~256 kB of the file, not a chunk.
   const unsigned threads = resolveThreads(0);
-  const size_t target = std::max<size_t>(size_t(4) << 20, text.size() / (size_t(threads) * 8) + 1);
+  const uint64_t target = std::max<uint64_t>(uint64_t(4) << 20, size / (uint64_t(threads) * 8) + 1);
   std::vector<Chunk> chunks;
-  for (const char* p = textBegin; p < textEnd || chunks.empty();) {
-    Chunk ch;
-    ch.begin = p;
-    const char* cut = p + std::min<size_t>(target, size_t(textEnd - p));
-    if (cut < textEnd) {
-      const char* nl = static_cast<const char*>(memchr(cut, '\n', size_t(textEnd - cut)));
-      cut = nl ? nl + 1 : textEnd;
-    }
-    ch.end = cut;
-    chunks.push_back(ch);
-    p = cut;
-    if (p >= textEnd) break;
-  }
+  if (!cutChunks(source, target, chunks, error)) return false;
+  std::vector<std::string> buffers(threads);
 
   // Pass A: counts.
   std::atomic<bool> stop{false};
-  parallelTasks(chunks.size(), threads, [&](size_t k, unsigned) {
+  parallelTasks(chunks.size(), threads, [&](size_t k, unsigned slot) {
     if (stop) return;
     Chunk& ch = chunks[k];
-    forEachLine(ch.begin, ch.end, [&](const char* b, const char* ce, const char* le) {
-      ch.newlines += le < ch.end;
+    auto countLine = [&](const char* b, const char* ce, bool terminated) {
+      ch.newlines += terminated;
       Cursor c{b, ce};
       c.skipSpace();
       if (c.p >= ce || *c.p == '#') return true;
       switch (classify(c.token())) {
-        case Key::V: ++ch.v; break;
+        case Key::V:
+          // The provisional origin needs the first finite vertex of the
+          // file: each chunk finds its own first one.
+          if (ch.firstVertex == Chunk::FirstVertex::NotYet) [[unlikely]]
+            noteFirstVertex(ch, c, toZUp);
+          ++ch.v;
+          break;
         case Key::Vt: ++ch.vt; break;
         case Key::Vn: ++ch.vn; break;
         case Key::F: {
@@ -270,10 +309,18 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
         default: break;
       }
       return true;
+    };
+    const bool read = forEachLineBlock(source, ch.begin, ch.end, buffers[slot], ch.error, [&](std::string_view piece) {
+      forEachLine(piece.data(), piece.data() + piece.size(), countLine);
+      return !isCancelled(progress);
     });
-    if (releaseInput) releasePages(ch.begin, ch.end);
-    if (isCancelled(progress)) stop = true;
+    if (!read || isCancelled(progress)) stop = true;
   });
+  for (const Chunk& ch : chunks)
+    if (!ch.error.empty()) {  // the file could not be read
+      error = ch.error;
+      return false;
+    }
   // One report once the file is scanned, whatever the timing of the
   // workers below (only the calling thread reports, and it may finish its
   // chunks before the others cross a reporting step).
@@ -291,6 +338,20 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
     lines += ch.newlines, nv += ch.v, nvt += ch.vt, nvn += ch.vn, nc += ch.corners;
     vtRefs |= ch.vtRefs, vnRefs |= ch.vnRefs;
   }
+  // Provisional origin: the first finite vertex, rounded, keeps floats small
+  // from the first vertex on, so UTM coordinates never pass through single
+  // precision. Vertices before it (NaN/Inf) are stored as read; a malformed
+  // first vertex leaves it at 0 (pass B reports the line).
+  glm::dvec3 origin(0.0);
+  size_t originVertex = SIZE_MAX;
+  for (const Chunk& ch : chunks) {
+    if (ch.firstVertex == Chunk::FirstVertex::Malformed) break;
+    if (ch.firstVertex == Chunk::FirstVertex::Finite) {
+      origin = ch.firstFinite;
+      originVertex = ch.v0 + ch.nonFiniteBefore;  // every vertex before this chunk was NaN/Inf
+      break;
+    }
+  }
   std::vector<glm::vec3> positions(nv);  // relative to `origin`
   std::vector<glm::vec2> texcoords(nvt);
   std::vector<glm::vec3> fileNormals(nvn);
@@ -298,43 +359,38 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
   // indices are kept only if some face uses them.
   std::vector<uint32_t> cornerV(nc), cornerVt(vtRefs ? nc : 0), cornerVn(vnRefs ? nc : 0);
 
-  // Pass B: parse into place.
+  // Pass B: parse into place. The chunk is read again: if the file changed
+  // since pass A counted it, the counts no longer hold, and the chunk stops
+  // before writing past the space pass A gave it.
   std::atomic<size_t> bytesDone{0};
   const size_t progressStep = 4u << 20;
   std::atomic<size_t> nextReport{progressStep};
   parallelTasks(chunks.size(), threads, [&](size_t k, unsigned worker) {
     Chunk& ch = chunks[k];
+    if (stop) return;
     size_t lineNo = ch.line0, v = ch.v0, vt = ch.vt0, vn = ch.vn0, corner = ch.corner0;
+    auto changed = [&]() {
+      noteChanged(ch, name, lineNo);
+      stop = true;
+      return false;
+    };
     std::vector<Corner> faceCorners;
-    const char* reported = ch.begin;
-    forEachLine(ch.begin, ch.end, [&](const char* lineBegin, const char* contentEnd, const char*) {
+    auto parseLine = [&](const char* lineBegin, const char* contentEnd, bool terminated) {
       ++lineNo;
-      if (size_t(lineBegin - reported) >= (1u << 20)) {
-        const size_t done = bytesDone.fetch_add(size_t(lineBegin - reported)) + size_t(lineBegin - reported);
-        reported = lineBegin;
-        if (stop || isCancelled(progress)) {
-          stop = true;
-          return false;
-        }
-        // Only the calling thread reports (the callback need not be
-        // thread-safe), in file-size steps like a single pass would.
-        size_t due = nextReport.load();
-        if (worker == 0 && done >= due && nextReport.compare_exchange_strong(due, done - done % progressStep + progressStep)) {
-          reportProgress(progress, 0.9 * double(done) / double(text.size()), "Reading OBJ");
-          if (isCancelled(progress)) {
-            stop = true;
-            return false;
-          }
-        }
-      }
+      // Only the file's last line can end without a line end (chunks end
+      // after one).
+      const bool unterminated = !terminated;
       Cursor c{lineBegin, contentEnd};
       c.skipSpace();
+      if (unterminated && c.p < contentEnd) [[unlikely]]
+        noteUnterminated(ch, lineNo, lineBegin, contentEnd);
       if (c.p >= contentEnd || *c.p == '#') return true;
       switch (classify(c.token())) {
         case Key::V: {
+          if (v >= ch.v0 + ch.v) [[unlikely]] return changed();
           glm::dvec3 p;
           if (!c.number(p.x) || !c.number(p.y) || !c.number(p.z)) {
-            ch.error = lineError(lineNo, lineBegin, contentEnd, "cannot read three vertex coordinates");
+            ch.error = lineError(lineNo, lineBegin, contentEnd, unterminated, "cannot read three vertex coordinates");
             return false;
           }
           positions[v] = glm::vec3(v < originVertex ? toZUp(p) : toZUp(p) - origin);
@@ -342,9 +398,10 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
           break;
         }
         case Key::Vt: {
+          if (vt >= ch.vt0 + ch.vt) [[unlikely]] return changed();
           double u, w = 0.0;
           if (!c.number(u) || (!c.atEnd() && !c.number(w))) {
-            ch.error = lineError(lineNo, lineBegin, contentEnd, "cannot read texture coordinate");
+            ch.error = lineError(lineNo, lineBegin, contentEnd, unterminated, "cannot read texture coordinate");
             return false;
           }
           // Stored with v = 0 at the image's top row (the order images are read in).
@@ -352,9 +409,10 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
           break;
         }
         case Key::Vn: {
+          if (vn >= ch.vn0 + ch.vn) [[unlikely]] return changed();
           glm::dvec3 n;
           if (!c.number(n.x) || !c.number(n.y) || !c.number(n.z)) {
-            ch.error = lineError(lineNo, lineBegin, contentEnd, "cannot read three normal components");
+            ch.error = lineError(lineNo, lineBegin, contentEnd, unterminated, "cannot read three normal components");
             return false;
           }
           fileNormals[vn++] = glm::vec3(toZUp(n));
@@ -366,15 +424,17 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
             Corner cc;
             const std::string_view tok = c.token();
             if (!parseCorner(tok, cc)) {
-              ch.error = lineError(lineNo, lineBegin, contentEnd, "cannot read face corner '" + std::string(tok) + "'");
+              ch.error = lineError(lineNo, lineBegin, contentEnd, unterminated,
+                                   "cannot read face corner '" + std::string(tok) + "'");
               return false;
             }
             faceCorners.push_back(cc);
           }
           if (faceCorners.size() < 3) {
-            ch.error = lineError(lineNo, lineBegin, contentEnd, "a face needs at least 3 corners");
+            ch.error = lineError(lineNo, lineBegin, contentEnd, unterminated, "a face needs at least 3 corners");
             return false;
           }
+          if (corner + (faceCorners.size() - 2) * 3 > ch.corner0 + ch.corners) [[unlikely]] return changed();
           if (faceCorners.size() > 3) ++ch.polygons;
           // Indices resolve against what the file has defined so far, as
           // a single pass sees it. Once a corner is out of range, the rest
@@ -418,21 +478,53 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
           break;
       }
       return true;
+    };
+    const bool read = forEachLineBlock(source, ch.begin, ch.end, buffers[worker], ch.error, [&](std::string_view piece) {
+      if (!forEachLine(piece.data(), piece.data() + piece.size(), parseLine)) return false;
+      const size_t done = bytesDone.fetch_add(piece.size()) + piece.size();
+      if (stop || isCancelled(progress)) {
+        stop = true;
+        return false;
+      }
+      // Only the calling thread reports (the callback need not be
+      // thread-safe), in file-size steps like a single pass would.
+      size_t due = nextReport.load();
+      if (worker == 0 && done >= due && nextReport.compare_exchange_strong(due, done - done % progressStep + progressStep)) {
+        reportProgress(progress, 0.9 * double(done) / double(size), "Reading OBJ");
+        if (isCancelled(progress)) {
+          stop = true;
+          return false;
+        }
+      }
+      return true;
     });
-    bytesDone.fetch_add(size_t(ch.end - reported));
-    if (releaseInput) releasePages(ch.begin, ch.end);
+    if (!read) {
+      stop = true;
+      return;
+    }
+    // Fewer statements than pass A counted: the rest of the chunk's space
+    // would stay unwritten.
+    if (ch.error.empty() && !stop && (v != ch.v0 + ch.v || vt != ch.vt0 + ch.vt || vn != ch.vn0 + ch.vn ||
+                                      corner != ch.corner0 + ch.corners))
+      changed();
   });
+  buffers = {};
   if (stop && isCancelled(progress)) {
     error = name + ": import cancelled";
     return false;
   }
+  // Written to while we read it: whatever a chunk found may mix two
+  // versions of the file, so say that rather than what they found.
+  if (!source.unchanged(error)) return false;
   std::vector<MtlMaterial> mtl;
   auto readLibraries = [&](const Chunk& ch) {
     for (const auto& lib : ch.mtllib) {
       std::string mtlError;
       const auto path = (std::filesystem::path(baseDir) / lib.name).string();
-      if (!readMtl(path, mtl, mtlError))
+      std::vector<std::string> mtlWarnings;
+      if (!readMtl(path, mtl, mtlError, &mtlWarnings))
         report.warnings.push_back(name + ":" + std::to_string(lib.line) + ": " + mtlError);
+      for (auto& w : mtlWarnings) report.warnings.push_back(std::move(w));
     }
   };
   for (size_t k = 0; k < chunks.size(); ++k)
@@ -486,6 +578,12 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
     anyTexcoordRef |= ch.anyTexcoordRef;
     anyNormalRef |= ch.anyNormalRef;
     if (!firstOutOfRangeLine) firstOutOfRangeLine = ch.firstOutOfRangeLine;
+    // A file cut short mid-line can still parse (`v 1 2 3.25` cut to
+    // `v 1 2 3.`), so a missing final line end is said, never silent.
+    if (ch.unterminatedLine)
+      report.warnings.push_back(name + ":" + std::to_string(ch.unterminatedLine) +
+                                ": the file does not end with a line end, so it may have been cut short; its last "
+                                "line ('" + ch.unterminatedText + "') was read as it stands");
   }
   for (size_t i = 0; i < submeshes.size(); ++i)
     submeshes[i].indexCount =
@@ -501,7 +599,7 @@ bool readObj(std::string_view text, const std::string& name, const std::string& 
     report.warnings.push_back(name + ": " + std::to_string(report.skippedLines) +
                               " line/point/curve statements were skipped (not triangles)");
   if (nc == 0) {
-    error = text.empty() ? name + ": file is empty (0 bytes)"
+    error = size == 0 ? name + ": file is empty (0 bytes)"
                          : name + ": no faces to import (" + std::to_string(positions.size()) +
                                " vertices, 0 faces)";
     return false;

@@ -1,12 +1,13 @@
 #include "mesh/texture_decode.h"
 
 #include <filesystem>
-#include <fstream>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
+
+#include "mesh/byte_source.h"
 
 namespace hs::mesh {
 namespace {
@@ -27,8 +28,12 @@ bool readRgba8(OIIO::ImageInput& in, const std::string& what, Texture& out, std:
   }
   const int nch = spec.nchannels;
   std::vector<uint8_t> pixels(size_t(spec.width) * spec.height * nch);
-  if (!in.read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, pixels.data())) {
-    error = what + ": cannot decode image: " + in.geterror();
+  // A decoder may complain and still return true: libjpeg fills a JPEG cut
+  // short with grey and only warns ("Premature end of JPEG file"), so
+  // anything it said makes the image unreadable, not half grey.
+  const bool read = in.read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, pixels.data());
+  if (const std::string complaint = in.geterror(); !read || !complaint.empty()) {
+    error = what + ": cannot decode image: " + (complaint.empty() ? std::string("unknown error") : complaint);
     return false;
   }
   out.width = spec.width;
@@ -67,8 +72,11 @@ bool decodeTextureFile(const std::string& path, Texture& out, std::string& error
     return false;
   }
   // Keep the original bytes: the scene file stores them instead of raw pixels.
-  std::ifstream f(path, std::ios::binary);
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  std::vector<uint8_t> bytes;
+  if (!readWholeFile(path, bytes, error)) {
+    error = "texture " + error;  // "texture a.png: the file changed while it was read (...)"
+    return false;
+  }
   if (bytes.empty()) {
     error = "texture file is empty (0 bytes): " + path;
     return false;

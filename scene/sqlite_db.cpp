@@ -17,6 +17,10 @@ bool SqliteDb::open(const std::string& path, bool readOnly, bool create, std::st
     return false;
   }
   sqlite3_extended_result_codes(db_, 1);
+  // Never map the file: a mapped database that shrinks under us (another
+  // program cutting it) would be SIGBUS, where a read is an error. Debian
+  // builds SQLite with mapping off; this holds with any build.
+  sqlite3_exec(db_, "PRAGMA mmap_size=0", nullptr, nullptr, nullptr);
   sqlite3_busy_timeout(db_, 5000);  // another process (CLI) may be writing
   return true;
 }

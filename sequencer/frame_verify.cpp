@@ -40,8 +40,11 @@ FrameCheck checkFrameFile(const std::string& path, int width, int height, const 
   }
   if (deep) {
     std::vector<uint8_t> pixels(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels) * 4);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-      c.problem = path + ": damaged (" + in->geterror() + ")";
+    // A decoder may complain and still return true: libjpeg fills a JPEG
+    // cut short with grey and only warns ("Premature end of JPEG file").
+    const bool read = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+    if (const std::string complaint = in->geterror(); !read || !complaint.empty()) {
+      c.problem = path + ": damaged (" + complaint + ")";
       return c;
     }
   }

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
@@ -201,6 +201,18 @@ DemImportResult run(const std::string& path, const DemImportOptions& opt, const 
   }
   GDALDriverH drv = GDALGetDatasetDriver(ds.get());
   rep.driver = drv ? GDALGetDriverShortName(drv) : "?";
+  // A text grid cut in its last line still reads: GDAL takes `12.2` for a
+  // cut `12.25` and missing values for nodata (which are then filled). A
+  // missing final line end is said, never silent.
+  if (rep.driver == "AAIGrid" || rep.driver == "GRASSASCIIGrid" || rep.driver == "XYZ") {
+    if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+      const bool cut = std::fseek(f, -1, SEEK_END) == 0 && std::fgetc(f) != '\n';
+      std::fclose(f);
+      if (cut)
+        rep.warnings.push_back("the file does not end with a line end, so it may have been cut short; its last "
+                               "line was read as it stands (a value cut short, or missing and filled as nodata)");
+    }
+  }
   const int W = GDALGetRasterXSize(ds.get()), H = GDALGetRasterYSize(ds.get());
   rep.sourceWidth = W;
   rep.sourceHeight = H;
@@ -459,6 +471,13 @@ DemImportResult run(const std::string& path, const DemImportOptions& opt, const 
     }
     if (src) outWkt = srsWkt(src);
   }
+  // GDAL may report a read failure and still hand back heights: a GeoTIFF
+  // cut in its tag data warns "IO error during reading of ...; tag
+  // ignored", and its tile offsets past the cut read as zero, so those tiles
+  // come back as empty, not as an error. Any such message means the heights
+  // cannot be trusted.
+  if (const std::string why = gdalErrors.firstReadProblem(); !why.empty())
+    fail("the file is damaged or truncated (" + why + ")");
   if (tgt) {
     rep.targetCrs = srsName(tgt);
     rep.targetEpsg = srsEpsg(tgt);

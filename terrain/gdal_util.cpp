@@ -25,4 +25,12 @@ void GdalErrorCapture::handler(CPLErr cls, CPLErrorNum, const char* msg) {
 
 std::string GdalErrorCapture::lastError() const { return errors_.empty() ? std::string() : errors_.back(); }
 
+std::string GdalErrorCapture::firstReadProblem() const {
+  if (!errors_.empty()) return errors_.front();
+  for (const std::string& w : warnings_)
+    for (const char* sign : {"IO error", "I/O error", "Read error", "read error"})
+      if (w.find(sign) != std::string::npos) return w;
+  return {};
+}
+
 }  // namespace hs::terrain

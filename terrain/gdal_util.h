@@ -28,6 +28,10 @@ class GdalErrorCapture {
   GdalErrorCapture& operator=(const GdalErrorCapture&) = delete;
   // The last failure message, or "" if none.
   std::string lastError() const;
+  // The first message saying that reading the file failed: any failure, or
+  // a warning of an I/O error (libtiff warns "IO error during reading of
+  // ...; tag ignored" and goes on); "" if none.
+  std::string firstReadProblem() const;
   const std::vector<std::string>& warnings() const { return warnings_; }
   void clear() {
     errors_.clear();

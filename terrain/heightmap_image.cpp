@@ -262,8 +262,11 @@ Result<Heightfield> importHeightmap(const std::string& path, const HeightmapImpo
                       "; a heightmap image needs 2..8193 samples per side");
   std::vector<float> v(size_t(w) * size_t(h));
   // Channel 0 only, as float: integer formats come back normalised to 0..1.
-  if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, v.data()))
-    return R::failure(path + ": cannot read the pixels; the file is damaged (" + in->geterror() + ")");
+  // A decoder may complain and still return true: libjpeg fills a JPEG cut
+  // short with grey and only warns, so anything it said refuses the file.
+  const bool read = in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, v.data());
+  if (const std::string complaint = in->geterror(); !read || !complaint.empty())
+    return R::failure(path + ": cannot read the pixels; the file is damaged or truncated (" + complaint + ")");
   auto attr = [&](const char* name, double& out) { return parseDouble(spec.get_string_attribute(name), out); };
   double mn = 0, mx = 0, sx = 1, sy = 1, ox = 0, oy = 0, oz = 0;
   const bool hasRange = attr("hs:height_min", mn) && attr("hs:height_max", mx);

@@ -27,10 +27,10 @@
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 
 #include "bench/common/bench_util.h"
+#include "bench/common/plot.h"
 #include "mesh/mesh_import.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
-#include "plot_png.h"
 #include "scan_terrain.h"
 
 using namespace hs::mesh;
@@ -273,7 +273,8 @@ int main(int argc, char** argv) {
                     terrainSamples, terrainRuns, stockTerrain == "all", stockTerrain == "0.1" || stockTerrain == "all"});
   }
 
-  std::vector<std::vector<hs::bench::Series>> panels;
+  using hs::bench::PlotMarker;
+  std::vector<hs::bench::PlotPanel> panels;
   for (const Dataset& ds : sets) {
     ErrorOptions eo;
     eo.samplesPerFace = ds.samples;
@@ -281,9 +282,9 @@ int main(int argc, char** argv) {
     if (measureErrors) meterStore.emplace(ds.mesh, eo);
     const ErrorMeter* meter = meterStore ? &*meterStore : nullptr;
     printHeader(ds.name.c_str(), ds.mesh, ds.samples);
-    hs::bench::Series sOurs{"ours (2 threads)", {200, 40, 40}, 0, false, {}, {}},
-        sMeshopt{"meshopt_simplify", {40, 90, 200}, 1, false, {}, {}},
-        sStock{"OpenMesh DecimaterT", {40, 150, 60}, 2, false, {}, {}};
+    hs::bench::PlotSeries sOurs{"ours (2 threads)", {200, 40, 40}, PlotMarker::Circle, false, {}, {}},
+        sMeshopt{"meshopt_simplify", {40, 90, 200}, PlotMarker::Square, false, {}, {}},
+        sStock{"OpenMesh DecimaterT", {40, 150, 60}, PlotMarker::Triangle, false, {}, {}};
     for (double ratio : ds.mesh.triangleCount() ? ratios : std::vector<double>{}) {
       MeshData oursOut, mo;
       Row ours, meshopt;
@@ -304,9 +305,9 @@ int main(int argc, char** argv) {
       char label[16];
       std::snprintf(label, sizeof label, "%g%%", ratio * 100);
       sOurs.points.push_back({ours.time, ours.error.rel(ours.error.hausdorff)});
-      sOurs.labels.push_back(label);
+      sOurs.pointLabels.push_back(label);
       sMeshopt.points.push_back({meshopt.time, meshopt.error.rel(meshopt.error.hausdorff)});
-      sMeshopt.labels.push_back(label);
+      sMeshopt.pointLabels.push_back(label);
       if (!noStock && (ds.stockAll || (ds.stockTen && ratio == 0.1))) {
         MeshData so;
         Row stock = runStock(ds.mesh, ours.triangles, ratio, so);
@@ -319,20 +320,17 @@ int main(int argc, char** argv) {
         std::printf("|  | (OpenMesh: building its mesh with add_face took %.3f s more) | | | | | | | | | | | | |\n",
                     stock.buildTime);
         sStock.points.push_back({stock.time, stock.error.rel(stock.error.hausdorff)});
-        sStock.labels.push_back(label);
+        sStock.pointLabels.push_back(label);
       }
     }
-    panels.push_back({sOurs, sMeshopt});
-    if (!sStock.points.empty()) panels.back().push_back(sStock);
+    panels.push_back({ds.shortName, "decimation time (s), targets labelled", "Hausdorff distance / bbox diagonal",
+                      true, true, {sOurs, sMeshopt}});
+    if (!sStock.points.empty()) panels.back().series.push_back(sStock);
   }
 
   if (!plotPath.empty() && !panels.empty()) {
-    hs::bench::Canvas canvas(900 * int(panels.size()), 640);
-    for (size_t p = 0; p < panels.size(); ++p)
-      hs::bench::plotLogLog(canvas, int(p) * 900, 0, int(p + 1) * 900, 640, sets[p].shortName,
-                            "DECIMATION TIME (S), TARGETS LABELLED", "HAUSDORFF / BBOX DIAGONAL", panels[p]);
-    std::string err;
-    if (canvas.savePng(plotPath, err))
+    const std::string err = hs::bench::savePlotPng(panels, plotPath, 900, 640);
+    if (err.empty())
       std::printf("\nerror-vs-time plot: %s\n", plotPath.c_str());
     else
       std::fprintf(stderr, "%s\n", err.c_str());

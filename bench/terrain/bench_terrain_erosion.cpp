@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "bench/common/bench_util.h"
-#include "bench/terrain/plot.h"
+#include "bench/common/plot.h"
 #include "core/parallel.h"
 #include "terrain/erosion_hydraulic.h"
 #include "terrain/erosion_thermal.h"
@@ -122,8 +122,8 @@ int main(int argc, char** argv) {
   std::printf("   error = final heights of the run minus those of the reference, metres\n\n");
   std::printf("%-10s %10s %6s %9s %11s %11s %9s %12s\n", "solver", "step", "iter", "seconds", "RMS error", "max error",
               "CFL-lim", "ref seconds");
-  hs::bench::Series hydro{"hydraulic (virtual pipes)", {0.15f, 0.35f, 0.8f}, {}};
-  hs::bench::Series thermal{"thermal (talus 30 deg)", {0.85f, 0.3f, 0.1f}, {}};
+  hs::bench::PlotSeries hydro{"hydraulic (virtual pipes)", {38, 89, 204}, hs::bench::PlotMarker::Square, false, {}, {}};
+  hs::bench::PlotSeries thermal{"thermal (talus 30°)", {217, 77, 26}, hs::bench::PlotMarker::Circle, false, {}, {}};
 
   // Hydraulic: 6 s of rain and flow.
   const double T = quick ? 2.0 : 6.0;
@@ -157,11 +157,13 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     thermal.points.push_back({r.seconds, d.rms});
   }
-  hs::bench::PlotSpec spec;
-  spec.title = "Erosion error vs run time (" + std::to_string(n) + "^2, reference: 16x smaller steps)";
-  spec.xLabel = "run time (s)";
-  spec.yLabel = "RMS height error (m)";
-  const std::string err = hs::bench::drawPlot(spec, {hydro, thermal}, plotPath);
+  hs::bench::PlotPanel panel;
+  panel.title = "Erosion error vs run time (" + std::to_string(n) + "², reference: 16x smaller steps)";
+  panel.xLabel = "run time (s)";
+  panel.yLabel = "RMS height error (m)";
+  panel.logX = panel.logY = true;
+  panel.series = {hydro, thermal};
+  const std::string err = hs::bench::savePlotPng({panel}, plotPath, 900, 560);
   if (!err.empty()) {
     std::fprintf(stderr, "plot: %s\n", err.c_str());
     return 1;

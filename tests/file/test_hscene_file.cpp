@@ -22,8 +22,10 @@
 #include "scene/document.h"
 #include "scene/edit.h"
 #include "scene/hscene_file.h"
+#include "scene/mesh_blob.h"
 #include "scene/operations.h"
 #include "scene/scene_json.h"
+#include "truncation.h"
 
 using namespace hs;
 using namespace hs::scene;
@@ -391,6 +393,70 @@ class TestHsceneFile : public QObject {
     const std::string bytes = readFile(p);
     writeFile(p, bytes.substr(0, bytes.size() / 2));
     expectRefused(p, {"damaged"});
+  }
+
+  // Cut at two dozen lengths, page boundaries among them: SQLite reads the
+  // pages past the end as zeros without a word, so what catches the damage
+  // is ours (blob checksums, the description's parse); never a partial
+  // scene.
+  void cutAtManyLengths() {
+    const std::string bytes = readFile(goodFile_);
+    QVERIFY(bytes.size() > 100000);
+    std::vector<size_t> cuts = hs::test::cutLengths(bytes.size(), bytes.size() / 20);
+    for (size_t page : {size_t(4096), size_t(8192), bytes.size() / 4096 / 2 * 4096, bytes.size() / 4096 * 4096 - 4096})
+      cuts.push_back(page);
+    const std::string p = path("cut.hscene");
+    for (size_t n : cuts) {
+      writeFile(p, bytes.substr(0, n));
+      qInfo("cut at byte %zu of %zu:", n, bytes.size());
+      expectRefused(p, {});
+    }
+  }
+
+  // Another program cuts the file and writes it back while it is opened
+  // again and again: every load gives the whole scene or an error naming
+  // the file. (SQLite reads with pread, never a mapping, so no SIGBUS;
+  // SqliteDb turns mapping off even where a build would have it on.)
+  void shrinkingAndGrowingWhileLoaded() {
+    const std::string p = copyOfGood("flapping.hscene");
+    const std::string bytes = readFile(p);
+    size_t errors = 0, wholes = 0;
+    {
+      hs::test::ShrinkAndGrow flapping(p, bytes, bytes.size() / 2 + 1000);
+      QVERIFY(flapping.started());
+      for (int i = 0; i < 20; ++i) {
+        std::string error;
+        const std::optional<SceneState> loaded = loadScene(p, error);
+        if (!loaded) {
+          QVERIFY2(error.find(p) != std::string::npos, error.c_str());
+          ++errors;
+          continue;
+        }
+        const std::string diff = stateDifference(rich_, *loaded);
+        QVERIFY2(diff.empty(), diff.c_str());
+        ++wholes;
+      }
+      qInfo("20 loads while the file was cut and rewritten %zu times: %zu errors, %zu whole", flapping.cycles(),
+            errors, wholes);
+    }
+  }
+
+  // The mesh blob cut at every length: an error naming the blob, every time.
+  void meshBlobCutAtEveryLength() {
+    const mesh::ImportResult quad = mesh::importMesh(kMeshData + "/textured_quad.obj");
+    QVERIFY2(quad.ok(), quad.error.c_str());
+    QCOMPARE(quad.mesh->textures.size(), size_t(1));
+    const std::vector<uint8_t> blob = encodeMesh(*quad.mesh);
+    std::string error;
+    const auto whole = decodeMesh(blob.data(), blob.size(), "mesh asset 7", error);
+    QVERIFY2(whole && meshDifference(*whole, *quad.mesh).empty(), error.c_str());
+    for (size_t n : hs::test::cutLengths(blob.size(), 1)) {
+      // A copy of exactly n bytes, so reading past them is a reading error.
+      const std::vector<uint8_t> cut(blob.begin(), blob.begin() + long(n));
+      error.clear();
+      QVERIFY2(!decodeMesh(cut.data(), cut.size(), "mesh asset 7", error), qPrintable(QString("cut at %1 decoded").arg(n)));
+      QVERIFY2(error.rfind("mesh asset 7: ", 0) == 0, error.c_str());
+    }
   }
 
   void newerFormatVersion() {

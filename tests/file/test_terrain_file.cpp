@@ -18,7 +18,9 @@
 #include "scene/terrain_layer_ops.h"
 #include "scene/terrain_ops.h"
 #include "terrain/stroke.h"
+#include "terrain/tile_blob.h"
 #include "terrain_compare.h"
+#include "truncation.h"
 
 using namespace hs;
 using namespace hs::scene;
@@ -206,6 +208,39 @@ class TestTerrainFile : public QObject {
         QVERIFY2(error.find(want) != std::string::npos, qPrintable(QString("%1: '%2' not in: %3").arg(c.name, want.c_str(), error.c_str())));
       QVERIFY2(error.find(p) != std::string::npos, error.c_str());
     }
+  }
+
+  // Height, holes and paint tile blobs (deflated, each the largest of its
+  // kind) cut at every length: an error naming the tile, and the terrain
+  // it was decoded into unchanged.
+  void tileBlobsCutAtEveryLength() {
+    Document doc;
+    richScene(doc);
+    terrain::Terrain& t = data(doc, doc.state().findByName("Valley")).terrain();
+    const int tiles = t.height.heights().tileCount();
+    auto largest = [&](auto encode) {
+      std::vector<uint8_t> best;
+      for (int i = 0; i < tiles; ++i)
+        if (std::vector<uint8_t> b = encode(i); b.size() > best.size()) best = std::move(b);
+      return best;
+    };
+    const std::vector<std::vector<uint8_t>> blobs = {
+        largest([&](int i) { return terrain::encodeHeightTile(t.height, i); }),
+        largest([&](int i) { return terrain::encodeHolesTile(t.height, i); }),
+        largest([&](int i) { return terrain::encodePaintTile(t.paint, 2, i); })};
+    const terrain::Terrain before = t.clone();
+    for (const std::vector<uint8_t>& blob : blobs) {
+      QVERIFY2(blob.size() > 40, qPrintable(QString::number(blob.size())));  // a tile with content (a uniform one is 32 + 1 to 4 bytes)
+      QVERIFY(terrain::decodeTile(t, blob).ok());
+      for (size_t n : test::cutLengths(blob.size(), 1)) {
+        const std::vector<uint8_t> cut(blob.begin(), blob.begin() + long(n));
+        const terrain::Status s = terrain::decodeTile(t, cut);
+        QVERIFY2(!s.ok(), qPrintable(QString("cut at %1 of %2 decoded").arg(n).arg(blob.size())));
+        QVERIFY2(s.error.rfind("terrain tile", 0) == 0, s.error.c_str());
+      }
+    }
+    const std::string diff = test::terrainDifference(t, before);
+    QVERIFY2(diff.empty(), diff.c_str());
   }
 
   // A description from an older save next to newer tiles of the same

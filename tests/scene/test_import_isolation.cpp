@@ -23,10 +23,12 @@
 #include <sstream>
 #include <thread>
 
+#include "file_bytes.h"
 #include "mesh/mesh_import.h"
 #include "mesh/tile_merge.h"
 #include "scene/import_isolation.h"
 #include "scene/import_pipeline.h"
+#include "truncation.h"
 
 using namespace hs;
 namespace fs = std::filesystem;
@@ -265,6 +267,48 @@ class TestImportIsolation : public QObject {
     QCOMPARE(there.error, here.error);
     const mesh::ImportResult missing = scene::importMeshIsolated(path("missing.ply"), {});
     QCOMPARE(missing.error, mesh::importMesh(path("missing.ply")).error);
+  }
+
+  // Every format read through the worker, cut short at seven lengths (a
+  // worker costs ~0.2 s to start; tests/mesh cuts PLY at every byte):
+  // an error naming the file, or (a cut that only lost bytes the format
+  // does not need) the whole mesh; never a part of it without a word.
+  void filesCutShort_data() {
+    QTest::addColumn<QString>("file");
+    QTest::newRow("glb") << QString::fromStdString(kData + "/textured_quad.glb");
+    QTest::newRow("fbx") << QString::fromStdString(kData + "/textured_quad.fbx");
+    QTest::newRow("ascii ply") << QString::fromStdString(kData + "/quad_and_triangle.ply");
+    QTest::newRow("binary ply") << QString::fromStdString(path("small_binary.ply"));
+  }
+  void filesCutShort() {
+    QFETCH(QString, file);
+    writeLargePly(path("small_binary.ply"), 6);
+    const std::string whole = hs::test::readFile(file.toStdString());
+    QVERIFY(!whole.empty());
+    scene::MeshImportRequest request;
+    request.import.up = mesh::UpAxis::Z;
+    request.files = {file.toStdString()};
+    const scene::ImportedMesh full = scene::importMeshFiles(request);
+    QVERIFY2(full.ok(), full.error.c_str());
+    const std::string ext = file.toStdString().substr(file.toStdString().rfind('.'));
+    const std::string cut = path("cut") + ext;
+    fs::copy_file(kData + "/checker_4x2.png", path("checker_4x2.png"), fs::copy_options::overwrite_existing);  // the FBX's texture
+    request.files = {cut};
+    size_t errors = 0;
+    for (size_t n : hs::test::cutLengths(whole.size(), whole.size() / 6 + 1)) {
+      hs::test::writeFile(cut, whole.substr(0, n));
+      const scene::ImportedMesh r = scene::importMeshFiles(request);
+      const QByteArray where = QByteArray("cut at byte ") + QByteArray::number(qulonglong(n)) + " of " +
+                               QByteArray::number(qulonglong(whole.size())) + ": ";
+      if (!r.ok()) {
+        QVERIFY2(!r.cancelled, where + r.error.c_str());
+        QVERIFY2(contains(r.error, cut.c_str()), where + r.error.c_str());
+        ++errors;
+        continue;
+      }
+      QVERIFY2(mesh::contentHash(*r.mesh) == mesh::contentHash(*full.mesh), where + "a different mesh, no error");
+    }
+    QVERIFY(errors > 0);
   }
 
   // ---- (3) Cancel kills the worker ---------------------------------------------------

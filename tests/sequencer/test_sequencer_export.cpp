@@ -18,6 +18,7 @@
 #include "sequencer/frame_verify.h"
 #include "sequencer/output_pattern.h"
 #include "synthetic_frames.h"
+#include "truncation.h"
 
 using namespace hs::sequencer;
 using hs::Image;
@@ -259,6 +260,49 @@ class TestExport : public QObject {
     QCOMPARE(int64_t(valid), r.written);
     QVERIFY(!fs::exists(fs::path(d) / ("f_" + QString::number(*r.failedFrame).rightJustified(5, '0').toStdString() + ".png")));
     QVERIFY(!r.notes.empty());
+  }
+
+  // A frame cut short (a copy that stopped, a full disk on the farm's file
+  // server) in every format the export writes: the deep check refuses it
+  // naming the file, unless the cut lost only bytes the pixels do not need
+  // (then they decode to the same pixels as the whole file).
+  void framesCutShortFailTheDeepCheck_data() {
+    QTest::addColumn<QString>("name");
+    for (const char* n : {"c_%05d.png", "c_%05d.jpg", "c_%05d.exr", "c_%05d.tif"}) QTest::newRow(n) << QString(n);
+  }
+  void framesCutShortFailTheDeepCheck() {
+    QFETCH(QString, name);
+    const std::string d = dir("cut");
+    QVERIFY(run(settingsFor(d, "0", name.toStdString())).ok);
+    const std::string ext = name.toStdString().substr(name.toStdString().rfind('.'));
+    const std::string frame = d + "/c_00000" + ext;
+    const std::string bytes = readAll(frame);
+    QVERIFY(!bytes.empty());
+    auto pixels = [](const std::string& file) {
+      std::vector<float> px;
+      auto in = OIIO::ImageInput::open(file);
+      if (!in) return px;
+      px.resize(size_t(in->spec().image_pixels()) * size_t(in->spec().nchannels));
+      if (!in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, px.data())) px.clear();
+      return px;
+    };
+    const std::vector<float> whole = pixels(frame);
+    QVERIFY(!whole.empty());
+    const std::string cut = d + "/cut" + ext;
+    size_t refused = 0;
+    for (size_t n : hs::test::cutLengths(bytes.size(), bytes.size() / 40 + 1)) {
+      std::ofstream(cut, std::ios::binary | std::ios::trunc).write(bytes.data(), std::streamsize(n));
+      const FrameCheck c = checkFrameFile(cut, 2 * kEyeW, kEyeH, {}, true);
+      const QByteArray where = QByteArray("cut at byte ") + QByteArray::number(qulonglong(n)) + " of " +
+                               QByteArray::number(qulonglong(bytes.size())) + ": ";
+      if (c.ok) {
+        QVERIFY2(pixels(cut) == whole, where + "passed the deep check with other pixels");
+        continue;
+      }
+      QVERIFY2(c.problem.find(cut) != std::string::npos, where + c.problem.c_str());
+      ++refused;
+    }
+    QVERIFY(refused > 0);
   }
 
   void failingWriterStopsWithTheFrameNumber() {

@@ -365,6 +365,32 @@ class TestTracks : public QObject {
     QCOMPARE(sequenceToJsonText(*back), text);  // stable text
   }
 
+  // The sequence's JSON text cut at every length: refused with a message,
+  // or (only whitespace lost) the same sequence.
+  void sequenceJsonCutAtEveryLength() {
+    Sequence s;
+    Binding cam;
+    cam.entity = 3;
+    ScalarTrack fov{"camera.fov_deg", {key(0, 40), key(2.5, 55, Interpolation::Linear)}};
+    cam.tracks.push_back(fov);
+    cam.tracks.push_back(RotationTrack{"transform.rotation", {rkey(0, yaw(10)), rkey(2, yaw(200), Interpolation::Cubic)}});
+    cam.tracks.push_back(StepTrack{"entity.visible", {{0.0, true}, {5.5, false}}});
+    s.bindings.push_back(cam);
+    const std::string text = sequenceToJsonText(s);
+    std::string error;
+    QVERIFY2(sequenceFromJsonText(text, error), error.c_str());
+    for (size_t n = 0; n < text.size(); ++n) {
+      error.clear();
+      const auto back = sequenceFromJsonText(std::string_view(text).substr(0, n), error);
+      if (back) {
+        QVERIFY2(*back == s && text.find_first_not_of(" \t\r\n", n) == std::string::npos,
+                 qPrintable(QString("cut at %1 read as another sequence").arg(n)));
+        continue;
+      }
+      QVERIFY2(!error.empty(), qPrintable(QString("cut at %1: no message").arg(n)));
+    }
+  }
+
   void sequenceJsonErrorsNameThePlace() {
     std::string error;
     QVERIFY(!sequenceFromJsonText(R"({"format":"hybridscape-sequence","version":1,"rate":[60,1],"start":0,"end":9,
