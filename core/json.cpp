@@ -237,17 +237,20 @@ std::optional<Json> parseJson(std::string_view text, std::string& error) {
     // Find the first key that repeats within its object (an object is
     // identified by its path, which no other object in a document shares).
     size_t where = text.size();
+    std::string object;
     std::unordered_map<std::string, std::unordered_set<std::string>> keysOf;
     Walker w(text);
     w.onKey = [&](size_t at, const std::vector<Walker::Segment>& objPath, const std::string& key) {
-      if (!keysOf[pathString(objPath)].insert(key).second && key == d.key) {
+      const std::string p = pathString(objPath);
+      if (!keysOf[p].insert(key).second && key == d.key) {
         where = at;
+        object = p;
         return true;
       }
       return false;
     };
     w.run();
-    error = lineColumn(text, where) + ": duplicate key \"" + d.key + "\"";
+    error = lineColumn(text, where) + ": duplicate key \"" + d.key + "\"" + (object.empty() ? "" : " in " + object);
   } catch (const TooDeep&) {
     size_t where = text.size();
     Walker w(text);

@@ -6,7 +6,9 @@
 // parseJson is strict: RFC 8259 (nlohmann refuses `1.`, `1.e5`, lone
 // surrogates, trailing commas, NaN literals), plus no duplicate keys in an
 // object and at most kMaxJsonDepth levels of nesting. Every error names the
-// line and column ("line 3, column 14: duplicate key \"rate\"").
+// line and column ("line 3, column 14: duplicate key \"rate\"", with the
+// JSON path of the object when it is not the document itself: "... in
+// entities[2]").
 //
 // JsonReader reads values out of a parsed document and names the JSON path
 // of the first bad one ("bindings[0].tracks[2].keys[5].t: expected a finite

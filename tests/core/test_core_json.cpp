@@ -63,7 +63,7 @@ class TestCoreJson : public QObject {
     QTest::newRow("duplicate key escaped") << QByteArray("{\"a\": 1,\n \"\\u0061\": 2}") << "line 2, column 2"
                                            << "duplicate key \"a\"";
     QTest::newRow("duplicate key nested") << QByteArray("{\"x\": {\"a\": 1}, \"y\": [{\"b\": 1, \"b\": 2}]}")
-                                          << "line 1, column 32" << "duplicate key \"b\"";
+                                          << "line 1, column 32" << "duplicate key \"b\" in y[0]";
     // Trailing commas, comments, other syntax.
     QTest::newRow("trailing comma array") << QByteArray("[1,]") << "line 1, column 4" << "";
     QTest::newRow("trailing comma object") << QByteArray("{\"a\": 1,}") << "line 1, column 9" << "";
