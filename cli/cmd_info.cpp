@@ -153,7 +153,7 @@ Json infoJson(const std::string& path, const scene::SceneState& s) {
       ja["origin"] = arr(a.data->origin);
       ja["lods"] = lodsJson(a);
     }
-    if (!a.processReportJson.empty()) ja["process_report"] = Json::parse(a.processReportJson);
+    if (!a.processReport.is_null()) ja["process_report"] = a.processReport;
     assets.push_back(std::move(ja));
   }
   o["assets"] = std::move(assets);
@@ -227,7 +227,7 @@ int runInfo(int argc, char** argv) {
                 a.data->textures.size(), double(sz.x), double(sz.y), double(sz.z), a.data->origin.x, a.data->origin.y,
                 a.data->origin.z, a.sourcePath.c_str());
     printLods(a);
-    if (const std::string summary = scene::processReportSummary(a.processReportJson); !summary.empty())
+    if (const std::string summary = scene::processReportSummary(a.processReport); !summary.empty())
       std::printf("    processed: %s\n", summary.c_str());
   }
   printTerrainInfo(*s);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/content_hash.h"
+#include "scene/asset_reports.h"
 #include "scene/fields.h"
 #include "scene/terrain_json.h"
 #include "sequencer/sequence_json.h"
@@ -68,7 +69,7 @@ Json assetToJson(const MeshAsset& a) {
   o["name"] = a.name;
   o["source"] = a.sourcePath;
   o["hash"] = toHex(a.contentHash);
-  if (!a.importReportJson.empty()) o["import_report"] = Json::parse(a.importReportJson);
+  if (!a.importReport.is_null()) o["import_report"] = a.importReport;
   // Coarser levels: their blobs are "mesh/<id>/lod<level>" (hscene_file.cpp).
   if (!a.lods.empty()) {
     Json lods = Json::array();
@@ -83,7 +84,7 @@ Json assetToJson(const MeshAsset& a) {
     }
     o["lods"] = std::move(lods);
   }
-  if (!a.processReportJson.empty()) o["process_report"] = Json::parse(a.processReportJson);
+  if (!a.processReport.is_null()) o["process_report"] = a.processReport;
   return o;
 }
 
@@ -219,19 +220,24 @@ struct Reader : JsonReader {
     return transform(member(o, "transform"), jsonPath(p, "transform"), e.transform) && components(o, p, e);
   }
 
-  // A report stored with an asset, kept as the object it is.
-  bool report(const Json& o, const std::string& path, std::string_view key, std::string& out) {
+  // A report stored with an asset (asset_reports.h), read through its
+  // reader and kept as its writer writes it: a file from an older build
+  // comes back in the current form ("skipped_lines" becomes
+  // "skipped_primitives"), and a bad member is refused with its path.
+  template <class Report>
+  bool report(const Json& o, const std::string& path, std::string_view key, Json& out) {
     const Json* m = member(o, key);
-    if (!m) return true;
-    if (!object(*m, jsonPath(path, key))) return false;
-    out = writeJson(*m, -1);
+    if (!m || m->is_null()) return true;
+    Report r;
+    if (!fromJson(*this, *m, jsonPath(path, key), r)) return false;
+    out = toJson(r);
     return true;
   }
 
   bool asset(const Json& o, const std::string& p, MeshAsset& a) {
     if (!object(o, p) || !id(member(o, "id"), jsonPath(p, "id"), a.id) || !optString(o, p, "name", a.name) ||
         !optString(o, p, "source", a.sourcePath) || !hash(member(o, "hash"), jsonPath(p, "hash"), a.contentHash) ||
-        !report(o, p, "import_report", a.importReportJson))
+        !report<AssetImportReport>(o, p, "import_report", a.importReport))
       return false;
     // LOD levels (format 3): hash and error here, the data from their blobs.
     const Json* lods = optArray(o, p, "lods");
@@ -260,7 +266,7 @@ struct Reader : JsonReader {
       previous = l.hausdorff;
       a.lods.push_back(std::move(l));
     }
-    return report(o, p, "process_report", a.processReportJson);
+    return report<AssetProcessReport>(o, p, "process_report", a.processReport);
   }
 };
 

@@ -284,6 +284,19 @@ class TestHsceneFile : public QObject {
     QVERIFY(back->settings == rich_.settings);
   }
 
+  // The description as the file holds it: write, read, write gives the
+  // same bytes (entities, settings, the assets' reports, the sequence).
+  void descriptionTextRoundTripsByteForByte() {
+    const std::string text = writeJson(sceneToJson(rich_));
+    std::string error;
+    bool notJson = false;
+    const std::optional<SceneState> back = sceneFromJsonText(text, error, notJson);
+    QVERIFY2(back, error.c_str());
+    QCOMPARE(writeJson(sceneToJson(*back)), text);
+    QVERIFY(!rich_.assets.begin()->second.importReport.is_null());
+    QVERIFY(!rich_.assets.begin()->second.processReport.is_null());  // the demo bunny's LOD chain
+  }
+
   void loadProgressAndCancel() {
     std::string error;
     int calls = 0;
