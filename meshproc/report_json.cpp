@@ -198,7 +198,8 @@ void importFields(IO& io, R& r) {
   io.count("degenerate_faces", r.degenerateFaces);
   io.count("polygons_triangulated", r.polygonsTriangulated);
   // Lines, points and other primitives no triangles came from, in any
-  // format; reports written before this key counted them as "skipped_lines".
+  // format; this library's writer called it "skipped_lines" before the
+  // import report had one schema, and that name is still read.
   io.count("skipped_primitives", r.skippedLines, "skipped_lines");
   io.flag("normals_generated", r.normalsGenerated);
   io.flag("up_axis_converted", r.upAxisConverted);

@@ -30,7 +30,7 @@ namespace hs::mesh {
 
 // {"file", "reader", "vertices_in", ..., "skipped_primitives", ...,
 //  "geo_offset"?: {"offset_m", "source", "crs"}, "warnings", "seconds"}.
-// Files written before this schema say "skipped_lines"; it is read too.
+// "skipped_lines", the name this library's writer used before, is read too.
 Json toJson(const ImportReport& report);
 Json toJson(const CleanReport& report);
 Json toJson(const DecimateReport& report);
