@@ -57,7 +57,9 @@ const char* jsonTypeName(const Json& value);
 // message ("expected an object, not an array").
 class JsonReader {
  public:
-  explicit JsonReader(std::string& error) : error_(error) {}
+  // `error` is cleared: the reader's first failure goes there, whatever a
+  // caller's string held before.
+  explicit JsonReader(std::string& error) : error_(error) { error_.clear(); }
 
   bool fail(const std::string& path, const std::string& what);
   bool failed() const { return !error_.empty(); }

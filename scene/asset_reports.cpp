@@ -1,6 +1,7 @@
 #include "scene/asset_reports.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "meshproc/report_json.h"

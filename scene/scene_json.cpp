@@ -289,13 +289,13 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
     }
   }
 
-  if (const Json* roots = r.optArray(json, "", "roots")) {
-    for (size_t i = 0; i < roots->size(); ++i) {
-      uint64_t id;
-      if (!r.id(&(*roots)[i], jsonIndex("roots", i), id)) return std::nullopt;
-      s.roots.push_back(id);
-    }
+  const Json* roots = r.optArray(json, "", "roots");
+  for (size_t i = 0; roots && i < roots->size(); ++i) {
+    uint64_t id;
+    if (!r.id(&(*roots)[i], jsonIndex("roots", i), id)) return std::nullopt;
+    s.roots.push_back(id);
   }
+  if (r.failed()) return std::nullopt;
 
   if (const Json* entities = r.optArray(json, "", "entities")) {
     for (size_t i = 0; i < entities->size(); ++i) {
@@ -309,6 +309,7 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
     }
   }
 
+  if (r.failed()) return std::nullopt;
   if (const Json* assets = r.optArray(json, "", "assets")) {
     for (size_t i = 0; i < assets->size(); ++i) {
       const std::string p = jsonIndex("assets", i);
@@ -321,8 +322,10 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
     }
   }
 
+  if (r.failed()) return std::nullopt;
   if (const Json* terrains = r.optArray(json, "", "terrains"); terrains && !readTerrains(r, *terrains, "terrains", s))
     return std::nullopt;
+  if (r.failed()) return std::nullopt;
   if (const Json* seq = JsonReader::member(json, "sequence");
       seq && !sequencer::readSequence(r, *seq, "sequence", s.sequence))
     return std::nullopt;

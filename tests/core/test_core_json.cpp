@@ -291,6 +291,14 @@ class TestCoreJson : public QObject {
     QVERIFY(ok.optInteger(*doc, "", "i", i, 0, 10));
     QCOMPARE(i, 7);
     QVERIFY2(!ok.failed(), e.c_str());
+
+    // A string that held an earlier message starts empty, so a new failure
+    // is recorded and not mistaken for an old one.
+    std::string stale = "an earlier message";
+    hs::JsonReader again(stale);
+    QVERIFY(!again.failed());
+    QVERIFY(!again.boolean(doc->at("i"), "i", flag));
+    QCOMPARE(stale, std::string("i: expected true or false, not a number"));
   }
 };
 
