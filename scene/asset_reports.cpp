@@ -102,8 +102,8 @@ Json toJson(const AssetProcessReport& r) {
 
 bool fromJson(JsonReader& r, const Json& j, const std::string& path, AssetProcessReport& out) {
   if (!mesh::fromJson(r, j, path, out.report)) return false;
-  if (const Json* o = JsonReader::member(j, "options"); o && !readOptions(r, *o, jsonPath(path, "options"), out.options))
-    return false;
+  const Json* options = JsonReader::member(j, "options");
+  if (options && !readOptions(r, *options, jsonPath(path, "options"), out.options)) return false;
   if (const Json* t = JsonReader::member(j, "tiles"); t && !t->is_null()) {
     TileWeldReport tiles;
     if (!readTiles(r, *t, jsonPath(path, "tiles"), tiles)) return false;

@@ -310,7 +310,8 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
   bool notJson = false;
   std::optional<SceneState> state = sceneFromJsonText(jsonText, e, notJson);
   if (!state) {
-    error = path + (notJson ? ": the scene description is damaged (not valid JSON): " : ": the scene description is invalid: ") + e;
+    error = path + (notJson ? ": the scene description is damaged (not valid JSON): "
+                            : ": the scene description is invalid: ") + e;
     return std::nullopt;
   }
 

@@ -39,20 +39,29 @@ Json ruleJson(const terrain::PaintRule& r) {
   return o;
 }
 
-// A member that must be there, read by one of JsonReader's typed reads.
-template <class Read>
-bool need(JsonReader& r, const Json& obj, const std::string& path, std::string_view key, Read read) {
+// Members that must be there.
+bool needNumber(JsonReader& r, const Json& obj, const std::string& path, std::string_view key, double& out) {
   const Json* m = r.required(obj, path, key);
-  return m && read(*m, jsonPath(path, key));
+  return m && r.number(*m, jsonPath(path, key), out);
+}
+bool needNumbers(JsonReader& r, const Json& obj, const std::string& path, std::string_view key, double* out, size_t n,
+                 const char* shape) {
+  const Json* m = r.required(obj, path, key);
+  return m && r.numbers(*m, jsonPath(path, key), out, n, shape);
+}
+template <class Int>
+bool needInteger(JsonReader& r, const Json& obj, const std::string& path, std::string_view key, Int& out, Int lo,
+                 Int hi) {
+  const Json* m = r.required(obj, path, key);
+  return m && r.integer(*m, jsonPath(path, key), out, lo, hi);
 }
 
 bool readMaterial(JsonReader& r, const Json& v, const std::string& path, terrain::Material& m) {
   double c[3], rough = 0, tiling = 0;
   if (!r.object(v, path) || !r.optString(v, path, "name", m.name) ||
-      !need(r, v, path, "albedo", [&](const Json& x, const std::string& p) { return r.numbers(x, p, c, 3, "[r, g, b]"); }) ||
-      !need(r, v, path, "roughness", [&](const Json& x, const std::string& p) { return r.number(x, p, rough); }) ||
-      !need(r, v, path, "tiling_m", [&](const Json& x, const std::string& p) { return r.number(x, p, tiling); }) ||
-      !r.optString(v, path, "albedo_texture", m.albedoTexture) || !r.optString(v, path, "normal_texture", m.normalTexture))
+      !needNumbers(r, v, path, "albedo", c, 3, "[r, g, b]") || !needNumber(r, v, path, "roughness", rough) ||
+      !needNumber(r, v, path, "tiling_m", tiling) || !r.optString(v, path, "albedo_texture", m.albedoTexture) ||
+      !r.optString(v, path, "normal_texture", m.normalTexture))
     return false;
   if (!(tiling > 0.0)) return r.fail(jsonPath(path, "tiling_m"), "must be positive");
   m.albedo = glm::vec3(float(c[0]), float(c[1]), float(c[2]));
@@ -63,21 +72,18 @@ bool readMaterial(JsonReader& r, const Json& v, const std::string& path, terrain
 
 bool readRule(JsonReader& r, const Json& v, const std::string& path, terrain::PaintRule& rule, int layers) {
   double layer = 0, strength = 0;
-  if (!r.object(v, path) ||
-      !need(r, v, path, "layer", [&](const Json& x, const std::string& p) { return r.number(x, p, layer); }))
-    return false;
+  if (!r.object(v, path) || !needNumber(r, v, path, "layer", layer)) return false;
   if (layer < 0 || layer >= layers || layer != std::floor(layer))
     return r.fail(jsonPath(path, "layer"), "not a layer of this terrain (0.." + std::to_string(layers - 1) + ")");
   rule.layer = int(layer);
-  if (!need(r, v, path, "strength", [&](const Json& x, const std::string& p) { return r.number(x, p, strength); }) ||
-      !r.optBoolean(v, path, "enabled", rule.enabled) || !r.optBoolean(v, path, "use_altitude", rule.useAltitude) ||
+  if (!needNumber(r, v, path, "strength", strength) || !r.optBoolean(v, path, "enabled", rule.enabled) || !r.optBoolean(v, path, "use_altitude", rule.useAltitude) ||
       !r.optBoolean(v, path, "use_slope", rule.useSlope))
     return false;
   rule.strength = float(strength);
   for (auto [key, dst] : {std::pair{"altitude_min", &rule.altitudeMin}, {"altitude_max", &rule.altitudeMax},
                           {"altitude_blend", &rule.altitudeBlend}, {"slope_min", &rule.slopeMin},
                           {"slope_max", &rule.slopeMax}, {"slope_blend", &rule.slopeBlend}})
-    if (!need(r, v, path, key, [&](const Json& x, const std::string& p) { return r.number(x, p, *dst); })) return false;
+    if (!needNumber(r, v, path, key, *dst)) return false;
   return true;
 }
 
@@ -85,19 +91,15 @@ bool readTerrain(JsonReader& r, const Json& o, const std::string& p, SceneState&
   int64_t id = 0;
   int samples[2] = {0, 0}, layers = 0;
   double spacing[2], origin[3];
-  auto integer = [&](std::string_view key, auto& out, auto lo, auto hi) {
-    return need(r, o, p, key, [&](const Json& x, const std::string& path) { return r.integer(x, path, out, lo, hi); });
-  };
-  if (!r.object(o, p) || !integer("id", id, int64_t(1), int64_t(1) << 53)) return false;
+  if (!r.object(o, p) || !needInteger(r, o, p, "id", id, int64_t(1), int64_t(1) << 53)) return false;
+  const std::string sp = jsonPath(p, "samples");
   const Json* s = r.required(o, p, "samples");
-  if (!s) return false;
-  if (!s->is_array() || s->size() != 2)
-    return r.fail(jsonPath(p, "samples"), "expected [x, y], not " + std::string(jsonTypeName(*s)));
+  double shape[2];
+  if (!s || !r.numbers(*s, sp, shape, 2, "[x, y]")) return false;
   for (size_t k = 0; k < 2; ++k)
-    if (!r.integer((*s)[k], jsonIndex(jsonPath(p, "samples"), k), samples[k], 0, 1000000)) return false;
-  if (!need(r, o, p, "spacing_m", [&](const Json& x, const std::string& path) { return r.numbers(x, path, spacing, 2, "[x, y]"); }) ||
-      !need(r, o, p, "origin", [&](const Json& x, const std::string& path) { return r.numbers(x, path, origin, 3, "[x, y, z]"); }) ||
-      !integer("layers", layers, 1, terrain::kMaxPaintLayers))
+    if (!r.integer((*s)[k], jsonIndex(sp, k), samples[k], 0, 1000000)) return false;
+  if (!needNumbers(r, o, p, "spacing_m", spacing, 2, "[x, y]") || !needNumbers(r, o, p, "origin", origin, 3, "[x, y, z]") ||
+      !needInteger(r, o, p, "layers", layers, 1, terrain::kMaxPaintLayers))
     return false;
   if (!(spacing[0] > 0.0 && spacing[1] > 0.0)) return r.fail(jsonPath(p, "spacing_m"), "must be positive");
   TerrainAsset t;
@@ -136,8 +138,8 @@ bool readTerrain(JsonReader& r, const Json& o, const std::string& p, SceneState&
   if (!ts || !r.object(*ts, tp)) return false;
   TerrainData::DescribedTiles described;
   std::string hash;
-  if (!need(r, *ts, tp, "content_hash", [&](const Json& x, const std::string& path) { return r.string(x, path, hash); }))
-    return false;
+  const Json* h = r.required(*ts, tp, "content_hash");
+  if (!h || !r.string(*h, jsonPath(tp, "content_hash"), hash)) return false;
   if (!fromHex(hash, described.contentHash))
     return r.fail(jsonPath(tp, "content_hash"), "expected a hexadecimal content hash, not '" + hash + "'");
   if (!r.optString(*ts, tp, "holes", described.holes)) return false;
