@@ -4,7 +4,6 @@
 #include <QClipboard>
 #include <QDialogButtonBox>
 #include <QHeaderView>
-#include <QJsonDocument>
 #include <QLabel>
 #include <QPushButton>
 #include <QTreeWidget>
@@ -14,12 +13,12 @@
 
 namespace hs::app {
 
-ErrorReportDialog::ErrorReportDialog(const QString& assetName, const std::string& processReportJson, QWidget* parent)
-    : QDialog(parent), json_(processReportJson) {
+ErrorReportDialog::ErrorReportDialog(const QString& assetName, const Json& processReport, QWidget* parent)
+    : QDialog(parent), report_(processReport) {
   setObjectName("errorReportDialog");
   setWindowTitle("Mesh Report — " + assetName);
   auto* layout = new QVBoxLayout(this);
-  const std::string summary = scene::processReportSummary(processReportJson);
+  const std::string summary = scene::processReportSummary(processReport);
   auto* head = new QLabel(QString("<b>%1</b><br>%2").arg(assetName.toHtmlEscaped(),
                                                           QString::fromStdString(summary).toHtmlEscaped()),
                           this);
@@ -33,7 +32,7 @@ ErrorReportDialog::ErrorReportDialog(const QString& assetName, const std::string
   tree_->setHeaderLabels({"", "Value", "JSON field"});
   tree_->setRootIsDecorated(false);
   tree_->setSelectionMode(QAbstractItemView::ExtendedSelection);
-  for (const scene::ReportSection& s : scene::processReportSections(processReportJson)) {
+  for (const scene::ReportSection& s : scene::processReportSections(processReport)) {
     auto* section = new QTreeWidgetItem(tree_, {QString::fromStdString(s.title)});
     QFont bold = section->font(0);
     bold.setBold(true);
@@ -53,17 +52,16 @@ ErrorReportDialog::ErrorReportDialog(const QString& assetName, const std::string
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close, this);
   QPushButton* copy = buttons->addButton("Copy as JSON", QDialogButtonBox::ActionRole);
   connect(copy, &QPushButton::clicked, this, [this] {
-    const QJsonDocument d = QJsonDocument::fromJson(QByteArray::fromStdString(json_));
-    QApplication::clipboard()->setText(QString::fromUtf8(d.toJson(QJsonDocument::Indented)));
+    QApplication::clipboard()->setText(QString::fromStdString(writeJson(report_)));
   });
   connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::close);
   layout->addWidget(buttons);
   resize(640, 620);
 }
 
-ErrorReportDialog* showErrorReport(QWidget* parent, const QString& assetName, const std::string& processReportJson) {
-  if (processReportJson.empty()) return nullptr;
-  auto* d = new ErrorReportDialog(assetName, processReportJson, parent);
+ErrorReportDialog* showErrorReport(QWidget* parent, const QString& assetName, const Json& processReport) {
+  if (processReport.is_null()) return nullptr;
+  auto* d = new ErrorReportDialog(assetName, processReport, parent);
   d->setAttribute(Qt::WA_DeleteOnClose);
   d->show();
   d->raise();

@@ -2,11 +2,11 @@
 // A mesh asset's processing report (decimation error, cleaning counts, LOD
 // errors, run times) in a window: shown after an import with decimation and
 // reopened from the Properties panel's Mesh section. It reads the report the
-// asset stores (MeshAsset::processReportJson), so a scene opened from a file
+// asset stores (MeshAsset::processReport), so a scene opened from a file
 // shows the same numbers. Not modal: it can stay open beside the viewport.
-#include <string>
-
 #include <QDialog>
+
+#include "core/json.h"
 
 class QTreeWidget;
 
@@ -15,17 +15,17 @@ namespace hs::app {
 class ErrorReportDialog : public QDialog {
   Q_OBJECT
  public:
-  ErrorReportDialog(const QString& assetName, const std::string& processReportJson, QWidget* parent = nullptr);
+  ErrorReportDialog(const QString& assetName, const Json& processReport, QWidget* parent = nullptr);
   QTreeWidget* tree() const { return tree_; }
-  const std::string& json() const { return json_; }
+  const Json& report() const { return report_; }
 
  private:
   QTreeWidget* tree_;
-  std::string json_;
+  Json report_;
 };
 
 // Shows the report of `assetName` in a new window that deletes itself when
-// closed; returns it (nullptr when the report is empty).
-ErrorReportDialog* showErrorReport(QWidget* parent, const QString& assetName, const std::string& processReportJson);
+// closed; returns it (nullptr when there is no report).
+ErrorReportDialog* showErrorReport(QWidget* parent, const QString& assetName, const Json& processReport);
 
 }  // namespace hs::app

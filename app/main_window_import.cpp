@@ -59,7 +59,7 @@ void MainWindow::onImportFinished(bool* ok) {
   QString summary = importSummary(r.import);
   if (r.tiles.size() > 1) summary += QString(" from %1 tiles (%L2 border vertices welded)").arg(r.tiles.size()).arg(r.tileBorderVerticesMerged);
   const bool decimated = r.processed && r.process.decimated;
-  const std::string report = r.processReportJson;
+  const Json report = r.processReport;
   const scene::EntityId id = addImportToDocument(doc_, r, path);
   if (id == scene::kNoEntity) {
     messages_->error(QString("%1 was read but could not be added to the scene.").arg(name));

@@ -141,7 +141,7 @@ QWidget* PropertyPanel::buildSection(const scene::ComponentInfo& c, const scene:
     connect(meshReport_, &QPushButton::clicked, this, [this] {
       const scene::Entity* ent = doc_.state().find(selection_.primary());
       const scene::MeshAsset* a = ent && ent->mesh ? doc_.state().findAsset(ent->mesh->mesh) : nullptr;
-      if (a) showErrorReport(this, QString::fromStdString(a->name), a->processReportJson);
+      if (a) showErrorReport(this, QString::fromStdString(a->name), a->processReport);
     });
     form->addRow(meshReport_);
   }
@@ -238,7 +238,7 @@ void PropertyPanel::refresh() {
                          lodText(*a));
     else
       meshInfo_->setText("No mesh asset assigned.");
-    if (meshReport_) meshReport_->setEnabled(a && !a->processReportJson.empty());
+    if (meshReport_) meshReport_->setEnabled(a && !a->processReport.is_null());
   }
 }
 

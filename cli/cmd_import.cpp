@@ -2,8 +2,6 @@
 #include <filesystem>
 #include <fstream>
 
-#include <QJsonDocument>
-
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "cli/import_request.h"
@@ -74,7 +72,7 @@ int runImport(int argc, char** argv) {
   scene::ImportedMesh result = scene::importMeshFiles(request, &progress);
   if (auto reportPath = args.get("report")) {
     std::ofstream out(*reportPath);
-    out << QJsonDocument(scene::importReportFileJson(result)).toJson().toStdString();
+    out << writeJson(scene::importReportFileJson(result)) << "\n";
     if (!out) return fail(cmd, *reportPath + ": cannot write the report");
   }
   if (!result.ok()) return fail(cmd, result.error.empty() ? meshPath + ": the import did not finish" : result.error);
@@ -86,7 +84,7 @@ int runImport(int argc, char** argv) {
   const size_t tris = result.mesh->triangleCount(), verts = result.mesh->vertexCount();
   const glm::dvec3 origin = result.mesh->origin;
   const mesh::ImportReport importReport = result.import;
-  const std::string processReport = result.processReportJson;
+  const Json processReport = result.processReport;
   const scene::EntityId id = scene::ops::addImportedMesh(doc, std::move(result), name, meshPath, placement);
   if (!scene::saveScene(doc.state(), scenePath, error)) return fail(cmd, error);
   const auto& t = doc.state().find(id)->transform.translation;

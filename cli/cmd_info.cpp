@@ -1,12 +1,9 @@
 #include <cstdio>
 
-#include <QJsonArray>
-#include <QJsonDocument>
-#include <QJsonObject>
-
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "cli/terrain_info.h"
+#include "core/json.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
 #include "scene/mesh_report_text.h"
@@ -17,7 +14,7 @@
 namespace hs::cli {
 namespace {
 
-QJsonArray arr(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+Json arr(const glm::dvec3& v) { return Json::array({v.x, v.y, v.z}); }
 
 std::string componentList(const scene::Entity& e) {
   std::string out;
@@ -27,16 +24,16 @@ std::string componentList(const scene::Entity& e) {
 }
 
 // Every level, 0 (the asset's mesh) first: triangles and Hausdorff error in metres.
-QJsonArray lodsJson(const scene::MeshAsset& a) {
-  QJsonArray out;
+Json lodsJson(const scene::MeshAsset& a) {
+  Json out = Json::array();
   const std::vector<double> errors = a.lodErrors();
   for (size_t k = 0; k < errors.size(); ++k) {
     const mesh::MeshData* m = k == 0 ? a.data.get() : a.lods[k - 1].data.get();
-    QJsonObject l;
-    l["level"] = double(k);
-    l["triangles"] = double(m ? m->triangleCount() : 0);
+    Json l = Json::object();
+    l["level"] = k;
+    l["triangles"] = m ? m->triangleCount() : 0;
     l["hausdorff_m"] = errors[k];
-    out.append(l);
+    out.push_back(std::move(l));
   }
   return out;
 }
@@ -63,41 +60,41 @@ std::string entityName(const scene::SceneState& s, const sequencer::Binding& b) 
   return e ? e->name : b.label + " [missing]";
 }
 
-QJsonObject sequenceJson(const scene::SceneState& s) {
+Json sequenceJson(const scene::SceneState& s) {
   const sequencer::Sequence& q = s.sequence;
-  QJsonObject o;
+  Json o = Json::object();
   o["fps"] = q.rate.fps();
-  o["fps_rational"] = QString::number(q.rate.num) + "/" + QString::number(q.rate.den);
-  o["start_frame"] = double(q.startFrame);
-  o["end_frame"] = double(q.endFrame);
+  o["fps_rational"] = std::to_string(q.rate.num) + "/" + std::to_string(q.rate.den);
+  o["start_frame"] = q.startFrame;
+  o["end_frame"] = q.endFrame;
   o["duration_s"] = double(q.endFrame - q.startFrame + 1) / q.rate.fps();
   return o;
 }
 
-QJsonArray tracksJson(const scene::SceneState& s) {
-  QJsonArray out;
+Json tracksJson(const scene::SceneState& s) {
+  Json out = Json::array();
   for (const sequencer::Binding& b : s.sequence.bindings) {
-    auto add = [&](const std::string& property, const std::vector<double>& times, QJsonObject t) {
-      t["entity_id"] = double(b.entity);
-      t["entity"] = QString::fromStdString(entityName(s, b));
-      t["property"] = QString::fromStdString(property);
-      t["keys"] = double(times.size());
+    auto add = [&](const std::string& property, const std::vector<double>& times, Json t) {
+      t["entity_id"] = b.entity;
+      t["entity"] = entityName(s, b);
+      t["property"] = property;
+      t["keys"] = times.size();
       if (!times.empty()) {
         t["first_key_s"] = times.front();
         t["last_key_s"] = times.back();
       }
-      out.append(t);
+      out.push_back(std::move(t));
     };
     if (b.path) {
       std::vector<double> times;
       for (const auto& k : b.path->progress.keys) times.push_back(k.time);
-      QJsonObject t;
-      t["path_points"] = double(b.path->path.points.size());
-      add("path.progress", times, t);
+      Json t = Json::object();
+      t["path_points"] = b.path->path.points.size();
+      add("path.progress", times, std::move(t));
     }
     for (const sequencer::Track& t : b.tracks) {
       const std::string& property = sequencer::trackProperty(t);
-      add(property, sequencer::keyTimes(s.sequence, b.entity, property), {});
+      add(property, sequencer::keyTimes(s.sequence, b.entity, property), Json::object());
     }
   }
   return out;
@@ -108,74 +105,73 @@ void printTracks(const scene::SceneState& s) {
   if (q.bindings.empty()) return;
   std::printf("timeline: %.6g fps, frames %lld-%lld (%.2f s)\n", q.rate.fps(), static_cast<long long>(q.startFrame),
               static_cast<long long>(q.endFrame), double(q.endFrame - q.startFrame + 1) / q.rate.fps());
-  for (const QJsonValue& v : tracksJson(s)) {
-    const QJsonObject t = v.toObject();
-    std::printf("  %s  %s: %d key%s", t["entity"].toString().toUtf8().constData(),
-                t["property"].toString().toUtf8().constData(), t["keys"].toInt(), t["keys"].toInt() == 1 ? "" : "s");
+  for (const Json& t : tracksJson(s)) {
+    const size_t keys = t.at("keys").get<size_t>();
+    std::printf("  %s  %s: %zu key%s", t.at("entity").get<std::string>().c_str(),
+                t.at("property").get<std::string>().c_str(), keys, keys == 1 ? "" : "s");
     if (t.contains("first_key_s"))
-      std::printf(" (%.3f..%.3f s)", t["first_key_s"].toDouble(), t["last_key_s"].toDouble());
-    if (t.contains("path_points")) std::printf(", path through %d points", t["path_points"].toInt());
+      std::printf(" (%.3f..%.3f s)", t.at("first_key_s").get<double>(), t.at("last_key_s").get<double>());
+    if (t.contains("path_points")) std::printf(", path through %zu points", t.at("path_points").get<size_t>());
     std::printf("\n");
   }
 }
 
-QJsonObject infoJson(const std::string& path, const scene::SceneState& s) {
-  QJsonObject o;
-  o["file"] = QString::fromStdString(path);
+Json infoJson(const std::string& path, const scene::SceneState& s) {
+  Json o = Json::object();
+  o["file"] = path;
   o["format_version"] = scene::sceneFileVersion(path);
-  QJsonArray entities;
+  Json entities = Json::array();
   for (scene::EntityId id : s.depthFirstOrder()) {
     const scene::Entity& e = *s.find(id);
-    QJsonObject je;
-    je["id"] = double(id);
-    je["name"] = QString::fromStdString(e.name);
-    je["parent"] = double(e.parent);
+    Json je = Json::object();
+    je["id"] = id;
+    je["name"] = e.name;
+    je["parent"] = e.parent;
     je["visible"] = e.visible;
-    QJsonArray comps;
+    Json comps = Json::array();
     for (const auto& c : scene::entityComponents())
-      if (c.optional && c.has(e)) comps.append(QString::fromStdString(c.key));
-    je["components"] = comps;
+      if (c.optional && c.has(e)) comps.push_back(c.key);
+    je["components"] = std::move(comps);
     je["world_position_m"] = arr(glm::dvec3(s.worldMatrix(id)[3]));
-    if (e.mesh) je["mesh_asset"] = double(e.mesh->mesh);
-    entities.append(je);
+    if (e.mesh) je["mesh_asset"] = e.mesh->mesh;
+    entities.push_back(std::move(je));
   }
-  o["entities"] = entities;
-  QJsonArray assets;
+  o["entities"] = std::move(entities);
+  Json assets = Json::array();
   for (const auto& [id, a] : s.assets) {
-    QJsonObject ja;
-    ja["id"] = double(id);
-    ja["name"] = QString::fromStdString(a.name);
-    ja["source"] = QString::fromStdString(a.sourcePath);
+    Json ja = Json::object();
+    ja["id"] = id;
+    ja["name"] = a.name;
+    ja["source"] = a.sourcePath;
     if (a.data) {
       const mesh::Bounds b = a.data->bounds();
-      ja["vertices"] = double(a.data->vertexCount());
-      ja["triangles"] = double(a.data->triangleCount());
-      ja["textures"] = int(a.data->textures.size());
-      ja["materials"] = int(a.data->materials.size());
+      ja["vertices"] = a.data->vertexCount();
+      ja["triangles"] = a.data->triangleCount();
+      ja["textures"] = a.data->textures.size();
+      ja["materials"] = a.data->materials.size();
       ja["size_m"] = arr(glm::dvec3(b.max - b.min));
       ja["origin"] = arr(a.data->origin);
       ja["lods"] = lodsJson(a);
     }
-    if (!a.processReportJson.empty())
-      ja["process_report"] = QJsonDocument::fromJson(QByteArray::fromStdString(a.processReportJson)).object();
-    assets.append(ja);
+    if (!a.processReport.is_null()) ja["process_report"] = a.processReport;
+    assets.push_back(std::move(ja));
   }
-  o["assets"] = assets;
-  QJsonArray cameras;
-  for (scene::EntityId id : s.cameras()) cameras.append(QString::fromStdString(s.find(id)->name));
-  o["cameras"] = cameras;
+  o["assets"] = std::move(assets);
+  Json cameras = Json::array();
+  for (scene::EntityId id : s.cameras()) cameras.push_back(s.find(id)->name);
+  o["cameras"] = std::move(cameras);
   o["terrains"] = terrainInfoJson(s);
   o["sequence"] = sequenceJson(s);
   o["tracks"] = tracksJson(s);
   const scene::WorldBox box = scene::worldBounds(s);
-  QJsonObject bounds;
+  Json bounds = Json::object();
   if (!box.empty) {
     bounds["min"] = arr(box.min);
     bounds["max"] = arr(box.max);
     bounds["size"] = arr(box.size());
   }
-  o["bounds_m"] = bounds;
-  o["settings"] = scene::sceneToJson(s)["settings"];
+  o["bounds_m"] = std::move(bounds);
+  o["settings"] = scene::sceneToJson(s).at("settings");
   return o;
 }
 
@@ -209,7 +205,7 @@ int runInfo(int argc, char** argv) {
   std::optional<scene::SceneState> s = scene::loadScene(path, error);
   if (!s) return fail(cmd, error);
   if (args.has("json")) {
-    std::printf("%s", QJsonDocument(infoJson(path, *s)).toJson().constData());
+    std::printf("%s\n", writeJson(infoJson(path, *s)).c_str());
     return 0;
   }
   std::printf("%s (scene format %d)\n", path.c_str(), scene::sceneFileVersion(path));
@@ -231,7 +227,7 @@ int runInfo(int argc, char** argv) {
                 a.data->textures.size(), double(sz.x), double(sz.y), double(sz.z), a.data->origin.x, a.data->origin.y,
                 a.data->origin.z, a.sourcePath.c_str());
     printLods(a);
-    if (const std::string summary = scene::processReportSummary(a.processReportJson); !summary.empty())
+    if (const std::string summary = scene::processReportSummary(a.processReport); !summary.empty())
       std::printf("    processed: %s\n", summary.c_str());
   }
   printTerrainInfo(*s);

@@ -3,12 +3,9 @@
 #include <fstream>
 #include <sstream>
 
-#include <QJsonArray>
-#include <QJsonDocument>
-#include <QJsonObject>
-
 #include "cli/commands.h"
 #include "cli/terrain_cli.h"
+#include "core/json.h"
 #include "scene/terrain_json.h"
 #include "scene/terrain_jobs.h"
 #include "scene/terrain_ops.h"
@@ -42,16 +39,16 @@ bool readRules(const std::string& file, const scene::TerrainAsset& t, std::vecto
   }
   std::stringstream ss;
   ss << in.rdbuf();
-  QJsonParseError perr;
-  const QJsonDocument doc = QJsonDocument::fromJson(QByteArray::fromStdString(ss.str()), &perr);
-  if (perr.error != QJsonParseError::NoError || !doc.isArray()) {
-    error = file + ": not a JSON array of paint rules (" + perr.errorString().toStdString() + " at character " +
-            std::to_string(perr.offset) + ")";
+  const std::string text = ss.str();
+  const std::optional<Json> doc = parseJson(text, error);
+  if (!doc) {
+    error = file + ": not JSON (" + error + ")";
     return false;
   }
   std::string e;
-  if (!scene::paintRulesFromJson(doc.array(), int(t.materials.size()), out, e)) {
-    error = file + ": rule " + e;
+  JsonReader r(e);
+  if (!scene::readPaintRules(r, *doc, "", int(t.materials.size()), out)) {
+    error = file + ": paint rules: " + jsonErrorIn(text, r);
     return false;
   }
   return true;

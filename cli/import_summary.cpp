@@ -6,8 +6,8 @@
 
 namespace hs::cli {
 
-void printProcessReport(const std::string& processReportJson) {
-  for (const scene::ReportSection& s : scene::processReportSections(processReportJson)) {
+void printProcessReport(const Json& processReport) {
+  for (const scene::ReportSection& s : scene::processReportSections(processReport)) {
     std::printf("%s:\n", s.title.c_str());
     for (const scene::ReportRow& r : s.rows)
       std::printf("  %-30s %-28s %s\n", r.key.c_str(), r.value.c_str(), r.label.c_str());

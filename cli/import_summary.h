@@ -3,10 +3,11 @@
 // report section by section, each row as its JSON field name, its value with
 // unit, and what it means (scene/mesh_report_text.h), so the printed summary
 // and the --report file name the same fields.
-#include <string>
+#include "core/json.h"
 
 namespace hs::cli {
 
-void printProcessReport(const std::string& processReportJson);
+// `processReport`: scene::ImportedMesh::processReport (null prints nothing).
+void printProcessReport(const Json& processReport);
 
 }  // namespace hs::cli

@@ -2,48 +2,46 @@
 
 #include <cstdio>
 
-#include <QJsonObject>
-
 namespace hs::cli {
 namespace {
 
-QJsonArray arr2(const glm::dvec2& v) { return {v.x, v.y}; }
-QJsonArray arr3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+Json arr2(const glm::dvec2& v) { return Json::array({v.x, v.y}); }
+Json arr3(const glm::dvec3& v) { return Json::array({v.x, v.y, v.z}); }
 
 }  // namespace
 
-QJsonArray terrainInfoJson(const scene::SceneState& s) {
-  QJsonArray out;
+Json terrainInfoJson(const scene::SceneState& s) {
+  Json out = Json::array();
   for (scene::EntityId id : scene::terrainEntities(s, false)) {
     const scene::TerrainAsset& t = *scene::terrainOf(s, id);
     const terrain::Terrain& tr = t.data->terrain();
     const terrain::Heightfield& hf = tr.height;
     const terrain::HeightRange r = hf.range();
-    QJsonObject o;
-    o["name"] = QString::fromStdString(t.name);
-    o["entity"] = double(id);
-    o["entity_name"] = QString::fromStdString(s.find(id)->name);
-    o["terrain_id"] = double(t.id);
-    o["samples"] = QJsonArray{hf.samplesX(), hf.samplesY()};
+    Json o = Json::object();
+    o["name"] = t.name;
+    o["entity"] = id;
+    o["entity_name"] = s.find(id)->name;
+    o["terrain_id"] = t.id;
+    o["samples"] = Json::array({hf.samplesX(), hf.samplesY()});
     o["size_m"] = arr2(hf.sizeMetres());
     o["spacing_m"] = arr2(hf.spacing());
     o["origin"] = arr3(hf.origin());
     o["world_origin"] = arr3(scene::terrainWorldOrigin(s, id));
-    o["height_range_m"] = QJsonArray{double(r.min), double(r.max)};
-    QJsonObject crs;
-    crs["name"] = QString::fromStdString(hf.geo().crsName);
+    o["height_range_m"] = Json::array({double(r.min), double(r.max)});
+    Json crs = Json::object();
+    crs["name"] = hf.geo().crsName;
     crs["epsg"] = hf.geo().epsg;
     crs["georeferenced"] = hf.geo().valid();
-    o["crs"] = crs;
-    QJsonArray layers;
-    for (const auto& m : t.materials) layers.append(QString::fromStdString(m.name));
-    o["layers"] = layers;
-    o["paint_rules"] = int(t.paintRules.size());
-    o["hole_tiles"] = double(hf.holes().allocatedTiles());
-    o["tiles"] = QJsonArray{hf.heights().tilesX(), hf.heights().tilesY()};
-    o["memory_bytes"] = double(tr.memoryBytes());
+    o["crs"] = std::move(crs);
+    Json layers = Json::array();
+    for (const auto& m : t.materials) layers.push_back(m.name);
+    o["layers"] = std::move(layers);
+    o["paint_rules"] = t.paintRules.size();
+    o["hole_tiles"] = hf.holes().allocatedTiles();
+    o["tiles"] = Json::array({hf.heights().tilesX(), hf.heights().tilesY()});
+    o["memory_bytes"] = tr.memoryBytes();
     o["lod_error_px"] = s.find(id)->terrain->lodErrorPixels;
-    out.append(o);
+    out.push_back(std::move(o));
   }
   return out;
 }

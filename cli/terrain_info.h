@@ -1,13 +1,13 @@
 #pragma once
 // The terrains part of `hybridscape-cli info`: size in metres, resolution,
 // spacing, origin, height range, CRS, layers, holes, memory.
-#include <QJsonArray>
+#include "core/json.h"
 
 #include "scene/scene_state.h"
 
 namespace hs::cli {
 
-QJsonArray terrainInfoJson(const scene::SceneState& s);
+Json terrainInfoJson(const scene::SceneState& s);
 void printTerrainInfo(const scene::SceneState& s);
 
 }  // namespace hs::cli

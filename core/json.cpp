@@ -237,17 +237,20 @@ std::optional<Json> parseJson(std::string_view text, std::string& error) {
     // Find the first key that repeats within its object (an object is
     // identified by its path, which no other object in a document shares).
     size_t where = text.size();
+    std::string object;
     std::unordered_map<std::string, std::unordered_set<std::string>> keysOf;
     Walker w(text);
     w.onKey = [&](size_t at, const std::vector<Walker::Segment>& objPath, const std::string& key) {
-      if (!keysOf[pathString(objPath)].insert(key).second && key == d.key) {
+      const std::string p = pathString(objPath);
+      if (!keysOf[p].insert(key).second && key == d.key) {
         where = at;
+        object = p;
         return true;
       }
       return false;
     };
     w.run();
-    error = lineColumn(text, where) + ": duplicate key \"" + d.key + "\"";
+    error = lineColumn(text, where) + ": duplicate key \"" + d.key + "\"" + (object.empty() ? "" : " in " + object);
   } catch (const TooDeep&) {
     size_t where = text.size();
     Walker w(text);
@@ -261,10 +264,17 @@ std::optional<Json> parseJson(std::string_view text, std::string& error) {
     w.run();
     error = lineColumn(text, where) + ": nested deeper than " + std::to_string(kMaxJsonDepth) + " levels";
   } catch (const Json::parse_error& e) {
-    // "[json.exception.parse_error.101] parse error at line 1, column 3: ..."
+    // "[json.exception.parse_error.101] parse error at line 1, column 3: what".
+    // The place is recounted from the byte nlohmann stopped at (e.byte
+    // counts it, from 1), so it is the offending character's own line and
+    // column as everywhere else here: nlohmann puts a raw newline in a
+    // string at "line 2, column 0" and counts columns in bytes.
     std::string what = e.what();
-    if (const auto at = what.find(" at line "); at != std::string::npos) what = what.substr(at + 4);
-    error = what;
+    if (const auto at = what.find(" at line "); at != std::string::npos) {
+      const auto colon = what.find(": ", at);
+      what = colon == std::string::npos ? what.substr(at + 4) : what.substr(colon + 2);
+    }
+    error = lineColumn(text, e.byte > 0 ? e.byte - 1 : 0) + ": " + what;
   } catch (const Json::out_of_range& e) {
     // A number too large for a double ("1e400"); nlohmann gives no place.
     size_t where = text.size();
@@ -306,6 +316,13 @@ std::string jsonLocation(std::string_view text, std::string_view path) {
   return where == std::string_view::npos ? std::string() : lineColumn(text, where);
 }
 
+std::string jsonErrorIn(std::string_view text, const JsonReader& reader) {
+  const std::string& path = reader.errorPath();
+  const std::string where = jsonLocation(text, path);
+  if (path.empty()) return where.empty() ? reader.errorWhat() : where + ": " + reader.errorWhat();
+  return path + (where.empty() ? "" : " (" + where + ")") + ": " + reader.errorWhat();
+}
+
 std::string jsonPath(const std::string& parent, std::string_view key) {
   return parent.empty() ? std::string(key) : parent + "." + std::string(key);
 }
@@ -314,8 +331,26 @@ std::string jsonIndex(const std::string& parent, size_t index) {
   return parent + "[" + std::to_string(index) + "]";
 }
 
+const char* jsonTypeName(const Json& v) {
+  switch (v.type()) {
+    case Json::value_t::object: return "an object";
+    case Json::value_t::array: return "an array";
+    case Json::value_t::string: return "a string";
+    case Json::value_t::boolean: return "true or false";
+    case Json::value_t::number_integer:
+    case Json::value_t::number_unsigned:
+    case Json::value_t::number_float: return "a number";
+    case Json::value_t::null: return "null";
+    default: return "a value of another kind";
+  }
+}
+
 bool JsonReader::fail(const std::string& path, const std::string& what) {
-  if (error_.empty()) error_ = path.empty() ? what : path + ": " + what;
+  if (error_.empty()) {
+    error_ = path.empty() ? what : path + ": " + what;
+    errorPath_ = path;
+    errorWhat_ = what;
+  }
   return false;
 }
 
@@ -325,16 +360,23 @@ const Json* JsonReader::member(const Json& obj, std::string_view key) {
   return it == obj.end() ? nullptr : &*it;
 }
 
+const Json* JsonReader::required(const Json& obj, const std::string& path, std::string_view key) {
+  const Json* m = member(obj, key);
+  if (!m) fail(jsonPath(path, key), "missing");
+  return m;
+}
+
 bool JsonReader::object(const Json& v, const std::string& path) {
-  return v.is_object() || fail(path, "expected an object");
+  return v.is_object() || fail(path, std::string("expected an object, not ") + jsonTypeName(v));
 }
 
 bool JsonReader::array(const Json& v, const std::string& path) {
-  return v.is_array() || fail(path, "expected an array");
+  return v.is_array() || fail(path, std::string("expected an array, not ") + jsonTypeName(v));
 }
 
 bool JsonReader::number(const Json& v, const std::string& path, double& out) {
-  if (!v.is_number() || !std::isfinite(v.get<double>())) return fail(path, "expected a finite number");
+  if (!v.is_number()) return fail(path, std::string("expected a number, not ") + jsonTypeName(v));
+  if (!std::isfinite(v.get<double>())) return fail(path, "expected a finite number");
   out = v.get<double>();
   return true;
 }
@@ -371,7 +413,7 @@ bool JsonReader::integer(const Json& v, const std::string& path, int64_t& out, i
     }
     return fail(path, "expected a whole number" + range + ", not " + v.dump());
   }
-  return fail(path, "expected a whole number" + range);
+  return fail(path, "expected a whole number" + range + ", not " + jsonTypeName(v));
 }
 
 bool JsonReader::integer(const Json& v, const std::string& path, int& out, int lo, int hi) {
@@ -382,20 +424,21 @@ bool JsonReader::integer(const Json& v, const std::string& path, int& out, int l
 }
 
 bool JsonReader::boolean(const Json& v, const std::string& path, bool& out) {
-  if (!v.is_boolean()) return fail(path, "expected true or false");
+  if (!v.is_boolean()) return fail(path, std::string("expected true or false, not ") + jsonTypeName(v));
   out = v.get<bool>();
   return true;
 }
 
 bool JsonReader::string(const Json& v, const std::string& path, std::string& out) {
-  if (!v.is_string()) return fail(path, "expected a string");
+  if (!v.is_string()) return fail(path, std::string("expected a string, not ") + jsonTypeName(v));
   out = v.get<std::string>();
   return true;
 }
 
 bool JsonReader::numbers(const Json& v, const std::string& path, double* out, size_t n, const char* shape) {
-  if (!v.is_array() || v.size() != n)
-    return fail(path, std::string("expected ") + (shape ? shape : std::to_string(n) + " numbers"));
+  const std::string expected = std::string("expected ") + (shape ? shape : std::to_string(n) + " numbers");
+  if (!v.is_array()) return fail(path, expected + ", not " + jsonTypeName(v));
+  if (v.size() != n) return fail(path, expected + ", not " + std::to_string(v.size()) + " values");
   for (size_t i = 0; i < n; ++i)
     if (!number(v[i], jsonIndex(path, i), out[i])) return false;
   return true;

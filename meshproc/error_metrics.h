@@ -8,6 +8,7 @@
 // distances through a BVH; the vertices of each mesh are added to its
 // samples so the maximum sees the corners. Everything is in metres, in the
 // original's frame (double), and relative to its bounding-box diagonal.
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -70,6 +71,9 @@ struct ErrorReport {
   bool cancelled = false;
 
   double rel(double metres) const { return bboxDiagonal > 0 ? metres / bboxDiagonal : 0.0; }
+  // Relative change of the area and of the volume's magnitude (0 when the original has none).
+  double areaChangeRel() const { return areaIn > 0 ? (areaOut - areaIn) / areaIn : 0.0; }
+  double volumeChangeRel() const { return volumeIn != 0 ? (volumeOut - volumeIn) / std::abs(volumeIn) : 0.0; }
 };
 
 // Non-manifold edges and vertices at welded-position level (UV seams do not

@@ -10,7 +10,7 @@
 //   parseDecimateTarget("500k", o.decimation, err);   // or "10%", or o.decimation.maxError = 0.02
 //   o.lodLevels = 3;
 //   ProcessResult r = processMesh(std::move(*imported.mesh), o, &progress);
-//   writeText("report.json", processReportJson(r.report, &imported.report));
+//   writeText("report.json", writeJson(toJson(r.report)));   // report_json.h
 #include <string>
 #include <vector>
 

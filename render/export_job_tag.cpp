@@ -32,7 +32,7 @@ std::string exportJobTag(const scene::SceneState& scene, scene::EntityId camera,
   // from do not change a pixel; the content hash that names the mesh does.
   scene::SceneState pixels = scene;
   for (auto& [id, asset] : pixels.assets) {
-    asset.importReportJson.clear();
+    asset.importReport = nullptr;
     asset.sourcePath.clear();
   }
   const uint64_t h = fnv1a(settings, fnv1a(scene::canonicalJson(pixels)));

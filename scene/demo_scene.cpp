@@ -6,9 +6,8 @@
 
 #include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
+#include "scene/asset_reports.h"
 #include "scene/demo_terrain.h"
-#include "scene/import_pipeline.h"
-#include "scene/report_json.h"
 #include "scene/transform.h"
 
 namespace hs::scene {
@@ -122,7 +121,7 @@ void addStereoFlight(SceneState& s, EntityId spinning, const glm::dvec3& spinCen
 // deterministic) and shared like any immutable mesh.
 struct DemoLods {
   std::vector<MeshLod> lods;
-  std::string report;
+  Json report;  // AssetProcessReport
 };
 
 const DemoLods& bunnyLods(const mesh::MeshData& bunny) {
@@ -146,7 +145,7 @@ const DemoLods& bunnyLods(const mesh::MeshData& bunny) {
       l.data = std::make_shared<const mesh::MeshData>(std::move(r.lods[k]));
       d.lods.push_back(std::move(l));
     }
-    d.report = storedProcessReportJson(r.report, o);
+    d.report = toJson(AssetProcessReport{r.report, o, std::nullopt});
     return d;
   }();
   return built;
@@ -190,10 +189,10 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   asset.name = "Stanford Bunny";
   asset.sourcePath = "resources/demo/stanford-bunny.obj";
   asset.contentHash = mesh::contentHash(*bunny.mesh);
-  asset.importReportJson = importReportToJson(bunny.report);
+  asset.importReport = toJson(AssetImportReport{bunny.report, {}});
   const DemoLods& lods = bunnyLods(*bunny.mesh);
   asset.lods = lods.lods;
-  asset.processReportJson = lods.report;
+  asset.processReport = lods.report;
   const mesh::Bounds b = bunny.mesh->bounds();
   asset.data = std::make_shared<const mesh::MeshData>(std::move(*bunny.mesh));
   s.assets.emplace(asset.id, asset);

@@ -1,14 +1,14 @@
 #include "scene/hscene_file.h"
 
+#include <charconv>
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 
-#include <QJsonDocument>
-#include <QJsonParseError>
 #include <sqlite3.h>
 #include <unistd.h>
 
@@ -43,8 +43,19 @@ bool hasSqliteHeader(const std::string& path) {
   return f.gcount() == 16 && std::memcmp(header, "SQLite format 3\0", 16) == 0;
 }
 
-// Reads meta.format / meta.format_version; 0 if absent or not a scene.
-int readVersion(SqliteDb& db, std::string& format, std::string& error) {
+// meta.format_version as a number: INT_MAX for a whole number too large for
+// an int (a file from far in the future), -1 for text that is no number.
+int parseVersion(const std::string& text) {
+  int v = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (r.ptr != text.data() + text.size() || text.empty()) return -1;
+  if (r.ec == std::errc::result_out_of_range) return text[0] == '-' ? -1 : INT_MAX;
+  return r.ec == std::errc() ? v : -1;
+}
+
+// Reads meta.format / meta.format_version (its text in `versionText`); 0 if
+// absent or not a scene.
+int readVersion(SqliteDb& db, std::string& format, std::string& error, std::string* versionText = nullptr) {
   // Another program's database has no meta table: that is not damage, it is
   // not a scene (format stays empty). A damaged file fails this read already.
   {
@@ -63,7 +74,10 @@ int readVersion(SqliteDb& db, std::string& format, std::string& error) {
   int version = 0;
   while (q.step(error)) {
     if (q.text(0) == "format") format = q.text(1);
-    if (q.text(0) == "format_version") version = std::atoi(q.text(1).c_str());
+    if (q.text(0) == "format_version") {
+      version = parseVersion(q.text(1));
+      if (versionText) *versionText = q.text(1);
+    }
   }
   return version;
 }
@@ -98,8 +112,8 @@ bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std
   }
   {
     SqliteStmt d(db, "INSERT OR REPLACE INTO document(id, json) VALUES (1, ?1)");
-    const QByteArray json = QJsonDocument(sceneToJson(state)).toJson(QJsonDocument::Indented);
-    d.bind(1, std::string_view(json.constData(), size_t(json.size())));
+    const std::string json = writeJson(sceneToJson(state)) + "\n";
+    d.bind(1, json);
     d.step(error);
     if (!error.empty()) return false;
   }
@@ -254,12 +268,12 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
     return std::nullopt;
   }
   SqliteDb db;
-  std::string e, format;
+  std::string e, format, versionText;
   if (!db.open(path, true, false, e)) {
     error = path + ": cannot open: " + e;
     return std::nullopt;
   }
-  const int version = readVersion(db, format, e);
+  const int version = readVersion(db, format, e, &versionText);
   if (!e.empty()) {
     error = path + ": the scene file is damaged and was not opened (" + e + ")";
     return std::nullopt;
@@ -269,13 +283,15 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
     return std::nullopt;
   }
   if (version > kSceneFormatVersion) {
-    error = path + ": written by a newer Hybridscape (scene format " + std::to_string(version) +
+    error = path + ": written by a newer Hybridscape (scene format " + versionText +
             "; this build reads up to " + std::to_string(kSceneFormatVersion) +
             "). Update Hybridscape to open it.";
     return std::nullopt;
   }
   if (version < 1) {
-    error = path + ": invalid scene format version " + std::to_string(version);
+    error = path + (versionText.empty() ? std::string(": no scene format version")
+                                        : ": invalid scene format version '" + versionText + "'") +
+            " (expected a whole number from 1)";
     return std::nullopt;
   }
 
@@ -289,16 +305,13 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
       return std::nullopt;
     }
   }
-  QJsonParseError perr;
-  const QJsonDocument doc = QJsonDocument::fromJson(QByteArray::fromStdString(jsonText), &perr);
-  if (perr.error != QJsonParseError::NoError || !doc.isObject()) {
-    error = path + ": the scene description is damaged (JSON error at character " +
-            std::to_string(perr.offset) + ": " + perr.errorString().toStdString() + ")";
-    return std::nullopt;
-  }
-  std::optional<SceneState> state = sceneFromJson(doc.object(), e);
+  // A text that is not JSON is damage; JSON that is not a valid description
+  // names the bad value's path and its place in the text.
+  bool notJson = false;
+  std::optional<SceneState> state = sceneFromJsonText(jsonText, e, notJson);
   if (!state) {
-    error = path + ": the scene description is invalid at " + e;
+    error = path + (notJson ? ": the scene description is damaged (not valid JSON): "
+                            : ": the scene description is invalid: ") + e;
     return std::nullopt;
   }
 

@@ -1,14 +1,9 @@
 #include "scene/import_pipeline.h"
 
-#include <cmath>
-
-#include <QJsonArray>
-#include <QJsonDocument>
-
 #include "mesh/tile_merge.h"
 #include "meshproc/report_json.h"
+#include "scene/asset_reports.h"
 #include "scene/import_isolation.h"
-#include "scene/report_json.h"
 
 namespace hs::scene {
 namespace {
@@ -34,37 +29,6 @@ mesh::ImportReport sumTileReports(const std::vector<mesh::ImportReport>& tiles, 
   sum.verticesOut = merged.vertexCount();
   sum.trianglesOut = merged.triangleCount();
   return sum;
-}
-
-QJsonObject parseObject(const std::string& json) {
-  return QJsonDocument::fromJson(QByteArray::fromStdString(json)).object();
-}
-
-std::string compact(const QJsonObject& o) { return QJsonDocument(o).toJson(QJsonDocument::Compact).toStdString(); }
-
-QJsonObject tilesJson(const ImportedMesh& r, double tolerance) {
-  QJsonObject t;
-  t["files"] = double(r.tiles.size());
-  t["weld_tolerance_m"] = tolerance;
-  t["border_vertices"] = double(r.tileBorderVertices);
-  t["border_vertices_snapped"] = double(r.tileBorderVerticesSnapped);
-  t["border_vertices_merged"] = double(r.tileBorderVerticesMerged);
-  return t;
-}
-
-// What the user asked for, so a reopened report says what it measured.
-QJsonObject optionsJson(const mesh::ProcessOptions& o) {
-  QJsonObject j;
-  j["decimate"] = o.decimate;
-  if (o.decimate) {
-    j["target_ratio"] = o.decimation.targetTriangles ? QJsonValue() : QJsonValue(o.decimation.targetRatio);
-    j["target_triangles"] = o.decimation.targetTriangles ? QJsonValue(double(o.decimation.targetTriangles)) : QJsonValue();
-    j["max_error_m"] = std::isfinite(o.decimation.maxError) ? QJsonValue(o.decimation.maxError) : QJsonValue();
-  }
-  j["lod_levels"] = o.lodLevels;
-  j["lod_ratio"] = o.lodRatio;
-  j["samples_per_face"] = o.error.samplesPerFace;
-  return j;
 }
 
 }  // namespace
@@ -107,13 +71,7 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
     return out;
   }
 
-  QJsonObject importJson = importReportToJsonObject(out.import);
-  if (!out.tiles.empty()) {
-    QJsonArray tiles;
-    for (const auto& t : out.tiles) tiles.append(importReportToJsonObject(t));
-    importJson["tiles"] = tiles;
-  }
-  out.importReportJson = compact(importJson);
+  out.importReport = toJson(AssetImportReport{out.import, out.tiles});
   if (!request.process) return out;
 
   Progress work(progress, readShare, 1.0);
@@ -141,28 +99,23 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
   }
   out.mesh = std::move(p.mesh);
 
-  QJsonObject report = parseObject(storedProcessReportJson(out.process, request.processing));
-  if (!out.tiles.empty()) report["tiles"] = tilesJson(out, request.tileWeldTolerance);
-  out.processReportJson = compact(report);
+  AssetProcessReport stored{out.process, request.processing, std::nullopt};
+  if (!out.tiles.empty())
+    stored.tiles = TileWeldReport{out.tiles.size(), request.tileWeldTolerance, out.tileBorderVertices,
+                                  out.tileBorderVerticesSnapped, out.tileBorderVerticesMerged};
+  out.processReport = toJson(stored);
   return out;
 }
 
-std::string storedProcessReportJson(const mesh::ProcessReport& process, const mesh::ProcessOptions& options) {
-  QJsonObject report = parseObject(mesh::processReportJson(process, nullptr));
-  report.remove("import");  // stored beside it as the asset's import report
-  report["options"] = optionsJson(options);
-  return compact(report);
-}
-
-QJsonObject importReportFileJson(const ImportedMesh& r) {
-  QJsonObject o = importReportToJsonObject(r.import);
-  o["processing"] = r.processReportJson.empty() ? QJsonValue() : QJsonValue(parseObject(r.processReportJson));
+Json importReportFileJson(const ImportedMesh& r) {
+  Json o = mesh::toJson(r.import);
+  o["processing"] = r.processReport;
   if (!r.tiles.empty()) {
-    QJsonArray tiles;
-    for (const auto& t : r.tiles) tiles.append(importReportToJsonObject(t));
-    o["tiles"] = tiles;
+    Json tiles = Json::array();
+    for (const auto& t : r.tiles) tiles.push_back(mesh::toJson(t));
+    o["tiles"] = std::move(tiles);
   }
-  if (!r.error.empty()) o["error"] = QString::fromStdString(r.error);
+  if (!r.error.empty()) o["error"] = r.error;
   return o;
 }
 

@@ -9,8 +9,7 @@
 #include <string>
 #include <vector>
 
-#include <QJsonObject>
-
+#include "core/json.h"
 #include "core/progress.h"
 #include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
@@ -36,8 +35,8 @@ struct ImportedMesh {
   size_t tileBorderVertices = 0, tileBorderVerticesSnapped = 0, tileBorderVerticesMerged = 0;
   bool processed = false;
   mesh::ProcessReport process;
-  std::string importReportJson;        // stored with the asset (MeshAsset::importReportJson)
-  std::string processReportJson;       // stored with the asset; empty when not processed
+  Json importReport;                   // stored with the asset (MeshAsset::importReport)
+  Json processReport;                  // stored with the asset; null when not processed
   std::string error;                   // names the file and the place
   bool cancelled = false;
   bool ok() const { return mesh.has_value() && error.empty() && !cancelled; }
@@ -46,15 +45,11 @@ struct ImportedMesh {
 // Never throws for bad input: `error` says what went wrong where.
 ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* progress = nullptr);
 
-// The processing report as an asset stores it (MeshAsset::processReportJson):
-// mesh::processReportJson without the import part (stored beside it), plus
-// the options that made it.
-std::string storedProcessReportJson(const mesh::ProcessReport& report, const mesh::ProcessOptions& options);
-
 // What `hybridscape-cli import --report` writes: the import report's fields at
 // the top (as before processing existed), "processing" (the processing
-// report, or null), "tiles" (one import report per file, when several) and,
-// on failure, "error".
-QJsonObject importReportFileJson(const ImportedMesh& result);
+// report as the asset stores it, or null), "tiles" (one import report per
+// file, when several) and, on failure, "error". Nothing reads it back: its
+// parts are the asset's reports (scene/asset_reports.h), which have readers.
+Json importReportFileJson(const ImportedMesh& result);
 
 }  // namespace hs::scene

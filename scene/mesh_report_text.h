@@ -1,12 +1,15 @@
 #pragma once
-// A mesh asset's processing report (MeshAsset::processReportJson, made by
+// A mesh asset's processing report (MeshAsset::processReport, made by
 // scene::importMeshFiles) as rows of text: what `hybridscape-cli import`
 // prints, what the editor's error report dialog shows and the one line the
-// Messages panel gets. Read from the stored JSON, so a report reopened from
-// a saved scene reads the same as the one just made. Each row carries its
-// JSON field name, which the CLI prints (hausdorff_m, p95_m, ...).
+// Messages panel gets. Read from the stored JSON through its reader
+// (asset_reports.h), so a report reopened from a saved scene reads the same
+// as the one just made. Each row carries its JSON field name, which the CLI
+// prints (hausdorff_m, p95_m, ...).
 #include <string>
 #include <vector>
+
+#include "core/json.h"
 
 namespace hs::scene {
 
@@ -21,11 +24,11 @@ struct ReportSection {
   std::vector<ReportRow> rows;
 };
 
-// Empty when the text is not a processing report.
-std::vector<ReportSection> processReportSections(const std::string& processReportJson);
+// Empty when `processReport` is null or not a processing report.
+std::vector<ReportSection> processReportSections(const Json& processReport);
 
 // One line: "decimated 69,451 -> 6,945 triangles, hausdorff_m 0.00031 (0.12% of
-// the diagonal), mean_m ..., 3 LODs, 0.4 s"; empty for an empty report.
-std::string processReportSummary(const std::string& processReportJson);
+// the diagonal), mean_m ..., 3 LODs, 0.4 s"; empty when there is no report.
+std::string processReportSummary(const Json& processReport);
 
 }  // namespace hs::scene

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
+#include "scene/asset_reports.h"
 #include "scene/edit.h"
 #include "scene/import_pipeline.h"
-#include "scene/report_json.h"
 
 namespace hs::scene::ops {
 
@@ -41,7 +41,7 @@ EntityId addImportedMesh(Document& doc, mesh::MeshData meshData, const std::stri
   asset.name = name;
   asset.sourcePath = sourcePath;
   asset.contentHash = mesh::contentHash(meshData);
-  asset.importReportJson = importReportToJson(report);
+  asset.importReport = toJson(AssetImportReport{report, {}});
   asset.data = std::make_shared<const mesh::MeshData>(std::move(meshData));
   return addMeshAsset(doc, std::move(asset), name, placement);
 }
@@ -53,8 +53,8 @@ EntityId addImportedMesh(Document& doc, ImportedMesh imported, const std::string
   asset.name = name;
   asset.sourcePath = sourcePath;
   asset.contentHash = mesh::contentHash(*imported.mesh);
-  asset.importReportJson = std::move(imported.importReportJson);
-  asset.processReportJson = std::move(imported.processReportJson);
+  asset.importReport = std::move(imported.importReport);
+  asset.processReport = std::move(imported.processReport);
   asset.lods = std::move(imported.lods);
   asset.data = std::make_shared<const mesh::MeshData>(std::move(*imported.mesh));
   return addMeshAsset(doc, std::move(asset), name, placement);

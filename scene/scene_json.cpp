@@ -2,54 +2,123 @@
 
 #include <cmath>
 
-#include <QJsonArray>
-#include <QJsonDocument>
-
 #include "core/content_hash.h"
+#include "scene/asset_reports.h"
 #include "scene/fields.h"
-#include "scene/json_path_reader.h"
 #include "scene/terrain_json.h"
 #include "sequencer/sequence_json.h"
 
 namespace hs::scene {
 namespace {
 
-QJsonArray vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+// Ids are whole numbers a double holds exactly, so other JSON tools (which
+// read numbers as doubles) see the same ids.
+constexpr int64_t kMaxId = int64_t(1) << 53;
 
+Json vec3Json(const glm::dvec3& v) { return Json::array({v.x, v.y, v.z}); }
 
 template <class Target>
-QJsonValue fieldToJson(const FieldInfo<Target>& f, const Target& t) {
+Json fieldToJson(const FieldInfo<Target>& f, const Target& t) {
   const FieldValue v = f.get(t);
   switch (f.type) {
     case FieldType::Double: return std::get<double>(v);
     case FieldType::Bool: return std::get<bool>(v);
     case FieldType::Enum: {
       const int64_t i = std::get<int64_t>(v);
-      return i >= 0 && size_t(i) < f.enumNames.size() ? QJsonValue(QString::fromStdString(f.enumNames[size_t(i)]))
-                                                     : QJsonValue(double(i));
+      return i >= 0 && size_t(i) < f.enumNames.size() ? Json(f.enumNames[size_t(i)]) : Json(i);
     }
     case FieldType::Vec3:
     case FieldType::Color: return vec3Json(std::get<glm::dvec3>(v));
-    case FieldType::String: return QString::fromStdString(std::get<std::string>(v));
-    case FieldType::AssetRef: return double(std::get<int64_t>(v));
+    case FieldType::String: return std::get<std::string>(v);
+    case FieldType::AssetRef: return std::get<int64_t>(v);
   }
-  return {};
+  return nullptr;
+}
+
+Json entityToJson(const Entity& e) {
+  Json o = Json::object();
+  o["id"] = e.id;
+  o["name"] = e.name;
+  o["parent"] = e.parent;
+  o["children"] = e.children;
+  o["visible"] = e.visible;
+  Json t = Json::object();
+  t["translation"] = vec3Json(e.transform.translation);
+  // The quaternion itself, not Euler angles: saving must not change a value.
+  const auto& q = e.transform.rotation;
+  t["rotation"] = Json::array({q.w, q.x, q.y, q.z});
+  t["scale"] = vec3Json(e.transform.scale);
+  o["transform"] = std::move(t);
+  Json components = Json::object();
+  for (const auto& c : entityComponents()) {
+    if (!c.optional || !c.has(e)) continue;
+    Json co = Json::object();
+    for (const auto& f : c.fields)
+      if (f.serialized) co[f.key] = fieldToJson(f, e);
+    // A reference, not a field (fields.cpp says why).
+    if (c.key == "terrain") co["terrain_id"] = e.terrain->terrain;
+    components[c.key] = std::move(co);
+  }
+  o["components"] = std::move(components);
+  return o;
+}
+
+Json assetToJson(const MeshAsset& a) {
+  Json o = Json::object();
+  o["id"] = a.id;
+  o["name"] = a.name;
+  o["source"] = a.sourcePath;
+  o["hash"] = toHex(a.contentHash);
+  if (!a.importReport.is_null()) o["import_report"] = a.importReport;
+  // Coarser levels: their blobs are "mesh/<id>/lod<level>" (hscene_file.cpp).
+  if (!a.lods.empty()) {
+    Json lods = Json::array();
+    for (size_t k = 0; k < a.lods.size(); ++k) {
+      const MeshLod& l = a.lods[k];
+      Json lo = Json::object();
+      lo["level"] = k + 1;
+      lo["hash"] = toHex(l.contentHash);
+      lo["triangles"] = l.triangles;
+      lo["hausdorff_m"] = l.hausdorff;
+      lods.push_back(std::move(lo));
+    }
+    o["lods"] = std::move(lods);
+  }
+  if (!a.processReport.is_null()) o["process_report"] = a.processReport;
+  return o;
 }
 
 // Reading: each helper names the JSON path of what it could not read.
-struct Reader : JsonPathReader {
-  bool id(const QJsonValue& v, const std::string& path, uint64_t& out) {
-    double d = 0.0;
-    if (!number(v, path, d)) return false;
-    if (d < 0 || d != std::floor(d) || d > 9007199254740992.0) return fail(path, "expected an id (whole number >= 0)");
-    out = uint64_t(d);
+// Members a file written by an older build may lack are optional and keep
+// their defaults; what every build wrote is required.
+struct Reader : JsonReader {
+  using JsonReader::JsonReader;
+
+  bool id(const Json* v, const std::string& path, uint64_t& out) {
+    if (!v) return fail(path, "missing");
+    int64_t i = 0;
+    if (!integer(*v, path, i, 0, kMaxId)) return false;
+    out = uint64_t(i);
     return true;
   }
-  bool vec3(const QJsonValue& v, const std::string& path, glm::dvec3& out) {
-    return numbers(v, path, &out[0], 3, "[x, y, z]");
+  bool vec3(const Json* v, const std::string& path, glm::dvec3& out) {
+    if (!v) return fail(path, "missing");
+    return numbers(*v, path, &out[0], 3, "[x, y, z]");
+  }
+  bool hash(const Json* v, const std::string& path, uint64_t& out) {
+    std::string text;
+    if (!v) return fail(path, "missing");
+    if (!string(*v, path, text)) return false;
+    return fromHex(text, out) || fail(path, "expected a hexadecimal content hash, not '" + text + "'");
+  }
+  // An optional array member: absent (or null) is empty.
+  const Json* optArray(const Json& obj, const std::string& path, std::string_view key) {
+    const Json* m = member(obj, key);
+    if (!m || m->is_null()) return nullptr;
+    return array(*m, jsonPath(path, key)) ? m : nullptr;
   }
   template <class Target>
-  bool field(const FieldInfo<Target>& f, const QJsonValue& v, const std::string& path, Target& t) {
+  bool field(const FieldInfo<Target>& f, const Json& v, const std::string& path, Target& t) {
     FieldValue value;
     switch (f.type) {
       case FieldType::Double: {
@@ -58,12 +127,15 @@ struct Reader : JsonPathReader {
         value = d;
         break;
       }
-      case FieldType::Bool:
-        if (!v.isBool()) return fail(path, "expected true or false");
-        value = v.toBool();
+      case FieldType::Bool: {
+        bool b;
+        if (!boolean(v, path, b)) return false;
+        value = b;
         break;
+      }
       case FieldType::Enum: {
-        const std::string name = v.toString().toStdString();
+        std::string name;
+        if (!string(v, path, name)) return false;
         int64_t index = -1;
         for (size_t i = 0; i < f.enumNames.size(); ++i)
           if (f.enumNames[i] == name) index = int64_t(i);
@@ -74,17 +146,19 @@ struct Reader : JsonPathReader {
       case FieldType::Vec3:
       case FieldType::Color: {
         glm::dvec3 x;
-        if (!vec3(v, path, x)) return false;
+        if (!vec3(&v, path, x)) return false;
         value = x;
         break;
       }
-      case FieldType::String:
-        if (!v.isString()) return fail(path, "expected a string");
-        value = v.toString().toStdString();
+      case FieldType::String: {
+        std::string s;
+        if (!string(v, path, s)) return false;
+        value = std::move(s);
         break;
+      }
       case FieldType::AssetRef: {
         uint64_t a;
-        if (!id(v, path, a)) return false;
+        if (!id(&v, path, a)) return false;
         value = int64_t(a);
         break;
       }
@@ -92,254 +166,217 @@ struct Reader : JsonPathReader {
     f.set(t, value);
     return true;
   }
-};
 
-}  // namespace
-
-QJsonObject sceneToJson(const SceneState& state) {
-  QJsonObject root;
-  root["format"] = "hybridscape-scene";
-  root["version"] = kSceneFormatVersion;
-
-  QJsonObject settings;
-  for (const auto& f : settingsFields()) settings[QString::fromStdString(f.key)] = fieldToJson(f, state.settings);
-  root["settings"] = settings;
-
-  QJsonArray roots;
-  for (EntityId id : state.roots) roots.append(double(id));
-  root["roots"] = roots;
-
-  QJsonArray entities;
-  for (const auto& [id, e] : state.entities) {
-    QJsonObject o;
-    o["id"] = double(id);
-    o["name"] = QString::fromStdString(e.name);
-    o["parent"] = double(e.parent);
-    QJsonArray children;
-    for (EntityId c : e.children) children.append(double(c));
-    o["children"] = children;
-    o["visible"] = e.visible;
-    QJsonObject t;
-    t["translation"] = vec3Json(e.transform.translation);
-    // The quaternion itself, not Euler angles: saving must not change a value.
-    const auto& q = e.transform.rotation;
-    t["rotation"] = QJsonArray{q.w, q.x, q.y, q.z};
-    t["scale"] = vec3Json(e.transform.scale);
-    o["transform"] = t;
-    QJsonObject components;
-    for (const auto& c : entityComponents()) {
-      if (!c.optional || !c.has(e)) continue;
-      QJsonObject co;
-      for (const auto& f : c.fields)
-        if (f.serialized) co[QString::fromStdString(f.key)] = fieldToJson(f, e);
-      // A reference, not a field (fields.cpp says why).
-      if (c.key == "terrain") co["terrain_id"] = double(e.terrain->terrain);
-      components[QString::fromStdString(c.key)] = co;
-    }
-    o["components"] = components;
-    entities.append(o);
-  }
-  root["entities"] = entities;
-
-  QJsonArray assets;
-  for (const auto& [id, a] : state.assets) {
-    QJsonObject o;
-    o["id"] = double(id);
-    o["name"] = QString::fromStdString(a.name);
-    o["source"] = QString::fromStdString(a.sourcePath);
-    o["hash"] = QString::fromStdString(toHex(a.contentHash));
-    if (!a.importReportJson.empty())
-      o["import_report"] = QJsonDocument::fromJson(QByteArray::fromStdString(a.importReportJson)).object();
-    // Coarser levels: their blobs are "mesh/<id>/lod<level>" (hscene_file.cpp).
-    if (!a.lods.empty()) {
-      QJsonArray lods;
-      for (size_t k = 0; k < a.lods.size(); ++k) {
-        const MeshLod& l = a.lods[k];
-        QJsonObject lo;
-        lo["level"] = double(k + 1);
-        lo["hash"] = QString::fromStdString(toHex(l.contentHash));
-        lo["triangles"] = double(l.triangles);
-        lo["hausdorff_m"] = l.hausdorff;
-        lods.append(lo);
-      }
-      o["lods"] = lods;
-    }
-    if (!a.processReportJson.empty())
-      o["process_report"] = QJsonDocument::fromJson(QByteArray::fromStdString(a.processReportJson)).object();
-    assets.append(o);
-  }
-  root["assets"] = assets;
-  root["terrains"] = terrainsToJson(state);
-  // The timeline, in the sequencer's own JSON (it has no Qt), embedded as an object.
-  root["sequence"] = QJsonDocument::fromJson(QByteArray::fromStdString(sequencer::sequenceToJsonText(state.sequence))).object();
-  return root;
-}
-
-std::string canonicalJson(const SceneState& state) {
-  return QJsonDocument(sceneToJson(state)).toJson(QJsonDocument::Compact).toStdString();
-}
-
-std::optional<SceneState> sceneFromJson(const QJsonObject& json, std::string& error) {
-  Reader r{{error}};
-  SceneState s;
-  if (json["format"].toString() != "hybridscape-scene") {
-    r.fail("format", "not a Hybridscape scene description");
-    return std::nullopt;
-  }
-  const QJsonObject settings = json["settings"].toObject();
-  for (const auto& f : settingsFields()) {
-    const QJsonValue v = settings[QString::fromStdString(f.key)];
-    if (v.isUndefined()) continue;  // older files: keep the default
-    if (!r.field(f, v, "settings." + f.key, s.settings)) return std::nullopt;
-  }
-
-  const QJsonArray roots = json["roots"].toArray();
-  for (int i = 0; i < roots.size(); ++i) {
-    uint64_t id;
-    if (!r.id(roots[i], "roots[" + std::to_string(i) + "]", id)) return std::nullopt;
-    s.roots.push_back(id);
-  }
-
-  const QJsonArray entities = json["entities"].toArray();
-  for (int i = 0; i < entities.size(); ++i) {
-    const std::string p = "entities[" + std::to_string(i) + "]";
-    const QJsonObject o = entities[i].toObject();
-    Entity e;
-    if (!r.id(o["id"], p + ".id", e.id) || !r.id(o["parent"], p + ".parent", e.parent))
-      return std::nullopt;
-    if (e.id == kNoEntity) {
-      r.fail(p + ".id", "0 is not a valid entity id");
-      return std::nullopt;
-    }
-    e.name = o["name"].toString().toStdString();
-    e.visible = o["visible"].toBool(true);
-    const QJsonArray children = o["children"].toArray();
-    for (int c = 0; c < children.size(); ++c) {
-      uint64_t cid;
-      if (!r.id(children[c], p + ".children[" + std::to_string(c) + "]", cid)) return std::nullopt;
-      e.children.push_back(cid);
-    }
-    const QJsonObject t = o["transform"].toObject();
-    const QJsonArray q = t["rotation"].toArray();
-    if (!r.vec3(t["translation"], p + ".transform.translation", e.transform.translation) ||
-        !r.vec3(t["scale"], p + ".transform.scale", e.transform.scale))
-      return std::nullopt;
-    if (q.size() != 4) {
-      r.fail(p + ".transform.rotation", "expected a quaternion [w, x, y, z]");
-      return std::nullopt;
-    }
+  bool transform(const Json* v, const std::string& path, Transform& t) {
+    if (!v) return fail(path, "missing");
+    if (!object(*v, path) || !vec3(member(*v, "translation"), jsonPath(path, "translation"), t.translation) ||
+        !vec3(member(*v, "scale"), jsonPath(path, "scale"), t.scale))
+      return false;
+    const std::string rp = jsonPath(path, "rotation");
+    const Json* q = required(*v, path, "rotation");
     double qv[4];
-    for (int k = 0; k < 4; ++k)
-      if (!r.number(q[k], p + ".transform.rotation[" + std::to_string(k) + "]", qv[k])) return std::nullopt;
-    e.transform.rotation = glm::dquat(qv[0], qv[1], qv[2], qv[3]);
-    if (glm::length(e.transform.rotation) < 1e-12) {
-      r.fail(p + ".transform.rotation", "zero quaternion");
-      return std::nullopt;
-    }
+    if (!q || !numbers(*q, rp, qv, 4, "a quaternion [w, x, y, z]")) return false;
+    t.rotation = glm::dquat(qv[0], qv[1], qv[2], qv[3]);
+    return glm::length(t.rotation) >= 1e-12 || fail(rp, "zero quaternion");
+  }
 
-    const QJsonObject components = o["components"].toObject();
-    for (auto it = components.begin(); it != components.end(); ++it) {
-      const std::string key = it.key().toStdString();
+  bool components(const Json& o, const std::string& path, Entity& e) {
+    const Json* cs = member(o, "components");
+    if (!cs) return true;
+    const std::string cp = jsonPath(path, "components");
+    if (!object(*cs, cp)) return false;
+    for (const auto& [key, co] : cs->items()) {
+      const std::string p = jsonPath(cp, key);
       const ComponentInfo* c = findComponent(key);
-      if (!c || !c->optional) {
-        r.fail(p + ".components." + key, "unknown component");
-        return std::nullopt;
-      }
+      if (!c || !c->optional) return fail(p, "unknown component");
+      if (!object(co, p)) return false;
       c->add(e);
-      const QJsonObject co = it.value().toObject();
       for (const auto& f : c->fields) {
         if (!f.serialized) continue;
-        const QJsonValue v = co[QString::fromStdString(f.key)];
-        if (v.isUndefined()) continue;
-        if (!r.field(f, v, p + ".components." + key + "." + f.key, e)) return std::nullopt;
+        const Json* v = member(co, f.key);
+        if (v && !field(f, *v, jsonPath(p, f.key), e)) return false;
       }
-      if (key == "terrain" && co.contains("terrain_id") &&
-          !r.id(co["terrain_id"], p + ".components.terrain.terrain_id", e.terrain->terrain))
-        return std::nullopt;
+      if (key == "terrain" && member(co, "terrain_id") &&
+          !id(member(co, "terrain_id"), jsonPath(p, "terrain_id"), e.terrain->terrain))
+        return false;
     }
-    if (!s.entities.emplace(e.id, std::move(e)).second) {
-      r.fail(p + ".id", "duplicate entity id");
-      return std::nullopt;
-    }
+    return true;
   }
 
-  const QJsonArray assets = json["assets"].toArray();
-  for (int i = 0; i < assets.size(); ++i) {
-    const std::string p = "assets[" + std::to_string(i) + "]";
-    const QJsonObject o = assets[i].toObject();
-    MeshAsset a;
-    if (!r.id(o["id"], p + ".id", a.id)) return std::nullopt;
-    a.name = o["name"].toString().toStdString();
-    a.sourcePath = o["source"].toString().toStdString();
-    bool ok = false;
-    a.contentHash = o["hash"].toString().toULongLong(&ok, 16);
-    if (!ok) {
-      r.fail(p + ".hash", "expected a hexadecimal content hash");
-      return std::nullopt;
+  bool entity(const Json& o, const std::string& p, Entity& e) {
+    if (!object(o, p) || !id(member(o, "id"), jsonPath(p, "id"), e.id) ||
+        !id(member(o, "parent"), jsonPath(p, "parent"), e.parent))
+      return false;
+    if (e.id == kNoEntity) return fail(jsonPath(p, "id"), "0 is not a valid entity id");
+    if (!optString(o, p, "name", e.name) || !optBoolean(o, p, "visible", e.visible)) return false;
+    if (const Json* children = optArray(o, p, "children")) {
+      for (size_t c = 0; c < children->size(); ++c) {
+        uint64_t cid;
+        if (!id(&(*children)[c], jsonIndex(jsonPath(p, "children"), c), cid)) return false;
+        e.children.push_back(cid);
+      }
     }
-    if (o.contains("import_report"))
-      a.importReportJson =
-          QJsonDocument(o["import_report"].toObject()).toJson(QJsonDocument::Compact).toStdString();
+    if (failed()) return false;
+    return transform(member(o, "transform"), jsonPath(p, "transform"), e.transform) && components(o, p, e);
+  }
+
+  // A report stored with an asset (asset_reports.h), read through its
+  // reader and kept as its writer writes it: a file from an older build
+  // comes back in the current form ("skipped_lines" becomes
+  // "skipped_primitives"), and a bad member is refused with its path.
+  template <class Report>
+  bool report(const Json& o, const std::string& path, std::string_view key, Json& out) {
+    const Json* m = member(o, key);
+    if (!m || m->is_null()) return true;
+    Report r;
+    if (!fromJson(*this, *m, jsonPath(path, key), r)) return false;
+    out = toJson(r);
+    return true;
+  }
+
+  bool asset(const Json& o, const std::string& p, MeshAsset& a) {
+    if (!object(o, p) || !id(member(o, "id"), jsonPath(p, "id"), a.id) || !optString(o, p, "name", a.name) ||
+        !optString(o, p, "source", a.sourcePath) || !hash(member(o, "hash"), jsonPath(p, "hash"), a.contentHash) ||
+        !report<AssetImportReport>(o, p, "import_report", a.importReport))
+      return false;
     // LOD levels (format 3): hash and error here, the data from their blobs.
-    const QJsonArray lods = o["lods"].toArray();
+    const Json* lods = optArray(o, p, "lods");
+    if (failed()) return false;
     double previous = 0.0;
-    for (int k = 0; k < lods.size(); ++k) {
-      const std::string lp = p + ".lods[" + std::to_string(k) + "]";
-      const QJsonObject lo = lods[k].toObject();
+    for (size_t k = 0; lods && k < lods->size(); ++k) {
+      const std::string lp = jsonIndex(jsonPath(p, "lods"), k);
+      const Json& lo = (*lods)[k];
       MeshLod l;
-      double level = 0;
-      if (!r.number(lo["level"], lp + ".level", level)) return std::nullopt;
-      if (level != double(k + 1)) {
-        r.fail(lp + ".level", "expected level " + std::to_string(k + 1) + " (levels are numbered from 1 in order)");
-        return std::nullopt;
-      }
-      l.contentHash = lo["hash"].toString().toULongLong(&ok, 16);
-      if (!ok) {
-        r.fail(lp + ".hash", "expected a hexadecimal content hash");
-        return std::nullopt;
-      }
-      if (!r.number(lo["hausdorff_m"], lp + ".hausdorff_m", l.hausdorff)) return std::nullopt;
-      double triangles = 0;
-      if (!r.number(lo["triangles"], lp + ".triangles", triangles)) return std::nullopt;
-      if (triangles < 0 || triangles != std::floor(triangles)) {
-        r.fail(lp + ".triangles", "expected a whole number of triangles");
-        return std::nullopt;
-      }
+      int64_t level = 0, triangles = 0;
+      if (!object(lo, lp)) return false;
+      const Json* lv = required(lo, lp, "level");
+      if (!lv || !integer(*lv, jsonPath(lp, "level"), level, 1, kMaxId)) return false;
+      if (level != int64_t(k + 1))
+        return fail(jsonPath(lp, "level"),
+                    "expected level " + std::to_string(k + 1) + " (levels are numbered from 1 in order)");
+      if (!hash(member(lo, "hash"), jsonPath(lp, "hash"), l.contentHash)) return false;
+      const Json* h = required(lo, lp, "hausdorff_m");
+      if (!h || !number(*h, jsonPath(lp, "hausdorff_m"), l.hausdorff)) return false;
+      const Json* t = required(lo, lp, "triangles");
+      if (!t || !integer(*t, jsonPath(lp, "triangles"), triangles, 0, kMaxId)) return false;
       l.triangles = size_t(triangles);
       // The renderer's choice relies on errors growing along the chain.
-      if (l.hausdorff < previous) {
-        r.fail(lp + ".hausdorff_m", "smaller than the previous level's (errors must not decrease)");
-        return std::nullopt;
-      }
+      if (l.hausdorff < previous)
+        return fail(jsonPath(lp, "hausdorff_m"), "smaller than the previous level's (errors must not decrease)");
       previous = l.hausdorff;
       a.lods.push_back(std::move(l));
     }
-    if (o.contains("process_report"))
-      a.processReportJson =
-          QJsonDocument(o["process_report"].toObject()).toJson(QJsonDocument::Compact).toStdString();
-    if (!s.assets.emplace(a.id, std::move(a)).second) {
-      r.fail(p + ".id", "duplicate asset id");
-      return std::nullopt;
-    }
+    return report<AssetProcessReport>(o, p, "process_report", a.processReport);
   }
+};
 
-  if (json.contains("terrains") && !terrainsFromJson(json["terrains"].toArray(), s, error)) return std::nullopt;
-
-  if (json.contains("sequence")) {
-    const QByteArray text = QJsonDocument(json["sequence"].toObject()).toJson(QJsonDocument::Compact);
-    std::string seqError;
-    auto seq = sequencer::sequenceFromJsonText(std::string_view(text.constData(), size_t(text.size())), seqError);
-    if (!seq) {
-      r.fail("sequence", seqError);
-      return std::nullopt;
-    }
-    s.sequence = std::move(*seq);
-  }
-
-  if (const std::string problem = s.validate(); !problem.empty()) {
-    error = "inconsistent hierarchy: " + problem;
+// A bad value fails `r`; a description whose parts do not fit together
+// sets `inconsistency`.
+std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& inconsistency) {
+  SceneState s;
+  if (!r.object(json, "")) return std::nullopt;
+  const Json* format = JsonReader::member(json, "format");
+  if (!format || *format != "hybridscape-scene") {
+    r.fail("format", "not a Hybridscape scene description");
     return std::nullopt;
   }
+  if (const Json* settings = JsonReader::member(json, "settings")) {
+    if (!r.object(*settings, "settings")) return std::nullopt;
+    for (const auto& f : settingsFields()) {
+      const Json* v = JsonReader::member(*settings, f.key);
+      if (!v) continue;  // older files: keep the default
+      if (!r.field(f, *v, jsonPath("settings", f.key), s.settings)) return std::nullopt;
+    }
+  }
+
+  const Json* roots = r.optArray(json, "", "roots");
+  for (size_t i = 0; roots && i < roots->size(); ++i) {
+    uint64_t id;
+    if (!r.id(&(*roots)[i], jsonIndex("roots", i), id)) return std::nullopt;
+    s.roots.push_back(id);
+  }
+  if (r.failed()) return std::nullopt;
+
+  if (const Json* entities = r.optArray(json, "", "entities")) {
+    for (size_t i = 0; i < entities->size(); ++i) {
+      const std::string p = jsonIndex("entities", i);
+      Entity e;
+      if (!r.entity((*entities)[i], p, e)) return std::nullopt;
+      if (!s.entities.emplace(e.id, std::move(e)).second) {
+        r.fail(jsonPath(p, "id"), "duplicate entity id");
+        return std::nullopt;
+      }
+    }
+  }
+
+  if (r.failed()) return std::nullopt;
+  if (const Json* assets = r.optArray(json, "", "assets")) {
+    for (size_t i = 0; i < assets->size(); ++i) {
+      const std::string p = jsonIndex("assets", i);
+      MeshAsset a;
+      if (!r.asset((*assets)[i], p, a)) return std::nullopt;
+      if (!s.assets.emplace(a.id, std::move(a)).second) {
+        r.fail(jsonPath(p, "id"), "duplicate asset id");
+        return std::nullopt;
+      }
+    }
+  }
+
+  if (r.failed()) return std::nullopt;
+  if (const Json* terrains = r.optArray(json, "", "terrains"); terrains && !readTerrains(r, *terrains, "terrains", s))
+    return std::nullopt;
+  if (r.failed()) return std::nullopt;
+  if (const Json* seq = JsonReader::member(json, "sequence");
+      seq && !sequencer::readSequence(r, *seq, "sequence", s.sequence))
+    return std::nullopt;
+  if (r.failed()) return std::nullopt;
+
+  if (const std::string problem = s.validate(); !problem.empty()) {
+    inconsistency = "inconsistent hierarchy: " + problem;
+    return std::nullopt;
+  }
+  return s;
+}
+
+}  // namespace
+
+Json sceneToJson(const SceneState& state) {
+  Json root = Json::object();
+  root["format"] = "hybridscape-scene";
+  root["version"] = kSceneFormatVersion;
+  Json settings = Json::object();
+  for (const auto& f : settingsFields()) settings[f.key] = fieldToJson(f, state.settings);
+  root["settings"] = std::move(settings);
+  root["roots"] = state.roots;
+  Json entities = Json::array();
+  for (const auto& [id, e] : state.entities) entities.push_back(entityToJson(e));
+  root["entities"] = std::move(entities);
+  Json assets = Json::array();
+  for (const auto& [id, a] : state.assets) assets.push_back(assetToJson(a));
+  root["assets"] = std::move(assets);
+  root["terrains"] = terrainsToJson(state);
+  // The timeline, in the sequencer's own shape (sequence_json.h).
+  root["sequence"] = sequencer::sequenceToJson(state.sequence);
+  return root;
+}
+
+std::string canonicalJson(const SceneState& state) { return writeJson(sceneToJson(state), -1); }
+
+std::optional<SceneState> sceneFromJson(const Json& json, std::string& error) {
+  error.clear();
+  Reader r(error);
+  return readScene(json, r, error);
+}
+
+std::optional<SceneState> sceneFromJsonText(std::string_view text, std::string& error, bool& notJson) {
+  error.clear();
+  const std::optional<Json> json = parseJson(text, error);
+  notJson = !json;
+  if (!json) return std::nullopt;
+  std::string readerError;
+  Reader r(readerError);
+  std::optional<SceneState> s = readScene(*json, r, error);
+  if (r.failed()) error = jsonErrorIn(text, r);
   return s;
 }
 

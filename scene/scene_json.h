@@ -1,12 +1,15 @@
 #pragma once
-// The scene description as JSON: the text part of a .hscene file, and the
-// canonical form tests compare documents by. Bulk data (mesh arrays,
-// textures) is not in it; assets carry their content hash instead.
+// The scene description as JSON (hs::Json, core/json.h): the text part of a
+// .hscene file, and the canonical form tests compare documents by. Bulk
+// data (mesh arrays, textures, terrain tiles) is not in it; assets carry
+// their content hash instead. Members are written in a fixed order
+// (format, version, settings, roots, entities, assets, terrains, sequence),
+// so files diff cleanly.
 #include <optional>
 #include <string>
+#include <string_view>
 
-#include <QJsonObject>
-
+#include "core/json.h"
 #include "scene/scene_state.h"
 
 namespace hs::scene {
@@ -15,15 +18,24 @@ namespace hs::scene {
 // version-1 reader would drop them silently, so it is told the file is newer.
 // 3: mesh LODs (assets' "lods", blobs "mesh/<id>/lod<k>") and processing
 // reports; a version-2 reader would drop the LODs on its next save.
+// 4: content hashes by XXH3 (hscene_file.cpp).
 constexpr int kSceneFormatVersion = 4;
 
-QJsonObject sceneToJson(const SceneState& state);
-// Canonical compact text of sceneToJson (stable key order and number format).
+Json sceneToJson(const SceneState& state);
+// Canonical compact text of sceneToJson (stable member order and number format).
 std::string canonicalJson(const SceneState& state);
 
 // Reads a description. Assets come back without mesh data (the file loader
-// fills it from blobs). On failure returns nullopt and sets `error`, naming
-// the JSON path of the bad value ("entities[3].transform.scale").
-std::optional<SceneState> sceneFromJson(const QJsonObject& json, std::string& error);
+// fills it from blobs). On failure returns nullopt and sets `error`: a bad
+// value's JSON path and what is wrong with it ("entities[3].transform.scale:
+// expected [x, y, z], not a string"), or what does not fit together
+// ("inconsistent hierarchy: ...").
+std::optional<SceneState> sceneFromJson(const Json& json, std::string& error);
+
+// The same from the description's text (what a .hscene holds). A text that
+// is not JSON sets `notJson` and an error with its line and column; a bad
+// value is named by its path and placed in the text
+// ("entities[3].transform.scale (line 40, column 18): expected ...").
+std::optional<SceneState> sceneFromJsonText(std::string_view text, std::string& error, bool& notJson);
 
 }  // namespace hs::scene

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/json.h"
 #include "mesh/mesh_data.h"
 #include "scene/entity.h"
 #include "scene/terrain_asset.h"
@@ -35,18 +36,20 @@ struct MeshAsset {
   std::string sourcePath;                       // where it was imported from
   std::shared_ptr<const mesh::MeshData> data;   // immutable once imported: shared by undo (LOD 0)
   uint64_t contentHash = 0;                     // mesh::contentHash(*data)
-  std::string importReportJson;                 // what the importer said, for `info`
+  // What the importer said (AssetImportReport as JSON, scene/asset_reports.h);
+  // null when there is no report.
+  Json importReport;
   std::vector<MeshLod> lods;                    // coarser levels after `data`, errors non-decreasing
-  // Cleaning, decimation error report, per-LOD errors and times as JSON
-  // (scene/import_pipeline.h); empty when the mesh was imported as read.
-  std::string processReportJson;
+  // Cleaning, decimation error report, per-LOD errors and times
+  // (AssetProcessReport as JSON); null when the mesh was imported as read.
+  Json processReport;
   // Hausdorff error per level in metres, level 0 (= 0) first: what
   // mesh::selectLod takes.
   std::vector<double> lodErrors() const;
   bool operator==(const MeshAsset& o) const {
     return id == o.id && name == o.name && sourcePath == o.sourcePath &&
-           contentHash == o.contentHash && importReportJson == o.importReportJson && lods == o.lods &&
-           processReportJson == o.processReportJson;
+           contentHash == o.contentHash && importReport == o.importReport && lods == o.lods &&
+           processReport == o.processReport;
   }
 };
 

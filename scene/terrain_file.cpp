@@ -4,8 +4,6 @@
 #include <cstring>
 #include <set>
 
-#include <QJsonObject>
-
 #include "core/content_hash.h"
 #include "scene/legacy_hashes.h"
 #include "scene/terrain_json.h"

@@ -17,8 +17,6 @@
 #include <string>
 #include <vector>
 
-#include <QJsonArray>
-
 #include "core/progress.h"
 #include "scene/scene_state.h"
 #include "scene/sqlite_db.h"

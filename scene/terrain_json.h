@@ -8,24 +8,26 @@
 // content without comparing hundreds of megabytes.
 #include <string>
 
-#include <QJsonArray>
-#include <QJsonObject>
-
+#include "core/json.h"
 #include "scene/scene_state.h"
 
 namespace hs::scene {
 
-QJsonArray terrainsToJson(const SceneState& state);
-// Adds the described terrains to `state` with their grids made and every
-// tile at its fill value (the file loader then decodes the blobs). False with
-// `error` naming the JSON path of a bad value.
-bool terrainsFromJson(const QJsonArray& json, SceneState& state, std::string& error);
+Json terrainsToJson(const SceneState& state);
+// Adds the described terrains (the array at `path`, "terrains") to `state`
+// with their grids made and every tile at its fill value (the file loader
+// then decodes the blobs). False, with the first bad value's path in
+// `reader`, when one is bad.
+bool readTerrains(JsonReader& reader, const Json& json, const std::string& path, SceneState& state);
 
 // Paint rules as the description writes them (also `terrain paint-rules
-// --rules FILE`): objects with layer, strength, enabled, use_altitude,
-// altitude_min/max/blend, use_slope, slope_min/max/blend.
-QJsonArray paintRulesToJson(const std::vector<terrain::PaintRule>& rules);
-bool paintRulesFromJson(const QJsonArray& json, int layers, std::vector<terrain::PaintRule>& out, std::string& error);
+// --rules FILE`): objects with layer, enabled, use_altitude,
+// altitude_min/max/blend, use_slope, slope_min/max/blend, strength.
+Json paintRulesToJson(const std::vector<terrain::PaintRule>& rules);
+// The array at `path` ("" for a rules file, "terrains[0].paint_rules" in a
+// description) for a terrain of `layers` paint layers.
+bool readPaintRules(JsonReader& reader, const Json& json, const std::string& path, int layers,
+                    std::vector<terrain::PaintRule>& out);
 
 // Tile presence as the description records it (a bit per tile, base64).
 std::string tileBitmap(const std::vector<bool>& present);

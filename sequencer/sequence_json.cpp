@@ -6,54 +6,58 @@ namespace hs::sequencer {
 
 namespace {
 
-JsonValue vec(const glm::dvec3& v) { return JsonValue::Array{v.x, v.y, v.z}; }
-JsonValue quat(const glm::dquat& q) { return JsonValue::Array{q.w, q.x, q.y, q.z}; }
-JsonValue num(double d) { return JsonValue(d); }
+// Ids and frames are read as whole numbers a double holds exactly (other
+// JSON tools read numbers as doubles).
+constexpr int64_t kMaxExact = int64_t(1) << 53;
+
+Json vec(const glm::dvec3& v) { return Json::array({v.x, v.y, v.z}); }
+Json quat(const glm::dquat& q) { return Json::array({q.w, q.x, q.y, q.z}); }
+Json num(double d) { return Json(d); }
 
 template <class K>
-JsonValue keyCommon(const K& k, JsonValue value) {
-  JsonValue o(JsonValue::Object{});
-  o.set("t", k.time);
-  o.set("v", std::move(value));
+Json keyCommon(const K& k, Json value) {
+  Json o = Json::object();
+  o["t"] = k.time;
+  o["v"] = std::move(value);
   return o;
 }
 
 template <class K, class ToJson>
-JsonValue keyToJson(const K& k, ToJson slopeToJson, JsonValue value) {
-  JsonValue o = keyCommon(k, std::move(value));
-  if (k.interpolation != Interpolation::Cubic) o.set("interp", interpolationName(k.interpolation));
+Json keyToJson(const K& k, ToJson slopeToJson, Json value) {
+  Json o = keyCommon(k, std::move(value));
+  if (k.interpolation != Interpolation::Cubic) o["interp"] = interpolationName(k.interpolation);
   if (k.tangentMode != TangentMode::Auto) {
-    o.set("tangent", tangentModeName(k.tangentMode));
-    if (k.tangentMode == TangentMode::Broken) o.set("in", slopeToJson(k.inSlope));
-    o.set("out", slopeToJson(k.outSlope));
+    o["tangent"] = tangentModeName(k.tangentMode);
+    if (k.tangentMode == TangentMode::Broken) o["in"] = slopeToJson(k.inSlope);
+    o["out"] = slopeToJson(k.outSlope);
   }
-  if (k.ease != Ease::None) o.set("ease", easeName(k.ease));
+  if (k.ease != Ease::None) o["ease"] = easeName(k.ease);
   return o;
 }
 
-JsonValue trackToJson(const Track& track) {
-  JsonValue o(JsonValue::Object{});
-  JsonValue::Array keys;
+Json trackToJson(const Track& track) {
+  Json o = Json::object();
+  Json keys = Json::array();
   std::visit(
       [&](const auto& tr) {
         using T = std::decay_t<decltype(tr)>;
         if constexpr (std::is_same_v<T, ScalarTrack>) {
-          o.set("type", "scalar");
+          o["type"] = "scalar";
           for (const auto& k : tr.keys) keys.push_back(keyToJson(k, num, k.value));
         } else if constexpr (std::is_same_v<T, VectorTrack>) {
-          o.set("type", "vector");
+          o["type"] = "vector";
           for (const auto& k : tr.keys) keys.push_back(keyToJson(k, vec, vec(k.value)));
         } else if constexpr (std::is_same_v<T, RotationTrack>) {
-          o.set("type", "rotation");
+          o["type"] = "rotation";
           for (const auto& k : tr.keys) keys.push_back(keyToJson(k, vec, quat(k.value)));
         } else {
-          o.set("type", "step");
-          for (const auto& k : tr.keys) keys.push_back(keyCommon(k, JsonValue(k.value)));
+          o["type"] = "step";
+          for (const auto& k : tr.keys) keys.push_back(keyCommon(k, Json(k.value)));
         }
-        o.set("property", tr.property);
+        o["property"] = tr.property;
       },
       track);
-  o.set("keys", std::move(keys));
+  o["keys"] = std::move(keys);
   return o;
 }
 
@@ -66,283 +70,292 @@ const char* aimName(PathAim a) {
   return "tangent";
 }
 
-JsonValue pathToJson(const PathFollow& p) {
-  JsonValue o(JsonValue::Object{});
-  JsonValue::Array points;
+Json pathToJson(const PathFollow& p) {
+  Json o = Json::object();
+  Json points = Json::array();
   for (const glm::dvec3& v : p.path.points) points.push_back(vec(v));
-  o.set("points", std::move(points));
-  JsonValue::Array progress;
+  o["points"] = std::move(points);
+  Json progress = Json::array();
   for (const auto& k : p.progress.keys) progress.push_back(keyToJson(k, num, k.value));
-  o.set("progress", std::move(progress));
-  o.set("aim", aimName(p.aim));
-  if (p.aim == PathAim::Point) o.set("target_point", vec(p.targetPoint));
-  if (p.aim == PathAim::Entity) o.set("target_entity", p.targetEntity);
+  o["progress"] = std::move(progress);
+  o["aim"] = aimName(p.aim);
+  if (p.aim == PathAim::Point) o["target_point"] = vec(p.targetPoint);
+  if (p.aim == PathAim::Entity) o["target_entity"] = p.targetEntity;
   if (p.bank) {
-    o.set("bank", true);
-    o.set("bank_scale", p.bankScale);
-    o.set("max_bank_deg", p.maxBankDeg);
+    o["bank"] = true;
+    o["bank_scale"] = p.bankScale;
+    o["max_bank_deg"] = p.maxBankDeg;
   }
   return o;
 }
 
 // --- reading ---------------------------------------------------------------
+// Each reader takes the value (nullptr: the member is missing, which the
+// reader reports) and the JSON path it is at.
 
-struct Ctx {
-  std::string& error;
-  bool fail(const std::string& where, const std::string& what) {
-    error = where + ": " + what;
-    return false;
-  }
-};
-
-bool readNumber(Ctx& c, const JsonValue* v, const std::string& where, double& out) {
-  if (!v || !v->isNumber()) return c.fail(where, "expected a number");
-  out = v->asNumber();
-  return true;
+bool readNumber(JsonReader& r, const Json* v, const std::string& path, double& out) {
+  if (!v) return r.fail(path, "missing");
+  return r.number(*v, path, out);
 }
 
-bool readVec(Ctx& c, const JsonValue* v, const std::string& where, glm::dvec3& out) {
-  if (!v || !v->isArray() || v->asArray().size() != 3) return c.fail(where, "expected [x, y, z]");
-  for (int i = 0; i < 3; ++i)
-    if (!readNumber(c, &v->asArray()[size_t(i)], where + "[" + std::to_string(i) + "]", out[i])) return false;
-  return true;
+bool readVec(JsonReader& r, const Json* v, const std::string& path, glm::dvec3& out) {
+  if (!v) return r.fail(path, "missing");
+  return r.numbers(*v, path, &out[0], 3, "[x, y, z]");
 }
 
-bool readQuat(Ctx& c, const JsonValue* v, const std::string& where, glm::dquat& out) {
-  if (!v || !v->isArray() || v->asArray().size() != 4) return c.fail(where, "expected a quaternion [w, x, y, z]");
+bool readQuat(JsonReader& r, const Json* v, const std::string& path, glm::dquat& out) {
+  if (!v) return r.fail(path, "missing");
   double q[4];
-  for (int i = 0; i < 4; ++i)
-    if (!readNumber(c, &v->asArray()[size_t(i)], where + "[" + std::to_string(i) + "]", q[i])) return false;
+  if (!r.numbers(*v, path, q, 4, "a quaternion [w, x, y, z]")) return false;
   out = glm::dquat(q[0], q[1], q[2], q[3]);
-  if (!(glm::length(out) > 0.0)) return c.fail(where, "the quaternion has zero length");
+  if (!(glm::length(out) > 0.0)) return r.fail(path, "the quaternion has zero length");
   return true;
 }
 
-bool readString(Ctx& c, const JsonValue* v, const std::string& where, std::string& out) {
-  if (!v || !v->isString()) return c.fail(where, "expected a string");
-  out = v->asString();
+bool readId(JsonReader& r, const Json* v, const std::string& path, uint64_t& out) {
+  if (!v) return r.fail(path, "missing");
+  int64_t id = 0;
+  if (!r.integer(*v, path, id, 0, kMaxExact)) return false;
+  out = uint64_t(id);
+  return true;
+}
+
+// An optional member naming one of a set: absent leaves `out` as it is.
+template <class E, class FromName>
+bool readName(JsonReader& r, const Json& obj, const std::string& path, const char* key, E& out, FromName fromName,
+              const char* what, const char* choices) {
+  const Json* m = JsonReader::member(obj, key);
+  if (!m) return true;
+  std::string s;
+  const std::string p = jsonPath(path, key);
+  if (!r.string(*m, p, s)) return false;
+  const std::optional<E> v = fromName(s);
+  if (!v) return r.fail(p, std::string("unknown ") + what + " '" + s + "' (" + choices + ")");
+  out = *v;
   return true;
 }
 
 template <class V, class S, class ReadValue, class ReadSlope>
-bool readKey(Ctx& c, const JsonValue& j, const std::string& where, Key<V, S>& k, ReadValue readValue,
+bool readKey(JsonReader& r, const Json& j, const std::string& path, Key<V, S>& k, ReadValue readValue,
              ReadSlope readSlope) {
-  if (!j.isObject()) return c.fail(where, "expected a key object {\"t\": ..., \"v\": ...}");
-  if (!readNumber(c, j.find("t"), where + ".t", k.time)) return false;
-  if (!std::isfinite(k.time)) return c.fail(where + ".t", "time is not finite");
-  if (!readValue(c, j.find("v"), where + ".v", k.value)) return false;
-  if (const JsonValue* i = j.find("interp")) {
-    std::string s;
-    if (!readString(c, i, where + ".interp", s)) return false;
-    auto v = interpolationFromName(s);
-    if (!v) return c.fail(where + ".interp", "unknown interpolation '" + s + "' (constant, linear, cubic)");
-    k.interpolation = *v;
-  }
-  if (const JsonValue* t = j.find("tangent")) {
-    std::string s;
-    if (!readString(c, t, where + ".tangent", s)) return false;
-    auto v = tangentModeFromName(s);
-    if (!v) return c.fail(where + ".tangent", "unknown tangent mode '" + s + "' (auto, user, broken)");
-    k.tangentMode = *v;
-  }
+  if (!j.is_object())
+    return r.fail(path, std::string("expected a key object {\"t\": ..., \"v\": ...}, not ") + jsonTypeName(j));
+  if (!readNumber(r, JsonReader::member(j, "t"), jsonPath(path, "t"), k.time)) return false;
+  if (!readValue(r, JsonReader::member(j, "v"), jsonPath(path, "v"), k.value)) return false;
+  if (!readName(r, j, path, "interp", k.interpolation, interpolationFromName, "interpolation",
+                "constant, linear, cubic") ||
+      !readName(r, j, path, "tangent", k.tangentMode, tangentModeFromName, "tangent mode", "auto, user, broken"))
+    return false;
   if (k.tangentMode != TangentMode::Auto) {
-    if (!readSlope(c, j.find("out"), where + ".out", k.outSlope)) return false;
+    if (!readSlope(r, JsonReader::member(j, "out"), jsonPath(path, "out"), k.outSlope)) return false;
     k.inSlope = k.outSlope;
-    if (k.tangentMode == TangentMode::Broken && !readSlope(c, j.find("in"), where + ".in", k.inSlope)) return false;
+    if (k.tangentMode == TangentMode::Broken &&
+        !readSlope(r, JsonReader::member(j, "in"), jsonPath(path, "in"), k.inSlope))
+      return false;
   }
-  if (const JsonValue* e = j.find("ease")) {
-    std::string s;
-    if (!readString(c, e, where + ".ease", s)) return false;
-    auto v = easeFromName(s);
-    if (!v) return c.fail(where + ".ease", "unknown ease '" + s + "' (none, in, out, in_out)");
-    k.ease = *v;
-  }
-  return true;
+  return readName(r, j, path, "ease", k.ease, easeFromName, "ease", "none, in, out, in_out");
 }
 
 template <class K, class ReadValue, class ReadSlope>
-bool readKeys(Ctx& c, const JsonValue* keys, const std::string& where, std::vector<K>& out, ReadValue rv,
+bool readKeys(JsonReader& r, const Json* keys, const std::string& path, std::vector<K>& out, ReadValue rv,
               ReadSlope rs) {
-  if (!keys || !keys->isArray()) return c.fail(where, "expected an array of keys");
-  for (size_t i = 0; i < keys->asArray().size(); ++i) {
+  if (!keys) return r.fail(path, "missing");
+  if (!r.array(*keys, path)) return false;
+  for (size_t i = 0; i < keys->size(); ++i) {
     K k;
-    if (!readKey(c, keys->asArray()[i], where + "[" + std::to_string(i) + "]", k, rv, rs)) return false;
+    if (!readKey(r, (*keys)[i], jsonIndex(path, i), k, rv, rs)) return false;
     out.push_back(k);
   }
   return true;
 }
 
-bool readTrack(Ctx& c, const JsonValue& j, const std::string& where, Track& out) {
-  if (!j.isObject()) return c.fail(where, "expected a track object");
-  std::string type, property;
-  if (!readString(c, j.find("type"), where + ".type", type)) return false;
-  if (!readString(c, j.find("property"), where + ".property", property)) return false;
-  const JsonValue* keys = j.find("keys");
-  const std::string kw = where + ".keys";
-  if (type == "scalar") {
-    ScalarTrack t{property, {}};
-    if (!readKeys(c, keys, kw, t.keys, readNumber, readNumber)) return false;
-    out = std::move(t);
-  } else if (type == "vector") {
-    VectorTrack t{property, {}};
-    if (!readKeys(c, keys, kw, t.keys, readVec, readVec)) return false;
-    out = std::move(t);
-  } else if (type == "rotation") {
-    RotationTrack t{property, {}};
-    if (!readKeys(c, keys, kw, t.keys, readQuat, readVec)) return false;
-    out = std::move(t);
-  } else if (type == "step") {
-    StepTrack t{property, {}};
-    if (!keys || !keys->isArray()) return c.fail(kw, "expected an array of keys");
-    for (size_t i = 0; i < keys->asArray().size(); ++i) {
-      const JsonValue& kj = keys->asArray()[i];
-      const std::string w = kw + "[" + std::to_string(i) + "]";
-      StepKey k;
-      if (!readNumber(c, kj.find("t"), w + ".t", k.time)) return false;
-      const JsonValue* v = kj.find("v");
-      if (!v || !v->isBool()) return c.fail(w + ".v", "expected true or false");
-      k.value = v->asBool();
-      t.keys.push_back(k);
-    }
-    out = std::move(t);
-  } else {
-    return c.fail(where + ".type", "unknown track type '" + type + "' (scalar, vector, rotation, step)");
+bool readStepKeys(JsonReader& r, const Json* keys, const std::string& path, std::vector<StepKey>& out) {
+  if (!keys) return r.fail(path, "missing");
+  if (!r.array(*keys, path)) return false;
+  for (size_t i = 0; i < keys->size(); ++i) {
+    const Json& kj = (*keys)[i];
+    const std::string p = jsonIndex(path, i);
+    StepKey k;
+    if (!r.object(kj, p) || !readNumber(r, JsonReader::member(kj, "t"), jsonPath(p, "t"), k.time)) return false;
+    const Json* v = r.required(kj, p, "v");
+    if (!v || !r.boolean(*v, jsonPath(p, "v"), k.value)) return false;
+    out.push_back(k);
   }
   return true;
 }
 
-bool readPath(Ctx& c, const JsonValue& j, const std::string& where, PathFollow& p) {
-  if (!j.isObject()) return c.fail(where, "expected a path object");
-  const JsonValue* points = j.find("points");
-  if (!points || !points->isArray()) return c.fail(where + ".points", "expected an array of [x, y, z]");
-  for (size_t i = 0; i < points->asArray().size(); ++i) {
+bool readTrack(JsonReader& r, const Json& j, const std::string& path, Track& out) {
+  if (!r.object(j, path)) return false;
+  std::string type, property;
+  const Json* t = r.required(j, path, "type");
+  if (!t || !r.string(*t, jsonPath(path, "type"), type)) return false;
+  const Json* p = r.required(j, path, "property");
+  if (!p || !r.string(*p, jsonPath(path, "property"), property)) return false;
+  const Json* keys = JsonReader::member(j, "keys");
+  const std::string kp = jsonPath(path, "keys");
+  if (type == "scalar") {
+    ScalarTrack tr{property, {}};
+    if (!readKeys(r, keys, kp, tr.keys, readNumber, readNumber)) return false;
+    out = std::move(tr);
+  } else if (type == "vector") {
+    VectorTrack tr{property, {}};
+    if (!readKeys(r, keys, kp, tr.keys, readVec, readVec)) return false;
+    out = std::move(tr);
+  } else if (type == "rotation") {
+    RotationTrack tr{property, {}};
+    if (!readKeys(r, keys, kp, tr.keys, readQuat, readVec)) return false;
+    out = std::move(tr);
+  } else if (type == "step") {
+    StepTrack tr{property, {}};
+    if (!readStepKeys(r, keys, kp, tr.keys)) return false;
+    out = std::move(tr);
+  } else {
+    return r.fail(jsonPath(path, "type"), "unknown track type '" + type + "' (scalar, vector, rotation, step)");
+  }
+  return true;
+}
+
+std::optional<PathAim> aimFromName(std::string_view s) {
+  if (s == "tangent") return PathAim::Tangent;
+  if (s == "point") return PathAim::Point;
+  if (s == "entity") return PathAim::Entity;
+  return std::nullopt;
+}
+
+bool readPath(JsonReader& r, const Json& j, const std::string& path, PathFollow& p) {
+  if (!r.object(j, path)) return false;
+  const Json* points = r.required(j, path, "points");
+  if (!points || !r.array(*points, jsonPath(path, "points"))) return false;
+  for (size_t i = 0; i < points->size(); ++i) {
     glm::dvec3 v;
-    if (!readVec(c, &points->asArray()[i], where + ".points[" + std::to_string(i) + "]", v)) return false;
+    if (!readVec(r, &(*points)[i], jsonIndex(jsonPath(path, "points"), i), v)) return false;
     p.path.points.push_back(v);
   }
-  if (!readKeys(c, j.find("progress"), where + ".progress", p.progress.keys, readNumber, readNumber)) return false;
-  if (const JsonValue* a = j.find("aim")) {
-    std::string s;
-    if (!readString(c, a, where + ".aim", s)) return false;
-    if (s == "tangent") p.aim = PathAim::Tangent;
-    else if (s == "point") p.aim = PathAim::Point;
-    else if (s == "entity") p.aim = PathAim::Entity;
-    else return c.fail(where + ".aim", "unknown aim '" + s + "' (tangent, point, entity)");
-  }
-  if (p.aim == PathAim::Point && !readVec(c, j.find("target_point"), where + ".target_point", p.targetPoint))
+  if (!readKeys(r, JsonReader::member(j, "progress"), jsonPath(path, "progress"), p.progress.keys, readNumber,
+                readNumber) ||
+      !readName(r, j, path, "aim", p.aim, aimFromName, "aim", "tangent, point, entity"))
     return false;
-  if (p.aim == PathAim::Entity) {
-    double id = 0;
-    if (!readNumber(c, j.find("target_entity"), where + ".target_entity", id)) return false;
-    p.targetEntity = uint64_t(id);
-  }
-  if (const JsonValue* b = j.find("bank")) {
-    if (!b->isBool()) return c.fail(where + ".bank", "expected true or false");
-    p.bank = b->asBool();
-  }
-  if (j.find("bank_scale") && !readNumber(c, j.find("bank_scale"), where + ".bank_scale", p.bankScale)) return false;
-  if (j.find("max_bank_deg") && !readNumber(c, j.find("max_bank_deg"), where + ".max_bank_deg", p.maxBankDeg))
+  if (p.aim == PathAim::Point &&
+      !readVec(r, JsonReader::member(j, "target_point"), jsonPath(path, "target_point"), p.targetPoint))
     return false;
+  if (p.aim == PathAim::Entity &&
+      !readId(r, JsonReader::member(j, "target_entity"), jsonPath(path, "target_entity"), p.targetEntity))
+    return false;
+  return r.optBoolean(j, path, "bank", p.bank) && r.optNumber(j, path, "bank_scale", p.bankScale) &&
+         r.optNumber(j, path, "max_bank_deg", p.maxBankDeg);
+}
+
+bool readVersion(JsonReader& r, const Json& j, const std::string& path) {
+  const Json* f = JsonReader::member(j, "format");
+  if (!f || !f->is_string() || f->get<std::string>() != "hybridscape-sequence")
+    return r.fail(jsonPath(path, "format"),
+                  "not a Hybridscape sequence (expected \"format\": \"hybridscape-sequence\")");
+  const std::string vp = jsonPath(path, "version");
+  const Json* v = r.required(j, path, "version");
+  double version = 0;
+  if (!v || !r.number(*v, vp, version)) return false;
+  // A newer version says so, however large the number is.
+  if (version > kSequenceFormatVersion)
+    return r.fail(vp, "format version " + v->dump() + " is newer than this program reads (" +
+                          std::to_string(kSequenceFormatVersion) + "); update Hybridscape");
+  int whole = 0;
+  return r.integer(*v, vp, whole, 1, kSequenceFormatVersion);
+}
+
+bool readRate(JsonReader& r, const Json& j, const std::string& path, FrameRate& rate) {
+  const std::string rp = jsonPath(path, "rate");
+  const Json* v = r.required(j, path, "rate");
+  if (!v) return false;
+  if (!v->is_array() || v->size() != 2)
+    return r.fail(rp, "expected [numerator, denominator], e.g. [60, 1] or [60000, 1001]");
+  // Both positive, small enough that frame times never overflow.
+  constexpr int64_t kMax = int64_t(1) << 31;
+  return r.integer((*v)[0], jsonIndex(rp, 0), rate.num, 1, kMax) &&
+         r.integer((*v)[1], jsonIndex(rp, 1), rate.den, 1, kMax);
+}
+
+bool readBinding(JsonReader& r, const Json& bj, const std::string& path, Binding& b) {
+  if (!r.object(bj, path) || !readId(r, JsonReader::member(bj, "entity"), jsonPath(path, "entity"), b.entity) ||
+      !r.optString(bj, path, "label", b.label))
+    return false;
+  const std::string tp = jsonPath(path, "tracks");
+  const Json* tracks = r.required(bj, path, "tracks");
+  if (!tracks || !r.array(*tracks, tp)) return false;
+  for (size_t k = 0; k < tracks->size(); ++k) {
+    Track t;
+    if (!readTrack(r, (*tracks)[k], jsonIndex(tp, k), t)) return false;
+    b.tracks.push_back(std::move(t));
+  }
+  if (const Json* p = JsonReader::member(bj, "path")) {
+    PathFollow pf;
+    if (!readPath(r, *p, jsonPath(path, "path"), pf)) return false;
+    b.path = std::move(pf);
+  }
   return true;
 }
 
 }  // namespace
 
-JsonValue sequenceToJson(const Sequence& s) {
-  JsonValue o(JsonValue::Object{});
-  o.set("format", "hybridscape-sequence");
-  o.set("version", kSequenceFormatVersion);
-  o.set("rate", JsonValue::Array{JsonValue(s.rate.num), JsonValue(s.rate.den)});
-  o.set("start", s.startFrame);
-  o.set("end", s.endFrame);
-  JsonValue::Array bindings;
+Json sequenceToJson(const Sequence& s) {
+  Json o = Json::object();
+  o["format"] = "hybridscape-sequence";
+  o["version"] = kSequenceFormatVersion;
+  o["rate"] = Json::array({s.rate.num, s.rate.den});
+  o["start"] = s.startFrame;
+  o["end"] = s.endFrame;
+  Json bindings = Json::array();
   for (const Binding& b : s.bindings) {
-    JsonValue bj(JsonValue::Object{});
-    bj.set("entity", b.entity);
-    bj.set("label", b.label);
-    JsonValue::Array tracks;
+    Json bj = Json::object();
+    bj["entity"] = b.entity;
+    bj["label"] = b.label;
+    Json tracks = Json::array();
     for (const Track& t : b.tracks) tracks.push_back(trackToJson(t));
-    bj.set("tracks", std::move(tracks));
-    if (b.path) bj.set("path", pathToJson(*b.path));
+    bj["tracks"] = std::move(tracks);
+    if (b.path) bj["path"] = pathToJson(*b.path);
     bindings.push_back(std::move(bj));
   }
-  o.set("bindings", std::move(bindings));
+  o["bindings"] = std::move(bindings);
   return o;
 }
 
-std::optional<Sequence> sequenceFromJson(const JsonValue& j, std::string& error) {
-  Ctx c{error};
-  Sequence s;
-  if (!j.isObject()) {
-    c.fail("sequence", "expected an object");
-    return std::nullopt;
+bool readSequence(JsonReader& r, const Json& j, const std::string& path, Sequence& s) {
+  s = Sequence{};
+  if (!r.object(j, path) || !readVersion(r, j, path) || !readRate(r, j, path, s.rate)) return false;
+  for (auto [key, frame] : {std::pair{"start", &s.startFrame}, {"end", &s.endFrame}}) {
+    const Json* v = r.required(j, path, key);
+    if (!v || !r.integer(*v, jsonPath(path, key), *frame, -kMaxExact, kMaxExact)) return false;
   }
-  if (const JsonValue* f = j.find("format"); !f || !f->isString() || f->asString() != "hybridscape-sequence") {
-    c.fail("format", "not a Hybridscape sequence (expected \"format\": \"hybridscape-sequence\")");
-    return std::nullopt;
-  }
-  double version = 0;
-  if (!readNumber(c, j.find("version"), "version", version)) return std::nullopt;
-  if (version > kSequenceFormatVersion) {
-    c.fail("version", "format version " + std::to_string(int64_t(version)) + " is newer than this program reads (" +
-                          std::to_string(kSequenceFormatVersion) + "); update Hybridscape");
-    return std::nullopt;
-  }
-  const JsonValue* rate = j.find("rate");
-  if (!rate || !rate->isArray() || rate->asArray().size() != 2 || !rate->asArray()[0].isNumber() ||
-      !rate->asArray()[1].isNumber() || rate->asArray()[0].asNumber() <= 0 || rate->asArray()[1].asNumber() <= 0) {
-    c.fail("rate", "expected [numerator, denominator], e.g. [60, 1] or [60000, 1001]");
-    return std::nullopt;
-  }
-  s.rate = {int64_t(rate->asArray()[0].asNumber()), int64_t(rate->asArray()[1].asNumber())};
-  double start = 0, end = 0;
-  if (!readNumber(c, j.find("start"), "start", start) || !readNumber(c, j.find("end"), "end", end))
-    return std::nullopt;
-  s.startFrame = int64_t(start);
-  s.endFrame = int64_t(end);
-  const JsonValue* bindings = j.find("bindings");
-  if (!bindings || !bindings->isArray()) {
-    c.fail("bindings", "expected an array");
-    return std::nullopt;
-  }
-  for (size_t i = 0; i < bindings->asArray().size(); ++i) {
-    const JsonValue& bj = bindings->asArray()[i];
-    const std::string where = "bindings[" + std::to_string(i) + "]";
+  const std::string bp = jsonPath(path, "bindings");
+  const Json* bindings = r.required(j, path, "bindings");
+  if (!bindings || !r.array(*bindings, bp)) return false;
+  for (size_t i = 0; i < bindings->size(); ++i) {
     Binding b;
-    double id = 0;
-    if (!bj.isObject()) {
-      c.fail(where, "expected an object");
-      return std::nullopt;
-    }
-    if (!readNumber(c, bj.find("entity"), where + ".entity", id)) return std::nullopt;
-    b.entity = uint64_t(id);
-    if (const JsonValue* l = bj.find("label"); l && !readString(c, l, where + ".label", b.label)) return std::nullopt;
-    const JsonValue* tracks = bj.find("tracks");
-    if (!tracks || !tracks->isArray()) {
-      c.fail(where + ".tracks", "expected an array");
-      return std::nullopt;
-    }
-    for (size_t k = 0; k < tracks->asArray().size(); ++k) {
-      Track t;
-      if (!readTrack(c, tracks->asArray()[k], where + ".tracks[" + std::to_string(k) + "]", t)) return std::nullopt;
-      b.tracks.push_back(std::move(t));
-    }
-    if (const JsonValue* p = bj.find("path")) {
-      PathFollow pf;
-      if (!readPath(c, *p, where + ".path", pf)) return std::nullopt;
-      b.path = std::move(pf);
-    }
+    if (!readBinding(r, (*bindings)[i], jsonIndex(bp, i), b)) return false;
     s.bindings.push_back(std::move(b));
   }
+  return true;
+}
+
+std::optional<Sequence> sequenceFromJson(const Json& json, std::string& error) {
+  JsonReader r(error);
+  Sequence s;
+  if (!readSequence(r, json, "", s)) return std::nullopt;
   return s;
 }
 
 std::string sequenceToJsonText(const Sequence& sequence) { return writeJson(sequenceToJson(sequence)) + "\n"; }
 
 std::optional<Sequence> sequenceFromJsonText(std::string_view text, std::string& error) {
-  auto j = readJson(text, error);
+  const std::optional<Json> j = parseJson(text, error);
   if (!j) return std::nullopt;
-  return sequenceFromJson(*j, error);
+  std::string readerError;
+  JsonReader r(readerError);
+  Sequence s;
+  if (!readSequence(r, *j, "", s)) {
+    error = jsonErrorIn(text, r);
+    return std::nullopt;
+  }
+  return s;
 }
 
 }  // namespace hs::sequencer

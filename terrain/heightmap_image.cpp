@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include <OpenImageIO/imageio.h>
-#include <cpl_json.h>
 
 #include "terrain/dem_export.h"
+#include "terrain/raw_sidecar.h"
 
 namespace hs::terrain {
 namespace {
@@ -175,25 +175,17 @@ Result<HeightExportReport> exportHeightmap(const Heightfield& hf, const std::str
       std::error_code ec;
       std::filesystem::rename(tmp, path, ec);
       if (ec) return R::failure(path + ": cannot move the finished file into place (" + ec.message() + ")");
-      CPLJSONDocument doc;
-      CPLJSONObject root = doc.GetRoot();
-      root.Add("format", "r16");
-      root.Add("byte_order", "little_endian");
-      root.Add("row_order", "north_first");
-      root.Add("width", w);
-      root.Add("height", h);
-      root.Add("height_min", double(range.min));
-      root.Add("height_max", double(range.max));
-      root.Add("spacing_x", hf.spacing().x);
-      root.Add("spacing_y", hf.spacing().y);
-      root.Add("origin_x", hf.origin().x);
-      root.Add("origin_y", hf.origin().y);
-      root.Add("origin_z", hf.origin().z);
-      // Unreal maps 0..65535 to -256..+256 cm times Z scale / 100 (percent).
-      root.Add("unreal_z_scale_percent", (double(range.max) - double(range.min)) * 100.0 / 512.0);
-      if (hf.geo().valid()) root.Add("crs_wkt", hf.geo().crsWkt);
+      RawSidecar side;
+      side.width = w;
+      side.height = h;
+      side.heightMin = double(range.min);
+      side.heightMax = double(range.max);
+      side.spacing = hf.spacing();
+      side.origin = hf.origin();
+      if (hf.geo().valid()) side.crsWkt = hf.geo().crsWkt;
       rep.sidecar = path + ".json";
-      if (!doc.Save(rep.sidecar)) return R::failure(rep.sidecar + ": cannot write the sidecar");
+      std::string error;
+      if (!writeRawSidecar(rep.sidecar, side, error)) return R::failure(error);
       return rep;
     }
   }
@@ -210,7 +202,6 @@ Result<Heightfield> importHeightmap(const std::string& path, const HeightmapImpo
     if (warnings) warnings->push_back(path + ": " + m);
   };
   if (ext == ".r16" || ext == ".raw") {
-    CPLJSONDocument doc;
     const std::string side = path + ".json";
     int w = 0, h = 0;
     HeightRange range{0.0f, 1.0f};
@@ -219,14 +210,18 @@ Result<Heightfield> importHeightmap(const std::string& path, const HeightmapImpo
     std::string wkt;
     const auto bytes = std::filesystem::file_size(path, ec);
     if (ec) return R::failure(path + ": cannot read the file size");
-    if (std::filesystem::exists(side) && doc.Load(side)) {
-      const CPLJSONObject r = doc.GetRoot();
-      w = r.GetInteger("width", 0);
-      h = r.GetInteger("height", 0);
-      range = {float(r.GetDouble("height_min", 0.0)), float(r.GetDouble("height_max", 1.0))};
-      spacing = {r.GetDouble("spacing_x", 1.0), r.GetDouble("spacing_y", 1.0)};
-      origin = {r.GetDouble("origin_x", 0.0), r.GetDouble("origin_y", 0.0), r.GetDouble("origin_z", 0.0)};
-      wkt = r.GetString("crs_wkt", "");
+    if (std::filesystem::exists(side)) {
+      // A sidecar that is there but damaged is an error, not "no sidecar":
+      // guessing the size would read the heights wrongly.
+      std::string error;
+      const std::optional<RawSidecar> s = readRawSidecar(side, error);
+      if (!s) return R::failure(error);
+      w = s->width;
+      h = s->height;
+      range = {float(s->heightMin), float(s->heightMax)};
+      spacing = s->spacing;
+      origin = s->origin;
+      wkt = s->crsWkt;
     } else {
       // No sidecar: square files only (like Unreal), range from the options.
       const double n = std::sqrt(double(bytes) / 2.0);

@@ -56,6 +56,34 @@ inline void writeBlob(const std::string& path, const std::string& key, const std
   sqlite3_close(db);
 }
 
+// The scene description's text (the document table's one row); empty if
+// there is none.
+inline std::string readDescription(const std::string& path) {
+  sqlite3* db = nullptr;
+  std::string out;
+  sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "SELECT json FROM document WHERE id = 1", -1, &st, nullptr);
+  if (sqlite3_step(st) == SQLITE_ROW)
+    out.assign(reinterpret_cast<const char*>(sqlite3_column_text(st, 0)), size_t(sqlite3_column_bytes(st, 0)));
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  return out;
+}
+
+// Replaces the scene description's text.
+inline void writeDescription(const std::string& path, const std::string& text) {
+  sqlite3* db = nullptr;
+  QVERIFY(sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db, "UPDATE document SET json = ?1 WHERE id = 1", -1, &st, nullptr);
+  sqlite3_bind_text(st, 1, text.data(), int(text.size()), SQLITE_TRANSIENT);
+  const int rc = sqlite3_step(st);
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  QCOMPARE(rc, SQLITE_DONE);
+}
+
 // How many distinct blob keys satisfy `where` (an SQL condition on `key`);
 // -1 if the file cannot be read.
 inline int countBlobKeys(const std::string& path, const std::string& where) {

@@ -32,14 +32,38 @@ using namespace hs::scene;
 namespace fs = std::filesystem;
 
 using hs::test::readBlob;
+using hs::test::readDescription;
 using hs::test::readFile;
 using hs::test::sql;
 using hs::test::writeBlob;
+using hs::test::writeDescription;
 using hs::test::writeFile;
 
 namespace {
 
 const std::string kMeshData = HS_TEST_DATA_DIR "/mesh";
+
+// "line L, column C" of byte `offset` in `text`, counted here by hand
+// (lines and characters from 1), to check the places messages name.
+std::string lineColumnOf(const std::string& text, size_t offset) {
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < offset; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) {
+      ++column;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// Where the n-th (from 0) occurrence of `needle` starts; npos if there is none.
+size_t nthOccurrence(const std::string& text, const std::string& needle, int n) {
+  size_t at = text.find(needle);
+  while (at != std::string::npos && n-- > 0) at = text.find(needle, at + 1);
+  return at;
+}
 
 
 
@@ -260,6 +284,19 @@ class TestHsceneFile : public QObject {
     QVERIFY(back->entities == rich_.entities);
     QVERIFY(back->roots == rich_.roots);
     QVERIFY(back->settings == rich_.settings);
+  }
+
+  // The description as the file holds it: write, read, write gives the
+  // same bytes (entities, settings, the assets' reports, the sequence).
+  void descriptionTextRoundTripsByteForByte() {
+    const std::string text = writeJson(sceneToJson(rich_));
+    std::string error;
+    bool notJson = false;
+    const std::optional<SceneState> back = sceneFromJsonText(text, error, notJson);
+    QVERIFY2(back, error.c_str());
+    QCOMPARE(writeJson(sceneToJson(*back)), text);
+    QVERIFY(!rich_.assets.begin()->second.importReport.is_null());
+    QVERIFY(!rich_.assets.begin()->second.processReport.is_null());  // the demo bunny's LOD chain
   }
 
   void loadProgressAndCancel() {
@@ -547,6 +584,59 @@ class TestHsceneFile : public QObject {
     // A root that claims a parent.
     sql(q, "UPDATE document SET json = json_set(json, '$.entities[0].parent', 3) WHERE id = 1");
     expectRefused(q, {"inconsistent hierarchy"});
+  }
+
+  // The description as the file holds it, damaged three ways: each refusal
+  // names the file, what is wrong, the JSON path where there is one, and
+  // the line and column in the description's text.
+  void damagedDescriptionNamesThePlaceInTheText() {
+    const std::string good = readDescription(goodFile_);
+    QVERIFY(good.size() > 1000);
+
+    // Cut off inside the entities: not JSON any more.
+    std::string text = good.substr(0, nthOccurrence(good, "\"visible\"", 1) + 4);
+    std::string p = copyOfGood("cut_description.hscene");
+    writeDescription(p, text);
+    expectRefused(p, {"description is damaged", lineColumnOf(text, text.size()) + ":"});
+
+    // The second entity's scale becomes a string.
+    text = good;
+    const size_t scale = nthOccurrence(text, "\"scale\": [", 1);
+    QVERIFY(scale != std::string::npos);
+    const size_t open = text.find('[', scale), close = text.find(']', open);
+    text.replace(open, close - open + 1, "\"big\"");
+    p = copyOfGood("string_scale.hscene");
+    writeDescription(p, text);
+    expectRefused(p, {"invalid", "entities[1].transform.scale (" + lineColumnOf(text, open) + "): expected [x, y, z], not a string"});
+
+    // A key twice in one entity.
+    text = good;
+    const size_t visible = nthOccurrence(text, "\"visible\": true", 0);
+    QVERIFY(visible != std::string::npos);
+    text.insert(visible, "\"visible\": false, ");
+    const size_t second = visible + std::string("\"visible\": false, ").size();
+    p = copyOfGood("duplicate_key.hscene");
+    writeDescription(p, text);
+    expectRefused(p, {"description is damaged", lineColumnOf(text, second) + ": duplicate key \"visible\" in entities[0]"});
+
+    // Valid JSON of the wrong shape: a reader's message, not a parser's.
+    p = copyOfGood("array_description.hscene");
+    writeDescription(p, "[]");
+    expectRefused(p, {"invalid", "line 1, column 1: expected an object, not an array"});
+  }
+
+  // Format versions that are no int: far in the future is "newer" with the
+  // number as written (it was "version -1"); text that is no number is invalid.
+  void formatVersionsBeyondAnInt() {
+    std::string p = copyOfGood("far_future.hscene");
+    sql(p, "UPDATE meta SET value = '999999999999999999999' WHERE key = 'format_version'");
+    expectRefused(p, {"newer", "scene format 999999999999999999999;"});
+    p = copyOfGood("version_text.hscene");
+    sql(p, "UPDATE meta SET value = '4x' WHERE key = 'format_version'");
+    expectRefused(p, {"invalid scene format version '4x'"});
+    p = copyOfGood("version_negative.hscene");
+    sql(p, "UPDATE meta SET value = '-99999999999999999999' WHERE key = 'format_version'");
+    expectRefused(p, {"invalid scene format version '-99999999999999999999'"});
   }
 
   // ---- saves that fail leave what was there ---------------------------------------------

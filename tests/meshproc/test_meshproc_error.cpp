@@ -1,8 +1,10 @@
 // The error report: zero for identical meshes, exact for a known offset
-// (also at UTM coordinates), every field in the JSON, non-manifold counts.
-#include <QJsonDocument>
-#include <QJsonObject>
+// (also at UTM coordinates), every field in the JSON, the reports' JSON
+// round trips byte for byte, non-manifold counts.
 #include <QtTest>
+
+#include <cmath>
+#include <limits>
 
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
@@ -69,27 +71,113 @@ class TestMeshprocError : public QObject {
     ProcessResult r = processMesh(curvedGrid(40, 10.0, 0.5, true), o);
     QVERIFY2(r.ok(), r.error.c_str());
     QCOMPARE(r.lods.size(), size_t(2));
-    const std::string json = processReportJson(r.report);
-    QJsonParseError perr;
-    const QJsonDocument doc = QJsonDocument::fromJson(QByteArray::fromStdString(json), &perr);
-    QVERIFY2(perr.error == QJsonParseError::NoError, qPrintable(perr.errorString()));
-    const QJsonObject root = doc.object();
-    const QJsonObject err = root["error"].toObject();
+    const std::string json = hs::writeJson(toJson(r.report));
+    std::string perr;
+    const std::optional<hs::Json> doc = hs::parseJson(json, perr);  // strict: the text is JSON
+    QVERIFY2(doc, perr.c_str());
+    const hs::Json& root = *doc;
+    const hs::Json& err = root.at("error");
     for (const char* k : {"hausdorff_m", "hausdorff_rel", "mean_m", "rms_m", "p95_m", "flipped_normals",
                           "boundary_seam_vertices_moved", "area_in_m2", "area_out_m2", "volume_in_m3",
                           "non_manifold_edges_in", "non_manifold_edges_out", "seconds", "samples_per_face"})
       QVERIFY2(err.contains(k), k);
-    QVERIFY(err["hausdorff_m"].toDouble() > 0);
-    const double rel = err["hausdorff_m"].toDouble() / err["bbox_diagonal_m"].toDouble();
-    QVERIFY(std::abs(err["hausdorff_rel"].toDouble() - rel) <= 1e-8 * rel);  // 9 digits in the file
-    QVERIFY(err["uv_displacement_texels"].toObject().contains("p95"));
-    const QJsonObject dec = root["decimation"].toObject();
-    QCOMPARE(dec["triangles_out"].toInt(), int(r.mesh.triangleCount()));
+    QVERIFY(err.at("hausdorff_m").get<double>() > 0);
+    // Numbers read back to the same doubles, so the relative error is the
+    // quotient of the two numbers in the file, exactly.
+    QCOMPARE(err.at("hausdorff_rel").get<double>(),
+             err.at("hausdorff_m").get<double>() / err.at("bbox_diagonal_m").get<double>());
+    QVERIFY(err.at("uv_displacement_texels").contains("p95"));
+    const hs::Json& dec = root.at("decimation");
+    QCOMPARE(dec.at("triangles_out").get<size_t>(), r.mesh.triangleCount());
     QVERIFY(dec.contains("seconds"));
-    QCOMPARE(root["lods"].toArray().size(), 3);
-    QVERIFY(root["lods"].toArray()[2].toObject()["hausdorff_m"].toDouble() >=
-            root["lods"].toArray()[1].toObject()["hausdorff_m"].toDouble());
-    QVERIFY(root["cleaning"].toObject().contains("duplicate_vertices_welded"));
+    QCOMPARE(root.at("lods").size(), size_t(3));
+    QVERIFY(root.at("lods")[2].at("hausdorff_m").get<double>() >= root.at("lods")[1].at("hausdorff_m").get<double>());
+    QVERIFY(root.at("cleaning").contains("duplicate_vertices_welded"));
+  }
+
+  // Write, read, write gives the same bytes, for a processing report with
+  // every section and for import reports with awkward numbers; what is read
+  // is the value that was written (NaN comes back for what was not finite).
+  void reportsRoundTripByteForByte() {
+    ProcessOptions o;
+    o.decimate = true;
+    o.decimation.targetRatio = 0.3;
+    o.error.textureWidth = o.error.textureHeight = 300;
+    o.lodLevels = 2;
+    ProcessResult r = processMesh(curvedGrid(30, 7.0, 0.4, true), o);
+    QVERIFY2(r.ok(), r.error.c_str());
+    QVERIFY(r.report.cleaned && r.report.decimated && r.report.errorMeasured && r.report.error.uvMeasured);
+    const std::string text = hs::writeJson(toJson(r.report));
+    std::string error;
+    const std::optional<hs::Json> doc = hs::parseJson(text, error);
+    QVERIFY2(doc, error.c_str());
+    hs::JsonReader reader(error);
+    ProcessReport back;
+    QVERIFY2(fromJson(reader, *doc, "", back), error.c_str());
+    QCOMPARE(hs::writeJson(toJson(back)), text);
+    QCOMPARE(back.error.hausdorff, r.report.error.hausdorff);
+    QCOMPARE(back.error.forward.p95, r.report.error.forward.p95);
+    QCOMPARE(back.error.seed, r.report.error.seed);
+    QCOMPARE(back.decimation.secondsTotal, r.report.decimation.secondsTotal);
+    QCOMPARE(back.cleaning.degenerateFaceIndices, r.report.cleaning.degenerateFaceIndices);
+    QCOMPARE(back.lods.size(), r.report.lods.size());
+    QCOMPARE(back.lods.back().hausdorffRel, r.report.lods.back().hausdorffRel);
+    QCOMPARE(back.maxErrorPasses, r.report.maxErrorPasses);
+
+    ImportReport in;
+    in.file = "scan \"7\"\n\xc3\xa9.obj";
+    in.reader = "obj";
+    in.verticesIn = 4000000000ull;
+    in.trianglesOut = 123456789;
+    in.skippedLines = 7;
+    in.warnings = {"scan.obj:3: a line", "scan.obj:9: another"};
+    in.seconds = 1.0 / 3.0;
+    in.geoOffset = {512345.123456789, 4412345.987654321, 0.1};
+    in.geoOffsetSource = "scan_offset.xyz";
+    in.geoOffsetCrs = "EPSG:32634";
+    ImportReport plain;
+    plain.seconds = std::numeric_limits<double>::infinity();  // written as null
+    for (const ImportReport& report : {in, plain}) {
+      const std::string t = hs::writeJson(toJson(report));
+      const std::optional<hs::Json> j = hs::parseJson(t, error);
+      QVERIFY2(j, error.c_str());
+      ImportReport b;
+      QVERIFY2(fromJson(reader, *j, "", b), error.c_str());
+      QCOMPARE(hs::writeJson(toJson(b)), t);
+      QCOMPARE(b.file, report.file);
+      QCOMPARE(b.verticesIn, report.verticesIn);
+      QCOMPARE(b.skippedLines, report.skippedLines);
+      QCOMPARE(b.warnings, report.warnings);
+      QCOMPARE(b.geoOffset, report.geoOffset);
+      QCOMPARE(b.geoOffsetSource, report.geoOffsetSource);
+      QVERIFY(std::isfinite(report.seconds) ? b.seconds == report.seconds : std::isnan(b.seconds));
+    }
+  }
+
+  // One key for primitives no triangle came from; reports written before it
+  // say "skipped_lines", which is still read. A member of the wrong type is
+  // refused with its path.
+  void importReportKeys() {
+    ImportReport in;
+    in.skippedLines = 5;
+    const hs::Json j = toJson(in);
+    QCOMPARE(j.at("skipped_primitives").get<size_t>(), size_t(5));
+    QVERIFY(!j.contains("skipped_lines"));
+    std::string error;
+    hs::JsonReader reader(error);
+    const std::optional<hs::Json> old = hs::parseJson(R"({"file": "a.obj", "skipped_lines": 12, "seconds": 0.5})", error);
+    QVERIFY2(old, error.c_str());
+    ImportReport b;
+    QVERIFY2(fromJson(reader, *old, "import_report", b), error.c_str());
+    QCOMPARE(b.skippedLines, size_t(12));
+    QCOMPARE(b.file, std::string("a.obj"));
+    QVERIFY(hs::writeJson(toJson(b), -1).find("\"skipped_primitives\":12") != std::string::npos);
+    const std::optional<hs::Json> bad = hs::parseJson(R"({"cleaning": {"triangles_in": "many"}})", error);
+    QVERIFY2(bad, error.c_str());
+    ProcessReport p;
+    QVERIFY(!fromJson(reader, *bad, "process_report", p));
+    QCOMPARE(error, std::string("process_report.cleaning.triangles_in: expected a whole number from 0 to "
+                                "9223372036854775807, not a string"));
   }
 
   // Maximum error in metres is met as measured, not only as estimated.

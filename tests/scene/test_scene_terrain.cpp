@@ -508,7 +508,7 @@ class TestSceneTerrain : public QObject {
     Document doc;
     makeTerrain(doc, 129, 100.0, "A");
     makeTerrain(doc, 65, 30.0, "B");
-    const QJsonObject json = sceneToJson(doc.state());
+    const hs::Json json = sceneToJson(doc.state());
     std::string error;
     std::optional<SceneState> back = sceneFromJson(json, error);
     QVERIFY2(back, error.c_str());
@@ -523,8 +523,8 @@ class TestSceneTerrain : public QObject {
       QCOMPARE(b->data->heights().origin(), t.data->heights().origin());
     }
     // A reference to a terrain that is not there is refused.
-    QJsonObject broken = json;
-    broken["terrains"] = QJsonArray();
+    hs::Json broken = json;
+    broken["terrains"] = hs::Json::array();
     QVERIFY(!sceneFromJson(broken, error));
     QVERIFY2(error.find("missing terrain") != std::string::npos, error.c_str());
   }

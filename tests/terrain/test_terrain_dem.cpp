@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include <OpenImageIO/imageio.h>
 #include <cpl_string.h>
@@ -15,6 +16,7 @@
 #include "terrain/dem_export.h"
 #include "terrain/dem_import.h"
 #include "terrain/heightmap_image.h"
+#include "terrain/raw_sidecar.h"
 #include "terrain/terrain.h"
 
 using namespace hs::terrain;
@@ -404,6 +406,51 @@ class TestDem : public QObject {
       QCOMPARE(dted.report.driver, std::string("DTED"));
       QVERIFY(std::abs(dted.report.heightMax - 300.0f) < 1e-3f);
     }
+  }
+
+  // The .r16 sidecar (terrain/raw_sidecar.h) reads back what was written,
+  // exactly; one that is damaged is refused naming the file and the place
+  // (it was taken as "no sidecar" and the size guessed).
+  void rawSidecar() {
+    auto t = Terrain::create(HeightfieldDesc{65, 33, {64.0, 32.0}, {512345.123456789, 4412345.987654321, 0.1}, 0.0f, {}});
+    QVERIFY(t.ok());
+    for (int y = 0; y < 33; ++y)
+      for (int x = 0; x < 65; ++x) t->height.set(x, y, float(x) * 0.37f + float(y) * 1.1f);
+    const std::string r16 = path("side.r16"), side = r16 + ".json";
+    auto ex = exportHeightmap(t->height, r16);
+    QVERIFY2(ex.ok(), ex.error().c_str());
+    QCOMPARE(ex->sidecar, side);
+    std::string error;
+    const std::optional<RawSidecar> s = readRawSidecar(side, error);
+    QVERIFY2(s, error.c_str());
+    QCOMPARE(s->width, 65);
+    QCOMPARE(s->height, 33);
+    QCOMPARE(s->origin, t->height.origin());  // the doubles themselves
+    QCOMPARE(s->spacing, t->height.spacing());
+    QCOMPARE(s->heightMin, double(ex->range.min));
+    QCOMPARE(s->heightMax, double(ex->range.max));
+
+    std::stringstream written;
+    written << std::ifstream(side).rdbuf();
+    const std::string good = written.str();
+    auto refused = [&](const std::string& text, const std::string& what) {
+      std::ofstream(side, std::ios::trunc) << text;
+      Result<Heightfield> back = importHeightmap(r16);
+      QVERIFY(!back.ok());
+      QVERIFY2(back.error().find(side) != std::string::npos && back.error().find(what) != std::string::npos,
+               back.error().c_str());
+    };
+    std::string wrong = good;
+    const size_t w = wrong.find("\"width\": 65");
+    QVERIFY(w != std::string::npos);
+    wrong.replace(w, std::string("\"width\": 65").size(), "\"width\": \"65\"");
+    refused(wrong, "width (line 5, column 12): expected a whole number");
+    refused(good.substr(0, good.size() / 2), "not a JSON sidecar (line ");
+    refused("{\"width\": 65, \"width\": 66, \"height\": 33}", "duplicate key \"width\"");
+    refused("{\"height\": 33}", "width: missing");
+    // As written, it reads.
+    std::ofstream(side, std::ios::trunc) << good;
+    QVERIFY(importHeightmap(r16).ok());
   }
 
   void paintWeightsAsImages() {
