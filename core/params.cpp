@@ -287,6 +287,12 @@ const ParamDecl& OperationDecl::param(std::string_view key) const {
   throw std::logic_error("operation '" + name + "' declares no parameter '" + std::string(key) + "'");
 }
 
+const ParamDecl& paramIn(const std::vector<ParamDecl>& params, std::string_view key) {
+  for (const ParamDecl& p : params)
+    if (p.key == key) return p;
+  throw std::logic_error("no parameter '" + std::string(key) + "' is declared");
+}
+
 Json paramsJson(const OperationDecl& op, const Json& values) {
   Json out = Json::object();
   for (const ParamDecl& p : op.params) {

@@ -121,5 +121,8 @@ Json paramsJson(const OperationDecl& op, const Json& values);
 
 // Appends `more` to `to` (operations made of several structs' parameters).
 void appendParams(std::vector<ParamDecl>& to, const std::vector<ParamDecl>& more);
+// The parameter with this key in `params`; throws std::logic_error if there
+// is none (as OperationDecl::param).
+const ParamDecl& paramIn(const std::vector<ParamDecl>& params, std::string_view key);
 
 }  // namespace hs
