@@ -13,6 +13,7 @@
 
 #include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
+#include "core/params.h"
 #include "core/progress.h"
 #include "scene/scene_state.h"
 
@@ -27,6 +28,11 @@ struct MeshImportRequest {
   bool process = false;
   mesh::ProcessOptions processing;
 };
+
+// `import` and the Import dialog, declared once (core/params.h): the
+// reader's options (mesh::importOptionDecls), the processing ones
+// (mesh::processOptionDecls), and where it goes: at_m, name, report.
+const OperationDecl& meshImportOperation();
 
 struct ImportedMesh {
   std::optional<mesh::MeshData> mesh;  // level 0: as read, or cleaned and decimated
