@@ -123,8 +123,12 @@ std::string paramHelp(const ParamDecl& p) {
 
 std::string formatNumber(double v) {
   if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  // Shortest exact digits; plain decimals where people write them so
+  // ("0.0001", not "1e-04"), exponents for the very small and very large.
+  const bool plain = std::abs(v) >= 1e-5 && std::abs(v) < 1e15;
+  char buf[400];
+  const auto r = plain ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed)
+                       : std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
 }
 
@@ -167,6 +171,7 @@ std::optional<Json> parseParam(const ParamDecl& p, std::string_view text, std::s
   }
   // Numbers: split into `count` parts (or one for all).
   std::vector<std::string_view> parts;
+  bool single = p.count == 1;  // one number typed (also for "2000" = 2000x2000)
   if (p.count == 1) {
     parts.push_back(text);
   } else {
@@ -177,26 +182,26 @@ std::optional<Json> parseParam(const ParamDecl& p, std::string_view text, std::s
       if (sep == std::string_view::npos) break;
       start = sep + 1;
     }
-    if (parts.size() == 1 && p.oneForAll) parts.assign(size_t(p.count), parts.front());
+    if (parts.size() == 1 && p.oneForAll) {
+      parts.assign(size_t(p.count), parts.front());
+      single = true;
+    }
   }
   const std::string quoted = "'" + std::string(text) + "'";
+  const std::string shape = p.count == 1 ? std::string(p.integer ? "a whole number" : "a number")
+                                         : (p.valueName.empty() ? std::to_string(p.count) + " numbers" : p.valueName);
+  const std::string notShape = name + " takes " + shape + parenRange(p) + ", not " + quoted;
   if (int(parts.size()) != p.count) {
-    error = name + ": " + quoted + " is not " + (p.valueName.empty() ? std::to_string(p.count) + " numbers" : p.valueName) +
-            parenRange(p);
+    error = notShape;
     return std::nullopt;
   }
   Json values = Json::array();
   for (std::string_view part : parts) {
     double v = 0.0;
     const NumberRead read = readNumber(part, p.integer, v);
-    const std::string shown = p.count == 1 ? std::string(trimmed(part)) : std::string(trimmed(part)) + " in " + quoted;
+    const std::string shown = single ? std::string(trimmed(part)) : std::string(trimmed(part)) + " in " + quoted;
     if (read == NumberRead::NotANumber || read == NumberRead::NotWhole) {
-      if (p.count > 1)
-        error = name + ": " + quoted + " is not " + (p.valueName.empty() ? std::to_string(p.count) + " numbers" : p.valueName) +
-                parenRange(p);
-      else
-        error = name + ": " + quoted + (read == NumberRead::NotWhole || p.integer ? " is not a whole number" : " is not a number") +
-                parenRange(p);
+      error = notShape;
       return std::nullopt;
     }
     if (read == NumberRead::TooLarge || !inRange(p, v)) {

@@ -40,8 +40,8 @@ const OperationDecl& terrainErodeOperation() {
     const HydraulicParams h;
     ParamDecl iterations = paramIn(thermalParamDecls(), "iterations");
     iterations.defaultValue = nullptr;  // the solver's: thermal 50, hydraulic 300
-    iterations.help = "solver iterations (default thermal " + std::to_string(t.iterations) + ", hydraulic " +
-                      std::to_string(h.iterations) + ")";
+    iterations.help = "solver iterations; default thermal " + std::to_string(t.iterations) + ", hydraulic " +
+                      std::to_string(h.iterations);
     o.params = {
         terrainName(),
         flag("thermal", "Thermal", "thermal erosion (talus creep)"),
