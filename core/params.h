@@ -72,8 +72,9 @@ std::string formatParamValue(const ParamDecl& p, const Json& value);
 
 // Text a user typed (a CLI option's value, a dialog's field) as a checked
 // value. nullopt with `error` naming the option, the text and the range:
-// "--talus: 95 is out of range (0 to 90 degrees)". A flag reads "1", "true",
-// "on", "0", "false", "off".
+// "--talus: 95 is out of range (0 to 90 degrees)", "--talus takes a number
+// (0 to 90 degrees), not 'steep'". A flag reads "1", "true", "on", "0",
+// "false", "off".
 std::optional<Json> parseParam(const ParamDecl& p, std::string_view text, std::string& error);
 // Checks a value that did not come as text (a widget, a file, a struct)
 // with the same rules and messages.
