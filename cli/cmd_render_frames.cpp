@@ -102,7 +102,7 @@ int renderFrames(const OperationArgs& args) {
     return args.usage("--png16 needs a .png output");
   s.resume = !args.flag("overwrite");
   sequencer::ComfortBudget budget;
-  if (!parseBudget(args, budget, error)) return args.usage(error);
+  budgetOf(args, budget);
 
   std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
   if (!state) return args.fail(error);

@@ -61,14 +61,10 @@ int runSequence(int argc, char** argv) {
     rate = sequencer::parseFrameRate(args.text("fps"), error);
     if (!rate) return args.usage("--fps: " + error);
   }
-  // --range: two frame numbers within the declared bounds (checked on
-  // parsing), the first not after the last.
+  // --range: two frame numbers, in order (checked on parsing).
   std::optional<std::pair<int64_t, int64_t>> range;
   if (args.has("range")) {
     const std::vector<double> r = args.numbers("range");
-    if (r[0] > r[1])
-      return args.usage("--range '" + *args.given("range") + "' is reversed: FIRST must not be after LAST (for "
-                        "example 0-35999)");
     range = std::pair{int64_t(r[0]), int64_t(r[1])};
   }
   std::optional<scene::SceneState> state = scene::loadScene(path, error);

@@ -18,8 +18,7 @@ int runTerrainNew(int argc, char** argv) {
   spec.samplesY = int(samples[1]);
   spec.name = args.text("name");
   if (spec.name.empty()) return args.usage("--name must not be empty");
-  const std::vector<double> height = args.numbers("height_m");
-  if (height[0] > height[1]) return args.usage("--height takes MIN,MAX with MIN <= MAX");
+  const std::vector<double> height = args.numbers("height_m");  // in order: checked on parsing
   spec.heightRange = {float(height[0]), float(height[1])};
   if (args.flag("hills")) spec.start = scene::ops::NewTerrain::Start::Hills;
   spec.seed = uint64_t(args.integer("seed"));

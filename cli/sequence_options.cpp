@@ -44,16 +44,10 @@ void eyeSizeOf(const OperationArgs& args, int& width, int& height) {
   height = int(size.at(1));
 }
 
-bool parseBudget(const OperationArgs& args, sequencer::ComfortBudget& out, std::string& error) {
-  const std::vector<double> v = args.numbers("budget_pct");
-  if (v.at(0) > 0.0 || v.at(1) < 0.0) {
-    error = "--budget '" + args.given("budget_pct").value_or("") +
-            "' is not NEAR,FAR in percent of the width with NEAR <= 0 <= FAR (for example -1,2)";
-    return false;
-  }
-  out.nearest = v[0] / 100.0;
-  out.farthest = v[1] / 100.0;
-  return true;
+void budgetOf(const OperationArgs& args, sequencer::ComfortBudget& out) {
+  const std::vector<double> v = args.numbers("budget_pct");  // NEAR <= 0 <= FAR: checked on parsing
+  out.nearest = v.at(0) / 100.0;
+  out.farthest = v.at(1) / 100.0;
 }
 
 scene::EntityId findCamera(const scene::SceneState& scene, const std::string& name, const std::string& scenePath,

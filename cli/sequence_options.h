@@ -28,8 +28,8 @@ bool parseFrames(const OperationArgs& args, const scene::SceneState* scene, sequ
 sequencer::StereoLayout layoutOf(const OperationArgs& args);
 // --size WxH, per eye (default 1920x1080).
 void eyeSizeOf(const OperationArgs& args, int& width, int& height);
-// --budget NEAR,FAR in percent of the image width (NEAR <= 0 <= FAR).
-bool parseBudget(const OperationArgs& args, sequencer::ComfortBudget& out, std::string& error);
+// --budget NEAR,FAR in percent of the image width (default -1,2).
+void budgetOf(const OperationArgs& args, sequencer::ComfortBudget& out);
 
 // The camera named `name` (an entity with a camera), or, with an empty name,
 // the shot camera (render::shotCamera). An error lists the scene's cameras.

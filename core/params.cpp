@@ -63,9 +63,25 @@ NumberRead readNumber(std::string_view text, bool integer, double& out) {
   return NumberRead::Ok;
 }
 
-bool inRange(const ParamDecl& p, double v) { return v >= p.min && v <= p.max; }
+bool inRange(const ParamDecl& p, int i, double v) { return v >= componentMin(p, i) && v <= componentMax(p, i); }
 
 std::string parenRange(const ParamDecl& p) { return " (" + rangeText(p) + ")"; }
+
+// What an ordered tuple's refusal says: "'9,1' is not in order (MIN <= MAX)".
+std::string orderText(const ParamDecl& p) {
+  std::string names = p.valueName;
+  for (char& c : names)
+    if (c == p.separator) c = ' ';
+  std::string out;
+  size_t start = 0;
+  while (start < names.size()) {
+    size_t end = names.find(' ', start);
+    if (end == std::string::npos) end = names.size();
+    out += (out.empty() ? "" : " <= ") + names.substr(start, end - start);
+    start = end + 1;
+  }
+  return out.empty() ? std::string("each number at least the one before") : out;
+}
 
 }  // namespace
 
@@ -101,13 +117,27 @@ const char* unitSymbol(Unit u) {
   return "";
 }
 
+double componentMin(const ParamDecl& p, int i) {
+  return i >= 0 && size_t(i) < p.componentRanges.size() ? p.componentRanges[size_t(i)].first : p.min;
+}
+
+double componentMax(const ParamDecl& p, int i) {
+  return i >= 0 && size_t(i) < p.componentRanges.size() ? p.componentRanges[size_t(i)].second : p.max;
+}
+
 std::string paramName(const ParamDecl& p) { return p.option.empty() ? p.label : "--" + p.option; }
 
 std::string rangeText(const ParamDecl& p) {
   if (p.type != ParamType::Number) return {};
-  std::string s = formatNumber(p.min) + " to " + formatNumber(p.max);
+  std::string s;
+  if (p.componentRanges.empty()) {
+    s = formatNumber(p.min) + " to " + formatNumber(p.max);
+  } else {
+    for (const auto& [lo, hi] : p.componentRanges) s += (s.empty() ? "" : ", ") + formatNumber(lo) + " to " + formatNumber(hi);
+  }
   if (p.unit != Unit::None) s += std::string(" ") + unitWords(p.unit);
-  if (p.count > 1) s += " each";
+  if (p.count > 1 && p.componentRanges.empty()) s += " each";
+  if (p.ordered) s += ", " + orderText(p);
   return s;
 }
 
@@ -196,7 +226,8 @@ std::optional<Json> parseParam(const ParamDecl& p, std::string_view text, std::s
     return std::nullopt;
   }
   Json values = Json::array();
-  for (std::string_view part : parts) {
+  for (int i = 0; i < p.count; ++i) {
+    const std::string_view part = parts[size_t(i)];
     double v = 0.0;
     const NumberRead read = readNumber(part, p.integer, v);
     const std::string shown = single ? std::string(trimmed(part)) : std::string(trimmed(part)) + " in " + quoted;
@@ -204,8 +235,12 @@ std::optional<Json> parseParam(const ParamDecl& p, std::string_view text, std::s
       error = notShape;
       return std::nullopt;
     }
-    if (read == NumberRead::TooLarge || !inRange(p, v)) {
+    if (read == NumberRead::TooLarge || !inRange(p, i, v)) {
       error = name + ": " + shown + " is out of range" + parenRange(p);
+      return std::nullopt;
+    }
+    if (p.ordered && i > 0 && v < values.back().get<double>()) {
+      error = name + ": " + quoted + " is not in order (" + orderText(p) + ")";
       return std::nullopt;
     }
     if (p.integer) values.push_back(static_cast<long long>(v));
@@ -250,14 +285,19 @@ bool checkParam(const ParamDecl& p, const Json& value, std::string& error) {
             parenRange(p);
     return false;
   }
-  for (double v : numbers) {
+  for (int i = 0; i < p.count; ++i) {
+    const double v = numbers[size_t(i)];
     if (!std::isfinite(v) || (p.integer && v != std::floor(v))) {
       error = name + ": " + formatNumber(v) + (p.integer ? " is not a whole number" : " is not a finite number") +
               parenRange(p);
       return false;
     }
-    if (!inRange(p, v)) {
+    if (!inRange(p, i, v)) {
       error = name + ": " + formatNumber(v) + " is out of range" + parenRange(p);
+      return false;
+    }
+    if (p.ordered && i > 0 && v < numbers[size_t(i) - 1]) {
+      error = name + ": " + formatParamValue(p, Json(numbers)) + " is not in order (" + orderText(p) + ")";
       return false;
     }
   }

@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/json.h"
@@ -55,7 +56,15 @@ struct ParamDecl {
   int decimals = 3;        // the editor's number field
   double step = 1.0;       // the editor's spin step
   std::string group{};     // --help section ("thermal"); empty: the options
+  // Number with count > 1: ranges of their own per number, when they
+  // differ ({{-100, 0}, {0, 100}}: NEAR <= 0 <= FAR); empty: [min, max] each.
+  std::vector<std::pair<double, double>> componentRanges{};
+  bool ordered = false;  // Number with count > 1: no number below the one before it (MIN,MAX; FIRST-LAST)
 };
+
+// The range of number `i` of a tuple (componentRanges, else [min, max]).
+double componentMin(const ParamDecl& p, int i);
+double componentMax(const ParamDecl& p, int i);
 
 // "--talus" for a CLI option, else the label.
 std::string paramName(const ParamDecl& p);

@@ -35,6 +35,7 @@ const OperationDecl& sequenceOperation() {
     range.count = 2;
     range.separator = '-';
     range.oneForAll = true;  // "7" is the one frame 7
+    range.ordered = true;
     range.editor = true;
     ParamDecl fps = exportParam("fps");
     fps.help = "60, 59.94, 60000/1001, 24 ... (keys stay at their times in seconds)";

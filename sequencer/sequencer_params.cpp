@@ -79,8 +79,9 @@ const std::vector<ParamDecl>& exportParamDecls() {
          .group = seq},
         {.key = "budget_pct", .option = "budget", .label = "Comfort budget", .unit = Unit::Percent, .min = -100.0,
          .max = 100.0, .defaultValue = Json::array({budget.nearest * 100.0, budget.farthest * 100.0}),
-         .help = "the comfort budget NEAR,FAR in percent of the width, NEAR <= 0 <= FAR", .valueName = "N,F",
-         .count = 2, .group = seq},
+         .help = "the comfort budget NEAR,FAR in percent of the width: the most negative (in front of the screen) "
+                 "and the most positive parallax allowed",
+         .valueName = "N,F", .count = 2, .group = seq, .componentRanges = {{-100.0, 0.0}, {0.0, 100.0}}},
         {.key = "overwrite", .option = "overwrite", .label = "Overwrite", .type = ParamType::Flag,
          .help = "render every frame again (default: valid frames of an earlier run are kept and only the rest is "
                  "rendered, so an interrupted run resumes)",

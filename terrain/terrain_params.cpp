@@ -74,7 +74,7 @@ const std::vector<ParamDecl>& heightExportParamDecls() {
       {.key = "range_m", .option = "range", .label = "Height range", .unit = Unit::Metres,
        .min = -kMaxTerrainHeightMetres, .max = kMaxTerrainHeightMetres,
        .help = "the 16-bit formats' height range, MIN < MAX (default: the terrain's)", .valueName = "MIN,MAX",
-       .count = 2},
+       .count = 2, .ordered = true},
       {.key = "weights_format", .option = "weights-format", .label = "Weights format", .type = ParamType::Choice,
        .defaultValue = "png", .choices = {"png", "png8", "exr"},
        .help = "16-bit PNG, 8-bit PNG or float EXR for the paint weights", .valueName = "F"},

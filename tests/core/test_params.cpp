@@ -105,6 +105,29 @@ class TestParams : public QObject {
     QCOMPARE(formatParamValue(square, *sq), std::string("100x100"));
   }
 
+  void orderedTuplesAndRangesOfTheirOwn() {
+    ParamDecl height{.key = "height_m", .option = "height", .label = "Height range", .unit = Unit::Metres,
+                     .min = -100.0, .max = 100.0, .valueName = "MIN,MAX", .count = 2};
+    height.ordered = true;
+    std::string error;
+    QVERIFY(parseParam(height, "-100,100", error));
+    QVERIFY(parseParam(height, "5,5", error));
+    QCOMPARE(refused(height, "9,1"), std::string("--height: '9,1' is not in order (MIN <= MAX)"));
+    QVERIFY(!checkParam(height, Json::array({9, 1}), error));
+    QCOMPARE(rangeText(height), std::string("-100 to 100 metres each, MIN <= MAX"));
+
+    ParamDecl budget{.key = "budget_pct", .option = "budget", .label = "Budget", .unit = Unit::Percent,
+                     .min = -100.0, .max = 100.0, .valueName = "N,F", .count = 2};
+    budget.componentRanges = {{-100.0, 0.0}, {0.0, 100.0}};
+    QVERIFY(parseParam(budget, "-100,100", error));
+    QVERIFY(parseParam(budget, "0,0", error));
+    QCOMPARE(refused(budget, "2,-1"), std::string("--budget: 2 in '2,-1' is out of range (-100 to 0, 0 to 100 percent)"));
+    QVERIFY(!parseParam(budget, "-1,-0.5", error));
+    QVERIFY(!checkParam(budget, Json::array({1, 2}), error));
+    QCOMPARE(componentMin(budget, 1), 0.0);
+    QCOMPARE(componentMax(budget, 0), 0.0);
+  }
+
   void choicesAndAliases() {
     std::string error;
     QCOMPARE(parseParam(layout(), "tb", error)->get<std::string>(), std::string("tb"));
