@@ -109,6 +109,7 @@ const OperationDecl& farmSlurmOperation() {
       p.group = "passed on to every render task";
       o.params.push_back(p);
     }
+    for (ParamDecl& p : o.params) p.editor = false;  // the editor writes no farm jobs
     return o;
   }();
   return op;

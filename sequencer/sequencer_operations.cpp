@@ -137,7 +137,7 @@ const OperationDecl& farmVerifyOperation() {
     ParamDecl chunk{.key = "chunk", .option = "chunk", .label = "Chunk", .min = 0, .max = 100000000, .integer = true,
                     .defaultValue = 0, .help = "the farm's chunk size: name the chunks to run again (0: do not)",
                     .valueName = "N"};
-    return OperationDecl{
+    OperationDecl o{
         .name = "farm verify",
         .summary = "check a finished run",
         .usage = "--frames LIST --out PATTERN [--size WxH] [--layout L] [options]",
@@ -153,6 +153,8 @@ const OperationDecl& farmVerifyOperation() {
                    text("tag", "tag", "Job tag", "also require the export's job tag in each file", "TAG"),
                    {.key = "threads", .option = "threads", .label = "Threads", .min = 1, .max = 256, .integer = true,
                     .defaultValue = 2, .help = "files checked in parallel", .valueName = "N"}}};
+    for (ParamDecl& p : o.params) p.editor = false;  // the editor verifies no farm runs
+    return o;
   }();
   return op;
 }
