@@ -21,11 +21,14 @@ const ParamDecl& frameNumberDecl() {
 
 bool checkFrameBounds(const FrameList& frames, const std::string& name, std::string& error) {
   if (frames.empty()) return true;
-  ParamDecl d = frameNumberDecl();
-  d.option.clear();
-  d.label = name + ": frame";
-  for (const int64_t f : {frames.first(), frames.last()})
-    if (!checkParam(d, Json(f), error)) return false;
+  const ParamDecl& d = frameNumberDecl();
+  for (const int64_t f : {frames.first(), frames.last()}) {
+    std::string unused;
+    if (!checkParam(d, Json(f), unused)) {
+      error = name + ": frame " + std::to_string(f) + " is out of range (" + rangeText(d) + ")";
+      return false;
+    }
+  }
   return true;
 }
 
