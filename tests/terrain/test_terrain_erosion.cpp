@@ -170,6 +170,36 @@ class TestErosion : public QObject {
     for (float v : flat2) QVERIFY(std::abs(v - 50.0f) < 1e-3f);
   }
 
+  // sanitized() clamps to the declared ranges (the CLI and the dialog
+  // refuse outside them), each change with a warning naming it.
+  void sanitizeClampsByTheDeclarations() {
+    std::vector<std::string> w;
+    const ThermalParams t = ThermalParams{95.0, 0, 2.0f}.sanitized(w);
+    const std::vector<hs::ParamDecl>& td = thermalParamDecls();
+    QCOMPARE(t.talusDegrees, paramIn(td, "talus_deg").max);
+    QCOMPARE(double(t.iterations), paramIn(td, "iterations").min);
+    QCOMPARE(double(t.strength), paramIn(td, "strength").max);
+    QCOMPARE(w.size(), size_t(3));
+    QVERIFY2(w[0].find("Talus angle 95 is out of range (0 to 90 degrees); using 90") != std::string::npos, w[0].c_str());
+    w.clear();
+    HydraulicParams h;
+    h.timeStep = 1e9;
+    h.rain = -1.0;
+    const HydraulicParams hc = h.sanitized(w);
+    const std::vector<hs::ParamDecl>& hd = hydraulicParamDecls();
+    QCOMPARE(hc.timeStep, paramIn(hd, "time_step_s").max);
+    QCOMPARE(hc.rain, paramIn(hd, "rain_m_per_s").min);
+    QCOMPARE(w.size(), size_t(2));
+    // Values in range pass untouched, defaults included.
+    w.clear();
+    QCOMPARE(ThermalParams{}.sanitized(w).talusDegrees, ThermalParams{}.talusDegrees);
+    QCOMPARE(HydraulicParams{}.sanitized(w).iterations, HydraulicParams{}.iterations);
+    QVERIFY(w.empty());
+    // One --iterations for both solvers: their declared ranges agree.
+    QCOMPARE(paramIn(td, "iterations").min, paramIn(hd, "iterations").min);
+    QCOMPARE(paramIn(td, "iterations").max, paramIn(hd, "iterations").max);
+  }
+
   void nanInputs() {
     std::vector<float> h = hills(32, 32);
     h[100] = NAN;
