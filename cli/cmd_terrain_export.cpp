@@ -3,8 +3,8 @@
 
 #include "cli/terrain_cli.h"
 #include "scene/terrain_ops.h"
-#include "terrain/terrain_operations.h"
 #include "terrain/heightmap_image.h"
+#include "terrain/terrain_operations.h"
 
 namespace hs::cli {
 
