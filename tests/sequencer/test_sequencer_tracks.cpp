@@ -437,10 +437,13 @@ class TestTracks : public QObject {
   // list itself may hold negative frames).
   void frameBoundsOfOperations() {
     std::string error;
-    QVERIFY(checkFrameBounds(*FrameList::parse("0-2147483647", error), "--frames", error));
-    QVERIFY(!checkFrameBounds(*FrameList::parse("-5-2", error), "--frames", error));
+    const auto bounds = FrameList::parse("0,2147483647", error), negative = FrameList::parse("-5-2", error),
+               beyond = FrameList::parse("10,2147483648", error);
+    QVERIFY(bounds && negative && beyond);
+    QVERIFY(checkFrameBounds(*bounds, "--frames", error));
+    QVERIFY(!checkFrameBounds(*negative, "--frames", error));
     QCOMPARE(error, std::string("--frames: frame -5 is out of range (0 to 2147483647)"));
-    QVERIFY(!checkFrameBounds(*FrameList::parse("10,2147483648", error), "Frames", error));
+    QVERIFY(!checkFrameBounds(*beyond, "Frames", error));
     QCOMPARE(error, std::string("Frames: frame 2147483648 is out of range (0 to 2147483647)"));
     QVERIFY(checkFrameBounds(FrameList(), "--frames", error));
   }
