@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <optional>
+#include <tuple>
 
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -15,6 +17,7 @@
 
 #include "app/field_editors.h"
 #include "app/form_widgets.h"
+#include "app/param_widgets.h"
 #include "app/path_editor.h"
 
 namespace hs::app {
@@ -114,12 +117,16 @@ CameraPathPanel::CameraPathPanel(PathEditor& pathEditor, std::function<glm::dvec
   bank_->setObjectName("pathBank");
   bank_->setToolTip("Roll into turns like an aircraft in a coordinated turn (from the path's curvature and speed)");
   form->addRow(bank_);
-  bankMax_ = fieldEditor(editBox_, "path.bank_max_deg", scene::FieldType::Double, 1.0, 90.0, 1.0, "°");
-  bankMax_->setToolTip("The largest bank angle (approached smoothly)");
-  form->addRow("Limit", bankMax_);
-  bankScale_ = fieldEditor(editBox_, "path.bank_scale", scene::FieldType::Double, 0.01, 20.0, 0.1, "");
-  bankScale_->setToolTip("Banking strength: 1 is a coordinated turn, less is gentler");
-  form->addRow("Strength", bankScale_);
+  // Banking's limit and strength as `path --bank/--bank-scale` declare them.
+  const std::vector<ParamDecl>& follow = sequencer::pathFollowParamDecls();
+  for (auto [field, key, path] : {std::tuple{&bankMax_, "bank_deg", "path.bank_max_deg"},
+                                  std::tuple{&bankScale_, "bank_scale", "path.bank_scale"}}) {
+    const ParamDecl& p = paramIn(follow, key);
+    *field = createFieldEditor(paramFieldSpec(p, path), editBox_);
+    tagParamWidget((*field)->findChild<QDoubleSpinBox*>(), p);
+    (*field)->setToolTip(QString::fromStdString(paramHelp(p)));
+    form->addRow(paramLabel(p), *field);
+  }
 
   auto* timing = new QHBoxLayout;
   auto* constant = button(editBox_, "Constant Speed", "pathConstantSpeed",
@@ -163,7 +170,11 @@ CameraPathPanel::CameraPathPanel(PathEditor& pathEditor, std::function<glm::dvec
   };
   connect(bank_, &QCheckBox::clicked, this, [banking](bool on) { banking(on, std::nullopt, std::nullopt, {}); });
   bankMax_->setOnEdited([this, banking](const scene::FieldValue& value, int, const QString& key) {
-    banking(bank_->isChecked(), std::get<double>(value), std::nullopt, key);
+    // A limit of 0 turns banking off, as `path --bank 0` does (the path
+    // keeps its last limit for when it is turned on again).
+    const double limit = std::get<double>(value);
+    if (limit <= 0.0) banking(false, std::nullopt, std::nullopt, key);
+    else banking(bank_->isChecked(), limit, std::nullopt, key);
   });
   bankScale_->setOnEdited([this, banking](const scene::FieldValue& value, int, const QString& key) {
     banking(bank_->isChecked(), std::nullopt, std::get<double>(value), key);

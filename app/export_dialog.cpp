@@ -16,6 +16,7 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 
+#include "app/param_widgets.h"
 #include "app/stereo_preview.h"
 #include "render/export_job_tag.h"
 #include "render/stereo_views.h"
@@ -61,23 +62,21 @@ ExportDialog::ExportDialog(scene::Document& doc, StereoPreviewSettings& stereo, 
   setWindowTitle("Export Frames");
   setMinimumWidth(560);
   auto* form = new QFormLayout;
+  const std::vector<ParamDecl>& decls = sequencer::exportParamDecls();
+  const ParamDecl& frames = paramIn(decls, "frames");
   frames_ = new QLineEdit(this);
-  frames_->setToolTip("Frames to export: 0-599, 10,20-30, 0-100x10 (every 10th)");
-  form->addRow("Frames", frames_);
+  frames_->setToolTip("Frames to export: 0-599, 10,20-30, 0-100x10 (every 10th); " +
+                      QString::fromStdString(rangeText(sequencer::frameNumberDecl())));
+  form->addRow(paramLabel(frames), frames_);
   camera_ = new QComboBox(this);
   form->addRow("Camera", camera_);
-  layout_ = new QComboBox(this);
-  for (auto l : {sequencer::StereoLayout::SideBySide, sequencer::StereoLayout::SideBySideSqueezed,
-                 sequencer::StereoLayout::TopBottom, sequencer::StereoLayout::TopBottomSqueezed,
-                 sequencer::StereoLayout::Separate, sequencer::StereoLayout::Anaglyph, sequencer::StereoLayout::Mono})
-    layout_->addItem(sequencer::layoutName(l), int(l));
-  layout_->setToolTip("sbs: two full eyes side by side (3840x1080 for 1920x1080 eyes); sbs-half / tb-half squeezed "
-                      "into one eye's size; separate: two files a frame; anaglyph: red/cyan; mono: the camera only");
-  form->addRow("Layout", layout_);
+  const ParamDecl& layout = paramIn(decls, "layout");
+  layout_ = paramCombo(layout, this);
+  form->addRow(paramLabel(layout), layout_);
   auto* size = new QHBoxLayout;
-  width_ = new QSpinBox(this);
-  height_ = new QSpinBox(this);
-  for (QSpinBox* b : {width_, height_}) b->setRange(1, 16384);
+  const ParamDecl& eye = paramIn(decls, "size_px");
+  width_ = paramIntSpin(eye, this, 0);
+  height_ = paramIntSpin(eye, this, 1);
   QSettings settings;
   width_->setValue(settings.value("export/eyeWidth", 1920).toInt());
   height_->setValue(settings.value("export/eyeHeight", 1080).toInt());
@@ -90,9 +89,14 @@ ExportDialog::ExportDialog(scene::Document& doc, StereoPreviewSettings& stereo, 
   format_ = new QComboBox(this);
   for (const Format& f : kFormats) format_->addItem(f.label);
   form->addRow("Format", format_);
-  qualityLabel_ = new QLabel("Quality", this);
-  quality_ = new QSpinBox(this);
-  form->addRow(qualityLabel_, quality_);
+  qualityLabel_ = new QLabel(this);
+  quality_ = paramIntSpin(paramIn(decls, "quality"), this);
+  crf_ = paramIntSpin(paramIn(decls, "crf"), this);
+  auto* quality = new QHBoxLayout;
+  quality->setContentsMargins(0, 0, 0, 0);
+  quality->addWidget(quality_);
+  quality->addWidget(crf_);
+  form->addRow(qualityLabel_, quality);
   auto* out = new QHBoxLayout;
   output_ = new QLineEdit(this);
   output_->setToolTip("Frame files: %05d (or #####) is the frame number, %v / %V the eye; a film: one file");
@@ -170,17 +174,11 @@ void ExportDialog::resetFromDocument() {
 void ExportDialog::onFormatChanged() {
   const Format& f = kFormats[std::max(0, format_->currentIndex())];
   const bool jpeg = QString(f.extension) == ".jpg";
-  qualityLabel_->setText(f.video ? "Quality (CRF)" : "Quality");
-  quality_->setEnabled(jpeg || f.video);
-  if (f.video) {
-    quality_->setRange(0, 51);
-    quality_->setValue(18);
-    quality_->setToolTip("x264/x265 constant rate factor: lower is better and larger (18 is visually lossless)");
-  } else {
-    quality_->setRange(1, 100);
-    quality_->setValue(92);
-    quality_->setToolTip("JPEG quality 1-100");
-  }
+  const std::vector<ParamDecl>& decls = sequencer::exportParamDecls();
+  qualityLabel_->setText(paramLabel(paramIn(decls, f.video ? "crf" : "quality")));
+  quality_->setVisible(!f.video);
+  crf_->setVisible(f.video);
+  quality_->setEnabled(jpeg);
   // Keep the name, change the kind.
   QString path = output_->text();
   if (path.isEmpty()) return;
@@ -214,7 +212,7 @@ void ExportDialog::setRunning(bool running) {
   export_->setEnabled(!running);
   cancel_->setEnabled(running);
   for (QWidget* w : std::initializer_list<QWidget*>{frames_, camera_, layout_, width_, height_, format_, quality_,
-                                                   output_, overwrite_, comfort_})
+                                                   crf_, output_, overwrite_, comfort_})
     w->setEnabled(!running);
   if (!running) onFormatChanged();
 }
@@ -231,9 +229,11 @@ bool ExportDialog::startExport() {
   std::string error;
   const auto frames = sequencer::FrameList::parse(frames_->text().toStdString(), error);
   if (!frames || frames->empty()) return refuse("Frames: " + QString::fromStdString(frames ? "no frames" : error));
+  if (!sequencer::checkFrameBounds(*frames, "Frames", error)) return refuse(QString::fromStdString(error));
   s.frames = *frames;
   s.rate = req.scene.sequence.rate;
-  s.layout = sequencer::StereoLayout(layout_->currentData().toInt());
+  s.layout = sequencer::layoutFromName(layout_->currentData().toString().toStdString())
+                 .value_or(sequencer::StereoLayout::SideBySide);
   s.eyeWidth = width_->value();
   s.eyeHeight = height_->value();
   const Format& f = kFormats[format_->currentIndex()];
@@ -243,7 +243,7 @@ bool ExportDialog::startExport() {
     if (s.layout == sequencer::StereoLayout::Separate) return refuse("A film holds one picture a frame: choose a layout other than separate");
     if (!sequencer::ffmpegAvailable()) return refuse("A film needs ffmpeg, which is not installed (apt-get install ffmpeg)");
     s.video.codec = f.codec;
-    s.video.crf = quality_->value();
+    s.video.crf = crf_->value();
   } else {
     if (!sequencer::OutputPattern::parse(s.output, error)) return refuse("Output: " + QString::fromStdString(error));
     if (!sequencer::imageFormatFromPath(s.output)) return refuse("Output: use .png, .jpg, .tif or .exr");

@@ -5,7 +5,8 @@
 // everything again, and the comfort check. The export runs off the UI
 // thread (ExportJob) with progress, an ETA and Cancel; it writes the same
 // files as `hybridscape-cli render --frames` and, like it, keeps the valid
-// frames of an earlier run and renders the rest.
+// frames of an earlier run and renders the rest. Its fields' ranges,
+// defaults and tips are `render`'s declarations (sequencer::exportParamDecls).
 #include <memory>
 
 #include <QDialog>
@@ -72,7 +73,8 @@ class ExportDialog : public QDialog {
   QSpinBox *width_ = nullptr, *height_ = nullptr;
   QComboBox* format_ = nullptr;
   QLabel* qualityLabel_ = nullptr;
-  QSpinBox* quality_ = nullptr;
+  QSpinBox* quality_ = nullptr;  // JPEG quality (images)
+  QSpinBox* crf_ = nullptr;      // constant rate factor (films); one of the two is shown
   QLineEdit* output_ = nullptr;
   QCheckBox* overwrite_ = nullptr;
   QCheckBox* comfort_ = nullptr;

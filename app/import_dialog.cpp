@@ -25,17 +25,15 @@
 
 #include "app/error_curve.h"
 #include "app/import_preview.h"
+#include "app/param_widgets.h"
 
 namespace hs::app {
 namespace {
 
-QDoubleSpinBox* coordinateBox(QWidget* parent, const QString& name) {
-  auto* b = new QDoubleSpinBox(parent);
-  b->setObjectName(name);
-  b->setRange(-1e8, 1e8);  // UTM eastings/northings and more
-  b->setDecimals(3);
-  b->setSuffix(" m");
-  return b;
+// The choices of up axis and reader by name (their declarations), and back.
+const char* upName(mesh::UpAxis a) { return a == mesh::UpAxis::Y ? "y" : a == mesh::UpAxis::Z ? "z" : "auto"; }
+const char* readerName(mesh::Reader r) {
+  return r == mesh::Reader::Obj ? "obj" : r == mesh::Reader::Assimp ? "assimp" : "auto";
 }
 
 QTableWidgetItem* cell(const QString& text, bool bold) {
@@ -71,21 +69,20 @@ ImportDialog::ImportDialog(const QStringList& files, const mesh::ImportOptions& 
   // Reading.
   auto* readBox = new QGroupBox("Reading", this);
   auto* readForm = new QFormLayout(readBox);
-  up_ = new QComboBox(readBox);
+  const std::vector<ParamDecl>& reading = mesh::importOptionDecls();
+  const ParamDecl& up = paramIn(reading, "up");
+  up_ = paramCombo(up, readBox,
+                   {"Automatic (FBX and glTF say; OBJ/PLY are Y up)", "Y up", "Z up (scans at UTM coordinates)"});
   up_->setObjectName("upAxis");
-  up_->addItem("Automatic (FBX and glTF say; OBJ/PLY are Y up)", int(mesh::UpAxis::Auto));
-  up_->addItem("Y up", int(mesh::UpAxis::Y));
-  up_->addItem("Z up (scans at UTM coordinates)", int(mesh::UpAxis::Z));
-  up_->setCurrentIndex(std::max(0, up_->findData(int(defaults.up))));
-  readForm->addRow("Up axis", up_);
-  reader_ = new QComboBox(readBox);
+  up_->setCurrentIndex(std::max(0, up_->findData(QString(upName(defaults.up)))));
+  readForm->addRow(paramLabel(up), up_);
+  const ParamDecl& reader = paramIn(reading, "reader");
+  reader_ = paramCombo(reader, readBox,
+                       {"Automatic (own reader for OBJ, Assimp for the rest)",
+                        "Own OBJ reader (parallel, double precision)", "Assimp"});
   reader_->setObjectName("reader");
-  reader_->addItem("Automatic (own reader for OBJ, Assimp for the rest)", int(mesh::Reader::Auto));
-  reader_->addItem("Own OBJ reader (parallel, double precision)", int(mesh::Reader::Obj));
-  reader_->addItem("Assimp", int(mesh::Reader::Assimp));
-  reader_->setCurrentIndex(std::max(0, reader_->findData(int(defaults.reader))));
-  readForm->addRow("Reader", reader_);
-
+  reader_->setCurrentIndex(std::max(0, reader_->findData(QString(readerName(defaults.reader)))));
+  readForm->addRow(paramLabel(reader), reader_);
   auto* originRow = new QWidget(readBox);
   auto* originLayout = new QVBoxLayout(originRow);
   originLayout->setContentsMargins(0, 0, 0, 0);
@@ -103,7 +100,8 @@ ImportDialog::ImportDialog(const QStringList& files, const mesh::ImportOptions& 
   auto* xyz = new QHBoxLayout;
   const char* axis[] = {"originX", "originY", "originZ"};
   for (int i = 0; i < 3; ++i) {
-    origin_[i] = coordinateBox(originRow, axis[i]);
+    origin_[i] = paramDoubleSpin(paramIn(reading, "origin_offset_m"), originRow, i);
+    origin_[i]->setObjectName(axis[i]);
     origin_[i]->setValue(defaults.geoOffset[i]);
     xyz->addWidget(origin_[i]);
   }
@@ -113,7 +111,7 @@ ImportDialog::ImportDialog(const QStringList& files, const mesh::ImportOptions& 
    : defaults.geoOffsetMode == Mode::None ? originFile_
                                           : originAuto_)
       ->setChecked(true);
-  readForm->addRow("Origin", originRow);
+  readForm->addRow(paramLabel(paramIn(reading, "origin")), originRow);
   layout->addWidget(readBox);
 
   // Processing.
@@ -135,35 +133,31 @@ ImportDialog::ImportDialog(const QStringList& files, const mesh::ImportOptions& 
   targetKind_->addItem("a triangle count", int(Target::Triangles));
   targetKind_->addItem("a maximum error", int(Target::MaxError));
   auto* values = new QStackedWidget(decimateRow);
-  ratio_ = new QDoubleSpinBox(values);
+  const std::vector<ParamDecl>& processing = mesh::processOptionDecls();
+  ratio_ = paramDoubleSpin(paramIn(processing, "target_ratio_pct"), values);
   ratio_->setObjectName("targetRatio");
-  ratio_->setRange(0.01, 100.0);
-  ratio_->setDecimals(2);
-  ratio_->setSuffix(" %");
-  triangles_ = new QSpinBox(values);
+  triangles_ = paramIntSpin(paramIn(processing, "target_triangles"), values);
   triangles_->setObjectName("targetTriangles");
-  triangles_->setRange(4, std::numeric_limits<int>::max());
   triangles_->setGroupSeparatorShown(true);
   triangles_->setSuffix(" triangles");
-  maxError_ = new QDoubleSpinBox(values);
+  maxError_ = paramDoubleSpin(paramIn(processing, "max_error_m"), values);
   maxError_->setObjectName("maxError");
-  maxError_->setRange(0.0001, 1000.0);
-  maxError_->setDecimals(4);
-  maxError_->setSuffix(" m");
-  maxError_->setToolTip("Hausdorff distance from the cleaned original, in metres");
+  maxError_->setToolTip("Hausdorff distance from the cleaned original, in metres (" +
+                        QString::fromStdString(rangeText(paramIn(processing, "max_error_m"))) + ")");
   for (QWidget* w : std::initializer_list<QWidget*>{ratio_, triangles_, maxError_}) values->addWidget(w);
   decimateLayout->addWidget(decimate_);
   decimateLayout->addWidget(targetKind_);
   decimateLayout->addWidget(values, 1);
   connect(targetKind_, &QComboBox::currentIndexChanged, values, &QStackedWidget::setCurrentIndex);
   procForm->addRow("Decimate", decimateRow);
-  lods_ = new QSpinBox(procBox);
+  const ParamDecl& lods = paramIn(processing, "lods");
+  lods_ = paramIntSpin(lods, procBox);
   lods_->setObjectName("lodLevels");
-  lods_->setRange(0, 8);
   lods_->setSpecialValueText("none");
   lods_->setSuffix(" coarser levels (a quarter each)");
-  lods_->setToolTip("Each instance draws the coarsest level whose error stays under the scene's pixel bound");
-  procForm->addRow("Levels of detail", lods_);
+  lods_->setToolTip("Each instance draws the coarsest level whose error stays under the scene's pixel bound (" +
+                    QString::fromStdString(rangeText(lods)) + ")");
+  procForm->addRow(paramLabel(lods), lods_);
   layout->addWidget(procBox);
 
   // Preview.
@@ -257,8 +251,9 @@ void ImportDialog::setLodLevels(int levels) { lods_->setValue(levels); }
 scene::MeshImportRequest ImportDialog::request() const {
   scene::MeshImportRequest r;
   for (const QString& f : files_) r.files.push_back(f.toStdString());
-  r.import.up = mesh::UpAxis(up_->currentData().toInt());
-  r.import.reader = mesh::Reader(reader_->currentData().toInt());
+  const QString up = up_->currentData().toString(), reader = reader_->currentData().toString();
+  r.import.up = up == "y" ? mesh::UpAxis::Y : up == "z" ? mesh::UpAxis::Z : mesh::UpAxis::Auto;
+  r.import.reader = reader == "obj" ? mesh::Reader::Obj : reader == "assimp" ? mesh::Reader::Assimp : mesh::Reader::Auto;
   using Mode = mesh::ImportOptions::GeoOffsetMode;
   r.import.geoOffsetMode = originAuto_->isChecked() ? Mode::Auto : originManual_->isChecked() ? Mode::Manual : Mode::None;
   if (originManual_->isChecked()) r.import.geoOffset = {origin_[0]->value(), origin_[1]->value(), origin_[2]->value()};

@@ -1,8 +1,9 @@
 #include "app/terrain_dialogs.h"
 
 #include <QComboBox>
-#include <QPushButton>
+#include <QCheckBox>
 #include <QDialogButtonBox>
+#include <QPushButton>
 #include <QDoubleSpinBox>
 #include <QFileInfo>
 #include <QFormLayout>
@@ -12,17 +13,22 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 
+#include "app/param_widgets.h"
+#include "terrain/erosion_hydraulic.h"
+#include "terrain/erosion_thermal.h"
+
 namespace hs::app {
 namespace {
 
-QDoubleSpinBox* number(QWidget* parent, double min, double max, double value, int decimals, const QString& suffix = {}) {
-  auto* s = new QDoubleSpinBox(parent);
-  s->setRange(min, max);
-  s->setDecimals(decimals);
-  s->setValue(value);
-  s->setSuffix(suffix);
-  s->setKeyboardTracking(false);
-  return s;
+// Two fields side by side with a word between them ("2048 × 2048").
+QWidget* pairRow(QWidget* parent, QWidget* a, const QString& between, QWidget* b) {
+  auto* row = new QWidget(parent);
+  auto* h = new QHBoxLayout(row);
+  h->setContentsMargins(0, 0, 0, 0);
+  h->addWidget(a);
+  h->addWidget(new QLabel(between, row));
+  h->addWidget(b);
+  return row;
 }
 
 QDialogButtonBox* okCancel(QDialog* d, const QString& okText) {
@@ -37,42 +43,39 @@ QDialogButtonBox* okCancel(QDialog* d, const QString& okText) {
 
 NewTerrainDialog::NewTerrainDialog(QWidget* parent, const QString& suggestedName) : QDialog(parent) {
   setWindowTitle("New Terrain");
+  const OperationDecl& op = scene::ops::terrainNewOperation();
   auto* form = new QFormLayout;
   name_ = new QLineEdit(suggestedName, this);
-  form->addRow("Name", name_);
-  sizeX_ = number(this, 1.0, 1e6, 2048.0, 2, " m");
-  sizeY_ = number(this, 1.0, 1e6, 2048.0, 2, " m");
-  auto* size = new QHBoxLayout;
-  size->addWidget(sizeX_);
-  size->addWidget(new QLabel("×", this));
-  size->addWidget(sizeY_);
-  form->addRow("Size (east × north)", size);
-  resolution_ = new QComboBox(this);
-  for (int n : {129, 257, 513, 1025, 2049, 4097, 8193}) resolution_->addItem(QString("%1 × %1 samples").arg(n), n);
-  resolution_->setCurrentIndex(4);
-  form->addRow("Resolution", resolution_);
+  form->addRow(paramLabel(op.param("name")), name_);
+  // A suggestion to start from: 2 km at 1 m spacing (the CLI has no default).
+  const ParamDecl& size = op.param("size_m");
+  sizeX_ = paramDoubleSpin(size, this, 0);
+  sizeY_ = paramDoubleSpin(size, this, 1);
+  for (QDoubleSpinBox* b : {sizeX_, sizeY_}) b->setValue(2048.0);
+  form->addRow(paramLabel(size), pairRow(this, sizeX_, "×", sizeY_));
+  const ParamDecl& samples = op.param("samples");
+  samplesX_ = paramIntSpin(samples, this, 0);
+  samplesY_ = paramIntSpin(samples, this, 1);
+  for (QSpinBox* b : {samplesX_, samplesY_}) b->setValue(2049);
+  form->addRow(paramLabel(samples), pairRow(this, samplesX_, "×", samplesY_));
   auto* spacing = new QLabel(this);
   auto updateSpacing = [this, spacing] {
-    const int n = resolution_->currentData().toInt();
     spacing->setText(QString("%1 × %2 m between samples")
-                         .arg(sizeX_->value() / (n - 1), 0, 'g', 4)
-                         .arg(sizeY_->value() / (n - 1), 0, 'g', 4));
+                         .arg(sizeX_->value() / (samplesX_->value() - 1), 0, 'g', 4)
+                         .arg(sizeY_->value() / (samplesY_->value() - 1), 0, 'g', 4));
   };
-  connect(resolution_, &QComboBox::currentIndexChanged, this, updateSpacing);
-  connect(sizeX_, &QDoubleSpinBox::valueChanged, this, updateSpacing);
-  connect(sizeY_, &QDoubleSpinBox::valueChanged, this, updateSpacing);
+  for (QSpinBox* b : {samplesX_, samplesY_}) connect(b, &QSpinBox::valueChanged, this, updateSpacing);
+  for (QDoubleSpinBox* b : {sizeX_, sizeY_}) connect(b, &QDoubleSpinBox::valueChanged, this, updateSpacing);
   updateSpacing();
   form->addRow("", spacing);
-  minH_ = number(this, -11000.0, 9000.0, 0.0, 2, " m");
-  maxH_ = number(this, -11000.0, 9000.0, 200.0, 2, " m");
-  auto* range = new QHBoxLayout;
-  range->addWidget(minH_);
-  range->addWidget(new QLabel("to", this));
-  range->addWidget(maxH_);
-  form->addRow("Height range", range);
+  const ParamDecl& height = op.param("height_m");
+  minH_ = paramDoubleSpin(height, this, 0);
+  maxH_ = paramDoubleSpin(height, this, 1);
+  form->addRow(paramLabel(height), pairRow(this, minH_, "to", maxH_));
   start_ = new QComboBox(this);
   start_->addItem("Flat (at the lowest height)");
   start_->addItem("Fractal hills over the range");
+  start_->setToolTip(QString::fromStdString(op.param("hills").help));
   form->addRow("Start from", start_);
   auto* v = new QVBoxLayout(this);
   v->addLayout(form);
@@ -83,7 +86,8 @@ scene::ops::NewTerrain NewTerrainDialog::spec() const {
   scene::ops::NewTerrain s;
   s.name = name_->text().trimmed().toStdString();
   if (s.name.empty()) s.name = "Terrain";
-  s.samplesX = s.samplesY = resolution_->currentData().toInt();
+  s.samplesX = samplesX_->value();
+  s.samplesY = samplesY_->value();
   s.sizeMetres = glm::dvec2(sizeX_->value(), sizeY_->value());
   s.heightRange = {float(std::min(minH_->value(), maxH_->value())), float(std::max(minH_->value(), maxH_->value()))};
   s.start = start_->currentIndex() == 1 ? scene::ops::NewTerrain::Start::Hills : scene::ops::NewTerrain::Start::Flat;
@@ -92,48 +96,61 @@ scene::ops::NewTerrain NewTerrainDialog::spec() const {
 
 DemImportDialog::DemImportDialog(QWidget* parent, const QString& file, bool haveSelectedTerrain) : QDialog(parent) {
   setWindowTitle("Import DEM");
+  const std::vector<ParamDecl>& decls = terrain::demImportParamDecls();
   auto* form = new QFormLayout;
   form->addRow("File", new QLabel(QFileInfo(file).fileName(), this));
   target_ = new QComboBox(this);
   target_->addItem("A new terrain at its true ground size");
   if (haveSelectedTerrain) target_->addItem("The selected terrain (resampled onto its grid)");
   form->addRow("Into", target_);
+  const ParamDecl& window = paramIn(decls, "window");
   window_ = new QComboBox(this);
   window_->addItems({"The whole file", "Pixels (columns, rows)", "The file's CRS units", "Longitude / latitude"});
-  form->addRow("Part", window_);
+  window_->setToolTip(QString::fromStdString(window.help));
+  form->addRow(paramLabel(window), window_);
+  const ParamDecl& windowBox = paramIn(decls, "window_box");
   auto* box = new QHBoxLayout;
-  const char* tips[4] = {"min x / column / longitude", "min y / row / latitude", "max x", "max y"};
   for (int i = 0; i < 4; ++i) {
-    box_[i] = number(this, -1e9, 1e9, 0.0, 6);
-    box_[i]->setToolTip(tips[i]);
+    box_[i] = paramDoubleSpin(windowBox, this, i);
     box_[i]->setEnabled(false);
     box->addWidget(box_[i]);
   }
   connect(window_, &QComboBox::currentIndexChanged, this, [this](int i) {
     for (auto* b : box_) b->setEnabled(i != 0);
   });
-  form->addRow("Window (min x, min y, max x, max y)", box);
-  resolution_ = new QSpinBox(this);
-  resolution_->setRange(0, 8193);
-  resolution_->setSpecialValueText("The DEM's own");
-  resolution_->setSuffix(" samples per side");
-  form->addRow("Resolution", resolution_);
+  form->addRow(paramLabel(windowBox), box);
+  // Resampling is optional: without it the DEM keeps its own resolution.
+  const ParamDecl& samples = paramIn(decls, "samples");
+  resample_ = new QCheckBox("Resample to", this);
+  resample_->setToolTip(QString::fromStdString(paramHelp(samples)));
+  samplesX_ = paramIntSpin(samples, this, 0);
+  samplesY_ = paramIntSpin(samples, this, 1);
+  for (QSpinBox* b : {samplesX_, samplesY_}) {
+    b->setValue(1025);
+    b->setEnabled(false);
+    connect(resample_, &QCheckBox::toggled, b, &QWidget::setEnabled);
+  }
+  auto* res = new QHBoxLayout;
+  res->addWidget(resample_);
+  res->addWidget(pairRow(this, samplesX_, "×", samplesY_), 1);
+  form->addRow(paramLabel(samples), res);
+  const ParamDecl& crs = paramIn(decls, "crs");
   crs_ = new QComboBox(this);
   crs_->addItems({"Automatic (reproject degrees, Web Mercator, feet to metres)", "Keep the file's CRS",
                   "Local transverse Mercator", "UTM zone of the centre", "Custom (EPSG:n, WKT, PROJ)"});
+  crs_->setToolTip(QString::fromStdString(crs.help));
   customCrs_ = new QLineEdit(this);
   customCrs_->setPlaceholderText("EPSG:32634");
   customCrs_->setEnabled(false);
   connect(crs_, &QComboBox::currentIndexChanged, this, [this](int i) { customCrs_->setEnabled(i == 4); });
-  form->addRow("Coordinates", crs_);
+  form->addRow(paramLabel(crs), crs_);
   form->addRow("", customCrs_);
-  resampling_ = new QComboBox(this);
-  resampling_->addItems({"Nearest", "Bilinear", "Cubic (Catmull-Rom)"});
-  resampling_->setCurrentIndex(1);
-  form->addRow("Resampling", resampling_);
-  fill_ = new QComboBox(this);
-  fill_->addItems({"Diffusion (smoothest surface over the gap)", "Inverse distance, then diffusion"});
-  form->addRow("Fill nodata", fill_);
+  const ParamDecl& resampling = paramIn(decls, "resampling");
+  resampling_ = paramCombo(resampling, this, {"Nearest", "Bilinear", "Cubic (Catmull-Rom)"});
+  form->addRow(paramLabel(resampling), resampling_);
+  const ParamDecl& fill = paramIn(decls, "fill");
+  fill_ = paramCombo(fill, this, {"Diffusion (smoothest surface over the gap)", "Inverse distance, then diffusion"});
+  form->addRow(paramLabel(fill), fill_);
   auto* v = new QVBoxLayout(this);
   v->addLayout(form);
   v->addWidget(okCancel(this, "Import"));
@@ -150,13 +167,20 @@ DemImportRequest DemImportDialog::request() const {
   o.window.minY = box_[1]->value();
   o.window.maxX = box_[2]->value();
   o.window.maxY = box_[3]->value();
-  o.samplesX = o.samplesY = resolution_->value() >= 2 ? resolution_->value() : 0;
+  if (resample_->isChecked()) {
+    o.samplesX = samplesX_->value();
+    o.samplesY = samplesY_->value();
+  }
   using C = terrain::DemCrsMode;
   const C modes[5] = {C::Auto, C::KeepSource, C::LocalTransverseMercator, C::Utm, C::Custom};
   o.crs = modes[crs_->currentIndex()];
   o.customCrs = customCrs_->text().trimmed().toStdString();
-  o.resampling = terrain::Resampling(resampling_->currentIndex());
-  o.fill = fill_->currentIndex() == 1 ? terrain::NodataFill::InverseDistance : terrain::NodataFill::Diffusion;
+  const QString resampling = resampling_->currentData().toString();
+  o.resampling = resampling == "nearest" ? terrain::Resampling::Nearest
+                 : resampling == "cubic" ? terrain::Resampling::Cubic
+                                         : terrain::Resampling::Bilinear;
+  o.fill = fill_->currentData().toString() == "idw" ? terrain::NodataFill::InverseDistance
+                                                    : terrain::NodataFill::Diffusion;
   return r;
 }
 
@@ -164,30 +188,12 @@ ErosionDialog::ErosionDialog(QWidget* parent, bool hydraulic, const QStringList&
     : QDialog(parent), hydraulic_(hydraulic) {
   setWindowTitle(hydraulic ? "Hydraulic Erosion" : "Thermal Erosion");
   auto* form = new QFormLayout;
-  const terrain::ThermalParams t;
-  const terrain::HydraulicParams h;
-  iterations_ = new QSpinBox(this);
-  iterations_->setRange(1, 1000000);
-  iterations_->setValue(hydraulic ? h.iterations : t.iterations);
-  form->addRow("Iterations", iterations_);
-  talus_ = number(this, 0.0, 90.0, t.talusDegrees, 1, "°");
-  strength_ = number(this, 0.0, 1.0, double(t.strength), 3);
-  rain_ = number(this, 0.0, 1e3, h.rain, 4, " m/s");
-  evaporation_ = number(this, 0.0, 1e3, h.evaporation, 3, " /s");
-  capacity_ = number(this, 0.0, 1e3, h.sedimentCapacity, 3);
-  erosion_ = number(this, 0.0, 1e3, h.erosionRate, 3, " /s");
-  deposition_ = number(this, 0.0, 1e3, h.depositionRate, 3, " /s");
-  dt_ = number(this, 1e-4, 10.0, h.timeStep, 4, " s");
-  if (hydraulic) {
-    form->addRow("Rain", rain_);
-    form->addRow("Evaporation", evaporation_);
-    form->addRow("Sediment capacity", capacity_);
-    form->addRow("Erosion rate", erosion_);
-    form->addRow("Deposition rate", deposition_);
-    form->addRow("Time step (upper bound)", dt_);
-  } else {
-    form->addRow("Talus angle", talus_);
-    form->addRow("Strength", strength_);
+  for (const ParamDecl& p : hydraulic ? terrain::hydraulicParamDecls() : terrain::thermalParamDecls()) {
+    if (!p.editor) continue;
+    QAbstractSpinBox* field = p.integer ? static_cast<QAbstractSpinBox*>(paramIntSpin(p, this))
+                                        : static_cast<QAbstractSpinBox*>(paramDoubleSpin(p, this));
+    fields_[p.key] = field;
+    form->addRow(paramLabel(p), field);
   }
   mask_ = new QComboBox(this);
   mask_->addItem("Everywhere");
@@ -203,23 +209,31 @@ ErosionDialog::ErosionDialog(QWidget* parent, bool hydraulic, const QStringList&
   v->addWidget(okCancel(this, "Erode"));
 }
 
+double ErosionDialog::value(const char* key) const {
+  QAbstractSpinBox* f = fields_.at(key);
+  if (auto* i = qobject_cast<QSpinBox*>(f)) return i->value();
+  return static_cast<QDoubleSpinBox*>(f)->value();
+}
+
 terrain::ThermalParams ErosionDialog::thermal() const {
   terrain::ThermalParams p;
-  p.iterations = iterations_->value();
-  p.talusDegrees = talus_->value();
-  p.strength = float(strength_->value());
+  if (hydraulic_) return p;
+  p.iterations = int(value("iterations"));
+  p.talusDegrees = value("talus_deg");
+  p.strength = float(value("strength"));
   return p;
 }
 
 terrain::HydraulicParams ErosionDialog::hydraulic() const {
   terrain::HydraulicParams p;
-  p.iterations = iterations_->value();
-  p.rain = rain_->value();
-  p.evaporation = evaporation_->value();
-  p.sedimentCapacity = capacity_->value();
-  p.erosionRate = erosion_->value();
-  p.depositionRate = deposition_->value();
-  p.timeStep = dt_->value();
+  if (!hydraulic_) return p;
+  p.iterations = int(value("iterations"));
+  p.rain = value("rain_m_per_s");
+  p.evaporation = value("evaporation_per_s");
+  p.sedimentCapacity = value("sediment_capacity");
+  p.erosionRate = value("erosion_rate_per_s");
+  p.depositionRate = value("deposition_rate_per_s");
+  p.timeStep = value("time_step_s");
   return p;
 }
 

@@ -3,12 +3,16 @@
 // height range, flat or hills), DEM import options (window, resolution,
 // CRS, nodata fill, new terrain or into the selected one) and the erosion
 // parameters. Each only gathers values; the panel runs the operation.
+#include <map>
+#include <string>
+
 #include <QDialog>
 
 #include "scene/terrain_jobs.h"
 #include "scene/terrain_ops.h"
 #include "terrain/dem_import.h"
 
+class QAbstractSpinBox;
 class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
@@ -17,6 +21,8 @@ class QSpinBox;
 
 namespace hs::app {
 
+// The fields are `terrain new`'s declared parameters (size, resolution,
+// height range; scene::ops::terrainNewOperation).
 class NewTerrainDialog : public QDialog {
   Q_OBJECT
  public:
@@ -26,7 +32,8 @@ class NewTerrainDialog : public QDialog {
  private:
   QLineEdit* name_;
   QDoubleSpinBox *sizeX_, *sizeY_, *minH_, *maxH_;
-  QComboBox *resolution_, *start_;
+  QSpinBox *samplesX_, *samplesY_;
+  QComboBox* start_;
 };
 
 struct DemImportRequest {
@@ -34,6 +41,8 @@ struct DemImportRequest {
   bool intoSelected = false;  // replace the selected terrain's heights (resampled onto its grid)
 };
 
+// The fields are DemImportOptions' declared parameters (window box,
+// resolution, resampling, fill; terrain::demImportParamDecls).
 class DemImportDialog : public QDialog {
   Q_OBJECT
  public:
@@ -43,10 +52,13 @@ class DemImportDialog : public QDialog {
  private:
   QComboBox *window_, *crs_, *fill_, *target_, *resampling_;
   QDoubleSpinBox* box_[4];
-  QSpinBox* resolution_;
+  QCheckBox* resample_;
+  QSpinBox *samplesX_, *samplesY_;
   QLineEdit* customCrs_;
 };
 
+// The fields are the solver's declared parameters (thermalParamDecls,
+// hydraulicParamDecls): the ones `terrain erode` offers, with its ranges.
 class ErosionDialog : public QDialog {
   Q_OBJECT
  public:
@@ -57,9 +69,10 @@ class ErosionDialog : public QDialog {
   scene::TerrainJobMask mask() const;
 
  private:
+  double value(const char* key) const;
+
   bool hydraulic_;
-  QSpinBox* iterations_;
-  QDoubleSpinBox *talus_, *strength_, *rain_, *evaporation_, *capacity_, *erosion_, *deposition_, *dt_;
+  std::map<std::string, QAbstractSpinBox*> fields_;  // by parameter key
   QComboBox* mask_;
 };
 

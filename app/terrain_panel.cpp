@@ -456,7 +456,6 @@ bool TerrainPanel::importDem(const QString& path, const DemImportRequest& reques
     window_.messages()->warning("A terrain operation is still running; try again when it has finished.");
     return false;
   }
-  const QString name = QFileInfo(path).completeBaseName();
   if (request.intoSelected) {
     const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), current());
     if (!t) return false;
@@ -469,7 +468,7 @@ bool TerrainPanel::importDem(const QString& path, const DemImportRequest& reques
   auto ok = std::make_shared<bool>(false);
   job_ = std::make_unique<BackgroundJob>(&window_, "Import DEM", QString("Importing %1…").arg(QFileInfo(path).fileName()),
                                          true, 0);
-  connect(job_.get(), &BackgroundJob::finished, this, [this, result, ok, name, path] {
+  connect(job_.get(), &BackgroundJob::finished, this, [this, result, ok, path] {
     const terrain::DemImportReport& r = result->report;
     for (const std::string& w : r.warnings) window_.messages()->warning(QString::fromStdString(w));
     if (result->cancelled) {
@@ -482,10 +481,10 @@ bool TerrainPanel::importDem(const QString& path, const DemImportRequest& reques
       window_.prompts().showError(this, "Import DEM", error);
       return;
     }
-    std::string unique = name.toStdString();
-    for (int i = 2; doc_.state().findByName(unique) != scene::kNoEntity; ++i) unique = name.toStdString() + " " + std::to_string(i);
+    // Named after the file by the rule `terrain import` uses too (scene/terrain_ops.h).
     std::string error;
-    const scene::EntityId id = scene::ops::addTerrainFromHeightfield(doc_, std::move(*result->heightfield), unique, error);
+    const scene::EntityId id =
+        scene::ops::addTerrainFromDem(doc_, std::move(*result->heightfield), path.toStdString(), {}, error);
     if (id == scene::kNoEntity) {
       window_.messages()->error("Import DEM: " + QString::fromStdString(error));
       return;

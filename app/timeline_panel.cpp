@@ -11,9 +11,11 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include "app/param_widgets.h"
 #include "app/selection.h"
 #include "app/stereo_preview.h"
 #include "scene/sequence_edits.h"
+#include "sequencer/sequencer_operations.h"
 
 namespace hs::app {
 
@@ -87,6 +89,13 @@ TimelinePanel::TimelinePanel(scene::Document& doc, TimelineClock& clock, Keying&
   bar->addWidget(new QLabel("Range", this));
   first_ = frameBox(this, "timelineFirst", "First frame of the playback and export range");
   last_ = frameBox(this, "timelineLast", "Last frame of the playback and export range");
+  // The range's bounds are `sequence --range`'s.
+  const ParamDecl& range = sequencer::sequenceOperation().param("range");
+  for (int i = 0; i < 2; ++i) {
+    QSpinBox* box = i == 0 ? first_ : last_;
+    box->setRange(int(componentMin(range, i)), int(componentMax(range, i)));
+    tagParamWidget(box, range, i);
+  }
   bar->addWidget(first_);
   bar->addWidget(last_);
   bar->addSpacing(10);

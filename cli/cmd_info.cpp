@@ -1,7 +1,7 @@
 #include <cstdio>
 
-#include "cli/cli_args.h"
 #include "cli/commands.h"
+#include "cli/operation_options.h"
 #include "cli/terrain_info.h"
 #include "core/json.h"
 #include "scene/fields.h"
@@ -187,24 +187,25 @@ void printTree(const scene::SceneState& s, scene::EntityId id, int depth) {
 }  // namespace
 
 int runInfo(int argc, char** argv) {
-  const char* cmd = "info";
-  Args args;
+  static const OperationDecl decl{
+      .name = "info",
+      .summary = "show what a scene holds (--json for JSON)",
+      .usage = "<scene.hscene> [--json]",
+      .description = "Lists the scene's entities (hierarchy, components, world positions), mesh assets (triangles, "
+                     "vertices, textures, size in metres, origin, LOD levels with their triangles and Hausdorff "
+                     "error, the processing summary), cameras, terrains and tracks, and the scene's extent in "
+                     "metres.",
+      .positionals = {{.name = "scene.hscene", .help = "the scene file"}},
+      .params = {{.key = "json", .option = "json", .label = "JSON", .type = ParamType::Flag,
+                  .help = "print it as JSON"}}};
+  OperationArgs args(decl);
+  if (auto code = args.parse(argc, argv)) return *code;
+  if (args.positionals().size() != 1) return args.usage("expected one scene file");
+  const std::string path = args.positionals()[0];
   std::string error;
-  if (!parseArgs(argc, argv, 0, {{"json", false}}, args, error)) return usage(cmd, error);
-  if (args.help) {
-    std::printf(
-        "usage: hybridscape-cli info <scene.hscene> [--json]\n\n"
-        "Lists the scene's entities (hierarchy, components, world positions), mesh\n"
-        "assets (triangles, vertices, textures, size in metres, origin, LOD levels with\n"
-        "their triangles and Hausdorff error, the processing summary), cameras,\n"
-        "terrains and tracks, and the scene's extent in metres.\n");
-    return 0;
-  }
-  if (args.positional.size() != 1) return usage(cmd, "expected one scene file");
-  const std::string path = args.positional[0];
   std::optional<scene::SceneState> s = scene::loadScene(path, error);
-  if (!s) return fail(cmd, error);
-  if (args.has("json")) {
+  if (!s) return args.fail(error);
+  if (args.flag("json")) {
     std::printf("%s\n", writeJson(infoJson(path, *s)).c_str());
     return 0;
   }

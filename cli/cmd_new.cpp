@@ -1,34 +1,40 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "cli/cli_args.h"
 #include "cli/commands.h"
+#include "cli/operation_options.h"
 #include "scene/demo_scene.h"
 #include "scene/hscene_file.h"
 
 namespace hs::cli {
 namespace {
 
-int writeNew(const char* cmd, const char* help, int argc, char** argv, bool demo) {
-  Args args;
-  std::string error;
-  if (!parseArgs(argc, argv, 0, {{"force", false}}, args, error)) return usage(cmd, error);
-  if (args.help) {
-    std::printf("%s", help);
-    return 0;
-  }
-  if (args.positional.size() != 1) return usage(cmd, "expected one scene file name");
-  const std::string path = args.positional[0];
+OperationDecl writeDecl(const char* name, const char* summary, const char* description) {
+  return {.name = name,
+          .summary = summary,
+          .usage = "<scene.hscene> [--force]",
+          .description = description,
+          .positionals = {{.name = "scene.hscene", .help = "the file to write"}},
+          .params = {{.key = "force", .option = "force", .label = "Replace", .type = ParamType::Flag,
+                      .help = "replace the file if it exists"}}};
+}
+
+int writeNew(const OperationDecl& decl, int argc, char** argv, bool demo) {
+  OperationArgs args(decl);
+  if (auto code = args.parse(argc, argv)) return *code;
+  if (args.positionals().size() != 1) return args.usage("expected one scene file name");
+  const std::string path = args.positionals()[0];
   std::error_code ec;
-  if (std::filesystem::exists(path, ec) && !args.has("force"))
-    return fail(cmd, path + " already exists (use --force to replace it)");
+  if (std::filesystem::exists(path, ec) && !args.flag("force"))
+    return args.fail(path + " already exists (use --force to replace it)");
+  std::string error;
   std::optional<scene::SceneState> state;
   if (demo)
     state = scene::buildDemoScene(error);
   else
     state = scene::buildStarterScene();
-  if (!state) return fail(cmd, error);
-  if (!scene::saveScene(*state, path, error)) return fail(cmd, error);
+  if (!state) return args.fail(error);
+  if (!scene::saveScene(*state, path, error)) return args.fail(error);
   std::printf("wrote %s (%zu entities, %zu assets)\n", path.c_str(), state->entities.size(), state->assets.size());
   return 0;
 }
@@ -36,19 +42,18 @@ int writeNew(const char* cmd, const char* help, int argc, char** argv, bool demo
 }  // namespace
 
 int runNew(int argc, char** argv) {
-  return writeNew("new",
-                  "usage: hybridscape-cli new <scene.hscene> [--force]\n\n"
-                  "Creates a scene holding a sun and a camera. Refuses to replace an\n"
-                  "existing file unless --force is given.\n",
-                  argc, argv, false);
+  static const OperationDecl decl = writeDecl(
+      "new", "create a scene with a sun and a camera",
+      "Creates a scene holding a sun and a camera. Refuses to replace an existing file unless --force is given.");
+  return writeNew(decl, argc, argv, false);
 }
 
 int runDemo(int argc, char** argv) {
-  return writeNew("demo",
-                  "usage: hybridscape-cli demo <scene.hscene> [--force]\n\n"
-                  "Writes the built-in demo scene (the one the editor opens with no file):\n"
-                  "the Stanford bunny scan as three instances of one asset, a sun and a camera.\n",
-                  argc, argv, true);
+  static const OperationDecl decl =
+      writeDecl("demo", "write the built-in demo scene",
+                "Writes the built-in demo scene (the one the editor opens with no file): the Stanford bunny scan as "
+                "three instances of one asset, a sun and a camera.");
+  return writeNew(decl, argc, argv, true);
 }
 
 }  // namespace hs::cli

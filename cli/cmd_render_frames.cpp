@@ -73,95 +73,59 @@ class ProgressPrinter {
 
 }  // namespace
 
-std::vector<OptionSpec> renderFramesOptionSpecs() {
-  return {{"frames"},  {"layout"}, {"fps"},  {"png16", false}, {"video"},   {"codec"},
-          {"crf"},     {"preset"}, {"comfort", false},         {"budget"},  {"overwrite", false},
-          {"writers"}};
-}
-
-const char* renderFramesHelp() {
-  return "\nA frame sequence (any of these options; the scene's timeline plays, and the camera's\n"
-         "stereo rig gives the two eyes):\n"
-         "  --frames LIST    frames to render: 0-35999, 10,20-30, 0-100x10 (default: the scene's range)\n"
-         "  --out PATTERN    frame files, e.g. frames/f_%05d.png or f_#####.exr (%v/%V: eye name)\n"
-         "  --layout L       sbs (2W x H), sbs-squeezed, tb, tb-squeezed, separate, anaglyph, mono\n"
-         "                   (default sbs)\n"
-         "  --size WxH       size of one eye (default 1920x1080)\n"
-         "  --camera NAME    default: the first camera the timeline animates, else the first camera\n"
-         "  --fps RATE       override the scene's frame rate (60, 59.94, 60000/1001)\n"
-         "  --quality N      JPEG quality 1-100 (default 92)\n"
-         "  --png16          16-bit PNG\n"
-         "  --video FILE     a film instead of images: .mp4 or .mkv, H.264/H.265 through ffmpeg,\n"
-         "                   with side-by-side / top-bottom stereo metadata (not resumable)\n"
-         "  --codec C        h264 (default) or h265;  --crf N (default 18);  --preset P (default medium)\n"
-         "  --comfort        print each frame's nearest and farthest screen parallax (share of the\n"
-         "                   width) and flag frames outside the budget\n"
-         "  --budget N,F     the budget in percent of the width (default -1,2)\n"
-         "  --overwrite      render every frame again (default: valid frames of an earlier run are\n"
-         "                   kept and only the rest is rendered, so an interrupted run resumes)\n"
-         "  --writers N      encoder threads (default 2)\n"
-         "Progress and an ETA go to stderr. Ctrl-C stops after the frames in flight are written.\n";
-}
-
-int renderFrames(const Args& args) {
-  const char* cmd = "render";
+int renderFrames(const OperationArgs& args) {
   std::string error;
-  if (args.positional.size() != 1) return usage(cmd, "expected one scene file");
-  const std::string scenePath = args.positional[0];
+  if (args.positionals().size() != 1) return args.usage("expected one scene file");
+  const std::string scenePath = args.positionals()[0];
 
   sequencer::ExportSettings s;
-  if (!parseLayout(args, s.layout, error) || !parseEyeSize(args, s.eyeWidth, s.eyeHeight, error))
-    return usage(cmd, error);
-  const auto out = args.get("out"), video = args.get("video");
-  if (out && video) return usage(cmd, "give --out PATTERN for frames or --video FILE for a film, not both");
-  if (!out && !video) return usage(cmd, "--out PATTERN (frame files) or --video FILE (a film) is required");
-  s.output = video ? *video : *out;
+  s.layout = layoutOf(args);
+  eyeSizeOf(args, s.eyeWidth, s.eyeHeight);
+  const bool hasOut = args.has("out"), hasVideo = args.has("video");
+  if (hasOut && hasVideo) return args.usage("give --out PATTERN for frames or --video FILE for a film, not both");
+  if (!hasOut && !hasVideo) return args.usage("--out PATTERN (frame files) or --video FILE (a film) is required");
+  s.output = hasVideo ? args.text("video") : args.text("out");
   const bool film = sequencer::videoContainerFromPath(s.output).has_value();
-  if (video && !film) return fail(cmd, *video + ": a film must end in .mp4 or .mkv");
+  if (hasVideo && !film) return args.fail(s.output + ": a film must end in .mp4 or .mkv");
   if (!film && !sequencer::imageFormatFromPath(s.output))
-    return fail(cmd, s.output + ": unknown image type; use .png, .exr, .jpg, .tif, or .mp4 / .mkv for a film");
+    return args.fail(s.output + ": unknown image type; use .png, .exr, .jpg, .tif, or .mp4 / .mkv for a film");
   if (film && s.layout == sequencer::StereoLayout::Separate)
-    return fail(cmd, s.output + ": a film holds one picture a frame, not --layout separate; use sbs, tb or "
-                           "another single-image layout");
-  if (auto codec = args.get("codec")) {
-    if (*codec == "h264") s.video.codec = sequencer::VideoCodec::H264;
-    else if (*codec == "h265" || *codec == "hevc") s.video.codec = sequencer::VideoCodec::H265;
-    else return usage(cmd, "--codec takes h264 or h265");
-  }
-  if (!parseIntOption(args, "crf", 0, 51, s.video.crf, error) ||
-      !parseIntOption(args, "quality", 1, 100, s.image.jpegQuality, error) ||
-      !parseIntOption(args, "writers", 1, 64, s.writerThreads, error))
-    return usage(cmd, error);
-  if (auto preset = args.get("preset")) s.video.preset = *preset;
-  s.image.png16 = args.has("png16");
+    return args.fail(s.output + ": a film holds one picture a frame, not --layout separate; use sbs, tb or "
+                     "another single-image layout");
+  s.video.codec = args.text("codec") == "h265" ? sequencer::VideoCodec::H265 : sequencer::VideoCodec::H264;
+  s.video.crf = int(args.integer("crf"));
+  s.image.jpegQuality = int(args.integer("quality"));
+  s.writerThreads = int(args.integer("writers"));
+  s.video.preset = args.text("preset");
+  s.image.png16 = args.flag("png16");
   if (s.image.png16 && sequencer::imageFormatFromPath(s.output) != sequencer::ImageFormat::Png)
-    return usage(cmd, "--png16 needs a .png output");
-  s.resume = !args.has("overwrite");
+    return args.usage("--png16 needs a .png output");
+  s.resume = !args.flag("overwrite");
   sequencer::ComfortBudget budget;
-  if (!parseBudget(args, budget, error)) return usage(cmd, error);
+  budgetOf(args, budget);
 
   std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
-  if (!state) return fail(cmd, error);
-  if (!applyAntialiasing(args, *state, error)) return usage(cmd, error);
-  if (auto fps = args.get("fps")) {
-    const auto rate = sequencer::parseFrameRate(*fps, error);
-    if (!rate) return usage(cmd, "--fps: " + error);
+  if (!state) return args.fail(error);
+  applyAntialiasing(args, *state);
+  if (args.has("fps")) {
+    const auto rate = sequencer::parseFrameRate(args.text("fps"), error);
+    if (!rate) return args.usage("--fps: " + error);
     state->sequence.rate = *rate;
   }
   s.rate = state->sequence.rate;
-  if (!parseFrames(args, &*state, s.frames, error)) return usage(cmd, error);
-  if (s.frames.empty()) return fail(cmd, "no frames to render");
-  const scene::EntityId camera = findCamera(*state, args.get("camera").value_or(""), scenePath, error);
-  if (camera == scene::kNoEntity) return fail(cmd, error);
+  if (!parseFrames(args, &*state, s.frames, error)) return args.usage(error);
+  if (s.frames.empty()) return args.fail("no frames to render");
+  const scene::EntityId camera = findCamera(*state, args.text("camera"), scenePath, error);
+  if (camera == scene::kNoEntity) return args.fail(error);
   const scene::Entity& cam = *state->find(camera);
   if (film && !sequencer::ffmpegAvailable(s.video.ffmpeg))
-    return fail(cmd, s.output + ": direct video needs ffmpeg, which is not installed (apt-get install ffmpeg)");
+    return args.fail(s.output + ": direct video needs ffmpeg, which is not installed (apt-get install ffmpeg)");
 
   render::StereoFrameOptions frameOptions;
   frameOptions.camera = camera;
-  frameOptions.showGrid = !args.has("no-grid");
+  frameOptions.showGrid = !args.flag("no_grid");
   frameOptions.displayBits16 = s.image.png16;
-  if (args.has("comfort")) {
+  if (args.flag("comfort")) {
     sequencer::ComfortOptions co;
     co.budget = budget;
     frameOptions.comfort = co;
@@ -181,7 +145,7 @@ int renderFrames(const Args& args) {
   }
 
   render::OffscreenRenderer renderer;
-  if (!renderer.initialize(error)) return fail(cmd, "cannot start headless OpenGL: " + error);
+  if (!renderer.initialize(error)) return args.fail("cannot start headless OpenGL: " + error);
   render::StereoFrameSource source(renderer, *state, frameOptions);
   if (frameOptions.comfort)
     source.onComfort = [](const sequencer::FrameComfort& fc) {
@@ -211,7 +175,7 @@ int renderFrames(const Args& args) {
                 percent(budget.nearest).c_str(), percent(budget.farthest).c_str(), bad.empty() ? "" : ": ",
                 bad.empty() ? "" : sequencer::FrameList::fromFrames(bad).toString().c_str());
   }
-  if (!r.ok && !r.cancelled) return fail(cmd, r.error);
+  if (!r.ok && !r.cancelled) return args.fail(r.error);
   const double fps = r.seconds > 0.0 ? double(r.rendered) / r.seconds : 0.0;
   std::printf("%s %lld frame(s), kept %lld, of %lld (%s %dx%d per eye, camera '%s') in %.2f s, %.2f fps "
               "(rendering %.2f s, encoding %.2f s on %d writer(s)) -> %s\n",

@@ -3,11 +3,12 @@
 // through undoable edits (scene::ops), then saves.
 #include <cstdio>
 
-#include "cli/cli_args.h"
 #include "cli/commands.h"
+#include "cli/operation_options.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
 #include "scene/sequence_edits.h"
+#include "sequencer/sequencer_operations.h"
 
 namespace hs::cli {
 
@@ -50,36 +51,24 @@ void printSequence(const scene::SceneState& s, const std::string& path) {
 }  // namespace
 
 int runSequence(int argc, char** argv) {
-  const char* cmd = "sequence";
-  Args args;
+  OperationArgs args(sequencer::sequenceOperation());
+  if (auto code = args.parse(argc, argv)) return *code;
+  if (args.positionals().size() != 1) return args.usage("expected one scene file");
+  const std::string path = args.positionals()[0];
   std::string error;
-  if (!parseArgs(argc, argv, 0, {{"fps"}, {"range"}}, args, error)) return usage(cmd, error);
-  if (args.help) {
-    std::printf(
-        "usage: hybridscape-cli sequence <scene.hscene> [--fps RATE] [--range FIRST-LAST]\n\n"
-        "Shows the scene's timeline: frame rate, playback/export range and the animated\n"
-        "entities with their tracks. With options, changes them (undoable edits, as in the\n"
-        "editor's timeline) and saves.\n\n"
-        "  --fps RATE       60, 59.94, 60000/1001, 24 ... (keys stay at their times in seconds)\n"
-        "  --range A-B      the inclusive frame range render and the timeline use, e.g. 0-35999\n");
-    return 0;
-  }
-  if (args.positional.size() != 1) return usage(cmd, "expected one scene file");
-  const std::string path = args.positional[0];
   std::optional<sequencer::FrameRate> rate;
-  if (auto fps = args.get("fps")) {
-    rate = sequencer::parseFrameRate(*fps, error);
-    if (!rate) return usage(cmd, "--fps: " + error);
+  if (args.has("fps")) {
+    rate = sequencer::parseFrameRate(args.text("fps"), error);
+    if (!rate) return args.usage("--fps: " + error);
   }
+  // --range: two frame numbers, in order (checked on parsing).
   std::optional<std::pair<int64_t, int64_t>> range;
-  if (auto text = args.get("range")) {
-    const auto list = sequencer::FrameList::parse(*text, error);
-    if (!list || list->spans().size() != 1 || list->spans()[0].step != 1)
-      return usage(cmd, "--range '" + *text + "' is not one run of frames FIRST-LAST (for example 0-35999)");
-    range = std::pair{list->first(), list->last()};
+  if (args.has("range")) {
+    const std::vector<double> r = args.numbers("range");
+    range = std::pair{int64_t(r[0]), int64_t(r[1])};
   }
   std::optional<scene::SceneState> state = scene::loadScene(path, error);
-  if (!state) return fail(cmd, error);
+  if (!state) return args.fail(error);
   if (!rate && !range) {
     printSequence(*state, path);
     return 0;
@@ -89,7 +78,7 @@ int runSequence(int argc, char** argv) {
   bool changed = false;
   if (rate) changed = scene::ops::setFrameRate(doc, *rate) || changed;
   if (range) changed = scene::ops::setFrameRange(doc, range->first, range->second) || changed;
-  if (changed && !scene::saveScene(doc.state(), path, error)) return fail(cmd, error);
+  if (changed && !scene::saveScene(doc.state(), path, error)) return args.fail(error);
   printSequence(doc.state(), path);
   if (!changed) std::printf("unchanged\n");
   return 0;

@@ -4,22 +4,24 @@
 
 #include "cli/commands.h"
 #include "cli/terrain_cli.h"
+#include "scene/terrain_ops.h"
+#include "terrain/terrain_operations.h"
 
 namespace hs::cli {
 namespace {
 
 struct Sub {
   const char* name;
-  const char* summary;
+  const OperationDecl& (*decl)();  // its summary
   int (*run)(int, char**);
 };
 
 const Sub kSubs[] = {
-    {"new", "add a terrain (flat, or hills within a height range)", runTerrainNew},
-    {"import", "import a DEM (GeoTIFF, DTED, .hgt, ASCII grid, ...) as a terrain", runTerrainImport},
-    {"erode", "thermal or hydraulic erosion over a terrain; prints the mass error", runTerrainErode},
-    {"paint-rules", "paint a terrain's layers by slope and altitude", runTerrainPaintRules},
-    {"export", "write heights (16-bit PNG, EXR, GeoTIFF, RAW r16) and paint weights", runTerrainExport},
+    {"new", scene::ops::terrainNewOperation, runTerrainNew},
+    {"import", terrain::terrainImportOperation, runTerrainImport},
+    {"erode", terrain::terrainErodeOperation, runTerrainErode},
+    {"paint-rules", terrain::terrainPaintRulesOperation, runTerrainPaintRules},
+    {"export", terrain::terrainExportOperation, runTerrainExport},
 };
 
 void help() {
@@ -29,7 +31,7 @@ void help() {
       "same operations as the editor's Terrain panel. The scene file is saved after\n"
       "each command (only the tiles that changed are written).\n\n"
       "subcommands:\n");
-  for (const Sub& s : kSubs) std::printf("  %-12s %s\n", s.name, s.summary);
+  for (const Sub& s : kSubs) std::printf("  %-12s %s\n", s.name, s.decl().summary.c_str());
 }
 
 }  // namespace

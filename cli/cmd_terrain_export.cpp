@@ -4,56 +4,38 @@
 #include "cli/terrain_cli.h"
 #include "scene/terrain_ops.h"
 #include "terrain/heightmap_image.h"
+#include "terrain/terrain_operations.h"
 
 namespace hs::cli {
 
 int runTerrainExport(int argc, char** argv) {
-  const char* cmd = "terrain export";
-  Args args;
-  std::string error;
-  if (!parseArgs(argc, argv, 0, {{"terrain"}, {"out"}, {"weights"}, {"range"}, {"weights-format"}}, args, error))
-    return usage(cmd, error);
-  if (args.help) {
-    std::printf(
-        "usage: hybridscape-cli terrain export <scene.hscene> --out FILE [--weights DIR] [options]\n\n"
-        "Writes a terrain's heights; the format follows the extension:\n"
-        "  .png  16-bit, heights mapped over their range (recorded in the file)\n"
-        "  .exr  32-bit float, exact\n"
-        "  .tif  GeoTIFF, 32-bit float with the terrain's CRS, holes as nodata\n"
-        "  .r16  RAW little-endian 16-bit (Unreal) with a .json sidecar (range, Z scale)\n\n"
-        "  --terrain NAME     which terrain (needed when the scene has several)\n"
-        "  --weights DIR      also write every paint layer's weights into DIR\n"
-        "  --weights-format png|png8|exr   16-bit PNG (default), 8-bit PNG or float EXR\n"
-        "  --range MIN,MAX    the 16-bit formats' height range (default: the terrain's)\n");
-    return 0;
-  }
-  if (args.positional.size() != 1) return usage(cmd, "expected one scene file");
-  const auto out = args.get("out");
-  if (!out && !args.get("weights")) return usage(cmd, "--out FILE (and/or --weights DIR) is required");
-  if (out && !terrain::heightmapFormatFor(*out))
-    return fail(cmd, *out + ": unknown heightmap type; use .png (16-bit), .exr, .tif (GeoTIFF) or .r16");
+  OperationArgs args(terrain::terrainExportOperation());
+  if (auto code = args.parse(argc, argv)) return *code;
+  if (args.positionals().size() != 1) return args.usage("expected one scene file");
+  const bool hasOut = args.has("out");
+  if (!hasOut && !args.has("weights")) return args.usage("--out FILE (and/or --weights DIR) is required");
+  const std::string out = args.text("out");
+  if (hasOut && !terrain::heightmapFormatFor(out))
+    return args.fail(out + ": unknown heightmap type; use .png (16-bit), .exr, .tif (GeoTIFF) or .r16");
   terrain::HeightExportOptions o;
-  if (auto r = args.get("range")) {
-    double lo, hi;
-    if (!terrain_cli::parsePair(*r, lo, hi, error) || !(hi > lo)) return usage(cmd, "--range takes MIN,MAX with MIN < MAX");
-    o.range = terrain::HeightRange{float(lo), float(hi)};
+  if (args.has("range_m")) {
+    const std::vector<double> r = args.numbers("range_m");
+    if (!(r[1] > r[0])) return args.usage("--range takes MIN,MAX with MIN < MAX");
+    o.range = terrain::HeightRange{float(r[0]), float(r[1])};
   }
-  std::string ext = "png";
-  int bits = 16;
-  if (auto f = args.get("weights-format")) {
-    if (*f == "png8") bits = 8;
-    else if (*f == "exr") ext = "exr";
-    else if (*f != "png") return usage(cmd, "--weights-format takes png, png8 or exr");
-  }
-  const std::string path = args.positional[0];
+  const std::string format = args.text("weights_format");
+  const std::string ext = format == "exr" ? "exr" : "png";
+  const int bits = format == "png8" ? 8 : 16;
+  std::string error;
+  const std::string path = args.positionals()[0];
   std::optional<scene::SceneState> s = scene::loadScene(path, error);
-  if (!s) return fail(cmd, error);
-  const scene::EntityId e = scene::ops::findTerrainEntity(*s, args.get("terrain").value_or(""), error);
-  if (e == scene::kNoEntity) return fail(cmd, error);
+  if (!s) return args.fail(error);
+  const scene::EntityId e = scene::ops::findTerrainEntity(*s, args.text("terrain"), error);
+  if (e == scene::kNoEntity) return args.fail(error);
   const scene::TerrainAsset& t = *scene::terrainOf(*s, e);
-  if (out) {
-    auto r = terrain::exportHeightmap(t.data->heights(), *out, o);
-    if (!r) return fail(cmd, r.error());
+  if (hasOut) {
+    auto r = terrain::exportHeightmap(t.data->heights(), out, o);
+    if (!r) return args.fail(r.error());
     std::printf("wrote %s: %d x %d samples", r->file.c_str(), r->width, r->height);
     if (r->quantisationStep > 0.0)
       std::printf(", heights %.3f..%.3f m in 16 bits (step %.4g m)", double(r->range.min), double(r->range.max),
@@ -62,10 +44,11 @@ int runTerrainExport(int argc, char** argv) {
     if (r->clampedSamples) std::printf(", %zu samples clamped to the range", r->clampedSamples);
     std::printf("\n");
   }
-  if (auto dir = args.get("weights")) {
-    auto files = scene::ops::exportPaintWeights(t, *dir, ext, bits);
-    if (!files) return fail(cmd, files.error());
-    std::printf("wrote %zu paint weight images into %s\n", files->size(), dir->c_str());
+  if (args.has("weights")) {
+    const std::string dir = args.text("weights");
+    auto files = scene::ops::exportPaintWeights(t, dir, ext, bits);
+    if (!files) return args.fail(files.error());
+    std::printf("wrote %zu paint weight images into %s\n", files->size(), dir.c_str());
   }
   return 0;
 }

@@ -9,6 +9,7 @@
 #include "scene/terrain_json.h"
 #include "scene/terrain_jobs.h"
 #include "scene/terrain_ops.h"
+#include "terrain/terrain_operations.h"
 
 namespace hs::cli {
 namespace {
@@ -57,53 +58,37 @@ bool readRules(const std::string& file, const scene::TerrainAsset& t, std::vecto
 }  // namespace
 
 int runTerrainPaintRules(int argc, char** argv) {
-  const char* cmd = "terrain paint-rules";
-  Args args;
+  OperationArgs args(terrain::terrainPaintRulesOperation());
+  if (auto code = args.parse(argc, argv)) return *code;
+  if (args.positionals().size() != 1) return args.usage("expected one scene file");
+  if (args.has("rules") && args.flag("defaults")) return args.usage("--rules and --defaults exclude each other");
+  const std::string path = args.positionals()[0];
   std::string error;
-  if (!parseArgs(argc, argv, 0, {{"terrain"}, {"rules"}, {"defaults", false}, {"show", false}}, args, error))
-    return usage(cmd, error);
-  if (args.help) {
-    std::printf(
-        "usage: hybridscape-cli terrain paint-rules <scene.hscene> [options]\n\n"
-        "Paints a terrain's layers automatically by altitude and slope with its paint\n"
-        "rules (one undo step; weights stay summing to 1), and saves the scene.\n\n"
-        "  --terrain NAME   which terrain (needed when the scene has several)\n"
-        "  --rules FILE     use these rules (a JSON array: layer, strength, enabled,\n"
-        "                   use_altitude, altitude_min, altitude_max, altitude_blend,\n"
-        "                   use_slope, slope_min, slope_max, slope_blend) and keep them\n"
-        "                   as the terrain's rules\n"
-        "  --defaults       reset the terrain's rules to the defaults first\n"
-        "  --show           print the rules and change nothing\n");
-    return 0;
-  }
-  if (args.positional.size() != 1) return usage(cmd, "expected one scene file");
-  if (args.has("rules") && args.has("defaults")) return usage(cmd, "--rules and --defaults exclude each other");
-  const std::string path = args.positional[0];
   scene::Document doc;
-  if (!terrain_cli::openScene(path, doc, error)) return fail(cmd, error);
-  const scene::EntityId e = scene::ops::findTerrainEntity(doc.state(), args.get("terrain").value_or(""), error);
-  if (e == scene::kNoEntity) return fail(cmd, error);
+  if (!terrain_cli::openScene(path, doc, error)) return args.fail(error);
+  const scene::EntityId e = scene::ops::findTerrainEntity(doc.state(), args.text("terrain"), error);
+  if (e == scene::kNoEntity) return args.fail(error);
   const scene::TerrainId id = doc.state().find(e)->terrain->terrain;
-  if (args.has("show")) {
+  if (args.flag("show")) {
     printRules(*doc.state().findTerrain(id));
     return 0;
   }
-  if (auto file = args.get("rules")) {
+  if (args.has("rules")) {
     std::vector<terrain::PaintRule> rules;
-    if (!readRules(*file, *doc.state().findTerrain(id), rules, error)) return fail(cmd, error);
+    if (!readRules(args.text("rules"), *doc.state().findTerrain(id), rules, error)) return args.fail(error);
     scene::ops::setTerrainPaintRules(doc, id, rules);
-  } else if (args.has("defaults")) {
+  } else if (args.flag("defaults")) {
     scene::ops::setTerrainPaintRules(doc, id, scene::defaultPaintRules(doc.state().findTerrain(id)->data->heights()));
   }
   auto job = scene::TerrainJob::paintRules(doc, id);
-  if (!job->valid()) return fail(cmd, job->invalidReason());
+  if (!job->valid()) return args.fail(job->invalidReason());
   Progress progress = terminalProgress("Paint rules");
   job->run(&progress);
   const scene::TerrainJobOutcome out = job->commit(doc);
   for (const auto& w : out.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  if (!out.ok) return fail(cmd, out.error);
+  if (!out.ok) return args.fail(out.error);
   std::string saved;
-  if (!terrain_cli::saveScene(doc, path, error, saved)) return fail(cmd, error);
+  if (!terrain_cli::saveScene(doc, path, error, saved)) return args.fail(error);
   printRules(*doc.state().findTerrain(id));
   std::printf("%s\n%s\n", out.summary.c_str(), saved.c_str());
   return 0;

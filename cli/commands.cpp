@@ -3,20 +3,25 @@
 #include <cstdio>
 #include <unistd.h>
 
+#include "scene/import_pipeline.h"
+#include "scene/render_operation.h"
+#include "sequencer/sequencer_operations.h"
+
 namespace hs::cli {
 
 const std::vector<Command>& commands() {
+  // The shared operations' summaries are their declarations'.
   static const std::vector<Command> list = {
       {"new", "create a scene with a sun and a camera", runNew},
       {"demo", "write the built-in demo scene", runDemo},
-      {"import", "import a mesh (OBJ, FBX, PLY, glTF, ...) into a scene", runImport},
+      {"import", scene::meshImportOperation().summary.c_str(), runImport},
       {"info", "show what a scene holds (--json for JSON)", runInfo},
-      {"render", "render a frame or a stereo frame sequence headless (PNG, EXR, JPEG, TIFF, MP4)", runRender},
+      {"render", scene::renderOperation().summary.c_str(), runRender},
       {"set", "set an entity property or a scene setting", runSet},
       {"terrain", "terrains: new, import (DEM), erode, paint-rules, export", runTerrain},
-      {"key", "set a key on the timeline (an entity property at a time)", runKey},
-      {"sequence", "show or set the timeline's frame rate and range", runSequence},
-      {"path", "make a camera follow a path at constant speed (look-at or banking), edit or clear it", runPath},
+      {"key", sequencer::keyOperation().summary.c_str(), runKey},
+      {"sequence", sequencer::sequenceOperation().summary.c_str(), runSequence},
+      {"path", sequencer::pathOperation().summary.c_str(), runPath},
       {"farm", "render-farm runs: write/submit a Slurm job array, verify frames", runFarm},
   };
   return list;

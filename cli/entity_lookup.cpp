@@ -1,16 +1,18 @@
 #include "cli/entity_lookup.h"
 
-#include <charconv>
+#include "core/params.h"
 
 namespace hs::cli {
 
 scene::EntityId findEntity(const scene::SceneState& scene, const std::string& who) {
   scene::EntityId id = scene.findByName(who);
   if (id == scene::kNoEntity) {
-    // A number names an entity by id (from_chars: no exception on overflow).
-    scene::EntityId n = 0;
-    const auto r = std::from_chars(who.data(), who.data() + who.size(), n);
-    if (r.ec == std::errc() && r.ptr == who.data() + who.size()) id = n;
+    // A whole number names an entity by id. Ids count up from 1, far below
+    // 2^53, where a double (how numbers are read) stops being exact.
+    static const ParamDecl kId{.key = "id", .label = "entity id", .min = 1, .max = 9007199254740992.0,
+                               .integer = true};
+    std::string unused;
+    if (const std::optional<Json> n = parseParam(kId, who, unused)) id = n->get<scene::EntityId>();
   }
   return scene.find(id) ? id : scene::kNoEntity;
 }

@@ -1,7 +1,5 @@
 #include "cli/import_request.h"
 
-#include <charconv>
-#include <cmath>
 #include <filesystem>
 
 #include "mesh/georef_sidecar.h"
@@ -9,13 +7,9 @@
 namespace hs::cli {
 namespace {
 
-bool parseNumber(const std::string& text, double& v) {
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
-  return r.ec == std::errc() && r.ptr == text.data() + text.size() && std::isfinite(v);
-}
-
 // --origin: auto (a sidecar beside each file), none (the file's coordinates),
-// x,y,z (by hand), or the path of an offset file.
+// x,y,z (by hand, within the declared offset range), or the path of an
+// offset file.
 bool parseOrigin(const std::string& text, mesh::ImportOptions& o, std::string& error) {
   mesh::GeoOffset offset;
   bool isAuto = false, isNone = false;
@@ -24,6 +18,10 @@ bool parseOrigin(const std::string& text, mesh::ImportOptions& o, std::string& e
     if (isAuto) o.geoOffsetMode = mesh::ImportOptions::GeoOffsetMode::Auto;
     else if (isNone) o.geoOffsetMode = mesh::ImportOptions::GeoOffsetMode::None;
     else {
+      ParamDecl d = paramIn(mesh::importOptionDecls(), "origin_offset_m");
+      d.option = "origin";
+      const Json v = Json::array({offset.offset.x, offset.offset.y, offset.offset.z});
+      if (!checkParam(d, v, error)) return false;
       o.geoOffsetMode = mesh::ImportOptions::GeoOffsetMode::Manual;
       o.geoOffset = offset.offset;
     }
@@ -41,37 +39,23 @@ bool parseOrigin(const std::string& text, mesh::ImportOptions& o, std::string& e
 
 }  // namespace
 
-std::vector<OptionSpec> importOptionSpecs() {
-  return {{"at"},          {"up"},   {"reader"}, {"name"},         {"report"}, {"strict-textures", false},
-          {"decimate-to"}, {"max-error"}, {"lods"}, {"origin"}, {"clean", false}};
-}
-
-bool parseImportRequest(const Args& args, scene::MeshImportRequest& request, std::string& error) {
+bool parseImportRequest(const OperationArgs& args, scene::MeshImportRequest& request, std::string& error) {
   mesh::ImportOptions& options = request.import;
-  if (auto up = args.get("up")) {
-    if (*up == "y") options.up = mesh::UpAxis::Y;
-    else if (*up == "z") options.up = mesh::UpAxis::Z;
-    else if (*up != "auto") return error = "--up takes auto, y or z", false;
-  }
-  if (auto r = args.get("reader")) {
-    if (*r == "obj") options.reader = mesh::Reader::Obj;
-    else if (*r == "assimp") options.reader = mesh::Reader::Assimp;
-    else if (*r != "auto") return error = "--reader takes auto, obj or assimp", false;
-  }
-  options.strictTextures = args.has("strict-textures");
-  if (auto origin = args.get("origin"); origin && !parseOrigin(*origin, options, error)) return false;
+  const std::string up = args.text("up"), reader = args.text("reader");
+  options.up = up == "y" ? mesh::UpAxis::Y : up == "z" ? mesh::UpAxis::Z : mesh::UpAxis::Auto;
+  options.reader = reader == "obj" ? mesh::Reader::Obj : reader == "assimp" ? mesh::Reader::Assimp : mesh::Reader::Auto;
+  options.strictTextures = args.flag("strict_textures");
+  if (args.has("origin") && !parseOrigin(args.text("origin"), options, error)) return false;
 
   mesh::ProcessOptions& p = request.processing;
-  if (auto target = args.get("decimate-to")) {
+  if (args.has("decimate_to")) {
     std::string why;
-    if (!mesh::parseDecimateTarget(*target, p.decimation, why)) return error = "--decimate-to: " + why, false;
+    if (!mesh::parseDecimateTarget(args.text("decimate_to"), p.decimation, why))
+      return error = "--decimate-to: " + why, false;
     p.decimate = true;
   }
-  if (auto maxError = args.get("max-error")) {
-    double v = 0;
-    if (!parseNumber(*maxError, v) || !(v > 0))
-      return error = "--max-error takes a distance in metres above 0 (e.g. 0.02), not '" + *maxError + "'", false;
-    p.decimation.maxError = v;
+  if (args.has("max_error_m")) {
+    p.decimation.maxError = args.number("max_error_m");
     // Alone it decimates as far as the error allows; with --decimate-to,
     // whichever comes first stops it.
     if (!p.decimate) {
@@ -80,13 +64,8 @@ bool parseImportRequest(const Args& args, scene::MeshImportRequest& request, std
     }
     p.decimate = true;
   }
-  if (auto lods = args.get("lods")) {
-    double v = -1;
-    if (!parseNumber(*lods, v) || v < 0 || v > 8 || v != std::floor(v))
-      return error = "--lods takes a whole number of levels from 0 to 8, not '" + *lods + "'", false;
-    p.lodLevels = int(v);
-  }
-  request.process = p.decimate || p.lodLevels > 0 || args.has("clean");
+  p.lodLevels = int(args.integer("lods"));
+  request.process = p.decimate || p.lodLevels > 0 || args.flag("clean");
   return true;
 }
 

@@ -1,33 +1,28 @@
 #include "cli/sequence_options.h"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 
 #include "render/stereo_views.h"
+#include "scene/render_operation.h"
 
 namespace hs::cli {
 
-const std::vector<std::string>& sequenceOnlyOptions() {
-  static const std::vector<std::string> names = {"frames", "layout",  "fps",    "png16",   "video",  "codec",
-                                                 "crf",    "preset",  "comfort", "budget", "overwrite",
-                                                 "writers"};
-  return names;
-}
-
-bool isSequenceRender(const Args& args) {
-  for (const std::string& n : sequenceOnlyOptions())
-    if (args.has(n)) return true;
+bool isSequenceRender(const OperationArgs& args) {
+  for (const ParamDecl& p : args.operation().params)
+    if (p.group == "sequence" && args.has(p.key)) return true;
   return false;
 }
 
-bool parseFrames(const Args& args, const scene::SceneState* scene, sequencer::FrameList& out, std::string& error) {
-  if (auto text = args.get("frames")) {
-    auto list = sequencer::FrameList::parse(*text, error);
+bool parseFrames(const OperationArgs& args, const scene::SceneState* scene, sequencer::FrameList& out,
+                 std::string& error) {
+  if (args.has("frames")) {
+    auto list = sequencer::FrameList::parse(args.text("frames"), error);
     if (!list) {
       error = "--frames: " + error;
       return false;
     }
+    if (!sequencer::checkFrameBounds(*list, "--frames", error)) return false;
     out = *list;
     return true;
   }
@@ -39,58 +34,20 @@ bool parseFrames(const Args& args, const scene::SceneState* scene, sequencer::Fr
   return true;
 }
 
-bool parseLayout(const Args& args, sequencer::StereoLayout& out, std::string& error) {
-  const std::string name = args.get("layout").value_or("sbs");
-  const auto layout = sequencer::layoutFromName(name);
-  if (!layout) {
-    error = "--layout '" + name + "' is not a layout (sbs, sbs-squeezed, tb, tb-squeezed, separate, anaglyph, mono)";
-    return false;
-  }
-  out = *layout;
-  return true;
+sequencer::StereoLayout layoutOf(const OperationArgs& args) {
+  return sequencer::layoutFromName(args.text("layout")).value_or(sequencer::StereoLayout::SideBySide);
 }
 
-bool parseEyeSize(const Args& args, int& width, int& height, std::string& error) {
-  width = 1920;
-  height = 1080;
-  if (auto size = args.get("size")) return parseSize(*size, width, height, error);
-  return true;
+void eyeSizeOf(const OperationArgs& args, int& width, int& height) {
+  const std::vector<double> size = args.numbers("size_px");
+  width = int(size.at(0));
+  height = int(size.at(1));
 }
 
-bool parseBudget(const Args& args, sequencer::ComfortBudget& out, std::string& error) {
-  out = {};
-  const auto text = args.get("budget");
-  if (!text) return true;
-  const size_t comma = text->find(',');
-  double v[2];
-  bool ok = comma != std::string::npos;
-  for (int i = 0; ok && i < 2; ++i) {
-    std::string part = i == 0 ? text->substr(0, comma) : text->substr(comma + 1);
-    if (!part.empty() && part[0] == '+') part.erase(0, 1);
-    const auto r = std::from_chars(part.data(), part.data() + part.size(), v[i]);
-    ok = r.ec == std::errc() && r.ptr == part.data() + part.size() && std::isfinite(v[i]);
-  }
-  if (!ok || v[0] > 0.0 || v[1] < 0.0) {
-    error = "--budget '" + *text + "' is not NEAR,FAR in percent of the width with NEAR <= 0 <= FAR (for example -1,2)";
-    return false;
-  }
-  out.nearest = v[0] / 100.0;
-  out.farthest = v[1] / 100.0;
-  return true;
-}
-
-bool parseIntOption(const Args& args, const std::string& name, int min, int max, int& out, std::string& error) {
-  const auto text = args.get(name);
-  if (!text) return true;
-  int v = 0;
-  const auto r = std::from_chars(text->data(), text->data() + text->size(), v);
-  if (r.ec != std::errc() || r.ptr != text->data() + text->size() || v < min || v > max) {
-    error = "--" + name + " '" + *text + "' is not a whole number from " + std::to_string(min) + " to " +
-            std::to_string(max);
-    return false;
-  }
-  out = v;
-  return true;
+void budgetOf(const OperationArgs& args, sequencer::ComfortBudget& out) {
+  const std::vector<double> v = args.numbers("budget_pct");  // NEAR <= 0 <= FAR: checked on parsing
+  out.nearest = v.at(0) / 100.0;
+  out.farthest = v.at(1) / 100.0;
 }
 
 scene::EntityId findCamera(const scene::SceneState& scene, const std::string& name, const std::string& scenePath,
@@ -111,17 +68,8 @@ scene::EntityId findCamera(const scene::SceneState& scene, const std::string& na
   return id;
 }
 
-bool applyAntialiasing(const Args& args, scene::SceneState& scene, std::string& error) {
-  const auto aa = args.get("aa");
-  if (!aa) return true;
-  if (*aa == "none") scene.settings.antialiasing = scene::Antialiasing::None;
-  else if (*aa == "fxaa") scene.settings.antialiasing = scene::Antialiasing::Fxaa;
-  else if (*aa == "msaa4") scene.settings.antialiasing = scene::Antialiasing::Msaa4;
-  else {
-    error = "--aa takes none, fxaa or msaa4";
-    return false;
-  }
-  return true;
+void applyAntialiasing(const OperationArgs& args, scene::SceneState& scene) {
+  if (args.has("aa")) scene.settings.antialiasing = scene::antialiasingFromChoice(args.text("aa"));
 }
 
 std::string formatDuration(double seconds) {

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "cli/cli_args.h"
+#include "cli/operation_options.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
 
@@ -24,15 +24,6 @@ namespace terrain_cli {
 bool openScene(const std::string& path, scene::Document& doc, std::string& error);
 // Saves and describes what was written ("saved x.hscene: 4 tiles (230 KB) written, 4221 unchanged").
 bool saveScene(const scene::Document& doc, const std::string& path, std::string& error, std::string& summary);
-// "2000x1500" or "2000" (square) -> metres (finite, > 0).
-bool parseMetres(const std::string& text, double& x, double& y, std::string& error);
-// "2049" or "2049x1025" -> samples (2..8193).
-bool parseSamples(const std::string& text, int& x, int& y, std::string& error);
-// "a,b" -> two finite numbers.
-bool parsePair(const std::string& text, double& a, double& b, std::string& error);
-// An integer option in [lo, hi].
-bool intOption(const Args& args, const std::string& name, int lo, int hi, int& out, std::string& error);
-bool doubleOption(const Args& args, const std::string& name, double lo, double hi, double& out, std::string& error);
 
 }  // namespace terrain_cli
 }  // namespace hs::cli

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/params.h"
 #include "core/progress.h"
 #include "mesh/georef_sidecar.h"
 #include "mesh/mesh_data.h"
@@ -40,6 +41,12 @@ struct ImportOptions {
   std::string geoOffsetFile;
   glm::dvec3 geoOffset{0.0};
 };
+
+// ImportOptions' parameters, declared once (`import`, the Import dialog):
+// up, reader, origin (auto, none, x,y,z or an offset file: the CLI's
+// text), origin_offset_m (an offset set by hand: the dialog's fields, and
+// the numbers of --origin x,y,z), strict_textures.
+const std::vector<ParamDecl>& importOptionDecls();
 
 struct ImportReport {
   std::string file;

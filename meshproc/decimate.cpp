@@ -1,7 +1,6 @@
 #include "meshproc/decimate.h"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -806,15 +805,24 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   return result;
 }
 
-bool parseDecimateTarget(std::string_view text, DecimateOptions& options, std::string& error) {
-  auto trim = [](std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-    return s;
+const std::vector<ParamDecl>& decimateTargetDecls() {
+  static const std::vector<ParamDecl> decls = {
+      {.key = "target_ratio_pct", .label = "Share of the triangles", .unit = Unit::Percent, .min = 0.01, .max = 100.0,
+       .help = "decimate to this share of the triangles", .editor = true, .decimals = 2},
+      {.key = "target_triangles", .label = "Triangle count", .min = 4, .max = 2147483647, .integer = true,
+       .help = "decimate to this many triangles", .editor = true},
   };
-  std::string_view t = trim(text);
+  return decls;
+}
+
+bool parseDecimateTarget(std::string_view text, DecimateOptions& options, std::string& error) {
+  const std::string quoted = "'" + std::string(text) + "'";
+  const std::string usage = " (use e.g. 500k, 2M, 120000 or 10%)";
+  // The number and its suffix: '%' a share, k/M thousands/millions of triangles.
+  std::string_view t = text;
+  while (!t.empty() && (t.back() == ' ' || t.back() == '\t')) t.remove_suffix(1);
   if (t.empty()) {
-    error = "empty decimation target (use e.g. 500k, 2M, 120000 or 10%)";
+    error = "empty decimation target" + usage;
     return false;
   }
   double scale = 1.0;
@@ -823,25 +831,29 @@ bool parseDecimateTarget(std::string_view text, DecimateOptions& options, std::s
   if (last == '%') percent = true, t.remove_suffix(1);
   else if (last == 'k' || last == 'K') scale = 1e3, t.remove_suffix(1);
   else if (last == 'm' || last == 'M') scale = 1e6, t.remove_suffix(1);
-  double v = 0;
-  const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-  if (r.ec != std::errc() || r.ptr != t.data() + t.size() || !(v > 0)) {
-    error = "cannot read decimation target '" + std::string(text) + "' (use e.g. 500k, 2M, 120000 or 10%)";
+  // The number itself is read like any declared number (core/params.h).
+  const ParamDecl number{.key = "decimation target", .label = "decimation target", .min = 0.0,
+                         .max = std::numeric_limits<double>::max()};
+  std::string why;
+  const std::optional<Json> v = parseParam(number, t, why);
+  if (!v || !(v->get<double>() > 0.0)) {
+    error = "cannot read decimation target " + quoted + usage;
+    return false;
+  }
+  const ParamDecl& target = paramIn(decimateTargetDecls(), percent ? "target_ratio_pct" : "target_triangles");
+  const double value = percent ? v->get<double>() : std::round(v->get<double>() * scale);
+  if (value < target.min || value > target.max) {
+    const bool above = value > target.max;
+    error = "decimation target " + quoted + " is " + (above ? "above " : "below ") +
+            formatNumber(above ? target.max : target.min) + (percent ? "%" : " triangles") + " (" + rangeText(target) +
+            ")";
     return false;
   }
   if (percent) {
-    if (v > 100) {
-      error = "decimation target '" + std::string(text) + "' is above 100%";
-      return false;
-    }
-    options.targetRatio = v / 100.0;
+    options.targetRatio = value / 100.0;
     options.targetTriangles = 0;
   } else {
-    options.targetTriangles = size_t(std::llround(v * scale));
-    if (options.targetTriangles == 0) {
-      error = "decimation target '" + std::string(text) + "' is less than one triangle";
-      return false;
-    }
+    options.targetTriangles = size_t(value);
   }
   return true;
 }

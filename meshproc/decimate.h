@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/params.h"
 #include "core/progress.h"
 #include "mesh/mesh_data.h"
 #include "mesh/nonmanifold_split.h"
@@ -85,8 +86,15 @@ struct DecimateResult {
 DecimateResult decimate(const MeshData& input, const DecimateOptions& options,
                         const Progress* progress = nullptr);
 
+// The decimation targets a user sets, declared once: target_ratio_pct (a
+// share of the triangles, 0.01..100%) and target_triangles (4 .. 2^31-1:
+// fewer than a tetrahedron is no mesh). The Import dialog's fields and
+// parseDecimateTarget check against these.
+const std::vector<ParamDecl>& decimateTargetDecls();
+
 // Parses "500k", "2.5M", "120000" (a triangle count) or "10%" (a ratio) into
-// `options` (the CLI's --decimate-to). False with `error` on bad text.
+// `options` (the CLI's --decimate-to), within decimateTargetDecls()'
+// ranges. False with `error` on bad text.
 bool parseDecimateTarget(std::string_view text, DecimateOptions& options, std::string& error);
 
 }  // namespace hs::mesh

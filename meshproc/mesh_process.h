@@ -42,6 +42,12 @@ struct ProcessOptions {
   double lodRatio = 0.25;
 };
 
+// ProcessOptions' parameters as the import offers them, declared once
+// (`import`, the Import dialog): decimate_to (the CLI's text: 500k, 2M,
+// 10%), target_ratio_pct and target_triangles (decimateTargetDecls()),
+// max_error_m, lods, clean.
+const std::vector<ParamDecl>& processOptionDecls();
+
 struct LodSummary {
   size_t triangles = 0;
   double hausdorff = 0, hausdorffRel = 0;  // against level 0 (the processed mesh)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/json.h"
+#include "core/params.h"
 #include "core/progress.h"
 #include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
@@ -26,6 +27,11 @@ struct MeshImportRequest {
   bool process = false;
   mesh::ProcessOptions processing;
 };
+
+// `import` and the Import dialog, declared once (core/params.h): the
+// reader's options (mesh::importOptionDecls), the processing ones
+// (mesh::processOptionDecls), and where it goes: at_m, name, report.
+const OperationDecl& meshImportOperation();
 
 struct ImportedMesh {
   std::optional<mesh::MeshData> mesh;  // level 0: as read, or cleaned and decimated

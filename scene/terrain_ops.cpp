@@ -101,6 +101,25 @@ EntityId addTerrainFromHeightfield(Document& doc, terrain::Heightfield hf, const
                          QString("Import terrain %1").arg(QString::fromStdString(name)));
 }
 
+EntityId addTerrainFromDem(Document& doc, terrain::Heightfield hf, const std::string& file, const std::string& name,
+                           std::string& error, std::string* usedName) {
+  std::string chosen = name;
+  if (!name.empty()) {
+    if (doc.state().findByName(name) != kNoEntity) {
+      error = "the scene already has an entity named '" + name + "' (choose another name)";
+      return kNoEntity;
+    }
+  } else {
+    const std::string base = std::filesystem::path(file).stem().string();
+    chosen = base.empty() ? std::string("Terrain") : base;
+    for (int i = 2; doc.state().findByName(chosen) != kNoEntity; ++i)
+      chosen = (base.empty() ? std::string("Terrain") : base) + " " + std::to_string(i);
+  }
+  const EntityId id = addTerrainFromHeightfield(doc, std::move(hf), chosen, error);
+  if (id != kNoEntity && usedName) *usedName = chosen;
+  return id;
+}
+
 bool setTerrainMaterial(Document& doc, TerrainId id, int layer, const terrain::Material& m, const QString& mergeKey) {
   const TerrainAsset* t = doc.state().findTerrain(id);
   if (!t || layer < 0 || layer >= int(t->materials.size())) return false;

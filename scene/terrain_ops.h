@@ -8,15 +8,19 @@
 
 #include <QString>
 
+#include "core/params.h"
 #include "scene/document.h"
+#include "terrain/dem_import.h"
 #include "terrain/heightfield.h"
 #include "terrain/heightmap_image.h"
 
 namespace hs::scene::ops {
 
+// Ranges, units and help of NewTerrain are declared once in
+// terrainNewOperation().
 struct NewTerrain {
   std::string name = "Terrain";
-  int samplesX = 1025, samplesY = 1025;         // 2..8193 per side
+  int samplesX = 1025, samplesY = 1025;         // per side
   glm::dvec2 sizeMetres{1024.0, 1024.0};        // first to last sample
   glm::dvec3 centre{0.0};                       // world position of the terrain's centre at height 0
   // What it starts as: flat at heightRange.min, or fractal hills spanning
@@ -32,6 +36,10 @@ struct NewTerrain {
   EntityId showOn = kNoEntity;
 };
 
+// `terrain new` (the CLI) and the New Terrain dialog: size_m, samples,
+// name, height_m, hills, seed, at, lod_error_px.
+const OperationDecl& terrainNewOperation();
+
 // A flat terrain and an entity showing it (its translation at `centre`), in
 // one undo step. Returns the entity, or 0 with `error` (bad sizes, ...).
 // With `spec.showOn`, that entity shows the new terrain instead (a terrain
@@ -43,6 +51,14 @@ EntityId addTerrain(Document& doc, const NewTerrain& spec, std::string& error);
 // at its georeferenced place). Default materials and paint rules.
 EntityId addTerrainFromHeightfield(Document& doc, terrain::Heightfield hf, const std::string& name,
                                    std::string& error, double lodErrorPixels = 1.0);
+
+// A terrain from an imported DEM (`terrain import`, the editor's Import DEM):
+// one rule for both. `name` given: it must be free, else 0 with `error`
+// (the user asked for that name). `name` empty: named after `file` (its
+// base name), and if that is taken the first free "<base> 2", "<base> 3",
+// ... (importing a DEM twice is normal). `usedName` gets the name given.
+EntityId addTerrainFromDem(Document& doc, terrain::Heightfield hf, const std::string& file, const std::string& name,
+                           std::string& error, std::string* usedName = nullptr);
 
 // Small values of a terrain (undoable like any field; `mergeKey` folds a
 // drag or a colour pick into one step).

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "core/params.h"
 #include "sequencer/track.h"
 
 namespace hs::sequencer {
@@ -88,6 +89,10 @@ struct PathFollow {
   double maxBankDeg = 30.0;
   bool operator==(const PathFollow&) const = default;
 };
+
+// PathFollow's parameters as `path` and the Camera Path panel set them,
+// declared once: look_at_m, bank_deg (0 turns banking off), bank_scale.
+const std::vector<ParamDecl>& pathFollowParamDecls();
 
 struct PathPose {
   glm::dvec3 position{0.0};

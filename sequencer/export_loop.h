@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/params.h"
 #include "core/progress.h"
 #include "sequencer/ffmpeg_writer.h"
 #include "sequencer/frame_range.h"
@@ -87,6 +88,12 @@ struct ExportSettings {
   // size only.
   std::string jobTag;
 };
+
+// ExportSettings' parameters as `render --frames` and the Export dialog
+// set them, declared once: frames, layout, size_px (one eye), fps,
+// quality, png16, video, codec, crf, preset, comfort, budget_pct,
+// overwrite, writers.
+const std::vector<ParamDecl>& exportParamDecls();
 
 struct ExportProgress {
   int64_t total = 0;      // frames in the range

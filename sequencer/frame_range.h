@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/params.h"
+
 namespace hs::sequencer {
 
 // A rational rate so 59.94 (60000/1001) is exact and frame times are
@@ -66,5 +68,14 @@ class FrameList {
   std::vector<FrameSpan> spans_;
   int64_t count_ = 0;
 };
+
+// A frame number a user gives an operation (render and farm --frames,
+// sequence --range, the timeline's range, the Export dialog): 0 ..
+// 2^31-1. Frames before 0 would be times before the timeline starts, and
+// 2^31 frames are more than a year of film at 60 fps.
+const ParamDecl& frameNumberDecl();
+// False with `error` ("--frames: frame -5 is out of range (0 to 2147483647)")
+// when the list reaches outside frameNumberDecl(); `name` names the option.
+bool checkFrameBounds(const FrameList& frames, const std::string& name, std::string& error);
 
 }  // namespace hs::sequencer

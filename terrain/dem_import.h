@@ -32,6 +32,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/params.h"
 #include "core/progress.h"
 #include "terrain/grid_resample.h"
 #include "terrain/heightfield.h"
@@ -96,6 +97,15 @@ struct DemImportReport {
   std::vector<std::string> warnings;
   double seconds = 0.0;
 };
+
+// DemImportOptions' parameters, declared once (`terrain import`, the Import
+// DEM dialog): window (text, see parseDemWindow), window_box (the window's
+// four numbers, the dialog's fields), samples, crs, resampling, fill,
+// nodata.
+const std::vector<ParamDecl>& demImportParamDecls();
+// "[pixels:|crs:|lonlat:]MINX,MINY,MAXX,MAXY" (the CLI's --window; pixels
+// when no kind is given). False with `error` naming --window otherwise.
+bool parseDemWindow(const std::string& text, DemWindow& out, std::string& error);
 
 struct DemImportResult {
   std::optional<Heightfield> heightfield;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "terrain/brush_dab.h"
 #include "terrain/undo_step.h"
@@ -97,20 +96,10 @@ double sumHeights(const std::vector<float>& h, int w, int hgt) {
 
 double clampParam(double v, double lo, double hi, double fallback, const char* name,
                   std::vector<std::string>& warnings) {
-  if (std::isnan(v)) {
-    std::ostringstream s;
-    s << name << " was not a number; using " << fallback;
-    warnings.push_back(s.str());
-    return fallback;
-  }
-  if (v < lo || v > hi) {
-    const double c = std::clamp(v, lo, hi);
-    std::ostringstream s;
-    s << name << " " << v << " is outside [" << lo << ", " << hi << "]; using " << c;
-    warnings.push_back(s.str());
-    return c;
-  }
-  return v;
+  // Brush and ramp settings have ranges that depend on the terrain (the
+  // radius on its spacing): a declaration made for the call.
+  const ParamDecl p{.key = name, .label = name, .min = lo, .max = hi, .defaultValue = fallback};
+  return hs::clampParam(p, v, warnings);
 }
 
 void finishReport(ErosionReport& rep, const std::vector<float>& h, int w, int hgt, double cellArea, double absSum,

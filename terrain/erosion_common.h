@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/params.h"
 #include "terrain/falloff.h"
 #include "terrain/heightfield.h"
 #include "terrain/paint_layers.h"
@@ -69,7 +70,8 @@ size_t sanitizeHeights(std::vector<float>& h, int w, int hgt);
 // Sum of h over the grid in double, row by row in order (deterministic).
 double sumHeights(const std::vector<float>& h, int w, int hgt);
 // Clamps a double parameter to [lo, hi], replacing NaN by `fallback`, and
-// notes the change in `warnings`.
+// notes the change in `warnings` (hs::clampParam, for settings whose range
+// is known only at the call: brushes and ramps).
 double clampParam(double v, double lo, double hi, double fallback, const char* name,
                   std::vector<std::string>& warnings);
 // What both solvers do around their grid run: clip the mask to the

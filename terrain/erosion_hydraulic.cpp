@@ -9,24 +9,6 @@
 
 namespace hs::terrain {
 
-HydraulicParams HydraulicParams::sanitized(std::vector<std::string>& w) const {
-  using detail::clampParam;
-  HydraulicParams p;
-  p.iterations = int(clampParam(double(iterations), 0.0, 1e6, 300.0, "hydraulic iterations", w));
-  p.timeStep = clampParam(timeStep, 1e-6, 10.0, 0.02, "hydraulic time step (s)", w);
-  p.rain = clampParam(rain, 0.0, 1e9, 0.01, "rain (m/s)", w);
-  p.evaporation = clampParam(evaporation, 0.0, 1e6, 0.5, "evaporation (1/s)", w);
-  p.sedimentCapacity = clampParam(sedimentCapacity, 0.0, 1e6, 1.0, "sediment capacity", w);
-  p.erosionRate = clampParam(erosionRate, 0.0, 1e6, 0.3, "erosion rate (1/s)", w);
-  p.depositionRate = clampParam(depositionRate, 0.0, 1e6, 0.3, "deposition rate (1/s)", w);
-  p.minSlope = clampParam(minSlope, 0.0, 1.0, 0.05, "minimum slope", w);
-  p.depthLimit = clampParam(depthLimit, 1e-6, 1e3, 0.01, "depth limit (m)", w);
-  p.gravity = clampParam(gravity, 0.01, 1e3, 9.81, "gravity (m/s^2)", w);
-  p.cfl = clampParam(cfl, 0.01, 0.9, 0.25, "CFL number", w);
-  p.friction = clampParam(friction, 0.0, 1e4, 2.0, "flow friction (1/s)", w);
-  return p;
-}
-
 ErosionReport erodeHydraulicGrid(std::vector<float>& b, int w, int hgt, glm::dvec2 spacing,
                                  const HydraulicParams& in, const float* mask, const Progress* progress,
                                  int threads, std::vector<float>* waterOut) {

@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/params.h"
 #include "core/progress.h"
 #include "terrain/erosion_common.h"
 
@@ -36,8 +37,9 @@ namespace hs::terrain {
 
 class UndoRecorder;
 
+// Ranges, units and help are declared once in hydraulicParamDecls().
 struct HydraulicParams {
-  int iterations = 300;           // 0..1,000,000
+  int iterations = 300;
   double timeStep = 0.02;         // s, upper bound; the CFL limit may shorten it
   double rain = 0.01;             // m of water per second (times the mask)
   double evaporation = 0.5;       // 1/s (fraction of water per second)
@@ -47,10 +49,18 @@ struct HydraulicParams {
   double minSlope = 0.05;         // keeps some capacity on flat ground
   double depthLimit = 0.01;       // m: capacity grows with depth up to this depth
   double gravity = 9.81;          // m/s^2
-  double cfl = 0.25;              // Courant number of the time-step limit (0.01..0.9)
+  double cfl = 0.25;              // Courant number of the time-step limit
   double friction = 2.0;          // 1/s: bed friction; sheet flow on slope S runs at about g * S / friction
+  // Clamps everything to its declared range (NaN -> default) and says what changed.
   HydraulicParams sanitized(std::vector<std::string>& warnings) const;
 };
+
+// HydraulicParams' parameters (the defaults are the struct's). Those with
+// a CLI option (iterations, time-step, rain, evaporation, capacity,
+// erosion-rate, deposition-rate) are what `terrain erode` and the erosion
+// dialog offer; the rest (min_slope, depth_limit_m, gravity, cfl,
+// friction) are the solver's own, declared for sanitized() and reports.
+const std::vector<ParamDecl>& hydraulicParamDecls();
 
 ErosionReport erodeHydraulic(Heightfield& hf, const HydraulicParams& params, const ErosionMask& mask,
                              UndoRecorder* recorder = nullptr, const Progress* progress = nullptr,

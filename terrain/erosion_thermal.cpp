@@ -11,14 +11,6 @@
 
 namespace hs::terrain {
 
-ThermalParams ThermalParams::sanitized(std::vector<std::string>& w) const {
-  ThermalParams p;
-  p.talusDegrees = detail::clampParam(talusDegrees, 0.0, 90.0, 35.0, "thermal talus angle (degrees)", w);
-  p.iterations = int(detail::clampParam(double(iterations), 0.0, 1e6, 50.0, "thermal iterations", w));
-  p.strength = float(detail::clampParam(double(strength), 0.0, 1.0, 0.5, "thermal strength", w));
-  return p;
-}
-
 namespace {
 
 struct Neighbour {

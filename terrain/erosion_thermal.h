@@ -17,6 +17,7 @@
 // mass is conserved up to float rounding, which the report measures.
 #include <vector>
 
+#include "core/params.h"
 #include "core/progress.h"
 #include "terrain/erosion_common.h"
 
@@ -24,13 +25,19 @@ namespace hs::terrain {
 
 class UndoRecorder;
 
+// Ranges, units and help are declared once in thermalParamDecls().
 struct ThermalParams {
-  double talusDegrees = 35.0;  // angle of repose, 0..90 (90: nothing moves)
-  int iterations = 50;         // 0..1,000,000
-  float strength = 0.5f;       // fraction of the allowed move per iteration, 0..1
-  // Clamps everything to its range (NaN -> default) and says what changed.
+  double talusDegrees = 35.0;  // angle of repose (90: nothing moves)
+  int iterations = 50;
+  float strength = 0.5f;       // fraction of the allowed move per iteration
+  // Clamps everything to its declared range (NaN -> default) and says what changed.
   ThermalParams sanitized(std::vector<std::string>& warnings) const;
 };
+
+// ThermalParams' parameters: talus_deg, iterations, strength (the defaults
+// are the struct's). `terrain erode`, the erosion dialog and sanitized()
+// all use these.
+const std::vector<ParamDecl>& thermalParamDecls();
 
 // Erodes the masked window of `hf`. With a recorder the touched tiles get
 // before-copies (one undo step). Cancelling leaves the terrain unchanged.

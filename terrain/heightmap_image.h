@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/params.h"
 #include "terrain/heightfield.h"
 #include "terrain/paint_layers.h"
 
@@ -27,6 +28,14 @@ struct HeightExportOptions {
   std::optional<HeightRange> range;  // 16-bit formats; default: the terrain's min..max
   bool holesAsNodata = true;         // GeoTIFF: holes become nodata
 };
+
+// Heights a user may give a terrain or an export range, metres: ±100 km,
+// beyond any relief on Earth and inside what a float keeps to a centimetre.
+inline constexpr double kMaxTerrainHeightMetres = 1e5;
+
+// HeightExportOptions' parameters and the paint weights' format, declared
+// once (`terrain export`): range, weights_format.
+const std::vector<ParamDecl>& heightExportParamDecls();
 
 struct HeightExportReport {
   std::string file;

@@ -108,6 +108,35 @@ class TestSceneTerrain : public QObject {
     QCOMPARE(doc.undoStack()->count(), 1);
   }
 
+  // The one naming rule for a terrain made from a DEM (the editor's Import
+  // DEM and `terrain import`): a name given must be free; the file's name
+  // takes the first free "name 2", "name 3", ...
+  void demTerrainsAreNamedByOneRule() {
+    Document doc;
+    auto grid = [] {
+      terrain::HeightfieldDesc d;
+      d.samplesX = d.samplesY = 5;
+      d.sizeMetres = glm::dvec2(40.0);
+      return terrain::Heightfield::create(d).take();
+    };
+    std::string error, name;
+    QVERIFY(ops::addTerrainFromDem(doc, grid(), "/data/dem_wgs84.tif", {}, error, &name) != kNoEntity);
+    QCOMPARE(name, std::string("dem_wgs84"));
+    QVERIFY(ops::addTerrainFromDem(doc, grid(), "/other/dem_wgs84.tif", {}, error, &name) != kNoEntity);
+    QCOMPARE(name, std::string("dem_wgs84 2"));
+    QVERIFY(ops::addTerrainFromDem(doc, grid(), "dem_wgs84.tif", {}, error, &name) != kNoEntity);
+    QCOMPARE(name, std::string("dem_wgs84 3"));
+    const int steps = doc.undoStack()->index();
+    name.clear();
+    QCOMPARE(ops::addTerrainFromDem(doc, grid(), "x.tif", "dem_wgs84 2", error, &name), kNoEntity);
+    QVERIFY2(error.find("'dem_wgs84 2'") != std::string::npos, error.c_str());
+    QVERIFY(name.empty());
+    QCOMPARE(doc.undoStack()->index(), steps);  // refused: nothing changed
+    QVERIFY(ops::addTerrainFromDem(doc, grid(), "x.tif", "Pindus", error, &name) != kNoEntity);
+    QCOMPARE(name, std::string("Pindus"));
+    QVERIFY(doc.state().findByName("Pindus") != kNoEntity);
+  }
+
   void deletingTheEntityTakesTheTerrainAndUndoBringsItBack() {
     Document doc;
     const EntityId e = makeTerrain(doc);

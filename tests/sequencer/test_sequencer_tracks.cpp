@@ -473,6 +473,21 @@ class TestTracks : public QObject {
     QVERIFY(!parseFrameRate("fast", error));
   }
 
+  // What an operation accepts of a frame list: frames 0 .. 2^31-1 (the
+  // list itself may hold negative frames).
+  void frameBoundsOfOperations() {
+    std::string error;
+    const auto bounds = FrameList::parse("0,2147483647", error), negative = FrameList::parse("-5-2", error),
+               beyond = FrameList::parse("10,2147483648", error);
+    QVERIFY(bounds && negative && beyond);
+    QVERIFY(checkFrameBounds(*bounds, "--frames", error));
+    QVERIFY(!checkFrameBounds(*negative, "--frames", error));
+    QCOMPARE(error, std::string("--frames: frame -5 is out of range (0 to 2147483647)"));
+    QVERIFY(!checkFrameBounds(*beyond, "Frames", error));
+    QCOMPARE(error, std::string("Frames: frame 2147483648 is out of range (0 to 2147483647)"));
+    QVERIFY(checkFrameBounds(FrameList(), "--frames", error));
+  }
+
   void outputPatterns() {
     std::string error;
     auto p = OutputPattern::parse("frames/f_%05d.png", error);

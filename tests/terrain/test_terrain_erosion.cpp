@@ -123,8 +123,13 @@ class TestErosion : public QObject {
       const ErosionReport r = erodeHydraulicGrid(h, 24, 24, {1.0, 1.0}, p, nullptr);
       QVERIFY(allFinite(h));
       QVERIFY(r.cflLimitedIterations > 0);
-      QByteArray why;
-      QVERIFY2(massConserved(r, hs::test::movedVolume(hills(24, 24), h, 1.0), "hydraulic, rain 1e6 m/s", why), why);
+      QVERIFY(!r.warnings.empty());  // rain is capped at 1000 m/s, and the run says so
+      // So much water that the flow stalls and almost nothing moves: the
+      // error is bounded by float rounding, not by the volume moved.
+      const double allowed = hs::test::oneRoundingPerCell(h, 1.0);
+      qInfo("hydraulic, rain 1e6 m/s: mass error %.3g m^3, moved %.3g m^3, allowed %.3g m^3 (one rounding per cell)",
+            r.massError, hs::test::movedVolume(hills(24, 24), h, 1.0), allowed);
+      QVERIFY(r.massError < allowed);
     }
     // 1e5 iterations on a small grid.
     {
@@ -191,6 +196,36 @@ class TestErosion : public QObject {
     std::vector<float> flat2(32 * 32, 50.0f);
     erodeHydraulicGrid(flat2, 32, 32, {1.0, 1.0}, HydraulicParams{}, nullptr);
     for (float v : flat2) QVERIFY(std::abs(v - 50.0f) < 1e-3f);
+  }
+
+  // sanitized() clamps to the declared ranges (the CLI and the dialog
+  // refuse outside them), each change with a warning naming it.
+  void sanitizeClampsByTheDeclarations() {
+    std::vector<std::string> w;
+    const ThermalParams t = ThermalParams{95.0, 0, 2.0f}.sanitized(w);
+    const std::vector<hs::ParamDecl>& td = thermalParamDecls();
+    QCOMPARE(t.talusDegrees, paramIn(td, "talus_deg").max);
+    QCOMPARE(double(t.iterations), paramIn(td, "iterations").min);
+    QCOMPARE(double(t.strength), paramIn(td, "strength").max);
+    QCOMPARE(w.size(), size_t(3));
+    QVERIFY2(w[0].find("Talus angle 95 is out of range (0 to 90 degrees); using 90") != std::string::npos, w[0].c_str());
+    w.clear();
+    HydraulicParams h;
+    h.timeStep = 1e9;
+    h.rain = -1.0;
+    const HydraulicParams hc = h.sanitized(w);
+    const std::vector<hs::ParamDecl>& hd = hydraulicParamDecls();
+    QCOMPARE(hc.timeStep, paramIn(hd, "time_step_s").max);
+    QCOMPARE(hc.rain, paramIn(hd, "rain_m_per_s").min);
+    QCOMPARE(w.size(), size_t(2));
+    // Values in range pass untouched, defaults included.
+    w.clear();
+    QCOMPARE(ThermalParams{}.sanitized(w).talusDegrees, ThermalParams{}.talusDegrees);
+    QCOMPARE(HydraulicParams{}.sanitized(w).iterations, HydraulicParams{}.iterations);
+    QVERIFY(w.empty());
+    // One --iterations for both solvers: their declared ranges agree.
+    QCOMPARE(paramIn(td, "iterations").min, paramIn(hd, "iterations").min);
+    QCOMPARE(paramIn(td, "iterations").max, paramIn(hd, "iterations").max);
   }
 
   void nanInputs() {

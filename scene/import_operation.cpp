@@ -1,0 +1,39 @@
+// `import` declared once: the reader's and the processing options, and where
+// the mesh lands. --at is within the world extent (core/world_extent.h).
+#include "core/world_extent.h"
+#include "scene/import_pipeline.h"
+
+namespace hs::scene {
+
+const OperationDecl& meshImportOperation() {
+  static const OperationDecl op = [] {
+    OperationDecl o{
+        .name = "import",
+        .summary = "import a mesh (OBJ, FBX, PLY, glTF, ...) into a scene",
+        .usage = "<mesh-file> [more tiles ...] <scene.hscene> [options]",
+        .description = "Imports a mesh (OBJ, FBX, PLY, glTF/GLB, DAE, 3DS, STL) into an existing scene as a new "
+                       "asset and an entity showing it, and saves the scene. Several files are the tiles of one "
+                       "scan: they share one origin, their borders are welded and they become one asset.",
+        .positionals = {{.name = "mesh-file", .help = "the mesh, or the tiles of one scan", .repeated = true},
+                        {.name = "scene.hscene", .help = "the scene file (saved afterwards)"}}};
+    o.params = {
+        {.key = "at_m", .option = "at", .label = "Place at", .unit = Unit::Metres, .min = -kWorldExtentMetres,
+         .max = kWorldExtentMetres,
+         .help = "put the centre of the mesh's base here (default: where the file's coordinates put it, e.g. at UTM "
+                 "coordinates)",
+         .valueName = "x,y,z", .count = 3},
+        {.key = "name", .option = "name", .label = "Name", .type = ParamType::Text,
+         .help = "entity and asset name (default: the file's base name)", .valueName = "NAME"},
+    };
+    appendParams(o.params, mesh::importOptionDecls());
+    appendParams(o.params, mesh::processOptionDecls());
+    o.params.push_back({.key = "report", .option = "report", .label = "Report", .type = ParamType::Text,
+                        .help = "write the import and processing report as JSON (hausdorff_m, hausdorff_rel, "
+                                "mean_m, rms_m, p95_m, ...)",
+                        .valueName = "FILE"});
+    return o;
+  }();
+  return op;
+}
+
+}  // namespace hs::scene

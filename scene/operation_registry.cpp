@@ -1,0 +1,35 @@
+#include "scene/operation_registry.h"
+
+#include "scene/import_pipeline.h"
+#include "scene/render_operation.h"
+#include "scene/terrain_ops.h"
+#include "sequencer/sequencer_operations.h"
+#include "terrain/terrain_operations.h"
+
+namespace hs::scene {
+
+const std::vector<const OperationDecl*>& sharedOperations() {
+  static const std::vector<const OperationDecl*> list = {
+      &meshImportOperation(),
+      &ops::terrainNewOperation(),
+      &terrain::terrainImportOperation(),
+      &terrain::terrainErodeOperation(),
+      &terrain::terrainPaintRulesOperation(),
+      &terrain::terrainExportOperation(),
+      &renderOperation(),
+      &sequencer::sequenceOperation(),
+      &sequencer::keyOperation(),
+      &sequencer::pathOperation(),
+      &farmSlurmOperation(),
+      &sequencer::farmVerifyOperation(),
+  };
+  return list;
+}
+
+const OperationDecl* findOperation(std::string_view name) {
+  for (const OperationDecl* op : sharedOperations())
+    if (op->name == name) return op;
+  return nullptr;
+}
+
+}  // namespace hs::scene
