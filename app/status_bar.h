@@ -1,7 +1,12 @@
 #pragma once
 // The permanent part of the status bar: frame time (CPU and GPU), triangles
 // drawn, memory (process RSS plus the renderer's GPU allocations) and the
-// fly speed.
+// fly speed. Hovering the frame time lists the passes that ran, each with
+// its CPU time, its GPU time (from the last frame that measured them) and
+// the GPU memory of the resources it created.
+#include <map>
+#include <string>
+
 #include <QWidget>
 
 #include "render/renderer.h"
@@ -29,7 +34,11 @@ class StatusBarInfo : public QWidget {
   QLabel* memory_;
   QLabel* speed_;
   size_t gpuBytes_ = 0;
+  std::map<std::string, double> passGpuMs_;  // last measured, by pass name
 };
+
+// The per-pass table shown when hovering the frame time (rich text).
+QString passTableHtml(const render::FrameStats& stats, const std::map<std::string, double>& gpuMsByPass);
 
 QString formatBytes(size_t bytes);
 

@@ -4,6 +4,9 @@
 #include "cli/commands.h"
 #include "cli/render_frames.h"
 #include "cli/sequence_options.h"
+#include <fstream>
+
+#include "render/frame_stats_json.h"
 #include "render/offscreen_renderer.h"
 #include "scene/hscene_file.h"
 #include "scene/render_operation.h"
@@ -16,7 +19,10 @@ int runRender(int argc, char** argv) {
   OperationArgs args(scene::renderOperation());
   if (auto code = args.parse(argc, argv)) return *code;
   // Any sequence option (--frames, --layout, --video, ...) makes it a sequence render.
-  if (isSequenceRender(args)) return renderFrames(args);
+  if (isSequenceRender(args)) {
+    if (args.has("stats")) return args.usage("--stats applies to one frame, not a sequence");
+    return renderFrames(args);
+  }
   if (args.positionals().size() != 1) return args.usage("expected one scene file");
   if (!args.has("out")) return args.usage("--out FILE is required");
   const std::string out = args.text("out");
@@ -60,12 +66,20 @@ int runRender(int argc, char** argv) {
   render::FrameStats stats;
   render::RenderOptions options;
   options.showGrid = !args.flag("no_grid");
+  // Per-pass GPU timestamps wait for the GPU: only when they are asked for.
+  options.passTimings = args.has("stats");
   const bool hdr = *format == sequencer::ImageFormat::Exr;
   const hs::Image img = renderer.render(*state, view, hdr, &stats, options);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   hs::ImageView iv{img.width, img.height, img.rgba8.empty() ? nullptr : img.rgba8.data(),
                           img.rgbaF.empty() ? nullptr : img.rgbaF.data()};
   if (!sequencer::writeImage(out, iv, error, writeOptions)) return args.fail(error);
+  if (args.has("stats")) {
+    const std::string statsPath = args.text("stats");
+    std::ofstream file(statsPath);
+    file << writeJson(render::frameStatsJson(stats, renderer.renderer().resourceRegistry())) << "\n";
+    if (!file) return args.fail(statsPath + ": cannot write the statistics");
+  }
   std::printf("rendered %dx%d from %s: %zu triangles, %zu draw calls, %.1f ms (%s) -> %s\n", width, height,
               from.c_str(), stats.trianglesDrawn, stats.drawCalls, ms, renderer.glDescription().c_str(), out.c_str());
   return 0;

@@ -54,6 +54,10 @@ const OperationDecl& renderOperation() {
         .positionals = {{.name = "scene.hscene", .help = "the scene file"}}};
     o.params = {text("out", "Output", "the image to write (a sequence: the frame files' pattern)", "FILE")};
     appendParams(o.params, frameParams());
+    o.params.push_back(text("stats", "Statistics",
+                            "write the frame's passes (CPU and GPU time, GPU memory each), GPU memory held, "
+                            "triangles and draw calls as JSON (one frame, not a sequence)",
+                            "FILE.json"));
     for (const ParamDecl& p : sequencer::exportParamDecls())
       if (p.key != "size_px" && p.key != "quality") o.params.push_back(p);
     return o;

@@ -400,6 +400,60 @@ class TestCli : public QObject {
     QCOMPARE(in->spec().height, 30);
   }
 
+  // --stats: the passes that ran and what they hold, read from the renderer's
+  // registry. The byte counts are checked against the formats' sizes
+  // (RGBA16F: 8 bytes, DEPTH32F: 4 bytes a sample), not against the
+  // renderer's own arithmetic.
+  void renderStats_data() {
+    QTest::addColumn<QString>("aa");
+    QTest::addColumn<bool>("grid");
+    QTest::newRow("no aa, no grid") << "none" << false;
+    QTest::newRow("msaa4, grid") << "msaa4" << true;
+    QTest::newRow("fxaa") << "fxaa" << false;
+  }
+  void renderStats() {
+    QFETCH(QString, aa);
+    QFETCH(bool, grid);
+    const int w = 64, h = 48;
+    QStringList args{"render", demo_, "--out", path("stats.png"), "--size", "64x48", "--aa", aa, "--stats",
+                     path("stats.json")};
+    if (!grid) args << "--no-grid";
+    const Run r = cli(args);
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QFile f(path("stats.json"));
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QJsonObject j = QJsonDocument::fromJson(f.readAll()).object();
+    QStringList ran;
+    QJsonObject opaque;
+    for (const QJsonValue& v : j["passes"].toArray()) {
+      const QJsonObject p = v.toObject();
+      ran << p["name"].toString();
+      QVERIFY(p["cpu_ms"].toDouble() >= 0.0);
+      QVERIFY2(p["gpu_ms"].isDouble() && p["gpu_ms"].toDouble() >= 0.0, qPrintable(p["name"].toString()));
+      if (p["name"] == "opaque") opaque = p;
+    }
+    for (const char* always : {"opaque", "terrain", "sky", "tonemap"})
+      QVERIFY2(ran.contains(always), qPrintable(ran.join(',')));
+    QCOMPARE(ran.contains("grid"), grid);
+    QCOMPARE(ran.contains("resolve"), aa == "msaa4");
+    QCOMPARE(ran.contains("fxaa"), aa == "fxaa");
+    QVERIFY(!ran.contains("overlay"));  // nothing to overlay headless
+    const qint64 samples = aa == "msaa4" ? 4 : 1;
+    QCOMPARE(opaque["gpu_bytes"].toInteger(), qint64(w) * h * (8 + 4) * samples);
+    // The frame's memory is the registry's, entry by entry.
+    qint64 sum = 0;
+    for (const QJsonValue& v : j["resources"].toArray()) sum += v.toObject()["bytes"].toInteger();
+    QCOMPARE(j["gpu_bytes"].toInteger(), sum);
+    QVERIFY(sum >= opaque["gpu_bytes"].toInteger());
+    QVERIFY(j["triangles"].toInteger() > 0);
+    QVERIFY(j["draw_calls"].toInteger() > 0);
+  }
+
+  void statsIsForOneFrame() {
+    expectError({"render", demo_, "--frames", "0-1", "--out", path("sq/f_%03d.png"), "--stats", path("s.json")}, 2,
+                {"--stats"});
+  }
+
   // ---- errors: non-zero exit, one line naming the problem ------------------------------
 
   void unknownCommand() { expectError({"frobnicate", demo_}, 2, {"frobnicate"}); }

@@ -1,0 +1,37 @@
+#include "render/frame_stats_json.h"
+
+namespace hs::render {
+namespace {
+
+Json milliseconds(double ms) { return ms >= 0.0 ? Json(ms) : Json(nullptr); }
+
+}  // namespace
+
+Json frameStatsJson(const FrameStats& stats, const std::vector<GpuAllocation>& registry) {
+  Json passes = Json::array();
+  for (const PassStats& p : stats.passes)
+    passes.push_back({{"name", p.name}, {"cpu_ms", p.cpuMs}, {"gpu_ms", milliseconds(p.gpuMs)}, {"gpu_bytes", p.gpuBytes}});
+  Json resources = Json::array();
+  size_t bytes = 0;
+  for (const GpuAllocation& a : registry) {
+    resources.push_back({{"name", a.name}, {"kind", a.kind}, {"bytes", a.bytes}, {"transient", a.transient}});
+    bytes += a.bytes;
+  }
+  Json j;
+  j["passes"] = std::move(passes);
+  j["gpu_bytes"] = bytes;
+  j["triangles"] = stats.trianglesDrawn;
+  j["draw_calls"] = stats.drawCalls;
+  j["instances_drawn"] = stats.instancesDrawn;
+  j["instances_culled"] = stats.instancesCulled;
+  j["cpu_ms"] = stats.cpuMs;
+  // The frame's timer query answers an earlier frame; with per-pass
+  // timestamps this frame's GPU time is their sum.
+  double passGpu = stats.passes.empty() ? -1.0 : 0.0;
+  for (const PassStats& p : stats.passes) passGpu = (passGpu < 0.0 || p.gpuMs < 0.0) ? -1.0 : passGpu + p.gpuMs;
+  j["gpu_ms"] = milliseconds(passGpu >= 0.0 ? passGpu : stats.gpuMs);
+  j["resources"] = std::move(resources);
+  return j;
+}
+
+}  // namespace hs::render
