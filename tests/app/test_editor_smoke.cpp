@@ -10,6 +10,8 @@
 #include <QMimeData>
 #include <QSignalSpy>
 #include <QTemporaryDir>
+#include <QLabel>
+#include <QRegularExpression>
 #include <QTest>
 #include <QMenu>
 #include <QToolButton>
@@ -123,6 +125,14 @@ void EditorSmokeTest::startsWithDemoScene() {
   QVERIFY(doc().filePath().isEmpty());
   QVERIFY(w_->windowTitle().startsWith("Demo"));
   QCOMPARE(w_->viewport()->lastStats().trianglesDrawn > 0, true);
+  // Hovering the frame time lists the passes that ran, with a GPU time once
+  // a frame has measured them (the first frame does).
+  auto* frameLabel = w_->findChild<QLabel*>("statusFrame");
+  QVERIFY(frameLabel);
+  QTRY_VERIFY2(frameLabel->toolTip().contains("<td>opaque</td>"), qPrintable(frameLabel->toolTip()));
+  QVERIFY(frameLabel->toolTip().contains("<td>tonemap</td>"));
+  QVERIFY(frameLabel->toolTip().contains(
+      QRegularExpression("<td>opaque</td><td align=right>[0-9.]+</td><td align=right>[0-9.]+</td>")));
   // File > New with nothing to save asks nothing and gives the starter scene.
   w_->requestNew();
   QCOMPARE(prompts_->saveQuestions, 0);
