@@ -153,14 +153,22 @@ void FrameGraph::execute(bool timestamps) {
       r.id = r.texture ? pool_.acquireTexture(r.tdesc, r.name) : pool_.acquireBuffer(r.bdesc, r.name);
       rec.gpuBytes += r.texture ? r.tdesc.bytes() : r.bdesc.bytes;
     }
-    const auto t0 = std::chrono::steady_clock::now();
+    // With timestamps each pass is fenced on both sides: drivers that run
+    // GL work when they flush (llvmpipe does) would otherwise put one pass's
+    // work between another's timestamps. It serialises the frame, which is
+    // why timings are asked for, not always on.
     if (timestamps) {
+      glFinish();
       queries.emplace_back(gl::createQuery(GL_TIMESTAMP), gl::createQuery(GL_TIMESTAMP));
       glQueryCounter(queries.back().first.id(), GL_TIMESTAMP);
     }
+    const auto t0 = std::chrono::steady_clock::now();
     pass.execute(PassResources(*this));
-    if (timestamps) glQueryCounter(queries.back().second.id(), GL_TIMESTAMP);
     rec.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (timestamps) {
+      glFinish();
+      glQueryCounter(queries.back().second.id(), GL_TIMESTAMP);
+    }
     records_.push_back(rec);
     // Return what ends here (kept resources stay for the caller).
     for (Resource& r : resources_)

@@ -114,8 +114,10 @@ class FrameGraph {
   void keep(TextureRef t);
 
   // Culls and runs every needed pass in the order they were added.
-  // `timestamps` wraps each pass in GPU timestamp queries and waits for
-  // them at the end (for --stats and benchmarks; it stalls the pipeline).
+  // `timestamps` wraps each pass in GPU timestamp queries, fenced with
+  // glFinish on both sides so the interval is the pass's own work on any
+  // driver, and waits for them at the end (for --stats, the editor's
+  // per-pass list one frame in 30, and benchmarks; it serialises the frame).
   void execute(bool timestamps = false);
 
   const std::vector<PassRecord>& records() const { return records_; }

@@ -11,11 +11,13 @@ struct OffscreenRenderer::Impl {
   EglContext egl;
   Renderer renderer;
   OutputTarget output;
+  std::vector<std::unique_ptr<OutputTarget>> extraOutputs;  // views after the first (renderViewsOnly)
 
   ~Impl() {
     if (egl.makeCurrent()) {
       renderer.shutdown();
       output.release();
+      for (auto& o : extraOutputs) o->release();
     }
   }
 };
@@ -49,6 +51,26 @@ FrameStats OffscreenRenderer::renderOnly(const scene::SceneState& state, const R
   d_->egl.makeCurrent();
   d_->output.ensure(view.width, view.height);
   FrameStats s = d_->renderer.render(state, view, d_->output.fbo(), options);
+  glFinish();
+  return s;
+}
+
+FrameStats OffscreenRenderer::renderViewsOnly(const scene::SceneState& state, const std::vector<RenderView>& views,
+                                              const RenderOptions& options) {
+  d_->egl.makeCurrent();
+  std::vector<ViewTarget> targets;
+  static const char* const kNames[] = {"left", "right"};
+  for (size_t i = 0; i < views.size(); ++i) {
+    OutputTarget* out = &d_->output;
+    if (i > 0) {
+      while (d_->extraOutputs.size() < i) d_->extraOutputs.push_back(std::make_unique<OutputTarget>());
+      out = d_->extraOutputs[i - 1].get();
+    }
+    out->ensure(views[i].width, views[i].height);
+    const std::string name = views.size() == 1 ? "" : i < 2 ? kNames[i] : "view" + std::to_string(i);
+    targets.push_back({views[i], out->fbo(), name});
+  }
+  FrameStats s = d_->renderer.renderViews(state, targets, options);
   glFinish();
   return s;
 }

@@ -3,6 +3,7 @@
 // renderer and an output framebuffer, rendering a scene to a CPU image.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "render/renderer.h"
@@ -28,6 +29,11 @@ class OffscreenRenderer {
                FrameStats* stats = nullptr, const RenderOptions& options = {});
   // Renders without reading back (benchmarks of the GPU side); waits for the GPU.
   FrameStats renderOnly(const scene::SceneState& state, const RenderView& view, const RenderOptions& options = {});
+  // The same for several views of one frame (Renderer::renderViews: the two
+  // eyes of a stereo pair, eye-independent work done once), each into its
+  // own target; waits for the GPU. All views must have the same size.
+  FrameStats renderViewsOnly(const scene::SceneState& state, const std::vector<RenderView>& views,
+                             const RenderOptions& options = {});
   Renderer& renderer();
 
  private:
