@@ -172,6 +172,8 @@ void MainWindow::createActions() {
   importAct_ = make("&Import Mesh…", QKeySequence(Qt::CTRL | Qt::Key_I), [this] { requestImport(); },
                     "Import a mesh (OBJ, FBX, PLY, glTF, ...) into the scene");
   importAct_->setIcon(icon(Icon::Import));
+  exportMeshAct_ = make("&Export Mesh…", QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_M), [this] { requestExportMesh(); },
+                        "Write a mesh (the selected entity's, or an asset) as OBJ, PLY or GLB");
   quitAct_ = make("&Quit", QKeySequence(Qt::CTRL | Qt::Key_Q), [this] { close(); });
   quitAct_->setMenuRole(QAction::QuitRole);
 
@@ -253,6 +255,7 @@ void MainWindow::createMenus() {
   file->addAction(saveAsAct_);
   file->addSeparator();
   file->addAction(importAct_);
+  file->addAction(exportMeshAct_);
   QMenu* up = file->addMenu("Import &Up Axis");
   upAxisGroup_ = new QActionGroup(this);
   const int savedUp = QSettings().value("import/upAxis", int(mesh::UpAxis::Auto)).toInt();

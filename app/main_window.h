@@ -13,6 +13,7 @@
 
 #include "app/gizmo.h"
 #include "mesh/mesh_import.h"
+#include "scene/mesh_export_operation.h"
 #include "scene/document.h"
 #include "scene/import_pipeline.h"
 
@@ -28,6 +29,7 @@ class Autosave;
 class CameraPathPanel;
 class PathEditor;
 class BackgroundJob;
+class MeshExportDialog;
 class ExportDialog;
 class Keying;
 class StereoPreviewSettings;
@@ -110,6 +112,13 @@ class MainWindow : public QMainWindow {
   bool requestSave();
   bool requestSaveAs();
   void requestImport();
+  // File > Export Mesh…: the dialog, then exportMesh().
+  void requestExportMesh();
+  // The dialog File > Export Mesh shows (tests check its fields).
+  std::unique_ptr<MeshExportDialog> makeMeshExportDialog();
+  // Runs `mesh export` on a worker (progress, Cancel); `wait`: until done,
+  // returning whether it succeeded (errors are shown through the prompts).
+  bool exportMesh(const scene::MeshExportRequest& request, bool wait);
   // Save / Discard / Cancel when there are unsaved changes; false means stop.
   bool maybeSave();
   // Offers recovery copies left by sessions that did not end cleanly.
@@ -176,6 +185,7 @@ class MainWindow : public QMainWindow {
   ExportDialog* exportDialog_ = nullptr;
   TerrainPanel* terrain_ = nullptr;
   std::unique_ptr<BackgroundJob> docJob_;
+  std::unique_ptr<BackgroundJob> exportJob_;  // File > Export Mesh
   std::unique_ptr<ImportJob> importJob_;
   QString untitledName_ = "Untitled";
   quint64 revision_ = 0;  // bumps on every document change (save checks it)
@@ -184,7 +194,7 @@ class MainWindow : public QMainWindow {
   QMenu* recentMenu_ = nullptr;
   QToolBar* toolBar_ = nullptr;
   QAction *newAct_ = nullptr, *openAct_ = nullptr, *saveAct_ = nullptr, *saveAsAct_ = nullptr,
-          *importAct_ = nullptr, *quitAct_ = nullptr;
+          *importAct_ = nullptr, *exportMeshAct_ = nullptr, *quitAct_ = nullptr;
   QAction *undoAct_ = nullptr, *redoAct_ = nullptr, *deleteAct_ = nullptr, *duplicateAct_ = nullptr,
           *renameAct_ = nullptr, *selectAllAct_ = nullptr, *selectNoneAct_ = nullptr;
   QAction *frameAct_ = nullptr, *frameAllAct_ = nullptr, *gridAct_ = nullptr, *resetLayoutAct_ = nullptr;

@@ -19,6 +19,7 @@ const std::vector<Command>& commands() {
       {"render", scene::renderOperation().summary.c_str(), runRender},
       {"set", "set an entity property or a scene setting", runSet},
       {"terrain", "terrains: new, import (DEM), erode, paint-rules, export", runTerrain},
+      {"mesh", "meshes: export (OBJ, PLY, GLB)", runMesh},
       {"key", sequencer::keyOperation().summary.c_str(), runKey},
       {"sequence", sequencer::sequenceOperation().summary.c_str(), runSequence},
       {"path", sequencer::pathOperation().summary.c_str(), runPath},

@@ -23,6 +23,7 @@ int runInfo(int argc, char** argv);
 int runRender(int argc, char** argv);
 int runSet(int argc, char** argv);
 int runTerrain(int argc, char** argv);
+int runMesh(int argc, char** argv);
 int runKey(int argc, char** argv);
 int runSequence(int argc, char** argv);
 int runPath(int argc, char** argv);

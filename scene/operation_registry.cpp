@@ -1,6 +1,7 @@
 #include "scene/operation_registry.h"
 
 #include "scene/import_pipeline.h"
+#include "scene/mesh_export_operation.h"
 #include "scene/render_operation.h"
 #include "scene/terrain_ops.h"
 #include "sequencer/sequencer_operations.h"
@@ -11,6 +12,7 @@ namespace hs::scene {
 const std::vector<const OperationDecl*>& sharedOperations() {
   static const std::vector<const OperationDecl*> list = {
       &meshImportOperation(),
+      &meshExportOperation(),
       &ops::terrainNewOperation(),
       &terrain::terrainImportOperation(),
       &terrain::terrainErodeOperation(),

@@ -10,7 +10,7 @@
 
 namespace hs::scene {
 
-// import, terrain new/import/erode/paint-rules/export, render, sequence,
+// import, mesh export, terrain new/import/erode/paint-rules/export, render, sequence,
 // key, path, farm slurm, farm verify.
 const std::vector<const OperationDecl*>& sharedOperations();
 // The operation named `name` ("terrain erode"); nullptr if none.

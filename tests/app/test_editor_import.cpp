@@ -11,6 +11,8 @@
 #include <QRegularExpression>
 #include <QSignalSpy>
 #include <QTableWidget>
+#include <QComboBox>
+#include <QLineEdit>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QTreeWidget>
@@ -19,6 +21,7 @@
 #include "app/error_curve.h"
 #include "app/error_report_dialog.h"
 #include "app/import_dialog.h"
+#include "app/mesh_export_dialog.h"
 #include "app/import_preview.h"
 #include "app/main_window.h"
 #include "app/message_panel.h"
@@ -218,6 +221,38 @@ class EditorImportTest : public QObject {
     // And the next import works.
     QVERIFY(w_->importMeshFile(QString(HS_TEST_DATA_DIR) + "/mesh/textured_quad.glb", true));
     QCOMPARE(w_->document().undoStack()->index(), undoIndex + 1);
+  }
+
+  // File > Export Mesh: the dialog offers the scene's meshes (the selected
+  // entity first), the export runs on a worker and writes a file another
+  // reader (Assimp, for GLB) reads with the asset's triangles; a refusal
+  // (a level the mesh does not have) is shown, and nothing is written.
+  void exportMeshFromTheEditor() {
+    QVERIFY(w_->importMeshFile(QString(HS_TEST_DATA_DIR) + "/mesh/textured_quad.obj", true));
+    const scene::EntityId id = w_->selection().primary();
+    const scene::Entity* e = w_->document().state().find(id);
+    QVERIFY(e && e->mesh);
+    const std::unique_ptr<app::MeshExportDialog> dialog = w_->makeMeshExportDialog();
+    QCOMPARE(dialog->targetCombo()->currentData().toString(), QString::fromStdString(e->name));
+    QVERIFY(dialog->pathEdit()->text().endsWith(".obj"));
+    QTemporaryDir dir;
+    dialog->pathEdit()->setText(dir.filePath("quad.glb"));
+    const scene::MeshExportRequest request = dialog->request();
+    QCOMPARE(request.target, e->name);
+    QVERIFY(w_->exportMesh(request, true));
+    const mesh::ImportResult back = mesh::importMesh(dir.filePath("quad.glb").toStdString());
+    QVERIFY2(back.ok(), back.error.c_str());
+    QCOMPARE(back.mesh->triangleCount(), w_->document().state().findAsset(e->mesh->mesh)->data->triangleCount());
+    QVERIFY2(w_->messages()->lastText().contains("quad.glb"), qPrintable(w_->messages()->lastText()));
+
+    scene::MeshExportRequest bad = request;
+    bad.out = dir.filePath("bad.obj").toStdString();
+    bad.lod = 3;
+    const int errorsBefore = int(prompts_->errors.size());
+    QVERIFY(!w_->exportMesh(bad, true));
+    QCOMPARE(int(prompts_->errors.size()), errorsBefore + 1);
+    QVERIFY2(prompts_->errors.back().contains("--lod 3"), qPrintable(prompts_->errors.back()));
+    QVERIFY(!QFile::exists(dir.filePath("bad.obj")));
   }
 
   void cleanupTestCase() { w_.reset(); }

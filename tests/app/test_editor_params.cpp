@@ -19,6 +19,7 @@
 #include "app/export_dialog.h"
 #include "app/import_dialog.h"
 #include "app/main_window.h"
+#include "app/mesh_export_dialog.h"
 #include "app/param_widgets.h"
 #include "app/terrain_dialogs.h"
 #include "app/timeline_panel.h"
@@ -72,6 +73,8 @@ class EditorParamsTest : public QObject {
     roots_["render"] = {w_->exportDialog()};
     roots_["sequence"] = {w_->timeline()};
     roots_["path"] = {w_->cameraPathPanel()};
+    dialogs_.push_back(w_->makeMeshExportDialog());
+    roots_["mesh export"] = {dialogs_.back().get()};
   }
 
   void cleanupTestCase() {

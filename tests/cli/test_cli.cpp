@@ -122,7 +122,7 @@ class TestCli : public QObject {
 
   void helpOnEveryCommand_data() {
     QTest::addColumn<QString>("command");
-    for (const char* c : {"new", "demo", "import", "info", "render", "set", "key", "sequence", "path", "farm", "terrain"})
+    for (const char* c : {"new", "demo", "import", "info", "render", "set", "key", "sequence", "path", "farm", "terrain", "mesh"})
       QTest::newRow(c) << QString(c);
   }
   void helpOnEveryCommand() {

@@ -13,6 +13,7 @@
 
 #include "cli_runner.h"
 #include "file_bytes.h"
+#include "mesh/mesh_import.h"
 #include "scene/hscene_file.h"
 
 using namespace hs;
@@ -276,6 +277,51 @@ class TestCliMesh : public QObject {
   // A file that crashes the reader (Assimp 5.2.5, double free): read in the
   // import worker, so the crash is one line naming the file, and the scene
   // stays byte for byte; the next import works.
+  // mesh export through the real binary: a LOD level of an entity placed by
+  // its transform, read back by Assimp (PLY) with the sidecar; refusals
+  // name the problem, write nothing and leave the scene as it was.
+  void exportALodLevel() {
+    const QString f = newScene("export.hscene");
+    Run r = cli({"import", kBunny, f, "--lods", "2", "--at", "500000,4400000,300"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const auto s = load(f);
+    QVERIFY(s && s->assets.size() == 1);
+    const scene::MeshAsset& asset = s->assets.begin()->second;
+    QCOMPARE(asset.lods.size(), size_t(2));
+    scene::EntityId entity = scene::kNoEntity;
+    for (const auto& [id, e] : s->entities)
+      if (e.mesh) entity = id;
+    QVERIFY(entity != scene::kNoEntity);
+    const QString name = QString::fromStdString(s->find(entity)->name);
+
+    const QString out = path("lod1.ply");
+    r = cli({"mesh", "export", f, name, out, "--lod", "1", "--up", "z"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("LOD 1"), qPrintable(r.out));
+    mesh::ImportOptions io;
+    io.up = mesh::UpAxis::Z;
+    io.geoOffsetMode = mesh::ImportOptions::GeoOffsetMode::Auto;
+    const mesh::ImportResult back = mesh::importMesh(out.toStdString(), io);
+    QVERIFY2(back.ok(), back.error.c_str());
+    const mesh::MeshData& lod = *asset.lods[0].data;
+    QCOMPARE(back.mesh->triangleCount(), lod.triangleCount());
+    // Corner by corner where the entity puts it (float precision at 500 km).
+    const glm::dmat4 m = s->worldMatrix(entity);
+    double worst = 0.0;
+    for (size_t c = 0; c < lod.indices.size(); ++c) {
+      const glm::dvec3 want = glm::dvec3(m * glm::dvec4(lod.origin + glm::dvec3(lod.positions[lod.indices[c]]), 1.0));
+      const glm::dvec3 got = back.mesh->origin + glm::dvec3(back.mesh->positions[back.mesh->indices[c]]);
+      worst = std::max(worst, glm::length(got - want));
+    }
+    QVERIFY2(worst < 1e-5, qPrintable(QString("largest corner distance %1 m").arg(worst)));
+
+    expectRefused({"mesh", "export", f, name, path("lod9.obj"), "--lod", "9"}, 1, {"--lod 9", "0 to 2"}, f);
+    expectRefused({"mesh", "export", f, "Nothing", path("n.obj")}, 1, {"Nothing", QString::fromStdString(asset.name)}, f);
+    expectRefused({"mesh", "export", f, name, path("x.stl")}, 1, {"x.stl", ".ply"}, f);
+    expectRefused({"mesh", "export", f, name, path("x.obj"), "--lod", "40"}, 2, {"--lod"}, f);
+    QVERIFY(!QFile::exists(path("lod9.obj")) && !QFile::exists(path("n.obj")) && !QFile::exists(path("x.obj")));
+  }
+
   void readerCrashIsOneLine() {
     const QString f = newScene("crash.hscene");
     const QString crashing = HS_TEST_DATA_DIR "/mesh/crashes_assimp_embedded_texture.fbx";

@@ -131,6 +131,7 @@ class TestCliParams : public QObject {
     const QString frames = tmp_.filePath("none/f_%03d.png");
     return {
         {"import", {{"import", kMesh, missing_}, missing_}},
+        {"mesh export", {{"mesh", "export", missing_, "Bunny", tmp_.filePath("bunny.obj")}, missing_}},
         {"terrain new", {{"terrain", "new", missing_, "--size", "100", "--resolution", "65"}, missing_}},
         {"terrain import", {{"terrain", "import", kDem, missing_}, missing_}},
         {"terrain erode", {{"terrain", "erode", missing_, "--thermal"}, missing_}},

@@ -1,0 +1,64 @@
+// `hybridscape-cli mesh`: mesh subcommands (export).
+#include <cstdio>
+#include <cstring>
+
+#include "cli/commands.h"
+#include "cli/operation_options.h"
+#include "scene/hscene_file.h"
+#include "scene/mesh_export_operation.h"
+
+namespace hs::cli {
+namespace {
+
+int runMeshExport(int argc, char** argv) {
+  OperationArgs args(scene::meshExportOperation());
+  if (auto code = args.parse(argc, argv)) return *code;
+  if (args.positionals().size() != 3) return args.usage("expected a scene, an asset or entity name, and a file");
+  const std::string& path = args.positionals()[0];
+  scene::MeshExportRequest request = scene::MeshExportRequest::fromParams(
+      Json{{"lod", args.integer("lod")}, {"world", args.flag("world")}, {"format", args.text("format")},
+           {"up", args.text("up")}});
+  request.target = args.positionals()[1];
+  request.out = args.positionals()[2];
+  std::string error;
+  std::optional<scene::SceneState> s = scene::loadScene(path, error);
+  if (!s) return args.fail(error);
+  Progress progress = terminalProgress("Exporting " + request.target);
+  const scene::MeshExportOutcome o = scene::exportSceneMesh(*s, request, &progress);
+  if (!o.result.ok()) return args.fail(o.result.error);
+  std::printf("wrote %s as %s: %zu triangles, %zu vertices%s\n", o.what.c_str(), mesh::exportFormatName(o.format),
+              o.result.triangles, o.result.vertices, request.world ? ", world coordinates" : "");
+  for (const std::string& f : o.result.written) std::printf("  %s\n", f.c_str());
+  return 0;
+}
+
+struct Sub {
+  const char* name;
+  const OperationDecl& (*decl)();
+  int (*run)(int, char**);
+};
+
+const Sub kSubs[] = {
+    {"export", scene::meshExportOperation, runMeshExport},
+};
+
+void help() {
+  std::printf("usage: hybridscape-cli mesh <subcommand> [arguments] [--help]\n\nsubcommands:\n");
+  for (const Sub& s : kSubs) std::printf("  %-12s %s\n", s.name, s.decl().summary.c_str());
+}
+
+}  // namespace
+
+int runMesh(int argc, char** argv) {
+  if (argc < 1 || !std::strcmp(argv[0], "--help") || !std::strcmp(argv[0], "-h")) {
+    help();
+    return argc < 1 ? 2 : 0;
+  }
+  for (const Sub& s : kSubs)
+    if (!std::strcmp(argv[0], s.name)) return s.run(argc - 1, argv + 1);
+  std::fprintf(stderr, "hybridscape-cli mesh: error: unknown subcommand '%s' (see hybridscape-cli mesh --help)\n",
+               argv[0]);
+  return 2;
+}
+
+}  // namespace hs::cli

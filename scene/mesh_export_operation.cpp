@@ -1,0 +1,116 @@
+#include "scene/mesh_export_operation.h"
+
+namespace hs::scene {
+
+const OperationDecl& meshExportOperation() {
+  static const OperationDecl op{
+      .name = "mesh export",
+      .summary = "write a mesh asset or an entity's mesh as OBJ (+ MTL, textures), binary PLY or GLB",
+      .usage = "<scene.hscene> <asset-or-entity> <out.obj|.ply|.glb> [options]",
+      .description =
+          "Writes a mesh for other tools. The name is an entity with a mesh (written where the entity places it: "
+          "its world transform applied in double) or, if no entity has that name, a mesh asset (as imported). "
+          "The format follows the extension (or --format). Without --world, positions are written relative to "
+          "the mesh's origin as floats, and the origin goes into <out>_offset.xyz beside the file (import "
+          "--origin auto reads it back); GLB keeps it in its node instead. With --world, positions are absolute "
+          "(UTM): OBJ writes every digit, PLY writes doubles, GLB puts the origin into its node's translation. "
+          "OBJ writes its MTL and textures beside it; PLY keeps the first texture (MeshLab's TextureFile comment) "
+          "and no materials.",
+      .notes = "Files appear only when complete: a failed export leaves nothing half-written.",
+      .positionals = {{.name = "scene.hscene", .help = "the scene file"},
+                      {.name = "asset-or-entity", .help = "an entity with a mesh, or a mesh asset"},
+                      {.name = "out", .help = "the file to write (.obj, .ply, .glb)"}},
+      .params = {
+          {.key = "lod", .option = "lod", .label = "LOD level", .unit = Unit::Levels, .min = 0.0, .max = 31.0,
+           .integer = true, .defaultValue = 0,
+           .help = "the level of detail to write: 0 the imported mesh, K the K-th coarser level", .valueName = "K",
+           .editor = true},
+          {.key = "world", .option = "world", .label = "World coordinates", .type = ParamType::Flag,
+           .defaultValue = false, .help = "write absolute (UTM) positions instead of relative ones and a sidecar"},
+          {.key = "format", .option = "format", .label = "Format", .type = ParamType::Choice,
+           .defaultValue = "auto", .choices = {"auto", "obj", "ply", "glb"},
+           .help = "the file format (auto: from the extension)", .valueName = "F", .editor = true},
+          {.key = "up", .option = "up", .label = "Up axis", .type = ParamType::Choice, .defaultValue = "auto",
+           .choices = {"auto", "y", "z"},
+           .help = "OBJ and PLY: the file's up axis (auto: Z with --world, as photogrammetry tools write UTM; "
+                   "else Y, as DCC tools expect); GLB is always Y up",
+           .valueName = "AXIS", .editor = true},
+      }};
+  return op;
+}
+
+MeshExportRequest MeshExportRequest::fromParams(const Json& v) {
+  MeshExportRequest r;
+  if (v.contains("lod")) r.lod = v["lod"].get<int>();
+  if (v.contains("world")) r.world = v["world"].get<bool>();
+  if (v.contains("format") && v["format"] != "auto") r.format = v["format"].get<std::string>();
+  if (v.contains("up")) r.up = v["up"].get<std::string>();
+  return r;
+}
+
+MeshExportOutcome exportSceneMesh(const SceneState& state, const MeshExportRequest& request,
+                                  const Progress* progress) {
+  MeshExportOutcome o;
+  std::string& error = o.result.error;
+  // An entity first (what the outliner shows), then an asset.
+  const MeshAsset* asset = nullptr;
+  glm::dmat4 transform(1.0);
+  const EntityId id = state.findByName(request.target);
+  if (id != kNoEntity) {
+    const Entity* e = state.find(id);
+    if (!e->mesh) {
+      error = "'" + request.target + "' is an entity without a mesh";
+      return o;
+    }
+    asset = state.findAsset(e->mesh->mesh);
+    transform = state.worldMatrix(id);
+    o.what = "entity '" + request.target + "'";
+  } else {
+    for (const auto& [aid, a] : state.assets)
+      if (a.name == request.target) {
+        asset = &a;
+        break;
+      }
+    o.what = "asset '" + request.target + "'";
+  }
+  if (!asset || !asset->data) {
+    std::string known;
+    for (const auto& [aid, a] : state.assets) known += (known.empty() ? "" : ", ") + ("'" + a.name + "'");
+    error = "no entity with a mesh and no mesh asset named '" + request.target + "'" +
+            (known.empty() ? " (the scene has no mesh assets)" : " (mesh assets: " + known + ")");
+    return o;
+  }
+  if (id != kNoEntity) o.what += " (asset '" + asset->name + "')";
+  const mesh::MeshData* data = asset->data.get();
+  if (request.lod > 0) {
+    if (request.lod > int(asset->lods.size())) {
+      error = "'" + asset->name + "' has " +
+              (asset->lods.empty() ? std::string("no LOD levels (only level 0)")
+                                   : "LOD levels 0 to " + std::to_string(asset->lods.size())) +
+              "; --lod " + std::to_string(request.lod) + " does not exist";
+      return o;
+    }
+    data = asset->lods[size_t(request.lod) - 1].data.get();
+    o.what += ", LOD " + std::to_string(request.lod);
+  }
+  std::optional<mesh::ExportFormat> format;
+  if (request.format == "obj") format = mesh::ExportFormat::Obj;
+  else if (request.format == "ply") format = mesh::ExportFormat::Ply;
+  else if (request.format == "glb") format = mesh::ExportFormat::Glb;
+  else format = mesh::exportFormatFromPath(request.out);
+  if (!format) {
+    error = request.out + ": unknown mesh format; use .obj, .ply or .glb (or --format)";
+    return o;
+  }
+  o.format = *format;
+  mesh::ExportOptions options;
+  options.format = *format;
+  options.transform = transform;
+  options.world = request.world;
+  options.zUp = request.up == "z" || (request.up == "auto" && request.world);
+  options.comment = "from " + o.what;
+  o.result = mesh::exportMesh(*data, request.out, options, progress);
+  return o;
+}
+
+}  // namespace hs::scene
