@@ -8,6 +8,7 @@
 #include "mesh/byte_source.h"
 #include "mesh/mesh_sanitize.h"
 #include "mesh/obj_reader.h"
+#include "mesh/ply_reader.h"
 
 namespace hs::mesh {
 namespace {
@@ -130,8 +131,14 @@ ImportResult importMesh(const std::string& path, const ImportOptions& options,
 
   const bool useObj =
       options.reader == Reader::Obj || (options.reader == Reader::Auto && ext == ".obj");
+  const bool usePly = options.reader == Reader::Auto && ext == ".ply";
   MeshData mesh;
-  if (useObj) {
+  if (usePly) {
+    report.reader = "ply";
+    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    if (!readPly(file, baseDir, options, progress, mesh, report, error))
+      return fail(std::move(report), std::move(error), progress);
+  } else if (useObj) {
     report.reader = "obj";
     const std::string baseDir = std::filesystem::path(path).parent_path().string();
     if (!readObj(file, baseDir, options, progress, mesh, report, error))

@@ -243,7 +243,9 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
 bool readsWithAssimp(const std::string& path, const mesh::ImportOptions& options) {
   if (options.reader == mesh::Reader::Obj) return false;
   if (options.reader == mesh::Reader::Assimp) return true;
-  return lowerExtension(path) != ".obj";
+  // Our own readers (OBJ, PLY) run in-process: no start-up to pay.
+  const std::string ext = lowerExtension(path);
+  return ext != ".obj" && ext != ".ply";
 }
 
 std::string findImportWorker(std::string* lookedAt) {

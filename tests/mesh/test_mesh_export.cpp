@@ -161,6 +161,7 @@ class TestMeshExport : public QObject {
     ImportOptions io;
     io.up = UpAxis::Z;
     io.geoOffsetMode = ImportOptions::GeoOffsetMode::Auto;
+    io.reader = Reader::Assimp;  // not our PLY reader: an independent one
     const ImportResult back = importMesh(path("patch.ply"), io);
     QVERIFY2(back.ok(), back.error.c_str());
     QByteArray why;

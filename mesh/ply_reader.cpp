@@ -1,0 +1,450 @@
+#include "mesh/ply_reader.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <unordered_map>
+
+#include "mesh/ply_header.h"
+#include "mesh/texture_decode.h"
+
+namespace hs::mesh {
+namespace {
+
+using ply::Type;
+
+// Sequential reading of the body through the byte source, in 4 MB pieces
+// (a scan is never held whole, and a file that shrinks is an error).
+class Body {
+ public:
+  Body(const ByteSource& src, uint64_t start, bool ascii, bool swap)
+      : src_(src), base_(start), ascii_(ascii), swap_(swap) {}
+
+  uint64_t offset() const { return base_ + pos_; }
+  std::string error;
+
+  // Binary: the next value of `t` as double / as a whole number.
+  bool value(Type t, double& v) {
+    if (ascii_) return asciiNumber(v);
+    const char* p = take(size_t(ply::typeSize(t)));
+    if (!p) return false;
+    v = decode(t, p);
+    return true;
+  }
+  bool integer(Type t, int64_t& v) {
+    double d = 0.0;
+    if (!value(t, d)) return false;
+    if (t == Type::Float32 || t == Type::Float64 || ascii_) {
+      if (!(d == std::floor(d)) || std::abs(d) > 9.0e15) {
+        error = "'" + std::to_string(d) + "' is not a whole number";
+        return false;
+      }
+    }
+    v = int64_t(d);
+    return true;
+  }
+  // Skips `n` bytes of fixed-size binary data.
+  bool skip(uint64_t n) {
+    while (n > 0) {
+      const size_t step = size_t(std::min<uint64_t>(n, kPiece));
+      if (!take(step)) return false;
+      n -= step;
+    }
+    return true;
+  }
+
+ private:
+  static constexpr size_t kPiece = size_t(4) << 20;
+
+  // `n` bytes at the cursor, valid until the next call; nullptr at the end.
+  const char* take(size_t n) {
+    if (view_.size() - pos_ < n && !refill(n)) return nullptr;
+    const char* p = view_.data() + pos_;
+    pos_ += n;
+    return p;
+  }
+  bool refill(size_t n) {
+    const uint64_t at = base_ + pos_;
+    const uint64_t left = src_.size() > at ? src_.size() - at : 0;
+    if (left < n) {
+      error = "the file ends at byte " + std::to_string(src_.size()) + ", inside this element (truncated)";
+      return false;
+    }
+    const size_t want = size_t(std::min<uint64_t>(left, std::max(n, kPiece)));
+    if (!src_.read(at, want, storage_, view_, error)) return false;
+    base_ = at;
+    pos_ = 0;
+    return true;
+  }
+  double decode(Type t, const char* p) const {
+    auto get = [&](auto tag) {
+      decltype(tag) v;
+      char b[sizeof v];
+      std::memcpy(b, p, sizeof v);
+      if (swap_) std::reverse(b, b + sizeof v);
+      std::memcpy(&v, b, sizeof v);
+      return double(v);
+    };
+    switch (t) {
+      case Type::Int8: return get(int8_t{});
+      case Type::UInt8: return get(uint8_t{});
+      case Type::Int16: return get(int16_t{});
+      case Type::UInt16: return get(uint16_t{});
+      case Type::Int32: return get(int32_t{});
+      case Type::UInt32: return get(uint32_t{});
+      case Type::Float32: return get(float{});
+      case Type::Float64: return get(double{});
+    }
+    return 0.0;
+  }
+  bool asciiNumber(double& v) {
+    // Skip separators, then read one token (at most 64 characters).
+    for (;;) {
+      if (pos_ >= view_.size() && !refillAtMost(1)) {
+        error = "the file ends at byte " + std::to_string(src_.size()) + ", inside this element (truncated)";
+        return false;
+      }
+      const char c = view_[pos_];
+      if (c != ' ' && c != '\t' && c != '\r' && c != '\n') break;
+      ++pos_;
+    }
+    if (view_.size() - pos_ < 64) refillAtMost(64);
+    const char* b = view_.data() + pos_;
+    const char* e = b;
+    const char* end = view_.data() + view_.size();
+    while (e < end && *e != ' ' && *e != '\t' && *e != '\r' && *e != '\n') ++e;
+    if (e - b > 64) {
+      error = "a value longer than 64 characters";
+      return false;
+    }
+    const auto r = std::from_chars(b, e, v);
+    if (r.ec != std::errc() || r.ptr != e) {
+      error = "'" + std::string(b, size_t(e - b)) + "' is not a number";
+      return false;
+    }
+    pos_ += size_t(e - b);
+    return true;
+  }
+  // Makes at least `n` bytes (or what is left of the file) available.
+  bool refillAtMost(size_t n) {
+    const uint64_t at = base_ + pos_;
+    if (at >= src_.size()) return false;
+    const uint64_t left = src_.size() - at;
+    if (view_.size() - pos_ >= std::min<uint64_t>(n, left)) return true;
+    const size_t want = size_t(std::min<uint64_t>(left, std::max(n, kPiece)));
+    std::string e;
+    if (!src_.read(at, want, storage_, view_, e)) {
+      error = e;
+      return false;
+    }
+    base_ = at;
+    pos_ = 0;
+    return true;
+  }
+
+  const ByteSource& src_;
+  uint64_t base_;
+  size_t pos_ = 0;
+  bool ascii_, swap_;
+  std::string storage_;
+  std::string_view view_;
+};
+
+int slotOf(const std::string& name) {
+  static const std::pair<const char*, int> kSlots[] = {
+      {"x", 0},         {"y", 1},         {"z", 2},          {"nx", 3},        {"ny", 4},        {"nz", 5},
+      {"u", 6},         {"s", 6},         {"texture_u", 6},  {"texture_s", 6}, {"v", 7},         {"t", 7},
+      {"texture_v", 7}, {"texture_t", 7}, {"red", 8},        {"green", 8},     {"blue", 8},      {"diffuse_red", 8},
+      {"diffuse_green", 8}, {"diffuse_blue", 8}};
+  for (const auto& [n, s] : kSlots)
+    if (name == n) return s;
+  return -1;
+}
+
+struct Parsed {
+  std::vector<glm::dvec3> positions;  // file axes
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;  // file convention (v up)
+  bool hasNormals = false, hasUvs = false, hasColours = false;
+  std::vector<uint32_t> corners;      // triangles, vertex indices
+  std::vector<glm::vec2> cornerUvs;   // per corner, when faces carry texcoord lists
+  std::vector<int> triangleTexture;   // per triangle, when faces carry texnumber
+  bool faceUvs = false, faceTextures = false;
+  size_t droppedOutOfRange = 0, droppedTooFew = 0, polygons = 0, stripTriangles = 0;
+  std::vector<std::string> firstProblems;
+};
+
+}  // namespace
+
+bool readPly(const ByteSource& source, const std::string& baseDir, const ImportOptions& options,
+             const Progress* progress, MeshData& out, ImportReport& report, std::string& error) {
+  const std::string& file = source.name();
+  ply::Header h;
+  if (!ply::readHeader(source, h, error)) return false;
+  const bool ascii = h.format == ply::Format::Ascii;
+  const bool swap = h.format == ply::Format::BinaryBigEndian;  // this machine is little-endian
+  Body body(source, h.bodyOffset, ascii, swap);
+  Parsed p;
+  uint64_t vertexCount = 0;
+  for (const ply::Element& e : h.elements)
+    if (e.name == "vertex") vertexCount = e.count;
+  uint64_t total = 0, done = 0;
+  for (const ply::Element& e : h.elements) total += e.count;
+
+  std::vector<int64_t> list;
+  std::vector<double> listValues;
+  for (const ply::Element& e : h.elements) {
+    const bool isVertex = e.name == "vertex", isFace = e.name == "face", isStrips = e.name == "tristrips";
+    if (isVertex) {
+      p.positions.reserve(size_t(e.count));
+      for (const ply::Property& prop : e.properties) {
+        const int s = slotOf(prop.name);
+        p.hasNormals |= s >= 3 && s <= 5;
+        p.hasUvs |= s == 6 || s == 7;
+        p.hasColours |= s == 8;
+      }
+      if (p.hasNormals) p.normals.reserve(size_t(e.count));
+      if (p.hasUvs) p.uvs.reserve(size_t(e.count));
+    }
+    // Elements we do not read, binary with fixed-size properties: skipped whole.
+    const bool fixed = std::none_of(e.properties.begin(), e.properties.end(), [](const auto& q) { return q.list; });
+    if (!isVertex && !isFace && !isStrips && !ascii && fixed) {
+      if (!body.skip(e.count * e.minBytes(false))) {
+        error = file + ": element '" + e.name + "' (byte " + std::to_string(body.offset()) + "): " + body.error;
+        return false;
+      }
+      done += e.count;
+      continue;
+    }
+    for (uint64_t i = 0; i < e.count; ++i) {
+      if ((i & 0xFFFF) == 0 && total > 0) {
+        reportProgress(progress, 0.9 * double(done + i) / double(total), "Reading " + e.name);
+        if (isCancelled(progress)) {
+          error = file + ": import cancelled";
+          return false;
+        }
+      }
+      const uint64_t at = body.offset();
+      auto fail = [&](const std::string& what) {
+        error = file + ": " + e.name + " " + std::to_string(i) + " (byte " + std::to_string(at) + "): " + what;
+        return false;
+      };
+      double slots[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+      int texnumber = 0;
+      bool hasTexcoords = false;
+      list.clear();
+      listValues.clear();
+      for (const ply::Property& prop : e.properties) {
+        if (prop.list) {
+          int64_t n = 0;
+          if (!body.integer(prop.countType, n)) return fail(body.error);
+          if (n < 0) return fail("a list of " + std::to_string(n) + " entries");
+          // Each entry needs at least one byte (binary) or two (ASCII).
+          if (uint64_t(n) > source.size() - std::min(source.size(), body.offset()))
+            return fail("a list of " + std::to_string(n) + " entries runs past the end of the file");
+          const bool indices = (isFace || isStrips) && (prop.name == "vertex_indices" || prop.name == "vertex_index");
+          const bool texcoord = isFace && prop.name == "texcoord";
+          for (int64_t k = 0; k < n; ++k) {
+            if (indices) {
+              int64_t v = 0;
+              if (!body.integer(prop.type, v)) return fail(body.error);
+              list.push_back(v);
+            } else {
+              double v = 0.0;
+              if (!body.value(prop.type, v)) return fail(body.error);
+              if (texcoord) listValues.push_back(v);
+            }
+          }
+          hasTexcoords |= texcoord;
+        } else {
+          double v = 0.0;
+          if (!body.value(prop.type, v)) return fail(body.error);
+          if (isVertex) {
+            const int s = slotOf(prop.name);
+            if (s >= 0 && s < 8) slots[s] = v;
+          } else if (isFace && prop.name == "texnumber") {
+            texnumber = int(v);
+            p.faceTextures = true;
+          }
+        }
+      }
+      if (isVertex) {
+        p.positions.emplace_back(slots[0], slots[1], slots[2]);
+        if (p.hasNormals) p.normals.emplace_back(float(slots[3]), float(slots[4]), float(slots[5]));
+        if (p.hasUvs) p.uvs.emplace_back(float(slots[6]), float(slots[7]));
+        continue;
+      }
+      if (!isFace && !isStrips) continue;
+      auto problem = [&](const std::string& what) {
+        if (p.firstProblems.size() < 3)
+          p.firstProblems.push_back(file + ": " + e.name + " " + std::to_string(i) + " (byte " + std::to_string(at) +
+                                    "): " + what);
+      };
+      bool inRange = true;
+      for (int64_t v : list)
+        if (v >= int64_t(vertexCount) || (v < 0 && !(isStrips && v == -1))) inRange = false;
+      if (isFace) {
+        if (list.size() < 3) {
+          ++p.droppedTooFew;
+          problem("a face with " + std::to_string(list.size()) + " corners (dropped)");
+          continue;
+        }
+        if (!inRange) {
+          ++p.droppedOutOfRange;
+          problem("a vertex index outside 0.." + std::to_string(vertexCount) + " (the face is dropped)");
+          continue;
+        }
+        const bool uv = hasTexcoords && listValues.size() == 2 * list.size();
+        p.faceUvs |= uv;
+        if (list.size() > 3) ++p.polygons;
+        for (size_t k = 1; k + 1 < list.size(); ++k) {
+          for (size_t c : {size_t(0), k, k + 1}) {
+            p.corners.push_back(uint32_t(list[c]));
+            if (p.faceUvs) {
+              p.cornerUvs.resize(p.corners.size() - 1);  // earlier faces without UVs: zero
+              p.cornerUvs.emplace_back(uv ? glm::vec2(float(listValues[2 * c]), float(listValues[2 * c + 1]))
+                                          : glm::vec2(0.0f));
+            }
+          }
+          p.triangleTexture.push_back(texnumber);
+        }
+      } else {  // a triangle strip, restarting at -1; every other triangle turns
+        if (!inRange) {
+          ++p.droppedOutOfRange;
+          problem("a vertex index outside 0.." + std::to_string(vertexCount) + " (the strip is dropped)");
+          continue;
+        }
+        size_t start = 0;
+        for (size_t k = 0; k <= list.size(); ++k) {
+          if (k < list.size() && list[k] != -1) continue;
+          for (size_t t = start; t + 2 < k; ++t) {
+            const bool odd = (t - start) % 2 == 1;
+            const uint32_t a = uint32_t(list[odd ? t + 1 : t]), b = uint32_t(list[odd ? t : t + 1]),
+                           c = uint32_t(list[t + 2]);
+            if (a == b || b == c || a == c) continue;  // strip joins: no area by construction
+            p.corners.insert(p.corners.end(), {a, b, c});
+            p.triangleTexture.push_back(0);
+            ++p.stripTriangles;
+          }
+          start = k + 1;
+        }
+      }
+    }
+    done += e.count;
+  }
+  if (p.faceUvs) p.cornerUvs.resize(p.corners.size());
+
+  // Report what was declared against what is kept.
+  report.verticesIn = size_t(vertexCount);
+  // Declared primitives: the triangles the faces and strips describe, a
+  // dropped face or strip counted as (at least) one.
+  report.trianglesIn = p.corners.size() / 3 + p.droppedOutOfRange + p.droppedTooFew;
+  report.outOfRangeFaces += p.droppedOutOfRange;
+  report.degenerateFaces += p.droppedTooFew;
+  report.polygonsTriangulated += p.polygons;
+  for (const std::string& s : p.firstProblems) report.warnings.push_back(s);
+  if (p.droppedOutOfRange + p.droppedTooFew > p.firstProblems.size())
+    report.warnings.push_back(file + ": " + std::to_string(p.droppedOutOfRange + p.droppedTooFew) +
+                              " faces or strips dropped in all (vertex indices out of range, or fewer than 3 corners)");
+  if (p.hasColours)
+    report.warnings.push_back(file + ": vertex colours are not imported (meshes have no colour channel yet)");
+  if (p.positions.empty() || p.corners.empty()) {
+    error = file + ": no triangles (" + std::to_string(vertexCount) + " vertices, " +
+            std::to_string(p.corners.size() / 3) + " triangles)";
+    return false;
+  }
+
+  // Axes and the provisional origin: doubles until the origin is subtracted.
+  const bool zUp = options.up == UpAxis::Z;
+  report.upAxisConverted = !zUp;
+  auto axes = [zUp](glm::dvec3 v) { return zUp ? v : glm::dvec3(v.x, -v.z, v.y); };
+  glm::dvec3 origin(0.0);
+  for (const glm::dvec3& v : p.positions)
+    if (std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) {
+      origin = glm::round(axes(v));
+      break;
+    }
+  out = MeshData{};
+  out.origin = origin;
+
+  // Vertices: as in the file, or split per (vertex, corner UV) when faces
+  // carry their own texture coordinates.
+  if (p.faceUvs) {
+    struct Key {
+      uint32_t v;
+      uint32_t u, w;
+      bool operator==(const Key&) const = default;
+    };
+    struct Hash {
+      size_t operator()(const Key& k) const { return (size_t(k.v) * 0x9E3779B97F4A7C15ull) ^ (size_t(k.u) << 1) ^ k.w; }
+    };
+    std::unordered_map<Key, uint32_t, Hash> index;
+    index.reserve(p.corners.size());
+    for (size_t c = 0; c < p.corners.size(); ++c) {
+      Key k{p.corners[c], 0, 0};
+      std::memcpy(&k.u, &p.cornerUvs[c].x, 4);
+      std::memcpy(&k.w, &p.cornerUvs[c].y, 4);
+      auto [it, added] = index.try_emplace(k, uint32_t(out.positions.size()));
+      if (added) {
+        out.positions.push_back(glm::vec3(axes(p.positions[k.v]) - origin));
+        if (p.hasNormals) out.normals.push_back(glm::vec3(axes(glm::dvec3(p.normals[k.v]))));
+        out.uvs.emplace_back(p.cornerUvs[c].x, 1.0f - p.cornerUvs[c].y);
+      }
+      out.indices.push_back(it->second);
+    }
+  } else {
+    out.positions.reserve(p.positions.size());
+    for (const glm::dvec3& v : p.positions) out.positions.push_back(glm::vec3(axes(v) - origin));
+    if (p.hasNormals)
+      for (const glm::vec3& n : p.normals) out.normals.push_back(glm::vec3(axes(glm::dvec3(n))));
+    if (p.hasUvs)
+      for (const glm::vec2& t : p.uvs) out.uvs.emplace_back(t.x, 1.0f - t.y);
+    out.indices = std::move(p.corners);
+  }
+
+  // Textures named in the header; texnumber picks one per face.
+  const size_t textures = h.textureFiles.size();
+  for (size_t t = 0; t < textures; ++t) {
+    Material m;
+    m.name = std::filesystem::path(h.textureFiles[t]).stem().string();
+    Texture tex;
+    std::string texError;
+    const std::string path = (std::filesystem::path(baseDir) / h.textureFiles[t]).string();
+    if (!out.uvs.empty() && decodeTextureFile(path, tex, texError)) {
+      tex.name = h.textureFiles[t];
+      m.diffuseTexture = int(out.textures.size());
+      out.textures.push_back(std::move(tex));
+    } else if (!out.uvs.empty()) {
+      if (options.strictTextures) {
+        error = file + ": texture '" + h.textureFiles[t] + "': " + texError;
+        return false;
+      }
+      report.warnings.push_back(file + ": texture '" + h.textureFiles[t] + "': " + texError +
+                                " (drawn untextured)");
+    }
+    out.materials.push_back(std::move(m));
+  }
+  // One submesh per texture used, in texture order (triangles regrouped).
+  if (textures > 1 && p.faceTextures) {
+    std::vector<std::vector<uint32_t>> groups(textures);
+    const size_t n = out.indices.size() / 3;
+    for (size_t t = 0; t < n; ++t) {
+      const int k = p.triangleTexture[t];
+      const size_t g = k >= 0 && size_t(k) < textures ? size_t(k) : 0;
+      groups[g].insert(groups[g].end(), out.indices.begin() + long(3 * t), out.indices.begin() + long(3 * t + 3));
+    }
+    out.indices.clear();
+    for (size_t g = 0; g < textures; ++g) {
+      if (groups[g].empty()) continue;
+      out.submeshes.push_back({uint32_t(out.indices.size()), uint32_t(groups[g].size()), int(g)});
+      out.indices.insert(out.indices.end(), groups[g].begin(), groups[g].end());
+    }
+  } else {
+    out.submeshes.push_back({0, uint32_t(out.indices.size()), textures > 0 ? 0 : -1});
+  }
+  return true;
+}
+
+}  // namespace hs::mesh
