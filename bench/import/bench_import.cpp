@@ -1,15 +1,21 @@
-// bench_import: mesh import throughput of our streaming OBJ reader against
-// Assimp's OBJ reader (the peer the foundation issue names), on the Stanford
-// bunny and on a synthetic scan-like OBJ (a noisy terrain grid with texture
-// coordinates at UTM offsets, about 2M triangles by default). Best of N runs;
-// next to the speed, the largest position error against the coordinates the
-// file holds (Assimp reads floats; at UTM northings they are 0.5 m apart).
+// bench_import: mesh import throughput of our streaming OBJ and PLY readers
+// against Assimp's readers of the same files (the peer the foundation and
+// mesh part-2 issues name), on the Stanford bunny and on a synthetic
+// scan-like mesh (a noisy terrain grid with texture coordinates at UTM
+// offsets, about 2M triangles by default) written as OBJ and as binary PLY
+// (double coordinates, as Metashape and OpenDroneMap write UTM). Best of N
+// runs, each in a process of its own (this program run with --child) so
+// its peak memory is its own; next to the speed, the largest position error
+// against the coordinates the file holds (Assimp reads floats; at UTM
+// northings they are 0.5 m apart).
 //
 //   bench_import [--grid N] [--runs R] [--dir FOLDER]
 //
 // --grid N  the synthetic grid has N x N quads (2 N^2 triangles; default 1000)
 // --runs R  imports per reader and file, best taken (default 3)
 // --dir F   where to write the synthetic OBJ (default: the system temp folder)
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -89,6 +95,34 @@ std::vector<glm::dvec3> writeScanObj(const std::string& path, int n) {
   return written;
 }
 
+// The same scan as binary little-endian PLY: the coordinates written (as
+// doubles, exactly), s t as floats, the same triangles.
+void writeScanPly(const std::string& path, const std::vector<glm::dvec3>& written, int n) {
+  std::ofstream out(path, std::ios::binary);
+  out << "ply\nformat binary_little_endian 1.0\ncomment synthetic scan written by bench_import\nelement vertex "
+      << written.size()
+      << "\nproperty double x\nproperty double y\nproperty double z\nproperty float s\nproperty float t\n"
+         "element face "
+      << size_t(2) * size_t(n) * size_t(n) << "\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string buf;
+  for (size_t i = 0; i < written.size(); ++i) {
+    const double xyz[3] = {written[i].x, written[i].y, written[i].z};
+    const float st[2] = {float(int(i) % (n + 1)) / float(n), float(int(i) / (n + 1)) / float(n)};
+    buf.append(reinterpret_cast<const char*>(xyz), 24);
+    buf.append(reinterpret_cast<const char*>(st), 8);
+  }
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const int32_t a = y * (n + 1) + x, b = a + 1, c = a + n + 2, d = a + n + 1;
+      const int32_t t1[3] = {a, b, c}, t2[3] = {a, c, d};
+      for (const int32_t* t : {t1, t2}) {
+        buf.push_back(char(3));
+        buf.append(reinterpret_cast<const char*>(t), 12);
+      }
+    }
+  out << buf;
+}
+
 // Largest distance from a written coordinate to the nearest imported vertex
 // (uniform grid; distances beyond one cell count as the cell size).
 double maxPositionError(const std::vector<glm::dvec3>& written, const MeshData& m, double cell) {
@@ -123,30 +157,77 @@ struct Row {
   double megabytes = 0, seconds = 0;
   size_t triangles = 0;
   double error = 0;
+  double peakMb = 0;  // the child process's peak resident set
   std::string failure;
 };
+
+std::string gSelf;  // this program, for --child runs
+
+// One import in a process of its own: "seconds triangles peak_kB" or an error.
+bool childImport(const std::string& file, Reader reader, UpAxis up, double& seconds, size_t& triangles,
+                 double& peakMb, std::string& error) {
+  const std::string cmd = gSelf + " --child '" + file + "' " + std::to_string(int(reader)) + " " +
+                          std::to_string(int(up)) + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) {
+    error = "cannot start " + gSelf;
+    return false;
+  }
+  char line[4096] = "";
+  const bool got = std::fgets(line, sizeof line, p) != nullptr;
+  const int status = pclose(p);
+  double kb = 0;
+  if (!got || status != 0 || std::sscanf(line, "%lf %zu %lf", &seconds, &triangles, &kb) != 3) {
+    error = got ? line : "the child printed nothing";
+    return false;
+  }
+  peakMb = kb / 1024.0;
+  return true;
+}
+
+int runChild(const std::string& file, int reader, int up) {
+  ImportOptions o;
+  o.reader = Reader(reader);
+  o.up = UpAxis(up);
+  const auto t0 = std::chrono::steady_clock::now();
+  const ImportResult res = importMesh(file, o);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!res.ok()) {
+    std::printf("%s\n", res.error.c_str());
+    return 1;
+  }
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  std::printf("%.6f %zu %ld\n", s, res.mesh->triangleCount(), long(ru.ru_maxrss));
+  return 0;
+}
 
 Row measure(const std::string& file, const std::string& label, Reader reader, UpAxis up, int runs,
             const std::vector<glm::dvec3>* written) {
   Row row;
   row.file = label;
-  row.reader = reader == Reader::Obj ? "own OBJ" : "Assimp";
+  const bool ply = fs::path(file).extension() == ".ply";
+  row.reader = reader == Reader::Assimp ? "Assimp" : ply ? "own PLY" : "own OBJ";
   row.megabytes = double(fs::file_size(file)) / 1e6;
   row.seconds = INFINITY;
   ImportOptions o;
   o.reader = reader;
   o.up = up;
-  for (int r = 0; r < runs; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
+  // The position error from one import here; times and memory from
+  // imports in processes of their own.
+  if (written) {
     ImportResult res = importMesh(file, o);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!res.ok()) {
       row.failure = res.error;
       return row;
     }
+    row.error = maxPositionError(*written, *res.mesh, 1.0);
+  }
+  for (int r = 0; r < runs; ++r) {
+    double s = 0, peak = 0;
+    if (!childImport(file, reader, up, s, row.triangles, peak, row.failure)) return row;
     row.seconds = std::min(row.seconds, s);
-    row.triangles = res.mesh->triangleCount();
-    if (r == 0 && written) row.error = maxPositionError(*written, *res.mesh, 1.0);
+    row.peakMb = std::max(row.peakMb, peak);
   }
   return row;
 }
@@ -154,6 +235,8 @@ Row measure(const std::string& file, const std::string& label, Reader reader, Up
 }  // namespace
 
 int main(int argc, char** argv) {
+  gSelf = fs::canonical("/proc/self/exe").string();
+  if (argc == 5 && std::strcmp(argv[1], "--child") == 0) return runChild(argv[2], std::atoi(argv[3]), std::atoi(argv[4]));
   int grid = 1000, runs = 3;
   std::string dir = fs::temp_directory_path().string();
   for (int i = 1; i < argc; ++i) {
@@ -176,22 +259,27 @@ int main(int argc, char** argv) {
   std::printf("writing %s (%d x %d quads) ...\n", scan.c_str(), grid, grid);
   std::fflush(stdout);
   const std::vector<glm::dvec3> written = writeScanObj(scan, grid);
+  const std::string scanPly = fs::path(scan).replace_extension(".ply").string();
+  writeScanPly(scanPly, written, grid);
 
   std::vector<Row> rows;
   for (Reader r : {Reader::Obj, Reader::Assimp}) rows.push_back(measure(bunny, "stanford-bunny.obj", r, UpAxis::Y, runs, nullptr));
   for (Reader r : {Reader::Obj, Reader::Assimp}) rows.push_back(measure(scan, fs::path(scan).filename().string(), r, UpAxis::Z, runs, &written));
+  for (Reader r : {Reader::Auto, Reader::Assimp})
+    rows.push_back(measure(scanPly, fs::path(scanPly).filename().string(), r, UpAxis::Z, runs, &written));
   std::error_code ec;
   fs::remove(scan, ec);
+  fs::remove(scanPly, ec);
 
   const double load = hs::bench::loadAverage();
-  std::printf("\nOBJ import, best of %d (Release build; %u hardware threads; load average %.2f)\n\n", runs,
+  std::printf("\nOBJ and PLY import, best of %d (Release build; %u hardware threads; load average %.2f)\n\n", runs,
               std::thread::hardware_concurrency(), load);
-  std::printf("| file | MB | triangles | reader | best s | MB/s | M triangles/s | own / Assimp | max position error |\n");
-  std::printf("| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: |\n");
+  std::printf("| file | MB | triangles | reader | best s | MB/s | M triangles/s | own / Assimp | peak MB | max position error |\n");
+  std::printf("| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   for (size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     if (!r.failure.empty()) {
-      std::printf("| %s | %.1f | | %s | failed: %s | | | | |\n", r.file.c_str(), r.megabytes, r.reader.c_str(), r.failure.c_str());
+      std::printf("| %s | %.1f | | %s | failed: %s | | | | | |\n", r.file.c_str(), r.megabytes, r.reader.c_str(), r.failure.c_str());
       continue;
     }
     std::string ratio;
@@ -202,11 +290,13 @@ int main(int argc, char** argv) {
     }
     char err[32] = "";
     if (i >= 2) std::snprintf(err, sizeof err, "%.3g m", r.error);
-    std::printf("| %s | %.1f | %zu | %s | %.3f | %.1f | %.2f | %s | %s |\n", r.file.c_str(), r.megabytes, r.triangles,
-                r.reader.c_str(), r.seconds, r.megabytes / r.seconds, double(r.triangles) / r.seconds / 1e6, ratio.c_str(), err);
+    std::printf("| %s | %.1f | %zu | %s | %.3f | %.1f | %.2f | %s | %.0f | %s |\n", r.file.c_str(), r.megabytes, r.triangles,
+                r.reader.c_str(), r.seconds, r.megabytes / r.seconds, double(r.triangles) / r.seconds / 1e6, ratio.c_str(),
+                r.peakMb, err);
   }
   std::printf("\nown / Assimp: how many times faster the own reader is (Assimp's time over ours).\n"
               "max position error: largest distance from a coordinate in the file to the nearest imported vertex\n"
-              "(a lower bound where a vertex moved next to another one).\n");
+              "(a lower bound where a vertex moved next to another one).\n"
+              "peak MB: the importing process's peak resident set (each import runs in a process of its own).\n");
   return 0;
 }
