@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <unordered_map>
 
+#include "core/parallel.h"
 #include "mesh/ply_header.h"
 #include "mesh/texture_decode.h"
 
@@ -14,6 +15,29 @@ namespace hs::mesh {
 namespace {
 
 using ply::Type;
+
+// One binary value of type `t` at `p`, byte-swapped when `swap`.
+double decodeValue(Type t, const char* p, bool swap) {
+  auto get = [&](auto tag) {
+    decltype(tag) v;
+    char b[sizeof v];
+    std::memcpy(b, p, sizeof v);
+    if (swap) std::reverse(b, b + sizeof v);
+    std::memcpy(&v, b, sizeof v);
+    return double(v);
+  };
+  switch (t) {
+    case Type::Int8: return get(int8_t{});
+    case Type::UInt8: return get(uint8_t{});
+    case Type::Int16: return get(int16_t{});
+    case Type::UInt16: return get(uint16_t{});
+    case Type::Int32: return get(int32_t{});
+    case Type::UInt32: return get(uint32_t{});
+    case Type::Float32: return get(float{});
+    case Type::Float64: return get(double{});
+  }
+  return 0.0;
+}
 
 // Sequential reading of the body through the byte source, in 4 MB pieces
 // (a scan is never held whole, and a file that shrinks is an error).
@@ -45,6 +69,10 @@ class Body {
     v = int64_t(d);
     return true;
   }
+  // The next `n` bytes of binary data (valid until the next call), or
+  // nullptr with `error` at the end of the file.
+  const char* block(size_t n) { return take(n); }
+  static constexpr size_t kPieceBytes = size_t(4) << 20;
   // Skips `n` bytes of fixed-size binary data.
   bool skip(uint64_t n) {
     while (n > 0) {
@@ -78,27 +106,7 @@ class Body {
     pos_ = 0;
     return true;
   }
-  double decode(Type t, const char* p) const {
-    auto get = [&](auto tag) {
-      decltype(tag) v;
-      char b[sizeof v];
-      std::memcpy(b, p, sizeof v);
-      if (swap_) std::reverse(b, b + sizeof v);
-      std::memcpy(&v, b, sizeof v);
-      return double(v);
-    };
-    switch (t) {
-      case Type::Int8: return get(int8_t{});
-      case Type::UInt8: return get(uint8_t{});
-      case Type::Int16: return get(int16_t{});
-      case Type::UInt16: return get(uint16_t{});
-      case Type::Int32: return get(int32_t{});
-      case Type::UInt32: return get(uint32_t{});
-      case Type::Float32: return get(float{});
-      case Type::Float64: return get(double{});
-    }
-    return 0.0;
-  }
+  double decode(Type t, const char* p) const { return decodeValue(t, p, swap_); }
   bool asciiNumber(double& v) {
     // Skip separators, then read one token (at most 64 characters).
     for (;;) {
@@ -218,6 +226,55 @@ bool readPly(const ByteSource& source, const std::string& baseDir, const ImportO
       done += e.count;
       continue;
     }
+    // Binary vertices of fixed size: decoded a piece at a time on every
+    // thread (each vertex from its own bytes, so the result does not
+    // depend on the thread count).
+    if (isVertex && !ascii && fixed && e.count > 0) {
+      const size_t stride = size_t(e.minBytes(false));
+      struct Field {
+        int slot;
+        size_t offset;
+        Type type;
+      };
+      std::vector<Field> fields;
+      size_t offset = 0;
+      for (const ply::Property& prop : e.properties) {
+        if (const int s = slotOf(prop.name); s >= 0 && s < 8) fields.push_back({s, offset, prop.type});
+        offset += size_t(ply::typeSize(prop.type));
+      }
+      const size_t count = size_t(e.count);
+      p.positions.assign(count, glm::dvec3(0.0));
+      if (p.hasNormals) p.normals.assign(count, glm::vec3(0.0f));
+      if (p.hasUvs) p.uvs.assign(count, glm::vec2(0.0f));
+      const size_t perPiece = std::max<size_t>(1, Body::kPieceBytes / stride);
+      for (size_t first = 0; first < count; first += perPiece) {
+        const size_t n = std::min(perPiece, count - first);
+        const uint64_t at = body.offset();
+        const char* bytes = body.block(n * stride);
+        if (!bytes) {
+          error = file + ": vertex " + std::to_string(first) + " (byte " + std::to_string(at) + "): " + body.error;
+          return false;
+        }
+        parallelFor(int64_t(n), 0, 16384, [&](int64_t lo, int64_t hi) {
+          for (int64_t k = lo; k < hi; ++k) {
+            const char* v = bytes + size_t(k) * stride;
+            double slots[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+            for (const Field& f : fields) slots[f.slot] = decodeValue(f.type, v + f.offset, swap);
+            const size_t i = first + size_t(k);
+            p.positions[i] = glm::dvec3(slots[0], slots[1], slots[2]);
+            if (p.hasNormals) p.normals[i] = glm::vec3(float(slots[3]), float(slots[4]), float(slots[5]));
+            if (p.hasUvs) p.uvs[i] = glm::vec2(float(slots[6]), float(slots[7]));
+          }
+        });
+        reportProgress(progress, 0.9 * double(done + first + n) / double(total), "Reading vertices");
+        if (isCancelled(progress)) {
+          error = file + ": import cancelled";
+          return false;
+        }
+      }
+      done += e.count;
+      continue;
+    }
     for (uint64_t i = 0; i < e.count; ++i) {
       if ((i & 0xFFFF) == 0 && total > 0) {
         reportProgress(progress, 0.9 * double(done + i) / double(total), "Reading " + e.name);
@@ -246,6 +303,16 @@ bool readPly(const ByteSource& source, const std::string& baseDir, const ImportO
             return fail("a list of " + std::to_string(n) + " entries runs past the end of the file");
           const bool indices = (isFace || isStrips) && (prop.name == "vertex_indices" || prop.name == "vertex_index");
           const bool texcoord = isFace && prop.name == "texcoord";
+          if (indices && !ascii && (prop.type == Type::Int32 || prop.type == Type::UInt32)) {
+            // The common case, read as one block: 32-bit indices.
+            const char* q = body.block(size_t(n) * 4);
+            if (!q) return fail(body.error);
+            for (int64_t k = 0; k < n; ++k) {
+              const double v = decodeValue(prop.type, q + 4 * k, swap);
+              list.push_back(int64_t(v));
+            }
+            continue;
+          }
           for (int64_t k = 0; k < n; ++k) {
             if (indices) {
               int64_t v = 0;
