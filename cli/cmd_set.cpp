@@ -3,6 +3,7 @@
 #include "cli/commands.h"
 #include "cli/entity_lookup.h"
 #include "cli/operation_options.h"
+#include "cli/scene_open.h"
 #include "scene/document.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
@@ -47,7 +48,7 @@ int runSet(int argc, char** argv) {
   if (positional.size() != (isSetting ? 3u : 4u))
     return args.usage("expected <entity> <component.field> <value> <scene.hscene>");
   const std::string scenePath = positional.back();
-  std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
+  std::optional<scene::SceneState> state = openScene(scenePath, error);
   if (!state) return args.fail(error);
   scene::Document doc;
   doc.reset(std::move(*state), QString::fromStdString(scenePath));
