@@ -73,6 +73,9 @@ int runSet(int argc, char** argv) {
       return args.fail("entity '" + who + "' has no " + comp + " component");
     const auto v = scene::parseFieldValue(*f, positional[2], error);
     if (!v) return args.fail(positional[1] + ": " + error);
+    // Rules between fields (far beyond near), against this entity's values.
+    if (const std::string problem = scene::fieldValueProblem(*f, *v, doc.state().find(id)); !problem.empty())
+      return args.fail(positional[1] + ": '" + positional[2] + "' is out of range: " + f->label + " " + problem);
     if (f->type == scene::FieldType::AssetRef && std::get<int64_t>(*v) > 0 &&
         !doc.state().findAsset(scene::AssetId(std::get<int64_t>(*v))))
       return args.fail(positional[1] + ": no mesh asset " + positional[2] + " in " + scenePath);

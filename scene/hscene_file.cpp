@@ -350,7 +350,9 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
   // A text that is not JSON is damage; JSON that is not a valid description
   // names the bad value's path and its place in the text.
   bool notJson = false;
-  std::optional<SceneState> state = sceneFromJsonText(jsonText, e, notJson);
+  std::vector<std::string> clamped;
+  std::optional<SceneState> state = sceneFromJsonText(jsonText, e, notJson, &clamped);
+  for (const std::string& w : clamped) report->warnings.push_back(path + ": " + w);
   if (!state) {
     error = path + (notJson ? ": the scene description is damaged (not valid JSON): "
                             : ": the scene description is invalid: ") + e;
