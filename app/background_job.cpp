@@ -61,6 +61,12 @@ void BackgroundJob::onProgress(double fraction, const QString& stage) {
 void BackgroundJob::onFinished() {
   running_ = false;
   if (dialog_) {
+    // reset() stops the dialog's own show-after-delay timer: a job that ends
+    // before the delay (a file refused at once) otherwise has the dialog pop
+    // up ("Opening ... 0%") on top of the error box the caller then shows,
+    // whose modal loop does not run the deleteLater.
+    dialog_->disconnect(this);
+    dialog_->reset();
     dialog_->hide();
     dialog_->deleteLater();
   }

@@ -87,6 +87,7 @@ bool MainWindow::openInternal(const QString& path, bool wait, bool remember, std
   struct Result {
     std::optional<scene::SceneState> state;
     std::string error;
+    scene::LoadReport report;  // a save rolled back, values clamped: shown as warnings
     double seconds = 0.0;
   };
   auto result = std::make_shared<Result>();
@@ -95,6 +96,7 @@ bool MainWindow::openInternal(const QString& path, bool wait, bool remember, std
   docJob_ = std::make_unique<BackgroundJob>(this, "Open Scene", QString("Opening %1…").arg(name), true);
   BackgroundJob* job = docJob_.get();
   connect(job, &BackgroundJob::finished, this, [this, job, result, ok, path, name, remember, onSuccess] {
+    for (const std::string& w : result->report.warnings) messages_->warning(QString::fromStdString(w));
     if (result->state) {
       const size_t entities = result->state->entities.size(), assets = result->state->assets.size();
       selection_->clear();
@@ -122,7 +124,7 @@ bool MainWindow::openInternal(const QString& path, bool wait, bool remember, std
   const std::string file = path.toStdString();
   job->start([result, file](const Progress& progress) {
     const auto t0 = std::chrono::steady_clock::now();
-    result->state = scene::loadScene(file, result->error, &progress);
+    result->state = scene::loadScene(file, result->error, &progress, &result->report);
     if (!result->state && result->error.empty()) result->error = file + ": could not be opened";
     result->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   });

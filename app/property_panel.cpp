@@ -277,6 +277,7 @@ void PropertyPanel::apply(const scene::EntityField& field, const scene::Componen
                                                                               : QString("prop-%1").arg(++editCounter);
   // Values first: an edit refreshes the shown state, which `s` refers to.
   std::vector<std::pair<scene::EntityId, scene::FieldValue>> edits;
+  bool refused = false;
   for (scene::EntityId id : targets) {
     const scene::Entity* e = s.find(id);
     if (!e || !component.has(*e)) continue;
@@ -286,9 +287,17 @@ void PropertyPanel::apply(const scene::EntityField& field, const scene::Componen
       current[vectorComponent] = std::get<glm::dvec3>(v)[vectorComponent];
       value = current;
     }
+    // The field's range and rule (fields.h), as the CLI and the loader apply
+    // them: an empty name, a zero scale or a far clip inside the near one
+    // is not applied (the widget shows the entity's value again).
+    if (!scene::fieldValueProblem(field, value, e).empty()) {
+      refused = true;
+      continue;
+    }
     edits.emplace_back(id, std::move(value));
   }
   for (const auto& [id, value] : edits) scene::ops::setField(doc_, id, field, value, key);
+  if (refused) refresh();
   if (edited_ && !edits.empty()) {
     std::vector<scene::EntityId> ids;
     for (const auto& edit : edits) ids.push_back(edit.first);

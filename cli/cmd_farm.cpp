@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/operation_options.h"
+#include "cli/scene_open.h"
 #include "cli/sequence_options.h"
 #include "scene/hscene_file.h"
 #include "scene/render_operation.h"
@@ -71,7 +72,7 @@ int runSlurm(int argc, char** argv) {
   eyeSizeOf(args, job.eyeWidth, job.eyeHeight);
   const int chunk = int(args.integer("chunk"));
   std::string error;
-  std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
+  std::optional<scene::SceneState> state = openScene(scenePath, error);
   if (!state) return args.fail(error);
   if (!parseFrames(args, &*state, job.frames, error)) return args.usage(error);
   // Refuse now what every task would refuse later.

@@ -5,6 +5,8 @@
 #include "cli/commands.h"
 #include "cli/import_request.h"
 #include "cli/import_summary.h"
+#include "cli/scene_open.h"
+#include "core/escape_control.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
 #include "scene/import_pipeline.h"
@@ -33,7 +35,7 @@ int runImport(int argc, char** argv) {
   if (args.has("name") && args.text("name").empty()) return args.usage("--name must not be empty");
 
   // Open the scene first: a bad scene path should not cost a long import.
-  std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
+  std::optional<scene::SceneState> state = openScene(scenePath, error);
   if (!state) return args.fail(error + (std::filesystem::exists(scenePath) ? "" : " (create it with: hybridscape-cli new " + scenePath + ")"));
 
   Progress progress = terminalProgress("Importing " + std::filesystem::path(meshPath).filename().string() +
@@ -46,7 +48,8 @@ int runImport(int argc, char** argv) {
     if (!out) return args.fail(reportPath + ": cannot write the report");
   }
   if (!result.ok()) return args.fail(result.error.empty() ? meshPath + ": the import did not finish" : result.error);
-  for (const auto& w : result.import.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  // Reader warnings quote the file's lines: shown escaped (core/escape_control.h).
+  for (const auto& w : result.import.warnings) std::fprintf(stderr, "warning: %s\n", escapeControlCharacters(w).c_str());
 
   scene::Document doc;
   doc.reset(std::move(*state), QString::fromStdString(scenePath));

@@ -2,6 +2,7 @@
 
 #include "cli/commands.h"
 #include "cli/operation_options.h"
+#include "cli/scene_open.h"
 #include "cli/terrain_info.h"
 #include "core/json.h"
 #include "scene/fields.h"
@@ -203,7 +204,7 @@ int runInfo(int argc, char** argv) {
   if (args.positionals().size() != 1) return args.usage("expected one scene file");
   const std::string path = args.positionals()[0];
   std::string error;
-  std::optional<scene::SceneState> s = scene::loadScene(path, error);
+  std::optional<scene::SceneState> s = openScene(path, error);
   if (!s) return args.fail(error);
   if (args.flag("json")) {
     std::printf("%s\n", writeJson(infoJson(path, *s)).c_str());

@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "cli/entity_lookup.h"
 #include "cli/operation_options.h"
+#include "cli/scene_open.h"
 #include "cli/time_arg.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
@@ -26,7 +27,7 @@ int runKey(int argc, char** argv) {
   std::string error;
   const auto target = scene::animationTarget(property, error);
   if (!target) return args.fail(error + " (see hybridscape-cli set --help for the fields)");
-  std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
+  std::optional<scene::SceneState> state = openScene(scenePath, error);
   if (!state) return args.fail(error);
   const scene::EntityId id = findEntity(*state, who);
   if (id == scene::kNoEntity) return args.fail("no entity named or numbered '" + who + "' in " + scenePath);

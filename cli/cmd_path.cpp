@@ -8,6 +8,7 @@
 #include "cli/entity_lookup.h"
 #include "cli/operation_options.h"
 #include "cli/path_info.h"
+#include "cli/scene_open.h"
 #include "cli/time_arg.h"
 #include "scene/camera_path_edits.h"
 #include "scene/document.h"
@@ -62,7 +63,7 @@ int runPath(int argc, char** argv) {
   const std::string scenePath = args.positionals()[1];
   std::string error;
 
-  std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
+  std::optional<scene::SceneState> state = openScene(scenePath, error);
   if (!state) return args.fail(error);
   const scene::EntityId id = findEntity(*state, who);
   if (id == scene::kNoEntity) return args.fail("no entity named or numbered '" + who + "' in " + scenePath);

@@ -3,6 +3,7 @@
 
 #include "cli/commands.h"
 #include "cli/render_frames.h"
+#include "cli/scene_open.h"
 #include "cli/sequence_options.h"
 #include <fstream>
 
@@ -34,7 +35,7 @@ int runRender(int argc, char** argv) {
   writeOptions.jpegQuality = int(args.integer("quality"));
 
   std::string error;
-  std::optional<scene::SceneState> state = scene::loadScene(args.positionals()[0], error);
+  std::optional<scene::SceneState> state = openScene(args.positionals()[0], error);
   if (!state) return args.fail(error);
   applyAntialiasing(args, *state);
 

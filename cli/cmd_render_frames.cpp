@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/render_frames.h"
+#include "cli/scene_open.h"
 #include "cli/sequence_options.h"
 #include "render/export_job_tag.h"
 #include "render/offscreen_renderer.h"
@@ -104,7 +105,7 @@ int renderFrames(const OperationArgs& args) {
   sequencer::ComfortBudget budget;
   budgetOf(args, budget);
 
-  std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
+  std::optional<scene::SceneState> state = openScene(scenePath, error);
   if (!state) return args.fail(error);
   applyAntialiasing(args, *state);
   if (args.has("fps")) {

@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/operation_options.h"
+#include "cli/scene_open.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
 #include "scene/sequence_edits.h"
@@ -67,7 +68,7 @@ int runSequence(int argc, char** argv) {
     const std::vector<double> r = args.numbers("range");
     range = std::pair{int64_t(r[0]), int64_t(r[1])};
   }
-  std::optional<scene::SceneState> state = scene::loadScene(path, error);
+  std::optional<scene::SceneState> state = openScene(path, error);
   if (!state) return args.fail(error);
   if (!rate && !range) {
     printSequence(*state, path);

@@ -3,6 +3,7 @@
 #include "cli/commands.h"
 #include "cli/entity_lookup.h"
 #include "cli/operation_options.h"
+#include "cli/scene_open.h"
 #include "scene/document.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
@@ -47,7 +48,7 @@ int runSet(int argc, char** argv) {
   if (positional.size() != (isSetting ? 3u : 4u))
     return args.usage("expected <entity> <component.field> <value> <scene.hscene>");
   const std::string scenePath = positional.back();
-  std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
+  std::optional<scene::SceneState> state = openScene(scenePath, error);
   if (!state) return args.fail(error);
   scene::Document doc;
   doc.reset(std::move(*state), QString::fromStdString(scenePath));
@@ -72,6 +73,9 @@ int runSet(int argc, char** argv) {
       return args.fail("entity '" + who + "' has no " + comp + " component");
     const auto v = scene::parseFieldValue(*f, positional[2], error);
     if (!v) return args.fail(positional[1] + ": " + error);
+    // Rules between fields (far beyond near), against this entity's values.
+    if (const std::string problem = scene::fieldValueProblem(*f, *v, doc.state().find(id)); !problem.empty())
+      return args.fail(positional[1] + ": '" + positional[2] + "' is out of range: " + f->label + " " + problem);
     if (f->type == scene::FieldType::AssetRef && std::get<int64_t>(*v) > 0 &&
         !doc.state().findAsset(scene::AssetId(std::get<int64_t>(*v))))
       return args.fail(positional[1] + ": no mesh asset " + positional[2] + " in " + scenePath);

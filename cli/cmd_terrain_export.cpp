@@ -1,6 +1,7 @@
 // hybridscape-cli terrain export
 #include <cstdio>
 
+#include "cli/scene_open.h"
 #include "cli/terrain_cli.h"
 #include "scene/terrain_ops.h"
 #include "terrain/heightmap_image.h"
@@ -28,7 +29,7 @@ int runTerrainExport(int argc, char** argv) {
   const int bits = format == "png8" ? 8 : 16;
   std::string error;
   const std::string path = args.positionals()[0];
-  std::optional<scene::SceneState> s = scene::loadScene(path, error);
+  std::optional<scene::SceneState> s = openScene(path, error);
   if (!s) return args.fail(error);
   const scene::EntityId e = scene::ops::findTerrainEntity(*s, args.text("terrain"), error);
   if (e == scene::kNoEntity) return args.fail(error);

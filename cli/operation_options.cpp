@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/escape_control.h"
+
 namespace hs::cli {
 namespace {
 
@@ -83,7 +85,8 @@ class HelpFormatter : public CLI::Formatter {
   const OperationDecl& op_;
 };
 
-void printLine(const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); }
+// One line, whatever file content the message quotes (core/escape_control.h).
+void printLine(const std::string& line) { std::fprintf(stderr, "%s\n", escapeControlCharacters(line).c_str()); }
 
 }  // namespace
 

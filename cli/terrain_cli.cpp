@@ -3,10 +3,12 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "cli/scene_open.h"
+
 namespace hs::cli::terrain_cli {
 
 bool openScene(const std::string& path, scene::Document& doc, std::string& error) {
-  std::optional<scene::SceneState> s = scene::loadScene(path, error);
+  std::optional<scene::SceneState> s = hs::cli::openScene(path, error);
   if (!s) {
     if (!std::filesystem::exists(path)) error += " (create it with: hybridscape-cli new " + path + ")";
     return false;

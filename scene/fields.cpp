@@ -166,6 +166,10 @@ std::vector<ComponentInfo> buildEntityComponents() {
     name.animatable = false;
     name.get = [](const Entity& e) { return FieldValue(e.name); };
     name.set = [](Entity& e, const FieldValue& v) { e.name = std::get<std::string>(v); };
+    name.check = [](const FieldValue& v, const Entity*) {
+      return std::get<std::string>(v).empty() ? std::string("must not be empty") : std::string();
+    };
+    name.repair = [](Entity& e) { e.name = "Entity " + std::to_string(e.id); };
     entity.fields.push_back(name);
     entity.fields.push_back(boolField<Entity>("visible", "Visible", [](Entity& e) -> bool& { return e.visible; }));
   }
@@ -192,6 +196,11 @@ std::vector<ComponentInfo> buildEntityComponents() {
           if (std::abs(v[i]) < 1e-9) v[i] = v[i] < 0 ? -1e-9 : 1e-9;
         e.transform.scale = v;
       }));
+  transform.fields.back().check = [](const FieldValue& v, const Entity*) {
+    const glm::dvec3 x = std::get<glm::dvec3>(v);
+    return x.x == 0.0 || x.y == 0.0 || x.z == 0.0 ? std::string("must be non-zero on every axis")
+                                                   : std::string();
+  };
   out.push_back(transform);
 
   {
@@ -240,6 +249,25 @@ std::vector<ComponentInfo> buildEntityComponents() {
                            [](Entity& e) -> double& { return e.camera->convergence; }),
        enumField<Entity>("pivot", "Rig pivot", {"Left", "Centre", "Right"},
                          [](Entity& e) -> Camera::Pivot& { return e.camera->pivot; })}));
+  // The clip planes bound each other: near below far.
+  for (EntityField& f : out.back().fields) {
+    if (f.key == "near_m") {
+      f.check = [](const FieldValue& v, const Entity* e) {
+        return e && e->camera && std::get<double>(v) >= e->camera->farClip
+                   ? "must be less than the far clip (" + formatFieldValue(FieldType::Double, e->camera->farClip, {}, 6) + " m)"
+                   : std::string();
+      };
+      f.repair = [](Entity& e) { e.camera->nearClip = e.camera->farClip * 1e-3; };
+    } else if (f.key == "far_m") {
+      f.check = [](const FieldValue& v, const Entity* e) {
+        return e && e->camera && std::get<double>(v) <= e->camera->nearClip
+                   ? "must be greater than the near clip (" + formatFieldValue(FieldType::Double, e->camera->nearClip, {}, 6) +
+                         " m)"
+                   : std::string();
+      };
+      f.repair = [](Entity& e) { e.camera->farClip = e.camera->nearClip * 1e3; };
+    }
+  }
 
   // Which terrain it shows is a reference, written by scene_json next to
   // these fields ("terrain_id"), not an editable value: the Terrain panel
@@ -317,8 +345,43 @@ bool parseDouble(std::string_view s, double& v) {
 }  // namespace
 
 template <class Target>
-std::optional<FieldValue> parseFieldValue(const FieldInfo<Target>& field, std::string_view text,
-                                          std::string& error) {
+std::string fieldValueProblem(const FieldInfo<Target>& field, const FieldValue& v, const Target* current) {
+  const auto range = [&] {
+    return "must be from " + formatFieldValue(FieldType::Double, field.min, {}, 6) + " to " +
+           formatFieldValue(FieldType::Double, field.max, {}, 6) + (field.unit.empty() ? "" : " " + field.unit);
+  };
+  switch (field.type) {
+    case FieldType::Double: {
+      const double d = std::get<double>(v);
+      if (!std::isfinite(d)) return "must be a finite number";
+      if (d < field.min || d > field.max) return range();
+      break;
+    }
+    case FieldType::Vec3:
+    case FieldType::Color: {
+      const glm::dvec3 x = std::get<glm::dvec3>(v);
+      for (int i = 0; i < 3; ++i) {
+        if (!std::isfinite(x[i])) return "must be three finite numbers";
+        if (field.type == FieldType::Color && (x[i] < field.min || x[i] > field.max)) return "each channel " + range();
+      }
+      break;
+    }
+    case FieldType::Enum: {
+      const int64_t i = std::get<int64_t>(v);
+      if (i < 0 || size_t(i) >= field.enumNames.size()) return "must be one of the listed values";
+      break;
+    }
+    default: break;
+  }
+  return field.check ? field.check(v, current) : std::string();
+}
+
+template std::string fieldValueProblem(const EntityField&, const FieldValue&, const Entity*);
+template std::string fieldValueProblem(const SettingsField&, const FieldValue&, const SceneSettings*);
+
+namespace {
+template <class Target>
+std::optional<FieldValue> parseFieldText(const FieldInfo<Target>& field, std::string_view text, std::string& error) {
   switch (field.type) {
     case FieldType::Double: {
       double v;
@@ -376,13 +439,30 @@ std::optional<FieldValue> parseFieldValue(const FieldInfo<Target>& field, std::s
   return std::nullopt;
 }
 
+}  // namespace
+
+// Text that parses but breaks the field's range or rule is refused here,
+// with the rule: `set`, `key` and every other text entry say why.
+template <class Target>
+std::optional<FieldValue> parseFieldValue(const FieldInfo<Target>& field, std::string_view text,
+                                          std::string& error) {
+  std::optional<FieldValue> v = parseFieldText(field, text, error);
+  if (!v) return std::nullopt;
+  if (const std::string problem = fieldValueProblem(field, *v, static_cast<const Target*>(nullptr));
+      !problem.empty()) {
+    error = "'" + std::string(text) + "' is out of range: " + field.label + " " + problem;
+    return std::nullopt;
+  }
+  return v;
+}
+
 template std::optional<FieldValue> parseFieldValue(const EntityField&, std::string_view, std::string&);
 template std::optional<FieldValue> parseFieldValue(const SettingsField&, std::string_view, std::string&);
 
 std::string formatFieldValue(FieldType type, const FieldValue& v,
-                             const std::vector<std::string>& enumNames) {
+                             const std::vector<std::string>& enumNames, int digits) {
   std::ostringstream s;
-  s.precision(17);
+  s.precision(digits);
   switch (type) {
     case FieldType::Double: s << std::get<double>(v); break;
     case FieldType::Bool: s << (std::get<bool>(v) ? "true" : "false"); break;

@@ -38,6 +38,15 @@ struct FieldInfo {
   std::vector<std::string> enumNames;
   std::function<FieldValue(const Target&)> get;
   std::function<void(Target&, const FieldValue&)> set;  // clamps to [min,max]
+  // A rule beyond [min, max], declared with the field (names non-empty,
+  // scale non-zero, far beyond near): why `v` is no valid value, or "".
+  // `current` is the object it would go into, or null where the other
+  // values are not known (a key's value, parsed text); rules that compare
+  // with another field apply only with it.
+  std::function<std::string(const FieldValue& v, const Target* current)> check;
+  // What the file loader puts in place of a value that breaks `check` (the
+  // setter already clamps to [min, max]); null where the setter fixes it.
+  std::function<void(Target&)> repair;
   bool animatable = true;
   // False for a field derived from another (focal length from field of
   // view): shown and animatable, but not written to files twice.
@@ -72,7 +81,15 @@ const SettingsField* findSettingsField(std::string_view key);
 template <class Target>
 std::optional<FieldValue> parseFieldValue(const FieldInfo<Target>& field, std::string_view text,
                                           std::string& error);
+// Why `v` is no valid value of the field (out of [min, max], not finite,
+// against its `check`), "" if it is valid. With `current` null, only what
+// the value alone decides. The CLI (set, key), the editor (ops::setField)
+// and the file loader all ask this one function.
+template <class Target>
+std::string fieldValueProblem(const FieldInfo<Target>& field, const FieldValue& v, const Target* current);
+
+// `digits` significant digits: 17 (the default) reads back exactly; messages use 6.
 std::string formatFieldValue(FieldType type, const FieldValue& v,
-                             const std::vector<std::string>& enumNames = {});
+                             const std::vector<std::string>& enumNames = {}, int digits = 17);
 
 }  // namespace hs::scene

@@ -13,6 +13,8 @@
 #include <unistd.h>
 
 #include "core/content_hash.h"
+#include "scene/hscene_recovery.h"
+#include "scene/hscene_schema.h"
 #include "scene/legacy_hashes.h"
 #include "scene/mesh_blob.h"
 #include "scene/scene_json.h"
@@ -190,6 +192,18 @@ bool saveScene(const SceneState& state, const std::string& path, std::string& er
     return false;
   }
 
+  // A hot journal left by an interrupted save belongs to the file as it is:
+  // play it back first. Left there, it would be played back later into
+  // whatever this save writes, or make the version read below fail and this
+  // save replace the scene wholesale.
+  {
+    std::string message;
+    if (recoverInterruptedSave(path, message) == JournalRecovery::Failed) {
+      error = message;
+      return false;
+    }
+  }
+
   // An existing scene of our format and version: update it in place, in one
   // transaction (SQLite's journal makes it all-or-nothing across a crash).
   const int existingVersion = fs::exists(path, ec) ? sceneFileVersion(path) : 0;
@@ -248,7 +262,9 @@ bool saveScene(const SceneState& state, const std::string& path, std::string& er
 }
 
 std::optional<SceneState> loadScene(const std::string& path, std::string& error,
-                                    const Progress* progress) {
+                                    const Progress* progress, LoadReport* report) {
+  LoadReport ignoredReport;
+  if (!report) report = &ignoredReport;
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) {
@@ -266,6 +282,15 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
   if (!hasSqliteHeader(path)) {
     error = path + ": not a Hybridscape scene (it is not an SQLite database)";
     return std::nullopt;
+  }
+  {
+    std::string message;
+    switch (recoverInterruptedSave(path, message)) {
+      case JournalRecovery::None: break;
+      case JournalRecovery::RolledBack:
+      case JournalRecovery::StrayRemoved: report->warnings.push_back(message); break;
+      case JournalRecovery::Failed: error = message; return std::nullopt;
+    }
   }
   SqliteDb db;
   std::string e, format, versionText;
@@ -295,6 +320,23 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
     return std::nullopt;
   }
 
+  // The tables, before any is read: a missing or reshaped one is named,
+  // never queried as if it were there.
+  const SchemaCheck schema = checkSchema(db, e);
+  if (!e.empty()) {
+    error = path + ": the scene file is damaged and was not opened (" + e + ")";
+    return std::nullopt;
+  }
+  if (!schema.hasDocument) {
+    error = path + ": the scene file is damaged and was not opened (its table 'document', the scene description, "
+                   "is missing)";
+    return std::nullopt;
+  }
+  if (!schema.problem.empty()) {
+    error = path + ": the scene file is damaged and was not opened (" + schema.problem + ")";
+    return std::nullopt;
+  }
+
   std::string jsonText;
   {
     SqliteStmt q(db, "SELECT json FROM document WHERE id = 1");
@@ -308,11 +350,39 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
   // A text that is not JSON is damage; JSON that is not a valid description
   // names the bad value's path and its place in the text.
   bool notJson = false;
-  std::optional<SceneState> state = sceneFromJsonText(jsonText, e, notJson);
+  std::vector<std::string> clamped;
+  std::optional<SceneState> state = sceneFromJsonText(jsonText, e, notJson, &clamped);
+  for (const std::string& w : clamped) report->warnings.push_back(path + ": " + w);
   if (!state) {
     error = path + (notJson ? ": the scene description is damaged (not valid JSON): "
                             : ": the scene description is invalid: ") + e;
     return std::nullopt;
+  }
+
+  // Without the blobs table there is no bulk data: harmless for a scene
+  // that needs none (the next save creates the table), a loss to report by
+  // name for one that does.
+  if (!schema.hasBlobs) {
+    if (!state->assets.empty() || !state->terrains.empty()) {
+      error = path + ": the scene file is damaged and was not opened: its table 'blobs' is missing, which held the "
+                     "data of " + std::to_string(state->assets.size()) + " mesh asset(s) and " +
+              std::to_string(state->terrains.size()) + " terrain(s); its description (" +
+              std::to_string(state->entities.size()) + " entities) is readable, but a scene is not opened without "
+              "its data";
+      return std::nullopt;
+    }
+    report->warnings.push_back(path + ": its table 'blobs' is missing; the scene needs none (no meshes, no "
+                                      "terrains), so nothing is lost, and the next save adds it");
+  } else {
+    const std::vector<std::string> dangling = danglingBlobKeys(db, *state, e);
+    if (!e.empty()) {
+      error = path + ": the scene file is damaged and was not opened (" + e + ")";
+      return std::nullopt;
+    }
+    if (!dangling.empty())
+      report->warnings.push_back(path + ": " + std::to_string(dangling.size()) +
+                                 " stored data block(s) belong to no asset or terrain (first: '" + dangling.front() +
+                                 "'); they were ignored and the next save removes them");
   }
 
   // Bulk data: each asset's mesh and its LOD levels, each checked against

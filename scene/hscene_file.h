@@ -11,6 +11,7 @@
 // changed; a new file is written beside the target and renamed over it.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/progress.h"
 #include "scene/scene_state.h"
@@ -42,10 +43,19 @@ struct SaveReport {
 bool saveScene(const SceneState& state, const std::string& path, std::string& error,
                SaveReport* report = nullptr);
 
+// What opening a scene found and did besides reading it, one line each
+// naming the file: an interrupted save rolled back, values out of their
+// fields' ranges clamped, data that belongs to nothing ignored.
+struct LoadReport {
+  std::vector<std::string> warnings;
+};
+
 // Reads a scene. On failure returns nullopt with `error` saying what is wrong
-// with which file (not a scene, damaged, from a newer version, ...).
+// with which file (not a scene, damaged, from a newer version, ...). A hot
+// journal beside the file (a save that was interrupted) is played back
+// first (hscene_recovery.h), which writes to the file.
 std::optional<SceneState> loadScene(const std::string& path, std::string& error,
-                                    const Progress* progress = nullptr);
+                                    const Progress* progress = nullptr, LoadReport* report = nullptr);
 
 // The format version of a file, without loading it (0 if it is not a scene).
 int sceneFileVersion(const std::string& path);

@@ -1,6 +1,7 @@
 #include "scene/scene_json.h"
 
 #include <cmath>
+#include <type_traits>
 
 #include "core/content_hash.h"
 #include "scene/asset_reports.h"
@@ -93,6 +94,22 @@ Json assetToJson(const MeshAsset& a) {
 // their defaults; what every build wrote is required.
 struct Reader : JsonReader {
   using JsonReader::JsonReader;
+  std::vector<std::string>* warnings = nullptr;  // values clamped or repaired
+
+  // A loaded value that breaks its field's range or rule: clamped by the
+  // setter, or repaired by the field, and named in a warning.
+  template <class Target>
+  void warnOutOfRange(const std::string& who, const std::string& fieldPath, const FieldInfo<Target>& f,
+                      const FieldValue& v, const std::string& problem, const Target& now) {
+    const auto shown = [&f](const FieldValue& x) {
+      const std::string text = formatFieldValue(f.type, x, f.enumNames, 6);
+      return f.type == FieldType::String ? "'" + text + "'" : text;
+    };
+    if (warnings) warnings->push_back(who + fieldPath + " " + shown(v) + " " + problem + "; now " + shown(f.get(now)));
+  }
+  static std::string entityLabel(const Entity& e) {
+    return "entity " + std::to_string(e.id) + " '" + e.name + "': ";
+  }
 
   bool id(const Json* v, const std::string& path, uint64_t& out) {
     if (!v) return fail(path, "missing");
@@ -164,7 +181,38 @@ struct Reader : JsonReader {
       }
     }
     f.set(t, value);
+    // Only what the value alone decides here; rules between fields once the
+    // whole entity is read (checkEntity).
+    if (const std::string problem = fieldValueProblem(f, value, static_cast<const Target*>(nullptr));
+        !problem.empty()) {
+      if (f.repair && !fieldValueProblem(f, f.get(t), static_cast<const Target*>(nullptr)).empty()) f.repair(t);
+      if constexpr (std::is_same_v<Target, Entity>) {
+        // "entities[1].components.camera.fov_deg" -> "camera.fov_deg"
+        const size_t at = path.rfind("components.");
+        warnOutOfRange(entityLabel(t), at == std::string::npos ? path : path.substr(at + 11), f, value, problem, t);
+      } else {
+        warnOutOfRange(std::string(), path, f, value, problem, t);
+      }
+    }
     return true;
+  }
+
+  // The rules between an entity's fields (the clip planes) and its name,
+  // which is read apart from the fields.
+  void checkEntity(Entity& e) {
+    for (const auto& c : entityComponents()) {
+      if (!c.has(e)) continue;
+      for (const auto& f : c.fields) {
+        if (!f.serialized || !f.check) continue;
+        const FieldValue v = f.get(e);
+        const std::string problem = fieldValueProblem(f, v, &e);
+        if (problem.empty()) continue;
+        const std::string who = entityLabel(e);
+        if (f.repair) f.repair(e);
+        else f.set(e, v);  // the setter's own clamp (a zero scale becomes a tiny one)
+        warnOutOfRange(who, c.key + "." + f.key, f, v, problem, e);
+      }
+    }
   }
 
   bool transform(const Json* v, const std::string& path, Transform& t) {
@@ -217,7 +265,10 @@ struct Reader : JsonReader {
       }
     }
     if (failed()) return false;
-    return transform(member(o, "transform"), jsonPath(p, "transform"), e.transform) && components(o, p, e);
+    if (!transform(member(o, "transform"), jsonPath(p, "transform"), e.transform) || !components(o, p, e))
+      return false;
+    checkEntity(e);
+    return true;
   }
 
   // A report stored with an asset (asset_reports.h), read through its
@@ -368,13 +419,15 @@ std::optional<SceneState> sceneFromJson(const Json& json, std::string& error) {
   return readScene(json, r, error);
 }
 
-std::optional<SceneState> sceneFromJsonText(std::string_view text, std::string& error, bool& notJson) {
+std::optional<SceneState> sceneFromJsonText(std::string_view text, std::string& error, bool& notJson,
+                                            std::vector<std::string>* warnings) {
   error.clear();
   const std::optional<Json> json = parseJson(text, error);
   notJson = !json;
   if (!json) return std::nullopt;
   std::string readerError;
   Reader r(readerError);
+  r.warnings = warnings;
   std::optional<SceneState> s = readScene(*json, r, error);
   if (r.failed()) error = jsonErrorIn(text, r);
   return s;

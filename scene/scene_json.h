@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/json.h"
 #include "scene/scene_state.h"
@@ -36,6 +37,10 @@ std::optional<SceneState> sceneFromJson(const Json& json, std::string& error);
 // is not JSON sets `notJson` and an error with its line and column; a bad
 // value is named by its path and placed in the text
 // ("entities[3].transform.scale (line 40, column 18): expected ...").
-std::optional<SceneState> sceneFromJsonText(std::string_view text, std::string& error, bool& notJson);
+// Values outside their fields' ranges (fields.h fieldValueProblem) are not
+// refused: each is clamped or repaired and named in `warnings` ("entity 2
+// 'Camera': camera.fov_deg 0 must be from 1 to 170 °; now 1").
+std::optional<SceneState> sceneFromJsonText(std::string_view text, std::string& error, bool& notJson,
+                                            std::vector<std::string>* warnings = nullptr);
 
 }  // namespace hs::scene

@@ -43,26 +43,35 @@ bool SqliteDb::exec(const std::string& sql, std::string& error) {
 std::string SqliteDb::lastError() const { return db_ ? sqlite3_errmsg(db_) : "no database"; }
 
 SqliteStmt::SqliteStmt(SqliteDb& db, const std::string& sql) : db_(db) {
-  if (sqlite3_prepare_v2(db.handle(), sql.c_str(), int(sql.size()), &stmt_, nullptr) != SQLITE_OK)
+  if (sqlite3_prepare_v2(db.handle(), sql.c_str(), int(sql.size()), &stmt_, nullptr) != SQLITE_OK) {
     stmt_ = nullptr;
+    prepareError_ = db.lastError();
+  }
 }
 
 SqliteStmt::~SqliteStmt() {
   if (stmt_) sqlite3_finalize(stmt_);
 }
 
+// A statement that did not prepare (a table missing from a damaged file)
+// stays inert: binds and reads do nothing, step() reports SQLite's error.
+// SQLite's own functions dereference a null statement.
 void SqliteStmt::bind(int index, std::string_view text) {
+  if (!stmt_) return;
   sqlite3_bind_text(stmt_, index, text.data(), int(text.size()), SQLITE_TRANSIENT);
 }
-void SqliteStmt::bind(int index, int64_t value) { sqlite3_bind_int64(stmt_, index, value); }
+void SqliteStmt::bind(int index, int64_t value) {
+  if (stmt_) sqlite3_bind_int64(stmt_, index, value);
+}
 void SqliteStmt::bindBlob(int index, std::span<const uint8_t> bytes) {
+  if (!stmt_) return;
   // Static: the caller keeps the bytes alive until step(); no copy of a 256 MB part.
   sqlite3_bind_blob64(stmt_, index, bytes.data(), bytes.size(), SQLITE_STATIC);
 }
 
 bool SqliteStmt::step(std::string& error) {
   if (!stmt_) {
-    error = db_.lastError();
+    error = prepareError_;
     return false;
   }
   const int rc = sqlite3_step(stmt_);
@@ -72,16 +81,19 @@ bool SqliteStmt::step(std::string& error) {
 }
 
 void SqliteStmt::reset() {
+  if (!stmt_) return;
   sqlite3_reset(stmt_);
   sqlite3_clear_bindings(stmt_);
 }
 
 std::string SqliteStmt::text(int column) const {
+  if (!stmt_) return {};
   const auto* t = sqlite3_column_text(stmt_, column);
   return t ? std::string(reinterpret_cast<const char*>(t), size_t(sqlite3_column_bytes(stmt_, column))) : std::string();
 }
-int64_t SqliteStmt::integer(int column) const { return sqlite3_column_int64(stmt_, column); }
+int64_t SqliteStmt::integer(int column) const { return stmt_ ? sqlite3_column_int64(stmt_, column) : 0; }
 std::span<const uint8_t> SqliteStmt::blob(int column) const {
+  if (!stmt_) return {};
   const auto* p = static_cast<const uint8_t*>(sqlite3_column_blob(stmt_, column));
   return {p, size_t(sqlite3_column_bytes(stmt_, column))};
 }

@@ -50,6 +50,7 @@ class SqliteStmt {
  private:
   SqliteDb& db_;
   sqlite3_stmt* stmt_ = nullptr;
+  std::string prepareError_;  // why it did not prepare ("no such table: blobs")
 };
 
 }  // namespace hs::scene

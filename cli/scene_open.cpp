@@ -1,0 +1,18 @@
+#include "cli/scene_open.h"
+
+#include <cstdio>
+
+#include "core/escape_control.h"
+#include "scene/hscene_file.h"
+
+namespace hs::cli {
+
+std::optional<scene::SceneState> openScene(const std::string& path, std::string& error) {
+  scene::LoadReport report;
+  std::optional<scene::SceneState> state = scene::loadScene(path, error, nullptr, &report);
+  for (const std::string& w : report.warnings)
+    std::fprintf(stderr, "warning: %s\n", escapeControlCharacters(w).c_str());
+  return state;
+}
+
+}  // namespace hs::cli

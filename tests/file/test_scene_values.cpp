@@ -1,0 +1,118 @@
+// Values checked once (scene/fields.cpp: each field's range and rule beside
+// its declaration): the CLI refuses what makes no sense with the rule and
+// leaves the file as it was; a file that holds such values opens clamped or
+// repaired, with a warning naming the entity and the field. The cases are
+// the robustness campaign's (docs/reliability.md).
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <filesystem>
+#include <string>
+
+#include "cli_runner.h"
+#include "file_bytes.h"
+#include "hscene_sql.h"
+#include "scene/hscene_file.h"
+#include "scene/scene_json.h"
+
+using namespace hs;
+using namespace hs::scene;
+namespace fs = std::filesystem;
+
+class TestSceneValues : public QObject {
+  Q_OBJECT
+
+ private:
+  QTemporaryDir tmp_;
+  QString scene_;
+
+ private slots:
+  void initTestCase() {
+    QVERIFY(tmp_.isValid());
+    scene_ = test::newSceneWithCli("values.hscene", tmp_.path());
+  }
+
+  void cliRefusesValuesOutOfRange_data() {
+    QTest::addColumn<QStringList>("args");
+    QTest::addColumn<int>("code");
+    QTest::addColumn<QString>("named");
+    const QString range = "Vertical field of view must be from 1 to 170";
+    QTest::newRow("fov 0") << QStringList{"set", "Camera", "camera.fov_deg", "0"} << 1 << range;
+    QTest::newRow("fov 1e308") << QStringList{"set", "Camera", "camera.fov_deg", "1e308"} << 1 << range;
+    QTest::newRow("fov -1e308") << QStringList{"set", "Camera", "camera.fov_deg", "-1e308"} << 1 << range;
+    QTest::newRow("far -1") << QStringList{"set", "Camera", "camera.far_m", "-1"} << 1
+                            << "Far clip must be from 0.01 to 1e+08 m";
+    QTest::newRow("far inside near") << QStringList{"set", "Camera", "camera.far_m", "0.05"} << 1
+                                     << "Far clip must be greater than the near clip (0.1 m)";
+    QTest::newRow("scale 0") << QStringList{"set", "Camera", "transform.scale", "0,0,0"} << 1
+                             << "Scale must be non-zero on every axis";
+    QTest::newRow("empty name") << QStringList{"set", "Camera", "entity.name", ""} << 1 << "Name must not be empty";
+    QTest::newRow("exposure 0") << QStringList{"set", "settings.exposure", "0"} << 1
+                                << "Exposure must be from 0.001 to 1000";
+    QTest::newRow("key value fov 0") << QStringList{"key", "Camera", "camera.fov_deg", "5", "0"} << 1 << range;
+    QTest::newRow("key frame 1e20") << QStringList{"key", "Camera", "camera.fov_deg", "99999999999999999999f", "40"}
+                                    << 2 << "out of range (-2147483647 to 2147483647 frames)";
+  }
+  void cliRefusesValuesOutOfRange() {
+    QFETCH(QStringList, args);
+    QFETCH(int, code);
+    QFETCH(QString, named);
+    const std::string file = (fs::path(tmp_.path().toStdString()) / scene_.toStdString()).string();
+    const std::string before = test::readFile(file);
+    const test::CliRun r = test::runCli(args << scene_, tmp_.path());
+    QCOMPARE(r.code, code);
+    QCOMPARE(r.errLines().size(), 1);
+    QVERIFY2(r.err.contains(named), qPrintable(r.err));
+    QVERIFY2(test::readFile(file) == before, "a refused value changed the file");
+  }
+
+  // The same values written into a file behind the library's back.
+  void loaderClampsAndWarns() {
+    const std::string file = (fs::path(tmp_.path().toStdString()) / "hostile.hscene").string();
+    fs::copy_file((fs::path(tmp_.path().toStdString()) / scene_.toStdString()), file);
+    std::string json = test::readDescription(file);
+    // The value of the first member `key`, replaced by `value`.
+    const auto setMember = [&json](const std::string& key, const std::string& value) {
+      const std::string head = "\"" + key + "\": ";
+      const size_t at = json.find(head);
+      QVERIFY2(at != std::string::npos, key.c_str());
+      const size_t from = at + head.size();
+      json.replace(from, json.find_first_of(",}\n", from) - from, value);
+    };
+    json.replace(json.find("\"name\": \"Camera\""), 16, "\"name\": \"\"");
+    setMember("fov_deg", "0");
+    setMember("far_m", "-1");
+    setMember("exposure", "1e308");
+    test::writeDescription(file, json);
+    std::string error;
+    LoadReport report;
+    std::optional<SceneState> s = loadScene(file, error, nullptr, &report);
+    QVERIFY2(s, error.c_str());
+    const std::string all = [&] {
+      std::string t;
+      for (const auto& w : report.warnings) t += w + "\n";
+      return t;
+    }();
+    QVERIFY2(all.find(file + ": entity 2 '': camera.fov_deg 0 must be from 1 to 170 °; now 1") != std::string::npos,
+             all.c_str());
+    QVERIFY2(all.find("camera.far_m -1 must be from 0.01 to 1e+08 m; now 0.01") != std::string::npos, all.c_str());
+    QVERIFY2(all.find("camera.near_m 0.1 must be less than the far clip (0.01 m); now 1e-05") != std::string::npos,
+             all.c_str());
+    QVERIFY2(all.find("entity.name '' must not be empty; now 'Entity 2'") != std::string::npos, all.c_str());
+    QVERIFY2(all.find("settings.exposure 1e+308 must be from 0.001 to 1000; now 1000") != std::string::npos,
+             all.c_str());
+    const Entity* cam = s->find(2);
+    QVERIFY(cam && cam->camera);
+    QCOMPARE(cam->name, std::string("Entity 2"));
+    QCOMPARE(cam->camera->verticalFovDeg, 1.0);
+    QVERIFY(cam->camera->nearClip > 0.0 && cam->camera->nearClip < cam->camera->farClip);
+    QCOMPARE(s->settings.exposure, 1000.0f);
+    // A file with sound values opens without a warning.
+    report = {};
+    QVERIFY(loadScene((fs::path(tmp_.path().toStdString()) / scene_.toStdString()).string(), error, nullptr, &report));
+    QVERIFY(report.warnings.empty());
+  }
+};
+
+QTEST_GUILESS_MAIN(TestSceneValues)
+#include "test_scene_values.moc"
