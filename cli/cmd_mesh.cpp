@@ -4,7 +4,7 @@
 
 #include "cli/commands.h"
 #include "cli/operation_options.h"
-#include "scene/hscene_file.h"
+#include "cli/scene_open.h"
 #include "scene/mesh_export_operation.h"
 
 namespace hs::cli {
@@ -21,7 +21,7 @@ int runMeshExport(int argc, char** argv) {
   request.target = args.positionals()[1];
   request.out = args.positionals()[2];
   std::string error;
-  std::optional<scene::SceneState> s = scene::loadScene(path, error);
+  std::optional<scene::SceneState> s = openScene(path, error);
   if (!s) return args.fail(error);
   Progress progress = terminalProgress("Exporting " + request.target);
   const scene::MeshExportOutcome o = scene::exportSceneMesh(*s, request, &progress);
