@@ -294,22 +294,30 @@ void TimelineTest::playsAtTheFrameRate() {
   clock().play();
   t.start();
   QVERIFY(clock().playing());
-  double worstBehind = 0.0;
+  double worstBehind = 0.0, worstAllowed = 0.0;
+  qint64 last = 0;
   while (t.elapsed() < 1000) {
     QTest::qWait(20);
-    const double expected = t.elapsed() / 1000.0 * 60.0;
+    const qint64 now = t.elapsed();
+    const double expected = now / 1000.0 * 60.0;
     const double f = double(clock().frame());
     QVERIFY2(f <= expected + 1.0, qPrintable(QString("frame %1 ahead of real time (%2)").arg(f).arg(expected)));
+    // Behind by at most the time the UI thread was away (a redraw, which
+    // on a loaded llvmpipe can take most of a second) plus a frame or two:
+    // frames are skipped, the film is never slowed.
+    const double allowed = double(now - last) / 1000.0 * 60.0 + 2.0;
+    QVERIFY2(expected - f <= allowed, qPrintable(QString("frame %1 is %2 frames behind real time after a gap of %3 ms")
+                                                     .arg(f)
+                                                     .arg(expected - f)
+                                                     .arg(now - last)));
     worstBehind = std::max(worstBehind, expected - f);
+    worstAllowed = std::max(worstAllowed, allowed);
+    last = now;
   }
   clock().pause();
-  qInfo("played 1 s at 60 fps: ended on frame %lld, at most %.1f frames behind real time",
-        static_cast<long long>(clock().frame()), worstBehind);
-  // Frames are skipped, never slowed: after a second the film is well on,
-  // whatever the redraws cost (on a loaded machine, llvmpipe may take most
-  // of a second for one).
-  QVERIFY(clock().frame() >= 30);
-  QVERIFY(worstBehind < 60.0);
+  qInfo("played 1 s at 60 fps: ended on frame %lld, at most %.1f frames behind real time (allowed up to %.1f)",
+        static_cast<long long>(clock().frame()), worstBehind, worstAllowed);
+  QVERIFY(clock().frame() > 0);
   QVERIFY(!clock().playing());
 }
 
