@@ -591,6 +591,9 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
 
   report.verticesIn = positions.size();
   report.trianglesIn = nc / 3;
+  // OBJ declares no counts: what it declares is the faces it holds.
+  report.declaredTriangles = report.trianglesIn;
+  report.declaredBy = "OBJ faces";
   if (firstOutOfRangeLine)
     report.warnings.push_back(name + ":" + std::to_string(firstOutOfRangeLine) +
                               ": face index out of range (first such face; the file has " +

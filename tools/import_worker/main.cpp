@@ -4,7 +4,7 @@
 // Started by scene/import_isolation.cpp; the protocol is scene/import_wire.h.
 //
 //   hybridscape-import-worker (--result-fd N | --out FILE) [--watch-stdin]
-//                             [import options] -- <mesh-file>
+//                             [--memory-limit-mb N] [import options] -- <mesh-file>
 //
 // Progress goes to stdout as "progress <fraction> <stage>" lines; the result
 // (mesh, report, or the reader's error) to the descriptor or file. Exit code
@@ -79,6 +79,16 @@ int main(int argc, char** argv) {
       if (!end || *end || resultFd < 0) return usage("--result-fd: bad value '" + v + "'");
     } else if (a == "--out") {
       outPath = v;
+    } else if (a == "--memory-limit-mb") {
+      // Address space, not resident memory: what a reader asks for is
+      // refused at once (a bad_alloc importMesh names), not after it has
+      // pushed the machine into swap.
+      char* end = nullptr;
+      const unsigned long long mb = std::strtoull(v.c_str(), &end, 10);
+      if (!end || *end || mb == 0 || mb > (1ull << 40)) return usage("--memory-limit-mb: bad value '" + v + "'");
+      const rlimit limit{rlim_t(mb) << 20, rlim_t(mb) << 20};
+      if (setrlimit(RLIMIT_AS, &limit) != 0)
+        return usage("--memory-limit-mb: cannot set the limit: " + std::string(std::strerror(errno)));
     } else if (!hs::mesh::parseImportWorkerOptionArgument(a, v, options, error)) {
       return usage(error);
     }
