@@ -3,10 +3,8 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
-#include <sys/time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -82,8 +80,8 @@ int anonymousTempFile() {
   return highFd(fd2);
 }
 
-// The last non-empty line the worker wrote to stderr (at most 200 characters).
-std::string lastLine(int fd) {
+// The last 4 kB the worker wrote to stderr.
+std::string stderrTail(int fd) {
   if (fd < 0) return {};
   const off_t size = ::lseek(fd, 0, SEEK_END);
   if (size <= 0) return {};
@@ -91,6 +89,12 @@ std::string lastLine(int fd) {
   std::string text(size_t(size - from), '\0');
   const ssize_t n = ::pread(fd, text.data(), text.size(), from);
   text.resize(n > 0 ? size_t(n) : 0);
+  return text;
+}
+
+// The last non-empty line the worker wrote to stderr (at most 200 characters).
+std::string lastLine(int fd) {
+  std::string text = stderrTail(fd);
   while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
   const size_t nl = text.find_last_of('\n');
   std::string line = nl == std::string::npos ? text : text.substr(nl + 1);
@@ -220,9 +224,8 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
   // Its stdout is closed, so it is ending; Cancel still holds while it does.
   int status = 0;
   bool reaped = false;
-  rusage usage {};
   for (;;) {
-    const pid_t w = ::wait4(pid, &status, WNOHANG, &usage);
+    const pid_t w = ::waitpid(pid, &status, WNOHANG);
     if (w == pid) {
       reaped = true;
       break;
@@ -233,13 +236,17 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
   }
 
   const std::string reader = "the " + formatName(path) + " reader (Assimp)";
-  // What it used against its limit: a reader that cannot allocate past
-  // the limit may abort or crash instead of failing cleanly.
-  const uint64_t peak = uint64_t(usage.ru_maxrss) * 1024;
+  // A reader that cannot allocate under the limit may abort instead of
+  // failing cleanly; the worker said so on stderr (tools/import_worker).
   const std::string memory =
-      limits.memoryBytes ? " It used up to " + mib(peak) + " of memory; its limit is " + mib(limits.memoryBytes) +
-                               " (" + limits.memoryText + ", HS_IMPORT_MEMORY_LIMIT)."
+      limits.memoryBytes ? " (The import worker's memory limit was " + mib(limits.memoryBytes) + ", " +
+                               limits.memoryText + "; HS_IMPORT_MEMORY_LIMIT sets it.)"
                          : std::string();
+  if (reaped && WIFSIGNALED(status) && limits.memoryBytes &&
+      stderrTail(fds.err).find("out of memory: an allocation failed under the memory limit") != std::string::npos)
+    return failed(path + ": " + reader + " ran out of memory: it reached the import worker's memory limit of " +
+                  mib(limits.memoryBytes) + " (" + limits.memoryText + "; HS_IMPORT_MEMORY_LIMIT sets it) and stopped (" +
+                  signalName(WTERMSIG(status)) + "). Nothing was imported.");
   if (reaped && WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
     if (sig == SIGKILL)
@@ -329,8 +336,8 @@ bool workerLimits(WorkerLimits& limits, std::string& error) {
     return false;
   }
   if (value > 0.0) {
-    // At least 256 MiB: the worker's own libraries take tens of MiB.
-    limits.memoryBytes = uint64_t(std::max(percent ? physical * value / 100.0 : value * 1048576.0, 268435456.0));
+    // At least 64 MiB: the worker's own libraries take tens of MiB.
+    limits.memoryBytes = uint64_t(std::max(percent ? physical * value / 100.0 : value * 1048576.0, 67108864.0));
     char what[96];
     if (percent) std::snprintf(what, sizeof what, "%s of %.1f GiB", text.c_str(), physical / 1073741824.0);
     else std::snprintf(what, sizeof what, "set to %s MiB", text.c_str());
