@@ -155,6 +155,7 @@ bool readWithAssimp(const std::string& path, const ImportOptions& options,
   if (!checkBeforeAssimp(path, declared, error)) return false;
   report.declaredTriangles = declared.triangles;
   report.declaredBy = declared.by;
+  report.warnings.insert(report.warnings.end(), declared.warnings.begin(), declared.warnings.end());
   AssimpIoGuard guard;
   importer.SetIOHandler(guard.io());
   // Given back before the guard goes: the importer would delete it.

@@ -16,6 +16,7 @@
 // DeclaredCounts from its header and is compared the same way.
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "mesh/byte_source.h"
 
@@ -24,6 +25,7 @@ namespace hs::mesh {
 struct DeclaredCounts {
   size_t triangles = 0;  // triangles the file's faces / counts / accessors make
   std::string by;        // where that comes from; empty: the format declares nothing we read
+  std::vector<std::string> warnings;  // what is read but looks wrong (data past the declared elements)
 };
 
 // PLY (mesh/ply_check.cpp): element counts must be whole numbers the file

@@ -278,6 +278,21 @@ bool checkPly(const ByteSource& source, DeclaredCounts& declared, std::string& e
     }
     stripTriangles += strips.triangles;
   }
+  // Data past the last element: the header declares less than the file
+  // holds (a count lowered by hand, or two files joined). Read as declared,
+  // and said.
+  if (body.left() > 0) {
+    const uint64_t elementsEnd = body.position();
+    bool more = !ascii;
+    if (ascii) {
+      std::string readError;
+      more = body.token(word, readError);
+    }
+    if (more)
+      declared.warnings.push_back(path + ": " + std::to_string(source.size() - end) + " bytes of data follow the header but " +
+                                  "its elements end at byte " + std::to_string(elementsEnd) +
+                                  "; the rest is not read (the header's counts may be too low)");
+  }
   if (haveFaces || haveStrips) {
     declared.triangles = size_t(faceTriangles + stripTriangles);
     declared.by = std::string("PLY ") + (haveFaces ? "face" : "") + (haveFaces && haveStrips ? " and " : "") +
