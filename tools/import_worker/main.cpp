@@ -154,7 +154,12 @@ int main(int argc, char** argv) {
 
   // The limit starts here, after our own thread has its stack.
   if (memoryLimit) {
-    const rlimit limit{memoryLimit, memoryLimit};
+    // A limit already set from outside (ulimit -v) and lower stays: we
+    // only ever lower it.
+    rlimit limit{};
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_max != RLIM_INFINITY && limit.rlim_max < memoryLimit)
+      memoryLimit = limit.rlim_max;
+    limit = {memoryLimit, memoryLimit};
     if (setrlimit(RLIMIT_AS, &limit) != 0)
       return usage("--memory-limit-mb: cannot set the limit: " + std::string(std::strerror(errno)));
     std::set_new_handler(outOfMemory);
