@@ -12,6 +12,8 @@
 #include <QtTest>
 
 #include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -443,6 +445,27 @@ class TestImportIsolation : public QObject {
                  contains(r.error, "100 MiB") && !contains(r.error, "damaged"),
              r.error.c_str());
     fs::remove(p);
+  }
+
+  // A lower limit set from outside (ulimit -v, a batch system) is kept: the
+  // worker cannot raise a hard limit, and once every Assimp import failed
+  // with an argument error under one. Run in a child, whose limit goes
+  // with it; the limit is below the default share of this machine.
+  void aLowerLimitFromOutsideIsKept() {
+    const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+    const rlim_t outside = rlim_t(std::min(physical / 4, 8.0 * 1024 * 1024 * 1024));
+    const pid_t child = fork();
+    QVERIFY(child >= 0);
+    if (child == 0) {
+      const rlimit limit{outside, outside};
+      if (setrlimit(RLIMIT_AS, &limit) != 0) _exit(3);
+      const mesh::ImportResult r = scene::importMeshIsolated(kData + "/textured_quad.glb", {});
+      if (!r.ok()) std::fprintf(stderr, "%s\n", r.error.c_str());
+      _exit(r.ok() ? 0 : 1);
+    }
+    int status = 0;
+    QCOMPARE(waitpid(child, &status, 0), child);
+    QVERIFY2(WIFEXITED(status) && WEXITSTATUS(status) == 0, qPrintable(QString::number(status)));
   }
 
   void limitSettingsThatMakeNoSenseAreNamed() {
