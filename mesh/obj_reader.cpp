@@ -241,7 +241,8 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
     std::string buffer;
     std::string_view head;
     if (!source.read(0, 4096, buffer, head, error)) return false;
-    if (const void* zero = memchr(head.data(), '\0', head.size())) {
+    // An empty view may have no data pointer, which memchr must not get.
+    if (const void* zero = head.empty() ? nullptr : memchr(head.data(), '\0', head.size())) {
       error = name + ": not a text OBJ file (binary data at byte " +
               std::to_string(static_cast<const char*>(zero) - head.data()) + ")";
       return false;

@@ -195,8 +195,9 @@ bool checkPly(const ByteSource& source, DeclaredCounts& declared, std::string& e
   };
   auto tooMany = [&](const Element& e, uint64_t minBytes) {
     error = path + ":" + std::to_string(e.headerLine) + ": element " + e.name + " declares " +
-            std::to_string(e.count) + " rows, which need at least " + std::to_string(minBytes) +
-            " bytes each, but only " + std::to_string(body.left()) + " bytes follow byte " +
+            std::to_string(e.count) + " rows" +
+            (minBytes ? ", which need at least " + std::to_string(minBytes) + " bytes each," : " without properties,") +
+            " but only " + std::to_string(body.left()) + " bytes follow byte " +
             std::to_string(body.position()) + "; the file is cut short or its header does not match the data";
     return false;
   };
@@ -215,8 +216,15 @@ bool checkPly(const ByteSource& source, DeclaredCounts& declared, std::string& e
       // An ASCII value is at least one character and a separator.
       minRow += ascii ? 2 : uint64_t(p.countSize != 0 ? p.countSize : p.size);
     }
+    // An element without properties has empty rows: nothing to read (a
+    // loop over 10^19 of them would never end). More of them than the file
+    // has bytes is a damaged header, which Assimp would try to allocate.
+    if (minRow == 0) {
+      if (e.count > source.size()) return tooMany(e, 0);
+      continue;
+    }
     // Refused before a single row is read, so a count of 10^19 costs nothing.
-    if (minRow != 0 && e.count > body.left() / minRow) {
+    if (e.count > body.left() / minRow) {
       if (!ascii && !anyList) return cutShort(e, body.left() / minRow + 1);
       return tooMany(e, minRow);
     }

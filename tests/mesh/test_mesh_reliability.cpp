@@ -294,6 +294,13 @@ class TestMeshReliability : public QObject {
                   {"element vertex declares 999999999 rows", "bytes follow"});
     expectRefused(write("big_bin.ply", plyHeader("binary_little_endian", "121", "4294967295") + plyBinaryBody(g_)),
                   {"element face", "4294967295"});
+    // Found by fuzz_ply_check: an element without properties and a huge
+    // count looped over its empty rows for ever.
+    const std::string ascii = plyHeader("ascii", "121", "200");
+    expectRefused(write("empty_rows.ply", ascii.substr(0, ascii.find("element vertex")) +
+                                              "element nothing 17774258721798138539\n" +
+                                              ascii.substr(ascii.find("element vertex")) + plyAsciiBody(g_, 200)),
+                  {"element nothing declares 17774258721798138539 rows without properties"});
   }
 
   // Was: 200 triangles over 3 vertices, exit 0.
