@@ -87,6 +87,12 @@ bool checkStl(const ByteSource& source, DeclaredCounts& declared, std::string& e
     at += piece.size();
   }
   if (!word.empty()) endWord();
+  if (facets < endFacets) {
+    // A 'facet' keyword itself is damaged: not a cut.
+    error = path + ": the ASCII STL is damaged: " + std::to_string(endFacets) + " 'endfacet' but only " +
+            std::to_string(facets) + " 'facet' keywords";
+    return false;
+  }
   if (facets != endFacets || !endSolidAfterLast) {
     error = path + ": the ASCII STL is cut short: " +
             (facets != endFacets ? "facet " + std::to_string(facets) + " (at byte " + std::to_string(lastFacetAt) +

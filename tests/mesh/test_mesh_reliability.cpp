@@ -251,6 +251,10 @@ class TestMeshReliability : public QObject {
     const std::string whole = stlAscii(g_, 200, true);
     expectRefused(write("cut2.stl", whole.substr(0, whole.find("vertex", whole.size() / 2))),
                   {"cut short", "has no 'endfacet'", "byte"});
+    // A damaged keyword is not called a cut (found by the campaign's byte flips).
+    std::string flipped = whole;
+    flipped[flipped.find("facet normal", 1000)] = '#';
+    expectRefused(write("flipped.stl", flipped), {"damaged", "200 'endfacet' but only 199 'facet'"});
   }
 
   // Was: 199 of 200, exit 0, no warning (the same fault in OBJ warned).
