@@ -45,6 +45,7 @@ bool parseImportRequest(const OperationArgs& args, scene::MeshImportRequest& req
   options.up = up == "y" ? mesh::UpAxis::Y : up == "z" ? mesh::UpAxis::Z : mesh::UpAxis::Auto;
   options.reader = reader == "obj" ? mesh::Reader::Obj : reader == "assimp" ? mesh::Reader::Assimp : mesh::Reader::Auto;
   options.strictTextures = args.flag("strict_textures");
+  options.strict = args.flag("strict");
   if (args.has("origin") && !parseOrigin(args.text("origin"), options, error)) return false;
 
   mesh::ProcessOptions& p = request.processing;

@@ -14,7 +14,8 @@
 #include <assimp/scene.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "mesh/ply_check.h"
+#include "mesh/assimp_io_guard.h"
+#include "mesh/declared_counts.h"
 #include "mesh/texture_decode.h"
 
 namespace hs::mesh {
@@ -148,8 +149,22 @@ bool readWithAssimp(const std::string& path, const ImportOptions& options,
     for (auto& ch : e) ch = char(std::tolower(static_cast<unsigned char>(ch)));
     return e;
   }();
-  if (ext == ".ply" && !checkPlyComplete(path, error)) return false;
+  // Counts checked against the file's size before Assimp allocates what
+  // they ask for; what the file declares is compared with what comes in.
+  DeclaredCounts declared;
+  if (!checkBeforeAssimp(path, declared, error)) return false;
+  report.declaredTriangles = declared.triangles;
+  report.declaredBy = declared.by;
+  report.warnings.insert(report.warnings.end(), declared.warnings.begin(), declared.warnings.end());
+  AssimpIoGuard guard;
+  importer.SetIOHandler(guard.io());
+  // Given back before the guard goes: the importer would delete it.
+  struct Release {
+    Assimp::Importer& importer;
+    ~Release() { importer.SetIOHandler(nullptr); }
+  } release{importer};
   const aiScene* scene = importer.ReadFile(path, flags);
+  for (const auto& r : guard.refused()) report.warnings.push_back(path + ": Assimp asked for " + r);
   if (!scene) {
     if (isCancelled(progress)) {
       error = path + ": import cancelled";
@@ -157,6 +172,10 @@ bool readWithAssimp(const std::string& path, const ImportOptions& options,
     }
     std::string why = importer.GetErrorString();
     if (why.empty()) why = "Assimp could not read it";
+    // Assimp turns an allocation failure into this text, naming no place.
+    if (why.find("bad_alloc") != std::string::npos)
+      why = "ran out of memory while Assimp read it (" + why + "); the file asks for more than this process may use";
+    if (!guard.refused().empty()) why += " (" + guard.refused().front() + ")";
     error = path + ": " + why;
     return false;
   }

@@ -23,6 +23,9 @@ const std::vector<ParamDecl>& importOptionDecls() {
        .help = "added to the file's coordinates", .valueName = "x,y,z", .count = 3, .editor = true},
       {.key = "strict_textures", .option = "strict-textures", .label = "Strict textures", .type = ParamType::Flag,
        .help = "fail if a texture cannot be loaded (default: warn)"},
+      {.key = "strict", .option = "strict", .label = "Strict", .type = ParamType::Flag,
+       .help = "fail if the triangles imported differ from those the file declares (a file cut short, faces "
+               "dropped for bad indices, header counts that do not match the data; default: warn)"},
   };
   return decls;
 }

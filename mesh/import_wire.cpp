@@ -12,7 +12,7 @@ namespace {
 
 constexpr char kMagic[8] = {'H', 'S', 'I', 'M', 'P', 'R', 'E', 'S'};
 constexpr char kTrailer[8] = {'H', 'S', 'I', 'M', 'P', 'E', 'N', 'D'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: declared triangles in the report
 
 struct ResultWriter {
   std::FILE* f;
@@ -96,6 +96,8 @@ void writeReport(ResultWriter& w, const mesh::ImportReport& r) {
   w.pod(r.geoOffset);
   w.str(r.geoOffsetSource);
   w.str(r.geoOffsetCrs);
+  w.pod(uint64_t(r.declaredTriangles));
+  w.str(r.declaredBy);
 }
 
 void readReport(ResultReader& rd, mesh::ImportReport& r) {
@@ -112,6 +114,8 @@ void readReport(ResultReader& rd, mesh::ImportReport& r) {
   r.geoOffset = rd.pod<glm::dvec3>("report");
   r.geoOffsetSource = rd.str("report");
   r.geoOffsetCrs = rd.str("report");
+  r.declaredTriangles = size_t(rd.pod<uint64_t>("report"));
+  r.declaredBy = rd.str("report");
 }
 
 void writeMesh(ResultWriter& w, const mesh::MeshData& m) {
@@ -175,6 +179,7 @@ std::vector<std::string> importWorkerArguments(const std::string& path, const me
           "--reader",      readerName(o.reader),
           "--recenter",    o.recenter ? "1" : "0",
           "--strict-textures", o.strictTextures ? "1" : "0",
+          "--strict",      o.strict ? "1" : "0",
           "--origin-mode", originModeName(o.geoOffsetMode),
           "--origin-file", o.geoOffsetFile,
           "--origin",      origin,
@@ -204,6 +209,8 @@ bool parseImportWorkerOptionArgument(const std::string& key, const std::string& 
     ok = flag(o.recenter);
   } else if (key == "--strict-textures") {
     ok = flag(o.strictTextures);
+  } else if (key == "--strict") {
+    ok = flag(o.strict);
   } else if (key == "--origin-mode") {
     if (value == "none") o.geoOffsetMode = M::None;
     else if (value == "auto") o.geoOffsetMode = M::Auto;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <new>
 
 #include "mesh/assimp_importer.h"
 #include "mesh/byte_source.h"
@@ -59,6 +60,24 @@ bool applyGeoOffset(MeshData& mesh, ImportReport& report, const ImportOptions& o
   return true;
 }
 
+// "" when the triangles imported are those the file declares; otherwise a
+// message saying how many of each and why they differ, as far as we know.
+std::string declaredDifference(const ImportReport& report) {
+  if (report.declaredBy.empty() || report.declaredTriangles == report.trianglesOut) return {};
+  std::string why;
+  auto add = [&](size_t n, const char* what) {
+    if (n) why += (why.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+  };
+  add(report.outOfRangeFaces, "with an index out of range");
+  add(report.degenerateFaces, "repeating a vertex");
+  add(report.nonFiniteVertices, "NaN/Inf vertices (their faces)");
+  const bool more = report.trianglesOut > report.declaredTriangles;
+  return report.file + ": the file declares " + std::to_string(report.declaredTriangles) + " triangles (" +
+         report.declaredBy + ") but " + std::to_string(report.trianglesOut) + " were imported" +
+         (more ? " (more than declared: the reader made some up or counts differently)"
+               : why.empty() ? " (the reader dropped the rest without saying why)" : " (dropped: " + why + ")");
+}
+
 // Common tail of every reader: clean, fill normals, recentre, count.
 ImportResult finish(MeshData&& mesh, ImportReport&& report, const ImportOptions& options,
                     const Progress* progress, std::chrono::steady_clock::time_point start) {
@@ -88,11 +107,49 @@ ImportResult finish(MeshData&& mesh, ImportReport&& report, const ImportOptions&
   }
   report.verticesOut = mesh.vertexCount();
   report.trianglesOut = mesh.triangleCount();
+  if (std::string difference = declaredDifference(report); !difference.empty()) {
+    if (options.strict) {
+      r.error = difference + "; --strict refuses the import";
+      r.report = std::move(report);
+      return r;
+    }
+    report.warnings.push_back(std::move(difference));
+  }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   reportProgress(progress, 1.0, "Done");
   r.mesh = std::move(mesh);
   r.report = std::move(report);
   return r;
+}
+
+// The reader the options pick, then finish(); `stage` says where it is for
+// the out-of-memory message.
+ImportResult readAndFinish(const std::string& path, const std::string& ext, bool useObj, bool usePly,
+                           const ByteSource& file, const ImportOptions& options, const Progress* progress,
+                           ImportReport&& report, std::chrono::steady_clock::time_point start, std::string& stage) {
+  std::string error;
+  MeshData mesh;
+  if (usePly) {
+    report.reader = "ply";
+    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    if (!readPly(file, baseDir, options, progress, mesh, report, error))
+      return fail(std::move(report), std::move(error), progress);
+  } else if (useObj) {
+    report.reader = "obj";
+    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    if (!readObj(file, baseDir, options, progress, mesh, report, error))
+      return fail(std::move(report), std::move(error), progress);
+  } else {
+    report.reader = "assimp";
+    if (options.reader == Reader::Auto && !assimpSupportsExtension(ext))
+      return fail(std::move(report),
+                  path + ": '" + ext + "' is not a mesh format Hybridscape reads (use OBJ, FBX, PLY, glTF, DAE, 3DS, STL)",
+                  progress);
+    if (!readWithAssimp(path, options, progress, mesh, report, error))
+      return fail(std::move(report), std::move(error), progress);
+  }
+  stage = "cleaning the " + std::to_string(mesh.triangleCount()) + " triangles read";
+  return finish(std::move(mesh), std::move(report), options, progress, start);
 }
 
 }  // namespace
@@ -132,27 +189,23 @@ ImportResult importMesh(const std::string& path, const ImportOptions& options,
   const bool useObj =
       options.reader == Reader::Obj || (options.reader == Reader::Auto && ext == ".obj");
   const bool usePly = options.reader == Reader::Auto && ext == ".ply";
-  MeshData mesh;
-  if (usePly) {
-    report.reader = "ply";
-    const std::string baseDir = std::filesystem::path(path).parent_path().string();
-    if (!readPly(file, baseDir, options, progress, mesh, report, error))
-      return fail(std::move(report), std::move(error), progress);
-  } else if (useObj) {
-    report.reader = "obj";
-    const std::string baseDir = std::filesystem::path(path).parent_path().string();
-    if (!readObj(file, baseDir, options, progress, mesh, report, error))
-      return fail(std::move(report), std::move(error), progress);
-  } else {
-    report.reader = "assimp";
-    if (options.reader == Reader::Auto && !assimpSupportsExtension(ext))
-      return fail(std::move(report),
-                  path + ": '" + ext + "' is not a mesh format Hybridscape reads (use OBJ, FBX, PLY, glTF, DAE, 3DS, STL)",
-                  progress);
-    if (!readWithAssimp(path, options, progress, mesh, report, error))
-      return fail(std::move(report), std::move(error), progress);
+  // An allocation that fails (a count the checks let through, a memory
+  // limit: tools/import_worker) becomes an error naming the file and the
+  // stage it was in, never a bare std::bad_alloc.
+  std::string stage = usePly   ? "reading it with the PLY reader"
+                      : useObj ? "reading it with the OBJ reader"
+                               : "reading it with Assimp";
+  try {
+    return readAndFinish(path, ext, useObj, usePly, file, options, progress, std::move(report), start, stage);
+  } catch (const std::bad_alloc&) {
+    ImportReport failed;
+    failed.file = path;
+    failed.reader = usePly ? "ply" : useObj ? "obj" : "assimp";
+    return fail(std::move(failed),
+                path + ": ran out of memory while " + stage + " (" + std::to_string(file.size()) +
+                    " bytes); the file asks for more memory than this process may use",
+                progress);
   }
-  return finish(std::move(mesh), std::move(report), options, progress, start);
 }
 
 }  // namespace hs::mesh

@@ -29,6 +29,10 @@ struct ImportOptions {
   // Textures that fail to load become warnings, not errors (the mesh is
   // still useful); set to make them errors.
   bool strictTextures = false;
+  // Fail, rather than warn, when the triangles imported differ from those
+  // the file declares (ImportReport::declaredTriangles): a file cut short,
+  // faces dropped for bad indices, counts that do not match the data.
+  bool strict = false;
 
   // Georeferencing offset added (in double) to the mesh's origin: the
   // file's coordinates are relative to it (georef_sidecar.h).
@@ -45,7 +49,7 @@ struct ImportOptions {
 // ImportOptions' parameters, declared once (`import`, the Import dialog):
 // up, reader, origin (auto, none, x,y,z or an offset file: the CLI's
 // text), origin_offset_m (an offset set by hand: the dialog's fields, and
-// the numbers of --origin x,y,z), strict_textures.
+// the numbers of --origin x,y,z), strict_textures, strict.
 const std::vector<ParamDecl>& importOptionDecls();
 
 struct ImportReport {
@@ -58,6 +62,15 @@ struct ImportReport {
   size_t degenerateFaces = 0;       // repeated index within one face
   size_t polygonsTriangulated = 0;  // faces with more than 3 corners
   size_t skippedLines = 0;          // unsupported statements (lines, points, ...)
+  // What the file declares, to compare with what was imported
+  // (trianglesOut): the triangles its faces make (OBJ, PLY face lists),
+  // its header's count (binary STL), its facets (ASCII STL), its triangle
+  // primitives' accessor counts (glTF). `declaredBy` says where the number
+  // comes from ("PLY header: element face 200"); empty when the format
+  // declares nothing we read (FBX, DAE, 3DS, OFF), and then no comparison
+  // is made.
+  size_t declaredTriangles = 0;
+  std::string declaredBy;
   bool normalsGenerated = false;
   bool upAxisConverted = false;
   std::vector<std::string> warnings;  // each names the file and place

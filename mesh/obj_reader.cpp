@@ -241,7 +241,8 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
     std::string buffer;
     std::string_view head;
     if (!source.read(0, 4096, buffer, head, error)) return false;
-    if (const void* zero = memchr(head.data(), '\0', head.size())) {
+    // An empty view may have no data pointer, which memchr must not get.
+    if (const void* zero = head.empty() ? nullptr : memchr(head.data(), '\0', head.size())) {
       error = name + ": not a text OBJ file (binary data at byte " +
               std::to_string(static_cast<const char*>(zero) - head.data()) + ")";
       return false;
@@ -591,6 +592,9 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
 
   report.verticesIn = positions.size();
   report.trianglesIn = nc / 3;
+  // OBJ declares no counts: what it declares is the faces it holds.
+  report.declaredTriangles = report.trianglesIn;
+  report.declaredBy = "OBJ faces";
   if (firstOutOfRangeLine)
     report.warnings.push_back(name + ":" + std::to_string(firstOutOfRangeLine) +
                               ": face index out of range (first such face; the file has " +

@@ -70,7 +70,7 @@ bool readHeader(const ByteSource& source, Header& header, std::string& error) {
     std::string key;
     words >> key;
     auto fail = [&](const std::string& what) {
-      error = file + ": PLY header line " + std::to_string(number) + ": " + what;
+      error = file + ":" + std::to_string(number) + ": PLY header: " + what;
       return false;
     };
     if (number == 1) {
@@ -103,8 +103,11 @@ bool readHeader(const ByteSource& source, Header& header, std::string& error) {
       std::string count;
       words >> e.name >> count;
       const auto r = std::from_chars(count.data(), count.data() + count.size(), e.count);
-      if (e.name.empty() || r.ec != std::errc() || r.ptr != count.data() + count.size())
-        return fail("element '" + e.name + "' has the count '" + count + "', not a whole number that fits 64 bits");
+      if (e.name.empty()) return fail("an element without a name");
+      if (r.ec == std::errc::result_out_of_range)
+        return fail("element " + e.name + ": the count '" + count + "' is too large (more than 2^64)");
+      if (r.ec != std::errc() || r.ptr != count.data() + count.size())
+        return fail("element " + e.name + ": the count '" + count + "' is not a whole number");
       e.line = number;
       header.elements.push_back(std::move(e));
     } else if (key == "property") {
@@ -140,14 +143,20 @@ bool readHeader(const ByteSource& source, Header& header, std::string& error) {
   const bool ascii = header.format == Format::Ascii;
   uint64_t need = 0;
   for (const Element& e : header.elements) {
-    const uint64_t each = e.minBytes(ascii);
-    if (each > 0 && e.count > (body - std::min(need, body)) / each) {
-      error = file + ": PLY header line " + std::to_string(e.line) + " declares " + std::to_string(e.count) + " '" +
-              e.name + "' elements, which need at least " +
-              (e.count > UINT64_MAX / std::max<uint64_t>(each, 1) ? std::string("more than 2^64")
-                                                                  : std::to_string(e.count * each)) +
-              " bytes, but only " + std::to_string(body - std::min(need, body)) +
-              " bytes are left in the file (truncated, or a wrong count)";
+    const uint64_t each = e.minBytes(ascii), left = body - std::min(need, body);
+    const std::string place = file + ":" + std::to_string(e.line) + ": PLY header: element " + e.name + " declares " +
+                              std::to_string(e.count) + " rows";
+    // Rows without properties hold no data; more of them than the file has
+    // bytes is not a real file (and reading them would loop for ever).
+    if (each == 0 && e.count > body) {
+      error = place + " without properties, more than the " + std::to_string(body) + " bytes after the header";
+      return false;
+    }
+    if (each > 0 && e.count > left / each) {
+      error = place + ", which need at least " +
+              (e.count > UINT64_MAX / each ? std::string("2^64") : std::to_string(e.count * each)) +
+              " bytes, but only " + std::to_string(left) +
+              " bytes follow the header and the elements before it (truncated, or a wrong count)";
       return false;
     }
     need += e.count * each;

@@ -69,6 +69,16 @@ class Body {
     v = int64_t(d);
     return true;
   }
+  // Whether anything but white space (ASCII) or any byte (binary) is left.
+  bool hasData() {
+    if (!ascii_) return offset() < src_.size();
+    for (;;) {
+      if (pos_ >= view_.size() && !refillAtMost(1)) return false;
+      const char c = view_[pos_];
+      if (c != ' ' && c != '\t' && c != '\r' && c != '\n') return true;
+      ++pos_;
+    }
+  }
   // The next `n` bytes of binary data (valid until the next call), or
   // nullptr with `error` at the end of the file.
   const char* block(size_t n) { return take(n); }
@@ -97,7 +107,7 @@ class Body {
     const uint64_t at = base_ + pos_;
     const uint64_t left = src_.size() > at ? src_.size() - at : 0;
     if (left < n) {
-      error = "the file ends at byte " + std::to_string(src_.size()) + ", inside this element (truncated)";
+      error = "cut short: the file ends at byte " + std::to_string(src_.size()) + ", inside this row";
       return false;
     }
     const size_t want = size_t(std::min<uint64_t>(left, std::max(n, kPiece)));
@@ -111,7 +121,7 @@ class Body {
     // Skip separators, then read one token (at most 64 characters).
     for (;;) {
       if (pos_ >= view_.size() && !refillAtMost(1)) {
-        error = "the file ends at byte " + std::to_string(src_.size()) + ", inside this element (truncated)";
+        error = "cut short: the file ends at byte " + std::to_string(src_.size()) + ", inside this row";
         return false;
       }
       const char c = view_[pos_];
@@ -181,6 +191,10 @@ struct Parsed {
   std::vector<int> triangleTexture;   // per triangle, when faces carry texnumber
   bool faceUvs = false, faceTextures = false;
   size_t droppedOutOfRange = 0, droppedTooFew = 0, polygons = 0, stripTriangles = 0;
+  // What the file declares (mesh/declared_counts.h): n - 2 per face list,
+  // and the strips' triangles of non-zero area (a strip's joins repeat a
+  // vertex by construction and are not primitives), dropped ones included.
+  size_t declaredTriangles = 0;
   std::vector<std::string> firstProblems;
 };
 
@@ -218,9 +232,13 @@ bool readPly(const ByteSource& source, const std::string& baseDir, const ImportO
     }
     // Elements we do not read, binary with fixed-size properties: skipped whole.
     const bool fixed = std::none_of(e.properties.begin(), e.properties.end(), [](const auto& q) { return q.list; });
+    if (e.properties.empty()) {  // rows without data (the header check bounds their count)
+      done += e.count;
+      continue;
+    }
     if (!isVertex && !isFace && !isStrips && !ascii && fixed) {
       if (!body.skip(e.count * e.minBytes(false))) {
-        error = file + ": element '" + e.name + "' (byte " + std::to_string(body.offset()) + "): " + body.error;
+        error = file + ": in element " + e.name + " (byte " + std::to_string(body.offset()) + "): " + body.error;
         return false;
       }
       done += e.count;
@@ -252,7 +270,8 @@ bool readPly(const ByteSource& source, const std::string& baseDir, const ImportO
         const uint64_t at = body.offset();
         const char* bytes = body.block(n * stride);
         if (!bytes) {
-          error = file + ": vertex " + std::to_string(first) + " (byte " + std::to_string(at) + "): " + body.error;
+          error = file + ": in vertex " + std::to_string(first + 1) + " of " + std::to_string(count) + " (byte " +
+                  std::to_string(at) + "): " + body.error;
           return false;
         }
         parallelFor(int64_t(n), 0, 16384, [&](int64_t lo, int64_t hi) {
@@ -285,7 +304,8 @@ bool readPly(const ByteSource& source, const std::string& baseDir, const ImportO
       }
       const uint64_t at = body.offset();
       auto fail = [&](const std::string& what) {
-        error = file + ": " + e.name + " " + std::to_string(i) + " (byte " + std::to_string(at) + "): " + what;
+        error = file + ": in " + e.name + " " + std::to_string(i + 1) + " of " + std::to_string(e.count) + " (byte " +
+                std::to_string(at) + "): " + what;
         return false;
       };
       double slots[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -346,13 +366,14 @@ bool readPly(const ByteSource& source, const std::string& baseDir, const ImportO
       if (!isFace && !isStrips) continue;
       auto problem = [&](const std::string& what) {
         if (p.firstProblems.size() < 3)
-          p.firstProblems.push_back(file + ": " + e.name + " " + std::to_string(i) + " (byte " + std::to_string(at) +
-                                    "): " + what);
+          p.firstProblems.push_back(file + ": " + e.name + " " + std::to_string(i + 1) + " of " +
+                                    std::to_string(e.count) + " (byte " + std::to_string(at) + "): " + what);
       };
       bool inRange = true;
       for (int64_t v : list)
         if (v >= int64_t(vertexCount) || (v < 0 && !(isStrips && v == -1))) inRange = false;
       if (isFace) {
+        p.declaredTriangles += list.size() >= 3 ? list.size() - 2 : 0;
         if (list.size() < 3) {
           ++p.droppedTooFew;
           problem("a face with " + std::to_string(list.size()) + " corners (dropped)");
@@ -378,12 +399,19 @@ bool readPly(const ByteSource& source, const std::string& baseDir, const ImportO
           p.triangleTexture.push_back(texnumber);
         }
       } else {  // a triangle strip, restarting at -1; every other triangle turns
+        size_t start = 0;
+        for (size_t k = 0; k <= list.size(); ++k) {
+          if (k < list.size() && list[k] != -1) continue;
+          for (size_t t = start; t + 2 < k; ++t)
+            p.declaredTriangles += list[t] != list[t + 1] && list[t + 1] != list[t + 2] && list[t] != list[t + 2];
+          start = k + 1;
+        }
         if (!inRange) {
           ++p.droppedOutOfRange;
           problem("a vertex index outside 0.." + std::to_string(vertexCount) + " (the strip is dropped)");
           continue;
         }
-        size_t start = 0;
+        start = 0;
         for (size_t k = 0; k <= list.size(); ++k) {
           if (k < list.size() && list[k] != -1) continue;
           for (size_t t = start; t + 2 < k; ++t) {
@@ -402,12 +430,18 @@ bool readPly(const ByteSource& source, const std::string& baseDir, const ImportO
     done += e.count;
   }
   if (p.faceUvs) p.cornerUvs.resize(p.corners.size());
+  // Data after the declared elements: counts lowered by hand or by a tool
+  // that went wrong. Read as declared, and said.
+  if (body.offset() < source.size() && body.hasData())
+    report.warnings.push_back(file + ": " + std::to_string(source.size() - body.offset()) +
+                              " bytes of data follow the elements the header declares (from byte " +
+                              std::to_string(body.offset()) + "); the rest is not read (the header's counts may be too low)");
 
   // Report what was declared against what is kept.
   report.verticesIn = size_t(vertexCount);
-  // Declared primitives: the triangles the faces and strips describe, a
-  // dropped face or strip counted as (at least) one.
-  report.trianglesIn = p.corners.size() / 3 + p.droppedOutOfRange + p.droppedTooFew;
+  report.trianglesIn = p.corners.size() / 3;
+  report.declaredTriangles = p.declaredTriangles;
+  report.declaredBy = "PLY face lists and tristrips (zero-area strip joins not counted)";
   report.outOfRangeFaces += p.droppedOutOfRange;
   report.degenerateFaces += p.droppedTooFew;
   report.polygonsTriangulated += p.polygons;

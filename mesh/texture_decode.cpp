@@ -1,6 +1,7 @@
 #include "mesh/texture_decode.h"
 
 #include <filesystem>
+#include <new>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
@@ -27,7 +28,21 @@ bool readRgba8(OIIO::ImageInput& in, const std::string& what, Texture& out, std:
     return false;
   }
   const int nch = spec.nchannels;
-  std::vector<uint8_t> pixels(size_t(spec.width) * spec.height * nch);
+  if (nch <= 0 || nch > 64) {
+    error = what + ": " + std::to_string(nch) + " channels per pixel is out of range (1 to 64)";
+    return false;
+  }
+  // A header may ask for gigabytes (32k x 32k x 64 channels): a failed
+  // allocation names the image, not a bare std::bad_alloc.
+  std::vector<uint8_t> pixels;
+  try {
+    pixels.resize(size_t(spec.width) * spec.height * nch);
+    out.rgba.reserve(size_t(spec.width) * spec.height * 4);
+  } catch (const std::bad_alloc&) {
+    error = what + ": image of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " with " +
+            std::to_string(nch) + " channels needs more memory than this process may use";
+    return false;
+  }
   // A decoder may complain and still return true: libjpeg fills a JPEG cut
   // short with grey and only warns ("Premature end of JPEG file"), so
   // anything it said makes the image unreadable, not half grey.

@@ -201,6 +201,12 @@ void importFields(IO& io, R& r) {
   // format; this library's writer called it "skipped_lines" before the
   // import report had one schema, and that name is still read.
   io.count("skipped_primitives", r.skippedLines, "skipped_lines");
+  // What the file declares (STL count, PLY header, glTF accessors), when it
+  // declares something: compare with triangles_out.
+  io.optional("declared", !r.declaredBy.empty(), [&](auto& d) {
+    d.count("triangles", r.declaredTriangles);
+    d.text("by", r.declaredBy);
+  });
   io.flag("normals_generated", r.normalsGenerated);
   io.flag("up_axis_converted", r.upAxisConverted);
   // The georeferencing offset added to the mesh's origin, and where it came from.

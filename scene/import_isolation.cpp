@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <string_view>
 
 #include "core/subprocess.h"
 #include "mesh/import_wire.h"
@@ -79,8 +80,8 @@ int anonymousTempFile() {
   return highFd(fd2);
 }
 
-// The last non-empty line the worker wrote to stderr (at most 200 characters).
-std::string lastLine(int fd) {
+// The last 4 kB the worker wrote to stderr.
+std::string stderrTail(int fd) {
   if (fd < 0) return {};
   const off_t size = ::lseek(fd, 0, SEEK_END);
   if (size <= 0) return {};
@@ -88,6 +89,12 @@ std::string lastLine(int fd) {
   std::string text(size_t(size - from), '\0');
   const ssize_t n = ::pread(fd, text.data(), text.size(), from);
   text.resize(n > 0 ? size_t(n) : 0);
+  return text;
+}
+
+// The last non-empty line the worker wrote to stderr (at most 200 characters).
+std::string lastLine(int fd) {
+  std::string text = stderrTail(fd);
   while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
   const size_t nl = text.find_last_of('\n');
   std::string line = nl == std::string::npos ? text : text.substr(nl + 1);
@@ -115,10 +122,13 @@ bool makePipe(int& readEnd, int& writeEnd) {
   return readEnd >= 0 && writeEnd >= 0;
 }
 
+std::string mib(uint64_t bytes) { return std::to_string((bytes + (1 << 19)) >> 20) + " MiB"; }
+
 enum class Outcome { Done, SpawnFailed };
 
 Outcome runWorker(const std::string& worker, const std::string& path, const mesh::ImportOptions& options,
-                  const Progress* progress, mesh::ImportResult& out, std::string& spawnError) {
+                  const WorkerLimits& limits, const Progress* progress, mesh::ImportResult& out,
+                  std::string& spawnError) {
   const auto start = Clock::now();
   auto failed = [&](std::string error) {
     out = {};
@@ -138,6 +148,10 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
   }
 
   std::vector<std::string> args = {worker, "--result-fd", "3", "--watch-stdin"};
+  if (limits.memoryBytes) {
+    args.push_back("--memory-limit-mb");
+    args.push_back(std::to_string(limits.memoryBytes >> 20));
+  }
   for (auto& a : mesh::importWorkerArguments(path, options)) args.push_back(std::move(a));
   SpawnOptions spawn;
   spawn.args = std::move(args);
@@ -167,8 +181,24 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
     out.error = path + ": import cancelled";
     return Outcome::Done;
   };
+  // The watchdog: progress that stops changing for this long means a
+  // reader that spins (Assimp 5.2.5 on some damaged files) or waits.
+  auto lastChange = Clock::now();
+  auto stuck = [&] {
+    ::kill(pid, SIGKILL);
+    waitProcess(pid);
+    char secs[32];
+    std::snprintf(secs, sizeof secs, "%g", limits.watchdogSeconds);
+    return failed(path + ": the " + formatName(path) + " reader (Assimp) made no progress for " + secs +
+                  " s (stuck at " + std::to_string(int(lastFraction * 100.0)) + "%, '" + lastStage +
+                  "'), so the import watchdog stopped it; the file is probably damaged (HS_IMPORT_WATCHDOG_S "
+                  "sets the time). Nothing was imported.");
+  };
   for (;;) {
     if (isCancelled(progress)) return cancelled();
+    if (limits.watchdogSeconds > 0 &&
+        std::chrono::duration<double>(Clock::now() - lastChange).count() > limits.watchdogSeconds)
+      return stuck();
     pollfd p{fds.progressRead, POLLIN, 0};
     const int n = ::poll(&p, 1, 50);
     if (n < 0 && errno != EINTR) break;
@@ -182,6 +212,7 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
         double f;
         std::string stage;
         if (mesh::parseImportProgressLine(std::string_view(buffer).substr(0, nl), f, stage)) {
+          if (std::clamp(f, 0.0, 1.0) != lastFraction || stage != lastStage) lastChange = Clock::now();
           lastFraction = std::clamp(f, 0.0, 1.0);
           lastStage = std::move(stage);
           reportProgress(progress, lastFraction, lastStage);
@@ -205,12 +236,23 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
   }
 
   const std::string reader = "the " + formatName(path) + " reader (Assimp)";
+  // A reader that cannot allocate under the limit may abort instead of
+  // failing cleanly; the worker said so on stderr (tools/import_worker).
+  const std::string memory =
+      limits.memoryBytes ? " (The import worker's memory limit was " + mib(limits.memoryBytes) + ", " +
+                               limits.memoryText + "; HS_IMPORT_MEMORY_LIMIT sets it.)"
+                         : std::string();
+  if (reaped && WIFSIGNALED(status) && limits.memoryBytes &&
+      stderrTail(fds.err).find("out of memory: an allocation failed under the memory limit") != std::string::npos)
+    return failed(path + ": " + reader + " ran out of memory: it reached the import worker's memory limit of " +
+                  mib(limits.memoryBytes) + " (" + limits.memoryText + "; HS_IMPORT_MEMORY_LIMIT sets it) and stopped (" +
+                  signalName(WTERMSIG(status)) + "). Nothing was imported.");
   if (reaped && WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
     if (sig == SIGKILL)
-      return failed(path + ": " + reader + " was killed (SIGKILL) while reading this file, perhaps for using too much memory. Nothing was imported.");
+      return failed(path + ": " + reader + " was killed (SIGKILL) while reading this file, perhaps for using too much memory. Nothing was imported." + memory);
     return failed(path + ": " + reader + " crashed on this file (" + signalName(sig) +
-                  "); it is probably damaged. Nothing was imported.");
+                  "); it is probably damaged. Nothing was imported." + memory);
   }
   const int code = reaped && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::string readError;
@@ -234,6 +276,10 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
     return failed(path + ": " + reader + " stopped without a result (" + why + "). Nothing was imported.");
   }
   r.report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  // The worker names the file and the stage; the limit is ours to name.
+  if (!r.ok() && limits.memoryBytes && r.error.find("ran out of memory") != std::string::npos)
+    r.error += " (the import worker's memory limit: " + mib(limits.memoryBytes) + ", " + limits.memoryText +
+               "; HS_IMPORT_MEMORY_LIMIT sets it)";
   out = std::move(r);
   return Outcome::Done;
 }
@@ -277,14 +323,55 @@ std::string findImportWorker(std::string* lookedAt) {
   return result;
 }
 
+bool workerLimits(WorkerLimits& limits, std::string& error) {
+  limits = {};
+  const char* memory = std::getenv("HS_IMPORT_MEMORY_LIMIT");
+  std::string text = memory && *memory ? memory : "50%";
+  const double physical = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGESIZE));
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  const bool percent = end && *end == '%' && end[1] == '\0';
+  if (!end || end == text.c_str() || !(percent || *end == '\0') || !(value >= 0.0) ||
+      (percent ? value > 100.0 : value > 1e9)) {
+    error = "HS_IMPORT_MEMORY_LIMIT: '" + text + "' is not a memory limit (a share such as 50%, a number of MiB, "
+            "or 0 for none)";
+    return false;
+  }
+  if (value > 0.0) {
+    // At least 64 MiB: the worker's own libraries take tens of MiB.
+    limits.memoryBytes = uint64_t(std::max(percent ? physical * value / 100.0 : value * 1048576.0, 67108864.0));
+    char what[96];
+    if (percent) std::snprintf(what, sizeof what, "%s of %.1f GiB", text.c_str(), physical / 1073741824.0);
+    else std::snprintf(what, sizeof what, "set to %s MiB", text.c_str());
+    limits.memoryText = what;
+  }
+  const char* watchdog = std::getenv("HS_IMPORT_WATCHDOG_S");
+  text = watchdog && *watchdog ? watchdog : "300";
+  limits.watchdogSeconds = std::strtod(text.c_str(), &end);
+  if (!end || end == text.c_str() || *end != '\0' || !(limits.watchdogSeconds >= 0.0) ||
+      limits.watchdogSeconds > 1e7) {
+    error = "HS_IMPORT_WATCHDOG_S: '" + text + "' is not a number of seconds (0 for no watchdog)";
+    return false;
+  }
+  return true;
+}
+
 mesh::ImportResult importMeshIsolated(const std::string& path, const mesh::ImportOptions& options,
                                       const Progress* progress) {
   if (!readsWithAssimp(path, options)) return mesh::importMesh(path, options, progress);
   std::string lookedAt, why;
+  WorkerLimits limits;
+  if (!workerLimits(limits, why)) {
+    mesh::ImportResult r;
+    r.report.file = path;
+    r.report.reader = "assimp";
+    r.error = path + ": not read: " + why;
+    return r;
+  }
   const std::string worker = findImportWorker(&lookedAt);
   if (!worker.empty()) {
     mesh::ImportResult r;
-    if (runWorker(worker, path, options, progress, r, why) == Outcome::Done) return r;
+    if (runWorker(worker, path, options, limits, progress, r, why) == Outcome::Done) return r;
   } else {
     why = std::string(kWorkerName) + " not found" + (lookedAt.empty() ? "" : " (looked at " + lookedAt + ")");
   }

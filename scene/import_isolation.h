@@ -8,6 +8,7 @@
 // report and progress (scene/import_wire.h). A crash becomes an error naming
 // the file; Cancel kills the worker. The own OBJ reader and
 // importObjFromMemory stay in this process. docs/meshes.md, "Isolation".
+#include <cstdint>
 #include <string>
 
 #include "core/progress.h"
@@ -23,6 +24,22 @@ bool readsWithAssimp(const std::string& path, const mesh::ImportOptions& options
 // one built with this program, else one beside the running executable.
 // Empty if none is there; `lookedAt` then lists where it looked.
 std::string findImportWorker(std::string* lookedAt = nullptr);
+
+// What the worker may use. It runs under a memory limit (RLIMIT_AS), a
+// share of the machine's memory, so a file that asks for too much stops
+// with an error saying so instead of taking the machine; and under a
+// watchdog that stops it when it reports no progress for a while (a reader
+// spinning on a damaged file). Set by the environment:
+//   HS_IMPORT_MEMORY_LIMIT  "50%" of the physical memory (the default), a
+//                           number of MiB ("4096"), or "0": no limit
+//   HS_IMPORT_WATCHDOG_S    seconds without progress (default 300), "0": none
+struct WorkerLimits {
+  uint64_t memoryBytes = 0;     // 0: none
+  std::string memoryText;       // how it was set, for messages ("50% of 125.8 GiB")
+  double watchdogSeconds = 0;   // 0: none
+};
+// False with `error` naming the variable when one is set to nonsense.
+bool workerLimits(WorkerLimits& limits, std::string& error);
 
 // mesh::importMesh, with the files Assimp reads read by the worker. Without a
 // worker the file is read here, with a warning in the report saying so. The

@@ -21,6 +21,10 @@ mesh::ImportReport sumTileReports(const std::vector<mesh::ImportReport>& tiles, 
     sum.degenerateFaces += t.degenerateFaces;
     sum.polygonsTriangulated += t.polygonsTriangulated;
     sum.skippedLines += t.skippedLines;
+    // Declared counts add up only when every tile declares one.
+    sum.declaredTriangles += t.declaredTriangles;
+    if (t.declaredBy.empty()) sum.declaredBy.clear();
+    else if (!sum.declaredBy.empty()) sum.declaredBy = "the tiles' own declarations";
     sum.normalsGenerated = sum.normalsGenerated || t.normalsGenerated;
     sum.upAxisConverted = sum.upAxisConverted || t.upAxisConverted;
     sum.warnings.insert(sum.warnings.end(), t.warnings.begin(), t.warnings.end());

@@ -15,8 +15,17 @@ BUILD_PACKAGES=(
 # munge for the render-farm test (a one-node Slurm it starts on localhost).
 TEST_PACKAGES=(xvfb xauth libgl1-mesa-dri libegl-mesa0 mesa-utils ffmpeg slurm-wlm munge)
 
+# Fuzzing (`scripts/hs fuzz`): Debian's clang with libFuzzer and the
+# sanitizer runtimes. Only that command asks for them.
+FUZZ_PACKAGES=(clang libclang-rt-14-dev)
+
 want=("${BUILD_PACKAGES[@]}")
-if [[ "${1:-}" == "--with-tests" ]]; then want+=("${TEST_PACKAGES[@]}"); fi
+for arg in "$@"; do
+  case "$arg" in
+    --with-tests) want+=("${TEST_PACKAGES[@]}") ;;
+    --with-fuzz) want+=("${FUZZ_PACKAGES[@]}") ;;
+  esac
+done
 
 missing=()
 for p in "${want[@]}"; do

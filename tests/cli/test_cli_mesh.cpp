@@ -19,6 +19,7 @@
 using namespace hs;
 using hs::test::kCli;
 using hs::test::readFile;
+using hs::test::writeFile;
 
 namespace {
 
@@ -334,6 +335,31 @@ class TestCliMesh : public QObject {
     const Run ok = cli({"import", HS_TEST_DATA_DIR "/mesh/textured_quad.fbx", f});
     QVERIFY2(ok.code == 0, qPrintable(ok.err));
     QVERIFY2(ok.out.contains("reader assimp"), qPrintable(ok.out));
+  }
+
+  // Declared against imported (issue 10): a face with an index past the
+  // vertices is dropped with a warning and the report holds both counts;
+  // --strict refuses the import and leaves the scene as it was. A file cut
+  // short read through the worker (ASCII STL) is refused either way.
+  void strictRefusesWhatTheFileDeclaresButDidNotImport() {
+    const QString f = newScene("strict.hscene");
+    QString obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\nf 1 2 9\n";
+    writeFile(path("dropped.obj").toStdString(), obj.toStdString());
+    const Run warned = cli({"import", path("dropped.obj"), f, "--report", path("dropped.json")});
+    QVERIFY2(warned.code == 0, qPrintable(warned.err));
+    QVERIFY2(warned.err.contains("declares 3 triangles") && warned.err.contains("2 were imported"), qPrintable(warned.err));
+    const QJsonObject report = readReport(path("dropped.json"));
+    QCOMPARE(report["declared"].toObject()["triangles"].toInt(), 3);
+    QCOMPARE(report["triangles_out"].toInt(), 2);
+    expectRefused({"import", path("dropped.obj"), f, "--strict"}, 1,
+                  {"dropped.obj: the file declares 3 triangles", "2 were imported", "--strict"}, f);
+
+    std::string stl = "solid cut\n";
+    for (int i = 0; i < 20; ++i)
+      stl += "facet normal 0 0 1\n outer loop\n  vertex 0 0 " + std::to_string(i) + "\n  vertex 1 0 " +
+             std::to_string(i) + "\n  vertex 0 1 " + std::to_string(i) + "\n endloop\nendfacet\n";
+    writeFile(path("cut.stl").toStdString(), stl);
+    expectRefused({"import", path("cut.stl"), f}, 1, {"cut.stl: the ASCII STL is cut short", "20 complete facets"}, f);
   }
 };
 

@@ -222,6 +222,8 @@ class TestPlyReader : public QObject {
       area += 0.5 * n.z;
     }
     QCOMPARE(area, 6.0);  // the 3 x 2 metres the strips cover, no overlap
+    QCOMPARE(r.report.declaredTriangles, size_t(12));
+    QVERIFY(r.report.warnings.empty());
   }
 
   // MeshLab's per-face texcoord lists with texnumber over two TextureFile
@@ -328,32 +330,32 @@ class TestPlyReader : public QObject {
     QTest::newRow("count beyond 64 bits")
         << QByteArray((tri + "element face 99999999999999999999\nproperty list uchar int vertex_indices\nend_header\n")
                           .c_str())
-        << QStringList{"line 7", "99999999999999999999", "whole number"};
+        << QStringList{":7:", "99999999999999999999", "too large"};
     QTest::newRow("count as a float")
         << QByteArray((tri + "element face 1e9\nproperty list uchar int vertex_indices\nend_header\n").c_str())
-        << QStringList{"line 7", "1e9"};
+        << QStringList{":7:", "1e9", "not a whole number"};
     QTest::newRow("count beyond the file")
         << QByteArray("ply\nformat binary_little_endian 1.0\nelement vertex 99999999\nproperty float x\nend_header\n"
                       "abcd")
-        << QStringList{"line 3", "99999999 'vertex'", "4 bytes"};
+        << QStringList{":3:", "element vertex declares 99999999 rows", "only 4 bytes"};
     QTest::newRow("no end_header") << QByteArray("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n")
                                    << QStringList{"end_header"};
     QTest::newRow("unknown type")
         << QByteArray("ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n1\n")
-        << QStringList{"line 4", "float128"};
+        << QStringList{":4:", "float128"};
     QTest::newRow("binary body cut short") << QByteArray(grid.substr(0, grid.size() - 40).c_str(), qsizetype(grid.size() - 40))
-                                           << QStringList{"byte", "truncated"};
+                                           << QStringList{"byte", "cut short"};
     QTest::newRow("ascii body cut short")
         << QByteArray((tri + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1")
                           .c_str())
-        << QStringList{"face 0", "byte", "truncated"};
+        << QStringList{"in face 1 of 1", "byte", "cut short"};
     QTest::newRow("list longer than the file")
         << QByteArray((tri + "element face 1\nproperty list uint int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
                              "4000000000 0 1 2\n")
                           .c_str())
-        << QStringList{"face 0", "4000000000", "past the end"};
+        << QStringList{"in face 1 of 1", "4000000000", "past the end"};
     QTest::newRow("not a number")
-        << QByteArray((tri + "end_header\n0 0 0\n1 zero 0\n0 1 0\n").c_str()) << QStringList{"vertex 1", "'zero'"};
+        << QByteArray((tri + "end_header\n0 0 0\n1 zero 0\n0 1 0\n").c_str()) << QStringList{"in vertex 2 of 3", "'zero'"};
   }
   void badFilesAreRefusedWithTheirPlace() {
     QFETCH(QByteArray, bytes);
@@ -384,7 +386,7 @@ class TestPlyReader : public QObject {
     writeFile(path("cutstrip.ply"), w.bytes());
     ImportResult r = importZUp(path("cutstrip.ply"));
     QVERIFY(!r.ok());
-    QVERIFY2(r.error.find("tristrips 0") != std::string::npos && r.error.find("truncated") != std::string::npos,
+    QVERIFY2(r.error.find("tristrips 1 of 1") != std::string::npos && r.error.find("cut short") != std::string::npos,
              r.error.c_str());
 
     PlyWriter g(PlyWriter::Ascii);
@@ -396,8 +398,17 @@ class TestPlyReader : public QObject {
     QVERIFY2(r.ok(), r.error.c_str());
     QCOMPARE(r.mesh->triangleCount(), size_t(1));
     QCOMPARE(r.report.outOfRangeFaces, size_t(1));
-    QCOMPARE(r.report.trianglesIn, size_t(2));  // declared two, kept one: the report says both
-    QVERIFY(!r.report.warnings.empty() && r.report.warnings[0].find("face 1") != std::string::npos);
+    QCOMPARE(r.report.declaredTriangles, size_t(2));  // declared two, kept one: the report says both
+    QCOMPARE(r.report.trianglesOut, size_t(1));
+    QVERIFY(!r.report.warnings.empty() && r.report.warnings[0].find("face 2 of 2") != std::string::npos);
+    QVERIFY(r.report.warnings.back().find("declares 2 triangles") != std::string::npos);
+    // --strict refuses it.
+    ImportOptions strict;
+    strict.up = UpAxis::Z;
+    strict.strict = true;
+    const ImportResult refused = importMesh(path("badindex.ply"), strict);
+    QVERIFY(!refused.ok());
+    QVERIFY2(refused.error.find("--strict") != std::string::npos, refused.error.c_str());
   }
 };
 

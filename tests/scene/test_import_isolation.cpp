@@ -5,13 +5,15 @@
 // (a stand-in worker that never ends, and the real one on a large PLY); a
 // worker that dies of a signal or ends without a result is reported as such;
 // without a worker the file is read here with a warning; OBJ never leaves
-// this process.
+// this process; the worker's memory limit and watchdog are named when hit.
 #include <QElapsedTimer>
 #include <QFile>
 #include <QTemporaryDir>
 #include <QtTest>
 
 #include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -401,6 +403,89 @@ class TestImportIsolation : public QObject {
     const mesh::ImportResult s = scene::importMeshIsolated(path("rock.glb"), {});
     QVERIFY(!s.ok());
     QVERIFY2(contains(s.error, "stopped without a result (exit code 0: the result is cut short"), s.error.c_str());
+  }
+
+  // ---- limits: memory and the watchdog ------------------------------------------------
+
+  // A worker that reports once and then nothing is stopped by the watchdog,
+  // and the error says so (not "cancelled", not "crashed").
+  void watchdogStopsAWorkerThatMakesNoProgress() {
+    EnvVar env("HS_IMPORT_WORKER", fakeWorker("stuck.sh", "echo 'progress 0.1000 Reading with Assimp'\nexec sleep 120"));
+    EnvVar watchdog("HS_IMPORT_WATCHDOG_S", "1");
+    QElapsedTimer clock;
+    clock.start();
+    const mesh::ImportResult r = scene::importMeshIsolated(path("stuck.fbx"), {});
+    QVERIFY2(clock.elapsed() < 20000, qPrintable(QString::number(clock.elapsed())));
+    QVERIFY(!r.ok() && !r.cancelled);
+    QVERIFY2(contains(r.error, "stuck.fbx: the FBX reader (Assimp) made no progress for 1 s") &&
+                 contains(r.error, "stuck at 10%") && contains(r.error, "watchdog"),
+             r.error.c_str());
+    QVERIFY2(childProcesses().isEmpty(), qPrintable(childProcesses().join("; ")));
+  }
+
+  // The real worker under a small memory limit on a binary STL that needs
+  // more (400k triangles: Assimp takes about 480 MB for it): a clean error
+  // naming the file and the limit, not a crash or "damaged".
+  void memoryLimitIsNamedWhenReached() {
+    std::string stl(80, '\0');
+    const uint32_t n = 400000;
+    stl.append(reinterpret_cast<const char*>(&n), 4);
+    for (uint32_t i = 0; i < n; ++i) {
+      const float x = float(i % 1000), y = float(i / 1000);
+      const float t[12] = {0, 0, 1, x, y, 0, x + 1, y, 0, x, y + 1, 0};
+      stl.append(reinterpret_cast<const char*>(t), sizeof t);
+      stl.append(2, '\0');
+    }
+    const std::string p = path("big.stl");
+    hs::test::writeFile(p, stl);
+    EnvVar limit("HS_IMPORT_MEMORY_LIMIT", "100");
+    const mesh::ImportResult r = scene::importMeshIsolated(p, {});
+    QVERIFY(!r.ok() && !r.cancelled);
+    QVERIFY2(contains(r.error, p.c_str()) && contains(r.error, "out of memory") && contains(r.error, "memory limit") &&
+                 contains(r.error, "100 MiB") && !contains(r.error, "damaged"),
+             r.error.c_str());
+    fs::remove(p);
+  }
+
+  // A lower limit set from outside (ulimit -v, a batch system) is kept: the
+  // worker cannot raise a hard limit, and once every Assimp import failed
+  // with an argument error under one. Run in a child, whose limit goes
+  // with it; the limit is below the default share of this machine.
+  void aLowerLimitFromOutsideIsKept() {
+    const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+    const rlim_t outside = rlim_t(std::min(physical / 4, 8.0 * 1024 * 1024 * 1024));
+    const pid_t child = fork();
+    QVERIFY(child >= 0);
+    if (child == 0) {
+      const rlimit limit{outside, outside};
+      if (setrlimit(RLIMIT_AS, &limit) != 0) _exit(3);
+      const mesh::ImportResult r = scene::importMeshIsolated(kData + "/textured_quad.glb", {});
+      if (!r.ok()) std::fprintf(stderr, "%s\n", r.error.c_str());
+      _exit(r.ok() ? 0 : 1);
+    }
+    int status = 0;
+    QCOMPARE(waitpid(child, &status, 0), child);
+    QVERIFY2(WIFEXITED(status) && WEXITSTATUS(status) == 0, qPrintable(QString::number(status)));
+  }
+
+  void limitSettingsThatMakeNoSenseAreNamed() {
+    {
+      EnvVar limit("HS_IMPORT_MEMORY_LIMIT", "lots");
+      const mesh::ImportResult r = scene::importMeshIsolated(kData + "/textured_quad.glb", {});
+      QVERIFY2(!r.ok() && contains(r.error, "HS_IMPORT_MEMORY_LIMIT: 'lots'"), r.error.c_str());
+    }
+    {
+      EnvVar watchdog("HS_IMPORT_WATCHDOG_S", "-1");
+      const mesh::ImportResult r = scene::importMeshIsolated(kData + "/textured_quad.glb", {});
+      QVERIFY2(!r.ok() && contains(r.error, "HS_IMPORT_WATCHDOG_S: '-1'"), r.error.c_str());
+    }
+    scene::WorkerLimits limits;
+    std::string error;
+    EnvVar share("HS_IMPORT_MEMORY_LIMIT", "25%");
+    QVERIFY2(scene::workerLimits(limits, error), error.c_str());
+    const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+    QVERIFY(std::abs(double(limits.memoryBytes) - physical / 4) < 1e6);
+    QCOMPARE(limits.watchdogSeconds, 300.0);
   }
 
   // ---- finding the worker --------------------------------------------------------

@@ -4,7 +4,7 @@
 // Started by scene/import_isolation.cpp; the protocol is scene/import_wire.h.
 //
 //   hybridscape-import-worker (--result-fd N | --out FILE) [--watch-stdin]
-//                             [import options] -- <mesh-file>
+//                             [--memory-limit-mb N] [import options] -- <mesh-file>
 //
 // Progress goes to stdout as "progress <fraction> <stage>" lines; the result
 // (mesh, report, or the reader's error) to the descriptor or file. Exit code
@@ -20,6 +20,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <exception>
+#include <new>
+#include <system_error>
 #include <string>
 #include <thread>
 
@@ -47,6 +50,38 @@ void writeAll(int fd, const std::string& s) {
   }
 }
 
+// Under --memory-limit-mb an allocation can fail anywhere, also where a
+// reader cannot pass the std::bad_alloc on (a noexcept destructor, a
+// thread) and the process aborts. This line on stderr lets the parent say
+// it was the limit, not a damaged file (scene/import_isolation.cpp).
+void sayOutOfMemory() {
+  static const char kLine[] = "\nhybridscape-import-worker: out of memory: an allocation failed under the memory limit\n";
+  (void)!::write(STDERR_FILENO, kLine, sizeof kLine - 1);
+}
+
+void outOfMemory() {
+  sayOutOfMemory();
+  std::set_new_handler(nullptr);  // the next failure throws without coming back here
+  throw std::bad_alloc();
+}
+
+// A thread that cannot get its stack under the limit ends in
+// std::terminate with a std::system_error (EAGAIN): said the same way.
+[[noreturn]] void terminateUnderLimit() {
+  if (std::exception_ptr e = std::current_exception()) {
+    try {
+      std::rethrow_exception(e);
+    } catch (const std::bad_alloc&) {
+      sayOutOfMemory();
+    } catch (const std::system_error& se) {
+      if (se.code() == std::errc::resource_unavailable_try_again || se.code() == std::errc::not_enough_memory)
+        sayOutOfMemory();
+    } catch (...) {
+    }
+  }
+  std::abort();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -58,6 +93,7 @@ int main(int argc, char** argv) {
   int resultFd = -1;
   std::string outPath, path;
   bool watchStdin = false;
+  rlim_t memoryLimit = 0;  // 0: none
   hs::mesh::ImportOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -79,6 +115,14 @@ int main(int argc, char** argv) {
       if (!end || *end || resultFd < 0) return usage("--result-fd: bad value '" + v + "'");
     } else if (a == "--out") {
       outPath = v;
+    } else if (a == "--memory-limit-mb") {
+      // Address space, not resident memory: what a reader asks for is
+      // refused at once (a bad_alloc importMesh names), not after it has
+      // pushed the machine into swap.
+      char* end = nullptr;
+      const unsigned long long mb = std::strtoull(v.c_str(), &end, 10);
+      if (!end || *end || mb == 0 || mb > (1ull << 40)) return usage("--memory-limit-mb: bad value '" + v + "'");
+      memoryLimit = rlim_t(mb) << 20;
     } else if (!hs::mesh::parseImportWorkerOptionArgument(a, v, options, error)) {
       return usage(error);
     }
@@ -108,6 +152,19 @@ int main(int argc, char** argv) {
     writeAll(STDOUT_FILENO, hs::mesh::importProgressLine(f, stage));
   });
 
+  // The limit starts here, after our own thread has its stack.
+  if (memoryLimit) {
+    // A limit already set from outside (ulimit -v) and lower stays: we
+    // only ever lower it.
+    rlimit limit{};
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_max != RLIM_INFINITY && limit.rlim_max < memoryLimit)
+      memoryLimit = limit.rlim_max;
+    limit = {memoryLimit, memoryLimit};
+    if (setrlimit(RLIMIT_AS, &limit) != 0)
+      return usage("--memory-limit-mb: cannot set the limit: " + std::string(std::strerror(errno)));
+    std::set_new_handler(outOfMemory);
+    std::set_terminate(terminateUnderLimit);
+  }
   const hs::mesh::ImportResult result = hs::mesh::importMesh(path, options, &progress);
 
   std::FILE* out = resultFd >= 0 ? fdopen(resultFd, "wb") : std::fopen(outPath.c_str(), "wb");
