@@ -18,11 +18,15 @@ struct FrameCheck {
   std::string problem;   // "frames/f_00042.png: 1920x1080, expected 3840x1080"
 };
 
-// A frame file is valid when it exists, OpenImageIO opens it and its header
-// says width x height; with a non-empty `jobTag`, its description must also
-// carry that tag (so a resumed export never keeps frames of other settings).
-// `deep` also decodes every pixel (catches truncated files that a
-// write-then-rename export never produces but a copy or a full disk may).
+// A frame file is valid when it exists, OpenImageIO opens it, its header
+// says width x height and the file is whole: a PNG's chunks and CRCs up to
+// IEND, a JPEG's end marker (frame_structure.h); an EXR or TIFF is decoded.
+// A frame cut short (a copy that stopped, a full disk) is caught by this
+// default check, and resume renders it again. With a non-empty `jobTag`, its
+// description must also carry that tag (so a resumed export never keeps
+// frames of other settings). `deep` also decodes every PNG and JPEG pixel
+// (catches damage inside compressed data that keeps the CRCs right, which
+// only a deliberate edit produces).
 FrameCheck checkFrameFile(const std::string& path, int width, int height, const std::string& jobTag = {},
                           bool deep = false);
 
