@@ -39,13 +39,14 @@ FrameCheck checkFrameFile(const std::string& path, int width, int height, const 
       return c;
     }
   }
-  // The file's end: a PNG or JPEG by its structure (a read, no decode);
-  // EXR and TIFF by decoding, since nothing cheaper says they are whole.
-  if (const std::string problem = frameStructureProblem(path); !problem.empty()) {
+  // The file's end by its structure (a read, no decode); what the walk does
+  // not know is decoded.
+  bool unknown = false;
+  if (const std::string problem = frameStructureProblem(path, unknown); !problem.empty()) {
     c.problem = path + ": damaged (" + problem + ")";
     return c;
   }
-  if (deep || !hasStructureCheck(path)) {
+  if (deep || unknown) {
     std::vector<uint8_t> pixels(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels) * 4);
     // A decoder may complain and still return true: libjpeg fills a JPEG
     // cut short with grey and only warns ("Premature end of JPEG file").

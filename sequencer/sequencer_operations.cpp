@@ -149,7 +149,9 @@ const OperationDecl& farmVerifyOperation() {
                    exportParam("size_px"),
                    exportParam("layout"),
                    chunk,
-                   flag("deep", "deep", "Deep", "also decode every PNG and JPEG pixel (the default checks their structure: chunks, CRCs, end markers; EXR and TIFF are always decoded)"),
+                   flag("deep", "deep", "Deep",
+                        "also decode every pixel (the default checks that each file is whole by its structure: "
+                        "chunks, CRCs, end markers, offset tables; slower)"),
                    text("tag", "tag", "Job tag", "also require the export's job tag in each file", "TAG"),
                    {.key = "threads", .option = "threads", .label = "Threads", .min = 1, .max = 256, .integer = true,
                     .defaultValue = 2, .help = "files checked in parallel", .valueName = "N"}}};
