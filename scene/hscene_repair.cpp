@@ -33,12 +33,13 @@ struct ScratchCopy {
   }
 };
 
-bool makeScratchCopy(const std::string& damaged, ScratchCopy& copy, std::string& error) {
+// Beside `out`: the repaired file needs that file system's space anyway,
+// and a scene of several GB may not fit in /tmp.
+bool makeScratchCopy(const std::string& damaged, const std::string& out, ScratchCopy& copy, std::string& error) {
   std::error_code ec;
-  std::string pattern = (fs::temp_directory_path(ec) / "hybridscape-repair-XXXXXX").string();
+  std::string pattern = out + ".salvage-XXXXXX";
   if (!::mkdtemp(pattern.data())) {
-    error = "cannot make a folder for the copy to salvage from in " + fs::temp_directory_path(ec).string() + ": " +
-            std::strerror(errno);
+    error = out + ": cannot make a folder beside it for the copy to salvage from (" + std::strerror(errno) + ")";
     return false;
   }
   copy.dir = pattern;
@@ -105,7 +106,8 @@ std::optional<mesh::MeshData> readMesh(SqliteDb& db, const std::string& key, uin
 }
 
 // The description, or nullopt with why it cannot be read.
-std::optional<SceneState> readDescription(SqliteDb& db, std::string& why) {
+// Values out of their fields' ranges are clamped and named in `clamped`.
+std::optional<SceneState> readDescription(SqliteDb& db, std::string& why, std::vector<std::string>& clamped) {
   SqliteStmt q(db, "SELECT json FROM document WHERE id = 1");
   if (!q.ok()) {
     why = db.lastError();
@@ -118,7 +120,7 @@ std::optional<SceneState> readDescription(SqliteDb& db, std::string& why) {
     return std::nullopt;
   }
   bool notJson = false;
-  std::optional<SceneState> s = sceneFromJsonText(text, e, notJson);
+  std::optional<SceneState> s = sceneFromJsonText(text, e, notJson, &clamped);
   if (!s) why = (notJson ? "not valid JSON: " : "invalid: ") + e;
   return s;
 }
@@ -222,7 +224,7 @@ bool repairScene(const std::string& damaged, const std::string& out, RepairRepor
     return false;
   }
   ScratchCopy copy;
-  if (!makeScratchCopy(damaged, copy, error)) return false;
+  if (!makeScratchCopy(damaged, out, copy, error)) return false;
 
   // A file that opens needs no salvage: the copy is a plain save of it.
   LoadReport load;
@@ -255,7 +257,9 @@ bool repairScene(const std::string& damaged, const std::string& out, RepairRepor
     }
     const int version = formatVersion(db);
     std::string why;
-    state = readDescription(db, why);
+    std::vector<std::string> clamped;
+    state = readDescription(db, why, clamped);
+    for (const std::string& c : clamped) r.notes.push_back(damaged + ": " + c);
     if (state) {
       salvageMeshes(db, *state, version, r);
       if (!state->terrains.empty() && !loadTerrainTiles(db, *state, damaged, version, e, nullptr)) {

@@ -62,8 +62,9 @@ class TestHsceneRepair : public QObject {
   // The asset the first entity with a mesh shows.
   AssetId firstAsset() const { return scene_.assets.begin()->first; }
 
-  // Repairs `damaged` into `out`; checks the damaged file kept its bytes
-  // and the copy opens; returns the copy's state.
+  // Repairs `damaged` into `out`; checks the damaged file kept its bytes,
+  // no salvage folder is left beside `out` and the copy opens; returns the
+  // copy's state.
   std::optional<SceneState> repaired(const std::string& damaged, const std::string& out, RepairReport& r) {
     const std::string before = test::readFile(damaged);
     std::string error;
@@ -71,6 +72,11 @@ class TestHsceneRepair : public QObject {
     if (!ok) qWarning("repair refused: %s", error.c_str());
     if (test::readFile(damaged) != before) qWarning("the damaged file was written");
     if (!ok || test::readFile(damaged) != before) return std::nullopt;
+    for (const auto& e : fs::directory_iterator(fs::path(out).parent_path()))
+      if (e.path().filename().string().find(".salvage-") != std::string::npos) {
+        qWarning("the salvage folder %s was left behind", e.path().c_str());
+        return std::nullopt;
+      }
     std::optional<SceneState> s = loadScene(out, error);
     if (!s) qWarning("the repaired copy does not open: %s", error.c_str());
     return s;
