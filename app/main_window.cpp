@@ -174,6 +174,8 @@ void MainWindow::createActions() {
   importAct_->setIcon(icon(Icon::Import));
   exportMeshAct_ = make("&Export Mesh…", QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_M), [this] { requestExportMesh(); },
                         "Write a mesh (the selected entity's, or an asset) as OBJ, PLY or GLB");
+  repairAct_ = make("Save a &Repaired Copy…", QKeySequence(), [this] { requestRepair(); },
+                    "Salvage what can still be read from a damaged scene into a new file");
   quitAct_ = make("&Quit", QKeySequence(Qt::CTRL | Qt::Key_Q), [this] { close(); });
   quitAct_->setMenuRole(QAction::QuitRole);
 
@@ -256,6 +258,7 @@ void MainWindow::createMenus() {
   file->addSeparator();
   file->addAction(importAct_);
   file->addAction(exportMeshAct_);
+  file->addAction(repairAct_);
   QMenu* up = file->addMenu("Import &Up Axis");
   upAxisGroup_ = new QActionGroup(this);
   const int savedUp = QSettings().value("import/upAxis", int(mesh::UpAxis::Auto)).toInt();

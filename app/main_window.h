@@ -123,6 +123,14 @@ class MainWindow : public QMainWindow {
   bool maybeSave();
   // Offers recovery copies left by sessions that did not end cleanly.
   void offerRecovery();
+  // File > Save a Repaired Copy…: asks for the damaged scene (unless given)
+  // and a new file, then repairSceneFile(). Also offered when opening a
+  // damaged file fails.
+  void requestRepair(const QString& damaged = {});
+  // Salvages `damaged` into the new file `out` (scene/hscene_repair.h) on a
+  // worker; what was dropped goes to the message panel, then the copy is
+  // offered for opening. `wait`: until done, returning whether it was written.
+  bool repairSceneFile(const QString& damaged, const QString& out, bool wait);
 
   // The window as shown, with the GL viewport's image composed in.
   bool writeScreenshot(const QString& path);
@@ -194,7 +202,7 @@ class MainWindow : public QMainWindow {
   QMenu* recentMenu_ = nullptr;
   QToolBar* toolBar_ = nullptr;
   QAction *newAct_ = nullptr, *openAct_ = nullptr, *saveAct_ = nullptr, *saveAsAct_ = nullptr,
-          *importAct_ = nullptr, *exportMeshAct_ = nullptr, *quitAct_ = nullptr;
+          *importAct_ = nullptr, *exportMeshAct_ = nullptr, *repairAct_ = nullptr, *quitAct_ = nullptr;
   QAction *undoAct_ = nullptr, *redoAct_ = nullptr, *deleteAct_ = nullptr, *duplicateAct_ = nullptr,
           *renameAct_ = nullptr, *selectAllAct_ = nullptr, *selectNoneAct_ = nullptr;
   QAction *frameAct_ = nullptr, *frameAllAct_ = nullptr, *gridAct_ = nullptr, *resetLayoutAct_ = nullptr;

@@ -119,6 +119,15 @@ bool MainWindow::openInternal(const QString& path, bool wait, bool remember, std
       const QString error = QString::fromStdString(result->error);
       messages_->error(error);
       prompts_->showError(this, "Open Scene", QString("Could not open %1\n%2").arg(QDir::toNativeSeparators(path), error));
+      // A damaged file may still hold most of the work: offer to salvage it
+      // (later: this job is still being finished).
+      if (error.contains("damaged") &&
+          prompts_->askYesNo(this, "Open Scene",
+                             QString("%1 is damaged. Save a repaired copy with what can still be read? The file "
+                                     "itself is not changed.")
+                                 .arg(name),
+                             "Save a Repaired Copy…", "Cancel"))
+        QTimer::singleShot(0, this, [this, path] { requestRepair(path); });
     }
   });
   const std::string file = path.toStdString();

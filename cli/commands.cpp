@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <unistd.h>
 
+#include "scene/hscene_repair.h"
 #include "scene/import_pipeline.h"
 #include "scene/render_operation.h"
 #include "sequencer/sequencer_operations.h"
@@ -24,6 +25,7 @@ const std::vector<Command>& commands() {
       {"sequence", sequencer::sequenceOperation().summary.c_str(), runSequence},
       {"path", sequencer::pathOperation().summary.c_str(), runPath},
       {"farm", "render-farm runs: write/submit a Slurm job array, verify frames", runFarm},
+      {"repair", scene::repairOperation().summary.c_str(), runRepair},
   };
   return list;
 }

@@ -28,6 +28,7 @@ int runKey(int argc, char** argv);
 int runSequence(int argc, char** argv);
 int runPath(int argc, char** argv);
 int runFarm(int argc, char** argv);
+int runRepair(int argc, char** argv);
 
 // A progress line on stderr when it is a terminal ("Importing bunny.obj  42%").
 Progress terminalProgress(const std::string& label);

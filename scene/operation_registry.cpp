@@ -1,5 +1,6 @@
 #include "scene/operation_registry.h"
 
+#include "scene/hscene_repair.h"
 #include "scene/import_pipeline.h"
 #include "scene/mesh_export_operation.h"
 #include "scene/render_operation.h"
@@ -24,6 +25,7 @@ const std::vector<const OperationDecl*>& sharedOperations() {
       &sequencer::pathOperation(),
       &farmSlurmOperation(),
       &sequencer::farmVerifyOperation(),
+      &repairOperation(),
   };
   return list;
 }

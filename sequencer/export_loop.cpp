@@ -138,15 +138,22 @@ ResumePlan planExport(const ExportSettings& s, bool dryRun) {
   const glm::ivec2 size = layoutFrameSize(s.layout, s.eyeWidth, s.eyeHeight);
   for (int64_t f : frames) {
     bool valid = true, anyPresent = false;
+    std::string why;
     for (const auto& [path, eye] : outputsOf(*pattern, s.layout, f)) {
       const FrameCheck c = checkFrameFile(path, size.x, size.y, s.jobTag);
       anyPresent = anyPresent || !c.missing;
       valid = valid && c.ok;
+      if (!c.ok && !c.missing && why.empty()) why = c.problem;
     }
     if (valid) {
       ++plan.kept;
     } else {
-      if (anyPresent) ++plan.invalid;
+      if (anyPresent) {
+        ++plan.invalid;
+        // A few reasons are enough to tell a changed scene (every frame "written
+        // by another export") from damaged files; the count says the rest.
+        if (plan.invalidWhy.size() < 5 && !why.empty()) plan.invalidWhy.push_back("frame " + std::to_string(f) + ": " + why);
+      }
       plan.toRender.push_back(f);
     }
   }
@@ -187,6 +194,13 @@ ExportResult runExport(const ExportSettings& s, FrameSource& source, const Expor
     result.notes.push_back("removed " + std::to_string(plan.removedTemporaries) +
                            " half-written temporary file(s) of an interrupted export");
   if (plan.kept) result.notes.push_back("kept " + std::to_string(plan.kept) + " valid frame(s) from an earlier run");
+  if (plan.invalid) {
+    std::string note = "rendering again " + std::to_string(plan.invalid) + " invalid frame(s) of an earlier run";
+    for (const std::string& why : plan.invalidWhy) note += "\n  " + why;
+    if (plan.invalid > int64_t(plan.invalidWhy.size()))
+      note += "\n  ... and " + std::to_string(plan.invalid - int64_t(plan.invalidWhy.size())) + " more";
+    result.notes.push_back(note);
+  }
 
   const glm::ivec2 frameSize = layoutFrameSize(s.layout, s.eyeWidth, s.eyeHeight);
   std::unique_ptr<VideoWriter> film;

@@ -143,6 +143,7 @@ struct ResumePlan {
   std::vector<int64_t> toRender;
   int64_t kept = 0;
   int64_t invalid = 0;
+  std::vector<std::string> invalidWhy;  // the first problems of invalid frames ("frame 3: f_003.png: damaged (...)")
   int64_t removedTemporaries = 0;
   std::string error;  // a bad pattern or settings
 };

@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/parallel.h"
+#include "sequencer/frame_structure.h"
 #include "sequencer/output_pattern.h"
 
 namespace hs::sequencer {
@@ -38,7 +39,14 @@ FrameCheck checkFrameFile(const std::string& path, int width, int height, const 
       return c;
     }
   }
-  if (deep) {
+  // The file's end by its structure (a read, no decode); what the walk does
+  // not know is decoded.
+  bool unknown = false;
+  if (const std::string problem = frameStructureProblem(path, unknown); !problem.empty()) {
+    c.problem = path + ": damaged (" + problem + ")";
+    return c;
+  }
+  if (deep || unknown) {
     std::vector<uint8_t> pixels(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels) * 4);
     // A decoder may complain and still return true: libjpeg fills a JPEG
     // cut short with grey and only warns ("Premature end of JPEG file").

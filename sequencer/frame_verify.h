@@ -18,11 +18,16 @@ struct FrameCheck {
   std::string problem;   // "frames/f_00042.png: 1920x1080, expected 3840x1080"
 };
 
-// A frame file is valid when it exists, OpenImageIO opens it and its header
-// says width x height; with a non-empty `jobTag`, its description must also
-// carry that tag (so a resumed export never keeps frames of other settings).
-// `deep` also decodes every pixel (catches truncated files that a
-// write-then-rename export never produces but a copy or a full disk may).
+// A frame file is valid when it exists, OpenImageIO opens it, its header
+// says width x height and the file is whole: a PNG's chunks and CRCs up to
+// IEND, a JPEG's end marker, an EXR's chunks, a TIFF's strips all within the
+// file (frame_structure.h); what that walk does not know is decoded.
+// A frame cut short (a copy that stopped, a full disk) is caught by this
+// default check, and resume renders it again. With a non-empty `jobTag`, its
+// description must also carry that tag (so a resumed export never keeps
+// frames of other settings). `deep` also decodes every pixel (catches
+// damage inside the data that keeps the structure whole: a flipped bit in an
+// EXR or JPEG, which has no checksum).
 FrameCheck checkFrameFile(const std::string& path, int width, int height, const std::string& jobTag = {},
                           bool deep = false);
 

@@ -141,7 +141,7 @@ const OperationDecl& farmVerifyOperation() {
         .name = "farm verify",
         .summary = "check a finished run",
         .usage = "--frames LIST --out PATTERN [--size WxH] [--layout L] [options]",
-        .description = "Checks that every frame of the list exists and is a valid image of the layout's size (the "
+        .description = "Checks that every frame of the list exists and is a whole, valid image of the layout's size (the "
                        "check a farm run ends with). Exit 0 when all are there; 1 with the missing and invalid "
                        "frames listed (and, with --chunk, the array tasks to run again).",
         .params = {frames,
@@ -149,7 +149,9 @@ const OperationDecl& farmVerifyOperation() {
                    exportParam("size_px"),
                    exportParam("layout"),
                    chunk,
-                   flag("deep", "deep", "Deep", "decode every pixel (finds damaged files; slower)"),
+                   flag("deep", "deep", "Deep",
+                        "also decode every pixel (the default checks that each file is whole by its structure: "
+                        "chunks, CRCs, end markers, offset tables; slower)"),
                    text("tag", "tag", "Job tag", "also require the export's job tag in each file", "TAG"),
                    {.key = "threads", .option = "threads", .label = "Threads", .min = 1, .max = 256, .integer = true,
                     .defaultValue = 2, .help = "files checked in parallel", .valueName = "N"}}};

@@ -33,6 +33,7 @@
 #include "app/viewport_widget.h"
 #include "editor_fixture.h"
 #include "mesh/mesh_import.h"
+#include "scene/hscene_file.h"
 #include "scene/operations.h"
 #include "scene/transform.h"
 #include "scene/world_bounds.h"
@@ -547,6 +548,34 @@ void EditorSmokeTest::badOpenKeepsTheDocument() {
   QCOMPARE(doc().filePath(), pathBefore);
   QCOMPARE(doc().state().entities.size(), entities);
   QVERIFY(doc().state().find(bunny_));
+
+  // A damaged scene (a copy of the saved one cut short): the error is
+  // followed by the offer of a repaired copy (answered No here), and
+  // File > Save a Repaired Copy… writes one that opens, leaving the damaged
+  // file as it was.
+  const QString cut = tmp_.filePath("cut.hscene");
+  QVERIFY(QFile::copy(tmp_.filePath("smoke.hscene"), cut));
+  QVERIFY(QFile::resize(cut, QFileInfo(cut).size() * 6 / 10));
+  QFile cutFile(cut);
+  QVERIFY(cutFile.open(QIODevice::ReadOnly));
+  const QByteArray cutBytes = cutFile.readAll();
+  cutFile.close();
+  const int questions = prompts_->yesNoQuestions;
+  QVERIFY(!w_->openSceneFile(cut, true));
+  QCOMPARE(prompts_->errors.size(), errors + 2);
+  QVERIFY2(prompts_->errors.last().contains("damaged"), qPrintable(prompts_->errors.last()));
+  QCOMPARE(prompts_->yesNoQuestions, questions + 1);
+  const QString repaired = tmp_.filePath("cut-repaired.hscene");
+  QVERIFY(w_->repairSceneFile(cut, repaired, true));
+  QCOMPARE(prompts_->yesNoQuestions, questions + 2);  // "Open it?"
+  QVERIFY(cutFile.open(QIODevice::ReadOnly));
+  QVERIFY(cutFile.readAll() == cutBytes);
+  std::string error;
+  QVERIFY2(scene::loadScene(repaired.toStdString(), error), error.c_str());
+  QVERIFY(!w_->repairSceneFile(cut, repaired, true));  // never replaces a file
+  QCOMPARE(prompts_->errors.size(), errors + 3);
+  QVERIFY(prompts_->errors.last().contains("already exists"));
+  QCOMPARE(doc().filePath(), pathBefore);
 }
 
 void EditorSmokeTest::autosaveAndRecovery() {

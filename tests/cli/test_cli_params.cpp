@@ -143,6 +143,7 @@ class TestCliParams : public QObject {
         {"path", {{"path", "Camera", missing_}, missing_}},
         {"farm slurm", {{"farm", "slurm", missing_, "--out", frames}, missing_}},
         {"farm verify", {{"farm", "verify", "--frames", "0-1", "--out", frames}, "frame(s) missing"}},
+        {"repair", {{"repair", missing_, tmp_.filePath("repaired.hscene")}, missing_}},
     };
   }
 

@@ -176,9 +176,20 @@ class TestCliSequence : public QObject {
     QVERIFY2(r.code == 0, qPrintable(r.err));
     fs::remove(frameName(d, 4));
     test::writeFile(frameName(d, 7), "not an image");
+    // Issue 10: a frame cut to half its size was kept among the valid ones
+    // (and `farm verify` passed it unless --deep).
+    fs::resize_file(frameName(d, 9), fs::file_size(frameName(d, 9)) / 2);
+    r = cli({"farm", "verify", "--frames", "8-11", "--out", out, "--size", kSize});
+    QVERIFY2(r.code == 1, qPrintable(r.out + r.err));
+    QVERIFY2(r.out.contains("3 of 4 frames valid") && r.out.contains("invalid frame 9: ") && r.out.contains("damaged"),
+             qPrintable(r.out));
     r = cli(render(out, "0-11"));
     QVERIFY2(r.code == 0, qPrintable(r.err));
-    QVERIFY2(r.out.contains("rendered 2 frame(s), kept 10, of 12"), qPrintable(r.out));
+    QVERIFY2(r.out.contains("rendered 3 frame(s), kept 9, of 12"), qPrintable(r.out));
+    QVERIFY2(r.out.contains("rendering again 2 invalid frame(s) of an earlier run"), qPrintable(r.out));
+    QVERIFY2(r.out.contains("frame 7: ") && r.out.contains("frame 9: "), qPrintable(r.out));
+    r = cli({"farm", "verify", "--frames", "0-11", "--out", out, "--size", kSize});
+    QVERIFY2(r.code == 0 && r.out.contains("12 of 12 frames valid"), qPrintable(r.out + r.err));
     QString why;
     QVERIFY2(sameAsReference(d, 0, 11, why), qPrintable(why));
     // A changed scene is not mixed with old frames: its tag differs.

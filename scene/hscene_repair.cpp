@@ -1,0 +1,303 @@
+#include "scene/hscene_repair.h"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <unistd.h>
+
+#include "core/content_hash.h"
+#include "scene/demo_scene.h"
+#include "scene/hscene_file.h"
+#include "scene/legacy_hashes.h"
+#include "scene/mesh_blob.h"
+#include "scene/scene_json.h"
+#include "scene/sqlite_db.h"
+#include "scene/terrain_file.h"
+
+namespace hs::scene {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The private copy the salvage reads (and SQLite may roll back a journal
+// into): removed when done.
+struct ScratchCopy {
+  fs::path dir;
+  fs::path file;
+  ~ScratchCopy() {
+    std::error_code ec;
+    if (!dir.empty()) fs::remove_all(dir, ec);
+  }
+};
+
+// Beside `out`: the repaired file needs that file system's space anyway,
+// and a scene of several GB may not fit in /tmp.
+bool makeScratchCopy(const std::string& damaged, const std::string& out, ScratchCopy& copy, std::string& error) {
+  std::error_code ec;
+  std::string pattern = out + ".salvage-XXXXXX";
+  if (!::mkdtemp(pattern.data())) {
+    error = out + ": cannot make a folder beside it for the copy to salvage from (" + std::strerror(errno) + ")";
+    return false;
+  }
+  copy.dir = pattern;
+  copy.file = copy.dir / "damaged.hscene";
+  if (!fs::copy_file(damaged, copy.file, ec)) {
+    error = damaged + ": cannot be copied to salvage from (" + ec.message() + ")";
+    return false;
+  }
+  // A hot journal goes with it: the copy is then the file SQLite would see.
+  if (fs::exists(damaged + "-journal", ec)) fs::copy_file(damaged + "-journal", copy.file.string() + "-journal", ec);
+  return true;
+}
+
+int formatVersion(SqliteDb& db) {
+  SqliteStmt q(db, "SELECT value FROM meta WHERE key = 'format_version'");
+  std::string e;
+  if (!q.step(e)) return kSceneFormatVersion;  // unreadable: assume this build's
+  try {
+    return std::stoi(q.text(0));
+  } catch (...) {
+    return kSceneFormatVersion;
+  }
+}
+
+// One logical mesh blob read part by part; nullopt with `why` when a part
+// is missing or unreadable, it does not decode, or it does not match `hash`.
+std::optional<mesh::MeshData> readMesh(SqliteDb& db, const std::string& key, uint64_t hash, int version,
+                                       std::string& why) {
+  SqliteStmt q(db, "SELECT part, data FROM blobs WHERE key = ?1 ORDER BY part");
+  if (!q.ok()) {
+    why = "the blobs table cannot be read (" + db.lastError() + ")";
+    return std::nullopt;
+  }
+  q.bind(1, key);
+  std::vector<uint8_t> bytes;
+  int64_t expected = 0;
+  std::string e;
+  while (q.step(e)) {
+    if (q.integer(0) != expected++) {
+      why = "a part of its data is missing";
+      return std::nullopt;
+    }
+    const auto b = q.blob(1);
+    bytes.insert(bytes.end(), b.begin(), b.end());
+  }
+  if (!e.empty()) {
+    why = "its data cannot be read (" + e + ")";
+    return std::nullopt;
+  }
+  if (expected == 0) {
+    why = "its data is missing from the file";
+    return std::nullopt;
+  }
+  std::optional<mesh::MeshData> m = decodeMesh(bytes.data(), bytes.size(), key, e);
+  if (!m) {
+    why = "its data does not decode (" + e + ")";
+    return std::nullopt;
+  }
+  if ((version < 4 ? legacyMeshHash(*m) : mesh::contentHash(*m)) != hash) {
+    why = "its data does not match its checksum";
+    return std::nullopt;
+  }
+  return m;
+}
+
+// The description, or nullopt with why it cannot be read.
+// Values out of their fields' ranges are clamped and named in `clamped`.
+std::optional<SceneState> readDescription(SqliteDb& db, std::string& why, std::vector<std::string>& clamped) {
+  SqliteStmt q(db, "SELECT json FROM document WHERE id = 1");
+  if (!q.ok()) {
+    why = db.lastError();
+    return std::nullopt;
+  }
+  std::string e, text;
+  if (q.step(e)) text = q.text(0);
+  if (!e.empty() || text.empty()) {
+    why = e.empty() ? "it is missing" : e;
+    return std::nullopt;
+  }
+  bool notJson = false;
+  std::optional<SceneState> s = sceneFromJsonText(text, e, notJson, &clamped);
+  if (!s) why = (notJson ? "not valid JSON: " : "invalid: ") + e;
+  return s;
+}
+
+// Keeps each asset whose mesh verifies (its LODs too, or none of them);
+// entities showing a dropped asset keep their place without the mesh.
+void salvageMeshes(SqliteDb& db, SceneState& s, int version, RepairReport& r) {
+  std::set<AssetId> lost;
+  for (auto it = s.assets.begin(); it != s.assets.end();) {
+    MeshAsset& a = it->second;
+    const std::string what = "mesh asset " + std::to_string(a.id) + " ('" + a.name + "')";
+    std::string why;
+    auto m = readMesh(db, "mesh/" + std::to_string(a.id), a.contentHash, version, why);
+    if (!m) {
+      r.dropped.push_back(what + ": " + why);
+      lost.insert(a.id);
+      it = s.assets.erase(it);
+      continue;
+    }
+    a.data = std::make_shared<const mesh::MeshData>(std::move(*m));
+    for (size_t k = 0; k < a.lods.size(); ++k) {
+      auto lod = readMesh(db, "mesh/" + std::to_string(a.id) + "/lod" + std::to_string(k + 1), a.lods[k].contentHash,
+                          version, why);
+      if (!lod) {
+        r.dropped.push_back(what + ": its LOD " + std::to_string(k + 1) + " and coarser (" + why +
+                            "); the full mesh is kept, LODs can be made again");
+        a.lods.resize(k);
+        break;
+      }
+      a.lods[k].data = std::make_shared<const mesh::MeshData>(std::move(*lod));
+    }
+    if (version < 4) {
+      a.contentHash = mesh::contentHash(*a.data);
+      for (auto& lod : a.lods) lod.contentHash = mesh::contentHash(*lod.data);
+    }
+    ++it;
+  }
+  for (auto& [id, e] : s.entities)
+    if (e.mesh && lost.count(e.mesh->mesh)) {
+      r.dropped.push_back("entity " + std::to_string(id) + " ('" + e.name + "'): its mesh (asset " +
+                          std::to_string(e.mesh->mesh) + "); the entity is kept");
+      e.mesh.reset();
+    }
+}
+
+// Without a description, meshes are found by their blob keys ("mesh/<id>")
+// and checked against the hash stored beside them; each becomes an entity
+// at the origin of a starter scene, so its data is not lost.
+void salvageOrphanMeshes(SqliteDb& db, SceneState& s, RepairReport& r) {
+  SqliteStmt q(db, "SELECT key, hash FROM blobs WHERE part = 0");
+  if (!q.ok()) {
+    r.dropped.push_back("every mesh: the blobs table cannot be read (" + db.lastError() + ")");
+    return;
+  }
+  std::vector<std::pair<AssetId, std::string>> found;
+  std::string e;
+  while (q.step(e)) {
+    const std::string key = q.text(0);
+    if (key.rfind("mesh/", 0) != 0 || key.find('/', 5) != std::string::npos) continue;
+    try {
+      found.emplace_back(AssetId(std::stoull(key.substr(5))), q.text(1));
+    } catch (...) {
+    }
+  }
+  if (!e.empty()) r.dropped.push_back("some meshes: the blobs table is damaged (" + e + ")");
+  for (const auto& [id, hex] : found) {
+    uint64_t hash = 0;
+    std::string why;
+    std::optional<mesh::MeshData> m =
+        fromHex(hex, hash) ? readMesh(db, "mesh/" + std::to_string(id), hash, kSceneFormatVersion, why) : std::nullopt;
+    if (!m) {
+      r.dropped.push_back("stored mesh " + std::to_string(id) + ": " + (why.empty() ? "its checksum is unreadable" : why));
+      continue;
+    }
+    MeshAsset a;
+    a.id = s.maxAssetId() + 1;
+    a.name = "Recovered mesh " + std::to_string(id);
+    a.contentHash = hash;
+    a.data = std::make_shared<const mesh::MeshData>(std::move(*m));
+    Entity ent;
+    ent.id = s.maxEntityId() + 1;
+    ent.name = a.name;
+    ent.mesh = MeshInstance{a.id};
+    s.roots.push_back(ent.id);
+    s.entities.emplace(ent.id, std::move(ent));
+    s.assets.emplace(a.id, std::move(a));
+  }
+}
+
+}  // namespace
+
+bool repairScene(const std::string& damaged, const std::string& out, RepairReport& r, std::string& error) {
+  std::error_code ec;
+  if (!fs::exists(damaged, ec)) {
+    error = damaged + ": file not found";
+    return false;
+  }
+  if (fs::exists(out, ec)) {
+    error = out + (fs::equivalent(damaged, out, ec) ? ": is the damaged file itself; the repaired copy goes to a new file"
+                                                     : ": already exists; the repaired copy goes to a new file");
+    return false;
+  }
+  ScratchCopy copy;
+  if (!makeScratchCopy(damaged, out, copy, error)) return false;
+
+  // A file that opens needs no salvage: the copy is a plain save of it.
+  LoadReport load;
+  std::string openError;
+  std::optional<SceneState> state = loadScene(copy.file.string(), openError, nullptr, &load);
+  const std::string shown = copy.file.string();
+  auto named = [&](std::string line) {  // messages about the copy name the user's file
+    for (size_t at; (at = line.find(shown)) != std::string::npos;) line.replace(at, shown.size(), damaged);
+    return line;
+  };
+  for (const std::string& w : load.warnings) r.notes.push_back(named(w));
+  if (state) {
+    r.wasWhole = true;
+  } else {
+    r.notes.push_back("opening it failed: " + named(openError));
+    {
+      std::ifstream f(copy.file, std::ios::binary);
+      char header[16] = {};
+      f.read(header, sizeof header);
+      if (f.gcount() != 16 || std::memcmp(header, "SQLite format 3\0", 16) != 0) {
+        error = damaged + ": not an SQLite database (its header is gone); nothing can be salvaged from it";
+        return false;
+      }
+    }
+    SqliteDb db;
+    std::string e;
+    if (!db.open(copy.file.string(), true, false, e)) {
+      error = damaged + ": SQLite cannot open it (" + e + "); nothing can be salvaged";
+      return false;
+    }
+    const int version = formatVersion(db);
+    std::string why;
+    std::vector<std::string> clamped;
+    state = readDescription(db, why, clamped);
+    for (const std::string& c : clamped) r.notes.push_back(damaged + ": " + c);
+    if (state) {
+      salvageMeshes(db, *state, version, r);
+      if (!state->terrains.empty() && !loadTerrainTiles(db, *state, damaged, version, e, nullptr)) {
+        r.dropped.push_back(std::to_string(state->terrains.size()) + " terrain(s): " + named(e));
+        state->terrains.clear();
+        for (auto& [id, ent] : state->entities) ent.terrain.reset();
+      }
+    } else {
+      r.dropped.push_back("the scene description (entities, cameras, lights, the sequence): " + why +
+                          "; a sun and a camera stand in for it");
+      state = buildStarterScene();
+      salvageOrphanMeshes(db, *state, r);
+      // Terrain tiles cannot be put together without the description.
+      SqliteStmt t(db, "SELECT COUNT(DISTINCT key) FROM blobs WHERE key LIKE 'terrain/%'");
+      std::string te;
+      if (t.ok() && t.step(te) && t.integer(0) > 0)
+        r.dropped.push_back(std::to_string(t.integer(0)) +
+                            " terrain tile(s): without the description they cannot be placed");
+    }
+  }
+  r.entities = state->entities.size();
+  r.meshes = state->assets.size();
+  r.terrains = state->terrains.size();
+  if (!saveScene(*state, out, error)) return false;
+  return true;
+}
+
+const OperationDecl& repairOperation() {
+  static const OperationDecl op{
+      .name = "repair",
+      .summary = "save a repaired copy of a damaged scene",
+      .usage = "<damaged.hscene> <repaired.hscene>",
+      .description = "Reads what can still be read from a scene that does not open (the description, each mesh "
+                     "whose data matches its checksum, terrains whose tiles do) and saves it to a new file, listing "
+                     "what was dropped and why. The damaged file is never written; the new one must not exist.",
+      .positionals = {{.name = "damaged.hscene", .help = "the scene that does not open"},
+                      {.name = "repaired.hscene", .help = "the new file to write"}}};
+  return op;
+}
+
+}  // namespace hs::scene
