@@ -204,6 +204,65 @@ void Edit::removeTerrainIfUnused(TerrainId id) {
   removeTerrain(id);
 }
 
+namespace {
+
+// The working copy of `id` in `patch`, taken from `current` on first use.
+template <class Id, class T>
+T& workingCopy(std::map<Id, BeforeAfter<T>>& patch, const T* current, Id id, const char* what) {
+  auto it = patch.find(id);
+  if (it == patch.end()) {
+    if (!current) throw std::out_of_range(std::string("no ") + what + " " + std::to_string(id));
+    it = patch.emplace(id, BeforeAfter<T>{*current, *current}).first;
+  }
+  if (!it->second.after) throw std::out_of_range(std::string(what) + " " + std::to_string(id) + " was removed");
+  return *it->second.after;
+}
+
+template <class Id, class T>
+void removeFrom(std::map<Id, BeforeAfter<T>>& patch, const T* current, Id id) {
+  auto it = patch.find(id);
+  if (it != patch.end()) {
+    it->second.after.reset();
+    return;
+  }
+  if (current) patch.emplace(id, BeforeAfter<T>{*current, std::nullopt});
+}
+
+}  // namespace
+
+MaterialId Edit::addMaterial(Material material) {
+  if (material.id == kNoMaterial) material.id = doc_.allocateMaterialId();
+  const MaterialId id = material.id;
+  const Material* existing = doc_.state().findMaterial(id);
+  patch_.materials[id] = BeforeAfter<Material>{existing ? std::optional(*existing) : std::nullopt, std::move(material)};
+  return id;
+}
+
+void Edit::removeMaterial(MaterialId id) { removeFrom(patch_.materials, doc_.state().findMaterial(id), id); }
+
+Material& Edit::material(MaterialId id) {
+  return workingCopy(patch_.materials, doc_.state().findMaterial(id), id, "material");
+}
+
+const Material* Edit::peekMaterial(MaterialId id) const {
+  auto it = patch_.materials.find(id);
+  if (it != patch_.materials.end()) return it->second.after ? &*it->second.after : nullptr;
+  return doc_.state().findMaterial(id);
+}
+
+TextureId Edit::addTexture(TextureAsset texture) {
+  if (texture.id == kNoTexture) texture.id = doc_.allocateTextureId();
+  const TextureId id = texture.id;
+  const TextureAsset* existing = doc_.state().findTexture(id);
+  patch_.textures[id] =
+      BeforeAfter<TextureAsset>{existing ? std::optional(*existing) : std::nullopt, std::move(texture)};
+  return id;
+}
+
+void Edit::removeTexture(TextureId id) { removeFrom(patch_.textures, doc_.state().findTexture(id), id); }
+
+MeshAsset& Edit::asset(AssetId id) { return workingCopy(patch_.assets, doc_.state().findAsset(id), id, "asset"); }
+
 sequencer::Sequence& Edit::sequence() {
   if (!patch_.sequence) patch_.sequence.emplace(doc_.state().sequence, doc_.state().sequence);
   return patch_.sequence->second;

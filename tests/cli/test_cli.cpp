@@ -122,7 +122,7 @@ class TestCli : public QObject {
 
   void helpOnEveryCommand_data() {
     QTest::addColumn<QString>("command");
-    for (const char* c : {"new", "demo", "import", "info", "render", "set", "key", "sequence", "path", "farm", "terrain"})
+    for (const char* c : {"new", "demo", "import", "info", "render", "set", "material", "key", "sequence", "path", "farm", "terrain"})
       QTest::newRow(c) << QString(c);
   }
   void helpOnEveryCommand() {
