@@ -159,6 +159,10 @@ class Renderer {
   // OpenGL debug output since the last call (gl/gl_debug.h: debug builds,
   // or HS_GL_DEBUG set), one line each.
   std::vector<std::string> takeGlMessages();
+  // Material textures that could not be drawn (missing, empty, larger than
+  // the GPU allows, damaged, a grey normal map), each named by material and
+  // field and reported once; the frame draws without them (material_table.h).
+  std::vector<std::string> takeMaterialProblems();
 
   // Frees every GL object (call with the context current, before it goes).
   void shutdown();

@@ -4,6 +4,19 @@
 
 namespace hs::render {
 
+GlProgram& meshProgram(RenderResources& res, scene::ShadingMode mode) {
+  return res.program(meshProgramDesc(mode));
+}
+
+gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode) {
+  switch (mode) {
+    case scene::ShadingMode::Gouraud: return {"mesh.vert", "mesh.frag", "", {"SHADING_GOURAUD"}};
+    case scene::ShadingMode::Flat: return {"mesh.vert", "mesh.frag", "", {"SHADING_FLAT"}};
+    case scene::ShadingMode::Phong: break;
+  }
+  return {"mesh.vert", "mesh.frag", "", {}};
+}
+
 SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewContext& v) {
   const int samples = frame.settings.antialiasing == scene::Antialiasing::Msaa4 ? 4 : 1;
   return graph.addPass<SceneTargets>(
@@ -25,25 +38,34 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
         glClearBufferfv(GL_DEPTH, 0, &clearDepth);
         if (frame.visible.draws.empty()) return;
         frame.res.bindView(index);
-        GlProgram& p = frame.res.program({"mesh.vert", "mesh.frag", "", {}});
-        p.use();
-        GLuint bound = 0;
-        for (const DrawItem& it : frame.visible.draws) {
+        // One program per shading mode a material uses (shaders/mesh.frag's
+        // variants), built on first use: none for modes nobody uses.
+        GlProgram* programs[3] = {nullptr, nullptr, nullptr};
+        auto programFor = [&](scene::ShadingMode mode) -> GlProgram& {
+          GlProgram*& p = programs[int(mode)];
+          if (!p) p = &meshProgram(frame.res, mode);
+          return *p;
+        };
+        GlProgram* current = nullptr;
+        GLuint bound[3] = {0, 0, 0};
+        int culling = -1;
+        for (size_t d = 0; d < frame.visible.draws.size(); ++d) {
+          const DrawItem& it = frame.visible.draws[d];
           glBindVertexArray(it.mesh->vao);
           const mesh::MeshData& m = *it.mesh->data;
-          for (const mesh::Submesh& sm : m.submeshes) {
-            glm::vec4 color(0.8f, 0.8f, 0.8f, 1.0f);
-            GLuint tex = 0;
-            if (sm.material >= 0 && size_t(sm.material) < m.materials.size()) {
-              const mesh::Material& mat = m.materials[size_t(sm.material)];
-              color = mat.baseColor;
-              if (mat.diffuseTexture >= 0 && size_t(mat.diffuseTexture) < it.mesh->textures.size() &&
-                  it.mesh->hasUvs)
-                tex = it.mesh->textures[size_t(mat.diffuseTexture)];
+          for (size_t s = 0; s < m.submeshes.size(); ++s) {
+            const mesh::Submesh& sm = m.submeshes[s];
+            const DrawMaterial& mat = frame.res.materials.forDraw(d, s);
+            GlProgram& p = programFor(mat.shading);
+            if (&p != current) (current = &p)->use();
+            p.set("uMaterial", unsigned(mat.index));
+            for (unsigned u = 0; u < 3; ++u)
+              if (mat.textures[u] && mat.textures[u] != bound[u]) glBindTextureUnit(kMaterialTextureUnit + u, bound[u] = mat.textures[u]);
+            // One-sided materials cull their back faces; scans are seen from both sides.
+            if (int(!mat.twoSided) != culling) {
+              culling = int(!mat.twoSided);
+              culling ? glEnable(GL_CULL_FACE) : glDisable(GL_CULL_FACE);
             }
-            p.set("uBaseColor", color);
-            p.set("uHasTexture", tex != 0);
-            if (tex && tex != bound) glBindTextureUnit(0, bound = tex);
             glDrawElementsInstancedBaseInstance(
                 GL_TRIANGLES, GLsizei(sm.indexCount), GL_UNSIGNED_INT,
                 reinterpret_cast<const void*>(uintptr_t(sm.firstIndex) * sizeof(uint32_t)), 1, it.object);
@@ -52,7 +74,8 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
           }
           ++frame.stats.instancesDrawn;
         }
-        glBindTextureUnit(0, 0);
+        glDisable(GL_CULL_FACE);
+        for (unsigned u = 0; u < 3; ++u) glBindTextureUnit(kMaterialTextureUnit + u, 0);
       });
 }
 

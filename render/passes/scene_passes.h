@@ -12,6 +12,11 @@ struct SceneTargets {
   int samples = 1;
 };
 
+// The mesh program of a shading mode (shaders/mesh.frag's variants); built
+// on first use, so a frame with no Gouraud material builds no Gouraud program.
+gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode);
+GlProgram& meshProgram(RenderResources& res, scene::ShadingMode mode);
+
 // Creates the view's scene targets, clears them, draws the visible meshes.
 SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewContext& view);
 // Draws the visible terrains into `targets` (only added when there are any).
