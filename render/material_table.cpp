@@ -149,9 +149,14 @@ void MaterialTable::build(const scene::SceneState& state, const VisibleSet& visi
           dm.index = uint32_t(block_.size());
           dm.shading = m->shading;
           dm.twoSided = m->twoSided;
+          const bool perPixel = m->shading != scene::ShadingMode::Gouraud;
+          dm.normalMap = perPixel && dm.textures[1] != 0;
+          dm.parallax = perPixel && dm.textures[2] != 0 && m->heightScale > 0.0f;
           block_.push_back(g);
           found = byId_.emplace(id, dm).first;
         }
+        // Tangents only for meshes a normal- or height-mapped material draws.
+        if (found->second.normalMap || found->second.parallax) meshes.addTangents(*it.mesh);
         perDraw_[d].push_back(found->second);
         continue;
       }

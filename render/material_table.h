@@ -31,6 +31,10 @@ struct DrawMaterial {
   GLuint textures[3] = {0, 0, 0};      // base colour, normal map, height map
   scene::ShadingMode shading = scene::ShadingMode::Phong;
   bool twoSided = true;
+  // Program variants (HAS_NORMAL_MAP, HAS_PARALLAX): only with a drawable
+  // map, never with Gouraud shading (lit per vertex, before any map).
+  bool normalMap = false;
+  bool parallax = false;
 };
 
 class MaterialTable {

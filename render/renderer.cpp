@@ -289,6 +289,7 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
   if (const size_t m = res.meshes.gpuBytes()) out.push_back({"meshes", "meshes", m, false});
   if (const size_t t = res.terrain.gpuBytes()) out.push_back({"terrains", "terrains", t, false});
   if (const size_t t = res.materials.gpuBytes()) out.push_back({"material_textures", "textures", t, false});
+  if (const size_t t = res.meshes.tangentBytes()) out.push_back({"mesh_tangents", "buffer", t, false});
   return out;
 }
 

@@ -75,6 +75,10 @@ struct RenderOptions {
   const RenderView* lodView = nullptr;
   bool passTimings = false;      // GPU timestamps per pass; waits for them (stats, benchmarks)
   bool keepDepth = false;        // keep a single-sample depth for readDepth()
+  // Meshes write their shading normal (world axes, after normal and
+  // parallax mapping) instead of a colour: read it with keepHdr/readHdr
+  // (tests of the maps). Gouraud materials are not affected.
+  bool debugShadingNormal = false;
 };
 
 // One view of a frame and the framebuffer it ends in.

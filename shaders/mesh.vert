@@ -17,6 +17,10 @@ layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
 layout(location = 7) in uint aObject;  // per instance: index into objects[]
+#ifdef HAS_TANGENTS
+layout(location = 3) in vec4 aTangent;  // mesh/tangents.h; only meshes with normal or height maps have them
+out vec4 vTangent;
+#endif
 
 out vec3 vEyePos;
 out vec3 vNormal;
@@ -30,6 +34,9 @@ void main() {
   vNormal = mat3(o.normalMatrix) * aNormal;
   vUv = aUv;
   vObject = aObject;
+#ifdef HAS_TANGENTS
+  vTangent = vec4(mat3(o.model) * aTangent.xyz, aTangent.w);
+#endif
   gl_Position = view.projection * (view.viewRotation * vec4(p, 1.0));
 #ifdef SHADING_GOURAUD
   Material m = materials[uMaterial];

@@ -4,17 +4,17 @@
 
 namespace hs::render {
 
-GlProgram& meshProgram(RenderResources& res, scene::ShadingMode mode) {
-  return res.program(meshProgramDesc(mode));
-}
-
-gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode) {
-  switch (mode) {
-    case scene::ShadingMode::Gouraud: return {"mesh.vert", "mesh.frag", "", {"SHADING_GOURAUD"}};
-    case scene::ShadingMode::Flat: return {"mesh.vert", "mesh.frag", "", {"SHADING_FLAT"}};
-    case scene::ShadingMode::Phong: break;
+gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode, bool normalMap, bool parallax, bool debugNormal) {
+  gl::ProgramDesc d{"mesh.vert", "mesh.frag", "", {}};
+  if (mode == scene::ShadingMode::Gouraud) d.defines.push_back("SHADING_GOURAUD");
+  if (mode == scene::ShadingMode::Flat) d.defines.push_back("SHADING_FLAT");
+  if (mode != scene::ShadingMode::Gouraud) {
+    if (normalMap || parallax) d.defines.push_back("HAS_TANGENTS");
+    if (normalMap) d.defines.push_back("HAS_NORMAL_MAP");
+    if (parallax) d.defines.push_back("HAS_PARALLAX");
+    if (debugNormal) d.defines.push_back("DEBUG_SHADING_NORMAL");
   }
-  return {"mesh.vert", "mesh.frag", "", {}};
+  return d;
 }
 
 SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewContext& v) {
@@ -40,10 +40,11 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
         frame.res.bindView(index);
         // One program per shading mode a material uses (shaders/mesh.frag's
         // variants), built on first use: none for modes nobody uses.
-        GlProgram* programs[3] = {nullptr, nullptr, nullptr};
-        auto programFor = [&](scene::ShadingMode mode) -> GlProgram& {
-          GlProgram*& p = programs[int(mode)];
-          if (!p) p = &meshProgram(frame.res, mode);
+        GlProgram* programs[3][2][2] = {};
+        const bool debugNormal = frame.options.debugShadingNormal;
+        auto programFor = [&](const DrawMaterial& mat) -> GlProgram& {
+          GlProgram*& p = programs[int(mat.shading)][mat.normalMap][mat.parallax];
+          if (!p) p = &frame.res.program(meshProgramDesc(mat.shading, mat.normalMap, mat.parallax, debugNormal));
           return *p;
         };
         GlProgram* current = nullptr;
@@ -56,7 +57,7 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
           for (size_t s = 0; s < m.submeshes.size(); ++s) {
             const mesh::Submesh& sm = m.submeshes[s];
             const DrawMaterial& mat = frame.res.materials.forDraw(d, s);
-            GlProgram& p = programFor(mat.shading);
+            GlProgram& p = programFor(mat);
             if (&p != current) (current = &p)->use();
             p.set("uMaterial", unsigned(mat.index));
             for (unsigned u = 0; u < 3; ++u)

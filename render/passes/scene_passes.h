@@ -14,8 +14,11 @@ struct SceneTargets {
 
 // The mesh program of a shading mode (shaders/mesh.frag's variants); built
 // on first use, so a frame with no Gouraud material builds no Gouraud program.
-gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode);
-GlProgram& meshProgram(RenderResources& res, scene::ShadingMode mode);
+// Normal and parallax mapping are variants too (HAS_NORMAL_MAP,
+// HAS_PARALLAX, with the tangent attribute), and so is the debug output of
+// the shading normal (DEBUG_SHADING_NORMAL, RenderOptions::debugShadingNormal).
+gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode, bool normalMap = false, bool parallax = false,
+                                bool debugNormal = false);
 
 // Creates the view's scene targets, clears them, draws the visible meshes.
 SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewContext& view);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "image_compare.h"
+#include "mesh/procedural_textures.h"
 #include "material_scenes.h"
 #include "render/offscreen_renderer.h"
 
@@ -97,6 +98,44 @@ mesh::MeshData facingPlane(float size) {
   // (x, y, 0) -> (x, 0, y) is a mirror: triangles counter-clockwise seen
   // from +Z are counter-clockwise seen from -Y afterwards.
   return p;
+}
+
+// A standalone texture in `state`, used by material `id` as `slot`
+// (0 base colour, 1 normal map, 2 height map).
+void addMaterialTexture(scene::SceneState& state, scene::MaterialId id, int slot, const mesh::Texture& t,
+                        scene::TextureId tid) {
+  scene::TextureAsset ta;
+  ta.id = tid;
+  ta.name = t.name;
+  ta.srgb = slot == 0;
+  ta.contentHash = tid;  // any value that stays the same: the renderer keys its upload by it
+  ta.image = std::make_shared<const mesh::Texture>(t);
+  state.textures[tid] = ta;
+  scene::Material& m = state.materials.at(id);
+  (slot == 0 ? m.baseColorTexture : slot == 1 ? m.normalMap : m.heightMap) = tid;
+}
+
+// Height h(x, y) = kAmp sin(2 pi x) cos(2 pi y) on the 2 x 2 m plane, and its normal.
+constexpr double kAmp = 0.04, kTwoPi = 6.283185307179586;
+glm::dvec3 bumpNormal(double x, double y) {
+  const double hx = kAmp * kTwoPi * std::cos(kTwoPi * x) * std::cos(kTwoPi * y);
+  const double hy = -kAmp * kTwoPi * std::sin(kTwoPi * x) * std::sin(kTwoPi * y);
+  return glm::normalize(glm::dvec3(-hx, -hy, 1.0));
+}
+
+// The normal map of that bump over the plane (u along +x, v along -y).
+mesh::Texture bumpNormalMap(int size) {
+  mesh::Texture t;
+  t.name = "analytic bumps";
+  t.width = t.height = size;
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const double u = (i + 0.5) / size, v = (j + 0.5) / size;
+      const glm::dvec3 n = bumpNormal((u - 0.5) * 2.0, (0.5 - v) * 2.0);
+      for (int c = 0; c < 3; ++c) t.rgba.push_back(uint8_t(std::lround((n[c] * 0.5 + 0.5) * 255.0)));
+      t.rgba.push_back(255);
+    }
+  return t;
 }
 
 }  // namespace
@@ -268,6 +307,92 @@ class TestMaterialRender : public QObject {
       if (twoSided) QVERIFY2(std::abs(c - m.baseColor.r) < 2e-3f, qPrintable(QString::number(c)));
       else QVERIFY2(c < 1e-3f, qPrintable(QString::number(c)));
     }
+  }
+
+  void normalMapGivesTheAnalyticNormals() {
+    scene::Material m = modelMaterial(LightingModel::Lambert);
+    test::MaterialScene ms = test::materialScene(mesh::gridPlane(2.0f, 4), m, 200);
+    addMaterialTexture(ms.state, ms.material, 1, bumpNormalMap(256), 1);
+    // Straight down on the plane (the identity looks along -Z with +Y up).
+    ms.view.eye = {0.0, 0.0, 2.6};
+    ms.view.orientation = glm::dquat(1.0, 0.0, 0.0, 0.0);
+    render::RenderOptions debug;
+    debug.debugShadingNormal = true;
+    const hs::Image n = r_.render(ms.state, ms.view, true, nullptr, debug);
+    const double t = std::tan(ms.view.fovY * 0.5);
+    double worstDeg = 0.0, sumDeg = 0.0;
+    int count = 0;
+    for (int y = 8; y < 200; y += 8)
+      for (int x = 8; x < 200; x += 8) {
+        // Where the pixel's ray meets the plane z = 0.
+        const double wx = (2.0 * (x + 0.5) / 200 - 1.0) * t * 2.6, wy = (1.0 - 2.0 * (y + 0.5) / 200) * t * 2.6;
+        if (std::abs(wx) > 0.95 || std::abs(wy) > 0.95) continue;
+        const glm::dvec3 want = bumpNormal(wx, wy), got = glm::normalize(glm::dvec3(hdrAt(n, x, y)));
+        const double deg = glm::degrees(std::acos(std::clamp(glm::dot(want, got), -1.0, 1.0)));
+        worstDeg = std::max(worstDeg, deg);
+        sumDeg += deg;
+        ++count;
+      }
+    QVERIFY(count > 300);
+    // 8-bit texels and bilinear filtering of a map at 128 texels per metre.
+    QVERIFY2(worstDeg < 2.0 && sumDeg / count < 0.6,
+             qPrintable(QString("worst %1 deg, mean %2 deg over %3 pixels").arg(worstDeg).arg(sumDeg / count).arg(count)));
+    // Strength 0: the flat plane's own normal.
+    ms.state.materials.at(ms.material).normalStrength = 0.0f;
+    const glm::vec3 flat = hdrAt(r_.render(ms.state, ms.view, true, nullptr, debug), 60, 70);
+    QVERIFY2(glm::length(flat - glm::vec3(0, 0, 1)) < 2e-3f, qPrintable(QString("%1 %2 %3").arg(flat.x).arg(flat.y).arg(flat.z)));
+  }
+
+  void tangentsOnlyForMeshesWithMaps() {
+    auto tangentBytes = [&] {
+      size_t b = 0;
+      for (const auto& a : r_.renderer().resourceRegistry())
+        if (a.name == "mesh_tangents") b += a.bytes;
+      return b;
+    };
+    r_.renderer().shutdown();
+    std::string error;
+    QVERIFY2(r_.initialize(error), error.c_str());
+    scene::Material m = modelMaterial(LightingModel::Lambert);
+    test::MaterialScene plain = test::materialScene(mesh::uvSphere(1.0f, 32, 16), m, 64);
+    r_.render(plain.state, plain.view);
+    QCOMPARE(tangentBytes(), size_t(0));
+    test::MaterialScene mapped = test::materialScene(mesh::uvSphere(1.0f, 32, 16), m, 64);
+    addMaterialTexture(mapped.state, mapped.material, 1, bumpNormalMap(32), 1);
+    r_.render(mapped.state, mapped.view);
+    // One vec4 per vertex of the sphere (33 x 17).
+    QCOMPARE(tangentBytes(), size_t(33 * 17 * 16));
+  }
+
+  void parallaxChangesTheRelief() {
+    // Bricks on a wall seen at 60 degrees from its normal: the same normal
+    // map with and without parallax occlusion mapping.
+    const mesh::Texture height = mesh::brickHeightMap(256, 8, 4);
+    const mesh::Texture normals = mesh::normalMapFromHeight(height, 0.03f);
+    scene::Material m = modelMaterial(LightingModel::Pbr);
+    m.twoSided = true;
+    m.heightScale = 0.0f;
+    test::MaterialScene ms = test::materialScene(mesh::gridPlane(2.0f, 1), m, 200);
+    addMaterialTexture(ms.state, ms.material, 0, mesh::tintByHeight(height, {0.25f, 0.23f, 0.2f}, {0.55f, 0.2f, 0.12f}), 1);
+    addMaterialTexture(ms.state, ms.material, 1, normals, 2);
+    addMaterialTexture(ms.state, ms.material, 2, height, 3);
+    ms.view.eye = {0.0, -1.5, 0.9};
+    ms.view.orientation = test::lookFrom(ms.view.eye, {0, 0, 0}).rotation;
+    ms.view.fovY = glm::radians(50.0);
+    const hs::Image flat = r_.render(ms.state, ms.view);
+    golden("normal_map_bricks", flat);
+    ms.state.materials.at(ms.material).heightScale = 0.06f;  // 6 cm of relief on 25 cm courses
+    const hs::Image relief = r_.render(ms.state, ms.view);
+    golden("parallax_bricks", relief);
+    const auto cmp = test::compareImages(toTest(relief), toTest(flat), 12);
+    QVERIFY2(cmp.differingShare > 0.10, cmp.summary().c_str());
+    // Parallax moves what is seen, it does not darken the picture: the mean stays close.
+    double a = 0, b = 0;
+    for (size_t i = 0; i < flat.rgba8.size(); i += 4) {
+      a += flat.rgba8[i];
+      b += relief.rgba8[i];
+    }
+    QVERIFY2(std::abs(a - b) / a < 0.1, qPrintable(QString("%1 %2").arg(a).arg(b)));
   }
 
   void texturesThatCannotBeDrawnAreReported_data() {
