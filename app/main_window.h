@@ -42,6 +42,7 @@ class Prompts;
 class PropertyPanel;
 class Selection;
 class SettingsPanel;
+class MaterialsPanel;
 class StatusBarInfo;
 class ViewportWidget;
 
@@ -57,6 +58,7 @@ class MainWindow : public QMainWindow {
   OutlinerPanel* outliner() const { return outliner_; }
   PropertyPanel* properties() const { return properties_; }
   SettingsPanel* sceneSettings() const { return settings_; }
+  MaterialsPanel* materialsPanel() const { return materials_; }
   MessagePanel* messages() const { return messages_; }
   Autosave* autosave() const { return autosave_; }
   // The timeline side (main_window_timeline.cpp).
@@ -163,6 +165,7 @@ class MainWindow : public QMainWindow {
   OutlinerPanel* outliner_ = nullptr;
   PropertyPanel* properties_ = nullptr;
   SettingsPanel* settings_ = nullptr;
+  MaterialsPanel* materials_ = nullptr;
   MessagePanel* messages_ = nullptr;
   StatusBarInfo* statusInfo_ = nullptr;
   Autosave* autosave_ = nullptr;

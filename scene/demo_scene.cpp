@@ -8,6 +8,7 @@
 #include "meshproc/mesh_process.h"
 #include "scene/asset_reports.h"
 #include "scene/demo_terrain.h"
+#include "scene/mesh_materials.h"
 #include "scene/transform.h"
 
 namespace hs::scene {
@@ -196,6 +197,7 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   const mesh::Bounds b = bunny.mesh->bounds();
   asset.data = std::make_shared<const mesh::MeshData>(std::move(*bunny.mesh));
   s.assets.emplace(asset.id, asset);
+  addMeshMaterials(s, asset.id);  // "Stanford Bunny / default", as an import makes
 
   Entity sun;
   sun.name = "Sun";
