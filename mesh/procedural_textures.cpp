@@ -85,6 +85,40 @@ Texture noiseHeightMap(int size, int octaves, uint32_t seed) {
   return grey(size, h, "noise (height)");
 }
 
+Texture stoneHeightMap(int size, int cells, uint32_t seed) {
+  size = std::max(size, 4);
+  cells = std::max(cells, 2);
+  const Texture rough = noiseHeightMap(size, 5, seed + 101u);
+  std::vector<float> h(size_t(size) * size_t(size));
+  auto feature = [&](int cx, int cy) {
+    const int wx = (cx % cells + cells) % cells, wy = (cy % cells + cells) % cells;
+    const uint32_t r = hash(uint32_t(wx), uint32_t(wy), seed);
+    return glm::vec2(float(cx) + 0.15f + 0.7f * float(r & 0xff) / 255.0f,
+                     float(cy) + 0.15f + 0.7f * float((r >> 8) & 0xff) / 255.0f);
+  };
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const glm::vec2 p((float(x) + 0.5f) / float(size) * float(cells), (float(y) + 0.5f) / float(size) * float(cells));
+      float f1 = 1e9f, f2 = 1e9f;  // nearest and second-nearest stone centres (Worley)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const float d = glm::length(p - feature(int(std::floor(p.x)) + dx, int(std::floor(p.y)) + dy));
+          if (d < f1) {
+            f2 = f1;
+            f1 = d;
+          } else if (d < f2) {
+            f2 = d;
+          }
+        }
+      // Distance to the border between two stones: a dome that falls into the crevice.
+      const float edge = smoothstep01((f2 - f1) / 0.45f);
+      const float dome = std::sqrt(edge);
+      const float grain = float(rough.rgba[(size_t(y) * size_t(size) + size_t(x)) * 4]) / 255.0f;
+      h[size_t(y) * size_t(size) + size_t(x)] = dome * (0.8f + 0.2f * grain);
+    }
+  return grey(size, h, "stones (height)");
+}
+
 Texture normalMapFromHeight(const Texture& height, float relief) {
   Texture t;
   t.name = "normals of " + height.name;

@@ -17,6 +17,11 @@ Texture brickHeightMap(int size, int rows, int columns, float bevel = 0.12f);
 // Smooth value noise in octaves, tiling, 0..1 (rock-like relief).
 Texture noiseHeightMap(int size, int octaves, uint32_t seed);
 
+// Stones: a tiling cellular pattern (`cells` x `cells` jittered stones),
+// each stone a rounded dome (white top) with dark crevices between them,
+// roughened by value noise.
+Texture stoneHeightMap(int size, int cells, uint32_t seed);
+
 // The tangent-space normal map of a height map (OpenGL convention: red
 // +u, green the image's up, blue out of the surface), by central
 // differences with wrap-around. `relief` is the height of white over the

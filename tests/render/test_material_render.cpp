@@ -10,6 +10,7 @@
 #include "mesh/procedural_textures.h"
 #include "material_scenes.h"
 #include "render/offscreen_renderer.h"
+#include "scene/demo_scene.h"
 
 using namespace hs;
 using scene::LightingModel;
@@ -393,6 +394,40 @@ class TestMaterialRender : public QObject {
       b += relief.rgba8[i];
     }
     QVERIFY2(std::abs(a - b) / a < 0.1, qPrintable(QString("%1 %2").arg(a).arg(b)));
+  }
+
+  void demoHasANormalMappedAndAParallaxMappedMaterial() {
+    std::string error;
+    auto demo = scene::buildDemoScene(error);
+    QVERIFY2(demo, error.c_str());
+    const scene::MaterialId bricks = demo->findMaterialByName("Brick paving (normal map) / surface");
+    const scene::MaterialId rock = demo->findMaterialByName("Rock slab (parallax) / surface");
+    QVERIFY(bricks != scene::kNoMaterial && rock != scene::kNoMaterial);
+    QVERIFY(demo->materials.at(bricks).normalMap != scene::kNoTexture);
+    QVERIFY(demo->materials.at(rock).heightMap != scene::kNoTexture && demo->materials.at(rock).heightScale > 0.0f);
+    // Standing in the clearing, looking south at the two slabs on the ground.
+    render::RenderView v;
+    v.width = 320;
+    v.height = 180;
+    v.fovY = glm::radians(45.0);
+    v.eye = {0.0, -7.5, 1.6};
+    v.orientation = test::lookFrom(v.eye, {0.0, -12.0, 0.0}).rotation;
+    demo->settings.antialiasing = scene::Antialiasing::None;
+    demo->settings.showGrid = false;
+    r_.renderer().takeMaterialProblems();
+    const hs::Image withParallax = r_.render(*demo, v);
+    QVERIFY2(r_.renderer().takeMaterialProblems().empty(), "every texture of the samples draws");
+    golden("demo_detail_samples", withParallax, {40, 6, 0.01});
+    // Their tangents, and only theirs: 2 slabs x 4 vertices (the bunnies have no maps).
+    size_t tangents = 0;
+    for (const auto& a : r_.renderer().resourceRegistry())
+      if (a.name == "mesh_tangents") tangents += a.bytes;
+    QCOMPARE(tangents, size_t(2 * 4 * 16));
+    // The rock's relief is parallax's doing: without it, a visibly different picture.
+    demo->materials.at(rock).heightScale = 0.0f;
+    // (The slab covers about a sixth of the view.)
+    const auto cmp = test::compareImages(toTest(r_.render(*demo, v)), toTest(withParallax), 12);
+    QVERIFY2(cmp.differingShare > 0.015 && cmp.maxChannelDiff > 60, cmp.summary().c_str());
   }
 
   void texturesThatCannotBeDrawnAreReported_data() {
