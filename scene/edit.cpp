@@ -149,12 +149,36 @@ AssetId Edit::addAsset(MeshAsset asset) {
 
 void Edit::removeAsset(AssetId id) {
   auto it = patch_.assets.find(id);
-  if (it != patch_.assets.end()) {
+  if (it != patch_.assets.end())
     it->second.after.reset();
-    return;
-  }
-  if (const MeshAsset* a = doc_.state().findAsset(id))
+  else if (const MeshAsset* a = doc_.state().findAsset(id))
     patch_.assets.emplace(id, BeforeAfter<MeshAsset>{*a, std::nullopt});
+  // Its materials and the textures that live in its mesh go with it (and
+  // come back with undo); other materials drop references to those textures.
+  std::vector<TextureId> gone;
+  for (const auto& [tid, t] : doc_.state().textures)
+    if (t.asset == id) gone.push_back(tid);
+  for (const auto& [tid, ba] : patch_.textures)
+    if (ba.after && ba.after->asset == id) gone.push_back(tid);
+  for (TextureId t : gone) removeTexture(t);
+  std::vector<MaterialId> materials;
+  for (const auto& [mid, m] : doc_.state().materials) materials.push_back(mid);
+  for (const auto& [mid, ba] : patch_.materials)
+    if (ba.after) materials.push_back(mid);
+  for (MaterialId mid : materials) {
+    const Material* m = peekMaterial(mid);
+    if (!m) continue;
+    if (m->asset == id) {
+      removeMaterial(mid);
+      continue;
+    }
+    for (TextureId t : gone)
+      if (m->baseColorTexture == t || m->normalMap == t || m->heightMap == t) {
+        Material& w = material(mid);
+        for (TextureId* ref : {&w.baseColorTexture, &w.normalMap, &w.heightMap})
+          if (*ref == t) *ref = kNoTexture;
+      }
+  }
 }
 
 TerrainId Edit::addTerrain(TerrainAsset terrain) {

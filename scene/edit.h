@@ -44,6 +44,8 @@ class Edit {
   EntityId duplicate(EntityId id);
 
   AssetId addAsset(MeshAsset asset);
+  // Removes the asset with its own materials and the textures of its mesh
+  // (other materials lose their references to those textures).
   void removeAsset(AssetId id);
   // Terrains: add (assigns an id when 0), remove, or change a working copy
   // of the small values (name, materials, rules). Tiles are shared, not

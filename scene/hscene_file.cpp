@@ -48,6 +48,22 @@ bool hasSqliteHeader(const std::string& path) {
   return f.gcount() == 16 && std::memcmp(header, "SQLite format 3\0", 16) == 0;
 }
 
+// The size the database's header says it has (page size x page count),
+// or 0 when the header does not say (the count is only valid when its
+// "version-valid-for" matches the change counter). A file shorter than
+// that was cut: SQLite reads the missing tail as zeros, which a blob whose
+// last page ends in unused zero bytes would not notice.
+uint64_t sqliteDeclaredSize(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  unsigned char h[100] = {};
+  f.read(reinterpret_cast<char*>(h), sizeof h);
+  if (f.gcount() != 100) return 0;
+  auto be32 = [&](int o) { return uint32_t(h[o]) << 24 | uint32_t(h[o + 1]) << 16 | uint32_t(h[o + 2]) << 8 | h[o + 3]; };
+  const uint32_t pageSize = h[16] == 0 && h[17] == 1 ? 65536u : (uint32_t(h[16]) << 8 | h[17]);
+  if (be32(92) != be32(24)) return 0;
+  return uint64_t(pageSize) * be32(28);
+}
+
 // meta.format_version as a number: INT_MAX for a whole number too large for
 // an int (a file from far in the future), -1 for text that is no number.
 int parseVersion(const std::string& text) {
@@ -273,6 +289,12 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
   }
   if (!hasSqliteHeader(path)) {
     error = path + ": not a Hybridscape scene (it is not an SQLite database)";
+    return std::nullopt;
+  }
+  if (const uint64_t declared = sqliteDeclaredSize(path), actual = fs::file_size(path, ec);
+      declared > 0 && actual < declared) {
+    error = path + ": the scene file is cut short (" + std::to_string(actual) + " of " + std::to_string(declared) +
+            " bytes) and was not opened (damaged file)";
     return std::nullopt;
   }
   SqliteDb db;

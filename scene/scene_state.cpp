@@ -144,6 +144,9 @@ std::string SceneState::validate() const {
     for (MaterialId m : a.materialSlots)
       if (m != kNoMaterial && !findMaterial(m))
         return "mesh asset " + std::to_string(id) + " uses missing material " + std::to_string(m);
+  for (const auto& [id, t] : textures)
+    if (!t.standalone() && !findAsset(t.asset))
+      return "texture " + std::to_string(id) + " ('" + t.name + "') lives in missing mesh asset " + std::to_string(t.asset);
   for (const auto& [id, m] : materials)
     for (TextureId t : {m.baseColorTexture, m.normalMap, m.heightMap})
       if (t != kNoTexture && !findTexture(t))

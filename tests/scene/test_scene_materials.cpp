@@ -255,6 +255,31 @@ class TestSceneMaterials : public QObject {
     }
   }
 
+  void removingAnAssetTakesItsMaterialsAndTextures() {
+    Document doc;
+    const EntityId wall = importQuad(doc, "Wall");
+    importQuad(doc, "Other");
+    const AssetId asset = doc.state().find(wall)->mesh->mesh;
+    // Another asset's material borrows the wall's brick texture.
+    const TextureId brick = doc.state().materials.at(doc.state().findMaterialByName("Wall / brick")).baseColorTexture;
+    const MaterialId other = doc.state().findMaterialByName("Other / red");
+    std::string error;
+    QVERIFY(ops::setMaterialField(doc, other, field("normal_map"), FieldValue(int64_t(brick)), error));
+    const std::string before = canonicalJson(doc.state());
+    {
+      Edit e(doc, "Delete");
+      e.removeEntity(wall);
+      e.removeAsset(asset);
+      QVERIFY(e.commit());
+    }
+    QCOMPARE(doc.state().materials.size(), size_t(3));  // Other's three
+    QCOMPARE(doc.state().textures.size(), size_t(1));   // Other's brick
+    QCOMPARE(doc.state().materials.at(other).normalMap, kNoTexture);
+    QCOMPARE(doc.state().validate(), std::string());
+    doc.undoStack()->undo();
+    QCOMPARE(canonicalJson(doc.state()), before);
+  }
+
   void materialsMissingFromTheirAssetAreRefusedOnLoad() {
     Document doc;
     importQuad(doc, "Wall");
