@@ -32,6 +32,7 @@
 #include "app/property_panel.h"
 #include "app/recent_files.h"
 #include "app/selection.h"
+#include "app/materials_panel.h"
 #include "app/settings_panel.h"
 #include "app/status_bar.h"
 #include "app/timeline_clock.h"
@@ -144,6 +145,17 @@ void MainWindow::createDocks() {
   terrain_ = new TerrainPanel(*this);
   tabifyDockWidget(settingsDock, dock("Terrain", "terrainDock", terrain_, Qt::RightDockWidgetArea));
   viewport_->setTerrainTool(terrain_->tool());
+  // Materials: a tab beside them too, opened from a mesh's properties.
+  materials_ = new MaterialsPanel(doc_, this);
+  QDockWidget* materialsDock = dock("Materials", "materialsDock", materials_, Qt::RightDockWidgetArea);
+  tabifyDockWidget(settingsDock, materialsDock);
+  connect(materials_, &MaterialsPanel::problem, this, [this](const QString& m) { messages_->add(MessageLevel::Warning, m); });
+  properties_->setMaterialsHook([this, materialsDock](scene::AssetId asset) {
+    const scene::MeshAsset* a = doc_.state().findAsset(asset);
+    if (a && !a->materialSlots.empty()) materials_->select(a->materialSlots.front());
+    materialsDock->show();
+    materialsDock->raise();
+  });
   // The bottom (Timeline, Messages) spans the whole width, as Blender's
   // timeline does: its tool row then never squeezes the side panels.
   setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);

@@ -44,6 +44,7 @@ class Prompts;
 class PropertyPanel;
 class Selection;
 class SettingsPanel;
+class MaterialsPanel;
 class StatusBarInfo;
 class ViewportWidget;
 
@@ -59,6 +60,7 @@ class MainWindow : public QMainWindow {
   OutlinerPanel* outliner() const { return outliner_; }
   PropertyPanel* properties() const { return properties_; }
   SettingsPanel* sceneSettings() const { return settings_; }
+  MaterialsPanel* materialsPanel() const { return materials_; }
   MessagePanel* messages() const { return messages_; }
   Autosave* autosave() const { return autosave_; }
   // The timeline side (main_window_timeline.cpp).
@@ -180,6 +182,7 @@ class MainWindow : public QMainWindow {
   OutlinerPanel* outliner_ = nullptr;
   PropertyPanel* properties_ = nullptr;
   SettingsPanel* settings_ = nullptr;
+  MaterialsPanel* materials_ = nullptr;
   MessagePanel* messages_ = nullptr;
   StatusBarInfo* statusInfo_ = nullptr;
   Autosave* autosave_ = nullptr;

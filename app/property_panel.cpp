@@ -144,6 +144,14 @@ QWidget* PropertyPanel::buildSection(const scene::ComponentInfo& c, const scene:
       if (a) showErrorReport(this, QString::fromStdString(a->name), a->processReport);
     });
     form->addRow(meshReport_);
+    auto* materials = new QPushButton("Materials…", body);
+    materials->setObjectName("meshMaterials");
+    materials->setToolTip("Edit this mesh's materials (colour, maps, lighting model) in the Materials panel");
+    connect(materials, &QPushButton::clicked, this, [this] {
+      const scene::Entity* ent = doc_.state().find(selection_.primary());
+      if (ent && ent->mesh && materialsHook_) materialsHook_(ent->mesh->mesh);
+    });
+    form->addRow(materials);
   }
   v->addWidget(body);
   body->setVisible(toggle->isChecked());

@@ -48,6 +48,9 @@ class PropertyPanel : public QWidget {
   // component's terrain row calls this with the entity (set by the Terrain
   // panel, which owns the dialog; terrain_component_picker.h).
   void setNewTerrainHook(std::function<void(scene::EntityId showOn)> hook);
+  // Mesh components: "Materials…" calls this with the mesh's asset (set by
+  // the main window: shows the Materials panel on the asset's first material).
+  void setMaterialsHook(std::function<void(scene::AssetId asset)> hook) { materialsHook_ = std::move(hook); }
 
  private:
   struct Row {
@@ -55,6 +58,7 @@ class PropertyPanel : public QWidget {
     const scene::EntityField* field;
     FieldEditor* editor;
   };
+  std::function<void(scene::AssetId)> materialsHook_;
   void onDocumentChanged(const scene::ChangeSet& changes);
   // The structure (which sections) depends on the primary entity and its components.
   std::string structureKey() const;

@@ -1,6 +1,7 @@
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "cli/material_info.h"
 #include "cli/operation_options.h"
 #include "cli/scene_open.h"
 #include "cli/terrain_info.h"
@@ -158,6 +159,7 @@ Json infoJson(const std::string& path, const scene::SceneState& s) {
     assets.push_back(std::move(ja));
   }
   o["assets"] = std::move(assets);
+  o["materials"] = materialsInfoJson(s).at("materials");
   Json cameras = Json::array();
   for (scene::EntityId id : s.cameras()) cameras.push_back(s.find(id)->name);
   o["cameras"] = std::move(cameras);
@@ -211,9 +213,9 @@ int runInfo(int argc, char** argv) {
     return 0;
   }
   std::printf("%s (scene format %d)\n", path.c_str(), scene::sceneFileVersion(path));
-  std::printf("entities: %zu  mesh assets: %zu  cameras: %zu  terrains: %zu  tracks: %zu\n", s->entities.size(),
-              s->assets.size(), s->cameras().size(), scene::terrainEntities(*s, false).size(),
-              trackCount(s->sequence));
+  std::printf("entities: %zu  mesh assets: %zu  materials: %zu  textures: %zu  cameras: %zu  terrains: %zu  tracks: %zu\n",
+              s->entities.size(), s->assets.size(), s->materials.size(), s->textures.size(), s->cameras().size(),
+              scene::terrainEntities(*s, false).size(), trackCount(s->sequence));
   const scene::WorldBox box = scene::worldBounds(*s);
   if (!box.empty) {
     const glm::dvec3 size = box.size();
@@ -231,6 +233,12 @@ int runInfo(int argc, char** argv) {
     printLods(a);
     if (const std::string summary = scene::processReportSummary(a.processReport); !summary.empty())
       std::printf("    processed: %s\n", summary.c_str());
+  }
+  if (!s->materials.empty()) {
+    std::printf("materials (hybridscape-cli material list for their fields):\n");
+    const scene::MaterialField& model = *scene::findMaterialField("model");
+    for (const auto& [id, m] : s->materials)
+      std::printf("  %s  (%s)\n", m.name.c_str(), scene::formatFieldValue(model.type, model.get(m), model.enumNames).c_str());
   }
   printTerrainInfo(*s);
   printTracks(*s);

@@ -19,6 +19,7 @@ const std::vector<Command>& commands() {
       {"info", "show what a scene holds (--json for JSON)", runInfo},
       {"render", scene::renderOperation().summary.c_str(), runRender},
       {"set", "set an entity property or a scene setting", runSet},
+      {"material", "materials: list (--json), set <material> <field> <value>", runMaterial},
       {"terrain", "terrains: new, import (DEM), erode, paint-rules, export", runTerrain},
       {"mesh", "meshes: export (OBJ, PLY, GLB)", runMesh},
       {"key", sequencer::keyOperation().summary.c_str(), runKey},

@@ -22,6 +22,7 @@ int runImport(int argc, char** argv);
 int runInfo(int argc, char** argv);
 int runRender(int argc, char** argv);
 int runSet(int argc, char** argv);
+int runMaterial(int argc, char** argv);
 int runTerrain(int argc, char** argv);
 int runMesh(int argc, char** argv);
 int runKey(int argc, char** argv);

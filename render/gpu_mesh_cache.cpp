@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh/tangents.h"
+
 namespace hs::render {
 
 void GpuMesh::release() {
   if (vao) glDeleteVertexArrays(1, &vao);
   glDeleteBuffers(4, buffers);
+  if (tangents) glDeleteBuffers(1, &tangents);
+  tangents = 0;
+  tangentBytes = 0;
   if (ownsTextures && !textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
   vao = 0;
   textures.clear();
@@ -153,6 +158,30 @@ void GpuMeshCache::setObjectIndexBuffer(GLuint buffer) {
     for (auto& l : e.lods)
       if (l) bindObjectIndices(l->vao, buffer);
   }
+}
+
+void GpuMeshCache::addTangents(const GpuMesh& constMesh) {
+  if (constMesh.tangents || !constMesh.data) return;
+  // The cache owns every GpuMesh it hands out; draws see them const.
+  GpuMesh& g = const_cast<GpuMesh&>(constMesh);
+  const std::vector<glm::vec4> t = mesh::computeTangents(*g.data);
+  glCreateBuffers(1, &g.tangents);
+  glNamedBufferStorage(g.tangents, GLsizeiptr(t.size() * sizeof(glm::vec4)), t.data(), 0);
+  g.tangentBytes = t.size() * sizeof(glm::vec4);
+  glVertexArrayVertexBuffer(g.vao, 3, g.tangents, 0, sizeof(glm::vec4));
+  glVertexArrayAttribFormat(g.vao, 3, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(g.vao, 3, 3);
+  glEnableVertexArrayAttrib(g.vao, 3);
+}
+
+size_t GpuMeshCache::tangentBytes() const {
+  size_t n = 0;
+  for (const auto& [id, e] : meshes_) {
+    if (e.base) n += e.base->tangentBytes;
+    for (const auto& l : e.lods)
+      if (l) n += l->tangentBytes;
+  }
+  return n;
 }
 
 size_t GpuMeshCache::gpuBytes() const {

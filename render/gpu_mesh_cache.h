@@ -26,6 +26,10 @@ struct GpuMesh {
   size_t gpuBytes = 0;
   bool hasUvs = false;
   bool ownsTextures = true;  // false for LOD levels: `textures` are level 0's
+  // Attribute 3 (vec4, mesh/tangents.h), made only when a normal- or
+  // height-mapped material draws the mesh (GpuMeshCache::addTangents).
+  GLuint tangents = 0;
+  size_t tangentBytes = 0;
   void release();  // GL objects; not in a destructor, the context may be gone
 };
 
@@ -43,6 +47,11 @@ class GpuMeshCache {
   // object index of a draw: glDraw*BaseInstance picks it); set again when
   // the buffer grows.
   void setObjectIndexBuffer(GLuint buffer);
+  // Computes and uploads `mesh`'s tangents (attribute 3) if it has none yet.
+  void addTangents(const GpuMesh& mesh);
+  // Bytes of every tangent stream (the registry lists them apart: a scene
+  // without normal or height maps holds none).
+  size_t tangentBytes() const;
 
  private:
   struct Entry {

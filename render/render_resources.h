@@ -10,6 +10,7 @@
 #include "render/gl/gl_handle.h"
 #include "render/gl/shader_library.h"
 #include "render/gpu_mesh_cache.h"
+#include "render/material_table.h"
 #include "render/resource_pool.h"
 #include "render/terrain_pass.h"
 
@@ -28,6 +29,8 @@ struct RenderResources {
   gl::ShaderLibrary shaders;
   ResourcePool pool;
   GpuMeshCache meshes;
+  MaterialTable materials;      // the frame's materials and standalone textures
+  GrowingBuffer materialBlock;  // GpuMaterial[] at kMaterialBufferBinding
   TerrainPass terrain;  // runs only for scenes with a visible terrain
 
   GrowingBuffer frameBlock;     // FrameBlock

@@ -124,7 +124,6 @@ bool Renderer::initialize(std::string& error) {
   glVertexArrayAttribBinding(ov, 1, 0);
   glEnableVertexArrayAttrib(ov, 1);
   for (auto& t : d_->timers) t = gl::createQuery(GL_TIME_ELAPSED);
-  res.program({"mesh.vert", "mesh.frag", "", {}}).set("uAlbedo", 0);
   d_->ready = true;
   return true;
 }
@@ -175,6 +174,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   stats.instancesCulled = visible.culled;
   stats.instancesAtCoarserLod = visible.coarser;
   d.uploadFrameData(world, visible, settings, targets);
+  res.materials.build(state, visible, res.meshes, res.materialBlock);
 
   // Reversed-Z: depth 1 at the near plane, 0 at the far plane.
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -283,10 +283,13 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
     out.push_back({a.name, a.texture ? "texture" : "buffer", a.bytes, !a.persistent});
   const RenderResources& res = d_->res;
   const size_t frameBuffers = res.frameBlock.capacity + res.viewBlocks.capacity + res.lights.capacity +
-                              res.objects.capacity + res.objectIndices.capacity + res.overlayVertices.capacity;
+                              res.objects.capacity + res.objectIndices.capacity + res.overlayVertices.capacity +
+                              res.materialBlock.capacity;
   out.push_back({"frame_data", "buffer", frameBuffers, false});
   if (const size_t m = res.meshes.gpuBytes()) out.push_back({"meshes", "meshes", m, false});
   if (const size_t t = res.terrain.gpuBytes()) out.push_back({"terrains", "terrains", t, false});
+  if (const size_t t = res.materials.gpuBytes()) out.push_back({"material_textures", "textures", t, false});
+  if (const size_t t = res.meshes.tangentBytes()) out.push_back({"mesh_tangents", "buffer", t, false});
   return out;
 }
 
@@ -347,7 +350,10 @@ scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView&
   return id > 0 && id <= meshIds ? visible.entities[id - 1] : scene::kNoEntity;
 }
 
-void Renderer::collectGarbage(const scene::SceneState& state) { d_->res.meshes.collect(state); }
+void Renderer::collectGarbage(const scene::SceneState& state) {
+  d_->res.meshes.collect(state);
+  d_->res.materials.collect(state);
+}
 
 TerrainUpload Renderer::syncTerrain(const scene::TerrainData& data, bool measureGpu) {
   gl::Query query;
@@ -377,10 +383,13 @@ std::vector<std::string> Renderer::takeTerrainMaterialProblems() { return d_->re
 
 std::vector<std::string> Renderer::takeGlMessages() { return d_->debug.take(); }
 
+std::vector<std::string> Renderer::takeMaterialProblems() { return d_->res.materials.takeProblems(); }
+
 void Renderer::shutdown() {
   if (!d_->ready) return;
   d_->lastFrame.reset();
   d_->res.meshes.clear();
+  d_->res.materials.clear();
   d_->res.terrain.release();
   d_->res.pool.clear();
   d_->res.shaders.release();

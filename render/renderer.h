@@ -75,6 +75,10 @@ struct RenderOptions {
   const RenderView* lodView = nullptr;
   bool passTimings = false;      // GPU timestamps per pass; waits for them (stats, benchmarks)
   bool keepDepth = false;        // keep a single-sample depth for readDepth()
+  // Meshes write their shading normal (world axes, after normal and
+  // parallax mapping) instead of a colour: read it with keepHdr/readHdr
+  // (tests of the maps). Gouraud materials are not affected.
+  bool debugShadingNormal = false;
 };
 
 // One view of a frame and the framebuffer it ends in.
@@ -159,6 +163,10 @@ class Renderer {
   // OpenGL debug output since the last call (gl/gl_debug.h: debug builds,
   // or HS_GL_DEBUG set), one line each.
   std::vector<std::string> takeGlMessages();
+  // Material textures that could not be drawn (missing, empty, larger than
+  // the GPU allows, damaged, a grey normal map), each named by material and
+  // field and reported once; the frame draws without them (material_table.h).
+  std::vector<std::string> takeMaterialProblems();
 
   // Frees every GL object (call with the context current, before it goes).
   void shutdown();

@@ -49,7 +49,7 @@ VisibleSet buildVisibleSet(const RenderWorld& world, GpuMeshCache& cache, const 
     o.model = glm::mat4(rel);
     o.normalMatrix = glm::mat4(glm::mat3(glm::inverseTranspose(glm::dmat3(w))));
     o.tint = glm::vec4(inst.tint, 1.0f);
-    set.draws.push_back({uint32_t(set.objects.size()), g});
+    set.draws.push_back({uint32_t(set.objects.size()), g, inst.asset});
     set.objects.push_back(o);
     set.entities.push_back(inst.entity);
   }

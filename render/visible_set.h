@@ -20,6 +20,7 @@ class GpuMeshCache;
 struct DrawItem {
   uint32_t object = 0;   // index into VisibleSet::objects
   const GpuMesh* mesh = nullptr;
+  const scene::MeshAsset* asset = nullptr;  // its material slots (material_table.h)
 };
 
 struct VisibleSet {

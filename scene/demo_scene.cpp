@@ -7,7 +7,9 @@
 #include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
 #include "scene/asset_reports.h"
+#include "scene/demo_materials.h"
 #include "scene/demo_terrain.h"
+#include "scene/mesh_materials.h"
 #include "scene/transform.h"
 
 namespace hs::scene {
@@ -196,6 +198,7 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   const mesh::Bounds b = bunny.mesh->bounds();
   asset.data = std::make_shared<const mesh::MeshData>(std::move(*bunny.mesh));
   s.assets.emplace(asset.id, asset);
+  addMeshMaterials(s, asset.id);  // "Stanford Bunny / default", as an import makes
 
   Entity sun;
   sun.name = "Sun";
@@ -245,6 +248,8 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
 
   // The valley the bunnies stand in (flat where they are), added last too.
   if (!addDemoTerrain(s, error)) return std::nullopt;
+  // A normal-mapped and a parallax-mapped material, south of the bunnies.
+  addDemoDetailSamples(s);
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

@@ -40,6 +40,7 @@ ChangeSet describe(const ScenePatch& patch) {
   }
   if (patch.roots) c.hierarchy = true;
   c.assets = !patch.assets.empty();
+  c.materials = !patch.materials.empty() || !patch.textures.empty();
   for (const auto& [id, ba] : patch.terrains) c.terrains.push_back(id);
   c.settings = patch.settings.has_value();
   c.sequence = patch.sequence.has_value();
@@ -76,10 +77,12 @@ void Document::reset(SceneState state, const QString& filePath) {
   nextEntity_ = state_.maxEntityId() + 1;
   nextAsset_ = state_.maxAssetId() + 1;
   nextTerrain_ = state_.maxTerrainId() + 1;
+  nextMaterial_ = state_.maxMaterialId() + 1;
+  nextTexture_ = state_.maxTextureId() + 1;
   undo_.setClean();
   setFilePath(filePath);
   ChangeSet c;
-  c.reset = c.hierarchy = c.assets = c.settings = c.sequence = true;
+  c.reset = c.hierarchy = c.assets = c.materials = c.settings = c.sequence = true;
   emit changed(c);
   emit modifiedChanged(false);
 }

@@ -17,6 +17,7 @@ struct ChangeSet {
   std::vector<EntityId> entities;  // added, removed or modified
   bool hierarchy = false;          // entities added/removed/reparented/renamed
   bool assets = false;
+  bool materials = false;          // materials or textures added, removed or changed
   bool settings = false;
   bool sequence = false;           // tracks, keys, frame rate or range
   std::vector<TerrainId> terrains; // terrains whose values or tiles changed
@@ -48,6 +49,8 @@ class Document : public QObject {
   EntityId allocateEntityId() { return nextEntity_++; }
   AssetId allocateAssetId() { return nextAsset_++; }
   TerrainId allocateTerrainId() { return nextTerrain_++; }
+  MaterialId allocateMaterialId() { return nextMaterial_++; }
+  TextureId allocateTextureId() { return nextTexture_++; }
 
   // Terrain tile edits (scene/terrain_edits.h) and their undo memory cap.
   TerrainUndoBudget& terrainUndo() { return terrainUndo_; }
@@ -69,6 +72,8 @@ class Document : public QObject {
   EntityId nextEntity_ = 1;
   AssetId nextAsset_ = 1;
   TerrainId nextTerrain_ = 1;
+  MaterialId nextMaterial_ = 1;
+  TextureId nextTexture_ = 1;
   TerrainUndoBudget terrainUndo_;  // outlives undo_'s commands (cleared in ~Document)
 };
 

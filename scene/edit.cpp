@@ -149,12 +149,36 @@ AssetId Edit::addAsset(MeshAsset asset) {
 
 void Edit::removeAsset(AssetId id) {
   auto it = patch_.assets.find(id);
-  if (it != patch_.assets.end()) {
+  if (it != patch_.assets.end())
     it->second.after.reset();
-    return;
-  }
-  if (const MeshAsset* a = doc_.state().findAsset(id))
+  else if (const MeshAsset* a = doc_.state().findAsset(id))
     patch_.assets.emplace(id, BeforeAfter<MeshAsset>{*a, std::nullopt});
+  // Its materials and the textures that live in its mesh go with it (and
+  // come back with undo); other materials drop references to those textures.
+  std::vector<TextureId> gone;
+  for (const auto& [tid, t] : doc_.state().textures)
+    if (t.asset == id) gone.push_back(tid);
+  for (const auto& [tid, ba] : patch_.textures)
+    if (ba.after && ba.after->asset == id) gone.push_back(tid);
+  for (TextureId t : gone) removeTexture(t);
+  std::vector<MaterialId> materials;
+  for (const auto& [mid, m] : doc_.state().materials) materials.push_back(mid);
+  for (const auto& [mid, ba] : patch_.materials)
+    if (ba.after) materials.push_back(mid);
+  for (MaterialId mid : materials) {
+    const Material* m = peekMaterial(mid);
+    if (!m) continue;
+    if (m->asset == id) {
+      removeMaterial(mid);
+      continue;
+    }
+    for (TextureId t : gone)
+      if (m->baseColorTexture == t || m->normalMap == t || m->heightMap == t) {
+        Material& w = material(mid);
+        for (TextureId* ref : {&w.baseColorTexture, &w.normalMap, &w.heightMap})
+          if (*ref == t) *ref = kNoTexture;
+      }
+  }
 }
 
 TerrainId Edit::addTerrain(TerrainAsset terrain) {
@@ -203,6 +227,65 @@ void Edit::removeTerrainIfUnused(TerrainId id) {
     if (ba.after && ba.after->terrain && ba.after->terrain->terrain == id) return;
   removeTerrain(id);
 }
+
+namespace {
+
+// The working copy of `id` in `patch`, taken from `current` on first use.
+template <class Id, class T>
+T& workingCopy(std::map<Id, BeforeAfter<T>>& patch, const T* current, Id id, const char* what) {
+  auto it = patch.find(id);
+  if (it == patch.end()) {
+    if (!current) throw std::out_of_range(std::string("no ") + what + " " + std::to_string(id));
+    it = patch.emplace(id, BeforeAfter<T>{*current, *current}).first;
+  }
+  if (!it->second.after) throw std::out_of_range(std::string(what) + " " + std::to_string(id) + " was removed");
+  return *it->second.after;
+}
+
+template <class Id, class T>
+void removeFrom(std::map<Id, BeforeAfter<T>>& patch, const T* current, Id id) {
+  auto it = patch.find(id);
+  if (it != patch.end()) {
+    it->second.after.reset();
+    return;
+  }
+  if (current) patch.emplace(id, BeforeAfter<T>{*current, std::nullopt});
+}
+
+}  // namespace
+
+MaterialId Edit::addMaterial(Material material) {
+  if (material.id == kNoMaterial) material.id = doc_.allocateMaterialId();
+  const MaterialId id = material.id;
+  const Material* existing = doc_.state().findMaterial(id);
+  patch_.materials[id] = BeforeAfter<Material>{existing ? std::optional(*existing) : std::nullopt, std::move(material)};
+  return id;
+}
+
+void Edit::removeMaterial(MaterialId id) { removeFrom(patch_.materials, doc_.state().findMaterial(id), id); }
+
+Material& Edit::material(MaterialId id) {
+  return workingCopy(patch_.materials, doc_.state().findMaterial(id), id, "material");
+}
+
+const Material* Edit::peekMaterial(MaterialId id) const {
+  auto it = patch_.materials.find(id);
+  if (it != patch_.materials.end()) return it->second.after ? &*it->second.after : nullptr;
+  return doc_.state().findMaterial(id);
+}
+
+TextureId Edit::addTexture(TextureAsset texture) {
+  if (texture.id == kNoTexture) texture.id = doc_.allocateTextureId();
+  const TextureId id = texture.id;
+  const TextureAsset* existing = doc_.state().findTexture(id);
+  patch_.textures[id] =
+      BeforeAfter<TextureAsset>{existing ? std::optional(*existing) : std::nullopt, std::move(texture)};
+  return id;
+}
+
+void Edit::removeTexture(TextureId id) { removeFrom(patch_.textures, doc_.state().findTexture(id), id); }
+
+MeshAsset& Edit::asset(AssetId id) { return workingCopy(patch_.assets, doc_.state().findAsset(id), id, "asset"); }
 
 sequencer::Sequence& Edit::sequence() {
   if (!patch_.sequence) patch_.sequence.emplace(doc_.state().sequence, doc_.state().sequence);

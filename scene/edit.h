@@ -44,6 +44,8 @@ class Edit {
   EntityId duplicate(EntityId id);
 
   AssetId addAsset(MeshAsset asset);
+  // Removes the asset with its own materials and the textures of its mesh
+  // (other materials lose their references to those textures).
   void removeAsset(AssetId id);
   // Terrains: add (assigns an id when 0), remove, or change a working copy
   // of the small values (name, materials, rules). Tiles are shared, not
@@ -54,6 +56,17 @@ class Edit {
   const TerrainAsset* peekTerrain(TerrainId id) const;
   // Removes terrain `id` if no entity (as this edit leaves them) shows it.
   void removeTerrainIfUnused(TerrainId id);
+  // Materials and textures (material.h): add (assigns an id when 0),
+  // remove, or change a working copy.
+  MaterialId addMaterial(Material material);
+  void removeMaterial(MaterialId id);
+  Material& material(MaterialId id);  // throws std::out_of_range if unknown
+  const Material* peekMaterial(MaterialId id) const;
+  TextureId addTexture(TextureAsset texture);
+  void removeTexture(TextureId id);
+  // Working copy of an existing asset's small values (name, material slots;
+  // its mesh data is shared). Throws std::out_of_range if unknown.
+  MeshAsset& asset(AssetId id);
   SceneSettings& settings();
   // Working copy of the timeline (tracks, keys, rate, range).
   sequencer::Sequence& sequence();

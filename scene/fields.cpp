@@ -299,6 +299,61 @@ std::vector<SettingsField> buildSettingsFields() {
   };
 }
 
+// Materials (scene/material.h), a list of their own. A texture is a
+// reference (an id of SceneState::textures, 0 for none), not animatable.
+template <class Access>
+MaterialField textureField(std::string key, std::string label, Access access) {
+  MaterialField f;
+  f.key = std::move(key);
+  f.label = std::move(label);
+  f.type = FieldType::AssetRef;
+  f.animatable = false;
+  f.get = [access](const Material& m) { return FieldValue(int64_t(access(const_cast<Material&>(m)))); };
+  f.set = [access](Material& m, const FieldValue& v) { access(m) = TextureId(std::max<int64_t>(0, std::get<int64_t>(v))); };
+  return f;
+}
+
+std::vector<MaterialField> buildMaterialFields() {
+  using M = Material;
+  MaterialField name;
+  name.key = "name";
+  name.label = "Name";
+  name.type = FieldType::String;
+  name.animatable = false;
+  name.serialized = false;  // written by scene_json beside the id
+  name.get = [](const M& m) { return FieldValue(m.name); };
+  name.set = [](M& m, const FieldValue& v) { m.name = std::get<std::string>(v); };
+  return {
+      name,
+      colorField<M>("base_color", "Base colour", [](M& m) -> glm::vec3& { return m.baseColor; }),
+      textureField("base_color_texture", "Base colour texture", [](M& m) -> TextureId& { return m.baseColorTexture; }),
+      doubleField<M>("opacity", "Opacity", 0.0, 1.0, 0.01, "", [](M& m) -> float& { return m.opacity; }),
+      textureField("normal_map", "Normal map", [](M& m) -> TextureId& { return m.normalMap; }),
+      doubleField<M>("normal_strength", "Normal strength", 0.0, 4.0, 0.05, "",
+                     [](M& m) -> float& { return m.normalStrength; }),
+      textureField("height_map", "Height map (parallax)", [](M& m) -> TextureId& { return m.heightMap; }),
+      // Parallax relief beyond 0.5 m looks like a hole, not a surface: geometry's job.
+      doubleField<M>("height_scale", "Height scale", 0.0, 0.5, 0.001, "m",
+                     [](M& m) -> float& { return m.heightScale; }),
+      doubleField<M>("roughness", "Roughness", 0.0, 1.0, 0.01, "", [](M& m) -> float& { return m.roughness; }),
+      doubleField<M>("metallic", "Metallic", 0.0, 1.0, 0.01, "", [](M& m) -> float& { return m.metallic; }),
+      doubleField<M>("specular", "Specular", 0.0, 1.0, 0.01, "", [](M& m) -> float& { return m.specular; }),
+      doubleField<M>("shininess", "Shininess (Phong)", 1.0, 10000.0, 1.0, "",
+                     [](M& m) -> float& { return m.shininess; }),
+      colorField<M>("emission", "Emission", [](M& m) -> glm::vec3& { return m.emission; }),
+      doubleField<M>("emission_strength", "Emission strength", 0.0, 1e5, 0.1, "",
+                     [](M& m) -> float& { return m.emissionStrength; }),
+      boolField<M>("alpha_cutout", "Alpha cut-out", [](M& m) -> bool& { return m.alphaCutout; }),
+      doubleField<M>("alpha_threshold", "Cut-out threshold", 0.0, 1.0, 0.01, "",
+                     [](M& m) -> float& { return m.alphaThreshold; }),
+      boolField<M>("two_sided", "Two-sided", [](M& m) -> bool& { return m.twoSided; }),
+      boolField<M>("unlit", "Unlit", [](M& m) -> bool& { return m.unlit; }),
+      enumField<M>("model", "Lighting model", {"pbr", "lambert", "phong", "blinn_phong"},
+                   [](M& m) -> LightingModel& { return m.model; }),
+      enumField<M>("shading", "Shading", {"phong", "gouraud", "flat"}, [](M& m) -> ShadingMode& { return m.shading; }),
+  };
+}
+
 }  // namespace
 
 const std::vector<ComponentInfo>& entityComponents() {
@@ -309,6 +364,17 @@ const std::vector<ComponentInfo>& entityComponents() {
 const std::vector<SettingsField>& settingsFields() {
   static const std::vector<SettingsField> table = buildSettingsFields();
   return table;
+}
+
+const std::vector<MaterialField>& materialFields() {
+  static const std::vector<MaterialField> table = buildMaterialFields();
+  return table;
+}
+
+const MaterialField* findMaterialField(std::string_view key) {
+  for (const auto& f : materialFields())
+    if (f.key == key) return &f;
+  return nullptr;
 }
 
 const ComponentInfo* findComponent(std::string_view key) {
@@ -458,6 +524,7 @@ std::optional<FieldValue> parseFieldValue(const FieldInfo<Target>& field, std::s
 
 template std::optional<FieldValue> parseFieldValue(const EntityField&, std::string_view, std::string&);
 template std::optional<FieldValue> parseFieldValue(const SettingsField&, std::string_view, std::string&);
+template std::optional<FieldValue> parseFieldValue(const MaterialField&, std::string_view, std::string&);
 
 std::string formatFieldValue(FieldType type, const FieldValue& v,
                              const std::vector<std::string>& enumNames, int digits) {

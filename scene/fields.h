@@ -55,6 +55,7 @@ struct FieldInfo {
 
 using EntityField = FieldInfo<Entity>;
 using SettingsField = FieldInfo<SceneSettings>;
+using MaterialField = FieldInfo<Material>;
 
 // A group of fields on an entity: "entity" (name, visible), "transform",
 // and one per optional component ("mesh", "light", "camera").
@@ -70,11 +71,16 @@ struct ComponentInfo {
 
 const std::vector<ComponentInfo>& entityComponents();
 const std::vector<SettingsField>& settingsFields();
+// A material's editable values (scene/material.h); keys as `hybridscape-cli
+// material list` prints them ("opacity", "roughness", "model"). Texture
+// references are AssetRef fields holding a texture id (0: none).
+const std::vector<MaterialField>& materialFields();
 
 const ComponentInfo* findComponent(std::string_view key);
 // "camera.fov_deg" -> the field; nullptr if unknown.
 const EntityField* findEntityField(std::string_view path);
 const SettingsField* findSettingsField(std::string_view key);
+const MaterialField* findMaterialField(std::string_view key);
 
 // Parses a value for `type` from text ("1,2,3" for vectors, "true"/"1",
 // enum names or indices). Returns nullopt with `error` set if it does not fit.

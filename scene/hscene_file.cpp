@@ -17,9 +17,11 @@
 #include "scene/hscene_schema.h"
 #include "scene/legacy_hashes.h"
 #include "scene/mesh_blob.h"
+#include "scene/mesh_materials.h"
 #include "scene/scene_json.h"
 #include "scene/sqlite_db.h"
 #include "scene/terrain_file.h"
+#include "scene/texture_blob.h"
 
 namespace hs::scene {
 namespace {
@@ -37,12 +39,31 @@ std::string meshKey(AssetId id) { return "mesh/" + std::to_string(id); }
 // LOD levels 1, 2, ... of an asset; level 0 is meshKey (files before LODs had only that).
 std::string lodKey(AssetId id, size_t level) { return meshKey(id) + "/lod" + std::to_string(level); }
 
+// Standalone textures (a mesh's own stay in its blob, material.h).
+std::string textureKey(TextureId id) { return "texture/" + std::to_string(id); }
+
 // First 16 bytes of every SQLite 3 database.
 bool hasSqliteHeader(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   char header[16] = {};
   f.read(header, sizeof header);
   return f.gcount() == 16 && std::memcmp(header, "SQLite format 3\0", 16) == 0;
+}
+
+// The size the database's header says it has (page size x page count),
+// or 0 when the header does not say (the count is only valid when its
+// "version-valid-for" matches the change counter). A file shorter than
+// that was cut: SQLite reads the missing tail as zeros, which a blob whose
+// last page ends in unused zero bytes would not notice.
+uint64_t sqliteDeclaredSize(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  unsigned char h[100] = {};
+  f.read(reinterpret_cast<char*>(h), sizeof h);
+  if (f.gcount() != 100) return 0;
+  auto be32 = [&](int o) { return uint32_t(h[o]) << 24 | uint32_t(h[o + 1]) << 16 | uint32_t(h[o + 2]) << 8 | h[o + 3]; };
+  const uint32_t pageSize = h[16] == 0 && h[17] == 1 ? 65536u : (uint32_t(h[16]) << 8 | h[17]);
+  if (be32(92) != be32(24)) return 0;
+  return uint64_t(pageSize) * be32(28);
 }
 
 // meta.format_version as a number: INT_MAX for a whole number too large for
@@ -94,6 +115,9 @@ std::map<std::string, BlobSource> wantedBlobs(const SceneState& s) {
       if (const auto& data = a.lods[k].data)
         out[lodKey(id, k + 1)] = {toHex(a.lods[k].contentHash), [data] { return encodeMesh(*data); }, false};
   }
+  for (const auto& [id, t] : s.textures)
+    if (t.standalone() && t.image)
+      out[textureKey(id)] = {toHex(t.contentHash), [image = t.image] { return encodeTexture(*image); }, false};
   addTerrainBlobs(s, out);
   return out;
 }
@@ -292,6 +316,14 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
       case JournalRecovery::Failed: error = message; return std::nullopt;
     }
   }
+  // After any journal is played back (which restores the file's size): a
+  // file shorter than its header declares was cut short.
+  if (const uint64_t declared = sqliteDeclaredSize(path), actual = fs::file_size(path, ec);
+      declared > 0 && actual < declared) {
+    error = path + ": the scene file is cut short (" + std::to_string(actual) + " of " + std::to_string(declared) +
+            " bytes) and was not opened (damaged file)";
+    return std::nullopt;
+  }
   SqliteDb db;
   std::string e, format, versionText;
   if (!db.open(path, true, false, e)) {
@@ -389,9 +421,8 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
   // the hash the description holds.
   SqliteStmt q(db, "SELECT part, hash, data FROM blobs WHERE key = ?1 ORDER BY part");
   // One logical blob decoded and checked; `what` names the asset (and level).
-  auto loadMesh = [&](const std::string& key, const std::string& what, uint64_t hash,
-                      std::shared_ptr<const mesh::MeshData>& out) {
-    std::vector<uint8_t> bytes;
+  // One logical blob's bytes, its parts in order; `what` names its owner.
+  auto readBlob = [&](const std::string& key, const std::string& what, std::vector<uint8_t>& bytes) {
     int64_t expectedPart = 0;
     q.bind(1, key);
     while (q.step(e)) {
@@ -409,9 +440,16 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
       return false;
     }
     if (expectedPart == 0) {
-      error = what + ": its mesh data is missing from the file";
+      error = what + ": its data is missing from the file";
       return false;
     }
+    return true;
+  };
+  // One mesh (or LOD level) decoded and checked.
+  auto loadMesh = [&](const std::string& key, const std::string& what, uint64_t hash,
+                      std::shared_ptr<const mesh::MeshData>& out) {
+    std::vector<uint8_t> bytes;
+    if (!readBlob(key, what, bytes)) return false;
     std::optional<mesh::MeshData> mesh = decodeMesh(bytes.data(), bytes.size(), what, e);
     if (!mesh) {
       error = e;
@@ -441,6 +479,32 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
     if (version < kFirstXxh3Format) {  // checked by the old hash; the document holds the current one
       asset.contentHash = mesh::contentHash(*asset.data);
       for (auto& lod : asset.lods) lod.contentHash = mesh::contentHash(*lod.data);
+    }
+  }
+  // Materials (format 5): mesh textures point into their meshes, standalone
+  // ones come from their blobs. Older files get them from their meshes.
+  if (version < kFirstMaterialsFormat) {
+    for (const auto& [id, asset] : std::map<AssetId, MeshAsset>(state->assets)) addMeshMaterials(*state, id);
+  } else {
+    if (!linkMeshTextures(*state, e)) {
+      error = path + ": " + e;
+      return std::nullopt;
+    }
+    for (auto& [id, t] : state->textures) {
+      if (!t.standalone()) continue;
+      const std::string what = path + ": texture " + std::to_string(id) + " ('" + t.name + "')";
+      std::vector<uint8_t> bytes;
+      if (!readBlob(textureKey(id), what, bytes)) return std::nullopt;
+      std::optional<mesh::Texture> image = decodeTexture(bytes.data(), bytes.size(), what, e);
+      if (!image) {
+        error = e;
+        return std::nullopt;
+      }
+      if (textureContentHash(*image) != t.contentHash) {
+        error = what + ": its data does not match its checksum (damaged file)";
+        return std::nullopt;
+      }
+      t.image = std::make_shared<const mesh::Texture>(std::move(*image));
     }
   }
   // Terrains' tiles, checked against their hashes and the description.

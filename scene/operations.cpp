@@ -5,6 +5,7 @@
 #include "scene/asset_reports.h"
 #include "scene/edit.h"
 #include "scene/import_pipeline.h"
+#include "scene/mesh_materials.h"
 
 namespace hs::scene::ops {
 
@@ -16,6 +17,15 @@ EntityId addMeshAsset(Document& doc, MeshAsset asset, const std::string& name, c
   const mesh::Bounds b = asset.data->bounds();
   const glm::dvec3 origin = asset.data->origin;
   Edit e(doc, QString("Import %1").arg(QString::fromStdString(name)));
+  // The mesh's materials and textures become document objects in the same step.
+  if (asset.id == kNoAsset) asset.id = doc.allocateAssetId();
+  if (asset.name.empty()) asset.name = name;
+  MeshMaterials made = makeMeshMaterials(
+      asset, {[&doc] { return doc.allocateMaterialId(); }, [&doc] { return doc.allocateTextureId(); },
+              [&doc](const std::string& n) { return doc.state().findMaterialByName(n) != kNoMaterial; }});
+  for (TextureAsset& t : made.textures) e.addTexture(std::move(t));
+  for (Material& m : made.materials) e.addMaterial(std::move(m));
+  asset.materialSlots = std::move(made.slotIds);
   const AssetId assetId = e.addAsset(std::move(asset));
   Entity ent;
   ent.name = name;

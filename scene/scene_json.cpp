@@ -1,5 +1,6 @@
 #include "scene/scene_json.h"
 
+#include <climits>
 #include <cmath>
 #include <type_traits>
 
@@ -86,6 +87,34 @@ Json assetToJson(const MeshAsset& a) {
     o["lods"] = std::move(lods);
   }
   if (!a.processReport.is_null()) o["process_report"] = a.processReport;
+  // Format 5: the document material of each slot (mesh_materials.h).
+  if (!a.materialSlots.empty()) o["material_slots"] = a.materialSlots;
+  return o;
+}
+
+Json materialToJson(const Material& m) {
+  Json o = Json::object();
+  o["id"] = m.id;
+  o["name"] = m.name;
+  o["asset"] = m.asset;
+  for (const auto& f : materialFields())
+    if (f.serialized) o[f.key] = fieldToJson(f, m);
+  return o;
+}
+
+// A mesh's texture names its place in the mesh blob; a standalone one its
+// own blob ("texture/<id>", texture_blob.h) by hash.
+Json textureToJson(const TextureAsset& t) {
+  Json o = Json::object();
+  o["id"] = t.id;
+  o["name"] = t.name;
+  if (t.standalone()) {
+    o["hash"] = toHex(t.contentHash);
+    o["srgb"] = t.srgb;
+  } else {
+    o["asset"] = t.asset;
+    o["mesh_texture"] = t.meshTexture;
+  }
   return o;
 }
 
@@ -317,7 +346,44 @@ struct Reader : JsonReader {
       previous = l.hausdorff;
       a.lods.push_back(std::move(l));
     }
-    return report<AssetProcessReport>(o, p, "process_report", a.processReport);
+    if (!report<AssetProcessReport>(o, p, "process_report", a.processReport)) return false;
+    const Json* slots = optArray(o, p, "material_slots");
+    for (size_t k = 0; slots && k < slots->size(); ++k) {
+      uint64_t m;
+      if (!id(&(*slots)[k], jsonIndex(jsonPath(p, "material_slots"), k), m)) return false;
+      a.materialSlots.push_back(m);
+    }
+    return !failed();
+  }
+
+  bool material(const Json& o, const std::string& p, Material& m) {
+    if (!object(o, p) || !id(member(o, "id"), jsonPath(p, "id"), m.id)) return false;
+    if (m.id == kNoMaterial) return fail(jsonPath(p, "id"), "0 is not a valid material id");
+    if (!optString(o, p, "name", m.name)) return false;
+    if (member(o, "asset") && !id(member(o, "asset"), jsonPath(p, "asset"), m.asset)) return false;
+    // Values out of their declared range are clamped by the declaration.
+    for (const auto& f : materialFields()) {
+      if (!f.serialized) continue;
+      const Json* v = member(o, f.key);
+      if (v && !field(f, *v, jsonPath(p, f.key), m)) return false;
+    }
+    return true;
+  }
+
+  bool texture(const Json& o, const std::string& p, TextureAsset& t) {
+    if (!object(o, p) || !id(member(o, "id"), jsonPath(p, "id"), t.id)) return false;
+    if (t.id == kNoTexture) return fail(jsonPath(p, "id"), "0 is not a valid texture id");
+    if (!optString(o, p, "name", t.name)) return false;
+    if (member(o, "asset")) {
+      int64_t index = 0;
+      const Json* mt = required(o, p, "mesh_texture");
+      if (!id(member(o, "asset"), jsonPath(p, "asset"), t.asset) || !mt ||
+          !integer(*mt, jsonPath(p, "mesh_texture"), index, 0, kMaxId))
+        return false;
+      t.meshTexture = int(std::min<int64_t>(index, INT32_MAX));
+      return true;
+    }
+    return hash(member(o, "hash"), jsonPath(p, "hash"), t.contentHash) && optBoolean(o, p, "srgb", t.srgb);
   }
 };
 
@@ -374,6 +440,30 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
   }
 
   if (r.failed()) return std::nullopt;
+  if (const Json* materials = r.optArray(json, "", "materials")) {
+    for (size_t i = 0; i < materials->size(); ++i) {
+      const std::string p = jsonIndex("materials", i);
+      Material m;
+      if (!r.material((*materials)[i], p, m)) return std::nullopt;
+      if (!s.materials.emplace(m.id, std::move(m)).second) {
+        r.fail(jsonPath(p, "id"), "duplicate material id");
+        return std::nullopt;
+      }
+    }
+  }
+  if (r.failed()) return std::nullopt;
+  if (const Json* textures = r.optArray(json, "", "textures")) {
+    for (size_t i = 0; i < textures->size(); ++i) {
+      const std::string p = jsonIndex("textures", i);
+      TextureAsset t;
+      if (!r.texture((*textures)[i], p, t)) return std::nullopt;
+      if (!s.textures.emplace(t.id, std::move(t)).second) {
+        r.fail(jsonPath(p, "id"), "duplicate texture id");
+        return std::nullopt;
+      }
+    }
+  }
+  if (r.failed()) return std::nullopt;
   if (const Json* terrains = r.optArray(json, "", "terrains"); terrains && !readTerrains(r, *terrains, "terrains", s))
     return std::nullopt;
   if (r.failed()) return std::nullopt;
@@ -405,6 +495,12 @@ Json sceneToJson(const SceneState& state) {
   Json assets = Json::array();
   for (const auto& [id, a] : state.assets) assets.push_back(assetToJson(a));
   root["assets"] = std::move(assets);
+  Json materials = Json::array();
+  for (const auto& [id, m] : state.materials) materials.push_back(materialToJson(m));
+  root["materials"] = std::move(materials);
+  Json textures = Json::array();
+  for (const auto& [id, t] : state.textures) textures.push_back(textureToJson(t));
+  root["textures"] = std::move(textures);
   root["terrains"] = terrainsToJson(state);
   // The timeline, in the sequencer's own shape (sequence_json.h).
   root["sequence"] = sequencer::sequenceToJson(state.sequence);

@@ -3,7 +3,8 @@
 // .hscene file, and the canonical form tests compare documents by. Bulk
 // data (mesh arrays, textures, terrain tiles) is not in it; assets carry
 // their content hash instead. Members are written in a fixed order
-// (format, version, settings, roots, entities, assets, terrains, sequence),
+// (format, version, settings, roots, entities, assets, materials,
+// textures, terrains, sequence),
 // so files diff cleanly.
 #include <optional>
 #include <string>
@@ -20,7 +21,12 @@ namespace hs::scene {
 // 3: mesh LODs (assets' "lods", blobs "mesh/<id>/lod<k>") and processing
 // reports; a version-2 reader would drop the LODs on its next save.
 // 4: content hashes by XXH3 (hscene_file.cpp).
-constexpr int kSceneFormatVersion = 4;
+// 5: materials and textures as document objects ("materials", "textures",
+// assets' "material_slots", blobs "texture/<id>"); a version-4 reader would
+// drop them on its next save. Older files get their materials from their
+// meshes on load (mesh_materials.h).
+constexpr int kSceneFormatVersion = 5;
+constexpr int kFirstMaterialsFormat = 5;
 
 Json sceneToJson(const SceneState& state);
 // Canonical compact text of sceneToJson (stable member order and number format).

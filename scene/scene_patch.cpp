@@ -1,6 +1,31 @@
 #include "scene/scene_patch.h"
 
 namespace hs::scene {
+namespace {
+
+template <class Id, class T>
+void mergeLaterMap(std::map<Id, BeforeAfter<T>>& into, const std::map<Id, BeforeAfter<T>>& later) {
+  for (const auto& [id, ba] : later) {
+    auto it = into.find(id);
+    if (it == into.end())
+      into.emplace(id, ba);
+    else
+      it->second.after = ba.after;
+  }
+}
+
+template <class Id, class T>
+void applyMap(std::map<Id, T>& state, const std::map<Id, BeforeAfter<T>>& patch, bool forward) {
+  for (const auto& [id, ba] : patch) {
+    const auto& value = forward ? ba.after : ba.before;
+    if (value)
+      state[id] = *value;
+    else
+      state.erase(id);
+  }
+}
+
+}  // namespace
 
 void ScenePatch::mergeLater(const ScenePatch& later) {
   for (const auto& [id, ba] : later.entities) {
@@ -30,6 +55,8 @@ void ScenePatch::mergeLater(const ScenePatch& later) {
     else
       it->second.after = ba.after;
   }
+  mergeLaterMap(materials, later.materials);
+  mergeLaterMap(textures, later.textures);
   if (later.settings) {
     if (settings)
       settings->second = later.settings->second;
@@ -48,6 +75,8 @@ void ScenePatch::prune() {
   std::erase_if(entities, [](const auto& kv) { return kv.second.before == kv.second.after; });
   std::erase_if(assets, [](const auto& kv) { return kv.second.before == kv.second.after; });
   std::erase_if(terrains, [](const auto& kv) { return kv.second.before == kv.second.after; });
+  std::erase_if(materials, [](const auto& kv) { return kv.second.before == kv.second.after; });
+  std::erase_if(textures, [](const auto& kv) { return kv.second.before == kv.second.after; });
   if (roots && roots->first == roots->second) roots.reset();
   if (settings && settings->first == settings->second) settings.reset();
   if (sequence && sequence->first == sequence->second) sequence.reset();
@@ -76,6 +105,8 @@ void applyPatch(SceneState& state, const ScenePatch& patch, bool forward) {
     else
       state.terrains.erase(id);
   }
+  applyMap(state.materials, patch.materials, forward);
+  applyMap(state.textures, patch.textures, forward);
   if (patch.settings) state.settings = forward ? patch.settings->second : patch.settings->first;
   if (patch.sequence) state.sequence = forward ? patch.sequence->second : patch.sequence->first;
 }

@@ -24,11 +24,14 @@ struct ScenePatch {
   // Terrains' small values and which tiles they point to (not the tiles'
   // content: stroke-like edits are TerrainCommands, terrain_command.h).
   std::map<TerrainId, BeforeAfter<TerrainAsset>> terrains;
+  std::map<MaterialId, BeforeAfter<Material>> materials;
+  std::map<TextureId, BeforeAfter<TextureAsset>> textures;
   std::optional<std::pair<SceneSettings, SceneSettings>> settings;
   std::optional<std::pair<sequencer::Sequence, sequencer::Sequence>> sequence;  // before, after
 
   bool empty() const {
-    return entities.empty() && !roots && assets.empty() && terrains.empty() && !settings && !sequence;
+    return entities.empty() && !roots && assets.empty() && terrains.empty() && materials.empty() && textures.empty() &&
+           !settings && !sequence;
   }
   // Folds a later patch into this one (gizmo drags merge into one undo step).
   void mergeLater(const ScenePatch& later);

@@ -27,6 +27,22 @@ const TerrainAsset* SceneState::findTerrain(TerrainId id) const {
   return it == terrains.end() ? nullptr : &it->second;
 }
 
+const Material* SceneState::findMaterial(MaterialId id) const {
+  auto it = materials.find(id);
+  return it == materials.end() ? nullptr : &it->second;
+}
+
+const TextureAsset* SceneState::findTexture(TextureId id) const {
+  auto it = textures.find(id);
+  return it == textures.end() ? nullptr : &it->second;
+}
+
+MaterialId SceneState::findMaterialByName(const std::string& name) const {
+  for (const auto& [id, m] : materials)
+    if (m.name == name) return id;
+  return kNoMaterial;
+}
+
 glm::dmat4 SceneState::worldMatrix(EntityId id) const {
   glm::dmat4 m(1.0);
   // Walk up, multiplying on the left; a depth limit guards against a cycle
@@ -92,6 +108,8 @@ EntityId SceneState::findByName(const std::string& name) const {
 EntityId SceneState::maxEntityId() const { return entities.empty() ? 0 : entities.rbegin()->first; }
 AssetId SceneState::maxAssetId() const { return assets.empty() ? 0 : assets.rbegin()->first; }
 TerrainId SceneState::maxTerrainId() const { return terrains.empty() ? 0 : terrains.rbegin()->first; }
+MaterialId SceneState::maxMaterialId() const { return materials.empty() ? 0 : materials.rbegin()->first; }
+TextureId SceneState::maxTextureId() const { return textures.empty() ? 0 : textures.rbegin()->first; }
 
 std::string SceneState::validate() const {
   std::set<EntityId> seen;
@@ -122,6 +140,17 @@ std::string SceneState::validate() const {
     if (e.terrain && e.terrain->terrain != kNoTerrain && !findTerrain(e.terrain->terrain))
       return "entity " + std::to_string(id) + " shows missing terrain " + std::to_string(e.terrain->terrain);
   }
+  for (const auto& [id, a] : assets)
+    for (MaterialId m : a.materialSlots)
+      if (m != kNoMaterial && !findMaterial(m))
+        return "mesh asset " + std::to_string(id) + " uses missing material " + std::to_string(m);
+  for (const auto& [id, t] : textures)
+    if (!t.standalone() && !findAsset(t.asset))
+      return "texture " + std::to_string(id) + " ('" + t.name + "') lives in missing mesh asset " + std::to_string(t.asset);
+  for (const auto& [id, m] : materials)
+    for (TextureId t : {m.baseColorTexture, m.normalMap, m.heightMap})
+      if (t != kNoTexture && !findTexture(t))
+        return "material " + std::to_string(id) + " ('" + m.name + "') uses missing texture " + std::to_string(t);
   // Every entity reachable exactly once from the roots (no cycles).
   const auto order = depthFirstOrder();
   seen.insert(order.begin(), order.end());

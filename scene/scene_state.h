@@ -12,6 +12,7 @@
 #include "core/json.h"
 #include "mesh/mesh_data.h"
 #include "scene/entity.h"
+#include "scene/material.h"
 #include "scene/terrain_asset.h"
 #include "sequencer/sequence.h"
 
@@ -46,10 +47,13 @@ struct MeshAsset {
   // Hausdorff error per level in metres, level 0 (= 0) first: what
   // mesh::selectLod takes.
   std::vector<double> lodErrors() const;
+  // The document material of each material slot (scene/material_slots.h):
+  // one per mesh::Material, plus one for submeshes without a material.
+  std::vector<MaterialId> materialSlots;
   bool operator==(const MeshAsset& o) const {
     return id == o.id && name == o.name && sourcePath == o.sourcePath &&
            contentHash == o.contentHash && importReport == o.importReport && lods == o.lods &&
-           processReport == o.processReport;
+           processReport == o.processReport && materialSlots == o.materialSlots;
   }
 };
 
@@ -79,6 +83,9 @@ struct SceneState {
   std::map<AssetId, MeshAsset> assets;
   // Terrains (scene/terrain_asset.h): small values here, tiles shared.
   std::map<TerrainId, TerrainAsset> terrains;
+  // Materials and textures (scene/material.h), referred to by mesh assets.
+  std::map<MaterialId, Material> materials;
+  std::map<TextureId, TextureAsset> textures;
   SceneSettings settings;
   // The timeline: tracks per entity, frame rate, playback/export range.
   sequencer::Sequence sequence;
@@ -86,6 +93,10 @@ struct SceneState {
   const Entity* find(EntityId id) const;
   const MeshAsset* findAsset(AssetId id) const;
   const TerrainAsset* findTerrain(TerrainId id) const;
+  const Material* findMaterial(MaterialId id) const;
+  const TextureAsset* findTexture(TextureId id) const;
+  // By name; kNoMaterial if none (names are unique: materials add " 2", ...).
+  MaterialId findMaterialByName(const std::string& name) const;
   // Parent chain composed in double precision.
   glm::dmat4 worldMatrix(EntityId id) const;
   // Visible only if it and every ancestor is visible.
@@ -100,6 +111,8 @@ struct SceneState {
   EntityId maxEntityId() const;
   AssetId maxAssetId() const;
   TerrainId maxTerrainId() const;
+  MaterialId maxMaterialId() const;
+  TextureId maxTextureId() const;
 
   // Checks parent/children/roots consistency; empty string if sound. Used
   // by tests and after loading a file.

@@ -1,24 +1,69 @@
 #version 450 core
-// Meshes: the base colour (material x texture x instance tint), lit by
-// lighting.glsl.
+// Meshes with their material (material_block.glsl): base colour x texture
+// x instance tint, alpha cut-out, unlit or lit by lighting.glsl with the
+// material's model. Shading variants from this one source:
+//   (none)           Phong shading: lighting per pixel with the interpolated normal
+//   SHADING_GOURAUD  lighting per vertex (mesh.vert), interpolated
+//   SHADING_FLAT     the triangle's own normal (from screen derivatives), per pixel
+// and surface detail (surface_detail.glsl), not with Gouraud:
+//   HAS_NORMAL_MAP   tangent-space normal map
+//   HAS_PARALLAX     parallax occlusion mapping from the height map
+// DEBUG_SHADING_NORMAL writes the shading normal (world axes) instead of a colour.
 #include "lighting.glsl"
+#include "material_surface.glsl"
+#if defined(HAS_NORMAL_MAP) || defined(HAS_PARALLAX)
+#include "surface_detail.glsl"
+in vec4 vTangent;
+#endif
 
 in vec3 vEyePos;
 in vec3 vNormal;
 in vec2 vUv;
 flat in uint vObject;
-
-uniform vec4 uBaseColor;       // linear
-uniform bool uHasTexture;
-layout(binding = 0) uniform sampler2D uAlbedo;  // sRGB texture: sampled as linear
+#ifdef SHADING_GOURAUD
+in vec3 vLit;
+#endif
 
 layout(location = 0) out vec4 outColor;
 
 void main() {
-  vec4 albedo = uBaseColor * vec4(objects[vObject].tint.rgb, 1.0);
-  if (uHasTexture) albedo *= texture(uAlbedo, vUv);
+  Material m = materials[uMaterial];
+  vec2 uv = vUv;
+#ifndef SHADING_GOURAUD
+#ifdef SHADING_FLAT
+  vec3 n = normalize(cross(dFdx(vEyePos), dFdy(vEyePos)));
+  if (dot(n, vNormal) < 0.0) n = -n;
+#else
   vec3 n = normalize(vNormal);
-  // Scans are often open surfaces seen from behind: light the side we see.
+#endif
+  // Two-sided materials light the side the eye sees (one-sided ones are culled).
   if (!gl_FrontFacing) n = -n;
-  outColor = vec4(lightSurface(albedo.rgb, vEyePos, n, 32.0, 0.15), albedo.a);
+#if defined(HAS_NORMAL_MAP) || defined(HAS_PARALLAX)
+  TangentFrame frame = tangentFrame(n, vTangent);
+#endif
+#ifdef HAS_PARALLAX
+  vec3 toEye = normalize(-vEyePos);
+  vec3 v = vec3(dot(toEye, frame.t), dot(toEye, frame.up), dot(toEye, frame.n));
+  uv = parallaxUv(uv, v, m.detail.y * uvPerMetre(vUv, vEyePos));
+#endif
+#ifdef HAS_NORMAL_MAP
+  n = normalFromMap(frame, texture(uNormalMap, uv).rgb, m.detail.x);
+#endif
+#endif
+  vec4 texel = hasFlag(m, MAT_BASE_TEXTURE) ? texture(uBaseColorTexture, uv) : vec4(1.0);
+  vec4 base = vec4(m.baseColor.rgb * objects[vObject].tint.rgb, m.baseColor.a) * texel;
+  if (hasFlag(m, MAT_ALPHA_CUTOUT) && base.a < m.emission.a) discard;
+#ifdef SHADING_GOURAUD
+  outColor = vec4(vLit * texel.rgb, base.a);
+#else
+#ifdef DEBUG_SHADING_NORMAL
+  outColor = vec4(n, 1.0);
+  return;
+#endif
+  if (hasFlag(m, MAT_UNLIT)) {
+    outColor = vec4(applyFog(base.rgb + m.emission.rgb, vEyePos), base.a);
+    return;
+  }
+  outColor = vec4(shadeSurface(materialSurface(m, base.rgb, vEyePos, n)), base.a);
+#endif
 }

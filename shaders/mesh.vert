@@ -2,12 +2,25 @@
 // Meshes, camera-relative (frame_blocks.glsl): the object's matrix is
 // relative to the frame origin, formed in double on the CPU, so vertices far
 // from the world origin arrive here as small floats.
+//
+// Variant SHADING_GOURAUD lights here, once per vertex (the survey's
+// Gouraud shading), with the material's untextured colour; mesh.frag then
+// multiplies the interpolated light by the texture.
 #include "frame_blocks.glsl"
+#ifdef SHADING_GOURAUD
+#include "lighting.glsl"
+#include "material_surface.glsl"
+out vec3 vLit;
+#endif
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
 layout(location = 7) in uint aObject;  // per instance: index into objects[]
+#ifdef HAS_TANGENTS
+layout(location = 3) in vec4 aTangent;  // mesh/tangents.h; only meshes with normal or height maps have them
+out vec4 vTangent;
+#endif
 
 out vec3 vEyePos;
 out vec3 vNormal;
@@ -21,5 +34,20 @@ void main() {
   vNormal = mat3(o.normalMatrix) * aNormal;
   vUv = aUv;
   vObject = aObject;
+#ifdef HAS_TANGENTS
+  vTangent = vec4(mat3(o.model) * aTangent.xyz, aTangent.w);
+#endif
   gl_Position = view.projection * (view.viewRotation * vec4(p, 1.0));
+#ifdef SHADING_GOURAUD
+  Material m = materials[uMaterial];
+  vec3 albedo = m.baseColor.rgb * o.tint.rgb;
+  if (hasFlag(m, MAT_UNLIT)) {
+    vLit = applyFog(albedo + m.emission.rgb, p);
+  } else {
+    vec3 n = normalize(vNormal);
+    // The side the eye sees (no gl_FrontFacing per vertex).
+    if (hasFlag(m, MAT_TWO_SIDED) && dot(n, p) > 0.0) n = -n;
+    vLit = shadeSurface(materialSurface(m, albedo, p, n));
+  }
+#endif
 }

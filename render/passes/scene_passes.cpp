@@ -4,6 +4,19 @@
 
 namespace hs::render {
 
+gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode, bool normalMap, bool parallax, bool debugNormal) {
+  gl::ProgramDesc d{"mesh.vert", "mesh.frag", "", {}};
+  if (mode == scene::ShadingMode::Gouraud) d.defines.push_back("SHADING_GOURAUD");
+  if (mode == scene::ShadingMode::Flat) d.defines.push_back("SHADING_FLAT");
+  if (mode != scene::ShadingMode::Gouraud) {
+    if (normalMap || parallax) d.defines.push_back("HAS_TANGENTS");
+    if (normalMap) d.defines.push_back("HAS_NORMAL_MAP");
+    if (parallax) d.defines.push_back("HAS_PARALLAX");
+    if (debugNormal) d.defines.push_back("DEBUG_SHADING_NORMAL");
+  }
+  return d;
+}
+
 SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewContext& v) {
   const int samples = frame.settings.antialiasing == scene::Antialiasing::Msaa4 ? 4 : 1;
   return graph.addPass<SceneTargets>(
@@ -25,25 +38,35 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
         glClearBufferfv(GL_DEPTH, 0, &clearDepth);
         if (frame.visible.draws.empty()) return;
         frame.res.bindView(index);
-        GlProgram& p = frame.res.program({"mesh.vert", "mesh.frag", "", {}});
-        p.use();
-        GLuint bound = 0;
-        for (const DrawItem& it : frame.visible.draws) {
+        // One program per shading mode a material uses (shaders/mesh.frag's
+        // variants), built on first use: none for modes nobody uses.
+        GlProgram* programs[3][2][2] = {};
+        const bool debugNormal = frame.options.debugShadingNormal;
+        auto programFor = [&](const DrawMaterial& mat) -> GlProgram& {
+          GlProgram*& p = programs[int(mat.shading)][mat.normalMap][mat.parallax];
+          if (!p) p = &frame.res.program(meshProgramDesc(mat.shading, mat.normalMap, mat.parallax, debugNormal));
+          return *p;
+        };
+        GlProgram* current = nullptr;
+        GLuint bound[3] = {0, 0, 0};
+        int culling = -1;
+        for (size_t d = 0; d < frame.visible.draws.size(); ++d) {
+          const DrawItem& it = frame.visible.draws[d];
           glBindVertexArray(it.mesh->vao);
           const mesh::MeshData& m = *it.mesh->data;
-          for (const mesh::Submesh& sm : m.submeshes) {
-            glm::vec4 color(0.8f, 0.8f, 0.8f, 1.0f);
-            GLuint tex = 0;
-            if (sm.material >= 0 && size_t(sm.material) < m.materials.size()) {
-              const mesh::Material& mat = m.materials[size_t(sm.material)];
-              color = mat.baseColor;
-              if (mat.diffuseTexture >= 0 && size_t(mat.diffuseTexture) < it.mesh->textures.size() &&
-                  it.mesh->hasUvs)
-                tex = it.mesh->textures[size_t(mat.diffuseTexture)];
+          for (size_t s = 0; s < m.submeshes.size(); ++s) {
+            const mesh::Submesh& sm = m.submeshes[s];
+            const DrawMaterial& mat = frame.res.materials.forDraw(d, s);
+            GlProgram& p = programFor(mat);
+            if (&p != current) (current = &p)->use();
+            p.set("uMaterial", unsigned(mat.index));
+            for (unsigned u = 0; u < 3; ++u)
+              if (mat.textures[u] && mat.textures[u] != bound[u]) glBindTextureUnit(kMaterialTextureUnit + u, bound[u] = mat.textures[u]);
+            // One-sided materials cull their back faces; scans are seen from both sides.
+            if (int(!mat.twoSided) != culling) {
+              culling = int(!mat.twoSided);
+              culling ? glEnable(GL_CULL_FACE) : glDisable(GL_CULL_FACE);
             }
-            p.set("uBaseColor", color);
-            p.set("uHasTexture", tex != 0);
-            if (tex && tex != bound) glBindTextureUnit(0, bound = tex);
             glDrawElementsInstancedBaseInstance(
                 GL_TRIANGLES, GLsizei(sm.indexCount), GL_UNSIGNED_INT,
                 reinterpret_cast<const void*>(uintptr_t(sm.firstIndex) * sizeof(uint32_t)), 1, it.object);
@@ -52,7 +75,8 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
           }
           ++frame.stats.instancesDrawn;
         }
-        glBindTextureUnit(0, 0);
+        glDisable(GL_CULL_FACE);
+        for (unsigned u = 0; u < 3; ++u) glBindTextureUnit(kMaterialTextureUnit + u, 0);
       });
 }
 

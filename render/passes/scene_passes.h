@@ -12,6 +12,14 @@ struct SceneTargets {
   int samples = 1;
 };
 
+// The mesh program of a shading mode (shaders/mesh.frag's variants); built
+// on first use, so a frame with no Gouraud material builds no Gouraud program.
+// Normal and parallax mapping are variants too (HAS_NORMAL_MAP,
+// HAS_PARALLAX, with the tangent attribute), and so is the debug output of
+// the shading normal (DEBUG_SHADING_NORMAL, RenderOptions::debugShadingNormal).
+gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode, bool normalMap = false, bool parallax = false,
+                                bool debugNormal = false);
+
 // Creates the view's scene targets, clears them, draws the visible meshes.
 SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewContext& view);
 // Draws the visible terrains into `targets` (only added when there are any).

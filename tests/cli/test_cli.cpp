@@ -122,7 +122,8 @@ class TestCli : public QObject {
 
   void helpOnEveryCommand_data() {
     QTest::addColumn<QString>("command");
-    for (const char* c : {"new", "demo", "import", "info", "render", "set", "key", "sequence", "path", "farm", "terrain", "mesh"})
+    for (const char* c : {"new", "demo", "import", "info", "render", "set", "material", "key", "sequence", "path", "farm",
+                          "terrain", "mesh"})
       QTest::newRow(c) << QString(c);
   }
   void helpOnEveryCommand() {
@@ -187,9 +188,10 @@ class TestCli : public QObject {
       const glm::dvec3 wp = vec3(e["world_position_m"]);
       QVERIFY(glm::length(wp - glm::dvec3(s->worldMatrix(ent->id)[3])) < 1e-9);
     }
-    // Assets: the bunny, with the triangle count of the scan's OBJ file.
+    // Assets: the bunny, with the triangle count of the scan's OBJ file,
+    // then the two surface-detail slabs (scene/demo_materials.h).
     const QJsonArray assets = info["assets"].toArray();
-    QCOMPARE(assets.size(), 1);
+    QCOMPARE(assets.size(), 3);
     const std::string bunny = readFile(HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj");
     size_t faces = 0;
     for (size_t pos = 0; (pos = bunny.find("\nf ", pos)) != std::string::npos; ++pos) ++faces;

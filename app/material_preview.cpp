@@ -1,0 +1,132 @@
+#include "app/material_preview.h"
+
+#include <cstring>
+
+#include "mesh/primitives.h"
+#include "render/offscreen_renderer.h"
+#include "scene/mesh_materials.h"
+#include "sequencer/camera_path.h"
+
+namespace hs::app {
+
+MaterialPreview::MaterialPreview(int size, QObject* parent) : QObject(parent), size_(size) {
+  worker_ = std::thread([this] { run(); });
+}
+
+MaterialPreview::~MaterialPreview() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  worker_.join();
+}
+
+scene::SceneState MaterialPreview::previewScene(const scene::SceneState& state, const scene::Material& material) {
+  scene::SceneState s;
+  s.settings.showGrid = false;
+  s.settings.antialiasing = scene::Antialiasing::Fxaa;
+  s.settings.skyZenith = s.settings.skyHorizon = glm::vec3(0.16f, 0.17f, 0.19f);  // a neutral backdrop
+  s.settings.groundColor = glm::vec3(0.1f);
+  s.settings.ambientIntensity = 0.6f;
+  static const auto sphere = std::make_shared<const mesh::MeshData>(mesh::uvSphere(1.0f, 64, 32));
+  scene::MeshAsset a;
+  a.id = 1;
+  a.name = "Preview";
+  a.data = sphere;
+  a.contentHash = 1;  // the same sphere every time: uploaded once
+  scene::Material m = material;
+  m.id = 1;
+  m.asset = 1;
+  // The material's textures, copied as standalone ones the preview keys by image.
+  scene::TextureId next = 1;
+  for (scene::TextureId* ref : {&m.baseColorTexture, &m.normalMap, &m.heightMap}) {
+    const scene::TextureAsset* t = state.findTexture(*ref);
+    if (!t) {
+      *ref = scene::kNoTexture;
+      continue;
+    }
+    scene::TextureAsset copy = *t;
+    copy.id = next++;
+    copy.asset = scene::kNoAsset;
+    copy.meshTexture = -1;
+    copy.srgb = ref == &m.baseColorTexture;
+    copy.contentHash = reinterpret_cast<uintptr_t>(t->image.get()) ^ (t->contentHash * 31u);
+    s.textures.emplace(copy.id, copy);
+    *ref = copy.id;
+  }
+  a.materialSlots.assign(scene::materialSlotCount(*sphere), m.id);
+  s.materials.emplace(m.id, m);
+  s.assets.emplace(a.id, a);
+  scene::Entity e;
+  e.id = 1;
+  e.name = "Preview";
+  e.mesh = scene::MeshInstance{1};
+  s.entities.emplace(1, e);
+  scene::Entity sun;
+  sun.id = 2;
+  sun.name = "Sun";
+  sun.light = scene::Light{};
+  sun.transform.rotation = scene::fromEulerDegrees({45, 0, -35});
+  s.entities.emplace(2, sun);
+  scene::Entity cam;
+  cam.id = 3;
+  cam.name = "Camera";
+  cam.camera = scene::Camera{};
+  cam.camera->verticalFovDeg = 32.0;
+  cam.camera->nearClip = 0.05;
+  cam.transform.translation = {0.0, -3.8, 0.6};
+  cam.transform.rotation = sequencer::lookRotation(-cam.transform.translation);
+  s.entities.emplace(3, cam);
+  s.roots = {1, 2, 3};
+  return s;
+}
+
+void MaterialPreview::request(const scene::SceneState& state, const scene::Material& material) {
+  {
+    std::lock_guard lock(mutex_);
+    pending_ = previewScene(state, material);
+  }
+  wake_.notify_all();
+}
+
+void MaterialPreview::run() {
+  std::unique_ptr<render::OffscreenRenderer> renderer;
+  for (;;) {
+    scene::SceneState s;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [this] { return stop_ || pending_; });
+      if (stop_) break;
+      s = std::move(*pending_);
+      pending_.reset();
+    }
+    if (!renderer) {
+      renderer = std::make_unique<render::OffscreenRenderer>();
+      std::string error;
+      if (!renderer->initialize(error)) {
+        QMetaObject::invokeMethod(
+            this, [this, e = QString::fromStdString(error)] { emit problem("Material preview: " + e); },
+            Qt::QueuedConnection);
+        renderer.reset();
+        continue;
+      }
+    }
+    const render::RenderView view = render::viewFromCamera(s, 3, size_, size_);
+    const hs::Image img = renderer->render(s, view);
+    QImage out(img.width, img.height, QImage::Format_RGBA8888);
+    for (int y = 0; y < img.height; ++y)
+      std::memcpy(out.scanLine(y), img.rgba8.data() + size_t(y) * size_t(img.width) * 4, size_t(img.width) * 4);
+    std::vector<std::string> problems = renderer->renderer().takeMaterialProblems();
+    QMetaObject::invokeMethod(
+        this,
+        [this, out, problems] {
+          emit ready(out);
+          for (const auto& p : problems) emit problem(QString::fromStdString(p));
+        },
+        Qt::QueuedConnection);
+  }
+  if (renderer) renderer->renderer().shutdown();
+}
+
+}  // namespace hs::app

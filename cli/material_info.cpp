@@ -1,0 +1,59 @@
+#include "cli/material_info.h"
+
+#include <cstdio>
+
+#include "scene/fields.h"
+
+namespace hs::cli {
+
+Json materialInfoJson(const scene::SceneState& s, const scene::Material& m) {
+  Json o = Json::object();
+  o["name"] = m.name;
+  const scene::MeshAsset* a = s.findAsset(m.asset);
+  o["asset"] = a ? Json(a->name) : Json(nullptr);
+  o["id"] = m.id;
+  for (const auto& f : scene::materialFields()) {
+    if (f.key == "name") continue;
+    const scene::FieldValue v = f.get(m);
+    switch (f.type) {
+      case scene::FieldType::Double: o[f.key] = std::get<double>(v); break;
+      case scene::FieldType::Bool: o[f.key] = std::get<bool>(v); break;
+      case scene::FieldType::Enum: o[f.key] = scene::formatFieldValue(f.type, v, f.enumNames); break;
+      case scene::FieldType::Vec3:
+      case scene::FieldType::Color: {
+        const glm::dvec3 c = std::get<glm::dvec3>(v);
+        o[f.key] = Json::array({c.x, c.y, c.z});
+        break;
+      }
+      case scene::FieldType::String: o[f.key] = std::get<std::string>(v); break;
+      case scene::FieldType::AssetRef: o[f.key] = std::get<int64_t>(v); break;  // texture id, 0: none
+    }
+  }
+  return o;
+}
+
+Json materialsInfoJson(const scene::SceneState& s) {
+  Json list = Json::array();
+  for (const auto& [id, m] : s.materials) list.push_back(materialInfoJson(s, m));
+  Json o = Json::object();
+  o["materials"] = std::move(list);
+  return o;
+}
+
+void printMaterials(const scene::SceneState& s) {
+  for (const auto& [id, m] : s.materials) {
+    const scene::MeshAsset* a = s.findAsset(m.asset);
+    std::printf("%s%s\n", m.name.c_str(), a ? ("  (mesh asset " + a->name + ")").c_str() : "");
+    for (const auto& f : scene::materialFields()) {
+      if (f.key == "name") continue;
+      std::string value = scene::formatFieldValue(f.type, f.get(m), f.enumNames);
+      if (f.type == scene::FieldType::AssetRef) {
+        const scene::TextureAsset* t = s.findTexture(scene::TextureId(std::get<int64_t>(f.get(m))));
+        value = t ? value + " (" + t->name + ")" : "0 (none)";
+      }
+      std::printf("  %s: %s\n", f.key.c_str(), value.c_str());
+    }
+  }
+}
+
+}  // namespace hs::cli

@@ -1,0 +1,74 @@
+#pragma once
+// The materials of one frame on the GPU: every submesh a visible draw
+// shows gets its material (the document's, scene/material.h, through its
+// asset's material slots; for an asset without slots, one made from its
+// mesh::Material) as an index into the MaterialBlock storage buffer and
+// its textures (base colour, normal map, height map: units 0-2). Textures
+// of a mesh are its GpuMesh's; standalone ones are uploaded here, keyed by
+// id and content hash. A texture that cannot be drawn (missing, empty,
+// larger than the GPU allows, damaged, a grey "normal map") is left out of
+// the draw and reported once, naming the material and the field; the
+// frame still renders. Include only inside render/.
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+
+#include "render/gpu_material.h"
+#include "scene/scene_state.h"
+
+namespace hs::render {
+
+class GpuMeshCache;
+struct GpuMesh;
+struct GrowingBuffer;
+struct VisibleSet;
+
+struct DrawMaterial {
+  uint32_t index = 0;                  // into the frame's MaterialBlock
+  GLuint textures[3] = {0, 0, 0};      // base colour, normal map, height map
+  scene::ShadingMode shading = scene::ShadingMode::Phong;
+  bool twoSided = true;
+  // Program variants (HAS_NORMAL_MAP, HAS_PARALLAX): only with a drawable
+  // map, never with Gouraud shading (lit per vertex, before any map).
+  bool normalMap = false;
+  bool parallax = false;
+};
+
+class MaterialTable {
+ public:
+  // Resolves the material of every submesh of every draw of `visible` and
+  // uploads the block into `buffer` (bound at kMaterialBufferBinding).
+  void build(const scene::SceneState& state, const VisibleSet& visible, GpuMeshCache& meshes, GrowingBuffer& buffer);
+  const DrawMaterial& forDraw(size_t draw, size_t submesh) const { return perDraw_[draw][submesh]; }
+  size_t materialCount() const { return block_.size(); }
+
+  // Frees standalone textures the state no longer has (or whose content changed).
+  void collect(const scene::SceneState& state);
+  void clear();
+  size_t gpuBytes() const;
+  // Problems found since the last call, each reported once.
+  std::vector<std::string> takeProblems();
+
+ private:
+  struct Standalone {
+    uint64_t hash = 0;
+    GLuint texture = 0;
+    size_t bytes = 0;
+  };
+  GLuint texture(const scene::SceneState& state, const scene::Material& m, const char* field, scene::TextureId id,
+                 const GpuMesh& mesh, GpuMeshCache& meshes, bool normalMap);
+  void report(const std::string& problem);
+
+  std::vector<GpuMaterial> block_;
+  std::map<scene::MaterialId, DrawMaterial> byId_;  // this frame's
+  std::vector<std::vector<DrawMaterial>> perDraw_;  // [draw][submesh]
+  std::map<scene::TextureId, Standalone> standalone_;
+  std::set<std::string> reported_;
+  std::vector<std::string> problems_;
+  int maxTextureSize_ = 0;
+};
+
+}  // namespace hs::render

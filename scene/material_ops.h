@@ -1,0 +1,27 @@
+#pragma once
+// Undoable edits of materials (scene/material.h), for the Materials panel,
+// `hybridscape-cli material set` and tests. A value is checked against its
+// field's declaration (fields.cpp) and refused with a message that names
+// the material and the field; the document is then unchanged.
+#include <string>
+
+#include <QString>
+
+#include "scene/document.h"
+#include "scene/fields.h"
+
+namespace hs::scene::ops {
+
+// What is wrong with `value` for `field` of `material` ("" if nothing):
+// NaN or out of the declared range, a texture the scene does not have, an
+// empty or taken name. The message names both:
+//   material 'Rock / bark': opacity: 1.5 is out of range (0 to 1)
+std::string materialValueProblem(const SceneState& state, const Material& material, const MaterialField& field,
+                                 const FieldValue& value);
+
+// Sets one field in one undo step. False with `error` when refused (or
+// with `error` empty when the value was already that).
+bool setMaterialField(Document& doc, MaterialId id, const MaterialField& field, const FieldValue& value,
+                      std::string& error, const QString& mergeKey = {});
+
+}  // namespace hs::scene::ops

@@ -1,0 +1,134 @@
+// The Materials panel as a user reaches it: from a mesh's properties
+// ("Materials…"), its list, a field edited through the panel's editors as
+// one undo step, a refused value's message, and the preview sphere rendered
+// on its worker with the material (and again when the material changes).
+#include <QComboBox>
+#include <QDockWidget>
+#include <QLabel>
+#include <QLineEdit>
+#include <QListWidget>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QtTest>
+
+#include "app/field_editors.h"
+#include "app/main_window.h"
+#include "app/materials_panel.h"
+#include "app/property_panel.h"
+#include "app/selection.h"
+#include "editor_fixture.h"
+#include "scene/material_ops.h"
+
+using namespace hs;
+
+namespace {
+
+QColor pixel(const QImage& img, int x, int y) { return img.pixelColor(x, y); }
+
+}  // namespace
+
+class EditorMaterialsTest : public QObject {
+  Q_OBJECT
+ public:
+  static void initMain() { test::initEditorMain(); }
+
+ private slots:
+  void initTestCase() {
+    app::initApplicationSettings();
+    w_ = std::make_unique<app::MainWindow>();
+    test::setQuietPrompts(*w_);
+    w_->resize(1100, 760);
+    w_->loadDemoScene();
+    w_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w_.get()));
+  }
+
+  void reachedFromTheMeshProperties() {
+    const scene::SceneState& s = w_->document().state();
+    const scene::EntityId bunny = s.findByName("Stanford Bunny");
+    QVERIFY(bunny != scene::kNoEntity);
+    w_->selection().select(bunny);
+    QPushButton* button = nullptr;
+    QTRY_VERIFY((button = w_->properties()->findChild<QPushButton*>("meshMaterials")) != nullptr);
+    button->click();
+    const scene::MeshAsset* a = s.findAsset(s.find(bunny)->mesh->mesh);
+    QVERIFY(a && !a->materialSlots.empty());
+    app::MaterialsPanel* panel = w_->materialsPanel();
+    QCOMPARE(panel->selected(), a->materialSlots.front());
+    QVERIFY(w_->findChild<QDockWidget*>("materialsDock")->isVisible());
+    auto* list = panel->findChild<QListWidget*>("materialList");
+    QCOMPARE(size_t(list->count()), s.materials.size());
+    QCOMPARE(list->currentItem()->text().toStdString(), s.materials.at(panel->selected()).name);
+  }
+
+  void previewShowsTheMaterial() {
+    app::MaterialsPanel* panel = w_->materialsPanel();
+    QSignalSpy spy(panel, &app::MaterialsPanel::previewUpdated);
+    std::string error;
+    QVERIFY(scene::ops::setMaterialField(w_->document(), panel->selected(), *scene::findMaterialField("base_color"),
+                                         scene::FieldValue(glm::dvec3(0.9, 0.05, 0.05)), error));
+    QTRY_VERIFY_WITH_TIMEOUT(spy.count() >= 1, 20000);
+    // Wait for the image of the red material (an earlier request may land first).
+    // (Below the highlight, where the colour is least washed out by it.)
+    auto hue = [&](int a, int b) {
+      const QColor c = pixel(panel->previewImage(), 88, 96);
+      const int ch[3] = {c.red(), c.green(), c.blue()};
+      return ch[a] - ch[b];
+    };
+    QTRY_VERIFY_WITH_TIMEOUT(hue(0, 1) > 60, 20000);
+    const QImage red = panel->previewImage();
+    QCOMPARE(red.width(), 160);
+    // A sphere on a backdrop: the corner is not the material.
+    QVERIFY(pixel(red, 2, 2) != pixel(red, 80, 80));
+    QVERIFY(scene::ops::setMaterialField(w_->document(), panel->selected(), *scene::findMaterialField("base_color"),
+                                         scene::FieldValue(glm::dvec3(0.05, 0.2, 0.9)), error));
+    QTRY_VERIFY_WITH_TIMEOUT(hue(2, 0) > 60, 20000);
+  }
+
+  void editIsOneUndoStep() {
+    app::MaterialsPanel* panel = w_->materialsPanel();
+    auto* spin = panel->findChild<app::ScrubSpinBox*>("material.roughness");
+    QVERIFY(spin);
+    const scene::MaterialId id = panel->selected();
+    const float before = w_->document().state().materials.at(id).roughness;
+    const int steps = w_->document().undoStack()->count();
+    spin->setValue(0.12);
+    spin->setValue(0.1);
+    emit spin->editingFinished();
+    QCOMPARE(w_->document().undoStack()->count(), steps + 1);
+    QCOMPARE(w_->document().state().materials.at(id).roughness, 0.1f);
+    w_->document().undoStack()->undo();
+    QCOMPARE(w_->document().state().materials.at(id).roughness, before);
+    QTRY_COMPARE(spin->value(), double(before));
+    // The lighting model from its list of choices.
+    auto* model = panel->findChild<QComboBox*>("material.model");
+    QVERIFY(model);
+    model->setCurrentIndex(int(scene::LightingModel::Lambert));
+    emit model->activated(int(scene::LightingModel::Lambert));  // what a user's pick sends
+    QCOMPARE(w_->document().state().materials.at(id).model, scene::LightingModel::Lambert);
+  }
+
+  void refusedValueIsNamed() {
+    app::MaterialsPanel* panel = w_->materialsPanel();
+    auto* name = panel->findChild<QLineEdit*>("material.name");
+    QVERIFY(name);
+    const std::string before = w_->document().state().materials.at(panel->selected()).name;
+    QSignalSpy problems(panel, &app::MaterialsPanel::problem);
+    name->setText("   ");
+    emit name->editingFinished();
+    QCOMPARE(w_->document().state().materials.at(panel->selected()).name, before);
+    QCOMPARE(problems.count(), 1);
+    const QString message = problems.front().front().toString();
+    QVERIFY2(message == QString::fromStdString("material '" + before + "': name: a material needs a name"),
+             qPrintable(message));
+    QVERIFY(panel->findChild<QLabel*>("materialError")->isVisible());
+  }
+
+  void cleanupTestCase() { w_.reset(); }
+
+ private:
+  std::unique_ptr<app::MainWindow> w_;
+};
+
+QTEST_MAIN(EditorMaterialsTest)
+#include "test_editor_materials.moc"
