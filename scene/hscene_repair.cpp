@@ -12,6 +12,8 @@
 #include "scene/hscene_file.h"
 #include "scene/legacy_hashes.h"
 #include "scene/mesh_blob.h"
+#include "scene/mesh_materials.h"
+#include "scene/texture_blob.h"
 #include "scene/scene_json.h"
 #include "scene/sqlite_db.h"
 #include "scene/terrain_file.h"
@@ -66,6 +68,35 @@ int formatVersion(SqliteDb& db) {
 
 // One logical mesh blob read part by part; nullopt with `why` when a part
 // is missing or unreadable, it does not decode, or it does not match `hash`.
+// One logical blob's bytes, its parts in order; false with `why`.
+bool readBlobBytes(SqliteDb& db, const std::string& key, std::vector<uint8_t>& bytes, std::string& why) {
+  SqliteStmt q(db, "SELECT part, data FROM blobs WHERE key = ?1 ORDER BY part");
+  if (!q.ok()) {
+    why = "the blobs table cannot be read (" + db.lastError() + ")";
+    return false;
+  }
+  q.bind(1, key);
+  int64_t expected = 0;
+  std::string e;
+  while (q.step(e)) {
+    if (q.integer(0) != expected++) {
+      why = "a part of its data is missing";
+      return false;
+    }
+    const auto b = q.blob(1);
+    bytes.insert(bytes.end(), b.begin(), b.end());
+  }
+  if (!e.empty()) {
+    why = "its data cannot be read (" + e + ")";
+    return false;
+  }
+  if (expected == 0) {
+    why = "its data is missing from the file";
+    return false;
+  }
+  return true;
+}
+
 std::optional<mesh::MeshData> readMesh(SqliteDb& db, const std::string& key, uint64_t hash, int version,
                                        std::string& why) {
   SqliteStmt q(db, "SELECT part, data FROM blobs WHERE key = ?1 ORDER BY part");
@@ -125,6 +156,50 @@ std::optional<SceneState> readDescription(SqliteDb& db, std::string& why, std::v
   return s;
 }
 
+// Materials and textures (format 5) of the assets kept: a lost asset's
+// materials and mesh textures go with it; a standalone texture whose data
+// does not verify is dropped and the materials using it lose that map.
+void salvageMaterials(SqliteDb& db, SceneState& s, const std::set<AssetId>& lost, RepairReport& r) {
+  std::set<TextureId> goneTextures;
+  for (auto it = s.textures.begin(); it != s.textures.end();) {
+    TextureAsset& t = it->second;
+    std::string why;
+    if (!t.standalone()) {
+      if (lost.count(t.asset)) why = "its mesh asset was lost";
+    } else {
+      const std::string what = "texture " + std::to_string(t.id) + " ('" + t.name + "')";
+      std::vector<uint8_t> bytes;
+      std::string e;
+      if (!readBlobBytes(db, "texture/" + std::to_string(t.id), bytes, why)) {
+      } else if (auto image = decodeTexture(bytes.data(), bytes.size(), what, e); !image) {
+        why = e;
+      } else if (textureContentHash(*image) != t.contentHash) {
+        why = "its data does not match its checksum";
+      } else {
+        t.image = std::make_shared<const mesh::Texture>(std::move(*image));
+      }
+    }
+    if (!why.empty()) {
+      if (t.standalone()) r.dropped.push_back("texture " + std::to_string(t.id) + " ('" + t.name + "'): " + why);
+      goneTextures.insert(it->first);
+      it = s.textures.erase(it);
+      continue;
+    }
+    ++it;
+  }
+  for (auto it = s.materials.begin(); it != s.materials.end();) {
+    if (lost.count(it->second.asset)) {
+      it = s.materials.erase(it);
+      continue;
+    }
+    for (TextureId* t : {&it->second.baseColorTexture, &it->second.normalMap, &it->second.heightMap})
+      if (goneTextures.count(*t)) *t = kNoTexture;
+    ++it;
+  }
+  std::string e;
+  if (!linkMeshTextures(s, e)) r.notes.push_back("mesh textures: " + e);
+}
+
 // Keeps each asset whose mesh verifies (its LODs too, or none of them);
 // entities showing a dropped asset keep their place without the mesh.
 void salvageMeshes(SqliteDb& db, SceneState& s, int version, RepairReport& r) {
@@ -164,6 +239,7 @@ void salvageMeshes(SqliteDb& db, SceneState& s, int version, RepairReport& r) {
                           std::to_string(e.mesh->mesh) + "); the entity is kept");
       e.mesh.reset();
     }
+  salvageMaterials(db, s, lost, r);
 }
 
 // Without a description, meshes are found by their blob keys ("mesh/<id>")

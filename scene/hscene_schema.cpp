@@ -75,6 +75,11 @@ std::vector<std::string> danglingBlobKeys(SqliteDb& db, const SceneState& state,
     const std::string key = q.text(0);
     if (const auto id = idAfter(key, "mesh/"); id && state.assets.count(AssetId(*id))) continue;
     if (const auto id = idAfter(key, "terrain/"); id && state.terrains.count(TerrainId(*id))) continue;
+    // A standalone texture's bytes (format 5; a mesh's textures live in its mesh blob).
+    if (const auto id = idAfter(key, "texture/"); id) {
+      const TextureAsset* t = state.findTexture(TextureId(*id));
+      if (t && t->standalone()) continue;
+    }
     out.push_back(key);
   }
   return out;

@@ -23,7 +23,7 @@ struct SchemaCheck {
 // `error` is set only when SQLite cannot read them (damage).
 SchemaCheck checkSchema(SqliteDb& db, std::string& error);
 
-// Blob keys that belong to no asset or terrain of `state` (left by a tool
+// Blob keys that belong to no asset, terrain or standalone texture of `state` (left by a tool
 // that edited the description alone): counted and named, never read. The
 // next save removes them.
 std::vector<std::string> danglingBlobKeys(SqliteDb& db, const SceneState& state, std::string& error);

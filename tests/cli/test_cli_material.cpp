@@ -83,7 +83,7 @@ class TestCliMaterial : public QObject {
     };
     const QList<Case> cases = {
         {{"material", "set", "Bumpy / default", "opacity", "1.5", scene}, 1,
-         "material 'Bumpy / default': opacity: 1.5 is out of range (0 to 1)"},
+         "material 'Bumpy / default': opacity: '1.5' is out of range: Opacity must be from 0 to 1"},
         {{"material", "set", "Bumpy / default", "roughness", "nan", scene}, 1,
          "material 'Bumpy / default': roughness: 'nan' is not a finite number"},
         {{"material", "set", "Bumpy / default", "model", "toon", scene}, 1,

@@ -109,9 +109,12 @@ class TestHsceneRepair : public QObject {
     QVERIFY(s);
     QVERIFY(!r.wasWhole);
     QVERIFY2(joined(r.dropped).find("mesh asset " + std::to_string(lost)) != std::string::npos, joined(r.dropped).c_str());
-    // The reference: the original with that asset gone and its entity without a mesh.
+    // The reference: the original with that asset gone (its materials and
+    // mesh textures with it) and its entity without a mesh.
     SceneState expected = scene_;
     expected.assets.erase(lost);
+    std::erase_if(expected.materials, [&](const auto& m) { return m.second.asset == lost; });
+    std::erase_if(expected.textures, [&](const auto& t) { return t.second.asset == lost; });
     for (auto& [id, e] : expected.entities)
       if (e.mesh && e.mesh->mesh == lost) e.mesh.reset();
     QCOMPARE(canonicalJson(*s), canonicalJson(expected));
