@@ -1,7 +1,6 @@
 // The PLY check that runs before Assimp (mesh/declared_counts.h): header,
-// counts against the size, binary and ASCII bodies. When issue 11's own PLY
-// reader lands it gets a target of its own beside this one (fuzz_ply.cpp,
-// seeded from fuzz/corpus/ply_check).
+// counts against the size, binary and ASCII bodies. The own PLY reader has
+// its target beside this one (fuzz_ply.cpp, seeded from the same files).
 #include <string_view>
 
 #include "fuzz_target.h"
