@@ -46,7 +46,9 @@ void printMaterials(const scene::SceneState& s) {
     std::printf("%s%s\n", m.name.c_str(), a ? ("  (mesh asset " + a->name + ")").c_str() : "");
     for (const auto& f : scene::materialFields()) {
       if (f.key == "name") continue;
-      std::string value = scene::formatFieldValue(f.type, f.get(m), f.enumNames);
+      // Materials hold floats: 7 digits show what was set ("0.8", not the
+      // float's double expansion); --json keeps every digit.
+      std::string value = scene::formatFieldValue(f.type, f.get(m), f.enumNames, 7);
       if (f.type == scene::FieldType::AssetRef) {
         const scene::TextureAsset* t = s.findTexture(scene::TextureId(std::get<int64_t>(f.get(m))));
         value = t ? value + " (" + t->name + ")" : "0 (none)";
