@@ -1,10 +1,10 @@
 // `hybridscape-cli mesh`: mesh subcommands (export).
 #include <cstdio>
-#include <cstring>
 
 #include "cli/commands.h"
 #include "cli/operation_options.h"
 #include "cli/scene_open.h"
+#include "cli/subcommands.h"
 #include "scene/mesh_export_operation.h"
 
 namespace hs::cli {
@@ -32,33 +32,12 @@ int runMeshExport(int argc, char** argv) {
   return 0;
 }
 
-struct Sub {
-  const char* name;
-  const OperationDecl& (*decl)();
-  int (*run)(int, char**);
-};
-
-const Sub kSubs[] = {
+const Subcommand kSubs[] = {
     {"export", scene::meshExportOperation, runMeshExport},
 };
 
-void help() {
-  std::printf("usage: hybridscape-cli mesh <subcommand> [arguments] [--help]\n\nsubcommands:\n");
-  for (const Sub& s : kSubs) std::printf("  %-12s %s\n", s.name, s.decl().summary.c_str());
-}
-
 }  // namespace
 
-int runMesh(int argc, char** argv) {
-  if (argc < 1 || !std::strcmp(argv[0], "--help") || !std::strcmp(argv[0], "-h")) {
-    help();
-    return argc < 1 ? 2 : 0;
-  }
-  for (const Sub& s : kSubs)
-    if (!std::strcmp(argv[0], s.name)) return s.run(argc - 1, argv + 1);
-  std::fprintf(stderr, "hybridscape-cli mesh: error: unknown subcommand '%s' (see hybridscape-cli mesh --help)\n",
-               argv[0]);
-  return 2;
-}
+int runMesh(int argc, char** argv) { return runSubcommands("mesh", "", kSubs, argc, argv); }
 
 }  // namespace hs::cli

@@ -11,13 +11,13 @@
 #include <OpenImageIO/imageio.h>
 
 #include "mesh/export/export_geometry.h"
+#include "mesh/mesh_import.h"
 
 namespace hs::mesh {
 namespace fs = std::filesystem;
 
 std::optional<ExportFormat> exportFormatFromPath(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lowerExtension(path);
   if (ext == ".obj") return ExportFormat::Obj;
   if (ext == ".ply") return ExportFormat::Ply;
   if (ext == ".glb") return ExportFormat::Glb;

@@ -14,12 +14,6 @@
 namespace hs::mesh {
 namespace {
 
-std::string lowerExtension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return e;
-}
-
 ImportResult fail(ImportReport&& report, std::string error, const Progress* progress) {
   ImportResult r;
   r.cancelled = isCancelled(progress);
@@ -153,6 +147,12 @@ ImportResult readAndFinish(const std::string& path, const std::string& ext, bool
 }
 
 }  // namespace
+
+std::string lowerExtension(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return e;
+}
 
 std::vector<std::string> supportedExtensions() {
   return {".obj", ".fbx", ".ply", ".gltf", ".glb", ".dae", ".3ds", ".stl", ".off"};

@@ -101,5 +101,8 @@ ImportResult importObjFromMemory(std::string_view data, const std::string& name,
 
 // Extensions importMesh accepts, lower case with the dot (".obj", ".fbx", ...).
 std::vector<std::string> supportedExtensions();
+// A path's extension in lower case with the dot (".ply" for "Scan.PLY");
+// what every format choice by extension compares against.
+std::string lowerExtension(const std::string& path);
 
 }  // namespace hs::mesh

@@ -27,15 +27,9 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kWorkerName = "hybridscape-import-worker";
 
-std::string lowerExtension(const std::string& path) {
-  std::string e = fs::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return e;
-}
-
 // What users call the format: "FBX", "glTF", "PLY", ...
 std::string formatName(const std::string& path) {
-  const std::string e = lowerExtension(path);
+  const std::string e = mesh::lowerExtension(path);
   if (e == ".gltf" || e == ".glb") return "glTF";
   if (e == ".dae") return "COLLADA";
   std::string n = e.empty() ? std::string("mesh") : e.substr(1);
@@ -290,7 +284,7 @@ bool readsWithAssimp(const std::string& path, const mesh::ImportOptions& options
   if (options.reader == mesh::Reader::Obj) return false;
   if (options.reader == mesh::Reader::Assimp) return true;
   // Our own readers (OBJ, PLY) run in-process: no start-up to pay.
-  const std::string ext = lowerExtension(path);
+  const std::string ext = mesh::lowerExtension(path);
   return ext != ".obj" && ext != ".ply";
 }
 
