@@ -13,7 +13,9 @@ namespace hs::mesh {
 // line, an element count is not a whole number or more than the file can
 // hold, or the body is shorter than its elements need: every fixed-size
 // property counted, each list's entries by the counts the body gives, an
-// ASCII body token by token. The file is read once, in 1 MB pieces.
+// ASCII body value by value. The header and body are read by the own PLY
+// reader's parser and cursor (mesh/ply_header.h, mesh/ply_body.h), so the
+// messages are the own reader's. The file is read once, in 4 MB pieces.
 bool checkPlyComplete(const std::string& path, std::string& error);
 
 }  // namespace hs::mesh

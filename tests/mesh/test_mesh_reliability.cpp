@@ -338,6 +338,42 @@ class TestMeshReliability : public QObject {
     }
   }
 
+  // One PLY parser: the check before Assimp (`--reader assimp`) reads the
+  // header and body with the own reader's parser and cursor, so a bad file
+  // gets the same message, byte for byte, whichever reader is asked.
+  void bothPlyPathsRefuseWithTheSameMessage() {
+    const std::string ascii = plyHeader("ascii", "121", "200") + plyAsciiBody(g_, 200);
+    const std::string binary = plyHeader("binary_little_endian", "121", "200") + plyBinaryBody(g_);
+    const std::string header = plyHeader("ascii", "121", "200");
+    const std::pair<const char*, std::string> cases[] = {
+        {"twin_e9.ply", plyHeader("ascii", "121", "1e9") + plyAsciiBody(g_, 200)},
+        {"twin_neg.ply", plyHeader("binary_little_endian", "121", "-1") + plyBinaryBody(g_)},
+        {"twin_huge.ply", plyHeader("binary_little_endian", "99999999999999999999", "200") + plyBinaryBody(g_)},
+        {"twin_big.ply", plyHeader("ascii", "999999999", "200") + plyAsciiBody(g_, 200)},
+        {"twin_no_end.ply", header.substr(0, header.find("end_header"))},
+        {"twin_type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n1\n"},
+        {"twin_keyword.ply", "ply\nformat ascii 1.0\nelemnt vertex 1\nend_header\n"},
+        {"twin_format.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n"},
+        {"twin_half.ply", ascii.substr(0, ascii.size() * 3 / 4)},
+        {"twin_250.ply", plyHeader("ascii", "121", "250") + plyAsciiBody(g_, 200)},
+        {"twin_250b.ply", plyHeader("binary_little_endian", "121", "250") + plyBinaryBody(g_)},
+        {"twin_cut_b.ply", binary.substr(0, binary.size() - 7)},
+        {"twin_word.ply", ascii.substr(0, ascii.size() - 40) + "zero" + ascii.substr(ascii.size() - 36)},
+        {"twin_list.ply", header + plyAsciiBody(g_, 199) + "4000000000 0 1 2\n"},
+    };
+    ImportOptions assimp;
+    assimp.reader = Reader::Assimp;
+    for (const auto& [name, bytes] : cases) {
+      const std::string p = write(name, bytes);
+      const ImportResult own = importMesh(p), checked = importMesh(p, assimp);
+      QVERIFY2(!own.ok(), name);
+      QVERIFY2(!checked.ok(), name);
+      QVERIFY2(own.report.reader == "ply", own.report.reader.c_str());
+      QVERIFY2(own.error == checked.error, (own.error + "\n  vs\n" + checked.error).c_str());
+      QVERIFY2(contains(own.error, p), own.error.c_str());
+    }
+  }
+
   // Issue 11's guard, on Assimp's PLY path: triangle strips are declared
   // by their lists; what Assimp makes of them is compared, never silent.
   void plyTristripsAreDeclaredAndCompared() {
