@@ -7,6 +7,7 @@
 #include "core/content_hash.h"
 #include "scene/asset_reports.h"
 #include "scene/fields.h"
+#include "scene/key_value_ranges.h"
 #include "scene/terrain_json.h"
 #include "sequencer/sequence_json.h"
 
@@ -471,6 +472,8 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
       seq && !sequencer::readSequence(r, *seq, "sequence", s.sequence))
     return std::nullopt;
   if (r.failed()) return std::nullopt;
+  // Keyed values are held to their fields' ranges like the static ones.
+  clampKeyValues(s, r.warnings);
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     inconsistency = "inconsistent hierarchy: " + problem;

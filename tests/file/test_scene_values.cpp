@@ -13,6 +13,8 @@
 #include "file_bytes.h"
 #include "hscene_sql.h"
 #include "scene/hscene_file.h"
+#include "core/json.h"
+#include "scene/fields.h"
 #include "scene/scene_json.h"
 
 using namespace hs;
@@ -111,6 +113,56 @@ class TestSceneValues : public QObject {
     report = {};
     QVERIFY(loadScene((fs::path(tmp_.path().toStdString()) / scene_.toStdString()).string(), error, nullptr, &report));
     QVERIFY(report.warnings.empty());
+  }
+
+  // Keyed values are held to the same ranges: a key written into the file
+  // behind the library's back is clamped on load, and the warning names the
+  // entity, the field and the key's frame. (Was: loaded as written.)
+  void loaderClampsKeyValuesAndWarns() {
+    const fs::path dir = tmp_.path().toStdString();
+    const std::string file = (dir / "hostile_keys.hscene").string();
+    fs::copy_file(dir / scene_.toStdString(), file);
+    const QString name = QString::fromStdString(fs::path(file).filename().string());
+    for (const QStringList& args : {QStringList{"key", "Camera", "camera.fov_deg", "120f", "40", name},
+                                    QStringList{"key", "Camera", "transform.scale", "30f", "2,2,2", name}}) {
+      const test::CliRun r = test::runCli(args, tmp_.path());
+      QVERIFY2(r.code == 0, qPrintable(r.err));
+    }
+    Json json = Json::parse(test::readDescription(file));
+    int changed = 0;
+    for (Json& binding : json["sequence"]["bindings"])
+      for (Json& track : binding["tracks"]) {
+        if (track["property"] == "camera.fov_deg") track["keys"][0]["v"] = 0.0, ++changed;
+        if (track["property"] == "transform.scale") track["keys"][0]["v"] = Json::array({0.0, 3.0, 1e308}), ++changed;
+      }
+    QCOMPARE(changed, 2);
+    test::writeDescription(file, writeJson(json));
+    std::string error;
+    LoadReport report;
+    std::optional<SceneState> s = loadScene(file, error, nullptr, &report);
+    QVERIFY2(s, error.c_str());
+    std::string all;
+    for (const auto& w : report.warnings) all += w + "\n";
+    QCOMPARE(report.warnings.size(), size_t(2));
+    QVERIFY2(all.find(file + ": entity 2 'Camera': camera.fov_deg key at frame 120: 0 must be from 1 to 170 °; now 1") !=
+                 std::string::npos,
+             all.c_str());
+    QVERIFY2(all.find(file + ": entity 2 'Camera': transform.scale key at frame 30: 0,3,1e+308 must be non-zero on every axis; now 1e-09,3,1e+308") != std::string::npos,
+             all.c_str());
+    double fov = 0.0;
+    glm::dvec3 scale(0.0);
+    for (const auto& b : s->sequence.bindings)
+      for (const auto& t : b.tracks) {
+        if (const auto* st = std::get_if<sequencer::ScalarTrack>(&t); st && st->property == "camera.fov_deg")
+          fov = st->keys.at(0).value;
+        if (const auto* vt = std::get_if<sequencer::VectorTrack>(&t); vt && vt->property == "transform.scale")
+          scale = vt->keys.at(0).value;
+      }
+    QCOMPARE(fov, 1.0);
+    // What the scale field's setter makes of it: no zero axis, nothing past its range.
+    const EntityField* f = findEntityField("transform.scale");
+    QVERIFY(fieldValueProblem(*f, FieldValue(scale), static_cast<const Entity*>(nullptr)).empty());
+    QCOMPARE(scale.y, 3.0);
   }
 };
 
