@@ -150,6 +150,7 @@ void MainWindow::createDocks() {
   QDockWidget* materialsDock = dock("Materials", "materialsDock", materials_, Qt::RightDockWidgetArea);
   tabifyDockWidget(settingsDock, materialsDock);
   connect(materials_, &MaterialsPanel::problem, this, [this](const QString& m) { messages_->add(MessageLevel::Warning, m); });
+  connect(properties_, &PropertyPanel::problem, this, [this](const QString& m) { messages_->warning(m); });
   properties_->setMaterialsHook([this, materialsDock](scene::AssetId asset) {
     const scene::MeshAsset* a = doc_.state().findAsset(asset);
     if (a && !a->materialSlots.empty()) materials_->select(a->materialSlots.front());

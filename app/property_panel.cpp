@@ -298,13 +298,22 @@ void PropertyPanel::apply(const scene::EntityField& field, const scene::Componen
     // The field's range and rule (fields.h), as the CLI and the loader apply
     // them: an empty name, a zero scale or a far clip inside the near one
     // is not applied (the widget shows the entity's value again).
-    if (!scene::fieldValueProblem(field, value, e).empty()) {
+    // The rule goes to Messages, so the user learns why.
+    if (const std::string problem = scene::fieldValueProblem(field, value, e); !problem.empty()) {
+      emit this->problem(QString::fromStdString(e->name + ": " + field.label + " " +
+                                                scene::formatFieldValue(field.type, value, field.enumNames, 6) + " " +
+                                                problem + "; not applied"));
       refused = true;
       continue;
     }
     edits.emplace_back(id, std::move(value));
   }
-  for (const auto& [id, value] : edits) scene::ops::setField(doc_, id, field, value, key);
+  for (const auto& [id, value] : edits) {
+    // What the setter clamped (ops::setField reports it) goes to Messages too.
+    scene::ops::FieldChange change;
+    scene::ops::setField(doc_, id, field, value, key, &change);
+    if (!change.message.empty()) emit problem(QString::fromStdString(change.message));
+  }
   if (refused) refresh();
   if (edited_ && !edits.empty()) {
     std::vector<scene::EntityId> ids;

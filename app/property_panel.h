@@ -3,7 +3,8 @@
 // component, generated from scene::entityComponents(). Edits go through
 // scene::ops::setField (undoable); with several entities selected an edit
 // applies to each of them that has the field, as one undo step, and a vector
-// edit changes only the component that was touched.
+// edit changes only the component that was touched. A value refused by its
+// field's rule or clamped by its setter is said through problem().
 #include <functional>
 #include <map>
 #include <set>
@@ -51,6 +52,11 @@ class PropertyPanel : public QWidget {
   // Mesh components: "Materials…" calls this with the mesh's asset (set by
   // the main window: shows the Materials panel on the asset's first material).
   void setMaterialsHook(std::function<void(scene::AssetId asset)> hook) { materialsHook_ = std::move(hook); }
+
+ signals:
+  // A value that was not applied as typed: refused by its field's rule, or
+  // clamped by its setter (scene::ops::FieldChange). For Messages.
+  void problem(const QString& message);
 
  private:
   struct Row {

@@ -4,6 +4,7 @@
 #include "cli/entity_lookup.h"
 #include "cli/operation_options.h"
 #include "cli/scene_open.h"
+#include "core/escape_control.h"
 #include "scene/document.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
@@ -54,13 +55,16 @@ int runSet(int argc, char** argv) {
   doc.reset(std::move(*state), QString::fromStdString(scenePath));
 
   bool changed = false;
+  // What the field's setter made of the value, if not what was given (the
+  // checks above refuse what they know; the setter has the last word).
+  scene::ops::FieldChange change;
   if (isSetting) {
     const std::string key = positional[0].substr(9);
     const scene::SettingsField* f = scene::findSettingsField(key);
     if (!f) return args.fail("no scene setting '" + key + "' (see --help)");
     const auto v = scene::parseFieldValue(*f, positional[1], error);
     if (!v) return args.fail("settings." + key + ": " + error);
-    changed = scene::ops::setSettingsField(doc, *f, *v);
+    changed = scene::ops::setSettingsField(doc, *f, *v, {}, &change);
   } else {
     const std::string& who = positional[0];
     const scene::EntityId id = findEntity(doc.state(), who);
@@ -79,8 +83,10 @@ int runSet(int argc, char** argv) {
     if (f->type == scene::FieldType::AssetRef && std::get<int64_t>(*v) > 0 &&
         !doc.state().findAsset(scene::AssetId(std::get<int64_t>(*v))))
       return args.fail(positional[1] + ": no mesh asset " + positional[2] + " in " + scenePath);
-    changed = scene::ops::setField(doc, id, *f, *v);
+    changed = scene::ops::setField(doc, id, *f, *v, {}, &change);
   }
+  if (!change.message.empty())
+    std::fprintf(stderr, "warning: %s\n", escapeControlCharacters(change.message).c_str());
   if (!changed) {
     std::printf("unchanged (the value was already %s)\n", positional[positional.size() - 2].c_str());
     return 0;

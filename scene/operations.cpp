@@ -121,8 +121,25 @@ bool setTransforms(Document& doc, const std::vector<std::pair<EntityId, Transfor
   return e.commit();
 }
 
+namespace {
+
+// The message of a FieldChange: `who` the entity ("" for settings), the
+// value asked for, why it could not be kept, and what the field holds now.
+template <class Target>
+std::string clampMessage(const std::string& who, const FieldInfo<Target>& field, const FieldValue& asked,
+                         const std::string& problem, const FieldValue& held, bool stored) {
+  const auto shown = [&field](const FieldValue& x) {
+    const std::string text = formatFieldValue(field.type, x, field.enumNames, 6);
+    return field.type == FieldType::String ? "'" + text + "'" : text;
+  };
+  return (who.empty() ? "" : who + ": ") + field.label + " " + shown(asked) + " " + problem +
+         (!stored ? "; unchanged" : held != asked ? "; set to " + shown(held) : "; stored as given");
+}
+
+}  // namespace
+
 bool setField(Document& doc, EntityId id, const EntityField& field, const FieldValue& value,
-              const QString& mergeKey) {
+              const QString& mergeKey, FieldChange* change) {
   if (!doc.state().find(id)) return false;
   Edit e(doc, QString("Set %1").arg(QString::fromStdString(field.label)), mergeKey);
   Entity& ent = e.entity(id);
@@ -135,15 +152,30 @@ bool setField(Document& doc, EntityId id, const EntityField& field, const FieldV
   if (field.type == FieldType::AssetRef && std::get<int64_t>(value) > 0 &&
       !doc.state().findAsset(AssetId(std::get<int64_t>(value))))
     return false;
+  const std::string problem = fieldValueProblem(field, value, &ent);
+  const std::string who = ent.name;
   field.set(ent, value);
-  return e.commit();
+  const FieldValue held = field.get(ent);
+  const bool stored = e.commit();
+  if (change) {
+    change->value = held;
+    change->message = problem.empty() ? std::string() : clampMessage(who, field, value, problem, held, stored);
+  }
+  return stored;
 }
 
 bool setSettingsField(Document& doc, const SettingsField& field, const FieldValue& value,
-                      const QString& mergeKey) {
+                      const QString& mergeKey, FieldChange* change) {
   Edit e(doc, QString("Set %1").arg(QString::fromStdString(field.label)), mergeKey);
+  const std::string problem = fieldValueProblem(field, value, &e.settings());
   field.set(e.settings(), value);
-  return e.commit();
+  const FieldValue held = field.get(e.settings());
+  const bool stored = e.commit();
+  if (change) {
+    change->value = held;
+    change->message = problem.empty() ? std::string() : clampMessage("", field, value, problem, held, stored);
+  }
+  return stored;
 }
 
 bool addComponent(Document& doc, EntityId id, const ComponentInfo& component) {

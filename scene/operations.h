@@ -44,10 +44,22 @@ bool rename(Document& doc, EntityId id, const std::string& name);
 // Sets several transforms at once (a gizmo drag on a multi-selection).
 bool setTransforms(Document& doc, const std::vector<std::pair<EntityId, Transform>>& transforms,
                    const QString& text, const QString& mergeKey = {});
+// What setField / setSettingsField did with a value outside its field's
+// range or rule (scene/fields.cpp): the value the field holds afterwards and
+// a message for the user ("Camera: Vertical field of view 500 must be from
+// 1 to 170 °; set to 170"; "...; unchanged" where nothing was stored).
+// `message` is empty when the value was stored as given.
+struct FieldChange {
+  FieldValue value;
+  std::string message;
+};
+// The field's setter clamps what it is handed (a zero scale becomes a tiny
+// one, a non-finite value keeps the old one); `change`, when given, says
+// so. The CLI prints the message, the editor shows it in Messages.
 bool setField(Document& doc, EntityId id, const EntityField& field, const FieldValue& value,
-              const QString& mergeKey = {});
+              const QString& mergeKey = {}, FieldChange* change = nullptr);
 bool setSettingsField(Document& doc, const SettingsField& field, const FieldValue& value,
-                      const QString& mergeKey = {});
+                      const QString& mergeKey = {}, FieldChange* change = nullptr);
 bool addComponent(Document& doc, EntityId id, const ComponentInfo& component);
 bool removeComponent(Document& doc, EntityId id, const ComponentInfo& component);
 bool reparent(Document& doc, EntityId id, EntityId newParent, int index = -1);

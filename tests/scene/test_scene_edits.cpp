@@ -498,6 +498,35 @@ class TestSceneEdits : public QObject {
     QVERIFY(s.validate().empty());
   }
 
+  // The clamp is said: the caller gets the value the field holds and a
+  // message naming the entity, the field, the value asked for and the rule.
+  void setFieldReportsWhatItClamped() {
+    SmallScene sc;
+    const SceneState& s = sc.doc.state();
+    const std::string camera = s.find(sc.d)->name;
+    ops::FieldChange change;
+    QVERIFY(ops::setField(sc.doc, sc.d, field("camera.fov_deg"), 500.0, {}, &change));
+    QCOMPARE(std::get<double>(change.value), 170.0);
+    QCOMPARE(change.message, camera + ": Vertical field of view 500 must be from 1 to 170 °; set to 170");
+    QCOMPARE(s.find(sc.d)->camera->verticalFovDeg, 170.0);
+    // A value in range: stored as given, no message.
+    QVERIFY(ops::setField(sc.doc, sc.d, field("camera.fov_deg"), 35.0, {}, &change));
+    QCOMPARE(std::get<double>(change.value), 35.0);
+    QVERIFY(change.message.empty());
+    // Not finite: nothing stored, and said.
+    QVERIFY(!ops::setField(sc.doc, sc.d, field("camera.fov_deg"), double(NAN), {}, &change));
+    QCOMPARE(std::get<double>(change.value), 35.0);
+    QVERIFY2(change.message.find("must be a finite number; unchanged") != std::string::npos, change.message.c_str());
+    // A zero scale axis becomes a tiny one.
+    QVERIFY(ops::setField(sc.doc, sc.a, field("transform.scale"), glm::dvec3(0, 2, 1), {}, &change));
+    QVERIFY2(change.message.find("must be non-zero on every axis; set to 1e-09,2,1") != std::string::npos,
+             change.message.c_str());
+    // Settings too.
+    QVERIFY(ops::setSettingsField(sc.doc, *findSettingsField("exposure"), 0.0, {}, &change));
+    QVERIFY(std::abs(std::get<double>(change.value) - 0.001) < 1e-9);  // a float field
+    QVERIFY2(change.message.rfind("Exposure 0 must be from 0.001 to 1000", 0) == 0, change.message.c_str());
+  }
+
   void meshAssetFieldMustNameAnAsset() {
     SmallScene sc;
     std::mt19937 rng(5);
