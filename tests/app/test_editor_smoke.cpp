@@ -79,6 +79,7 @@ class EditorSmokeTest : public QObject {
   void startsWithDemoScene();
   void importBunny();
   void propertyEditIsOneUndoStepAndUndoIsExact();
+  void refusedPropertyValueReachesMessages();
   void componentsAddAndRemoveAreUndoable();
   void gizmoDragMovesAlongAxisAsOneUndoStep();
   void clickPicksTheBunny();
@@ -202,6 +203,26 @@ void EditorSmokeTest::propertyEditIsOneUndoStepAndUndoIsExact() {
   QCOMPARE(spin->value(), spin->valueFromText(spin->textFromValue(before.translation.x)));  // the panel follows
   doc().undoStack()->redo();
   QVERIFY(bunny().transform.translation == moved);
+}
+
+// A value the field's rule refuses is not applied, and Messages says why
+// (was: the panel silently showed the old value again).
+void EditorSmokeTest::refusedPropertyValueReachesMessages() {
+  w_->selection().select(bunny_);
+  auto* spin = w_->properties()->findChild<app::ScrubSpinBox*>("transform.scale.y");
+  QVERIFY(spin);
+  const scene::Transform before = bunny().transform;
+  const int steps = doc().undoStack()->count();
+  const int warnings = w_->messages()->count(app::MessageLevel::Warning);
+  spin->setValue(0.0);
+  emit spin->editingFinished();
+  QVERIFY(bunny().transform == before);
+  QCOMPARE(doc().undoStack()->count(), steps);
+  QCOMPARE(w_->messages()->count(app::MessageLevel::Warning), warnings + 1);
+  const QString text = w_->messages()->lastText();
+  QVERIFY2(text.contains(QString::fromStdString(bunny().name) + ": Scale") && text.contains("must be non-zero") &&
+               text.contains("not applied"),
+           qPrintable(text));
 }
 
 void EditorSmokeTest::componentsAddAndRemoveAreUndoable() {
