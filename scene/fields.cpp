@@ -494,12 +494,15 @@ std::optional<FieldValue> parseFieldText(const FieldInfo<Target>& field, std::st
     case FieldType::String:
       return FieldValue(std::string(text));
     case FieldType::AssetRef: {
-      double v;
-      if (!parseDouble(text, v) || v < 0 || v != std::floor(v)) {
-        error = "'" + std::string(text) + "' is not an asset id";
+      // A whole number in digits: through a double, 1e308 or 2^63 became
+      // an id no int64 holds (stored as 0: the mesh silently gone).
+      int64_t v = -1;
+      const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() || v < 0) {
+        error = "'" + std::string(text) + "' is not an asset id (a whole number; 0 for none)";
         return std::nullopt;
       }
-      return FieldValue(int64_t(v));
+      return FieldValue(v);
     }
   }
   return std::nullopt;

@@ -70,7 +70,11 @@ std::vector<size_t> resortMoved(std::vector<K>& keys, const std::set<size_t>& mo
 
 std::vector<KeyRef> moveImpl(Sequence& seq, const std::vector<KeyRef>& refs, const std::function<double(double)>& to) {
   std::vector<KeyRef> out;
-  for (const auto& [group, indices] : groupByTrack(refs)) {
+  // Named references, not a structured binding: the lambdas below capture
+  // them, which clang before 16 does not allow for bindings.
+  for (const auto& byTrack : groupByTrack(refs)) {
+    const auto& group = byTrack.first;
+    const auto& indices = byTrack.second;
     Binding* b = seq.findBinding(group.first);
     if (!b) continue;
     visitKeys(*b, group.second, [&](auto& keys) {
@@ -145,7 +149,11 @@ std::vector<KeyRef> moveKeysSnapped(Sequence& sequence, const std::vector<KeyRef
 
 size_t removeKeys(Sequence& sequence, const std::vector<KeyRef>& keys) {
   size_t removed = 0;
-  for (const auto& [group, indices] : groupByTrack(keys)) {
+  // Named references, not a structured binding: the lambdas below capture
+  // them, which clang before 16 does not allow for bindings.
+  for (const auto& byTrack : groupByTrack(keys)) {
+    const auto& group = byTrack.first;
+    const auto& indices = byTrack.second;
     Binding* b = sequence.findBinding(group.first);
     if (!b) continue;
     visitKeys(*b, group.second, [&](auto& k) {
@@ -166,7 +174,11 @@ KeyClipboard copyKeys(const Sequence& sequence, const std::vector<KeyRef>& keys)
   double earliest = INFINITY;
   for (const KeyRef& k : keys)
     if (auto t = keyTime(sequence, k)) earliest = std::min(earliest, *t);
-  for (const auto& [group, indices] : groupByTrack(keys)) {
+  // Named references, not a structured binding: the lambdas below capture
+  // them, which clang before 16 does not allow for bindings.
+  for (const auto& byTrack : groupByTrack(keys)) {
+    const auto& group = byTrack.first;
+    const auto& indices = byTrack.second;
     const Binding* b = sequence.findBinding(group.first);
     if (!b) continue;
     KeyClipboard::Entry entry{group.first, b->label, group.second, {}};
