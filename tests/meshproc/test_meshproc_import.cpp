@@ -340,7 +340,13 @@ class TestMeshprocImport : public QObject {
     finished.clear();
     mostAtOnce = 0;
     o.maxParallel = 4;
-    const TileImportResult parallel = importTiles(files, o);
+    std::mutex pm;
+    std::vector<double> fractions;
+    hs::Progress progress([&](double f, std::string_view) {
+      std::lock_guard lock(pm);
+      fractions.push_back(f);
+    });
+    const TileImportResult parallel = importTiles(files, o, &progress);
     QVERIFY2(parallel.ok(), parallel.error.c_str());
     QCOMPARE(mostAtOnce.load(), 4);
     QCOMPARE(finished.front(), size_t(3));  // the last tile finished first
@@ -348,6 +354,13 @@ class TestMeshprocImport : public QObject {
     QCOMPARE(parallel.mesh->origin, serial.mesh->origin);
     QCOMPARE(parallel.borderVerticesMerged, serial.borderVerticesMerged);
     QVERIFY(parallel.borderVerticesMerged > 0);
+    // Progress: the tiles' reading shares 0..0.9 of the bar (their mean),
+    // the weld the rest, ending at 1.
+    QVERIFY(fractions.size() > 4);
+    QCOMPARE(fractions.back(), 1.0);
+    QVERIFY(*std::max_element(fractions.begin(), fractions.end() - 2) <= 0.9 + 1e-12);
+    QVERIFY(std::find_if(fractions.begin(), fractions.end(), [](double f) { return f > 0.2 && f <= 0.9; }) !=
+            fractions.end());
     QCOMPARE(parallel.tiles.size(), size_t(4));
     for (size_t k = 0; k < 4; ++k) {
       QCOMPARE(parallel.tiles[k].file, files[k]);
