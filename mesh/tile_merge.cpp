@@ -5,13 +5,13 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <thread>
 #include <unordered_map>
 
 #include "core/parallel.h"
-
 #include "mesh/nonmanifold_split.h"
 #include "mesh/weld.h"
 
@@ -162,12 +162,21 @@ TileImportResult importTiles(const std::vector<std::string>& paths, const TileIm
   std::mutex m;
   std::condition_variable cv;
   unsigned running = slots;
+  std::exception_ptr thrown;
+  size_t thrownBy = n;
   auto reader = [&] {
     for (;;) {
       const size_t i = next.fetch_add(1);
       if (i >= n || i > firstFailed.load() || isCancelled(progress)) break;
-      ImportResult r = options.readTile ? options.readTile(paths[i], options.import, bars[i].get())
-                                        : importMesh(paths[i], options.import, bars[i].get());
+      ImportResult r;
+      try {
+        r = options.readTile ? options.readTile(paths[i], options.import, bars[i].get())
+                             : importMesh(paths[i], options.import, bars[i].get());
+      } catch (...) {  // rethrown on the caller's thread, as when tiles were read there
+        std::lock_guard lock(m);
+        if (!thrown || i < thrownBy) thrown = std::current_exception(), thrownBy = i;
+        r.error = "an exception was thrown";
+      }
       if (!r.ok()) {
         size_t f = firstFailed.load();
         while (i < f && !firstFailed.compare_exchange_weak(f, i)) {
@@ -193,6 +202,8 @@ TileImportResult importTiles(const std::vector<std::string>& paths, const TileIm
     lock.unlock();
     for (auto& t : threads) t.join();
   }
+  // Reading one by one would have thrown only if no earlier tile failed.
+  if (thrown && thrownBy == firstFailed.load()) std::rethrow_exception(thrown);
   // Reports of every tile read up to the first that failed, in order.
   const size_t failed = firstFailed.load();
   const size_t last = failed < n ? failed : n - 1;

@@ -12,6 +12,7 @@
 #include <thread>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "mesh/mesh_import.h"
 #include "mesh/tile_merge.h"
@@ -416,6 +417,25 @@ class TestMeshprocImport : public QObject {
     QVERIFY(lastSawCancel.load());
     QCOMPARE(started.load(), 4);  // "e" comes after a failure: never started
     QVERIFY(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(3));
+
+    // A reader that throws: the exception reaches the caller, as when the
+    // tiles were read on its thread; not when an earlier tile failed.
+    o.readTile = [&](const std::string& file, const ImportOptions&, const hs::Progress*) -> ImportResult {
+      ImportResult r;
+      if (file == "bad") r.error = "bad is broken";
+      else if (file == "throws") throw std::runtime_error("reader threw");
+      else r.mesh = hs::test::curvedGrid(2, 1.0, 0.0, false);
+      return r;
+    };
+    std::string what;
+    try {
+      importTiles({"a", "throws", "c"}, o);
+    } catch (const std::runtime_error& e) {
+      what = e.what();
+    }
+    QCOMPARE(what, std::string("reader threw"));
+    const TileImportResult badFirst = importTiles({"bad", "throws"}, o);
+    QCOMPARE(badFirst.error, std::string("tile 1 of 2: bad is broken"));
 
     started = 0;
     o.readTile = [&](const std::string&, const ImportOptions&, const hs::Progress* p) {
