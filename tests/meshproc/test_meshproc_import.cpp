@@ -295,9 +295,8 @@ class TestMeshprocImport : public QObject {
     QCOMPARE(p.report.decimation.boundaryVertices, size_t(80));  // the outer square only
   }
 
-  // Four tiles read at once (maxParallel 4), each by a reader that takes
-  // longer the earlier its tile, so they finish last-first: the same mesh,
-  // reports and welds as reading them one by one.
+  // Four tiles read at once (maxParallel 4), finishing last-first: the
+  // same mesh, reports and welds as reading them one by one.
   void tilesReadAtOnceMergeInTheOrderGiven() {
     const MeshData grid = hs::test::curvedGrid(24, 24.0, 0.5, false);
     std::vector<std::string> files;
@@ -315,21 +314,33 @@ class TestMeshprocImport : public QObject {
       files.push_back(path(("strip" + std::to_string(k) + ".obj").c_str()));
       hs::test::writeObj(files.back(), strip, glm::dvec3(0.0), 9);
     }
-    std::atomic<int> running{0}, mostAtOnce{0};
+    std::atomic<int> running{0}, mostAtOnce{0}, started{0}, done{0};
+    std::atomic<bool> lastFirst{false};
     std::mutex m;
     std::vector<size_t> finished;
+    auto waitUntil = [](auto ready) {
+      for (int i = 0; i < 1000 && !ready(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    };
     TileImportOptions o;
     o.import = zUp();
+    // With lastFirst, every tile starts before any ends and tile k ends only
+    // after the tiles after it (waits, not sleeps: the order holds on a
+    // loaded machine).
     o.readTile = [&](const std::string& file, const ImportOptions& io, const hs::Progress* p) {
       const int now = ++running;
+      ++started;
       for (int seen = mostAtOnce.load(); now > seen && !mostAtOnce.compare_exchange_weak(seen, now);) {
       }
-      const size_t k = size_t(file[file.size() - 5] - '0');
-      std::this_thread::sleep_for(std::chrono::milliseconds(60 * (4 - int(k))));
+      const int k = file[file.size() - 5] - '0';
+      if (lastFirst) {
+        waitUntil([&] { return started.load() == 4; });
+        waitUntil([&] { return done.load() >= 3 - k; });
+      }
       ImportResult r = importMesh(file, io, p);
       --running;
       std::lock_guard lock(m);
-      finished.push_back(k);
+      finished.push_back(size_t(k));
+      ++done;
       return r;
     };
     o.maxParallel = 1;
@@ -339,7 +350,8 @@ class TestMeshprocImport : public QObject {
     QCOMPARE(finished, (std::vector<size_t>{0, 1, 2, 3}));
 
     finished.clear();
-    mostAtOnce = 0;
+    mostAtOnce = 0, started = 0, done = 0;
+    lastFirst = true;
     o.maxParallel = 4;
     std::mutex pm;
     std::vector<double> fractions;
@@ -350,7 +362,7 @@ class TestMeshprocImport : public QObject {
     const TileImportResult parallel = importTiles(files, o, &progress);
     QVERIFY2(parallel.ok(), parallel.error.c_str());
     QCOMPARE(mostAtOnce.load(), 4);
-    QCOMPARE(finished.front(), size_t(3));  // the last tile finished first
+    QCOMPARE(finished, (std::vector<size_t>{3, 2, 1, 0}));
     QCOMPARE(contentHash(*parallel.mesh), contentHash(*serial.mesh));
     QCOMPARE(parallel.mesh->origin, serial.mesh->origin);
     QCOMPARE(parallel.borderVerticesMerged, serial.borderVerticesMerged);
