@@ -83,6 +83,16 @@ class Body {
   // nullptr with `error` at the end of the file.
   const char* block(size_t n) { return take(n); }
   static constexpr size_t kPieceBytes = size_t(4) << 20;
+  // Binary: up to `n` bytes at the cursor without taking them (valid until
+  // the next call); `available` says how many there are (fewer at the end
+  // of the file). advance() then takes what the caller used of them.
+  const char* window(size_t n, size_t& available) {
+    available = 0;
+    if (!refillAtMost(n)) return nullptr;
+    available = std::min(n, view_.size() - pos_);
+    return view_.data() + pos_;
+  }
+  void advance(size_t n) { pos_ += n; }
   // Skips `n` bytes of fixed-size binary data.
   bool skip(uint64_t n) {
     while (n > 0) {

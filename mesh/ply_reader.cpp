@@ -9,6 +9,7 @@
 
 #include "core/parallel.h"
 #include "mesh/ply_body.h"
+#include "mesh/ply_face_lists.h"
 #include "mesh/ply_header.h"
 #include "mesh/texture_decode.h"
 
@@ -143,7 +144,49 @@ bool readPly(const ByteSource& source, const std::string& baseDir, const ImportO
       done += e.count;
       continue;
     }
+    ply::FaceListLayout faceLayout;
+    const bool faceLists = isFace && ply::faceListLayout(e, ascii, swap, faceLayout);
+    ply::FaceListPiece piece;
     for (uint64_t i = 0; i < e.count; ++i) {
+      // Binary face lists of 32-bit indices: a piece at a time on every
+      // thread (mesh/ply_face_lists.h); what does not fit a piece is read
+      // face by face below.
+      if (faceLists) {
+        size_t available = 0;
+        const uint64_t pieceAt = body.offset();
+        const char* bytes = body.window(Body::kPieceBytes, available);
+        if (bytes) {
+          const size_t before = p.corners.size();
+          ply::readFaceLists(faceLayout, bytes, available, size_t(e.count - i), vertexCount, piece, p.corners);
+          if (piece.faces > 0) {
+            for (size_t f = 0; f < piece.faces && p.firstProblems.size() < 3; ++f) {
+              if (piece.status[f] == ply::FaceStatus::Kept) continue;
+              const std::string what = piece.status[f] == ply::FaceStatus::TooFew
+                                           ? "a face with " + std::to_string(piece.corners[f]) + " corners (dropped)"
+                                           : "a vertex index outside 0.." + std::to_string(vertexCount) +
+                                                 " (the face is dropped)";
+              p.firstProblems.push_back(file + ": " + e.name + " " + std::to_string(i + f + 1) + " of " +
+                                        std::to_string(e.count) + " (byte " +
+                                        std::to_string(pieceAt + piece.start[f]) + "): " + what);
+            }
+            for (size_t f = 0; f < piece.faces; ++f) {
+              p.droppedTooFew += piece.status[f] == ply::FaceStatus::TooFew;
+              p.droppedOutOfRange += piece.status[f] == ply::FaceStatus::OutOfRange;
+            }
+            p.declaredTriangles += piece.declaredTriangles;
+            p.polygons += piece.polygons;
+            p.triangleTexture.resize(p.triangleTexture.size() + (p.corners.size() - before) / 3, 0);
+            body.advance(piece.bytes);
+            i += piece.faces - 1;
+            reportProgress(progress, 0.9 * double(done + i + 1) / double(total), "Reading " + e.name);
+            if (isCancelled(progress)) {
+              error = file + ": import cancelled";
+              return false;
+            }
+            continue;
+          }
+        }
+      }
       if ((i & 0xFFFF) == 0 && total > 0) {
         reportProgress(progress, 0.9 * double(done + i) / double(total), "Reading " + e.name);
         if (isCancelled(progress)) {

@@ -1,9 +1,17 @@
 #include "mesh/tile_merge.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <thread>
 #include <unordered_map>
 
+#include "core/parallel.h"
 #include "mesh/nonmanifold_split.h"
 #include "mesh/weld.h"
 
@@ -128,24 +136,95 @@ TileImportResult importTiles(const std::vector<std::string>& paths, const TileIm
     result.error = "no tile files given";
     return result;
   }
-  std::vector<MeshData> tiles;
-  for (size_t i = 0; i < paths.size(); ++i) {
-    Progress* self = nullptr;
-    Progress sub([&](double f, std::string_view stage) {
-      reportProgress(progress, 0.9 * (double(i) + f) / double(paths.size()), stage);
-      if (self && isCancelled(progress)) self->cancel();
+  // Tiles are read on threads of their own (std::thread, not the oneTBB
+  // pool: a tile read by Assimp blocks on its worker process for its whole
+  // read, which would take a pool thread from the parallel loops of the
+  // tiles read here). This thread supervises: it passes a Cancel on to every
+  // tile within 20 ms, also to a worker that reports no progress. Tiles are
+  // taken in order; when tile i fails, only tiles after i are stopped and
+  // skipped, so the error and the reports are those of reading one by one.
+  const size_t n = paths.size();
+  const unsigned slots = unsigned(std::min<size_t>(n, options.maxParallel == 0 ? hardwareThreads()
+                                                                                 : options.maxParallel));
+  std::vector<ImportResult> results(n);
+  std::vector<std::atomic<double>> fraction(n);
+  for (auto& f : fraction) f.store(0.0, std::memory_order_relaxed);
+  std::atomic<size_t> next{0}, firstFailed{n};
+  std::vector<std::unique_ptr<Progress>> bars(n);
+  for (size_t i = 0; i < n; ++i)
+    bars[i] = std::make_unique<Progress>([&, i](double f, std::string_view stage) {
+      fraction[i].store(f, std::memory_order_relaxed);
+      double sum = 0.0;
+      for (const auto& x : fraction) sum += x.load(std::memory_order_relaxed);
+      reportProgress(progress, 0.9 * sum / double(n), stage);
+      if (isCancelled(progress) || i > firstFailed.load()) bars[i]->cancel();
     });
-    self = &sub;
-    ImportResult r = options.readTile ? options.readTile(paths[i], options.import, progress ? &sub : nullptr)
-                                      : importMesh(paths[i], options.import, progress ? &sub : nullptr);
-    result.tiles.push_back(r.report);
-    if (!r.ok()) {
-      result.cancelled = r.cancelled || isCancelled(progress);
-      result.error = "tile " + std::to_string(i + 1) + " of " + std::to_string(paths.size()) + ": " + r.error;
-      return result;
+  std::mutex m;
+  std::condition_variable cv;
+  unsigned running = slots;
+  std::exception_ptr thrown;
+  size_t thrownBy = n;
+  auto reader = [&] {
+    for (;;) {
+      const size_t i = next.fetch_add(1);
+      if (i >= n || i > firstFailed.load() || isCancelled(progress)) break;
+      ImportResult r;
+      try {
+        r = options.readTile ? options.readTile(paths[i], options.import, bars[i].get())
+                             : importMesh(paths[i], options.import, bars[i].get());
+      } catch (...) {  // rethrown on the caller's thread, as when tiles were read there
+        std::lock_guard lock(m);
+        if (!thrown || i < thrownBy) thrown = std::current_exception(), thrownBy = i;
+        r.error = "an exception was thrown";
+      }
+      if (!r.ok()) {
+        size_t f = firstFailed.load();
+        while (i < f && !firstFailed.compare_exchange_weak(f, i)) {
+        }
+      }
+      results[i] = std::move(r);
     }
-    tiles.push_back(std::move(*r.mesh));
+    std::lock_guard lock(m);
+    if (--running == 0) cv.notify_all();
+  };
+  {
+    std::vector<std::thread> threads;
+    threads.reserve(slots);
+    for (unsigned t = 0; t < slots; ++t) threads.emplace_back(reader);
+    std::unique_lock lock(m);
+    while (running > 0) {
+      cv.wait_for(lock, std::chrono::milliseconds(20));
+      const bool cancel = isCancelled(progress);
+      const size_t failed = firstFailed.load();
+      for (size_t i = 0; i < n; ++i)
+        if (cancel || i > failed) bars[i]->cancel();
+    }
+    lock.unlock();
+    for (auto& t : threads) t.join();
   }
+  // Reading one by one would have thrown only if no earlier tile failed.
+  if (thrown && thrownBy == firstFailed.load()) std::rethrow_exception(thrown);
+  // Reports of every tile read up to the first that failed, in order.
+  const size_t failed = firstFailed.load();
+  const size_t last = failed < n ? failed : n - 1;
+  for (size_t i = 0; i <= last; ++i) result.tiles.push_back(results[i].report);
+  if (failed < n || isCancelled(progress)) {
+    // A Cancel can stop tiles anywhere: name the first tile that did not finish.
+    size_t i = failed;
+    if (i == n)
+      for (i = 0; i + 1 < n && results[i].ok(); ++i) {
+      }
+    const ImportResult& r = results[i];
+    result.cancelled = r.cancelled || isCancelled(progress);
+    result.error = "tile " + std::to_string(i + 1) + " of " + std::to_string(n) + ": " +
+                   (r.error.empty() ? std::string("import cancelled") : r.error);
+    result.tiles.resize(std::min(result.tiles.size(), i + 1));
+    return result;
+  }
+  std::vector<MeshData> tiles;
+  tiles.reserve(n);
+  for (auto& r : results) tiles.push_back(std::move(*r.mesh));
+  results.clear();
   reportProgress(progress, 0.92, "Welding tile borders");
   result.mesh = mergeTiles(std::move(tiles), options.weldTolerance, &result);
   if (options.import.recenter) recenter(*result.mesh);

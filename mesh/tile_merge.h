@@ -21,6 +21,13 @@ struct TileImportOptions {
   // Reads one tile; empty: importMesh. (The document's pipeline reads
   // Assimp's formats in a worker process: scene/import_isolation.h.)
   std::function<ImportResult(const std::string& path, const ImportOptions&, const Progress*)> readTile;
+  // Tiles read at once, each on a thread of its own (0: one per hardware
+  // thread). The pipeline sets it from the cores and the import worker's
+  // memory limit (scene::tileReadParallelism): a tile read by Assimp waits
+  // on its own worker process, so tiles overlap their workers' start and
+  // reading. The merged mesh, the reports and the error do not depend on it
+  // nor on which tile finishes first: tiles are merged in the order given.
+  unsigned maxParallel = 1;
 };
 
 struct TileImportResult {
@@ -29,7 +36,7 @@ struct TileImportResult {
   size_t borderVertices = 0;      // open-boundary vertices over all tiles
   size_t borderVerticesSnapped = 0;  // moved onto a vertex of another tile
   size_t borderVerticesMerged = 0;   // and merged with it (same UV and normal)
-  std::string error;              // names the tile that failed
+  std::string error;              // names the tile that failed (the first in the order given)
   bool cancelled = false;
   bool ok() const { return mesh.has_value(); }
 };

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "core/parallel.h"
 #include "core/subprocess.h"
 #include "mesh/import_wire.h"
 
@@ -348,6 +350,20 @@ bool workerLimits(WorkerLimits& limits, std::string& error) {
     return false;
   }
   return true;
+}
+
+unsigned tileReadParallelism(const std::vector<std::string>& paths, const mesh::ImportOptions& options) {
+  const bool anyWorker = std::any_of(paths.begin(), paths.end(),
+                                     [&](const std::string& p) { return readsWithAssimp(p, options); });
+  if (!anyWorker) return 1;
+  unsigned n = hardwareThreads();
+  WorkerLimits limits;
+  std::string ignored;  // a bad setting is reported by the tile's own read
+  if (workerLimits(limits, ignored) && limits.memoryBytes > 0) {
+    const double physical = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGESIZE));
+    n = std::min(n, unsigned(std::max(1.0, std::floor(physical / double(limits.memoryBytes)))));
+  }
+  return std::max(1u, std::min<unsigned>(n, unsigned(paths.size())));
 }
 
 mesh::ImportResult importMeshIsolated(const std::string& path, const mesh::ImportOptions& options,

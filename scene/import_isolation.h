@@ -10,6 +10,7 @@
 // importObjFromMemory stay in this process. docs/meshes.md, "Isolation".
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/progress.h"
 #include "mesh/mesh_import.h"
@@ -40,6 +41,15 @@ struct WorkerLimits {
 };
 // False with `error` naming the variable when one is set to nonsense.
 bool workerLimits(WorkerLimits& limits, std::string& error);
+
+// How many tiles of one import to read at once (mesh::TileImportOptions::
+// maxParallel). 1 when no tile goes through the worker: the own OBJ and PLY
+// readers already use every core on one file, and reading two at once
+// would only raise the peak memory. Otherwise one worker per tile, as many
+// at once as there are hardware threads and as fit the machine's memory
+// under the workers' limit (physical memory / HS_IMPORT_MEMORY_LIMIT: 2 at
+// the default 50%; every hardware thread with the limit off).
+unsigned tileReadParallelism(const std::vector<std::string>& paths, const mesh::ImportOptions& options);
 
 // mesh::importMesh, with the files Assimp reads read by the worker. Without a
 // worker the file is read here, with a warning in the report saying so. The

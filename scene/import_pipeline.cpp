@@ -57,6 +57,7 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
       t.import = request.import;
       t.weldTolerance = request.tileWeldTolerance;
       t.readTile = importMeshIsolated;
+      t.maxParallel = tileReadParallelism(request.files, request.import);
       mesh::TileImportResult r = mesh::importTiles(request.files, t, &read);
       out.cancelled = r.cancelled;
       out.error = std::move(r.error);

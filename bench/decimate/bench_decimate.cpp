@@ -1,7 +1,11 @@
 // Decimation benchmark: error vs triangle count vs time, our decimator side
 // by side with meshoptimizer's meshopt_simplify (same input, same triangle
 // counts) and OpenMesh's stock DecimaterT + ModQuadricT, in one run, with
-// ratios; on the Stanford bunny and on a synthetic 5M-triangle scan tile.
+// ratios; on the Stanford bunny, a generated quad-dominant scan (32k
+// triangulated quads, UV seams, fins) and a synthetic 5M-triangle scan
+// tile. Blender's Decimate and MeshLab's quadric edge collapse run as peers
+// on the quad scan at every ratio and on the bunny at 10% (peers.h; skipped
+// with a note where not installed).
 // Errors come from the project's error report (seeded surface sampling,
 // symmetric Hausdorff). Also draws the error-vs-time curves as a PNG.
 //
@@ -9,7 +13,8 @@
 //                  [--terrain-samples 1] [--stock-terrain 0.1|all|none]
 //                  [--threads 2] [--plot bench_decimate.png] [--skip-terrain] [--skip-bunny]
 //                  [--terrain-runs 3] [--ratios 50,25,10,5,1] [--no-error] [--no-stock]
-//                  [--faces-per-region N]   (our output's content hash goes to stderr)
+//                  [--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir /tmp] [--quad-no-uv] [--where-max]
+//                  (our output's content hash goes to stderr)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -29,8 +34,12 @@
 #include "bench/common/bench_util.h"
 #include "bench/common/plot.h"
 #include "mesh/mesh_import.h"
+#include "mesh/weld.h"
 #include "meshproc/decimate.h"
+#include "meshproc/closest_point_bvh.h"
 #include "meshproc/error_metrics.h"
+#include "peers.h"
+#include "quad_scan.h"
 #include "scan_terrain.h"
 
 using namespace hs::mesh;
@@ -169,6 +178,37 @@ Row runStock(const MeshData& in, size_t triangles, double ratio, MeshData& out) 
   return r;
 }
 
+// --where-max: where the largest distances of `result` from `original`
+// are, each way (vertices and face centres; in the original's local frame).
+void printWorst(const MeshData& original, const MeshData& result, const char* what) {
+  const glm::dvec3 shift = result.origin - original.origin;
+  for (int dir = 0; dir < 2; ++dir) {
+    const MeshData& from = dir == 0 ? original : result;
+    const MeshData& to = dir == 0 ? result : original;
+    const glm::dvec3 toLocal = dir == 0 ? -shift : shift;  // from's local frame -> to's
+    ClosestPointBvh bvh(to);
+    struct Worst {
+      double d;
+      glm::dvec3 p;
+    };
+    std::vector<Worst> worst;
+    auto test = [&](const glm::dvec3& p) {
+      const auto hit = bvh.closest(p + toLocal);
+      worst.push_back({std::sqrt(hit.distanceSq), p + (dir == 0 ? glm::dvec3(0.0) : shift)});
+    };
+    for (const auto& v : from.positions) test(glm::dvec3(v));
+    for (size_t f = 0; f < from.triangleCount(); ++f)
+      test((glm::dvec3(from.positions[from.indices[3 * f]]) + glm::dvec3(from.positions[from.indices[3 * f + 1]]) +
+            glm::dvec3(from.positions[from.indices[3 * f + 2]])) / 3.0);
+    std::partial_sort(worst.begin(), worst.begin() + std::min<ptrdiff_t>(5, ptrdiff_t(worst.size())), worst.end(),
+                      [](const Worst& a, const Worst& b) { return a.d > b.d; });
+    for (size_t k = 0; k < std::min<size_t>(5, worst.size()); ++k)
+      std::printf("|  | %s %s: %.3e m at (%.3f, %.3f, %.3f) | | | | | | | | | | | | |\n", what,
+                  dir == 0 ? "original->result" : "result->original", worst[k].d, worst[k].p.x, worst[k].p.y,
+                  worst[k].p.z);
+  }
+}
+
 void printHeader(const char* name, const MeshData& m, double samplesPerFace) {
   std::printf("\n## %s: %zu triangles, %zu vertices (error: %.0f samples per original face each way, seed 1)\n\n",
               name, m.triangleCount(), m.vertexCount(), samplesPerFace);
@@ -204,7 +244,10 @@ int main(int argc, char** argv) {
   std::vector<double> ratios = {0.5, 0.25, 0.1, 0.05, 0.01};
   double terrainSamples = 1.0;
   unsigned threads = 2;
-  bool skipTerrain = false, skipBunny = false, noStock = false;
+  bool skipTerrain = false, skipBunny = false, noStock = false, skipQuad = false, noPeers = false;
+  std::string workDir = "/tmp";
+  bool quadNoUv = false;  // the quad scan without UVs: what its seams cost
+  bool whereMax = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
@@ -231,11 +274,16 @@ int main(int argc, char** argv) {
     else if (a == "--faces-per-region") gFacesPerRegion = size_t(std::atoll(next().c_str()));
     else if (a == "--skip-terrain") skipTerrain = true;
     else if (a == "--skip-bunny") skipBunny = true;
+    else if (a == "--skip-quad") skipQuad = true;
+    else if (a == "--no-peers") noPeers = true;
+    else if (a == "--quad-no-uv") quadNoUv = true;
+    else if (a == "--where-max") whereMax = true;
+    else if (a == "--work-dir") workDir = next();
     else {
       std::fprintf(stderr, "usage: %s [--bunny PATH] [--terrain-quads N] [--runs K] [--terrain-samples S] "
                            "[--stock-terrain 0.1|all|none] [--threads T] [--plot PNG] [--skip-terrain] [--skip-bunny] "
                            "[--terrain-runs K] [--ratios 50,25,10,5,1] [--no-error] [--no-stock] "
-                           "[--faces-per-region N]\n", argv[0]);
+                           "[--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir DIR] [--quad-no-uv] [--where-max]\n", argv[0]);
       return 2;
     }
   }
@@ -250,6 +298,7 @@ int main(int argc, char** argv) {
     double samples;
     int runs;
     bool stockAll, stockTen;
+    bool peersAll = false, peersTen = false;  // Blender and MeshLab at every ratio / at 10%
   };
   std::vector<Dataset> sets;
   if (!skipBunny) {
@@ -260,7 +309,18 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s\n", r.error.c_str());
       return 1;
     }
-    sets.push_back({"Stanford bunny", "Stanford bunny 69k", std::move(*r.mesh), 10.0, runs, true, true});
+    sets.push_back({"Stanford bunny", "Stanford bunny 69k", std::move(*r.mesh), 10.0, runs, true, true, false, true});
+  }
+  if (!skipQuad) {
+    MeshData q = hs::bench::quadScan();
+    if (quadNoUv) {
+      q.uvs.clear();
+      weldExactDuplicates(q);
+    }
+    q.origin = glm::dvec3(431000.0, 5402000.0, 520.0);
+    recenter(q);
+    sets.push_back({"quad-dominant scan (32k quads triangulated, 2x2 UV atlas, 3 fins)", "quad scan 65k", std::move(q),
+                    10.0, runs, false, true, true, false});
   }
   if (!skipTerrain) {
     const auto t0 = Clock::now();
@@ -284,7 +344,9 @@ int main(int argc, char** argv) {
     printHeader(ds.name.c_str(), ds.mesh, ds.samples);
     hs::bench::PlotSeries sOurs{"ours (2 threads)", {200, 40, 40}, PlotMarker::Circle, false, {}, {}},
         sMeshopt{"meshopt_simplify", {40, 90, 200}, PlotMarker::Square, false, {}, {}},
-        sStock{"OpenMesh DecimaterT", {40, 150, 60}, PlotMarker::Triangle, false, {}, {}};
+        sStock{"OpenMesh DecimaterT", {40, 150, 60}, PlotMarker::Triangle, false, {}, {}},
+        sBlender{"Blender Decimate", {230, 140, 20}, PlotMarker::Square, false, {}, {}},
+        sMeshlab{"MeshLab quadric", {140, 60, 170}, PlotMarker::Triangle, false, {}, {}};
     for (double ratio : ds.mesh.triangleCount() ? ratios : std::vector<double>{}) {
       MeshData oursOut, mo;
       Row ours, meshopt;
@@ -302,6 +364,10 @@ int main(int argc, char** argv) {
       }
       printRow(meshopt, ds.mesh, nullptr);
       printRow(ours, ds.mesh, &meshopt);
+      if (whereMax) {
+        printWorst(ds.mesh, oursOut, "ours");
+        printWorst(ds.mesh, mo, "meshopt");
+      }
       char label[16];
       std::snprintf(label, sizeof label, "%g%%", ratio * 100);
       sOurs.points.push_back({ours.time, ours.error.rel(ours.error.hausdorff)});
@@ -322,10 +388,37 @@ int main(int argc, char** argv) {
         sStock.points.push_back({stock.time, stock.error.rel(stock.error.hausdorff)});
         sStock.pointLabels.push_back(label);
       }
+      if (!noPeers && (ds.peersAll || (ds.peersTen && ratio == 0.1))) {
+        const hs::bench::PeerRun peers[2] = {hs::bench::runBlenderDecimate(ds.mesh, double(ours.triangles) / double(ds.mesh.triangleCount()), workDir),
+                                             hs::bench::runMeshlabDecimate(ds.mesh, ours.triangles, workDir)};
+        const char* names[2] = {"Blender 3.4 Decimate (collapse)", "MeshLab 2020.09 quadric edge collapse"};
+        for (int k = 0; k < 2; ++k) {
+          if (!peers[k].ran) {
+            std::printf("|  | %s: %s | | | | | | | | | | | | |\n", names[k], peers[k].note.c_str());
+            continue;
+          }
+          Row pr;
+          pr.method = names[k];
+          pr.ratio = ratio;
+          pr.triangles = peers[k].mesh.triangleCount();
+          pr.time = peers[k].seconds;
+          if (measureErrors) {
+            const auto t0 = Clock::now();
+            pr.error = meter->measure(peers[k].mesh);
+            pr.errorTime = seconds(t0, Clock::now());
+          }
+          printRow(pr, ds.mesh, &meshopt);
+          std::printf("|  | (%s: %s) | | | | | | | | | | | | |\n", names[k], peers[k].note.c_str());
+          (k == 0 ? sBlender : sMeshlab).points.push_back({pr.time, pr.error.rel(pr.error.hausdorff)});
+          (k == 0 ? sBlender : sMeshlab).pointLabels.push_back(label);
+        }
+      }
     }
     panels.push_back({ds.shortName, "decimation time (s), targets labelled", "Hausdorff distance / bbox diagonal",
                       true, true, {sOurs, sMeshopt}});
     if (!sStock.points.empty()) panels.back().series.push_back(sStock);
+    if (!sBlender.points.empty()) panels.back().series.push_back(sBlender);
+    if (!sMeshlab.points.empty()) panels.back().series.push_back(sMeshlab);
   }
 
   if (!plotPath.empty() && !panels.empty()) {

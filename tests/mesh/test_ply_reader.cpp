@@ -171,6 +171,88 @@ class TestPlyReader : public QObject {
     QVERIFY(r.report.warnings.empty());
   }
 
+  // Binary face lists are read a 4 MB piece at a time on every thread
+  // (mesh/ply_face_lists.h); ASCII face by face. A grid of quads, triangle
+  // pairs and pentagons over 4 MB of faces (pieces end inside faces), with
+  // faces of 2 corners and indices out of range (too large, negative) in
+  // different pieces: every encoding gives the same mesh and counts, and
+  // the binary files name the first three bad faces at their byte offsets.
+  void binaryFacesOnAllThreadsMatchFaceByFace() {
+    constexpr int n = 520;  // vertices per side
+    std::vector<std::vector<int32_t>> faces;
+    size_t triangles = 0, polygons = 0;
+    for (int j = 0; j + 1 < n; ++j)
+      for (int i = 0; i + 1 < n; ++i) {
+        const int32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+        if ((i + j) % 3 == 0) faces.push_back({a, b, d, c}), triangles += 2, ++polygons;
+        else if ((i + j) % 3 == 1) faces.push_back({a, b, d}), faces.push_back({a, d, c}), triangles += 2;
+        else if (i + 2 < n) faces.push_back({a, b, b + 1, d + 1, c}), triangles += 3, ++polygons, ++i;
+        else faces.push_back({a, b, d}), triangles += 1;
+      }
+    const std::vector<std::pair<size_t, std::vector<int32_t>>> bad = {
+        {10, {1, 2}}, {150000, {3, n * n, 4}}, {250000, {5, 6, -7, 8}}, {260000, {0, 1}}};
+    QVERIFY(faces.size() > bad.back().first);
+    for (const auto& [at, face] : bad) faces.insert(faces.begin() + ptrdiff_t(at), face);  // ends at index `at`
+    std::vector<MeshData> meshes;
+    std::vector<ImportReport> reports;
+    for (PlyWriter::Enc enc : {PlyWriter::Ascii, PlyWriter::Le, PlyWriter::Be}) {
+      PlyWriter w(enc);
+      w.line("element vertex " + std::to_string(n * n));
+      w.line("property float x\nproperty float y\nproperty float z");
+      w.line("element face " + std::to_string(faces.size()));
+      w.line("property list uchar int vertex_indices");
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          w.put(float(i));
+          w.put(float(j));
+          w.put(0.1f * float((i * 7 + j * 3) % 5));
+          w.endRow();
+        }
+      std::vector<size_t> at;
+      const size_t head = w.header.size() + std::strlen("end_header\n");
+      for (size_t f = 0, k = 0; f < faces.size(); ++f) {
+        if (k < bad.size() && bad[k].first == f) at.push_back(head + w.body.size()), ++k;
+        w.put(uint8_t(faces[f].size()));
+        for (int32_t v : faces[f]) w.put(v);
+        w.endRow();
+      }
+      const std::string f = path("big_faces.ply");
+      writeFile(f, w.bytes());
+      if (enc != PlyWriter::Ascii) QVERIFY(w.body.size() - size_t(n * n * 12) > size_t(4) << 20);
+      ImportResult r = importZUp(f);
+      QVERIFY2(r.ok(), r.error.c_str());
+      QCOMPARE(r.report.outOfRangeFaces, size_t(2));
+      QCOMPARE(r.report.degenerateFaces, size_t(2));
+      QCOMPARE(r.report.polygonsTriangulated, polygons);
+      QCOMPARE(r.report.trianglesIn, triangles);
+      QCOMPARE(r.report.declaredTriangles, triangles + 1 + 2);  // the bad faces of 3 and 4 corners declare 1 and 2
+      QCOMPARE(r.mesh->triangleCount(), triangles);
+      if (enc != PlyWriter::Ascii) {
+        QVERIFY(r.report.warnings.size() >= 4);  // three faces named, then the sum
+        QCOMPARE(r.report.warnings[3], f + ": 4 faces or strips dropped in all (vertex indices out of range, or "
+                                           "fewer than 3 corners)");
+        const std::string total = std::to_string(faces.size());
+        QCOMPARE(r.report.warnings[0], f + ": face 11 of " + total + " (byte " + std::to_string(at[0]) +
+                                           "): a face with 2 corners (dropped)");
+        QCOMPARE(r.report.warnings[1], f + ": face 150001 of " + total + " (byte " + std::to_string(at[1]) +
+                                           "): a vertex index outside 0.." + std::to_string(n * n) +
+                                           " (the face is dropped)");
+        QCOMPARE(r.report.warnings[2], f + ": face 250001 of " + total + " (byte " + std::to_string(at[2]) +
+                                           "): a vertex index outside 0.." + std::to_string(n * n) +
+                                           " (the face is dropped)");
+      }
+      meshes.push_back(std::move(*r.mesh));
+      reports.push_back(r.report);
+    }
+    QCOMPARE(contentHash(meshes[1]), contentHash(meshes[0]));
+    QCOMPARE(contentHash(meshes[2]), contentHash(meshes[0]));
+    // The first triangles are the file's first faces, fanned.
+    const MeshData& m = meshes[1];
+    auto at = [&](size_t c) { return m.origin + glm::dvec3(m.positions[m.indices[c]]); };
+    QCOMPARE(at(0).x - at(1).x, -1.0);  // a=(0,0), b=(1,0), d=(1,1) of the first quad
+    QCOMPARE(at(2).y - at(0).y, 1.0);
+  }
+
   // Y up unless told: (x, y, z) in the file is (x, -z, y) here.
   void yUpByDefault() {
     const std::string f = path("yup.ply");

@@ -5,9 +5,14 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
+#include <mutex>
+#include <thread>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "mesh/mesh_import.h"
 #include "mesh/tile_merge.h"
@@ -288,6 +293,179 @@ class TestMeshprocImport : public QObject {
     const ProcessResult p = processMesh(*r.mesh, po);
     QVERIFY(p.ok());
     QCOMPARE(p.report.decimation.boundaryVertices, size_t(80));  // the outer square only
+  }
+
+  // Four tiles read at once (maxParallel 4), finishing last-first: the
+  // same mesh, reports and welds as reading them one by one.
+  void tilesReadAtOnceMergeInTheOrderGiven() {
+    const MeshData grid = hs::test::curvedGrid(24, 24.0, 0.5, false);
+    std::vector<std::string> files;
+    for (int k = 0; k < 4; ++k) {
+      MeshData strip = grid;
+      strip.indices.clear();
+      for (size_t f = 0; f < grid.triangleCount(); ++f) {
+        const float cx = (grid.positions[grid.indices[f * 3]].x + grid.positions[grid.indices[f * 3 + 1]].x +
+                          grid.positions[grid.indices[f * 3 + 2]].x) / 3.0f;
+        if (int(cx / 6.0f) == k)
+          strip.indices.insert(strip.indices.end(),
+                               {grid.indices[f * 3], grid.indices[f * 3 + 1], grid.indices[f * 3 + 2]});
+      }
+      strip.submeshes = {{0, uint32_t(strip.indices.size()), -1}};
+      files.push_back(path(("strip" + std::to_string(k) + ".obj").c_str()));
+      hs::test::writeObj(files.back(), strip, glm::dvec3(0.0), 9);
+    }
+    std::atomic<int> running{0}, mostAtOnce{0}, started{0}, done{0};
+    std::atomic<bool> lastFirst{false};
+    std::mutex m;
+    std::vector<size_t> finished;
+    auto waitUntil = [](auto ready) {
+      for (int i = 0; i < 1000 && !ready(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    };
+    TileImportOptions o;
+    o.import = zUp();
+    // With lastFirst, every tile starts before any ends and tile k ends only
+    // after the tiles after it (waits, not sleeps: the order holds on a
+    // loaded machine).
+    o.readTile = [&](const std::string& file, const ImportOptions& io, const hs::Progress* p) {
+      const int now = ++running;
+      ++started;
+      for (int seen = mostAtOnce.load(); now > seen && !mostAtOnce.compare_exchange_weak(seen, now);) {
+      }
+      const int k = file[file.size() - 5] - '0';
+      if (lastFirst) {
+        waitUntil([&] { return started.load() == 4; });
+        waitUntil([&] { return done.load() >= 3 - k; });
+      }
+      ImportResult r = importMesh(file, io, p);
+      --running;
+      std::lock_guard lock(m);
+      finished.push_back(size_t(k));
+      ++done;
+      return r;
+    };
+    o.maxParallel = 1;
+    const TileImportResult serial = importTiles(files, o);
+    QVERIFY2(serial.ok(), serial.error.c_str());
+    QCOMPARE(mostAtOnce.load(), 1);
+    QCOMPARE(finished, (std::vector<size_t>{0, 1, 2, 3}));
+
+    finished.clear();
+    mostAtOnce = 0, started = 0, done = 0;
+    lastFirst = true;
+    o.maxParallel = 4;
+    std::mutex pm;
+    std::vector<double> fractions;
+    hs::Progress progress([&](double f, std::string_view) {
+      std::lock_guard lock(pm);
+      fractions.push_back(f);
+    });
+    const TileImportResult parallel = importTiles(files, o, &progress);
+    QVERIFY2(parallel.ok(), parallel.error.c_str());
+    QCOMPARE(mostAtOnce.load(), 4);
+    QCOMPARE(finished, (std::vector<size_t>{3, 2, 1, 0}));
+    QCOMPARE(contentHash(*parallel.mesh), contentHash(*serial.mesh));
+    QCOMPARE(parallel.mesh->origin, serial.mesh->origin);
+    QCOMPARE(parallel.borderVerticesMerged, serial.borderVerticesMerged);
+    QVERIFY(parallel.borderVerticesMerged > 0);
+    // Progress: the tiles' reading shares 0..0.9 of the bar (their mean),
+    // the weld the rest, ending at 1.
+    QVERIFY(fractions.size() > 4);
+    QCOMPARE(fractions.back(), 1.0);
+    QVERIFY(*std::max_element(fractions.begin(), fractions.end() - 2) <= 0.9 + 1e-12);
+    QVERIFY(std::find_if(fractions.begin(), fractions.end(), [](double f) { return f > 0.2 && f <= 0.9; }) !=
+            fractions.end());
+    QCOMPARE(parallel.tiles.size(), size_t(4));
+    for (size_t k = 0; k < 4; ++k) {
+      QCOMPARE(parallel.tiles[k].file, files[k]);
+      QCOMPARE(parallel.tiles[k].trianglesOut, serial.tiles[k].trianglesOut);
+    }
+  }
+
+  // Tiles read at once fail as if read one by one: the first failing tile
+  // in the order given is named even when a later one fails first; tiles
+  // after it are cancelled (a reader waiting on Cancel returns at once) or
+  // not started; a Cancel stops every tile.
+  void tilesReadAtOnceFailAndCancelInOrder() {
+    std::atomic<int> started{0};
+    std::atomic<bool> lastSawCancel{false};
+    auto waitForCancel = [](const hs::Progress* p) {
+      for (int i = 0; i < 500 && !hs::isCancelled(p); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      ImportResult r;
+      r.cancelled = hs::isCancelled(p);
+      r.error = r.cancelled ? "cancelled" : "never cancelled";
+      return r;
+    };
+    TileImportOptions o;
+    o.maxParallel = 4;
+    auto waitFor = [](const std::atomic<bool>& flag) {
+      for (int i = 0; i < 500 && !flag.load(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    };
+    // "c" fails once all four run; "d" is then cancelled; "b" fails after
+    // that, and "a" ends after that, so its thread finds "e" after a failure.
+    o.readTile = [&](const std::string& file, const ImportOptions&, const hs::Progress* p) {
+      ++started;
+      ImportResult r;
+      if (file == "b") {
+        waitFor(lastSawCancel);
+        r.error = "b is broken";
+      } else if (file == "c") {
+        for (int i = 0; i < 500 && started.load() < 4; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        r.error = "c is broken";
+      } else if (file == "d") {
+        r = waitForCancel(p);
+        lastSawCancel = r.cancelled;
+      } else if (file == "a") {
+        waitFor(lastSawCancel);
+        r.mesh = hs::test::curvedGrid(2, 1.0, 0.0, false);
+      }
+      return r;
+    };
+    const auto t0 = std::chrono::steady_clock::now();
+    const TileImportResult failed = importTiles({"a", "b", "c", "d", "e"}, o);
+    QVERIFY(!failed.ok());
+    QCOMPARE(failed.error, std::string("tile 2 of 5: b is broken"));
+    QVERIFY(!failed.cancelled);
+    QCOMPARE(failed.tiles.size(), size_t(2));
+    QVERIFY(lastSawCancel.load());
+    QCOMPARE(started.load(), 4);  // "e" comes after a failure: never started
+    QVERIFY(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(3));
+
+    // A reader that throws: the exception reaches the caller, as when the
+    // tiles were read on its thread; not when an earlier tile failed.
+    o.readTile = [&](const std::string& file, const ImportOptions&, const hs::Progress*) -> ImportResult {
+      ImportResult r;
+      if (file == "bad") r.error = "bad is broken";
+      else if (file == "throws") throw std::runtime_error("reader threw");
+      else r.mesh = hs::test::curvedGrid(2, 1.0, 0.0, false);
+      return r;
+    };
+    std::string what;
+    try {
+      importTiles({"a", "throws", "c"}, o);
+    } catch (const std::runtime_error& e) {
+      what = e.what();
+    }
+    QCOMPARE(what, std::string("reader threw"));
+    const TileImportResult badFirst = importTiles({"bad", "throws"}, o);
+    QCOMPARE(badFirst.error, std::string("tile 1 of 2: bad is broken"));
+
+    started = 0;
+    o.readTile = [&](const std::string&, const ImportOptions&, const hs::Progress* p) {
+      ++started;
+      return waitForCancel(p);
+    };
+    hs::Progress progress;
+    std::thread canceller([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      progress.cancel();
+    });
+    const auto t1 = std::chrono::steady_clock::now();
+    const TileImportResult cancelled = importTiles({"a", "b", "c"}, o, &progress);
+    canceller.join();
+    QVERIFY(!cancelled.ok());
+    QVERIFY(cancelled.cancelled);
+    QCOMPARE(started.load(), 3);
+    QVERIFY(std::chrono::steady_clock::now() - t1 < std::chrono::seconds(2));
   }
 };
 

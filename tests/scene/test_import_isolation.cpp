@@ -260,6 +260,31 @@ class TestImportIsolation : public QObject {
     QVERIFY(there.tileBorderVerticesMerged > 0);
   }
 
+  // Tiles through the worker are read at once, as many as the cores and
+  // the workers' memory limit allow; tiles the own readers read, one by one.
+  void tileReadParallelismFollowsCoresAndMemoryLimit() {
+    const std::vector<std::string> fbx = {"a.fbx", "b.fbx", "c.fbx", "d.fbx"};
+    const unsigned cores = std::thread::hardware_concurrency() ? std::thread::hardware_concurrency() : 1;
+    {
+      EnvVar limit("HS_IMPORT_MEMORY_LIMIT", "0");  // no limit: the cores decide
+      QCOMPARE(scene::tileReadParallelism(fbx, {}), std::min(cores, 4u));
+      QCOMPARE(scene::tileReadParallelism({"a.fbx"}, {}), 1u);
+      QCOMPARE(scene::tileReadParallelism({"a.obj", "b.obj"}, {}), 1u);  // own reader, all cores each
+      QCOMPARE(scene::tileReadParallelism({"a.ply", "b.ply"}, {}), 1u);
+      mesh::ImportOptions viaAssimp;
+      viaAssimp.reader = mesh::Reader::Assimp;
+      QCOMPARE(scene::tileReadParallelism({"a.ply", "b.ply"}, viaAssimp), std::min(cores, 2u));
+    }
+    {
+      EnvVar limit("HS_IMPORT_MEMORY_LIMIT", "100%");  // one worker may take all memory
+      QCOMPARE(scene::tileReadParallelism(fbx, {}), 1u);
+    }
+    {
+      EnvVar limit("HS_IMPORT_MEMORY_LIMIT", "34%");  // two fit
+      QCOMPARE(scene::tileReadParallelism(fbx, {}), std::min(cores, 2u));
+    }
+  }
+
   // Errors of the reader pass through as they are.
   void readerErrorsPassThrough() {
     writeText(path("garbage.fbx"), "this is not an FBX file at all\n");
