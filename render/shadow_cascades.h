@@ -1,0 +1,82 @@
+#pragma once
+// The sun's cascaded shadow maps as numbers (no GL): where the cascades
+// split the view's depth, the world box each one covers and the matrices
+// that take a position into its map. docs/rendering.md "Shadows" explains
+// the scheme; in short:
+//
+// - Splits are "practical" (Zhang et al.): a blend of logarithmic and
+//   uniform splits, lambda = kShadowSplitLambda.
+// - Each cascade is stabilised: its map covers the bounding sphere of its
+//   slice of the view frustum, whose radius depends only on the field of
+//   view and the split depths (not on where the camera looks), and the
+//   sphere's centre is snapped to whole texels in the light's space, in
+//   double and at absolute world coordinates. A camera moving or turning
+//   therefore moves the map's content by whole texels only: no shimmer.
+// - Matrices are formed in double around the frame origin (the frame's mono
+//   camera) and handed to the GPU relative to it, like every other matrix of
+//   the renderer: a scene at UTM coordinates gives the same small floats as
+//   one at the origin.
+// - One set per frame, from the frame's LOD (mono) view: both eyes of a
+//   stereo pair read the same cascades.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/render_view.h"
+#include "scene/scene_state.h"
+
+namespace hs::render {
+
+// Blend of logarithmic (1) and uniform (0) splits. Over a 30 km range
+// uniform splits alone give the first cascade 7.5 km; logarithmic alone
+// gives it a few metres and leaves the last cascade most of the view. 0.95
+// keeps the nearest cascade at a few hundred metres at 30 km and at a few
+// metres for a scene of tens of metres.
+constexpr double kShadowSplitLambda = 0.95;
+// The logarithmic part starts here at the nearest (a 1 cm near plane would
+// put every logarithmic split within a metre of the eye).
+constexpr double kShadowMinSplitNear = 0.5;
+constexpr int kMaxShadowCascades = 4;
+
+// What the settings ask for, resolved from the quality preset and clamped.
+struct ShadowConfig {
+  bool enabled = false;
+  int resolution = 2048;
+  int cascades = 3;
+  int pcfRadius = 1;
+  double distance = 30000.0;
+};
+// The preset (or, with Custom, the explicit fields), each clamped to its
+// range (scene/fields.cpp: the same bounds) and the resolution to
+// `maxTextureSize`. `problem` names the field of a value that had to be
+// clamped ("settings.shadow_resolution: 0 is out of range (256 to 8192),
+// using 256"), empty otherwise.
+ShadowConfig resolveShadowConfig(const scene::SceneSettings& settings, int maxTextureSize, std::string* problem);
+
+struct ShadowCascade {
+  double splitNear = 0.0, splitFar = 0.0;  // view depth the cascade serves (m)
+  double radius = 0.0;        // half the width of the map in metres
+  double texelMetres = 0.0;   // world size of one texel
+  glm::dvec3 centreLight{0.0};  // the snapped centre in light space (absolute, m)
+  // Frame-origin-relative position -> light clip space (x, y in -1..1,
+  // depth 0..1 with 1 on the sun's side, drawn with depth clamp).
+  glm::dmat4 frameToClip{1.0};
+  // The same into map coordinates (u, v, depth in 0..1): the lookup matrix.
+  glm::dmat4 frameToMap{1.0};
+};
+
+struct SunCascades {
+  glm::dmat3 lightRotation{1.0};  // world -> light space (z towards the sun)
+  glm::dvec3 frameOrigin{0.0};
+  std::vector<ShadowCascade> cascades;
+};
+
+// Cascades of the sun (travelling along `sunDirection`, unit, world) for
+// `view`, with matrices relative to `frameOrigin`.
+SunCascades computeSunCascades(const RenderView& view, const glm::dvec3& sunDirection, const ShadowConfig& config,
+                               const glm::dvec3& frameOrigin);
+
+// Split depths (config.cascades + 1 values from the near plane to the far one).
+std::vector<double> cascadeSplits(double nearClip, double farClip, int cascades);
+
+}  // namespace hs::render
