@@ -138,7 +138,7 @@ void addShadowPasses(FrameGraph& graph, FrameContext& frame) {
           d.casters = b.create("sun_shadow_casters", BufferDesc{roundUpPow2(d.objects.size() * sizeof(GpuObject))});
       },
       [&frame, viewStride](const SunShadowData& d, const PassResources& r) {
-        RenderResources& res = frame.res;
+        RenderResources& resources = frame.res;
         const GLuint map = r.texture(d.map);
         glTextureParameteri(map, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
         glTextureParameteri(map, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
@@ -156,7 +156,7 @@ void addShadowPasses(FrameGraph& graph, FrameContext& frame) {
         }
         glNamedBufferSubData(views, 0, GLsizeiptr(blocks.size()), blocks.data());
         if (d.casters.valid()) {
-          res.ensureObjectIndices(d.objects.size());
+          resources.ensureObjectIndices(d.objects.size());
           glNamedBufferSubData(r.buffer(d.casters), 0, GLsizeiptr(d.objects.size() * sizeof(GpuObject)), d.objects.data());
           glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBufferBinding, r.buffer(d.casters));
         }
@@ -165,7 +165,7 @@ void addShadowPasses(FrameGraph& graph, FrameContext& frame) {
         glPolygonOffset(kCasterSlopeOffset, kCasterConstantOffset);
         glDisable(GL_CULL_FACE);   // open scans cast from both sides
         glViewport(0, 0, d.resolution, d.resolution);
-        GlProgram& program = res.program({"mesh.vert", "shadow_depth.frag", "", {}});
+        GlProgram& program = resources.program({"mesh.vert", "shadow_depth.frag", "", {}});
         for (size_t c = 0; c < d.cascades.cascades.size(); ++c) {
           glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.map, int(c)));
           const float clearDepth = 0.0f;
@@ -179,12 +179,12 @@ void addShadowPasses(FrameGraph& graph, FrameContext& frame) {
                                                 nullptr, 1, i);
           }
           if (!frame.world.terrains.empty())
-            res.terrain.drawShadow(*frame.world.state, frame.world.terrains, frame.lodView,
+            resources.terrain.drawShadow(*frame.world.state, frame.world.terrains, frame.lodView,
                                    cascadeVolume(d.cascades.cascades[c]));
         }
         glDisable(GL_POLYGON_OFFSET_FILL);
         glDisable(GL_DEPTH_CLAMP);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBufferBinding, res.objects.buffer.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBufferBinding, resources.objects.buffer.id());
       });
   frame.sunShadowMap = data.map;
 }

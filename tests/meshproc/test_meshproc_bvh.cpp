@@ -10,6 +10,8 @@
 
 using namespace hs;
 using namespace hs::mesh;
+using hs::test::curvedGrid;
+using hs::test::icosphere;
 
 namespace {
 
@@ -33,24 +35,25 @@ bool bruteOccluded(const MeshData& m, const glm::dvec3& o, const glm::dvec3& d, 
 class TestMeshprocBvh : public QObject {
   Q_OBJECT
  private slots:
-  // Random segments through and around a sphere and a wavy grid: the BVH
+  // Random segments into and around a sphere and a wavy grid: the BVH
   // answers as brute force does, with both answers well represented.
   void occlusionMatchesBruteForce() {
-    for (const MeshData& m : {icosphere(3, 1.0), curvedGrid(40, 4.0, 0.3, false)}) {
+    for (const MeshData& m : std::vector<MeshData>{icosphere(3, 1.0), curvedGrid(40, 4.0, 0.3, false)}) {
       const ClosestPointBvh bvh(m);
       std::mt19937 rng(7);
-      std::uniform_real_distribution<double> u(-3.0, 3.0);
+      std::uniform_real_distribution<double> u(-3.0, 3.0), near(-1.3, 1.3);
       int hits = 0, misses = 0, disagree = 0;
       for (int i = 0; i < 4000; ++i) {
         const glm::dvec3 o(u(rng), u(rng), u(rng));
-        const glm::dvec3 d(u(rng), u(rng), u(rng));
-        const double tMax = i % 2 ? 1.0 : 0.3;
+        // Aimed at a point around the mesh, stopping at it or halfway.
+        const glm::dvec3 d = glm::dvec3(near(rng), near(rng), near(rng)) - o;
+        const double tMax = i % 2 ? 1.0 : 0.5;
         const bool a = bvh.occluded(o, d, 1e-9, tMax), b = bruteOccluded(m, o, d, 1e-9, tMax);
         disagree += a != b;
         (b ? hits : misses)++;
       }
       qInfo("%d hits, %d misses, %d disagreements", hits, misses, disagree);
-      QVERIFY(hits > 400 && misses > 400);
+      QVERIFY(hits > 200 && misses > 200);
       // Only a ray grazing an edge may fall either way (rounding): none in 4000.
       QCOMPARE(disagree, 0);
     }
