@@ -80,6 +80,7 @@ SunCascades computeSunCascades(const RenderView& view, const glm::dvec3& sunDire
   // Rows x, y, z: world -> light.
   out.lightRotation = glm::transpose(glm::dmat3(x, y, z));
 
+  out.anchor = glm::round(view.eye / kShadowAnchorLattice) * kShadowAnchorLattice;
   const double farClip = std::min(view.farClip, config.distance);
   const double nearClip = std::min(view.nearClip, farClip * 0.5);
   const std::vector<double> splits = cascadeSplits(nearClip, farClip, config.cascades);
@@ -102,13 +103,12 @@ SunCascades computeSunCascades(const RenderView& view, const glm::dvec3& sunDire
     r = std::ceil(r / quantum) * quantum;
     c.radius = r;
     c.texelMetres = 2.0 * r / double(config.resolution);
-    // In double, at absolute world coordinates: the snapped centre is the
-    // same for every camera position that maps to the same texel.
-    const glm::dvec3 centreWorld = view.eye + forward * d;
-    const glm::dvec3 centreLight = out.lightRotation * centreWorld;
+    // In double, relative to the anchor: the snapped centre is the same for
+    // every camera position that maps to the same texel.
+    const glm::dvec3 centreLight = out.lightRotation * (view.eye + forward * d - out.anchor);
     c.centreLight = glm::floor(centreLight / c.texelMetres) * c.texelMetres;
-    // Frame-relative p -> light: R p + (R origin - centre).
-    const glm::dvec3 t = out.lightRotation * frameOrigin - c.centreLight;
+    // Frame-relative p -> light: R p + (R (origin - anchor) - centre).
+    const glm::dvec3 t = out.lightRotation * (frameOrigin - out.anchor) - c.centreLight;
     glm::dmat4 toLight(out.lightRotation);
     toLight[3] = glm::dvec4(t, 1.0);
     // Orthographic: x, y over [-r, r] -> [-1, 1]; z from -r (1 r below the

@@ -10,8 +10,9 @@
 //   slice of the view frustum, whose radius depends only on the field of
 //   view and the split depths (not on where the camera looks), and the
 //   sphere's centre is snapped to whole texels in the light's space, in
-//   double and at absolute world coordinates. A camera moving or turning
-//   therefore moves the map's content by whole texels only: no shimmer.
+//   double, on a grid anchored near the camera (kShadowAnchorLattice). A
+//   camera moving or turning therefore moves the map's content by whole
+//   texels only: no shimmer.
 // - Matrices are formed in double around the frame origin (the frame's mono
 //   camera) and handed to the GPU relative to it, like every other matrix of
 //   the renderer: a scene at UTM coordinates gives the same small floats as
@@ -37,6 +38,13 @@ constexpr double kShadowSplitLambda = 0.95;
 // put every logarithmic split within a metre of the eye).
 constexpr double kShadowMinSplitNear = 0.5;
 constexpr int kMaxShadowCascades = 4;
+// The texel grid is anchored at the lattice point of this spacing nearest
+// the camera (metres, world axes), not at the world origin: a scene moved
+// by a multiple of it (a scan at UTM coordinates and the same scan at the
+// origin) gets its shadow texels at the same places. Crossing from one
+// lattice cell to the next (once per 100 m of camera travel) moves the grid
+// by a fraction of a texel: a single-frame change at shadow edges.
+constexpr double kShadowAnchorLattice = 100.0;
 
 // What the settings ask for, resolved from the quality preset and clamped.
 struct ShadowConfig {
@@ -57,7 +65,7 @@ struct ShadowCascade {
   double splitNear = 0.0, splitFar = 0.0;  // view depth the cascade serves (m)
   double radius = 0.0;        // half the width of the map in metres
   double texelMetres = 0.0;   // world size of one texel
-  glm::dvec3 centreLight{0.0};  // the snapped centre in light space (absolute, m)
+  glm::dvec3 centreLight{0.0};  // the snapped centre in light space, relative to the anchor (m)
   // Frame-origin-relative position -> light clip space (x, y in -1..1,
   // depth 0..1 with 1 on the sun's side, drawn with depth clamp).
   glm::dmat4 frameToClip{1.0};
@@ -68,6 +76,7 @@ struct ShadowCascade {
 struct SunCascades {
   glm::dmat3 lightRotation{1.0};  // world -> light space (z towards the sun)
   glm::dvec3 frameOrigin{0.0};
+  glm::dvec3 anchor{0.0};  // the texel grid's origin (kShadowAnchorLattice)
   std::vector<ShadowCascade> cascades;
 };
 
