@@ -132,7 +132,9 @@ void addShadowPasses(FrameGraph& graph, FrameContext& frame) {
             if (touchesCascade(d.cascades.cascades[c], d.meshes[i].centre, d.meshes[i].radius))
               d.perCascade[c].push_back(uint32_t(i));
         const int layers = int(d.cascades.cascades.size());
-        d.map = b.create("sun_shadow_map", TextureDesc{config.resolution, config.resolution, GL_DEPTH_COMPONENT32F, 1, layers});
+        TextureDesc map{config.resolution, config.resolution, GL_DEPTH_COMPONENT32F, 1, layers};
+        map.array = true;  // sampler2DArrayShadow, also for one cascade
+        d.map = b.create("sun_shadow_map", map);
         d.views = b.create("sun_shadow_views", BufferDesc{roundUpPow2(size_t(layers) * viewStride)});
         if (!d.objects.empty())
           d.casters = b.create("sun_shadow_casters", BufferDesc{roundUpPow2(d.objects.size() * sizeof(GpuObject))});

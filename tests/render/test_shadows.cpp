@@ -147,8 +147,17 @@ class TestShadows : public QObject {
   // (from the depth buffer) towards the sun through the scene's triangles
   // (meshproc's BVH). The shadow maps must agree but for a thin band at
   // shadow edges (the PCF kernel and the depth of each texel).
+  void shadowedShareAgainstRayCast_data() {
+    QTest::addColumn<int>("cascades");
+    QTest::newRow("1 cascade") << 1;  // a one-layer array
+    QTest::newRow("2 cascades") << 2;
+    QTest::newRow("3 cascades") << 3;
+    QTest::newRow("4 cascades") << 4;
+  }
   void shadowedShareAgainstRayCast() {
+    QFETCH(int, cascades);
     test::ShadowScene sc = test::shadowScene();
+    sc.state.settings.shadowCascades = cascades;
     sc.state.settings.shadowResolution = 2048;
     sc.state.settings.shadowDistance = 30.0;
     const render::RenderView view = cameraView(sc.state, 400, 300);
