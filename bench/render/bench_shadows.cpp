@@ -132,7 +132,7 @@ BenchScene buildScene() {
   cam.name = "Camera";
   cam.camera = scene::Camera{};
   cam.camera->verticalFovDeg = 50.0;
-  cam.transform = test::lookFrom({0, -12, hillHeight(0, -12) + 6.0}, {0, 60, 0});
+  cam.transform = test::lookFrom({0, -25, hillHeight(0, -25) + 30.0}, {0, 55, 0});
   s.roots.push_back(cam.id);
   s.entities.emplace(cam.id, cam);
   return out;
