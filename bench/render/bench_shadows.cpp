@@ -17,8 +17,6 @@
 // shadows on (bench_frame measured 2.04x without).
 //
 //   bench_shadows [--frames N] [--size WxH] [--plot FILE.png] [--quick]
-#include <QCoreApplication>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -220,8 +218,10 @@ Row measure(render::OffscreenRenderer& r, const BenchScene& sc, const render::Re
 
 }  // namespace
 
+// No QCoreApplication: the plot (bench/common/plot.h) starts the
+// QGuiApplication it needs, which cannot coexist with a core one.
 int main(int argc, char** argv) {
-  QCoreApplication app(argc, argv);
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each table line as it is measured, also into a file
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
