@@ -127,7 +127,6 @@ class TestShadows : public QObject {
     for (size_t i = 0; i < 4; ++i) {
       const glm::dvec3 d = (moved.cascades[i].centreLight - b.cascades[i].centreLight) / b.cascades[i].texelMetres;
       for (int k = 0; k < 3; ++k) QVERIFY(std::abs(d[k] - std::round(d[k])) < 1e-6 && std::abs(d[k]) <= 1.0);
-      // And the lookup of a fixed world point moves by whole texels at most.
     }
   }
 
