@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 
 #include "core/parallel.h"
 #include "mesh/radix_sort.h"
@@ -182,6 +183,59 @@ ClosestPointBvh::Hit ClosestPointBvh::closest(const glm::dvec3& q, uint32_t hint
     }
   }
   return best;
+}
+
+bool ClosestPointBvh::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
+                               double tMax) const {
+  if (nodes_.empty() || !(tMax >= tMin)) return false;
+  const glm::dvec3 inv(1.0 / direction.x, 1.0 / direction.y, 1.0 / direction.z);
+  // Slabs: the parameter interval where the segment is inside the box.
+  auto hitsBox = [&](const Node& n) {
+    double t0 = tMin, t1 = tMax;
+    for (int a = 0; a < 3; ++a) {
+      double lo = (double(n.lo[a]) - origin[a]) * inv[a], hi = (double(n.hi[a]) - origin[a]) * inv[a];
+      if (lo > hi) std::swap(lo, hi);
+      if (std::isnan(lo) || std::isnan(hi)) {  // direction 0 along a: inside the slab or not at all
+        if (origin[a] < double(n.lo[a]) || origin[a] > double(n.hi[a])) return false;
+        continue;
+      }
+      t0 = std::max(t0, lo);
+      t1 = std::min(t1, hi);
+      if (t0 > t1) return false;
+    }
+    return true;
+  };
+  auto hitsTriangle = [&](uint32_t slot) {
+    const glm::dvec3 a(corners_[slot * 3]), b(corners_[slot * 3 + 1]), c(corners_[slot * 3 + 2]);
+    const glm::dvec3 e1 = b - a, e2 = c - a;
+    const glm::dvec3 p = glm::cross(direction, e2);
+    const double det = glm::dot(e1, p);
+    if (det == 0.0) return false;  // parallel, or a degenerate triangle
+    const double invDet = 1.0 / det;
+    const glm::dvec3 s = origin - a;
+    const double u = glm::dot(s, p) * invDet;
+    if (u < 0.0 || u > 1.0) return false;
+    const glm::dvec3 q = glm::cross(s, e1);
+    const double v = glm::dot(direction, q) * invDet;
+    if (v < 0.0 || u + v > 1.0) return false;
+    const double t = glm::dot(e2, q) * invDet;
+    return t >= tMin && t <= tMax;
+  };
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (!hitsBox(n)) continue;
+    if (n.count > 0) {
+      for (uint32_t s = n.first; s < n.first + n.count; ++s)
+        if (hitsTriangle(s)) return true;
+      continue;
+    }
+    stack[top++] = n.first;
+    stack[top++] = n.first + 1;
+  }
+  return false;
 }
 
 }  // namespace hs::mesh

@@ -35,6 +35,13 @@ class ClosestPointBvh {
   // previous query's) gives an early bound that prunes most of the tree.
   Hit closest(const glm::dvec3& q, uint32_t hintFace = UINT32_MAX) const;
 
+  // Does a triangle cross the segment from `origin` along `direction` (not
+  // necessarily unit) for parameters t in [tMin, tMax]? An any-hit query
+  // (shadow rays): the first triangle found ends it. Both sides of a
+  // triangle count. Uses the same tree, boxes tested with slabs, triangles
+  // with Moller-Trumbore in double.
+  bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tMin, double tMax) const;
+
   size_t triangleCount() const { return faceOfSlot_.size(); }
   bool empty() const { return nodes_.empty(); }
 

@@ -59,4 +59,13 @@ struct GpuObject {
 };
 static_assert(sizeof(GpuObject) == 2 * 64 + 16);
 
+// Shadows (shaders/shadows.glsl, render/passes/shadow_passes.h): the sun's
+// cascades, relative to the frame origin, shared by every view of a frame.
+struct ShadowBlock {
+  glm::mat4 sunCascade[4]{};  // frame-relative position -> map (u, v, depth)
+  glm::vec4 sunTexelMetres{0.0f};  // world size of a texel, per cascade
+  glm::vec4 sunParams{0.0f};  // x: cascade count (0: no sun shadow), y: PCF radius, z: 1 / map size
+};
+static_assert(sizeof(ShadowBlock) == 4 * 64 + 2 * 16);
+
 }  // namespace hs::render

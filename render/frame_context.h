@@ -20,6 +20,9 @@ struct FrameContext {
   const RenderOptions& options;
   const RenderView& lodView;  // chooses every level of detail of the frame
   FrameStats& stats;
+  // The sun's cascaded shadow maps of this frame (passes/shadow_passes.h);
+  // invalid when nothing casts.
+  TextureRef sunShadowMap{};
 };
 
 // One view of the frame: its camera, its index in the view block buffer,

@@ -4,6 +4,7 @@
 // the mesh and terrain caches, and the buffers every frame fills (frame and
 // view uniforms, lights, object data). Include only inside render/.
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "render/frame_blocks.h"
@@ -12,6 +13,7 @@
 #include "render/gpu_mesh_cache.h"
 #include "render/material_table.h"
 #include "render/resource_pool.h"
+#include "render/shadow_cascades.h"
 #include "render/terrain_pass.h"
 
 namespace hs::render {
@@ -25,6 +27,15 @@ struct GrowingBuffer {
   void upload(const void* data, size_t bytes, size_t offset = 0);
 };
 
+// Shadows (render/passes/shadow_passes.h): what outlives a frame. The maps
+// and caster data are the frame graph's (transient, only when a light casts).
+struct ShadowResources {
+  GrowingBuffer block;   // ShadowBlock, bound at kShadowBlockBinding every frame (cascade count 0: none)
+  SunCascades sun;       // the last frame's sun cascades (empty: none)
+  std::string problem;   // the last settings problem reported (each is reported once)
+  std::vector<std::string> newProblems;
+};
+
 struct RenderResources {
   gl::ShaderLibrary shaders;
   ResourcePool pool;
@@ -32,6 +43,7 @@ struct RenderResources {
   MaterialTable materials;      // the frame's materials and standalone textures
   GrowingBuffer materialBlock;  // GpuMaterial[] at kMaterialBufferBinding
   TerrainPass terrain;  // runs only for scenes with a visible terrain
+  ShadowResources shadows;
 
   GrowingBuffer frameBlock;     // FrameBlock
   GrowingBuffer viewBlocks;     // one ViewBlock per view, at viewStride

@@ -13,6 +13,7 @@
 #include "render/passes/background_passes.h"
 #include "render/passes/output_passes.h"
 #include "render/passes/scene_passes.h"
+#include "render/passes/shadow_passes.h"
 #include "render/render_resources.h"
 
 namespace hs::render {
@@ -190,6 +191,8 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   std::vector<ViewContext> viewContexts;
   for (size_t i = 0; i < targets.size(); ++i)
     viewContexts.push_back({targets[i].view, i, targets[i].fbo, targets[i].name.empty() ? "" : "[" + targets[i].name + "]"});
+  // Shadows: once per frame, before the views that read them.
+  addShadowPasses(*graph, frame);
   for (const ViewContext& v : viewContexts) {
     const SceneTargets scene = addOpaquePass(*graph, frame, v);
     if (!world.terrains.empty()) addTerrainPass(*graph, frame, v, scene);
@@ -286,6 +289,7 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
                               res.objects.capacity + res.objectIndices.capacity + res.overlayVertices.capacity +
                               res.materialBlock.capacity;
   out.push_back({"frame_data", "buffer", frameBuffers, false});
+  out.back().bytes += res.shadows.block.capacity;  // ShadowBlock: one uniform block, with or without shadows
   if (const size_t m = res.meshes.gpuBytes()) out.push_back({"meshes", "meshes", m, false});
   if (const size_t t = res.terrain.gpuBytes()) out.push_back({"terrains", "terrains", t, false});
   if (const size_t t = res.materials.gpuBytes()) out.push_back({"material_textures", "textures", t, false});
@@ -384,6 +388,19 @@ std::vector<std::string> Renderer::takeTerrainMaterialProblems() { return d_->re
 std::vector<std::string> Renderer::takeGlMessages() { return d_->debug.take(); }
 
 std::vector<std::string> Renderer::takeMaterialProblems() { return d_->res.materials.takeProblems(); }
+
+std::vector<std::string> Renderer::takeShadowProblems() {
+  std::vector<std::string> out;
+  out.swap(d_->res.shadows.newProblems);
+  return out;
+}
+
+std::vector<SunCascadeInfo> Renderer::sunCascades() const {
+  std::vector<SunCascadeInfo> out;
+  for (const ShadowCascade& c : d_->res.shadows.sun.cascades)
+    out.push_back({c.splitNear, c.splitFar, c.texelMetres, c.frameToMap, d_->res.shadows.sun.frameOrigin});
+  return out;
+}
 
 void Renderer::shutdown() {
   if (!d_->ready) return;

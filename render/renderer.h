@@ -99,6 +99,16 @@ struct TerrainUpload {
   double finishMs = -1.0;  // with measureGpu: glFinish after them (until the GPU has the data)
 };
 
+// One cascade of the sun's shadow maps in the last frame (tests, benchmarks):
+// the view depth it serves, its texel size and the lookup matrix
+// (frame-relative position -> map u, v, depth) with the frame origin.
+struct SunCascadeInfo {
+  double splitNear = 0.0, splitFar = 0.0;
+  double texelMetres = 0.0;
+  glm::dmat4 frameToMap{1.0};
+  glm::dvec3 frameOrigin{0.0};
+};
+
 class Renderer {
  public:
   Renderer();
@@ -167,6 +177,13 @@ class Renderer {
   // the GPU allows, damaged, a grey normal map), each named by material and
   // field and reported once; the frame draws without them (material_table.h).
   std::vector<std::string> takeMaterialProblems();
+
+  // Shadow settings that had to be clamped (a resolution of 0, or larger
+  // than the GPU allows), each naming the field, reported once; the frame
+  // renders with the clamped value.
+  std::vector<std::string> takeShadowProblems();
+  // The sun's cascades of the last frame (empty: no sun shadow).
+  std::vector<SunCascadeInfo> sunCascades() const;
 
   // Frees every GL object (call with the context current, before it goes).
   void shutdown();

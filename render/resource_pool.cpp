@@ -7,7 +7,7 @@ namespace hs::render {
 GLenum TextureDesc::target() const {
   if (cube) return layers > 1 ? GL_TEXTURE_CUBE_MAP_ARRAY : GL_TEXTURE_CUBE_MAP;
   if (samples > 1) return layers > 1 ? GL_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_TEXTURE_2D_MULTISAMPLE;
-  return layers > 1 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D;
+  return layers > 1 || array ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D;
 }
 
 size_t bytesPerTexel(GLenum format) {

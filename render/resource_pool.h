@@ -29,6 +29,7 @@ struct TextureDesc {
   int layers = 1;              // > 1: a 2D array (cascades, eyes, layers)
   int levels = 1;              // mipmap levels
   bool cube = false;           // a cube map (layers counts cube faces x 6 for arrays)
+  bool array = false;          // a 2D array even with one layer (shaders sample it as one: one shadow cascade)
 
   GLenum target() const;
   size_t bytes() const;

@@ -94,7 +94,7 @@ void TerrainPass::collect(const scene::SceneState& state) {
 }
 
 bool TerrainPass::prepare(const scene::SceneState& state, scene::EntityId entity, const RenderView& view,
-                          Prepared& out, TerrainFrameStats* stats) {
+                          Prepared& out, TerrainFrameStats* stats, const Frustum* cull) {
   const scene::TerrainAsset* asset = scene::terrainOf(state, entity);
   if (!asset) return false;
   out.asset = asset;
@@ -120,7 +120,7 @@ bool TerrainPass::prepare(const scene::SceneState& state, scene::EntityId entity
   in.samplesY = hf.samplesY();
   in.cameraLocal = camLocal;
   in.originRelative = origin - view.eye;
-  in.frustum = &frustum;
+  in.frustum = cull ? cull : &frustum;
   in.pixelsPerUnit = lodPixelsPerUnit(view);
   in.errorPixels = state.find(entity)->terrain->lodErrorPixels;
   out.lod = selectLod(in);
@@ -240,6 +240,25 @@ void TerrainPass::drawPick(const scene::SceneState& state, const std::vector<sce
   }
   glBindTextureUnit(kUnitHeight, 0);
   glBindTextureUnit(kUnitHoles, 0);
+}
+
+size_t TerrainPass::drawShadow(const scene::SceneState& state, const std::vector<scene::EntityId>& entities,
+                               const RenderView& lodView, const Frustum& volume) {
+  if (!ready_) return 0;
+  // The id program: its fragment shader drops holes like terrain.frag; with
+  // no colour attachment its id goes nowhere.
+  GlProgram& p = *pick_;
+  p.use();
+  size_t triangles = 0;
+  for (scene::EntityId id : entities) {
+    Prepared t;
+    if (!prepare(state, id, lodView, t, nullptr, &volume)) continue;
+    bindCommon(p, t, lodView);
+    triangles += drawInstances(t);
+  }
+  glBindTextureUnit(kUnitHeight, 0);
+  glBindTextureUnit(kUnitHoles, 0);
+  return triangles;
 }
 
 TerrainUploadStats TerrainPass::sync(const scene::TerrainData& data) {

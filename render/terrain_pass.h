@@ -49,6 +49,14 @@ class TerrainPass {
   void drawPick(const scene::SceneState& state, const std::vector<scene::EntityId>& entities,
                 const RenderView& lodView, unsigned firstId);
 
+  // Depth only, for a shadow map (passes/shadow_passes.cpp), with the
+  // cascade's view block bound: levels from `lodView` (so the terrain
+  // shadows itself with the triangles the views draw), nodes culled against
+  // `volume` (relative to lodView's eye) instead of the view's frustum.
+  // Holes cast no shadow. Returns the triangles drawn.
+  size_t drawShadow(const scene::SceneState& state, const std::vector<scene::EntityId>& entities,
+                    const RenderView& lodView, const Frustum& volume);
+
   // Uploads what changed without drawing (benchmarks measure the upload alone).
   TerrainUploadStats sync(const scene::TerrainData& data);
   // The CDLOD selection the pass would draw for one terrain entity.
@@ -70,8 +78,9 @@ class TerrainPass {
     glm::vec3 cameraRest{0.0f};
     glm::dvec3 lodEye{0.0};  // the view the levels were chosen from
   };
+  // `cull`: planes to cull nodes against instead of the view's frustum.
   bool prepare(const scene::SceneState& state, scene::EntityId entity, const RenderView& view, Prepared& out,
-               TerrainFrameStats* stats);
+               TerrainFrameStats* stats, const Frustum* cull = nullptr);
   void bindCommon(GlProgram& p, const Prepared& t, const RenderView& view);
   size_t drawInstances(const Prepared& t);
   void collect(const scene::SceneState& state);

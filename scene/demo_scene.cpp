@@ -250,6 +250,10 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   if (!addDemoTerrain(s, error)) return std::nullopt;
   // A normal-mapped and a parallax-mapped material, south of the bunnies.
   addDemoDetailSamples(s);
+  // Sun shadows (docs/rendering.md "Shadows"): medium quality, cascades
+  // over 500 m (the 320 m valley seen from anywhere in the flight).
+  s.settings.shadows = true;
+  s.settings.shadowDistance = 500.0;
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

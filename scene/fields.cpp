@@ -296,6 +296,19 @@ std::vector<SettingsField> buildSettingsFields() {
       // Screen-space error of mesh LODs (mesh/lod_chain.h selectLod); 0 draws full resolution.
       doubleField<S>("mesh_lod_error_px", "Mesh LOD error bound", 0.0, 64.0, 0.1, "px",
                      [](S& s) -> double& { return s.meshLodErrorPixels; }),
+      // Shadows (docs/rendering.md "Shadows"). A map under 256 texels shows
+      // nothing useful; over 8192 a 4-cascade array passes 1 GB.
+      boolField<S>("shadows", "Shadows", [](S& s) -> bool& { return s.shadows; }),
+      enumField<S>("shadow_quality", "Shadow quality", {"low", "medium", "high", "custom"},
+                   [](S& s) -> ShadowQuality& { return s.shadowQuality; }),
+      doubleField<S>("shadow_resolution", "Shadow map size (custom)", 256.0, 8192.0, 256.0, "px",
+                     [](S& s) -> int& { return s.shadowResolution; }),
+      doubleField<S>("shadow_cascades", "Sun cascades (custom)", 1.0, 4.0, 1.0, "",
+                     [](S& s) -> int& { return s.shadowCascades; }),
+      doubleField<S>("shadow_pcf", "Shadow filter radius (custom)", 0.0, 3.0, 1.0, "texels",
+                     [](S& s) -> int& { return s.shadowPcfRadius; }),
+      doubleField<S>("shadow_distance", "Sun shadow distance", 1.0, 100000.0, 10.0, "m",
+                     [](S& s) -> double& { return s.shadowDistance; }),
   };
 }
 

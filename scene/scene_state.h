@@ -61,6 +61,9 @@ enum class Antialiasing { None = 0, Fxaa = 1, Msaa4 = 2 };
 // ACES: filmic curve (highlights roll off); None: exposure then clamp, for
 // reference renders and colour checks.
 enum class Tonemap { Aces = 0, None = 1 };
+// Shadow presets (docs/rendering.md "Shadows"): map size, cascades and PCF
+// kernel together; Custom takes SceneSettings::shadowResolution etc.
+enum class ShadowQuality { Low = 0, Medium = 1, High = 2, Custom = 3 };
 
 struct SceneSettings {
   glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
@@ -74,6 +77,14 @@ struct SceneSettings {
   // Mesh LODs: each instance draws the coarsest level whose error, projected
   // to the screen, is at most this many pixels (0: always full resolution).
   double meshLodErrorPixels = 1.0;
+  // Shadows (docs/rendering.md "Shadows"): sun cascades and the shadows of
+  // lights that cast them. Off by default so scenes made before keep their look.
+  bool shadows = false;
+  ShadowQuality shadowQuality = ShadowQuality::Medium;
+  int shadowResolution = 2048;     // texels per side, with ShadowQuality::Custom
+  int shadowCascades = 3;          // sun cascades, with Custom
+  int shadowPcfRadius = 1;         // PCF kernel (2r+1)^2 taps, with Custom
+  double shadowDistance = 30000.0; // metres from the camera the sun's cascades cover
   bool operator==(const SceneSettings&) const = default;
 };
 

@@ -1,6 +1,7 @@
 #include "render/passes/scene_passes.h"
 
 #include "render/gpu_mesh_cache.h"
+#include "render/passes/shadow_passes.h"
 
 namespace hs::render {
 
@@ -27,6 +28,7 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
         t.color = b.create(v.named("scene_color"), TextureDesc{v.view.width, v.view.height, GL_RGBA16F, samples});
         t.depth = b.create(v.named("scene_depth"),
                            TextureDesc{v.view.width, v.view.height, GL_DEPTH_COMPONENT32F, samples});
+        readShadowMaps(b, frame);
       },
       [&frame, index = v.index, w = v.view.width, h = v.view.height](const SceneTargets& t, const PassResources& r) {
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({t.color}, t.depth));
@@ -38,6 +40,7 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
         glClearBufferfv(GL_DEPTH, 0, &clearDepth);
         if (frame.visible.draws.empty()) return;
         frame.res.bindView(index);
+        bindShadowMaps(frame, r);
         // One program per shading mode a material uses (shaders/mesh.frag's
         // variants), built on first use: none for modes nobody uses.
         GlProgram* programs[3][2][2] = {};
@@ -92,10 +95,12 @@ void addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v
         b.write(d.t.color);
         b.read(d.t.depth);
         b.write(d.t.depth);
+        readShadowMaps(b, frame);
       },
       [&frame, &view = v.view, index = v.index](const Data& d, const PassResources& r) {
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.t.color}, d.t.depth));
         frame.res.bindView(index);
+        bindShadowMaps(frame, r);
         const TerrainFrameStats ts =
             frame.res.terrain.draw(*frame.world.state, frame.world.terrains, view, frame.lodView);
         frame.stats.trianglesDrawn += ts.triangles;

@@ -163,6 +163,36 @@ class TestRender : public QObject {
     golden("bunny_origin", a);
   }
 
+  // The same with shadows on (docs/rendering.md "Shadows"): the sun's
+  // cascades are formed in double around the camera, so the bunny shadowing
+  // itself at UTM coordinates matches the bunny at the origin. The
+  // shadowed picture must differ from the unshadowed one (or this would
+  // test nothing).
+  void largeCoordinatesMatchOriginWithShadows() {
+    auto withShadows = [](scene::SceneState s) {
+      s.settings.shadows = true;
+      s.settings.shadowQuality = scene::ShadowQuality::High;
+      s.settings.shadowDistance = 3.0;
+      return s;
+    };
+    const auto atOrigin = withShadows(bunnyScene({0, 0, 0}));
+    const auto atUtm = withShadows(bunnyScene({500000.0, 4400000.0, 300.0}));
+    render::FrameStats stats;
+    const hs::Image a = r_.render(atOrigin, cameraView(atOrigin, 480, 360), false, &stats);
+    const hs::Image b = r_.render(atUtm, cameraView(atUtm, 480, 360));
+    bool shadowPass = false;
+    for (const render::PassStats& p : stats.passes) shadowPass |= p.name == "shadow_sun";
+    QVERIFY(shadowPass);
+    const test::CompareResult cmp = test::compareImages(toTest(a), toTest(b), 2);
+    QVERIFY(cmp.sizeMatches);
+    QVERIFY2(cmp.maxChannelDiff <= 8 && cmp.differingShare <= 0.001, cmp.summary().c_str());
+    const hs::Image unshadowed = r_.render(bunnyScene({0, 0, 0}), cameraView(atOrigin, 480, 360));
+    const test::CompareResult self = test::compareImages(toTest(a), toTest(unshadowed), 2);
+    qInfo("shadows change %s", self.summary().c_str());
+    QVERIFY(self.differingShare > 0.01);
+    golden("bunny_origin_shadows", a);
+  }
+
   // Without camera-relative maths the same scene would jitter: check that the
   // test above can fail, by rendering the UTM scene from a camera 5 cm off.
   void largeCoordinatesTestIsSensitive() {
