@@ -39,6 +39,7 @@
 #include "app/terrain_panel.h"
 #include "app/viewport_widget.h"
 #include "render/renderer.h"
+#include "scene/light_units.h"
 #include "scene/operations.h"
 #include "scene/transform.h"
 
@@ -486,7 +487,9 @@ void MainWindow::createEntity(Create what) {
     case Create::PointLight: {
       scene::Light l;
       l.type = scene::Light::Type::Point;
-      l.intensity = 5.0f;
+      // As bright as the old default (5 at 1 m in sun units, 2.8 million
+      // lumens): it reads in the default daylight exposure within metres.
+      l.intensity = float(scene::legacyLightIntensity(scene::Light::Type::Point, 5.0));
       l.range = 20.0f;
       t.translation += glm::dvec3(0.0, 0.0, 1.0);
       id = scene::ops::addLight(doc_, uniqueName("Point Light"), t, l);

@@ -10,10 +10,12 @@
 #include "render/frame_context.h"
 #include "render/frame_graph.h"
 #include "render/gl/gl_debug.h"
+#include "render/gpu_lights.h"
 #include "render/passes/background_passes.h"
 #include "render/passes/output_passes.h"
 #include "render/passes/scene_passes.h"
 #include "render/render_resources.h"
+#include "scene/light_units.h"
 
 namespace hs::render {
 namespace {
@@ -68,12 +70,11 @@ struct Renderer::Impl {
     f.skyZenith = glm::vec4(settings.skyZenith, 0.0f);
     f.skyHorizon = glm::vec4(settings.skyHorizon, 0.0f);
     f.groundColor = glm::vec4(settings.groundColor, 0.0f);
-    f.params = glm::vec4(settings.ambientIntensity, settings.exposure, float(world.lights.size()), 0.0f);
+    f.params = glm::vec4(settings.ambientIntensity, float(scene::exposureMultiplier(settings.exposureEv100)), float(world.lights.size()), 0.0f);
     res.frameBlock.upload(&f, sizeof f);
 
     std::vector<GpuLight> lights;
-    for (const WorldLight& l : world.lights)
-      lights.push_back({glm::vec4(glm::vec3(l.position - visible.origin), l.range), glm::vec4(l.color, 0.0f)});
+    for (const WorldLight& l : world.lights) lights.push_back(gpuLight(l, visible.origin));
     res.lights.reserve(std::max<size_t>(lights.size(), 1) * sizeof(GpuLight));
     res.lights.upload(lights.data(), lights.size() * sizeof(GpuLight));
     res.objects.reserve(std::max<size_t>(visible.objects.size(), 1) * sizeof(GpuObject));

@@ -218,15 +218,46 @@ std::vector<ComponentInfo> buildEntityComponents() {
         {asset, colorField<Entity>("tint", "Tint", [](Entity& e) -> glm::vec3& { return e.mesh->tint; })}));
   }
 
+  // Physical units (components.h, light_units.h): lux for a sun, lumens
+  // for point and spot lights. Cone angles are full apex angles in (0, 180).
   out.push_back(optionalComponent<Light>(
       "light", "Light", &Entity::light,
-      {enumField<Entity>("type", "Type", {"Sun", "Point"},
+      {enumField<Entity>("type", "Type", {"Sun", "Point", "Spot"},
                          [](Entity& e) -> Light::Type& { return e.light->type; }),
        colorField<Entity>("color", "Colour", [](Entity& e) -> glm::vec3& { return e.light->color; }),
-       doubleField<Entity>("intensity", "Intensity", 0.0, 1e6, 0.1, "",
+       doubleField<Entity>("intensity", "Intensity", 0.0, 1e12, 100.0, "lx (sun) or lm",
                            [](Entity& e) -> float& { return e.light->intensity; }),
        doubleField<Entity>("range", "Range", 0.01, 1e7, 1.0, "m",
-                           [](Entity& e) -> float& { return e.light->range; })}));
+                           [](Entity& e) -> float& { return e.light->range; }),
+       doubleField<Entity>("inner_cone_deg", "Inner cone", 0.1, 179.9, 1.0, "°",
+                           [](Entity& e) -> float& { return e.light->innerConeDeg; }),
+       doubleField<Entity>("outer_cone_deg", "Outer cone", 0.1, 179.9, 1.0, "°",
+                           [](Entity& e) -> float& { return e.light->outerConeDeg; }),
+       boolField<Entity>("casts_shadows", "Casts shadows", [](Entity& e) -> bool& { return e.light->castsShadows; }),
+       doubleField<Entity>("shadow_resolution", "Shadow resolution (0: from settings)", 0.0, 16384.0, 256.0, "px",
+                           [](Entity& e) -> int& { return e.light->shadowResolution; })}));
+  // The beam's cones bound each other: the inner one within the outer one.
+  for (EntityField& f : out.back().fields) {
+    if (f.key == "inner_cone_deg") {
+      f.check = [](const FieldValue& v, const Entity* e) {
+        return e && e->light && std::get<double>(v) > double(e->light->outerConeDeg)
+                   ? "must not exceed the outer cone (" + formatFieldValue(FieldType::Double, double(e->light->outerConeDeg), {}, 6) +
+                         " °)"
+                   : std::string();
+      };
+      f.repair = [](Entity& e) { e.light->innerConeDeg = e.light->outerConeDeg; };
+    } else if (f.key == "outer_cone_deg") {
+      f.check = [](const FieldValue& v, const Entity* e) {
+        return e && e->light && std::get<double>(v) < double(e->light->innerConeDeg)
+                   ? "must not be less than the inner cone (" +
+                         formatFieldValue(FieldType::Double, double(e->light->innerConeDeg), {}, 6) + " °)"
+                   : std::string();
+      };
+      f.repair = [](Entity& e) { e.light->innerConeDeg = e.light->outerConeDeg; };
+    } else if (f.key == "shadow_resolution") {
+      f.animatable = false;
+    }
+  }
 
   out.push_back(optionalComponent<Camera>(
       "camera", "Camera", &Entity::camera,
@@ -287,8 +318,9 @@ std::vector<SettingsField> buildSettingsFields() {
       colorField<S>("ground_color", "Ground", [](S& s) -> glm::vec3& { return s.groundColor; }),
       doubleField<S>("ambient", "Sky ambient", 0.0, 100.0, 0.05, "",
                      [](S& s) -> float& { return s.ambientIntensity; }),
-      doubleField<S>("exposure", "Exposure", 0.001, 1000.0, 0.05, "",
-                     [](S& s) -> float& { return s.exposure; }),
+      // Camera exposure in EV100 (light_units.h): lower is brighter.
+      doubleField<S>("exposure_ev100", "Exposure (EV100)", -10.0, 30.0, 0.1, "EV",
+                     [](S& s) -> float& { return s.exposureEv100; }),
       boolField<S>("show_grid", "Ground grid", [](S& s) -> bool& { return s.showGrid; }),
       enumField<S>("antialiasing", "Anti-aliasing", {"None", "FXAA", "MSAA 4x"},
                    [](S& s) -> Antialiasing& { return s.antialiasing; }),

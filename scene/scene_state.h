@@ -67,7 +67,10 @@ struct SceneSettings {
   glm::vec3 skyHorizon{0.62f, 0.72f, 0.82f};
   glm::vec3 groundColor{0.22f, 0.2f, 0.18f};
   float ambientIntensity = 0.5f;
-  float exposure = 1.0f;
+  // Camera exposure as EV100 (light_units.h; 15.2 with a 100 000 lux sun
+  // gives the look of before physical units). Files before format 6 held a
+  // multiplier ("exposure"), converted on load.
+  float exposureEv100 = 15.2f;
   bool showGrid = true;
   Antialiasing antialiasing = Antialiasing::Msaa4;
   Tonemap tonemap = Tonemap::Aces;

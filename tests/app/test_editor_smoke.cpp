@@ -488,17 +488,17 @@ void EditorSmokeTest::outlinerDropReparentsKeepingWorldPlace() {
 }
 
 void EditorSmokeTest::sceneSettingsEditIsUndoable() {
-  auto* spin = w_->sceneSettings()->findChild<app::ScrubSpinBox*>("settings.exposure");
+  auto* spin = w_->sceneSettings()->findChild<app::ScrubSpinBox*>("settings.exposure_ev100");
   QVERIFY(spin);
-  const float before = doc().state().settings.exposure;
+  const float before = doc().state().settings.exposureEv100;
   const int steps = doc().undoStack()->index();
   spin->setValue(double(before) + 0.25);
   spin->setValue(double(before) + 0.5);
   emit spin->editingFinished();
   QCOMPARE(doc().undoStack()->index(), steps + 1);
-  QCOMPARE(doc().state().settings.exposure, float(double(before) + 0.5));
+  QCOMPARE(doc().state().settings.exposureEv100, float(double(before) + 0.5));
   doc().undoStack()->undo();
-  QCOMPARE(doc().state().settings.exposure, before);
+  QCOMPARE(doc().state().settings.exposureEv100, before);
   QCOMPARE(spin->value(), double(before));
 }
 

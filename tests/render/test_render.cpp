@@ -194,8 +194,9 @@ class TestRender : public QObject {
     const hs::Image hdr = r_.render(s, v, true);
     QVERIFY(hdr.isFloat());
     QVERIFY(std::abs(hdr.rgbaF[0] - 0.21404114f) < 1e-3f);
-    // Exposure scales linear light before encoding: x2 gives linear 0.428 -> sRGB 174.
-    s.settings.exposure = 2.0f;
+    // Exposure scales linear light before encoding: one EV100 lower is x2,
+    // linear 0.428 -> sRGB 174.
+    s.settings.exposureEv100 -= 1.0f;
     const hs::Image bright = r_.render(s, v);
     QVERIFY(std::abs(int(bright.rgba8[0]) - 174) <= 1);
   }

@@ -491,7 +491,7 @@ class TestSceneEdits : public QObject {
     QCOMPARE(glm::dvec3(s.find(sc.a)->light->color), glm::dvec3(0, 0.5, 1000));
     // Enums clamp to their names.
     QVERIFY(ops::setField(sc.doc, sc.a, field("light.type"), int64_t(7)));
-    QVERIFY(s.find(sc.a)->light->type == Light::Type::Point);
+    QVERIFY(s.find(sc.a)->light->type == Light::Type::Spot);
     // Rotation through Euler angles.
     QVERIFY(ops::setField(sc.doc, sc.a, field("transform.rotation_deg"), glm::dvec3(0, 0, 45)));
     QVERIFY(rotationDistance(s.find(sc.a)->transform.rotation, fromEulerDegrees({0, 0, 45})) < 1e-15);
@@ -564,12 +564,12 @@ class TestSceneEdits : public QObject {
   void settingsEdits() {
     Document doc;
     const SettingsField* aa = findSettingsField("antialiasing");
-    const SettingsField* exposure = findSettingsField("exposure");
+    const SettingsField* exposure = findSettingsField("exposure_ev100");
     QVERIFY(aa && exposure);
     QVERIFY(ops::setSettingsField(doc, *aa, int64_t(1)));
     QVERIFY(doc.state().settings.antialiasing == Antialiasing::Fxaa);
-    QVERIFY(ops::setSettingsField(doc, *exposure, 0.0));  // clamped to its minimum
-    QCOMPARE(doc.state().settings.exposure, 0.001f);
+    QVERIFY(ops::setSettingsField(doc, *exposure, -100.0));  // clamped to its minimum
+    QCOMPARE(doc.state().settings.exposureEv100, -10.0f);
     QVERIFY(!ops::setSettingsField(doc, *exposure, double(NAN)));
     doc.undoStack()->undo();
     doc.undoStack()->undo();
@@ -732,7 +732,7 @@ class TestSceneEdits : public QObject {
     } bad[] = {{"camera.fov_deg", "nan"}, {"camera.fov_deg", "inf"}, {"camera.fov_deg", "-inf"}, {"camera.fov_deg", "1e400"},
                {"camera.fov_deg", ""}, {"camera.fov_deg", "35deg"}, {"transform.translation", "1,2"},
                {"transform.translation", "1,2,3,4"}, {"transform.translation", "1,nan,3"}, {"transform.translation", "1,2,inf"},
-               {"light.color", "1;2;3"}, {"entity.visible", "maybe"}, {"light.type", "Spot"}, {"light.type", "2"},
+               {"light.color", "1;2;3"}, {"entity.visible", "maybe"}, {"light.type", "Torch"}, {"light.type", "3"},
                {"light.type", "0.5"}, {"mesh.asset", "-1"}, {"mesh.asset", "2.5"}};
     for (const auto& b : bad) {
       error.clear();
@@ -740,7 +740,7 @@ class TestSceneEdits : public QObject {
       QVERIFY2(!v, qPrintable(QString("%1 accepted '%2'").arg(b.field, b.text)));
       QVERIFY2(error.find(b.text) != std::string::npos, error.c_str());  // the message quotes the input
     }
-    const SettingsField* exposure = findSettingsField("exposure");
+    const SettingsField* exposure = findSettingsField("exposure_ev100");
     QVERIFY(!parseFieldValue(*exposure, "NaN", error));
   }
 
