@@ -10,6 +10,7 @@
 #include "mesh/mesh_import.h"
 #include "render/offscreen_renderer.h"
 #include "scene/demo_scene.h"
+#include "scene/light_units.h"
 #include "scene/world_bounds.h"
 
 using namespace hs;
@@ -305,7 +306,9 @@ class TestRender : public QObject {
     addEntity(s, q);
     scene::Entity l;
     l.name = "Lamp";
-    l.light = scene::Light{scene::Light::Type::Point, glm::vec3(1.0f), 2.0f, 20.0f};
+    // 2 at 1 m in scene units (scene/light_units.h), as before physical units.
+    l.light = scene::Light{scene::Light::Type::Point, glm::vec3(1.0f),
+                           float(scene::legacyLightIntensity(scene::Light::Type::Point, 2.0)), 20.0f};
     l.transform.translation = {0, -1, 0};
     addEntity(s, l);
     render::RenderView v;
