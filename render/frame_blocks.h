@@ -18,6 +18,7 @@ enum Binding : unsigned {
   kShadowBlockBinding = 5,       // uniform ShadowBlock
   kEnvironmentBlockBinding = 6,  // uniform EnvironmentBlock
   kLightGridBinding = 7,         // buffer LightGrid (clustered light lists)
+  kFogBlockBinding = 8,          // uniform FogBlock (shaders/fog.glsl; only with fog on)
 };
 
 // Texture units: a material's textures, then the frame's shared maps.

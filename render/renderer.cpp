@@ -10,6 +10,7 @@
 #include "render/frame_context.h"
 #include "render/frame_graph.h"
 #include "render/gl/gl_debug.h"
+#include "render/fog_block.h"
 #include "render/gpu_lights.h"
 #include "render/passes/background_passes.h"
 #include "render/passes/output_passes.h"
@@ -88,6 +89,12 @@ struct Renderer::Impl {
     }
     res.viewBlocks.upload(blocks.data(), blocks.size());
     res.bindFrame();
+    // Fog: a block only for frames that have fog (shaders/fog.glsl).
+    if (settings.fogMode != scene::FogMode::None) {
+      const FogBlock fog = fogBlock(settings, visible.origin.z);
+      res.fogBlock.upload(&fog, sizeof fog);
+      glBindBufferRange(GL_UNIFORM_BUFFER, kFogBlockBinding, res.fogBlock.buffer.id(), 0, sizeof fog);
+    }
   }
 };
 
@@ -291,6 +298,7 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
   if (const size_t t = res.terrain.gpuBytes()) out.push_back({"terrains", "terrains", t, false});
   if (const size_t t = res.materials.gpuBytes()) out.push_back({"material_textures", "textures", t, false});
   if (const size_t t = res.meshes.tangentBytes()) out.push_back({"mesh_tangents", "buffer", t, false});
+  if (const size_t f = res.fogBlock.capacity) out.push_back({"fog_block", "buffer", f, false});
   return out;
 }
 

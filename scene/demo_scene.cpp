@@ -7,6 +7,7 @@
 #include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
 #include "scene/asset_reports.h"
+#include "scene/demo_lights.h"
 #include "scene/demo_materials.h"
 #include "scene/demo_terrain.h"
 #include "scene/mesh_materials.h"
@@ -250,6 +251,8 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   if (!addDemoTerrain(s, error)) return std::nullopt;
   // A normal-mapped and a parallax-mapped material, south of the bunnies.
   addDemoDetailSamples(s);
+  // A spot and two point lights by the bunnies, and fog on the valley.
+  addDemoLights(s);
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

@@ -328,6 +328,16 @@ std::vector<SettingsField> buildSettingsFields() {
       // Screen-space error of mesh LODs (mesh/lod_chain.h selectLod); 0 draws full resolution.
       doubleField<S>("mesh_lod_error_px", "Mesh LOD error bound", 0.0, 64.0, 0.1, "px",
                      [](S& s) -> double& { return s.meshLodErrorPixels; }),
+      // Fog (scene_state.h FogMode, shaders/fog.glsl).
+      enumField<S>("fog_mode", "Fog", {"none", "depth_cue", "exponential_height"},
+                   [](S& s) -> FogMode& { return s.fogMode; }),
+      colorField<S>("fog_colour", "Fog colour", [](S& s) -> glm::vec3& { return s.fogColour; }),
+      doubleField<S>("fog_k1", "Depth cue k1", 1e-3, 1e3, 0.05, "", [](S& s) -> float& { return s.fogK1; }),
+      doubleField<S>("fog_k2", "Depth cue k2", 0.0, 10.0, 1e-4, "/m", [](S& s) -> float& { return s.fogK2; }),
+      doubleField<S>("fog_density", "Fog density", 0.0, 10.0, 1e-4, "/m", [](S& s) -> float& { return s.fogDensity; }),
+      doubleField<S>("fog_height_falloff", "Fog height falloff", 0.0, 10.0, 1e-3, "/m",
+                     [](S& s) -> float& { return s.fogHeightFalloff; }),
+      doubleField<S>("fog_height", "Fog height", -1e5, 1e5, 1.0, "m", [](S& s) -> float& { return s.fogHeight; }),
   };
 }
 

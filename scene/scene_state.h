@@ -61,6 +61,11 @@ enum class Antialiasing { None = 0, Fxaa = 1, Msaa4 = 2 };
 // ACES: filmic curve (highlights roll off); None: exposure then clamp, for
 // reference renders and colour checks.
 enum class Tonemap { Aces = 0, None = 1 };
+// Fog (shaders/fog.glsl, docs/rendering.md "Fog"). DepthCue: the survey's
+// depth cueing, the surface keeps f = min(1, 1/(k1 + k2·d)) of its colour
+// at distance d; ExponentialHeight: density ρ(z) = density·exp(−falloff·(z −
+// height)), integrated along the view ray.
+enum class FogMode { None = 0, DepthCue = 1, ExponentialHeight = 2 };
 
 struct SceneSettings {
   glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
@@ -77,6 +82,15 @@ struct SceneSettings {
   // Mesh LODs: each instance draws the coarsest level whose error, projected
   // to the screen, is at most this many pixels (0: always full resolution).
   double meshLodErrorPixels = 1.0;
+  // Fog (FogMode above); off by default, and then no shader variant and no
+  // buffer exist for it.
+  FogMode fogMode = FogMode::None;
+  glm::vec3 fogColour{0.62f, 0.7f, 0.8f};  // linear, scene units (what fully fogged pixels show)
+  float fogK1 = 1.0f;                      // depth cue: constant term
+  float fogK2 = 0.0005f;                   // depth cue: per metre (half the colour kept at 2 km)
+  float fogDensity = 0.0005f;              // height fog: extinction per metre at the fog height
+  float fogHeightFalloff = 0.02f;          // height fog: per metre above the fog height
+  float fogHeight = 0.0f;                  // height fog: metres (world z) where the density is fogDensity
   bool operator==(const SceneSettings&) const = default;
 };
 
