@@ -87,6 +87,7 @@ class EditorSmokeTest : public QObject {
   void unsavedChangesAreAskedAbout();
   void outlinerDropReparentsKeepingWorldPlace();
   void sceneSettingsEditIsUndoable();
+  void spotLightAndFogFromTheEditor();
   void badImportReportsAndChangesNothing();
   void badOpenKeepsTheDocument();
   void autosaveAndRecovery();
@@ -485,6 +486,26 @@ void EditorSmokeTest::outlinerDropReparentsKeepingWorldPlace() {
   QCOMPARE(bunny().parent, scene::kNoEntity);
   doc().undoStack()->undo();  // the group
   QVERIFY(!doc().state().find(group));
+}
+
+// The Create menu's spot light (one undo step) and the settings panel's
+// exposure and fog fields, generated from the settings declarations.
+void EditorSmokeTest::spotLightAndFogFromTheEditor() {
+  QAction* spot = nullptr;
+  for (QAction* a : w_->findChildren<QAction*>())
+    if (a->text() == "Sp&ot Light") spot = a;
+  QVERIFY(spot);
+  const int steps = doc().undoStack()->index();
+  spot->trigger();
+  QCOMPARE(doc().undoStack()->index(), steps + 1);
+  const scene::EntityId id = findByName(doc().state(), "Spot Light");
+  QVERIFY(id != scene::kNoEntity);
+  QVERIFY(doc().state().find(id)->light && doc().state().find(id)->light->type == scene::Light::Type::Spot);
+  doc().undoStack()->undo();
+  QVERIFY(!doc().state().find(id));
+  for (const char* key : {"exposure_ev100", "fog_mode", "fog_colour", "fog_k1", "fog_k2", "fog_density",
+                          "fog_height_falloff", "fog_height"})
+    QVERIFY2(w_->sceneSettings()->editorFor(key), key);
 }
 
 void EditorSmokeTest::sceneSettingsEditIsUndoable() {
