@@ -39,6 +39,7 @@
 #include "app/terrain_panel.h"
 #include "app/viewport_widget.h"
 #include "render/renderer.h"
+#include "scene/light_units.h"
 #include "scene/operations.h"
 #include "scene/transform.h"
 
@@ -319,6 +320,7 @@ void MainWindow::createMenus() {
   create->addAction(icon(Icon::Camera), "&Camera (from View)", this, [this] { createEntity(Create::Camera); });
   create->addAction(icon(Icon::Sun), "&Sun", this, [this] { createEntity(Create::Sun); });
   create->addAction(icon(Icon::PointLight), "&Point Light", this, [this] { createEntity(Create::PointLight); });
+  create->addAction(icon(Icon::PointLight), "Sp&ot Light", this, [this] { createEntity(Create::SpotLight); });
 
   terrain_->populateMenu(menuBar()->addMenu("Te&rrain"));
 
@@ -487,10 +489,24 @@ void MainWindow::createEntity(Create what) {
     case Create::PointLight: {
       scene::Light l;
       l.type = scene::Light::Type::Point;
-      l.intensity = 5.0f;
+      // As bright as the old default (5 at 1 m in sun units, 2.8 million
+      // lumens): it reads in the default daylight exposure within metres.
+      l.intensity = float(scene::legacyLightIntensity(scene::Light::Type::Point, 5.0));
       l.range = 20.0f;
       t.translation += glm::dvec3(0.0, 0.0, 1.0);
       id = scene::ops::addLight(doc_, uniqueName("Point Light"), t, l);
+      break;
+    }
+    case Create::SpotLight: {
+      // 3 m up, shining straight down (local −Z) in a 45° cone: 450 000 lm
+      // are 940 000 cd, about the sun's 100 000 lux where it lands.
+      scene::Light l;
+      l.type = scene::Light::Type::Spot;
+      l.intensity = 4.5e5f;
+      l.range = 25.0f;
+      t.translation += glm::dvec3(0.0, 0.0, 3.0);
+      t.rotation = glm::dquat(1.0, 0.0, 0.0, 0.0);
+      id = scene::ops::addLight(doc_, uniqueName("Spot Light"), t, l);
       break;
     }
   }

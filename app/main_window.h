@@ -146,7 +146,7 @@ class MainWindow : public QMainWindow {
   void dropEvent(QDropEvent* e) override;
 
  private:
-  enum class Create { Empty, Camera, Sun, PointLight };
+  enum class Create { Empty, Camera, Sun, PointLight, SpotLight };
 
   void createActions();
   void createMenus();

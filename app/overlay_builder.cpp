@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/light_units.h"
 #include "scene/transform.h"
 #include "scene/world_bounds.h"
 
@@ -109,7 +110,7 @@ void emptyGlyph(render::Overlay& o, const glm::dmat4& world, const render::Rende
 }  // namespace
 
 glm::vec4 overlayColor(const glm::vec3& display, float alpha, const scene::SceneSettings& settings) {
-  const float inv = 1.0f / std::max(settings.exposure, 1e-4f);
+  const float inv = float(1.0 / std::max(scene::exposureMultiplier(settings.exposureEv100), 1e-9));
   if (settings.tonemap != scene::Tonemap::Aces) return {display * inv, alpha};
   return {inverseAces(display.r) * inv, inverseAces(display.g) * inv, inverseAces(display.b) * inv, alpha};
 }

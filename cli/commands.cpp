@@ -22,6 +22,7 @@ const std::vector<Command>& commands() {
       {"material", "materials: list (--json), set <material> <field> <value>", runMaterial},
       {"terrain", "terrains: new, import (DEM), erode, paint-rules, export", runTerrain},
       {"mesh", "meshes: export (OBJ, PLY, GLB)", runMesh},
+      {"light", "lights: add a sun, point or spot light", runLight},
       {"key", sequencer::keyOperation().summary.c_str(), runKey},
       {"sequence", sequencer::sequenceOperation().summary.c_str(), runSequence},
       {"path", sequencer::pathOperation().summary.c_str(), runPath},

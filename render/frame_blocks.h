@@ -18,6 +18,7 @@ enum Binding : unsigned {
   kShadowBlockBinding = 5,       // uniform ShadowBlock
   kEnvironmentBlockBinding = 6,  // uniform EnvironmentBlock
   kLightGridBinding = 7,         // buffer LightGrid (clustered light lists)
+  kFogBlockBinding = 8,          // uniform FogBlock (shaders/fog.glsl; only with fog on)
 };
 
 // Texture units: a material's textures, then the frame's shared maps.
@@ -33,7 +34,7 @@ struct FrameBlock {
   glm::vec4 skyZenith{0.0f};
   glm::vec4 skyHorizon{0.0f};
   glm::vec4 groundColor{0.0f};
-  glm::vec4 params{0.0f};  // ambient, exposure, light count, unused
+  glm::vec4 params{0.0f};  // ambient, exposure multiplier (light_units.h), light count, unused
 };
 static_assert(sizeof(FrameBlock) == 6 * 16);
 
@@ -47,10 +48,15 @@ struct ViewBlock {
 };
 static_assert(sizeof(ViewBlock) == 3 * 64 + 3 * 16);
 
+// A point or spot light (lights: shaders/lights.glsl).
 struct GpuLight {
-  glm::vec4 position{0.0f};  // xyz relative to the frame origin, w: range
-  glm::vec4 color{0.0f};
+  glm::vec4 position{0.0f};   // xyz relative to the frame origin, w: range (m)
+  glm::vec4 color{0.0f};      // rgb: candela in scene units, w: type (1 point, 2 spot)
+  glm::vec4 direction{0.0f};  // xyz: the way a spot shines (unit), w: unused
+  glm::vec4 spot{0.0f};       // x: 1 / (cos inner − cos outer), y: −cos outer · x (half angles);
+                              // z, w: reserved for shadows (shadows.glsl)
 };
+static_assert(sizeof(GpuLight) == 4 * 16);
 
 struct GpuObject {
   glm::mat4 model{1.0f};         // relative to the frame origin

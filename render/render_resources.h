@@ -49,6 +49,7 @@ struct RenderResources {
   GrowingBuffer viewBlocks;     // one ViewBlock per view, at viewStride
   size_t viewStride = 256;      // GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT rounded up
   GrowingBuffer lights;         // GpuLight[]
+  GrowingBuffer fogBlock;       // FogBlock (fog_block.h), allocated by the first frame with fog
   GrowingBuffer objects;        // GpuObject[]
   GrowingBuffer objectIndices;  // uint 0..N-1: the per-instance attribute 7 of mesh VAOs
   size_t objectIndexCount = 0;

@@ -1,5 +1,8 @@
 #include "render/render_world.h"
 
+#include <cmath>
+
+#include "scene/light_units.h"
 #include "scene/terrain_asset.h"
 
 namespace hs::render {
@@ -34,8 +37,12 @@ RenderWorld RenderWorld::build(const scene::SceneState& s) {
     l.type = e.light->type;
     l.position = glm::dvec3(m[3]);
     l.direction = glm::normalize(glm::dmat3(m) * glm::dvec3(0, 0, -1));
-    l.color = e.light->color * e.light->intensity;
+    l.color = scene::lightRadiometricColor(*e.light);
     l.range = e.light->range;
+    l.cosInnerHalf = float(std::cos(glm::radians(double(e.light->innerConeDeg)) * 0.5));
+    l.cosOuterHalf = float(std::cos(glm::radians(double(e.light->outerConeDeg)) * 0.5));
+    l.castsShadows = e.light->castsShadows;
+    l.shadowResolution = e.light->shadowResolution;
     if (l.type == scene::Light::Type::Sun) {
       if (!w.sun) w.sun = l;  // one sun: the first in outliner order
     } else {

@@ -19,8 +19,13 @@ struct WorldLight {
   scene::Light::Type type = scene::Light::Type::Sun;
   glm::dvec3 position{0.0};   // world
   glm::dvec3 direction{0.0, 0.0, -1.0};  // the way the light travels (world, unit)
-  glm::vec3 color{0.0f};      // linear colour x intensity
+  glm::vec3 color{0.0f};      // scene units (scene/light_units.h lightRadiometricColor): sun
+                              // illuminance, point/spot luminous intensity (÷ d² in the shader)
   float range = 100.0f;
+  float cosInnerHalf = 1.0f;  // spot: cosine of half the inner and outer cone angles
+  float cosOuterHalf = 0.0f;
+  bool castsShadows = false;
+  int shadowResolution = 0;   // texels per side; 0: from the settings
 };
 
 struct MeshInstanceRef {

@@ -10,11 +10,14 @@
 #include "render/frame_context.h"
 #include "render/frame_graph.h"
 #include "render/gl/gl_debug.h"
+#include "render/fog_block.h"
+#include "render/gpu_lights.h"
 #include "render/passes/background_passes.h"
 #include "render/passes/output_passes.h"
 #include "render/passes/scene_passes.h"
 #include "render/passes/shadow_passes.h"
 #include "render/render_resources.h"
+#include "scene/light_units.h"
 
 namespace hs::render {
 namespace {
@@ -69,12 +72,11 @@ struct Renderer::Impl {
     f.skyZenith = glm::vec4(settings.skyZenith, 0.0f);
     f.skyHorizon = glm::vec4(settings.skyHorizon, 0.0f);
     f.groundColor = glm::vec4(settings.groundColor, 0.0f);
-    f.params = glm::vec4(settings.ambientIntensity, settings.exposure, float(world.lights.size()), 0.0f);
+    f.params = glm::vec4(settings.ambientIntensity, float(scene::exposureMultiplier(settings.exposureEv100)), float(world.lights.size()), 0.0f);
     res.frameBlock.upload(&f, sizeof f);
 
     std::vector<GpuLight> lights;
-    for (const WorldLight& l : world.lights)
-      lights.push_back({glm::vec4(glm::vec3(l.position - visible.origin), l.range), glm::vec4(l.color, 0.0f)});
+    for (const WorldLight& l : world.lights) lights.push_back(gpuLight(l, visible.origin));
     res.lights.reserve(std::max<size_t>(lights.size(), 1) * sizeof(GpuLight));
     res.lights.upload(lights.data(), lights.size() * sizeof(GpuLight));
     res.objects.reserve(std::max<size_t>(visible.objects.size(), 1) * sizeof(GpuObject));
@@ -88,6 +90,12 @@ struct Renderer::Impl {
     }
     res.viewBlocks.upload(blocks.data(), blocks.size());
     res.bindFrame();
+    // Fog: a block only for frames that have fog (shaders/fog.glsl).
+    if (settings.fogMode != scene::FogMode::None) {
+      const FogBlock fog = fogBlock(settings, visible.origin.z);
+      res.fogBlock.upload(&fog, sizeof fog);
+      glBindBufferRange(GL_UNIFORM_BUFFER, kFogBlockBinding, res.fogBlock.buffer.id(), 0, sizeof fog);
+    }
   }
 };
 
@@ -294,6 +302,7 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
   if (const size_t t = res.terrain.gpuBytes()) out.push_back({"terrains", "terrains", t, false});
   if (const size_t t = res.materials.gpuBytes()) out.push_back({"material_textures", "textures", t, false});
   if (const size_t t = res.meshes.tangentBytes()) out.push_back({"mesh_tangents", "buffer", t, false});
+  if (const size_t f = res.fogBlock.capacity) out.push_back({"fog_block", "buffer", f, false});
   return out;
 }
 

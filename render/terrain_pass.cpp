@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -19,6 +20,7 @@ bool TerrainPass::initialize(gl::ShaderLibrary& shaders, std::string& error) {
   shade_ = shaders.get({"terrain.vert", "terrain.frag", "", {}}, error);
   pick_ = shade_ ? shaders.get({"terrain.vert", "terrain_pick.frag", "", {}}, error) : nullptr;
   if (!shade_ || !pick_) return false;
+  shaders_ = &shaders;
   // The quadrant grid: (Q+1)^2 vertices on integer grid positions; two
   // triangles per quad split (i,j)-(i+1,j+1), as the full-resolution mesh,
   // so level 0 is that mesh exactly and morphed quads fold into the next
@@ -57,6 +59,23 @@ bool TerrainPass::initialize(gl::ShaderLibrary& shaders, std::string& error) {
   shade_->set("uNormalTex", kUnitNormal);
   ready_ = true;
   return true;
+}
+
+GlProgram* TerrainPass::shadingProgram(const std::vector<std::string>& defines) {
+  if (defines.empty()) return shade_;
+  std::string error;
+  GlProgram* p = shaders_->get({"terrain.vert", "terrain.frag", "", defines}, error);
+  if (!p) {
+    // The variant compiles from the same sources as shade_, which did.
+    std::fprintf(stderr, "hybridscape: internal error: %s\n", error.c_str());
+    return nullptr;
+  }
+  p->set("uHeight", kUnitHeight);
+  p->set("uHoles", kUnitHoles);
+  p->set("uWeights", kUnitWeights);
+  p->set("uAlbedoTex", kUnitAlbedo);
+  p->set("uNormalTex", kUnitNormal);
+  return p;
 }
 
 void TerrainPass::release() {
@@ -177,11 +196,14 @@ size_t TerrainPass::drawInstances(const Prepared& t) {
 }
 
 TerrainFrameStats TerrainPass::draw(const scene::SceneState& state, const std::vector<scene::EntityId>& entities,
-                                    const RenderView& view, const RenderView& lodView) {
+                                    const RenderView& view, const RenderView& lodView,
+                                    const std::vector<std::string>& defines) {
   TerrainFrameStats stats;
   if (!ready_) return stats;
   collect(state);
-  GlProgram& p = *shade_;
+  GlProgram* variant = shadingProgram(defines);
+  if (!variant) return stats;
+  GlProgram& p = *variant;
   p.use();
   for (scene::EntityId id : entities) {
     Prepared t;

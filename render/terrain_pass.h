@@ -42,8 +42,11 @@ class TerrainPass {
   // Draws into the bound framebuffer (depth test GREATER, reversed Z) with
   // the view block of `view` bound. Levels of detail and morphing come from
   // `lodView` (the frame's mono camera: both eyes draw the same levels).
+  // `defines`: the shading program's variant (the frame's fog,
+  // fog_block.h), built on first use.
   TerrainFrameStats draw(const scene::SceneState& state, const std::vector<scene::EntityId>& entities,
-                         const RenderView& view, const RenderView& lodView);
+                         const RenderView& view, const RenderView& lodView,
+                         const std::vector<std::string>& defines = {});
   // The id pass, with a (one-pixel) view block bound: `lodView` chooses the
   // levels (the real view). Terrain i gets id firstId + i.
   void drawPick(const scene::SceneState& state, const std::vector<scene::EntityId>& entities,
@@ -87,6 +90,8 @@ class TerrainPass {
 
   bool ready_ = false;
   GlProgram* shade_ = nullptr;
+  gl::ShaderLibrary* shaders_ = nullptr;  // for the shading variants (shadingProgram)
+  GlProgram* shadingProgram(const std::vector<std::string>& defines);
   GlProgram* pick_ = nullptr;
   GLuint vao_ = 0, gridVbo_ = 0, gridIbo_ = 0, instanceVbo_ = 0;
   size_t instanceCapacity_ = 0;

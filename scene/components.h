@@ -16,13 +16,33 @@ struct MeshInstance {
 };
 
 // A sun shines along the entity's local -Z axis (as in Blender); a point
-// light sits at the entity's position.
+// light sits at the entity's position; a spot sits there and shines along
+// local -Z.
+//
+// Intensity is in physical units, as in Filament and Unreal:
+//   sun:          illuminance in lux on a surface facing it (100 000: noon sun)
+//   point, spot:  luminous power in lumens (800: a 60 W bulb)
+// The renderer turns power into luminous intensity (candela):
+//   point:  I = Φ / 4π
+//   spot:   I = Φ / (2π (1 − cos(outer/2))), the power spread over the
+//           outer cone's solid angle, so narrowing the cone brightens the
+//           beam and the light's total power stays what the user set
+//           (Filament's "focused" spot); between the inner and the outer
+//           cone the beam falls off smoothly to 0.
+// Illuminance at distance d is I / d², windowed to 0 at `range`
+// (docs/rendering.md "Lights"). scene/light_units.h holds the conversions;
+// what these values look like on screen is set by the exposure
+// (SceneSettings::exposureEv100).
 struct Light {
-  enum class Type { Sun = 0, Point = 1 };
+  enum class Type { Sun = 0, Point = 1, Spot = 2 };
   Type type = Type::Sun;
   glm::vec3 color{1.0f, 0.96f, 0.9f};  // linear RGB
-  float intensity = 2.2f;              // sun: irradiance scale; point: at 1 m
-  float range = 100.0f;                // point lights: distance where they fade out
+  float intensity = 100000.0f;         // sun: lux; point and spot: lumens
+  float range = 100.0f;                // point and spot: metres where they fade out to 0
+  float innerConeDeg = 30.0f;          // spot: full apex angle of the undimmed beam, degrees
+  float outerConeDeg = 45.0f;          // spot: full apex angle where the beam reaches 0, degrees
+  bool castsShadows = false;
+  int shadowResolution = 0;            // shadow map texels per side; 0: from settings.shadow_quality
   bool operator==(const Light&) const = default;
 };
 

@@ -7,6 +7,7 @@
 #include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
 #include "scene/asset_reports.h"
+#include "scene/demo_lights.h"
 #include "scene/demo_materials.h"
 #include "scene/demo_terrain.h"
 #include "scene/mesh_materials.h"
@@ -254,6 +255,8 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   // over 500 m (the 320 m valley seen from anywhere in the flight).
   s.settings.shadows = true;
   s.settings.shadowDistance = 500.0;
+  // A spot and two point lights by the bunnies, and fog on the valley.
+  addDemoLights(s);
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

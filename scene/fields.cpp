@@ -218,15 +218,46 @@ std::vector<ComponentInfo> buildEntityComponents() {
         {asset, colorField<Entity>("tint", "Tint", [](Entity& e) -> glm::vec3& { return e.mesh->tint; })}));
   }
 
+  // Physical units (components.h, light_units.h): lux for a sun, lumens
+  // for point and spot lights. Cone angles are full apex angles in (0, 180).
   out.push_back(optionalComponent<Light>(
       "light", "Light", &Entity::light,
-      {enumField<Entity>("type", "Type", {"Sun", "Point"},
+      {enumField<Entity>("type", "Type", {"Sun", "Point", "Spot"},
                          [](Entity& e) -> Light::Type& { return e.light->type; }),
        colorField<Entity>("color", "Colour", [](Entity& e) -> glm::vec3& { return e.light->color; }),
-       doubleField<Entity>("intensity", "Intensity", 0.0, 1e6, 0.1, "",
+       doubleField<Entity>("intensity", "Intensity", 0.0, 1e12, 100.0, "lx (sun) or lm",
                            [](Entity& e) -> float& { return e.light->intensity; }),
        doubleField<Entity>("range", "Range", 0.01, 1e7, 1.0, "m",
-                           [](Entity& e) -> float& { return e.light->range; })}));
+                           [](Entity& e) -> float& { return e.light->range; }),
+       doubleField<Entity>("inner_cone_deg", "Inner cone", 0.1, 179.9, 1.0, "°",
+                           [](Entity& e) -> float& { return e.light->innerConeDeg; }),
+       doubleField<Entity>("outer_cone_deg", "Outer cone", 0.1, 179.9, 1.0, "°",
+                           [](Entity& e) -> float& { return e.light->outerConeDeg; }),
+       boolField<Entity>("casts_shadows", "Casts shadows", [](Entity& e) -> bool& { return e.light->castsShadows; }),
+       doubleField<Entity>("shadow_resolution", "Shadow resolution (0: from settings)", 0.0, 16384.0, 256.0, "px",
+                           [](Entity& e) -> int& { return e.light->shadowResolution; })}));
+  // The beam's cones bound each other: the inner one within the outer one.
+  for (EntityField& f : out.back().fields) {
+    if (f.key == "inner_cone_deg") {
+      f.check = [](const FieldValue& v, const Entity* e) {
+        return e && e->light && std::get<double>(v) > double(e->light->outerConeDeg)
+                   ? "must not exceed the outer cone (" + formatFieldValue(FieldType::Double, double(e->light->outerConeDeg), {}, 6) +
+                         " °)"
+                   : std::string();
+      };
+      f.repair = [](Entity& e) { e.light->innerConeDeg = e.light->outerConeDeg; };
+    } else if (f.key == "outer_cone_deg") {
+      f.check = [](const FieldValue& v, const Entity* e) {
+        return e && e->light && std::get<double>(v) < double(e->light->innerConeDeg)
+                   ? "must not be less than the inner cone (" +
+                         formatFieldValue(FieldType::Double, double(e->light->innerConeDeg), {}, 6) + " °)"
+                   : std::string();
+      };
+      f.repair = [](Entity& e) { e.light->innerConeDeg = e.light->outerConeDeg; };
+    } else if (f.key == "shadow_resolution") {
+      f.animatable = false;
+    }
+  }
 
   out.push_back(optionalComponent<Camera>(
       "camera", "Camera", &Entity::camera,
@@ -287,8 +318,9 @@ std::vector<SettingsField> buildSettingsFields() {
       colorField<S>("ground_color", "Ground", [](S& s) -> glm::vec3& { return s.groundColor; }),
       doubleField<S>("ambient", "Sky ambient", 0.0, 100.0, 0.05, "",
                      [](S& s) -> float& { return s.ambientIntensity; }),
-      doubleField<S>("exposure", "Exposure", 0.001, 1000.0, 0.05, "",
-                     [](S& s) -> float& { return s.exposure; }),
+      // Camera exposure in EV100 (light_units.h): lower is brighter.
+      doubleField<S>("exposure_ev100", "Exposure (EV100)", -10.0, 30.0, 0.1, "EV",
+                     [](S& s) -> float& { return s.exposureEv100; }),
       boolField<S>("show_grid", "Ground grid", [](S& s) -> bool& { return s.showGrid; }),
       enumField<S>("antialiasing", "Anti-aliasing", {"None", "FXAA", "MSAA 4x"},
                    [](S& s) -> Antialiasing& { return s.antialiasing; }),
@@ -309,6 +341,16 @@ std::vector<SettingsField> buildSettingsFields() {
                      [](S& s) -> int& { return s.shadowPcfRadius; }),
       doubleField<S>("shadow_distance", "Sun shadow distance", 1.0, 100000.0, 10.0, "m",
                      [](S& s) -> double& { return s.shadowDistance; }),
+      // Fog (scene_state.h FogMode, shaders/fog.glsl).
+      enumField<S>("fog_mode", "Fog", {"none", "depth_cue", "exponential_height"},
+                   [](S& s) -> FogMode& { return s.fogMode; }),
+      colorField<S>("fog_colour", "Fog colour", [](S& s) -> glm::vec3& { return s.fogColour; }),
+      doubleField<S>("fog_k1", "Depth cue k1", 1e-3, 1e3, 0.05, "", [](S& s) -> float& { return s.fogK1; }),
+      doubleField<S>("fog_k2", "Depth cue k2", 0.0, 10.0, 1e-4, "/m", [](S& s) -> float& { return s.fogK2; }),
+      doubleField<S>("fog_density", "Fog density", 0.0, 10.0, 1e-4, "/m", [](S& s) -> float& { return s.fogDensity; }),
+      doubleField<S>("fog_height_falloff", "Fog height falloff", 0.0, 10.0, 1e-3, "/m",
+                     [](S& s) -> float& { return s.fogHeightFalloff; }),
+      doubleField<S>("fog_height", "Fog height", -1e5, 1e5, 1.0, "m", [](S& s) -> float& { return s.fogHeight; }),
   };
 }
 

@@ -2,6 +2,7 @@
 
 #include "scene/hscene_repair.h"
 #include "scene/import_pipeline.h"
+#include "scene/light_add_operation.h"
 #include "scene/mesh_export_operation.h"
 #include "scene/render_operation.h"
 #include "scene/terrain_ops.h"
@@ -26,6 +27,7 @@ const std::vector<const OperationDecl*>& sharedOperations() {
       &farmSlurmOperation(),
       &sequencer::farmVerifyOperation(),
       &repairOperation(),
+      &lightAddOperation(),
   };
   return list;
 }

@@ -1,5 +1,6 @@
 #include "scene/scene_json.h"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <type_traits>
@@ -8,6 +9,7 @@
 #include "scene/asset_reports.h"
 #include "scene/fields.h"
 #include "scene/key_value_ranges.h"
+#include "scene/light_units.h"
 #include "scene/terrain_json.h"
 #include "sequencer/sequence_json.h"
 
@@ -474,6 +476,18 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
   if (r.failed()) return std::nullopt;
   // Keyed values are held to their fields' ranges like the static ones.
   clampKeyValues(s, r.warnings);
+
+  // Before format 6 lights and exposure were in relative units. A
+  // description without a version is taken as this build's.
+  if (const Json* version = JsonReader::member(json, "version");
+      version && version->is_number() && version->get<double>() < kFirstPhysicalLightsFormat) {
+    std::optional<double> oldExposure;
+    if (const Json* settings = JsonReader::member(json, "settings")) {
+      if (const Json* e = JsonReader::member(*settings, "exposure"); e && e->is_number())
+        oldExposure = std::clamp(e->get<double>(), 0.001, 1000.0);  // the old field's range
+    }
+    migrateToPhysicalLightUnits(s, oldExposure);
+  }
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     inconsistency = "inconsistent hierarchy: " + problem;

@@ -25,7 +25,13 @@ namespace hs::scene {
 // assets' "material_slots", blobs "texture/<id>"); a version-4 reader would
 // drop them on its next save. Older files get their materials from their
 // meshes on load (mesh_materials.h).
-constexpr int kSceneFormatVersion = 5;
+// 6: lights in physical units (lux, lumens; light_units.h), spot lights and
+// their cones, shadow flags, and the exposure as "exposure_ev100" instead of
+// a multiplier ("exposure"). Older files are converted on load so that they
+// render as before (migrateToPhysicalLightUnits); a version-5 reader would
+// take lux for its old intensities.
+constexpr int kSceneFormatVersion = 6;
+constexpr int kFirstPhysicalLightsFormat = 6;
 constexpr int kFirstMaterialsFormat = 5;
 
 Json sceneToJson(const SceneState& state);

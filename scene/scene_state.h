@@ -64,13 +64,21 @@ enum class Tonemap { Aces = 0, None = 1 };
 // Shadow presets (docs/rendering.md "Shadows"): map size, cascades and PCF
 // kernel together; Custom takes SceneSettings::shadowResolution etc.
 enum class ShadowQuality { Low = 0, Medium = 1, High = 2, Custom = 3 };
+// Fog (shaders/fog.glsl, docs/rendering.md "Fog"). DepthCue: the survey's
+// depth cueing, the surface keeps f = min(1, 1/(k1 + k2·d)) of its colour
+// at distance d; ExponentialHeight: density ρ(z) = density·exp(−falloff·(z −
+// height)), integrated along the view ray.
+enum class FogMode { None = 0, DepthCue = 1, ExponentialHeight = 2 };
 
 struct SceneSettings {
   glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
   glm::vec3 skyHorizon{0.62f, 0.72f, 0.82f};
   glm::vec3 groundColor{0.22f, 0.2f, 0.18f};
   float ambientIntensity = 0.5f;
-  float exposure = 1.0f;
+  // Camera exposure as EV100 (light_units.h; 15.2 with a 100 000 lux sun
+  // gives the look of before physical units). Files before format 6 held a
+  // multiplier ("exposure"), converted on load.
+  float exposureEv100 = 15.2f;
   bool showGrid = true;
   Antialiasing antialiasing = Antialiasing::Msaa4;
   Tonemap tonemap = Tonemap::Aces;
@@ -85,6 +93,15 @@ struct SceneSettings {
   int shadowCascades = 3;          // sun cascades, with Custom
   int shadowPcfRadius = 1;         // PCF kernel (2r+1)^2 taps, with Custom
   double shadowDistance = 30000.0; // metres from the camera the sun's cascades cover
+  // Fog (FogMode above); off by default, and then no shader variant and no
+  // buffer exist for it.
+  FogMode fogMode = FogMode::None;
+  glm::vec3 fogColour{0.62f, 0.7f, 0.8f};  // linear, scene units (what fully fogged pixels show)
+  float fogK1 = 1.0f;                      // depth cue: constant term
+  float fogK2 = 0.0005f;                   // depth cue: per metre (half the colour kept at 2 km)
+  float fogDensity = 0.0005f;              // height fog: extinction per metre at the fog height
+  float fogHeightFalloff = 0.02f;          // height fog: per metre above the fog height
+  float fogHeight = 0.0f;                  // height fog: metres (world z) where the density is fogDensity
   bool operator==(const SceneSettings&) const = default;
 };
 

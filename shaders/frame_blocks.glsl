@@ -22,7 +22,7 @@ layout(std140, binding = 0) uniform FrameBlock {
   vec4 skyZenith;     // rgb
   vec4 skyHorizon;    // rgb
   vec4 groundColor;   // rgb
-  vec4 params;        // x: ambient intensity, y: exposure, z: light count, w: unused
+  vec4 params;        // x: ambient intensity, y: exposure multiplier, z: light count, w: unused
 } frame;
 
 layout(std140, binding = 1) uniform ViewBlock {
@@ -36,7 +36,9 @@ layout(std140, binding = 1) uniform ViewBlock {
 
 struct Light {
   vec4 position;      // xyz: relative to the frame origin; w: range (m)
-  vec4 color;         // rgb: linear colour x intensity
+  vec4 color;         // rgb: colour x luminous intensity (candela, scene units); w: type (1 point, 2 spot)
+  vec4 direction;     // xyz: the way a spot shines (unit)
+  vec4 spot;          // x: 1 / (cos inner - cos outer), y: -cos outer * x (half angles); zw: shadows' own
 };
 layout(std430, binding = 2) readonly buffer LightBlock { Light lights[]; };
 

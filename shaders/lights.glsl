@@ -1,24 +1,47 @@
-// Direct light from the sun and the scene's lights on a surface.
+// Direct light from the sun and the scene's point and spot lights on a
+// surface. Light values are in scene units (scene/light_units.h): the sun's
+// colour is its illuminance, a point or spot light's its luminous intensity
+// (candela), divided here by the squared distance.
 #ifndef HS_LIGHTS_GLSL
 #define HS_LIGHTS_GLSL
 #include "brdf.glsl"
 #include "frame_blocks.glsl"
 #include "shadows.glsl"
 
+// Inverse square, windowed to exactly 0 at the range (Filament's and
+// Unreal's (1 − (d/r)⁴)², smooth, no hard cut-off): a light list that drops
+// a light beyond its range loses nothing (render/light_culling.h relies on
+// it). The 1 cm floor keeps a surface at the light finite.
+float distanceAttenuation(float d, float range) {
+  float x = d / range;
+  float window = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+  return window * window / max(d * d, 1e-4);
+}
+
+// A spot's beam: 1 inside the inner cone, 0 outside the outer one, a smooth
+// (squared) step on the cosine between them; 1 for a point light.
+float spotAttenuation(Light light, vec3 l) {
+  if (light.color.w < 1.5) return 1.0;
+  float t = clamp(dot(-l, light.direction.xyz) * light.spot.x + light.spot.y, 0.0, 1.0);
+  return t * t;
+}
+
+// Light `i` of the light buffer on surface `s`.
+vec3 pointOrSpotLight(Surface s, int i) {
+  vec3 toLight = lights[i].position.xyz - view.eyeOffset.xyz - s.position;
+  float d = length(toLight);
+  vec3 l = toLight / max(d, 1e-4);
+  float atten = distanceAttenuation(d, lights[i].position.w) * spotAttenuation(lights[i], l);
+  if (atten <= 0.0) return vec3(0.0);
+  return reflectLight(s, l) * lights[i].color.rgb * atten * lightVisibility(i, s.position, s.normal);
+}
+
 vec3 directLighting(Surface s) {
   vec3 color = vec3(0.0);
   if (frame.sunDir.w > 0.5)
     color += reflectLight(s, frame.sunDir.xyz) * frame.sunColor.rgb * sunVisibility(s.position, s.normal);
   int count = int(frame.params.z);
-  for (int i = 0; i < count; ++i) {
-    vec3 toLight = lights[i].position.xyz - view.eyeOffset.xyz - s.position;
-    float d = length(toLight);
-    vec3 l = toLight / max(d, 1e-4);
-    // Inverse square, windowed to zero at the range (no hard cut-off).
-    float window = clamp(1.0 - pow(d / lights[i].position.w, 4.0), 0.0, 1.0);
-    float atten = window * window / max(d * d, 1e-4);
-    color += reflectLight(s, l) * lights[i].color.rgb * atten * lightVisibility(i, s.position, s.normal);
-  }
+  for (int i = 0; i < count; ++i) color += pointOrSpotLight(s, i);
   return color;
 }
 

@@ -1,6 +1,7 @@
 #version 450 core
 // Sky gradient behind everything: drawn last where the depth buffer is
 // still clear, so covered pixels cost nothing.
+#include "fog.glsl"
 #include "frame_blocks.glsl"
 in vec2 vUv;
 layout(location = 0) out vec4 outColor;
@@ -19,5 +20,6 @@ void main() {
     float s = max(dot(dir, frame.sunDir.xyz), 0.0);
     c += frame.sunColor.rgb * (pow(s, 1200.0) * 8.0 + pow(s, 24.0) * 0.08);
   }
-  outColor = vec4(c, 1.0);
+  // Fog (fog.glsl; nothing without it) as far as a sky is taken to be.
+  outColor = vec4(applySkyFog(c, dir, 1.0e5), 1.0);
 }

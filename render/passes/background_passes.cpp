@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/fog_block.h"
+
 namespace hs::render {
 namespace {
 
@@ -26,7 +28,7 @@ void addSkyPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, co
         // Where the depth is still the cleared far value: covered pixels cost nothing.
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.t.color}, d.t.depth));
         frame.res.bindView(index);
-        frame.res.program({"fullscreen.vert", "sky.frag", "", {}}).use();
+        frame.res.program({"fullscreen.vert", "sky.frag", "", fogDefines(frame.settings)}).use();
         glDepthFunc(GL_EQUAL);
         glDepthMask(GL_FALSE);
         glBindVertexArray(frame.res.emptyVao.id());

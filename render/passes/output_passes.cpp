@@ -1,5 +1,7 @@
 #include "render/passes/output_passes.h"
 
+#include "scene/light_units.h"
+
 namespace hs::render {
 
 TextureRef addResolvePass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& targets) {
@@ -61,7 +63,7 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
       [&frame, target = v.target, w = v.view.width, h = v.view.height, fxaa](const Data& d, const PassResources& r) {
         GlProgram& p = frame.res.program({"fullscreen.vert", "tonemap.frag", "", {}});
         p.use();
-        p.set("uExposure", frame.settings.exposure);
+        p.set("uExposure", float(scene::exposureMultiplier(frame.settings.exposureEv100)));
         p.set("uFilmic", frame.settings.tonemap == scene::Tonemap::Aces);
         p.set("uLumaInAlpha", fxaa);
         glBindFramebuffer(GL_FRAMEBUFFER, fxaa ? r.framebuffer({d.ldr}) : target);

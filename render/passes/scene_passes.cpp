@@ -1,12 +1,14 @@
 #include "render/passes/scene_passes.h"
 
+#include "render/fog_block.h"
 #include "render/gpu_mesh_cache.h"
 #include "render/passes/shadow_passes.h"
 
 namespace hs::render {
 
-gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode, bool normalMap, bool parallax, bool debugNormal) {
-  gl::ProgramDesc d{"mesh.vert", "mesh.frag", "", {}};
+gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode, bool normalMap, bool parallax, bool debugNormal,
+                                const std::vector<std::string>& extra) {
+  gl::ProgramDesc d{"mesh.vert", "mesh.frag", "", extra};
   if (mode == scene::ShadingMode::Gouraud) d.defines.push_back("SHADING_GOURAUD");
   if (mode == scene::ShadingMode::Flat) d.defines.push_back("SHADING_FLAT");
   if (mode != scene::ShadingMode::Gouraud) {
@@ -45,9 +47,10 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
         // variants), built on first use: none for modes nobody uses.
         GlProgram* programs[3][2][2] = {};
         const bool debugNormal = frame.options.debugShadingNormal;
+        const std::vector<std::string> fog = fogDefines(frame.settings);
         auto programFor = [&](const DrawMaterial& mat) -> GlProgram& {
           GlProgram*& p = programs[int(mat.shading)][mat.normalMap][mat.parallax];
-          if (!p) p = &frame.res.program(meshProgramDesc(mat.shading, mat.normalMap, mat.parallax, debugNormal));
+          if (!p) p = &frame.res.program(meshProgramDesc(mat.shading, mat.normalMap, mat.parallax, debugNormal, fog));
           return *p;
         };
         GlProgram* current = nullptr;
@@ -102,7 +105,8 @@ void addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v
         frame.res.bindView(index);
         bindShadowMaps(frame, r);
         const TerrainFrameStats ts =
-            frame.res.terrain.draw(*frame.world.state, frame.world.terrains, view, frame.lodView);
+            frame.res.terrain.draw(*frame.world.state, frame.world.terrains, view, frame.lodView,
+                                   fogDefines(frame.settings));
         frame.stats.trianglesDrawn += ts.triangles;
         frame.stats.drawCalls += ts.terrains;
         frame.stats.terrainTriangles += ts.triangles;

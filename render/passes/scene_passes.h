@@ -16,9 +16,10 @@ struct SceneTargets {
 // on first use, so a frame with no Gouraud material builds no Gouraud program.
 // Normal and parallax mapping are variants too (HAS_NORMAL_MAP,
 // HAS_PARALLAX, with the tangent attribute), and so is the debug output of
-// the shading normal (DEBUG_SHADING_NORMAL, RenderOptions::debugShadingNormal).
+// the shading normal (DEBUG_SHADING_NORMAL, RenderOptions::debugShadingNormal)
+// and the frame's fog (`extra`: fog_block.h fogDefines).
 gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode, bool normalMap = false, bool parallax = false,
-                                bool debugNormal = false);
+                                bool debugNormal = false, const std::vector<std::string>& extra = {});
 
 // Creates the view's scene targets, clears them, draws the visible meshes.
 SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewContext& view);

@@ -88,6 +88,7 @@ class EditorSmokeTest : public QObject {
   void unsavedChangesAreAskedAbout();
   void outlinerDropReparentsKeepingWorldPlace();
   void sceneSettingsEditIsUndoable();
+  void spotLightAndFogFromTheEditor();
   void badImportReportsAndChangesNothing();
   void badOpenKeepsTheDocument();
   void autosaveAndRecovery();
@@ -508,18 +509,38 @@ void EditorSmokeTest::outlinerDropReparentsKeepingWorldPlace() {
   QVERIFY(!doc().state().find(group));
 }
 
+// The Create menu's spot light (one undo step) and the settings panel's
+// exposure and fog fields, generated from the settings declarations.
+void EditorSmokeTest::spotLightAndFogFromTheEditor() {
+  QAction* spot = nullptr;
+  for (QAction* a : w_->findChildren<QAction*>())
+    if (a->text() == "Sp&ot Light") spot = a;
+  QVERIFY(spot);
+  const int steps = doc().undoStack()->index();
+  spot->trigger();
+  QCOMPARE(doc().undoStack()->index(), steps + 1);
+  const scene::EntityId id = findByName(doc().state(), "Spot Light");
+  QVERIFY(id != scene::kNoEntity);
+  QVERIFY(doc().state().find(id)->light && doc().state().find(id)->light->type == scene::Light::Type::Spot);
+  doc().undoStack()->undo();
+  QVERIFY(!doc().state().find(id));
+  for (const char* key : {"exposure_ev100", "fog_mode", "fog_colour", "fog_k1", "fog_k2", "fog_density",
+                          "fog_height_falloff", "fog_height"})
+    QVERIFY2(w_->sceneSettings()->editorFor(key), key);
+}
+
 void EditorSmokeTest::sceneSettingsEditIsUndoable() {
-  auto* spin = w_->sceneSettings()->findChild<app::ScrubSpinBox*>("settings.exposure");
+  auto* spin = w_->sceneSettings()->findChild<app::ScrubSpinBox*>("settings.exposure_ev100");
   QVERIFY(spin);
-  const float before = doc().state().settings.exposure;
+  const float before = doc().state().settings.exposureEv100;
   const int steps = doc().undoStack()->index();
   spin->setValue(double(before) + 0.25);
   spin->setValue(double(before) + 0.5);
   emit spin->editingFinished();
   QCOMPARE(doc().undoStack()->index(), steps + 1);
-  QCOMPARE(doc().state().settings.exposure, float(double(before) + 0.5));
+  QCOMPARE(doc().state().settings.exposureEv100, float(double(before) + 0.5));
   doc().undoStack()->undo();
-  QCOMPARE(doc().state().settings.exposure, before);
+  QCOMPARE(doc().state().settings.exposureEv100, before);
   QCOMPARE(spin->value(), double(before));
 }
 

@@ -328,7 +328,7 @@ class TestCli : public QObject {
     QCOMPARE(cli({"set", "Main Camera", "camera.fov_deg", "35", f}).code, 0);
     QCOMPARE(cli({"set", "Stanford Bunny", "transform.translation", "10,0,-1.5", f}).code, 0);
     QCOMPARE(cli({"set", "settings.antialiasing", "fxaa", f}).code, 0);
-    QCOMPARE(cli({"set", "settings.exposure", "1.5", f}).code, 0);
+    QCOMPARE(cli({"set", "settings.exposure_ev100", "14.5", f}).code, 0);
     auto s = load(f);
     QVERIFY(s);
     const scene::EntityId sun = s->findByName("Sun");
@@ -337,10 +337,10 @@ class TestCli : public QObject {
     QCOMPARE(s->find(s->findByName("Main Camera"))->camera->verticalFovDeg, 35.0);
     QCOMPARE(s->find(s->findByName("Stanford Bunny"))->transform.translation, glm::dvec3(10, 0, -1.5));
     QVERIFY(s->settings.antialiasing == scene::Antialiasing::Fxaa);
-    QCOMPARE(s->settings.exposure, 1.5f);
+    QCOMPARE(s->settings.exposureEv100, 14.5f);
     QVERIFY(!s->find(sun)->visible);
     // The same value again changes nothing and says so.
-    const Run same = cli({"set", "settings.exposure", "1.5", f});
+    const Run same = cli({"set", "settings.exposure_ev100", "14.5", f});
     QCOMPARE(same.code, 0);
     QVERIFY(same.out.contains("unchanged"));
     // Errors leave the file as it was.
@@ -471,7 +471,7 @@ class TestCli : public QObject {
     expectError({"info", path("missing.hscene")}, 1, {"missing.hscene", "not found"});
     expectError({"render", path("missing.hscene"), "--out", path("m.png")}, 1, {"missing.hscene"});
     expectError({"import", kMeshData + "/textured_quad.obj", path("missing.hscene")}, 1, {"missing.hscene"});
-    expectError({"set", "settings.exposure", "2", path("missing.hscene")}, 1, {"missing.hscene"});
+    expectError({"set", "settings.exposure_ev100", "2", path("missing.hscene")}, 1, {"missing.hscene"});
     QVERIFY(!fs::exists(path("missing.hscene").toStdString()));
     QVERIFY(!fs::exists(path("m.png").toStdString()));
   }

@@ -49,8 +49,18 @@ class TestSceneValues : public QObject {
     QTest::newRow("scale 0") << QStringList{"set", "Camera", "transform.scale", "0,0,0"} << 1
                              << "Scale must be non-zero on every axis";
     QTest::newRow("empty name") << QStringList{"set", "Camera", "entity.name", ""} << 1 << "Name must not be empty";
-    QTest::newRow("exposure 0") << QStringList{"set", "settings.exposure", "0"} << 1
-                                << "Exposure must be from 0.001 to 1000";
+    QTest::newRow("exposure 40") << QStringList{"set", "settings.exposure_ev100", "40"} << 1
+                                 << "Exposure (EV100) must be from -10 to 30 EV";
+    QTest::newRow("intensity -1") << QStringList{"set", "Sun", "light.intensity", "-1"} << 1
+                                  << "Intensity must be from 0 to 1e+12 lx (sun) or lm";
+    QTest::newRow("intensity nan") << QStringList{"set", "Sun", "light.intensity", "nan"} << 1
+                                   << "'nan' is not a finite number";
+    QTest::newRow("cone 180") << QStringList{"set", "Sun", "light.outer_cone_deg", "180"} << 1
+                              << "Outer cone must be from 0.1 to 179.9 °";
+    QTest::newRow("cone 0") << QStringList{"set", "Sun", "light.inner_cone_deg", "0"} << 1
+                            << "Inner cone must be from 0.1 to 179.9 °";
+    QTest::newRow("inner beyond outer") << QStringList{"set", "Sun", "light.inner_cone_deg", "50"} << 1
+                                        << "Inner cone must not exceed the outer cone (45 °)";
     QTest::newRow("key value fov 0") << QStringList{"key", "Camera", "camera.fov_deg", "5", "0"} << 1 << range;
     QTest::newRow("key frame 1e20") << QStringList{"key", "Camera", "camera.fov_deg", "99999999999999999999f", "40"}
                                     << 2 << "out of range (-2147483647 to 2147483647 frames)";
@@ -84,7 +94,12 @@ class TestSceneValues : public QObject {
     json.replace(json.find("\"name\": \"Camera\""), 16, "\"name\": \"\"");
     setMember("fov_deg", "0");
     setMember("far_m", "-1");
-    setMember("exposure", "1e308");
+    setMember("exposure_ev100", "1e308");
+    // A light's bad values: negative power, cones outside (0, 180) and the
+    // inner cone beyond the outer one.
+    setMember("intensity", "-5");
+    setMember("inner_cone_deg", "170");
+    setMember("outer_cone_deg", "-3");
     test::writeDescription(file, json);
     std::string error;
     LoadReport report;
@@ -101,14 +116,27 @@ class TestSceneValues : public QObject {
     QVERIFY2(all.find("camera.near_m 0.1 must be less than the far clip (0.01 m); now 1e-05") != std::string::npos,
              all.c_str());
     QVERIFY2(all.find("entity.name '' must not be empty; now 'Entity 2'") != std::string::npos, all.c_str());
-    QVERIFY2(all.find("settings.exposure 1e+308 must be from 0.001 to 1000; now 1000") != std::string::npos,
+    QVERIFY2(all.find("settings.exposure_ev100 1e+308 must be from -10 to 30 EV; now 30") != std::string::npos,
+             all.c_str());
+    QVERIFY2(all.find(file + ": entity 1 'Sun': light.intensity -5 must be from 0 to 1e+12 lx (sun) or lm; now 0") !=
+                 std::string::npos,
+             all.c_str());
+    QVERIFY2(all.find("entity 1 'Sun': light.outer_cone_deg -3 must be from 0.1 to 179.9 °; now 0.1") != std::string::npos,
+             all.c_str());
+    QVERIFY2(all.find("entity 1 'Sun': light.inner_cone_deg 170 must not exceed the outer cone (0.1 °); now 0.1") !=
+                 std::string::npos,
              all.c_str());
     const Entity* cam = s->find(2);
     QVERIFY(cam && cam->camera);
     QCOMPARE(cam->name, std::string("Entity 2"));
     QCOMPARE(cam->camera->verticalFovDeg, 1.0);
     QVERIFY(cam->camera->nearClip > 0.0 && cam->camera->nearClip < cam->camera->farClip);
-    QCOMPARE(s->settings.exposure, 1000.0f);
+    QCOMPARE(s->settings.exposureEv100, 30.0f);
+    const Entity* sun = s->find(1);
+    QVERIFY(sun && sun->light);
+    QCOMPARE(sun->light->intensity, 0.0f);
+    QCOMPARE(sun->light->innerConeDeg, 0.1f);
+    QCOMPARE(sun->light->outerConeDeg, 0.1f);
     // A file with sound values opens without a warning.
     report = {};
     QVERIFY(loadScene((fs::path(tmp_.path().toStdString()) / scene_.toStdString()).string(), error, nullptr, &report));

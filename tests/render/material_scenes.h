@@ -7,6 +7,7 @@
 #include "look_from.h"
 #include "mesh/primitives.h"
 #include "render/render_view.h"
+#include "scene/light_units.h"
 #include "scene/mesh_materials.h"
 #include "scene/scene_state.h"
 
@@ -16,7 +17,7 @@ struct MaterialScene {
   scene::SceneState state;
   scene::MaterialId material = scene::kNoMaterial;
   glm::dvec3 toSun{0.0};    // unit, world
-  glm::vec3 sunColor{0.0f};  // linear, colour x intensity
+  glm::vec3 sunColor{0.0f};  // linear, scene units (light_units.h lightRadiometricColor)
   render::RenderView view;
 };
 
@@ -60,12 +61,13 @@ inline MaterialScene materialScene(mesh::MeshData mesh, const scene::Material& m
   sun.name = "Sun";
   sun.light = scene::Light{};
   sun.light->color = glm::vec3(1.0f);
-  sun.light->intensity = 2.0f;
+  // 2 in scene units (scene/light_units.h): what the formulas below expect.
+  sun.light->intensity = float(scene::legacyLightIntensity(scene::Light::Type::Sun, 2.0));
   sun.transform.rotation = scene::fromEulerDegrees({50, 0, -30});
   s.entities.emplace(sun.id, sun);
   s.roots.push_back(sun.id);
   out.toSun = -glm::normalize(sun.transform.rotation * glm::dvec3(0, 0, -1));
-  out.sunColor = sun.light->color * sun.light->intensity;
+  out.sunColor = scene::lightRadiometricColor(*sun.light);
 
   out.view.width = out.view.height = size;
   out.view.fovY = glm::radians(36.0);

@@ -10,6 +10,7 @@
 #include "mesh/mesh_import.h"
 #include "render/offscreen_renderer.h"
 #include "scene/demo_scene.h"
+#include "scene/light_units.h"
 #include "scene/world_bounds.h"
 
 using namespace hs;
@@ -224,8 +225,9 @@ class TestRender : public QObject {
     const hs::Image hdr = r_.render(s, v, true);
     QVERIFY(hdr.isFloat());
     QVERIFY(std::abs(hdr.rgbaF[0] - 0.21404114f) < 1e-3f);
-    // Exposure scales linear light before encoding: x2 gives linear 0.428 -> sRGB 174.
-    s.settings.exposure = 2.0f;
+    // Exposure scales linear light before encoding: one EV100 lower is x2,
+    // linear 0.428 -> sRGB 174.
+    s.settings.exposureEv100 -= 1.0f;
     const hs::Image bright = r_.render(s, v);
     QVERIFY(std::abs(int(bright.rgba8[0]) - 174) <= 1);
   }
@@ -334,7 +336,9 @@ class TestRender : public QObject {
     addEntity(s, q);
     scene::Entity l;
     l.name = "Lamp";
-    l.light = scene::Light{scene::Light::Type::Point, glm::vec3(1.0f), 2.0f, 20.0f};
+    // 2 at 1 m in scene units (scene/light_units.h), as before physical units.
+    l.light = scene::Light{scene::Light::Type::Point, glm::vec3(1.0f),
+                           float(scene::legacyLightIntensity(scene::Light::Type::Point, 2.0)), 20.0f};
     l.transform.translation = {0, -1, 0};
     addEntity(s, l);
     render::RenderView v;

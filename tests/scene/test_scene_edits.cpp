@@ -491,7 +491,7 @@ class TestSceneEdits : public QObject {
     QCOMPARE(glm::dvec3(s.find(sc.a)->light->color), glm::dvec3(0, 0.5, 1000));
     // Enums clamp to their names.
     QVERIFY(ops::setField(sc.doc, sc.a, field("light.type"), int64_t(7)));
-    QVERIFY(s.find(sc.a)->light->type == Light::Type::Point);
+    QVERIFY(s.find(sc.a)->light->type == Light::Type::Spot);
     // Rotation through Euler angles.
     QVERIFY(ops::setField(sc.doc, sc.a, field("transform.rotation_deg"), glm::dvec3(0, 0, 45)));
     QVERIFY(rotationDistance(s.find(sc.a)->transform.rotation, fromEulerDegrees({0, 0, 45})) < 1e-15);
@@ -593,12 +593,12 @@ class TestSceneEdits : public QObject {
   void settingsEdits() {
     Document doc;
     const SettingsField* aa = findSettingsField("antialiasing");
-    const SettingsField* exposure = findSettingsField("exposure");
+    const SettingsField* exposure = findSettingsField("exposure_ev100");
     QVERIFY(aa && exposure);
     QVERIFY(ops::setSettingsField(doc, *aa, int64_t(1)));
     QVERIFY(doc.state().settings.antialiasing == Antialiasing::Fxaa);
-    QVERIFY(ops::setSettingsField(doc, *exposure, 0.0));  // clamped to its minimum
-    QCOMPARE(doc.state().settings.exposure, 0.001f);
+    QVERIFY(ops::setSettingsField(doc, *exposure, -100.0));  // clamped to its minimum
+    QCOMPARE(doc.state().settings.exposureEv100, -10.0f);
     QVERIFY(!ops::setSettingsField(doc, *exposure, double(NAN)));
     doc.undoStack()->undo();
     doc.undoStack()->undo();
@@ -761,7 +761,7 @@ class TestSceneEdits : public QObject {
     } bad[] = {{"camera.fov_deg", "nan"}, {"camera.fov_deg", "inf"}, {"camera.fov_deg", "-inf"}, {"camera.fov_deg", "1e400"},
                {"camera.fov_deg", ""}, {"camera.fov_deg", "35deg"}, {"transform.translation", "1,2"},
                {"transform.translation", "1,2,3,4"}, {"transform.translation", "1,nan,3"}, {"transform.translation", "1,2,inf"},
-               {"light.color", "1;2;3"}, {"entity.visible", "maybe"}, {"light.type", "Spot"}, {"light.type", "2"},
+               {"light.color", "1;2;3"}, {"entity.visible", "maybe"}, {"light.type", "Torch"}, {"light.type", "3"},
                {"light.type", "0.5"}, {"mesh.asset", "-1"}, {"mesh.asset", "2.5"},
                // Found by scripts/scene_campaign.py: both were stored as asset 0 (the mesh gone, exit 0).
                {"mesh.asset", "1e308"}, {"mesh.asset", "9223372036854775808"}, {"mesh.asset", "1e3"}};
@@ -771,7 +771,7 @@ class TestSceneEdits : public QObject {
       QVERIFY2(!v, qPrintable(QString("%1 accepted '%2'").arg(b.field, b.text)));
       QVERIFY2(error.find(b.text) != std::string::npos, error.c_str());  // the message quotes the input
     }
-    const SettingsField* exposure = findSettingsField("exposure");
+    const SettingsField* exposure = findSettingsField("exposure_ev100");
     QVERIFY(!parseFieldValue(*exposure, "NaN", error));
     QCOMPARE(std::get<int64_t>(*parseFieldValue(field("mesh.asset"), "9223372036854775807", error)), INT64_MAX);
   }
@@ -806,7 +806,7 @@ class TestSceneEdits : public QObject {
       f.set(s, 1e300);
       QVERIFY(std::get<double>(f.get(s)) <= f.max * (1.0 + 1e-7));
       f.set(s, -1e300);
-      QVERIFY(std::get<double>(f.get(s)) >= f.min * (1.0 - 1e-7));
+      QVERIFY(std::get<double>(f.get(s)) >= f.min - std::abs(f.min) * 1e-7);  // exposure's minimum is negative
     }
   }
 

@@ -1,0 +1,138 @@
+// Physical light units (scene/light_units.h): the candela conversions
+// against an independent integral, and files of format 5 (relative units,
+// an exposure multiplier) converted so that they render as the build that
+// wrote them rendered them (tests/data/file/README.md).
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <cmath>
+#include <filesystem>
+
+#include <glm/gtc/constants.hpp>
+
+#include "cli_runner.h"
+#include "image_compare.h"
+#include "scene/hscene_file.h"
+#include "scene/light_units.h"
+#include "scene/scene_json.h"
+
+using namespace hs;
+using namespace hs::scene;
+namespace fs = std::filesystem;
+
+namespace {
+// The solid angle of a cone of half angle `half`, summed over thin rings
+// (2π sin φ dφ), not from the closed form light_units.cpp uses.
+double coneSolidAngle(double half) {
+  const int n = 200000;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double phi = (i + 0.5) * half / n;
+    sum += 2.0 * glm::pi<double>() * std::sin(phi) * (half / n);
+  }
+  return sum;
+}
+}  // namespace
+
+class LightUnitsTest : public QObject {
+  Q_OBJECT
+  QTemporaryDir tmp_;
+
+ private slots:
+  // A light's candela times the solid angle it shines into is its power.
+  void candelaTimesSolidAngleIsPower() {
+    Light point;
+    point.type = Light::Type::Point;
+    point.intensity = 1000.0f;
+    QVERIFY(std::abs(luminousIntensityCandela(point) * coneSolidAngle(glm::pi<double>()) - 1000.0) < 1e-3);
+    Light spot;
+    spot.type = Light::Type::Spot;
+    spot.intensity = 1000.0f;
+    for (float outer : {2.0f, 45.0f, 90.0f, 170.0f}) {
+      spot.outerConeDeg = outer;
+      const double power = luminousIntensityCandela(spot) * coneSolidAngle(glm::radians(double(outer)) * 0.5);
+      QVERIFY2(std::abs(power - 1000.0) < 1e-2, qPrintable(QString("outer %1: %2 lm").arg(outer).arg(power)));
+    }
+    // The inner cone shapes the edge, not the power.
+    spot.outerConeDeg = 60.0f;
+    const double before = luminousIntensityCandela(spot);
+    spot.innerConeDeg = 10.0f;
+    QCOMPARE(luminousIntensityCandela(spot), before);
+    Light sun;
+    sun.intensity = 100000.0f;
+    QCOMPARE(luminousIntensityCandela(sun), 100000.0);
+  }
+
+  // Filament's exposure: one scene unit is 1.2 · 2^EV100 cd/m² at the
+  // reference EV100, and each EV100 step halves the image.
+  void exposure() {
+    QCOMPARE(exposureMultiplier(SceneSettings{}.exposureEv100), 1.0);
+    QVERIFY(std::abs(exposureMultiplier(SceneSettings{}.exposureEv100 + 1.0f) - 0.5) < 1e-6);
+    QVERIFY(std::abs(sceneUnitsPerNit() * 1.2 * std::pow(2.0, 15.2) - 1.0) < 1e-12);
+    // The default sun on a white surface facing it: 100 000 lux at EV100
+    // 15.2, within 0.7% of the 2.2 the default sun gave before physical units.
+    const glm::vec3 c = lightRadiometricColor(Light{}) / Light{}.color;
+    QVERIFY2(std::abs(c.x / 2.2f - 1.0f) < 0.007f, qPrintable(QString::number(double(c.x))));
+  }
+
+  // The fixtures were written and rendered by the build before physical
+  // units (commit 6aac0a7): a sun of 3.1 with a keyed intensity and
+  // exposure 0.7; a point light of 12 at 1 m with exposure 1.6.
+  void format5ValuesConvert() {
+    std::string error;
+    const auto sun = loadScene(HS_TEST_DATA_DIR "/file/format5_sun.hscene", error);
+    QVERIFY2(sun, error.c_str());
+    const Entity* s = sun->find(sun->findByName("Sun"));
+    QVERIFY(s && s->light && s->light->type == Light::Type::Sun);
+    const double luxPerOld = 1.2 * std::pow(2.0, 15.2);
+    QVERIFY(std::abs(double(s->light->intensity) / (3.1 * luxPerOld) - 1.0) < 1e-6);
+    QVERIFY(std::abs(exposureMultiplier(sun->settings.exposureEv100) - 0.7) < 1e-6);
+    // The keyed intensity: values (and so the curve) in lux too.
+    const sequencer::Binding* b = sun->sequence.findBinding(s->id);
+    QVERIFY(b && b->tracks.size() == 1);
+    const auto& keys = std::get<sequencer::ScalarTrack>(b->tracks[0]).keys;
+    QCOMPARE(keys.size(), size_t(2));
+    QVERIFY(std::abs(keys[0].value / (3.1 * luxPerOld) - 1.0) < 1e-9);
+    QVERIFY(std::abs(keys[1].value / (1.0 * luxPerOld) - 1.0) < 1e-9);
+
+    const auto point = loadScene(HS_TEST_DATA_DIR "/file/format5_point.hscene", error);
+    QVERIFY2(point, error.c_str());
+    const Entity* p = point->find(point->findByName("Sun"));  // the starter sun, made a point light
+    QVERIFY(p && p->light && p->light->type == Light::Type::Point);
+    // 12 at 1 m: 12 · luxPerOld cd, 4π times that in lumens.
+    QVERIFY(std::abs(double(p->light->intensity) / (4.0 * glm::pi<double>() * 12.0 * luxPerOld) - 1.0) < 1e-6);
+    QVERIFY(std::abs(luminousIntensityCandela(*p->light) / (12.0 * luxPerOld) - 1.0) < 1e-6);
+    QVERIFY(std::abs(exposureMultiplier(point->settings.exposureEv100) - 1.6) < 1e-6);
+    // Saved again, the file is of this format and holds the new values.
+    const std::string again = (fs::path(tmp_.path().toStdString()) / "again.hscene").string();
+    QVERIFY2(saveScene(*point, again, error), error.c_str());
+    QCOMPARE(sceneFileVersion(again), kSceneFormatVersion);
+    const auto reread = loadScene(again, error);
+    QVERIFY2(reread, error.c_str());
+    QCOMPARE(reread->find(p->id)->light->intensity, p->light->intensity);
+    QCOMPARE(reread->settings.exposureEv100, point->settings.exposureEv100);
+  }
+
+  // The real program renders each fixture as the older build did: same
+  // size, camera and settings, compared with the PNG that build wrote.
+  void format5RendersAsBefore() {
+    for (const char* name : {"format5_sun", "format5_point"}) {
+      const QString file = tmp_.filePath(QString(name) + ".hscene");
+      QFile::remove(file);
+      QVERIFY(QFile::copy(QString(HS_TEST_DATA_DIR "/file/") + name + ".hscene", file));
+      QFile::setPermissions(file, QFile::ReadOwner | QFile::WriteOwner);
+      const QString out = tmp_.filePath(QString(name) + ".png");
+      const test::CliRun r = test::runCli({"render", file, "--out", out, "--size", "160x90", "--no-grid"}, tmp_.path());
+      QVERIFY2(r.code == 0, qPrintable(r.err));
+      test::Rgba8Image now, before;
+      QVERIFY(test::readPng(out.toStdString(), now));
+      QVERIFY(test::readPng(std::string(HS_TEST_DATA_DIR "/file/") + name + ".png", before));
+      // Float rounding of the converted values only: at most 2 of 255.
+      const test::CompareResult c = test::compareImages(now, before, 2);
+      QVERIFY2(c.sizeMatches && c.maxChannelDiff <= 2, qPrintable(QString(name) + ": " + QString::fromStdString(c.summary())));
+    }
+  }
+};
+
+QTEST_GUILESS_MAIN(LightUnitsTest)
+#include "test_light_units.moc"
