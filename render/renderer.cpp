@@ -11,6 +11,7 @@
 #include "render/frame_graph.h"
 #include "render/gl/gl_debug.h"
 #include "render/passes/background_passes.h"
+#include "render/passes/environment_pass.h"
 #include "render/passes/output_passes.h"
 #include "render/passes/scene_passes.h"
 #include "render/render_resources.h"
@@ -25,6 +26,9 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
       {"fullscreen.vert", "sky.frag", "", {}},    {"grid.vert", "grid.frag", "", {}},
       {"overlay.vert", "overlay.frag", "", {}},   {"fullscreen.vert", "tonemap.frag", "", {}},
       {"fullscreen.vert", "fxaa.frag", "", {}},
+      // Sky and environment
+      {"fullscreen.vert", "sky.frag", "", {"SKY_ANALYTIC"}}, {"", "", "env_sky_cube.comp", {}},
+      {"", "", "env_sh.comp", {}},                           {"", "", "env_prefilter.comp", {}},
   };
   return programs;
 }
@@ -69,6 +73,7 @@ struct Renderer::Impl {
     f.skyHorizon = glm::vec4(settings.skyHorizon, 0.0f);
     f.groundColor = glm::vec4(settings.groundColor, 0.0f);
     f.params = glm::vec4(settings.ambientIntensity, settings.exposure, float(world.lights.size()), 0.0f);
+    f.environment = glm::vec4(settings.sky == scene::SkyModel::Analytic ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
     res.frameBlock.upload(&f, sizeof f);
 
     std::vector<GpuLight> lights;
@@ -190,6 +195,8 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   std::vector<ViewContext> viewContexts;
   for (size_t i = 0; i < targets.size(); ++i)
     viewContexts.push_back({targets[i].view, i, targets[i].fbo, targets[i].name.empty() ? "" : "[" + targets[i].name + "]"});
+  // Eye-independent: once per frame, before the views.
+  addEnvironmentPass(*graph, frame);
   for (const ViewContext& v : viewContexts) {
     const SceneTargets scene = addOpaquePass(*graph, frame, v);
     if (!world.terrains.empty()) addTerrainPass(*graph, frame, v, scene);

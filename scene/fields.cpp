@@ -296,6 +296,13 @@ std::vector<SettingsField> buildSettingsFields() {
       // Screen-space error of mesh LODs (mesh/lod_chain.h selectLod); 0 draws full resolution.
       doubleField<S>("mesh_lod_error_px", "Mesh LOD error bound", 0.0, 64.0, 0.1, "px",
                      [](S& s) -> double& { return s.meshLodErrorPixels; }),
+      // Sky and environment (docs/rendering.md). Preetham's fit holds for
+      // turbidity 2..10; below 1.7 its zenith colour leaves the gamut.
+      enumField<S>("sky", "Sky", {"gradient", "analytic"}, [](S& s) -> SkyModel& { return s.sky; }),
+      doubleField<S>("sky_turbidity", "Sky turbidity", 1.7, 10.0, 0.1, "",
+                     [](S& s) -> float& { return s.skyTurbidity; }),
+      doubleField<S>("sky_ground_albedo", "Ground albedo (sky)", 0.0, 1.0, 0.01, "",
+                     [](S& s) -> float& { return s.skyGroundAlbedo; }),
   };
 }
 

@@ -61,6 +61,12 @@ enum class Antialiasing { None = 0, Fxaa = 1, Msaa4 = 2 };
 // ACES: filmic curve (highlights roll off); None: exposure then clamp, for
 // reference renders and colour checks.
 enum class Tonemap { Aces = 0, None = 1 };
+// The sky behind the scene and the ambient light it gives
+// (docs/rendering.md, "Sky and environment"): Gradient: the zenith/horizon/
+// ground colours below and a hemisphere ambient; Analytic: Preetham's
+// daylight model driven by the sun, lighting the scene through spherical
+// harmonics and a prefiltered specular cube recomputed when the sun moves.
+enum class SkyModel { Gradient = 0, Analytic = 1 };
 
 struct SceneSettings {
   glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
@@ -74,6 +80,12 @@ struct SceneSettings {
   // Mesh LODs: each instance draws the coarsest level whose error, projected
   // to the screen, is at most this many pixels (0: always full resolution).
   double meshLodErrorPixels = 1.0;
+  // Sky and environment (settings.sky*). Gradient stays the default, so
+  // files written before the analytic sky keep their look; new scenes and
+  // the demo choose Analytic.
+  SkyModel sky = SkyModel::Gradient;
+  float skyTurbidity = 3.0f;     // Preetham's haze: 2 very clear .. 10 hazy
+  float skyGroundAlbedo = 0.2f;  // the ground below the horizon (analytic sky)
   bool operator==(const SceneSettings&) const = default;
 };
 
