@@ -10,6 +10,7 @@
 #include "render/frame_context.h"
 #include "render/frame_graph.h"
 #include "render/gl/gl_debug.h"
+#include "render/passes/ao_passes.h"
 #include "render/passes/background_passes.h"
 #include "render/passes/environment_pass.h"
 #include "render/passes/output_passes.h"
@@ -29,6 +30,7 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
       // Sky and environment
       {"fullscreen.vert", "sky.frag", "", {"SKY_ANALYTIC"}}, {"", "", "env_sky_cube.comp", {}},
       {"", "", "env_sh.comp", {}},                           {"", "", "env_prefilter.comp", {}},
+      {"fullscreen.vert", "ssao.frag", "", {}},              {"fullscreen.vert", "ssao_apply.frag", "", {}},
   };
   return programs;
 }
@@ -203,7 +205,8 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
     addSkyPass(*graph, frame, v, scene);
     if (settings.showGrid && options.showGrid) addGridPass(*graph, frame, v, scene);
     if (options.overlay && !options.overlay->empty()) addOverlayPass(*graph, frame, v, scene, *options.overlay);
-    const TextureRef hdr = addResolvePass(*graph, frame, v, scene);
+    TextureRef hdr = addResolvePass(*graph, frame, v, scene);
+    hdr = addAmbientOcclusionPasses(*graph, frame, v, scene, hdr);  // per eye; none with AO off
     addToneMapPasses(*graph, frame, v, hdr);
     if (options.keepHdr) graph->keep(hdr);
     d.keptHdr.push_back(options.keepHdr ? hdr : TextureRef{});

@@ -67,6 +67,9 @@ enum class Tonemap { Aces = 0, None = 1 };
 // daylight model driven by the sun, lighting the scene through spherical
 // harmonics and a prefiltered specular cube recomputed when the sun moves.
 enum class SkyModel { Gradient = 0, Analytic = 1 };
+// Screen-space ambient occlusion of the ambient term (docs/rendering.md).
+enum class AmbientOcclusion { Off = 0, Ssao = 1 };
+enum class AoResolution { Half = 0, Full = 1 };
 
 struct SceneSettings {
   glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
@@ -86,6 +89,10 @@ struct SceneSettings {
   SkyModel sky = SkyModel::Gradient;
   float skyTurbidity = 3.0f;     // Preetham's haze: 2 very clear .. 10 hazy
   float skyGroundAlbedo = 0.2f;  // the ground below the horizon (analytic sky)
+  AmbientOcclusion ao = AmbientOcclusion::Off;
+  float aoRadius = 1.0f;          // metres: how far an occluder counts
+  float aoStrength = 1.0f;        // 0: none, 1: as measured, up to 4
+  AoResolution aoResolution = AoResolution::Half;
   bool operator==(const SceneSettings&) const = default;
 };
 

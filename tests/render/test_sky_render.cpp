@@ -109,6 +109,8 @@ int checkAgainstModel(const hs::Image& hdr, const SkyScene& s, const glm::dvec3&
   return checked;
 }
 
+double luminanceOf(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
 bool hasAllocation(const render::Renderer& r, const std::string& name) {
   for (const auto& a : r.resourceRegistry())
     if (a.name == name && a.bytes > 0) return true;
@@ -130,6 +132,53 @@ test::MaterialScene iblSphere(const scene::Material& material, const glm::dvec3&
   scene::Entity& sun = ms.state.entities.at(2);
   sun = sunEntity(2, towardsSun, sunIntensity);
   return ms;
+}
+
+// A sphere of radius 1 resting on a 30 m ground plane, lit by the sky
+// only (analytic, the sun light at intensity 0) or, with `sunOnly`, by a
+// sun and no ambient light at all; the camera looks down at the contact.
+test::MaterialScene contactScene(bool sunOnly, int size = 128) {
+  scene::Material grey;
+  grey.baseColor = glm::vec3(0.6f);
+  grey.twoSided = true;
+  test::MaterialScene ms = iblSphere(grey, sunTowards(40.0), sunOnly ? 2.0f : 0.0f, size);
+  scene::SceneState& s = ms.state;
+  if (sunOnly) {
+    s.settings.sky = scene::SkyModel::Gradient;  // its ambient is 0 in material scenes
+  }
+  s.entities.at(1).transform.translation = {0.0, 0.0, 1.0};
+  mesh::MeshData plane = mesh::gridPlane(30.0f, 4);
+  scene::MeshAsset a;
+  a.id = 2;
+  a.name = "Ground";
+  a.contentHash = mesh::contentHash(plane);
+  a.data = std::make_shared<const mesh::MeshData>(std::move(plane));
+  scene::Material m = grey;
+  m.id = 2;
+  m.asset = a.id;
+  m.name = "Ground / grey";
+  a.materialSlots.assign(scene::materialSlotCount(*a.data), m.id);
+  s.materials.emplace(m.id, m);
+  s.assets.emplace(a.id, a);
+  scene::Entity ground;
+  ground.id = 3;
+  ground.name = "Ground";
+  ground.mesh = scene::MeshInstance{a.id};
+  s.entities.emplace(ground.id, ground);
+  s.roots.push_back(ground.id);
+  ms.view.eye = {0.0, -5.0, 3.5};
+  ms.view.orientation = test::lookFrom(ms.view.eye, {0.0, 0.0, 0.3}).rotation;
+  ms.view.fovY = glm::radians(50.0);
+  return ms;
+}
+
+// The pixel where the ray meets the ground z = 0, and whether it does.
+bool groundPixel(const render::RenderView& v, const glm::dvec3& target, int& x, int& y) {
+  glm::dvec2 px;
+  if (!v.project(target, px)) return false;
+  x = int(px.x);
+  y = int(px.y);
+  return x >= 0 && y >= 0 && x < v.width && y < v.height;
 }
 
 }  // namespace
@@ -312,6 +361,74 @@ class TestSkyRender : public QObject {
     st = r_.renderViewsOnly(s.state, {s.view, right});
     QCOMPARE(passCount(st, "environment"), 1);
     QVERIFY(passCount(st, "sky[left]") + passCount(st, "sky[right]") + passCount(st, "sky") >= 1);
+  }
+
+  void ambientOcclusionDarkensTheContact() {
+    test::MaterialScene ms = contactScene(false);
+    const hs::Image open = r_.render(ms.state, ms.view, true);
+    ms.state.settings.ao = scene::AmbientOcclusion::Ssao;
+    ms.state.settings.aoResolution = scene::AoResolution::Full;
+    const hs::Image occluded = r_.render(ms.state, ms.view, true);
+    {
+      test::MaterialScene shown = ms;
+      shown.state.settings.tonemap = scene::Tonemap::Aces;
+      golden("ssao_contact", r_.render(shown.state, shown.view));
+    }
+    int x = 0, y = 0;
+    // The ground just beside the contact point (in front of the sphere,
+    // seen past its lower edge): occluded by the sphere above it.
+    QVERIFY(groundPixel(ms.view, {0.0, -0.8, 0.0}, x, y));
+    const double a = luminanceOf(hdrAt(open, x, y)), b = luminanceOf(hdrAt(occluded, x, y));
+    QVERIFY2(b < 0.85 * a, qPrintable(QString("contact: %1 without AO, %2 with").arg(a).arg(b)));
+    // Open ground 2 m from the sphere: nothing within the radius above it, (almost) unchanged.
+    QVERIFY(groundPixel(ms.view, {1.6, -2.6, 0.0}, x, y));
+    const double c = luminanceOf(hdrAt(open, x, y)), d = luminanceOf(hdrAt(occluded, x, y));
+    QVERIFY2(std::abs(c - d) < 0.03 * c, qPrintable(QString("open ground: %1 without AO, %2 with").arg(c).arg(d)));
+    // The sky is untouched.
+    QCOMPARE(hdrAt(occluded, 2, 2), hdrAt(open, 2, 2));
+  }
+
+  void ambientOcclusionLeavesDirectLightAlone() {
+    // Lit by a sun only (no ambient term): AO must change nothing.
+    test::MaterialScene ms = contactScene(true);
+    const hs::Image off = r_.render(ms.state, ms.view, true);
+    ms.state.settings.ao = scene::AmbientOcclusion::Ssao;
+    const hs::Image on = r_.render(ms.state, ms.view, true);
+    double worst = 0.0;
+    for (size_t i = 0; i < off.rgbaF.size(); i += 4)
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, double(std::abs(off.rgbaF[i + c] - on.rgbaF[i + c])));
+    QVERIFY2(worst < 1e-3, qPrintable(QString("largest change %1").arg(worst)));
+  }
+
+  void ambientOcclusionBufferOnlyWhenOn() {
+    test::MaterialScene ms = contactScene(false, 96);
+    render::FrameStats st;
+    r_.render(ms.state, ms.view, false, &st);
+    const render::Renderer& r = r_.renderer();
+    QVERIFY(!hasAllocation(r, "ao"));
+    QCOMPARE(passCount(st, "ao"), 0);
+    ms.state.settings.ao = scene::AmbientOcclusion::Ssao;
+    r_.render(ms.state, ms.view, false, &st);
+    QCOMPARE(passCount(st, "ao"), 1);
+    size_t bytes = 0;
+    for (const auto& a : r.resourceRegistry())
+      if (a.name == "ao") bytes = a.bytes;
+    QCOMPARE(bytes, size_t(48 * 48));  // half resolution, one byte a texel
+    ms.state.settings.aoResolution = scene::AoResolution::Full;
+    r_.render(ms.state, ms.view, false, &st);
+    bytes = 0;
+    for (const auto& a : r.resourceRegistry())
+      if (a.name == "ao") bytes = a.bytes;
+    QCOMPARE(bytes, size_t(96 * 96));
+    // Per eye in a stereo pair.
+    render::RenderView right = ms.view;
+    right.eye.x += 0.065;
+    st = r_.renderViewsOnly(ms.state, {ms.view, right});
+    QCOMPARE(passCount(st, "ao[left]") + passCount(st, "ao[right]") + passCount(st, "ao"), 2);
+    ms.state.settings.ao = scene::AmbientOcclusion::Off;
+    r_.render(ms.state, ms.view, false, &st);
+    QVERIFY(!hasAllocation(r, "ao"));
+    QVERIFY(!hasAllocation(r, "hdr_ao"));
   }
 
   void keyedSunDrivesTheSkyFrameByFrame() {
