@@ -1,5 +1,7 @@
 #include "render/environment_maps.h"
 
+#include <algorithm>
+
 #include "render/frame_blocks.h"
 #include "render/render_resources.h"
 

@@ -62,8 +62,7 @@ PreethamSky PreethamSky::make(glm::dvec3 sunDir, double T, double groundAlbedo) 
                     (0.15346 * t3 - 0.26756 * t2 + 0.06670 * t1 + 0.26688);
   s.zenith = {std::max(Yz, 0.0), xz, yz};
   s.normaliser = 1.0 / perezF(s.perez, 1.0, thetaS, std::cos(thetaS));
-  s.zenithRgb = glm::dvec3(0.0);
-  s.zenithRgb = s.radiance({0.0, 0.0, 1.0});
+  s.zenithRgb = s.radiance({0.0, 0.0, 1.0});  // above the horizon: does not read zenithRgb
   return s;
 }
 

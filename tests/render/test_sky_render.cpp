@@ -219,8 +219,8 @@ class TestSkyRender : public QObject {
   }
 
   void skyFollowsTurbidity() {
-    // Hazier skies are brighter and whiter near the horizon (the model's
-    // trend), and the pass follows the setting.
+    // The setting reaches the sky pass: a clear and a hazy sky each match
+    // the model at their turbidity, and differ.
     const glm::dvec3 towards = sunTowards(30.0);
     SkyScene clear = skyScene(towards, 5.0), hazy = skyScene(towards, 5.0);
     clear.state.settings.skyTurbidity = 2.0f;
