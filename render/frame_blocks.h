@@ -35,8 +35,18 @@ struct FrameBlock {
   glm::vec4 skyHorizon{0.0f};
   glm::vec4 groundColor{0.0f};
   glm::vec4 params{0.0f};  // ambient, exposure multiplier (light_units.h), light count, unused
+  // Sky and environment: x = 1 when EnvironmentBlock and its cube are live.
+  glm::vec4 environment{0.0f};
 };
-static_assert(sizeof(FrameBlock) == 6 * 16);
+static_assert(sizeof(FrameBlock) == 7 * 16);
+
+// Binding 6 (shaders/environment.glsl), written by the environment pass:
+// sh by shaders/env_sh.comp, params by the CPU.
+struct EnvironmentBlock {
+  glm::vec4 sh[9];     // rgb: E(n)/pi coefficients
+  glm::vec4 params{0.0f};  // x: the specular cube's last mip level
+};
+static_assert(sizeof(EnvironmentBlock) == 10 * 16);
 
 struct ViewBlock {
   glm::mat4 projection{1.0f};

@@ -10,6 +10,7 @@
 #include "render/frame_blocks.h"
 #include "render/gl/gl_handle.h"
 #include "render/gl/shader_library.h"
+#include "render/environment_maps.h"
 #include "render/gpu_mesh_cache.h"
 #include "render/material_table.h"
 #include "render/resource_pool.h"
@@ -57,6 +58,8 @@ struct RenderResources {
   gl::VertexArray emptyVao;     // full-screen triangles, generated quads
   gl::VertexArray overlayVao;
   GrowingBuffer overlayVertices;
+
+  EnvironmentMaps environment;  // the analytic sky's image-based light (none with the gradient sky)
 
   // The program of `desc` (all are built at initialisation, so this never
   // fails at draw time; it returns nullptr only for a desc that was not).

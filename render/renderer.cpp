@@ -12,7 +12,9 @@
 #include "render/gl/gl_debug.h"
 #include "render/fog_block.h"
 #include "render/gpu_lights.h"
+#include "render/passes/ao_passes.h"
 #include "render/passes/background_passes.h"
+#include "render/passes/environment_pass.h"
 #include "render/passes/output_passes.h"
 #include "render/passes/scene_passes.h"
 #include "render/passes/shadow_passes.h"
@@ -29,6 +31,10 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
       {"fullscreen.vert", "sky.frag", "", {}},    {"grid.vert", "grid.frag", "", {}},
       {"overlay.vert", "overlay.frag", "", {}},   {"fullscreen.vert", "tonemap.frag", "", {}},
       {"fullscreen.vert", "fxaa.frag", "", {}},
+      // Sky and environment
+      {"fullscreen.vert", "sky.frag", "", {"SKY_ANALYTIC"}}, {"", "", "env_sky_cube.comp", {}},
+      {"", "", "env_sh.comp", {}},                           {"", "", "env_prefilter.comp", {}},
+      {"fullscreen.vert", "ssao.frag", "", {}},              {"fullscreen.vert", "ssao_apply.frag", "", {}},
   };
   return programs;
 }
@@ -73,6 +79,8 @@ struct Renderer::Impl {
     f.skyHorizon = glm::vec4(settings.skyHorizon, 0.0f);
     f.groundColor = glm::vec4(settings.groundColor, 0.0f);
     f.params = glm::vec4(settings.ambientIntensity, float(scene::exposureMultiplier(settings.exposureEv100)), float(world.lights.size()), 0.0f);
+    f.environment = glm::vec4(settings.sky == scene::SkyModel::Analytic ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+
     res.frameBlock.upload(&f, sizeof f);
 
     std::vector<GpuLight> lights;
@@ -201,13 +209,16 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
     viewContexts.push_back({targets[i].view, i, targets[i].fbo, targets[i].name.empty() ? "" : "[" + targets[i].name + "]"});
   // Shadows: once per frame, before the views that read them.
   addShadowPasses(*graph, frame);
+  // Eye-independent: once per frame, before the views.
+  addEnvironmentPass(*graph, frame);
   for (const ViewContext& v : viewContexts) {
     const SceneTargets scene = addOpaquePass(*graph, frame, v);
     if (!world.terrains.empty()) addTerrainPass(*graph, frame, v, scene);
     addSkyPass(*graph, frame, v, scene);
     if (settings.showGrid && options.showGrid) addGridPass(*graph, frame, v, scene);
     if (options.overlay && !options.overlay->empty()) addOverlayPass(*graph, frame, v, scene, *options.overlay);
-    const TextureRef hdr = addResolvePass(*graph, frame, v, scene);
+    TextureRef hdr = addResolvePass(*graph, frame, v, scene);
+    hdr = addAmbientOcclusionPasses(*graph, frame, v, scene, hdr);  // per eye; none with AO off
     addToneMapPasses(*graph, frame, v, hdr);
     if (options.keepHdr) graph->keep(hdr);
     d.keptHdr.push_back(options.keepHdr ? hdr : TextureRef{});

@@ -117,6 +117,27 @@ void addStereoFlight(SceneState& s, EntityId spinning, const glm::dvec3& spinCen
   s.sequence.bindings = {flight, spin};
 }
 
+// A short time-of-day change over the flight: the sun sinks from 50 to 35
+// degrees above the horizon and swings 20 degrees west in the 10 s, so the
+// analytic sky warms and the light rakes a little more by the end (visible,
+// not a sunset). Frame 0 is the sun as placed, so the first camera's view
+// does not depend on the track.
+void addTimeOfDay(SceneState& s, EntityId sunId) {
+  const Entity& sun = s.entities.at(sunId);
+  sequencer::Binding b{sunId, sun.name, {}, std::nullopt};
+  sequencer::RotationTrack turn;
+  const glm::dvec3 euler[3] = {{40, 0, -35}, {47, 0, -45}, {55, 0, -55}};
+  for (int i = 0; i < 3; ++i) {
+    sequencer::RotationKey k;
+    k.time = 5.0 * i;
+    k.value = fromEulerDegrees(euler[i]);
+    k.interpolation = sequencer::Interpolation::Linear;
+    turn.keys.push_back(k);
+  }
+  b.tracks.push_back(turn);
+  s.sequence.bindings.push_back(b);
+}
+
 // The bunny's LOD chain (three levels of a quarter each: 17k, 4.3k, 1.1k
 // triangles), each with its measured Hausdorff error, so the instances the
 // camera sees from afar draw coarser levels. Built once per process (the
@@ -163,6 +184,7 @@ SceneState buildStarterScene() {
   sun.transform = at({0, 0, 20}, {40, 0, -35});
   sun.light = Light{};
   add(s, sun);
+  s.settings.sky = SkyModel::Analytic;  // new scenes get the analytic sky (old files keep the gradient)
   Entity cam;
   cam.name = "Camera";
   cam.transform = at({0.0, -12.0, 4.0}, {75, 0, 0});
@@ -206,7 +228,8 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   // Shines along local -Z: tilted 50 degrees from vertical, from the south-west.
   sun.transform = at({0, 0, 20}, {40, 0, -35});
   sun.light = Light{};
-  add(s, sun);
+  const EntityId sunId = add(s, sun);
+  s.settings.sky = SkyModel::Analytic;
 
   Entity cam;
   cam.name = "Main Camera";
@@ -246,6 +269,7 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   // Added last, after everything the first camera sees, so the demo's
   // first camera and its view stay what they were (golden images use them).
   addStereoFlight(s, spinning, right.transform.translation + right.transform.rotation * (base * 8.0));
+  addTimeOfDay(s, sunId);
 
   // The valley the bunnies stand in (flat where they are), added last too.
   if (!addDemoTerrain(s, error)) return std::nullopt;

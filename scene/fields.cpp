@@ -351,6 +351,18 @@ std::vector<SettingsField> buildSettingsFields() {
       doubleField<S>("fog_height_falloff", "Fog height falloff", 0.0, 10.0, 1e-3, "/m",
                      [](S& s) -> float& { return s.fogHeightFalloff; }),
       doubleField<S>("fog_height", "Fog height", -1e5, 1e5, 1.0, "m", [](S& s) -> float& { return s.fogHeight; }),
+      // Sky and environment (docs/rendering.md). Preetham's fit holds for
+      // turbidity 2..10; below 1.7 its zenith colour leaves the gamut.
+      enumField<S>("sky", "Sky", {"gradient", "analytic"}, [](S& s) -> SkyModel& { return s.sky; }),
+      doubleField<S>("sky_turbidity", "Sky turbidity", 1.7, 10.0, 0.1, "",
+                     [](S& s) -> float& { return s.skyTurbidity; }),
+      doubleField<S>("sky_ground_albedo", "Ground albedo (sky)", 0.0, 1.0, 0.01, "",
+                     [](S& s) -> float& { return s.skyGroundAlbedo; }),
+      enumField<S>("ao", "Ambient occlusion", {"off", "ssao"}, [](S& s) -> AmbientOcclusion& { return s.ao; }),
+      doubleField<S>("ao_radius", "AO radius", 0.05, 20.0, 0.05, "m", [](S& s) -> float& { return s.aoRadius; }),
+      doubleField<S>("ao_strength", "AO strength", 0.0, 4.0, 0.05, "", [](S& s) -> float& { return s.aoStrength; }),
+      enumField<S>("ao_resolution", "AO resolution", {"half", "full"},
+                   [](S& s) -> AoResolution& { return s.aoResolution; }),
   };
 }
 

@@ -69,6 +69,15 @@ enum class ShadowQuality { Low = 0, Medium = 1, High = 2, Custom = 3 };
 // at distance d; ExponentialHeight: density ρ(z) = density·exp(−falloff·(z −
 // height)), integrated along the view ray.
 enum class FogMode { None = 0, DepthCue = 1, ExponentialHeight = 2 };
+// The sky behind the scene and the ambient light it gives
+// (docs/rendering.md, "Sky and environment"): Gradient: the zenith/horizon/
+// ground colours below and a hemisphere ambient; Analytic: Preetham's
+// daylight model driven by the sun, lighting the scene through spherical
+// harmonics and a prefiltered specular cube recomputed when the sun moves.
+enum class SkyModel { Gradient = 0, Analytic = 1 };
+// Screen-space ambient occlusion of the ambient term (docs/rendering.md).
+enum class AmbientOcclusion { Off = 0, Ssao = 1 };
+enum class AoResolution { Half = 0, Full = 1 };
 
 struct SceneSettings {
   glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
@@ -102,6 +111,16 @@ struct SceneSettings {
   float fogDensity = 0.0005f;              // height fog: extinction per metre at the fog height
   float fogHeightFalloff = 0.02f;          // height fog: per metre above the fog height
   float fogHeight = 0.0f;                  // height fog: metres (world z) where the density is fogDensity
+  // Sky and environment (settings.sky*). Gradient stays the default, so
+  // files written before the analytic sky keep their look; new scenes and
+  // the demo choose Analytic.
+  SkyModel sky = SkyModel::Gradient;
+  float skyTurbidity = 3.0f;     // Preetham's haze: 2 very clear .. 10 hazy
+  float skyGroundAlbedo = 0.2f;  // the ground below the horizon (analytic sky)
+  AmbientOcclusion ao = AmbientOcclusion::Off;
+  float aoRadius = 1.0f;          // metres: how far an occluder counts
+  float aoStrength = 1.0f;        // 0: none, 1: as measured, up to 4
+  AoResolution aoResolution = AoResolution::Half;
   bool operator==(const SceneSettings&) const = default;
 };
 

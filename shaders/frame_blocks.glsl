@@ -23,6 +23,8 @@ layout(std140, binding = 0) uniform FrameBlock {
   vec4 skyHorizon;    // rgb
   vec4 groundColor;   // rgb
   vec4 params;        // x: ambient intensity, y: exposure multiplier, z: light count, w: unused
+  // Sky and environment (environment.glsl):
+  vec4 environment;   // x: 1 when the environment maps (block 6, unit 12) hold the analytic sky
 } frame;
 
 layout(std140, binding = 1) uniform ViewBlock {

@@ -12,8 +12,17 @@
 #include "fog.glsl"
 #include "lights.glsl"
 
+// The ambient term's share of the last shadeSurface() result's luminance:
+// the scene colour's alpha, which the AO pass reads to occlude the ambient
+// light only (shaders/ssao_apply.frag).
+float hsAmbientShare = 0.0;
+
 vec3 shadeSurface(Surface s) {
-  return applyFog(s.emission + directLighting(s) + ambientLighting(s), s.position);
+  vec3 ambient = ambientLighting(s);
+  vec3 lit = s.emission + directLighting(s) + ambient;
+  const vec3 luma = vec3(0.2126, 0.7152, 0.0722);
+  hsAmbientShare = clamp(dot(ambient, luma) / max(dot(lit, luma), 1e-6), 0.0, 1.0);
+  return applyFog(lit, s.position);
 }
 
 // A Blinn-Phong surface from its colour, position, normal and highlight

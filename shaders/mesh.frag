@@ -54,16 +54,16 @@ void main() {
   vec4 base = vec4(m.baseColor.rgb * objects[vObject].tint.rgb, m.baseColor.a) * texel;
   if (hasFlag(m, MAT_ALPHA_CUTOUT) && base.a < m.emission.a) discard;
 #ifdef SHADING_GOURAUD
-  outColor = vec4(vLit * texel.rgb, base.a);
+  outColor = vec4(vLit * texel.rgb, 0.0);  // alpha: no ambient share to occlude (per-vertex light)
 #else
 #ifdef DEBUG_SHADING_NORMAL
   outColor = vec4(n, 1.0);
   return;
 #endif
   if (hasFlag(m, MAT_UNLIT)) {
-    outColor = vec4(applyFog(base.rgb + m.emission.rgb, vEyePos), base.a);
+    outColor = vec4(applyFog(base.rgb + m.emission.rgb, vEyePos), 0.0);  // alpha: nothing ambient
     return;
   }
-  outColor = vec4(shadeSurface(materialSurface(m, base.rgb, vEyePos, n)), base.a);
+  outColor = vec4(shadeSurface(materialSurface(m, base.rgb, vEyePos, n)), hsAmbientShare);
 #endif
 }

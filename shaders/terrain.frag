@@ -82,5 +82,5 @@ void main() {
   float r2 = max(rough * rough, 0.02);
   float shininess = clamp(2.0 / (r2 * r2) - 2.0, 2.0, 512.0);
   float specular = 0.04 * (1.0 - rough) * (shininess + 8.0) / 8.0;
-  outColor = vec4(lightSurface(albedo, vEyePos, n, shininess, specular), 1.0);
+  outColor = vec4(lightSurface(albedo, vEyePos, n, shininess, specular), hsAmbientShare);
 }

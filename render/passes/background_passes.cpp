@@ -1,5 +1,7 @@
 #include "render/passes/background_passes.h"
 
+#include "render/environment_maps.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -28,7 +30,15 @@ void addSkyPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, co
         // Where the depth is still the cleared far value: covered pixels cost nothing.
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.t.color}, d.t.depth));
         frame.res.bindView(index);
-        frame.res.program({"fullscreen.vert", "sky.frag", "", fogDefines(frame.settings)}).use();
+        std::vector<std::string> defines = fogDefines(frame.settings);
+        if (frame.settings.sky == scene::SkyModel::Analytic) {
+          defines.push_back("SKY_ANALYTIC");
+          GlProgram& p = frame.res.program({"fullscreen.vert", "sky.frag", "", defines});
+          setSkyUniforms(p, frame.res.environment.sky());
+          p.use();
+        } else {
+          frame.res.program({"fullscreen.vert", "sky.frag", "", defines}).use();
+        }
         glDepthFunc(GL_EQUAL);
         glDepthMask(GL_FALSE);
         glBindVertexArray(frame.res.emptyVao.id());

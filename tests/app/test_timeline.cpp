@@ -146,6 +146,10 @@ void TimelineTest::keyButtonAndAnimatedFieldEdit() {
 void TimelineTest::dragKeyRetimesAsOneUndoStep() {
   const scene::EntityId cam = id("Main Camera");
   app::TimelineDopeSheet* ds = w_->timeline()->dopeSheet();
+  // The demo's sun and spinning bunny tracks folded, so the camera's rows
+  // (added last) are on screen in this window.
+  ds->setCollapsed(id("Sun"), true);
+  ds->setCollapsed(id("Bunny (instance)"), true);
   const KeyRef key{cam, "camera.fov_deg", 1};
   const auto pos = ds->keyPosition(key);
   QVERIFY2(pos, "the key is not on screen");
@@ -164,6 +168,8 @@ void TimelineTest::dragKeyRetimesAsOneUndoStep() {
   QVERIFY(w_->timeline()->keySelection().contains(key));  // still selected where it went
   doc().undoStack()->undo();
   QCOMPARE(times(cam, "camera.fov_deg"), (std::vector<double>{0.0, 2.0}));
+  ds->setCollapsed(id("Sun"), false);
+  ds->setCollapsed(id("Bunny (instance)"), false);
 }
 
 void TimelineTest::copyPasteDeleteKeys() {
