@@ -497,7 +497,10 @@ def run_scene_case(cli, template, work, case, timeout):
             saved = description(scene)
             # A member emptied ({}) reads like one an older build did not
             # write: its defaults, by design, like a deleted member.
-            emptied = path is not None and get_at(edited, path) == {}
+            try:
+                emptied = path is not None and not deleted and get_at(edited, path) == {}
+            except (KeyError, IndexError, TypeError):
+                emptied = False
             if path is not None and not deleted and not emptied and saved is not None:
                 try:
                     want = get_at(edited, path)
@@ -636,6 +639,8 @@ def run_value_case(cli, template, work, case, timeout, is_field):
             return name, "accepted", ""
         if isinstance(have, bool) and v in ("0", "1") and have == (v == "1"):
             return name, "accepted", ""  # 0 and 1 are off and on
+        if isinstance(have, str) and v.isdigit() and field not in ("entity.name",):
+            return name, "accepted", ""  # an enum value given by its index
         return name, "repaired" if warned else "silent", "stored %s for %r" % (json.dumps(have)[:80], v)
     finally:
         shutil.rmtree(d, ignore_errors=True)
