@@ -86,13 +86,15 @@ std::optional<LightAddRequest> lightAddRequest(const Json& values, std::string& 
   if (has("colour")) r.light.color = glm::vec3(vec("colour"));
   if (has("intensity")) r.light.intensity = float(values["intensity"].get<double>());
   if (has("range")) r.light.range = float(values["range"].get<double>());
-  if (has("inner")) r.light.innerConeDeg = float(values["inner"].get<double>());
-  if (has("outer")) r.light.outerConeDeg = float(values["outer"].get<double>());
-  if (r.light.innerConeDeg > r.light.outerConeDeg) {
-    error = "--inner " + formatNumber(r.light.innerConeDeg) + " must not exceed --outer " +
-            formatNumber(r.light.outerConeDeg) + " degrees";
+  // Compared and reported as given (doubles), then stored as floats.
+  const double inner = has("inner") ? values["inner"].get<double>() : double(r.light.innerConeDeg);
+  const double outer = has("outer") ? values["outer"].get<double>() : double(r.light.outerConeDeg);
+  if (inner > outer) {
+    error = "--inner " + formatNumber(inner) + " must not exceed --outer " + formatNumber(outer) + " degrees";
     return std::nullopt;
   }
+  r.light.innerConeDeg = float(inner);
+  r.light.outerConeDeg = float(outer);
   r.light.castsShadows = has("shadows") && values["shadows"].get<bool>();
   return r;
 }

@@ -17,6 +17,7 @@
 #include "render/sh_irradiance.h"
 #include "render/sky_model.h"
 #include "scene/animation.h"
+#include "scene/light_units.h"
 
 using namespace hs;
 
@@ -43,13 +44,14 @@ glm::dvec3 sunTowards(double elevationDeg, double azimuthDeg = -35.0) {
   return {std::cos(e) * std::sin(-a), -std::cos(e) * std::cos(a), std::sin(e)};
 }
 
-// A sun light entity whose light travels along -towards.
-scene::Entity sunEntity(scene::EntityId id, const glm::dvec3& towards, float intensity = 2.0f) {
+// A sun light entity whose light travels along -towards; `relative` in the
+// units before lights were physical (2: a bright day), converted to lux.
+scene::Entity sunEntity(scene::EntityId id, const glm::dvec3& towards, float relative = 2.0f) {
   scene::Entity sun;
   sun.id = id;
   sun.name = "Sun";
   sun.light = scene::Light{};
-  sun.light->intensity = intensity;
+  sun.light->intensity = float(scene::legacyLightIntensity(scene::Light::Type::Sun, relative));
   // Local -Z onto -towards.
   sun.transform.rotation = glm::dquat(glm::dvec3(0, 0, -1), -glm::normalize(towards));
   return sun;

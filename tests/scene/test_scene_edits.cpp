@@ -522,9 +522,11 @@ class TestSceneEdits : public QObject {
     QVERIFY2(change.message.find("must be non-zero on every axis; set to 1e-09,2,1") != std::string::npos,
              change.message.c_str());
     // Settings too.
-    QVERIFY(ops::setSettingsField(sc.doc, *findSettingsField("exposure"), 0.0, {}, &change));
-    QVERIFY(std::abs(std::get<double>(change.value) - 0.001) < 1e-9);  // a float field
-    QVERIFY2(change.message.rfind("Exposure 0 must be from 0.001 to 1000", 0) == 0, change.message.c_str());
+    const SettingsField* exposure = findSettingsField("exposure_ev100");
+    QVERIFY(exposure);
+    QVERIFY(ops::setSettingsField(sc.doc, *exposure, 99.0, {}, &change));
+    QCOMPARE(std::get<double>(change.value), 30.0);
+    QVERIFY2(change.message.rfind("Exposure (EV100) 99 must be from -10 to 30", 0) == 0, change.message.c_str());
   }
 
   void meshAssetFieldMustNameAnAsset() {
