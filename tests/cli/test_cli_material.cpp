@@ -9,6 +9,7 @@
 #include "cli_runner.h"
 #include "core/json.h"
 #include "scene/hscene_file.h"
+#include "scene/scene_json.h"
 
 using namespace hs;
 using namespace hs::test;
@@ -54,7 +55,7 @@ class TestCliMaterial : public QObject {
     QVERIFY2(r.code == 0, qPrintable(r.err));
     r = runCli({"material", "set", "Bumpy / default", "model", "blinn_phong", scene}, dir.path());
     QVERIFY2(r.code == 0, qPrintable(r.err));
-    QCOMPARE(scene::sceneFileVersion(scene.toStdString()), 5);
+    QCOMPARE(scene::sceneFileVersion(scene.toStdString()), scene::kSceneFormatVersion);
     j = listJson(scene, dir.path());
     QCOMPARE(j.at("materials")[0].at("roughness").get<double>(), 0.25);
     QCOMPARE(j.at("materials")[0].at("model").get<std::string>(), std::string("blinn_phong"));

@@ -144,6 +144,7 @@ class TestCliParams : public QObject {
         {"farm slurm", {{"farm", "slurm", missing_, "--out", frames}, missing_}},
         {"farm verify", {{"farm", "verify", "--frames", "0-1", "--out", frames}, "frame(s) missing"}},
         {"repair", {{"repair", missing_, tmp_.filePath("repaired.hscene")}, missing_}},
+        {"light add", {{"light", "add", missing_, "--type", "spot"}, missing_}},
     };
   }
 

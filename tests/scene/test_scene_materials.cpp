@@ -248,7 +248,7 @@ class TestSceneMaterials : public QObject {
       QCOMPARE(s->validate(), std::string());
       // Saved as format 5, and the same after a second load.
       QVERIFY2(saveScene(*s, copy, error), error.c_str());
-      QCOMPARE(sceneFileVersion(copy), 5);
+      QCOMPARE(sceneFileVersion(copy), kSceneFormatVersion);
       auto again = loadScene(copy, error);
       QVERIFY2(again, error.c_str());
       QCOMPARE(canonicalJson(*again), canonicalJson(*s));
