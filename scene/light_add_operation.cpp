@@ -86,15 +86,19 @@ std::optional<LightAddRequest> lightAddRequest(const Json& values, std::string& 
   if (has("colour")) r.light.color = glm::vec3(vec("colour"));
   if (has("intensity")) r.light.intensity = float(values["intensity"].get<double>());
   if (has("range")) r.light.range = float(values["range"].get<double>());
-  // Compared and reported as given (doubles), then stored as floats.
-  const double inner = has("inner") ? values["inner"].get<double>() : double(r.light.innerConeDeg);
-  const double outer = has("outer") ? values["outer"].get<double>() : double(r.light.outerConeDeg);
-  if (inner > outer) {
-    error = "--inner " + formatNumber(inner) + " must not exceed --outer " + formatNumber(outer) + " degrees";
+  // One cone given alone moves the other's default out of its way; both
+  // given must be in order.
+  if (has("inner") && has("outer") && values["inner"].get<double>() > values["outer"].get<double>()) {
+    error = "--inner " + formatNumber(values["inner"].get<double>()) + " must not exceed --outer " +
+            formatNumber(values["outer"].get<double>()) + " degrees";
     return std::nullopt;
   }
-  r.light.innerConeDeg = float(inner);
-  r.light.outerConeDeg = float(outer);
+  if (has("inner")) r.light.innerConeDeg = float(values["inner"].get<double>());
+  if (has("outer")) r.light.outerConeDeg = float(values["outer"].get<double>());
+  if (r.light.innerConeDeg > r.light.outerConeDeg) {
+    if (has("inner")) r.light.outerConeDeg = r.light.innerConeDeg;
+    else r.light.innerConeDeg = r.light.outerConeDeg;
+  }
   r.light.castsShadows = has("shadows") && values["shadows"].get<bool>();
   return r;
 }

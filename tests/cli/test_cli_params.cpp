@@ -126,9 +126,6 @@ class TestCliParams : public QObject {
   struct Base {
     QStringList args;
     QString marker;
-    // Options a probe of the key needs beside it (a rule between two
-    // options, such as a spot's inner cone within its outer one).
-    std::map<std::string, QStringList> with = {};
   };
   std::map<std::string, Base> bases() const {
     const QString frames = tmp_.filePath("none/f_%03d.png");
@@ -147,8 +144,7 @@ class TestCliParams : public QObject {
         {"farm slurm", {{"farm", "slurm", missing_, "--out", frames}, missing_}},
         {"farm verify", {{"farm", "verify", "--frames", "0-1", "--out", frames}, "frame(s) missing"}},
         {"repair", {{"repair", missing_, tmp_.filePath("repaired.hscene")}, missing_}},
-        {"light add",
-         {{"light", "add", missing_, "--type", "spot"}, missing_, {{"inner", {"--outer", "179.9"}}, {"outer", {"--inner", "0.1"}}}}},
+        {"light add", {{"light", "add", missing_, "--type", "spot"}, missing_}},
     };
   }
 
@@ -190,9 +186,7 @@ class TestCliParams : public QObject {
     const QString option = "--" + QString::fromStdString(p.option);
     const std::vector<Probe> all = probes(p);
     std::vector<QStringList> commands;
-    const auto with = base.with.find(p.key);
-  const QStringList beside = with == base.with.end() ? QStringList{} : with->second;
-  for (const Probe& probe : all) commands.push_back(base.args + beside + QStringList{option, probe.text});
+    for (const Probe& probe : all) commands.push_back(base.args + QStringList{option, probe.text});
     const std::vector<test::CliRun> runs = runAll(commands, tmp_.path());
     for (size_t i = 0; i < all.size(); ++i) {
       const Probe& probe = all[i];
