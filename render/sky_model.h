@@ -17,10 +17,13 @@
 namespace hs::render {
 
 // Scene radiance per cd/m² of sky luminance: the one place where the
-// model's physical units meet the renderer's (until lights in physical
-// units with an EV100 exposure arrive, this is that exposure: 1/(1.2 x
-// 2^EV100) at EV100 = 14.3, a sunny day, puts the zenith at about 0.3 at
-// 45 degrees of sun, where the gradient sky's zenith was).
+// model's physical units meet the renderer's. It is the exposure 1/(1.2 x
+// 2^EV100) at EV100 = 14.3 (a sunny day: the zenith at about 0.3 at 45
+// degrees of sun, where the gradient sky's zenith was), chosen before the
+// lights' scene unit (scene/light_units.h, EV100 15.2) existed. It is not
+// tied to that unit yet: the lights fold the BRDF's 1/pi into their
+// intensity, so tying only this would upset the sun/sky balance; both are
+// to change together (docs/rendering.md).
 inline constexpr double kSkyRadianceScale = 4.0e-5;
 
 struct PreethamSky {
