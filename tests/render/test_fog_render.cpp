@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "image_compare.h"
+#include "render_golden.h"
 #include "look_from.h"
 #include "mesh/primitives.h"
 #include "render/offscreen_renderer.h"
@@ -19,7 +20,6 @@ using namespace hs;
 
 namespace {
 
-test::Rgba8Image toTest(const hs::Image& img) { return {img.width, img.height, img.rgba8}; }
 
 glm::dvec3 hdrAt(const hs::Image& img, int x, int y) {
   const float* p = &img.rgbaF[(size_t(y) * size_t(img.width) + size_t(x)) * 4];
@@ -108,10 +108,6 @@ class TestFogRender : public QObject {
   Q_OBJECT
   render::OffscreenRenderer r_;
 
-  void golden(const std::string& name, const hs::Image& img) {
-    const std::string problem = test::checkGolden(HS_GOLDEN_DIR, HS_TEST_OUT_DIR, name, toTest(img), {});
-    QVERIFY2(problem.empty(), problem.c_str());
-  }
   static bool hasFogBlock(const std::vector<render::GpuAllocation>& reg) {
     return std::any_of(reg.begin(), reg.end(), [](const render::GpuAllocation& a) { return a.name == "fog_block"; });
   }
@@ -157,7 +153,7 @@ class TestFogRender : public QObject {
       }
     QVERIFY(checked > 600);
     s.tonemap = scene::Tonemap::Aces;
-    golden("fog_depth_cue", r_.render(fs.state, fs.view));
+    test::verifyGolden("fog_depth_cue", r_.render(fs.state, fs.view));
   }
 
   void heightFogMatchesFormula() {
@@ -183,7 +179,7 @@ class TestFogRender : public QObject {
       }
     QVERIFY(checked > 600);
     s.tonemap = scene::Tonemap::Aces;
-    golden("fog_height", r_.render(fs.state, fs.view));
+    test::verifyGolden("fog_height", r_.render(fs.state, fs.view));
   }
 
   // A wall seen straight ahead: the middle rows' rays are (nearly)

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "image_compare.h"
+#include "render_golden.h"
 #include "look_from.h"
 #include "mesh/primitives.h"
 #include "render/offscreen_renderer.h"
@@ -20,7 +21,6 @@ using scene::Light;
 
 namespace {
 
-test::Rgba8Image toTest(const hs::Image& img) { return {img.width, img.height, img.rgba8}; }
 
 glm::dvec3 hdrAt(const hs::Image& img, int x, int y) {
   const float* p = &img.rgbaF[(size_t(y) * size_t(img.width) + size_t(x)) * 4];
@@ -143,10 +143,6 @@ class TestLightsRender : public QObject {
   Q_OBJECT
   render::OffscreenRenderer r_;
 
-  void golden(const std::string& name, const hs::Image& img) {
-    const std::string problem = test::checkGolden(HS_GOLDEN_DIR, HS_TEST_OUT_DIR, name, toTest(img), {});
-    QVERIFY2(problem.empty(), problem.c_str());
-  }
 
   // Every floor pixel against `expected`; returns how many were compared.
   int compareWithFormula(const FloorScene& fs, const Light& l, glm::dvec3 pos, glm::dvec3 dir, double& worst) {
@@ -184,7 +180,7 @@ class TestLightsRender : public QObject {
     const int checked = compareWithFormula(fs, l, pos, {0, 0, -1}, worst);
     QVERIFY(checked > 1000);
     QVERIFY2(worst <= 1.0, qPrintable(QString("worst error %1 of the tolerance").arg(worst)));
-    golden("light_point", r_.render(fs.state, fs.view));
+    test::verifyGolden("light_point", r_.render(fs.state, fs.view));
   }
 
   void spotLightMatchesItsFormula() {
@@ -197,7 +193,7 @@ class TestLightsRender : public QObject {
     const int checked = compareWithFormula(fs, l, pos, dir, worst);
     QVERIFY(checked > 1000);
     QVERIFY2(worst <= 1.0, qPrintable(QString("worst error %1 of the tolerance").arg(worst)));
-    golden("light_spot", r_.render(fs.state, fs.view));
+    test::verifyGolden("light_spot", r_.render(fs.state, fs.view));
   }
 
   void sunGolden() {
@@ -210,7 +206,7 @@ class TestLightsRender : public QObject {
     const glm::dvec3 toSun = -glm::normalize(scene::fromEulerDegrees({40, 0, -35}) * glm::dvec3(0, 0, -1));
     const double want = kAlbedo.x * 60000.0 * toSun.z / (1.2 * std::pow(2.0, 15.2)) * double(sun.color.r);
     QVERIFY2(std::abs(hdrAt(hdr, 64, 100).x / want - 1.0) < 0.01, qPrintable(QString::number(hdrAt(hdr, 64, 100).x)));
-    golden("light_sun", r_.render(fs.state, fs.view));
+    test::verifyGolden("light_sun", r_.render(fs.state, fs.view));
   }
 
   // The window is exactly 0 from the range on, so a light list that drops a

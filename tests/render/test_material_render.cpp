@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "image_compare.h"
+#include "render_golden.h"
 #include "mesh/procedural_textures.h"
 #include "material_scenes.h"
 #include "render/offscreen_renderer.h"
@@ -18,7 +19,6 @@ using scene::ShadingMode;
 
 namespace {
 
-test::Rgba8Image toTest(const hs::Image& img) { return {img.width, img.height, img.rgba8}; }
 
 glm::vec3 hdrAt(const hs::Image& img, int x, int y) {
   const float* p = &img.rgbaF[(size_t(y) * size_t(img.width) + size_t(x)) * 4];
@@ -145,10 +145,6 @@ class TestMaterialRender : public QObject {
   Q_OBJECT
   render::OffscreenRenderer r_;
 
-  void golden(const std::string& name, const hs::Image& img, const test::GoldenTolerance& tol = {}) {
-    const std::string problem = test::checkGolden(HS_GOLDEN_DIR, HS_TEST_OUT_DIR, name, toTest(img), tol);
-    QVERIFY2(problem.empty(), problem.c_str());
-  }
 
  private slots:
   void initTestCase() {
@@ -189,7 +185,7 @@ class TestMaterialRender : public QObject {
     QVERIFY2(worst <= 1.0, qPrintable(QString("worst error %1 of the tolerance (mean %2) over %3 pixels")
                                           .arg(worst).arg(sum / (3 * checked)).arg(checked)));
     // And the picture, to look at.
-    golden(std::string("model_") + modelName(LightingModel(model)), r_.render(ms.state, ms.view));
+    test::verifyGolden(std::string("model_") + modelName(LightingModel(model)), r_.render(ms.state, ms.view));
   }
 
   void modelsDiffer() {
@@ -202,7 +198,7 @@ class TestMaterialRender : public QObject {
     }
     for (size_t a = 0; a < images.size(); ++a)
       for (size_t b = a + 1; b < images.size(); ++b) {
-        const auto cmp = test::compareImages(toTest(images[a]), toTest(images[b]), 6);
+        const auto cmp = test::compareImages(test::toTest(images[a]), test::toTest(images[b]), 6);
         QVERIFY2(cmp.differingShare > 0.01, qPrintable(QString("models %1 and %2: %3").arg(a).arg(b).arg(cmp.summary().c_str())));
       }
   }
@@ -222,12 +218,12 @@ class TestMaterialRender : public QObject {
     test::MaterialScene ms = test::materialScene(mesh::uvSphere(1.0f, 16, 8), m);
     const hs::Image img = r_.render(ms.state, ms.view);
     const char* names[] = {"phong", "gouraud", "flat"};
-    golden(std::string("shading_") + names[mode], img);
+    test::verifyGolden(std::string("shading_") + names[mode], img);
     if (ShadingMode(mode) == ShadingMode::Phong) return;
     // Against per-pixel shading of the same mesh: visibly different.
     m.shading = ShadingMode::Phong;
     test::MaterialScene ref = test::materialScene(mesh::uvSphere(1.0f, 16, 8), m);
-    const auto cmp = test::compareImages(toTest(img), toTest(r_.render(ref.state, ref.view)), 6);
+    const auto cmp = test::compareImages(test::toTest(img), test::toTest(r_.render(ref.state, ref.view)), 6);
     QVERIFY2(cmp.differingShare > 0.02, cmp.summary().c_str());
   }
 
@@ -381,11 +377,11 @@ class TestMaterialRender : public QObject {
     ms.view.orientation = test::lookFrom(ms.view.eye, {0, 0, 0}).rotation;
     ms.view.fovY = glm::radians(50.0);
     const hs::Image flat = r_.render(ms.state, ms.view);
-    golden("normal_map_bricks", flat);
+    test::verifyGolden("normal_map_bricks", flat);
     ms.state.materials.at(ms.material).heightScale = 0.06f;  // 6 cm of relief on 25 cm courses
     const hs::Image relief = r_.render(ms.state, ms.view);
-    golden("parallax_bricks", relief);
-    const auto cmp = test::compareImages(toTest(relief), toTest(flat), 12);
+    test::verifyGolden("parallax_bricks", relief);
+    const auto cmp = test::compareImages(test::toTest(relief), test::toTest(flat), 12);
     QVERIFY2(cmp.differingShare > 0.10, cmp.summary().c_str());
     // Parallax moves what is seen, it does not darken the picture: the mean stays close.
     double a = 0, b = 0;
@@ -417,7 +413,7 @@ class TestMaterialRender : public QObject {
     r_.renderer().takeMaterialProblems();
     const hs::Image withParallax = r_.render(*demo, v);
     QVERIFY2(r_.renderer().takeMaterialProblems().empty(), "every texture of the samples draws");
-    golden("demo_detail_samples", withParallax, {40, 6, 0.01});
+    test::verifyGolden("demo_detail_samples", withParallax, {40, 6, 0.01});
     // Their tangents, and only theirs: 2 slabs x 4 vertices (the bunnies have no maps).
     size_t tangents = 0;
     for (const auto& a : r_.renderer().resourceRegistry())
@@ -426,7 +422,7 @@ class TestMaterialRender : public QObject {
     // The rock's relief is parallax's doing: without it, a visibly different picture.
     demo->materials.at(rock).heightScale = 0.0f;
     // (The slab covers about a sixth of the view.)
-    const auto cmp = test::compareImages(toTest(r_.render(*demo, v)), toTest(withParallax), 12);
+    const auto cmp = test::compareImages(test::toTest(r_.render(*demo, v)), test::toTest(withParallax), 12);
     QVERIFY2(cmp.differingShare > 0.015 && cmp.maxChannelDiff > 60, cmp.summary().c_str());
   }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "image_compare.h"
+#include "render_golden.h"
 #include "look_from.h"
 #include "mesh/mesh_import.h"
 #include "render/offscreen_renderer.h"
@@ -18,7 +19,6 @@ using hs::test::lookFrom;
 
 namespace {
 
-test::Rgba8Image toTest(const hs::Image& img) { return {img.width, img.height, img.rgba8}; }
 
 std::shared_ptr<const mesh::MeshData> bunnyMesh() {
   static std::shared_ptr<const mesh::MeshData> mesh = [] {
@@ -101,10 +101,6 @@ class TestRender : public QObject {
   Q_OBJECT
   render::OffscreenRenderer r_;
 
-  void golden(const std::string& name, const hs::Image& img, const test::GoldenTolerance& tol = {}) {
-    const std::string problem = test::checkGolden(HS_GOLDEN_DIR, HS_TEST_OUT_DIR, name, toTest(img), tol);
-    QVERIFY2(problem.empty(), problem.c_str());
-  }
 
  private slots:
   void initTestCase() {
@@ -136,7 +132,7 @@ class TestRender : public QObject {
     QCOMPARE(stats.trianglesDrawn - stats.terrainTriangles, size_t(3 * 69451));
     QCOMPARE(stats.instancesAtCoarserLod, size_t(0));
     QVERIFY(stats.terrainTriangles > 0);  // and the valley they stand in
-    golden(std::string("demo_") + QTest::currentDataTag(), img);
+    test::verifyGolden(std::string("demo_") + QTest::currentDataTag(), img);
 
     // With the default 1-pixel bound the distant bunnies draw coarser
     // levels, and the picture stays the full-resolution one up to edge pixels.
@@ -145,7 +141,7 @@ class TestRender : public QObject {
     const hs::Image lod = r_.render(*s, cameraView(*s, 640, 360), false, &lodStats);
     QVERIFY(lodStats.instancesAtCoarserLod > 0);
     QVERIFY(lodStats.trianglesDrawn < stats.trianglesDrawn);
-    const test::CompareResult cmp = test::compareImages(toTest(lod), toTest(img), 16);
+    const test::CompareResult cmp = test::compareImages(test::toTest(lod), test::toTest(img), 16);
     qInfo("demo at the 1-pixel LOD bound: %zu vs %zu mesh triangles, %s", lodStats.trianglesDrawn - lodStats.terrainTriangles,
           stats.trianglesDrawn - stats.terrainTriangles, cmp.summary().c_str());
     QVERIFY2(cmp.differingShare <= 0.01, cmp.summary().c_str());
@@ -157,11 +153,11 @@ class TestRender : public QObject {
     const auto atUtm = bunnyScene({500000.0, 4400000.0, 300.0});
     const hs::Image a = r_.render(atOrigin, cameraView(atOrigin, 480, 360));
     const hs::Image b = r_.render(atUtm, cameraView(atUtm, 480, 360));
-    const test::CompareResult cmp = test::compareImages(toTest(a), toTest(b), 2);
+    const test::CompareResult cmp = test::compareImages(test::toTest(a), test::toTest(b), 2);
     QVERIFY(cmp.sizeMatches);
     // Allow a grey level at a handful of edge pixels; no visible shift.
     QVERIFY2(cmp.maxChannelDiff <= 8 && cmp.differingShare <= 0.001, cmp.summary().c_str());
-    golden("bunny_origin", a);
+    test::verifyGolden("bunny_origin", a);
   }
 
   // The same with shadows on (docs/rendering.md "Shadows"): the sun's
@@ -184,14 +180,14 @@ class TestRender : public QObject {
     bool shadowPass = false;
     for (const render::PassStats& p : stats.passes) shadowPass |= p.name == "shadow_sun";
     QVERIFY(shadowPass);
-    const test::CompareResult cmp = test::compareImages(toTest(a), toTest(b), 2);
+    const test::CompareResult cmp = test::compareImages(test::toTest(a), test::toTest(b), 2);
     QVERIFY(cmp.sizeMatches);
     QVERIFY2(cmp.maxChannelDiff <= 8 && cmp.differingShare <= 0.001, cmp.summary().c_str());
     const hs::Image unshadowed = r_.render(bunnyScene({0, 0, 0}), cameraView(atOrigin, 480, 360));
-    const test::CompareResult self = test::compareImages(toTest(a), toTest(unshadowed), 2);
+    const test::CompareResult self = test::compareImages(test::toTest(a), test::toTest(unshadowed), 2);
     qInfo("shadows change %s", self.summary().c_str());
     QVERIFY(self.differingShare > 0.01);
-    golden("bunny_origin_shadows", a);
+    test::verifyGolden("bunny_origin_shadows", a);
   }
 
   // Without camera-relative maths the same scene would jitter: check that the
@@ -202,7 +198,7 @@ class TestRender : public QObject {
     atUtm.entities.at(atUtm.cameras().front()).transform.translation.x += 0.005;
     const hs::Image a = r_.render(atOrigin, cameraView(atOrigin, 480, 360));
     const hs::Image b = r_.render(atUtm, cameraView(atUtm, 480, 360));
-    const test::CompareResult cmp = test::compareImages(toTest(a), toTest(b), 2);
+    const test::CompareResult cmp = test::compareImages(test::toTest(a), test::toTest(b), 2);
     QVERIFY2(cmp.differingShare > 0.001, cmp.summary().c_str());
   }
 

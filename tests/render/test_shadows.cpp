@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "image_compare.h"
+#include "render_golden.h"
 #include "meshproc/closest_point_bvh.h"
 #include "render/offscreen_renderer.h"
 #include "render/shadow_cascades.h"
@@ -18,7 +19,6 @@ using namespace hs;
 
 namespace {
 
-test::Rgba8Image toTest(const hs::Image& img) { return {img.width, img.height, img.rgba8}; }
 
 render::RenderView cameraView(const scene::SceneState& s, int w, int h) {
   return render::viewFromCamera(s, s.cameras().front(), w, h);
@@ -80,10 +80,6 @@ class TestShadows : public QObject {
   Q_OBJECT
   render::OffscreenRenderer r_;
 
-  void golden(const std::string& name, const hs::Image& img, const test::GoldenTolerance& tol = {}) {
-    const std::string problem = test::checkGolden(HS_GOLDEN_DIR, HS_TEST_OUT_DIR, name, toTest(img), tol);
-    QVERIFY2(problem.empty(), problem.c_str());
-  }
 
  private slots:
   void initTestCase() {
@@ -136,7 +132,7 @@ class TestShadows : public QObject {
     sc.state.settings.tonemap = scene::Tonemap::Aces;
     render::FrameStats stats;
     const hs::Image img = r_.render(sc.state, cameraView(sc.state, 480, 320), false, &stats);
-    golden("shadows_sun", img);
+    test::verifyGolden("shadows_sun", img);
     bool ran = false;
     for (const render::PassStats& p : stats.passes) ran |= p.name == "shadow_sun";
     QVERIFY(ran);

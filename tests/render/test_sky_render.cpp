@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "image_compare.h"
+#include "render_golden.h"
 #include "look_from.h"
 #include "material_scenes.h"
 #include "mesh/primitives.h"
@@ -23,7 +24,6 @@ using namespace hs;
 
 namespace {
 
-test::Rgba8Image toTest(const hs::Image& img) { return {img.width, img.height, img.rgba8}; }
 
 glm::dvec3 hdrAt(const hs::Image& img, int x, int y) {
   const float* p = &img.rgbaF[(size_t(y) * size_t(img.width) + size_t(x)) * 4];
@@ -189,10 +189,6 @@ class TestSkyRender : public QObject {
   Q_OBJECT
   render::OffscreenRenderer r_;
 
-  void golden(const std::string& name, const hs::Image& img, const test::GoldenTolerance& tol = {}) {
-    const std::string problem = test::checkGolden(HS_GOLDEN_DIR, HS_TEST_OUT_DIR, name, toTest(img), tol);
-    QVERIFY2(problem.empty(), problem.c_str());
-  }
 
  private slots:
   void initTestCase() {
@@ -217,7 +213,7 @@ class TestSkyRender : public QObject {
     QVERIFY(checked > 500);
     // And the picture (ACES, as a user sees it).
     s.state.settings.tonemap = scene::Tonemap::Aces;
-    golden("sky_analytic_" + std::string(QTest::currentDataTag()), r_.render(s.state, s.view));
+    test::verifyGolden("sky_analytic_" + std::string(QTest::currentDataTag()), r_.render(s.state, s.view));
   }
 
   void skyFollowsTurbidity() {
@@ -295,7 +291,7 @@ class TestSkyRender : public QObject {
     const glm::dvec3 towards = sunTowards(35.0, 20.0);
     test::MaterialScene ms = iblSphere(m, towards, 2.0f);
     ms.state.settings.tonemap = scene::Tonemap::Aces;
-    golden("ibl_sphere_metal", r_.render(ms.state, ms.view));
+    test::verifyGolden("ibl_sphere_metal", r_.render(ms.state, ms.view));
     // Without the sky's light the lower half (no sun) is black; with it, it is not.
     test::MaterialScene dark = iblSphere(m, towards, 2.0f);
     dark.state.settings.sky = scene::SkyModel::Gradient;
@@ -307,8 +303,8 @@ class TestSkyRender : public QObject {
     test::MaterialScene mirror = iblSphere(m, towards, 0.0f);
     m.roughness = 0.9f;
     test::MaterialScene rough = iblSphere(m, towards, 0.0f);
-    const auto cmp = test::compareImages(toTest(r_.render(mirror.state, mirror.view)),
-                                         toTest(r_.render(rough.state, rough.view)), 6);
+    const auto cmp = test::compareImages(test::toTest(r_.render(mirror.state, mirror.view)),
+                                         test::toTest(r_.render(rough.state, rough.view)), 6);
     QVERIFY2(cmp.differingShare > 0.05, cmp.summary().c_str());
   }
 
@@ -374,7 +370,7 @@ class TestSkyRender : public QObject {
     {
       test::MaterialScene shown = ms;
       shown.state.settings.tonemap = scene::Tonemap::Aces;
-      golden("ssao_contact", r_.render(shown.state, shown.view));
+      test::verifyGolden("ssao_contact", r_.render(shown.state, shown.view));
     }
     int x = 0, y = 0;
     // The ground just beside the contact point (in front of the sphere,
