@@ -4,6 +4,8 @@
 // ambient light, so a pixel's linear value can be computed by hand.
 #include <glm/glm.hpp>
 
+#include <string>
+
 #include "look_from.h"
 #include "mesh/primitives.h"
 #include "render/render_view.h"
@@ -21,6 +23,32 @@ struct MaterialScene {
   render::RenderView view;
 };
 
+// `mesh` as asset 1 with `material` (id 1, named "NAME / material" unless
+// it has a name) in every slot, shown by entity 1 named `name` at the
+// origin, a root. Returns that entity, for the caller to place.
+inline scene::Entity& addMeshEntity(scene::SceneState& s, mesh::MeshData mesh, const scene::Material& material,
+                                    const std::string& name) {
+  scene::MeshAsset a;
+  a.id = 1;
+  a.name = name;
+  a.contentHash = mesh::contentHash(mesh);
+  a.data = std::make_shared<const mesh::MeshData>(std::move(mesh));
+  scene::Material m = material;
+  m.id = 1;
+  m.asset = a.id;
+  if (m.name.empty()) m.name = name + " / material";
+  a.materialSlots.assign(scene::materialSlotCount(*a.data), m.id);
+  s.materials.emplace(m.id, m);
+  s.assets.emplace(a.id, a);
+
+  scene::Entity e;
+  e.id = 1;
+  e.name = name;
+  e.mesh = scene::MeshInstance{a.id};
+  s.roots.push_back(e.id);
+  return s.entities.emplace(e.id, e).first->second;
+}
+
 // `mesh` at the origin with one document material per slot (the first is
 // `material`), a sun shining from the upper left front, the camera on -Y
 // looking at the origin from `distance` metres. Tone mapping, grid,
@@ -35,26 +63,8 @@ inline MaterialScene materialScene(mesh::MeshData mesh, const scene::Material& m
   s.settings.ambientIntensity = 0.0f;
   s.settings.skyZenith = s.settings.skyHorizon = s.settings.groundColor = glm::vec3(0.0f);
 
-  scene::MeshAsset a;
-  a.id = 1;
-  a.name = "Sample";
-  a.contentHash = mesh::contentHash(mesh);
-  a.data = std::make_shared<const mesh::MeshData>(std::move(mesh));
-  scene::Material m = material;
-  m.id = 1;
-  m.asset = a.id;
-  if (m.name.empty()) m.name = "Sample / material";
-  a.materialSlots.assign(scene::materialSlotCount(*a.data), m.id);
-  s.materials.emplace(m.id, m);
-  s.assets.emplace(a.id, a);
-  out.material = m.id;
-
-  scene::Entity e;
-  e.id = 1;
-  e.name = "Sample";
-  e.mesh = scene::MeshInstance{a.id};
-  s.entities.emplace(e.id, e);
-  s.roots.push_back(e.id);
+  const scene::Entity& e = addMeshEntity(s, std::move(mesh), material, "Sample");
+  out.material = s.assets.at(e.mesh->mesh).materialSlots.front();
 
   scene::Entity sun;
   sun.id = 2;

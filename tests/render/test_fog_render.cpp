@@ -11,6 +11,7 @@
 #include "image_compare.h"
 #include "render_golden.h"
 #include "look_from.h"
+#include "material_scenes.h"
 #include "mesh/primitives.h"
 #include "render/offscreen_renderer.h"
 #include "scene/mesh_materials.h"
@@ -41,30 +42,14 @@ FogScene fogScene(glm::dvec3 eye, glm::dvec3 target, bool wall = false) {
   s.settings.antialiasing = scene::Antialiasing::None;
   s.settings.fogColour = {0.5f, 0.6f, 0.7f};
   mesh::MeshData plane = mesh::gridPlane(2000.0f, 1);
-  scene::MeshAsset a;
-  a.id = 1;
-  a.name = "Floor";
-  a.contentHash = mesh::contentHash(plane);
-  a.data = std::make_shared<const mesh::MeshData>(std::move(plane));
   scene::Material m;
-  m.id = 1;
-  m.asset = a.id;
-  m.name = "Floor / material";
   m.baseColor = {0.2f, 0.3f, 0.1f};
   m.unlit = true;
   m.twoSided = true;
-  a.materialSlots.assign(scene::materialSlotCount(*a.data), m.id);
-  s.materials.emplace(m.id, m);
-  s.assets.emplace(a.id, a);
-  scene::Entity floor;
-  floor.id = 1;
-  floor.name = "Floor";
-  floor.mesh = scene::MeshInstance{a.id};
+  scene::Entity& floor = test::addMeshEntity(s, std::move(plane), m, "Floor");
   if (wall) {  // stood up: the plane y = 0, facing the eye on -Y
     floor.transform.rotation = scene::fromEulerDegrees({90, 0, 0});
   }
-  s.entities.emplace(floor.id, floor);
-  s.roots.push_back(floor.id);
   out.view.width = out.view.height = 96;
   out.view.fovY = glm::radians(50.0);
   out.view.eye = eye;

@@ -10,6 +10,7 @@
 #include "image_compare.h"
 #include "render_golden.h"
 #include "look_from.h"
+#include "material_scenes.h"
 #include "mesh/primitives.h"
 #include "render/offscreen_renderer.h"
 #include "scene/light_units.h"
@@ -45,26 +46,10 @@ FloorScene floorScene(const Light& light, glm::dvec3 at, glm::dvec3 euler = {0, 
   s.settings.ambientIntensity = 0.0f;
   s.settings.skyZenith = s.settings.skyHorizon = s.settings.groundColor = glm::vec3(0.0f);
   mesh::MeshData plane = mesh::gridPlane(40.0f, 1);
-  scene::MeshAsset a;
-  a.id = 1;
-  a.name = "Floor";
-  a.contentHash = mesh::contentHash(plane);
-  a.data = std::make_shared<const mesh::MeshData>(std::move(plane));
   scene::Material m;
-  m.id = 1;
-  m.asset = a.id;
-  m.name = "Floor / material";
   m.baseColor = glm::vec3(kAlbedo);
   m.model = scene::LightingModel::Lambert;
-  a.materialSlots.assign(scene::materialSlotCount(*a.data), m.id);
-  s.materials.emplace(m.id, m);
-  s.assets.emplace(a.id, a);
-  scene::Entity floor;
-  floor.id = 1;
-  floor.name = "Floor";
-  floor.mesh = scene::MeshInstance{a.id};
-  s.entities.emplace(floor.id, floor);
-  s.roots.push_back(floor.id);
+  test::addMeshEntity(s, std::move(plane), m, "Floor");
   scene::Entity l;
   l.id = 2;
   l.name = "Lamp";
