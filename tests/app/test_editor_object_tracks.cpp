@@ -1,13 +1,22 @@
-// Material and settings fields on the timeline under Xvfb, driven the way a
-// user drives them: the key buttons beside the Materials panel's and the
-// Scene Settings dock's fields (a click keys, an edit of an animated field
-// keys in its own undo step, the panel shows the value at the playhead),
-// and the dope sheet's rows for those tracks.
+// Material and settings fields on the timeline, and the Lights dock, under
+// Xvfb, driven the way a user drives them: the key buttons beside the
+// Materials panel's and the Scene Settings dock's fields (a click keys, an
+// edit of an animated field keys in its own undo step, the panel shows the
+// value at the playhead), the dope sheet's rows for those tracks, and the
+// Lights dock (every light with its fields and intensity unit, an edit,
+// add and delete with undo, selection shared with the outliner).
+#include <QItemSelectionModel>
+#include <QTableWidget>
 #include <QTest>
+#include <QToolButton>
+#include <QTreeView>
 
 #include "app/field_editors.h"
+#include "app/lights_panel.h"
 #include "app/main_window.h"
 #include "app/materials_panel.h"
+#include "app/outliner_model.h"
+#include "app/outliner_panel.h"
 #include "app/selection.h"
 #include "app/settings_panel.h"
 #include "app/timeline_clock.h"
@@ -119,6 +128,71 @@ class ObjectTracksTest : public QObject {
     doc().undoStack()->undo();
     doc().undoStack()->undo();
     QVERIFY(!doc().state().sequence.findBinding(target));
+  }
+
+  void lightsDockListsEditsAddsAndDeletes() {
+    app::LightsPanel* panel = w_->lightsPanel();
+    QVERIFY(panel);
+    // Every light of the scene, in the document's order.
+    std::vector<scene::EntityId> expected;
+    for (scene::EntityId id : doc().state().depthFirstOrder())
+      if (doc().state().find(id)->light) expected.push_back(id);
+    QVERIFY(expected.size() >= 2);
+    QCOMPARE(panel->lights(), expected);
+    QCOMPARE(panel->table()->rowCount(), int(expected.size()));
+    // One column per field of the light component, after the name.
+    QCOMPARE(panel->table()->columnCount(), int(scene::findComponent("light")->fields.size()) + 1);
+    // Intensity in lux for a sun, lumens for the others.
+    for (scene::EntityId id : expected) {
+      const bool sun = doc().state().find(id)->light->type == scene::Light::Type::Sun;
+      QCOMPARE(panel->intensityUnit(id), QString(sun ? "lx" : "lm"));
+      auto* spin = panel->editorFor(id, "intensity")->findChild<app::ScrubSpinBox*>();
+      QVERIFY(spin);
+      QVERIFY2(spin->suffix().contains(sun ? "lx" : "lm"), qPrintable(spin->suffix()));
+      QCOMPARE(panel->editorFor(id, "outer_cone_deg")->isEnabled(),
+               doc().state().find(id)->light->type == scene::Light::Type::Spot);
+    }
+
+    // An edit in the table: one undo step, the document's value.
+    const scene::EntityId first = expected.front();
+    auto* range = panel->editorFor(expected.back(), "range")->findChild<app::ScrubSpinBox*>();
+    const float before = doc().state().find(expected.back())->light->range;
+    const int steps = doc().undoStack()->index();
+    range->setValue(double(before) + 7.0);
+    emit range->editingFinished();
+    QCOMPARE(doc().undoStack()->index(), steps + 1);
+    QCOMPARE(doc().state().find(expected.back())->light->range, before + 7.0f);
+    doc().undoStack()->undo();
+    QCOMPARE(doc().state().find(expected.back())->light->range, before);
+
+    // Selecting a row selects the light in the editor (the outliner follows).
+    panel->table()->selectRow(0);
+    QCOMPARE(w_->selection().ids(), std::vector<scene::EntityId>{first});
+    auto* outliner = w_->outliner()->view();
+    auto* model = static_cast<app::OutlinerModel*>(outliner->model());
+    QVERIFY(outliner->selectionModel()->isSelected(model->indexOf(first)));
+    // And the other way round.
+    w_->selection().select(expected.back());
+    const auto rows = panel->table()->selectionModel()->selectedRows();
+    QCOMPARE(rows.size(), 1);
+    QCOMPARE(rows.front().row(), int(expected.size()) - 1);
+
+    // Add a spot light: a new row, undoable.
+    QTest::mouseClick(panel->addButton(scene::Light::Type::Spot), Qt::LeftButton);
+    QCOMPARE(panel->lights().size(), expected.size() + 1);
+    const scene::EntityId spot = w_->selection().primary();
+    QVERIFY(doc().state().find(spot)->light);
+    QCOMPARE(doc().state().find(spot)->light->type, scene::Light::Type::Spot);
+    QVERIFY(std::find(panel->lights().begin(), panel->lights().end(), spot) != panel->lights().end());
+    // Delete it (it is selected), then undo both ways.
+    QTest::mouseClick(panel->deleteButton(), Qt::LeftButton);
+    QVERIFY(!doc().state().find(spot));
+    QCOMPARE(panel->lights(), expected);
+    doc().undoStack()->undo();
+    QVERIFY(doc().state().find(spot));
+    QCOMPARE(panel->lights().size(), expected.size() + 1);
+    doc().undoStack()->undo();
+    QCOMPARE(panel->lights(), expected);
   }
 
   void cleanupTestCase() { w_.reset(); }
