@@ -32,6 +32,7 @@
 #include "app/property_panel.h"
 #include "app/recent_files.h"
 #include "app/selection.h"
+#include "app/lights_panel.h"
 #include "app/materials_panel.h"
 #include "app/settings_panel.h"
 #include "app/status_bar.h"
@@ -151,6 +152,15 @@ void MainWindow::createDocks() {
   QDockWidget* materialsDock = dock("Materials", "materialsDock", materials_, Qt::RightDockWidgetArea);
   tabifyDockWidget(settingsDock, materialsDock);
   connect(materials_, &MaterialsPanel::problem, this, [this](const QString& m) { messages_->add(MessageLevel::Warning, m); });
+  // Lights: every light in one table, a tab beside them as well.
+  lights_ = new LightsPanel(doc_, *selection_, this);
+  tabifyDockWidget(settingsDock, dock("Lights", "lightsDock", lights_, Qt::RightDockWidgetArea));
+  connect(lights_, &LightsPanel::problem, this, [this](const QString& m) { messages_->warning(m); });
+  connect(lights_, &LightsPanel::addRequested, this, [this](scene::Light::Type type) {
+    createEntity(type == scene::Light::Type::Sun     ? Create::Sun
+                 : type == scene::Light::Type::Point ? Create::PointLight
+                                                     : Create::SpotLight);
+  });
   connect(properties_, &PropertyPanel::problem, this, [this](const QString& m) { messages_->warning(m); });
   properties_->setMaterialsHook([this, materialsDock](scene::AssetId asset) {
     const scene::MeshAsset* a = doc_.state().findAsset(asset);

@@ -45,6 +45,7 @@ class PropertyPanel;
 class Selection;
 class SettingsPanel;
 class MaterialsPanel;
+class LightsPanel;
 class StatusBarInfo;
 class ViewportWidget;
 
@@ -61,6 +62,7 @@ class MainWindow : public QMainWindow {
   PropertyPanel* properties() const { return properties_; }
   SettingsPanel* sceneSettings() const { return settings_; }
   MaterialsPanel* materialsPanel() const { return materials_; }
+  LightsPanel* lightsPanel() const { return lights_; }
   MessagePanel* messages() const { return messages_; }
   Autosave* autosave() const { return autosave_; }
   // The timeline side (main_window_timeline.cpp).
@@ -183,6 +185,7 @@ class MainWindow : public QMainWindow {
   PropertyPanel* properties_ = nullptr;
   SettingsPanel* settings_ = nullptr;
   MaterialsPanel* materials_ = nullptr;
+  LightsPanel* lights_ = nullptr;
   MessagePanel* messages_ = nullptr;
   StatusBarInfo* statusInfo_ = nullptr;
   Autosave* autosave_ = nullptr;

@@ -15,11 +15,14 @@
 
 #include "app/camera_path_panel.h"
 #include "app/export_dialog.h"
+#include "app/lights_panel.h"
 #include "app/main_window.h"
+#include "app/materials_panel.h"
 #include "app/message_panel.h"
 #include "app/path_editor.h"
 #include "app/property_panel.h"
 #include "app/selection.h"
+#include "app/settings_panel.h"
 #include "app/stereo_preview.h"
 #include "app/timeline_clock.h"
 #include "app/timeline_keying.h"
@@ -53,6 +56,14 @@ void MainWindow::createTimeline() {
     keying_->afterEdit(ids, {path}, key);
   });
   connect(clock_, &TimelineClock::frameChanged, properties_, &PropertyPanel::refreshValues);
+  // The same for material fields and the scene settings (scene/object_tracks.h).
+  materials_->enableKeying(*keying_, *clock_);
+  settings_->enableKeying(*keying_, *clock_);
+  lights_->setStateSource([this]() -> const scene::SceneState& { return clock_->state(); });
+  lights_->setEditedHook([this](scene::EntityId id, const std::string& path, const QString& key) {
+    keying_->afterEdit({id}, {path}, key);
+  });
+  connect(clock_, &TimelineClock::stateChanged, lights_, &LightsPanel::refreshValues);
   connect(viewport_, &ViewportWidget::transformsEdited, keying_,
           [this](const std::vector<scene::EntityId>& ids, const std::vector<std::string>& fields, const QString& key) {
             keying_->afterEdit(ids, fields, key);

@@ -1,6 +1,7 @@
 #include "app/materials_panel.h"
 
 #include <QComboBox>
+#include <QHBoxLayout>
 #include <QFormLayout>
 #include <QImage>
 #include <QLabel>
@@ -11,7 +12,10 @@
 #include "app/field_editors.h"
 #include "app/form_widgets.h"
 #include "app/material_preview.h"
+#include "app/timeline_clock.h"
+#include "app/timeline_keying.h"
 #include "scene/material_ops.h"
+#include "scene/object_tracks.h"
 
 namespace hs::app {
 
@@ -62,7 +66,7 @@ MaterialsPanel::MaterialsPanel(scene::Document& doc, QWidget* parent)
     FieldEditor* ed = createFieldEditor(specOf(f, "material." + f.key), form_);
     ed->setOnEdited([this, field](const scene::FieldValue& value, int component, const QString& key) {
       scene::FieldValue v = value;
-      const scene::Material* m = doc_.state().findMaterial(current_);
+      const scene::Material* m = shown().findMaterial(current_);
       if (!m) return;
       if (component >= 0) {
         glm::dvec3 now = std::get<glm::dvec3>(field->get(*m));
@@ -71,9 +75,15 @@ MaterialsPanel::MaterialsPanel(scene::Document& doc, QWidget* parent)
       }
       apply(*field, v, key);
     });
-    form->addRow(label, ed);
+    auto* row = new QWidget(form_);
+    auto* h = new QHBoxLayout(row);
+    h->setContentsMargins(0, 0, 0, 0);
+    h->setSpacing(2);
+    h->addWidget(ed, 1);
+    form->addRow(label, row);
     rows_.emplace_back(field, ed);
     byKey_[f.key] = ed;
+    rowOf_[f.key] = row;
   }
   layout->addWidget(form_);
   layout->addStretch(1);
@@ -111,6 +121,31 @@ QComboBox* MaterialsPanel::textureChooser(const std::string& key) const {
   return it == textures_.end() ? nullptr : it->second;
 }
 
+void MaterialsPanel::enableKeying(Keying& keying, TimelineClock& clock) {
+  keying_ = &keying;
+  clock_ = &clock;
+  for (const auto& [key, row] : rowOf_) {
+    const std::string path = std::string(scene::kMaterialTrackPrefix) + key;
+    std::string error;
+    if (!scene::animationTarget(path, error)) continue;  // enums, names: not animatable
+    auto* button = new KeyButton(
+        keying, [this] { return std::vector<uint64_t>{scene::materialTarget(current_)}; }, clock, path, row);
+    row->layout()->addWidget(button);
+    keyButtons_[key] = button;
+  }
+  connect(&clock, &TimelineClock::stateChanged, this, [this] {
+    if (!updating_) refreshValues();
+  });
+  refreshValues();
+}
+
+KeyButton* MaterialsPanel::keyButtonFor(const std::string& key) const {
+  auto it = keyButtons_.find(key);
+  return it == keyButtons_.end() ? nullptr : it->second;
+}
+
+const scene::SceneState& MaterialsPanel::shown() const { return clock_ ? clock_->state() : doc_.state(); }
+
 void MaterialsPanel::select(scene::MaterialId id) {
   if (!doc_.state().findMaterial(id)) return;
   current_ = id;
@@ -119,7 +154,9 @@ void MaterialsPanel::select(scene::MaterialId id) {
 
 void MaterialsPanel::apply(const scene::MaterialField& field, const scene::FieldValue& value, const QString& mergeKey) {
   std::string error;
-  if (!scene::ops::setMaterialField(doc_, current_, field, value, error, mergeKey) && !error.empty()) {
+  // With keying on every edit has a merge key, so a key it sets joins its step.
+  const QString key = mergeKey.isEmpty() && keying_ ? QString("material-%1").arg(++editCounter_) : mergeKey;
+  if (!scene::ops::setMaterialField(doc_, current_, field, value, error, key) && !error.empty()) {
     error_->setText(QString::fromStdString(error));
     error_->show();
     emit problem(QString::fromStdString(error));
@@ -127,9 +164,13 @@ void MaterialsPanel::apply(const scene::MaterialField& field, const scene::Field
     return;
   }
   error_->hide();
+  // An animated field keeps the edit as a key at this frame (else its track
+  // would put the old value back at once); with Auto Key, any field.
+  if (keying_) keying_->afterEdit({scene::materialTarget(current_)}, {std::string(scene::kMaterialTrackPrefix) + field.key}, key);
 }
 
 void MaterialsPanel::rebuildList() {
+  previewed_.reset();  // a document change (a texture, say) may change the look: render again
   updating_ = true;
   const scene::SceneState& s = doc_.state();
   if (!s.findMaterial(current_)) current_ = s.materials.empty() ? scene::kNoMaterial : s.materials.begin()->first;
@@ -149,7 +190,7 @@ void MaterialsPanel::rebuildList() {
 }
 
 void MaterialsPanel::refreshValues() {
-  const scene::Material* m = doc_.state().findMaterial(current_);
+  const scene::Material* m = shown().findMaterial(current_);
   form_->setEnabled(m != nullptr);
   if (!m) {
     preview_->clear();
@@ -163,11 +204,18 @@ void MaterialsPanel::refreshValues() {
     combo->setCurrentIndex(std::max(0, combo->findData(QVariant::fromValue<qlonglong>(id))));
   }
   updating_ = false;
+  for (const auto& [key, button] : keyButtons_) button->refresh();  // the material shown may have changed
   requestPreview();
 }
 
 void MaterialsPanel::requestPreview() {
-  if (const scene::Material* m = doc_.state().findMaterial(current_)) renderer_->request(doc_.state(), *m);
+  // Playback changes the shown state every frame; the sphere is rendered
+  // again only when the material itself looks different.
+  const scene::SceneState& s = shown();
+  const scene::Material* m = s.findMaterial(current_);
+  if (!m || (previewed_ && *previewed_ == *m)) return;
+  previewed_ = *m;
+  renderer_->request(s, *m);
 }
 
 }  // namespace hs::app

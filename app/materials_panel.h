@@ -6,6 +6,7 @@
 // scene::ops::setMaterialField (undoable, one step per gesture); a refused
 // value shows the message that names the material and the field.
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,13 +22,24 @@ class QListWidget;
 namespace hs::app {
 
 class FieldEditor;
+class KeyButton;
+class Keying;
 class MaterialPreview;
+class TimelineClock;
 
 class MaterialsPanel : public QWidget {
   Q_OBJECT
  public:
   explicit MaterialsPanel(scene::Document& doc, QWidget* parent = nullptr);
   ~MaterialsPanel() override;
+
+  // Key buttons beside each animatable field (they key the material shown
+  // at the timeline's frame), values shown at that frame, and edits of
+  // animated fields keyed in the same undo step: the Properties dock's
+  // behaviour for entity fields (scene/object_tracks.h).
+  void enableKeying(Keying& keying, TimelineClock& clock);
+  // The key button of field `key` ("roughness"); null before enableKeying.
+  KeyButton* keyButtonFor(const std::string& key) const;
 
   // Shows material `id` (the list follows).
   void select(scene::MaterialId id);
@@ -47,6 +59,8 @@ class MaterialsPanel : public QWidget {
   void refreshValues();
   void requestPreview();
   void apply(const scene::MaterialField& field, const scene::FieldValue& value, const QString& mergeKey);
+  // What the fields show: the scene at the timeline's frame once keying is on.
+  const scene::SceneState& shown() const;
 
   scene::Document& doc_;
   scene::MaterialId current_ = scene::kNoMaterial;
@@ -56,6 +70,12 @@ class MaterialsPanel : public QWidget {
   QWidget* form_ = nullptr;
   std::vector<std::pair<const scene::MaterialField*, FieldEditor*>> rows_;
   std::map<std::string, FieldEditor*> byKey_;
+  std::map<std::string, QWidget*> rowOf_;  // the editor's row, where a key button goes
+  std::map<std::string, KeyButton*> keyButtons_;
+  Keying* keying_ = nullptr;
+  TimelineClock* clock_ = nullptr;
+  int editCounter_ = 0;
+  std::optional<scene::Material> previewed_;  // what the preview last rendered
   std::map<std::string, QComboBox*> textures_;
   MaterialPreview* renderer_ = nullptr;
   QImage* lastImage_ = nullptr;

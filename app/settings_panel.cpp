@@ -1,12 +1,16 @@
 #include "app/settings_panel.h"
 
 #include <QFormLayout>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QScrollArea>
 #include <QVBoxLayout>
 
 #include "app/field_editors.h"
 #include "app/form_widgets.h"
+#include "app/timeline_clock.h"
+#include "app/timeline_keying.h"
+#include "scene/object_tracks.h"
 #include "scene/operations.h"
 
 namespace hs::app {
@@ -22,20 +26,30 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
   for (const auto& f : scene::settingsFields()) {
     FieldEditor* ed = createFieldEditor(specOf(f, "settings." + f.key), content);
     const scene::SettingsField* field = &f;
-    ed->setOnEdited([this, field](const scene::FieldValue& value, int component, const QString& key) {
+    ed->setOnEdited([this, field](const scene::FieldValue& value, int component, const QString& mergeKey) {
       scene::FieldValue v = value;
       if (component >= 0) {
-        glm::dvec3 current = std::get<glm::dvec3>(field->get(doc_.state().settings));
+        glm::dvec3 current = std::get<glm::dvec3>(field->get(shown().settings));
         current[component] = std::get<glm::dvec3>(value)[component];
         v = current;
       }
+      // With keying on every edit has a merge key, so a key it sets joins its step.
+      const QString key = mergeKey.isEmpty() && keying_ ? QString("settings-%1").arg(++editCounter_) : mergeKey;
       scene::ops::setSettingsField(doc_, *field, v, key);
+      // An animated field keeps the edit as a key at this frame; with Auto Key, any field.
+      if (keying_) keying_->afterEdit({scene::settingsTarget()}, {std::string(scene::kSettingsTrackPrefix) + field->key}, key);
     });
     auto* label = new QLabel(QString::fromStdString(f.label), content);
     label->setStyleSheet("QLabel { color: #a9aaae; }");
-    form->addRow(label, ed);
+    auto* row = new QWidget(content);
+    auto* h = new QHBoxLayout(row);
+    h->setContentsMargins(0, 0, 0, 0);
+    h->setSpacing(2);
+    h->addWidget(ed, 1);
+    form->addRow(label, row);
     rows_.emplace_back(field, ed);
     byKey_[f.key] = ed;
+    rowOf_[f.key] = row;
   }
   putInScrollArea(this, content);
   connect(&doc_, &scene::Document::changed, this, [this](const scene::ChangeSet& c) {
@@ -49,8 +63,31 @@ FieldEditor* SettingsPanel::editorFor(const std::string& key) const {
   return it == byKey_.end() ? nullptr : it->second;
 }
 
+void SettingsPanel::enableKeying(Keying& keying, TimelineClock& clock) {
+  keying_ = &keying;
+  clock_ = &clock;
+  for (const auto& [key, row] : rowOf_) {
+    const std::string path = std::string(scene::kSettingsTrackPrefix) + key;
+    std::string error;
+    if (!scene::animationTarget(path, error)) continue;  // choices and on/off lists: not animatable
+    auto* button = new KeyButton(
+        keying, [] { return std::vector<uint64_t>{scene::settingsTarget()}; }, clock, path, row);
+    row->layout()->addWidget(button);
+    keyButtons_[key] = button;
+  }
+  connect(&clock, &TimelineClock::stateChanged, this, &SettingsPanel::refresh);
+  refresh();
+}
+
+KeyButton* SettingsPanel::keyButtonFor(const std::string& key) const {
+  auto it = keyButtons_.find(key);
+  return it == keyButtons_.end() ? nullptr : it->second;
+}
+
+const scene::SceneState& SettingsPanel::shown() const { return clock_ ? clock_->state() : doc_.state(); }
+
 void SettingsPanel::refresh() {
-  for (const auto& [field, editor] : rows_) editor->setValue(field->get(doc_.state().settings));
+  for (const auto& [field, editor] : rows_) editor->setValue(field->get(shown().settings));
 }
 
 }  // namespace hs::app

@@ -14,19 +14,34 @@
 namespace hs::app {
 
 class FieldEditor;
+class KeyButton;
+class Keying;
+class TimelineClock;
 
 class SettingsPanel : public QWidget {
   Q_OBJECT
  public:
   explicit SettingsPanel(scene::Document& doc, QWidget* parent = nullptr);
   FieldEditor* editorFor(const std::string& key) const;
+  // Key buttons beside each animatable field, values shown at the
+  // timeline's frame, and edits of animated fields keyed in the same undo
+  // step, as the Properties dock does for entities (scene/object_tracks.h).
+  void enableKeying(Keying& keying, TimelineClock& clock);
+  // The key button of field `key` ("fog_density"); null before enableKeying.
+  KeyButton* keyButtonFor(const std::string& key) const;
 
  private:
   void refresh();
+  const scene::SceneState& shown() const;
 
   scene::Document& doc_;
   std::vector<std::pair<const scene::SettingsField*, FieldEditor*>> rows_;
   std::map<std::string, FieldEditor*> byKey_;
+  std::map<std::string, QWidget*> rowOf_;  // the editor's row, where a key button goes
+  std::map<std::string, KeyButton*> keyButtons_;
+  Keying* keying_ = nullptr;
+  TimelineClock* clock_ = nullptr;
+  int editCounter_ = 0;
 };
 
 }  // namespace hs::app

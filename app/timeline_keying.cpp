@@ -1,6 +1,7 @@
 #include "app/timeline_keying.h"
 
 #include "app/selection.h"
+#include "scene/object_tracks.h"
 
 namespace hs::app {
 
@@ -11,6 +12,15 @@ bool pathDriven(const sequencer::Sequence& seq, scene::EntityId id, const std::s
   return b && b->path && (property == "transform.translation" || property == "transform.rotation");
 }
 
+// The value a key takes now: an entity's field, or a material's or the
+// settings' (object_tracks.h), as the timeline shows them at this frame.
+std::optional<sequencer::PropertyValue> shownValue(const scene::SceneState& shown, uint64_t id,
+                                                   const scene::AnimTarget& target) {
+  if (!sequencer::isEntityTarget(id)) return scene::currentObjectValue(shown, id, target.property);
+  const scene::Entity* e = shown.find(id);
+  return e ? scene::currentKeyValue(*e, target) : std::nullopt;
+}
+
 }  // namespace
 
 Keying::Keying(scene::Document& doc, TimelineClock& clock, QObject* parent)
@@ -19,7 +29,8 @@ Keying::Keying(scene::Document& doc, TimelineClock& clock, QObject* parent)
 bool Keying::keyable(scene::EntityId id, const std::string& fieldPath) const {
   std::string error;
   const auto target = scene::animationTarget(fieldPath, error);
-  return target && doc_.state().find(id) && !pathDriven(doc_.state().sequence, id, target->property);
+  return target && scene::targetExists(doc_.state(), id) && scene::propertyFitsTarget(id, target->property) &&
+         !pathDriven(doc_.state().sequence, id, target->property);
 }
 
 Keying::KeyState Keying::state(scene::EntityId id, const std::string& fieldPath) const {
@@ -36,9 +47,8 @@ bool Keying::keyField(const std::vector<scene::EntityId>& ids, const std::string
   const scene::SceneState& shown = clock_.state();
   std::vector<scene::ops::KeyToSet> keys;
   for (scene::EntityId id : ids) {
-    const scene::Entity* e = shown.find(id);
-    if (!e || !keyable(id, fieldPath)) continue;
-    if (auto v = scene::currentKeyValue(*e, *target)) keys.push_back({id, *target, *v});
+    if (!keyable(id, fieldPath)) continue;
+    if (auto v = shownValue(shown, id, *target)) keys.push_back({id, *target, *v});
   }
   return scene::ops::setKeys(doc_, keys, clock_.time(), std::nullopt,
                              QString("Key %1").arg(QString::fromStdString(fieldPath)));
@@ -65,32 +75,36 @@ void Keying::afterEdit(const std::vector<scene::EntityId>& ids, const std::vecto
     const auto target = scene::animationTarget(path, error);
     if (!target) continue;
     for (scene::EntityId id : ids) {
-      const scene::Entity* e = s.find(id);
-      if (!e || !keyable(id, path)) continue;
+      if (!keyable(id, path)) continue;
       if (!clock_.autoKey() && !scene::isAnimated(s.sequence, id, target->property)) continue;
-      if (auto v = scene::currentKeyValue(*e, *target)) keys.push_back({id, *target, *v});
+      if (auto v = shownValue(s, id, *target)) keys.push_back({id, *target, *v});
     }
   }
   if (!keys.empty()) scene::ops::setKeys(doc_, keys, clock_.time(), std::nullopt, "Auto key", mergeKey);
 }
 
 KeyButton::KeyButton(Keying& keying, Selection& selection, TimelineClock& clock, std::string fieldPath, QWidget* parent)
-    : QToolButton(parent), keying_(keying), selection_(selection), path_(std::move(fieldPath)) {
+    : KeyButton(keying, [&selection] { return selection.ids(); }, clock, std::move(fieldPath), parent) {}
+
+KeyButton::KeyButton(Keying& keying, TargetsFn targets, TimelineClock& clock, std::string fieldPath, QWidget* parent)
+    : QToolButton(parent), keying_(keying), targets_(std::move(targets)), path_(std::move(fieldPath)) {
   setObjectName("key_" + QString::fromStdString(path_));
   setAutoRaise(true);
   setFixedWidth(22);
   setFocusPolicy(Qt::NoFocus);
   connect(this, &QToolButton::clicked, this, [this] {
-    if (state_ == Keying::KeyState::KeyHere) keying_.removeKeyHere(selection_.ids(), path_);
-    else keying_.keyField(selection_.ids(), path_);
+    if (state_ == Keying::KeyState::KeyHere) keying_.removeKeyHere(targets_(), path_);
+    else keying_.keyField(targets_(), path_);
   });
   connect(&clock, &TimelineClock::stateChanged, this, &KeyButton::refresh);
   refresh();
 }
 
 void KeyButton::refresh() {
-  state_ = keying_.state(selection_.primary(), path_);
-  const bool can = keying_.keyable(selection_.primary(), path_);
+  const std::vector<uint64_t> targets = targets_();
+  const uint64_t primary = targets.empty() ? scene::kNoEntity : targets.back();  // as Selection::primary
+  state_ = keying_.state(primary, path_);
+  const bool can = keying_.keyable(primary, path_);
   setEnabled(can);
   switch (state_) {
     case Keying::KeyState::NotAnimated:
@@ -109,7 +123,8 @@ void KeyButton::refresh() {
       setToolTip("Keyed at this frame: click to remove the key");
       break;
   }
-  if (!can) setToolTip("Driven by the camera path (edit the path's keys in the timeline)");
+  if (!can && primary != scene::kNoEntity && sequencer::isEntityTarget(primary))
+    setToolTip("Driven by the camera path (edit the path's keys in the timeline)");
 }
 
 }  // namespace hs::app

@@ -5,6 +5,7 @@
 // frame (otherwise the animation would override the edit at once); with
 // Auto Key on, every animatable edit does. The key joins the edit's undo
 // step (the same merge key), so one Ctrl+Z takes both back.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,9 @@ class Keying : public QObject {
 
   enum class KeyState { NotAnimated, Animated, KeyHere };
   // The state of `fieldPath` ("transform.rotation_deg" counts as the
-  // rotation track) of the entity at the current frame.
+  // rotation track) of the entity at the current frame. Here and below an
+  // id may also be a material's or the settings' binding target
+  // (scene/object_tracks.h) with a "material.*" / "settings.*" path.
   KeyState state(scene::EntityId id, const std::string& fieldPath) const;
   // Path-driven translation and rotation are not keyed: the path decides them.
   bool keyable(scene::EntityId id, const std::string& fieldPath) const;
@@ -53,14 +56,20 @@ class Keying : public QObject {
 class KeyButton : public QToolButton {
   Q_OBJECT
  public:
+  // What a click keys: the selected entities, or (the Materials panel, the
+  // Scene Settings dock) a material or the settings as binding targets
+  // (scene/object_tracks.h); the last one (the primary) decides what the button shows.
+  using TargetsFn = std::function<std::vector<uint64_t>()>;
   KeyButton(Keying& keying, Selection& selection, TimelineClock& clock, std::string fieldPath,
+            QWidget* parent = nullptr);
+  KeyButton(Keying& keying, TargetsFn targets, TimelineClock& clock, std::string fieldPath,
             QWidget* parent = nullptr);
   void refresh();
   Keying::KeyState keyState() const { return state_; }
 
  private:
   Keying& keying_;
-  Selection& selection_;
+  TargetsFn targets_;
   std::string path_;
   Keying::KeyState state_ = Keying::KeyState::NotAnimated;
 };

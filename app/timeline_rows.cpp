@@ -1,6 +1,7 @@
 #include "app/timeline_rows.h"
 
 #include "scene/fields.h"
+#include "scene/object_tracks.h"
 
 namespace hs::app {
 
@@ -8,15 +9,18 @@ QString propertyLabel(const std::string& property) {
   if (property == "transform.rotation") return "Rotation";
   if (property == sequencer::kPathProgress) return "Path progress";
   if (const scene::EntityField* f = scene::findEntityField(property)) return QString::fromStdString(f->label);
+  if (const scene::MaterialField* f = scene::findMaterialTrackField(property)) return QString::fromStdString(f->label);
+  if (const scene::SettingsField* f = scene::findSettingsTrackField(property)) return QString::fromStdString(f->label);
   return QString::fromStdString(property);
 }
 
 std::vector<TimelineRow> timelineRows(const scene::SceneState& state, const std::set<scene::EntityId>& collapsed) {
   std::vector<TimelineRow> rows;
   for (const sequencer::Binding& b : state.sequence.bindings) {
-    const scene::Entity* e = state.find(b.entity);
-    QString name = QString::fromStdString(e ? e->name : b.label);
-    if (!e) name += " (missing)";
+    // An entity's name, a material's (object_tracks.h), or "Settings".
+    const std::string now = scene::targetLabel(state, b.entity);
+    QString name = QString::fromStdString(now.empty() ? b.label : now);
+    if (now.empty()) name += " (missing)";
     rows.push_back({b.entity, {}, name});
     if (collapsed.count(b.entity)) continue;
     for (const std::string& p : sequencer::trackProperties(b)) rows.push_back({b.entity, p, propertyLabel(p)});

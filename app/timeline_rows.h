@@ -1,5 +1,6 @@
 #pragma once
-// The rows of the timeline: one per animated entity (its keys summarised),
+// The rows of the timeline: one per animated entity, material (under its
+// name) and the settings ("Settings") (its keys summarised),
 // and under it, unless collapsed, one per track ("Location", "Rotation",
 // "Interaxial", "Path progress"), in the order the sequence holds them.
 #include <set>

@@ -9,6 +9,7 @@
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
 #include "scene/mesh_report_text.h"
+#include "scene/object_tracks.h"
 #include "scene/scene_json.h"
 #include "scene/world_bounds.h"
 #include "sequencer/key_edit.h"
@@ -58,8 +59,24 @@ size_t trackCount(const sequencer::Sequence& q) {
 }
 
 std::string entityName(const scene::SceneState& s, const sequencer::Binding& b) {
-  const scene::Entity* e = s.find(b.entity);
-  return e ? e->name : b.label + " [missing]";
+  const std::string name = scene::targetLabel(s, b.entity);
+  return name.empty() ? b.label + " [missing]" : name;
+}
+
+// Which object a binding animates, under the keys a reader of the JSON
+// looks for: entity_id/entity, material_id/material, or settings.
+void targetJson(const scene::SceneState& s, const sequencer::Binding& b, Json& t) {
+  switch (sequencer::targetKind(b.entity)) {
+    case sequencer::TargetKind::Entity:
+      t["entity_id"] = b.entity;
+      t["entity"] = entityName(s, b);
+      break;
+    case sequencer::TargetKind::Material:
+      t["material_id"] = sequencer::targetMaterial(b.entity);
+      t["material"] = entityName(s, b);
+      break;
+    case sequencer::TargetKind::Settings: t["settings"] = true; break;
+  }
 }
 
 Json sequenceJson(const scene::SceneState& s) {
@@ -77,8 +94,7 @@ Json tracksJson(const scene::SceneState& s) {
   Json out = Json::array();
   for (const sequencer::Binding& b : s.sequence.bindings) {
     auto add = [&](const std::string& property, const std::vector<double>& times, Json t) {
-      t["entity_id"] = b.entity;
-      t["entity"] = entityName(s, b);
+      targetJson(s, b, t);
       t["property"] = property;
       t["keys"] = times.size();
       if (!times.empty()) {
@@ -109,7 +125,10 @@ void printTracks(const scene::SceneState& s) {
               static_cast<long long>(q.endFrame), double(q.endFrame - q.startFrame + 1) / q.rate.fps());
   for (const Json& t : tracksJson(s)) {
     const size_t keys = t.at("keys").get<size_t>();
-    std::printf("  %s  %s: %zu key%s", t.at("entity").get<std::string>().c_str(),
+    const std::string who = t.contains("entity")     ? t.at("entity").get<std::string>()
+                            : t.contains("material") ? "material '" + t.at("material").get<std::string>() + "'"
+                                                     : std::string("settings");
+    std::printf("  %s  %s: %zu key%s", who.c_str(),
                 t.at("property").get<std::string>().c_str(), keys, keys == 1 ? "" : "s");
     if (t.contains("first_key_s"))
       std::printf(" (%.3f..%.3f s)", t.at("first_key_s").get<double>(), t.at("last_key_s").get<double>());

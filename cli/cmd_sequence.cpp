@@ -8,6 +8,7 @@
 #include "cli/scene_open.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
+#include "scene/object_tracks.h"
 #include "scene/sequence_edits.h"
 #include "sequencer/sequencer_operations.h"
 
@@ -26,14 +27,28 @@ std::string rateText(sequencer::FrameRate r) {
 void printSequence(const scene::SceneState& s, const std::string& path) {
   const sequencer::Sequence& q = s.sequence;
   const double seconds = double(q.endFrame - q.startFrame + 1) / q.rate.fps();
-  std::printf("%s: %s, frames %lld-%lld (%lld frames, %.2f s), %zu animated entit%s\n", path.c_str(),
-              rateText(q.rate).c_str(), static_cast<long long>(q.startFrame), static_cast<long long>(q.endFrame),
-              static_cast<long long>(q.endFrame - q.startFrame + 1), seconds, q.bindings.size(),
-              q.bindings.size() == 1 ? "y" : "ies");
+  size_t entities = 0, materials = 0, settings = 0;
   for (const sequencer::Binding& b : q.bindings) {
-    const scene::Entity* e = s.find(b.entity);
-    std::printf("  '%s' (#%llu)%s:", e ? e->name.c_str() : b.label.c_str(), static_cast<unsigned long long>(b.entity),
-                e ? "" : " [missing]");
+    const sequencer::TargetKind kind = sequencer::targetKind(b.entity);
+    (kind == sequencer::TargetKind::Entity ? entities : kind == sequencer::TargetKind::Material ? materials : settings)++;
+  }
+  std::printf("%s: %s, frames %lld-%lld (%lld frames, %.2f s), %zu animated entit%s", path.c_str(),
+              rateText(q.rate).c_str(), static_cast<long long>(q.startFrame), static_cast<long long>(q.endFrame),
+              static_cast<long long>(q.endFrame - q.startFrame + 1), seconds, entities, entities == 1 ? "y" : "ies");
+  // Material and settings tracks (scene/object_tracks.h), named only when there are any.
+  if (materials) std::printf(", %zu animated material%s", materials, materials == 1 ? "" : "s");
+  if (settings) std::printf(", animated settings");
+  std::printf("\n");
+  for (const sequencer::Binding& b : q.bindings) {
+    const std::string name = scene::targetLabel(s, b.entity);
+    const sequencer::TargetKind kind = sequencer::targetKind(b.entity);
+    if (kind == sequencer::TargetKind::Settings)
+      std::printf("  settings:");
+    else
+      std::printf("  '%s' (%s#%llu)%s:", name.empty() ? b.label.c_str() : name.c_str(),
+                  kind == sequencer::TargetKind::Material ? "material " : "",
+                  static_cast<unsigned long long>(b.entity & ~sequencer::kMaterialTargetTag),
+                  name.empty() ? " [missing]" : "");
     const char* sep = " ";
     if (b.path) {
       std::printf("%scamera path through %zu points (path.progress: %zu keys)", sep, b.path->path.points.size(),

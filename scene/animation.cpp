@@ -1,6 +1,7 @@
 #include "scene/animation.h"
 
 #include "scene/fields.h"
+#include "scene/object_tracks.h"
 
 namespace hs::scene {
 
@@ -82,6 +83,23 @@ SceneState animatedState(const SceneState& base, const sequencer::CompiledSequen
   const sequencer::SequenceState values = sequencer::evaluate(compiled, t, positions);
   std::string error;
   for (const sequencer::PropertySample& s : values.values) {
+    // Material and settings tracks (object_tracks.h) write through their
+    // fields' setters, which hold the value to the declared range.
+    if (sequencer::targetKind(s.entity) == sequencer::TargetKind::Settings) {
+      if (!applySettingsValue(out.settings, s.property, s.value, error) && warnings) warnings->push_back(error);
+      continue;
+    }
+    if (sequencer::targetKind(s.entity) == sequencer::TargetKind::Material) {
+      auto m = out.materials.find(MaterialId(sequencer::targetMaterial(s.entity)));
+      if (m == out.materials.end()) {
+        if (warnings)
+          warnings->push_back("track for missing material " + std::to_string(sequencer::targetMaterial(s.entity)) +
+                              " skipped");
+      } else if (!applyMaterialValue(m->second, s.property, s.value, error) && warnings) {
+        warnings->push_back("material '" + m->second.name + "': " + error);
+      }
+      continue;
+    }
     auto it = out.entities.find(s.entity);
     if (it == out.entities.end()) {
       if (warnings) warnings->push_back("track for missing entity " + std::to_string(s.entity) + " skipped");

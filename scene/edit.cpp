@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "sequencer/binding_target.h"
+
 namespace hs::scene {
 
 Edit::Edit(Document& doc, QString text, QString mergeKey)
@@ -262,7 +264,13 @@ MaterialId Edit::addMaterial(Material material) {
   return id;
 }
 
-void Edit::removeMaterial(MaterialId id) { removeFrom(patch_.materials, doc_.state().findMaterial(id), id); }
+void Edit::removeMaterial(MaterialId id) {
+  removeFrom(patch_.materials, doc_.state().findMaterial(id), id);
+  // Its tracks go with it in the same step (and come back with undo).
+  const uint64_t target = sequencer::materialTarget(id);
+  const sequencer::Sequence& seq = patch_.sequence ? patch_.sequence->second : doc_.state().sequence;
+  if (seq.findBinding(target)) std::erase_if(sequence().bindings, [target](const auto& b) { return b.entity == target; });
+}
 
 Material& Edit::material(MaterialId id) {
   return workingCopy(patch_.materials, doc_.state().findMaterial(id), id, "material");

@@ -59,7 +59,7 @@ class Edit {
   // Materials and textures (material.h): add (assigns an id when 0),
   // remove, or change a working copy.
   MaterialId addMaterial(Material material);
-  void removeMaterial(MaterialId id);
+  void removeMaterial(MaterialId id);  // with its timeline tracks (object_tracks.h)
   Material& material(MaterialId id);  // throws std::out_of_range if unknown
   const Material* peekMaterial(MaterialId id) const;
   TextureId addTexture(TextureAsset texture);

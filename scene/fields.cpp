@@ -511,6 +511,7 @@ std::string fieldValueProblem(const FieldInfo<Target>& field, const FieldValue& 
 
 template std::string fieldValueProblem(const EntityField&, const FieldValue&, const Entity*);
 template std::string fieldValueProblem(const SettingsField&, const FieldValue&, const SceneSettings*);
+template std::string fieldValueProblem(const MaterialField&, const FieldValue&, const Material*);
 
 namespace {
 template <class Target>

@@ -75,4 +75,23 @@ bool setMaterialField(Document& doc, MaterialId id, const MaterialField& field, 
   return e.commit();
 }
 
+bool removeMaterial(Document& doc, MaterialId id, std::string& error) {
+  error.clear();
+  const Material* m = doc.state().findMaterial(id);
+  if (!m) {
+    error = "no material " + std::to_string(id);
+    return false;
+  }
+  for (const auto& [aid, asset] : doc.state().assets)
+    for (size_t slot = 0; slot < asset.materialSlots.size(); ++slot)
+      if (asset.materialSlots[slot] == id) {
+        error = "material '" + m->name + "' is used by mesh asset '" + asset.name + "' (slot " +
+                std::to_string(slot) + "); it goes with the asset";
+        return false;
+      }
+  Edit e(doc, QString("Delete material %1").arg(QString::fromStdString(m->name)));
+  e.removeMaterial(id);  // and its tracks (Edit::removeMaterial)
+  return e.commit();
+}
+
 }  // namespace hs::scene::ops

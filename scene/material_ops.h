@@ -24,4 +24,9 @@ std::string materialValueProblem(const SceneState& state, const Material& materi
 bool setMaterialField(Document& doc, MaterialId id, const MaterialField& field, const FieldValue& value,
                       std::string& error, const QString& mergeKey = {});
 
+// Deletes a material in one undo step, with its timeline tracks
+// (object_tracks.h; undo brings both back). A material a mesh asset's slot
+// still draws with is refused with `error` naming the asset.
+bool removeMaterial(Document& doc, MaterialId id, std::string& error);
+
 }  // namespace hs::scene::ops

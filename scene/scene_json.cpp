@@ -10,6 +10,7 @@
 #include "scene/fields.h"
 #include "scene/key_value_ranges.h"
 #include "scene/light_units.h"
+#include "scene/object_tracks.h"
 #include "scene/terrain_json.h"
 #include "sequencer/sequence_json.h"
 
@@ -476,6 +477,8 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
   if (r.failed()) return std::nullopt;
   // Keyed values are held to their fields' ranges like the static ones.
   clampKeyValues(s, r.warnings);
+  // Material and settings tracks: their targets and fields checked, keys clamped.
+  checkObjectTracks(s, r.warnings);
 
   // Before format 6 lights and exposure were in relative units. A
   // description without a version is taken as this build's.

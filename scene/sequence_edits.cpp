@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "scene/edit.h"
+#include "scene/object_tracks.h"
 #include "scene/transform.h"
 
 namespace hs::scene {
@@ -51,6 +52,43 @@ sequencer::Track emptyTrack(const AnimTarget& target) {
   return sequencer::ScalarTrack{target.property, {}};
 }
 
+// A material or settings field's target ("material.roughness",
+// "settings.fog_density"); nullopt (error set) for other paths too.
+template <class Target>
+std::optional<AnimTarget> objectTarget(const FieldInfo<Target>* f, std::string_view path, std::string& error) {
+  if (!f) {
+    error = "no property '" + std::string(path) + "'";
+    return std::nullopt;
+  }
+  if (f->animatable) switch (f->type) {
+      case FieldType::Double: return AnimTarget{std::string(path), TrackKind::Scalar};
+      case FieldType::Vec3:
+      case FieldType::Color: return AnimTarget{std::string(path), TrackKind::Vector};
+      case FieldType::Bool: return AnimTarget{std::string(path), TrackKind::Step};
+      default: break;
+    }
+  error = "'" + std::string(path) + "' cannot be animated (only numbers, colours and on/off)";
+  return std::nullopt;
+}
+
+template <class Target>
+std::optional<sequencer::PropertyValue> parseObjectValue(const FieldInfo<Target>* f, const AnimTarget& target,
+                                                         std::string_view text, std::string& error) {
+  if (!f) {
+    error = "no property '" + target.property + "'";
+    return std::nullopt;
+  }
+  const auto v = parseFieldValue(*f, text, error);
+  if (!v) return std::nullopt;
+  if (const double* d = std::get_if<double>(&*v)) return sequencer::PropertyValue(*d);
+  if (const bool* b = std::get_if<bool>(&*v)) return sequencer::PropertyValue(*b);
+  if (const glm::dvec3* x = std::get_if<glm::dvec3>(&*v)) return sequencer::PropertyValue(*x);
+  error = "'" + target.property + "' cannot take a key";
+  return std::nullopt;
+}
+
+bool startsWith(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
+
 }  // namespace
 
 std::string trackPropertyForField(std::string_view fieldPath) {
@@ -63,6 +101,10 @@ std::optional<AnimTarget> animationTarget(std::string_view fieldPath, std::strin
     return AnimTarget{std::string(kRotationTrack), TrackKind::Rotation};
   if (fieldPath == sequencer::kPathProgress)
     return AnimTarget{std::string(fieldPath), TrackKind::Scalar};
+  if (startsWith(fieldPath, kMaterialTrackPrefix))
+    return objectTarget(findMaterialField(fieldPath.substr(kMaterialTrackPrefix.size())), fieldPath, error);
+  if (startsWith(fieldPath, kSettingsTrackPrefix))
+    return objectTarget(findSettingsField(fieldPath.substr(kSettingsTrackPrefix.size())), fieldPath, error);
   const EntityField* f = findEntityField(fieldPath);
   if (!f) {
     error = "no property '" + std::string(fieldPath) + "'";
@@ -104,6 +146,10 @@ std::optional<sequencer::PropertyValue> parseKeyValue(const AnimTarget& target, 
     if (!v) return std::nullopt;
     return sequencer::PropertyValue(fromEulerDegrees(std::get<glm::dvec3>(*v)));
   }
+  if (startsWith(target.property, kMaterialTrackPrefix))
+    return parseObjectValue(findMaterialTrackField(target.property), target, text, error);
+  if (startsWith(target.property, kSettingsTrackPrefix))
+    return parseObjectValue(findSettingsTrackField(target.property), target, text, error);
   const EntityField* f = findEntityField(target.property);
   if (!f) {
     error = "no property '" + target.property + "'";
@@ -186,10 +232,24 @@ bool setKeys(Document& doc, const std::vector<KeyToSet>& keys, double t,
   };
   if (!std::isfinite(t)) return refuse("the key time is not a finite number");
   for (const KeyToSet& k : keys) {
-    const Entity* e = doc.state().find(k.entity);
-    if (!e) return refuse("no entity #" + std::to_string(k.entity));
     if (!valueFits(k.target.kind, k.value))
       return refuse("a value of the wrong kind for '" + k.target.property + "'");
+    if (!propertyFitsTarget(k.entity, k.target.property))
+      return refuse("'" + k.target.property + "' is not a field of " +
+                    (sequencer::isEntityTarget(k.entity) ? "an entity" : "this target"));
+    // A material's or the settings' field (object_tracks.h).
+    if (const sequencer::TargetKind kind = sequencer::targetKind(k.entity); kind != sequencer::TargetKind::Entity) {
+      if (!targetExists(doc.state(), k.entity))
+        return refuse("no material #" + std::to_string(sequencer::targetMaterial(k.entity)));
+      const bool fits = kind == sequencer::TargetKind::Material ? findMaterialTrackField(k.target.property) != nullptr
+                                                                : findSettingsTrackField(k.target.property) != nullptr;
+      if (!fits)
+        return refuse("'" + k.target.property + "' is no animatable field of " +
+                      (kind == sequencer::TargetKind::Material ? "a material" : "the settings"));
+      continue;
+    }
+    const Entity* e = doc.state().find(k.entity);
+    if (!e) return refuse("no entity #" + std::to_string(k.entity));
     if (k.target.property != kRotationTrack && k.target.property != sequencer::kPathProgress) {
       const ComponentInfo* c = findComponent(k.target.property.substr(0, k.target.property.find('.')));
       if (c && c->optional && !c->has(*e))
@@ -199,7 +259,9 @@ bool setKeys(Document& doc, const std::vector<KeyToSet>& keys, double t,
   if (keys.empty()) return false;
   Edit e(doc, text, mergeKey);
   for (const KeyToSet& k : keys)
-    setKeyIn(e.sequence(), k.entity, e.peek(k.entity)->name, k.target, t, k.value, interpolation);
+    setKeyIn(e.sequence(), k.entity,
+             sequencer::isEntityTarget(k.entity) ? e.peek(k.entity)->name : targetLabel(doc.state(), k.entity),
+             k.target, t, k.value, interpolation);
   return e.commit();
 }
 

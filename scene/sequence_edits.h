@@ -29,7 +29,8 @@ struct AnimTarget {
 };
 
 // nullopt with `error` if the field is unknown or cannot be animated (names,
-// asset references, enums).
+// asset references, enums). Material and settings fields are named
+// "material.<key>" and "settings.<key>" (object_tracks.h).
 std::optional<AnimTarget> animationTarget(std::string_view fieldPath, std::string& error);
 // The track property that animates a field path, or "" (rotation_deg -> rotation).
 std::string trackPropertyForField(std::string_view fieldPath);
@@ -55,6 +56,8 @@ void setKeyIn(sequencer::Sequence& sequence, EntityId id, const std::string& lab
 namespace ops {
 
 struct KeyToSet {
+  // An entity, or a material or the settings as a binding target
+  // (object_tracks.h: materialTarget(id), settingsTarget()).
   EntityId entity = kNoEntity;
   AnimTarget target;
   sequencer::PropertyValue value;

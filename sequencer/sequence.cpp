@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "sequencer/binding_target.h"
+
 namespace hs::sequencer {
 
 Binding* Sequence::findBinding(uint64_t entity) {
@@ -41,7 +43,10 @@ std::optional<bool> SequenceState::flag(uint64_t e, std::string_view p) const { 
 
 CompiledSequence::CompiledSequence(Sequence sequence) : sequence_(std::move(sequence)) {
   for (Binding& b : sequence_.bindings) {
-    const std::string who = "'" + b.label + "' (#" + std::to_string(b.entity) + ")";
+    const std::string who =
+        targetKind(b.entity) == TargetKind::Settings ? std::string("'Settings'")
+        : "'" + b.label + "' (" + (targetKind(b.entity) == TargetKind::Material ? "material #" : "#") +
+              std::to_string(b.entity & ~kMaterialTargetTag) + ")";
     for (Track& t : b.tracks) {
       for (const std::string& p : trackProblems(t)) problems_.push_back(who + ": " + p);
       sortKeys(t);

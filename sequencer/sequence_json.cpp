@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "sequencer/binding_target.h"
+
 namespace hs::sequencer {
 
 namespace {
@@ -245,7 +247,7 @@ bool readPath(JsonReader& r, const Json& j, const std::string& path, PathFollow&
          r.optNumber(j, path, "max_bank_deg", p.maxBankDeg);
 }
 
-bool readVersion(JsonReader& r, const Json& j, const std::string& path) {
+bool readVersion(JsonReader& r, const Json& j, const std::string& path, int& whole) {
   const Json* f = JsonReader::member(j, "format");
   if (!f || !f->is_string() || f->get<std::string>() != "hybridscape-sequence")
     return r.fail(jsonPath(path, "format"),
@@ -258,7 +260,6 @@ bool readVersion(JsonReader& r, const Json& j, const std::string& path) {
   if (version > kSequenceFormatVersion)
     return r.fail(vp, "format version " + v->dump() + " is newer than this program reads (" +
                           std::to_string(kSequenceFormatVersion) + "); update Hybridscape");
-  int whole = 0;
   return r.integer(*v, vp, whole, 1, kSequenceFormatVersion);
 }
 
@@ -274,9 +275,32 @@ bool readRate(JsonReader& r, const Json& j, const std::string& path, FrameRate& 
          r.integer((*v)[1], jsonIndex(rp, 1), rate.den, 1, kMax);
 }
 
-bool readBinding(JsonReader& r, const Json& bj, const std::string& path, Binding& b) {
-  if (!r.object(bj, path) || !readId(r, JsonReader::member(bj, "entity"), jsonPath(path, "entity"), b.entity) ||
-      !r.optString(bj, path, "label", b.label))
+// Which target a binding animates (binding_target.h): "entity": id,
+// "material": id (version 2) or "settings": true (version 2), exactly one.
+bool readTarget(JsonReader& r, const Json& bj, const std::string& path, int version, Binding& b) {
+  const Json* entity = JsonReader::member(bj, "entity");
+  const Json* material = version >= 2 ? JsonReader::member(bj, "material") : nullptr;
+  const Json* settings = version >= 2 ? JsonReader::member(bj, "settings") : nullptr;
+  if (int(entity != nullptr) + int(material != nullptr) + int(settings != nullptr) > 1)
+    return r.fail(path, "a binding names one target: \"entity\", \"material\" or \"settings\"");
+  if (material) {
+    uint64_t id = 0;
+    if (!readId(r, material, jsonPath(path, "material"), id)) return false;
+    if (id == 0) return r.fail(jsonPath(path, "material"), "material ids start at 1");
+    b.entity = materialTarget(id);
+    return true;
+  }
+  if (settings) {
+    if (!settings->is_boolean() || !settings->get<bool>())
+      return r.fail(jsonPath(path, "settings"), "expected true");
+    b.entity = kSettingsTarget;
+    return true;
+  }
+  return readId(r, entity, jsonPath(path, "entity"), b.entity);
+}
+
+bool readBinding(JsonReader& r, const Json& bj, const std::string& path, int version, Binding& b) {
+  if (!r.object(bj, path) || !readTarget(r, bj, path, version, b) || !r.optString(bj, path, "label", b.label))
     return false;
   const std::string tp = jsonPath(path, "tracks");
   const Json* tracks = r.required(bj, path, "tracks");
@@ -299,14 +323,22 @@ bool readBinding(JsonReader& r, const Json& bj, const std::string& path, Binding
 Json sequenceToJson(const Sequence& s) {
   Json o = Json::object();
   o["format"] = "hybridscape-sequence";
-  o["version"] = kSequenceFormatVersion;
+  // Version 1 when every binding animates an entity, so such files still
+  // open in builds from before material and settings tracks.
+  bool entitiesOnly = true;
+  for (const Binding& b : s.bindings) entitiesOnly = entitiesOnly && isEntityTarget(b.entity);
+  o["version"] = entitiesOnly ? 1 : kSequenceFormatVersion;
   o["rate"] = Json::array({s.rate.num, s.rate.den});
   o["start"] = s.startFrame;
   o["end"] = s.endFrame;
   Json bindings = Json::array();
   for (const Binding& b : s.bindings) {
     Json bj = Json::object();
-    bj["entity"] = b.entity;
+    switch (targetKind(b.entity)) {
+      case TargetKind::Entity: bj["entity"] = b.entity; break;
+      case TargetKind::Material: bj["material"] = targetMaterial(b.entity); break;
+      case TargetKind::Settings: bj["settings"] = true; break;
+    }
     bj["label"] = b.label;
     Json tracks = Json::array();
     for (const Track& t : b.tracks) tracks.push_back(trackToJson(t));
@@ -320,7 +352,8 @@ Json sequenceToJson(const Sequence& s) {
 
 bool readSequence(JsonReader& r, const Json& j, const std::string& path, Sequence& s) {
   s = Sequence{};
-  if (!r.object(j, path) || !readVersion(r, j, path) || !readRate(r, j, path, s.rate)) return false;
+  int version = 0;
+  if (!r.object(j, path) || !readVersion(r, j, path, version) || !readRate(r, j, path, s.rate)) return false;
   for (auto [key, frame] : {std::pair{"start", &s.startFrame}, {"end", &s.endFrame}}) {
     const Json* v = r.required(j, path, key);
     if (!v || !r.integer(*v, jsonPath(path, key), *frame, -kMaxExact, kMaxExact)) return false;
@@ -330,7 +363,7 @@ bool readSequence(JsonReader& r, const Json& j, const std::string& path, Sequenc
   if (!bindings || !r.array(*bindings, bp)) return false;
   for (size_t i = 0; i < bindings->size(); ++i) {
     Binding b;
-    if (!readBinding(r, (*bindings)[i], jsonIndex(bp, i), b)) return false;
+    if (!readBinding(r, (*bindings)[i], jsonIndex(bp, i), version, b)) return false;
     s.bindings.push_back(std::move(b));
   }
   return true;

@@ -13,6 +13,11 @@
 //                "keys": [{"t": 0.0, "v": 50.0}, {"t": 10.0, "v": 35.0, "interp": "linear", "ease": "in_out"}]}],
 //    "path": {"points": [[0.0, 0.0, 10.0], ...], "progress": [{"t": 0.0, "v": 0.0, "interp": "linear"}, ...],
 //             "aim": "tangent", "bank": true, "bank_scale": 1.0, "max_bank_deg": 30.0}}]}
+// A binding of a material's tracks names it with "material": <material id>
+// in place of "entity", the settings' binding with "settings": true
+// (binding_target.h); their tracks' properties are "material.<field>" and
+// "settings.<field>" (scene/fields.cpp). Those need version 2; a sequence
+// with none of them is written as version 1, which older builds read.
 // Rotation values are [w, x, y, z]; vector values [x, y, z]; slopes "in"
 // and "out" (rotation slopes: body angular velocity, rad/s). Frames, rates
 // and entity ids are whole numbers; times and values are doubles, written
@@ -26,7 +31,8 @@
 
 namespace hs::sequencer {
 
-inline constexpr int kSequenceFormatVersion = 1;
+// 1: entity bindings; 2: material and settings bindings too.
+inline constexpr int kSequenceFormatVersion = 2;
 
 Json sequenceToJson(const Sequence& sequence);
 // nullopt with `error` naming the place: "bindings[0].tracks[2].keys[5].interp:

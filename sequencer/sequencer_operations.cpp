@@ -59,27 +59,39 @@ const OperationDecl& keyOperation() {
       names.push_back(interpolationName(i));
     return OperationDecl{
         .name = "key",
-        .summary = "set a key on the timeline (an entity property at a time)",
-        .usage = "<entity> <property> <time> <value> <scene.hscene> [--interp I]",
+        .summary = "set a key on the timeline (an entity, material or settings field at a time)",
+        .usage = "<entity> <property> <time> <value> <scene.hscene> [--interp I]\n"
+                 "       hybridscape-cli key --material <material> <field> <time> <value> <scene.hscene> [--interp I]\n"
+                 "       hybridscape-cli key --settings <field> <time> <value> <scene.hscene> [--interp I]",
         .description =
             "Sets a key on the timeline (an undoable edit, as the editor's key buttons make), then saves. A key "
             "already at that time gets the new value. <entity> is a name or an id; <time> is seconds (2.5) or a "
             "frame at the scene's rate (150f); <property> is an animatable field (see `hybridscape-cli set "
             "--help`): numbers, vectors x,y,z, colours, true/false for entity.visible; transform.rotation_deg takes "
-            "Euler degrees and keys the rotation as a quaternion (turns take the short way).",
+            "Euler degrees and keys the rotation as a quaternion (turns take the short way). With --material, "
+            "the key goes on a numeric or colour field of the material of that name (as `material list` prints "
+            "it: roughness, opacity, emission_strength, ...), and there is no <entity>; with --settings, on a "
+            "numeric or colour field of the scene settings (exposure_ev100, fog_density, ao_strength, ... as "
+            "`set --help` lists them). Values outside a field's range are refused.",
         .notes = "Examples:\n"
                  "  key \"Main Camera\" camera.fov_deg 0 50 scene.hscene\n"
                  "  key \"Main Camera\" camera.fov_deg 120f 30 scene.hscene --interp linear\n"
                  "  key Bunny transform.translation 2.5 1,0,0 scene.hscene\n"
-                 "  key Bunny transform.rotation_deg 5 0,0,90 scene.hscene",
-        .positionals = {{.name = "entity", .help = "a name or an id"},
+                 "  key Bunny transform.rotation_deg 5 0,0,90 scene.hscene\n"
+                 "  key --material \"Bunny / default\" roughness 2 0.3 scene.hscene\n"
+                 "  key --settings fog_density 10 0.002 scene.hscene",
+        .positionals = {{.name = "entity", .help = "a name or an id (not with --material or --settings)"},
                         {.name = "property", .help = "an animatable field"},
                         {.name = "time", .help = "seconds (2.5) or a frame (150f)"},
                         {.name = "value", .help = "the key's value"},
                         {.name = "scene.hscene", .help = "the scene file"}},
         .params = {{.key = "interp", .option = "interp", .label = "Interpolation", .type = ParamType::Choice,
                     .defaultValue = "cubic", .choices = names,
-                    .help = "how the value moves to the next key (cubic: clamped auto tangents)", .valueName = "I"}}};
+                    .help = "how the value moves to the next key (cubic: clamped auto tangents)", .valueName = "I"},
+                   text("material", "material", "Material",
+                        "key a field of this material (its name, as `material list` prints it) instead of an entity's",
+                        "NAME"),
+                   flag("settings", "settings", "Settings", "key a field of the scene settings instead of an entity's")}};
   }();
   return op;
 }
