@@ -281,6 +281,11 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   s.settings.shadowDistance = 500.0;
   // A spot and two point lights by the bunnies, and fog on the valley.
   addDemoLights(s);
+  // Shadows (docs/rendering.md "Shadows"): the sun casts, and so does the
+  // spot (the lantern's bunny shadow falls on the clearing); each light's
+  // casts_shadows is read, settings.shadows is the master switch.
+  for (auto& [id, e] : s.entities)
+    if (e.light && e.light->type != Light::Type::Point) e.light->castsShadows = true;
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;
