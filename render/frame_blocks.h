@@ -19,6 +19,7 @@ enum Binding : unsigned {
   kEnvironmentBlockBinding = 6,  // uniform EnvironmentBlock
   kLightGridBinding = 7,         // buffer LightGrid (clustered light lists)
   kFogBlockBinding = 8,          // uniform FogBlock (shaders/fog.glsl; only with fog on)
+  kLocalShadowBinding = 11,      // buffer LocalShadowBlock (spot/point shadows; only when one casts)
 };
 
 // Texture units: a material's textures, then the frame's shared maps.
@@ -26,6 +27,7 @@ enum TextureUnit : unsigned {
   kMaterialTextureUnit = 0,      // 0..7
   kShadowTextureUnit = 8,        // 8..11
   kEnvironmentTextureUnit = 12,  // 12..15
+  kLocalShadowTextureUnit = 16,  // 16..19: spot and point light shadow maps
 };
 
 struct FrameBlock {
@@ -81,7 +83,20 @@ struct ShadowBlock {
   glm::mat4 sunCascade[4]{};  // frame-relative position -> map (u, v, depth)
   glm::vec4 sunTexelMetres{0.0f};  // world size of a texel, per cascade
   glm::vec4 sunParams{0.0f};  // x: cascade count (0: no sun shadow), y: PCF radius, z: 1 / map size
+  // Spot and point lights: x: entries in LocalShadowBlock (0: none, the
+  // buffer is not bound), y: 1 / the maps' layer size, z: PCF radius.
+  glm::vec4 localParams{0.0f};
 };
-static_assert(sizeof(ShadowBlock) == 4 * 64 + 2 * 16);
+static_assert(sizeof(ShadowBlock) == 4 * 64 + 3 * 16);
+
+// One per point or spot light of the frame (binding 11, std430; indexed
+// like the light buffer): the faces' matrices into their maps and where the
+// maps are. A light without a map has params.x = -1.
+struct GpuLocalShadow {
+  glm::mat4 faces[6]{};  // frame-relative position -> clip of the face's map, bias applied (divide by w)
+  glm::vec4 params{-1.0f, 0.0f, 0.0f, 0.0f};  // x: first layer (-1: none), y: faces (1 or 6),
+                                              // z: texel size at 1 m, w: the light's share of the layer
+};
+static_assert(sizeof(GpuLocalShadow) == 6 * 64 + 16);
 
 }  // namespace hs::render

@@ -23,6 +23,13 @@ struct FrameContext {
   // The sun's cascaded shadow maps of this frame (passes/shadow_passes.h);
   // invalid when nothing casts.
   TextureRef sunShadowMap{};
+  // Spot and point lights' shadow maps and their data (passes/
+  // local_shadow_pass.h); invalid when no such light casts in view. `views`
+  // are every view of the frame (a light beyond its range from all of them
+  // gets no map).
+  TextureRef localShadowMaps{};
+  BufferRef localShadowData{};
+  const std::vector<RenderView>* views = nullptr;
 };
 
 // One view of the frame: its camera, its index in the view block buffer,

@@ -118,6 +118,12 @@ GLuint MaterialTable::texture(const scene::SceneState& state, const scene::Mater
   return s.texture;
 }
 
+GLuint MaterialTable::baseColorTexture(const scene::SceneState& state, const scene::Material& m, const GpuMesh& mesh,
+                                       GpuMeshCache& meshes) {
+  if (!mesh.hasUvs) return 0;
+  return texture(state, m, "base_color_texture", m.baseColorTexture, mesh, meshes, false);
+}
+
 void MaterialTable::build(const scene::SceneState& state, const VisibleSet& visible, GpuMeshCache& meshes,
                           GrowingBuffer& buffer) {
   block_.clear();

@@ -44,6 +44,11 @@ class MaterialTable {
   void build(const scene::SceneState& state, const VisibleSet& visible, GpuMeshCache& meshes, GrowingBuffer& buffer);
   const DrawMaterial& forDraw(size_t draw, size_t submesh) const { return perDraw_[draw][submesh]; }
   size_t materialCount() const { return block_.size(); }
+  // The base colour texture of `m` drawn on `mesh` (0: none, undrawable, or
+  // the mesh has no UVs), reported like the draws' own: for the shadow
+  // passes' cut-out casters, which need not be in view.
+  GLuint baseColorTexture(const scene::SceneState& state, const scene::Material& m, const GpuMesh& mesh,
+                          GpuMeshCache& meshes);
 
   // Frees standalone textures the state no longer has (or whose content changed).
   void collect(const scene::SceneState& state);

@@ -14,6 +14,7 @@
 #include "render/gpu_mesh_cache.h"
 #include "render/material_table.h"
 #include "render/resource_pool.h"
+#include "render/local_shadows.h"
 #include "render/shadow_cascades.h"
 #include "render/terrain_pass.h"
 
@@ -33,6 +34,8 @@ struct GrowingBuffer {
 struct ShadowResources {
   GrowingBuffer block;   // ShadowBlock, bound at kShadowBlockBinding every frame (cascade count 0: none)
   SunCascades sun;       // the last frame's sun cascades (empty: none)
+  std::vector<LocalShadow> local;  // the last frame's spot and point light maps (local_shadows.h)
+  std::string localProblem;        // the last lights' problem reported
   std::string problem;   // the last settings problem reported (each is reported once)
   std::vector<std::string> newProblems;
 };

@@ -204,6 +204,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
 
   auto graph = std::make_unique<FrameGraph>(res.pool);
   FrameContext frame{res, world, visible, settings, options, lodView, stats};
+  frame.views = &views;  // spot/point shadows: lights that reach no view cast nothing
   std::vector<ViewContext> viewContexts;
   for (size_t i = 0; i < targets.size(); ++i)
     viewContexts.push_back({targets[i].view, i, targets[i].fbo, targets[i].name.empty() ? "" : "[" + targets[i].name + "]"});

@@ -308,6 +308,11 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   addDemoLights(s);
   // A material parameter and the fog animated over the flight.
   addDemoParameterTracks(s);
+  // Shadows (docs/rendering.md "Shadows"): the sun casts, and so does the
+  // spot (the lantern's bunny shadow falls on the clearing); each light's
+  // casts_shadows is read, settings.shadows is the master switch.
+  for (auto& [id, e] : s.entities)
+    if (e.light && e.light->type != Light::Type::Point) e.light->castsShadows = true;
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

@@ -33,7 +33,7 @@ vec3 pointOrSpotLight(Surface s, int i) {
   vec3 l = toLight / max(d, 1e-4);
   float atten = distanceAttenuation(d, lights[i].position.w) * spotAttenuation(lights[i], l);
   if (atten <= 0.0) return vec3(0.0);
-  return reflectLight(s, l) * lights[i].color.rgb * atten * lightVisibility(i, s.position, s.normal);
+  return reflectLight(s, l) * lights[i].color.rgb * atten * localLightVisibility(i, s.position, s.normal);
 }
 
 vec3 directLighting(Surface s) {

@@ -16,6 +16,12 @@
 // presets over 30 km; then a stereo pair's time over a mono frame's with
 // shadows on (bench_frame measured 2.04x without).
 //
+// Then the same for a spot light (high over the first shapes, a 90-degree
+// cone along the view) and a point light (low among them), each alone with
+// the sun hidden: the share of pixels differing from a ray cast towards the
+// light's position against the light's own map size (a cube: per face),
+// next to the `shadow_local` pass's GPU time.
+//
 //   bench_shadows [--frames N] [--size WxH] [--plot FILE.png] [--quick]
 #include <algorithm>
 #include <cmath>
@@ -122,6 +128,7 @@ BenchScene buildScene() {
   sun.id = s.maxEntityId() + 1;
   sun.name = "Sun";
   sun.light = scene::Light{};
+  sun.light->castsShadows = true;
   sun.transform.rotation = scene::fromEulerDegrees({75.0, 0, 200});  // 15 degrees up
   s.roots.push_back(sun.id);
   s.entities.emplace(sun.id, sun);
@@ -143,8 +150,22 @@ struct Reference {
   size_t counted = 0, refShadowed = 0;
 };
 
-Reference reference(render::OffscreenRenderer& r, const BenchScene& sc, const render::RenderView& view) {
-  scene::SceneState s = sc.state;
+// The light the reference rays go to: the sun (a direction) or a spot or
+// point light (a position; rays end there).
+struct RayTarget {
+  bool directional = true;
+  glm::dvec3 v{0, 0, 1};
+};
+
+RayTarget sunTarget(const scene::SceneState& s) {
+  for (const auto& [id, e] : s.entities)
+    if (e.light && e.light->type == scene::Light::Type::Sun) return {true, glm::dvec3(s.worldMatrix(id) * glm::dvec4(0, 0, 1, 0))};
+  return {};
+}
+
+Reference reference(render::OffscreenRenderer& r, const BenchScene& sc, const scene::SceneState& state,
+                    const RayTarget& light, const render::RenderView& view) {
+  scene::SceneState s = state;
   s.settings.shadows = false;
   s.settings.ambientIntensity = 0.0f;
   render::RenderOptions o;
@@ -156,9 +177,6 @@ Reference reference(render::OffscreenRenderer& r, const BenchScene& sc, const re
   float maxLit = 0.0f;
   for (size_t i = 0; i < depth.size(); ++i) maxLit = std::max(maxLit, ref.unshadowed[i] = lit.rgbaF[i * 4 + 1]);
   const mesh::ClosestPointBvh bvh(sc.world);
-  glm::dvec3 l(0, 0, 1);
-  for (const auto& [id, e] : s.entities)
-    if (e.light) l = glm::dvec3(s.worldMatrix(id) * glm::dvec4(0, 0, 1, 0));
   const glm::dmat4 inv = glm::inverse(view.projection() * glm::dmat4(view.viewRotation()));
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
@@ -168,8 +186,13 @@ Reference reference(render::OffscreenRenderer& r, const BenchScene& sc, const re
       const glm::dvec4 e = inv * glm::dvec4((x + 0.5) / view.width * 2.0 - 1.0, 1.0 - (y + 0.5) / view.height * 2.0,
                                             double(d), 1.0);
       const glm::dvec3 p = view.eye + glm::dvec3(e) / e.w;
-      // Starting 3 cm towards the sun: the depth buffer's position error.
-      ref.shadowed[i] = int8_t(bvh.occluded(p, l, 0.03, 1e5));
+      // Starting 3 cm towards the light: the depth buffer's position error.
+      if (light.directional) {
+        ref.shadowed[i] = int8_t(bvh.occluded(p, light.v, 0.03, 1e5));
+      } else {
+        const double dist = glm::length(light.v - p);
+        ref.shadowed[i] = int8_t(bvh.occluded(p, (light.v - p) / dist, 0.03, dist - 0.03));
+      }
       ++ref.counted;
       ref.refShadowed += size_t(ref.shadowed[i]);
     }
@@ -181,12 +204,15 @@ struct Row {
   double differPercent = 0.0, shadowedPercent = 0.0, passMs = 0.0, frameMs = 0.0;
 };
 
-Row measure(render::OffscreenRenderer& r, const BenchScene& sc, const render::RenderView& view, const Reference& ref,
-            int resolution, int cascades, const Options& o) {
-  scene::SceneState s = sc.state;
+// `s` with shadows at `resolution` (the sun's cascades: settings; a spot or
+// point light: its own shadow_resolution), timed on pass `passName`.
+Row measure(render::OffscreenRenderer& r, scene::SceneState s, const render::RenderView& view, const Reference& ref,
+            int resolution, int cascades, const std::string& passName, const Options& o) {
   s.settings.ambientIntensity = 0.0f;
   s.settings.shadowResolution = resolution;
   s.settings.shadowCascades = cascades;
+  for (auto& [id, e] : s.entities)
+    if (e.light && e.light->type != scene::Light::Type::Sun) e.light->shadowResolution = resolution;
   Row row;
   row.resolution = resolution;
   row.cascades = cascades;
@@ -206,7 +232,7 @@ Row measure(render::OffscreenRenderer& r, const BenchScene& sc, const render::Re
   for (int f = 0; f < o.frames; ++f) {
     const render::FrameStats st = r.renderOnly(s, view, timed);
     for (const render::PassStats& p : st.passes)
-      if (p.name == "shadow_sun") pass.push_back(p.gpuMs);
+      if (p.name == passName) pass.push_back(p.gpuMs);
     const double t0 = bench::nowSeconds();
     r.renderOnly(s, view);
     frame.push_back(1000.0 * (bench::nowSeconds() - t0));
@@ -245,7 +271,7 @@ int main(int argc, char** argv) {
   std::printf("bench_shadows at %dx%d, %s; %zu scene triangles; %s\n", o.width, o.height, r.glDescription().c_str(),
               sc.world.triangleCount(), bench::loadAverageLine().c_str());
   const double t0 = bench::nowSeconds();
-  const Reference ref = reference(r, sc, view);
+  const Reference ref = reference(r, sc, sc.state, sunTarget(sc.state), view);
   std::printf("CPU ray cast (meshproc BVH, one thread): %zu pixels counted, %.1f%% shadowed, %.1f s\n\n", ref.counted,
               100.0 * double(ref.refShadowed) / double(ref.counted), bench::nowSeconds() - t0);
 
@@ -256,12 +282,55 @@ int main(int argc, char** argv) {
   std::printf("| ---: | ---: | ---: | ---: | ---: | ---: |\n");
   for (int res : resolutions)
     for (int c = 1; c <= 4; ++c) {
-      const Row row = measure(r, sc, view, ref, res, c, o);
+      const Row row = measure(r, sc.state, view, ref, res, c, "shadow_sun", o);
       rows.push_back(row);
       std::printf("| %d | %d | %.2f%% | %.1f%% | %.1f | %.0f |\n", res, c, row.differPercent, row.shadowedPercent,
                   row.passMs, row.frameMs);
       std::fflush(stdout);
     }
+
+  // Spot and point lights (docs/rendering.md "Shadows", "Spot and point
+  // lights"): the sun hidden, one light casting, against its own map size
+  // (a cube: per face), the same reference towards the light's position.
+  std::vector<Row> spotRows, pointRows;
+  for (scene::Light::Type type : {scene::Light::Type::Spot, scene::Light::Type::Point}) {
+    const bool spot = type == scene::Light::Type::Spot;
+    scene::SceneState s = sc.state;
+    for (auto& [id, e] : s.entities)
+      if (e.light) e.visible = false;
+    scene::Entity l;
+    l.id = s.maxEntityId() + 1;
+    l.name = spot ? "Spot" : "Point";
+    l.light = scene::Light{};
+    l.light->type = type;
+    l.light->intensity = spot ? 5.0e7f : 2.0e7f;
+    l.light->range = spot ? 150.0f : 60.0f;
+    l.light->innerConeDeg = 70.0f;
+    l.light->outerConeDeg = 90.0f;
+    l.light->castsShadows = true;
+    // The spot high over the first spheres and posts, looking along the
+    // view; the point light low among them.
+    const glm::dvec3 at = spot ? glm::dvec3(0, 5, hillHeight(0, 5) + 30.0) : glm::dvec3(0, 38, hillHeight(0, 38) + 5.0);
+    if (spot) l.transform = test::lookFrom(at, glm::dvec3(0, 45, hillHeight(0, 45)));
+    l.transform.translation = at;
+    s.roots.push_back(l.id);
+    s.entities.emplace(l.id, l);
+    const double tr = bench::nowSeconds();
+    const Reference lref = reference(r, sc, s, {false, at}, view);
+    std::printf("\n%s light alone: %zu pixels counted, ray cast %.1f%% shadowed (%.1f s)\n\n"
+                "| %s | pixels differing from the ray cast | shadowed | shadow pass GPU ms | frame ms |\n"
+                "| ---: | ---: | ---: | ---: | ---: |\n",
+                spot ? "Spot" : "Point", lref.counted, 100.0 * double(lref.refShadowed) / double(std::max<size_t>(lref.counted, 1)),
+                bench::nowSeconds() - tr, spot ? "map size" : "face size");
+    const std::vector<int> sizes = o.quick ? std::vector<int>{512, 2048} : std::vector<int>{256, 512, 1024, 2048, 4096};
+    for (int res : sizes) {
+      const Row row = measure(r, s, view, lref, res, 1, "shadow_local", o);
+      (spot ? spotRows : pointRows).push_back(row);
+      std::printf("| %d | %.2f%% | %.1f%% | %.1f | %.0f |\n", res, row.differPercent, row.shadowedPercent, row.passMs,
+                  row.frameMs);
+    }
+  }
+  std::printf("%s\n\n", bench::loadAverageLine().c_str());
 
   // Texel size on screen: metres per texel of the cascade that serves each
   // depth, over metres per pixel at that depth, for the presets over 30 km.
@@ -333,6 +402,20 @@ int main(int argc, char** argv) {
           b.points.emplace_back(row.passMs, row.differPercent);
           b.pointLabels.push_back(std::to_string(row.resolution));
         }
+      byRes.series.push_back(a);
+      byTime.series.push_back(b);
+    }
+    // Spot and point lights (their own scenes: the sun hidden, one light).
+    const bench::PlotColour localColours[2] = {{220, 150, 20}, {90, 90, 90}};
+    for (int k = 0; k < 2; ++k) {
+      bench::PlotSeries a{k == 0 ? "spot light" : "point light (face size)", localColours[k], bench::PlotMarker::Circle,
+                          false, {}, {}};
+      bench::PlotSeries b = a;
+      for (const Row& row : k == 0 ? spotRows : pointRows) {
+        a.points.emplace_back(row.resolution, row.differPercent);
+        b.points.emplace_back(row.passMs, row.differPercent);
+        b.pointLabels.push_back(std::to_string(row.resolution));
+      }
       byRes.series.push_back(a);
       byTime.series.push_back(b);
     }

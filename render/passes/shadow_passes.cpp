@@ -3,57 +3,12 @@
 #include <algorithm>
 #include <cstring>
 
-#include <glm/gtc/matrix_inverse.hpp>
-
 #include "render/gpu_mesh_cache.h"
-#include "render/mesh_lod.h"
+#include "render/passes/local_shadow_pass.h"
+#include "render/passes/shadow_casters.h"
 
 namespace hs::render {
 namespace {
-
-// Slope-scaled and constant depth offset of the casters (glPolygonOffset,
-// negative: away from the sun, whose side has the larger depth). The
-// normal offset of the receivers (shaders/shadows.glsl) does most of the
-// work; this removes the acne left on surfaces the sun grazes.
-constexpr float kCasterSlopeOffset = -2.0f;
-constexpr float kCasterConstantOffset = -4.0f;
-
-struct Caster {
-  const GpuMesh* mesh = nullptr;
-  glm::dvec3 centre{0.0};  // frame-relative
-  double radius = 0.0;
-};
-
-// Every mesh instance as a caster, at the level of detail the views draw
-// (the same choice as visible_set.cpp, so a mesh shadows itself with its
-// own triangles); object data relative to the frame origin. Casters are not
-// limited to the views' frusta: a tree behind the camera shadows the
-// ground in front of it.
-void gatherCasters(const FrameContext& frame, std::vector<Caster>& casters, std::vector<GpuObject>& objects) {
-  const glm::dvec3 origin = frame.visible.origin;
-  for (const MeshInstanceRef& inst : frame.world.meshes) {
-    const GpuMesh* g = frame.res.meshes.get(*inst.asset);
-    if (!g) continue;
-    const glm::dmat4& w = inst.world;
-    const glm::dvec3 centre = glm::dvec3(w * glm::dvec4(glm::dvec3(g->bounds.center()), 1.0));
-    const double maxScale = std::max({glm::length(glm::dvec3(w[0])), glm::length(glm::dvec3(w[1])),
-                                      glm::length(glm::dvec3(w[2]))});
-    if (!inst.asset->lods.empty()) {
-      const MeshLodChoice lod = chooseMeshLod(inst.asset->lodErrors(), centre - frame.lodView.eye,
-                                              double(g->bounds.radius()), maxScale, frame.lodView,
-                                              frame.settings.meshLodErrorPixels);
-      if (lod.level > 0)
-        if (const GpuMesh* coarser = frame.res.meshes.get(*inst.asset, lod.level)) g = coarser;
-    }
-    glm::dmat4 rel = w;
-    rel[3] = glm::dvec4(glm::dvec3(w[3]) - origin, 1.0);
-    GpuObject o;
-    o.model = glm::mat4(rel);
-    o.normalMatrix = glm::mat4(glm::mat3(glm::inverseTranspose(glm::dmat3(w))));
-    casters.push_back({g, centre - origin, double(g->bounds.radius()) * maxScale});
-    objects.push_back(o);
-  }
-}
 
 // Does a sphere (frame-relative) touch the cascade's box, open towards the sun?
 bool touchesCascade(const ShadowCascade& c, const glm::dvec3& centre, double radius) {
@@ -82,17 +37,11 @@ struct SunShadowData {
   TextureRef map;
   BufferRef views, casters;
   SunCascades cascades;
-  std::vector<Caster> meshes;
+  std::vector<ShadowCaster> meshes;
   std::vector<GpuObject> objects;
   std::vector<std::vector<uint32_t>> perCascade;  // caster indices
   int resolution = 0;
 };
-
-size_t roundUpPow2(size_t v) {
-  size_t p = 256;
-  while (p < v) p *= 2;
-  return p;
-}
 
 }  // namespace
 
@@ -108,13 +57,17 @@ void addShadowPasses(FrameGraph& graph, FrameContext& frame) {
 
   ShadowBlock block;
   sh.sun = {};
-  if (config.enabled && frame.world.sun)
+  // settings.shadows is the master switch; then each light's own casts_shadows.
+  if (config.enabled && frame.world.sun && frame.world.sun->castsShadows)
     sh.sun = computeSunCascades(frame.lodView, frame.world.sun->direction, config, frame.visible.origin);
   for (size_t i = 0; i < sh.sun.cascades.size(); ++i) {
     block.sunCascade[i] = glm::mat4(sh.sun.cascades[i].frameToMap);
     block.sunTexelMetres[int(i)] = float(sh.sun.cascades[i].texelMetres);
   }
   block.sunParams = glm::vec4(float(sh.sun.cascades.size()), float(config.pcfRadius), 1.0f / float(config.resolution), 0.0f);
+  // Spot and point lights (local_shadow_pass.h): their pass, and their
+  // entries of the block (none: localParams.x = 0).
+  addLocalShadowPass(graph, frame, config, maxTexture, block);
   sh.block.upload(&block, sizeof block);
   glBindBufferRange(GL_UNIFORM_BUFFER, kShadowBlockBinding, sh.block.buffer.id(), 0, sizeof(ShadowBlock));
   if (sh.sun.cascades.empty()) return;
@@ -125,7 +78,7 @@ void addShadowPasses(FrameGraph& graph, FrameContext& frame) {
       [&](PassBuilder& b, SunShadowData& d) {
         d.cascades = sh.sun;
         d.resolution = config.resolution;
-        gatherCasters(frame, d.meshes, d.objects);
+        gatherShadowCasters(frame, d.meshes, d.objects);
         d.perCascade.resize(d.cascades.cascades.size());
         for (size_t c = 0; c < d.cascades.cascades.size(); ++c)
           for (size_t i = 0; i < d.meshes.size(); ++i)
@@ -135,9 +88,9 @@ void addShadowPasses(FrameGraph& graph, FrameContext& frame) {
         TextureDesc map{config.resolution, config.resolution, GL_DEPTH_COMPONENT32F, 1, layers};
         map.array = true;  // sampler2DArrayShadow, also for one cascade
         d.map = b.create("sun_shadow_map", map);
-        d.views = b.create("sun_shadow_views", BufferDesc{roundUpPow2(size_t(layers) * viewStride)});
+        d.views = b.create("sun_shadow_views", BufferDesc{shadowBufferBytes(size_t(layers) * viewStride)});
         if (!d.objects.empty())
-          d.casters = b.create("sun_shadow_casters", BufferDesc{roundUpPow2(d.objects.size() * sizeof(GpuObject))});
+          d.casters = b.create("sun_shadow_casters", BufferDesc{shadowBufferBytes(d.objects.size() * sizeof(GpuObject))});
       },
       [&frame, viewStride](const SunShadowData& d, const PassResources& r) {
         RenderResources& resources = frame.res;
@@ -167,19 +120,12 @@ void addShadowPasses(FrameGraph& graph, FrameContext& frame) {
         glPolygonOffset(kCasterSlopeOffset, kCasterConstantOffset);
         glDisable(GL_CULL_FACE);   // open scans cast from both sides
         glViewport(0, 0, d.resolution, d.resolution);
-        GlProgram& program = resources.program({"mesh.vert", "shadow_depth.frag", "", {}});
         for (size_t c = 0; c < d.cascades.cascades.size(); ++c) {
           glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.map, int(c)));
           const float clearDepth = 0.0f;
           glClearBufferfv(GL_DEPTH, 0, &clearDepth);
           glBindBufferRange(GL_UNIFORM_BUFFER, kViewBlockBinding, views, GLintptr(c * viewStride), sizeof(ViewBlock));
-          program.use();
-          for (uint32_t i : d.perCascade[c]) {
-            const GpuMesh& m = *d.meshes[i].mesh;
-            glBindVertexArray(m.vao);
-            glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(m.data->indices.size()), GL_UNSIGNED_INT,
-                                                nullptr, 1, i);
-          }
+          drawShadowCasters(resources, d.meshes, d.perCascade[c]);
           if (!frame.world.terrains.empty())
             resources.terrain.drawShadow(*frame.world.state, frame.world.terrains, frame.lodView,
                                    cascadeVolume(d.cascades.cascades[c]));
@@ -193,10 +139,12 @@ void addShadowPasses(FrameGraph& graph, FrameContext& frame) {
 
 void readShadowMaps(PassBuilder& b, const FrameContext& frame) {
   if (frame.sunShadowMap.valid()) b.read(frame.sunShadowMap);
+  readLocalShadowMaps(b, frame);
 }
 
 void bindShadowMaps(const FrameContext& frame, const PassResources& r) {
   glBindTextureUnit(kShadowTextureUnit, frame.sunShadowMap.valid() ? r.texture(frame.sunShadowMap) : 0);
+  bindLocalShadowMaps(frame, r);
 }
 
 }  // namespace hs::render

@@ -68,6 +68,7 @@ inline ShadowScene shadowScene(glm::dvec3 offset = glm::dvec3(0.0), double sunEl
   scene::Entity sun;
   sun.name = "Sun";
   sun.light = scene::Light{};
+  sun.light->castsShadows = true;
   // Local -Z rotated up by (90 - elevation) about X, then about Z.
   sun.transform.rotation = scene::fromEulerDegrees({90.0 - sunElevationDeg, 0, 150});
   addShadowEntity(s, sun);
@@ -77,6 +78,30 @@ inline ShadowScene shadowScene(glm::dvec3 offset = glm::dvec3(0.0), double sunEl
   cam.camera->verticalFovDeg = 50.0;
   cam.transform = lookFrom(offset + glm::dvec3(0, -14, 7), offset + glm::dvec3(0, 3, 0));
   addShadowEntity(s, cam);
+  return out;
+}
+
+// The same ground and shapes lit by one spot or point light alone (the sun
+// hidden), casting shadows: the spot from above and behind the camera's
+// target, its 100-degree cone over the shapes; the point light among the
+// spheres, so its shadows fall on several faces of its cube.
+inline ShadowScene localLightScene(scene::Light::Type type, glm::dvec3 offset = glm::dvec3(0.0)) {
+  ShadowScene out = shadowScene(offset);
+  scene::SceneState& s = out.state;
+  for (auto& [id, e] : s.entities)
+    if (e.light) e.visible = false;
+  scene::Entity e;
+  e.name = type == scene::Light::Type::Spot ? "Test spot" : "Test point";
+  e.light = scene::Light{};
+  e.light->type = type;
+  e.light->intensity = 2.0e6f;
+  e.light->range = 60.0f;
+  e.light->innerConeDeg = 80.0f;
+  e.light->outerConeDeg = 100.0f;
+  e.light->castsShadows = true;
+  e.transform = type == scene::Light::Type::Spot ? lookFrom(offset + glm::dvec3(1.0, -3.0, 9.0), offset + glm::dvec3(0, 3, 0))
+                                                  : lookFrom(offset + glm::dvec3(0.5, 1.0, 3.5), offset);
+  addShadowEntity(s, e);
   return out;
 }
 

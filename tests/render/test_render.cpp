@@ -168,6 +168,8 @@ class TestRender : public QObject {
   void largeCoordinatesMatchOriginWithShadows() {
     auto withShadows = [](scene::SceneState s) {
       s.settings.shadows = true;
+      for (auto& [id, e] : s.entities)
+        if (e.light) e.light->castsShadows = true;  // the sun casts (settings.shadows alone is the master switch)
       s.settings.shadowQuality = scene::ShadowQuality::High;
       s.settings.shadowDistance = 3.0;
       return s;

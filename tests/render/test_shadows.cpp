@@ -2,7 +2,8 @@
 // the cascade maths, a golden of the sun's shadows, the shadowed share
 // against a CPU ray cast (the independent reference: meshproc's BVH), no
 // shimmer when the camera moves by less than a texel, one set of cascades
-// for both eyes, nothing allocated without a caster, bad resolutions.
+// for both eyes, cut-out casters (sun and spot), nothing allocated without
+// a caster, bad resolutions.
 #include <QtTest>
 
 #include <cmath>
@@ -13,6 +14,8 @@
 #include "render/offscreen_renderer.h"
 #include "render/shadow_cascades.h"
 #include "scene/fields.h"
+#include "scene/mesh_materials.h"
+#include "shadow_probe.h"
 #include "shadow_scene.h"
 
 using namespace hs;
@@ -24,48 +27,93 @@ render::RenderView cameraView(const scene::SceneState& s, int w, int h) {
   return render::viewFromCamera(s, s.cameras().front(), w, h);
 }
 
-// What the sun's shadow does to each pixel: the HDR image with shadows
-// divided by the one without (ambient off, so the sun is all the light);
-// -1 where the surface gets too little sun to tell (sky, faces turned away,
-// grazing light). Also the world position of each pixel from its depth.
-struct ShadowProbe {
-  int width = 0, height = 0;
-  std::vector<float> visibility;   // top row first
-  std::vector<glm::dvec3> world;   // top row first; only where visibility >= 0
+// A 2 x 2 m card 2 m over a ground plane, its material cutting out a 1 x 1
+// m hole in its middle (base colour alpha 0 there), lit by a sun or a spot
+// light along (0.6, 0, -1) through the card's centre (the spot 3 units
+// of that back from it); a camera on +X that sees the card's shadow on the
+// ground beside it, not through the card.
+struct CardScene {
+  scene::SceneState state;
+  glm::dvec3 light{0.0};  // the spot's position (unused for the sun)
 };
 
-ShadowProbe probeShadows(render::OffscreenRenderer& r, scene::SceneState s, const render::RenderView& view,
-                         const render::RenderOptions& options = {}) {
-  s.settings.ambientIntensity = 0.0f;
-  ShadowProbe p;
-  p.width = view.width;
-  p.height = view.height;
-  const bool shadows = s.settings.shadows;
-  s.settings.shadows = false;
-  const hs::Image lit = r.render(s, view, true, nullptr, options);
-  s.settings.shadows = shadows;
-  render::RenderOptions o = options;
-  o.keepDepth = true;
-  const hs::Image shaded = r.render(s, view, true, nullptr, o);
-  std::vector<float> depth(size_t(view.width) * size_t(view.height));
-  r.renderer().readDepth(depth.data());
-  float maxLit = 0.0f;
-  for (size_t i = 0; i < depth.size(); ++i) maxLit = std::max(maxLit, lit.rgbaF[i * 4 + 1]);
-  const glm::dmat4 inv = glm::inverse(view.projection() * glm::dmat4(view.viewRotation()));
-  p.visibility.assign(depth.size(), -1.0f);
-  p.world.assign(depth.size(), glm::dvec3(0.0));
-  for (int y = 0; y < view.height; ++y)
-    for (int x = 0; x < view.width; ++x) {
-      const size_t i = size_t(y) * size_t(view.width) + size_t(x);
-      const float d = depth[size_t(view.height - 1 - y) * size_t(view.width) + size_t(x)];  // bottom row first
-      const float u = lit.rgbaF[i * 4 + 1];
-      if (d <= 0.0f || u < 0.01f * maxLit) continue;
-      p.visibility[i] = shaded.rgbaF[i * 4 + 1] / u;
-      const glm::dvec4 ndc((x + 0.5) / view.width * 2.0 - 1.0, 1.0 - (y + 0.5) / view.height * 2.0, double(d), 1.0);
-      const glm::dvec4 e = inv * ndc;
-      p.world[i] = view.eye + glm::dvec3(e) / e.w;
+CardScene cardScene(bool spot, bool cutout) {
+  CardScene out;
+  scene::SceneState& s = out.state;
+  s.settings.showGrid = false;
+  s.settings.antialiasing = scene::Antialiasing::None;
+  s.settings.tonemap = scene::Tonemap::None;
+  s.settings.shadows = true;
+  s.settings.shadowQuality = scene::ShadowQuality::Custom;
+  s.settings.shadowResolution = 2048;
+  s.settings.shadowCascades = 1;
+  s.settings.shadowDistance = 30.0;
+  auto addShape = [&](mesh::MeshData m, glm::dvec3 at, const scene::Material* material) {
+    auto data = std::make_shared<const mesh::MeshData>(std::move(m));
+    scene::MeshAsset a;
+    a.id = s.maxAssetId() + 1;
+    a.name = "shape";
+    a.contentHash = mesh::contentHash(*data);
+    a.data = std::move(data);
+    if (material) {
+      scene::Material mat = *material;
+      mat.id = scene::MaterialId(s.materials.size() + 1);
+      mat.asset = a.id;
+      a.materialSlots.assign(scene::materialSlotCount(*a.data), mat.id);
+      s.materials.emplace(mat.id, mat);
     }
-  return p;
+    const scene::AssetId id = a.id;
+    s.assets.emplace(id, std::move(a));
+    scene::Entity e;
+    e.name = "shape";
+    e.mesh = scene::MeshInstance{id};
+    e.transform.translation = at;
+    test::addShadowEntity(s, e);
+  };
+  addShape(mesh::gridPlane(30.0f, 4), {0, 0, 0}, nullptr);
+  // The card's texture: white, alpha 0 over its middle half (UV 0.25..0.75).
+  auto hole = std::make_shared<mesh::Texture>();
+  hole->name = "card with a hole";
+  hole->width = hole->height = 16;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x)
+      hole->rgba.insert(hole->rgba.end(), {255, 255, 255, uint8_t(x >= 4 && x < 12 && y >= 4 && y < 12 ? 0 : 255)});
+  scene::TextureAsset tex;
+  tex.id = 1;
+  tex.name = hole->name;
+  tex.srgb = true;
+  tex.contentHash = 1;
+  tex.image = hole;
+  s.textures.emplace(tex.id, tex);
+  scene::Material card;
+  card.name = "Card";
+  card.baseColorTexture = tex.id;
+  card.alphaCutout = cutout;
+  card.alphaThreshold = 0.5f;
+  addShape(mesh::gridPlane(2.0f, 1), {0, 0, 2}, &card);
+
+  const glm::dvec3 along = glm::normalize(glm::dvec3(0.6, 0, -1));
+  scene::Entity light;
+  light.name = spot ? "Card spot" : "Sun";
+  light.light = scene::Light{};
+  light.light->castsShadows = true;
+  if (spot) {
+    light.light->type = scene::Light::Type::Spot;
+    light.light->intensity = 3.0e6f;
+    light.light->range = 40.0f;
+    light.light->innerConeDeg = 100.0f;
+    light.light->outerConeDeg = 110.0f;
+    out.light = glm::dvec3(0, 0, 2) - along * (3.0 / -along.z);  // 3 m above the card
+  }
+  light.transform = test::lookFrom(out.light, out.light + along);
+  test::addShadowEntity(s, light);
+  scene::Entity cam;
+  cam.name = "Camera";
+  cam.camera = scene::Camera{};
+  cam.camera->verticalFovDeg = 50.0;
+  cam.transform = test::lookFrom({8, 0, 5}, {1.2, 0.5, 0});
+  test::addShadowEntity(s, cam);
+  return out;
 }
 
 glm::dvec3 towardSun(const scene::SceneState& s) {
@@ -156,7 +204,7 @@ class TestShadows : public QObject {
     sc.state.settings.shadowResolution = 2048;
     sc.state.settings.shadowDistance = 30.0;
     const render::RenderView view = cameraView(sc.state, 400, 300);
-    const ShadowProbe p = probeShadows(r_, sc.state, view);
+    const test::ShadowProbe p = test::probeShadows(r_, sc.state, view);
     const mesh::ClosestPointBvh bvh(sc.world);
     const glm::dvec3 l = towardSun(sc.state);
     size_t counted = 0, shadowed = 0, refShadowed = 0, differ = 0;
@@ -187,7 +235,7 @@ class TestShadows : public QObject {
     render::RenderView centre = view;
     render::RenderOptions o;
     o.lodView = &centre;
-    const ShadowProbe first = probeShadows(r_, sc.state, view, o);
+    const test::ShadowProbe first = test::probeShadows(r_, sc.state, view, o);
     const std::vector<render::SunCascadeInfo> cascades = r_.renderer().sunCascades();
     QVERIFY(!cascades.empty());
     const double texel = cascades.back().texelMetres;  // the scene is in the last cascade
@@ -196,7 +244,7 @@ class TestShadows : public QObject {
     QVERIFY(shadowedPixels > 1000);
     for (int f = 1; f <= 30; ++f) {
       centre.eye = view.eye + glm::dvec3(0.8, 0.5, 0.3) * (texel * f / 40.0);
-      const ShadowProbe p = probeShadows(r_, sc.state, view, o);
+      const test::ShadowProbe p = test::probeShadows(r_, sc.state, view, o);
       for (size_t i = 0; i < p.visibility.size(); ++i)
         if (first.visibility[i] >= 0.0f && p.visibility[i] >= 0.0f)
           changed += (first.visibility[i] < 0.5f) != (p.visibility[i] < 0.5f);
@@ -230,6 +278,44 @@ class TestShadows : public QObject {
     QVERIFY(leftInPair.rgbaF == leftAlone.rgbaF);
     // The right eye sees the same shadows: they differ from the left only by parallax.
     QVERIFY(rightInPair.rgbaF != leftInPair.rgbaF);
+  }
+
+  // Cut-out casters: a card with a hole lets the light through in its
+  // shadow where the hole is (sun and spot: the cascades and the spot's map
+  // draw casters alike); without cut-out the same place is in shadow.
+  // Probed on the ground where the light through the hole's centre, through
+  // the card's solid ring and past the card's edge lands.
+  void cutoutCastersLetLightThroughHoles_data() {
+    QTest::addColumn<bool>("spot");
+    QTest::newRow("sun") << false;
+    QTest::newRow("spot") << true;
+  }
+  void cutoutCastersLetLightThroughHoles() {
+    QFETCH(bool, spot);
+    for (bool cutout : {true, false}) {
+      const CardScene sc = cardScene(spot, cutout);
+      const render::RenderView view = cameraView(sc.state, 320, 240);
+      const test::ShadowProbe p = test::probeShadows(r_, sc.state, view);
+      // Where the light through a point of the card lands on the ground.
+      auto ground = [&](glm::dvec3 onCard) {
+        const glm::dvec3 d = spot ? onCard - sc.light : glm::dvec3(0.6, 0, -1);
+        return onCard + d * (onCard.z / -d.z);
+      };
+      auto visibilityAt = [&](glm::dvec3 world) {
+        glm::dvec2 px;
+        if (!view.project(world, px)) return -2.0f;
+        return p.visibility[size_t(int(px.y)) * size_t(view.width) + size_t(int(px.x))];
+      };
+      const float inHole = visibilityAt(ground({0, 0, 2}));
+      const float underCard = visibilityAt(ground({0, 0.75, 2}));
+      const float beside = visibilityAt(ground({0, 1.4, 2}));
+      qInfo("%s, cut-out %s: visibility %.2f through the hole, %.2f under the card, %.2f beside it",
+            spot ? "spot" : "sun", cutout ? "on" : "off", double(inHole), double(underCard), double(beside));
+      QVERIFY(beside > 0.9f);
+      QVERIFY(underCard >= 0.0f && underCard < 0.1f);
+      if (cutout) QVERIFY(inHole > 0.9f);
+      else QVERIFY(inHole >= 0.0f && inHole < 0.1f);
+    }
   }
 
   // Costs nothing: without a sun, or with shadows off, no shadow pass runs
