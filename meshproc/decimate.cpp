@@ -89,17 +89,9 @@ struct Setup {
 // still balances well over the threads (measured on the 5M scan tile: 200
 // regions of 25k faces spent 2.2 s in the border pass at 50%, 64 regions
 // 0.65 s).
-//
-// An even count: the rounds hand regions to the threads one at a time, and
-// an odd count leaves a core idle for part of every round. The bunny's three
-// regions kept two threads 75-82% busy (the 2-thread makespan of the
-// regions' CPU times, which the load does not change), its four 93-98%;
-// the Hausdorff moved by -14% to +7% on the bunny and the quad scan (see
-// docs/meshes.md, "Fourth round").
 size_t regionCount(size_t nf, const DecimateOptions& opt) {
   const size_t per = std::max<size_t>(1000, opt.facesPerRegion);
-  const size_t n = std::clamp<size_t>((nf + per / 2) / per, 1, 64);
-  return n > 1 && n % 2 ? n + 1 : n;
+  return std::clamp<size_t>((nf + per / 2) / per, 1, 64);
 }
 inline uint16_t regionOfFace(size_t f, size_t regions, size_t nf) { return uint16_t(f * regions / nf); }
 

@@ -51,7 +51,7 @@ struct DecimateOptions {
   bool copyTextures = true;
 
   unsigned threads = 0;            // 0 = every hardware thread
-  size_t facesPerRegion = 25000;   // partition size (an even count of regions, at most 64); fixes the output, whatever the thread count
+  size_t facesPerRegion = 25000;   // partition size (at most 64 regions); fixes the output, whatever the thread count
 };
 
 struct DecimateReport {
