@@ -173,6 +173,7 @@ void CollapseEngine::seedRange(uint32_t begin, uint32_t end) {
   Entry e;
   for (uint32_t edge = begin; edge < end; ++edge)
     if (entryFor(edge, e)) entries.push_back(e);
+  stats_.evaluations += end - begin;
   seedEntries(std::move(entries));
 }
 
@@ -516,7 +517,7 @@ void CollapseEngine::collapse(const Plan& plan, const uint32_t (&from)[2], const
       Entry entry;
       if (s_.estate[e] & kQueued)
         s_.estate[e] |= kDirty;  // re-evaluated if and when it reaches the top
-      else if (entryFor(e, entry))
+      else if (++stats_.evaluations, entryFor(e, entry))
         push(entry), ++stats_.pushed;            // was refused before; the new neighbourhood may allow it
     }
     it = m_.next_halfedge_handle(m_.opposite_halfedge_handle(it));
@@ -558,6 +559,7 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
       continue;
     }
     Plan plan;
+    ++stats_.evaluations;
     if (!evaluate(edge, plan) || plan.errSq > s_.maxErrorSq) {
       popTop();
       continue;

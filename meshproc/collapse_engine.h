@@ -31,6 +31,7 @@ struct EngineStats {
   // entries of deleted edges, dirty entries that sank, edges left for the
   // border pass, entries pushed by collapses, compactions.
   size_t tops = 0, deletedTops = 0, sank = 0, notOurs = 0, pushed = 0, compactions = 0;
+  size_t evaluations = 0;  // cost evaluations (seeding, tops, re-queued edges)
 };
 
 class CollapseEngine {

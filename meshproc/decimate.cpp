@@ -46,6 +46,11 @@ struct Trace {
   }
 };
 thread_local Trace* gTrace = nullptr;
+double threadCpuNow() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
 inline void traceMark(const char* what) {
   if (gTrace) gTrace->mark(what);
 }
@@ -699,12 +704,46 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
       roundStart = now;
       ++rep.rounds;
     };
+    // HS_DECIMATE_ROUNDS (with the trace): each round's work, summed over
+    // the regions, and its wall and CPU time (profiling only).
+    const bool traceRounds = gTrace && gTrace->on && std::getenv("HS_DECIMATE_ROUNDS");
+    auto sumStats = [&] {
+      EngineStats sum;
+      for (const auto& e : engines) {
+        const EngineStats& x = e->stats();
+        sum.collapses += x.collapses, sum.tops += x.tops, sum.deletedTops += x.deletedTops, sum.sank += x.sank;
+        sum.evaluations += x.evaluations, sum.notOurs += x.notOurs;
+        sum.rejectedTopology += x.rejectedTopology, sum.rejectedFlip += x.rejectedFlip, sum.rejectedSliver += x.rejectedSliver;
+      }
+      return sum;
+    };
     for (chooseRound(); !finished; chooseRound()) {
+      const EngineStats before = traceRounds ? sumStats() : EngineStats{};
+      const auto roundWall = Clock::now();
+      const double roundCpu = traceRounds ? Trace::cpuNow() : 0.0;
+      std::vector<double> regionCpu(traceRounds ? regions : 0, 0.0);
       parallelTasks(regions, threads, [&](size_t r, unsigned slot) {
         const size_t floor =
             countTarget ? size_t(std::ceil(double(live[r]) * double(stopAt) / double(std::max<size_t>(now, 1)))) : 0;
+        const double c0 = traceRounds ? threadCpuNow() : 0.0;
         if (!engines[r]->run(live[r], floor, limit, progress, done, expected, slot == 0)) cancelled = true;
+        if (traceRounds) regionCpu[r] = threadCpuNow() - c0;
       });
+      if (traceRounds) {
+        // Each region's CPU seconds in this round, in task order: how
+        // evenly they load the threads (a round's wall on an idle machine
+        // is its longest thread) does not depend on the load then.
+        std::fprintf(stderr, "    round %u regions' cpu:", rep.rounds - 1);
+        for (double c : regionCpu) std::fprintf(stderr, " %.5f", c);
+        std::fprintf(stderr, "\n");
+        const EngineStats a = sumStats();
+        std::fprintf(stderr, "    round %u done: evaluated %zu collapses %zu tops %zu deleted %zu sank %zu notOurs %zu rejected %zu wall %.4f cpu %.4f\n",
+                     rep.rounds - 1, a.evaluations - before.evaluations, a.collapses - before.collapses, a.tops - before.tops,
+                     a.deletedTops - before.deletedTops, a.sank - before.sank, a.notOurs - before.notOurs,
+                     (a.rejectedTopology + a.rejectedFlip + a.rejectedSliver) -
+                         (before.rejectedTopology + before.rejectedFlip + before.rejectedSliver),
+                     since(roundWall), Trace::cpuNow() - roundCpu);
+      }
     }
     traceMark("regions: rounds");
     if (gTrace && gTrace->on) {
@@ -713,12 +752,12 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
       for (auto& e : engines) {
         const EngineStats& x = e->stats();
         sum.collapses += x.collapses, sum.tops += x.tops, sum.deletedTops += x.deletedTops, sum.sank += x.sank;
-        sum.notOurs += x.notOurs, sum.pushed += x.pushed, sum.compactions += x.compactions;
+        sum.notOurs += x.notOurs, sum.pushed += x.pushed, sum.compactions += x.compactions, sum.evaluations += x.evaluations;
         sum.rejectedTopology += x.rejectedTopology, sum.rejectedFlip += x.rejectedFlip, sum.rejectedSliver += x.rejectedSliver;
         maxQueue = std::max(maxQueue, e->queued());
       }
-      std::fprintf(stderr, "  regions: %zu rounds %u, collapses %zu tops %zu deleted %zu sank %zu notOurs %zu pushed %zu compactions %zu topo %zu flip %zu sliver %zu live %zu stopAt %zu strip %zu\n",
-                   regions, rep.rounds, sum.collapses, sum.tops, sum.deletedTops, sum.sank, sum.notOurs, sum.pushed, sum.compactions,
+      std::fprintf(stderr, "  regions: %zu rounds %u, evaluated %zu collapses %zu tops %zu deleted %zu sank %zu notOurs %zu pushed %zu compactions %zu topo %zu flip %zu sliver %zu live %zu stopAt %zu strip %zu\n",
+                   regions, rep.rounds, sum.evaluations, sum.collapses, sum.tops, sum.deletedTops, sum.sank, sum.notOurs, sum.pushed, sum.compactions,
                    sum.rejectedTopology, sum.rejectedFlip, sum.rejectedSliver, total(), stopAt, strip);
     }
     for (auto& e : engines) stats.push_back(e->stats());
@@ -747,14 +786,18 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
     // 5M scan tile, mostly for edges that never reach the top.)
     std::vector<std::vector<CollapseEngine::Entry>> parts(threads + engines.size());
     parallelTasks(engines.size(), threads, [&](size_t r, unsigned) { engines[r]->appendLiveEntries(parts[threads + r]); });
+    std::atomic<size_t> borderEvaluated{0};  // for the trace
     parallelRanges(ne, threads, [&](size_t b, size_t e, unsigned w) {
       CollapseEngine::Entry entry;
+      size_t evaluated = 0;
       for (size_t edge = b; edge < e; ++edge) {
         const uint8_t state = st.estate[edge];
         if ((state & CollapseEngine::kQueued) && !st.edgeStatus[edge].deleted()) continue;  // taken over
         st.estate[edge] = 0;
+        evaluated += !st.edgeStatus[edge].deleted();
         if (border.entryFor(uint32_t(edge), entry)) parts[w].push_back(entry);
       }
+      borderEvaluated += evaluated;
     });
     engines.clear();
     size_t count = 0;
@@ -777,8 +820,8 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
     traceMark("border: run");
     if (gTrace && gTrace->on) {
       const EngineStats& x = border.stats();
-      std::fprintf(stderr, "  border: collapses %zu tops %zu deleted %zu sank %zu pushed %zu compactions %zu topo %zu flip %zu sliver %zu queued %zu\n",
-                   x.collapses, x.tops, x.deletedTops, x.sank, x.pushed, x.compactions, x.rejectedTopology,
+      std::fprintf(stderr, "  border: evaluated %zu (+ %zu edges evaluated in parallel) collapses %zu tops %zu deleted %zu sank %zu pushed %zu compactions %zu topo %zu flip %zu sliver %zu queued %zu\n",
+                   x.evaluations, borderEvaluated.load(), x.collapses, x.tops, x.deletedTops, x.sank, x.pushed, x.compactions, x.rejectedTopology,
                    x.rejectedFlip, x.rejectedSliver, border.queued());
     }
   }

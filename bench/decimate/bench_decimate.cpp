@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -49,12 +50,22 @@ using hs::bench::median;
 namespace {
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+// CPU seconds of the process (ours: both threads) or of this thread
+// (meshopt runs on it alone; the scheduler's workers may still spin after
+// our run and would be counted in the process's time). The load-independent
+// figure beside the wall times on a shared machine.
+double cpuSeconds(clockid_t clock) {
+  timespec ts{};
+  clock_gettime(clock, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
 
 struct Row {
   std::string method;
   double ratio = 0;
   size_t triangles = 0;
   double time = 0;
+  double cpu = 0;  // median CPU seconds (ours and meshopt; 0: not measured)
   ErrorReport error;
   double buildTime = 0;  // stock OpenMesh: building its mesh (not in `time`)
   DecimateReport report;  // ours: the phases of the best run
@@ -90,13 +101,16 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
   o.targetRatio = ratio;
   o.threads = threads;
   if (gFacesPerRegion) o.facesPerRegion = gFacesPerRegion;
+  std::vector<double> cOurs, cMeshopt;
   std::vector<double> tOurs, tMeshopt, tSetup, tRegions, tBorders, tOutput;
   std::vector<uint32_t> dst(in.indices.size());
   size_t n = 0;
   for (int i = 0; i < runs; ++i) {
+    const double c0 = cpuSeconds(CLOCK_PROCESS_CPUTIME_ID);
     const auto t0 = Clock::now();
     DecimateResult d = decimate(in, o);
     const double t = seconds(t0, Clock::now());
+    cOurs.push_back(cpuSeconds(CLOCK_PROCESS_CPUTIME_ID) - c0);
     if (!d.ok()) {
       std::fprintf(stderr, "decimate failed: %s\n", d.error.c_str());
       std::exit(1);
@@ -112,10 +126,12 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
       std::exit(1);
     }
     const size_t triangles = oursOut.triangleCount();
+    const double c1 = cpuSeconds(CLOCK_THREAD_CPUTIME_ID);
     const auto t1 = Clock::now();
     n = meshopt_simplify(dst.data(), in.indices.data(), in.indices.size(), &in.positions[0].x, in.positions.size(),
                          sizeof(glm::vec3), triangles * 3, 1e30f, 0, nullptr);
     tMeshopt.push_back(seconds(t1, Clock::now()));
+    cMeshopt.push_back(cpuSeconds(CLOCK_THREAD_CPUTIME_ID) - c1);
   }
   {
     // Content hash of our output on stderr: optimisations that must not
@@ -131,6 +147,13 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
                  (unsigned long long)h);
   }
   ours.time = median(tOurs);
+  ours.cpu = median(cOurs);
+  meshopt.cpu = median(cMeshopt);
+  // The minima too (stderr): under load the medians move by tens of per
+  // cent from run to run, the least CPU time of many runs much less.
+  std::fprintf(stderr, "ours %g%%: CPU s min %.4f median %.4f, meshopt min %.4f median %.4f (%zu runs)\n", ratio * 100,
+               *std::min_element(cOurs.begin(), cOurs.end()), ours.cpu,
+               *std::min_element(cMeshopt.begin(), cMeshopt.end()), meshopt.cpu, cOurs.size());
   ours.triangles = oursOut.triangleCount();
   ours.report.secondsSetup = median(tSetup), ours.report.secondsRegions = median(tRegions);
   ours.report.secondsBorders = median(tBorders), ours.report.secondsOutput = median(tOutput);
@@ -203,7 +226,7 @@ void printWorst(const MeshData& original, const MeshData& result, const char* wh
     std::partial_sort(worst.begin(), worst.begin() + std::min<ptrdiff_t>(5, ptrdiff_t(worst.size())), worst.end(),
                       [](const Worst& a, const Worst& b) { return a.d > b.d; });
     for (size_t k = 0; k < std::min<size_t>(5, worst.size()); ++k)
-      std::printf("|  | %s %s: %.3e m at (%.3f, %.3f, %.3f) | | | | | | | | | | | | |\n", what,
+      std::printf("|  | %s %s: %.3e m at (%.3f, %.3f, %.3f) | | | | | | | | | | | | | |\n", what,
                   dir == 0 ? "original->result" : "result->original", worst[k].d, worst[k].p.x, worst[k].p.y,
                   worst[k].p.z);
   }
@@ -212,8 +235,8 @@ void printWorst(const MeshData& original, const MeshData& result, const char* wh
 void printHeader(const char* name, const MeshData& m, double samplesPerFace) {
   std::printf("\n## %s: %zu triangles, %zu vertices (error: %.0f samples per original face each way, seed 1)\n\n",
               name, m.triangleCount(), m.vertexCount(), samplesPerFace);
-  std::printf("| target | method | triangles | time s | input Mtri/s | Hausdorff m | Hausdorff / diag | mean m | RMS m | flips | time / meshopt | Hausdorff / meshopt | phases s: setup / regions / border / output | error measure s |\n");
-  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
+  std::printf("| target | method | triangles | time s | CPU s | input Mtri/s | Hausdorff m | Hausdorff / diag | mean m | RMS m | flips | time / meshopt | Hausdorff / meshopt | phases s: setup / regions / border / output | error measure s |\n");
+  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
 }
 
 void printRow(const Row& r, const MeshData& in, const Row* meshopt) {
@@ -227,8 +250,10 @@ void printRow(const Row& r, const MeshData& in, const Row* meshopt) {
   if (r.report.trianglesIn)
     std::snprintf(phases, sizeof phases, "%.3f / %.3f / %.3f / %.3f", r.report.secondsSetup, r.report.secondsRegions,
                   r.report.secondsBorders, r.report.secondsOutput);
-  std::printf("| %g%% | %s | %zu | %.4f | %.2f | %.3e | %.3e | %.3e | %.3e | %zu | %s | %s | %s | %.2f |\n", r.ratio * 100,
-              r.method.c_str(), r.triangles, r.time, double(in.triangleCount()) / r.time / 1e6, r.error.hausdorff,
+  char cpu[32] = "";
+  if (r.cpu > 0) std::snprintf(cpu, sizeof cpu, "%.4f", r.cpu);
+  std::printf("| %g%% | %s | %zu | %.4f | %s | %.2f | %.3e | %.3e | %.3e | %.3e | %zu | %s | %s | %s | %.2f |\n", r.ratio * 100,
+              r.method.c_str(), r.triangles, r.time, cpu, double(in.triangleCount()) / r.time / 1e6, r.error.hausdorff,
               r.error.rel(r.error.hausdorff), r.error.mean, r.error.rms, r.error.flippedNormals, timeRatio, hausRatio,
               phases, r.errorTime);
   std::fflush(stdout);
@@ -359,7 +384,7 @@ int main(int argc, char** argv) {
         meshopt.error = meter->measure(mo);
         meshopt.errorTime = seconds(t0, Clock::now());
         if (ours.error.constrainedVerticesMoved)
-          std::printf("| | ours: %zu boundary/seam vertices off their polylines | | | | | | | | | | | | |\n",
+          std::printf("| | ours: %zu boundary/seam vertices off their polylines | | | | | | | | | | | | | |\n",
                       ours.error.constrainedVerticesMoved);
       }
       printRow(meshopt, ds.mesh, nullptr);
@@ -383,7 +408,7 @@ int main(int argc, char** argv) {
           stock.errorTime = seconds(t0, Clock::now());
         }
         printRow(stock, ds.mesh, &meshopt);
-        std::printf("|  | (OpenMesh: building its mesh with add_face took %.3f s more) | | | | | | | | | | | | |\n",
+        std::printf("|  | (OpenMesh: building its mesh with add_face took %.3f s more) | | | | | | | | | | | | | |\n",
                     stock.buildTime);
         sStock.points.push_back({stock.time, stock.error.rel(stock.error.hausdorff)});
         sStock.pointLabels.push_back(label);
@@ -394,7 +419,7 @@ int main(int argc, char** argv) {
         const char* names[2] = {"Blender 3.4 Decimate (collapse)", "MeshLab 2020.09 quadric edge collapse"};
         for (int k = 0; k < 2; ++k) {
           if (!peers[k].ran) {
-            std::printf("|  | %s: %s | | | | | | | | | | | | |\n", names[k], peers[k].note.c_str());
+            std::printf("|  | %s: %s | | | | | | | | | | | | | |\n", names[k], peers[k].note.c_str());
             continue;
           }
           Row pr;
@@ -408,7 +433,7 @@ int main(int argc, char** argv) {
             pr.errorTime = seconds(t0, Clock::now());
           }
           printRow(pr, ds.mesh, &meshopt);
-          std::printf("|  | (%s: %s) | | | | | | | | | | | | |\n", names[k], peers[k].note.c_str());
+          std::printf("|  | (%s: %s) | | | | | | | | | | | | | |\n", names[k], peers[k].note.c_str());
           (k == 0 ? sBlender : sMeshlab).points.push_back({pr.time, pr.error.rel(pr.error.hausdorff)});
           (k == 0 ? sBlender : sMeshlab).pointLabels.push_back(label);
         }
