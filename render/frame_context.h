@@ -23,6 +23,10 @@ struct FrameContext {
   // The sun's cascaded shadow maps of this frame (passes/shadow_passes.h);
   // invalid when nothing casts.
   TextureRef sunShadowMap{};
+  // The clustered light list (passes/light_culling.h): the point and spot
+  // lights that reach a view, and the grid when the frame has one.
+  size_t lightsInView = 0;
+  BufferRef lightGrid{}, lightIndices{};
 };
 
 // One view of the frame: its camera, its index in the view block buffer,
