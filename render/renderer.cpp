@@ -424,6 +424,12 @@ std::vector<std::string> Renderer::takeShadowProblems() {
   return out;
 }
 
+std::vector<BuiltProgram> Renderer::builtPrograms() const {
+  std::vector<BuiltProgram> out;
+  for (const gl::ProgramDesc& d : d_->res.shaders.builtPrograms()) out.push_back({d.name(), d.defines});
+  return out;
+}
+
 std::vector<std::string> Renderer::takeLightProblems() {
   std::vector<std::string> out;
   out.swap(d_->res.lightProblems);

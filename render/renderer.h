@@ -119,6 +119,13 @@ struct SunCascadeInfo {
   glm::dvec3 frameOrigin{0.0};
 };
 
+// A shader program the renderer has built: its files and the defines of
+// its variant (tests of "a scene builds only the variants it needs").
+struct BuiltProgram {
+  std::string name;  // "mesh.vert + mesh.frag [FOG_HEIGHT]"
+  std::vector<std::string> defines;
+};
+
 class Renderer {
  public:
   Renderer();
@@ -195,6 +202,8 @@ class Renderer {
   // Light clusters over the cap (render/passes/light_culling.h), reported
   // once when they start; the frame renders without the extra lights there.
   std::vector<std::string> takeLightProblems();
+  // Every program built since initialize(), initialisation's included.
+  std::vector<BuiltProgram> builtPrograms() const;
   // The sun's cascades of the last frame (empty: no sun shadow).
   std::vector<SunCascadeInfo> sunCascades() const;
 
