@@ -38,6 +38,8 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
       {"fullscreen.vert", "ssao.frag", "", {}},              {"fullscreen.vert", "ssao_apply.frag", "", {}},
       // Clustered lights
       {"", "", "light_culling.comp", {}},
+      // GTAO (settings.ao = gtao)
+      {"fullscreen.vert", "gtao.frag", "", {}},
   };
   return programs;
 }
