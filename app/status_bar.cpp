@@ -55,6 +55,15 @@ QString passTableHtml(const render::FrameStats& stats, const std::map<std::strin
               .arg(stats.drawCalls)
               .arg(formatBytes(bytes))
               .arg(formatBytes(stats.gpuBytes));
+  // The clustered light list (render/passes/light_culling.h).
+  if (stats.lightsInView > 0) {
+    html += QString("<p>%1 point/spot lights in view").arg(stats.lightsInView);
+    if (stats.lightClustersOverCap > 0)
+      html += QString("; %1 light clusters over the cap of 128 (up to %2 lights)")
+                  .arg(stats.lightClustersOverCap)
+                  .arg(stats.lightsMaxPerCluster);
+    html += ".</p>";
+  }
   return html;
 }
 

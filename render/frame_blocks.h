@@ -19,6 +19,7 @@ enum Binding : unsigned {
   kEnvironmentBlockBinding = 6,  // uniform EnvironmentBlock
   kLightGridBinding = 7,         // buffer LightGrid (clustered light lists)
   kFogBlockBinding = 8,          // uniform FogBlock (shaders/fog.glsl; only with fog on)
+  // 9: buffer LightIndexList, 10: buffer LightCullStats (passes/light_culling.h)
   kLocalShadowBinding = 11,      // buffer LocalShadowBlock (spot/point shadows; only when one casts)
 };
 

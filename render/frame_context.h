@@ -30,6 +30,10 @@ struct FrameContext {
   TextureRef localShadowMaps{};
   BufferRef localShadowData{};
   const std::vector<RenderView>* views = nullptr;
+  // The clustered light list (passes/light_culling.h): the point and spot
+  // lights that reach a view, and the grid when the frame has one.
+  size_t lightsInView = 0;
+  BufferRef lightGrid{}, lightIndices{};
 };
 
 // One view of the frame: its camera, its index in the view block buffer,

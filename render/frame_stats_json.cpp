@@ -30,6 +30,9 @@ Json frameStatsJson(const FrameStats& stats, const std::vector<GpuAllocation>& r
   double passGpu = stats.passes.empty() ? -1.0 : 0.0;
   for (const PassStats& p : stats.passes) passGpu = (passGpu < 0.0 || p.gpuMs < 0.0) ? -1.0 : passGpu + p.gpuMs;
   j["gpu_ms"] = milliseconds(passGpu >= 0.0 ? passGpu : stats.gpuMs);
+  j["lights"] = {{"in_view", stats.lightsInView},
+                 {"clusters_over_cap", stats.lightClustersOverCap},
+                 {"max_per_cluster", stats.lightsMaxPerCluster}};
   j["resources"] = std::move(resources);
   return j;
 }

@@ -64,6 +64,11 @@ struct RenderResources {
 
   EnvironmentMaps environment;  // the analytic sky's image-based light (none with the gradient sky)
 
+  // Clustered lights (passes/light_culling.h): clusters over the cap are
+  // reported once until a frame has none again.
+  std::vector<std::string> lightProblems;
+  bool lightOverflowReported = false;
+
   // The program of `desc` (all are built at initialisation, so this never
   // fails at draw time; it returns nullptr only for a desc that was not).
   GlProgram& program(const gl::ProgramDesc& desc);

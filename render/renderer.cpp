@@ -15,6 +15,7 @@
 #include "render/passes/ao_passes.h"
 #include "render/passes/background_passes.h"
 #include "render/passes/environment_pass.h"
+#include "render/passes/light_culling.h"
 #include "render/passes/output_passes.h"
 #include "render/passes/scene_passes.h"
 #include "render/passes/shadow_passes.h"
@@ -35,6 +36,10 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
       {"fullscreen.vert", "sky.frag", "", {"SKY_ANALYTIC"}}, {"", "", "env_sky_cube.comp", {}},
       {"", "", "env_sh.comp", {}},                           {"", "", "env_prefilter.comp", {}},
       {"fullscreen.vert", "ssao.frag", "", {}},              {"fullscreen.vert", "ssao_apply.frag", "", {}},
+      // Clustered lights
+      {"", "", "light_culling.comp", {}},
+      // GTAO (settings.ao = gtao)
+      {"fullscreen.vert", "gtao.frag", "", {}},
   };
   return programs;
 }
@@ -68,8 +73,10 @@ struct Renderer::Impl {
   std::vector<TextureRef> keptHdr, keptDepth;
   std::vector<glm::ivec2> keptSizes;
 
+  // `lightsInView`: the point and spot lights that can light a pixel of a
+  // view (none: the shaders loop over no light).
   void uploadFrameData(const RenderWorld& world, const VisibleSet& visible, const scene::SceneSettings& settings,
-                       const std::vector<ViewTarget>& views) {
+                       const std::vector<ViewTarget>& views, size_t lightsInView) {
     FrameBlock f;
     if (world.sun) {
       f.sunDir = glm::vec4(glm::vec3(-world.sun->direction), 1.0f);
@@ -78,7 +85,7 @@ struct Renderer::Impl {
     f.skyZenith = glm::vec4(settings.skyZenith, 0.0f);
     f.skyHorizon = glm::vec4(settings.skyHorizon, 0.0f);
     f.groundColor = glm::vec4(settings.groundColor, 0.0f);
-    f.params = glm::vec4(settings.ambientIntensity, float(scene::exposureMultiplier(settings.exposureEv100)), float(world.lights.size()), 0.0f);
+    f.params = glm::vec4(settings.ambientIntensity, float(scene::exposureMultiplier(settings.exposureEv100)), float(lightsInView ? world.lights.size() : 0), 0.0f);
     f.environment = glm::vec4(settings.sky == scene::SkyModel::Analytic ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
 
     res.frameBlock.upload(&f, sizeof f);
@@ -190,7 +197,8 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   const VisibleSet visible = buildVisibleSet(world, res.meshes, views, &lodView, settings.meshLodErrorPixels);
   stats.instancesCulled = visible.culled;
   stats.instancesAtCoarserLod = visible.coarser;
-  d.uploadFrameData(world, visible, settings, targets);
+  const size_t lightsInView = pointLightsInView(world, views);
+  d.uploadFrameData(world, visible, settings, targets, lightsInView);
   res.materials.build(state, visible, res.meshes, res.materialBlock);
 
   // Reversed-Z: depth 1 at the near plane, 0 at the far plane.
@@ -205,6 +213,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   auto graph = std::make_unique<FrameGraph>(res.pool);
   FrameContext frame{res, world, visible, settings, options, lodView, stats};
   frame.views = &views;  // spot/point shadows: lights that reach no view cast nothing
+  frame.lightsInView = lightsInView;
   std::vector<ViewContext> viewContexts;
   for (size_t i = 0; i < targets.size(); ++i)
     viewContexts.push_back({targets[i].view, i, targets[i].fbo, targets[i].name.empty() ? "" : "[" + targets[i].name + "]"});
@@ -212,6 +221,8 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   addShadowPasses(*graph, frame);
   // Eye-independent: once per frame, before the views.
   addEnvironmentPass(*graph, frame);
+  // Clustered lights: once per frame, one grid per view.
+  addLightCullingPass(*graph, frame, viewContexts);
   for (const ViewContext& v : viewContexts) {
     const SceneTargets scene = addOpaquePass(*graph, frame, v);
     if (!world.terrains.empty()) addTerrainPass(*graph, frame, v, scene);
@@ -333,7 +344,7 @@ scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView&
 
   const RenderWorld world = RenderWorld::build(state);
   const VisibleSet visible = buildVisibleSet(world, res.meshes, {view}, &view, state.settings.meshLodErrorPixels);
-  d.uploadFrameData(world, visible, state.settings, {ViewTarget{view, 0, {}}});
+  d.uploadFrameData(world, visible, state.settings, {ViewTarget{view, 0, {}}}, 0);  // picking lights nothing
   ViewBlock vb = viewBlockOf(view, visible.origin);
   vb.projection = glm::mat4(n * view.projection());
   res.viewBlocks.upload(&vb, sizeof vb);
@@ -413,6 +424,18 @@ std::vector<std::string> Renderer::takeMaterialProblems() { return d_->res.mater
 std::vector<std::string> Renderer::takeShadowProblems() {
   std::vector<std::string> out;
   out.swap(d_->res.shadows.newProblems);
+  return out;
+}
+
+std::vector<BuiltProgram> Renderer::builtPrograms() const {
+  std::vector<BuiltProgram> out;
+  for (const gl::ProgramDesc& d : d_->res.shaders.builtPrograms()) out.push_back({d.name(), d.defines});
+  return out;
+}
+
+std::vector<std::string> Renderer::takeLightProblems() {
+  std::vector<std::string> out;
+  out.swap(d_->res.lightProblems);
   return out;
 }
 

@@ -60,6 +60,13 @@ struct FrameStats {
   double gpuMs = -1.0;     // from a timer query of an earlier frame; -1 until known
   size_t gpuBytes = 0;     // everything the renderer holds (resourceRegistry())
   std::vector<PassStats> passes;  // the passes that ran, in order
+  // Clustered lights (render/passes/light_culling.h): point and spot lights
+  // whose range reaches a view; clusters reached by more lights than the
+  // cap (128: the rest are left out there) and the most lights one cluster
+  // had, known only when the frame has more lights than the cap.
+  size_t lightsInView = 0;
+  size_t lightClustersOverCap = 0;
+  size_t lightsMaxPerCluster = 0;
 };
 
 struct RenderOptions {
@@ -79,6 +86,9 @@ struct RenderOptions {
   // parallax mapping) instead of a colour: read it with keepHdr/readHdr
   // (tests of the maps). Gouraud materials are not affected.
   bool debugShadingNormal = false;
+  // Every pixel loops over every point and spot light of the frame instead
+  // of its cluster's (tests and bench_lights compare the two).
+  bool bruteForceLights = false;
 };
 
 // One view of a frame and the framebuffer it ends in.
@@ -107,6 +117,13 @@ struct SunCascadeInfo {
   double texelMetres = 0.0;
   glm::dmat4 frameToMap{1.0};
   glm::dvec3 frameOrigin{0.0};
+};
+
+// A shader program the renderer has built: its files and the defines of
+// its variant (tests of "a scene builds only the variants it needs").
+struct BuiltProgram {
+  std::string name;  // "mesh.vert + mesh.frag [FOG_HEIGHT]"
+  std::vector<std::string> defines;
 };
 
 class Renderer {
@@ -182,6 +199,11 @@ class Renderer {
   // than the GPU allows), each naming the field, reported once; the frame
   // renders with the clamped value.
   std::vector<std::string> takeShadowProblems();
+  // Light clusters over the cap (render/passes/light_culling.h), reported
+  // once when they start; the frame renders without the extra lights there.
+  std::vector<std::string> takeLightProblems();
+  // Every program built since initialize(), initialisation's included.
+  std::vector<BuiltProgram> builtPrograms() const;
   // The sun's cascades of the last frame (empty: no sun shadow).
   std::vector<SunCascadeInfo> sunCascades() const;
 

@@ -358,7 +358,7 @@ std::vector<SettingsField> buildSettingsFields() {
                      [](S& s) -> float& { return s.skyTurbidity; }),
       doubleField<S>("sky_ground_albedo", "Ground albedo (sky)", 0.0, 1.0, 0.01, "",
                      [](S& s) -> float& { return s.skyGroundAlbedo; }),
-      enumField<S>("ao", "Ambient occlusion", {"off", "ssao"}, [](S& s) -> AmbientOcclusion& { return s.ao; }),
+      enumField<S>("ao", "Ambient occlusion", {"off", "ssao", "gtao"}, [](S& s) -> AmbientOcclusion& { return s.ao; }),
       doubleField<S>("ao_radius", "AO radius", 0.05, 20.0, 0.05, "m", [](S& s) -> float& { return s.aoRadius; }),
       doubleField<S>("ao_strength", "AO strength", 0.0, 4.0, 0.05, "", [](S& s) -> float& { return s.aoStrength; }),
       enumField<S>("ao_resolution", "AO resolution", {"half", "full"},

@@ -76,7 +76,7 @@ enum class FogMode { None = 0, DepthCue = 1, ExponentialHeight = 2 };
 // harmonics and a prefiltered specular cube recomputed when the sun moves.
 enum class SkyModel { Gradient = 0, Analytic = 1 };
 // Screen-space ambient occlusion of the ambient term (docs/rendering.md).
-enum class AmbientOcclusion { Off = 0, Ssao = 1 };
+enum class AmbientOcclusion { Off = 0, Ssao = 1, Gtao = 2 };  // docs/rendering.md, "Ambient occlusion"
 enum class AoResolution { Half = 0, Full = 1 };
 
 struct SceneSettings {

@@ -11,7 +11,8 @@
 //
 // Binding points (render/frame_blocks.h, enum Binding): uniform blocks 0
 // frame, 1 view, 5 shadows, 6 environment; storage buffers 2 lights,
-// 3 objects, 4 materials, 7 the light grid, 11 spot/point shadow data.
+// 3 objects, 4 materials, 7 the light grid (9 its light indices, 10 its
+// statistics: light_clusters.glsl), 11 spot/point shadow data.
 // Texture units: 0-7 a material's textures, 8-11 sun shadow maps, 12-15
 // environment maps, 16-19 spot/point shadow maps.
 #ifndef HS_FRAME_BLOCKS_GLSL

@@ -7,10 +7,15 @@
 #include "brdf.glsl"
 #include "frame_blocks.glsl"
 #include "shadows.glsl"
+#ifdef LIGHTS_CLUSTERED
+#include "light_clusters.glsl"
+layout(std430, binding = 7) readonly buffer LightGrid { uint clusterCounts[]; };
+layout(std430, binding = 9) readonly buffer LightIndexList { uint clusterLights[]; };
+#endif
 
 // Inverse square, windowed to exactly 0 at the range (Filament's and
 // Unreal's (1 − (d/r)⁴)², smooth, no hard cut-off): a light list that drops
-// a light beyond its range loses nothing (render/light_culling.h relies on
+// a light beyond its range loses nothing (render/passes/light_culling.h relies on
 // it). The 1 cm floor keeps a surface at the light finite.
 float distanceAttenuation(float d, float range) {
   float x = d / range;
@@ -40,8 +45,22 @@ vec3 directLighting(Surface s) {
   vec3 color = vec3(0.0);
   if (frame.sunDir.w > 0.5)
     color += reflectLight(s, frame.sunDir.xyz) * frame.sunColor.rgb * sunVisibility(s.position, s.normal);
+#ifdef LIGHTS_CLUSTERED
+  // The lights of this pixel's cluster (light_clusters.glsl; fragment
+  // shaders only: the tile comes from gl_FragCoord).
+  ivec2 tile = clamp(ivec2(gl_FragCoord.xy * view.viewport.zw * vec2(LIGHT_TILES_X, LIGHT_TILES_Y)), ivec2(0),
+                     ivec2(LIGHT_TILES_X - 1, LIGHT_TILES_Y - 1));
+  float depth = -(mat3(view.viewRotation) * s.position).z;
+  int cluster = lightClusterIndex(tile, lightSliceOf(depth));
+  uint n = clusterCounts[cluster];
+  uint base = uint(cluster) * uint(LIGHT_CLUSTER_CAP);
+  for (uint k = 0u; k < n; ++k) color += pointOrSpotLight(s, int(clusterLights[base + k]));
+#else
+  // Every light of the frame (no light in view: none; the brute-force
+  // reference of the tests and bench_lights; Gouraud's vertices).
   int count = int(frame.params.z);
   for (int i = 0; i < count; ++i) color += pointOrSpotLight(s, i);
+#endif
   return color;
 }
 

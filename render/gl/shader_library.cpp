@@ -99,6 +99,7 @@ GlProgram* ShaderLibrary::get(const ProgramDesc& desc, std::string& error) {
   if (auto it = programs_.find(key); it != programs_.end()) return it->second.get();
   auto p = std::make_unique<GlProgram>();
   if (!p->build(desc, error)) return nullptr;
+  built_.push_back(desc);
   return programs_.emplace(key, std::move(p)).first->second.get();
 }
 
@@ -111,6 +112,7 @@ bool ShaderLibrary::prebuild(const std::vector<ProgramDesc>& descs, std::string&
 void ShaderLibrary::release() {
   for (auto& [k, p] : programs_) p->release();
   programs_.clear();
+  built_.clear();
 }
 
 }  // namespace hs::render::gl

@@ -43,10 +43,14 @@ class ShaderLibrary {
   // Builds every program in `descs` now (initialisation checks them all).
   bool prebuild(const std::vector<ProgramDesc>& descs, std::string& error);
   size_t programCount() const { return programs_.size(); }
+  // Every program built so far, in the order they were built (a variant
+  // is its files and defines): what a frame made the library compile.
+  const std::vector<ProgramDesc>& builtPrograms() const { return built_; }
   void release();
 
  private:
   std::map<std::string, std::unique_ptr<GlProgram>> programs_;
+  std::vector<ProgramDesc> built_;
 };
 
 }  // namespace hs::render::gl

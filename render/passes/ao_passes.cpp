@@ -8,7 +8,8 @@ namespace hs::render {
 
 TextureRef addAmbientOcclusionPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v,
                                      const SceneTargets& scene, TextureRef hdr) {
-  if (frame.settings.ao != scene::AmbientOcclusion::Ssao) return hdr;
+  if (frame.settings.ao == scene::AmbientOcclusion::Off) return hdr;
+  const char* shader = frame.settings.ao == scene::AmbientOcclusion::Gtao ? "gtao.frag" : "ssao.frag";
   const TextureRef depth = addDepthResolvePass(graph, frame, v, scene);
   const bool half = frame.settings.aoResolution == scene::AoResolution::Half;
   const int aw = half ? std::max(1, v.view.width / 2) : v.view.width;
@@ -22,13 +23,13 @@ TextureRef addAmbientOcclusionPasses(FrameGraph& graph, FrameContext& frame, con
         d.depth = b.read(depth);
         d.ao = b.create(v.named("ao"), TextureDesc{aw, ah, GL_R8});
       },
-      [&frame, index = v.index, inv = glm::mat4(glm::inverse(v.view.projection())), aw, ah](const AoData& d,
+      [&frame, shader, index = v.index, inv = glm::mat4(glm::inverse(v.view.projection())), aw, ah](const AoData& d,
                                                                                            const PassResources& r) {
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.ao}));
         glViewport(0, 0, aw, ah);
         glDisable(GL_DEPTH_TEST);
         frame.res.bindView(index);
-        GlProgram& p = frame.res.program({"fullscreen.vert", "ssao.frag", "", {}});
+        GlProgram& p = frame.res.program({"fullscreen.vert", shader, "", {}});
         p.set("uInvProjection", inv);
         p.set("uRadius", frame.settings.aoRadius);
         p.set("uStrength", frame.settings.aoStrength);

@@ -1,6 +1,7 @@
 #pragma once
-// Screen-space ambient occlusion (settings.ao = ssao; docs/rendering.md):
-// per view, after the MSAA resolve, an AO pass reads the scene's depth
+// Screen-space ambient occlusion (settings.ao = ssao or gtao;
+// docs/rendering.md): per view, after the MSAA resolve, an AO pass
+// (shaders/ssao.frag or gtao.frag) reads the scene's depth
 // (resolved to one sample) into an R8 visibility texture at half or full
 // resolution, and an apply pass writes the scene colour with the ambient
 // share (its alpha) occluded. Not added with AO off, so no AO texture

@@ -2,6 +2,7 @@
 
 #include "render/fog_block.h"
 #include "render/gpu_mesh_cache.h"
+#include "render/passes/light_culling.h"
 #include "render/passes/shadow_passes.h"
 
 namespace hs::render {
@@ -11,6 +12,9 @@ gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode, bool normalMap, bool pa
   gl::ProgramDesc d{"mesh.vert", "mesh.frag", "", extra};
   if (mode == scene::ShadingMode::Gouraud) d.defines.push_back("SHADING_GOURAUD");
   if (mode == scene::ShadingMode::Flat) d.defines.push_back("SHADING_FLAT");
+  // Gouraud lights its vertices, some off screen where no cluster is: it
+  // loops over every light of the frame.
+  if (mode == scene::ShadingMode::Gouraud) std::erase(d.defines, std::string("LIGHTS_CLUSTERED"));
   if (mode != scene::ShadingMode::Gouraud) {
     if (normalMap || parallax) d.defines.push_back("HAS_TANGENTS");
     if (normalMap) d.defines.push_back("HAS_NORMAL_MAP");
@@ -31,6 +35,7 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
         t.depth = b.create(v.named("scene_depth"),
                            TextureDesc{v.view.width, v.view.height, GL_DEPTH_COMPONENT32F, samples});
         readShadowMaps(b, frame);
+        readLightGrid(b, frame);
       },
       [&frame, index = v.index, w = v.view.width, h = v.view.height](const SceneTargets& t, const PassResources& r) {
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({t.color}, t.depth));
@@ -43,11 +48,12 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
         if (frame.visible.draws.empty()) return;
         frame.res.bindView(index);
         bindShadowMaps(frame, r);
+        bindLightGrid(frame, r, index);
         // One program per shading mode a material uses (shaders/mesh.frag's
         // variants), built on first use: none for modes nobody uses.
         GlProgram* programs[3][2][2] = {};
         const bool debugNormal = frame.options.debugShadingNormal;
-        const std::vector<std::string> fog = fogDefines(frame.settings);
+        const std::vector<std::string> fog = surfaceDefines(frame);
         auto programFor = [&](const DrawMaterial& mat) -> GlProgram& {
           GlProgram*& p = programs[int(mat.shading)][mat.normalMap][mat.parallax];
           if (!p) p = &frame.res.program(meshProgramDesc(mat.shading, mat.normalMap, mat.parallax, debugNormal, fog));
@@ -99,14 +105,16 @@ void addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v
         b.read(d.t.depth);
         b.write(d.t.depth);
         readShadowMaps(b, frame);
+        readLightGrid(b, frame);
       },
       [&frame, &view = v.view, index = v.index](const Data& d, const PassResources& r) {
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.t.color}, d.t.depth));
         frame.res.bindView(index);
         bindShadowMaps(frame, r);
+        bindLightGrid(frame, r, index);
         const TerrainFrameStats ts =
             frame.res.terrain.draw(*frame.world.state, frame.world.terrains, view, frame.lodView,
-                                   fogDefines(frame.settings));
+                                   surfaceDefines(frame));
         frame.stats.trianglesDrawn += ts.triangles;
         frame.stats.drawCalls += ts.terrains;
         frame.stats.terrainTriangles += ts.triangles;

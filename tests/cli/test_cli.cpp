@@ -451,6 +451,12 @@ class TestCli : public QObject {
     QCOMPARE(ran.contains("resolve"), aa == "msaa4");
     QCOMPARE(ran.contains("fxaa"), aa == "fxaa");
     QVERIFY(!ran.contains("overlay"));  // nothing to overlay headless
+    // The demo's spot and point lights are in view: the clustered light
+    // list ran, and none of its clusters overflowed.
+    const QJsonObject lights = j["lights"].toObject();
+    QVERIFY2(lights["in_view"].toInteger() > 0, "the demo's lights are in view");
+    QVERIFY(ran.contains("light_culling"));
+    QCOMPARE(lights["clusters_over_cap"].toInteger(), qint64(0));
     const qint64 samples = aa == "msaa4" ? 4 : 1;
     QCOMPARE(opaque["gpu_bytes"].toInteger(), qint64(w) * h * (8 + 4) * samples);
     // The frame's memory is the registry's, entry by entry.

@@ -2,10 +2,14 @@
 // lit by one light, each pixel against the light's formula computed here in
 // double (candela from lumens, inverse square, the range window, the spot's
 // cone), goldens per light type, the window reaching 0 at the range, and
-// degenerate values that still render.
+// degenerate values that still render; the clustered light list against
+// the brute-force loop, its registry entries and more lights than a
+// cluster holds.
 #include <QtTest>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "image_compare.h"
 #include "render_golden.h"
@@ -122,6 +126,59 @@ Light spotLight() {
   return l;
 }
 
+// Adds point or spot light `id` to a floor scene.
+void addLight(scene::SceneState& s, scene::EntityId id, const Light& light, glm::dvec3 at, glm::dvec3 euler = {0, 0, 0}) {
+  scene::Entity l;
+  l.id = id;
+  l.name = "Lamp " + std::to_string(id);
+  l.light = light;
+  l.transform.translation = at;
+  l.transform.rotation = scene::fromEulerDegrees(euler);
+  s.entities.emplace(l.id, l);
+  s.roots.push_back(l.id);
+}
+
+// 48 lights scattered over the floor and above it with ranges from 1 to
+// 9 m, so their spheres straddle many tile and slice borders, some spots,
+// and a light at the eye whose range holds the camera.
+FloorScene manyLightsScene(int size) {
+  FloorScene fs = floorScene(pointLight(), {0.0, -9.0, 12.0}, {0, 0, 0}, size);
+  fs.state.entities.at(2).light->range = 30.0f;  // the camera is inside this one's range
+  fs.state.entities.at(2).light->intensity = 2e5f;
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> xy(-18.0, 18.0), z(0.2, 3.0), range(1.0, 9.0), yaw(-60.0, 60.0);
+  for (int i = 0; i < 48; ++i) {
+    Light l = i % 3 == 2 ? spotLight() : pointLight();
+    l.range = float(range(rng));
+    l.intensity = 4e5f;
+    l.color = {float(0.3 + 0.7 * (i % 5) / 4.0), float(0.3 + 0.7 * (i % 7) / 6.0), 1.0f};
+    addLight(fs.state, scene::EntityId(100 + i), l, {xy(rng), xy(rng), z(rng)}, {yaw(rng), 0.0, 0.0});
+  }
+  return fs;
+}
+
+bool hasAllocation(const std::vector<render::GpuAllocation>& reg, const std::string& name) {
+  return std::any_of(reg.begin(), reg.end(), [&](const render::GpuAllocation& a) { return a.name == name; });
+}
+
+bool ranPass(const render::FrameStats& stats, const std::string& name) {
+  return std::any_of(stats.passes.begin(), stats.passes.end(), [&](const render::PassStats& p) { return p.name == name; });
+}
+
+// The largest difference between two HDR images relative to 1e-4 + 1e-4 of
+// the brighter value (half floats hold 11 bits: 5e-4 relative).
+double worstRelativeDifference(const hs::Image& a, const hs::Image& b, int* lit = nullptr) {
+  double worst = 0.0;
+  if (lit) *lit = 0;
+  for (size_t i = 0; i < a.rgbaF.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const double x = a.rgbaF[i], y = b.rgbaF[i];
+    worst = std::max(worst, std::abs(x - y) / (1e-4 + 1e-4 * std::max(std::abs(x), std::abs(y))));
+    if (lit && x > 1e-3) ++*lit;
+  }
+  return worst;
+}
+
 }  // namespace
 
 class TestLightsRender : public QObject {
@@ -233,6 +290,86 @@ class TestLightsRender : public QObject {
       QVERIFY(hdr.isFloat());
       for (float v : hdr.rgbaF) QVERIFY2(std::isfinite(v), qPrintable(QString("cones %1/%2").arg(inner).arg(outer)));
     }
+  }
+
+  // The clustered image is the brute-force loop's: the window is 0 at the
+  // range, so a light a cluster leaves out adds nothing there, and the
+  // cluster sums its lights in the buffer's order.
+  void clusteredEqualsBruteForce() {
+    for (int size : {160, 97}) {
+      const FloorScene fs = manyLightsScene(size);
+      render::FrameStats clusteredStats, bruteStats;
+      const hs::Image clustered = r_.render(fs.state, fs.view, true, &clusteredStats);
+      render::RenderOptions brute;
+      brute.bruteForceLights = true;
+      const hs::Image reference = r_.render(fs.state, fs.view, true, &bruteStats, brute);
+      QVERIFY(clustered.isFloat() && reference.isFloat());
+      QVERIFY(ranPass(clusteredStats, "light_culling"));
+      QVERIFY(!ranPass(bruteStats, "light_culling"));
+      QVERIFY2(clusteredStats.lightsInView > 20, qPrintable(QString::number(clusteredStats.lightsInView)));
+      int lit = 0;
+      const double worst = worstRelativeDifference(clustered, reference, &lit);
+      QVERIFY2(lit > size * size / 2, qPrintable(QString("only %1 channels lit").arg(lit)));
+      qInfo("%d px, %zu lights in view: worst difference %.3g of the tolerance", size, clusteredStats.lightsInView, worst);
+      QVERIFY2(worst <= 1.0, qPrintable(QString("%1 px: worst difference %2 of the tolerance").arg(size).arg(worst)));
+    }
+  }
+
+  // The grid exists only in frames with a point or spot light in view
+  // (the renderer's registry, not the pass's own counters); a light behind
+  // the camera, out of reach of the view, adds no pass and no buffer.
+  void noLightInViewHasNoGrid() {
+    Light l = pointLight();
+    FloorScene fs = floorScene(l, {0.0, 2.0, 2.0});
+    render::FrameStats stats;
+    r_.render(fs.state, fs.view, true, &stats);
+    auto reg = r_.renderer().resourceRegistry();
+    QVERIFY(ranPass(stats, "light_culling"));
+    QVERIFY(hasAllocation(reg, "light_grid") && hasAllocation(reg, "light_indices"));
+    fs.state.entities.at(2).transform.translation = {0.0, -40.0, 30.0};  // behind the eye, range 12 m
+    r_.render(fs.state, fs.view, true, &stats);
+    reg = r_.renderer().resourceRegistry();
+    QVERIFY(!ranPass(stats, "light_culling"));
+    QCOMPARE(stats.lightsInView, size_t(0));
+    QVERIFY(!hasAllocation(reg, "light_grid") && !hasAllocation(reg, "light_indices") &&
+            !hasAllocation(reg, "light_cull_stats"));
+  }
+
+  // More lights in one cluster than it holds (128): the first 128 in
+  // outliner order light it, the frame says how many clusters overflowed,
+  // and the problem is reported once. The image is the brute-force image
+  // of the first 128 lights (all 140 share one place, so every cluster
+  // they reach overflows).
+  void moreLightsThanAClusterHolds() {
+    FloorScene fs = floorScene(pointLight(), {0.0, 2.0, 2.0}, {0, 0, 0}, 96);
+    FloorScene first128 = fs;
+    for (int i = 1; i < 140; ++i) {
+      Light l = pointLight();
+      l.intensity = 1e4f * float(i);
+      addLight(fs.state, scene::EntityId(100 + i), l, {0.0, 2.0, 2.0});
+      if (i < 128) addLight(first128.state, scene::EntityId(100 + i), l, {0.0, 2.0, 2.0});
+    }
+    r_.renderer().takeLightProblems();
+    render::FrameStats stats;
+    const hs::Image clamped = r_.render(fs.state, fs.view, true, &stats);
+    QCOMPARE(stats.lightsInView, size_t(140));
+    QVERIFY2(stats.lightClustersOverCap > 10, qPrintable(QString::number(stats.lightClustersOverCap)));
+    QCOMPARE(stats.lightsMaxPerCluster, size_t(140));
+    const std::vector<std::string> problems = r_.renderer().takeLightProblems();
+    QCOMPARE(problems.size(), size_t(1));
+    QVERIFY2(problems[0].find("more than 128") != std::string::npos, problems[0].c_str());
+    r_.render(fs.state, fs.view, true, &stats);
+    QVERIFY(r_.renderer().takeLightProblems().empty());  // once, not every frame
+    render::RenderOptions brute;
+    brute.bruteForceLights = true;
+    const hs::Image reference = r_.render(first128.state, first128.view, true, nullptr, brute);
+    int lit = 0;
+    const double worst = worstRelativeDifference(clamped, reference, &lit);
+    QVERIFY(lit > 1000);
+    QVERIFY2(worst <= 1.0, qPrintable(QString("worst difference %1 of the tolerance").arg(worst)));
+    // With all 140 the brute-force image is brighter: the cap did drop lights.
+    const hs::Image all = r_.render(fs.state, fs.view, true, nullptr, brute);
+    QVERIFY(worstRelativeDifference(all, clamped) > 100.0);
   }
 };
 

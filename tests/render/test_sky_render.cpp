@@ -423,6 +423,14 @@ class TestSkyRender : public QObject {
     right.eye.x += 0.065;
     st = r_.renderViewsOnly(ms.state, {ms.view, right});
     QCOMPARE(passCount(st, "ao[left]") + passCount(st, "ao[right]") + passCount(st, "ao"), 2);
+    // GTAO: the same texture, made by the same pass.
+    ms.state.settings.ao = scene::AmbientOcclusion::Gtao;
+    r_.render(ms.state, ms.view, false, &st);
+    QCOMPARE(passCount(st, "ao"), 1);
+    bytes = 0;
+    for (const auto& a : r.resourceRegistry())
+      if (a.name == "ao") bytes = a.bytes;
+    QCOMPARE(bytes, size_t(96 * 96));
     ms.state.settings.ao = scene::AmbientOcclusion::Off;
     r_.render(ms.state, ms.view, false, &st);
     QVERIFY(!hasAllocation(r, "ao"));
