@@ -493,7 +493,9 @@ void MainWindow::createEntity(Create what) {
     }
     case Create::Sun: {
       t.rotation = scene::fromEulerDegrees({40.0, 0.0, -35.0});
-      id = scene::ops::addLight(doc_, uniqueName("Sun"), t, scene::Light{});
+      scene::Light sun;
+      sun.castsShadows = true;  // with settings.shadows on, a new sun casts (as in Blender and Unreal)
+      id = scene::ops::addLight(doc_, uniqueName("Sun"), t, sun);
       break;
     }
     case Create::PointLight: {

@@ -208,6 +208,7 @@ SceneState buildStarterScene() {
   sun.name = "Sun";
   sun.transform = at({0, 0, 20}, {40, 0, -35});
   sun.light = Light{};
+  sun.light->castsShadows = true;  // once settings.shadows is on
   add(s, sun);
   s.settings.sky = SkyModel::Analytic;  // new scenes get the analytic sky (old files keep the gradient)
   Entity cam;

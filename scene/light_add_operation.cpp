@@ -51,7 +51,7 @@ const OperationDecl& lightAddOperation() {
                    numberParam("outer", "Outer cone", 0.1, 179.9, "spot: full angle where the beam ends (default 45)",
                                "DEG", Unit::Degrees),
                    {.key = "shadows", .option = "shadows", .label = "Casts shadows", .type = ParamType::Flag,
-                    .help = "the light casts shadows"}}};
+                    .help = "a point or spot light casts shadows (a sun always does; `set` turns it off)"}}};
   }();
   return op;
 }
@@ -99,7 +99,9 @@ std::optional<LightAddRequest> lightAddRequest(const Json& values, std::string& 
     if (has("inner")) r.light.outerConeDeg = r.light.innerConeDeg;
     else r.light.innerConeDeg = r.light.outerConeDeg;
   }
-  r.light.castsShadows = has("shadows") && values["shadows"].get<bool>();
+  // A sun casts by default (as in Blender and Unreal); a point or spot light
+  // only when asked, as each costs a shadow map (six for a point light).
+  r.light.castsShadows = sun || (has("shadows") && values["shadows"].get<bool>());
   return r;
 }
 

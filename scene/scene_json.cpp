@@ -491,6 +491,12 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
     }
     migrateToPhysicalLightUnits(s, oldExposure);
   }
+  // Before format 7 a sun's shadows followed settings.shadows alone.
+  if (const Json* version = JsonReader::member(json, "version");
+      version && version->is_number() && version->get<double>() < kFirstPerLightShadowsFormat) {
+    for (auto& [id, e] : s.entities)
+      if (e.light && e.light->type == Light::Type::Sun) e.light->castsShadows = true;
+  }
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     inconsistency = "inconsistent hierarchy: " + problem;

@@ -30,8 +30,14 @@ namespace hs::scene {
 // a multiplier ("exposure"). Older files are converted on load so that they
 // render as before (migrateToPhysicalLightUnits); a version-5 reader would
 // take lux for its old intensities.
-constexpr int kSceneFormatVersion = 6;
+// 7: each light's casts_shadows is read (settings.shadows stays the master
+// switch). Before, a sun cast shadows whenever settings.shadows was on and
+// the flag was stored unread, so older files get casts_shadows true on
+// every sun (migratePerLightShadows); point and spot lights keep what the
+// user stored. A version-6 reader would give back sun shadows a file turned off.
+constexpr int kSceneFormatVersion = 7;
 constexpr int kFirstPhysicalLightsFormat = 6;
+constexpr int kFirstPerLightShadowsFormat = 7;
 constexpr int kFirstMaterialsFormat = 5;
 
 Json sceneToJson(const SceneState& state);

@@ -113,6 +113,45 @@ class LightUnitsTest : public QObject {
     QCOMPARE(reread->settings.exposureEv100, point->settings.exposureEv100);
   }
 
+  // Format 7 reads each light's casts_shadows; before it a sun cast
+  // whenever settings.shadows was on, so an older file's suns keep casting
+  // and its spot keeps what was stored; a format-7 file keeps a sun off.
+  void format6SunsKeepTheirShadows() {
+    SceneState s;
+    Entity sun;
+    sun.id = 1;
+    sun.name = "Sun";
+    sun.light = Light{};
+    sun.light->castsShadows = false;
+    Entity spot;
+    spot.id = 2;
+    spot.name = "Spot";
+    spot.light = Light{};
+    spot.light->type = Light::Type::Spot;
+    spot.light->castsShadows = true;
+    Entity plain = spot;
+    plain.id = 3;
+    plain.name = "Plain";
+    plain.light->castsShadows = false;
+    s.entities = {{1, sun}, {2, spot}, {3, plain}};
+    s.roots = {1, 2, 3};
+    for (int version : {6, 7}) {
+      Json json = sceneToJson(s);
+      json["version"] = version;
+      std::string error;
+      const auto loaded = sceneFromJson(json, error);
+      QVERIFY2(loaded, error.c_str());
+      QCOMPARE(loaded->find(1)->light->castsShadows, version < kFirstPerLightShadowsFormat);
+      QCOMPARE(loaded->find(2)->light->castsShadows, true);
+      QCOMPARE(loaded->find(3)->light->castsShadows, false);
+    }
+    // The format-5 fixture's sun too (it was written before the flag existed).
+    std::string error;
+    const auto old = loadScene(HS_TEST_DATA_DIR "/file/format5_sun.hscene", error);
+    QVERIFY2(old, error.c_str());
+    QVERIFY(old->find(old->findByName("Sun"))->light->castsShadows);
+  }
+
   // The real program renders each fixture as the older build did: same
   // size, camera and settings, compared with the PNG that build wrote.
   void format5RendersAsBefore() {
