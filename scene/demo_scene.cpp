@@ -11,6 +11,7 @@
 #include "scene/demo_materials.h"
 #include "scene/demo_terrain.h"
 #include "scene/mesh_materials.h"
+#include "scene/object_tracks.h"
 #include "scene/transform.h"
 
 namespace hs::scene {
@@ -136,6 +137,30 @@ void addTimeOfDay(SceneState& s, EntityId sunId) {
   }
   b.tracks.push_back(turn);
   s.sequence.bindings.push_back(b);
+}
+
+// Material and settings tracks (scene/object_tracks.h) over the flight:
+// the parallax slab's relief flattens and comes back (height scale 6 cm ->
+// 1 cm at 5 s -> 6 cm), and the valley's depth-cue fog thickens (k2 1/400
+// -> 1/200 per metre: half the colour kept at 1 km instead of 2 km). The
+// first keys are the values as placed, so frame 0 and every un-animated
+// render (the demo goldens) look as before.
+void addDemoParameterTracks(SceneState& s) {
+  auto key = [](double t, double v) {
+    sequencer::ScalarKey k;
+    k.time = t;
+    k.value = v;
+    return k;
+  };
+  const MaterialId slab = s.findMaterialByName("Rock slab (parallax) / surface");
+  if (const Material* m = s.findMaterial(slab)) {
+    sequencer::ScalarTrack relief{std::string(kMaterialTrackPrefix) + "height_scale", {}};
+    relief.keys = {key(0.0, double(m->heightScale)), key(5.0, 0.01), key(10.0, double(m->heightScale))};
+    s.sequence.bindings.push_back(sequencer::Binding{materialTarget(slab), m->name, {relief}, std::nullopt});
+  }
+  sequencer::ScalarTrack fog{std::string(kSettingsTrackPrefix) + "fog_k2", {}};
+  fog.keys = {key(0.0, double(s.settings.fogK2)), key(10.0, 1.0 / 200.0)};
+  s.sequence.bindings.push_back(sequencer::Binding{settingsTarget(), "Settings", {fog}, std::nullopt});
 }
 
 // The bunny's LOD chain (three levels of a quarter each: 17k, 4.3k, 1.1k
@@ -281,6 +306,8 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   s.settings.shadowDistance = 500.0;
   // A spot and two point lights by the bunnies, and fog on the valley.
   addDemoLights(s);
+  // A material parameter and the fog animated over the flight.
+  addDemoParameterTracks(s);
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

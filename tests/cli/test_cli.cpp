@@ -15,6 +15,7 @@
 #include "cli_runner.h"
 #include "file_bytes.h"
 #include "scene/hscene_file.h"
+#include "scene/object_tracks.h"
 #include "scene/scene_json.h"
 #include "sequencer/key_edit.h"
 
@@ -220,8 +221,18 @@ class TestCli : public QObject {
     QCOMPARE(size_t(tracks.size()), expectedTracks);
     for (const QJsonValue& v : tracks) {
       const QJsonObject t = v.toObject();
-      const auto entity = scene::EntityId(t["entity_id"].toDouble());
-      QCOMPARE(t["entity"].toString().toStdString(), s->find(entity)->name);
+      // A material's and the settings' tracks (the demo animates one of
+      // each) name their target in place of an entity.
+      uint64_t entity = scene::EntityId(t["entity_id"].toDouble());
+      if (t.contains("material_id")) {
+        const auto material = scene::MaterialId(t["material_id"].toDouble());
+        QCOMPARE(t["material"].toString().toStdString(), s->findMaterial(material)->name);
+        entity = scene::materialTarget(material);
+      } else if (t.contains("settings")) {
+        entity = scene::settingsTarget();
+      } else {
+        QCOMPARE(t["entity"].toString().toStdString(), s->find(entity)->name);
+      }
       const std::string property = t["property"].toString().toStdString();
       const size_t keys = property == "path.progress"
                               ? s->sequence.findBinding(entity)->path->progress.keys.size()

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "scene/animation.h"
+#include "scene/demo_scene.h"
 #include "scene/document.h"
 #include "scene/edit.h"
 #include "scene/material_ops.h"
@@ -303,6 +304,28 @@ class TestSceneObjectTracks : public QObject {
     QCOMPARE(sequencer::keyTimes(seq, materialTarget(rock), "material.roughness").size(), size_t(2));
     QCOMPARE(sequencer::removeKeys(seq, sequencer::allKeys(seq)), size_t(4));
     QVERIFY(seq.bindings.empty());
+  }
+
+  void demoAnimatesTheParallaxAndTheFog() {
+    std::string error;
+    const auto demo = buildDemoScene(error);
+    QVERIFY2(demo, error.c_str());
+    const MaterialId slab = demo->findMaterialByName("Rock slab (parallax) / surface");
+    QVERIFY(slab != kNoMaterial);
+    QVERIFY(demo->sequence.findBinding(materialTarget(slab)));
+    QVERIFY(demo->sequence.findBinding(settingsTarget()));
+    const auto compiled = compileSequence(*demo);
+    // Frame 0 is the scene as placed (un-animated renders, the goldens, see
+    // the same materials and settings).
+    const SceneState at0 = animatedState(*demo, compiled, 0.0);
+    QVERIFY(at0.materials == demo->materials);
+    QVERIFY(at0.settings == demo->settings);
+    const SceneState at5 = animatedState(*demo, compiled, 5.0);
+    QCOMPARE(at5.findMaterial(slab)->heightScale, 0.01f);
+    const SceneState at10 = animatedState(*demo, compiled, 10.0);
+    QCOMPARE(at10.findMaterial(slab)->heightScale, demo->findMaterial(slab)->heightScale);
+    QCOMPARE(at10.settings.fogK2, float(1.0 / 200.0));
+    QVERIFY(at5.settings.fogK2 > demo->settings.fogK2 && at5.settings.fogK2 < at10.settings.fogK2);
   }
 };
 
