@@ -123,7 +123,7 @@ void KeyButton::refresh() {
       setToolTip("Keyed at this frame: click to remove the key");
       break;
   }
-  if (!can && primary != scene::kNoEntity)
+  if (!can && primary != scene::kNoEntity && sequencer::isEntityTarget(primary))
     setToolTip("Driven by the camera path (edit the path's keys in the timeline)");
 }
 

@@ -18,7 +18,8 @@
 namespace hs::sequencer {
 
 // The tracks of one entity. `entity` is scene::EntityId (ids are stable
-// across renames and undo); `label` is the name shown in the timeline and
+// across renames and undo), or a material or the scene settings as a tagged
+// target (binding_target.h); `label` is the name shown in the timeline and
 // in messages, refreshed by the scene when the entity is renamed.
 struct Binding {
   uint64_t entity = 0;

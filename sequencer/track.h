@@ -12,7 +12,8 @@
 namespace hs::sequencer {
 
 // `property` is a path into scene/fields.h's table ("camera.fov_deg",
-// "transform.translation", "entity.visible"), except rotation tracks,
+// "transform.translation", "entity.visible"; "material.roughness" and
+// "settings.fog_density" on material and settings bindings), except rotation tracks,
 // which target "transform.rotation": the quaternion itself, never the
 // Euler-angle field, so interpolation keeps the shortest path.
 struct ScalarTrack {
