@@ -31,6 +31,7 @@
 #include "editor_fixture.h"
 #include "file_bytes.h"
 #include "scene/animation.h"
+#include "scene/object_tracks.h"
 
 using namespace hs;
 using hs::app::MainWindow;
@@ -150,6 +151,10 @@ void TimelineTest::dragKeyRetimesAsOneUndoStep() {
   // (added last) are on screen in this window.
   ds->setCollapsed(id("Sun"), true);
   ds->setCollapsed(id("Bunny (instance)"), true);
+  // So are its material's and the settings' (the slab's relief, the fog).
+  const uint64_t slab = scene::materialTarget(doc().state().findMaterialByName("Rock slab (parallax) / surface"));
+  ds->setCollapsed(slab, true);
+  ds->setCollapsed(scene::settingsTarget(), true);
   const KeyRef key{cam, "camera.fov_deg", 1};
   const auto pos = ds->keyPosition(key);
   QVERIFY2(pos, "the key is not on screen");
@@ -170,6 +175,8 @@ void TimelineTest::dragKeyRetimesAsOneUndoStep() {
   QCOMPARE(times(cam, "camera.fov_deg"), (std::vector<double>{0.0, 2.0}));
   ds->setCollapsed(id("Sun"), false);
   ds->setCollapsed(id("Bunny (instance)"), false);
+  ds->setCollapsed(slab, false);
+  ds->setCollapsed(scene::settingsTarget(), false);
 }
 
 void TimelineTest::copyPasteDeleteKeys() {
