@@ -89,6 +89,7 @@ class TestShaderVariants : public QObject {
     test::MaterialScene ms = test::materialScene(mesh::uvSphere(1.0f, 32, 16), m, 64);
     scene::SceneState& s = ms.state;
     s.settings.shadows = true;
+    s.entities.at(2).light->castsShadows = true;  // the scene's sun (material_scenes.h); each light's flag is read
     s.settings.fogMode = scene::FogMode::DepthCue;
     scene::TextureAsset ta;
     ta.id = 1;
