@@ -20,6 +20,7 @@
 #include "app/prompts.h"
 #include "scene/terrain_layer_ops.h"
 #include "scene/terrain_ops.h"
+#include "terrain/terrain_operations.h"
 
 namespace hs::app {
 namespace {
@@ -81,9 +82,13 @@ TerrainLayersEditor::TerrainLayersEditor(scene::Document& doc, Prompts& prompts,
   albedo_ = new QPushButton(this);
   albedo_->setObjectName("terrainMaterialColour");
   albedo_->setToolTip("Albedo colour (linear; tints the texture)");
-  roughness_ = spin(this, 0.0, 1.0, 0.05, 2, "", "Roughness");
+  // Ranges, steps and help as `terrain layer` declares them.
+  const auto& params = terrain::terrainLayerOperation().params;
+  const ParamDecl& rough = paramIn(params, "roughness");
+  const ParamDecl& tiling = paramIn(params, "tiling_m");
+  roughness_ = spin(this, rough.min, rough.max, rough.step, rough.decimals, "", QString::fromStdString(rough.help));
   roughness_->setObjectName("terrainMaterialRoughness");
-  tiling_ = spin(this, 0.01, 10000.0, 0.5, 2, " m", "World size of one texture repeat");
+  tiling_ = spin(this, tiling.min, tiling.max, tiling.step, tiling.decimals, " m", QString::fromStdString(tiling.help));
   tiling_->setObjectName("terrainMaterialTiling");
   form->addRow("Name", name_);
   form->addRow("Colour", albedo_);

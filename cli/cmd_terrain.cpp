@@ -14,6 +14,7 @@ const Subcommand kSubs[] = {
     {"erode", terrain::terrainErodeOperation, runTerrainErode},
     {"paint-rules", terrain::terrainPaintRulesOperation, runTerrainPaintRules},
     {"export", terrain::terrainExportOperation, runTerrainExport},
+    {"layer", terrain::terrainLayerOperation, runTerrainLayer},
 };
 
 }  // namespace

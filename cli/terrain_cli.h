@@ -17,6 +17,7 @@ int runTerrainImport(int argc, char** argv);
 int runTerrainErode(int argc, char** argv);
 int runTerrainPaintRules(int argc, char** argv);
 int runTerrainExport(int argc, char** argv);
+int runTerrainLayer(int argc, char** argv);
 
 namespace terrain_cli {
 

@@ -19,6 +19,7 @@ const std::vector<const OperationDecl*>& sharedOperations() {
       &terrain::terrainImportOperation(),
       &terrain::terrainErodeOperation(),
       &terrain::terrainPaintRulesOperation(),
+      &terrain::terrainLayerOperation(),
       &terrain::terrainExportOperation(),
       &renderOperation(),
       &sequencer::sequenceOperation(),

@@ -127,4 +127,38 @@ const OperationDecl& terrainPaintRulesOperation() {
   return op;
 }
 
+const OperationDecl& terrainLayerOperation() {
+  static const OperationDecl op = [] {
+    OperationDecl o{
+        .name = "terrain layer",
+        .summary = "show or change a paint layer's material (albedo, textures, normal map, roughness, tiling)",
+        .usage = "<scene.hscene> --layer N [options]",
+        .description = "Changes the material of one paint layer of a terrain (one undo step) and saves the scene; "
+                       "with no change given, prints the terrain's layers. Texture and normal-map files must be "
+                       "readable images; they are stored by absolute path, and \"none\" removes one.",
+        .positionals = {kScene}};
+    const Material d;
+    o.params = {
+        terrainName(),
+        {.key = "layer", .option = "layer", .label = "Layer", .min = 0, .max = kMaxPaintLayers - 1, .integer = true,
+         .help = "which paint layer (0: the base layer)", .valueName = "N"},
+        text("name", "Name", "the material's name", "NAME"),
+        {.key = "albedo", .option = "albedo", .label = "Albedo", .min = 0.0, .max = 1.0,
+         .help = "linear RGB colour (the tint of the albedo texture)", .valueName = "r,g,b", .count = 3},
+        {.key = "albedo_texture", .option = "albedo-texture", .label = "Albedo texture", .type = ParamType::Text,
+         .help = "colour texture (sRGB image), or none", .valueName = "FILE"},
+        {.key = "normal_map", .option = "normal-map", .label = "Normal map", .type = ParamType::Text,
+         .help = "tangent-space normal map (x right, y up the texture, z out), or none", .valueName = "FILE"},
+        {.key = "roughness", .option = "roughness", .label = "Roughness", .min = 0.0, .max = 1.0,
+         .help = "surface roughness (0 mirror-like, 1 matte; a new layer has " + std::to_string(d.roughness).substr(0, 4) + ")", .valueName = "X",
+         .decimals = 2, .step = 0.05},
+        {.key = "tiling_m", .option = "tiling", .label = "Tiling", .unit = Unit::Metres, .min = 0.01, .max = 10000.0,
+         .help = "world size of one texture repeat", .valueName = "M",
+         .decimals = 2, .step = 0.5},
+    };
+    return o;
+  }();
+  return op;
+}
+
 }  // namespace hs::terrain

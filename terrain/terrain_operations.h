@@ -19,5 +19,9 @@ const OperationDecl& terrainImportOperation();
 const OperationDecl& terrainExportOperation();
 // `terrain paint-rules`: paint layers by altitude and slope.
 const OperationDecl& terrainPaintRulesOperation();
+// `terrain layer`: a paint layer's material (name, albedo and its texture,
+// normal map, roughness, tiling). The editor's Layers editor takes its
+// ranges from here.
+const OperationDecl& terrainLayerOperation();
 
 }  // namespace hs::terrain

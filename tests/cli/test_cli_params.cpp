@@ -136,6 +136,7 @@ class TestCliParams : public QObject {
         {"terrain import", {{"terrain", "import", kDem, missing_}, missing_}},
         {"terrain erode", {{"terrain", "erode", missing_, "--thermal"}, missing_}},
         {"terrain paint-rules", {{"terrain", "paint-rules", missing_}, missing_}},
+        {"terrain layer", {{"terrain", "layer", missing_, "--layer", "0"}, missing_}},
         {"terrain export", {{"terrain", "export", missing_, "--out", tmp_.filePath("h.png")}, missing_}},
         {"render", {{"render", missing_, "--out", frames}, missing_}},
         {"sequence", {{"sequence", missing_}, missing_}},

@@ -63,7 +63,7 @@ class TestCliTerrain : public QObject {
   }
 
   void helpForEachSubcommand() {
-    for (const char* sub : {"new", "import", "erode", "paint-rules", "export"}) {
+    for (const char* sub : {"new", "import", "erode", "paint-rules", "export", "layer"}) {
       Run r;
       ok({"terrain", sub, "--help"}, &r);
       QVERIFY2(r.out.startsWith("usage: hybridscape-cli terrain"), qPrintable(r.out));
@@ -193,6 +193,60 @@ class TestCliTerrain : public QObject {
     expectError({"terrain", "paint-rules", f, "--rules", path("bad.json")}, 1, {"bad.json", "layer"});
     expectError({"terrain", "paint-rules", f, "--rules", path("none.json")}, 1, {"none.json"});
     expectError({"terrain", "paint-rules", f, "--rules", path("rules.json"), "--defaults"}, 2, {"--defaults"});
+  }
+
+  // A layer's material as the Layers editor sets it: values and a normal
+  // map kept (by absolute path) in the saved file; an unreadable image, a
+  // layer the terrain lacks and a value out of range refused, naming them,
+  // with the file unchanged.
+  void layerSetsAMaterial() {
+    const QString f = newScene("layer.hscene");
+    ok({"terrain", "new", f, "--size", "64", "--resolution", "65"});
+    {  // a flat tangent-space normal map, 4 x 4
+      const std::vector<uint8_t> rgb = [] {
+        std::vector<uint8_t> v;
+        for (int i = 0; i < 16; ++i) v.insert(v.end(), {128, 128, 255});
+        return v;
+      }();
+      const std::string file = path("flat_normal.png").toStdString();
+      auto out = OIIO::ImageOutput::create(file);
+      QVERIFY(out && out->open(file, OIIO::ImageSpec(4, 4, 3, OIIO::TypeDesc::UINT8)) &&
+              out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) && out->close());
+    }
+    Run r;
+    ok({"terrain", "layer", f, "--layer", "1", "--name", "Moss", "--albedo", "0.1,0.4,0.1", "--roughness", "0.6",
+        "--tiling", "2.5", "--normal-map", "flat_normal.png"},
+       &r);
+    QVERIFY2(r.out.contains("1. Moss"), qPrintable(r.out));
+    std::string error;
+    auto s = scene::loadScene(f.toStdString(), error);
+    QVERIFY2(s, error.c_str());
+    const terrain::Material& m = s->terrains.begin()->second.materials[1];
+    QCOMPARE(m.name, std::string("Moss"));
+    QCOMPARE(m.albedo, glm::vec3(0.1f, 0.4f, 0.1f));
+    QCOMPARE(m.roughness, 0.6f);
+    QCOMPARE(m.tilingMetres, 2.5f);
+    QCOMPARE(QString::fromStdString(m.normalTexture), QFileInfo(path("flat_normal.png")).absoluteFilePath());
+    const QByteArray before = [&] {
+      QFile file(f);
+      return file.open(QIODevice::ReadOnly) ? file.readAll() : QByteArray();
+    }();
+    QFile junk(path("junk.png"));
+    QVERIFY(junk.open(QIODevice::WriteOnly));
+    junk.write("not an image");
+    junk.close();
+    expectError({"terrain", "layer", f, "--layer", "1", "--normal-map", path("junk.png")}, 1, {"--normal-map", "junk.png"});
+    expectError({"terrain", "layer", f, "--layer", "9", "--roughness", "0.5"}, 1, {"8 layers", "9"});
+    expectError({"terrain", "layer", f, "--layer", "1", "--roughness", "2"}, 2, {"--roughness"});
+    expectError({"terrain", "layer", f, "--roughness", "0.5"}, 2, {"--layer"});
+    QFile after(f);
+    QVERIFY(after.open(QIODevice::ReadOnly));
+    QVERIFY2(after.readAll() == before, "a refused change must leave the file as it was");
+    // "none" removes the map again.
+    ok({"terrain", "layer", f, "--layer", "1", "--normal-map", "none"});
+    s = scene::loadScene(f.toStdString(), error);
+    QVERIFY2(s, error.c_str());
+    QVERIFY(s->terrains.begin()->second.materials[1].normalTexture.empty());
   }
 
   void exportEveryFormat() {
