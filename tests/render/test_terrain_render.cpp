@@ -5,6 +5,7 @@
 // full-resolution mesh within the bound, a brush dab uploading exactly its
 // region, holes drawn as holes and not pickable, and scenes without terrain
 // not running the pass.
+#include <QTemporaryDir>
 #include <QtTest>
 
 #include <algorithm>
@@ -262,6 +263,58 @@ class TestTerrainRender : public QObject {
     QVERIFY(!isSky(img, 10, 10));
     QCOMPARE(r_.renderer().pick(s.state(), v, 100, 100), scene::kNoEntity);
     QCOMPARE(r_.renderer().pick(s.state(), v, 10, 10), s.terrain);
+  }
+
+  // A layer's normal map turns the shading normal like real geometry does:
+  // a flat terrain whose layer holds a constant tangent-space normal tilted
+  // by 30 degrees about the y axis must shade as a plane tilted by 30 degrees
+  // without one (the tangent frame of terrain.frag: T along +x, B along +y
+  // on flat ground). The flat terrain without the map is the check that the
+  // comparison can fail.
+  void layerNormalMapTurnsTheShading() {
+    const double tilt = glm::radians(30.0);
+    QTemporaryDir dir;
+    const std::string mapPath = dir.filePath("tilt_normal.png").toStdString();
+    test::Rgba8Image map{8, 8, {}};
+    const glm::dvec3 tn(std::sin(tilt), 0.0, std::cos(tilt));
+    for (int i = 0; i < 64; ++i)
+      for (int c = 0; c < 4; ++c)
+        map.rgba.push_back(c == 3 ? 255 : uint8_t(std::lround((tn[c] * 0.5 + 0.5) * 255.0)));
+    QVERIFY(test::writePng(mapPath, map));
+    // 65 x 65 samples over 64 m; heights along x given by `slope`.
+    auto render = [&](double slope, const std::string& normalMap) {
+      TerrainScene s(65, 64.0);
+      terrain::Heightfield& hf = s.data().terrain().height;
+      std::vector<float> h(65 * 65);
+      for (int y = 0; y < 65; ++y)
+        for (int x = 0; x < 65; ++x) h[size_t(y) * 65 + size_t(x)] = float(-(x - 32) * hf.spacing().x * slope);
+      hf.write(hf.bounds(), h);
+      s.data().noteChanged(hf.bounds(), scene::kTerrainAll);
+      terrain::Material m = scene::terrainOf(s.state(), s.terrain)->materials[0];
+      m.albedo = glm::vec3(0.3f);  // dark enough that the flat terrain does not clip at 255
+      m.albedoTexture.clear();
+      m.normalTexture = normalMap;
+      if (!scene::ops::setTerrainMaterial(s.doc, scene::terrainOf(s.state(), s.terrain)->id, 0, m))
+        qFatal("cannot set the terrain material");
+      s.look(glm::dvec3(0.0, -20.0, 60.0), glm::dvec3(0.0));  // the terrain is centred on the origin
+      return r_.render(s.state(), s.view(160, 120));
+    };
+    // The mean of a 16 x 16 window at the centre, where both surfaces pass
+    // through the look target.
+    auto centre = [](const hs::Image& img) {
+      if (isSky(img, img.width / 2, img.height / 2)) qFatal("no terrain at the centre of the view");
+      glm::dvec3 sum(0.0);
+      for (int y = img.height / 2 - 8; y < img.height / 2 + 8; ++y)
+        for (int x = img.width / 2 - 8; x < img.width / 2 + 8; ++x)
+          for (int c = 0; c < 3; ++c) sum[c] += img.rgba8[(size_t(y) * size_t(img.width) + size_t(x)) * 4 + size_t(c)];
+      return sum / 256.0;
+    };
+    const glm::dvec3 mapped = centre(render(0.0, mapPath));
+    const glm::dvec3 tilted = centre(render(std::tan(tilt), ""));
+    const glm::dvec3 flat = centre(render(0.0, ""));
+    qInfo("centre grey: normal-mapped %.1f, tilted geometry %.1f, flat %.1f", mapped.x, tilted.x, flat.x);
+    for (int c = 0; c < 3; ++c) QVERIFY2(std::abs(mapped[c] - tilted[c]) <= 3.0, qPrintable(QString::number(c)));
+    QVERIFY2(std::abs(flat.x - tilted.x) > 20.0, "the tilt should show against the flat terrain");
   }
 
   void noTerrainNoPass() {
