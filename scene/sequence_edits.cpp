@@ -71,6 +71,7 @@ std::optional<AnimTarget> objectTarget(const FieldInfo<Target>* f, std::string_v
   return std::nullopt;
 }
 
+// A key's value for a field of an entity, a material or the settings.
 template <class Target>
 std::optional<sequencer::PropertyValue> parseObjectValue(const FieldInfo<Target>* f, const AnimTarget& target,
                                                          std::string_view text, std::string& error) {
@@ -150,18 +151,7 @@ std::optional<sequencer::PropertyValue> parseKeyValue(const AnimTarget& target, 
     return parseObjectValue(findMaterialTrackField(target.property), target, text, error);
   if (startsWith(target.property, kSettingsTrackPrefix))
     return parseObjectValue(findSettingsTrackField(target.property), target, text, error);
-  const EntityField* f = findEntityField(target.property);
-  if (!f) {
-    error = "no property '" + target.property + "'";
-    return std::nullopt;
-  }
-  const auto v = parseFieldValue(*f, text, error);
-  if (!v) return std::nullopt;
-  if (const double* d = std::get_if<double>(&*v)) return sequencer::PropertyValue(*d);
-  if (const bool* b = std::get_if<bool>(&*v)) return sequencer::PropertyValue(*b);
-  if (const glm::dvec3* x = std::get_if<glm::dvec3>(&*v)) return sequencer::PropertyValue(*x);
-  error = "'" + target.property + "' cannot take a key";
-  return std::nullopt;
+  return parseObjectValue(findEntityField(target.property), target, text, error);
 }
 
 bool isAnimated(const sequencer::Sequence& sequence, EntityId id, const std::string& property) {
