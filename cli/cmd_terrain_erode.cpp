@@ -33,10 +33,8 @@ int runTerrainErode(int argc, char** argv) {
   std::string error;
 
   scene::Document doc;
-  if (!terrain_cli::openScene(path, doc, error)) return args.fail(error);
-  const scene::EntityId e = scene::ops::findTerrainEntity(doc.state(), args.text("terrain"), error);
-  if (e == scene::kNoEntity) return args.fail(error);
-  const scene::TerrainId id = doc.state().find(e)->terrain->terrain;
+  const scene::TerrainId id = terrain_cli::openTerrain(path, args.text("terrain"), doc, error);
+  if (id == scene::kNoTerrain) return args.fail(error);
   if (maskLayer >= int(doc.state().findTerrain(id)->materials.size()))
     return args.usage("--mask-layer " + std::to_string(maskLayer) + " is not a paint layer of this terrain");
   scene::TerrainJobMask mask;

@@ -65,10 +65,8 @@ int runTerrainPaintRules(int argc, char** argv) {
   const std::string path = args.positionals()[0];
   std::string error;
   scene::Document doc;
-  if (!terrain_cli::openScene(path, doc, error)) return args.fail(error);
-  const scene::EntityId e = scene::ops::findTerrainEntity(doc.state(), args.text("terrain"), error);
-  if (e == scene::kNoEntity) return args.fail(error);
-  const scene::TerrainId id = doc.state().find(e)->terrain->terrain;
+  const scene::TerrainId id = terrain_cli::openTerrain(path, args.text("terrain"), doc, error);
+  if (id == scene::kNoTerrain) return args.fail(error);
   if (args.flag("show")) {
     printRules(*doc.state().findTerrain(id));
     return 0;

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "cli/scene_open.h"
+#include "scene/terrain_ops.h"
 
 namespace hs::cli::terrain_cli {
 
@@ -15,6 +16,13 @@ bool openScene(const std::string& path, scene::Document& doc, std::string& error
   }
   doc.reset(std::move(*s), QString::fromStdString(path));
   return true;
+}
+
+scene::TerrainId openTerrain(const std::string& path, const std::string& name, scene::Document& doc,
+                             std::string& error) {
+  if (!openScene(path, doc, error)) return scene::kNoTerrain;
+  const scene::EntityId e = scene::ops::findTerrainEntity(doc.state(), name, error);
+  return e == scene::kNoEntity ? scene::kNoTerrain : doc.state().find(e)->terrain->terrain;
 }
 
 bool saveScene(const scene::Document& doc, const std::string& path, std::string& error, std::string& summary) {

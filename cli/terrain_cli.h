@@ -23,6 +23,10 @@ namespace terrain_cli {
 
 // Opens `path` into `doc`; false with a one-line reason in `error`.
 bool openScene(const std::string& path, scene::Document& doc, std::string& error);
+// Opens `path` into `doc` and finds the terrain named `name` (any name when
+// the scene has one terrain); kNoTerrain with a one-line reason in `error`.
+scene::TerrainId openTerrain(const std::string& path, const std::string& name, scene::Document& doc,
+                             std::string& error);
 // Saves and describes what was written ("saved x.hscene: 4 tiles (230 KB) written, 4221 unchanged").
 bool saveScene(const scene::Document& doc, const std::string& path, std::string& error, std::string& summary);
 
