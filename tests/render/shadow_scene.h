@@ -7,6 +7,7 @@
 #include "look_from.h"
 #include "mesh/mesh_data.h"
 #include "mesh/primitives.h"
+#include "scene/mesh_materials.h"
 #include "scene/scene_state.h"
 
 namespace hs::test {
@@ -23,6 +24,32 @@ inline scene::EntityId addShadowEntity(scene::SceneState& s, scene::Entity e) {
   const scene::EntityId id = e.id;
   s.entities.emplace(id, std::move(e));
   return id;
+}
+
+// `m` as a new asset (with a copy of `material` in every slot when one is
+// given), shown by a new root entity "shape" at `at`, scaled by `scale`.
+inline scene::EntityId addShadowMesh(scene::SceneState& s, mesh::MeshData m, glm::dvec3 at,
+                                     glm::dvec3 scale = glm::dvec3(1.0), const scene::Material* material = nullptr) {
+  scene::MeshAsset a;
+  a.id = s.maxAssetId() + 1;
+  a.name = "shape";
+  a.contentHash = mesh::contentHash(m);
+  a.data = std::make_shared<const mesh::MeshData>(std::move(m));
+  if (material) {
+    scene::Material mat = *material;
+    mat.id = scene::MaterialId(s.materials.size() + 1);
+    mat.asset = a.id;
+    a.materialSlots.assign(scene::materialSlotCount(*a.data), mat.id);
+    s.materials.emplace(mat.id, mat);
+  }
+  const scene::AssetId id = a.id;
+  s.assets.emplace(id, std::move(a));
+  scene::Entity e;
+  e.name = "shape";
+  e.mesh = scene::MeshInstance{id};
+  e.transform.translation = at;
+  e.transform.scale = scale;
+  return addShadowEntity(s, e);
 }
 
 inline ShadowScene shadowScene(glm::dvec3 offset = glm::dvec3(0.0), double sunElevationDeg = 20.0) {
@@ -44,20 +71,7 @@ inline ShadowScene shadowScene(glm::dvec3 offset = glm::dvec3(0.0), double sunEl
     for (const glm::vec3& p : m.positions)
       out.world.positions.push_back(glm::vec3(glm::dvec3(p) * scale + at));
     for (uint32_t i : m.indices) out.world.indices.push_back(base + i);
-    auto data = std::make_shared<const mesh::MeshData>(std::move(m));
-    scene::MeshAsset a;
-    a.id = s.maxAssetId() + 1;
-    a.name = "shape";
-    a.contentHash = mesh::contentHash(*data);
-    a.data = std::move(data);
-    const scene::AssetId id = a.id;
-    s.assets.emplace(id, std::move(a));
-    scene::Entity e;
-    e.name = "shape";
-    e.mesh = scene::MeshInstance{id};
-    e.transform.translation = offset + at;
-    e.transform.scale = scale;
-    addShadowEntity(s, e);
+    addShadowMesh(s, std::move(m), offset + at, scale);
   };
   addMesh(mesh::gridPlane(40.0f, 8), {0, 0, 0}, {1, 1, 1});
   addMesh(mesh::uvSphere(1.0f, 48, 24), {-3, 2, 1.0}, {1, 1, 1});

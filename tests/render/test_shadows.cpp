@@ -49,26 +49,7 @@ CardScene cardScene(bool spot, bool cutout) {
   s.settings.shadowCascades = 1;
   s.settings.shadowDistance = 30.0;
   auto addShape = [&](mesh::MeshData m, glm::dvec3 at, const scene::Material* material) {
-    auto data = std::make_shared<const mesh::MeshData>(std::move(m));
-    scene::MeshAsset a;
-    a.id = s.maxAssetId() + 1;
-    a.name = "shape";
-    a.contentHash = mesh::contentHash(*data);
-    a.data = std::move(data);
-    if (material) {
-      scene::Material mat = *material;
-      mat.id = scene::MaterialId(s.materials.size() + 1);
-      mat.asset = a.id;
-      a.materialSlots.assign(scene::materialSlotCount(*a.data), mat.id);
-      s.materials.emplace(mat.id, mat);
-    }
-    const scene::AssetId id = a.id;
-    s.assets.emplace(id, std::move(a));
-    scene::Entity e;
-    e.name = "shape";
-    e.mesh = scene::MeshInstance{id};
-    e.transform.translation = at;
-    test::addShadowEntity(s, e);
+    test::addShadowMesh(s, std::move(m), at, glm::dvec3(1.0), material);
   };
   addShape(mesh::gridPlane(30.0f, 4), {0, 0, 0}, nullptr);
   // The card's texture: white, alpha 0 over its middle half (UV 0.25..0.75).
