@@ -1,6 +1,7 @@
 #include "app/form_widgets.h"
 
 #include <QDoubleSpinBox>
+#include <QHBoxLayout>
 #include <QScrollArea>
 #include <QToolButton>
 #include <QVBoxLayout>
@@ -17,6 +18,15 @@ QDoubleSpinBox* numberSpin(QWidget* parent, double min, double max, double step,
   s->setToolTip(tip);
   s->setKeyboardTracking(false);
   return s;
+}
+
+QWidget* editorRow(QWidget* parent, QWidget* editor) {
+  auto* row = new QWidget(parent);
+  auto* h = new QHBoxLayout(row);
+  h->setContentsMargins(0, 0, 0, 0);
+  h->setSpacing(2);
+  h->addWidget(editor, 1);
+  return row;
 }
 
 void putInScrollArea(QWidget* panel, QWidget* content, bool horizontalScroll) {

@@ -19,6 +19,11 @@ QDoubleSpinBox* numberSpin(QWidget* parent, double min, double max, double step,
 // `horizontalScroll` the content is squeezed to the dock's width instead.
 void putInScrollArea(QWidget* panel, QWidget* content, bool horizontalScroll = false);
 
+// A row holding `editor` (stretched) in a tight horizontal layout, where a
+// key button can be added after it (the Properties, Materials and Scene
+// Settings panels' animatable fields).
+QWidget* editorRow(QWidget* parent, QWidget* editor);
+
 // A text tool button with an object name (tests find it by name) and a tip.
 QToolButton* namedToolButton(QWidget* parent, const QString& text, const char* name, const QString& tip);
 

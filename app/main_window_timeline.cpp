@@ -7,14 +7,15 @@
 #include <QAction>
 #include <QActionGroup>
 #include <QDockWidget>
-#include <QHBoxLayout>
 #include <QInputDialog>
+#include <QLayout>
 #include <QMenu>
 
 #include <set>
 
 #include "app/camera_path_panel.h"
 #include "app/export_dialog.h"
+#include "app/form_widgets.h"
 #include "app/lights_panel.h"
 #include "app/main_window.h"
 #include "app/materials_panel.h"
@@ -44,12 +45,8 @@ void MainWindow::createTimeline() {
   properties_->setRowDecorator([this](const std::string& path, QWidget* editor, QWidget* parent) -> QWidget* {
     std::string error;
     if (!scene::animationTarget(path, error)) return editor;
-    auto* row = new QWidget(parent);
-    auto* h = new QHBoxLayout(row);
-    h->setContentsMargins(0, 0, 0, 0);
-    h->setSpacing(2);
-    h->addWidget(editor, 1);
-    h->addWidget(new KeyButton(*keying_, *selection_, *clock_, path, row));
+    QWidget* row = editorRow(parent, editor);
+    row->layout()->addWidget(new KeyButton(*keying_, *selection_, *clock_, path, row));
     return row;
   });
   properties_->setEditedHook([this](const std::vector<scene::EntityId>& ids, const std::string& path, const QString& key) {

@@ -1,10 +1,10 @@
 #include "app/materials_panel.h"
 
 #include <QComboBox>
-#include <QHBoxLayout>
 #include <QFormLayout>
 #include <QImage>
 #include <QLabel>
+#include <QLayout>
 #include <QListWidget>
 #include <QPixmap>
 #include <QVBoxLayout>
@@ -75,11 +75,7 @@ MaterialsPanel::MaterialsPanel(scene::Document& doc, QWidget* parent)
       }
       apply(*field, v, key);
     });
-    auto* row = new QWidget(form_);
-    auto* h = new QHBoxLayout(row);
-    h->setContentsMargins(0, 0, 0, 0);
-    h->setSpacing(2);
-    h->addWidget(ed, 1);
+    QWidget* row = editorRow(form_, ed);
     form->addRow(label, row);
     rows_.emplace_back(field, ed);
     byKey_[f.key] = ed;

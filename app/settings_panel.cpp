@@ -1,8 +1,8 @@
 #include "app/settings_panel.h"
 
 #include <QFormLayout>
-#include <QHBoxLayout>
 #include <QLabel>
+#include <QLayout>
 #include <QScrollArea>
 #include <QVBoxLayout>
 
@@ -41,11 +41,7 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
     });
     auto* label = new QLabel(QString::fromStdString(f.label), content);
     label->setStyleSheet("QLabel { color: #a9aaae; }");
-    auto* row = new QWidget(content);
-    auto* h = new QHBoxLayout(row);
-    h->setContentsMargins(0, 0, 0, 0);
-    h->setSpacing(2);
-    h->addWidget(ed, 1);
+    QWidget* row = editorRow(content, ed);
     form->addRow(label, row);
     rows_.emplace_back(field, ed);
     byKey_[f.key] = ed;
