@@ -1,10 +1,25 @@
 #include "cli/material_info.h"
 
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "scene/fields.h"
 
 namespace hs::cli {
+namespace {
+
+// The mesh slots that draw with `id`, as (asset name, slot) pairs.
+std::vector<std::pair<std::string, size_t>> slotsUsing(const scene::SceneState& s, scene::MaterialId id) {
+  std::vector<std::pair<std::string, size_t>> out;
+  for (const auto& [aid, a] : s.assets)
+    for (size_t slot = 0; slot < a.materialSlots.size(); ++slot)
+      if (a.materialSlots[slot] == id) out.emplace_back(a.name, slot);
+  return out;
+}
+
+}  // namespace
 
 Json materialInfoJson(const scene::SceneState& s, const scene::Material& m) {
   Json o = Json::object();
@@ -12,6 +27,9 @@ Json materialInfoJson(const scene::SceneState& s, const scene::Material& m) {
   const scene::MeshAsset* a = s.findAsset(m.asset);
   o["asset"] = a ? Json(a->name) : Json(nullptr);
   o["id"] = m.id;
+  Json used = Json::array();
+  for (const auto& [asset, slot] : slotsUsing(s, m.id)) used.push_back({{"asset", asset}, {"slot", slot}});
+  o["used_by"] = std::move(used);
   for (const auto& f : scene::materialFields()) {
     if (f.key == "name") continue;
     const scene::FieldValue v = f.get(m);
@@ -44,6 +62,10 @@ void printMaterials(const scene::SceneState& s) {
   for (const auto& [id, m] : s.materials) {
     const scene::MeshAsset* a = s.findAsset(m.asset);
     std::printf("%s%s\n", m.name.c_str(), a ? ("  (mesh asset " + a->name + ")").c_str() : "");
+    std::string used;
+    for (const auto& [asset, slot] : slotsUsing(s, m.id))
+      used += (used.empty() ? "" : ", ") + asset + " slot " + std::to_string(slot);
+    std::printf("  used by: %s\n", used.empty() ? "no mesh" : used.c_str());
     for (const auto& f : scene::materialFields()) {
       if (f.key == "name") continue;
       // Materials hold floats: 7 digits show what was set ("0.8", not the

@@ -149,6 +149,17 @@ AssetId Edit::addAsset(MeshAsset asset) {
   return id;
 }
 
+bool Edit::usedByOtherAsset(MaterialId material, AssetId except) const {
+  auto uses = [material](const MeshAsset& a) {
+    return std::find(a.materialSlots.begin(), a.materialSlots.end(), material) != a.materialSlots.end();
+  };
+  for (const auto& [aid, ba] : patch_.assets)
+    if (aid != except && ba.after && uses(*ba.after)) return true;
+  for (const auto& [aid, a] : doc_.state().assets)
+    if (aid != except && !patch_.assets.count(aid) && uses(a)) return true;
+  return false;
+}
+
 void Edit::removeAsset(AssetId id) {
   auto it = patch_.assets.find(id);
   if (it != patch_.assets.end())
@@ -171,7 +182,10 @@ void Edit::removeAsset(AssetId id) {
     const Material* m = peekMaterial(mid);
     if (!m) continue;
     if (m->asset == id) {
-      removeMaterial(mid);
+      // A material the user assigned to another asset's slot (material_ops.h
+      // assignMaterial) stays, owned by the scene from now on.
+      if (usedByOtherAsset(mid, id)) material(mid).asset = kNoAsset;
+      else removeMaterial(mid);
       continue;
     }
     for (TextureId t : gone)

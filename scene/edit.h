@@ -80,6 +80,9 @@ class Edit {
   std::vector<EntityId>& siblings(EntityId parent);
   void copyBinding(EntityId from, EntityId to);
   void touchRoots();
+  // Whether a mesh asset other than `except` (as this edit leaves them)
+  // draws a slot with `material`.
+  bool usedByOtherAsset(MaterialId material, AssetId except) const;
 
   Document& doc_;
   QString text_;

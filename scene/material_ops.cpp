@@ -94,4 +94,61 @@ bool removeMaterial(Document& doc, MaterialId id, std::string& error) {
   return e.commit();
 }
 
+MaterialId addMaterial(Document& doc, const std::string& name, MaterialId like, std::string& error) {
+  error.clear();
+  const SceneState& s = doc.state();
+  Material m;
+  if (like != kNoMaterial) {
+    const Material* from = s.findMaterial(like);
+    if (!from) {
+      error = "no material " + std::to_string(like);
+      return kNoMaterial;
+    }
+    m = *from;
+  }
+  m.id = kNoMaterial;
+  m.asset = kNoAsset;
+  m.name = name;
+  // The name goes through the same check as renaming one (fields.cpp's "name").
+  if (const MaterialField* f = findMaterialField("name")) {
+    error = materialValueProblem(s, m, *f, FieldValue(name));
+    if (!error.empty()) {
+      // "material '<name>': name: ..." names a material that does not exist yet.
+      error = "new material: " + error.substr(std::string("material '" + name + "': ").size());
+      return kNoMaterial;
+    }
+  }
+  Edit e(doc, QString("Add material %1").arg(QString::fromStdString(name)));
+  const MaterialId id = e.addMaterial(std::move(m));
+  e.commit();
+  return id;
+}
+
+bool assignMaterial(Document& doc, AssetId asset, size_t slot, MaterialId material, std::string& error) {
+  error.clear();
+  const SceneState& s = doc.state();
+  const MeshAsset* a = s.findAsset(asset);
+  if (!a) {
+    error = "no mesh asset " + std::to_string(asset);
+    return false;
+  }
+  if (slot >= a->materialSlots.size()) {
+    const size_t n = a->materialSlots.size();
+    error = "mesh asset '" + a->name + "' has no material slot " + std::to_string(slot) +
+            (n == 0 ? std::string(" (it has none)") : " (slots 0 to " + std::to_string(n - 1) + ")");
+    return false;
+  }
+  const Material* m = s.findMaterial(material);
+  if (!m) {
+    error = "no material " + std::to_string(material);
+    return false;
+  }
+  if (a->materialSlots[slot] == material) return false;
+  Edit e(doc, QString("Assign %1 to %2 slot %3")
+                  .arg(QString::fromStdString(m->name), QString::fromStdString(a->name))
+                  .arg(slot));
+  e.asset(asset).materialSlots[slot] = material;
+  return e.commit();
+}
+
 }  // namespace hs::scene::ops

@@ -29,4 +29,16 @@ bool setMaterialField(Document& doc, MaterialId id, const MaterialField& field, 
 // still draws with is refused with `error` naming the asset.
 bool removeMaterial(Document& doc, MaterialId id, std::string& error);
 
+// Adds a material named `name` in one undo step: a copy of `like`'s fields
+// (kNoMaterial: the defaults of scene/material.h), owned by the scene, not
+// by a mesh asset (it stays when an asset goes). Returns its id, or
+// kNoMaterial with `error` (an empty or taken name, an unknown `like`).
+MaterialId addMaterial(Document& doc, const std::string& name, MaterialId like, std::string& error);
+
+// Makes slot `slot` of mesh asset `asset` draw with material `material`, in
+// one undo step (every entity showing the asset follows, as in the file).
+// False with `error` naming the asset, slot or material when refused, or
+// with `error` empty when the slot already had it.
+bool assignMaterial(Document& doc, AssetId asset, size_t slot, MaterialId material, std::string& error);
+
 }  // namespace hs::scene::ops

@@ -1,5 +1,7 @@
 #include "scene/mesh_export_operation.h"
 
+#include "scene/mesh_target.h"
+
 namespace hs::scene {
 
 const OperationDecl& meshExportOperation() {
@@ -52,35 +54,11 @@ MeshExportOutcome exportSceneMesh(const SceneState& state, const MeshExportReque
                                   const Progress* progress) {
   MeshExportOutcome o;
   std::string& error = o.result.error;
-  // An entity first (what the outliner shows), then an asset.
-  const MeshAsset* asset = nullptr;
-  glm::dmat4 transform(1.0);
-  const EntityId id = state.findByName(request.target);
-  if (id != kNoEntity) {
-    const Entity* e = state.find(id);
-    if (!e->mesh) {
-      error = "'" + request.target + "' is an entity without a mesh";
-      return o;
-    }
-    asset = state.findAsset(e->mesh->mesh);
-    transform = state.worldMatrix(id);
-    o.what = "entity '" + request.target + "'";
-  } else {
-    for (const auto& [aid, a] : state.assets)
-      if (a.name == request.target) {
-        asset = &a;
-        break;
-      }
-    o.what = "asset '" + request.target + "'";
-  }
-  if (!asset || !asset->data) {
-    std::string known;
-    for (const auto& [aid, a] : state.assets) known += (known.empty() ? "" : ", ") + ("'" + a.name + "'");
-    error = "no entity with a mesh and no mesh asset named '" + request.target + "'" +
-            (known.empty() ? " (the scene has no mesh assets)" : " (mesh assets: " + known + ")");
-    return o;
-  }
-  if (id != kNoEntity) o.what += " (asset '" + asset->name + "')";
+  const MeshTarget target = findMeshTarget(state, request.target, error);
+  if (!target.asset) return o;
+  const MeshAsset* asset = target.asset;
+  const glm::dmat4 transform = target.entity != kNoEntity ? state.worldMatrix(target.entity) : glm::dmat4(1.0);
+  o.what = target.what;
   const mesh::MeshData* data = asset->data.get();
   if (request.lod > 0) {
     if (request.lod > int(asset->lods.size())) {

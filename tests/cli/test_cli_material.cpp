@@ -1,4 +1,4 @@
-// `hybridscape-cli material list|set` and `info` through the real program
+// `hybridscape-cli material list|set|add|assign|delete` and `info` through the real program
 // (tests/common/cli_runner.h), on a scene of format 3 whose materials come
 // from its mesh when it is read.
 #include <QTemporaryDir>
@@ -104,6 +104,93 @@ class TestCliMaterial : public QObject {
     }
     // Nothing was saved: still the format-3 file it was.
     QCOMPARE(scene::sceneFileVersion(scene.toStdString()), 3);
+  }
+
+  // A material made by the user, put on the mesh's slot, the asset's own
+  // one then deletable; the slot's user is listed; refusals name the place.
+  void addAssignDelete() {
+    QTemporaryDir dir;
+    const QString scene = dir.filePath("s.hscene");
+    QVERIFY(QFile::copy(kFixture, scene));
+    QFile::setPermissions(scene, QFile::ReadOwner | QFile::WriteOwner);
+
+    CliRun r = runCli({"material", "set", "Bumpy / default", "roughness", "0.25", scene}, dir.path());
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    r = runCli({"material", "add", "Glass", scene, "--like", "Bumpy / default"}, dir.path());
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    Json j = listJson(scene, dir.path());
+    QCOMPARE(j.at("materials").size(), size_t(2));
+    const Json* glass = nullptr;
+    for (const Json& m : j.at("materials"))
+      if (m.at("name") == "Glass") glass = &m;
+    QVERIFY(glass);
+    QVERIFY(glass->at("asset").is_null());             // the scene's, not the mesh's
+    QCOMPARE(glass->at("roughness").get<double>(), 0.25);  // copied from --like
+    QVERIFY(glass->at("used_by").empty());
+
+    // Deleting the mesh's own material is refused while its slot uses it.
+    r = runCli({"material", "delete", "Bumpy / default", scene}, dir.path());
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("is used by mesh asset 'Bumpy' (slot 0)"), qPrintable(r.err));
+
+    r = runCli({"material", "assign", "Bumpy", "0", "Glass", scene}, dir.path());
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("slot 0 of"), qPrintable(r.out));
+    j = listJson(scene, dir.path());
+    for (const Json& m : j.at("materials")) {
+      if (m.at("name") != "Glass") {
+        QVERIFY(m.at("used_by").empty());
+        continue;
+      }
+      QCOMPARE(m.at("used_by").size(), size_t(1));
+      QCOMPARE(m.at("used_by")[0].at("asset").get<std::string>(), std::string("Bumpy"));
+      QCOMPARE(m.at("used_by")[0].at("slot").get<int>(), 0);
+    }
+    // Assigning it again changes nothing and says so.
+    r = runCli({"material", "assign", "Bumpy", "0", "Glass", scene}, dir.path());
+    QCOMPARE(r.code, 0);
+    QVERIFY2(r.out.contains("unchanged"), qPrintable(r.out));
+
+    r = runCli({"material", "delete", "Bumpy / default", scene}, dir.path());
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    j = listJson(scene, dir.path());
+    QCOMPARE(j.at("materials").size(), size_t(1));
+    QCOMPARE(j.at("materials")[0].at("name").get<std::string>(), std::string("Glass"));
+
+    // The rendered mesh now draws with Glass: a render through the CLI
+    // does not fail on the deleted material.
+    r = runCli({"render", scene, "--out", dir.filePath("f.png"), "--size", "64x48"}, dir.path());
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+
+    const QByteArray before = [&] {
+      QFile f(scene);
+      f.open(QIODevice::ReadOnly);
+      return f.readAll();
+    }();
+    struct Case {
+      QStringList args;
+      int code;
+      QString message;
+    };
+    const QList<Case> cases = {
+        {{"material", "add", "Glass", scene}, 1, "new material: name: another material is named 'Glass'"},
+        {{"material", "add", " ", scene}, 1, "new material: name: a material needs a name"},
+        {{"material", "add", "X", scene, "--like", "Nope"}, 1, "--like: no material named 'Nope'"},
+        {{"material", "assign", "Nope", "0", "Glass", scene}, 1, "no entity with a mesh and no mesh asset named 'Nope'"},
+        {{"material", "assign", "Bumpy", "3", "Glass", scene}, 1, "mesh asset 'Bumpy' has no material slot 3 (slots 0 to 0)"},
+        {{"material", "assign", "Bumpy", "-1", "Glass", scene}, 1, "slot: '-1' is not a slot number"},
+        {{"material", "assign", "Bumpy", "0", "Nope", scene}, 1, "no material named 'Nope'"},
+        {{"material", "delete", "Glass", scene}, 1, "is used by mesh asset 'Bumpy' (slot 0)"},
+        {{"material", "delete", "Nope", scene}, 1, "no material named 'Nope'"},
+    };
+    for (const Case& c : cases) {
+      const CliRun rr = runCli(c.args, dir.path());
+      QVERIFY2(rr.code == c.code, qPrintable(c.args.join(' ') + ": " + QString::number(rr.code) + " " + rr.err));
+      QVERIFY2(rr.err.contains(c.message), qPrintable(rr.err));
+    }
+    QFile f(scene);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QVERIFY2(f.readAll() == before, "a refused command changed the file");
   }
 };
 

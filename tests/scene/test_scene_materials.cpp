@@ -280,6 +280,50 @@ class TestSceneMaterials : public QObject {
     QCOMPARE(canonicalJson(doc.state()), before);
   }
 
+  // A material assigned to another asset's slot outlives the asset it came
+  // with (it becomes the scene's); undo brings everything back.
+  void assignedMaterialsOutliveTheirAsset() {
+    Document doc;
+    const EntityId wall = importQuad(doc, "Wall");
+    const EntityId other = importQuad(doc, "Other");
+    const AssetId wallAsset = doc.state().find(wall)->mesh->mesh;
+    const AssetId otherAsset = doc.state().find(other)->mesh->mesh;
+    const MaterialId wallRed = doc.state().findMaterialByName("Wall / red");
+    std::string error;
+    QVERIFY(ops::assignMaterial(doc, otherAsset, 1, wallRed, error));
+    QCOMPARE(doc.state().assets.at(otherAsset).materialSlots[1], wallRed);
+    QVERIFY(!ops::assignMaterial(doc, otherAsset, 1, wallRed, error));  // already: no step
+    QVERIFY(error.empty());
+    QVERIFY(!ops::assignMaterial(doc, otherAsset, 7, wallRed, error));
+    QVERIFY2(error.find("has no material slot 7 (slots 0 to 2)") != std::string::npos, error.c_str());
+    const std::string before = canonicalJson(doc.state());
+    {
+      Edit e(doc, "Delete");
+      e.removeEntity(wall);
+      e.removeAsset(wallAsset);
+      QVERIFY(e.commit());
+    }
+    const Material* kept = doc.state().findMaterial(wallRed);
+    QVERIFY(kept);
+    QCOMPARE(kept->asset, kNoAsset);
+    QCOMPARE(doc.state().findMaterialByName("Wall / brick"), kNoMaterial);  // unassigned: gone with it
+    QCOMPARE(doc.state().materials.size(), size_t(4));  // Other's three and Wall's red
+    QCOMPARE(doc.state().validate(), std::string());
+    doc.undoStack()->undo();
+    QCOMPARE(canonicalJson(doc.state()), before);
+
+    // A new material copies its model's fields; names are checked as renames are.
+    const MaterialId copy = ops::addMaterial(doc, "Copy", wallRed, error);
+    QVERIFY2(copy != kNoMaterial, error.c_str());
+    Material expect = doc.state().materials.at(wallRed);
+    expect.id = copy;
+    expect.asset = kNoAsset;
+    expect.name = "Copy";
+    QVERIFY(doc.state().materials.at(copy) == expect);
+    QCOMPARE(ops::addMaterial(doc, "Copy", kNoMaterial, error), kNoMaterial);
+    QVERIFY2(error == "new material: name: another material is named 'Copy'", error.c_str());
+  }
+
   void materialsMissingFromTheirAssetAreRefusedOnLoad() {
     Document doc;
     importQuad(doc, "Wall");
