@@ -2,11 +2,13 @@
 
 #include <QComboBox>
 #include <QFormLayout>
+#include <QHBoxLayout>
 #include <QImage>
 #include <QLabel>
 #include <QLayout>
 #include <QListWidget>
 #include <QPixmap>
+#include <QPushButton>
 #include <QVBoxLayout>
 
 #include "app/field_editors.h"
@@ -29,6 +31,21 @@ MaterialsPanel::MaterialsPanel(scene::Document& doc, QWidget* parent)
   list_->setObjectName("materialList");
   list_->setMaximumHeight(140);
   layout->addWidget(list_);
+  // New copies the material shown (a start for a variant); Delete refuses a
+  // material a mesh slot still uses, naming the slot (material_ops.h).
+  auto* buttons = new QHBoxLayout;
+  auto* add = new QPushButton("New", content);
+  add->setObjectName("newMaterial");
+  add->setToolTip("Add a material of the scene's own, a copy of the one shown");
+  connect(add, &QPushButton::clicked, this, [this] { addMaterial(); });
+  auto* remove = new QPushButton("Delete", content);
+  remove->setObjectName("deleteMaterial");
+  remove->setToolTip("Delete the material shown (only when no mesh slot uses it)");
+  connect(remove, &QPushButton::clicked, this, [this] { deleteMaterial(); });
+  buttons->addWidget(add);
+  buttons->addWidget(remove);
+  buttons->addStretch(1);
+  layout->addLayout(buttons);
   preview_ = new QLabel(content);
   preview_->setObjectName("materialPreview");
   preview_->setAlignment(Qt::AlignCenter);
@@ -153,9 +170,7 @@ void MaterialsPanel::apply(const scene::MaterialField& field, const scene::Field
   // With keying on every edit has a merge key, so a key it sets joins its step.
   const QString key = mergeKey.isEmpty() && keying_ ? QString("material-%1").arg(++editCounter_) : mergeKey;
   if (!scene::ops::setMaterialField(doc_, current_, field, value, error, key) && !error.empty()) {
-    error_->setText(QString::fromStdString(error));
-    error_->show();
-    emit problem(QString::fromStdString(error));
+    showError(error);
     refreshValues();  // back to the document's value
     return;
   }
@@ -163,6 +178,31 @@ void MaterialsPanel::apply(const scene::MaterialField& field, const scene::Field
   // An animated field keeps the edit as a key at this frame (else its track
   // would put the old value back at once); with Auto Key, any field.
   if (keying_) keying_->afterEdit({scene::materialTarget(current_)}, {std::string(scene::kMaterialTrackPrefix) + field.key}, key);
+}
+
+void MaterialsPanel::showError(const std::string& error) {
+  error_->setText(QString::fromStdString(error));
+  error_->show();
+  emit problem(QString::fromStdString(error));
+}
+
+void MaterialsPanel::addMaterial() {
+  const scene::SceneState& s = doc_.state();
+  QString name;
+  for (int n = 1; name.isEmpty() || s.findMaterialByName(name.toStdString()) != scene::kNoMaterial; ++n)
+    name = QString("Material %1").arg(n);
+  std::string error;
+  const scene::MaterialId id = scene::ops::addMaterial(doc_, name.toStdString(), current_, error);
+  if (id == scene::kNoMaterial) return showError(error);
+  error_->hide();
+  select(id);
+}
+
+void MaterialsPanel::deleteMaterial() {
+  std::string error;
+  if (current_ == scene::kNoMaterial) return;
+  if (!scene::ops::removeMaterial(doc_, current_, error)) return showError(error);
+  error_->hide();
 }
 
 void MaterialsPanel::rebuildList() {

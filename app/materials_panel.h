@@ -4,7 +4,8 @@
 // Properties dock (textures as a list of the scene's textures), and a
 // preview sphere rendered with the selected material. Edits go through
 // scene::ops::setMaterialField (undoable, one step per gesture); a refused
-// value shows the message that names the material and the field.
+// value shows the message that names the material and the field. New adds
+// a copy of the material shown; Delete removes one no mesh slot uses.
 #include <map>
 #include <optional>
 #include <string>
@@ -56,6 +57,9 @@ class MaterialsPanel : public QWidget {
 
  private:
   void rebuildList();
+  void addMaterial();
+  void deleteMaterial();
+  void showError(const std::string& error);  // under the list and to Messages
   void refreshValues();
   void requestPreview();
   void apply(const scene::MaterialField& field, const scene::FieldValue& value, const QString& mergeKey);

@@ -14,6 +14,7 @@
 #include "app/error_report_dialog.h"
 #include "app/field_editors.h"
 #include "app/form_widgets.h"
+#include "app/material_slots_widget.h"
 #include "app/selection.h"
 #include "app/terrain_component_picker.h"
 #include "scene/operations.h"
@@ -152,6 +153,9 @@ QWidget* PropertyPanel::buildSection(const scene::ComponentInfo& c, const scene:
       if (ent && ent->mesh && materialsHook_) materialsHook_(ent->mesh->mesh);
     });
     form->addRow(materials);
+    slots_ = new MaterialSlotsWidget(doc_, body);
+    connect(slots_, &MaterialSlotsWidget::problem, this, &PropertyPanel::problem);
+    form->addRow(slots_);
   }
   v->addWidget(body);
   body->setVisible(toggle->isChecked());
@@ -172,6 +176,7 @@ void PropertyPanel::rebuild() {
   header_ = nullptr;
   meshInfo_ = nullptr;
   meshReport_ = nullptr;
+  slots_ = nullptr;
   addButton_ = nullptr;
   while (QLayoutItem* item = contentLayout_->takeAt(0)) {
     if (QWidget* w = item->widget()) w->deleteLater();
@@ -247,6 +252,7 @@ void PropertyPanel::refresh() {
     else
       meshInfo_->setText("No mesh asset assigned.");
     if (meshReport_) meshReport_->setEnabled(a && !a->processReport.is_null());
+    if (slots_) slots_->showAsset(s, e->mesh->mesh);
   }
 }
 

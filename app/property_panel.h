@@ -24,6 +24,7 @@ class QVBoxLayout;
 namespace hs::app {
 
 class FieldEditor;
+class MaterialSlotsWidget;
 class Selection;
 
 class PropertyPanel : public QWidget {
@@ -49,6 +50,8 @@ class PropertyPanel : public QWidget {
   // component's terrain row calls this with the entity (set by the Terrain
   // panel, which owns the dialog; terrain_component_picker.h).
   void setNewTerrainHook(std::function<void(scene::EntityId showOn)> hook);
+  // The material slots of the selected mesh (null without one).
+  MaterialSlotsWidget* materialSlots() const { return slots_; }
   // Mesh components: "Materials…" calls this with the mesh's asset (set by
   // the main window: shows the Materials panel on the asset's first material).
   void setMaterialsHook(std::function<void(scene::AssetId asset)> hook) { materialsHook_ = std::move(hook); }
@@ -81,6 +84,7 @@ class PropertyPanel : public QWidget {
   QLabel* header_ = nullptr;
   QLabel* meshInfo_ = nullptr;
   QPushButton* meshReport_ = nullptr;  // the asset's processing report
+  MaterialSlotsWidget* slots_ = nullptr;  // the asset's material slots
   QToolButton* addButton_ = nullptr;
   std::vector<Row> rows_;
   std::map<std::string, FieldEditor*> byPath_;

@@ -1,7 +1,8 @@
 // The Materials panel as a user reaches it: from a mesh's properties
 // ("Materials…"), its list, a field edited through the panel's editors as
-// one undo step, a refused value's message, and the preview sphere rendered
-// on its worker with the material (and again when the material changes).
+// one undo step, a refused value's message, the preview sphere rendered
+// on its worker with the material (and again when the material changes),
+// and New / Delete with the mesh's slot list.
 #include <QComboBox>
 #include <QDockWidget>
 #include <QLabel>
@@ -13,6 +14,7 @@
 
 #include "app/field_editors.h"
 #include "app/main_window.h"
+#include "app/material_slots_widget.h"
 #include "app/materials_panel.h"
 #include "app/property_panel.h"
 #include "app/selection.h"
@@ -122,6 +124,56 @@ class EditorMaterialsTest : public QObject {
     QVERIFY2(message == QString::fromStdString("material '" + before + "': name: a material needs a name"),
              qPrintable(message));
     QVERIFY(panel->findChild<QLabel*>("materialError")->isVisible());
+  }
+
+  // New copies the material shown; the mesh's slot list puts it on the
+  // bunny (one undo step); Delete refuses it while the slot uses it and
+  // removes the bunny's own one once it is free.
+  void newAssignDelete() {
+    const scene::SceneState& s = w_->document().state();
+    const scene::EntityId bunny = s.findByName("Stanford Bunny");
+    w_->selection().select(bunny);
+    const scene::AssetId asset = s.find(bunny)->mesh->mesh;
+    const scene::MaterialId own = s.findAsset(asset)->materialSlots.front();
+    app::MaterialsPanel* panel = w_->materialsPanel();
+    panel->select(own);
+    const size_t before = s.materials.size();
+    panel->findChild<QPushButton*>("newMaterial")->click();
+    QCOMPARE(s.materials.size(), before + 1);
+    const scene::MaterialId made = panel->selected();
+    QVERIFY(made != own);
+    QCOMPARE(s.materials.at(made).roughness, s.materials.at(own).roughness);
+    QCOMPARE(s.materials.at(made).asset, scene::kNoAsset);
+
+    app::MaterialSlotsWidget* slotList = nullptr;
+    QTRY_VERIFY((slotList = w_->properties()->materialSlots()) != nullptr);
+    QTRY_VERIFY(slotList->chooser(0) != nullptr);
+    QComboBox* slot0 = slotList->chooser(0);
+    QCOMPARE(slot0->currentText().toStdString(), s.materials.at(own).name);
+    const int index = slot0->findData(QVariant::fromValue<qulonglong>(made));
+    QVERIFY(index >= 0);
+    const int steps = w_->document().undoStack()->count();
+    slot0->setCurrentIndex(index);
+    emit slot0->activated(index);
+    QCOMPARE(s.findAsset(asset)->materialSlots.front(), made);
+    QCOMPARE(w_->document().undoStack()->count(), steps + 1);
+
+    QSignalSpy problems(panel, &app::MaterialsPanel::problem);
+    panel->select(made);
+    panel->findChild<QPushButton*>("deleteMaterial")->click();
+    QVERIFY(s.findMaterial(made));
+    QCOMPARE(problems.count(), 1);
+    QVERIFY2(problems.front().front().toString().contains("is used by mesh asset"),
+             qPrintable(problems.front().front().toString()));
+    panel->select(own);
+    panel->findChild<QPushButton*>("deleteMaterial")->click();
+    QVERIFY(!s.findMaterial(own));
+    // Undo brings the bunny's material and its slot back.
+    w_->document().undoStack()->undo();
+    w_->document().undoStack()->undo();
+    QVERIFY(s.findMaterial(own));
+    QCOMPARE(s.findAsset(asset)->materialSlots.front(), own);
+    QTRY_COMPARE(w_->properties()->materialSlots()->chooser(0)->currentText().toStdString(), s.materials.at(own).name);
   }
 
   void cleanupTestCase() { w_.reset(); }
