@@ -10,7 +10,10 @@
 #include <QVBoxLayout>
 
 #include "app/field_editors.h"
+#include "app/form_widgets.h"
 #include "app/selection.h"
+#include "app/timeline_keying.h"
+#include "scene/sequence_edits.h"
 #include "scene/operations.h"
 
 namespace hs::app {
@@ -107,6 +110,17 @@ std::string LightsPanel::structureKey() const {
   return key;
 }
 
+void LightsPanel::enableKeying(Keying& keying, TimelineClock& clock) {
+  keying_ = &keying;
+  clock_ = &clock;
+  rebuild();
+}
+
+KeyButton* LightsPanel::keyButtonFor(scene::EntityId id, const std::string& key) const {
+  auto it = keyButtons_.find({id, key});
+  return it == keyButtons_.end() ? nullptr : it->second;
+}
+
 FieldEditor* LightsPanel::editorFor(scene::EntityId id, const std::string& key) const {
   auto it = editors_.find({id, key});
   return it == editors_.end() ? nullptr : it->second;
@@ -125,6 +139,7 @@ QToolButton* LightsPanel::addButton(scene::Light::Type type) const {
 void LightsPanel::rebuild() {
   syncing_ = true;
   editors_.clear();
+  keyButtons_.clear();
   lights_.clear();
   table_->clearContents();
   const scene::SceneState& s = doc_.state();
@@ -148,7 +163,17 @@ void LightsPanel::rebuild() {
       ed->setOnEdited([this, id, field](const scene::FieldValue& v, int component, const QString& key) {
         apply(id, *field, v, component, key);
       });
-      table_->setCellWidget(row, col + 1, ed);
+      QWidget* cell = ed;
+      std::string error;
+      if (keying_ && scene::animationTarget("light." + field->key, error)) {
+        cell = editorRow(table_, ed);
+        auto* key = new KeyButton(
+            *keying_, [id] { return std::vector<uint64_t>{id}; }, *clock_, "light." + field->key, cell);
+        key->setObjectName(QString("key_%1_light.%2").arg(id).arg(QString::fromStdString(field->key)));
+        cell->layout()->addWidget(key);
+        keyButtons_[{id, field->key}] = key;
+      }
+      table_->setCellWidget(row, col + 1, cell);
       editors_[{id, field->key}] = ed;
     }
   }

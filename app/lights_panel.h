@@ -26,7 +26,10 @@ class QToolButton;
 namespace hs::app {
 
 class FieldEditor;
+class KeyButton;
+class Keying;
 class Selection;
+class TimelineClock;
 
 class LightsPanel : public QWidget {
   Q_OBJECT
@@ -39,6 +42,12 @@ class LightsPanel : public QWidget {
   // Called after each edit with the entity, the field path and the edit's
   // merge key (the timeline's keying joins animated fields to the step).
   void setEditedHook(std::function<void(scene::EntityId, const std::string&, const QString&)> hook);
+  // A key button beside each animatable field of each row (it keys that
+  // row's light at the timeline's frame), as the Properties dock has.
+  void enableKeying(Keying& keying, TimelineClock& clock);
+  // The key button of `key` ("intensity") in the row of light `id`; null
+  // before enableKeying or for a field that cannot be animated.
+  KeyButton* keyButtonFor(scene::EntityId id, const std::string& key) const;
 
   // The lights in table order (the document's entity order).
   const std::vector<scene::EntityId>& lights() const { return lights_; }
@@ -75,6 +84,9 @@ class LightsPanel : public QWidget {
   QToolButton* delete_ = nullptr;
   std::vector<scene::EntityId> lights_;
   std::map<std::pair<scene::EntityId, std::string>, FieldEditor*> editors_;
+  std::map<std::pair<scene::EntityId, std::string>, KeyButton*> keyButtons_;
+  Keying* keying_ = nullptr;
+  TimelineClock* clock_ = nullptr;
   std::string structure_;
   std::function<const scene::SceneState&()> stateSource_;
   std::function<void(scene::EntityId, const std::string&, const QString&)> edited_;

@@ -61,6 +61,7 @@ void MainWindow::createTimeline() {
     keying_->afterEdit({id}, {path}, key);
   });
   connect(clock_, &TimelineClock::stateChanged, lights_, &LightsPanel::refreshValues);
+  lights_->enableKeying(*keying_, *clock_);
   connect(viewport_, &ViewportWidget::transformsEdited, keying_,
           [this](const std::vector<scene::EntityId>& ids, const std::vector<std::string>& fields, const QString& key) {
             keying_->afterEdit(ids, fields, key);

@@ -195,6 +195,32 @@ class ObjectTracksTest : public QObject {
     QCOMPARE(panel->lights(), expected);
   }
 
+  // Each row of the Lights dock keys its own light, whatever is selected;
+  // an enum (the type) has no key button.
+  void lightsDockKeyButtonsKeyTheirRow() {
+    app::LightsPanel* panel = w_->lightsPanel();
+    const std::vector<scene::EntityId> lights = panel->lights();
+    QVERIFY(lights.size() >= 2);
+    const scene::EntityId light = lights.back();
+    w_->selection().select(lights.front());
+    QVERIFY(!panel->keyButtonFor(light, "type"));
+    app::KeyButton* button = panel->keyButtonFor(light, "intensity");
+    QVERIFY(button);
+    clock().setFrame(30);
+    const double t = clock().time();
+    const std::vector<double> before = times(light, "light.intensity");
+    const std::vector<double> selectedBefore = times(lights.front(), "light.intensity");
+    const int steps = doc().undoStack()->index();
+    QTest::mouseClick(button, Qt::LeftButton);
+    QCOMPARE(doc().undoStack()->index(), steps + 1);
+    const std::vector<double> after = times(light, "light.intensity");
+    QVERIFY(std::find(after.begin(), after.end(), t) != after.end());
+    QCOMPARE(button->keyState(), app::Keying::KeyState::KeyHere);
+    QCOMPARE(times(lights.front(), "light.intensity"), selectedBefore);  // not the selected light
+    doc().undoStack()->undo();
+    QCOMPARE(times(light, "light.intensity"), before);
+  }
+
   void cleanupTestCase() { w_.reset(); }
 
  private:
