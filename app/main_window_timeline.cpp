@@ -30,6 +30,7 @@
 #include "app/timeline_panel.h"
 #include "app/viewport_widget.h"
 #include "scene/sequence_edits.h"
+#include "sequencer/binding_target.h"
 
 namespace hs::app {
 
@@ -68,6 +69,15 @@ void MainWindow::createTimeline() {
           });
 
   timeline_ = new TimelinePanel(doc_, *clock_, *keying_, *selection_, *stereo_, this);
+  // A material's or the settings' row shows that object in its dock.
+  connect(timeline_->dopeSheet(), &TimelineDopeSheet::objectActivated, this, [this](uint64_t target) {
+    const bool material = sequencer::targetKind(target) == sequencer::TargetKind::Material;
+    if (material) materials_->select(scene::MaterialId(sequencer::targetMaterial(target)));
+    if (auto* d = findChild<QDockWidget*>(material ? "materialsDock" : "settingsDock")) {
+      d->show();
+      d->raise();
+    }
+  });
   auto* dock = new QDockWidget("Timeline", this);
   dock->setObjectName("timelineDock");
   dock->setWidget(timeline_);

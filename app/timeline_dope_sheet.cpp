@@ -12,6 +12,7 @@
 #include <QWheelEvent>
 
 #include "app/selection.h"
+#include "sequencer/binding_target.h"
 
 namespace hs::app {
 
@@ -211,7 +212,11 @@ void TimelineDopeSheet::mousePressEvent(QMouseEvent* e) {
       setCollapsed(r.entity, !collapsed_.count(r.entity));
       return;
     }
-    if (actions_.document().state().find(r.entity)) selection_.select(r.entity);
+    if (sequencer::isEntityTarget(r.entity)) {
+      if (actions_.document().state().find(r.entity)) selection_.select(r.entity);
+    } else {
+      emit objectActivated(r.entity);
+    }
     if (!r.isEntity()) emit trackActivated(r.entity, QString::fromStdString(r.property));
     return;
   }

@@ -39,6 +39,9 @@ class TimelineDopeSheet : public QWidget {
  signals:
   // A track's name was clicked: show it in the curve view.
   void trackActivated(scene::EntityId entity, const QString& property);
+  // A row of a material or of the scene settings was clicked (target as
+  // sequencer/binding_target.h tags it): the window shows that object.
+  void objectActivated(uint64_t target);
 
  protected:
   void paintEvent(QPaintEvent* e) override;

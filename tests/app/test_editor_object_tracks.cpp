@@ -88,6 +88,30 @@ class ObjectTracksTest : public QObject {
     QVERIFY(std::any_of(rows.begin(), rows.end(), [&](const app::TimelineRow& r) {
       return r.entity == target && r.property == "material.roughness" && r.label == "Roughness";
     }));
+    // A click on the material's row shows it in the Materials panel.
+    {
+      app::TimelineDopeSheet* ds = w_->timeline()->dopeSheet();
+      const auto other = std::find_if(doc().state().materials.begin(), doc().state().materials.end(),
+                                      [&](const auto& m) { return m.first != id; });
+      QVERIFY(other != doc().state().materials.end());
+      panel->select(other->first);
+      // Fold the other rows so that the material's is in view.
+      std::vector<uint64_t> folded;
+      for (const app::TimelineRow& r : std::vector<app::TimelineRow>(ds->rows()))
+        if (r.isEntity() && r.entity != target) folded.push_back(r.entity);
+      for (uint64_t e : folded) ds->setCollapsed(e, true);
+      int row = -1;
+      for (size_t i = 0; i < ds->rows().size(); ++i)
+        if (ds->rows()[i].entity == target && ds->rows()[i].isEntity()) row = int(i);
+      QVERIFY(row >= 0);
+      const QPoint at(60, app::TimelineDopeSheet::kRulerHeight + row * app::TimelineDopeSheet::kRowHeight + 10);
+      QVERIFY2(at.y() < ds->height(), "the material's row is below the dope sheet's visible part");
+      const std::vector<scene::EntityId> selected = w_->selection().ids();
+      QTest::mouseClick(ds, Qt::LeftButton, Qt::NoModifier, at);
+      QCOMPARE(panel->selected(), id);
+      QCOMPARE(w_->selection().ids(), selected);  // a material is not an entity to select
+      for (uint64_t e : folded) ds->setCollapsed(e, false);
+    }
     // Undo takes the second key back, then the first.
     doc().undoStack()->undo();
     QCOMPARE(times(target, "material.roughness"), std::vector<double>{0.0});
