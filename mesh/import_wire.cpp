@@ -232,6 +232,39 @@ bool parseImportWorkerOptionArgument(const std::string& key, const std::string& 
   return ok;
 }
 
+std::string importRequest(const std::vector<std::string>& args) {
+  std::string out = "request " + std::to_string(args.size()) + "\n";
+  for (const std::string& a : args) out += std::to_string(a.size()) + "\n" + a + "\n";
+  return out;
+}
+
+bool readImportRequest(std::FILE* in, std::vector<std::string>& args, std::string& error) {
+  error.clear();
+  args.clear();
+  unsigned long count = 0;
+  const int got = std::fscanf(in, "request %lu", &count);
+  if (got == EOF) return false;
+  // Bounded: a request has a dozen arguments, each a path or a number.
+  if (got != 1 || std::fgetc(in) != '\n' || count > 1000) {
+    error = "a malformed request";
+    return false;
+  }
+  for (unsigned long i = 0; i < count; ++i) {
+    unsigned long length = 0;
+    if (std::fscanf(in, "%lu", &length) != 1 || std::fgetc(in) != '\n' || length > (1ul << 20)) {
+      error = "a malformed request (argument " + std::to_string(i + 1) + ")";
+      return false;
+    }
+    std::string a(length, '\0');
+    if ((length > 0 && std::fread(a.data(), 1, length, in) != length) || std::fgetc(in) != '\n') {
+      error = "a request cut short (argument " + std::to_string(i + 1) + ")";
+      return false;
+    }
+    args.push_back(std::move(a));
+  }
+  return true;
+}
+
 std::string importProgressLine(double fraction, std::string_view stage) {
   char head[64];
   std::snprintf(head, sizeof head, "progress %.4f ", fraction);

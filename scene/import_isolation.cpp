@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +16,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <memory>
+#include <mutex>
 #include <string_view>
 
 #include "core/parallel.h"
@@ -120,142 +123,163 @@ bool makePipe(int& readEnd, int& writeEnd) {
 
 std::string mib(uint64_t bytes) { return std::to_string((bytes + (1 << 19)) >> 20) + " MiB"; }
 
-enum class Outcome { Done, SpawnFailed };
+// Kills `pid` and waits for it.
+void killAndReap(pid_t pid) {
+  ::kill(pid, SIGKILL);
+  waitProcess(pid);
+}
 
-Outcome runWorker(const std::string& worker, const std::string& path, const mesh::ImportOptions& options,
-                  const WorkerLimits& limits, const Progress* progress, mesh::ImportResult& out,
-                  std::string& spawnError) {
-  const auto start = Clock::now();
-  auto failed = [&](std::string error) {
-    out = {};
-    out.report.file = path;
-    out.report.reader = "assimp";
-    out.error = std::move(error);
-    return Outcome::Done;
-  };
+// One worker process in --serve mode (tools/import_worker), kept for the
+// files of one import: the request goes to its stdin, progress lines and a
+// "done" line come on its stdout, the result in an anonymous file it
+// rewrites for each request. A worker that crashes, hangs or is cancelled
+// is killed and reaped; the pool then starts another for the next file.
+class WorkerProcess {
+ public:
+  WorkerProcess() = default;
+  WorkerProcess(const WorkerProcess&) = delete;
+  WorkerProcess& operator=(const WorkerProcess&) = delete;
+  ~WorkerProcess() { stop(); }
 
-  Fds fds;
-  fds.result = anonymousTempFile();
-  fds.err = anonymousTempFile();
-  if (fds.result < 0 || fds.err < 0 || !makePipe(fds.progressRead, fds.progressWrite) ||
-      !makePipe(fds.stdinRead, fds.stdinWrite)) {
-    spawnError = std::string("cannot make the worker's files: ") + std::strerror(errno);
-    return Outcome::SpawnFailed;
+  // False with `error` when it could not be started.
+  bool start(const std::string& worker, const WorkerLimits& limits, std::string& error) {
+    limits_ = limits;
+    fds_.result = anonymousTempFile();
+    fds_.err = anonymousTempFile();
+    // The request channel is a socket, not a pipe: a send to a worker that
+    // died is an error (MSG_NOSIGNAL), not a SIGPIPE for this process.
+    int sv[2] = {-1, -1};
+    if (fds_.result < 0 || fds_.err < 0 || !makePipe(fds_.progressRead, fds_.progressWrite) ||
+        ::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0) {
+      error = std::string("cannot make the worker's files: ") + std::strerror(errno);
+      return false;
+    }
+    fds_.stdinRead = highFd(sv[0]);
+    fds_.stdinWrite = highFd(sv[1]);
+    std::vector<std::string> args = {worker, "--result-fd", "3", "--serve"};
+    if (limits.memoryBytes) {
+      args.push_back("--memory-limit-mb");
+      args.push_back(std::to_string(limits.memoryBytes >> 20));
+    }
+    SpawnOptions spawn;
+    spawn.args = std::move(args);
+    spawn.fds = {{0, fds_.stdinRead}, {1, fds_.progressWrite}, {2, fds_.err}, {3, fds_.result}};
+    spawn.closeFrom = 4;
+    // glibc's fatal messages ("double free detected") go to stderr, not the tty.
+    spawn.environment = {"LIBC_FATAL_STDERR_=1"};
+    pid_ = spawnProcess(spawn, error);
+    Fds::closeOne(fds_.stdinRead);
+    Fds::closeOne(fds_.progressWrite);
+    return pid_ > 0;
   }
 
-  std::vector<std::string> args = {worker, "--result-fd", "3", "--watch-stdin"};
-  if (limits.memoryBytes) {
-    args.push_back("--memory-limit-mb");
-    args.push_back(std::to_string(limits.memoryBytes >> 20));
-  }
-  for (auto& a : mesh::importWorkerArguments(path, options)) args.push_back(std::move(a));
-  SpawnOptions spawn;
-  spawn.args = std::move(args);
-  spawn.fds = {{0, fds.stdinRead}, {1, fds.progressWrite}, {2, fds.err}, {3, fds.result}};
-  spawn.closeFrom = 4;
-  // glibc's fatal messages ("double free detected") go to stderr, not the tty.
-  spawn.environment = {"LIBC_FATAL_STDERR_=1"};
-  const pid_t pid = spawnProcess(spawn, spawnError);
-  if (pid < 0) return Outcome::SpawnFailed;
-  Fds::closeOne(fds.stdinRead);
-  Fds::closeOne(fds.progressWrite);
+  bool running() const { return pid_ > 0; }
 
-  // Progress lines until the worker closes its stdout (it ended). Cancel is
-  // polled all the while: the worker is killed, not asked.
-  double lastFraction = 0.0;
-  std::string lastStage = "Reading with Assimp";
-  reportProgress(progress, 0.0, lastStage);
-  std::string buffer;
-  char chunk[4096];
-  auto cancelled = [&] {
-    ::kill(pid, SIGKILL);
-    waitProcess(pid);
-    out = {};
-    out.report.file = path;
-    out.report.reader = "assimp";
-    out.cancelled = true;
-    out.error = path + ": import cancelled";
-    return Outcome::Done;
-  };
-  // The watchdog: progress that stops changing for this long means a
-  // reader that spins (Assimp 5.2.5 on some damaged files) or waits.
-  auto lastChange = Clock::now();
-  auto stuck = [&] {
-    ::kill(pid, SIGKILL);
-    waitProcess(pid);
-    char secs[32];
-    std::snprintf(secs, sizeof secs, "%g", limits.watchdogSeconds);
-    return failed(path + ": the " + formatName(path) + " reader (Assimp) made no progress for " + secs +
-                  " s (stuck at " + std::to_string(int(lastFraction * 100.0)) + "%, '" + lastStage +
-                  "'), so the import watchdog stopped it; the file is probably damaged (HS_IMPORT_WATCHDOG_S "
-                  "sets the time). Nothing was imported.");
-  };
-  for (;;) {
-    if (isCancelled(progress)) return cancelled();
-    if (limits.watchdogSeconds > 0 &&
-        std::chrono::duration<double>(Clock::now() - lastChange).count() > limits.watchdogSeconds)
-      return stuck();
-    pollfd p{fds.progressRead, POLLIN, 0};
-    const int n = ::poll(&p, 1, 50);
-    if (n < 0 && errno != EINTR) break;
-    if (n > 0) {
-      const ssize_t got = ::read(fds.progressRead, chunk, sizeof chunk);
+  // Reads `path`. `since` is when the caller started on it (the report's
+  // time includes starting the worker when this read needed one).
+  mesh::ImportResult read(const std::string& path, const mesh::ImportOptions& options, const Progress* progress,
+                          Clock::time_point since) {
+    path_ = &path;
+    mesh::ImportResult out;
+    const std::string request = mesh::importRequest(mesh::importWorkerArguments(path, options));
+    for (size_t sent = 0; sent < request.size();) {
+      const ssize_t n = ::send(fds_.stdinWrite, request.data() + sent, request.size() - sent, MSG_NOSIGNAL);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return ended(progress);  // it died before this file: say how
+      sent += size_t(n);
+    }
+    // Progress lines until "done" (the result is written) or the end of
+    // its stdout (it died). Cancel is polled all the while: the worker is
+    // killed, not asked.
+    double lastFraction = 0.0;
+    std::string lastStage = "Reading with Assimp";
+    reportProgress(progress, 0.0, lastStage);
+    char chunk[4096];
+    // The watchdog: progress that stops changing for this long means a
+    // reader that spins (Assimp 5.2.5 on some damaged files) or waits.
+    auto lastChange = Clock::now();
+    for (;;) {
+      if (isCancelled(progress)) return cancelled();
+      if (limits_.watchdogSeconds > 0 &&
+          std::chrono::duration<double>(Clock::now() - lastChange).count() > limits_.watchdogSeconds) {
+        stop(true);
+        char secs[32];
+        std::snprintf(secs, sizeof secs, "%g", limits_.watchdogSeconds);
+        return failed(path + ": the " + formatName(path) + " reader (Assimp) made no progress for " + secs +
+                      " s (stuck at " + std::to_string(int(lastFraction * 100.0)) + "%, '" + lastStage +
+                      "'), so the import watchdog stopped it; the file is probably damaged (HS_IMPORT_WATCHDOG_S "
+                      "sets the time). Nothing was imported.");
+      }
+      pollfd p{fds_.progressRead, POLLIN, 0};
+      const int n = ::poll(&p, 1, 50);
+      if (n < 0 && errno != EINTR) break;
+      if (n <= 0) continue;
+      const ssize_t got = ::read(fds_.progressRead, chunk, sizeof chunk);
       if (got < 0 && (errno == EINTR || errno == EAGAIN)) continue;
       if (got <= 0) break;  // end: the worker is gone
-      buffer.append(chunk, size_t(got));
+      buffer_.append(chunk, size_t(got));
       size_t nl;
-      while ((nl = buffer.find('\n')) != std::string::npos) {
+      while ((nl = buffer_.find('\n')) != std::string::npos) {
+        const std::string_view line = std::string_view(buffer_).substr(0, nl);
+        if (line == mesh::kImportDoneLine) {
+          buffer_.erase(0, nl + 1);
+          return result(since, /*ended=*/false, 0);
+        }
         double f;
         std::string stage;
-        if (mesh::parseImportProgressLine(std::string_view(buffer).substr(0, nl), f, stage)) {
+        if (mesh::parseImportProgressLine(line, f, stage)) {
           if (std::clamp(f, 0.0, 1.0) != lastFraction || stage != lastStage) lastChange = Clock::now();
           lastFraction = std::clamp(f, 0.0, 1.0);
           lastStage = std::move(stage);
           reportProgress(progress, lastFraction, lastStage);
         }
-        buffer.erase(0, nl + 1);
+        buffer_.erase(0, nl + 1);
       }
     }
-  }
-  // Its stdout is closed, so it is ending; Cancel still holds while it does.
-  int status = 0;
-  bool reaped = false;
-  for (;;) {
-    const pid_t w = ::waitpid(pid, &status, WNOHANG);
-    if (w == pid) {
-      reaped = true;
-      break;
-    }
-    if (w < 0 && errno != EINTR) break;  // ECHILD: someone else reaped it (SIGCHLD ignored); the result tells
-    if (isCancelled(progress)) return cancelled();
-    if (w == 0) ::poll(nullptr, 0, 5);
+    return ended(progress, since);
   }
 
-  const std::string reader = "the " + formatName(path) + " reader (Assimp)";
-  // A reader that cannot allocate under the limit may abort instead of
-  // failing cleanly; the worker said so on stderr (tools/import_worker).
-  const std::string memory =
-      limits.memoryBytes ? " (The import worker's memory limit was " + mib(limits.memoryBytes) + ", " +
-                               limits.memoryText + "; HS_IMPORT_MEMORY_LIMIT sets it.)"
-                         : std::string();
-  if (reaped && WIFSIGNALED(status) && limits.memoryBytes &&
-      stderrTail(fds.err).find("out of memory: an allocation failed under the memory limit") != std::string::npos)
-    return failed(path + ": " + reader + " ran out of memory: it reached the import worker's memory limit of " +
-                  mib(limits.memoryBytes) + " (" + limits.memoryText + "; HS_IMPORT_MEMORY_LIMIT sets it) and stopped (" +
-                  signalName(WTERMSIG(status)) + "). Nothing was imported.");
-  if (reaped && WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    if (sig == SIGKILL)
-      return failed(path + ": " + reader + " was killed (SIGKILL) while reading this file, perhaps for using too much memory. Nothing was imported." + memory);
-    return failed(path + ": " + reader + " crashed on this file (" + signalName(sig) +
-                  "); it is probably damaged. Nothing was imported." + memory);
+  // Closes its stdin (it ends at once) and reaps it; `kill` first with SIGKILL.
+  void stop(bool kill = false) {
+    if (pid_ <= 0) return;
+    Fds::closeOne(fds_.stdinWrite);
+    if (kill) {
+      killAndReap(pid_);
+    } else {
+      // It exits when it sees the end of stdin; a worker that does not
+      // within a second is killed.
+      const auto deadline = Clock::now() + std::chrono::seconds(1);
+      int status = 0;
+      pid_t w = 0;
+      while ((w = ::waitpid(pid_, &status, WNOHANG)) == 0 && Clock::now() < deadline) ::poll(nullptr, 0, 5);
+      if (w == 0) killAndReap(pid_);
+    }
+    pid_ = -1;
   }
-  const int code = reaped && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::string readError;
-  mesh::ImportResult r;
-  bool haveResult = false;
-  if (code == 0 || !reaped) {
-    const int dupFd = ::dup(fds.result);
+
+ private:
+  mesh::ImportResult failed(std::string error) const {
+    mesh::ImportResult out;
+    out.report.file = *path_;
+    out.report.reader = "assimp";
+    out.error = std::move(error);
+    return out;
+  }
+
+  mesh::ImportResult cancelled() {
+    stop(true);
+    mesh::ImportResult out = failed(*path_ + ": import cancelled");
+    out.cancelled = true;
+    return out;
+  }
+
+  // The result the worker wrote; `ended`: it is gone, with this exit code.
+  mesh::ImportResult result(Clock::time_point since, bool ended, int code) {
+    const std::string reader = "the " + formatName(*path_) + " reader (Assimp)";
+    std::string readError;
+    mesh::ImportResult r;
+    bool haveResult = false;
+    const int dupFd = ::dup(fds_.result);
     if (std::FILE* in = dupFd >= 0 ? ::fdopen(dupFd, "rb") : nullptr) {
       haveResult = mesh::readImportResult(in, r, readError);
       std::fclose(in);
@@ -263,24 +287,142 @@ Outcome runWorker(const std::string& worker, const std::string& path, const mesh
       if (dupFd >= 0) ::close(dupFd);
       readError = std::strerror(errno);
     }
+    if (!haveResult) {
+      if (!ended) stop(true);  // it said "done" over a torn result: not to be trusted with another file
+      std::string why = ended ? (code >= 0 ? "exit code " + std::to_string(code) : std::string("its exit status is unknown"))
+                              : std::string("it said it was done");
+      const std::string said = lastLine(fds_.err);
+      if (!said.empty() && ended) why += ": " + said;
+      else if (!readError.empty()) why += ": " + readError;
+      return failed(*path_ + ": " + reader + " stopped without a result (" + why + "). Nothing was imported.");
+    }
+    r.report.seconds = std::chrono::duration<double>(Clock::now() - since).count();
+    // The worker names the file and the stage; the limit is ours to name.
+    if (!r.ok() && limits_.memoryBytes && r.error.find("ran out of memory") != std::string::npos)
+      r.error += " (the import worker's memory limit: " + mib(limits_.memoryBytes) + ", " + limits_.memoryText +
+                 "; HS_IMPORT_MEMORY_LIMIT sets it)";
+    return r;
   }
-  if (!haveResult) {
+
+  // The worker's stdout ended: it is ending or gone. Cancel still holds
+  // while it does; then its exit says what happened.
+  mesh::ImportResult ended(const Progress* progress, Clock::time_point since = Clock::now()) {
+    int status = 0;
+    bool reaped = false;
+    for (;;) {
+      const pid_t w = ::waitpid(pid_, &status, WNOHANG);
+      if (w == pid_) {
+        reaped = true;
+        break;
+      }
+      if (w < 0 && errno != EINTR) break;  // ECHILD: someone else reaped it (SIGCHLD ignored); the result tells
+      if (isCancelled(progress)) return cancelled();
+      if (w == 0) ::poll(nullptr, 0, 5);
+    }
+    pid_ = -1;
+    Fds::closeOne(fds_.stdinWrite);
+    const std::string& path = *path_;
+    const std::string reader = "the " + formatName(path) + " reader (Assimp)";
+    // A reader that cannot allocate under the limit may abort instead of
+    // failing cleanly; the worker said so on stderr (tools/import_worker).
+    const std::string memory =
+        limits_.memoryBytes ? " (The import worker's memory limit was " + mib(limits_.memoryBytes) + ", " +
+                                  limits_.memoryText + "; HS_IMPORT_MEMORY_LIMIT sets it.)"
+                            : std::string();
+    if (reaped && WIFSIGNALED(status) && limits_.memoryBytes &&
+        stderrTail(fds_.err).find("out of memory: an allocation failed under the memory limit") != std::string::npos)
+      return failed(path + ": " + reader + " ran out of memory: it reached the import worker's memory limit of " +
+                    mib(limits_.memoryBytes) + " (" + limits_.memoryText +
+                    "; HS_IMPORT_MEMORY_LIMIT sets it) and stopped (" + signalName(WTERMSIG(status)) +
+                    "). Nothing was imported.");
+    if (reaped && WIFSIGNALED(status)) {
+      const int sig = WTERMSIG(status);
+      if (sig == SIGKILL)
+        return failed(path + ": " + reader +
+                      " was killed (SIGKILL) while reading this file, perhaps for using too much memory. Nothing was "
+                      "imported." +
+                      memory);
+      return failed(path + ": " + reader + " crashed on this file (" + signalName(sig) +
+                    "); it is probably damaged. Nothing was imported." + memory);
+    }
+    const int code = reaped && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (code == 0 || !reaped) return result(since, /*ended=*/true, code);
     std::string why = code >= 0 ? "exit code " + std::to_string(code) : std::string("its exit status is unknown");
-    const std::string said = lastLine(fds.err);
-    if (!said.empty()) why += ": " + said;
-    else if (!readError.empty()) why += ": " + readError;
+    if (const std::string said = lastLine(fds_.err); !said.empty()) why += ": " + said;
     return failed(path + ": " + reader + " stopped without a result (" + why + "). Nothing was imported.");
   }
-  r.report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  // The worker names the file and the stage; the limit is ours to name.
-  if (!r.ok() && limits.memoryBytes && r.error.find("ran out of memory") != std::string::npos)
-    r.error += " (the import worker's memory limit: " + mib(limits.memoryBytes) + ", " + limits.memoryText +
-               "; HS_IMPORT_MEMORY_LIMIT sets it)";
-  out = std::move(r);
-  return Outcome::Done;
-}
+
+  pid_t pid_ = -1;
+  Fds fds_;
+  WorkerLimits limits_;
+  std::string buffer_;  // progress bytes not yet a whole line
+  const std::string* path_ = nullptr;  // the file being read (for messages)
+};
 
 }  // namespace
+
+struct ImportWorkerPool::Impl {
+  std::mutex mutex;
+  std::vector<std::unique_ptr<WorkerProcess>> idle;
+  unsigned started = 0;
+};
+
+ImportWorkerPool::ImportWorkerPool() : impl_(std::make_unique<Impl>()) {}
+ImportWorkerPool::~ImportWorkerPool() = default;
+
+unsigned ImportWorkerPool::workersStarted() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->started;
+}
+
+mesh::ImportResult ImportWorkerPool::read(const std::string& path, const mesh::ImportOptions& options,
+                                          const Progress* progress) {
+  if (!readsWithAssimp(path, options)) return mesh::importMesh(path, options, progress);
+  const auto since = Clock::now();
+  std::string lookedAt, why;
+  WorkerLimits limits;
+  if (!workerLimits(limits, why)) {
+    mesh::ImportResult r;
+    r.report.file = path;
+    r.report.reader = "assimp";
+    r.error = path + ": not read: " + why;
+    return r;
+  }
+  std::unique_ptr<WorkerProcess> worker;
+  {
+    std::lock_guard lock(impl_->mutex);
+    if (!impl_->idle.empty()) {
+      worker = std::move(impl_->idle.back());
+      impl_->idle.pop_back();
+    }
+  }
+  if (!worker) {
+    const std::string program = findImportWorker(&lookedAt);
+    if (program.empty()) {
+      why = std::string(kWorkerName) + " not found" + (lookedAt.empty() ? "" : " (looked at " + lookedAt + ")");
+    } else {
+      worker = std::make_unique<WorkerProcess>();
+      if (worker->start(program, limits, why)) {
+        std::lock_guard lock(impl_->mutex);
+        ++impl_->started;
+      } else {
+        worker.reset();
+      }
+    }
+  }
+  if (!worker) {
+    mesh::ImportResult r = mesh::importMesh(path, options, progress);
+    r.report.warnings.push_back(path + ": read inside this process, not in the import worker (" + why +
+                                "); a reader crash on a damaged file would end the program");
+    return r;
+  }
+  mesh::ImportResult r = worker->read(path, options, progress, since);
+  if (worker->running()) {
+    std::lock_guard lock(impl_->mutex);
+    impl_->idle.push_back(std::move(worker));
+  }
+  return r;
+}
 
 bool readsWithAssimp(const std::string& path, const mesh::ImportOptions& options) {
   if (options.reader == mesh::Reader::Obj) return false;
@@ -368,27 +510,8 @@ unsigned tileReadParallelism(const std::vector<std::string>& paths, const mesh::
 
 mesh::ImportResult importMeshIsolated(const std::string& path, const mesh::ImportOptions& options,
                                       const Progress* progress) {
-  if (!readsWithAssimp(path, options)) return mesh::importMesh(path, options, progress);
-  std::string lookedAt, why;
-  WorkerLimits limits;
-  if (!workerLimits(limits, why)) {
-    mesh::ImportResult r;
-    r.report.file = path;
-    r.report.reader = "assimp";
-    r.error = path + ": not read: " + why;
-    return r;
-  }
-  const std::string worker = findImportWorker(&lookedAt);
-  if (!worker.empty()) {
-    mesh::ImportResult r;
-    if (runWorker(worker, path, options, limits, progress, r, why) == Outcome::Done) return r;
-  } else {
-    why = std::string(kWorkerName) + " not found" + (lookedAt.empty() ? "" : " (looked at " + lookedAt + ")");
-  }
-  mesh::ImportResult r = mesh::importMesh(path, options, progress);
-  r.report.warnings.push_back(path + ": read inside this process, not in the import worker (" + why +
-                              "); a reader crash on a damaged file would end the program");
-  return r;
+  ImportWorkerPool pool;
+  return pool.read(path, options, progress);
 }
 
 }  // namespace hs::scene

@@ -9,6 +9,7 @@
 // the file; Cancel kills the worker. The own OBJ reader and
 // importObjFromMemory stay in this process. docs/meshes.md, "Isolation".
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,11 +46,36 @@ bool workerLimits(WorkerLimits& limits, std::string& error);
 // How many tiles of one import to read at once (mesh::TileImportOptions::
 // maxParallel). 1 when no tile goes through the worker: the own OBJ and PLY
 // readers already use every core on one file, and reading two at once
-// would only raise the peak memory. Otherwise one worker per tile, as many
-// at once as there are hardware threads and as fit the machine's memory
+// would only raise the peak memory. Otherwise one worker per tile read at
+// once (ImportWorkerPool keeps it for the next tile), as many at once as
+// there are hardware threads and as fit the machine's memory
 // under the workers' limit (physical memory / HS_IMPORT_MEMORY_LIMIT: 2 at
 // the default 50%; every hardware thread with the limit off).
 unsigned tileReadParallelism(const std::vector<std::string>& paths, const mesh::ImportOptions& options);
+
+// Workers kept for the files of one import (a multi-tile scan): each read
+// takes an idle worker or starts one, and gives it back when it is still
+// fine afterwards, so N tiles read k at a time start k workers, not N (each
+// costs about 0.2 s to start). A worker that crashed, hung or was
+// cancelled is gone; the next read starts another. Safe to call from
+// several threads at once. The workers end with the pool.
+class ImportWorkerPool {
+ public:
+  ImportWorkerPool();
+  ~ImportWorkerPool();
+  ImportWorkerPool(const ImportWorkerPool&) = delete;
+  ImportWorkerPool& operator=(const ImportWorkerPool&) = delete;
+
+  // importMeshIsolated's reading, on this pool's workers.
+  mesh::ImportResult read(const std::string& path, const mesh::ImportOptions& options,
+                          const Progress* progress = nullptr);
+  // How many worker processes this pool has started so far.
+  unsigned workersStarted() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // mesh::importMesh, with the files Assimp reads read by the worker. Without a
 // worker the file is read here, with a warning in the report saying so. The

@@ -56,7 +56,11 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
       mesh::TileImportOptions t;
       t.import = request.import;
       t.weldTolerance = request.tileWeldTolerance;
-      t.readTile = importMeshIsolated;
+      // One worker per tile read at once, kept for the next tile.
+      ImportWorkerPool workers;
+      t.readTile = [&workers](const std::string& path, const mesh::ImportOptions& o, const Progress* p) {
+        return workers.read(path, o, p);
+      };
       t.maxParallel = tileReadParallelism(request.files, request.import);
       mesh::TileImportResult r = mesh::importTiles(request.files, t, &read);
       out.cancelled = r.cancelled;

@@ -260,6 +260,39 @@ class TestImportIsolation : public QObject {
     QVERIFY(there.tileBorderVerticesMerged > 0);
   }
 
+  // One pool serves many files with one worker: each the same mesh as read
+  // here; a reader error keeps the worker, a crash loses it and the next
+  // file gets a new one; nothing is left running when the pool goes.
+  void onePoolKeepsItsWorkerAcrossFiles() {
+    const std::string glb = kData + "/textured_quad.glb";
+    const mesh::ImportResult here = mesh::importMesh(glb);
+    QVERIFY2(here.ok(), here.error.c_str());
+    writeText(path("garbage.fbx"), "this is not an FBX file at all\n");
+    {
+      scene::ImportWorkerPool pool;
+      for (int i = 0; i < 4; ++i) {
+        const mesh::ImportResult r = pool.read(glb, {});
+        QVERIFY2(r.ok(), r.error.c_str());
+        QCOMPARE(mesh::contentHash(*r.mesh), mesh::contentHash(*here.mesh));
+        QVERIFY(sameTextures(*r.mesh, *here.mesh));
+        QCOMPARE(r.report.warnings, here.report.warnings);
+      }
+      QCOMPARE(pool.workersStarted(), 1u);
+      QCOMPARE(childProcesses().size(), qsizetype(1));  // kept, waiting for the next file
+      const mesh::ImportResult garbage = pool.read(path("garbage.fbx"), {});
+      QCOMPARE(garbage.error, mesh::importMesh(path("garbage.fbx")).error);
+      QVERIFY(pool.read(glb, {}).ok());
+      QCOMPARE(pool.workersStarted(), 1u);
+      const mesh::ImportResult crash = pool.read(kCrashFbx, {});
+      QVERIFY2(contains(crash.error, "crashed on this file (SIGABRT)"), crash.error.c_str());
+      const mesh::ImportResult after = pool.read(glb, {});
+      QVERIFY2(after.ok(), after.error.c_str());
+      QCOMPARE(mesh::contentHash(*after.mesh), mesh::contentHash(*here.mesh));
+      QCOMPARE(pool.workersStarted(), 2u);
+    }
+    QVERIFY2(childProcesses().isEmpty(), qPrintable(childProcesses().join("; ")));
+  }
+
   // Tiles through the worker are read at once, as many as the cores and
   // the workers' memory limit allow; tiles the own readers read, one by one.
   void tileReadParallelismFollowsCoresAndMemoryLimit() {

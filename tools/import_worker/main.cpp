@@ -1,10 +1,11 @@
-// hybridscape-import-worker: reads one mesh file with mesh::importMesh in a
+// hybridscape-import-worker: reads mesh files with mesh::importMesh in a
 // process of its own, so a reader that crashes on a damaged file (Assimp
 // 5.2.5 does: double free, abort, segfault) takes only this process down.
-// Started by scene/import_isolation.cpp; the protocol is scene/import_wire.h.
+// Started by scene/import_isolation.cpp; the protocol is mesh/import_wire.h.
 //
 //   hybridscape-import-worker (--result-fd N | --out FILE) [--watch-stdin]
 //                             [--memory-limit-mb N] [import options] -- <mesh-file>
+//   hybridscape-import-worker --result-fd N --serve [--memory-limit-mb N]
 //
 // Progress goes to stdout as "progress <fraction> <stage>" lines; the result
 // (mesh, report, or the reader's error) to the descriptor or file. Exit code
@@ -12,19 +13,27 @@
 // error is in the result), 2 for bad arguments, 3 if the result could not be
 // written. --watch-stdin: stop when stdin reaches its end (the parent closed
 // its side, or died), so no worker outlives the program that wanted it.
+// --serve: one file per request read from stdin (a multi-tile import keeps
+// one worker for all its tiles instead of paying ~0.2 s to start one per
+// tile); each result is rewritten from the start of the descriptor and
+// followed by a "done" line on stdout; the end of stdin ends the worker at
+// once, between files or in the middle of one.
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <condition_variable>
 #include <cstring>
+#include <deque>
 #include <mutex>
 #include <exception>
 #include <new>
 #include <system_error>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "mesh/import_wire.h"
 #include "mesh/mesh_import.h"
@@ -82,6 +91,58 @@ void outOfMemory() {
   std::abort();
 }
 
+// The import options and the file of one read: "--key value" pairs, then
+// "--" and the file. False with `error` when they make no sense.
+bool parseRead(const std::vector<std::string>& args, size_t from, hs::mesh::ImportOptions& options, std::string& path,
+               std::string& error) {
+  for (size_t i = from; i < args.size(); ++i) {
+    if (args[i] == "--") {
+      if (i + 2 != args.size()) {
+        error = "expected exactly one file after --";
+        return false;
+      }
+      path = args[i + 1];
+      return true;
+    }
+    if (i + 1 >= args.size()) {
+      error = args[i] + " needs a value";
+      return false;
+    }
+    if (!hs::mesh::parseImportWorkerOptionArgument(args[i], args[i + 1], options, error)) return false;
+    ++i;
+  }
+  error = "no mesh file given";
+  return false;
+}
+
+// Writes `result` from the start of `fd` (a serving worker's earlier result
+// is cut off first) or to `outPath`; false with errno's message in `error`.
+bool writeResult(int fd, const std::string& outPath, const hs::mesh::ImportResult& result, std::string& error) {
+  std::FILE* out = nullptr;
+  if (fd >= 0) {
+    if (::ftruncate(fd, 0) != 0 || ::lseek(fd, 0, SEEK_SET) != 0) {
+      error = std::strerror(errno);
+      return false;
+    }
+    const int copy = ::dup(fd);  // fclose closes the copy, the descriptor stays for the next request
+    out = copy >= 0 ? fdopen(copy, "wb") : nullptr;
+    if (!out && copy >= 0) ::close(copy);
+  } else {
+    out = std::fopen(outPath.c_str(), "wb");
+  }
+  if (!out) {
+    error = std::strerror(errno);
+    return false;
+  }
+  const bool written = hs::mesh::writeImportResult(out, result);
+  const int savedErrno = errno;
+  if (std::fclose(out) != 0 || !written) {
+    error = std::strerror(savedErrno);
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -92,30 +153,31 @@ int main(int argc, char** argv) {
 
   int resultFd = -1;
   std::string outPath, path;
-  bool watchStdin = false;
+  bool watchStdin = false, serve = false;
   rlim_t memoryLimit = 0;  // 0: none
   hs::mesh::ImportOptions options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--") {
-      if (i + 2 != argc) return usage("expected exactly one file after --");
-      path = argv[i + 1];
-      break;
-    }
-    if (a == "--watch-stdin") {
-      watchStdin = true;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--watch-stdin" || a == "--serve") {
+      (a == "--serve" ? serve : watchStdin) = true;
       continue;
     }
-    if (i + 1 >= argc) return usage(a + " needs a value");
-    const std::string v = argv[++i];
-    std::string error;
+    if (a != "--result-fd" && a != "--out" && a != "--memory-limit-mb") {
+      // The import options and the file (one-shot mode).
+      std::string error;
+      if (!parseRead(args, i, options, path, error)) return usage(error);
+      break;
+    }
+    if (i + 1 >= args.size()) return usage(a + " needs a value");
+    const std::string& v = args[++i];
     if (a == "--result-fd") {
       char* end = nullptr;
       resultFd = int(std::strtol(v.c_str(), &end, 10));
       if (!end || *end || resultFd < 0) return usage("--result-fd: bad value '" + v + "'");
     } else if (a == "--out") {
       outPath = v;
-    } else if (a == "--memory-limit-mb") {
+    } else {
       // Address space, not resident memory: what a reader asks for is
       // refused at once (a bad_alloc importMesh names), not after it has
       // pushed the machine into swap.
@@ -123,19 +185,37 @@ int main(int argc, char** argv) {
       const unsigned long long mb = std::strtoull(v.c_str(), &end, 10);
       if (!end || *end || mb == 0 || mb > (1ull << 40)) return usage("--memory-limit-mb: bad value '" + v + "'");
       memoryLimit = rlim_t(mb) << 20;
-    } else if (!hs::mesh::parseImportWorkerOptionArgument(a, v, options, error)) {
-      return usage(error);
     }
   }
-  if (path.empty()) return usage("no mesh file given");
-  if ((resultFd < 0) == outPath.empty()) return usage("give one of --result-fd and --out");
+  if (serve ? (resultFd < 0 || !path.empty()) : path.empty())
+    return usage(serve ? "--serve needs --result-fd and takes its files as requests" : "no mesh file given");
+  if (!serve && (resultFd < 0) == outPath.empty()) return usage("give one of --result-fd and --out");
 
-  if (watchStdin)
+  // Requests (--serve) come on stdin; its end, in either mode, ends this
+  // process at once: the parent closed its side or died.
+  std::mutex queueMutex;
+  std::condition_variable queued;
+  std::deque<std::vector<std::string>> requests;
+  if (watchStdin && !serve)
     std::thread([] {
       char buf[256];
       for (;;) {
         const ssize_t n = ::read(STDIN_FILENO, buf, sizeof buf);
         if (n == 0 || (n < 0 && errno != EINTR)) _exit(4);
+      }
+    }).detach();
+  if (serve)
+    std::thread([&] {
+      for (;;) {
+        std::vector<std::string> request;
+        std::string error;
+        if (!hs::mesh::readImportRequest(stdin, request, error)) {
+          if (!error.empty()) std::fprintf(stderr, "hybridscape-import-worker: %s\n", error.c_str());
+          _exit(error.empty() ? 0 : 2);
+        }
+        std::lock_guard lock(queueMutex);
+        requests.push_back(std::move(request));
+        queued.notify_one();
       }
     }).detach();
 
@@ -152,7 +232,7 @@ int main(int argc, char** argv) {
     writeAll(STDOUT_FILENO, hs::mesh::importProgressLine(f, stage));
   });
 
-  // The limit starts here, after our own thread has its stack.
+  // The limit starts here, after our own threads have their stacks.
   if (memoryLimit) {
     // A limit already set from outside (ulimit -v) and lower stays: we
     // only ever lower it.
@@ -165,18 +245,41 @@ int main(int argc, char** argv) {
     std::set_new_handler(outOfMemory);
     std::set_terminate(terminateUnderLimit);
   }
-  const hs::mesh::ImportResult result = hs::mesh::importMesh(path, options, &progress);
 
-  std::FILE* out = resultFd >= 0 ? fdopen(resultFd, "wb") : std::fopen(outPath.c_str(), "wb");
-  if (!out) {
-    std::fprintf(stderr, "hybridscape-import-worker: cannot write the result: %s\n", std::strerror(errno));
-    return 3;
+  if (!serve) {
+    const hs::mesh::ImportResult result = hs::mesh::importMesh(path, options, &progress);
+    std::string error;
+    if (!writeResult(resultFd, outPath, result, error)) {
+      std::fprintf(stderr, "hybridscape-import-worker: cannot write the result: %s\n", error.c_str());
+      return 3;
+    }
+    return 0;
   }
-  const bool written = hs::mesh::writeImportResult(out, result);
-  const int savedErrno = errno;
-  if (std::fclose(out) != 0 || !written) {
-    std::fprintf(stderr, "hybridscape-import-worker: cannot write the result: %s\n", std::strerror(savedErrno));
-    return 3;
+  for (;;) {
+    std::vector<std::string> request;
+    {
+      std::unique_lock lock(queueMutex);
+      queued.wait(lock, [&] { return !requests.empty(); });
+      request = std::move(requests.front());
+      requests.pop_front();
+    }
+    hs::mesh::ImportOptions readOptions;
+    std::string readPath, error;
+    if (!parseRead(request, 0, readOptions, readPath, error)) {
+      std::fprintf(stderr, "hybridscape-import-worker: a request: %s\n", error.c_str());
+      return 2;
+    }
+    {
+      std::lock_guard lock(mutex);
+      lastPermille = -10;
+      lastStage.clear();
+    }
+    const hs::mesh::ImportResult result = hs::mesh::importMesh(readPath, readOptions, &progress);
+    if (!writeResult(resultFd, {}, result, error)) {
+      std::fprintf(stderr, "hybridscape-import-worker: cannot write the result: %s\n", error.c_str());
+      return 3;
+    }
+    std::lock_guard lock(mutex);  // after the last progress line
+    writeAll(STDOUT_FILENO, std::string(hs::mesh::kImportDoneLine) + "\n");
   }
-  return 0;
 }
