@@ -138,6 +138,15 @@ void EditorSmokeTest::startsWithDemoScene() {
   QVERIFY(frameLabel->toolTip().contains("<td>tonemap</td>"));
   QVERIFY(frameLabel->toolTip().contains(
       QRegularExpression("<td>opaque</td><td align=right>[0-9.]+</td><td align=right>[0-9.]+</td>")));
+  // The demo's spot light is in view: the clustered light list says so.
+  size_t localLights = 0;
+  for (const auto& [id, e] : doc().state().entities)
+    if (e.light && e.light->type != scene::Light::Type::Sun) ++localLights;
+  QVERIFY(localLights > 0);
+  const size_t inView = w_->viewport()->lastStats().lightsInView;
+  QVERIFY2(inView > 0 && inView <= localLights, qPrintable(QString::number(inView)));
+  QVERIFY2(frameLabel->toolTip().contains(QString("%1 point/spot lights in view").arg(inView)),
+           qPrintable(frameLabel->toolTip()));
   // File > New with nothing to save asks nothing and gives the starter scene.
   w_->requestNew();
   QCOMPARE(prompts_->saveQuestions, 0);
