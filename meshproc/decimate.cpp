@@ -318,14 +318,16 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
       const VertexHandle v{int(vi)};
       const HalfedgeHandle start = m.halfedge_handle(v);
       auto& d = st.vd[vi];
-      d.p = pointOf(vi);
+      d.p = glm::vec3(pointOf(vi));
       d.region = kSharedRegion;
       if (!start.is_valid()) {
-        d.q = Quadric{};
+        d.q = QuadricF::store(Quadric{});
         d.cls = VertexClass::Fixed;
         continue;
       }
-      const glm::dvec3 pv = d.p;
+      // The quadric is relative to the stored (float) position: planes'
+      // offsets are taken from it.
+      const glm::dvec3 pv(d.p);
       int boundaryEdges = 0, seamEdges = 0;
       uint16_t region = kSharedRegion;
       bool shared = false;
@@ -335,7 +337,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
         const FaceHandle f = m.face_handle(it);
         if (f.is_valid()) {
           const Plane& pl = planes[size_t(f.idx())];
-          if (pl.w > 0) q += Quadric::plane(pl.n, pl.d, pl.w);
+          if (pl.w > 0) q += Quadric::plane(pl.n, pl.d + glm::dot(pl.n, pv), pl.w);
           const uint16_t fr = regionOfFace(size_t(f.idx()), regions, nf);
           if (region == kSharedRegion) region = fr;
           else if (fr != region) shared = true;
@@ -360,12 +362,12 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
             if (!(sl > 0)) continue;
             side /= sl;
             const double cw = std::sqrt(len2);  // the edge length, to match the faces' sqrt(area)
-            q += Quadric::plane(side, -glm::dot(side, pv), kind == EdgeKind::Boundary ? cw : 0.5 * cw);
+            q += Quadric::plane(side, 0.0, kind == EdgeKind::Boundary ? cw : 0.5 * cw);  // through pv
           }
         }
         it = m.next_halfedge_handle(m.opposite_halfedge_handle(it));
       } while (it != start);
-      d.q = q;
+      d.q = QuadricF::store(q);
       d.region = shared ? kSharedRegion : region;
 
       VertexClass c = VertexClass::Free;
@@ -423,7 +425,9 @@ MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su,
   parallelRanges(nWedge, threads, [&](size_t b, size_t e, unsigned) {
     for (size_t w = b; w < e; ++w) {
       if (outOf[w] == UINT32_MAX) continue;
-      out.positions[outOf[w]] = glm::vec3(st.vd[wedgeVertex[w]].p + st.center);
+      // OpenMesh's points hold the positions in double (see Vertex).
+      const OpenMesh::Vec3d& p = st.mesh.point(VertexHandle(int(wedgeVertex[w])));
+      out.positions[outOf[w]] = glm::vec3(glm::dvec3(p[0], p[1], p[2]) + st.center);
       if (hasUv) out.uvs[outOf[w]] = st.wedgeUv[w];
     }
   });
