@@ -92,7 +92,7 @@ bool CollapseEngine::evaluate(uint32_t edge, Plan& plan) const {
 }
 
 bool CollapseEngine::entryFor(uint32_t edge, Entry& out) const {
-  if (s_.edgeStatus[edge].deleted()) return false;
+  if (s_.estate[edge] & kGone) return false;
   const HalfedgeHandle h0{int(2 * edge)};
   if (!mayTouch(m_.to_vertex_handle(h0)) || !mayTouch(m_.from_vertex_handle(h0))) return false;
   Plan plan;
@@ -141,7 +141,7 @@ void CollapseEngine::siftUp(size_t i) {
 }
 
 void CollapseEngine::popTop() {
-  s_.estate[heap_[0].edge()] = 0;
+  s_.estate[heap_[0].edge()] &= kGone;
   heap_[0] = heap_.back();
   heap_.pop_back();
   if (!heap_.empty()) siftDown(0);
@@ -153,8 +153,8 @@ void CollapseEngine::compact() {
   // drops them all and rebuilds the heap.
   size_t n = 0;
   for (const Entry& e : heap_) {
-    if (s_.edgeStatus[e.edge()].deleted())
-      s_.estate[e.edge()] = 0;
+    if (s_.estate[e.edge()] & kGone)
+      s_.estate[e.edge()] = kGone;
     else
       heap_[n++] = e;
   }
@@ -213,8 +213,8 @@ void CollapseEngine::mergeRest() {
   // Every entry left in the heap is above restAbove_ now, as is all of
   // rest_: one heap again.
   for (const Entry& e : rest_) {
-    if (s_.edgeStatus[e.edge()].deleted()) {
-      s_.estate[e.edge()] = 0;
+    if (s_.estate[e.edge()] & kGone) {
+      s_.estate[e.edge()] = kGone;
       tombstones_ -= std::min<size_t>(tombstones_, 1);
     } else {
       heap_.push_back(e);
@@ -228,9 +228,9 @@ void CollapseEngine::mergeRest() {
 
 void CollapseEngine::appendLiveEntries(std::vector<Entry>& out) const {
   for (const Entry& e : heap_)
-    if (!s_.edgeStatus[e.edge()].deleted()) out.push_back(e);
+    if (!(s_.estate[e.edge()] & kGone)) out.push_back(e);
   for (const Entry& e : rest_)
-    if (!s_.edgeStatus[e.edge()].deleted()) out.push_back(e);
+    if (!(s_.estate[e.edge()] & kGone)) out.push_back(e);
 }
 
 bool CollapseEngine::topologyOk(const Plan& plan) {
@@ -445,6 +445,7 @@ void CollapseEngine::collapseLoop(HalfedgeHandle h0, bool firstOnBoundary, bool 
   }
   s_.edgeStatus[h0.idx() >> 1].set_deleted(true);
   tombstones_ += s_.estate[h0.idx() >> 1] & kQueued;
+  s_.estate[h0.idx() >> 1] |= kGone;
 }
 
 void CollapseEngine::halfedgeCollapse(HalfedgeHandle h) {
@@ -478,6 +479,7 @@ void CollapseEngine::halfedgeCollapse(HalfedgeHandle h) {
   s_.edgeStatus[h.idx() >> 1].set_deleted(true);
   s_.vertexStatus[vo.idx()].set_deleted(true);
   tombstones_ += s_.estate[h.idx() >> 1] & kQueued;
+  s_.estate[h.idx() >> 1] |= kGone;
 
   // The two faces beside the edge are now two-edge loops: remove them.
   if (m_.next_halfedge_handle(m_.next_halfedge_handle(hn)) == hn)
@@ -548,7 +550,7 @@ void CollapseEngine::sampleKeys(size_t stride, std::vector<float>& out) const {
   // whole low end of the sample (thresholds crept up by one collapse a
   // region per round).
   for (size_t i = stride / 2; i < heap_.size(); i += stride)
-    if (!s_.edgeStatus[heap_[i].edge()].deleted()) out.push_back(heap_[i].key());
+    if (!(s_.estate[heap_[i].edge()] & kGone)) out.push_back(heap_[i].key());
 }
 
 bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimit, const Progress* progress,
@@ -568,7 +570,8 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
     if (heap_.empty() || heap_[0].key() > keyLimit) break;
     const uint32_t edge = heap_[0].edge();
     ++stats_.tops;
-    if (s_.edgeStatus[edge].deleted()) {
+    const uint8_t state = s_.estate[edge];
+    if (state & kGone) {
       ++stats_.deletedTops;
       popTop();
       continue;
@@ -579,7 +582,7 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
       popTop();
       continue;
     }
-    if (s_.estate[edge] & kDirty) {
+    if (state & kDirty) {
       s_.estate[edge] = kQueued;
       // Still no later than the next best entry: it stays first, go on;
       // otherwise it sinks to where its new key belongs.

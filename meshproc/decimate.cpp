@@ -796,9 +796,10 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
       size_t evaluated = 0;
       for (size_t edge = b; edge < e; ++edge) {
         const uint8_t state = st.estate[edge];
-        if ((state & CollapseEngine::kQueued) && !st.edgeStatus[edge].deleted()) continue;  // taken over
-        st.estate[edge] = 0;
-        evaluated += !st.edgeStatus[edge].deleted();
+        const bool gone = state & CollapseEngine::kGone;
+        if ((state & CollapseEngine::kQueued) && !gone) continue;  // taken over
+        st.estate[edge] = gone ? CollapseEngine::kGone : 0;
+        evaluated += !gone;
         if (border.entryFor(uint32_t(edge), entry)) parts[w].push_back(entry);
       }
       borderEvaluated += evaluated;

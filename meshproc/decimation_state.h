@@ -57,7 +57,7 @@ struct DecimationState {
   std::vector<uint32_t> fv;           // per face: 3 vertex ids, in winding order
   std::vector<uint32_t> fw;           // per face: the wedge (vertex+UV) of each corner
   std::vector<uint16_t> fmaterial;    // per face: input submesh index
-  std::vector<uint8_t> estate;        // per edge: kQueued | kDirty (collapse_engine.h)
+  std::vector<uint8_t> estate;        // per edge: kQueued | kDirty | kGone (collapse_engine.h)
   std::vector<glm::vec2> wedgeUv;     // per wedge (empty without UVs)
 
   // Raw views into OpenMesh's status arrays (set once the mesh is built;
