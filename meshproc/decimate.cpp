@@ -237,12 +237,17 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     for (size_t c = tris.size(); c-- > 0;) firstCorner[tris[c]] = uint32_t(c);
   }
 
-  std::vector<OpenMesh::Vec3d> points(nv);
-  for (size_t v = 0; v < nv; ++v) {
-    const glm::dvec3 p = glm::dvec3(in.positions[posRep[posOfOm[v]]]) - st.center;
-    points[v] = OpenMesh::Vec3d(p.x, p.y, p.z);
-  }
-  buildDecimationMesh(tris, topo.twin, points, st.mesh, threads, firstCorner);
+  // Gathers like this one run on both cores: serial, each cost tens of
+  // milliseconds of one core at 5M triangles while the other waited.
+  UninitArray<OpenMesh::Vec3d> points(nv);
+  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t v = b; v < e; ++v) {
+      const glm::dvec3 p = glm::dvec3(in.positions[posRep[posOfOm[v]]]) - st.center;
+      points[v] = OpenMesh::Vec3d(p.x, p.y, p.z);
+    }
+  });
+  buildDecimationMesh(tris, topo.twin, std::span<const OpenMesh::Vec3d>(points.begin(), points.size()), st.mesh, threads,
+                      firstCorner);
   traceMark("buildDecimationMesh");
   st.bindArrays();
 
@@ -250,12 +255,16 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   const std::vector<uint16_t> group = faceGroups(in, groups);
   st.hasSeams = hasUv || groups.size() > 1;
   st.fmaterial.resize(nf);
-  for (size_t f = 0; f < nf; ++f) st.fmaterial[f] = group[su.omFaceOrig[f]];
+  parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t f = b; f < e; ++f) st.fmaterial[f] = group[su.omFaceOrig[f]];
+  });
   st.fv = std::move(tris);
   st.fw = std::move(wedges);
   if (hasUv) {
     st.wedgeUv.resize(su.wedgeRep.size());
-    for (size_t w = 0; w < st.wedgeUv.size(); ++w) st.wedgeUv[w] = in.uvs[su.wedgeRep[w]];
+    parallelRanges(st.wedgeUv.size(), threads, [&](size_t b, size_t e, unsigned) {
+      for (size_t w = b; w < e; ++w) st.wedgeUv[w] = in.uvs[su.wedgeRep[w]];
+    });
   }
 
   traceMark("groups/wedgeUv");
@@ -387,7 +396,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   });
   rep.boundaryVertices = nBoundary, rep.seamVertices = nSeam, rep.fixedVertices = nFixed;
   rep.lockedVertices = nLocked;
-  points = {};
+  points = UninitArray<OpenMesh::Vec3d>();
   st.estate.assign(m.n_edges(), 0);
   rep.degenerateFacesRemoved = su.degenerate;
   traceMark("quadrics+classes");
