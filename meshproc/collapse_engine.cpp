@@ -37,33 +37,36 @@ CollapseEngine::CollapseEngine(DecimationState& state, uint16_t region)
 bool CollapseEngine::evaluate(uint32_t edge, Plan& plan) const {
   const HalfedgeHandle h0{int(2 * edge)}, h1{int(2 * edge + 1)};
   const VertexHandle a = m_.to_vertex_handle(h1), b = m_.to_vertex_handle(h0);
-  const VertexClass ca = s_.vd[size_t(a.idx())].cls, cb = s_.vd[size_t(b.idx())].cls;
+  const auto& da = s_.vd[size_t(a.idx())];
+  const auto& db = s_.vd[size_t(b.idx())];
+  const VertexClass ca = da.cls, cb = db.cls;
+  // Everything below is relative to a (the quadrics are stored relative to
+  // their own vertex): b sits at t.
+  const glm::dvec3 pa(da.p), t = glm::dvec3(db.p) - pa;
   const bool bothFree = ca == VertexClass::Free && cb == VertexClass::Free;
   if (!bothFree) {
     if (ca == VertexClass::Fixed && cb == VertexClass::Fixed) return false;
     const EdgeKind kind = s_.edgeKind(h0);
     const bool ra = removable(ca, kind), rb = removable(cb, kind);
     if (!ra && !rb) return false;
-    const Quadric q = s_.vd[size_t(a.idx())].q + s_.vd[size_t(b.idx())].q;
-    const glm::dvec3 pa = s_.point(a.idx()), pb = s_.point(b.idx());
+    const Quadric q = da.q.load() + db.q.load().translated(-t);
     // A constrained vertex never moves: the one that goes lands on the one
     // that stays, so polylines keep original vertices only.
-    const double costA = ra ? q.evaluate(pb) : HUGE_VAL;  // a goes, stays at b
-    const double costB = rb ? q.evaluate(pa) : HUGE_VAL;
+    const double costA = ra ? q.evaluate(t) : HUGE_VAL;  // a goes, stays at b
+    const double costB = rb ? q.evaluate(glm::dvec3(0.0)) : HUGE_VAL;
     double cost;
     if (costA <= costB)
-      plan.h = h0, plan.p = pb, cost = costA;
+      plan.h = h0, plan.p = pa + t, cost = costA;
     else
       plan.h = h1, plan.p = pa, cost = costB;
     plan.moves = false;
     plan.errSq = q.weight > 0 ? cost / q.weight : 0.0;
-    plan.key = float(plan.errSq + s_.lengthWeight * glm::dot(pa - pb, pa - pb));
+    plan.key = float(plan.errSq + s_.lengthWeight * glm::dot(t, t));
     return true;
   }
-  const Quadric q = s_.vd[size_t(a.idx())].q + s_.vd[size_t(b.idx())].q;
-  const glm::dvec3 pa = s_.point(a.idx()), pb = s_.point(b.idx());
-  const glm::dvec3 mid = 0.5 * (pa + pb);
-  const double len2 = glm::dot(pa - pb, pa - pb);
+  const Quadric q = da.q.load() + db.q.load().translated(-t);
+  const glm::dvec3 mid = 0.5 * t;
+  const double len2 = glm::dot(t, t);
   glm::dvec3 p;
   double cost;
   // The optimum is trusted within one edge length of the edge; beyond that
@@ -73,12 +76,12 @@ bool CollapseEngine::evaluate(uint32_t edge, Plan& plan) const {
     cost = q.evaluate(p);
   } else {
     p = mid, cost = q.evaluate(mid);
-    const double ea = q.evaluate(pa), eb = q.evaluate(pb);
-    if (ea < cost) p = pa, cost = ea;
-    if (eb < cost) p = pb, cost = eb;
+    const double ea = q.evaluate(glm::dvec3(0.0)), eb = q.evaluate(t);
+    if (ea < cost) p = glm::dvec3(0.0), cost = ea;
+    if (eb < cost) p = t, cost = eb;
   }
   plan.h = h0;
-  plan.p = p;
+  plan.p = pa + p;
   plan.moves = true;
   plan.errSq = q.weight > 0 ? cost / q.weight : 0.0;
   // The small length term orders the many zero-error collapses of flat
@@ -89,7 +92,7 @@ bool CollapseEngine::evaluate(uint32_t edge, Plan& plan) const {
 }
 
 bool CollapseEngine::entryFor(uint32_t edge, Entry& out) const {
-  if (s_.edgeStatus[edge].deleted()) return false;
+  if (s_.estate[edge] & kGone) return false;
   const HalfedgeHandle h0{int(2 * edge)};
   if (!mayTouch(m_.to_vertex_handle(h0)) || !mayTouch(m_.from_vertex_handle(h0))) return false;
   Plan plan;
@@ -138,7 +141,7 @@ void CollapseEngine::siftUp(size_t i) {
 }
 
 void CollapseEngine::popTop() {
-  s_.estate[heap_[0].edge()] = 0;
+  s_.estate[heap_[0].edge()] &= kGone;
   heap_[0] = heap_.back();
   heap_.pop_back();
   if (!heap_.empty()) siftDown(0);
@@ -150,8 +153,8 @@ void CollapseEngine::compact() {
   // drops them all and rebuilds the heap.
   size_t n = 0;
   for (const Entry& e : heap_) {
-    if (s_.edgeStatus[e.edge()].deleted())
-      s_.estate[e.edge()] = 0;
+    if (s_.estate[e.edge()] & kGone)
+      s_.estate[e.edge()] = kGone;
     else
       heap_[n++] = e;
   }
@@ -210,8 +213,8 @@ void CollapseEngine::mergeRest() {
   // Every entry left in the heap is above restAbove_ now, as is all of
   // rest_: one heap again.
   for (const Entry& e : rest_) {
-    if (s_.edgeStatus[e.edge()].deleted()) {
-      s_.estate[e.edge()] = 0;
+    if (s_.estate[e.edge()] & kGone) {
+      s_.estate[e.edge()] = kGone;
       tombstones_ -= std::min<size_t>(tombstones_, 1);
     } else {
       heap_.push_back(e);
@@ -225,9 +228,9 @@ void CollapseEngine::mergeRest() {
 
 void CollapseEngine::appendLiveEntries(std::vector<Entry>& out) const {
   for (const Entry& e : heap_)
-    if (!s_.edgeStatus[e.edge()].deleted()) out.push_back(e);
+    if (!(s_.estate[e.edge()] & kGone)) out.push_back(e);
   for (const Entry& e : rest_)
-    if (!s_.edgeStatus[e.edge()].deleted()) out.push_back(e);
+    if (!(s_.estate[e.edge()] & kGone)) out.push_back(e);
 }
 
 bool CollapseEngine::topologyOk(const Plan& plan) {
@@ -442,6 +445,7 @@ void CollapseEngine::collapseLoop(HalfedgeHandle h0, bool firstOnBoundary, bool 
   }
   s_.edgeStatus[h0.idx() >> 1].set_deleted(true);
   tombstones_ += s_.estate[h0.idx() >> 1] & kQueued;
+  s_.estate[h0.idx() >> 1] |= kGone;
 }
 
 void CollapseEngine::halfedgeCollapse(HalfedgeHandle h) {
@@ -475,6 +479,7 @@ void CollapseEngine::halfedgeCollapse(HalfedgeHandle h) {
   s_.edgeStatus[h.idx() >> 1].set_deleted(true);
   s_.vertexStatus[vo.idx()].set_deleted(true);
   tombstones_ += s_.estate[h.idx() >> 1] & kQueued;
+  s_.estate[h.idx() >> 1] |= kGone;
 
   // The two faces beside the edge are now two-edge loops: remove them.
   if (m_.next_halfedge_handle(m_.next_halfedge_handle(hn)) == hn)
@@ -491,9 +496,21 @@ void CollapseEngine::collapse(const Plan& plan, const uint32_t (&from)[2], const
   const glm::vec2 uv = setUv ? interpolateUv(plan) : glm::vec2(0.0f);
   liveFaces -= size_t(m_.face_handle(h).is_valid()) + size_t(m_.face_handle(o).is_valid());
 
+  // The kept vertex's quadric (both ends' sum) moves to its new place,
+  // which is where it is stored relative to from now on.
+  {
+    auto& d1 = s_.vd[size_t(v1.idx())];
+    const glm::vec3 pf(plan.p);
+    const Quadric q = s_.quadricAt(size_t(v1.idx()), size_t(v0.idx()), glm::dvec3(pf));
+    d1.q = QuadricF::store(q);
+    if (plan.moves) {
+      d1.p = pf;
+      // The output's copy, in double: the place the solve chose, not its
+      // float rounding (61 um at 500 m from the centre).
+      m_.point(v1) = OpenMesh::Vec3d(plan.p.x, plan.p.y, plan.p.z);
+    }
+  }
   halfedgeCollapse(h);
-  s_.vd[size_t(v1.idx())].p = plan.p;
-  s_.vd[size_t(v1.idx())].q += s_.vd[size_t(v0.idx())].q;
   if (setUv) s_.wedgeUv[to[0]] = uv;  // a free vertex has one wedge
 
   // The fan of v1 now holds v0's faces: rename their corners, then refresh
@@ -533,7 +550,7 @@ void CollapseEngine::sampleKeys(size_t stride, std::vector<float>& out) const {
   // whole low end of the sample (thresholds crept up by one collapse a
   // region per round).
   for (size_t i = stride / 2; i < heap_.size(); i += stride)
-    if (!s_.edgeStatus[heap_[i].edge()].deleted()) out.push_back(heap_[i].key());
+    if (!(s_.estate[heap_[i].edge()] & kGone)) out.push_back(heap_[i].key());
 }
 
 bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimit, const Progress* progress,
@@ -553,7 +570,8 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
     if (heap_.empty() || heap_[0].key() > keyLimit) break;
     const uint32_t edge = heap_[0].edge();
     ++stats_.tops;
-    if (s_.edgeStatus[edge].deleted()) {
+    const uint8_t state = s_.estate[edge];
+    if (state & kGone) {
       ++stats_.deletedTops;
       popTop();
       continue;
@@ -564,7 +582,7 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
       popTop();
       continue;
     }
-    if (s_.estate[edge] & kDirty) {
+    if (state & kDirty) {
       s_.estate[edge] = kQueued;
       // Still no later than the next best entry: it stays first, go on;
       // otherwise it sinks to where its new key belongs.

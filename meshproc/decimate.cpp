@@ -237,12 +237,17 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     for (size_t c = tris.size(); c-- > 0;) firstCorner[tris[c]] = uint32_t(c);
   }
 
-  std::vector<OpenMesh::Vec3d> points(nv);
-  for (size_t v = 0; v < nv; ++v) {
-    const glm::dvec3 p = glm::dvec3(in.positions[posRep[posOfOm[v]]]) - st.center;
-    points[v] = OpenMesh::Vec3d(p.x, p.y, p.z);
-  }
-  buildDecimationMesh(tris, topo.twin, points, st.mesh, threads, firstCorner);
+  // Gathers like this one run on both cores: serial, each cost tens of
+  // milliseconds of one core at 5M triangles while the other waited.
+  UninitArray<OpenMesh::Vec3d> points(nv);
+  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t v = b; v < e; ++v) {
+      const glm::dvec3 p = glm::dvec3(in.positions[posRep[posOfOm[v]]]) - st.center;
+      points[v] = OpenMesh::Vec3d(p.x, p.y, p.z);
+    }
+  });
+  buildDecimationMesh(tris, topo.twin, std::span<const OpenMesh::Vec3d>(points.begin(), points.size()), st.mesh, threads,
+                      firstCorner);
   traceMark("buildDecimationMesh");
   st.bindArrays();
 
@@ -250,12 +255,16 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   const std::vector<uint16_t> group = faceGroups(in, groups);
   st.hasSeams = hasUv || groups.size() > 1;
   st.fmaterial.resize(nf);
-  for (size_t f = 0; f < nf; ++f) st.fmaterial[f] = group[su.omFaceOrig[f]];
+  parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t f = b; f < e; ++f) st.fmaterial[f] = group[su.omFaceOrig[f]];
+  });
   st.fv = std::move(tris);
   st.fw = std::move(wedges);
   if (hasUv) {
     st.wedgeUv.resize(su.wedgeRep.size());
-    for (size_t w = 0; w < st.wedgeUv.size(); ++w) st.wedgeUv[w] = in.uvs[su.wedgeRep[w]];
+    parallelRanges(st.wedgeUv.size(), threads, [&](size_t b, size_t e, unsigned) {
+      for (size_t w = b; w < e; ++w) st.wedgeUv[w] = in.uvs[su.wedgeRep[w]];
+    });
   }
 
   traceMark("groups/wedgeUv");
@@ -318,14 +327,16 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
       const VertexHandle v{int(vi)};
       const HalfedgeHandle start = m.halfedge_handle(v);
       auto& d = st.vd[vi];
-      d.p = pointOf(vi);
+      d.p = glm::vec3(pointOf(vi));
       d.region = kSharedRegion;
       if (!start.is_valid()) {
-        d.q = Quadric{};
+        d.q = QuadricF::store(Quadric{});
         d.cls = VertexClass::Fixed;
         continue;
       }
-      const glm::dvec3 pv = d.p;
+      // The quadric is relative to the stored (float) position: planes'
+      // offsets are taken from it.
+      const glm::dvec3 pv(d.p);
       int boundaryEdges = 0, seamEdges = 0;
       uint16_t region = kSharedRegion;
       bool shared = false;
@@ -335,7 +346,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
         const FaceHandle f = m.face_handle(it);
         if (f.is_valid()) {
           const Plane& pl = planes[size_t(f.idx())];
-          if (pl.w > 0) q += Quadric::plane(pl.n, pl.d, pl.w);
+          if (pl.w > 0) q += Quadric::plane(pl.n, pl.d + glm::dot(pl.n, pv), pl.w);
           const uint16_t fr = regionOfFace(size_t(f.idx()), regions, nf);
           if (region == kSharedRegion) region = fr;
           else if (fr != region) shared = true;
@@ -360,12 +371,12 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
             if (!(sl > 0)) continue;
             side /= sl;
             const double cw = std::sqrt(len2);  // the edge length, to match the faces' sqrt(area)
-            q += Quadric::plane(side, -glm::dot(side, pv), kind == EdgeKind::Boundary ? cw : 0.5 * cw);
+            q += Quadric::plane(side, 0.0, kind == EdgeKind::Boundary ? cw : 0.5 * cw);  // through pv
           }
         }
         it = m.next_halfedge_handle(m.opposite_halfedge_handle(it));
       } while (it != start);
-      d.q = q;
+      d.q = QuadricF::store(q);
       d.region = shared ? kSharedRegion : region;
 
       VertexClass c = VertexClass::Free;
@@ -385,7 +396,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   });
   rep.boundaryVertices = nBoundary, rep.seamVertices = nSeam, rep.fixedVertices = nFixed;
   rep.lockedVertices = nLocked;
-  points = {};
+  points = UninitArray<OpenMesh::Vec3d>();
   st.estate.assign(m.n_edges(), 0);
   rep.degenerateFacesRemoved = su.degenerate;
   traceMark("quadrics+classes");
@@ -423,7 +434,9 @@ MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su,
   parallelRanges(nWedge, threads, [&](size_t b, size_t e, unsigned) {
     for (size_t w = b; w < e; ++w) {
       if (outOf[w] == UINT32_MAX) continue;
-      out.positions[outOf[w]] = glm::vec3(st.vd[wedgeVertex[w]].p + st.center);
+      // OpenMesh's points hold the positions in double (see Vertex).
+      const OpenMesh::Vec3d& p = st.mesh.point(VertexHandle(int(wedgeVertex[w])));
+      out.positions[outOf[w]] = glm::vec3(glm::dvec3(p[0], p[1], p[2]) + st.center);
       if (hasUv) out.uvs[outOf[w]] = st.wedgeUv[w];
     }
   });
@@ -792,9 +805,10 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
       size_t evaluated = 0;
       for (size_t edge = b; edge < e; ++edge) {
         const uint8_t state = st.estate[edge];
-        if ((state & CollapseEngine::kQueued) && !st.edgeStatus[edge].deleted()) continue;  // taken over
-        st.estate[edge] = 0;
-        evaluated += !st.edgeStatus[edge].deleted();
+        const bool gone = state & CollapseEngine::kGone;
+        if ((state & CollapseEngine::kQueued) && !gone) continue;  // taken over
+        st.estate[edge] = gone ? CollapseEngine::kGone : 0;
+        evaluated += !gone;
         if (border.entryFor(uint32_t(edge), entry)) parts[w].push_back(entry);
       }
       borderEvaluated += evaluated;

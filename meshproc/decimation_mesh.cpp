@@ -57,15 +57,21 @@ void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_
 
   // Boundary halfedges run against their inner corner; on a manifold mesh
   // each boundary vertex has exactly one leaving it, which links the loops.
+  // (In parallel: each boundary vertex and each boundary halfedge is
+  // written by one corner only.)
   std::vector<int> boundaryOut(nv, -1);
-  for (size_t c = 0; c < nc; ++c)
-    if (twin[c] == kNoCorner) boundaryOut[tris[nextCorner(uint32_t(c))]] = int(heOf[c] ^ 1u);
-  for (size_t c = 0; c < nc; ++c)
-    if (twin[c] == kNoCorner) {
-      const HalfedgeHandle bh{int(heOf[c] ^ 1u)};
-      mesh.set_vertex_handle(bh, VertexHandle(int(tris[c])));
-      mesh.set_next_halfedge_handle(bh, HalfedgeHandle(boundaryOut[tris[c]]));
-    }
+  parallelRanges(nc, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t c = b; c < e; ++c)
+      if (twin[c] == kNoCorner) boundaryOut[tris[nextCorner(uint32_t(c))]] = int(heOf[c] ^ 1u);
+  });
+  parallelRanges(nc, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t c = b; c < e; ++c)
+      if (twin[c] == kNoCorner) {
+        const HalfedgeHandle bh{int(heOf[c] ^ 1u)};
+        mesh.set_vertex_handle(bh, VertexHandle(int(tris[c])));
+        mesh.set_next_halfedge_handle(bh, HalfedgeHandle(boundaryOut[tris[c]]));
+      }
+  });
   // Outgoing halfedge per vertex: the boundary one where there is one (an
   // OpenMesh invariant), else the first corner in triangle order, so ring
   // iteration starts at the same place on every run.

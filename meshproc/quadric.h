@@ -4,8 +4,10 @@
 // quadrics of two vertices gives the error of merging them, and the p that
 // minimises Q is the "optimal placement" of the merged vertex.
 //
-// Double precision throughout: with centimetre errors on a mesh metres
-// across, the three terms of Q cancel to 8 or more digits.
+// Arithmetic in double: with centimetre errors on a mesh metres across,
+// the three terms of Q cancel to 8 or more digits when the frame's origin
+// is far from the planes. Stored per vertex as QuadricF, relative to the
+// vertex (below), where they do not.
 #include <cmath>
 
 #include <glm/glm.hpp>
@@ -40,6 +42,18 @@ struct Quadric {
   }
   friend Quadric operator+(Quadric a, const Quadric& b) { return a += b; }
 
+  // The same quadric in a frame whose origin sits at `t` in this one
+  // (Q'(x) = Q(x + t)): b' = b + A t, c' = Q(t). With t an edge length,
+  // nothing large cancels.
+  Quadric translated(const glm::dvec3& t) const {
+    Quadric q = *this;
+    q.b0 = b0 + a00 * t.x + a01 * t.y + a02 * t.z;
+    q.b1 = b1 + a01 * t.x + a11 * t.y + a12 * t.z;
+    q.b2 = b2 + a02 * t.x + a12 * t.y + a22 * t.z;
+    q.c = evaluate(t);
+    return q;
+  }
+
   double evaluate(const glm::dvec3& p) const {
     const double x = p.x, y = p.y, z = p.z;
     const double r = x * (a00 * x + 2 * (a01 * y + a02 * z + b0)) + y * (a11 * y + 2 * (a12 * z + b1)) +
@@ -73,6 +87,31 @@ struct Quadric {
     p = glm::dvec3((c00 * r0 + c01 * r1 + c02 * r2) * inv, (c01 * r0 + c11 * r1 + c12 * r2) * inv,
                    (c02 * r0 + c12 * r1 + c22 * r2) * inv);
     return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  }
+};
+
+// A quadric stored in single precision relative to its own vertex (the
+// decimator's per-vertex record; arithmetic is done in double after
+// load()). Relative to the vertex, every term is of the size of the
+// errors being measured: b and c come from the planes' distances to the
+// vertex, not to a centre hundreds of metres away, where c alone would be
+// 6e4 m^2 against errors of 1e-4 m^2 and float could not hold the
+// difference. A's entries have float's 6e-8 relative error, so Q(x)/weight
+// is off by at most about 1e-7 |x|^2 at an offset x from the vertex: for
+// the edge lengths evaluated, 1000x below the heap key's length term.
+struct QuadricF {
+  float a00, a01, a02, a11, a12, a22;
+  float b0, b1, b2;
+  float c;
+  float weight;
+
+  static QuadricF store(const Quadric& q) {
+    return {float(q.a00), float(q.a01), float(q.a02), float(q.a11), float(q.a12), float(q.a22),
+            float(q.b0),  float(q.b1),  float(q.b2),  float(q.c),   float(q.weight)};
+  }
+  Quadric load() const {
+    return {double(a00), double(a01), double(a02), double(a11), double(a12), double(a22),
+            double(b0),  double(b1),  double(b2),  double(c),   double(weight)};
   }
 };
 
