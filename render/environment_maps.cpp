@@ -4,6 +4,7 @@
 
 #include "render/frame_blocks.h"
 #include "render/render_resources.h"
+#include "scene/light_units.h"
 
 namespace hs::render {
 
@@ -20,7 +21,7 @@ void setSkyUniforms(GlProgram& p, const PreethamSky& sky) {
   p.set("uZenith", glm::vec3(sky.zenith));
   p.set("uNormaliser", glm::vec3(sky.normaliser));
   p.set("uSkySun", glm::vec4(glm::vec3(sky.sunDir), float(sky.sunFade)));
-  p.set("uSkyGround", glm::vec4(glm::vec3(sky.zenithRgb * sky.groundAlbedo), float(kSkyRadianceScale)));
+  p.set("uSkyGround", glm::vec4(glm::vec3(sky.zenithRgb * sky.groundAlbedo), float(scene::sceneUnitsPerNit())));
 }
 
 void EnvironmentMaps::allocate(ResourcePool& pool) {

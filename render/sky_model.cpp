@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "scene/light_units.h"
+
 namespace hs::render {
 namespace {
 
@@ -75,7 +77,7 @@ glm::dvec3 PreethamSky::radiance(const glm::dvec3& dir) const {
   const glm::dvec3 ratio = perezF(perez, cosTheta, gamma, cosGamma) * normaliser;
   // Y in kcd/m² -> cd/m², chromaticity as the model gives it.
   const glm::dvec3 xyY(zenith.y * ratio.y, zenith.z * ratio.z, zenith.x * ratio.x * 1000.0);
-  const glm::dvec3 sky = glm::max(xyYToLinearSrgb(xyY), glm::dvec3(0.0)) * (kSkyRadianceScale * sunFade);
+  const glm::dvec3 sky = glm::max(xyYToLinearSrgb(xyY), glm::dvec3(0.0)) * (scene::sceneUnitsPerNit() * sunFade);
   if (dir.z >= 0.0) return sky;
   const glm::dvec3 ground = zenithRgb * groundAlbedo;
   return glm::mix(sky, ground, smoothstep(0.0, 0.0523, -dir.z));

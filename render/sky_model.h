@@ -12,19 +12,14 @@
 // GL-free: shaders/sky_model.glsl evaluates the same function from the
 // coefficients this computes (uniforms), and tests/benchmarks call
 // radiance() as the reference.
+//
+// Units: the model gives luminance in cd/m²; scene radiance is that times
+// the lights' scene unit, scene::sceneUnitsPerNit() (scene/light_units.h),
+// so sun and sky are in one physical unit (docs/rendering.md, "Sky and
+// environment").
 #include <glm/glm.hpp>
 
 namespace hs::render {
-
-// Scene radiance per cd/m² of sky luminance: the one place where the
-// model's physical units meet the renderer's. It is the exposure 1/(1.2 x
-// 2^EV100) at EV100 = 14.3 (a sunny day: the zenith at about 0.3 at 45
-// degrees of sun, where the gradient sky's zenith was), chosen before the
-// lights' scene unit (scene/light_units.h, EV100 15.2) existed. It is not
-// tied to that unit yet: the lights fold the BRDF's 1/pi into their
-// intensity, so tying only this would upset the sun/sky balance; both are
-// to change together (docs/rendering.md).
-inline constexpr double kSkyRadianceScale = 4.0e-5;
 
 struct PreethamSky {
   glm::dvec3 sunDir{0.0, 0.0, 1.0};  // unit, towards the sun (world, z up)
@@ -40,7 +35,7 @@ struct PreethamSky {
   // sun 45 degrees up in the south, so a scene without one still has a sky).
   static PreethamSky make(glm::dvec3 sunDir, double turbidity, double groundAlbedo);
 
-  // Scene radiance (linear sRGB, x kSkyRadianceScale) seen looking along
+  // Scene radiance (linear sRGB, cd/m² x sceneUnitsPerNit()) seen looking along
   // unit `dir`. Below the horizon: the ground, a diffuse surface of
   // `groundAlbedo` under a uniform sky of the zenith's radiance, blended
   // into the horizon over the first 3 degrees.

@@ -6,6 +6,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "scene/fields.h"
+#include "scene/object_tracks.h"
 #include "scene/scene_state.h"
 
 namespace hs::scene {
@@ -35,7 +36,9 @@ glm::vec3 lightRadiometricColor(const Light& l) {
 }
 
 double legacyLightIntensity(Light::Type type, double oldIntensity) {
-  const double lux = oldIntensity / sceneUnitsPerNit();
+  // The old value was the shader's result on a white surface facing the
+  // light (no 1/π); the shader now divides by π, so the light takes it back.
+  const double lux = oldIntensity * glm::pi<double>() / sceneUnitsPerNit();
   return type == Light::Type::Sun ? lux : 4.0 * glm::pi<double>() * lux;
 }
 
@@ -64,6 +67,20 @@ void migrateToPhysicalLightUnits(SceneState& state, std::optional<double> oldExp
   if (oldExposure) {
     const SettingsField* f = findSettingsField("exposure_ev100");
     f->set(state.settings, FieldValue(legacyExposureEv100(*oldExposure)));  // clamped to the field's range
+  }
+}
+
+void migrateToPhysicalBrdf(SceneState& state) {
+  const SettingsField* f = findSettingsField("exposure_ev100");
+  const double ev = std::get<double>(f->get(state.settings));
+  f->set(state.settings, FieldValue(ev - kLog2Pi));  // clamped to the field's range
+  // A shift moves a curve's values and leaves its slopes as they are.
+  if (sequencer::Binding* b = state.sequence.findBinding(settingsTarget())) {
+    for (sequencer::Track& t : b->tracks) {
+      auto* track = std::get_if<sequencer::ScalarTrack>(&t);
+      if (!track || track->property != std::string(kSettingsTrackPrefix) + f->key) continue;
+      for (sequencer::ScalarKey& k : track->keys) k.value = std::clamp(k.value - kLog2Pi, f->min, f->max);
+    }
   }
 }
 

@@ -2,20 +2,29 @@
 // Physical light units and exposure (docs/rendering.md "Lights and
 // exposure"). Lights are set in lux (sun) and lumens (point, spot), the
 // camera in EV100, as in Filament and Unreal. The renderer works in "scene
-// units": luminance pre-exposed at the reference EV100 below, so a noon sun
-// lands near today's values of 1-3 in the HDR buffer (half floats would
-// overflow at cd/m²), and the tone mapper multiplies by 2^(reference − EV100).
+// units": luminance (cd/m²) pre-exposed at the reference EV100 below, so a
+// noon sun on a white surface lands near 2 in the HDR buffer (half floats
+// would overflow at cd/m²), and the tone mapper multiplies by
+// 2^(reference − EV100). The lighting models return physical radiance (a
+// white Lambert surface facing a light of illuminance E returns E/π,
+// shaders/brdf.glsl), and the sky's luminance meets the same unit
+// (render/sky_model.h).
 #include <optional>
 
 #include "scene/components.h"
 
 namespace hs::scene {
 
-// The exposure at which one scene unit is 1.2 · 2^15.2 ≈ 45 168 cd/m²
-// (Filament's saturation-based exposure, 1 / (1.2 · 2^EV100)). It was chosen
-// so that a 100 000 lux sun at EV100 15.2 looks as the default sun did
-// before the units were physical (within 0.7%).
-constexpr double kReferenceEv100 = 15.2;
+// The exposure at which one scene unit is 1.2 · 2^EV100 ≈ 14 378 cd/m²
+// (Filament's saturation-based exposure, 1 / (1.2 · 2^EV100)). It is
+// 15.2 − log2 π ≈ 13.5485: when the shaders took up the BRDF's 1/π (format
+// 8), the reference moved by log2 π so that a light's result in scene
+// units stayed what it was (lux/π · 1/(1.2 · 2^13.5485) = lux · 1/(1.2 ·
+// 2^15.2)). 15.2 itself was chosen so that a 100 000 lux sun looks as the
+// default sun did before the units were physical (within 0.7%). It is also
+// the settings' default exposure.
+inline constexpr double kLog2Pi = 1.6514961294723187;  // log2(π)
+constexpr double kReferenceEv100 = 15.2 - kLog2Pi;
 double sceneUnitsPerNit();  // 1 / (1.2 · 2^kReferenceEv100)
 
 // Multiplier the tone mapper applies: 2^(kReferenceEv100 − ev100), exactly
@@ -32,9 +41,12 @@ double luminousIntensityCandela(const Light& l);
 glm::vec3 lightRadiometricColor(const Light& l);
 
 // Files before format 6 (scene_json.h) held intensities and exposure in
-// the old relative units; these give the values that render the same.
-//   sun:          lux = old × 1.2 · 2^kReferenceEv100
-//   point:        lumens = 4π × old × 1.2 · 2^kReferenceEv100 (old: at 1 m)
+// the old relative units; these give the values that render the same. An
+// old intensity was the light's scene-unit value with no 1/π applied, so
+// the lux (candela) that give it back through a shader that divides by π
+// are π / sceneUnitsPerNit() times it (= 1.2 · 2^15.2, as since format 6):
+//   sun:          lux = old × π / sceneUnitsPerNit()
+//   point:        lumens = 4π × old × π / sceneUnitsPerNit() (old: at 1 m)
 //   exposure:     EV100 = kReferenceEv100 − log2(old multiplier)
 double legacyLightIntensity(Light::Type type, double oldIntensity);
 double legacyExposureEv100(double oldMultiplier);
@@ -45,5 +57,13 @@ double legacyExposureEv100(double oldMultiplier);
 // nullopt: the old default 1).
 struct SceneState;
 void migrateToPhysicalLightUnits(SceneState& state, std::optional<double> oldExposure);
+
+// Converts a scene read from a file of format 6 or 7, whose shaders folded
+// the BRDF's 1/π into the lights (scene_json.h): the lights keep their lux
+// and lumens, and the exposure (settings.exposure_ev100 and every key of a
+// "settings.exposure_ev100" track) moves by −log2 π, so the frame is the
+// same. Values land in the field's range (a key or value below −10 + log2
+// π is held at −10).
+void migrateToPhysicalBrdf(SceneState& state);
 
 }  // namespace hs::scene

@@ -480,20 +480,30 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
   // Material and settings tracks: their targets and fields checked, keys clamped.
   checkObjectTracks(s, r.warnings);
 
-  // Before format 6 lights and exposure were in relative units. A
-  // description without a version is taken as this build's.
-  if (const Json* version = JsonReader::member(json, "version");
-      version && version->is_number() && version->get<double>() < kFirstPhysicalLightsFormat) {
+  // Before format 6 lights and exposure were in relative units; before
+  // format 8 the exposure was relative to EV100 15.2 and the shaders folded
+  // the BRDF's 1/π into the lights. A description without a version is
+  // taken as this build's.
+  const Json* versionJson = JsonReader::member(json, "version");
+  const double version = versionJson && versionJson->is_number() ? versionJson->get<double>() : kSceneFormatVersion;
+  if (version < kFirstPhysicalLightsFormat) {
     std::optional<double> oldExposure;
     if (const Json* settings = JsonReader::member(json, "settings")) {
       if (const Json* e = JsonReader::member(*settings, "exposure"); e && e->is_number())
         oldExposure = std::clamp(e->get<double>(), 0.001, 1000.0);  // the old field's range
     }
-    migrateToPhysicalLightUnits(s, oldExposure);
+    migrateToPhysicalLightUnits(s, oldExposure);  // straight to this format's units
+  } else if (version < kFirstPhysicalBrdfFormat) {
+    // A file without exposure_ev100 meant its default, 15.2, which is this
+    // build's default (the reference) once moved: it keeps the default.
+    const Json* settings = JsonReader::member(json, "settings");
+    const bool exposureStored = settings && JsonReader::member(*settings, "exposure_ev100");
+    const float asRead = s.settings.exposureEv100;  // this build's default when not stored
+    migrateToPhysicalBrdf(s);
+    if (!exposureStored) s.settings.exposureEv100 = asRead;
   }
   // Before format 7 a sun's shadows followed settings.shadows alone.
-  if (const Json* version = JsonReader::member(json, "version");
-      version && version->is_number() && version->get<double>() < kFirstPerLightShadowsFormat) {
+  if (version < kFirstPerLightShadowsFormat) {
     for (auto& [id, e] : s.entities)
       if (e.light && e.light->type == Light::Type::Sun) e.light->castsShadows = true;
   }

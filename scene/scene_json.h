@@ -35,9 +35,18 @@ namespace hs::scene {
 // the flag was stored unread, so older files get casts_shadows true on
 // every sun (migratePerLightShadows); point and spot lights keep what the
 // user stored. A version-6 reader would give back sun shadows a file turned off.
-constexpr int kSceneFormatVersion = 7;
+// 8: the shaders return physical radiance (the BRDF's 1/π, docs/rendering.md
+// "Lights and exposure") and the reference EV100 moved from 15.2 to 15.2 −
+// log2 π. Files of versions 6 and 7 keep their look: their exposure and
+// the keys of its track move by −log2 π, lights keep their values
+// (migrateToPhysicalBrdf); files 1-5 go straight to this format's units
+// (migrateToPhysicalLightUnits). The analytic sky is brighter against the
+// sun than before (it is now tied to the lights' unit): that is the fix.
+// A version-7 reader would show a version-8 file π times too bright.
+constexpr int kSceneFormatVersion = 8;
 constexpr int kFirstPhysicalLightsFormat = 6;
 constexpr int kFirstPerLightShadowsFormat = 7;
+constexpr int kFirstPhysicalBrdfFormat = 8;
 constexpr int kFirstMaterialsFormat = 5;
 
 Json sceneToJson(const SceneState& state);

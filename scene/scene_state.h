@@ -12,6 +12,7 @@
 #include "core/json.h"
 #include "mesh/mesh_data.h"
 #include "scene/entity.h"
+#include "scene/light_units.h"
 #include "scene/material.h"
 #include "scene/terrain_asset.h"
 #include "sequencer/sequence.h"
@@ -84,10 +85,11 @@ struct SceneSettings {
   glm::vec3 skyHorizon{0.62f, 0.72f, 0.82f};
   glm::vec3 groundColor{0.22f, 0.2f, 0.18f};
   float ambientIntensity = 0.5f;
-  // Camera exposure as EV100 (light_units.h; 15.2 with a 100 000 lux sun
-  // gives the look of before physical units). Files before format 6 held a
-  // multiplier ("exposure"), converted on load.
-  float exposureEv100 = 15.2f;
+  // Camera exposure as EV100: the reference, 15.2 − log2 π ≈ 13.55
+  // (light_units.h; with a 100 000 lux sun, the look of before physical
+  // units). Files before format 6 held a multiplier ("exposure"), files 6-7
+  // an EV100 against 15.2; both are converted on load.
+  float exposureEv100 = float(kReferenceEv100);
   bool showGrid = true;
   Antialiasing antialiasing = Antialiasing::Msaa4;
   Tonemap tonemap = Tonemap::Aces;

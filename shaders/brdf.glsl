@@ -1,17 +1,27 @@
-// Reflectance of a surface for one light direction: the response to a unit
-// irradiance arriving from `l`, times cos(theta) (so a caller multiplies by
-// the light's colour and attenuation only). Scaled so that a white Lambert
-// surface facing the light returns 1 (the 1/pi of a BRDF is folded into
-// the lights' intensity, as before materials had models), and every model
-// shares that scale: their diffuse parts agree, their highlights differ.
+// Reflectance of a surface for one light direction: the radiance it sends
+// towards the eye per unit of illuminance arriving from `l` (measured
+// facing the light), i.e. BRDF x cos(theta), so a caller multiplies by the
+// light's colour and attenuation only. Physical units: a white Lambert
+// surface facing a light of illuminance E returns E/pi (cd/m² from lux,
+// both in scene units, scene/light_units.h), as in Filament and Unreal;
+// the image-based light (environment.glsl) is in the same units.
 //
-// The survey's models: Lambert (diffuse only), Phong (specular from the
-// reflection vector, ks (R.V)^n) and Blinn-Phong (from the half vector,
-// ks (N.H)^n), both added to Lambert. The default is physically based:
-// GGX (Trowbridge-Reitz) microfacet distribution, height-correlated Smith
-// visibility, Schlick's Fresnel, and a diffuse part weighted by what the
-// specular reflection and the metal leave (energy conserving), as in
-// Filament and Unreal.
+// The survey's models: Lambert (albedo/pi), Phong (specular from the
+// reflection vector) and Blinn-Phong (from the half vector), both added to
+// Lambert. Their lobes are the survey's and have no energy normalisation:
+// the specular part returned is ks (R.V)^n / pi (Phong) or ks (N.H)^n / pi
+// (Blinn-Phong), with no cos(theta) (the survey's lobe; its BRDF is that
+// over cos(theta)), so a highlight of ks = 1 peaks as bright as a white
+// Lambert surface facing the light, at any exponent. The factors that
+// would conserve energy (a BRDF ks (n+2)/2pi (R.V)^n for Phong, about
+// ks (n+8)/8pi (N.H)^n for Blinn-Phong) are not applied: highlights would
+// get about (n+2)/2 times brighter (17x at n = 32) than in the survey's
+// comparison views and in the materials made with them; PBR is the model
+// that conserves energy.
+// The default is physically based: GGX (Trowbridge-Reitz) microfacet
+// distribution, height-correlated Smith visibility, Schlick's Fresnel, and
+// a Lambert diffuse part weighted by what the specular reflection and the
+// metal leave (energy conserving), as in Filament and Unreal.
 #ifndef HS_BRDF_GLSL
 #define HS_BRDF_GLSL
 #include "surface.glsl"
@@ -48,22 +58,22 @@ vec3 pbrReflect(Surface s, vec3 l, float ndl) {
   vec3 f0 = mix(vec3(0.16 * s.specular * s.specular), s.albedo, s.metallic);
   vec3 f = schlickFresnel(f0, vdh);
   vec3 spec = ggxDistribution(ndh, a) * smithVisibility(ndv, ndl, a) * f;
-  vec3 diffuse = (vec3(1.0) - f) * (1.0 - s.metallic) * s.albedo;
-  // x pi: the scale of the header (a white Lambert surface returns 1).
-  return (diffuse + spec * HS_PI) * ndl;
+  vec3 diffuse = (vec3(1.0) - f) * (1.0 - s.metallic) * s.albedo / HS_PI;
+  return (diffuse + spec) * ndl;
 }
 
 vec3 reflectLight(Surface s, vec3 l) {
   float ndl = dot(s.normal, l);
   if (ndl <= 0.0) return vec3(0.0);
-  if (s.model == MODEL_LAMBERT) return s.albedo * ndl;
+  vec3 lambert = s.albedo * (ndl / HS_PI);
+  if (s.model == MODEL_LAMBERT) return lambert;
   if (s.model == MODEL_PHONG) {
     vec3 r = reflect(-l, s.normal);
-    return s.albedo * ndl + vec3(s.specular * pow(max(dot(r, s.view), 0.0), s.shininess));
+    return lambert + vec3(s.specular * pow(max(dot(r, s.view), 0.0), s.shininess) / HS_PI);
   }
   if (s.model == MODEL_BLINN_PHONG) {
     vec3 h = normalize(l + s.view);
-    return s.albedo * ndl + vec3(s.specular * pow(max(dot(s.normal, h), 0.0), s.shininess));
+    return lambert + vec3(s.specular * pow(max(dot(s.normal, h), 0.0), s.shininess) / HS_PI);
   }
   return pbrReflect(s, l, ndl);
 }

@@ -19,12 +19,12 @@ void main() {
   vec3 c = skyRadiance(dir);
   if (frame.sunDir.w > 0.5 && dir.z > 0.0) {
     // The sun's disc (0.27 degrees of radius, its rim softened by a fifth):
-    // the radiance that gives the sun light's irradiance over the disc's
-    // solid angle (colour x pi / 6.8e-5 sr, the renderer's Lambert scale),
-    // capped well inside half-float range.
+    // the radiance that gives the sun light's illuminance over the disc's
+    // solid angle (colour / 6.8e-5 sr, in the sky's unit: both are scene
+    // units), capped well inside half-float range.
     float cosGamma = dot(dir, frame.sunDir.xyz);
     float disc = smoothstep(cos(0.00465 * 1.2), cos(0.00465 * 0.8), cosGamma);
-    c += min(frame.sunColor.rgb * (3.14159265 / 6.8e-5), vec3(30000.0)) * (disc * uSkySun.w);
+    c += min(frame.sunColor.rgb * (1.0 / 6.8e-5), vec3(30000.0)) * (disc * uSkySun.w);
   }
 #else
   float z = dir.z;
@@ -34,8 +34,10 @@ void main() {
   else
     c = mix(frame.skyHorizon.rgb, frame.groundColor.rgb, 1.0 - pow(1.0 + z, 8.0));
   if (frame.sunDir.w > 0.5) {
+    // A glow around the sun: its illuminance as a white diffuser shows it
+    // (E/pi, the lights' unit since format 8), shaped by two lobes.
     float s = max(dot(dir, frame.sunDir.xyz), 0.0);
-    c += frame.sunColor.rgb * (pow(s, 1200.0) * 8.0 + pow(s, 24.0) * 0.08);
+    c += frame.sunColor.rgb * (1.0 / 3.14159265) * (pow(s, 1200.0) * 8.0 + pow(s, 24.0) * 0.08);
   }
 #endif
   // Fog (fog.glsl; nothing without it) as far as a sky is taken to be.

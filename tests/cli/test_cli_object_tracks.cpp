@@ -16,6 +16,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "cli_runner.h"
+#include "scene/scene_state.h"
 
 using namespace hs;
 using hs::test::kCli;
@@ -30,6 +31,9 @@ const char* kBox =
     "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
 
 const QString kMaterial = "box / default";
+// The starter scene's exposure (the reference EV100, 15.2 − log2 π), as
+// text that reads back to the same float.
+const QString kDefaultExposure = QString::number(double(scene::SceneSettings{}.exposureEv100), 'g', 9);
 
 std::vector<unsigned char> pixels(const QString& path) {
   auto in = OIIO::ImageInput::open(path.toStdString());
@@ -77,7 +81,7 @@ class TestCliObjectTracks : public QObject {
     fs::copy_file(path("base.hscene").toStdString(), path("anim.hscene").toStdString());
     for (const QStringList& k : {QStringList{"--material", kMaterial, "base_color", "0", "0.8,0.8,0.8"},
                                  QStringList{"--material", kMaterial, "base_color", "2", "0.1,0.9,0.1"},
-                                 QStringList{"--settings", "exposure_ev100", "0", "15.2"},
+                                 QStringList{"--settings", "exposure_ev100", "0", kDefaultExposure},
                                  QStringList{"--settings", "settings.exposure_ev100", "120f", "13"}}) {
       const Run r = cli(QStringList{"key"} + k + QStringList{path("anim.hscene"), "--interp", "linear"});
       QVERIFY2(r.code == 0, qPrintable(r.err));

@@ -71,7 +71,7 @@ inline MaterialScene materialScene(mesh::MeshData mesh, const scene::Material& m
   sun.name = "Sun";
   sun.light = scene::Light{};
   sun.light->color = glm::vec3(1.0f);
-  // 2 in scene units (scene/light_units.h): what the formulas below expect.
+  // A white surface facing it returns 2 in scene units (scene/light_units.h).
   sun.light->intensity = float(scene::legacyLightIntensity(scene::Light::Type::Sun, 2.0));
   sun.transform.rotation = scene::fromEulerDegrees({50, 0, -30});
   s.entities.emplace(sun.id, sun);

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <random>
 
+#include <glm/gtc/constants.hpp>
+
 #include "image_compare.h"
 #include "render_golden.h"
 #include "look_from.h"
@@ -83,7 +85,8 @@ bool floorHit(const render::RenderView& v, int x, int y, glm::dvec3& hit) {
 // The light's value at floor point p, from the definitions in
 // scene/components.h, written again here: I = Φ/4π (point) or
 // Φ/(2π(1 − cos(outer/2))) (spot), E = I cosθ / d² · (1 − (d/r)⁴)², the
-// spot's smooth step between the cones, in scene units.
+// spot's smooth step between the cones, and the floor's luminance
+// albedo/π · E, in scene units.
 glm::dvec3 expected(const Light& l, glm::dvec3 pos, glm::dvec3 dir, glm::dvec3 p) {
   const double pi = 3.14159265358979;
   double candela = double(l.intensity) / (4.0 * pi);
@@ -103,7 +106,9 @@ glm::dvec3 expected(const Light& l, glm::dvec3 pos, glm::dvec3 dir, glm::dvec3 p
     cone = t * t;
   }
   const double lux = candela * window * cone / (d * d);
-  return kAlbedo * glm::dvec3(l.color) * lux * ndl / (1.2 * std::pow(2.0, 15.2));
+  // A Lambert surface's luminance is albedo/π times its illuminance (cd/m²),
+  // in scene units through the lights' unit.
+  return kAlbedo / pi * glm::dvec3(l.color) * lux * ndl * scene::sceneUnitsPerNit();
 }
 
 Light pointLight() {
@@ -244,11 +249,40 @@ class TestLightsRender : public QObject {
     FloorScene fs = floorScene(sun, {0, 0, 10}, {40, 0, -35});
     fs.state.settings.tonemap = scene::Tonemap::Aces;
     const hs::Image hdr = r_.render(fs.state, fs.view, true);
-    // A sun: the same value everywhere on the flat floor, E cosθ.
+    // A sun: the same value everywhere on the flat floor, albedo/π · E cosθ.
     const glm::dvec3 toSun = -glm::normalize(scene::fromEulerDegrees({40, 0, -35}) * glm::dvec3(0, 0, -1));
-    const double want = kAlbedo.x * 60000.0 * toSun.z / (1.2 * std::pow(2.0, 15.2)) * double(sun.color.r);
+    const double want = kAlbedo.x / glm::pi<double>() * 60000.0 * toSun.z * scene::sceneUnitsPerNit() * double(sun.color.r);
     QVERIFY2(std::abs(hdrAt(hdr, 64, 100).x / want - 1.0) < 0.01, qPrintable(QString::number(hdrAt(hdr, 64, 100).x)));
     test::verifyGolden("light_sun", r_.render(fs.state, fs.view));
+  }
+
+  // Physical units: a white Lambert plane facing a 100 000 lux sun is a
+  // white diffuser of luminance E/π = 31 831 cd/m² (not E: the shaders
+  // apply the BRDF's 1/π), read back in linear scene units before tone
+  // mapping and converted through the lights' unit.
+  void whitePlaneUnderTheSunIsEOverPi() {
+    Light sun;
+    sun.intensity = 100000.0f;
+    sun.color = {1.0f, 1.0f, 1.0f};
+    FloorScene fs = floorScene(sun, {0, 0, 10});  // no rotation: shining straight down
+    scene::Material& floor = fs.state.materials.begin()->second;
+    floor.baseColor = glm::vec3(1.0f);
+    const hs::Image hdr = r_.render(fs.state, fs.view, true);
+    QVERIFY(hdr.isFloat());
+    const double want = 100000.0 / glm::pi<double>();
+    double worst = 0.0, centre = 0.0;
+    for (int y = 8; y < fs.view.height; y += 16)
+      for (int x = 8; x < fs.view.width; x += 16) {
+        glm::dvec3 p;
+        if (!floorHit(fs.view, x, y, p)) continue;
+        const glm::dvec3 nits = hdrAt(hdr, x, y) / scene::sceneUnitsPerNit();
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(nits[c] / want - 1.0));
+        if (x == 72 && y == 72) centre = nits.g;
+      }
+    qInfo("white Lambert plane, 100000 lux at normal incidence: %.1f cd/m2 (E/pi = %.1f), worst %.3f%%", centre, want,
+          worst * 100.0);
+    // Half floats hold 11 bits (0.05%).
+    QVERIFY2(worst < 0.002, qPrintable(QString("worst %1% off E/pi").arg(worst * 100.0)));
   }
 
   // The window is exactly 0 from the range on, so a light list that drops a

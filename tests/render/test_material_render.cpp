@@ -37,7 +37,9 @@ bool sphereHit(const render::RenderView& v, int x, int y, glm::dvec3& hit) {
   return true;
 }
 
-// The models of shaders/brdf.glsl, written again from their definitions.
+// The models of shaders/brdf.glsl, written again from their definitions:
+// radiance per unit of illuminance (BRDF x cos), a Lambert surface
+// albedo/pi, the survey's lobes (no normalisation) over pi as well.
 glm::dvec3 reference(const scene::Material& m, glm::dvec3 n, glm::dvec3 l, glm::dvec3 v) {
   const double pi = 3.14159265358979;
   const double ndl = glm::dot(n, l);
@@ -45,14 +47,14 @@ glm::dvec3 reference(const scene::Material& m, glm::dvec3 n, glm::dvec3 l, glm::
   const glm::dvec3 albedo(m.baseColor);
   const double ks = m.specular, shininess = m.shininess, roughness = m.roughness, metallic = m.metallic;
   switch (m.model) {
-    case LightingModel::Lambert: return albedo * ndl;
+    case LightingModel::Lambert: return albedo * ndl / pi;
     case LightingModel::Phong: {
       const glm::dvec3 r = 2.0 * ndl * n - l;
-      return albedo * ndl + glm::dvec3(ks * std::pow(std::max(glm::dot(r, v), 0.0), shininess));
+      return (albedo * ndl + glm::dvec3(ks * std::pow(std::max(glm::dot(r, v), 0.0), shininess))) / pi;
     }
     case LightingModel::BlinnPhong: {
       const glm::dvec3 h = glm::normalize(l + v);
-      return albedo * ndl + glm::dvec3(ks * std::pow(std::max(glm::dot(n, h), 0.0), shininess));
+      return (albedo * ndl + glm::dvec3(ks * std::pow(std::max(glm::dot(n, h), 0.0), shininess))) / pi;
     }
     case LightingModel::Pbr: break;
   }
@@ -65,8 +67,8 @@ glm::dvec3 reference(const scene::Material& m, glm::dvec3 n, glm::dvec3 l, glm::
   const double V = 0.5 / (ndl * std::sqrt(ndv * ndv * (1 - a2) + a2) + ndv * std::sqrt(ndl * ndl * (1 - a2) + a2));
   const glm::dvec3 f0 = glm::mix(glm::dvec3(0.16 * ks * ks), albedo, metallic);
   const glm::dvec3 F = f0 + (glm::dvec3(1.0) - f0) * std::pow(1.0 - vdh, 5.0);
-  const glm::dvec3 diffuse = (glm::dvec3(1.0) - F) * (1.0 - metallic) * albedo;
-  return (diffuse + D * V * F * pi) * ndl;
+  const glm::dvec3 diffuse = (glm::dvec3(1.0) - F) * (1.0 - metallic) * albedo / pi;
+  return (diffuse + D * V * F) * ndl;
 }
 
 scene::Material modelMaterial(LightingModel model) {

@@ -216,6 +216,31 @@ class TestSkyRender : public QObject {
     test::verifyGolden("sky_analytic_" + std::string(QTest::currentDataTag()), r_.render(s.state, s.view));
   }
 
+  // The sky and the lights share one unit: the sky pass's linear output
+  // at the zenith, converted to cd/m² through the lights' scene unit
+  // (scene::sceneUnitsPerNit), is the model's zenith luminance (Preetham's
+  // closed form, sky_model.cpp, in kcd/m²) within 2%.
+  void zenithLuminanceInNits_data() {
+    QTest::addColumn<double>("elevation");
+    QTest::newRow("80deg") << 80.0;
+    QTest::newRow("45deg") << 45.0;
+    QTest::newRow("20deg") << 20.0;
+  }
+  void zenithLuminanceInNits() {
+    QFETCH(double, elevation);
+    const glm::dvec3 towards = sunTowards(elevation);
+    SkyScene s = skyScene(towards, 90.0, 33, 33);  // looking straight up: the centre pixel is the zenith
+    QVERIFY(glm::length(pixelRay(s.view, 16, 16) - glm::dvec3(0, 0, 1)) < 1e-9);
+    const hs::Image hdr = r_.render(s.state, s.view, true);
+    QVERIFY(hdr.isFloat());
+    const double nits = luminanceOf(hdrAt(hdr, 16, 16)) / scene::sceneUnitsPerNit();
+    const render::PreethamSky sky = render::PreethamSky::make(towards, s.state.settings.skyTurbidity,
+                                                              s.state.settings.skyGroundAlbedo);
+    const double model = sky.zenith.x * 1000.0 * sky.sunFade;
+    qInfo("sun %.0f deg: zenith %.1f cd/m2 from the sky pass, %.1f cd/m2 from the model", elevation, nits, model);
+    QVERIFY2(std::abs(nits / model - 1.0) < 0.02, qPrintable(QString("%1 against %2 cd/m2").arg(nits).arg(model)));
+  }
+
   void skyFollowsTurbidity() {
     // The setting reaches the sky pass: a clear and a hazy sky each match
     // the model at their turbidity, and differ.
