@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "cli_runner.h"
+#include "file_bytes.h"
 #include "core/json.h"
 #include "scene/hscene_file.h"
 #include "scene/scene_json.h"
@@ -162,11 +163,7 @@ class TestCliMaterial : public QObject {
     r = runCli({"render", scene, "--out", dir.filePath("f.png"), "--size", "64x48"}, dir.path());
     QVERIFY2(r.code == 0, qPrintable(r.err));
 
-    const QByteArray before = [&] {
-      QFile f(scene);
-      f.open(QIODevice::ReadOnly);
-      return f.readAll();
-    }();
+    const std::string before = hs::test::readFile(scene.toStdString());
     struct Case {
       QStringList args;
       int code;
@@ -188,9 +185,7 @@ class TestCliMaterial : public QObject {
       QVERIFY2(rr.code == c.code, qPrintable(c.args.join(' ') + ": " + QString::number(rr.code) + " " + rr.err));
       QVERIFY2(rr.err.contains(c.message), qPrintable(rr.err));
     }
-    QFile f(scene);
-    QVERIFY(f.open(QIODevice::ReadOnly));
-    QVERIFY2(f.readAll() == before, "a refused command changed the file");
+    QVERIFY2(hs::test::readFile(scene.toStdString()) == before, "a refused command changed the file");
   }
 };
 

@@ -16,6 +16,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "cli_runner.h"
+#include "file_bytes.h"
 #include "scene/scene_state.h"
 
 using namespace hs;
@@ -127,11 +128,7 @@ class TestCliObjectTracks : public QObject {
 
   void refusals() {
     const QString s = path("base.hscene");
-    const QByteArray before = [&] {
-      QFile f(s);
-      f.open(QIODevice::ReadOnly);
-      return f.readAll();
-    }();
+    const std::string before = hs::test::readFile(s.toStdString());
     struct Case {
       QStringList args;
       int code;
@@ -154,9 +151,7 @@ class TestCliObjectTracks : public QObject {
       QVERIFY2(r.code == c.code && r.err.contains(c.says),
                qPrintable(c.args.join(' ') + QString(": exit %1: ").arg(r.code) + r.err));
     }
-    QFile f(s);
-    QVERIFY(f.open(QIODevice::ReadOnly));
-    QVERIFY(f.readAll() == before);  // nothing was saved
+    QVERIFY(hs::test::readFile(s.toStdString()) == before);  // nothing was saved
   }
 };
 
