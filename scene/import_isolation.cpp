@@ -180,7 +180,13 @@ class WorkerProcess {
   mesh::ImportResult read(const std::string& path, const mesh::ImportOptions& options, const Progress* progress,
                           Clock::time_point since) {
     path_ = &path;
-    mesh::ImportResult out;
+    // The previous file's result is still in the file: cut it, so a worker
+    // that ends without writing one can never hand back another file's mesh.
+    if (::ftruncate(fds_.result, 0) != 0) {
+      stop(true);
+      return failed(path + ": the import worker's result file could not be reset (" + std::strerror(errno) +
+                    "). Nothing was imported.");
+    }
     const std::string request = mesh::importRequest(mesh::importWorkerArguments(path, options));
     for (size_t sent = 0; sent < request.size();) {
       const ssize_t n = ::send(fds_.stdinWrite, request.data() + sent, request.size() - sent, MSG_NOSIGNAL);
@@ -275,7 +281,6 @@ class WorkerProcess {
 
   // The result the worker wrote; `ended`: it is gone, with this exit code.
   mesh::ImportResult result(Clock::time_point since, bool ended, int code) {
-    const std::string reader = "the " + formatName(*path_) + " reader (Assimp)";
     std::string readError;
     mesh::ImportResult r;
     bool haveResult = false;
@@ -289,12 +294,9 @@ class WorkerProcess {
     }
     if (!haveResult) {
       if (!ended) stop(true);  // it said "done" over a torn result: not to be trusted with another file
-      std::string why = ended ? (code >= 0 ? "exit code " + std::to_string(code) : std::string("its exit status is unknown"))
-                              : std::string("it said it was done");
-      const std::string said = lastLine(fds_.err);
-      if (!said.empty() && ended) why += ": " + said;
-      else if (!readError.empty()) why += ": " + readError;
-      return failed(*path_ + ": " + reader + " stopped without a result (" + why + "). Nothing was imported.");
+      const std::string said = ended ? lastLine(fds_.err) : std::string();
+      return withoutResult(ended ? exitText(code) : std::string("it said it was done"),
+                           !said.empty() ? said : readError);
     }
     r.report.seconds = std::chrono::duration<double>(Clock::now() - since).count();
     // The worker names the file and the stage; the limit is ours to name.
@@ -347,9 +349,17 @@ class WorkerProcess {
     }
     const int code = reaped && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     if (code == 0 || !reaped) return result(since, /*ended=*/true, code);
-    std::string why = code >= 0 ? "exit code " + std::to_string(code) : std::string("its exit status is unknown");
-    if (const std::string said = lastLine(fds_.err); !said.empty()) why += ": " + said;
-    return failed(path + ": " + reader + " stopped without a result (" + why + "). Nothing was imported.");
+    return withoutResult(exitText(code), lastLine(fds_.err));
+  }
+
+  static std::string exitText(int code) {
+    return code >= 0 ? "exit code " + std::to_string(code) : std::string("its exit status is unknown");
+  }
+
+  // "<file>: the <format> reader (Assimp) stopped without a result (<how>[: <detail>]). ..."
+  mesh::ImportResult withoutResult(const std::string& how, const std::string& detail) const {
+    return failed(*path_ + ": the " + formatName(*path_) + " reader (Assimp) stopped without a result (" + how +
+                  (detail.empty() ? "" : ": " + detail) + "). Nothing was imported.");
   }
 
   pid_t pid_ = -1;
