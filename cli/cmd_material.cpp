@@ -107,6 +107,26 @@ const OperationDecl& deleteDecl() {
   return decl;
 }
 
+// Loads `path` into `doc`; false with the message printed (through `args`).
+bool openScene(OperationArgs& args, const std::string& path, scene::Document& doc, int& code) {
+  std::string error;
+  std::optional<scene::SceneState> state = scene::loadScene(path, error);
+  if (!state) {
+    code = args.fail(error);
+    return false;
+  }
+  doc.reset(std::move(*state), QString::fromStdString(path));
+  return true;
+}
+
+scene::MaterialId materialNamed(const scene::Document& doc, const std::string& name, const std::string& path,
+                                std::string& error) {
+  const scene::MaterialId id = doc.state().findMaterialByName(name);
+  if (id == scene::kNoMaterial)
+    error = "no material named '" + name + "' in " + path + " (see `hybridscape-cli material list`)";
+  return id;
+}
+
 int runList(int argc, char** argv) {
   OperationArgs args(listDecl());
   if (auto code = args.parse(argc, argv)) return *code;
@@ -129,14 +149,12 @@ int runSetField(int argc, char** argv) {
   const std::vector<std::string>& p = args.positionals();
   if (p.size() != 4) return args.usage("expected <material> <field> <value> <scene.hscene>");
   const std::string& scenePath = p[3];
-  std::string error;
-  std::optional<scene::SceneState> state = scene::loadScene(scenePath, error);
-  if (!state) return args.fail(error);
   scene::Document doc;
-  doc.reset(std::move(*state), QString::fromStdString(scenePath));
-  const scene::MaterialId id = doc.state().findMaterialByName(p[0]);
-  if (id == scene::kNoMaterial)
-    return args.fail("no material named '" + p[0] + "' in " + scenePath + " (see `hybridscape-cli material list`)");
+  int code = 0;
+  if (!openScene(args, scenePath, doc, code)) return code;
+  std::string error;
+  const scene::MaterialId id = materialNamed(doc, p[0], scenePath, error);
+  if (id == scene::kNoMaterial) return args.fail(error);
   const scene::MaterialField* f = scene::findMaterialField(p[1]);
   if (!f) return args.fail("material '" + p[0] + "': no field '" + p[1] + "' (see --help)");
   const auto v = scene::parseFieldValue(*f, p[2], error);
@@ -149,26 +167,6 @@ int runSetField(int argc, char** argv) {
   if (!scene::saveScene(doc.state(), scenePath, error)) return args.fail(error);
   std::printf("set %s of %s in %s\n", p[1].c_str(), p[0].c_str(), scenePath.c_str());
   return 0;
-}
-
-// Loads `path` into `doc`; false with the message printed (through `args`).
-bool openScene(OperationArgs& args, const std::string& path, scene::Document& doc, int& code) {
-  std::string error;
-  std::optional<scene::SceneState> state = scene::loadScene(path, error);
-  if (!state) {
-    code = args.fail(error);
-    return false;
-  }
-  doc.reset(std::move(*state), QString::fromStdString(path));
-  return true;
-}
-
-scene::MaterialId materialNamed(const scene::Document& doc, const std::string& name, const std::string& path,
-                                std::string& error) {
-  const scene::MaterialId id = doc.state().findMaterialByName(name);
-  if (id == scene::kNoMaterial)
-    error = "no material named '" + name + "' in " + path + " (see `hybridscape-cli material list`)";
-  return id;
 }
 
 int runAdd(int argc, char** argv) {
