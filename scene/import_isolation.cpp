@@ -180,13 +180,6 @@ class WorkerProcess {
   mesh::ImportResult read(const std::string& path, const mesh::ImportOptions& options, const Progress* progress,
                           Clock::time_point since) {
     path_ = &path;
-    // The previous file's result is still in the file: cut it, so a worker
-    // that ends without writing one can never hand back another file's mesh.
-    if (::ftruncate(fds_.result, 0) != 0) {
-      stop(true);
-      return failed(path + ": the import worker's result file could not be reset (" + std::strerror(errno) +
-                    "). Nothing was imported.");
-    }
     const std::string request = mesh::importRequest(mesh::importWorkerArguments(path, options));
     for (size_t sent = 0; sent < request.size();) {
       const ssize_t n = ::send(fds_.stdinWrite, request.data() + sent, request.size() - sent, MSG_NOSIGNAL);
@@ -298,6 +291,11 @@ class WorkerProcess {
       return withoutResult(ended ? exitText(code) : std::string("it said it was done"),
                            !said.empty() ? said : readError);
     }
+    // Read: cut it, so that if this worker ends without writing the next
+    // file's result it can never hand back this file's mesh instead. (Not
+    // before a request: a worker just started may already be writing.) A
+    // worker whose file cannot be cut is not used again.
+    if (!ended && ::ftruncate(fds_.result, 0) != 0) stop(true);
     r.report.seconds = std::chrono::duration<double>(Clock::now() - since).count();
     // The worker names the file and the stage; the limit is ours to name.
     if (!r.ok() && limits_.memoryBytes && r.error.find("ran out of memory") != std::string::npos)
