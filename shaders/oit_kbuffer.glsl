@@ -21,8 +21,10 @@
 
 #define OIT_KEY_EMPTY 0xFFFFFFFFu
 
+#ifndef OIT_KEY_ONLY  // the fixed array uses the key alone
 layout(binding = 2, r32ui) uniform coherent uimage2DArray uOitSlots;    // K keys per pixel, sorted
 layout(binding = 3, rg32ui) uniform coherent uimage2DArray uOitColors;  // K colours (half pairs)
+#endif
 #ifndef OIT_K
 #define OIT_K 8
 #endif

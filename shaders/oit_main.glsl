@@ -48,12 +48,19 @@ void main() {
     oitOverflow(c);
   }
 #elif defined(HS_OIT_FIXED)
-  const uint i = atomicAdd(oitFixedCount[abufferPixel(p)], 1u);
-  atomicAdd(abufferCounters.fragments, 1u);
-  atomicMax(abufferCounters.maxPerPixel, i + 1u);
-  if (i == 0u) atomicAdd(abufferCounters.coveredPixels, 1u);
-  if (i < uint(OIT_FIXED_LAYERS)) imageStore(uOitFixedLayers, ivec3(p, int(i)), abufferPack(c, gl_FragCoord.z));
-  else oitOverflow(c);
+  // oit_fixed_slots.frag gave the fragment a layer with its key, or none.
+  const uint key = oitKey(gl_FragCoord.z, vObject, uint(gl_PrimitiveID));
+  const uint n = min(oitFixedCount[abufferPixel(p)], uint(OIT_FIXED_LAYERS));
+  for (int i = 0; i < OIT_FIXED_LAYERS; ++i) {
+    if (uint(i) >= n) break;
+    if (imageLoad(uOitFixedKeys, ivec3(p, i)).x == key) {
+      uvec4 node = abufferPack(c, gl_FragCoord.z);
+      node.w = key;
+      imageStore(uOitFixedLayers, ivec3(p, i), node);
+      return;
+    }
+  }
+  oitOverflow(c);
 #elif defined(HS_OIT_KBUFFER)
   const uint key = oitKey(gl_FragCoord.z, vObject, uint(gl_PrimitiveID));
   for (int i = 0; i < OIT_K; ++i) {
