@@ -14,6 +14,7 @@
 #include "oit_scenes.h"
 #include "render/offscreen_renderer.h"
 #include "scene/fields.h"
+#include "scene/scene_json.h"
 
 using namespace hs;
 using scene::Transparency;
@@ -237,6 +238,30 @@ class TestOit : public QObject {
     QCOMPARE(s.kbufferK, 1);
     scene::findSettingsField("oit_memory_mb")->set(s, scene::FieldValue(0.0));
     QCOMPARE(s.oitMemoryMb, 1.0);
+    // A loaded file: without the fields (written before them), the defaults;
+    // with bad values, each clamped and named in a warning.
+    {
+      Json j = scene::sceneToJson(test::stackScene(2, false, 32).state);
+      for (const char* key : {"transparency", "kbuffer_k", "oit_memory_mb"}) j["settings"].erase(key);
+      std::string error;
+      bool notJson = false;
+      const auto old = scene::sceneFromJsonText(j.dump(), error, notJson);
+      QVERIFY2(old, error.c_str());
+      QCOMPARE(old->settings.transparency, Transparency::ABuffer);
+      QCOMPARE(old->settings.kbufferK, 8);
+      QCOMPARE(old->settings.oitMemoryMb, 256.0);
+      j["settings"]["kbuffer_k"] = 1000;
+      j["settings"]["oit_memory_mb"] = 0;
+      std::vector<std::string> warnings;
+      const auto bad = scene::sceneFromJsonText(j.dump(), error, notJson, &warnings);
+      QVERIFY2(bad, error.c_str());
+      QCOMPARE(bad->settings.kbufferK, 32);
+      QCOMPARE(bad->settings.oitMemoryMb, 1.0);
+      std::string all;
+      for (const std::string& w : warnings) all += w + "\n";
+      qInfo("%s", all.c_str());
+      QVERIFY(all.find("kbuffer_k") != std::string::npos && all.find("oit_memory_mb") != std::string::npos);
+    }
     // Values only code can set still render: the renderer clamps again.
     test::OitScene sc = test::stackScene(3, false, 32);
     sc.state.settings.transparency = Transparency::KBuffer;
