@@ -90,6 +90,43 @@ class TestOit : public QObject {
     }
   }
 
+  // Small triangles (a lit two-sided sphere of 18k triangles in front of
+  // the stack): the K-buffer stays within 1/255 of depth peeling. The
+  // A-buffer does not yet here (docs/rendering.md "Transparency", open
+  // issue): its difference is printed, not asserted.
+  void kbufferMatchesReferenceOnSmallTriangles() {
+    test::OitScene sc = test::stackScene(4, true, 96);
+    scene::MeshAsset a;
+    a.id = 100;
+    a.name = "Sphere";
+    mesh::MeshData sphere = mesh::uvSphere(1.2f, 96, 48);
+    a.contentHash = mesh::contentHash(sphere);
+    a.data = std::make_shared<const mesh::MeshData>(std::move(sphere));
+    scene::Material m;
+    m.id = 100;
+    m.asset = a.id;
+    m.name = "Sphere / glass";
+    m.baseColor = {0.6f, 0.8f, 0.9f};
+    m.opacity = 0.3f;
+    a.materialSlots.assign(scene::materialSlotCount(*a.data), m.id);
+    sc.state.materials.emplace(m.id, m);
+    sc.state.assets.emplace(a.id, a);
+    test::addInstance(sc.state, 100, 100, {0.2, -0.1, 2.5});
+    sc.state.settings.transparency = Transparency::Reference;
+    const Image ref = r_.render(sc.state, sc.view);
+    sc.state.settings.transparency = Transparency::ABuffer;
+    render::FrameStats stats;
+    const Image img = r_.render(sc.state, sc.view, false, &stats);
+    const int diff = maxChannelDifference(img, ref);
+    QVERIFY(stats.oit.maxPerPixel >= 6);
+    sc.state.settings.transparency = Transparency::KBuffer;
+    sc.state.settings.kbufferK = 16;
+    const Image k = r_.render(sc.state, sc.view);
+    const int kdiff = maxChannelDifference(k, ref);
+    qInfo("kbuffer K=16 vs reference %d/255 (abuffer %d/255)", kdiff, diff);
+    QVERIFY(kdiff <= 1);
+  }
+
   // With K at least the depth complexity the K-buffer stores every
   // fragment in the A-buffer's order: the same bits. With K below it the
   // rest goes to the tail (reported) and the image differs, but not much.
