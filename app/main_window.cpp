@@ -228,6 +228,11 @@ void MainWindow::createActions() {
   gridAct_->setChecked(QSettings().value("view/showGrid", true).toBool());
   gridAct_->setIcon(icon(Icon::Grid));
   viewport_->setShowGrid(gridAct_->isChecked());
+  // Transparency (render/oit.h): translucent fragments per pixel as a heat map.
+  depthComplexityAct_ = make("Depth &Complexity", QKeySequence(), [this](bool on) {
+    viewport_->setShowDepthComplexity(on);
+  }, "Show how many translucent surfaces each pixel sees, blue (one) to red (the most), instead of the scene");
+  depthComplexityAct_->setCheckable(true);
   resetLayoutAct_ = make("&Reset Layout", QKeySequence(), [this] { resetLayout(); });
 
   auto* modes = new QActionGroup(this);
@@ -318,6 +323,7 @@ void MainWindow::createMenus() {
   view->addAction(frameAllAct_);
   view->addSeparator();
   view->addAction(gridAct_);
+  view->addAction(depthComplexityAct_);
   view->addSeparator();
   addTimelineMenus(file, view);
   QMenu* panels = view->addMenu("&Panels");

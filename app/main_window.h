@@ -212,6 +212,7 @@ class MainWindow : public QMainWindow {
   QAction *undoAct_ = nullptr, *redoAct_ = nullptr, *deleteAct_ = nullptr, *duplicateAct_ = nullptr,
           *renameAct_ = nullptr, *selectAllAct_ = nullptr, *selectNoneAct_ = nullptr;
   QAction *frameAct_ = nullptr, *frameAllAct_ = nullptr, *gridAct_ = nullptr, *resetLayoutAct_ = nullptr;
+  QAction* depthComplexityAct_ = nullptr;
   QAction *selectModeAct_ = nullptr, *moveAct_ = nullptr, *rotateAct_ = nullptr, *scaleAct_ = nullptr,
           *localAct_ = nullptr, *snapAct_ = nullptr;
   QActionGroup* upAxisGroup_ = nullptr;

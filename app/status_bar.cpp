@@ -64,6 +64,18 @@ QString passTableHtml(const render::FrameStats& stats, const std::map<std::strin
                   .arg(stats.lightsMaxPerCluster);
     html += ".</p>";
   }
+  // Transparency (render/oit.h): only frames with a translucent surface in view.
+  if (stats.oit.active) {
+    const render::OitStats& o = stats.oit;
+    html += QString("<p>Transparency (%1): %2 of OIT buffers").arg(QString::fromStdString(o.mode)).arg(formatBytes(o.bytes));
+    if (o.counted)
+      html += QString("; fragments per pixel: max %1, mean %2").arg(o.maxPerPixel).arg(o.meanPerPixel, 0, 'f', 2);
+    if (o.overflow > 0)
+      html += QString("; %L1 fragments over capacity, tail-blended (%2% of their pixels)")
+                  .arg(qulonglong(o.overflow))
+                  .arg(o.tailShare * 100.0, 0, 'f', 1);
+    html += ".</p>";
+  }
   return html;
 }
 

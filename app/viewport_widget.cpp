@@ -129,9 +129,17 @@ void ViewportWidget::paintGL() {
   // Per-pass GPU timestamps wait for the GPU, so only one frame in 30 takes
   // them (the status bar's per-pass list keeps the last measured times).
   options.passTimings = frames_ % 30 == 0;
+  options.oitCounts = options.passTimings;  // fragments per pixel for the status bar, with the timings
+  options.depthComplexity = showDepthComplexity_;
   stats_ = renderer_.render(state, view, defaultFramebufferObject(), options);
   ++frames_;
   emit frameRendered(stats_);
+}
+
+void ViewportWidget::setShowDepthComplexity(bool show) {
+  if (show == showDepthComplexity_) return;
+  showDepthComplexity_ = show;
+  update();
 }
 
 void ViewportWidget::setShowGrid(bool show) {

@@ -45,6 +45,9 @@ class ViewportWidget : public QOpenGLWidget {
   std::vector<std::string> takeGlMessages() { return renderer_.takeGlMessages(); }
   bool showGrid() const { return showGrid_; }
   void setShowGrid(bool show);
+  // The depth-complexity view mode (RenderOptions::depthComplexity).
+  bool showDepthComplexity() const { return showDepthComplexity_; }
+  void setShowDepthComplexity(bool show);
 
   // The entity under a widget position (logical pixels): a camera/light
   // glyph, else a mesh through the renderer's id pass. Makes the context
@@ -122,6 +125,7 @@ class ViewportWidget : public QOpenGLWidget {
   render::FrameStats stats_;
   int frames_ = 0;
   bool showGrid_ = true;
+  bool showDepthComplexity_ = false;
   bool collectGarbage_ = false;
   bool needsViewReset_ = true;
 

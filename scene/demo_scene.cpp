@@ -8,6 +8,7 @@
 #include "meshproc/mesh_process.h"
 #include "scene/asset_reports.h"
 #include "scene/demo_lights.h"
+#include "scene/demo_glass.h"
 #include "scene/demo_materials.h"
 #include "scene/demo_terrain.h"
 #include "scene/mesh_materials.h"
@@ -314,6 +315,8 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   // casts_shadows is read, settings.shadows is the master switch.
   for (auto& [id, e] : s.entities)
     if (e.light && e.light->type != Light::Type::Point) e.light->castsShadows = true;
+  // Glass spheres and a pond, drawn by the transparency path (docs/rendering.md "Transparency").
+  addDemoTranslucentSamples(s);
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

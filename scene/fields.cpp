@@ -363,6 +363,12 @@ std::vector<SettingsField> buildSettingsFields() {
       doubleField<S>("ao_strength", "AO strength", 0.0, 4.0, 0.05, "", [](S& s) -> float& { return s.aoStrength; }),
       enumField<S>("ao_resolution", "AO resolution", {"half", "full"},
                    [](S& s) -> AoResolution& { return s.aoResolution; }),
+      // Transparency (scene_state.h Transparency, docs/rendering.md).
+      enumField<S>("transparency", "Transparency", {"abuffer", "abuffer_fixed", "kbuffer", "weighted", "reference"},
+                   [](S& s) -> Transparency& { return s.transparency; }),
+      doubleField<S>("kbuffer_k", "K-buffer depth (K)", 1.0, 32.0, 1.0, "", [](S& s) -> int& { return s.kbufferK; }),
+      doubleField<S>("oit_memory_mb", "OIT memory cap", 1.0, 16384.0, 16.0, "MiB",
+                     [](S& s) -> double& { return s.oitMemoryMb; }),
   };
 }
 

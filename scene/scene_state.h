@@ -79,6 +79,13 @@ enum class SkyModel { Gradient = 0, Analytic = 1 };
 // Screen-space ambient occlusion of the ambient term (docs/rendering.md).
 enum class AmbientOcclusion { Off = 0, Ssao = 1, Gtao = 2 };  // docs/rendering.md, "Ambient occlusion"
 enum class AoResolution { Half = 0, Full = 1 };
+// Transparency (docs/rendering.md "Transparency"): how translucent
+// surfaces (opacity under 1, no alpha cut-out) are composited.
+// ABuffer: per-pixel linked lists, sorted; ABufferFixed: the thesis's
+// fixed 16-deep array; KBuffer: the kbufferK nearest, the rest tail-blended;
+// Weighted: weighted blended OIT (McGuire & Bavoil 2013); Reference: depth
+// peeling until no fragment is left (exact, slow: tests and benchmarks).
+enum class Transparency { ABuffer = 0, ABufferFixed = 1, KBuffer = 2, Weighted = 3, Reference = 4 };
 
 struct SceneSettings {
   glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
@@ -123,6 +130,11 @@ struct SceneSettings {
   float aoRadius = 1.0f;          // metres: how far an occluder counts
   float aoStrength = 1.0f;        // 0: none, 1: as measured, up to 4
   AoResolution aoResolution = AoResolution::Half;
+  // Transparency (Transparency above): the mode, the K-buffer's depth and
+  // the most GPU memory the OIT buffers of one view may take (MiB).
+  Transparency transparency = Transparency::ABuffer;
+  int kbufferK = 8;
+  double oitMemoryMb = 256.0;
   bool operator==(const SceneSettings&) const = default;
 };
 

@@ -190,9 +190,10 @@ class TestCli : public QObject {
       QVERIFY(glm::length(wp - glm::dvec3(s->worldMatrix(ent->id)[3])) < 1e-9);
     }
     // Assets: the bunny, with the triangle count of the scan's OBJ file,
-    // then the two surface-detail slabs (scene/demo_materials.h).
+    // then the two surface-detail slabs (scene/demo_materials.h) and the
+    // three glass spheres and the pond (scene/demo_glass.h).
     const QJsonArray assets = info["assets"].toArray();
-    QCOMPARE(assets.size(), 3);
+    QCOMPARE(assets.size(), 7);
     const std::string bunny = readFile(HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj");
     size_t faces = 0;
     for (size_t pos = 0; (pos = bunny.find("\nf ", pos)) != std::string::npos; ++pos) ++faces;

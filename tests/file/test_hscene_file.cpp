@@ -236,8 +236,9 @@ class TestHsceneFile : public QObject {
   void initTestCase() {
     QVERIFY(tmp_.isValid());
     rich_ = richScene();
-    // The demo's bunny and its two surface-detail slabs, and three imports.
-    QCOMPARE(rich_.assets.size(), size_t(6));
+    // The demo's bunny, its two surface-detail slabs, its three glass spheres
+    // and pond (scene/demo_glass.h), and three imports.
+    QCOMPARE(rich_.assets.size(), size_t(10));
     goodFile_ = path("good.hscene");
     std::string error;
     QVERIFY2(saveScene(rich_, goodFile_, error), error.c_str());

@@ -1,0 +1,67 @@
+#include "scene/demo_glass.h"
+
+#include <string>
+
+#include "mesh/primitives.h"
+#include "scene/mesh_materials.h"
+
+namespace hs::scene {
+namespace {
+
+// `mesh` as a new asset with its own material, shown once at `position`
+// under `parent`; returns the material for the caller to fill.
+Material& addTranslucent(SceneState& s, const std::string& name, mesh::MeshData mesh, const glm::dvec3& position,
+                         EntityId parent) {
+  mesh.materials[0].name = "surface";
+  MeshAsset a;
+  a.id = s.maxAssetId() + 1;
+  a.name = name;
+  a.sourcePath = "(made in code: scene/demo_glass.cpp)";
+  a.contentHash = mesh::contentHash(mesh);
+  a.data = std::make_shared<const mesh::MeshData>(std::move(mesh));
+  s.assets.emplace(a.id, a);
+  addMeshMaterials(s, a.id);
+  Entity e;
+  e.id = s.maxEntityId() + 1;
+  e.name = name;
+  e.parent = parent;
+  e.transform.translation = position;
+  e.mesh = MeshInstance{a.id};
+  s.entities[parent].children.push_back(e.id);
+  s.entities.emplace(e.id, e);
+  return s.materials.at(s.assets.at(a.id).materialSlots.front());
+}
+
+}  // namespace
+
+void addDemoTranslucentSamples(SceneState& s) {
+  Entity group;
+  group.id = s.maxEntityId() + 1;
+  group.name = "Translucent samples";
+  s.roots.push_back(group.id);
+  s.entities.emplace(group.id, group);
+
+  // Three glass-like spheres east of the bunnies (outside the first
+  // camera's view, which the demo goldens use): low opacity, glossy,
+  // tinted; two-sided, so each shows its far side through its near side.
+  const glm::vec3 tints[3] = {{0.75f, 0.9f, 1.0f}, {0.95f, 0.8f, 0.55f}, {0.7f, 1.0f, 0.75f}};
+  for (int i = 0; i < 3; ++i) {
+    Material& glass = addTranslucent(s, "Glass sphere " + std::to_string(i + 1), mesh::uvSphere(0.7f, 48, 24),
+                                     {7.0 + 2.0 * i, -5.0, 0.75}, group.id);
+    glass.baseColor = tints[i];
+    glass.opacity = 0.22f;
+    glass.roughness = 0.05f;
+    glass.specular = 1.0f;
+  }
+
+  // A pond west of the bunnies (outside the first camera's view too), just
+  // above the flat ground: blue-green water through which the ground shows.
+  Material& water = addTranslucent(s, "Pond (translucent water)", mesh::gridPlane(6.0f, 8, 3.0f), {-14.0, -2.0, 0.04},
+                                   group.id);
+  water.baseColor = glm::vec3(0.08f, 0.28f, 0.32f);
+  water.opacity = 0.6f;
+  water.roughness = 0.08f;
+  water.specular = 0.8f;
+}
+
+}  // namespace hs::scene
