@@ -14,6 +14,7 @@
 // in one frame.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -202,6 +203,10 @@ class Renderer {
   // Light clusters over the cap (render/passes/light_culling.h), reported
   // once when they start; the frame renders without the extra lights there.
   std::vector<std::string> takeLightProblems();
+  // Camera lenses that depth of field refused (an f-stop or focus distance
+  // that is not a positive number), each naming the camera and the field,
+  // reported once; the frame renders without depth of field.
+  std::vector<std::string> takeDofProblems();
   // Every program built since initialize(), initialisation's included.
   std::vector<BuiltProgram> builtPrograms() const;
   // The sun's cascades of the last frame (empty: no sun shadow).
@@ -211,6 +216,11 @@ class Renderer {
   void shutdown();
 
  private:
+  // settings.depth_of_field = reference (render/dof_reference.h); nullopt
+  // when no view needs depth of field (the frame then renders as usual).
+  std::optional<FrameStats> renderLensReference(const scene::SceneState& state, const std::vector<ViewTarget>& views,
+                                                const RenderOptions& options);
+
   struct Impl;
   std::unique_ptr<Impl> d_;
 };
