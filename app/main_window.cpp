@@ -318,6 +318,7 @@ void MainWindow::createMenus() {
   view->addAction(frameAllAct_);
   view->addSeparator();
   view->addAction(gridAct_);
+  view->addAction(viewport_->focusPickAction());  // depth of field: app/viewport_focus.cpp
   view->addSeparator();
   addTimelineMenus(file, view);
   QMenu* panels = view->addMenu("&Panels");

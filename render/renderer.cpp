@@ -349,7 +349,11 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
 }
 
 scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView& view, int x, int y) {
-  if (!d_->ready || x < 0 || y < 0 || x >= view.width || y >= view.height) return scene::kNoEntity;
+  return pickSurface(state, view, x, y).entity;
+}
+
+PickHit Renderer::pickSurface(const scene::SceneState& state, const RenderView& view, int x, int y) {
+  if (!d_->ready || x < 0 || y < 0 || x >= view.width || y >= view.height) return {};
   Impl& d = *d_;
   RenderResources& res = d.res;
   // Projection narrowed to the one pixel: the 1x1 target sees just it.
@@ -395,14 +399,24 @@ scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView&
   if (!world.terrains.empty()) res.terrain.drawPick(state, world.terrains, view, unsigned(meshIds + 1));
   GLuint id = 0;
   glReadPixels(0, 0, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &id);
+  // The depth the id pass left (the narrowing scales x and y only): the
+  // view depth of the surface, for focus picking (depth of field).
+  float depthValue = 0.0f;
+  glReadPixels(0, 0, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depthValue);
   res.pool.releaseTexture(color);
   res.pool.releaseTexture(depth);
   glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
   glDepthFunc(GL_LESS);
   glBindVertexArray(0);
   glUseProgram(0);
-  if (id > meshIds && id <= meshIds + world.terrains.size()) return world.terrains[id - meshIds - 1];
-  return id > 0 && id <= meshIds ? visible.entities[id - 1] : scene::kNoEntity;
+  PickHit hit;
+  if (id > meshIds && id <= meshIds + world.terrains.size()) hit.entity = world.terrains[id - meshIds - 1];
+  else if (id > 0 && id <= meshIds) hit.entity = visible.entities[id - 1];
+  if (id > 0 && depthValue > 0.0f) {
+    const glm::dmat4 p = view.projection();  // reversed Z: 1/z = (depth + p22) / p32
+    hit.viewDepth = p[3][2] / (double(depthValue) + p[2][2]);
+  }
+  return hit;
 }
 
 void Renderer::collectGarbage(const scene::SceneState& state) {

@@ -110,6 +110,13 @@ struct TerrainUpload {
   double finishMs = -1.0;  // with measureGpu: glFinish after them (until the GPU has the data)
 };
 
+// What is under a pixel (Renderer::pickSurface): the entity and the view
+// depth of its surface there (metres along the view axis; 0 where nothing is).
+struct PickHit {
+  scene::EntityId entity = scene::kNoEntity;
+  double viewDepth = 0.0;
+};
+
 // One cascade of the sun's shadow maps in the last frame (tests, benchmarks):
 // the view depth it serves, its texel size and the lookup matrix
 // (frame-relative position -> map u, v, depth) with the frame origin.
@@ -174,6 +181,8 @@ class Renderer {
   // The entity under window pixel (x, y) (origin top-left), or 0. Renders an
   // id pass for that pixel only.
   scene::EntityId pick(const scene::SceneState& state, const RenderView& view, int x, int y);
+  // The same id pass with the surface's depth there (focus picking).
+  PickHit pickSurface(const scene::SceneState& state, const RenderView& view, int x, int y);
 
   // Frees GPU copies of assets that left the scene.
   void collectGarbage(const scene::SceneState& state);
