@@ -69,6 +69,7 @@ int runRender(int argc, char** argv) {
   options.showGrid = !args.flag("no_grid");
   // Per-pass GPU timestamps wait for the GPU: only when they are asked for.
   options.passTimings = args.has("stats");
+  options.oitCounts = args.has("stats");  // fragments per pixel in every transparency mode
   const bool hdr = *format == sequencer::ImageFormat::Exr;
   const hs::Image img = renderer.render(*state, view, hdr, &stats, options);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -28,6 +28,16 @@ BufferRef PassBuilder::create(const std::string& name, const BufferDesc& desc) {
   return write(BufferRef{i});
 }
 
+BufferRef PassBuilder::createSized(const std::string& name, std::function<BufferDesc()> desc) {
+  FrameGraph::Resource r;
+  r.name = name;
+  r.texture = false;
+  r.lateDesc = std::move(desc);
+  const uint32_t i = graph_.addResource(std::move(r));
+  graph_.passes_[pass_].creates.push_back(i);
+  return write(BufferRef{i});
+}
+
 TextureRef PassBuilder::read(TextureRef t) {
   graph_.passes_[pass_].accesses.push_back({t.index, graph_.resources_[t.index].version, false});
   return t;
@@ -55,6 +65,7 @@ void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
 GLuint PassResources::texture(TextureRef t) const { return graph_.resources_[t.index].id; }
 GLuint PassResources::buffer(BufferRef b) const { return graph_.resources_[b.index].id; }
 const TextureDesc& PassResources::desc(TextureRef t) const { return graph_.resources_[t.index].tdesc; }
+const BufferDesc& PassResources::desc(BufferRef b) const { return graph_.resources_[b.index].bdesc; }
 
 GLuint PassResources::framebuffer(const std::vector<TextureRef>& colors, TextureRef depth, int layer) const {
   std::vector<GLuint> ids;
@@ -150,6 +161,7 @@ void FrameGraph::execute(bool timestamps) {
         r.id = r.imported;
         continue;
       }
+      if (r.lateDesc) r.bdesc = r.lateDesc();
       r.id = r.texture ? pool_.acquireTexture(r.tdesc, r.name) : pool_.acquireBuffer(r.bdesc, r.name);
       rec.gpuBytes += r.texture ? r.tdesc.bytes() : r.bdesc.bytes;
     }

@@ -42,6 +42,10 @@ class PassBuilder {
  public:
   TextureRef create(const std::string& name, const TextureDesc& desc);
   BufferRef create(const std::string& name, const BufferDesc& desc);
+  // A buffer whose size an earlier pass of the same frame decides (the
+  // A-buffer's node pool, sized by its counting pass): `desc` is asked when
+  // the buffer's first pass is about to run, after every pass before it ran.
+  BufferRef createSized(const std::string& name, std::function<BufferDesc()> desc);
   TextureRef read(TextureRef t);
   TextureRef write(TextureRef t);
   BufferRef read(BufferRef b);
@@ -63,6 +67,7 @@ class PassResources {
   GLuint texture(TextureRef t) const;
   GLuint buffer(BufferRef b) const;
   const TextureDesc& desc(TextureRef t) const;
+  const BufferDesc& desc(BufferRef b) const;
   // A framebuffer with these attachments (cached by the pool).
   GLuint framebuffer(const std::vector<TextureRef>& colors, TextureRef depth = {}, int layer = -1) const;
 
@@ -135,6 +140,7 @@ class FrameGraph {
     bool texture = true;
     TextureDesc tdesc;
     BufferDesc bdesc;
+    std::function<BufferDesc()> lateDesc;  // createSized: asked at allocation
     GLuint imported = 0;   // nonzero: made elsewhere
     GLuint id = 0;         // while allocated
     uint32_t version = 0;  // current version during setup

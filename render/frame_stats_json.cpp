@@ -33,6 +33,23 @@ Json frameStatsJson(const FrameStats& stats, const std::vector<GpuAllocation>& r
   j["lights"] = {{"in_view", stats.lightsInView},
                  {"clusters_over_cap", stats.lightClustersOverCap},
                  {"max_per_cluster", stats.lightsMaxPerCluster}};
+  // Transparency (render/oit.h): null when no translucent surface was in view.
+  if (stats.oit.active) {
+    const OitStats& o = stats.oit;
+    j["oit"] = {{"mode", o.mode},
+                {"bytes", o.bytes},
+                {"fragments", o.counted ? Json(o.fragments) : Json(nullptr)},
+                {"fragments_per_pixel_max", o.counted ? Json(o.maxPerPixel) : Json(nullptr)},
+                {"fragments_per_pixel_mean", o.counted ? Json(o.meanPerPixel) : Json(nullptr)},
+                {"covered_pixels", o.counted ? Json(o.coveredPixels) : Json(nullptr)},
+                {"overflow", o.overflow},
+                {"tail_share", o.tailShare},
+                {"tail_pixels", o.tailPixels},
+                {"layers", o.layers},
+                {"peels", o.peels}};
+  } else {
+    j["oit"] = nullptr;
+  }
   j["resources"] = std::move(resources);
   return j;
 }

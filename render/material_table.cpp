@@ -155,6 +155,7 @@ void MaterialTable::build(const scene::SceneState& state, const VisibleSet& visi
           dm.index = uint32_t(block_.size());
           dm.shading = m->shading;
           dm.twoSided = m->twoSided;
+          dm.translucent = m->opacity < 1.0f && !m->alphaCutout;
           const bool perPixel = m->shading != scene::ShadingMode::Gouraud;
           dm.normalMap = perPixel && dm.textures[1] != 0;
           dm.parallax = perPixel && dm.textures[2] != 0 && m->heightScale > 0.0f;
@@ -184,6 +185,7 @@ void MaterialTable::build(const scene::SceneState& state, const VisibleSet& visi
         if (dm.textures[0]) g.kind.y |= kMatBaseTexture;
         dm.index = uint32_t(block_.size());
         dm.twoSided = def.twoSided;
+        dm.translucent = def.opacity < 1.0f;
         block_.push_back(g);
         found = fallbacks.emplace(key, dm).first;
       }

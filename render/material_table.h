@@ -35,6 +35,9 @@ struct DrawMaterial {
   // map, never with Gouraud shading (lit per vertex, before any map).
   bool normalMap = false;
   bool parallax = false;
+  // Opacity under 1 and no alpha cut-out: drawn by the transparency path
+  // (render/oit.h), not the opaque pass.
+  bool translucent = false;
 };
 
 class MaterialTable {

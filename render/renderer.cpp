@@ -12,6 +12,7 @@
 #include "render/gl/gl_debug.h"
 #include "render/fog_block.h"
 #include "render/gpu_lights.h"
+#include "render/oit.h"
 #include "render/passes/ao_passes.h"
 #include "render/passes/background_passes.h"
 #include "render/passes/dof_passes.h"
@@ -60,6 +61,33 @@ ViewBlock viewBlockOf(const RenderView& v, const glm::dvec3& origin) {
   const double t = std::tan(v.fovY * 0.5);
   b.tanHalfFov = glm::vec4(float(t * v.aspect()), float(t), float(v.projectionShift.x), float(v.projectionShift.y));
   return b;
+}
+
+// The frame's transparency figures, summed over its views.
+OitStats oitStats(const scene::SceneSettings& settings, const std::vector<std::shared_ptr<OitViewInfo>>& views) {
+  static const char* const kModes[] = {"abuffer", "abuffer_fixed", "kbuffer", "weighted", "reference"};
+  OitStats s;
+  s.mode = kModes[int(settings.transparency)];
+  double tailShare = 0.0;
+  for (const auto& v : views) {
+    if (!v || !v->ran) continue;
+    s.active = true;
+    s.bytes += v->bytes;
+    s.overflow += v->overflow;
+    tailShare += v->tailShare;
+    s.tailPixels += v->tailPixels;
+    s.layers = v->layers;
+    s.peels = std::max(s.peels, v->peels);
+    if (v->counts) {
+      s.counted = true;
+      s.fragments += v->counts->fragments;
+      s.maxPerPixel = std::max(s.maxPerPixel, v->counts->maxPerPixel);
+      s.coveredPixels += v->counts->coveredPixels;
+    }
+  }
+  if (s.coveredPixels) s.meanPerPixel = double(s.fragments) / double(s.coveredPixels);
+  if (s.tailPixels) s.tailShare = tailShare / double(s.tailPixels);
+  return s;
 }
 
 }  // namespace
@@ -241,6 +269,9 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   addEnvironmentPass(*graph, frame);
   // Clustered lights: once per frame, one grid per view.
   addLightCullingPass(*graph, frame, viewContexts);
+  // Transparency (render/oit.h): the frame's translucent submeshes; none, no OIT pass or buffer.
+  const DrawList translucent = translucentSubmeshes(frame);
+  std::vector<std::shared_ptr<OitViewInfo>> oitViews(viewContexts.size());
   for (const ViewContext& v : viewContexts) {
     const SceneTargets scene = addOpaquePass(*graph, frame, v);
     if (!world.terrains.empty()) addTerrainPass(*graph, frame, v, scene);
@@ -249,13 +280,19 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
     if (options.overlay && !options.overlay->empty()) addOverlayPass(*graph, frame, v, scene, *options.overlay);
     TextureRef hdr = addResolvePass(*graph, frame, v, scene);
     hdr = addAmbientOcclusionPasses(*graph, frame, v, scene, hdr);  // per eye; none with AO off
+    // Transparency over the opaque colour, tested against a single-sample depth.
+    TextureRef singleDepth;
+    if (!translucent.empty() || options.keepDepth) singleDepth = addDepthResolvePass(*graph, frame, v, scene);
+    hdr = addTransparencyPasses(*graph, frame, v, translucent, singleDepth, hdr, options.oitCounts, oitViews[v.index]);
+    if (options.depthComplexity && !translucent.empty())
+      hdr = addDepthComplexityPass(*graph, frame, v, translucent, singleDepth, hdr);
     hdr = addDepthOfFieldPasses(*graph, frame, v, scene, hdr);       // none with DoF off or no blur
     addToneMapPasses(*graph, frame, v, hdr);
     if (options.keepHdr) graph->keep(hdr);
     d.keptHdr.push_back(options.keepHdr ? hdr : TextureRef{});
     TextureRef depth;
     if (options.keepDepth) {
-      depth = addDepthResolvePass(*graph, frame, v, scene);
+      depth = singleDepth;
       graph->keep(depth);
     }
     d.keptDepth.push_back(depth);
@@ -264,6 +301,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   graph->execute(options.passTimings);
   for (const PassRecord& r : graph->records())
     if (r.ran) stats.passes.push_back({r.name, r.cpuMs, r.gpuMs, r.gpuBytes});
+  stats.oit = oitStats(settings, oitViews);
   d.lastFrame = std::move(graph);
   res.pool.endFrame();
 

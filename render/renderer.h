@@ -47,6 +47,24 @@ struct GpuAllocation {
   bool transient = false;  // from the frame graph's pool (not persistent)
 };
 
+// Transparency (render/oit.h) in one frame, summed over its views; all
+// zero when no translucent surface was in view (then nothing was allocated).
+struct OitStats {
+  bool active = false;         // translucent surfaces were drawn
+  std::string mode;            // settings.transparency's name
+  size_t bytes = 0;            // GPU memory of the OIT buffers
+  bool counted = false;        // fragments below are known (every mode but weighted/reference without a count)
+  uint64_t fragments = 0;      // translucent fragments in front of the opaque surfaces
+  uint32_t maxPerPixel = 0;    // the deepest pixel
+  double meanPerPixel = 0.0;   // over pixels with at least one
+  uint64_t coveredPixels = 0;
+  uint64_t overflow = 0;       // fragments that found no place and were tail-blended
+  double tailShare = 0.0;      // mean share of the tail in the pixels that have one (0..1)
+  uint64_t tailPixels = 0;
+  int layers = 0;              // abuffer_fixed: layers; kbuffer: K used (both shrink under the cap)
+  int peels = 0;               // reference: layers peeled
+};
+
 struct FrameStats {
   size_t trianglesDrawn = 0;
   size_t drawCalls = 0;
@@ -68,6 +86,7 @@ struct FrameStats {
   size_t lightsInView = 0;
   size_t lightClustersOverCap = 0;
   size_t lightsMaxPerCluster = 0;
+  OitStats oit;
 };
 
 struct RenderOptions {
@@ -90,6 +109,12 @@ struct RenderOptions {
   // Every pixel loops over every point and spot light of the frame instead
   // of its cluster's (tests and bench_lights compare the two).
   bool bruteForceLights = false;
+  // Transparency: count fragments per pixel in every mode (the weighted
+  // and reference modes need an extra pass for it; --stats asks), and
+  // show the depth complexity of translucent surfaces as a heat map
+  // instead of the scene (the viewport's view mode).
+  bool oitCounts = false;
+  bool depthComplexity = false;
 };
 
 // One view of a frame and the framebuffer it ends in.

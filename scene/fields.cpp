@@ -377,6 +377,12 @@ std::vector<SettingsField> buildSettingsFields() {
                                  [](S& s) -> int& { return s.dofLayers; })),
       notAnimated(doubleField<S>("dof_reference_samples", "DoF lens samples (reference)", 64.0, 1024.0, 1.0, "",
                                  [](S& s) -> int& { return s.dofReferenceSamples; })),
+      // Transparency (scene_state.h Transparency, docs/rendering.md).
+      enumField<S>("transparency", "Transparency", {"abuffer", "abuffer_fixed", "kbuffer", "weighted", "reference"},
+                   [](S& s) -> Transparency& { return s.transparency; }),
+      doubleField<S>("kbuffer_k", "K-buffer depth (K)", 1.0, 32.0, 1.0, "", [](S& s) -> int& { return s.kbufferK; }),
+      doubleField<S>("oit_memory_mb", "OIT memory cap", 1.0, 16384.0, 16.0, "MiB",
+                     [](S& s) -> double& { return s.oitMemoryMb; }),
   };
 }
 

@@ -82,6 +82,13 @@ enum class AoResolution { Half = 0, Full = 1 };
 // buffer), a gather pass on the opaque colour and depth, layers from the
 // A-buffer (partial occlusion), or the lens-averaged reference.
 enum class DepthOfField { Off = 0, Gather = 1, Layered = 2, Reference = 3 };
+// Transparency (docs/rendering.md "Transparency"): how translucent
+// surfaces (opacity under 1, no alpha cut-out) are composited.
+// ABuffer: per-pixel linked lists, sorted; ABufferFixed: the thesis's
+// fixed 16-deep array; KBuffer: the kbufferK nearest, the rest tail-blended;
+// Weighted: weighted blended OIT (McGuire & Bavoil 2013); Reference: depth
+// peeling until no fragment is left (exact, slow: tests and benchmarks).
+enum class Transparency { ABuffer = 0, ABufferFixed = 1, KBuffer = 2, Weighted = 3, Reference = 4 };
 
 struct SceneSettings {
   glm::vec3 skyZenith{0.16f, 0.32f, 0.62f};    // linear RGB
@@ -130,6 +137,11 @@ struct SceneSettings {
   DepthOfField depthOfField = DepthOfField::Off;
   int dofLayers = 4;              // layered: K depth layers, 2..16
   int dofReferenceSamples = 64;   // reference: N pinhole renders over the lens, 64..1024
+  // Transparency (Transparency above): the mode, the K-buffer's depth and
+  // the most GPU memory the OIT buffers of one view may take (MiB).
+  Transparency transparency = Transparency::ABuffer;
+  int kbufferK = 8;
+  double oitMemoryMb = 256.0;
   bool operator==(const SceneSettings&) const = default;
 };
 

@@ -15,6 +15,9 @@
 #include "surface_detail.glsl"
 in vec4 vTangent;
 #endif
+#ifdef HS_OIT
+#include "oit_output.glsl"
+#endif
 
 in vec3 vEyePos;
 in vec3 vNormal;
@@ -67,3 +70,6 @@ void main() {
   outColor = vec4(shadeSurface(materialSurface(m, base.rgb, vEyePos, n)), hsAmbientShare);
 #endif
 }
+#ifdef HS_OIT
+#include "oit_main.glsl"
+#endif

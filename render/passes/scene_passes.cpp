@@ -69,6 +69,7 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
           for (size_t s = 0; s < m.submeshes.size(); ++s) {
             const mesh::Submesh& sm = m.submeshes[s];
             const DrawMaterial& mat = frame.res.materials.forDraw(d, s);
+            if (mat.translucent) continue;  // the transparency path draws it (render/oit.h)
             GlProgram& p = programFor(mat);
             if (&p != current) (current = &p)->use();
             p.set("uMaterial", unsigned(mat.index));

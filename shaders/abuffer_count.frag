@@ -1,0 +1,16 @@
+#version 450 core
+// The A-buffer's counting pass (render/abuffer.h): each fragment of the
+// captured draws that passes the depth test adds one to its pixel's count
+// (the depth complexity) and to the frame's totals, from which the CPU
+// sizes the node pool before the capture draws the same fragments again.
+// Early tests: a fragment behind the opaque depth must not count.
+layout(early_fragment_tests) in;
+#include "abuffer.glsl"
+
+void main() {
+  if (gl_HelperInvocation) return;  // stores nothing (oit_main.glsl)
+  const uint c = imageAtomicAdd(uABufferCounts, ivec2(gl_FragCoord.xy), 1u) + 1u;
+  atomicAdd(abufferCounters.fragments, 1u);
+  atomicMax(abufferCounters.maxPerPixel, c);
+  if (c == 1u) atomicAdd(abufferCounters.coveredPixels, 1u);
+}

@@ -1,0 +1,22 @@
+#version 450 core
+// K-buffer pass 1 (oit_kbuffer.glsl): the fragment's key into the pixel's
+// K sorted slots; also counts the pixel's fragments (depth complexity).
+layout(early_fragment_tests) in;
+#include "abuffer.glsl"
+#include "oit_kbuffer.glsl"
+flat in uint vObject;
+
+void main() {
+  if (gl_HelperInvocation) return;  // stores nothing (oit_main.glsl)
+  const ivec2 p = ivec2(gl_FragCoord.xy);
+  const uint c = imageAtomicAdd(uABufferCounts, p, 1u) + 1u;
+  atomicAdd(abufferCounters.fragments, 1u);
+  atomicMax(abufferCounters.maxPerPixel, c);
+  if (c == 1u) atomicAdd(abufferCounters.coveredPixels, 1u);
+  uint v = oitKey(gl_FragCoord.z, vObject, uint(gl_PrimitiveID));
+  for (int i = 0; i < OIT_K; ++i) {
+    const uint old = imageAtomicMin(uOitSlots, ivec3(p, i), v);
+    if (old == OIT_KEY_EMPTY) return;  // an empty slot took it
+    v = max(old, v);                   // the larger one moves on
+  }
+}
