@@ -45,7 +45,8 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
       {"fullscreen.vert", "gtao.frag", "", {}},
       // Depth of field (passes/dof_passes.h, dof_reference.h)
       {"fullscreen.vert", "dof_gather.frag", "", {}}, {"fullscreen.vert", "dof_accumulate.frag", "", {}},
-      {"fullscreen.vert", "dof_tiles.frag", "", {}},
+      {"fullscreen.vert", "dof_tiles.frag", "", {}}, {"", "", "dof_layers.comp", {}},
+      {"fullscreen.vert", "dof_composite.frag", "", {}},
   };
   return programs;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/gpu_mesh_cache.h"
+#include "render/passes/dof_layered.h"
 #include "render/passes/output_passes.h"
 
 namespace hs::render {
@@ -131,7 +132,10 @@ TextureRef addDepthOfFieldPasses(FrameGraph& graph, FrameContext& frame, const V
   DofLens lens;
   if (!depthOfFieldNeeded(frame.settings, frame.res, frame.world, frame.visible, v.view, &lens)) return hdr;
   const double nearest = nearestDrawnDepth(frame.world, frame.visible, v.view);
-  // Layered arrives with the A-buffer capture; until then gather stands in.
+  // Layered needs meshes to capture; without one in view the opaque image
+  // is the only layer, which is what gather blurs.
+  if (mode == scene::DepthOfField::Layered && !frame.visible.draws.empty())
+    return addLayeredDofPasses(graph, frame, v, hdr, addDepthResolvePass(graph, frame, v, scene), lens, nearest);
   return addGatherPass(graph, frame, v, scene, hdr, lens, nearest);
 }
 
