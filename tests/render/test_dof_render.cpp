@@ -226,6 +226,16 @@ class TestDofRender : public QObject {
     const auto reg = fresh.renderer().resourceRegistry();
     QCOMPARE(registryCount(reg, "dof_color"), size_t(1));
     QCOMPARE(registryCount(reg, "dof_tiles"), size_t(1));
+    QCOMPARE(registryCount(reg, "dof_layer"), size_t(0));
+    // Layered: the capture's lists and the K layers (here 4: RGBA16F and R16F arrays).
+    sc.state.settings.depthOfField = scene::DepthOfField::Layered;
+    fresh.render(sc.state, sc.view(kW, kH), false, &stats);
+    QVERIFY(ranPass(stats, "dof_layers") && ranPass(stats, "dof_composite"));
+    size_t layerBytes = 0;
+    for (const auto& a : fresh.renderer().resourceRegistry())
+      if (a.name.rfind("dof_layer", 0) == 0) layerBytes += a.bytes;
+    QCOMPARE(layerBytes, size_t(kW) * kH * 4 * (8 + 2));
+    QVERIFY(registryCount(fresh.renderer().resourceRegistry(), "dof_nodes") == 1);
   }
 
   // An f-stop or focus distance that is not a positive number (a script
