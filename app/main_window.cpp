@@ -324,6 +324,7 @@ void MainWindow::createMenus() {
   view->addSeparator();
   view->addAction(gridAct_);
   view->addAction(depthComplexityAct_);
+  view->addAction(viewport_->focusPickAction());  // depth of field: app/viewport_focus.cpp
   view->addSeparator();
   addTimelineMenus(file, view);
   QMenu* panels = view->addMenu("&Panels");

@@ -67,6 +67,10 @@ void MainWindow::createTimeline() {
           [this](const std::vector<scene::EntityId>& ids, const std::vector<std::string>& fields, const QString& key) {
             keying_->afterEdit(ids, fields, key);
           });
+  // Focus picking (depth of field) keys the focus like a Properties edit.
+  connect(viewport_, &ViewportWidget::focusPicked, keying_, [this](scene::EntityId camera, const QString& key) {
+    keying_->afterEdit({camera}, {"camera.focus_distance_m"}, key);
+  });
 
   timeline_ = new TimelinePanel(doc_, *clock_, *keying_, *selection_, *stereo_, this);
   // A material's or the settings' row shows that object in its dock.

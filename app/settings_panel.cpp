@@ -24,6 +24,16 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
   form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
   form->setVerticalSpacing(4);
   for (const auto& f : scene::settingsFields()) {
+    // Depth of field: a block of its own (its fields follow in the
+    // declarations, scene/fields.cpp); the lens is the camera's.
+    if (f.key == "depth_of_field") {
+      auto* heading = new QLabel("Depth of field", content);
+      heading->setObjectName("dofHeading");
+      heading->setStyleSheet("QLabel { font-weight: bold; margin-top: 8px; }");
+      heading->setToolTip("The camera's lens (focal length, f-stop, focus distance in Properties); "
+                          "View > Pick Focus Distance sets the focus from a click in the viewport");
+      form->addRow(heading);
+    }
     FieldEditor* ed = createFieldEditor(specOf(f, "settings." + f.key), content);
     const scene::SettingsField* field = &f;
     ed->setOnEdited([this, field](const scene::FieldValue& value, int component, const QString& mergeKey) {

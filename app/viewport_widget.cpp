@@ -41,6 +41,7 @@ ViewportWidget::ViewportWidget(scene::Document& doc, Selection& selection, QWidg
   flyTimer_.setInterval(16);
   flyTimer_.setTimerType(Qt::PreciseTimer);
   connect(&flyTimer_, &QTimer::timeout, this, &ViewportWidget::tickFly);
+  createFocusPickAction();
 }
 
 ViewportWidget::~ViewportWidget() {
@@ -374,8 +375,14 @@ void ViewportWidget::mouseReleaseEvent(QMouseEvent* e) {
   if (drag_ == Drag::Fly) endFly();
   if (drag_ == Drag::Gizmo) gizmo_.endDrag();
   if (drag_ == Drag::PathPoint) pathEnd();
-  if (drag_ == Drag::Click && QLineF(e->position(), pressPos_).length() <= kClickSlopPixels)
-    clickSelect(e->position().toPoint(), pressModifiers_ | e->modifiers());
+  if (drag_ == Drag::Click && QLineF(e->position(), pressPos_).length() <= kClickSlopPixels) {
+    if (focusPicking_) {  // depth of field: this click picks the focus (viewport_focus.cpp)
+      pickFocus(e->position().toPoint());
+      setFocusPicking(false);
+    } else {
+      clickSelect(e->position().toPoint(), pressModifiers_ | e->modifiers());
+    }
+  }
   drag_ = Drag::None;
   update();
 }

@@ -4,6 +4,7 @@
 // selection and gizmo drags. It includes no GL headers itself: the renderer
 // works on whatever context is current, which is this widget's inside
 // initializeGL/paintGL and after makeCurrent().
+#include <QAction>
 #include <QElapsedTimer>
 #include <QOpenGLWidget>
 #include <QTimer>
@@ -74,6 +75,16 @@ class ViewportWidget : public QOpenGLWidget {
   // point with move handles (viewport_path.cpp).
   void setPathEditor(PathEditor* editor);
   PathPointDrag* pathPointDrag() const { return pathDrag_; }
+  // Focus picking (depth of field; viewport_focus.cpp): while on, the next
+  // left click sets the active camera's focus distance to the depth of the
+  // surface under it (one undo step, keyed like any edit), then turns off.
+  // The action is the View menu's "Pick Focus Distance" (Ctrl+Alt+F).
+  QAction* focusPickAction() const { return focusPickAction_; }
+  void setFocusPicking(bool on);
+  bool focusPicking() const { return focusPicking_; }
+  // The click itself: false (nothing changed) where no surface is under
+  // `pos`, there is no camera, or the surface is behind the camera.
+  bool pickFocus(const QPoint& pos);
   // What the viewport shows: the document at the timeline's current time.
   const scene::SceneState& displayedState() const;
   bool stereoPreviewActive() const;
@@ -90,6 +101,9 @@ class ViewportWidget : public QOpenGLWidget {
   // the timeline keys them where they are animated or Auto Key is on.
   void transformsEdited(const std::vector<hs::scene::EntityId>& ids, const std::vector<std::string>& fields,
                         const QString& mergeKey);
+  // Focus picking set this camera's focus_distance_m with this merge key
+  // (the timeline keys it where it is animated or Auto Key is on).
+  void focusPicked(hs::scene::EntityId camera, const QString& mergeKey);
 
  protected:
   void initializeGL() override;
@@ -141,6 +155,11 @@ class ViewportWidget : public QOpenGLWidget {
 
   TimelineClock* clock_ = nullptr;
   StereoPreviewSettings* stereo_ = nullptr;
+  // Focus picking (viewport_focus.cpp).
+  QAction* focusPickAction_ = nullptr;
+  bool focusPicking_ = false;
+  int focusPicks_ = 0;  // merge keys: each pick its own undo step
+  void createFocusPickAction();
   render::StereoPreviewRenderer stereoRenderer_;
   ComfortReadout* comfortReadout_ = nullptr;
   std::optional<sequencer::ComfortResult> lastComfort_;

@@ -69,6 +69,11 @@ struct RenderResources {
   std::vector<std::string> lightProblems;
   bool lightOverflowReported = false;
 
+  // Depth of field (passes/dof_passes.h): refused lenses not yet taken,
+  // and the last one reported (each reported once until it changes).
+  std::vector<std::string> dofProblems;
+  std::string lastDofProblem;
+
   // The program of `desc` (all are built at initialisation, so this never
   // fails at draw time; it returns nullptr only for a desc that was not).
   GlProgram& program(const gl::ProgramDesc& desc);

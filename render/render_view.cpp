@@ -55,6 +55,7 @@ RenderView viewFromCamera(const scene::SceneState& state, scene::EntityId camera
     v.fovY = glm::radians(e->camera->verticalFovDeg);
     v.nearClip = e->camera->nearClip;
     v.farClip = e->camera->farClip;
+    v.lens = {true, e->camera->focusDistance, e->camera->fStop, e->name};
   }
   return v;
 }

@@ -1,12 +1,24 @@
 #pragma once
 // A viewpoint in double precision and the camera-relative maths built on it.
 // No GL here: the editor's picking and gizmos use it too.
+#include <string>
+
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "scene/scene_state.h"
 
 namespace hs::render {
+
+// The lens of the camera a view is taken from, for depth of field
+// (render/dof_lens.h). A view that is no camera's (the editor's free view)
+// has none and is never blurred.
+struct CameraLens {
+  bool present = false;
+  double focusDistance = 10.0;  // metres (Camera::focusDistance)
+  double fStop = 8.0;           // Camera::fStop
+  std::string camera;           // the camera entity's name, for messages
+};
 
 struct RenderView {
   glm::dvec3 eye{0.0};
@@ -17,6 +29,7 @@ struct RenderView {
   int width = 1;
   int height = 1;
   glm::dvec2 projectionShift{0.0};  // NDC offset (off-axis frusta)
+  CameraLens lens;                  // depth of field; both eyes of a pair share the camera's
 
   double aspect() const { return double(width) / double(std::max(height, 1)); }
   glm::dvec3 forward() const { return orientation * glm::dvec3(0, 0, -1); }

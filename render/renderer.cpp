@@ -15,6 +15,8 @@
 #include "render/oit.h"
 #include "render/passes/ao_passes.h"
 #include "render/passes/background_passes.h"
+#include "render/passes/dof_passes.h"
+#include "render/dof_reference.h"
 #include "render/passes/environment_pass.h"
 #include "render/passes/light_culling.h"
 #include "render/passes/output_passes.h"
@@ -41,6 +43,10 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
       {"", "", "light_culling.comp", {}},
       // GTAO (settings.ao = gtao)
       {"fullscreen.vert", "gtao.frag", "", {}},
+      // Depth of field (passes/dof_passes.h, dof_reference.h)
+      {"fullscreen.vert", "dof_gather.frag", "", {}}, {"fullscreen.vert", "dof_accumulate.frag", "", {}},
+      {"fullscreen.vert", "dof_tiles.frag", "", {}}, {"", "", "dof_layers.comp", {}},
+      {"fullscreen.vert", "dof_composite.frag", "", {}},
   };
   return programs;
 }
@@ -100,6 +106,11 @@ struct Renderer::Impl {
   std::unique_ptr<FrameGraph> lastFrame;
   std::vector<TextureRef> keptHdr, keptDepth;
   std::vector<glm::ivec2> keptSizes;
+  // Depth of field's reference (dof_reference.h): true while the lens
+  // samples render (each a plain pinhole frame), and the float sums the
+  // last reference frame keeps (its HDR images) until the next frame.
+  bool lensSampling = false;
+  std::vector<GLuint> lensAccum;
 
   // `lightsInView`: the point and spot lights that can light a pixel of a
   // view (none: the shaders loop over no light).
@@ -191,6 +202,10 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   if (!d_->ready || targets.empty()) return stats;
   for (const ViewTarget& t : targets)
     if (t.view.width <= 0 || t.view.height <= 0) return stats;
+  // Depth of field, reference: N pinhole frames over the lens, averaged
+  // (none when no view needs it: the frame renders as below).
+  if (state.settings.depthOfField == scene::DepthOfField::Reference && !d_->lensSampling)
+    if (std::optional<FrameStats> s = renderLensReference(state, targets, options)) return *s;
   const auto t0 = std::chrono::steady_clock::now();
   Impl& d = *d_;
   RenderResources& res = d.res;
@@ -216,6 +231,10 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   d.keptHdr.clear();
   d.keptDepth.clear();
   d.keptSizes.clear();
+  if (!d.lensSampling) {
+    for (GLuint t : d.lensAccum) res.pool.releaseTexture(t);
+    d.lensAccum.clear();
+  }
 
   // Once per frame, whatever the number of views.
   const RenderWorld world = RenderWorld::build(state);
@@ -268,6 +287,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
     hdr = addTransparencyPasses(*graph, frame, v, translucent, singleDepth, hdr, options.oitCounts, oitViews[v.index]);
     if (options.depthComplexity && !translucent.empty())
       hdr = addDepthComplexityPass(*graph, frame, v, translucent, singleDepth, hdr);
+    hdr = addDepthOfFieldPasses(*graph, frame, v, scene, hdr);       // none with DoF off or no blur
     addToneMapPasses(*graph, frame, v, hdr);
     if (options.keepHdr) graph->keep(hdr);
     d.keptHdr.push_back(options.keepHdr ? hdr : TextureRef{});
@@ -368,7 +388,11 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
 }
 
 scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView& view, int x, int y) {
-  if (!d_->ready || x < 0 || y < 0 || x >= view.width || y >= view.height) return scene::kNoEntity;
+  return pickSurface(state, view, x, y).entity;
+}
+
+PickHit Renderer::pickSurface(const scene::SceneState& state, const RenderView& view, int x, int y) {
+  if (!d_->ready || x < 0 || y < 0 || x >= view.width || y >= view.height) return {};
   Impl& d = *d_;
   RenderResources& res = d.res;
   // Projection narrowed to the one pixel: the 1x1 target sees just it.
@@ -414,14 +438,24 @@ scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView&
   if (!world.terrains.empty()) res.terrain.drawPick(state, world.terrains, view, unsigned(meshIds + 1));
   GLuint id = 0;
   glReadPixels(0, 0, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &id);
+  // The depth the id pass left (the narrowing scales x and y only): the
+  // view depth of the surface, for focus picking (depth of field).
+  float depthValue = 0.0f;
+  glReadPixels(0, 0, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depthValue);
   res.pool.releaseTexture(color);
   res.pool.releaseTexture(depth);
   glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
   glDepthFunc(GL_LESS);
   glBindVertexArray(0);
   glUseProgram(0);
-  if (id > meshIds && id <= meshIds + world.terrains.size()) return world.terrains[id - meshIds - 1];
-  return id > 0 && id <= meshIds ? visible.entities[id - 1] : scene::kNoEntity;
+  PickHit hit;
+  if (id > meshIds && id <= meshIds + world.terrains.size()) hit.entity = world.terrains[id - meshIds - 1];
+  else if (id > 0 && id <= meshIds) hit.entity = visible.entities[id - 1];
+  if (id > 0 && depthValue > 0.0f) {
+    const glm::dmat4 p = view.projection();  // reversed Z: 1/z = (depth + p22) / p32
+    hit.viewDepth = p[3][2] / (double(depthValue) + p[2][2]);
+  }
+  return hit;
 }
 
 void Renderer::collectGarbage(const scene::SceneState& state) {
@@ -469,6 +503,86 @@ std::vector<BuiltProgram> Renderer::builtPrograms() const {
   std::vector<BuiltProgram> out;
   for (const gl::ProgramDesc& d : d_->res.shaders.builtPrograms()) out.push_back({d.name(), d.defines});
   return out;
+}
+
+std::vector<std::string> Renderer::takeDofProblems() {
+  std::vector<std::string> out;
+  out.swap(d_->res.dofProblems);
+  return out;
+}
+
+// Depth of field, reference (dof_reference.h): the lens samples are whole
+// frames through renderViews (with lensSampling set, so each is a pinhole
+// frame), their HDR images summed in float, then one small graph tone maps
+// the sums into the targets and keeps them for readHdr.
+std::optional<FrameStats> Renderer::renderLensReference(const scene::SceneState& state,
+                                                         const std::vector<ViewTarget>& targets,
+                                                         const RenderOptions& options) {
+  Impl& d = *d_;
+  RenderResources& res = d.res;
+  const RenderWorld world = RenderWorld::build(state);
+  std::vector<RenderView> views;
+  for (const ViewTarget& t : targets) views.push_back(t.view);
+  const RenderView& lodView = options.lodView ? *options.lodView : views.front();
+  const VisibleSet visible = buildVisibleSet(world, res.meshes, views, &lodView, state.settings.meshLodErrorPixels);
+  std::vector<DofLens> lenses(targets.size());
+  bool any = false;
+  for (size_t i = 0; i < targets.size(); ++i)
+    if (!depthOfFieldNeeded(state.settings, res, world, visible, views[i], &lenses[i])) lenses[i].valid = false;
+    else any = true;
+  if (!any) return std::nullopt;
+
+  const int n = std::clamp(state.settings.dofReferenceSamples, 64, 1024);
+  const std::vector<glm::dvec2> disc = lensDiscSamples(n);
+  for (GLuint t : d.lensAccum) res.pool.releaseTexture(t);
+  d.lensAccum.clear();
+  for (const RenderView& v : views) d.lensAccum.push_back(acquireLensAccumulation(res, v.width, v.height));
+  RenderOptions o = options;
+  o.keepHdr = true;
+  o.keepDepth = false;
+  o.measureGpuTime = false;
+  o.passTimings = false;
+  o.lodView = &lodView;  // every sample draws the same levels of detail
+  FrameStats stats;
+  d.lensSampling = true;
+  for (const glm::dvec2& p : disc) {
+    std::vector<ViewTarget> sample = targets;
+    for (size_t i = 0; i < sample.size(); ++i)
+      if (lenses[i].valid) sample[i].view = lensSampleView(views[i], lenses[i], p);
+    stats = renderViews(state, sample, o);
+    for (size_t i = 0; i < views.size(); ++i)
+      accumulateLensSample(res, d.lastFrame->keptTexture(d.keptHdr[i]), d.lensAccum[i], views[i].width,
+                           views[i].height, 1.0f / float(n));
+  }
+  d.lensSampling = false;
+
+  // Tone map the sums into the targets.
+  d.lastFrame.reset();
+  d.keptHdr.clear();
+  d.keptDepth.clear();
+  d.keptSizes.clear();
+  auto graph = std::make_unique<FrameGraph>(res.pool);
+  FrameStats finalStats;
+  FrameContext frame{res, world, visible, state.settings, options, lodView, finalStats};
+  for (size_t i = 0; i < targets.size(); ++i) {
+    const ViewContext v{targets[i].view, i, targets[i].fbo, targets[i].name.empty() ? "" : "[" + targets[i].name + "]"};
+    const TextureRef sum = graph->importTexture(v.named("dof_reference"), d.lensAccum[i],
+                                                TextureDesc{views[i].width, views[i].height, GL_RGBA32F});
+    addToneMapPasses(*graph, frame, v, sum);
+    if (options.keepHdr) graph->keep(sum);
+    d.keptHdr.push_back(options.keepHdr ? sum : TextureRef{});
+    d.keptDepth.push_back({});
+    d.keptSizes.emplace_back(views[i].width, views[i].height);
+  }
+  graph->execute(false);
+  for (const PassRecord& r : graph->records())
+    if (r.ran) stats.passes.push_back({r.name, r.cpuMs, r.gpuMs, r.gpuBytes});
+  d.lastFrame = std::move(graph);
+  res.pool.endFrame();
+  glBindFramebuffer(GL_FRAMEBUFFER, targets.back().fbo);
+  stats.gpuBytes = 0;
+  for (const GpuAllocation& a : resourceRegistry()) stats.gpuBytes += a.bytes;
+  return stats;
 }
 
 std::vector<std::string> Renderer::takeLightProblems() {

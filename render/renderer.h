@@ -14,6 +14,7 @@
 // in one frame.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -134,6 +135,13 @@ struct TerrainUpload {
   double finishMs = -1.0;  // with measureGpu: glFinish after them (until the GPU has the data)
 };
 
+// What is under a pixel (Renderer::pickSurface): the entity and the view
+// depth of its surface there (metres along the view axis; 0 where nothing is).
+struct PickHit {
+  scene::EntityId entity = scene::kNoEntity;
+  double viewDepth = 0.0;
+};
+
 // One cascade of the sun's shadow maps in the last frame (tests, benchmarks):
 // the view depth it serves, its texel size and the lookup matrix
 // (frame-relative position -> map u, v, depth) with the frame origin.
@@ -198,6 +206,8 @@ class Renderer {
   // The entity under window pixel (x, y) (origin top-left), or 0. Renders an
   // id pass for that pixel only.
   scene::EntityId pick(const scene::SceneState& state, const RenderView& view, int x, int y);
+  // The same id pass with the surface's depth there (focus picking).
+  PickHit pickSurface(const scene::SceneState& state, const RenderView& view, int x, int y);
 
   // Frees GPU copies of assets that left the scene.
   void collectGarbage(const scene::SceneState& state);
@@ -227,6 +237,10 @@ class Renderer {
   // Light clusters over the cap (render/passes/light_culling.h), reported
   // once when they start; the frame renders without the extra lights there.
   std::vector<std::string> takeLightProblems();
+  // Camera lenses that depth of field refused (an f-stop or focus distance
+  // that is not a positive number), each naming the camera and the field,
+  // reported once; the frame renders without depth of field.
+  std::vector<std::string> takeDofProblems();
   // Every program built since initialize(), initialisation's included.
   std::vector<BuiltProgram> builtPrograms() const;
   // The sun's cascades of the last frame (empty: no sun shadow).
@@ -236,6 +250,11 @@ class Renderer {
   void shutdown();
 
  private:
+  // settings.depth_of_field = reference (render/dof_reference.h); nullopt
+  // when no view needs depth of field (the frame then renders as usual).
+  std::optional<FrameStats> renderLensReference(const scene::SceneState& state, const std::vector<ViewTarget>& views,
+                                                const RenderOptions& options);
+
   struct Impl;
   std::unique_ptr<Impl> d_;
 };

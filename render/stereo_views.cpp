@@ -80,6 +80,7 @@ EyeViews eyeViews(const scene::SceneState& state, scene::EntityId camera, int wi
   out.eyes = sequencer::stereoCameras(mono, *rig);
   out.left = viewOfEye(out.eyes.left, width, height);
   out.right = viewOfEye(out.eyes.right, width, height);
+  out.left.lens = out.right.lens = out.mono.lens;  // one focus for both eyes (depth of field)
   return out;
 }
 

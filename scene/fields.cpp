@@ -310,6 +310,12 @@ std::vector<ComponentInfo> buildEntityComponents() {
   return out;
 }
 
+// A count that chooses how much work a pass does (not a look to animate).
+SettingsField notAnimated(SettingsField f) {
+  f.animatable = false;
+  return f;
+}
+
 std::vector<SettingsField> buildSettingsFields() {
   using S = SceneSettings;
   return {
@@ -363,6 +369,14 @@ std::vector<SettingsField> buildSettingsFields() {
       doubleField<S>("ao_strength", "AO strength", 0.0, 4.0, 0.05, "", [](S& s) -> float& { return s.aoStrength; }),
       enumField<S>("ao_resolution", "AO resolution", {"half", "full"},
                    [](S& s) -> AoResolution& { return s.aoResolution; }),
+      // Depth of field (docs/rendering.md "Depth of field"); the lens is the
+      // camera's (focal_length_mm, f_stop, focus_distance_m).
+      enumField<S>("depth_of_field", "Depth of field", {"off", "gather", "layered", "reference"},
+                   [](S& s) -> DepthOfField& { return s.depthOfField; }),
+      notAnimated(doubleField<S>("dof_layers", "DoF layers (layered)", 2.0, 16.0, 1.0, "",
+                                 [](S& s) -> int& { return s.dofLayers; })),
+      notAnimated(doubleField<S>("dof_reference_samples", "DoF lens samples (reference)", 64.0, 1024.0, 1.0, "",
+                                 [](S& s) -> int& { return s.dofReferenceSamples; })),
       // Transparency (scene_state.h Transparency, docs/rendering.md).
       enumField<S>("transparency", "Transparency", {"abuffer", "abuffer_fixed", "kbuffer", "weighted", "reference"},
                    [](S& s) -> Transparency& { return s.transparency; }),

@@ -79,6 +79,10 @@ enum class SkyModel { Gradient = 0, Analytic = 1 };
 // Screen-space ambient occlusion of the ambient term (docs/rendering.md).
 enum class AmbientOcclusion { Off = 0, Ssao = 1, Gtao = 2 };  // docs/rendering.md, "Ambient occlusion"
 enum class AoResolution { Half = 0, Full = 1 };
+// Depth of field (docs/rendering.md "Depth of field"): off (no pass, no
+// buffer), a gather pass on the opaque colour and depth, layers from the
+// A-buffer (partial occlusion), or the lens-averaged reference.
+enum class DepthOfField { Off = 0, Gather = 1, Layered = 2, Reference = 3 };
 // Transparency (docs/rendering.md "Transparency"): how translucent
 // surfaces (opacity under 1, no alpha cut-out) are composited.
 // ABuffer: per-pixel linked lists, sorted; ABufferFixed: the thesis's
@@ -130,6 +134,11 @@ struct SceneSettings {
   float aoRadius = 1.0f;          // metres: how far an occluder counts
   float aoStrength = 1.0f;        // 0: none, 1: as measured, up to 4
   AoResolution aoResolution = AoResolution::Half;
+  // Depth of field (DepthOfField above), from the viewing camera's lens
+  // (focal length, f-stop, focus distance). Off by default.
+  DepthOfField depthOfField = DepthOfField::Off;
+  int dofLayers = 4;              // layered: K depth layers, 2..16
+  int dofReferenceSamples = 64;   // reference: N pinhole renders over the lens, 64..1024
   // Transparency (Transparency above): the mode, the K-buffer's depth and
   // the most GPU memory the OIT buffers of one view may take (MiB).
   Transparency transparency = Transparency::ABuffer;
