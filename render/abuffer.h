@@ -1,28 +1,38 @@
 #pragma once
 // The A-buffer capture (issue 13; shaders/abuffer.glsl is the GLSL side):
-// draws a given draw list into per-pixel linked lists of fragments (Yang
-// et al. 2010): head pointers (one uint per pixel), a node pool in a storage
-// buffer (colour as two half pairs, depth, next node: 16 bytes) and an
-// atomic counter. Shared by the transparency path (render/oit.h: the
-// translucent submeshes, depth-tested against the opaque depth) and the
-// layered depth of field (every surface, no depth test).
+// draws a given draw list into per-pixel ranges of fragments: a node pool
+// in a storage buffer (colour as two half pairs, depth, key: 16 bytes per
+// fragment) where each pixel's fragments are contiguous and sorted front to
+// back, and the starts of the ranges (one uint per pixel). Shared by the
+// transparency path (render/oit.h: the translucent submeshes, depth-tested
+// against the opaque depth) and the layered depth of field (every surface,
+// no depth test).
 //
-// Two passes, both through the frame graph, so the registry and --stats see
-// every byte: "<name>_count" counts each pixel's fragments (the counts
-// image, which is also the depth-complexity view) and the frame's total;
-// the CPU reads the total back (one small wait) and sizes the pool for
-// exactly this frame's fragments, capped by `memoryCapBytes`. Then
-// "<name>_capture" draws the list again with the mesh shader's
-// HS_OIT_ABUFFER variant (full lighting), appending each fragment to its
-// pixel's list. Fragments beyond the pool's capacity (only when the cap is
-// reached) are counted (ABufferInfo::overflow) and, with `tail`, summed into
-// the tail buffer (shaders/oit_tail.glsl) instead of being dropped.
+// Two frame-graph passes, so the registry and --stats see every byte:
+// "<name>_count" counts each pixel's fragments (the counts image, which is
+// also the depth-complexity view) and the frame's total; the CPU reads the
+// total back (one small wait) and sizes the pool for exactly this frame's
+// fragments, capped by `memoryCapBytes`. "<name>_capture" then
+//   1. turns the counts into ranges (a prefix sum, shaders/abuffer_scan.comp),
+//   2. draws the list with a derivative-free shader that hands each
+//      fragment a node of its pixel and writes its key there
+//      (shaders/abuffer_keys.frag, which says why not in the lit shader),
+//   3. sorts each pixel's keys (shaders/abuffer_sort_keys.comp),
+//   4. draws the list again with the mesh shader's HS_OIT_ABUFFER variant
+//      (full lighting): each fragment finds its key and writes its colour.
+// No step depends on the order fragments arrive in, so a frame captures
+// the same bits every time (the linked lists of Yang et al. 2010, built
+// with atomics in the lit shader, did not on llvmpipe). When the cap is
+// reached each pixel keeps its nearest `perPixelCap` fragments (the largest
+// cap that fits); the rest are counted (ABufferInfo::overflow) and, with
+// `tail`, summed into the tail buffer (shaders/oit_tail.glsl) instead of
+// being dropped.
 //
-// Reading it: bind with bindABuffer in a later pass that reads the refs,
-// and include shaders/abuffer_sort.glsl, which loads one pixel's list into
-// a local array sorted front to back, in a compute shader (on llvmpipe a
-// fragment shader's dynamically indexed array misread some pixels;
-// shaders/oit_resolve.comp is the example). Include only inside render/.
+// Reading it: bind with bindABuffer in a later pass that reads the refs and
+// walk a pixel's range (shaders/abuffer_sort.glsl), in a compute shader
+// (on llvmpipe a fragment shader's dynamically indexed array misread some
+// pixels; shaders/oit_resolve.comp is the example). Include only inside
+// render/.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -35,23 +45,24 @@
 namespace hs::render {
 
 // Binding points (shaders/abuffer.glsl, oit_tail.glsl; reserved for oit:
-// buffers 12-15, image units 0-3).
+// buffers 12-16, image units 0-3).
 enum ABufferBinding : unsigned {
   kABufferCountsImage = 1,       // image unit: r32ui fragments per pixel
   kABufferNodesBinding = 12,     // buffer: uvec4 nodes
   kABufferCountersBinding = 13,  // buffer: ABufferCounters
   kOitTailBinding = 14,          // buffer: tail sums (two uvec4 per pixel)
-  kABufferHeadsBinding = 15,     // buffer: uint head per pixel, row-major (a buffer, not an image: abuffer.glsl says why)
+  kABufferStartsBinding = 15,    // buffer: uint per pixel and one more, row-major: where each pixel's range starts
+  kABufferCursorBinding = 16,    // buffer: uint per pixel, the key pass's next node (the capture's alone)
 };
-constexpr uint32_t kABufferEnd = 0xFFFFFFFFu;
+constexpr uint32_t kABufferNoCap = 0xFFFFFFFFu;
 constexpr size_t kABufferNodeBytes = 16;
 constexpr size_t kOitTailBytesPerPixel = 32;
 
 // The std430 ABufferCounters block (shaders/abuffer.glsl), member for member.
 struct ABufferCounters {
-  uint32_t allocated = 0, fragments = 0, maxPerPixel = 0, coveredPixels = 0;
+  uint32_t perPixelCap = kABufferNoCap, fragments = 0, maxPerPixel = 0, coveredPixels = 0;
   uint32_t capacity = 0, overflow = 0, tailShare = 0, tailPixels = 0;
-  uint32_t width = 0, pad[3] = {0, 0, 0};
+  uint32_t width = 0, fixedLayers = 0, pad[2] = {0, 0};
 };
 static_assert(sizeof(ABufferCounters) == 48);
 
@@ -72,8 +83,12 @@ struct ABufferRequest {
   // captured (it is attached read-only, never written).
   TextureRef depth;
   ABufferDepthTest depthTest = ABufferDepthTest::Opaque;
-  size_t memoryCapBytes = size_t(256) << 20;  // heads + counts + pool (+ tail and result image) stay under this
+  size_t memoryCapBytes = size_t(256) << 20;  // starts + cursor + counts + pool (+ tail and result image) stay under this
   bool tail = false;   // sum what does not fit into the tail buffer (oit_tail.glsl)
+  // The thesis's fixed-depth array (abuffer_fixed): every pixel gets this
+  // many nodes whatever it needs (fewer when the cap says so), a pixel
+  // with more keeps its nearest. 0: the pool is sized to the frame.
+  int fixedLayers = 0;
   std::vector<std::string> defines;  // more defines for the capture's mesh program
 };
 
@@ -84,15 +99,23 @@ struct ABufferInfo {
   uint32_t maxPerPixel = 0;    // the deepest pixel's count
   uint64_t coveredPixels = 0;  // pixels with at least one fragment
   uint64_t capacity = 0;       // nodes in the pool
+  uint32_t perPixelCap = kABufferNoCap;  // nodes a pixel may keep (the largest that fits the memory cap)
+  uint32_t fixedLayers = 0;    // the fixed array's nodes per pixel (ABufferRequest::fixedLayers under the cap); 0: none
   uint64_t overflow = 0;       // fragments that found no node (fragments - capacity when positive)
-  size_t bytes = 0;            // heads + counts + pool + counters (+ with a tail: the tail and the resolve's 16-byte result image)
+  size_t bytes = 0;            // starts + cursor + counts + pool + counters (+ with a tail: the tail and the resolve's 16-byte result image)
   bool ran = false;
+  // Set before the counting pass runs: over this many bytes of pool, or
+  // with a pixel deeper than `fixedLayers`, the pass also reads every
+  // pixel's count back into `pixelCounts`, from which the pool's sizing
+  // finds the per-pixel cap or the fixed array's overflow (0: never).
+  size_t poolBudgetBytes = 0;
+  std::vector<uint32_t> pixelCounts;
 };
 
 struct ABuffer {
-  BufferRef heads;      // uint per pixel, row-major: newest node of the pixel, kABufferEnd for none
+  BufferRef starts;     // uint per pixel and one more, row-major: pixel i's nodes are [starts[i], starts[i + 1])
   TextureRef counts;    // r32ui: fragments per pixel
-  BufferRef nodes;      // uvec4 per node
+  BufferRef nodes;      // uvec4 per node, each pixel's sorted front to back
   BufferRef counters;   // ABufferCounters
   BufferRef tail;       // with ABufferRequest::tail; else invalid
   std::shared_ptr<ABufferInfo> info;
@@ -116,7 +139,7 @@ FragmentCount addFragmentCountPass(FrameGraph& graph, FrameContext& frame, const
 // it adds nothing and returns invalid refs (nothing is allocated).
 ABuffer addABufferCapture(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const ABufferRequest& request);
 
-// Declares a later pass's reads of the A-buffer (heads, nodes, counters,
+// Declares a later pass's reads of the A-buffer (starts, nodes, counters,
 // counts, tail) and, in its execute, binds them where shaders/abuffer.glsl
 // expects them.
 void readABuffer(PassBuilder& b, const ABuffer& a);

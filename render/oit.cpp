@@ -15,8 +15,10 @@ namespace {
 constexpr unsigned kOitTextureUnit = 20;
 // Depth peeling stops here even if fragments are left (reported as peels).
 constexpr int kMaxPeels = 4096;
-// Image units of the fixed array and the K-buffer (shaders/oit_output.glsl).
+// Image units of the K-buffer (shaders/oit_kbuffer.glsl).
 constexpr unsigned kOitImage2 = 2, kOitImage3 = 3;
+// The thesis's fixed-depth array: 16 layers per pixel (fewer when the cap says so).
+constexpr int kFixedArrayLayers = 16;
 
 size_t capBytes(const FrameContext& frame) {
   return size_t(std::max(frame.settings.oitMemoryMb, 1.0) * double(size_t(1) << 20));
@@ -106,8 +108,11 @@ void runComputeResolve(FrameContext& frame, const PassResources& r, TextureRef h
   runResolve(frame, r, hdr, w, h, {"OIT_RESOLVE_REFERENCE"}, [](GlProgram&) {});
 }
 
+// The A-buffer, or with `fixedLayers` the thesis's fixed-depth array (the
+// same capture with every pixel's range that long: render/abuffer.h).
 TextureRef addABufferMode(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const DrawList& draws,
-                          TextureRef depth, TextureRef hdr, const std::shared_ptr<OitViewInfo>& info) {
+                          TextureRef depth, TextureRef hdr, const std::shared_ptr<OitViewInfo>& info,
+                          int fixedLayers) {
   ABufferRequest req;
   req.name = "oit";
   req.draws = draws;
@@ -115,6 +120,7 @@ TextureRef addABufferMode(FrameGraph& graph, FrameContext& frame, const ViewCont
   req.depthTest = ABufferDepthTest::Opaque;
   req.memoryCapBytes = capBytes(frame);
   req.tail = true;
+  req.fixedLayers = fixedLayers;
   const ABuffer a = addABufferCapture(graph, frame, v, req);
   info->counts = a.info;
   struct Data {
@@ -138,110 +144,9 @@ TextureRef addABufferMode(FrameGraph& graph, FrameContext& frame, const ViewCont
             });
             takeCounters(*info, readCounters(r.buffer(d.a.counters)), false);
             info->bytes = d.a.info->bytes;  // the result image included (sizePool)
-          })
-      .hdr;
-}
-
-TextureRef addFixedMode(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const DrawList& draws,
-                        TextureRef depth, TextureRef hdr, const std::shared_ptr<OitViewInfo>& info) {
-  const int w = v.view.width, h = v.view.height;
-  const size_t pixels = size_t(w) * size_t(h);
-  // 16 layers as in the thesis, fewer when the cap says so: per pixel a
-  // counter, the layers and the tail.
-  const size_t perPixel = capBytes(frame) / std::max<size_t>(pixels, 1);
-  const int layers = int(std::clamp<size_t>(perPixel > 52 ? (perPixel - 52) / 20 : 1, 1, 16));
-  info->layers = layers;
-  info->counts = std::make_shared<ABufferInfo>();
-  info->counts->width = w;
-  info->counts->height = h;
-  info->bytes = pixels * (4 + 20 * size_t(layers) + kOitTailBytesPerPixel + 16) + sizeof(ABufferCounters);
-  const std::string layersDefine = "OIT_FIXED_LAYERS " + std::to_string(layers);
-  // Pass 1 hands out the layers (oit_fixed_slots.frag), pass 2 shades into them.
-  struct Slots {
-    TextureRef depth, keys, layers;
-    BufferRef count, counters;
-  };
-  const Slots& slots = graph.addPass<Slots>(
-      v.named("oit_fixed_slots"),
-      [&](PassBuilder& b, Slots& d) {
-        d.depth = b.read(depth);
-        d.count = b.create(v.named("oit_fixed_count"), BufferDesc{pixels * 4});
-        d.keys = b.create(v.named("oit_fixed_keys"), TextureDesc{w, h, GL_R32UI, 1, layers, 1, false, true});
-        d.layers = b.create(v.named("oit_fixed_layers"), TextureDesc{w, h, GL_RGBA32UI, 1, layers, 1, false, true});
-        d.counters = b.create(v.named("oit_counters"), BufferDesc{sizeof(ABufferCounters)});
-      },
-      [&frame, draws, w, h, index = v.index, layersDefine](const Slots& d, const PassResources& r) {
-        clearBuffer(r.buffer(d.count));
-        resetABufferCounters(r.buffer(d.counters), w);
-        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.depth));
-        glViewport(0, 0, w, h);
-        opaqueDepthTest();
-        frame.res.bindView(index);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kABufferHeadsBinding, r.buffer(d.count));
-        glBindImageTexture(kOitImage2, r.texture(d.keys), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kABufferCountersBinding, r.buffer(d.counters));
-        drawSubmeshes(frame, draws, {layersDefine}, "oit_fixed_slots.frag");
-        restoreDepth();
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-      });
-  struct Capture {
-    TextureRef depth, keys, layers;
-    BufferRef count, counters, tail;
-  };
-  const Capture& cap = graph.addPass<Capture>(
-      v.named("oit_fixed_capture"),
-      [&](PassBuilder& b, Capture& d) {
-        d.depth = b.read(depth);
-        d.count = b.read(slots.count);
-        d.keys = b.read(slots.keys);
-        d.layers = b.write(b.read(slots.layers));
-        d.counters = b.write(b.read(slots.counters));
-        d.tail = b.create(v.named("oit_tail"), BufferDesc{pixels * kOitTailBytesPerPixel});
-        readShadowMaps(b, frame);
-        readLightGrid(b, frame);
-      },
-      [&frame, draws, w, h, index = v.index, layersDefine](const Capture& d, const PassResources& r) {
-        clearBuffer(r.buffer(d.tail));
-        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.depth));
-        glViewport(0, 0, w, h);
-        opaqueDepthTest();
-        frame.res.bindView(index);
-        bindShadowMaps(frame, r);
-        bindLightGrid(frame, r, index);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kABufferHeadsBinding, r.buffer(d.count));
-        glBindImageTexture(kOitImage2, r.texture(d.keys), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-        glBindImageTexture(kOitImage3, r.texture(d.layers), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32UI);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kABufferCountersBinding, r.buffer(d.counters));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOitTailBinding, r.buffer(d.tail));
-        drawSubmeshes(frame, draws, drawDefines(frame, {"HS_OIT_FIXED", "HS_OIT_TAIL", layersDefine}));
-        restoreDepth();
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-      });
-  struct Data {
-    Capture c;
-    TextureRef hdr, result;
-  };
-  return graph
-      .addPass<Data>(
-          v.named("oit_resolve"),
-          [&](PassBuilder& b, Data& d) {
-            d.c = cap;
-            b.read(cap.count);
-            b.read(cap.layers);
-            b.write(b.read(cap.counters));
-            b.read(cap.tail);
-            d.result = b.create(v.named("oit_result"), TextureDesc{w, h, GL_RGBA32F});
-            d.hdr = b.write(b.read(hdr));
-          },
-          [&frame, info, w, h, layersDefine](const Data& d, const PassResources& r) {
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kABufferHeadsBinding, r.buffer(d.c.count));
-            glBindImageTexture(kOitImage3, r.texture(d.c.layers), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32UI);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kABufferCountersBinding, r.buffer(d.c.counters));
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOitTailBinding, r.buffer(d.c.tail));
-            runComputeResolve(frame, r, d.hdr, d.result, w, h, {"OIT_RESOLVE_FIXED", layersDefine}, [&](GlProgram& p) {
-              p.set("uOitTail", true);
-            });
-            takeCounters(*info, readCounters(r.buffer(d.c.counters)), true);
+            const ABufferInfo& got = *d.a.info;
+            info->layers =
+                int(got.fixedLayers ? got.fixedLayers : got.perPixelCap == kABufferNoCap ? 0 : got.perPixelCap);
           })
       .hdr;
 }
@@ -501,8 +406,9 @@ TextureRef addTransparencyPasses(FrameGraph& graph, FrameContext& frame, const V
   info = std::make_shared<OitViewInfo>();
   if (draws.empty()) return hdr;
   switch (frame.settings.transparency) {
-    case scene::Transparency::ABuffer: return addABufferMode(graph, frame, v, draws, depth, hdr, info);
-    case scene::Transparency::ABufferFixed: return addFixedMode(graph, frame, v, draws, depth, hdr, info);
+    case scene::Transparency::ABuffer: return addABufferMode(graph, frame, v, draws, depth, hdr, info, 0);
+    case scene::Transparency::ABufferFixed:
+      return addABufferMode(graph, frame, v, draws, depth, hdr, info, kFixedArrayLayers);
     case scene::Transparency::KBuffer: return addKBufferMode(graph, frame, v, draws, depth, hdr, info);
     case scene::Transparency::Weighted:
     case scene::Transparency::Reference: break;

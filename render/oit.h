@@ -4,8 +4,8 @@
 // are left out of the opaque pass and drawn here after the opaque
 // geometry, sky and ambient occlusion, lit by the same mesh shader, then
 // composited over the opaque colour by the mode of settings.transparency:
-//   abuffer        linked lists (render/abuffer.h), sorted per pixel
-//   abuffer_fixed  the thesis's fixed array of 16 layers + per-pixel counter
+//   abuffer        every fragment in per-pixel ranges (render/abuffer.h), sorted per pixel
+//   abuffer_fixed  the thesis's fixed array of 16 layers per pixel (the same capture), the nearest kept
 //   kbuffer        the K nearest (settings.kbuffer_k) without interlock, the rest tail-blended
 //   weighted       weighted blended OIT (McGuire & Bavoil 2013)
 //   reference      depth peeling until no fragment is left
@@ -30,7 +30,7 @@ struct OitViewInfo {
   uint64_t overflow = 0;                // fragments that went to the tail
   double tailShare = 0.0;               // sum over pixels of the tail's share of the pixel
   uint64_t tailPixels = 0;
-  int layers = 0;                       // abuffer_fixed: layers (16 unless the cap says fewer)
+  int layers = 0;                       // abuffer_fixed: layers (16 unless the cap says fewer); kbuffer: K; abuffer: the per-pixel cap (0: none)
   int peels = 0;                        // reference: layers peeled
   bool ran = false;
 };

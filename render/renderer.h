@@ -61,7 +61,7 @@ struct OitStats {
   uint64_t overflow = 0;       // fragments that found no place and were tail-blended
   double tailShare = 0.0;      // mean share of the tail in the pixels that have one (0..1)
   uint64_t tailPixels = 0;
-  int layers = 0;              // abuffer_fixed: layers; kbuffer: K used (both shrink under the cap)
+  int layers = 0;              // abuffer_fixed: layers; kbuffer: K used (both shrink under the cap); abuffer: the per-pixel cap when the memory cap bites, else 0
   int peels = 0;               // reference: layers peeled
 };
 

@@ -16,7 +16,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #define ABUFFER_MAX_FRAGMENTS 32
-#include "abuffer_sort.glsl"
+#include "abuffer_read.glsl"
 #include "dof_common.glsl"
 
 layout(binding = 24) uniform sampler2D uOpaqueColor;

@@ -21,7 +21,7 @@
 
 #define OIT_KEY_EMPTY 0xFFFFFFFFu
 
-#ifndef OIT_KEY_ONLY  // the fixed array uses the key alone
+#ifndef OIT_KEY_ONLY  // the A-buffer uses the key alone
 layout(binding = 2, r32ui) uniform coherent uimage2DArray uOitSlots;    // K keys per pixel, sorted
 layout(binding = 3, rg32ui) uniform coherent uimage2DArray uOitColors;  // K colours (half pairs)
 #endif

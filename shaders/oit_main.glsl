@@ -12,7 +12,7 @@ float oitOpacity() {
 }
 
 
-#if defined(HS_OIT_ABUFFER) || defined(HS_OIT_FIXED) || defined(HS_OIT_KBUFFER)
+#if defined(HS_OIT_ABUFFER) || defined(HS_OIT_KBUFFER)
 // What finds no place: counted, and summed into the tail where there is one.
 void oitOverflow(vec4 c) {
   atomicAdd(abufferCounters.overflow, 1u);
@@ -37,30 +37,21 @@ void main() {
   // why every atomic here is a buffer's).
   if (gl_HelperInvocation) return;
 #if defined(HS_OIT_ABUFFER)
-  const uint i = atomicAdd(abufferCounters.allocated, 1u);
-  if (i < abufferCounters.capacity) {
-    uvec4 node = abufferPack(c, gl_FragCoord.z);
-    // The link to the pixel's list is made by abuffer_link.comp: .w holds
-    // the pixel until then (abuffer.glsl says why).
-    node.w = abufferPixel(p);
-    abufferNodes[i] = node;
-  } else {
-    oitOverflow(c);
-  }
-#elif defined(HS_OIT_FIXED)
-  // oit_fixed_slots.frag gave the fragment a layer with its key, or none.
+  // The key pass gave this fragment a node holding its key, in its pixel's
+  // range sorted by key (abuffer_keys.frag): find it by binary search. No
+  // node (over the cap, or a key tie whose twin took it): the tail.
   const uint key = oitKey(gl_FragCoord.z, vObject, uint(gl_PrimitiveID));
-  const uint n = min(oitFixedCount[abufferPixel(p)], uint(OIT_FIXED_LAYERS));
-  for (int i = 0; i < OIT_FIXED_LAYERS; ++i) {
-    if (uint(i) >= n) break;
-    if (imageLoad(uOitFixedKeys, ivec3(p, i)).x == key) {
-      uvec4 node = abufferPack(c, gl_FragCoord.z);
-      node.w = key;
-      imageStore(uOitFixedLayers, ivec3(p, i), node);
-      return;
-    }
+  const uint pixel = abufferPixel(p), end = abufferStarts[pixel + 1u];
+  uint lo = abufferStarts[pixel], hi = end;
+  while (lo < hi) {
+    const uint mid = (lo + hi) / 2u;
+    if (abufferNodes[mid].w < key) lo = mid + 1u;
+    else hi = mid;
   }
-  oitOverflow(c);
+  if (lo < end && abufferNodes[lo].w == key && !abufferWritten(abufferNodes[lo]))
+    abufferNodes[lo] = abufferNode(c, gl_FragCoord.z, key);
+  else
+    oitOverflow(c);
 #elif defined(HS_OIT_KBUFFER)
   const uint key = oitKey(gl_FragCoord.z, vObject, uint(gl_PrimitiveID));
   for (int i = 0; i < OIT_K; ++i) {

@@ -2,8 +2,8 @@
 // and A-buffer variants of the mesh shader (render/oit.h, render/abuffer.h)
 // run mesh.frag's shading unchanged, renamed meshShade here, and then do
 // what oit_main.glsl's main does with the colour instead of writing it:
-//   HS_OIT_ABUFFER   append to the pixel's A-buffer list
-//   HS_OIT_FIXED     store in the fixed-array layer oit_fixed_slots.frag gave the fragment
+//   HS_OIT_ABUFFER   write into the A-buffer node that holds the fragment's key
+//                    (abuffer_keys.frag; the fixed array too)
 //   HS_OIT_KBUFFER   write into the K-buffer slot that holds the fragment's key
 //   HS_OIT_WEIGHTED  weighted blended OIT's two targets
 //   HS_OIT_PEEL      one depth-peeling layer: the nearest fragment behind the last layer
@@ -11,21 +11,15 @@
 #ifndef HS_OIT_OUTPUT_GLSL
 #define HS_OIT_OUTPUT_GLSL
 
-#if defined(HS_OIT_ABUFFER) || defined(HS_OIT_FIXED) || defined(HS_OIT_KBUFFER) || defined(HS_OIT_WEIGHTED)
+#if defined(HS_OIT_ABUFFER) || defined(HS_OIT_KBUFFER) || defined(HS_OIT_WEIGHTED)
 #include "abuffer.glsl"
 #endif
 #ifdef HS_OIT_TAIL
 #include "oit_tail.glsl"
 #endif
-#ifdef HS_OIT_FIXED
-// Per pixel: fragments that arrived (buffer 15, where the A-buffer has its heads).
-layout(std430, binding = 15) coherent buffer OitFixedCount { uint oitFixedCount[]; };
-layout(binding = 3, rgba32ui) uniform coherent uimage2DArray uOitFixedLayers;
-layout(binding = 2, r32ui) uniform coherent uimage2DArray uOitFixedKeys;  // oit_fixed_slots.frag's
-#endif
 // The key (and, for the K-buffer, its images). Outside any #ifdef: the
 // shader library expands a file once, where it is first included.
-#ifdef HS_OIT_FIXED
+#ifdef HS_OIT_ABUFFER
 #define OIT_KEY_ONLY
 #endif
 #include "oit_kbuffer.glsl"

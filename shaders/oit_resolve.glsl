@@ -5,27 +5,22 @@
 // pixel's translucent layers composited front to back (oit_composite.glsl),
 // written as (colour, transmittance) and blended ONE, SRC_ALPHA over the
 // opaque colour, so result = colour + transmittance x opaque.
-//   OIT_RESOLVE_ABUFFER   the linked list, sorted (abuffer_sort.glsl); a list
-//                         longer than the local array is composited in batches
-//   OIT_RESOLVE_FIXED     the fixed array's layers, sorted
+//   OIT_RESOLVE_ABUFFER   the pixel's range of the A-buffer (and of the fixed
+//                         array, which is one), in the order the capture sorted it
 //   OIT_RESOLVE_KBUFFER   the K slots (already in order)
 //   OIT_RESOLVE_WEIGHTED  weighted blended OIT's average colour and revealage
 //   OIT_RESOLVE_REFERENCE the depth-peeling accumulation
 //   OIT_PEEL_ACCUMULATE   (not a resolve) one peeled layer's premultiplied colour,
 //                         blended under the accumulation
-// Tails (OIT_RESOLVE_ABUFFER, _FIXED, _KBUFFER with uOitTail) come last, as
+// Tails (OIT_RESOLVE_ABUFFER and _KBUFFER with uOitTail) come last, as
 // one layer behind the stored ones; their share of each pixel is summed
 // into the counters for --stats.
 #include "oit_composite.glsl"
-#if defined(OIT_RESOLVE_ABUFFER) || defined(OIT_RESOLVE_FIXED) || defined(OIT_RESOLVE_KBUFFER)
-#include "abuffer_sort.glsl"
+#if defined(OIT_RESOLVE_ABUFFER) || defined(OIT_RESOLVE_KBUFFER)
+#include "abuffer.glsl"
 #include "oit_tail.glsl"
 #define OIT_HAS_TAIL
 uniform bool uOitTail;
-#endif
-#ifdef OIT_RESOLVE_FIXED
-layout(std430, binding = 15) coherent buffer OitFixedCount { uint oitFixedCount[]; };
-layout(binding = 3, rgba32ui) uniform coherent uimage2DArray uOitFixedLayers;
 #endif
 #ifdef OIT_RESOLVE_KBUFFER
 #include "oit_kbuffer.glsl"
@@ -49,9 +44,6 @@ uniform ivec2 uOitSize;
 layout(location = 0) out vec4 outColor;
 #endif
 
-// Below this transmittance the layers behind add nothing an 8-bit output shows.
-const float kOpaqueEnough = 1.0 / 65536.0;
-
 void main() {
 #ifdef OIT_COMPUTE
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -66,29 +58,12 @@ void main() {
 #endif
   OitComposite s = oitBegin();
 #if defined(OIT_RESOLVE_ABUFFER)
-  uint total;
-  uint loaded = abufferLoadSorted(p, total);
-  for (int i = 0; i < ABUFFER_MAX_FRAGMENTS; ++i)
-    if (uint(i) < loaded) oitAdd(s, abufferColor(abufferFragments[i]));
-  // A list longer than the array: the next batches, each from the last
-  // fragment composited (with the copies of it the last batch had no room for).
-  uint remaining = total - loaded;
-  while (remaining > 0u && s.transmittance >= kOpaqueEnough) {
-    const uvec4 after = abufferFragments[loaded - 1u];
-    uint taken = 0u;
-    for (uint i = loaded; i > 0u && abufferSame(abufferFragments[i - 1u], after); --i) ++taken;
-    uint same;
-    const uint matching = abufferLoadSortedAfter(p, true, after, loaded, same);
-    for (uint k = taken; k < same; ++k) oitAdd(s, abufferColor(after));
-    for (uint i = 0u; i < loaded; ++i) oitAdd(s, abufferColor(abufferFragments[i]));
-    remaining = matching - loaded;
+  // The pixel's range, already sorted by the capture (abuffer_sort_keys.comp).
+  const uint pixel = abufferPixel(p), end = abufferStarts[pixel + 1u];
+  for (uint i = abufferStarts[pixel]; i < end; ++i) {
+    const uvec4 f = abufferNodes[i];
+    if (abufferWritten(f)) oitAdd(s, abufferColor(f));
   }
-#elif defined(OIT_RESOLVE_FIXED)
-  const uint n = min(oitFixedCount[abufferPixel(p)], uint(OIT_FIXED_LAYERS));
-  for (int i = 0; i < OIT_FIXED_LAYERS; ++i)
-    if (uint(i) < n) abufferFragments[i] = imageLoad(uOitFixedLayers, ivec3(p, i));
-  abufferSort(n);
-  for (uint i = 0u; i < n; ++i) oitAdd(s, abufferColor(abufferFragments[i]));
 #elif defined(OIT_RESOLVE_KBUFFER)
   for (int i = 0; i < OIT_K; ++i) {
     if (imageLoad(uOitSlots, ivec3(p, i)).x == OIT_KEY_EMPTY) break;
