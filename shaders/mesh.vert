@@ -26,6 +26,12 @@ out vec3 vEyePos;
 out vec3 vNormal;
 out vec2 vUv;
 flat out uint vObject;
+// The same position in every program built from this file: the
+// transparency passes draw a mesh twice with different fragment shaders
+// (a key pass, then the lit pass: render/abuffer.h, render/oit.h) and match
+// fragments by their depth, which a differently optimised variant could
+// round otherwise.
+invariant gl_Position;
 
 void main() {
   Object o = objects[aObject];

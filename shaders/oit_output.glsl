@@ -14,6 +14,14 @@
 #if defined(HS_OIT_ABUFFER) || defined(HS_OIT_KBUFFER) || defined(HS_OIT_WEIGHTED)
 #include "abuffer.glsl"
 #endif
+#if defined(HS_OIT_ABUFFER) || defined(HS_OIT_KBUFFER)
+// The depth test before the shader, as in the key pass that drew the same
+// fragments (abuffer_keys.frag, oit_kbuffer_depth.frag): with the test
+// after it, a fragment just behind the opaque surface (where a rasterizer's
+// early depth and the shader's gl_FragCoord.z round apart, as around MSAA's
+// resolved depth) would run, find no key and land in the tail.
+layout(early_fragment_tests) in;
+#endif
 #ifdef HS_OIT_TAIL
 #include "oit_tail.glsl"
 #endif
