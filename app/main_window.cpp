@@ -416,6 +416,8 @@ void MainWindow::createStatusBar() {
   statusInfo_ = new StatusBarInfo(this);
   statusBar()->addPermanentWidget(statusInfo_);
   connect(viewport_, &ViewportWidget::frameRendered, statusInfo_, &StatusBarInfo::setFrameStats);
+  connect(viewport_, &ViewportWidget::frameRendered, settings_,
+          [this](const render::FrameStats& s) { settings_->showTransparencyStats(s.oit); });
   connect(viewport_, &ViewportWidget::flySpeedChanged, statusInfo_, &StatusBarInfo::setFlySpeed);
   statusInfo_->setFlySpeed(viewport_->camera().flySpeed());
   // RSS changes without frames (an import on a worker): poll it slowly.

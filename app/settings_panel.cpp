@@ -8,6 +8,7 @@
 
 #include "app/field_editors.h"
 #include "app/form_widgets.h"
+#include "app/status_bar.h"
 #include "app/timeline_clock.h"
 #include "app/timeline_keying.h"
 #include "scene/object_tracks.h"
@@ -23,17 +24,24 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
   form->setLabelAlignment(Qt::AlignRight | Qt::AlignVCenter);
   form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
   form->setVerticalSpacing(4);
+  auto addHeading = [&](const char* title, const char* name, const char* tip) {
+    auto* heading = new QLabel(title, content);
+    heading->setObjectName(name);
+    heading->setStyleSheet("QLabel { font-weight: bold; margin-top: 8px; }");
+    heading->setToolTip(tip);
+    form->addRow(heading);
+  };
   for (const auto& f : scene::settingsFields()) {
-    // Depth of field: a block of its own (its fields follow in the
-    // declarations, scene/fields.cpp); the lens is the camera's.
-    if (f.key == "depth_of_field") {
-      auto* heading = new QLabel("Depth of field", content);
-      heading->setObjectName("dofHeading");
-      heading->setStyleSheet("QLabel { font-weight: bold; margin-top: 8px; }");
-      heading->setToolTip("The camera's lens (focal length, f-stop, focus distance in Properties); "
-                          "View > Pick Focus Distance sets the focus from a click in the viewport");
-      form->addRow(heading);
-    }
+    // Depth of field and transparency: blocks of their own (their fields
+    // follow in the declarations, scene/fields.cpp).
+    if (f.key == "depth_of_field")
+      addHeading("Depth of field", "dofHeading",
+                 "The camera's lens (focal length, f-stop, focus distance in Properties); "
+                 "View > Pick Focus Distance sets the focus from a click in the viewport");
+    if (f.key == "transparency")
+      addHeading("Transparency", "oitHeading",
+                 "How translucent materials (opacity under 1) are composited; View > Depth Complexity "
+                 "shows translucent fragments per pixel");
     FieldEditor* ed = createFieldEditor(specOf(f, "settings." + f.key), content);
     const scene::SettingsField* field = &f;
     ed->setOnEdited([this, field](const scene::FieldValue& value, int component, const QString& mergeKey) {
@@ -56,6 +64,16 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
     rows_.emplace_back(field, ed);
     byKey_[f.key] = ed;
     rowOf_[f.key] = row;
+    if (f.key == "oit_memory_mb") {  // the last transparency field: what the last frame used
+      oitStats_ = new QLabel(content);
+      oitStats_->setObjectName("oitStats");
+      oitStats_->setWordWrap(true);
+      oitStats_->setStyleSheet("QLabel { color: #a9aaae; }");
+      auto* statsLabel = new QLabel("Last frame", content);
+      statsLabel->setStyleSheet("QLabel { color: #a9aaae; }");
+      form->addRow(statsLabel, oitStats_);
+      showTransparencyStats(render::OitStats{});
+    }
   }
   putInScrollArea(this, content);
   connect(&doc_, &scene::Document::changed, this, [this](const scene::ChangeSet& c) {
@@ -83,6 +101,10 @@ void SettingsPanel::enableKeying(Keying& keying, TimelineClock& clock) {
   }
   connect(&clock, &TimelineClock::stateChanged, this, &SettingsPanel::refresh);
   refresh();
+}
+
+void SettingsPanel::showTransparencyStats(const render::OitStats& stats) {
+  if (oitStats_) oitStats_->setText(oitSummary(stats));
 }
 
 KeyButton* SettingsPanel::keyButtonFor(const std::string& key) const {

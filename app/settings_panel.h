@@ -1,5 +1,6 @@
 #pragma once
-// The Scene Settings dock: sky, lighting, exposure, grid and anti-aliasing,
+// The Scene Settings dock: sky, lighting, exposure, grid, anti-aliasing,
+// depth of field and transparency (with the last frame's OIT figures),
 // generated from scene::settingsFields(); edits go through
 // scene::ops::setSettingsField (undoable, one step per gesture).
 #include <map>
@@ -10,6 +11,12 @@
 
 #include "scene/document.h"
 #include "scene/fields.h"
+
+class QLabel;
+
+namespace hs::render {
+struct OitStats;
+}
 
 namespace hs::app {
 
@@ -29,6 +36,10 @@ class SettingsPanel : public QWidget {
   void enableKeying(Keying& keying, TimelineClock& clock);
   // The key button of field `key` ("fog_density"); null before enableKeying.
   KeyButton* keyButtonFor(const std::string& key) const;
+  // The last frame's transparency figures under the Transparency block
+  // (mode, OIT memory, fragments per pixel, overflow: app/status_bar.h's
+  // oitSummary); MainWindow passes every rendered frame's.
+  void showTransparencyStats(const render::OitStats& stats);
 
  private:
   void refresh();
@@ -39,6 +50,7 @@ class SettingsPanel : public QWidget {
   std::map<std::string, FieldEditor*> byKey_;
   std::map<std::string, QWidget*> rowOf_;  // the editor's row, where a key button goes
   std::map<std::string, KeyButton*> keyButtons_;
+  QLabel* oitStats_ = nullptr;
   Keying* keying_ = nullptr;
   TimelineClock* clock_ = nullptr;
   int editCounter_ = 0;

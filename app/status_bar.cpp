@@ -65,18 +65,25 @@ QString passTableHtml(const render::FrameStats& stats, const std::map<std::strin
     html += ".</p>";
   }
   // Transparency (render/oit.h): only frames with a translucent surface in view.
-  if (stats.oit.active) {
-    const render::OitStats& o = stats.oit;
-    html += QString("<p>Transparency (%1): %2 of OIT buffers").arg(QString::fromStdString(o.mode)).arg(formatBytes(o.bytes));
-    if (o.counted)
-      html += QString("; fragments per pixel: max %1, mean %2").arg(o.maxPerPixel).arg(o.meanPerPixel, 0, 'f', 2);
-    if (o.overflow > 0)
-      html += QString("; %L1 fragments over capacity, tail-blended (%2% of their pixels)")
-                  .arg(qulonglong(o.overflow))
-                  .arg(o.tailShare * 100.0, 0, 'f', 1);
-    html += ".</p>";
-  }
+  if (stats.oit.active) html += "<p>Transparency " + oitSummary(stats.oit).toHtmlEscaped() + "</p>";
   return html;
+}
+
+QString oitSummary(const render::OitStats& o) {
+  if (!o.active) return "No translucent surface in view: no OIT buffers.";
+  QString s = QString("%1: %2 of OIT buffers").arg(QString::fromStdString(o.mode)).arg(formatBytes(o.bytes));
+  if (o.layers > 0) s += QString(", %1 layers per pixel").arg(o.layers);
+  if (o.counted)
+    s += QString("; fragments per pixel: max %1, mean %2").arg(o.maxPerPixel).arg(o.meanPerPixel, 0, 'f', 2);
+  else
+    s += "; fragments per pixel not counted in this frame";
+  if (o.overflow > 0)
+    s += QString("; %L1 fragments over capacity, tail-blended (%2% of their pixels)")
+             .arg(qulonglong(o.overflow))
+             .arg(o.tailShare * 100.0, 0, 'f', 1);
+  else
+    s += "; no overflow";
+  return s + ".";
 }
 
 void StatusBarInfo::setFrameStats(const render::FrameStats& s) {

@@ -42,4 +42,10 @@ QString passTableHtml(const render::FrameStats& stats, const std::map<std::strin
 
 QString formatBytes(size_t bytes);
 
+// One sentence on the frame's transparency: the mode, the OIT buffers'
+// memory, layers, fragments per pixel and what overflowed (or that no
+// translucent surface was in view). Shared by the frame tooltip and the
+// Scene Settings dock, so the two cannot disagree.
+QString oitSummary(const render::OitStats& stats);
+
 }  // namespace hs::app

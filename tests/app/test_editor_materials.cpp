@@ -2,7 +2,8 @@
 // ("Materials…"), its list, a field edited through the panel's editors as
 // one undo step, a refused value's message, the preview sphere rendered
 // on its worker with the material (and again when the material changes),
-// and New / Delete with the mesh's slot list.
+// New / Delete with the mesh's slot list, and a translucent material's OIT
+// figures in the Scene Settings dock.
 #include <QComboBox>
 #include <QDockWidget>
 #include <QLabel>
@@ -18,8 +19,12 @@
 #include "app/materials_panel.h"
 #include "app/property_panel.h"
 #include "app/selection.h"
+#include "app/settings_panel.h"
+#include "app/status_bar.h"
+#include "app/viewport_widget.h"
 #include "editor_fixture.h"
 #include "scene/material_ops.h"
+#include "scene/operations.h"
 
 using namespace hs;
 
@@ -174,6 +179,42 @@ class EditorMaterialsTest : public QObject {
     QVERIFY(s.findMaterial(own));
     QCOMPARE(s.findAsset(asset)->materialSlots.front(), own);
     QTRY_COMPARE(w_->properties()->materialSlots()->chooser(0)->currentText().toStdString(), s.materials.at(own).name);
+  }
+
+  // A translucent material in view: the Scene Settings dock's Transparency
+  // block shows the frame's OIT figures (mode, memory, fragments per pixel,
+  // overflow) as the renderer reported them; another mode shows in the
+  // next frame, and with the material opaque again it says no OIT buffers.
+  void translucencyFiguresInSceneSettings() {
+    const scene::SceneState& s = w_->document().state();
+    const scene::EntityId bunny = s.findByName("Stanford Bunny");
+    const scene::MaterialId m = s.findAsset(s.find(bunny)->mesh->mesh)->materialSlots.front();
+    std::string error;
+    QVERIFY2(scene::ops::setMaterialField(w_->document(), m, *scene::findMaterialField("opacity"),
+                                          scene::FieldValue(0.4), error),
+             error.c_str());
+    auto* label = w_->sceneSettings()->findChild<QLabel*>("oitStats");
+    QVERIFY(label);
+    app::ViewportWidget* vp = w_->viewport();
+    // Fragments are counted with the pass timings, every few frames.
+    QTRY_VERIFY_WITH_TIMEOUT(vp->lastStats().oit.active && vp->lastStats().oit.counted, 30000);
+    const render::OitStats o = vp->lastStats().oit;
+    QCOMPARE(o.mode, std::string("abuffer"));
+    QVERIFY(o.bytes > 0 && o.maxPerPixel >= 2);
+    QVERIFY2(label->text().startsWith("abuffer: " + app::formatBytes(o.bytes)), qPrintable(label->text()));
+    QVERIFY2(label->text().contains(QString("fragments per pixel: max %1, mean %2")
+                                        .arg(o.maxPerPixel)
+                                        .arg(o.meanPerPixel, 0, 'f', 2)),
+             qPrintable(label->text()));
+    QVERIFY2(label->text().contains("no overflow"), qPrintable(label->text()));
+    const scene::SettingsField* mode = scene::findSettingsField("transparency");
+    const auto kbuffer = scene::parseFieldValue(*mode, "kbuffer", error);
+    QVERIFY(kbuffer && scene::ops::setSettingsField(w_->document(), *mode, *kbuffer, QString()));
+    QTRY_VERIFY_WITH_TIMEOUT(label->text().startsWith("kbuffer: "), 30000);
+    QVERIFY(label->text().contains(QString("%1 layers per pixel").arg(s.settings.kbufferK)));
+    QVERIFY(scene::ops::setMaterialField(w_->document(), m, *scene::findMaterialField("opacity"),
+                                         scene::FieldValue(1.0), error));
+    QTRY_VERIFY_WITH_TIMEOUT(label->text().startsWith("No translucent surface in view"), 30000);
   }
 
   void cleanupTestCase() { w_.reset(); }
