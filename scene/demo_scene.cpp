@@ -7,6 +7,7 @@
 #include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
 #include "scene/asset_reports.h"
+#include "scene/demo_dof.h"
 #include "scene/demo_lights.h"
 #include "scene/demo_glass.h"
 #include "scene/demo_materials.h"
@@ -310,6 +311,8 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   addDemoLights(s);
   // A material parameter and the fog animated over the flight.
   addDemoParameterTracks(s);
+  // The flight camera's focus pulled over the flight (depth of field; off in the demo).
+  addDemoFocusPull(s);
   // Shadows (docs/rendering.md "Shadows"): the sun casts, and so does the
   // spot (the lantern's bunny shadow falls on the clearing); each light's
   // casts_shadows is read, settings.shadows is the master switch.
