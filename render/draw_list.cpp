@@ -13,6 +13,12 @@ DrawList allSubmeshes(const VisibleSet& visible) {
   return out;
 }
 
+size_t triangleCount(const FrameContext& frame, const DrawList& list) {
+  size_t n = 0;
+  for (const SubmeshRef& ref : list) n += frame.visible.draws[ref.draw].mesh->data->submeshes[ref.submesh].indexCount / 3;
+  return n;
+}
+
 void drawSubmeshes(FrameContext& frame, const DrawList& list, const std::vector<std::string>& defines,
                    const std::string& fragment) {
   if (list.empty()) return;
@@ -44,7 +50,6 @@ void drawSubmeshes(FrameContext& frame, const DrawList& list, const std::vector<
     glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(sm.indexCount), GL_UNSIGNED_INT,
                                         reinterpret_cast<const void*>(uintptr_t(sm.firstIndex) * sizeof(uint32_t)), 1,
                                         it.object);
-    frame.stats.trianglesDrawn += sm.indexCount / 3;
     ++frame.stats.drawCalls;
   }
   glDisable(GL_CULL_FACE);

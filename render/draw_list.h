@@ -25,8 +25,13 @@ DrawList allSubmeshes(const VisibleSet& visible);
 // Draws `list` into the bound framebuffer with the view's block already
 // bound. With `fragment` empty, mesh.frag with the material's variants and
 // `defines`; otherwise mesh.vert + `fragment` with `defines` alone.
-// One-sided materials cull their back faces. Adds to frame.stats.
+// One-sided materials cull their back faces. Adds its draw calls to
+// frame.stats; not its triangles: a list drawn by several passes (count,
+// keys, lit) is one surface, which its owner counts once (triangleCount).
 void drawSubmeshes(FrameContext& frame, const DrawList& list, const std::vector<std::string>& defines,
                    const std::string& fragment = "");
+
+// The triangles of `list`.
+size_t triangleCount(const FrameContext& frame, const DrawList& list);
 
 }  // namespace hs::render

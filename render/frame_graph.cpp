@@ -84,6 +84,7 @@ TextureRef FrameGraph::importTexture(const std::string& name, GLuint texture, co
   r.texture = true;
   r.tdesc = desc;
   r.imported = texture;
+  r.id = texture;  // known from the start: keptTexture finds it even when no pass touches it
   r.version = 1;  // its content exists before the frame
   return TextureRef{addResource(std::move(r))};
 }

@@ -405,6 +405,8 @@ TextureRef addTransparencyPasses(FrameGraph& graph, FrameContext& frame, const V
                                  TextureRef depth, TextureRef hdr, bool counted, std::shared_ptr<OitViewInfo>& info) {
   info = std::make_shared<OitViewInfo>();
   if (draws.empty()) return hdr;
+  // The translucent surfaces, once, however many passes draw them.
+  frame.stats.trianglesDrawn += triangleCount(frame, draws);
   switch (frame.settings.transparency) {
     case scene::Transparency::ABuffer: return addABufferMode(graph, frame, v, draws, depth, hdr, info, 0);
     case scene::Transparency::ABufferFixed:

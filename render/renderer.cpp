@@ -111,6 +111,7 @@ struct Renderer::Impl {
   // last reference frame keeps (its HDR images) until the next frame.
   bool lensSampling = false;
   std::vector<GLuint> lensAccum;
+  std::vector<GLuint> lensDepth;  // the reference's pinhole depth per view (with keepDepth)
 
   // `lightsInView`: the point and spot lights that can light a pixel of a
   // view (none: the shaders loop over no light).
@@ -231,10 +232,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   d.keptHdr.clear();
   d.keptDepth.clear();
   d.keptSizes.clear();
-  if (!d.lensSampling) {
-    for (GLuint t : d.lensAccum) res.pool.releaseTexture(t);
-    d.lensAccum.clear();
-  }
+  if (!d.lensSampling) releaseLensTextures(d);
 
   // Once per frame, whatever the number of views.
   const RenderWorld world = RenderWorld::build(state);
@@ -511,6 +509,15 @@ std::vector<std::string> Renderer::takeDofProblems() {
   return out;
 }
 
+// The reference's sums and pinhole depths go back to the pool (at its next
+// frame or the next frame of another mode).
+void Renderer::releaseLensTextures(Impl& d) {
+  for (GLuint t : d.lensAccum) d.res.pool.releaseTexture(t);
+  for (GLuint t : d.lensDepth) d.res.pool.releaseTexture(t);
+  d.lensAccum.clear();
+  d.lensDepth.clear();
+}
+
 // Depth of field, reference (dof_reference.h): the lens samples are whole
 // frames through renderViews (with lensSampling set, so each is a pinhole
 // frame), their HDR images summed in float, then one small graph tone maps
@@ -534,8 +541,7 @@ std::optional<FrameStats> Renderer::renderLensReference(const scene::SceneState&
 
   const int n = std::clamp(state.settings.dofReferenceSamples, 64, 1024);
   const std::vector<glm::dvec2> disc = lensDiscSamples(n);
-  for (GLuint t : d.lensAccum) res.pool.releaseTexture(t);
-  d.lensAccum.clear();
+  releaseLensTextures(d);
   for (const RenderView& v : views) d.lensAccum.push_back(acquireLensAccumulation(res, v.width, v.height));
   RenderOptions o = options;
   o.keepHdr = true;
@@ -545,6 +551,22 @@ std::optional<FrameStats> Renderer::renderLensReference(const scene::SceneState&
   o.lodView = &lodView;  // every sample draws the same levels of detail
   FrameStats stats;
   d.lensSampling = true;
+  if (options.keepDepth) {
+    // The depth a caller reads (the export's comfort check, the focus
+    // pick) is the pinhole frame's, as with the other modes: one more
+    // frame at the lens centre, its depth kept past the samples.
+    RenderOptions pinhole = o;
+    pinhole.keepHdr = false;
+    pinhole.keepDepth = true;
+    renderViews(state, targets, pinhole);
+    for (size_t i = 0; i < views.size(); ++i) {
+      const GLuint tex = res.pool.acquireTexture(TextureDesc{views[i].width, views[i].height, GL_DEPTH_COMPONENT32F},
+                                                 "dof_reference_depth");
+      glCopyImageSubData(d.lastFrame->keptTexture(d.keptDepth[i]), GL_TEXTURE_2D, 0, 0, 0, 0, tex, GL_TEXTURE_2D, 0, 0,
+                         0, 0, views[i].width, views[i].height, 1);
+      d.lensDepth.push_back(tex);
+    }
+  }
   for (const glm::dvec2& p : disc) {
     std::vector<ViewTarget> sample = targets;
     for (size_t i = 0; i < sample.size(); ++i)
@@ -571,7 +593,13 @@ std::optional<FrameStats> Renderer::renderLensReference(const scene::SceneState&
     addToneMapPasses(*graph, frame, v, sum);
     if (options.keepHdr) graph->keep(sum);
     d.keptHdr.push_back(options.keepHdr ? sum : TextureRef{});
-    d.keptDepth.push_back({});
+    TextureRef depth;
+    if (i < d.lensDepth.size()) {
+      depth = graph->importTexture(v.named("dof_reference_depth"), d.lensDepth[i],
+                                   TextureDesc{views[i].width, views[i].height, GL_DEPTH_COMPONENT32F});
+      graph->keep(depth);
+    }
+    d.keptDepth.push_back(depth);
     d.keptSizes.emplace_back(views[i].width, views[i].height);
   }
   graph->execute(false);

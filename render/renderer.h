@@ -256,6 +256,7 @@ class Renderer {
                                                 const RenderOptions& options);
 
   struct Impl;
+  static void releaseLensTextures(Impl& d);
   std::unique_ptr<Impl> d_;
 };
 

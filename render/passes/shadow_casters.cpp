@@ -11,7 +11,8 @@
 namespace hs::render {
 namespace {
 
-// The submeshes of `g` (the level drawn) whose document material cuts out.
+// The submeshes of `g` (the level drawn) whose document material cuts out
+// or is translucent (opacity under 1: drawn by the transparency path).
 void findCutouts(const FrameContext& frame, const scene::MeshAsset& asset, const GpuMesh& g, ShadowCaster& c) {
   const mesh::MeshData& base = asset.data ? *asset.data : *g.data;
   const scene::SceneState& state = *frame.world.state;
@@ -20,8 +21,8 @@ void findCutouts(const FrameContext& frame, const scene::MeshAsset& asset, const
     const size_t slot = scene::materialSlotOf(base, sm);
     const scene::Material* m =
         slot < asset.materialSlots.size() ? state.findMaterial(asset.materialSlots[slot]) : nullptr;
-    if (m && m->alphaCutout) {
-      CutoutPart p{sm.firstIndex, sm.indexCount, 0, m->opacity, m->alphaThreshold};
+    if (m && (m->alphaCutout || m->opacity < 1.0f)) {
+      CutoutPart p{sm.firstIndex, sm.indexCount, 0, m->opacity, m->alphaThreshold, !m->alphaCutout};
       p.texture = frame.res.materials.baseColorTexture(state, *m, g, frame.res.meshes);
       c.cutouts.push_back(p);
     } else {
@@ -91,7 +92,7 @@ void drawShadowCasters(RenderResources& resources, const std::vector<ShadowCaste
     glBindVertexArray(c.mesh->vao);
     for (const CutoutPart& p : c.cutouts) {
       glBindTextureUnit(kMaterialTextureUnit, p.texture);
-      cutout.set("uCutout", glm::vec4(p.opacity, p.threshold, p.texture ? 1.0f : 0.0f, 0.0f));
+      cutout.set("uCutout", glm::vec4(p.opacity, p.threshold, p.texture ? 1.0f : 0.0f, p.translucent ? 1.0f : 0.0f));
       draw(p.firstIndex, p.indexCount, i);
     }
   }

@@ -38,6 +38,7 @@ struct CutoutPart {
   GLuint texture = 0;     // base colour (its alpha); 0: none
   float opacity = 1.0f;   // the material's
   float threshold = 0.5f;
+  bool translucent = false;  // opacity under 1, no cut-out: a stochastic share of the surface casts (shadow_depth.frag)
 };
 
 struct ShadowCaster {

@@ -178,6 +178,7 @@ void TimelineTest::dragKeyRetimesAsOneUndoStep() {
   ds->setCollapsed(id("Bunny (instance)"), false);
   ds->setCollapsed(slab, false);
   ds->setCollapsed(scene::settingsTarget(), false);
+  ds->setCollapsed(id("Flight Camera"), false);
 }
 
 void TimelineTest::copyPasteDeleteKeys() {

@@ -274,6 +274,29 @@ class TestDofRender : public QObject {
 
   // Both eyes of a stereo pair share the camera's focus and aperture, so
   // the two eyes blur alike.
+  // Every mode keeps the pinhole frame's depth for a caller that asks for
+  // it (the stereo export's comfort check, the focus pick): the reference,
+  // which averages whole frames, renders one more at the lens centre.
+  void everyModeKeepsThePinholeDepth() {
+    test::DofScene sc = test::partialOcclusionScene(1.4);
+    sc.state.settings.dofReferenceSamples = 64;
+    render::RenderOptions keep;
+    keep.keepDepth = true;
+    std::vector<float> pinhole;
+    for (scene::DepthOfField mode : {scene::DepthOfField::Off, scene::DepthOfField::Gather,
+                                     scene::DepthOfField::Layered, scene::DepthOfField::Reference}) {
+      sc.state.settings.depthOfField = mode;
+      r_.render(sc.state, sc.view(kW, kH), false, nullptr, keep);
+      std::vector<float> depth(size_t(kW) * kH, -1.0f);
+      r_.renderer().readDepth(depth.data());
+      size_t covered = 0;
+      for (float z : depth) covered += z > 0.0f && z <= 1.0f;  // reversed Z: 0 is the sky
+      QVERIFY2(covered > size_t(kW) * kH / 10, qPrintable(QString("mode %1: %2 pixels with depth").arg(int(mode)).arg(covered)));
+      if (pinhole.empty()) pinhole = depth;
+      else QVERIFY2(depth == pinhole, qPrintable(QString("mode %1's depth is not the pinhole frame's").arg(int(mode))));
+    }
+  }
+
   void stereoEyesShareTheFocus() {
     test::DofScene sc = test::partialOcclusionScene(1.4);
     sc.state.entities.at(sc.camera).camera->stereo = scene::Camera::Stereo::OffAxis;

@@ -37,7 +37,7 @@ struct CardScene {
   glm::dvec3 light{0.0};  // the spot's position (unused for the sun)
 };
 
-CardScene cardScene(bool spot, bool cutout) {
+CardScene cardScene(bool spot, bool cutout, float opacity = 1.0f) {
   CardScene out;
   scene::SceneState& s = out.state;
   s.settings.showGrid = false;
@@ -71,6 +71,7 @@ CardScene cardScene(bool spot, bool cutout) {
   card.baseColorTexture = tex.id;
   card.alphaCutout = cutout;
   card.alphaThreshold = 0.5f;
+  card.opacity = opacity;
   addShape(mesh::gridPlane(2.0f, 1), {0, 0, 2}, &card);
 
   const glm::dvec3 along = glm::normalize(glm::dvec3(0.6, 0, -1));
@@ -296,6 +297,39 @@ class TestShadows : public QObject {
       QVERIFY(underCard >= 0.0f && underCard < 0.1f);
       if (cutout) QVERIFY(inHole > 0.9f);
       else QVERIFY(inHole >= 0.0f && inHole < 0.1f);
+    }
+  }
+
+  // A translucent card (opacity a, no cut-out) lets about 1 - a of the
+  // light through: a hashed share a of its texels casts (shadow_depth.frag),
+  // so the filtered visibility over a patch of its shadow is near 1 - a; its
+  // hole (texture alpha 0) lets everything through.
+  void translucentCastersLetTheirShareThrough() {
+    for (float opacity : {0.3f, 0.6f}) {
+      const CardScene sc = cardScene(false, false, opacity);
+      const render::RenderView view = cameraView(sc.state, 320, 240);
+      const test::ShadowProbe p = test::probeShadows(r_, sc.state, view);
+      auto visibilityAt = [&](glm::dvec3 onCard) {
+        const glm::dvec3 d(0.6, 0, -1);
+        glm::dvec2 px;
+        if (!view.project(onCard + d * (onCard.z / -d.z), px)) return -2.0f;
+        return p.visibility[size_t(int(px.y)) * size_t(view.width) + size_t(int(px.x))];
+      };
+      double sum = 0.0;
+      int n = 0;
+      for (int i = 0; i < 9; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const float v = visibilityAt({-0.8 + 0.2 * i, 0.6 + 0.15 * j, 2.0});
+          QVERIFY(v >= 0.0f);
+          sum += v;
+          ++n;
+        }
+      const double mean = sum / n;
+      const float inHole = visibilityAt({0, 0, 2});
+      qInfo("opacity %.1f: mean visibility %.3f under the card (1 - a = %.1f), %.2f through the hole", double(opacity),
+            mean, 1.0 - double(opacity), double(inHole));
+      QVERIFY(std::abs(mean - (1.0 - double(opacity))) < 0.1);
+      QVERIFY(inHole > 0.9f);
     }
   }
 
