@@ -3,43 +3,14 @@
 #include <string>
 
 #include "mesh/primitives.h"
-#include "scene/mesh_materials.h"
+#include "scene/demo_mesh.h"
 
 namespace hs::scene {
-namespace {
 
-// `mesh` as a new asset with its own material, shown once at `position`
-// under `parent`; returns the material for the caller to fill.
-Material& addTranslucent(SceneState& s, const std::string& name, mesh::MeshData mesh, const glm::dvec3& position,
-                         EntityId parent) {
-  mesh.materials[0].name = "surface";
-  MeshAsset a;
-  a.id = s.maxAssetId() + 1;
-  a.name = name;
-  a.sourcePath = "(made in code: scene/demo_glass.cpp)";
-  a.contentHash = mesh::contentHash(mesh);
-  a.data = std::make_shared<const mesh::MeshData>(std::move(mesh));
-  s.assets.emplace(a.id, a);
-  addMeshMaterials(s, a.id);
-  Entity e;
-  e.id = s.maxEntityId() + 1;
-  e.name = name;
-  e.parent = parent;
-  e.transform.translation = position;
-  e.mesh = MeshInstance{a.id};
-  s.entities[parent].children.push_back(e.id);
-  s.entities.emplace(e.id, e);
-  return s.materials.at(s.assets.at(a.id).materialSlots.front());
-}
-
-}  // namespace
+constexpr const char* kHere = "scene/demo_glass.cpp";  // the assets' source path
 
 void addDemoTranslucentSamples(SceneState& s) {
-  Entity group;
-  group.id = s.maxEntityId() + 1;
-  group.name = "Translucent samples";
-  s.roots.push_back(group.id);
-  s.entities.emplace(group.id, group);
+  const EntityId group = addDemoGroup(s, "Translucent samples");
 
   // Three glass-like spheres in front of the bunnies, in the first camera's
   // view (so the editor opens on them): low opacity, glossy, tinted;
@@ -48,8 +19,8 @@ void addDemoTranslucentSamples(SceneState& s) {
   const glm::vec3 tints[3] = {{0.75f, 0.9f, 1.0f}, {0.95f, 0.8f, 0.55f}, {0.7f, 1.0f, 0.75f}};
   const glm::dvec3 at[3] = {{-1.9, -4.2, 0.7}, {1.7, -3.6, 0.7}, {4.4, -1.4, 0.7}};
   for (int i = 0; i < 3; ++i) {
-    Material& glass = addTranslucent(s, "Glass sphere " + std::to_string(i + 1), mesh::uvSphere(0.7f, 48, 24),
-                                     at[i], group.id);
+    Material& glass =
+        addDemoMesh(s, "Glass sphere " + std::to_string(i + 1), mesh::uvSphere(0.7f, 48, 24), at[i], group, kHere);
     glass.baseColor = tints[i];
     glass.opacity = 0.22f;
     glass.roughness = 0.05f;
@@ -59,8 +30,8 @@ void addDemoTranslucentSamples(SceneState& s) {
   // A pond south-west of the bunnies, at the left edge of the first
   // camera's view, just above the flat ground: blue-green water through
   // which the ground shows.
-  Material& water = addTranslucent(s, "Pond (translucent water)", mesh::gridPlane(6.0f, 8, 3.0f), {-5.0, -2.5, 0.04},
-                                   group.id);
+  Material& water = addDemoMesh(s, "Pond (translucent water)", mesh::gridPlane(6.0f, 8, 3.0f), {-5.0, -2.5, 0.04},
+                                group, kHere);
   water.baseColor = glm::vec3(0.08f, 0.28f, 0.32f);
   water.opacity = 0.6f;
   water.roughness = 0.08f;

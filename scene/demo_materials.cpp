@@ -2,7 +2,7 @@
 
 #include "mesh/primitives.h"
 #include "mesh/procedural_textures.h"
-#include "scene/mesh_materials.h"
+#include "scene/demo_mesh.h"
 #include "scene/texture_blob.h"
 #include "scene/transform.h"
 
@@ -25,41 +25,19 @@ TextureId addTexture(SceneState& s, mesh::Texture image, bool srgb) {
 // is where parallax shows), its material named by the asset; returns that
 // material for the caller to fill.
 Material& addSlab(SceneState& s, const std::string& name, const glm::dvec3& position, float uvRepeat, EntityId parent) {
-  mesh::MeshData plane = mesh::gridPlane(3.0f, 1, uvRepeat);
-  plane.materials[0].name = "surface";
-  MeshAsset a;
-  a.id = s.maxAssetId() + 1;
-  a.name = name;
-  a.sourcePath = "(made in code: scene/demo_materials.cpp)";
-  a.contentHash = mesh::contentHash(plane);
-  a.data = std::make_shared<const mesh::MeshData>(std::move(plane));
-  s.assets.emplace(a.id, a);
-  addMeshMaterials(s, a.id);
-  Entity e;
-  e.id = s.maxEntityId() + 1;
-  e.name = name;
-  e.parent = parent;
-  e.transform.translation = position;
-  e.mesh = MeshInstance{a.id};
-  s.entities[parent].children.push_back(e.id);
-  s.entities.emplace(e.id, e);
-  return s.materials.at(s.assets.at(a.id).materialSlots.front());
+  return addDemoMesh(s, name, mesh::gridPlane(3.0f, 1, uvRepeat), position, parent, "scene/demo_materials.cpp");
 }
 
 }  // namespace
 
 void addDemoDetailSamples(SceneState& s) {
-  Entity group;
-  group.id = s.maxEntityId() + 1;
-  group.name = "Surface detail samples";
-  s.roots.push_back(group.id);
-  s.entities.emplace(group.id, group);
+  const EntityId group = addDemoGroup(s, "Surface detail samples");
 
   // Bricks, 8 courses per 1.5 m texture repeat (19 cm courses): normal map only.
   const mesh::Texture bricks = mesh::brickHeightMap(256, 8, 4);
   const TextureId brickColour = addTexture(s, mesh::tintByHeight(bricks, {0.33f, 0.31f, 0.28f}, {0.45f, 0.16f, 0.09f}), true);
   const TextureId brickNormals = addTexture(s, mesh::normalMapFromHeight(bricks, 0.02f), false);
-  Material& wall = addSlab(s, "Brick paving (normal map)", {-2.2, -12.5, 0.02}, 2.0f, group.id);
+  Material& wall = addSlab(s, "Brick paving (normal map)", {-2.2, -12.5, 0.02}, 2.0f, group);
   wall.baseColor = glm::vec3(0.6f);  // the texture at full sun stays below white
   wall.baseColorTexture = brickColour;
   wall.normalMap = brickNormals;
@@ -71,7 +49,7 @@ void addDemoDetailSamples(SceneState& s) {
   const TextureId rockColour = addTexture(s, mesh::tintByHeight(rock, {0.2f, 0.18f, 0.16f}, {0.62f, 0.56f, 0.47f}), true);
   const TextureId rockNormals = addTexture(s, mesh::normalMapFromHeight(rock, 0.03f), false);
   const TextureId rockHeight = addTexture(s, rock, false);
-  Material& face = addSlab(s, "Rock slab (parallax)", {2.2, -12.5, 0.02}, 1.0f, group.id);
+  Material& face = addSlab(s, "Rock slab (parallax)", {2.2, -12.5, 0.02}, 1.0f, group);
   face.baseColor = glm::vec3(0.6f);
   face.baseColorTexture = rockColour;
   face.normalMap = rockNormals;
