@@ -109,6 +109,12 @@ struct DecimationState {
   // vertex's planes, averaged over both ends' planes, and misses a line
   // that sags between its kept vertices (docs/meshes.md, "Quad-dominant
   // meshes"). HUGE_VAL where the polyline is too short to lose a vertex.
+  // Safe while regions run in parallel: the walk reads input positions
+  // and neighbours (never written), the deleted flags of vertices already
+  // gone (final) and those of the two live ends, which are neighbours of
+  // `gone` and so belong to the calling engine's region or are shared;
+  // the vertices between were merged by collapses at `gone` or at those
+  // ends, i.e. by this engine or by an earlier phase.
   double polylineErrorSq(uint32_t gone, uint32_t stays) const {
     constexpr int kMaxWalk = 1 << 16;  // a guard: the walk ends at a live vertex long before
     uint32_t ends[2];
