@@ -50,17 +50,24 @@ bool CollapseEngine::evaluate(uint32_t edge, Plan& plan) const {
     const bool ra = removable(ca, kind), rb = removable(cb, kind);
     if (!ra && !rb) return false;
     const Quadric q = da.q.load() + db.q.load().translated(-t);
+    const double inv = q.weight > 0 ? 1.0 / q.weight : 0.0;
     // A constrained vertex never moves: the one that goes lands on the one
-    // that stays, so polylines keep original vertices only.
-    const double costA = ra ? q.evaluate(t) : HUGE_VAL;  // a goes, stays at b
-    const double costB = rb ? q.evaluate(glm::dvec3(0.0)) : HUGE_VAL;
-    double cost;
-    if (costA <= costB)
-      plan.h = h0, plan.p = pa + t, cost = costA;
+    // that stays, so polylines keep original vertices only. A polyline
+    // vertex that goes costs at least how far its polyline's new segment
+    // passes from the input vertices it now stands for.
+    auto errGoing = [&](VertexClass c, VertexHandle gone, VertexHandle stays, const glm::dvec3& at) {
+      const double e = q.evaluate(at) * inv;
+      if (c != VertexClass::BoundaryLine && c != VertexClass::SeamLine) return e;
+      return std::max(e, s_.polylineErrorSq(uint32_t(gone.idx()), uint32_t(stays.idx())));
+    };
+    const double errA = ra ? errGoing(ca, a, b, t) : HUGE_VAL;  // a goes, stays at b
+    const double errB = rb ? errGoing(cb, b, a, glm::dvec3(0.0)) : HUGE_VAL;
+    if (!(std::min(errA, errB) < HUGE_VAL)) return false;
+    if (errA <= errB)
+      plan.h = h0, plan.p = pa + t, plan.errSq = errA;
     else
-      plan.h = h1, plan.p = pa, cost = costB;
+      plan.h = h1, plan.p = pa, plan.errSq = errB;
     plan.moves = false;
-    plan.errSq = q.weight > 0 ? cost / q.weight : 0.0;
     plan.key = float(plan.errSq + s_.lengthWeight * glm::dot(t, t));
     return true;
   }

@@ -321,6 +321,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   // su.regions equal runs; a vertex with faces in two is shared).
   const size_t regions = su.regions;
   st.vd.reset(nv);
+  st.polyNbr.reset(nv * 2);
   parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
     size_t cb = 0, cs = 0, cf = 0, cl = 0;
     for (size_t vi = b; vi < e; ++vi) {
@@ -338,6 +339,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
       // offsets are taken from it.
       const glm::dvec3 pv(d.p);
       int boundaryEdges = 0, seamEdges = 0;
+      uint32_t lineNbr[2] = {uint32_t(vi), uint32_t(vi)};  // the first two polyline neighbours seen
       uint16_t region = kSharedRegion;
       bool shared = false;
       Quadric q{};
@@ -358,6 +360,8 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
                                     ? st.edgeKind(it)
                                                                                          : EdgeKind::Interior;
         if (kind != EdgeKind::Interior) {
+          const int seen = boundaryEdges + seamEdges;
+          if (seen < 2) lineNbr[seen] = uint32_t(m.to_vertex_handle(it).idx());
           (kind == EdgeKind::Boundary ? boundaryEdges : seamEdges)++;
           // A plane through the edge, perpendicular to each face beside it:
           // moving the polyline sideways costs, so boundaries and seams are
@@ -388,6 +392,8 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
         c = VertexClass::Fixed;
       if (lockedPos[posOfOm[vi]]) c = VertexClass::Fixed, ++cl;
       d.cls = c;
+      if (c == VertexClass::BoundaryLine || c == VertexClass::SeamLine)
+        st.polyNbr[vi * 2] = lineNbr[0], st.polyNbr[vi * 2 + 1] = lineNbr[1];
       cb += boundaryEdges > 0;
       cs += seamEdges > 0;
       cf += c == VertexClass::Fixed;

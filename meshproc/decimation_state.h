@@ -2,6 +2,8 @@
 // Everything the decimator keeps beside the OpenMesh mesh, in flat arrays
 // indexed by OpenMesh handle index. Shared by the setup (decimate.cpp) and
 // the collapse loops (collapse_engine.cpp).
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -60,6 +62,13 @@ struct DecimationState {
   std::vector<uint16_t> fmaterial;    // per face: input submesh index
   std::vector<uint8_t> estate;        // per edge: kQueued | kDirty | kGone (collapse_engine.h)
   std::vector<glm::vec2> wedgeUv;     // per wedge (empty without UVs)
+  // Per vertex, two entries: a BoundaryLine or SeamLine vertex's two
+  // neighbours along its polyline in the input (other vertices' entries
+  // are not written). Polyline vertices never move and only merge along
+  // their polyline, so the polyline left at any time is a subsequence of
+  // the input's, and the input vertices between two neighbours on it are
+  // exactly those their segment now stands for (polylineErrorSq).
+  UninitArray<uint32_t> polyNbr;
 
   // Raw views into OpenMesh's status arrays (set once the mesh is built;
   // collapses never reallocate them). A property lookup by handle walks
@@ -84,7 +93,62 @@ struct DecimationState {
   double cosMaxNormalDeviation = 0.5;
   double minQuality = 0.1;
   double maxErrorSq = 1e300;
-  double lengthWeight = 1e-4;  // share of squared edge length in the heap key (see engine)
+  // Share of the squared edge length in the heap key (see engine): a
+  // tie-break for zero-error collapses of flat ground. 1e-5, i.e. (0.3% of
+  // the edge)^2: at 1e-4 it was (1% of the edge)^2, as large as the errors
+  // themselves on a scan with millimetre detail on 17 cm faces, and chose
+  // short edges over cheap ones (docs/meshes.md, "Quad-dominant meshes").
+  double lengthWeight = 1e-5;
+
+  // Removing polyline vertex `gone` by merging it into its neighbour
+  // `stays` along the polyline: the largest squared distance from the new
+  // segment (stays to gone's other neighbour) of the input vertices it
+  // then stands for (those between stays and gone, gone, those between
+  // gone and its other neighbour), found by walking the input polyline.
+  // A face quadric measures how far the neighbour lies from the removed
+  // vertex's planes, averaged over both ends' planes, and misses a line
+  // that sags between its kept vertices (docs/meshes.md, "Quad-dominant
+  // meshes"). HUGE_VAL where the polyline is too short to lose a vertex.
+  // Safe while regions run in parallel: the walk reads input positions
+  // and neighbours (never written), the deleted flags of vertices already
+  // gone (final) and those of the two live ends, which are neighbours of
+  // `gone` and so belong to the calling engine's region or are shared;
+  // the vertices between were merged by collapses at `gone` or at those
+  // ends, i.e. by this engine or by an earlier phase.
+  double polylineErrorSq(uint32_t gone, uint32_t stays) const {
+    constexpr int kMaxWalk = 1 << 16;  // a guard: the walk ends at a live vertex long before
+    uint32_t ends[2];
+    for (int side = 0; side < 2; ++side) {
+      uint32_t prev = gone, x = polyNbr[size_t(gone) * 2 + size_t(side)];
+      int steps = 0;
+      while (vertexStatus[x].deleted() && x != gone && ++steps < kMaxWalk) {
+        const uint32_t next = polyNbr[size_t(x) * 2] == prev ? polyNbr[size_t(x) * 2 + 1] : polyNbr[size_t(x) * 2];
+        prev = x, x = next;
+      }
+      if (x == gone || steps >= kMaxWalk) return HUGE_VAL;
+      ends[side] = x;
+    }
+    if (ends[0] == ends[1] || (ends[0] != stays && ends[1] != stays)) return HUGE_VAL;
+    const uint32_t other = ends[0] == stays ? ends[1] : ends[0];
+    const glm::dvec3 a = point(int(stays)), ab = point(int(other)) - a;
+    const double len2 = glm::dot(ab, ab);
+    auto distSq = [&](uint32_t x) {
+      const glm::dvec3 ax = point(int(x)) - a;
+      const double t = len2 > 0 ? glm::clamp(glm::dot(ax, ab) / len2, 0.0, 1.0) : 0.0;
+      const glm::dvec3 d = ax - t * ab;
+      return glm::dot(d, d);
+    };
+    double worst = distSq(gone);
+    for (int side = 0; side < 2; ++side) {
+      uint32_t prev = gone, x = polyNbr[size_t(gone) * 2 + size_t(side)];
+      while (x != ends[side]) {
+        worst = std::max(worst, distSq(x));
+        const uint32_t next = polyNbr[size_t(x) * 2] == prev ? polyNbr[size_t(x) * 2 + 1] : polyNbr[size_t(x) * 2];
+        prev = x, x = next;
+      }
+    }
+    return worst;
+  }
 
   uint32_t wedgeAt(uint32_t f, uint32_t v) const {
     const uint32_t* p = &fv[size_t(f) * 3];

@@ -66,12 +66,19 @@ struct Quadric {
   // makes flat and cylindrical regions, where A is singular and any point
   // along a line or plane is optimal, choose the point nearest the edge
   // instead of failing over to a fixed candidate; where A is well
-  // conditioned the pull moves p by a negligible amount. Returns false
-  // only for an empty quadric.
+  // conditioned the pull moves p by a negligible amount. eps = 1e-6 of the
+  // trace: A's eigenvalues along a gently curved or noisy surface are
+  // about trace x (the spread of the face normals)^2, 1e-4 of it for
+  // millimetre noise on 17 cm faces, and the 1e-3 this used to be
+  // outweighed them, holding the placement at the midpoint where the
+  // surface asked for another point (docs/meshes.md, "Quad-dominant
+  // meshes"). 1e-6 is still 16x the float rounding of a stored A
+  // (QuadricF), so a direction that is singular stays regularised.
+  // Returns false only for an empty quadric.
   bool minimize(const glm::dvec3& anchor, glm::dvec3& p) const {
     const double trace = a00 + a11 + a22;
     if (!(trace > 0)) return false;
-    const double eps = 1e-3 * trace;
+    const double eps = 1e-6 * trace;
     const double m00 = a00 + eps, m11 = a11 + eps, m22 = a22 + eps;
     const double r0 = -b0 + eps * anchor.x, r1 = -b1 + eps * anchor.y, r2 = -b2 + eps * anchor.z;
     // Symmetric 3x3 solve by cofactors.

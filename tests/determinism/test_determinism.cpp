@@ -188,9 +188,9 @@ class TestDeterminism : public QObject {
   static constexpr uint64_t kHydraulicGrid = 0xc2f70af625ac8da6ull;
   static constexpr uint64_t kErosionTerrain = 0xee94f7296e296fbeull;
   static constexpr uint64_t kPaintRules = 0x3b6d8d09148bde52ull;
-  static constexpr uint64_t kDecimate50 = 0x2c2b1656ebce730cull;
-  static constexpr uint64_t kDecimate10 = 0xdf27211c8bd21e82ull;
-  static constexpr uint64_t kDecimate1 = 0xfccfc2bf5defeb6eull;
+  static constexpr uint64_t kDecimate50 = 0x9f3f81ebc53c0897ull;
+  static constexpr uint64_t kDecimate10 = 0x1d8f140a6a6cd5f9ull;
+  static constexpr uint64_t kDecimate1 = 0x001a838345f613c5ull;
 };
 
 QTEST_GUILESS_MAIN(TestDeterminism)

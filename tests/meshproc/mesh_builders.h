@@ -55,6 +55,34 @@ inline MeshData curvedGrid(int n, double size, double amplitude, bool seam) {
   return m;
 }
 
+// A quad-dominant scan patch: n x n quads over [0, size]^2, each cut along
+// the same diagonal as an importer triangulates quads, over rolling
+// ground z = relief(x, y) (curved along every open border too) with scan
+// noise of +-noise/2 per vertex from a fixed hash (the same mesh every
+// run). No UVs: the borders are the polylines.
+inline double quadScanRelief(double x, double y, double size, double amplitude) {
+  return amplitude * (std::sin(x * 9.0 / size) + 0.6 * std::cos(y * 7.0 / size + 0.5));
+}
+
+inline MeshData quadScanPatch(int n, double size, double amplitude, double noise) {
+  MeshData m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = size * i / n, y = size * j / n;
+      uint32_t h = uint32_t(i) * 73856093u ^ uint32_t(j) * 19349663u;
+      h ^= h >> 13, h *= 0x5bd1e995u, h ^= h >> 15;
+      const double jitter = noise * (double(h & 0xffffu) / 65535.0 - 0.5);
+      m.positions.emplace_back(float(x), float(y), float(quadScanRelief(x, y, size, amplitude) + jitter));
+    }
+  auto id = [&](int i, int j) { return uint32_t(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      m.indices.insert(m.indices.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
+  hs::mesh::computeVertexNormals(m);
+  return m;
+}
+
 // Icosahedron subdivided `levels` times onto a sphere of `radius`
 // (20 * 4^levels faces).
 inline MeshData icosphere(int levels, double radius) {
