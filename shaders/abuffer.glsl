@@ -10,10 +10,11 @@
 //   buffer 16     cursor  uint per pixel: the key pass's next free node of the pixel
 //                         (the capture's alone; abuffer_scan.comp borrows it first)
 //   buffer 12     nodes   uvec4 per fragment: x packHalf2x16(r, g), y packHalf2x16(b, a)
-//                         (straight colour, linear HDR, and opacity), z depth bits
-//                         (ABUFFER_UNWRITTEN until the lit pass writes it), w key
-//                         (oit_kbuffer.glsl's oitKey): a pixel's nodes are sorted by key,
-//                         nearest first
+//                         (straight colour, linear HDR, and opacity; both ABUFFER_UNWRITTEN
+//                         until the lit pass writes them), z depth bits, w key
+//                         (oit_kbuffer.glsl's oitKey): a pixel's nodes are sorted nearest
+//                         first by full depth, equal depths by key (abufferNearer); a pixel
+//                         over its cap by key alone (the atomicMin chain's order)
 //   buffer 13     ABufferCounters (below)
 //   buffer 14     tail    (with a tail) 4 uints per pixel: what did not fit the pool
 //                         (oit_tail.glsl), order-independent integer sums
@@ -22,7 +23,7 @@
 #ifndef HS_ABUFFER_GLSL
 #define HS_ABUFFER_GLSL
 
-#define ABUFFER_UNWRITTEN 0xFFFFFFFFu  // a node's depth bits before the lit pass (a NaN: no real depth)
+#define ABUFFER_UNWRITTEN 0xFFFFFFFFu  // a node's colour words before the lit pass (half NaNs: no real colour)
 
 layout(binding = 1, r32ui) uniform coherent uimage2D uABufferCounts;
 
@@ -60,7 +61,17 @@ uvec4 abufferNode(vec4 color, float depth, uint key) {
   return uvec4(packHalf2x16(color.rg), packHalf2x16(color.ba), floatBitsToUint(depth), key);
 }
 
-bool abufferWritten(uvec4 node) { return node.z != ABUFFER_UNWRITTEN; }
+bool abufferWritten(uvec4 node) { return node.y != ABUFFER_UNWRITTEN; }
+
+// The order of a pixel's range: (depth bits, key) pairs, nearer first
+// (reversed Z: larger depth is nearer), then by key. The key alone orders
+// depths equal in their top 24 bits by hash, which depth peeling does not
+// (up to 8/255 apart at 1080p); the full depth does as peeling does.
+bool abufferNearer(uvec2 a, uvec2 b) { return a.x > b.x || (a.x == b.x && a.y < b.y); }
+
+// Whether the pixel's range was filled by the atomicMin chain (more
+// fragments than nodes): then ordered by key alone, with no depth yet.
+bool abufferByKey(ivec2 p, uint rangeLength) { return imageLoad(uABufferCounts, p).x > rangeLength; }
 vec4 abufferColor(uvec4 node) { return vec4(unpackHalf2x16(node.x), unpackHalf2x16(node.y)); }
 float abufferDepth(uvec4 node) { return uintBitsToFloat(node.z); }
 

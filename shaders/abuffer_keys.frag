@@ -1,9 +1,9 @@
 #version 450 core
 // The A-buffer's key pass (render/abuffer.h): each fragment takes a node in
-// its pixel's range (abuffer_scan.comp made the ranges) and writes its key
-// there; abuffer_sort_keys.comp then sorts each range, and the lit pass
-// (oit_main.glsl) finds its node by binary search on its key and writes
-// its colour and depth. Nodes are handed out here, in a shader without
+// its pixel's range (abuffer_scan.comp made the ranges) and writes its
+// depth and key there; abuffer_sort_keys.comp then sorts each range, and
+// the lit pass (oit_main.glsl) finds its node by binary search on them and
+// writes its colour. Nodes are handed out here, in a shader without
 // derivatives, because on llvmpipe the value an atomic returns in the lit
 // shader (which has helper invocations for its derivatives) can belong to
 // another lane: linked lists built there lost and doubled fragments from
@@ -13,8 +13,8 @@
 // A pixel with more fragments than the cap gives it (render/abuffer.cpp
 // sizes the cap from the memory limit) keeps its nearest ones instead,
 // through the K-buffer's atomicMin chain (oit_kbuffer.glsl): which ones it
-// keeps does not depend on arrival order either. The others reach the
-// tail in the lit pass.
+// keeps does not depend on arrival order either; such a range is ordered
+// by key alone (abufferByKey). The others reach the tail in the lit pass.
 layout(early_fragment_tests) in;
 #include "abuffer.glsl"
 #define OIT_KEY_ONLY
@@ -31,7 +31,7 @@ void main() {
   if (imageLoad(uABufferCounts, p).x <= kept) {
     // Room for every fragment: any order will do, the sort follows.
     const uint slot = atomicAdd(abufferCursor[pixel], 1u);
-    if (slot < kept) abufferNodes[start + slot].w = key;
+    if (slot < kept) abufferNodes[start + slot].zw = uvec2(floatBitsToUint(gl_FragCoord.z), key);
     return;
   }
   for (uint i = 0u; i < kept; ++i) {

@@ -37,18 +37,26 @@ void main() {
   // why every atomic here is a buffer's).
   if (gl_HelperInvocation) return;
 #if defined(HS_OIT_ABUFFER)
-  // The key pass gave this fragment a node holding its key, in its pixel's
-  // range sorted by key (abuffer_keys.frag): find it by binary search. No
-  // node (over the cap, or a key tie whose twin took it): the tail.
+  // The key pass gave this fragment a node holding its depth and key, in
+  // its pixel's sorted range (abuffer_keys.frag): find it by binary search
+  // in the range's order. No node (over the cap, or a full tie whose twin
+  // took it): the tail.
   const uint key = oitKey(gl_FragCoord.z, vObject, uint(gl_PrimitiveID));
-  const uint pixel = abufferPixel(p), end = abufferStarts[pixel + 1u];
-  uint lo = abufferStarts[pixel], hi = end;
+  const uvec2 me = uvec2(floatBitsToUint(gl_FragCoord.z), key);
+  const uint pixel = abufferPixel(p), begin = abufferStarts[pixel];
+  const uint range = abufferStarts[pixel + 1u] - begin, count = imageLoad(uABufferCounts, p).x;
+  const bool byKey = count > range;  // abufferByKey
+  // The nodes in use: a fixed array's range past the pixel's fragments stays empty.
+  const uint end = begin + min(count, range);
+  uint lo = begin, hi = end;
   while (lo < hi) {
     const uint mid = (lo + hi) / 2u;
-    if (abufferNodes[mid].w < key) lo = mid + 1u;
+    const uvec2 there = abufferNodes[mid].zw;
+    if (byKey ? there.y < key : abufferNearer(there, me)) lo = mid + 1u;
     else hi = mid;
   }
-  if (lo < end && abufferNodes[lo].w == key && !abufferWritten(abufferNodes[lo]))
+  const uvec4 found = lo < end ? abufferNodes[lo] : uvec4(0u);
+  if (lo < end && found.w == key && (byKey || found.z == me.x) && !abufferWritten(found))
     abufferNodes[lo] = abufferNode(c, gl_FragCoord.z, key);
   else
     oitOverflow(c);
