@@ -560,6 +560,34 @@ void CollapseEngine::sampleKeys(size_t stride, std::vector<float>& out) const {
     if (!(s_.estate[heap_[i].edge()] & kGone)) out.push_back(heap_[i].key());
 }
 
+// The next top is one of the root's children, or after a pop or a sink
+// one of theirs, and its evaluation waits on a chain of loads (heap entry
+// -> halfedges' to-vertex -> two vertex records; 65% of evaluate's samples
+// sat on them). Two levels ahead, so that no prefetch waits on another:
+// the grandchildren's halfedges and state bytes are requested now, the
+// children's records from halfedges requested a top or two ago. It reads
+// only halfedges of edges in this engine's own queue (which no other
+// engine rewrites, deleted ones included) and hints at their vertices'
+// records, so it adds no sharing between regions and changes no result.
+// (Prefetching one level, the children's halfedges, was
+// inside the noise in the fourth round; two levels took 9% of the CPU on
+// the 2M tile at 10%, see docs/meshes.md, "Sixth round".)
+void CollapseEngine::prefetchNext() const {
+  const size_t n = heap_.size();
+  for (size_t c = 1; c < std::min<size_t>(n, 5); ++c) {
+    const uint32_t e = heap_[c].edge();
+    const int a = m_.to_vertex_handle(HalfedgeHandle{int(2 * e + 1)}).idx();
+    const int b = m_.to_vertex_handle(HalfedgeHandle{int(2 * e)}).idx();
+    __builtin_prefetch(&s_.vd[size_t(a)]);
+    __builtin_prefetch(&s_.vd[size_t(b)]);
+  }
+  for (size_t g = 5; g < std::min<size_t>(n, 21); ++g) {
+    const uint32_t e = heap_[g].edge();
+    __builtin_prefetch(&m_.halfedge(HalfedgeHandle{int(2 * e)}));
+    __builtin_prefetch(&s_.estate[e]);
+  }
+}
+
 bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimit, const Progress* progress,
                          std::atomic<size_t>& done, size_t expectedTotal, bool reporter) {
   // A local count: regions' counters sit side by side in one array, and
@@ -575,6 +603,7 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
     if (liveFaces <= targetFaces) break;
     if (!rest_.empty() && (heap_.empty() || heap_[0].packed > restAbove_)) mergeRest();
     if (heap_.empty() || heap_[0].key() > keyLimit) break;
+    prefetchNext();
     const uint32_t edge = heap_[0].edge();
     ++stats_.tops;
     const uint8_t state = s_.estate[edge];

@@ -107,6 +107,7 @@ class CollapseEngine {
     bool moves = false;          // p is an optimal placement (both ends free)
   };
   bool evaluate(uint32_t edge, Plan& plan) const;
+  void prefetchNext() const;
   EdgeKind edgeKind(OpenMesh::HalfedgeHandle h) const;
   bool mayTouch(OpenMesh::VertexHandle v) const {
     return region_ == kSharedRegion || s_.vd[size_t(v.idx())].region == region_;
