@@ -321,7 +321,7 @@ class TestShadows : public QObject {
         for (int j = 0; j < 3; ++j) {
           const float v = visibilityAt({-0.8 + 0.2 * i, 0.6 + 0.15 * j, 2.0});
           QVERIFY(v >= 0.0f);
-          sum += v;
+          sum += double(v);
           ++n;
         }
       const double mean = sum / n;
