@@ -15,11 +15,11 @@
 // fragments, capped by `memoryCapBytes`. "<name>_capture" then
 //   1. turns the counts into ranges (a prefix sum, shaders/abuffer_scan.comp),
 //   2. draws the list with a derivative-free shader that hands each
-//      fragment a node of its pixel and writes its key there
+//      fragment a node of its pixel and writes its depth and key there
 //      (shaders/abuffer_keys.frag, which says why not in the lit shader),
-//   3. sorts each pixel's keys (shaders/abuffer_sort_keys.comp),
+//   3. sorts each pixel's range by depth (shaders/abuffer_sort_keys.comp),
 //   4. draws the list again with the mesh shader's HS_OIT_ABUFFER variant
-//      (full lighting): each fragment finds its key and writes its colour.
+//      (full lighting): each fragment finds its node and writes its colour.
 // No step depends on the order fragments arrive in, so a frame captures
 // the same bits every time (the linked lists of Yang et al. 2010, built
 // with atomics in the lit shader, did not on llvmpipe). When the cap is
@@ -29,7 +29,7 @@
 // being dropped.
 //
 // Reading it: bind with bindABuffer in a later pass that reads the refs and
-// walk a pixel's range (shaders/abuffer_sort.glsl), in a compute shader
+// walk a pixel's range (shaders/abuffer_read.glsl), in a compute shader
 // (on llvmpipe a fragment shader's dynamically indexed array misread some
 // pixels; shaders/oit_resolve.comp is the example). Include only inside
 // render/.

@@ -85,7 +85,7 @@ enum class AoResolution { Half = 0, Full = 1 };
 enum class DepthOfField { Off = 0, Gather = 1, Layered = 2, Reference = 3 };
 // Transparency (docs/rendering.md "Transparency"): how translucent
 // surfaces (opacity under 1, no alpha cut-out) are composited.
-// ABuffer: per-pixel linked lists, sorted; ABufferFixed: the thesis's
+// ABuffer: every fragment in per-pixel sorted ranges; ABufferFixed: the thesis's
 // fixed 16-deep array; KBuffer: the kbufferK nearest, the rest tail-blended;
 // Weighted: weighted blended OIT (McGuire & Bavoil 2013); Reference: depth
 // peeling until no fragment is left (exact, slow: tests and benchmarks).

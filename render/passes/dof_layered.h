@@ -1,7 +1,7 @@
 #pragma once
 // Layered depth of field from the A-buffer (docs/rendering.md "Depth of
 // field"; Schedl & Wimmer 2012, the GPU Pro chapter): every surface of the
-// view's meshes captured into per-pixel lists with no depth test
+// view's meshes captured into per-pixel sorted ranges with no depth test
 // (render/abuffer.h), each pixel's fragments sorted and split into K layers
 // by circle of confusion (shaders/dof_layers.comp), each layer blurred by
 // its CoC and the layers composited front to back with partial occlusion
