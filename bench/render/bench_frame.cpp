@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "bench/common/bench_util.h"
+#include "bench/common/height_grid.h"
 #include "core/json.h"
 #include "render/offscreen_renderer.h"
 #include "render/stereo_views.h"
@@ -58,23 +59,10 @@ struct Options {
 
 // A terrain as a plain mesh: 217 x 217 vertices over 400 m, rolling hills.
 std::shared_ptr<const mesh::MeshData> gridTerrain() {
-  const int n = 217;
-  const float size = 400.0f;
-  auto m = std::make_shared<mesh::MeshData>();
-  for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) {
-      const float fx = size * (float(x) / float(n - 1) - 0.5f), fy = size * (float(y) / float(n - 1) - 0.5f);
-      const float h = 6.0f * std::sin(fx * 0.03f) * std::cos(fy * 0.025f) + 0.002f * (fx * fx + fy * fy) * 0.05f;
-      m->positions.emplace_back(fx, fy, h - 0.5f);
-    }
-  for (int y = 0; y + 1 < n; ++y)
-    for (int x = 0; x + 1 < n; ++x) {
-      const uint32_t i = uint32_t(y * n + x);
-      m->indices.insert(m->indices.end(), {i, i + 1, i + uint32_t(n), i + 1, i + uint32_t(n) + 1, i + uint32_t(n)});
-    }
-  mesh::computeVertexNormals(*m);
-  m->submeshes.push_back({0, uint32_t(m->indices.size()), -1});
-  return m;
+  return bench::heightGridMesh(217, 400.0f, [](float x, float y) {
+    const float h = 6.0f * std::sin(x * 0.03f) * std::cos(y * 0.025f) + 0.002f * (x * x + y * y) * 0.05f;
+    return h - 0.5f;
+  });
 }
 
 scene::SceneState meshTerrainScene(scene::SceneState s) {

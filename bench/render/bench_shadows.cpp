@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "bench/common/bench_util.h"
+#include "bench/common/height_grid.h"
 #include "bench/common/plot.h"
 #include "mesh/primitives.h"
 #include "meshproc/closest_point_bvh.h"
@@ -56,23 +57,9 @@ struct BenchScene {
 };
 
 std::shared_ptr<const mesh::MeshData> hills() {
-  const int n = 312;
-  const float size = 1000.0f;
-  auto m = std::make_shared<mesh::MeshData>();
-  for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) {
-      const float fx = size * (float(x) / float(n - 1) - 0.5f), fy = size * (float(y) / float(n - 1) - 0.5f);
-      const float h = 9.0f * std::sin(fx * 0.021f) * std::cos(fy * 0.017f) + 4.0f * std::sin(fx * 0.07f + fy * 0.05f);
-      m->positions.emplace_back(fx, fy, h);
-    }
-  for (int y = 0; y + 1 < n; ++y)
-    for (int x = 0; x + 1 < n; ++x) {
-      const uint32_t i = uint32_t(y * n + x);
-      m->indices.insert(m->indices.end(), {i, i + 1, i + uint32_t(n), i + 1, i + uint32_t(n) + 1, i + uint32_t(n)});
-    }
-  mesh::computeVertexNormals(*m);
-  m->submeshes.push_back({0, uint32_t(m->indices.size()), -1});
-  return m;
+  return bench::heightGridMesh(312, 1000.0f, [](float x, float y) {
+    return 9.0f * std::sin(x * 0.021f) * std::cos(y * 0.017f) + 4.0f * std::sin(x * 0.07f + y * 0.05f);
+  });
 }
 
 double hillHeight(double x, double y) {
