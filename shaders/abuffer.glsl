@@ -50,6 +50,16 @@ layout(std430, binding = 15) coherent buffer ABufferStarts { uint abufferStarts[
 
 uint abufferPixel(ivec2 p) { return uint(p.y) * abufferCounters.width + uint(p.x); }
 
+// Counts one fragment at `p` (a counting pass's work: the counts image and
+// the frame's totals); call it from a shader without derivatives (see
+// abuffer_keys.frag on why atomics' results elsewhere are not trusted).
+void abufferCountFragment(ivec2 p) {
+  const uint c = imageAtomicAdd(uABufferCounts, p, 1u) + 1u;
+  atomicAdd(abufferCounters.fragments, 1u);
+  atomicMax(abufferCounters.maxPerPixel, c);
+  if (c == 1u) atomicAdd(abufferCounters.coveredPixels, 1u);
+}
+
 // The length of the pixel's range: all its fragments, or the cap's share;
 // the fixed array's layers whatever the pixel has.
 uint abufferRangeLength(ivec2 p) {

@@ -9,8 +9,5 @@ layout(early_fragment_tests) in;
 
 void main() {
   if (gl_HelperInvocation) return;  // stores nothing (oit_main.glsl)
-  const uint c = imageAtomicAdd(uABufferCounts, ivec2(gl_FragCoord.xy), 1u) + 1u;
-  atomicAdd(abufferCounters.fragments, 1u);
-  atomicMax(abufferCounters.maxPerPixel, c);
-  if (c == 1u) atomicAdd(abufferCounters.coveredPixels, 1u);
+  abufferCountFragment(ivec2(gl_FragCoord.xy));
 }

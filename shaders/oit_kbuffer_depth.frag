@@ -9,10 +9,7 @@ flat in uint vObject;
 void main() {
   if (gl_HelperInvocation) return;  // stores nothing (oit_main.glsl)
   const ivec2 p = ivec2(gl_FragCoord.xy);
-  const uint c = imageAtomicAdd(uABufferCounts, p, 1u) + 1u;
-  atomicAdd(abufferCounters.fragments, 1u);
-  atomicMax(abufferCounters.maxPerPixel, c);
-  if (c == 1u) atomicAdd(abufferCounters.coveredPixels, 1u);
+  abufferCountFragment(p);
   uint v = oitKey(gl_FragCoord.z, vObject, uint(gl_PrimitiveID));
   for (int i = 0; i < OIT_K; ++i) {
     const uint old = imageAtomicMin(uOitSlots, ivec3(p, i), v);
