@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 
 #include "core/parallel.h"
 
@@ -23,23 +24,44 @@ struct OutgoingLists {
   }
 };
 
-OutgoingLists buildOutgoing(std::span<const uint32_t> tris, uint32_t nv) {
+// In parallel without atomics: each worker owns a contiguous range of
+// vertex ids and scans every corner, counting and filling only the lists
+// of its own vertices. Lists come out in corner order, as one serial pass
+// would write them, for any number of workers. (Vertices are numbered by
+// first use in the decimator, so a worker's writes stay mostly in its part
+// of the arrays; the extra cost is each worker reading all corners, which
+// is a sequential stream.)
+OutgoingLists buildOutgoing(std::span<const uint32_t> tris, uint32_t nv, unsigned threads) {
   OutgoingLists l;
-  l.offset.assign(size_t(nv) + 1, 0);
+  l.offset.resize(size_t(nv) + 1);
   const size_t nf = tris.size() / 3;
-  for (size_t f = 0; f < nf; ++f)
-    if (validFace(tris, f, nv))
-      for (int k = 0; k < 3; ++k) ++l.offset[tris[f * 3 + k] + 1];
+  const unsigned parts = unsigned(std::clamp<size_t>(size_t(nv) / 65536, 1, resolveThreads(threads)));
+  auto partBegin = [&](size_t p) { return uint32_t(size_t(nv) * p / parts); };
+  auto forOwnCorners = [&](size_t p, auto&& fn) {
+    const uint32_t lo = partBegin(p), hi = partBegin(p + 1);
+    for (size_t f = 0; f < nf; ++f) {
+      if (!validFace(tris, f, nv)) continue;
+      for (uint32_t k = 0; k < 3; ++k) {
+        const uint32_t c = uint32_t(f * 3 + k), v = tris[c];
+        if (v >= lo && v < hi) fn(v, c);
+      }
+    }
+  };
+  parallelTasks(parts, parts, [&](size_t p, unsigned) {
+    const uint32_t lo = partBegin(p), hi = partBegin(p + 1);
+    std::fill(l.offset.begin() + lo + 1, l.offset.begin() + hi + 1, 0u);
+    forOwnCorners(p, [&](uint32_t v, uint32_t) { ++l.offset[v + 1]; });
+  });
+  l.offset[0] = 0;
   for (size_t v = 0; v < nv; ++v) l.offset[v + 1] += l.offset[v];
   l.entry.resize(l.offset[nv]);
-  std::vector<uint32_t> cursor(l.offset.begin(), l.offset.end() - 1);
-  for (size_t f = 0; f < nf; ++f) {
-    if (!validFace(tris, f, nv)) continue;
-    for (uint32_t k = 0; k < 3; ++k) {
-      const uint32_t c = uint32_t(f * 3 + k);
-      l.entry[cursor[tris[c]]++] = (uint64_t(tris[nextCorner(c)]) << 32) | c;
-    }
-  }
+  const auto cursor = std::make_unique_for_overwrite<uint32_t[]>(nv);
+  parallelTasks(parts, parts, [&](size_t p, unsigned) {
+    std::copy(l.offset.begin() + partBegin(p), l.offset.begin() + partBegin(p + 1), cursor.get() + partBegin(p));
+    forOwnCorners(p, [&](uint32_t v, uint32_t c) {
+      l.entry[cursor[v]++] = (uint64_t(tris[nextCorner(c)]) << 32) | c;
+    });
+  });
   return l;
 }
 
@@ -186,7 +208,7 @@ struct DisjointSets {
 }  // namespace
 
 CornerTopology analyzeCorners(std::span<const uint32_t> tris, uint32_t vertexCount, unsigned threads) {
-  const OutgoingLists l = buildOutgoing(tris, vertexCount);
+  const OutgoingLists l = buildOutgoing(tris, vertexCount, threads);
   return analyze(tris, vertexCount, l, threads);
 }
 
@@ -202,7 +224,7 @@ NonManifoldSplitStats splitNonManifold(std::vector<uint32_t>& tris, uint32_t ver
   // edge through other faces (a fin glued along a fold); round 1 detaches
   // such faces completely, and round 2 splits the fans that leaves behind.
   for (int round = 0; round < 4; ++round) {
-    const OutgoingLists l = buildOutgoing(tris, nv);
+    const OutgoingLists l = buildOutgoing(tris, nv, threads);
     topology = analyze(tris, nv, l, threads);
     if (round == 0) {
       stats.nonManifoldEdges = topology.nonManifoldEdges;

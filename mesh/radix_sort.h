@@ -2,35 +2,60 @@
 // Stable LSD radix sort of packed (key << 32 | payload) items by key. Spatial
 // orders (Morton codes of millions of faces or samples) are sorted in a few
 // linear passes instead of an n log n comparison sort.
+//
+// Hand-written because oneTBB has no radix sort and its parallel_sort is a
+// comparison sort (n log n, unstable); the sort must be stable so that the
+// order of equal keys, and with it everything numbered from this order, is
+// the same for any thread count.
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
+
+#include "core/parallel.h"
 
 namespace hs::mesh {
 
 // Sorts `items` by bits [32, 32 + keyBits) (the key), keeping the order of
-// equal keys. `scratch` is reused between calls to avoid a reallocation.
-inline void radixSortByKey(std::vector<uint64_t>& items, int keyBits, std::vector<uint64_t>& scratch) {
+// equal keys. With threads > 1 each pass counts and scatters per contiguous
+// range on its own thread; the ranges' buckets are laid out bucket by
+// bucket, range by range, so the result is the serial sort's, bit for bit.
+inline void radixSortByKey(std::vector<uint64_t>& items, int keyBits, unsigned threads = 1) {
   constexpr int kBits = 11;
   constexpr size_t kBuckets = size_t(1) << kBits;
-  scratch.resize(items.size());
+  const size_t n = items.size();
+  // Passes alternate between the items and an uninitialised buffer (a
+  // zero-filled one would be written twice).
+  const auto buffer = std::make_unique_for_overwrite<uint64_t[]>(n);
+  uint64_t* from = items.data();
+  uint64_t* to = buffer.get();
+  // Below ~64k items per range a pass is shorter than waking a thread.
+  const unsigned ranges = unsigned(std::clamp<size_t>(n / 65536, 1, resolveThreads(threads)));
+  std::vector<std::array<size_t, kBuckets>> count(ranges);
   for (int shift = 0; shift < keyBits; shift += kBits) {
-    std::array<size_t, kBuckets> count{};
-    for (uint64_t it : items) ++count[(it >> (32 + shift)) & (kBuckets - 1)];
+    const int at = 32 + shift;
+    parallelRanges(n, ranges, [&](size_t b, size_t e, unsigned r) {
+      auto& c = count[r];
+      c.fill(0);
+      for (size_t i = b; i < e; ++i) ++c[(from[i] >> at) & (kBuckets - 1)];
+    }, 65536);
     size_t sum = 0;
-    for (auto& c : count) {
-      const size_t n = c;
-      c = sum;
-      sum += n;
-    }
-    for (uint64_t it : items) scratch[count[(it >> (32 + shift)) & (kBuckets - 1)]++] = it;
-    items.swap(scratch);
+    for (size_t k = 0; k < kBuckets; ++k)
+      for (unsigned r = 0; r < ranges; ++r) {
+        const size_t m = count[r][k];
+        count[r][k] = sum;
+        sum += m;
+      }
+    parallelRanges(n, ranges, [&](size_t b, size_t e, unsigned r) {
+      auto& c = count[r];
+      for (size_t i = b; i < e; ++i) to[c[(from[i] >> at) & (kBuckets - 1)]++] = from[i];
+    }, 65536);
+    std::swap(from, to);
   }
-}
-
-inline void radixSortByKey(std::vector<uint64_t>& items, int keyBits) {
-  std::vector<uint64_t> scratch;
-  radixSortByKey(items, keyBits, scratch);
+  if (from != items.data())
+    parallelRanges(n, ranges, [&](size_t b, size_t e, unsigned) { std::copy(from + b, from + e, items.data() + b); },
+                   65536);
 }
 
 // 10 bits per axis interleaved into a 30-bit Morton (Z-order) code.

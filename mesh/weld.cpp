@@ -118,9 +118,9 @@ std::vector<uint32_t> weldMap(std::span<const glm::vec3> positions, std::span<co
   return remap;
 }
 
-void weldPositionsAndWedges(std::span<const glm::vec3> positions, std::span<const glm::vec2> uvs,
-                            std::vector<uint32_t>& posOf, uint32_t& positionCount, std::vector<uint32_t>& wedgeOf,
-                            uint32_t& wedgeCount, unsigned threads) {
+PositionWedgeWeld weldPositionsAndWedges(std::span<const glm::vec3> positions, std::span<const glm::vec2> uvs,
+                                         unsigned threads) {
+  PositionWedgeWeld weld;
   const size_t n = positions.size();
   const bool useUv = uvs.size() == n && n > 0;
   const unsigned workers = resolveThreads(threads);
@@ -138,7 +138,7 @@ void weldPositionsAndWedges(std::span<const glm::vec3> positions, std::span<cons
       order[i] = (uint64_t(mortonCode10(q.x, q.y, q.z)) << 32) | i;
     }
   });
-  radixSortByKey(order, 30);
+  radixSortByKey(order, 30, workers);
   // First vertex (smallest index) of each position and each position+UV.
   std::vector<uint32_t> posRep(n), wedgeRep(n);
   auto posKey = [&](uint32_t i) {
@@ -194,8 +194,10 @@ void weldPositionsAndWedges(std::span<const glm::vec3> positions, std::span<cons
     }
   });
   order = {};
-  // Ids in order of first occurrence: a prefix count of the firsts.
-  auto number = [&](std::vector<uint32_t>& rep, std::vector<uint32_t>& out, uint32_t& count) {
+  // Ids in order of first occurrence: a prefix count of the firsts, which
+  // are also each id's first vertex.
+  auto number = [&](std::vector<uint32_t>& rep, std::vector<uint32_t>& out, std::vector<uint32_t>& firstOf,
+                    uint32_t& count) {
     std::vector<size_t> firsts(workers + 1, 0);
     out.resize(n);
     parallelRanges(n, workers, [&](size_t b, size_t e, unsigned w) {
@@ -204,22 +206,26 @@ void weldPositionsAndWedges(std::span<const glm::vec3> positions, std::span<cons
       firsts[w + 1] = c;
     }, 1);
     for (unsigned w = 0; w < workers; ++w) firsts[w + 1] += firsts[w];
+    count = uint32_t(firsts[workers]);
+    firstOf.resize(count);
     parallelRanges(n, workers, [&](size_t b, size_t e, unsigned w) {
       uint32_t next = uint32_t(firsts[w]);
       for (size_t i = b; i < e; ++i)
-        if (rep[i] == i) out[i] = next++;
+        if (rep[i] == i) firstOf[next] = uint32_t(i), out[i] = next++;
     }, 1);
     parallelRanges(n, workers, [&](size_t b, size_t e, unsigned) {
       for (size_t i = b; i < e; ++i)
         if (rep[i] != i) out[i] = out[rep[i]];  // the first comes earlier: already numbered
     });
-    count = uint32_t(firsts[workers]);
   };
-  number(posRep, posOf, positionCount);
-  if (useUv)
-    number(wedgeRep, wedgeOf, wedgeCount);
-  else
-    wedgeOf = posOf, wedgeCount = positionCount;
+  number(posRep, weld.posOf, weld.posFirst, weld.positionCount);
+  if (useUv) {
+    number(wedgeRep, weld.wedgeOf, weld.wedgeFirst, weld.wedgeCount);
+  } else {
+    weld.wedgeOf = weld.posOf, weld.wedgeFirst = weld.posFirst;
+    weld.wedgeCount = weld.positionCount;
+  }
+  return weld;
 }
 
 size_t weldExactDuplicates(MeshData& mesh) {

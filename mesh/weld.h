@@ -28,9 +28,13 @@ std::vector<uint32_t> weldMap(std::span<const glm::vec3> positions, std::span<co
 // are sorted by the Morton code of their position, so exact duplicates sit
 // in the same short run and are grouped there; far cheaper at millions of
 // vertices than hash tables, whose every probe is a cache miss.
-void weldPositionsAndWedges(std::span<const glm::vec3> positions, std::span<const glm::vec2> uvs,
-                            std::vector<uint32_t>& posOf, uint32_t& positionCount, std::vector<uint32_t>& wedgeOf,
-                            uint32_t& wedgeCount, unsigned threads = 0);
+struct PositionWedgeWeld {
+  std::vector<uint32_t> posOf, wedgeOf;        // per input vertex: its ids
+  std::vector<uint32_t> posFirst, wedgeFirst;  // per id: its first (smallest) input vertex
+  uint32_t positionCount = 0, wedgeCount = 0;
+};
+PositionWedgeWeld weldPositionsAndWedges(std::span<const glm::vec3> positions, std::span<const glm::vec2> uvs,
+                                         unsigned threads = 0);
 
 // Welds exact duplicate vertices of `mesh` in place (position + UV + normal,
 // the attributes it has): indices are rewritten, duplicate vertices removed.

@@ -82,7 +82,7 @@ ClosestPointBvh::ClosestPointBvh(const MeshData& mesh, unsigned threads) {
       order[f] = (uint64_t(mortonCode10(q.x, q.y, q.z)) << 32) | f;
     }
   });
-  radixSortByKey(order, 30);
+  radixSortByKey(order, 30, resolveThreads(threads));
   std::vector<uint32_t> codes(nf);
   faceOfSlot_.resize(nf);
   slotOfFace_.resize(nf);

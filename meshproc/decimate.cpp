@@ -104,13 +104,14 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
 
   // Topology is by exact position, so UV seams do not cut the surface;
   // wedges are by position + UV, so seams are known.
-  uint32_t nPos = 0, nWedge = 0;
-  std::vector<uint32_t> posOf, wedgeOf;
-  weldPositionsAndWedges(in.positions, hasUv ? std::span<const glm::vec2>(in.uvs) : std::span<const glm::vec2>(),
-                         posOf, nPos, wedgeOf, nWedge, threads);
-  su.wedgeRep.assign(nWedge, UINT32_MAX);
-  std::vector<uint32_t> posRep(nPos, UINT32_MAX);
-  for (size_t v = nvIn; v-- > 0;) su.wedgeRep[wedgeOf[v]] = uint32_t(v), posRep[posOf[v]] = uint32_t(v);
+  PositionWedgeWeld weld =
+      weldPositionsAndWedges(in.positions, hasUv ? std::span<const glm::vec2>(in.uvs) : std::span<const glm::vec2>(),
+                             threads);
+  const uint32_t nPos = weld.positionCount;
+  const std::vector<uint32_t>& posOf = weld.posOf;
+  const std::vector<uint32_t>& wedgeOf = weld.wedgeOf;
+  const std::vector<uint32_t>& posRep = weld.posFirst;  // an input vertex at each position
+  su.wedgeRep = std::move(weld.wedgeFirst);
   traceMark("weld");
 
   // Spatial (Morton) order of the faces: regions become contiguous ranges,
@@ -144,7 +145,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     su.degenerate = nfIn - n;
     order.resize(n);
   }
-  radixSortByKey(order, 30);
+  radixSortByKey(order, 30, threads);
   traceMark("morton sort");
   const size_t nf = order.size();
   std::vector<uint32_t> posOfOm, firstCorner;
@@ -269,8 +270,9 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
 
   traceMark("groups/wedgeUv");
   // Locks by input vertex, carried to every vertex at that position.
-  std::vector<uint8_t> lockedPos(nPos, 0);
-  if (opt.lockedVertices.size() == nvIn)
+  std::vector<uint8_t> lockedPos;  // empty: nothing locked
+  if (opt.lockedVertices.size() == nvIn) lockedPos.assign(nPos, 0);
+  if (!lockedPos.empty())
     for (size_t v = 0; v < nvIn; ++v)
       if (opt.lockedVertices[v]) lockedPos[posOf[v]] = 1;
 
@@ -390,7 +392,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
         c = VertexClass::SeamLine;
       else if (boundaryEdges || seamEdges)
         c = VertexClass::Fixed;
-      if (lockedPos[posOfOm[vi]]) c = VertexClass::Fixed, ++cl;
+      if (!lockedPos.empty() && lockedPos[posOfOm[vi]]) c = VertexClass::Fixed, ++cl;
       d.cls = c;
       if (c == VertexClass::BoundaryLine || c == VertexClass::SeamLine)
         st.polyNbr[vi * 2] = lineNbr[0], st.polyNbr[vi * 2 + 1] = lineNbr[1];

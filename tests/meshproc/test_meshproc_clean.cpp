@@ -2,7 +2,10 @@
 // split, counted, and named in plain words; nothing is dropped silently.
 #include <QtTest>
 
+#include <map>
+
 #include "mesh/nonmanifold_split.h"
+#include "mesh/radix_sort.h"
 #include "mesh/weld.h"
 #include "meshproc/decimate.h"
 #include "meshproc/mesh_clean.h"
@@ -68,14 +71,69 @@ class TestMeshprocClean : public QObject {
     const auto wedge = weldMap(m.positions, m.uvs, {}, nw, 1);
     QVERIFY(np < nw && nw < m.vertexCount());
     for (unsigned threads : {1u, 2u, 3u}) {
-      uint32_t a = 0, b = 0, c = 0;
+      uint32_t a = 0;
       QVERIFY(weldMap(m.positions, m.uvs, {}, a, threads) == wedge);
-      std::vector<uint32_t> p2, w2;
-      weldPositionsAndWedges(m.positions, m.uvs, p2, b, w2, c, threads);
-      QCOMPARE(b, np);
-      QCOMPARE(c, nw);
-      QVERIFY(p2 == pos);
-      QVERIFY(w2 == wedge);
+      const PositionWedgeWeld w = weldPositionsAndWedges(m.positions, m.uvs, threads);
+      QCOMPARE(w.positionCount, np);
+      QCOMPARE(w.wedgeCount, nw);
+      QVERIFY(w.posOf == pos);
+      QVERIFY(w.wedgeOf == wedge);
+      // Each id's first vertex: the smallest vertex index with that id.
+      std::vector<uint32_t> posFirst(np, UINT32_MAX), wedgeFirst(nw, UINT32_MAX);
+      for (size_t v = m.vertexCount(); v-- > 0;) posFirst[pos[v]] = uint32_t(v), wedgeFirst[wedge[v]] = uint32_t(v);
+      QVERIFY(w.posFirst == posFirst);
+      QVERIFY(w.wedgeFirst == wedgeFirst);
+    }
+  }
+
+  // The parallel paths of the radix sort and of the corner analysis start
+  // at 64k items per worker; below that everything runs on one thread.
+  // Above it, every thread count must give what one serial pass gives.
+  void radixSortIsStableForAnyThreadCount() {
+    std::vector<uint64_t> items(300000);
+    uint64_t x = 12345;
+    for (size_t i = 0; i < items.size(); ++i) {
+      x = x * 6364136223846793005ull + 1442695040888963407ull;
+      items[i] = (uint64_t(uint32_t(x >> 40) & 0x3fffffffu) << 32) | uint32_t(i);  // 30-bit keys, payload = index
+      if (i % 7 == 0 && i > 0) items[i] = (items[i - 1] & 0xffffffff00000000ull) | uint32_t(i);  // equal keys
+    }
+    std::vector<uint64_t> reference = items;
+    std::stable_sort(reference.begin(), reference.end(), [](uint64_t a, uint64_t b) { return (a >> 32) < (b >> 32); });
+    for (unsigned threads : {1u, 2u, 3u}) {
+      std::vector<uint64_t> sorted = items;
+      radixSortByKey(sorted, 30, threads);
+      QVERIFY2(sorted == reference, qPrintable(QString("threads %1").arg(threads)));
+    }
+  }
+
+  void cornerTwinsAgreeWithABruteForceForAnyThreadCount() {
+    MeshData m = hs::test::curvedGrid(400, 10.0, 0.3, false);  // 160,801 vertices
+    const uint32_t nv = uint32_t(m.vertexCount());
+    // A fin on the edge of the first face (three faces on one edge) and a
+    // face with a repeated id (ignored).
+    m.positions.push_back({0.0f, 0.0f, 5.0f});
+    m.indices.insert(m.indices.end(), {m.indices[0], m.indices[1], nv, 5, 5, 6});
+    const uint32_t n = nv + 1;
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> directed;
+    auto validFace = [&](size_t f) {
+      const uint32_t a = m.indices[f * 3], b = m.indices[f * 3 + 1], c = m.indices[f * 3 + 2];
+      return a != b && b != c && a != c;
+    };
+    for (uint32_t c = 0; c < m.indices.size(); ++c)
+      if (validFace(c / 3)) directed[{m.indices[c], m.indices[nextCorner(c)]}].push_back(c);
+    std::vector<uint32_t> twin(m.indices.size(), kNoCorner);
+    size_t boundary = 0;
+    for (const auto& [edge, corners] : directed) {
+      const auto back = directed.find({edge.second, edge.first});
+      const size_t backs = back == directed.end() ? 0 : back->second.size();
+      if (corners.size() == 1 && backs == 1) twin[corners[0]] = back->second[0];
+      if (corners.size() == 1 && backs == 0) ++boundary;
+    }
+    for (unsigned threads : {1u, 2u, 3u}) {
+      const CornerTopology t = analyzeCorners(m.indices, n, threads);
+      QVERIFY2(t.twin == twin, qPrintable(QString("threads %1").arg(threads)));
+      QCOMPARE(t.boundaryEdges, boundary);
+      QCOMPARE(t.nonManifoldEdges, size_t(1));
     }
   }
 
