@@ -15,6 +15,7 @@
 #include "mesh/weld.h"
 #include "meshproc/collapse_engine.h"
 #include "meshproc/decimation_state.h"
+#include "meshproc/uninit_array.h"
 
 namespace hs::mesh {
 namespace {
@@ -76,7 +77,7 @@ std::vector<uint16_t> faceGroups(const MeshData& in, std::vector<Submesh>& group
 }
 
 struct Setup {
-  std::vector<uint32_t> omFaceOrig;  // OpenMesh face -> input face
+  UninitArray<uint32_t> omFaceOrig;  // OpenMesh face -> input face
   std::vector<uint32_t> wedgeRep;    // wedge -> an input vertex with its position and UV
   size_t degenerate = 0;
   size_t regions = 1;                // vd[].region is set for this partition (see regionCount)
@@ -165,7 +166,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   // vertex up.
   const size_t nc = nf * 3;
   std::vector<uint32_t> tris(nc), wedges(nc);
-  su.omFaceOrig.resize(nf);
+  su.omFaceOrig.reset(nf);
   {
     const auto firstOfPos = std::make_unique_for_overwrite<std::atomic<uint32_t>[]>(nPos);
     parallelRanges(nPos, threads, [&](size_t b, size_t e, unsigned) {
@@ -196,7 +197,8 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     for (unsigned w = 0; w < workers; ++w) firsts[w + 1] += firsts[w];
     posOfOm.resize(firsts[workers]);
     firstCorner.resize(firsts[workers]);
-    std::vector<uint32_t> omOfPos(nPos, UINT32_MAX);
+    // Written for every position a valid face uses, the only ones read.
+    UninitArray<uint32_t> omOfPos(nPos);
     parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
       uint32_t next = uint32_t(firsts[w]);
       for (size_t c = b; c < e; ++c) {

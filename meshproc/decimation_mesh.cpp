@@ -2,6 +2,7 @@
 
 #include "core/parallel.h"
 #include "mesh/nonmanifold_split.h"
+#include "meshproc/uninit_array.h"
 
 namespace hs::mesh {
 
@@ -16,7 +17,7 @@ void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_
 
   // Edge ids: a prefix count of owning corners, per range then combined, so
   // the numbering is the same for any number of workers.
-  std::vector<uint32_t> heOf(nc);
+  UninitArray<uint32_t> heOf(nc);  // every corner is numbered below
   const unsigned workers = std::max(1u, threads);
   std::vector<size_t> rangeOwners(workers + 1, 0);
   parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
