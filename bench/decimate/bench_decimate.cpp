@@ -61,6 +61,12 @@ double cpuSeconds(clockid_t clock) {
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
+long minorFaults() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_minflt;
+}
+
 struct Row {
   std::string method;
   double ratio = 0;
@@ -89,6 +95,7 @@ MeshData withIndices(const MeshData& base, std::vector<uint32_t> indices) {
 // shared machine; times are medians. Ours must give the same mesh on every
 // run (checked: deterministic output).
 size_t gFacesPerRegion = 0;  // --faces-per-region (0: the decimator's default)
+double gPause = 0;           // --pause S: seconds of sleep before every timed run (see runPair)
 
 void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& ours, MeshData& oursOut, Row& meshopt,
              MeshData& meshoptOut) {
@@ -102,14 +109,17 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
   o.targetRatio = ratio;
   o.threads = threads;
   if (gFacesPerRegion) o.facesPerRegion = gFacesPerRegion;
-  std::vector<double> cOurs, cMeshopt;
+  std::vector<double> cOurs, cMeshopt, fOurs, fMeshopt;
   std::vector<double> tOurs, tMeshopt, tSetup, tRegions, tBorders, tOutput;
   std::vector<uint32_t> dst(in.indices.size());
   size_t n = 0;
   for (int i = 0; i < runs; ++i) {
+    if (gPause > 0) std::this_thread::sleep_for(std::chrono::duration<double>(gPause));
     const double c0 = cpuSeconds(CLOCK_PROCESS_CPUTIME_ID);
+    const long f0 = minorFaults();
     const auto t0 = Clock::now();
     DecimateResult d = decimate(in, o);
+    fOurs.push_back(double(minorFaults() - f0));
     const double t = seconds(t0, Clock::now());
     cOurs.push_back(cpuSeconds(CLOCK_PROCESS_CPUTIME_ID) - c0);
     if (!d.ok()) {
@@ -127,10 +137,13 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
       std::exit(1);
     }
     const size_t triangles = oursOut.triangleCount();
+    if (gPause > 0) std::this_thread::sleep_for(std::chrono::duration<double>(gPause));
     const double c1 = cpuSeconds(CLOCK_THREAD_CPUTIME_ID);
+    const long f1 = minorFaults();
     const auto t1 = Clock::now();
     n = meshopt_simplify(dst.data(), in.indices.data(), in.indices.size(), &in.positions[0].x, in.positions.size(),
                          sizeof(glm::vec3), triangles * 3, 1e30f, 0, nullptr);
+    fMeshopt.push_back(double(minorFaults() - f1));
     tMeshopt.push_back(seconds(t1, Clock::now()));
     cMeshopt.push_back(cpuSeconds(CLOCK_THREAD_CPUTIME_ID) - c1);
   }
@@ -155,6 +168,7 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
   std::fprintf(stderr, "ours %g%%: CPU s min %.4f median %.4f, meshopt min %.4f median %.4f (%zu runs)\n", ratio * 100,
                *std::min_element(cOurs.begin(), cOurs.end()), ours.cpu,
                *std::min_element(cMeshopt.begin(), cMeshopt.end()), meshopt.cpu, cOurs.size());
+  std::fprintf(stderr, "ours %g%%: minor page faults median %.0f, meshopt %.0f\n", ratio * 100, median(fOurs), median(fMeshopt));
   ours.triangles = oursOut.triangleCount();
   ours.report.secondsSetup = median(tSetup), ours.report.secondsRegions = median(tRegions);
   ours.report.secondsBorders = median(tBorders), ours.report.secondsOutput = median(tOutput);
@@ -299,6 +313,7 @@ int main(int argc, char** argv) {
     else if (a == "--plot") plotPath = next();
     else if (a == "--no-stock") noStock = true;
     else if (a == "--faces-per-region") gFacesPerRegion = size_t(std::atoll(next().c_str()));
+    else if (a == "--pause") gPause = std::atof(next().c_str());
     else if (a == "--skip-terrain") skipTerrain = true;
     else if (a == "--skip-bunny") skipBunny = true;
     else if (a == "--skip-quad") skipQuad = true;
