@@ -17,8 +17,8 @@ bool validFace(std::span<const uint32_t> tris, size_t f, uint32_t nv) {
 // Outgoing corners of every vertex, each entry packed as (to << 32 | corner)
 // so scanning a vertex's list needs no lookup into the triangle array.
 struct OutgoingLists {
-  std::vector<uint32_t> offset;  // vertexCount + 1
-  std::vector<uint64_t> entry;
+  UninitArray<uint32_t> offset;  // vertexCount + 1
+  UninitArray<uint64_t> entry;
   std::span<const uint64_t> of(uint32_t v) const {
     return {entry.data() + offset[v], entry.data() + offset[v + 1]};
   }
@@ -33,7 +33,7 @@ struct OutgoingLists {
 // is a sequential stream.)
 OutgoingLists buildOutgoing(std::span<const uint32_t> tris, uint32_t nv, unsigned threads) {
   OutgoingLists l;
-  l.offset.resize(size_t(nv) + 1);
+  l.offset.reset(size_t(nv) + 1);
   const size_t nf = tris.size() / 3;
   const unsigned parts = unsigned(std::clamp<size_t>(size_t(nv) / 65536, 1, resolveThreads(threads)));
   auto partBegin = [&](size_t p) { return uint32_t(size_t(nv) * p / parts); };
@@ -54,10 +54,10 @@ OutgoingLists buildOutgoing(std::span<const uint32_t> tris, uint32_t nv, unsigne
   });
   l.offset[0] = 0;
   for (size_t v = 0; v < nv; ++v) l.offset[v + 1] += l.offset[v];
-  l.entry.resize(l.offset[nv]);
-  const auto cursor = std::make_unique_for_overwrite<uint32_t[]>(nv);
+  l.entry.reset(l.offset[nv]);
+  UninitArray<uint32_t> cursor(nv);
   parallelTasks(parts, parts, [&](size_t p, unsigned) {
-    std::copy(l.offset.begin() + partBegin(p), l.offset.begin() + partBegin(p + 1), cursor.get() + partBegin(p));
+    std::copy(l.offset.begin() + partBegin(p), l.offset.begin() + partBegin(p + 1), cursor.begin() + partBegin(p));
     forOwnCorners(p, [&](uint32_t v, uint32_t c) {
       l.entry[cursor[v]++] = (uint64_t(tris[nextCorner(c)]) << 32) | c;
     });
@@ -89,7 +89,8 @@ EdgeCorners edgeCorners(const OutgoingLists& l, uint32_t a, uint32_t b) {
 
 CornerTopology analyze(std::span<const uint32_t> tris, uint32_t nv, const OutgoingLists& l, unsigned threads) {
   CornerTopology t;
-  t.twin.assign(tris.size(), kNoCorner);
+  t.twin.reset(tris.size());
+  parallelRanges(tris.size(), threads, [&](size_t b, size_t e, unsigned) { std::fill(t.twin.begin() + b, t.twin.begin() + e, kNoCorner); });
   std::atomic<size_t> nmEdges{0}, boundary{0}, nmVertices{0};
   // Twins: every vertex resolves its own outgoing corners, so the writes of
   // different workers never touch the same corner.
@@ -212,7 +213,7 @@ CornerTopology analyzeCorners(std::span<const uint32_t> tris, uint32_t vertexCou
   return analyze(tris, vertexCount, l, threads);
 }
 
-NonManifoldSplitStats splitNonManifold(std::vector<uint32_t>& tris, uint32_t vertexCount,
+NonManifoldSplitStats splitNonManifold(std::span<uint32_t> tris, uint32_t vertexCount,
                                        std::vector<uint32_t>& copiedFrom, CornerTopology& topology,
                                        unsigned threads) {
   NonManifoldSplitStats stats;
@@ -232,7 +233,7 @@ NonManifoldSplitStats splitNonManifold(std::vector<uint32_t>& tris, uint32_t ver
     }
     if (topology.manifold() || round == 3) break;
 
-    std::vector<uint32_t> twin = topology.twin;
+    std::vector<uint32_t> twin(topology.twin.begin(), topology.twin.end());
     std::vector<uint8_t> detached(nc / 3, 0);
     for (uint32_t a = 0; a < nv; ++a)
       for (uint64_t x : l.of(a)) {

@@ -11,6 +11,8 @@
 #include <span>
 #include <vector>
 
+#include "core/uninit_array.h"
+
 namespace hs::mesh {
 
 constexpr uint32_t kNoCorner = UINT32_MAX;
@@ -23,7 +25,7 @@ inline uint32_t prevCorner(uint32_t c) { return c % 3 == 0 ? c + 2 : c - 1; }
 struct CornerTopology {
   // Per corner: the corner of the opposite directed edge in the neighbouring
   // face; kNoCorner on open boundaries and on non-manifold edges.
-  std::vector<uint32_t> twin;
+  UninitArray<uint32_t> twin;  // every element written (huge pages at scale)
   size_t nonManifoldEdges = 0;     // undirected edges with 3+ faces or a repeated direction
   size_t nonManifoldVertices = 0;  // vertices whose faces form 2+ fans (non-manifold edges count as cuts)
   size_t boundaryEdges = 0;        // edges with one face
@@ -46,7 +48,7 @@ struct NonManifoldSplitStats {
 // copiedFrom[id - vertexCount] is the original id each duplicate copies.
 // On return `topology` describes the (now manifold) result, so callers that
 // need twins do not analyse twice.
-NonManifoldSplitStats splitNonManifold(std::vector<uint32_t>& tris, uint32_t vertexCount,
+NonManifoldSplitStats splitNonManifold(std::span<uint32_t> tris, uint32_t vertexCount,
                                        std::vector<uint32_t>& copiedFrom, CornerTopology& topology,
                                        unsigned threads = 1);
 

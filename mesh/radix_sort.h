@@ -10,10 +10,11 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <memory>
+#include <span>
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/uninit_array.h"
 
 namespace hs::mesh {
 
@@ -21,15 +22,15 @@ namespace hs::mesh {
 // equal keys. With threads > 1 each pass counts and scatters per contiguous
 // range on its own thread; the ranges' buckets are laid out bucket by
 // bucket, range by range, so the result is the serial sort's, bit for bit.
-inline void radixSortByKey(std::vector<uint64_t>& items, int keyBits, unsigned threads = 1) {
+inline void radixSortByKey(std::span<uint64_t> items, int keyBits, unsigned threads = 1) {
   constexpr int kBits = 11;
   constexpr size_t kBuckets = size_t(1) << kBits;
   const size_t n = items.size();
   // Passes alternate between the items and an uninitialised buffer (a
   // zero-filled one would be written twice).
-  const auto buffer = std::make_unique_for_overwrite<uint64_t[]>(n);
+  UninitArray<uint64_t> buffer(n);
   uint64_t* from = items.data();
-  uint64_t* to = buffer.get();
+  uint64_t* to = buffer.data();
   // Below ~64k items per range a pass is shorter than waking a thread.
   const unsigned ranges = unsigned(std::clamp<size_t>(n / 65536, 1, resolveThreads(threads)));
   std::vector<std::array<size_t, kBuckets>> count(ranges);

@@ -28,8 +28,8 @@ bool removable(VertexClass c, EdgeKind k) {
 
 }  // namespace
 
-CollapseEngine::CollapseEngine(DecimationState& state, uint16_t region)
-    : s_(state), m_(state.mesh), region_(region) {
+CollapseEngine::CollapseEngine(DecimationState& state, uint16_t region, unsigned level)
+    : s_(state), m_(state.mesh), region_(region), level_(level) {
   ring_.reserve(64);
 }
 
@@ -157,34 +157,95 @@ void CollapseEngine::popTop() {
 void CollapseEngine::compact() {
   // Entries of edges that collapses deleted would each cost a pop (a full
   // sift) to get rid of; once they are half the queue, one linear pass
-  // drops them all and rebuilds the heap.
-  size_t n = 0;
-  for (const Entry& e : heap_) {
-    if (s_.estate[e.edge()] & kGone)
-      s_.estate[e.edge()] = kGone;
-    else
-      heap_[n++] = e;
-  }
-  heap_.resize(n);
+  // drops them all (from the heap and from the entries waiting beside it)
+  // and rebuilds the heap.
+  auto dropGone = [&](std::vector<Entry>& v) {
+    size_t n = 0;
+    for (const Entry& e : v) {
+      if (s_.estate[e.edge()] & kGone)
+        s_.estate[e.edge()] = kGone;
+      else
+        v[n++] = e;
+    }
+    v.resize(n);
+  };
+  dropGone(heap_);
+  dropGone(rest_);
+  heapify();
+  tombstones_ = 0;
+}
+
+void CollapseEngine::heapify() {
   for (size_t i = heap_.size() / 4 + 1; i-- > 0;)
     if (i < heap_.size()) siftDown(i);
-  tombstones_ = 0;
 }
 
 void CollapseEngine::push(const Entry& e) {
   s_.estate[e.edge()] = kQueued;
+  if (e.packed > restAbove_) {
+    rest_.push_back(e);  // beyond this round: waits unsorted
+    return;
+  }
   heap_.push_back(e);
   siftUp(heap_.size() - 1);
 }
 
-void CollapseEngine::seedRange(uint32_t begin, uint32_t end) {
-  std::vector<Entry> entries;
-  entries.reserve(end - begin);
-  Entry e;
-  for (uint32_t edge = begin; edge < end; ++edge)
-    if (entryFor(edge, e)) entries.push_back(e);
-  stats_.evaluations += end - begin;
+void CollapseEngine::seedRange(uint32_t begin, uint32_t end, std::vector<Entry>&& taken) {
+  std::vector<Entry> entries = std::move(taken);
+  entries.reserve(entries.size() + (end - begin));
+  stats_.evaluations += evaluateUnqueued(begin, end, entries);
   seedEntries(std::move(entries));
+}
+
+void CollapseEngine::seedAround(std::span<const uint32_t> vertices, std::vector<Entry>&& taken) {
+  std::vector<Entry> entries = std::move(taken);
+  std::vector<uint32_t> seen;
+  Entry entry;
+  for (const uint32_t v : vertices) {
+    const HalfedgeHandle start = m_.halfedge_handle(VertexHandle(int(v)));
+    if (!start.is_valid()) continue;
+    HalfedgeHandle it = start;
+    do {
+      // The face's three edges: the two at v and the one across from it
+      // (an edge its engine dropped because v was not its own).
+      if (!m_.is_boundary(it))
+        for (HalfedgeHandle h = it, e = it;;) {
+          const uint32_t edge = uint32_t(h.idx()) >> 1;
+          const uint8_t state = s_.estate[edge];
+          // Only edges with both ends this engine's are looked at (and
+          // marked): nobody else writes their state.
+          if (!(state & (kQueued | kGone | kSeen)) && mayTouch(m_.to_vertex_handle(h)) &&
+              mayTouch(m_.from_vertex_handle(h))) {
+            s_.estate[edge] = kSeen;
+            seen.push_back(edge);
+            ++stats_.evaluations;
+            if (entryFor(edge, entry)) entries.push_back(entry);
+          }
+          h = m_.next_halfedge_handle(h);
+          if (h == e) break;
+        }
+      it = m_.next_halfedge_handle(m_.opposite_halfedge_handle(it));
+    } while (it != start);
+  }
+  for (const uint32_t edge : seen) s_.estate[edge] &= uint8_t(~kSeen);
+  seedEntries(std::move(entries));
+}
+
+size_t CollapseEngine::evaluateUnqueued(uint32_t begin, uint32_t end, std::vector<Entry>& out) const {
+  size_t evaluated = 0;
+  Entry e;
+  for (uint32_t edge = begin; edge < end; ++edge) {
+    const uint8_t state = s_.estate[edge];
+    if (state & kGone) {
+      s_.estate[edge] = kGone;  // a queue's entry of it, if any, was dropped with that queue
+      continue;
+    }
+    if (state & kQueued) continue;  // taken over from the queue that holds it
+    s_.estate[edge] = 0;
+    ++evaluated;
+    if (entryFor(edge, e)) out.push_back(e);
+  }
+  return evaluated;
 }
 
 void CollapseEngine::seedEntries(std::vector<Entry>&& entries, size_t heapTarget) {
@@ -202,35 +263,36 @@ void CollapseEngine::seedEntries(std::vector<Entry>&& entries, size_t heapTarget
     for (size_t i = stride / 2; i < heap_.size(); i += stride) sample.push_back(heap_[i].packed);
     const size_t k = std::min(sample.size() - 1, heapTarget / stride);
     std::nth_element(sample.begin(), sample.begin() + long(k), sample.end());
-    restAbove_ = sample[k];
-    size_t n = 0;
-    for (const Entry& e : heap_) {
-      if (e.packed <= restAbove_)
-        heap_[n++] = e;
-      else
-        rest_.push_back(e);
-    }
-    heap_.resize(n);
+    splitAt(sample[k]);
+    return;
   }
-  for (size_t i = heap_.size() / 4 + 1; i-- > 0;)
-    if (i < heap_.size()) siftDown(i);
+  heapify();
 }
 
-void CollapseEngine::mergeRest() {
-  // Every entry left in the heap is above restAbove_ now, as is all of
-  // rest_: one heap again.
-  for (const Entry& e : rest_) {
-    if (s_.estate[e.edge()] & kGone) {
-      s_.estate[e.edge()] = kGone;
-      tombstones_ -= std::min<size_t>(tombstones_, 1);
-    } else {
-      heap_.push_back(e);
+void CollapseEngine::splitAt(uint64_t bound) {
+  // Entries above `bound` leave the heap for rest_ (unsorted), wherever
+  // they were; those at or below it come back from rest_. One linear pass
+  // over each, then one heapify of what the heap holds.
+  std::vector<Entry> kept;
+  kept.reserve(heap_.size());
+  std::vector<Entry> waiting;
+  waiting.reserve(rest_.size() + heap_.size() / 2);
+  auto sort = [&](const std::vector<Entry>& from) {
+    for (const Entry& e : from) {
+      if (s_.estate[e.edge()] & kGone) {
+        s_.estate[e.edge()] = kGone;  // a queued entry of a deleted edge: dropped here
+        tombstones_ -= std::min<size_t>(tombstones_, 1);
+      } else {
+        (e.packed <= bound ? kept : waiting).push_back(e);
+      }
     }
-  }
-  rest_ = {};
-  restAbove_ = UINT64_MAX;
-  for (size_t i = heap_.size() / 4 + 1; i-- > 0;)
-    if (i < heap_.size()) siftDown(i);
+  };
+  sort(heap_);
+  sort(rest_);
+  heap_ = std::move(kept);
+  rest_ = std::move(waiting);
+  restAbove_ = rest_.empty() ? UINT64_MAX : bound;
+  heapify();
 }
 
 void CollapseEngine::appendLiveEntries(std::vector<Entry>& out) const {
@@ -555,9 +617,13 @@ void CollapseEngine::sampleKeys(size_t stride, std::vector<float>& out) const {
   // Starting mid-stride: index 0 is the queue's minimum, and with 64
   // queues their 64 minima, each standing for `stride` entries, were the
   // whole low end of the sample (thresholds crept up by one collapse a
-  // region per round).
-  for (size_t i = stride / 2; i < heap_.size(); i += stride)
-    if (!(s_.estate[heap_[i].edge()] & kGone)) out.push_back(heap_[i].key());
+  // region per round). The heap and the entries waiting beside it are one
+  // queue: sampled as one sequence.
+  const size_t n = heap_.size() + rest_.size();
+  for (size_t i = stride / 2; i < n; i += stride) {
+    const Entry& e = i < heap_.size() ? heap_[i] : rest_[i - heap_.size()];
+    if (!(s_.estate[e.edge()] & kGone)) out.push_back(e.key());
+  }
 }
 
 // The next top is one of the root's children, or after a pop or a sink
@@ -599,9 +665,22 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
     ~WriteBack() { to = from; }
   } writeBack{liveFaces, liveFacesOut};
   size_t sinceReport = 0;
+  // Only entries up to this round's limit need an order: the heap keeps
+  // those, and the rest waits unsorted beside it (rest_) until a later
+  // round's limit reaches it. The heap then holds a round's worth of
+  // entries instead of the whole queue (the sifts were the largest item of
+  // the loop's profile, and waited on a queue that outgrew the cache), and
+  // an entry whose key grows past the limit leaves it without a sift. The
+  // collapses come in the same order as from one heap: the heap's top is
+  // the smallest entry as long as it is at or below restAbove_.
+  const uint64_t limitPacked = keyLimit < HUGE_VALF ? Entry::make(keyLimit, UINT32_MAX).packed : UINT64_MAX;
+  if (limitPacked < restAbove_ && heap_.size() + rest_.size() > kSplitMin) splitAt(limitPacked);
   for (;;) {
     if (liveFaces <= targetFaces) break;
-    if (!rest_.empty() && (heap_.empty() || heap_[0].packed > restAbove_)) mergeRest();
+    if (!rest_.empty() && (heap_.empty() || heap_[0].packed > restAbove_)) {
+      if (restAbove_ >= limitPacked) break;  // what waits is beyond this round
+      splitAt(limitPacked);
+    }
     if (heap_.empty() || heap_[0].key() > keyLimit) break;
     prefetchNext();
     const uint32_t edge = heap_[0].edge();
@@ -623,10 +702,20 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
       // Still no later than the next best entry: it stays first, go on;
       // otherwise it sinks to where its new key belongs.
       const Entry fresh = Entry::make(plan.key, edge);
-      bool stays = true;
+      // (Every entry waiting beside the heap is above restAbove_: past it,
+      // the fresh key may be behind one of those.)
+      bool stays = fresh.packed <= restAbove_;
       for (size_t c = 1; c < std::min<size_t>(5, heap_.size()); ++c) stays &= before(fresh, heap_[c]);
       if (!stays) {
         ++stats_.sank;
+        if (fresh.packed > restAbove_) {
+          // Past what the heap holds: it waits with the rest (still queued).
+          rest_.push_back(fresh);
+          heap_[0] = heap_.back();
+          heap_.pop_back();
+          if (!heap_.empty()) siftDown(0);
+          continue;
+        }
         heap_[0] = fresh;
         siftDown(0);
         continue;
@@ -651,7 +740,7 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
     }
     if (!geometryOk(plan)) continue;
     collapse(plan, from, to, count, liveFaces);
-    if (tombstones_ * 2 > heap_.size()) compact(), ++stats_.compactions;
+    if (tombstones_ * 2 > heap_.size() + rest_.size()) compact(), ++stats_.compactions;
     ++stats_.collapses;
     stats_.maxErrorSq = std::max(stats_.maxErrorSq, plan.errSq);
     if (++sinceReport == 1024) {

@@ -1,6 +1,6 @@
 #pragma once
-// The edge-collapse loop. One engine per region (and one for the final pass
-// over the region borders): a 4-ary heap holding each collapsible edge once,
+// The edge-collapse loop. One engine per region of each level
+// (region_levels.h), the last one over everything: a 4-ary heap holding each collapsible edge once,
 // keyed by its quadric error. Re-evaluation is lazy: a collapse only marks
 // the edges around the kept vertex dirty (no heap operation at all); a dirty
 // edge is re-evaluated when it reaches the top, and if its new key is
@@ -16,6 +16,7 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <vector>
 
 #include "core/progress.h"
@@ -36,13 +37,7 @@ struct EngineStats {
 
 class CollapseEngine {
  public:
-  // region: the region this engine may touch, or kSharedRegion for all.
-  CollapseEngine(DecimationState& state, uint16_t region);
-
-  // Queues the edges of [begin, end) that this engine may collapse.
-  void seedRange(uint32_t begin, uint32_t end);
-  // Queues prepared entries (the border pass evaluates in parallel first).
-  // Key and edge packed in one integer: a non-negative float's bits order
+  // A queue entry. Key and edge packed in one integer: a non-negative float's bits order
   // like the float, so one unsigned compare orders by key and then by edge
   // (a deterministic tie-break), which keeps the heap's inner loop short.
   struct Entry {
@@ -61,22 +56,41 @@ class CollapseEngine {
     }
     uint32_t edge() const { return uint32_t(packed); }
   };
+  // region: the region of `level` this engine may touch (a vertex is its
+  // region's when vd[].region >> level equals it, region_levels.h), or
+  // kSharedRegion for all.
+  CollapseEngine(DecimationState& state, uint16_t region, unsigned level = 0);
+
+  // Queues `taken` (entries another engine queued, taken over as they are)
+  // and the edges of [begin, end) that are neither queued nor deleted and
+  // that this engine may collapse.
+  void seedRange(uint32_t begin, uint32_t end, std::vector<Entry>&& taken = {});
+  // Appends to `out` the entries of the edges of [begin, end) that are
+  // neither queued nor deleted (clearing their state bytes); returns how
+  // many it evaluated. Reads only: workers may share one engine.
+  size_t evaluateUnqueued(uint32_t begin, uint32_t end, std::vector<Entry>& out) const;
+  void countEvaluations(size_t n) { stats_.evaluations += n; }
+  // Queues `taken` and the edges of the faces around `vertices` (this
+  // engine's) that are neither queued nor deleted and that it may collapse.
+  void seedAround(std::span<const uint32_t> vertices, std::vector<Entry>&& taken);
   // Per edge in DecimationState::estate: queued in a heap, its key stale,
   // deleted by a collapse. The deleted bit repeats OpenMesh's edge status
   // so that a heap top costs one byte's load, not that and a status word
   // in another array (the top's status was 40% of the loop's own samples).
   static constexpr uint8_t kQueued = 1, kDirty = 2, kGone = 4;
-  // With heapTarget set and many more entries than that, only about the
-  // heapTarget cheapest go into the heap and the rest wait beside it until
-  // the heap's top passes them (then they are merged in): the same order
-  // of collapses as one heap, but the sifts stay in a heap that fits the
-  // cache (the border pass of a 5M-triangle mesh queues millions of edges
-  // and collapses a few per cent of them).
+  static constexpr uint8_t kSeen = 8;  // seedAround's mark, cleared before it returns
+  // Queues prepared entries. With heapTarget set and many more entries
+  // than that, only about the heapTarget cheapest go into the heap and the
+  // rest wait beside it until the heap's top passes them (then those up to
+  // the round's limit move in): the same order of collapses as one heap,
+  // but the sifts stay in a heap that fits the cache (the last region of a
+  // 5M-triangle mesh queues millions of edges and collapses a few per cent
+  // of them). run() splits the same way at its round's limit.
   void seedEntries(std::vector<Entry>&& entries, size_t heapTarget = SIZE_MAX);
   // Appends the queued entries whose edges are still alive, dirty ones
   // with their stale keys (re-evaluated when they reach the top, as in the
-  // engine that queued them): the border pass takes them over instead of
-  // evaluating those edges again.
+  // engine that queued them): the engine of the next level takes them over
+  // instead of evaluating those edges again.
   void appendLiveEntries(std::vector<Entry>& out) const;
   // Evaluates one edge into an entry; false if it cannot collapse at all.
   bool entryFor(uint32_t edge, Entry& out) const;
@@ -90,7 +104,7 @@ class CollapseEngine {
 
   // Every `stride`-th key in the queue (for choosing a shared threshold).
   void sampleKeys(size_t stride, std::vector<float>& out) const;
-  size_t queued() const { return heap_.size(); }
+  size_t queued() const { return heap_.size() + rest_.size(); }
   // Whether the last run() stopped at its face target (not at keyLimit or
   // an empty queue): such a queue still holds keys below the limit that
   // this round was not allowed to take.
@@ -110,7 +124,9 @@ class CollapseEngine {
   void prefetchNext() const;
   EdgeKind edgeKind(OpenMesh::HalfedgeHandle h) const;
   bool mayTouch(OpenMesh::VertexHandle v) const {
-    return region_ == kSharedRegion || s_.vd[size_t(v.idx())].region == region_;
+    if (region_ == kSharedRegion) return true;
+    const uint16_t r = s_.vd[size_t(v.idx())].region;
+    return r != kSharedRegion && (r >> level_) == region_;
   }
   bool topologyOk(const Plan& plan);
   bool geometryOk(const Plan& plan);
@@ -126,14 +142,19 @@ class CollapseEngine {
   void siftDown(size_t i);
   void siftUp(size_t i);
   void popTop();
-  void mergeRest();
+  void splitAt(uint64_t bound);
+  void heapify();
 
   DecimationState& s_;
   DecimationMesh& m_;
   uint16_t region_;
+  unsigned level_;
   std::vector<Entry> heap_;
-  std::vector<Entry> rest_;             // entries above restAbove_, not yet in the heap
+  std::vector<Entry> rest_;             // entries above restAbove_, not yet in the heap (unsorted)
   uint64_t restAbove_ = UINT64_MAX;
+  // Queues smaller than this are not split (the split's passes would cost
+  // more than the sifts they save).
+  static constexpr size_t kSplitMin = 4096;
   std::vector<int> ring_;  // scratch for the link condition
   size_t tombstones_ = 0;  // queued entries of deleted edges
   bool stoppedAtTarget_ = false;

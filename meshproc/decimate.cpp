@@ -10,12 +10,15 @@
 #include <numbers>
 #include <unordered_map>
 
+#include "core/large_pages.h"
 #include "core/parallel.h"
 #include "mesh/radix_sort.h"
 #include "mesh/weld.h"
 #include "meshproc/collapse_engine.h"
+#include "meshproc/decimate_trace.h"
 #include "meshproc/decimation_state.h"
-#include "meshproc/uninit_array.h"
+#include "meshproc/region_levels.h"
+#include "core/uninit_array.h"
 
 namespace hs::mesh {
 namespace {
@@ -24,34 +27,11 @@ using OpenMesh::EdgeHandle;
 using OpenMesh::FaceHandle;
 using OpenMesh::HalfedgeHandle;
 using OpenMesh::VertexHandle;
-using Clock = std::chrono::steady_clock;
+using Clock = DecimateClock;
 
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) { return secondsSince(t); }
 
-// Step timings on stderr when HS_DECIMATE_TRACE is set (wall and process
-// CPU seconds since the previous mark): for profiling, off otherwise.
-struct Trace {
-  bool on = std::getenv("HS_DECIMATE_TRACE") != nullptr;
-  Clock::time_point wall = Clock::now();
-  double cpu = cpuNow();
-  static double cpuNow() {
-    timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-  }
-  void mark(const char* what) {
-    if (!on) return;
-    const double c = cpuNow();
-    std::fprintf(stderr, "  [decimate] %-28s wall %7.3f  cpu %7.3f\n", what, since(wall), c - cpu);
-    wall = Clock::now(), cpu = c;
-  }
-};
-thread_local Trace* gTrace = nullptr;
-double threadCpuNow() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
+thread_local DecimateTrace* gTrace = nullptr;
 inline void traceMark(const char* what) {
   if (gTrace) gTrace->mark(what);
 }
@@ -125,7 +105,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   const glm::vec3 scale = 1023.0f / extent;
   // Codes in parallel (degenerate faces marked), then compacted in order.
   constexpr uint64_t kDegenerate = ~uint64_t(0);
-  std::vector<uint64_t> order(nfIn);
+  UninitArray<uint64_t> order(nfIn);
   parallelRanges(nfIn, threads, [&](size_t b, size_t e, unsigned) {
     for (size_t f = b; f < e; ++f) {
       const uint32_t* t = &in.indices[f * 3];
@@ -139,17 +119,13 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
       order[f] = (uint64_t(mortonCode10(q.x, q.y, q.z)) << 32) | f;
     }
   });
-  {
-    size_t n = 0;
-    for (size_t f = 0; f < nfIn; ++f)
-      if (order[f] != kDegenerate) order[n++] = order[f];
-    su.degenerate = nfIn - n;
-    order.resize(n);
-  }
-  radixSortByKey(order, 30, threads);
+  size_t nf = 0;
+  for (size_t f = 0; f < nfIn; ++f)
+    if (order[f] != kDegenerate) order[nf++] = order[f];
+  su.degenerate = nfIn - nf;
+  radixSortByKey(std::span<uint64_t>(order.data(), nf), 30, threads);
   traceMark("morton sort");
-  const size_t nf = order.size();
-  std::vector<uint32_t> posOfOm, firstCorner;
+  LargeVector<uint32_t> posOfOm, firstCorner;
   if (nf == 0) {
     error = "every face is degenerate (two corners at the same point); nothing to decimate";
     return false;
@@ -165,10 +141,10 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   // counted per range and numbered in order, then every corner looks its
   // vertex up.
   const size_t nc = nf * 3;
-  std::vector<uint32_t> tris(nc), wedges(nc);
+  UninitArray<uint32_t> tris(nc), wedges(nc);  // every corner written below
   su.omFaceOrig.reset(nf);
   {
-    const auto firstOfPos = std::make_unique_for_overwrite<std::atomic<uint32_t>[]>(nPos);
+    UninitArray<std::atomic<uint32_t>> firstOfPos(nPos);
     parallelRanges(nPos, threads, [&](size_t b, size_t e, unsigned) {
       for (size_t p = b; p < e; ++p) firstOfPos[p].store(UINT32_MAX, std::memory_order_relaxed);
     });
@@ -186,7 +162,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
         }
       }
     });
-    order = {};
+    order = UninitArray<uint64_t>();
     const unsigned workers = std::max(1u, threads);
     std::vector<size_t> firsts(workers + 1, 0);
     parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
@@ -218,7 +194,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   traceMark("analyzeCorners");
   if (!topo.manifold()) {
     std::vector<uint32_t> copiedFrom;
-    rep.nonManifold = splitNonManifold(tris, nv, copiedFrom, topo, threads);
+    rep.nonManifold = splitNonManifold(std::span<uint32_t>(tris.data(), tris.size()), nv, copiedFrom, topo, threads);
     if (!topo.manifold()) {
       error = "the mesh has non-manifold edges that could not be split (" +
               std::to_string(topo.nonManifoldEdges) + " left)";
@@ -257,7 +233,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   std::vector<Submesh> groups;
   const std::vector<uint16_t> group = faceGroups(in, groups);
   st.hasSeams = hasUv || groups.size() > 1;
-  st.fmaterial.resize(nf);
+  st.fmaterial.reset(nf);
   parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
     for (size_t f = b; f < e; ++f) st.fmaterial[f] = group[su.omFaceOrig[f]];
   });
@@ -310,14 +286,17 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   // seam edge: only edges at a "mixed" vertex need the full seam test.
   // (Every corner against its vertex's first corner, in parallel: the
   // stores all write 1, relaxed atomics keep that race defined.)
-  const auto mixed = std::make_unique<std::atomic<uint8_t>[]>(nv);
+  UninitArray<std::atomic<uint8_t>> mixed(nv);
+  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
+    for (size_t v = b; v < e; ++v) mixed[v].store(0, std::memory_order_relaxed);
+  });
   parallelRanges(st.fv.size(), threads, [&](size_t b, size_t e, unsigned) {
     for (size_t c = b; c < e; ++c) {
       const uint32_t v = st.fv[c], fc = firstCorner[v];
       if (st.fw[c] != st.fw[fc] || st.fmaterial[c / 3] != st.fmaterial[fc / 3]) mixed[v].store(1, std::memory_order_relaxed);
     }
   });
-  firstCorner = {};
+  firstCorner = LargeVector<uint32_t>();
   std::atomic<size_t> nBoundary{0}, nSeam{0}, nFixed{0}, nLocked{0};
   traceMark("mixed");
   // One pass writes each vertex's whole record: quadric, position, class,
@@ -407,7 +386,10 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   rep.boundaryVertices = nBoundary, rep.seamVertices = nSeam, rep.fixedVertices = nFixed;
   rep.lockedVertices = nLocked;
   points = UninitArray<OpenMesh::Vec3d>();
-  st.estate.assign(m.n_edges(), 0);
+  st.estate.reset(m.n_edges());
+  parallelRanges(st.estate.size(), threads, [&](size_t b, size_t e, unsigned) {
+    std::fill(st.estate.begin() + b, st.estate.begin() + e, uint8_t(0));
+  });
   rep.degenerateFacesRemoved = su.degenerate;
   traceMark("quadrics+classes");
 
@@ -539,7 +521,7 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   }
 
   reportProgress(progress, 0.0, "Preparing decimation");
-  Trace trace;
+  DecimateTrace trace;
   gTrace = &trace;
   struct ClearTrace {
     ~ClearTrace() { gTrace = nullptr; }
@@ -551,305 +533,26 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   st.maxErrorSq = std::isfinite(opt.maxError) ? opt.maxError * opt.maxError : HUGE_VAL;
   Setup su;
   if (!setUp(in, opt, threads, st, su, rep, result.error)) return result;
-  auto& m = st.mesh;
-  const size_t nf = m.n_faces(), ne = m.n_edges();
   rep.secondsSetup = since(t0);
   if (isCancelled(progress)) {
     result.cancelled = true;
     return result;
   }
 
-  // Regions (regionCount): the setup already gave every vertex its region.
-  const size_t regions = su.regions;
-  rep.regions = unsigned(regions);
+  // The parallel schedule (region_levels.h): regions in rounds, merged
+  // level by level, the last region finishing the count exactly.
+  rep.regions = unsigned(su.regions);
   const bool countTarget = target > 0;
-  std::atomic<size_t> done{0};
-  const size_t expected = nf > target ? (nf - target) / 2 : 0;
-  std::atomic<bool> cancelled{false};
-  std::vector<EngineStats> stats;
-  size_t liveFaces = nf;
-  const auto t1 = Clock::now();
-  // The regions' engines outlive their rounds: the border pass takes over
-  // their queues.
-  std::vector<std::unique_ptr<CollapseEngine>> engines;
-
-  // Regions decimate in parallel, in rounds sharing one error threshold:
-  // within a round every region runs its own greedy queue up to the
-  // threshold, and since regions share no vertex that is what one greedy
-  // queue over the whole mesh would do up to that cost. So the triangle
-  // budget goes where the surface needs it, not split by region size. A
-  // round's threshold is the key below which the remaining collapses
-  // should lie (sampled from the queues, corrected by how many the last
-  // round achieved), and a round never takes a region below its share of
-  // the stopping count.
-  //
-  // A region only removes vertices whose faces are all its own, so a strip
-  // along its border stays at full resolution; the parallel phase stops
-  // with that strip's share of the work left, and never goes below
-  // kMinFacesPerRegion a region: regions decimated to a handful of large
-  // triangles would meet the dense strips in long slivers that no later
-  // collapse can repair. The serial pass below then finishes with one
-  // queue over everything.
-  constexpr size_t kMinFacesPerRegion = 3000;
-  // What the rounds leave to the serial pass beyond the strips: one
-  // percent of the faces; a quarter of that on large meshes when the
-  // target keeps a quarter or more (the regions' floors are then far away
-  // and the serial pass is most of what is left to save: 0.12 s of 0.36 at
-  // 50% on the 5M scan tile, same Hausdorff; on the bunny the extra rounds
-  // cost more than they save). Below a quarter, less slack let late rounds
-  // stop regions at their floors instead of one error level: at 1% on the
-  // scan tile, 0.5% slack gave 1.9x the Hausdorff, 0.25% 6x.
-  const size_t slack = target * 4 >= nf && nf >= 1000000 ? nf / 400 : nf / 100;
-  auto runPartition = [&]() {
-    // Vertex regions were set by the setup's vertex pass (nothing has
-    // collapsed yet: the partition is made once, before any round).
-    // Per region, in parallel: its edges (an edge inside a region has both
-    // faces there, so its owning face is in the region's face run, and
-    // edge ids follow faces: bisect for the run's edges), its live faces,
-    // and those on its border strip (touching a shared vertex), which wait
-    // for the border pass.
-    auto faceBegin = [&](size_t r) { return nf * r / regions; };
-    auto edgeBegin = [&](size_t r) {
-      if (r == regions) return ne;
-      const int fb = int(faceBegin(r));
-      size_t lo = 0, hi = ne;
-      while (lo < hi) {
-        const size_t mid = (lo + hi) / 2;
-        if (m.face_handle(HalfedgeHandle{int(2 * mid)}).idx() < fb) lo = mid + 1;
-        else hi = mid;
-      }
-      return lo;
-    };
-    std::vector<size_t> edgeStart(regions + 1);
-    for (size_t r = 0; r <= regions; ++r) edgeStart[r] = edgeBegin(r);
-    std::vector<size_t> live(regions, 0), stripOf(regions, 0);
-    std::fill(st.estate.begin(), st.estate.end(), uint8_t(0));
-    engines.resize(regions);
-    // One task a region: its engine queues the run's edges it may collapse
-    // (both ends its own: entryFor's test), and counts its faces.
-    parallelTasks(regions, threads, [&](size_t r, unsigned) {
-      engines[r] = std::make_unique<CollapseEngine>(st, uint16_t(r));
-      engines[r]->seedRange(uint32_t(edgeStart[r]), uint32_t(edgeStart[r + 1]));
-      for (size_t f = faceBegin(r); f < faceBegin(r + 1); ++f) {
-        if (st.faceStatus[f].deleted()) continue;
-        ++live[r];
-        for (size_t k = 0; k < 3; ++k)
-          if (st.vd[st.fv[f * 3 + k]].region == kSharedRegion) {
-            ++stripOf[r];
-            break;
-          }
-      }
-    });
-    size_t strip = 0, alive = 0;
-    for (size_t r = 0; r < regions; ++r) strip += stripOf[r], alive += live[r];
-    const double keepShare = alive > 0 ? double(target) / double(alive) : 1.0;
-    const size_t stopAt = std::max(target + size_t(double(strip) * (1.0 - keepShare)), regions * kMinFacesPerRegion);
-    traceMark("regions: partition+seed");
-    auto total = [&] {
-      size_t n = 0;
-      for (size_t x : live) n += x;
-      return n;
-    };
-    // Rounds alternate with a serial step (chooseRound) that picks the
-    // next threshold from samples of every region's queue. A round is one
-    // parallel loop over the regions on the scheduler's pool (no thread is
-    // started per round, which cost more than a small mesh's whole round).
-    //
-    // A round never takes a region below its share of the stopping count,
-    // so one round cannot overshoot the target whatever the threshold.
-    float limit = HUGE_VALF;
-    size_t now = total(), roundStart = now;
-    bool finished = false;
-    double effectiveness = 0.5, wanted = 1.0;
-    std::vector<float> keys;
-    auto chooseRound = [&] {
-      const size_t before = roundStart;
-      now = total();
-      if (rep.rounds > 0) {
-        if (now == before || !countTarget) {
-          finished = true;  // nothing under the threshold could go, or maxError's single round is done
-          return;
-        }
-        effectiveness = double(before - now) / 2.0 / std::max(1.0, wanted);
-      }
-      // The last percent is left to the serial pass: rounds there would
-      // each remove a few faces for the cost of a synchronisation, and
-      // where the regions are held at their minimum size, late rounds stop
-      // them at proportional shares instead of one error level (measured
-      // on the 5M scan tile at 1%: leaving half a percent gave 1.8x the
-      // Hausdorff and 2.4x the time of leaving one).
-      if (cancelled || rep.rounds >= 100 || (countTarget && now <= stopAt + slack)) {
-        finished = true;
-        return;
-      }
-      if (countTarget) {
-        size_t queued = 0;
-        for (const auto& e : engines) queued += e->queued();
-        if (queued == 0) {
-          finished = true;
-          return;
-        }
-        keys.clear();
-        const size_t stride = std::max<size_t>(1, queued / 4096);
-        // Queues of regions held at their floor last round still hold keys
-        // under the old threshold that only the floor kept: sampled, they
-        // pinned the threshold where the other regions had nothing left
-        // (dozens of rounds removing almost nothing at 50% on the scan
-        // tile). The threshold comes from the regions that ran out of keys.
-        for (const auto& e : engines)
-          if (rep.rounds == 0 || !e->stoppedAtTarget()) e->sampleKeys(stride, keys);
-        if (keys.empty())
-          for (const auto& e : engines) e->sampleKeys(stride, keys);
-        const double remaining = double(now - stopAt) / 2.0;  // collapses
-        // Half of what is left, scaled up by how short the last round fell.
-        // Larger steps overshoot: regions then stop at their proportional
-        // shares instead of at one error level (measured on the scan tile:
-        // 0.7 of the rest gave 3x the Hausdorff at 5%). The scale-up may
-        // ask for up to 1.6x the rest: stale (dirty) keys below the
-        // threshold make a round achieve a fifth or so of what it asks, and
-        // a cap of 1x took 20-22 rounds at 1-5% (bunny and scan tile), 1.6x
-        // 12-14 with the same Hausdorff on the tile (3% more at 1% on the
-        // bunny); 2.5x took 7-9 but had 16% more Hausdorff at 1% on the
-        // tile.
-        wanted = std::min(1.6 * remaining, 0.5 * remaining / std::max(effectiveness, 0.05));
-        if (keys.empty()) {
-          finished = true;
-          return;
-        }
-        // Each sample stands for `stride` live entries.
-        const size_t k = std::min(keys.size() - 1, size_t(wanted / double(stride)));
-        std::nth_element(keys.begin(), keys.begin() + long(k), keys.end());
-        limit = keys[k];
-      }  // else maxError alone: one round, everything within it, everywhere
-      if (gTrace && gTrace->on && std::getenv("HS_DECIMATE_ROUNDS"))
-        std::fprintf(stderr, "  round %u: live %zu stopAt %zu eff %.3f wanted %.0f limit %g keys %zu\n", rep.rounds, now,
-                     stopAt, effectiveness, wanted, double(limit), keys.size());
-      roundStart = now;
-      ++rep.rounds;
-    };
-    // HS_DECIMATE_ROUNDS (with the trace): each round's work, summed over
-    // the regions, and its wall and CPU time (profiling only).
-    const bool traceRounds = gTrace && gTrace->on && std::getenv("HS_DECIMATE_ROUNDS");
-    auto sumStats = [&] {
-      EngineStats sum;
-      for (const auto& e : engines) {
-        const EngineStats& x = e->stats();
-        sum.collapses += x.collapses, sum.tops += x.tops, sum.deletedTops += x.deletedTops, sum.sank += x.sank;
-        sum.evaluations += x.evaluations, sum.notOurs += x.notOurs;
-        sum.rejectedTopology += x.rejectedTopology, sum.rejectedFlip += x.rejectedFlip, sum.rejectedSliver += x.rejectedSliver;
-      }
-      return sum;
-    };
-    for (chooseRound(); !finished; chooseRound()) {
-      const EngineStats before = traceRounds ? sumStats() : EngineStats{};
-      const auto roundWall = Clock::now();
-      const double roundCpu = traceRounds ? Trace::cpuNow() : 0.0;
-      std::vector<double> regionCpu(traceRounds ? regions : 0, 0.0);
-      parallelTasks(regions, threads, [&](size_t r, unsigned slot) {
-        const size_t floor =
-            countTarget ? size_t(std::ceil(double(live[r]) * double(stopAt) / double(std::max<size_t>(now, 1)))) : 0;
-        const double c0 = traceRounds ? threadCpuNow() : 0.0;
-        if (!engines[r]->run(live[r], floor, limit, progress, done, expected, slot == 0)) cancelled = true;
-        if (traceRounds) regionCpu[r] = threadCpuNow() - c0;
-      });
-      if (traceRounds) {
-        // Each region's CPU seconds in this round, in task order: how
-        // evenly they load the threads (a round's wall on an idle machine
-        // is its longest thread) does not depend on the load then.
-        std::fprintf(stderr, "    round %u regions' cpu:", rep.rounds - 1);
-        for (double c : regionCpu) std::fprintf(stderr, " %.5f", c);
-        std::fprintf(stderr, "\n");
-        const EngineStats a = sumStats();
-        std::fprintf(stderr, "    round %u done: evaluated %zu collapses %zu tops %zu deleted %zu sank %zu notOurs %zu rejected %zu wall %.4f cpu %.4f\n",
-                     rep.rounds - 1, a.evaluations - before.evaluations, a.collapses - before.collapses, a.tops - before.tops,
-                     a.deletedTops - before.deletedTops, a.sank - before.sank, a.notOurs - before.notOurs,
-                     (a.rejectedTopology + a.rejectedFlip + a.rejectedSliver) -
-                         (before.rejectedTopology + before.rejectedFlip + before.rejectedSliver),
-                     since(roundWall), Trace::cpuNow() - roundCpu);
-      }
-    }
-    traceMark("regions: rounds");
-    if (gTrace && gTrace->on) {
-      EngineStats sum;
-      size_t maxQueue = 0;
-      for (auto& e : engines) {
-        const EngineStats& x = e->stats();
-        sum.collapses += x.collapses, sum.tops += x.tops, sum.deletedTops += x.deletedTops, sum.sank += x.sank;
-        sum.notOurs += x.notOurs, sum.pushed += x.pushed, sum.compactions += x.compactions, sum.evaluations += x.evaluations;
-        sum.rejectedTopology += x.rejectedTopology, sum.rejectedFlip += x.rejectedFlip, sum.rejectedSliver += x.rejectedSliver;
-        maxQueue = std::max(maxQueue, e->queued());
-      }
-      std::fprintf(stderr, "  regions: %zu rounds %u, evaluated %zu collapses %zu tops %zu deleted %zu sank %zu notOurs %zu pushed %zu compactions %zu topo %zu flip %zu sliver %zu live %zu stopAt %zu strip %zu\n",
-                   regions, rep.rounds, sum.evaluations, sum.collapses, sum.tops, sum.deletedTops, sum.sank, sum.notOurs, sum.pushed, sum.compactions,
-                   sum.rejectedTopology, sum.rejectedFlip, sum.rejectedSliver, total(), stopAt, strip);
-    }
-    for (auto& e : engines) stats.push_back(e->stats());
-    liveFaces = total();
-  };
-  if (regions > 1 || !countTarget) runPartition();
-  rep.secondsRegions = since(t1);
-  if (cancelled) {
+  ScheduleResult sched = runRegionLevels(st, su.regions, target, threads, progress, &trace);
+  rep.rounds = sched.rounds;
+  rep.levels = sched.levels;
+  rep.secondsRegions = sched.secondsParallel;
+  rep.secondsBorders = sched.secondsFinal;
+  if (sched.cancelled) {
     result.cancelled = true;
     return result;
   }
-
-  // Border pass: every live edge, evaluated in parallel, then one queue,
-  // down to the exact target (with one region this is the whole run).
-  // Queueing only the edges near the region borders was tried: it made the
-  // pass 3x cheaper and the result 2-3x worse at 1-5%, because collapses
-  // of regions' own edges are still wanted there.
-  const auto t2 = Clock::now();
-  if (regions > 1 || liveFaces > target) {
-    CollapseEngine border(st, kSharedRegion);
-    // Every live edge that may collapse, as one queue. The regions' queued
-    // entries are taken over as they are, dirty ones with their stale keys
-    // (re-evaluated when they reach the top, as in the rounds); only the
-    // rest is evaluated: edges of the strips and those popped and refused.
-    // (Evaluating every edge afresh cost 0.25 s of 2 cores at 50% on the
-    // 5M scan tile, mostly for edges that never reach the top.)
-    std::vector<std::vector<CollapseEngine::Entry>> parts(threads + engines.size());
-    parallelTasks(engines.size(), threads, [&](size_t r, unsigned) { engines[r]->appendLiveEntries(parts[threads + r]); });
-    std::atomic<size_t> borderEvaluated{0};  // for the trace
-    parallelRanges(ne, threads, [&](size_t b, size_t e, unsigned w) {
-      CollapseEngine::Entry entry;
-      size_t evaluated = 0;
-      for (size_t edge = b; edge < e; ++edge) {
-        const uint8_t state = st.estate[edge];
-        const bool gone = state & CollapseEngine::kGone;
-        if ((state & CollapseEngine::kQueued) && !gone) continue;  // taken over
-        st.estate[edge] = gone ? CollapseEngine::kGone : 0;
-        evaluated += !gone;
-        if (border.entryFor(uint32_t(edge), entry)) parts[w].push_back(entry);
-      }
-      borderEvaluated += evaluated;
-    });
-    engines.clear();
-    size_t count = 0;
-    for (auto& p : parts) count += p.size();
-    std::vector<CollapseEngine::Entry> all;
-    all.reserve(count);
-    for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
-    parts = {};
-    traceMark("border: evaluate");
-    // The heap holds about 8x the collapses still to make; the rest waits
-    // beside it (merged in only if the heap's top passes it).
-    const size_t toGo = liveFaces > target ? (liveFaces - target) / 2 : 0;
-    border.seedEntries(std::move(all), std::max<size_t>(65536, 8 * toGo));
-    traceMark("border: heapify");
-    if (!border.run(liveFaces, target, HUGE_VALF, progress, done, expected, true)) {
-      result.cancelled = true;
-      return result;
-    }
-    stats.push_back(border.stats());
-    traceMark("border: run");
-    if (gTrace && gTrace->on) {
-      const EngineStats& x = border.stats();
-      std::fprintf(stderr, "  border: evaluated %zu (+ %zu edges evaluated in parallel) collapses %zu tops %zu deleted %zu sank %zu pushed %zu compactions %zu topo %zu flip %zu sliver %zu queued %zu\n",
-                   x.evaluations, borderEvaluated.load(), x.collapses, x.tops, x.deletedTops, x.sank, x.pushed, x.compactions, x.rejectedTopology,
-                   x.rejectedFlip, x.rejectedSliver, border.queued());
-    }
-  }
-  rep.secondsBorders = since(t2);
+  const std::vector<EngineStats>& stats = sched.stats;
 
   for (const auto& s : stats) {
     rep.collapses += s.collapses;

@@ -68,7 +68,8 @@ struct DecimateReport {
   NonManifoldSplitStats nonManifold;  // split at welded-position level before building
   double maxEstimatedError = 0.0;     // metres, largest quadric error accepted
   unsigned regions = 0, threads = 0;
-  unsigned rounds = 0;                // parallel rounds (shared error thresholds)
+  unsigned rounds = 0;                // parallel rounds (shared error thresholds), all levels
+  unsigned levels = 0;                // levels of merged regions that ran rounds (region_levels.h)
   double secondsSetup = 0, secondsRegions = 0, secondsBorders = 0, secondsOutput = 0, secondsTotal = 0;
 };
 

@@ -11,7 +11,7 @@
 
 #include "meshproc/decimation_mesh.h"
 #include "meshproc/quadric.h"
-#include "meshproc/uninit_array.h"
+#include "core/uninit_array.h"
 
 namespace hs::mesh {
 
@@ -57,10 +57,10 @@ struct DecimationState {
   };
   static_assert(sizeof(Vertex) == 64);
   UninitArray<Vertex> vd;
-  std::vector<uint32_t> fv;           // per face: 3 vertex ids, in winding order
-  std::vector<uint32_t> fw;           // per face: the wedge (vertex+UV) of each corner
-  std::vector<uint16_t> fmaterial;    // per face: input submesh index
-  std::vector<uint8_t> estate;        // per edge: kQueued | kDirty | kGone (collapse_engine.h)
+  UninitArray<uint32_t> fv;           // per face: 3 vertex ids, in winding order
+  UninitArray<uint32_t> fw;           // per face: the wedge (vertex+UV) of each corner
+  UninitArray<uint16_t> fmaterial;    // per face: input submesh index
+  UninitArray<uint8_t> estate;        // per edge: kQueued | kDirty | kGone (collapse_engine.h)
   std::vector<glm::vec2> wedgeUv;     // per wedge (empty without UVs)
   // Per vertex, two entries: a BoundaryLine or SeamLine vertex's two
   // neighbours along its polyline in the input (other vertices' entries

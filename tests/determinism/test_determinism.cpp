@@ -188,9 +188,14 @@ class TestDeterminism : public QObject {
   static constexpr uint64_t kHydraulicGrid = 0xc2f70af625ac8da6ull;
   static constexpr uint64_t kErosionTerrain = 0xee94f7296e296fbeull;
   static constexpr uint64_t kPaintRules = 0x3b6d8d09148bde52ull;
-  static constexpr uint64_t kDecimate50 = 0x9f3f81ebc53c0897ull;
-  static constexpr uint64_t kDecimate10 = 0x1d8f140a6a6cd5f9ull;
-  static constexpr uint64_t kDecimate1 = 0x001a838345f613c5ull;
+  // Decimation changed on purpose (issue 11 item 4): after level 0's rounds
+  // the regions merge pairwise and catch their strips up in parallel
+  // (meshproc/region_levels.cpp), and a round's threshold is sampled from
+  // the heap and the entries waiting beside it. Same Hausdorff on the bunny
+  // at 50% and within 2% at 10% and 1% (docs/meshes.md, "Seventh round").
+  static constexpr uint64_t kDecimate50 = 0xd7075b9ec32fbf98ull;
+  static constexpr uint64_t kDecimate10 = 0x4c5c595bc7333becull;
+  static constexpr uint64_t kDecimate1 = 0xe13228fa78973de0ull;
 };
 
 QTEST_GUILESS_MAIN(TestDeterminism)

@@ -1,0 +1,45 @@
+#pragma once
+// Step timings of the decimator on stderr when HS_DECIMATE_TRACE is set
+// (wall and process CPU seconds since the previous mark; with
+// HS_DECIMATE_ROUNDS also every round's work): for profiling, off
+// otherwise. Shared by the setup (decimate.cpp) and the parallel schedule
+// (region_levels.cpp).
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+
+namespace hs::mesh {
+
+using DecimateClock = std::chrono::steady_clock;
+
+inline double secondsSince(DecimateClock::time_point t) {
+  return std::chrono::duration<double>(DecimateClock::now() - t).count();
+}
+
+inline double processCpuNow() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+inline double threadCpuNow() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+struct DecimateTrace {
+  bool on = std::getenv("HS_DECIMATE_TRACE") != nullptr;
+  bool rounds = on && std::getenv("HS_DECIMATE_ROUNDS") != nullptr;
+  DecimateClock::time_point wall = DecimateClock::now();
+  double cpu = processCpuNow();
+  void mark(const char* what) {
+    if (!on) return;
+    const double c = processCpuNow();
+    std::fprintf(stderr, "  [decimate] %-28s wall %7.3f  cpu %7.3f\n", what, secondsSince(wall), c - cpu);
+    wall = DecimateClock::now(), cpu = c;
+  }
+};
+
+}  // namespace hs::mesh
