@@ -13,13 +13,12 @@ namespace hs {
 namespace {
 
 [[maybe_unused]] constexpr size_t kHuge = size_t(2) << 20;  // x86-64 and arm64 (4 KiB base pages) huge page size
-// Blocks from 32 MiB get a mapping of their own on huge pages. Smaller
-// ones come from malloc, which keeps freed memory of that size in its heap
-// and hands it out again already faulted in (glibc maps blocks above its
-// mmap threshold, at most 32 MiB, afresh on every allocation): a process
-// that decimates again and again (previews, LOD levels) pays their faults
-// once.
-[[maybe_unused]] constexpr size_t kHugeFrom = size_t(32) << 20;
+// Blocks from 4 MiB get a mapping of their own on huge pages. Smaller ones
+// come from malloc, which keeps freed memory in its heap and hands it out
+// again already faulted in: a process that decimates small meshes again
+// and again (previews, LOD levels) pays their faults once (the bunny's
+// arrays are all below this).
+[[maybe_unused]] constexpr size_t kHugeFrom = size_t(4) << 20;
 
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
 // Mapped size for `bytes`: whole huge pages.

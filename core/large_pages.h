@@ -11,7 +11,7 @@
 // with 2 MiB pages, 0.29 s with 2 MiB pages on two threads, 0.03 s with
 // 2 MiB pages the process freed a moment before). On a bare-metal Linux
 // the faults are ten times cheaper and huge pages still save TLB misses.
-// Arrays below 32 MiB come from the normal allocator (see large_pages.cpp).
+// Arrays below 4 MiB come from the normal allocator (see large_pages.cpp).
 //
 // Linux only (madvise); elsewhere these are plain allocations.
 #include <cstddef>
@@ -21,7 +21,7 @@
 namespace hs {
 
 // At least `bytes`, aligned to 64 bytes; huge-page backed (2 MiB aligned,
-// MADV_HUGEPAGE, whole huge pages) from 32 MiB up. Contents uninitialised. Throws
+// MADV_HUGEPAGE, whole huge pages) from 4 MiB up. Contents uninitialised. Throws
 // std::bad_alloc.
 void* allocateLarge(size_t bytes);
 // Frees what allocateLarge(bytes) returned (the same `bytes`).
@@ -51,6 +51,19 @@ struct LargeAllocator {
     return true;
   }
 };
+
+// Resizes `v` (of trivially copyable elements) to n; storage it has to
+// allocate for that is asked for huge pages and faulted in on `threads`
+// workers before resize() writes it on one thread (for vectors whose type
+// is not ours to change, like a MeshData's).
+template <class Vector>
+void resizeOnHugePages(Vector& v, size_t n, unsigned threads) {
+  if (n > v.capacity()) {
+    v.reserve(n);
+    adviseAndPopulate(v.data() + v.size(), (n - v.size()) * sizeof(*v.data()), threads);
+  }
+  v.resize(n);
+}
 
 // A std::vector on such memory (value-initialised as usual on resize:
 // prefer UninitArray-style buffers where a parallel pass writes every

@@ -60,7 +60,7 @@ struct MeshData {
 };
 
 // Area-weighted vertex normals (generated only where a mesh has none).
-void computeVertexNormals(MeshData& mesh);
+void computeVertexNormals(MeshData& mesh, unsigned threads = 1);
 
 // Moves the origin to the centre of the bounding box so positions are small
 // floats; the world position of every vertex stays the same to double precision.

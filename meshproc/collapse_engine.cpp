@@ -159,7 +159,7 @@ void CollapseEngine::compact() {
   // sift) to get rid of; once they are half the queue, one linear pass
   // drops them all (from the heap and from the entries waiting beside it)
   // and rebuilds the heap.
-  auto dropGone = [&](std::vector<Entry>& v) {
+  auto dropGone = [&](EntryVector& v) {
     size_t n = 0;
     for (const Entry& e : v) {
       if (s_.estate[e.edge()] & kGone)
@@ -190,15 +190,15 @@ void CollapseEngine::push(const Entry& e) {
   siftUp(heap_.size() - 1);
 }
 
-void CollapseEngine::seedRange(uint32_t begin, uint32_t end, std::vector<Entry>&& taken) {
-  std::vector<Entry> entries = std::move(taken);
+void CollapseEngine::seedRange(uint32_t begin, uint32_t end, EntryVector&& taken) {
+  EntryVector entries = std::move(taken);
   entries.reserve(entries.size() + (end - begin));
   stats_.evaluations += evaluateUnqueued(begin, end, entries);
   seedEntries(std::move(entries));
 }
 
-void CollapseEngine::seedAround(std::span<const uint32_t> vertices, std::vector<Entry>&& taken) {
-  std::vector<Entry> entries = std::move(taken);
+void CollapseEngine::seedAround(std::span<const uint32_t> vertices, EntryVector&& taken) {
+  EntryVector entries = std::move(taken);
   std::vector<uint32_t> seen;
   Entry entry;
   for (const uint32_t v : vertices) {
@@ -231,7 +231,7 @@ void CollapseEngine::seedAround(std::span<const uint32_t> vertices, std::vector<
   seedEntries(std::move(entries));
 }
 
-size_t CollapseEngine::evaluateUnqueued(uint32_t begin, uint32_t end, std::vector<Entry>& out) const {
+size_t CollapseEngine::evaluateUnqueued(uint32_t begin, uint32_t end, EntryVector& out) const {
   size_t evaluated = 0;
   Entry e;
   for (uint32_t edge = begin; edge < end; ++edge) {
@@ -248,7 +248,7 @@ size_t CollapseEngine::evaluateUnqueued(uint32_t begin, uint32_t end, std::vecto
   return evaluated;
 }
 
-void CollapseEngine::seedEntries(std::vector<Entry>&& entries, size_t heapTarget) {
+void CollapseEngine::seedEntries(EntryVector&& entries, size_t heapTarget) {
   heap_ = std::move(entries);
   rest_.clear();
   restAbove_ = UINT64_MAX;
@@ -272,30 +272,38 @@ void CollapseEngine::seedEntries(std::vector<Entry>&& entries, size_t heapTarget
 void CollapseEngine::splitAt(uint64_t bound) {
   // Entries above `bound` leave the heap for rest_ (unsorted), wherever
   // they were; those at or below it come back from rest_. One linear pass
-  // over each, then one heapify of what the heap holds.
-  std::vector<Entry> kept;
-  kept.reserve(heap_.size());
-  std::vector<Entry> waiting;
-  waiting.reserve(rest_.size() + heap_.size() / 2);
-  auto sort = [&](const std::vector<Entry>& from) {
-    for (const Entry& e : from) {
-      if (s_.estate[e.edge()] & kGone) {
-        s_.estate[e.edge()] = kGone;  // a queued entry of a deleted edge: dropped here
-        tombstones_ -= std::min<size_t>(tombstones_, 1);
-      } else {
-        (e.packed <= bound ? kept : waiting).push_back(e);
-      }
-    }
+  // over each, then one heapify of what the heap holds. The heap is
+  // compacted in place and rest_ rebuilt in a scratch vector kept between
+  // calls (a round starts with one of these in every region).
+  scratch_.clear();
+  auto gone = [&](const Entry& e) {
+    if (!(s_.estate[e.edge()] & kGone)) return false;
+    s_.estate[e.edge()] = kGone;  // a queued entry of a deleted edge: dropped here
+    tombstones_ -= std::min<size_t>(tombstones_, 1);
+    return true;
   };
-  sort(heap_);
-  sort(rest_);
-  heap_ = std::move(kept);
-  rest_ = std::move(waiting);
+  size_t n = 0;
+  for (const Entry& e : heap_) {
+    if (gone(e)) continue;
+    if (e.packed <= bound)
+      heap_[n++] = e;
+    else
+      scratch_.push_back(e);
+  }
+  heap_.resize(n);
+  for (const Entry& e : rest_) {
+    if (gone(e)) continue;
+    if (e.packed <= bound)
+      heap_.push_back(e);
+    else
+      scratch_.push_back(e);
+  }
+  std::swap(rest_, scratch_);
   restAbove_ = rest_.empty() ? UINT64_MAX : bound;
   heapify();
 }
 
-void CollapseEngine::appendLiveEntries(std::vector<Entry>& out) const {
+void CollapseEngine::appendLiveEntries(EntryVector& out) const {
   for (const Entry& e : heap_)
     if (!(s_.estate[e.edge()] & kGone)) out.push_back(e);
   for (const Entry& e : rest_)

@@ -19,6 +19,7 @@
 #include <span>
 #include <vector>
 
+#include "core/large_pages.h"
 #include "core/progress.h"
 #include "meshproc/decimation_state.h"
 
@@ -56,6 +57,7 @@ class CollapseEngine {
     }
     uint32_t edge() const { return uint32_t(packed); }
   };
+  using EntryVector = LargeVector<Entry>;
   // region: the region of `level` this engine may touch (a vertex is its
   // region's when vd[].region >> level equals it, region_levels.h), or
   // kSharedRegion for all.
@@ -64,15 +66,15 @@ class CollapseEngine {
   // Queues `taken` (entries another engine queued, taken over as they are)
   // and the edges of [begin, end) that are neither queued nor deleted and
   // that this engine may collapse.
-  void seedRange(uint32_t begin, uint32_t end, std::vector<Entry>&& taken = {});
+  void seedRange(uint32_t begin, uint32_t end, EntryVector&& taken = {});
   // Appends to `out` the entries of the edges of [begin, end) that are
   // neither queued nor deleted (clearing their state bytes); returns how
   // many it evaluated. Reads only: workers may share one engine.
-  size_t evaluateUnqueued(uint32_t begin, uint32_t end, std::vector<Entry>& out) const;
+  size_t evaluateUnqueued(uint32_t begin, uint32_t end, EntryVector& out) const;
   void countEvaluations(size_t n) { stats_.evaluations += n; }
   // Queues `taken` and the edges of the faces around `vertices` (this
   // engine's) that are neither queued nor deleted and that it may collapse.
-  void seedAround(std::span<const uint32_t> vertices, std::vector<Entry>&& taken);
+  void seedAround(std::span<const uint32_t> vertices, EntryVector&& taken);
   // Per edge in DecimationState::estate: queued in a heap, its key stale,
   // deleted by a collapse. The deleted bit repeats OpenMesh's edge status
   // so that a heap top costs one byte's load, not that and a status word
@@ -86,12 +88,12 @@ class CollapseEngine {
   // but the sifts stay in a heap that fits the cache (the last region of a
   // 5M-triangle mesh queues millions of edges and collapses a few per cent
   // of them). run() splits the same way at its round's limit.
-  void seedEntries(std::vector<Entry>&& entries, size_t heapTarget = SIZE_MAX);
+  void seedEntries(EntryVector&& entries, size_t heapTarget = SIZE_MAX);
   // Appends the queued entries whose edges are still alive, dirty ones
   // with their stale keys (re-evaluated when they reach the top, as in the
   // engine that queued them): the engine of the next level takes them over
   // instead of evaluating those edges again.
-  void appendLiveEntries(std::vector<Entry>& out) const;
+  void appendLiveEntries(EntryVector& out) const;
   // Evaluates one edge into an entry; false if it cannot collapse at all.
   bool entryFor(uint32_t edge, Entry& out) const;
 
@@ -149,8 +151,9 @@ class CollapseEngine {
   DecimationMesh& m_;
   uint16_t region_;
   unsigned level_;
-  std::vector<Entry> heap_;
-  std::vector<Entry> rest_;             // entries above restAbove_, not yet in the heap (unsorted)
+  EntryVector heap_;
+  EntryVector rest_;             // entries above restAbove_, not yet in the heap (unsorted)
+  EntryVector scratch_;          // splitAt's
   uint64_t restAbove_ = UINT64_MAX;
   // Queues smaller than this are not split (the split's passes would cost
   // more than the sifts they save).

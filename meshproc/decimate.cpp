@@ -1,6 +1,7 @@
 #include "meshproc/decimate.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -38,9 +39,12 @@ inline void traceMark(const char* what) {
 
 // Per input face: which submesh (group) it belongs to. Faces no submesh
 // covers get one extra group with the default material.
+// Empty when one submesh covers every face (group 0 everywhere: the
+// common case of a scan, and 5M entries written serially saved).
 std::vector<uint16_t> faceGroups(const MeshData& in, std::vector<Submesh>& groups) {
   const size_t nf = in.triangleCount();
   groups = in.submeshes;
+  if (groups.size() == 1 && groups[0].firstIndex == 0 && size_t(groups[0].indexCount) >= nf * 3) return {};
   std::vector<uint16_t> group(nf, UINT16_MAX);
   for (size_t g = 0; g < groups.size(); ++g) {
     const size_t b = groups[g].firstIndex / 3, e = std::min(nf, size_t(groups[g].firstIndex + groups[g].indexCount) / 3);
@@ -75,6 +79,20 @@ size_t regionCount(size_t nf, const DecimateOptions& opt) {
   return std::clamp<size_t>((nf + per / 2) / per, 1, 64);
 }
 inline uint16_t regionOfFace(size_t f, size_t regions, size_t nf) { return uint16_t(f * regions / nf); }
+
+// A vertex record's position (float) in double, loaded from the record
+// after the store that rounded it. GCC 12's SLP vectorizer (-O3) was seen
+// to forward the double value past that store's rounding when the face
+// planes were worked out in the same loop: the quadric's origin then sat
+// off the record's position by the float rounding (about 1e-10 m on the
+// bunny, 61 um at 500 m from the centre). The empty asm makes the compiler
+// assume the record may have changed, so it reloads the float.
+inline glm::dvec3 recordPosition(const glm::vec3& stored) {
+#if defined(__GNUC__)
+  asm volatile("" : : "r"(&stored) : "memory");
+#endif
+  return glm::dvec3(stored);
+}
 
 // Welds, orders spatially, splits non-manifold spots and builds the
 // OpenMesh mesh plus every side array. Returns false with `error` set.
@@ -216,17 +234,12 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     for (size_t c = tris.size(); c-- > 0;) firstCorner[tris[c]] = uint32_t(c);
   }
 
-  // Gathers like this one run on both cores: serial, each cost tens of
-  // milliseconds of one core at 5M triangles while the other waited.
-  UninitArray<OpenMesh::Vec3d> points(nv);
-  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
-    for (size_t v = b; v < e; ++v) {
-      const glm::dvec3 p = glm::dvec3(in.positions[posRep[posOfOm[v]]]) - st.center;
-      points[v] = OpenMesh::Vec3d(p.x, p.y, p.z);
-    }
-  });
-  buildDecimationMesh(tris, topo.twin, std::span<const OpenMesh::Vec3d>(points.begin(), points.size()), st.mesh, threads,
-                      firstCorner);
+  // Positions go straight into OpenMesh's point array (double, relative to
+  // the centre), which the quadric pass below then reads.
+  buildDecimationMesh(tris, topo.twin, nv, [&](size_t v) {
+    const glm::dvec3 p = glm::dvec3(in.positions[posRep[posOfOm[v]]]) - st.center;
+    return OpenMesh::Vec3d(p.x, p.y, p.z);
+  }, st.mesh, threads, firstCorner);
   traceMark("buildDecimationMesh");
   st.bindArrays();
 
@@ -235,12 +248,15 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   st.hasSeams = hasUv || groups.size() > 1;
   st.fmaterial.reset(nf);
   parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
-    for (size_t f = b; f < e; ++f) st.fmaterial[f] = group[su.omFaceOrig[f]];
+    if (group.empty())
+      std::fill(st.fmaterial.begin() + b, st.fmaterial.begin() + e, uint16_t(0));
+    else
+      for (size_t f = b; f < e; ++f) st.fmaterial[f] = group[su.omFaceOrig[f]];
   });
   st.fv = std::move(tris);
   st.fw = std::move(wedges);
   if (hasUv) {
-    st.wedgeUv.resize(su.wedgeRep.size());
+    st.wedgeUv.reset(su.wedgeRep.size());
     parallelRanges(st.wedgeUv.size(), threads, [&](size_t b, size_t e, unsigned) {
       for (size_t w = b; w < e; ++w) st.wedgeUv[w] = in.uvs[su.wedgeRep[w]];
     });
@@ -256,32 +272,28 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
 
   // Classes, and quadrics: each vertex sums the planes of its own faces and
   // constrained edges, so vertices are independent and run in parallel.
-  // Face planes are computed once (each serves three vertices).
+  // Each face's plane is worked out by each of its three vertices, from
+  // the face's corners in their own order (the same bits every time):
+  // three times the arithmetic of one pass of planes, but no array of them
+  // (200 MB at 5M faces, whose first touch cost more than the arithmetic).
   auto& m = st.mesh;
-  // Positions are read from `points` (24 bytes a vertex) until the vertex
-  // records are written, in one pass with their quadrics.
+  const OpenMesh::Vec3d* const points = m.points();
   auto pointOf = [&](size_t v) { return glm::dvec3(points[v][0], points[v][1], points[v][2]); };
   struct Plane {
     glm::dvec3 n;
     double d, w;
   };
-  UninitArray<Plane> planes(nf);
-  parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
-    for (size_t f = b; f < e; ++f) {
-      const glm::dvec3 pa = pointOf(st.fv[f * 3]), pb = pointOf(st.fv[f * 3 + 1]), pc = pointOf(st.fv[f * 3 + 2]);
-      const glm::dvec3 n = glm::cross(pb - pa, pc - pa);
-      const double len = glm::length(n);
-      // Weight sqrt(area), not area: the error then scales linearly with
-      // size, so small features (a spike, a thin fin) are not outvoted by
-      // the large faces around them (the weighting meshoptimizer uses;
-      // measured lower Hausdorff on the bunny at every ratio than area).
-      if (len > 0)
-        planes[f] = {n / len, -glm::dot(n / len, pa), std::sqrt(0.5 * len)};
-      else
-        planes[f] = {glm::dvec3(0.0), 0.0, 0.0};
-    }
-  });
-  traceMark("planes");
+  auto planeOf = [&](size_t f) -> Plane {
+    const glm::dvec3 pa = pointOf(st.fv[f * 3]), pb = pointOf(st.fv[f * 3 + 1]), pc = pointOf(st.fv[f * 3 + 2]);
+    const glm::dvec3 n = glm::cross(pb - pa, pc - pa);
+    const double len = glm::length(n);
+    // Weight sqrt(area), not area: the error then scales linearly with
+    // size, so small features (a spike, a thin fin) are not outvoted by
+    // the large faces around them (the weighting meshoptimizer uses;
+    // measured lower Hausdorff on the bunny at every ratio than area).
+    if (len > 0) return {n / len, -glm::dot(n / len, pa), std::sqrt(0.5 * len)};
+    return {glm::dvec3(0.0), 0.0, 0.0};
+  };
   // Vertices whose corners all use one wedge and one material cannot end a
   // seam edge: only edges at a "mixed" vertex need the full seam test.
   // (Every corner against its vertex's first corner, in parallel: the
@@ -319,8 +331,9 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
         continue;
       }
       // The quadric is relative to the stored (float) position: planes'
-      // offsets are taken from it.
-      const glm::dvec3 pv(d.p);
+      // offsets are taken from it, read back from the record (see
+      // recordPosition).
+      const glm::dvec3 pv = recordPosition(d.p);
       int boundaryEdges = 0, seamEdges = 0;
       uint32_t lineNbr[2] = {uint32_t(vi), uint32_t(vi)};  // the first two polyline neighbours seen
       uint16_t region = kSharedRegion;
@@ -330,7 +343,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
       do {
         const FaceHandle f = m.face_handle(it);
         if (f.is_valid()) {
-          const Plane& pl = planes[size_t(f.idx())];
+          const Plane pl = planeOf(size_t(f.idx()));
           if (pl.w > 0) q += Quadric::plane(pl.n, pl.d + glm::dot(pl.n, pv), pl.w);
           const uint16_t fr = regionOfFace(size_t(f.idx()), regions, nf);
           if (region == kSharedRegion) region = fr;
@@ -353,7 +366,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
           const double len2 = glm::dot(edge, edge);
           for (const FaceHandle g : {f, m.face_handle(m.opposite_halfedge_handle(it))}) {
             if (!g.is_valid()) continue;
-            glm::dvec3 side = glm::cross(edge, planes[size_t(g.idx())].n);
+            glm::dvec3 side = glm::cross(edge, planeOf(size_t(g.idx())).n);
             const double sl = glm::length(side);
             if (!(sl > 0)) continue;
             side /= sl;
@@ -385,7 +398,6 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   });
   rep.boundaryVertices = nBoundary, rep.seamVertices = nSeam, rep.fixedVertices = nFixed;
   rep.lockedVertices = nLocked;
-  points = UninitArray<OpenMesh::Vec3d>();
   st.estate.reset(m.n_edges());
   parallelRanges(st.estate.size(), threads, [&](size_t b, size_t e, unsigned) {
     std::fill(st.estate.begin() + b, st.estate.begin() + e, uint8_t(0));
@@ -406,23 +418,46 @@ MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su,
   if (keepTextures) out.textures = in.textures;
   const size_t nfIn = in.triangleCount(), nf = st.fv.size() / 3;
   const size_t nWedge = su.wedgeRep.size();
-  std::vector<uint32_t> omOfInput(nfIn, UINT32_MAX);
-  std::vector<uint32_t> wedgeVertex(nWedge, UINT32_MAX);
-  size_t liveFaces = 0;
-  for (size_t f = 0; f < nf; ++f)
-    if (!st.faceStatus[f].deleted()) {
-      omOfInput[su.omFaceOrig[f]] = uint32_t(f);
-      for (size_t k = 0; k < 3; ++k) wedgeVertex[st.fw[f * 3 + k]] = st.fv[f * 3 + k];
-      ++liveFaces;
-    }
+  // Which decimator face each input face became (if it lives), and the
+  // vertex of every wedge a live face uses. In parallel: each live face
+  // writes its own input face's slot, and the wedge slots its corners
+  // name; corners of two faces name one wedge with the same vertex (a
+  // wedge belongs to one vertex), written as relaxed atomic stores.
+  UninitArray<uint32_t> omOfInput(nfIn), wedgeVertex(nWedge);
+  parallelRanges(nfIn, threads, [&](size_t b, size_t e, unsigned) { std::fill(omOfInput.begin() + b, omOfInput.begin() + e, UINT32_MAX); });
+  parallelRanges(nWedge, threads, [&](size_t b, size_t e, unsigned) { std::fill(wedgeVertex.begin() + b, wedgeVertex.begin() + e, UINT32_MAX); });
+  std::atomic<size_t> live{0};
+  parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
+    size_t n = 0;
+    for (size_t f = b; f < e; ++f)
+      if (!st.faceStatus[f].deleted()) {
+        omOfInput[su.omFaceOrig[f]] = uint32_t(f);
+        for (size_t k = 0; k < 3; ++k)
+          std::atomic_ref<uint32_t>(wedgeVertex[st.fw[f * 3 + k]]).store(st.fv[f * 3 + k], std::memory_order_relaxed);
+        ++n;
+      }
+    live += n;
+  });
+  const size_t liveFaces = live;
   traceMark("output: faces");
-  std::vector<uint32_t> outOf(nWedge, UINT32_MAX);
+  // Output vertices: the used wedges, numbered in wedge order.
+  UninitArray<uint32_t> outOf(nWedge);
+  const unsigned workers = std::max(1u, threads);
+  std::vector<size_t> firstOut(workers + 1, 0);
+  parallelRanges(nWedge, workers, [&](size_t b, size_t e, unsigned w) {
+    size_t n = 0;
+    for (size_t x = b; x < e; ++x) n += wedgeVertex[x] != UINT32_MAX;
+    firstOut[w + 1] = n;
+  }, 1);
+  for (unsigned w = 0; w < workers; ++w) firstOut[w + 1] += firstOut[w];
+  parallelRanges(nWedge, workers, [&](size_t b, size_t e, unsigned w) {
+    uint32_t next = uint32_t(firstOut[w]);
+    for (size_t x = b; x < e; ++x) outOf[x] = wedgeVertex[x] != UINT32_MAX ? next++ : UINT32_MAX;
+  }, 1);
+  const uint32_t nOut = uint32_t(firstOut[workers]);
   const bool hasUv = !st.wedgeUv.empty();
-  uint32_t nOut = 0;
-  for (size_t w = 0; w < nWedge; ++w)
-    if (wedgeVertex[w] != UINT32_MAX) outOf[w] = nOut++;
-  out.positions.resize(nOut);
-  if (hasUv) out.uvs.resize(nOut);
+  resizeOnHugePages(out.positions, nOut, threads);
+  if (hasUv) resizeOnHugePages(out.uvs, nOut, threads);
   parallelRanges(nWedge, threads, [&](size_t b, size_t e, unsigned) {
     for (size_t w = b; w < e; ++w) {
       if (outOf[w] == UINT32_MAX) continue;
@@ -439,8 +474,7 @@ MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su,
   if (groups.size() == 1) {
     // One group: straight into the index list, in parallel (each range
     // starts where the live faces of the ranges before it end).
-    out.indices.resize(liveFaces * 3);
-    const unsigned workers = std::max(1u, threads);
+    resizeOnHugePages(out.indices, liveFaces * 3, threads);
     std::vector<size_t> start(workers + 1, 0);
     parallelRanges(nfIn, workers, [&](size_t b, size_t e, unsigned w) {
       size_t n = 0;
@@ -473,7 +507,7 @@ MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su,
     }
   }
   traceMark("output: indices");
-  computeVertexNormals(out);
+  computeVertexNormals(out, threads);
   return out;
 }
 

@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <ctime>
 
+#include <sys/resource.h>
+
 namespace hs::mesh {
 
 using DecimateClock = std::chrono::steady_clock;
@@ -34,11 +36,29 @@ struct DecimateTrace {
   bool rounds = on && std::getenv("HS_DECIMATE_ROUNDS") != nullptr;
   DecimateClock::time_point wall = DecimateClock::now();
   double cpu = processCpuNow();
+  long faults = minorFaults();
   void mark(const char* what) {
     if (!on) return;
     const double c = processCpuNow();
-    std::fprintf(stderr, "  [decimate] %-28s wall %7.3f  cpu %7.3f\n", what, secondsSince(wall), c - cpu);
-    wall = DecimateClock::now(), cpu = c;
+    const long f = minorFaults();
+    std::fprintf(stderr, "  [decimate] %-28s wall %7.3f  cpu %7.3f  rss %6.0f MB  faults %6ld\n", what,
+                 secondsSince(wall), c - cpu, residentMB(), f - faults);
+    wall = DecimateClock::now(), cpu = c, faults = f;
+  }
+  static long minorFaults() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return u.ru_minflt;
+  }
+  // The process's resident memory (Linux: /proc/self/statm), -1 elsewhere.
+  static double residentMB() {
+    double pages = -1;
+    if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+      double size = 0;
+      if (std::fscanf(f, "%lf %lf", &size, &pages) != 2) pages = -1;
+      std::fclose(f);
+    }
+    return pages < 0 ? -1 : pages * 4096.0 / 1048576.0;
   }
 };
 

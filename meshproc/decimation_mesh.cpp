@@ -1,5 +1,7 @@
 #include "meshproc/decimation_mesh.h"
 
+#include <algorithm>
+
 #include "core/large_pages.h"
 #include "core/parallel.h"
 #include "mesh/nonmanifold_split.h"
@@ -31,13 +33,13 @@ void reserveOnHugePages(DecimationMesh& mesh, size_t nv, size_t ne, size_t nf, u
 
 }  // namespace
 
-void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_t> twin,
-                         std::span<const OpenMesh::Vec3d> points, DecimationMesh& mesh, unsigned threads,
+void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_t> twin, size_t vertexCount,
+                         FunctionRef<OpenMesh::Vec3d(size_t)> pointOf, DecimationMesh& mesh, unsigned threads,
                          std::span<const uint32_t> firstCorner) {
   using OpenMesh::FaceHandle;
   using OpenMesh::HalfedgeHandle;
   using OpenMesh::VertexHandle;
-  const size_t nv = points.size(), nc = tris.size(), nf = nc / 3;
+  const size_t nv = vertexCount, nc = tris.size(), nf = nc / 3;
   auto owns = [&](size_t c) { return twin[c] == kNoCorner || c < twin[c]; };
 
   // Edge ids: a prefix count of owning corners, per range then combined, so
@@ -86,7 +88,8 @@ void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_
   // each boundary vertex has exactly one leaving it, which links the loops.
   // (In parallel: each boundary vertex and each boundary halfedge is
   // written by one corner only.)
-  std::vector<int> boundaryOut(nv, -1);
+  UninitArray<int> boundaryOut(nv);
+  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) { std::fill(boundaryOut.begin() + b, boundaryOut.begin() + e, -1); });
   parallelRanges(nc, threads, [&](size_t b, size_t e, unsigned) {
     for (size_t c = b; c < e; ++c)
       if (twin[c] == kNoCorner) boundaryOut[tris[nextCorner(uint32_t(c))]] = int(heOf[c] ^ 1u);
@@ -108,19 +111,19 @@ void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_
         const VertexHandle vh{int(v)};
         const int out = boundaryOut[v] >= 0 ? boundaryOut[v] : firstCorner[v] < nc ? int(heOf[firstCorner[v]]) : -1;
         mesh.set_halfedge_handle(vh, HalfedgeHandle(out));
-        mesh.point(vh) = points[v];
+        mesh.point(vh) = pointOf(v);
       }
     });
     return;
   }
-  std::vector<int> out(boundaryOut);
+  std::vector<int> out(boundaryOut.begin(), boundaryOut.end());
   for (size_t c = 0; c < nc; ++c)
     if (out[tris[c]] < 0) out[tris[c]] = int(heOf[c]);
   parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) {
     for (size_t v = b; v < e; ++v) {
       const VertexHandle vh{int(v)};
       mesh.set_halfedge_handle(vh, HalfedgeHandle(out[v]));
-      mesh.point(vh) = points[v];
+      mesh.point(vh) = pointOf(v);
     }
   });
 }

@@ -14,6 +14,8 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
+#include "core/function_ref.h"
+
 namespace hs::mesh {
 
 struct DecimationTraits : public OpenMesh::DefaultTraits {
@@ -35,11 +37,12 @@ using DecimationMesh = OpenMesh::TriMesh_ArrayKernelT<DecimationTraits>;
 // edge in triangle order; halfedge 2e runs along that corner, 2e+1 against
 // it (inside the neighbouring face or on the boundary).
 //
+// pointOf(v): vertex v's position (called once a vertex, from the workers).
 // firstCorner[v]: the first corner (in triangle order) that starts at v,
 // which gives an interior vertex its outgoing halfedge; empty to have it
 // searched here (a serial pass over every corner).
-void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_t> twin,
-                         std::span<const OpenMesh::Vec3d> points, DecimationMesh& mesh, unsigned threads,
+void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_t> twin, size_t vertexCount,
+                         FunctionRef<OpenMesh::Vec3d(size_t)> pointOf, DecimationMesh& mesh, unsigned threads,
                          std::span<const uint32_t> firstCorner = {});
 
 }  // namespace hs::mesh

@@ -61,7 +61,7 @@ struct DecimationState {
   UninitArray<uint32_t> fw;           // per face: the wedge (vertex+UV) of each corner
   UninitArray<uint16_t> fmaterial;    // per face: input submesh index
   UninitArray<uint8_t> estate;        // per edge: kQueued | kDirty | kGone (collapse_engine.h)
-  std::vector<glm::vec2> wedgeUv;     // per wedge (empty without UVs)
+  UninitArray<glm::vec2> wedgeUv;     // per wedge (empty without UVs)
   // Per vertex, two entries: a BoundaryLine or SeamLine vertex's two
   // neighbours along its polyline in the input (other vertices' entries
   // are not written). Polyline vertices never move and only merge along

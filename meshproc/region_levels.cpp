@@ -15,6 +15,7 @@ using OpenMesh::FaceHandle;
 using OpenMesh::HalfedgeHandle;
 using OpenMesh::VertexHandle;
 using Entry = CollapseEngine::Entry;
+using EntryVector = CollapseEngine::EntryVector;
 using Engines = std::vector<std::unique_ptr<CollapseEngine>>;
 
 // A region only removes vertices whose faces are all its own, so a strip
@@ -199,7 +200,7 @@ ScheduleResult runRegionLevels(DecimationState& st, size_t regions0, size_t targ
     const uint16_t id0 = last ? kSharedRegion : uint16_t(0);
     auto make = [&](size_t r) {
       auto e = std::make_unique<CollapseEngine>(st, last ? kSharedRegion : uint16_t(id0 + r), level);
-      std::vector<Entry> taken;
+      EntryVector taken;
       if (level > 0)
         for (size_t c = 2 * r; c < std::min(2 * r + 2, engines.size()); ++c) engines[c]->appendLiveEntries(taken);
       return std::pair(std::move(e), std::move(taken));
@@ -220,7 +221,7 @@ ScheduleResult runRegionLevels(DecimationState& st, size_t regions0, size_t targ
       // collapses still to make go into the heap (CollapseEngine::seedEntries).
       auto [e, taken] = make(0);
       engines.clear();
-      std::vector<std::vector<Entry>> parts(std::max(1u, threads));
+      std::vector<EntryVector> parts(std::max(1u, threads));
       std::vector<size_t> evaluated(parts.size(), 0);
       parallelRanges(m.n_edges(), unsigned(parts.size()), [&](size_t b, size_t en, unsigned w) {
         evaluated[w] = e->evaluateUnqueued(uint32_t(b), uint32_t(en), parts[w]);
