@@ -197,7 +197,7 @@ void CollapseEngine::seedRange(uint32_t begin, uint32_t end, EntryVector&& taken
   seedEntries(std::move(entries));
 }
 
-void CollapseEngine::seedAround(std::span<const uint32_t> vertices, EntryVector&& taken) {
+void CollapseEngine::seedAround(std::span<const uint32_t> vertices, EntryVector&& taken, float keyLimit) {
   EntryVector entries = std::move(taken);
   std::vector<uint32_t> seen;
   Entry entry;
@@ -228,6 +228,13 @@ void CollapseEngine::seedAround(std::span<const uint32_t> vertices, EntryVector&
     } while (it != start);
   }
   for (const uint32_t edge : seen) s_.estate[edge] &= uint8_t(~kSeen);
+  if (keyLimit < HUGE_VALF && entries.size() > kSplitMin) {
+    heap_ = std::move(entries);
+    rest_.clear();
+    for (const Entry& e : heap_) s_.estate[e.edge()] |= kQueued;
+    splitAt(Entry::make(keyLimit, UINT32_MAX).packed);
+    return;
+  }
   seedEntries(std::move(entries));
 }
 
@@ -301,6 +308,22 @@ void CollapseEngine::splitAt(uint64_t bound) {
   std::swap(rest_, scratch_);
   restAbove_ = rest_.empty() ? UINT64_MAX : bound;
   heapify();
+}
+
+void CollapseEngine::takeLiveEntries(EntryVector& out) {
+  if (out.empty()) {
+    std::swap(out, heap_);
+    size_t n = 0;
+    for (const Entry& e : out)
+      if (!(s_.estate[e.edge()] & kGone)) out[n++] = e;
+    out.resize(n);
+  } else {
+    for (const Entry& e : heap_)
+      if (!(s_.estate[e.edge()] & kGone)) out.push_back(e);
+  }
+  for (const Entry& e : rest_)
+    if (!(s_.estate[e.edge()] & kGone)) out.push_back(e);
+  heap_.clear(), rest_.clear();
 }
 
 void CollapseEngine::appendLiveEntries(EntryVector& out) const {

@@ -14,6 +14,7 @@
 // every array element and every OpenMesh item it writes belongs to R, and
 // engines of different regions run concurrently without locks.
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <span>
@@ -74,7 +75,9 @@ class CollapseEngine {
   void countEvaluations(size_t n) { stats_.evaluations += n; }
   // Queues `taken` and the edges of the faces around `vertices` (this
   // engine's) that are neither queued nor deleted and that it may collapse.
-  void seedAround(std::span<const uint32_t> vertices, EntryVector&& taken);
+  // keyLimit: the limit of the round that follows, known in advance: the
+  // queue is split there at once (only the entries up to it are heapified).
+  void seedAround(std::span<const uint32_t> vertices, EntryVector&& taken, float keyLimit = HUGE_VALF);
   // Per edge in DecimationState::estate: queued in a heap, its key stale,
   // deleted by a collapse. The deleted bit repeats OpenMesh's edge status
   // so that a heap top costs one byte's load, not that and a status word
@@ -94,6 +97,9 @@ class CollapseEngine {
   // engine that queued them): the engine of the next level takes them over
   // instead of evaluating those edges again.
   void appendLiveEntries(EntryVector& out) const;
+  // The same, for an engine that is done: its own heap becomes `out` when
+  // `out` is empty (no copy); the engine's queue is empty afterwards.
+  void takeLiveEntries(EntryVector& out);
   // Evaluates one edge into an entry; false if it cannot collapse at all.
   bool entryFor(uint32_t edge, Entry& out) const;
 

@@ -197,12 +197,14 @@ ScheduleResult runRegionLevels(DecimationState& st, size_t regions0, size_t targ
     // every edge no queue holds (edges refused before get another look:
     // their neighbourhood may allow them now).
     Engines next(regions);
-    const uint16_t id0 = last ? kSharedRegion : uint16_t(0);
+    // A catching-up level's one round has level 0's last threshold: its
+    // queues are split there as they are built.
+    const float catchUpLimit = level > 0 && countTarget && level0Ran ? level0Limit : HUGE_VALF;
     auto make = [&](size_t r) {
-      auto e = std::make_unique<CollapseEngine>(st, last ? kSharedRegion : uint16_t(id0 + r), level);
+      auto e = std::make_unique<CollapseEngine>(st, last ? kSharedRegion : uint16_t(r), level);
       EntryVector taken;
       if (level > 0)
-        for (size_t c = 2 * r; c < std::min(2 * r + 2, engines.size()); ++c) engines[c]->appendLiveEntries(taken);
+        for (size_t c = 2 * r; c < std::min(2 * r + 2, engines.size()); ++c) engines[c]->takeLiveEntries(taken);
       return std::pair(std::move(e), std::move(taken));
     };
     if (!last) {
@@ -212,7 +214,7 @@ ScheduleResult runRegionLevels(DecimationState& st, size_t regions0, size_t targ
         if (level == 0)
           e->seedRange(uint32_t(lv.edgeBegin(level, r)), uint32_t(lv.edgeBegin(level, r + 1)), std::move(taken));
         else
-          e->seedAround(claimed[r], std::move(taken));
+          e->seedAround(claimed[r], std::move(taken), catchUpLimit);
         next[r] = std::move(e);
       });
     } else {
