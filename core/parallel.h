@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "core/function_ref.h"
 
@@ -81,6 +82,24 @@ void parallelRanges(size_t n, unsigned threads, Fn&& fn, size_t minPerRange = 40
     const size_t begin = n * r / ranges, end = n * (r + 1) / ranges;
     if (begin < end) fn(begin, end, unsigned(r));
   });
+}
+
+// Where each range of parallelRanges(n, workers, ..., 1) starts in a
+// compacted order: offsets[r] counts the i before range r's begin with
+// keep(i), offsets[workers] all of them (ranges parallelRanges leaves
+// unused count 0). A second parallelRanges(n, workers, ..., 1) over the
+// same ranges then numbers each kept item offsets[r] + its rank in its
+// range: the input order, for any number of workers.
+template <class Keep>
+std::vector<size_t> keptOffsets(size_t n, unsigned workers, Keep&& keep) {
+  std::vector<size_t> offsets(size_t(workers) + 1, 0);
+  parallelRanges(n, workers, [&](size_t b, size_t e, unsigned r) {
+    size_t k = 0;
+    for (size_t i = b; i < e; ++i) k += keep(i) ? 1 : 0;
+    offsets[r + 1] = k;
+  }, 1);
+  for (unsigned r = 0; r < workers; ++r) offsets[r + 1] += offsets[r];
+  return offsets;
 }
 
 // fn(task, slot) for every task in [0, count), handed out one at a time so

@@ -182,13 +182,8 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
     });
     order = UninitArray<uint64_t>();
     const unsigned workers = std::max(1u, threads);
-    std::vector<size_t> firsts(workers + 1, 0);
-    parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
-      size_t n = 0;
-      for (size_t c = b; c < e; ++c) n += firstOfPos[tris[c]].load(std::memory_order_relaxed) == c;
-      firsts[w + 1] = n;
-    }, 1);
-    for (unsigned w = 0; w < workers; ++w) firsts[w + 1] += firsts[w];
+    const std::vector<size_t> firsts =
+        keptOffsets(nc, workers, [&](size_t c) { return firstOfPos[tris[c]].load(std::memory_order_relaxed) == c; });
     posOfOm.resize(firsts[workers]);
     firstCorner.resize(firsts[workers]);
     // Written for every position a valid face uses, the only ones read.
@@ -443,13 +438,7 @@ MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su,
   // Output vertices: the used wedges, numbered in wedge order.
   UninitArray<uint32_t> outOf(nWedge);
   const unsigned workers = std::max(1u, threads);
-  std::vector<size_t> firstOut(workers + 1, 0);
-  parallelRanges(nWedge, workers, [&](size_t b, size_t e, unsigned w) {
-    size_t n = 0;
-    for (size_t x = b; x < e; ++x) n += wedgeVertex[x] != UINT32_MAX;
-    firstOut[w + 1] = n;
-  }, 1);
-  for (unsigned w = 0; w < workers; ++w) firstOut[w + 1] += firstOut[w];
+  const std::vector<size_t> firstOut = keptOffsets(nWedge, workers, [&](size_t x) { return wedgeVertex[x] != UINT32_MAX; });
   parallelRanges(nWedge, workers, [&](size_t b, size_t e, unsigned w) {
     uint32_t next = uint32_t(firstOut[w]);
     for (size_t x = b; x < e; ++x) outOf[x] = wedgeVertex[x] != UINT32_MAX ? next++ : UINT32_MAX;
@@ -475,13 +464,7 @@ MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su,
     // One group: straight into the index list, in parallel (each range
     // starts where the live faces of the ranges before it end).
     resizeOnHugePages(out.indices, liveFaces * 3, threads);
-    std::vector<size_t> start(workers + 1, 0);
-    parallelRanges(nfIn, workers, [&](size_t b, size_t e, unsigned w) {
-      size_t n = 0;
-      for (size_t f = b; f < e; ++f) n += omOfInput[f] != UINT32_MAX;
-      start[w + 1] = n;
-    }, 1);
-    for (unsigned w = 0; w < workers; ++w) start[w + 1] += start[w];
+    const std::vector<size_t> start = keptOffsets(nfIn, workers, [&](size_t f) { return omOfInput[f] != UINT32_MAX; });
     parallelRanges(nfIn, workers, [&](size_t b, size_t e, unsigned w) {
       size_t n = start[w] * 3;
       for (size_t f = b; f < e; ++f) {
@@ -580,6 +563,7 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   ScheduleResult sched = runRegionLevels(st, su.regions, target, threads, progress, &trace);
   rep.rounds = sched.rounds;
   rep.levels = sched.levels;
+  rep.lastRegionCollapses = sched.finalCollapses;
   rep.secondsRegions = sched.secondsParallel;
   rep.secondsBorders = sched.secondsFinal;
   if (sched.cancelled) {

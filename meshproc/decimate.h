@@ -70,6 +70,7 @@ struct DecimateReport {
   unsigned regions = 0, threads = 0;
   unsigned rounds = 0;                // parallel rounds (shared error thresholds), all levels
   unsigned levels = 0;                // levels of merged regions that ran rounds (region_levels.h)
+  size_t lastRegionCollapses = 0;     // of `collapses`, those of the last, single region (serial)
   // secondsRegions: the levels of two or more regions (parallel);
   // secondsBorders: the last level, one region finishing the count (its
   // JSON name, seconds_border_pass, is the serial border pass it replaced).

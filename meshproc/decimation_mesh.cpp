@@ -46,14 +46,7 @@ void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_
   // the numbering is the same for any number of workers.
   UninitArray<uint32_t> heOf(nc);  // every corner is numbered below
   const unsigned workers = std::max(1u, threads);
-  std::vector<size_t> rangeOwners(workers + 1, 0);
-  parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
-    size_t n = 0;
-    for (size_t c = b; c < e; ++c) n += owns(c);
-    rangeOwners[w + 1] = n;
-  }, 1);
-  // parallelRanges may use fewer workers than asked; unused ranges count 0.
-  for (unsigned w = 0; w < workers; ++w) rangeOwners[w + 1] += rangeOwners[w];
+  const std::vector<size_t> rangeOwners = keptOffsets(nc, workers, owns);
   const size_t ne = rangeOwners[workers];
   parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
     uint32_t next = uint32_t(rangeOwners[w]);

@@ -244,6 +244,7 @@ ScheduleResult runRegionLevels(DecimationState& st, size_t regions0, size_t targ
     if (last) {
       if (!engines[0]->run(res.liveFaces, target, HUGE_VALF, progress, done, expected, true)) cancelled = true;
       res.stats.push_back(engines[0]->stats());
+      res.finalCollapses = engines[0]->stats().collapses;
       if (traceOn) {
         const EngineStats& x = engines[0]->stats();
         std::fprintf(stderr,

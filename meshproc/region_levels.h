@@ -20,6 +20,7 @@ struct ScheduleResult {
   unsigned rounds = 0;   // parallel rounds, all levels together
   unsigned levels = 0;   // levels with more than one region that ran rounds
   std::vector<EngineStats> stats;  // every engine's, for the report
+  size_t finalCollapses = 0;       // made by the last, single region
   double secondsParallel = 0;      // the levels of two or more regions
   double secondsFinal = 0;         // the last, single region
 };
