@@ -13,7 +13,7 @@
 //                  [--terrain-samples 1] [--stock-terrain 0.1|all|none]
 //                  [--threads 2] [--plot bench_decimate.png] [--skip-terrain] [--skip-bunny]
 //                  [--terrain-runs 3] [--ratios 50,25,10,5,1] [--no-error] [--no-stock]
-//                  [--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir /tmp] [--quad-no-uv]
+//                  [--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir /tmp] [--quad-no-uv] [--pause S] [--meshopt-huge-pages]
 //                  [--quad-seed 11] [--where-max]
 //                  (our output's content hash goes to stderr)
 #include <chrono>
@@ -25,6 +25,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <unordered_map>
 #include <vector>
 #include <algorithm>
 
@@ -37,6 +38,7 @@
 #include "bench/common/plot.h"
 #include "mesh/mesh_import.h"
 #include "mesh/weld.h"
+#include "core/large_pages.h"
 #include "meshproc/decimate.h"
 #include "meshproc/closest_point_bvh.h"
 #include "meshproc/error_metrics.h"
@@ -59,6 +61,23 @@ double cpuSeconds(clockid_t clock) {
   timespec ts{};
   clock_gettime(clock, &ts);
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// --meshopt-huge-pages: meshopt_simplify's allocations from the same
+// huge-page allocator as our large arrays (core/large_pages.h), so that the
+// two are compared with the same cost of first touches. meshopt frees by
+// pointer only: the sizes are kept here.
+std::unordered_map<void*, size_t> gMeshoptBlocks;
+void* meshoptAllocate(size_t bytes) {
+  void* p = hs::allocateLarge(bytes);
+  gMeshoptBlocks[p] = bytes;
+  return p;
+}
+void meshoptDeallocate(void* p) {
+  const auto it = gMeshoptBlocks.find(p);
+  if (it == gMeshoptBlocks.end()) return;
+  hs::freeLarge(p, it->second);
+  gMeshoptBlocks.erase(it);
 }
 
 long minorFaults() {
@@ -314,6 +333,7 @@ int main(int argc, char** argv) {
     else if (a == "--no-stock") noStock = true;
     else if (a == "--faces-per-region") gFacesPerRegion = size_t(std::atoll(next().c_str()));
     else if (a == "--pause") gPause = std::atof(next().c_str());
+    else if (a == "--meshopt-huge-pages") meshopt_setAllocator(meshoptAllocate, meshoptDeallocate);
     else if (a == "--skip-terrain") skipTerrain = true;
     else if (a == "--skip-bunny") skipBunny = true;
     else if (a == "--skip-quad") skipQuad = true;
@@ -326,7 +346,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "usage: %s [--bunny PATH] [--terrain-quads N] [--runs K] [--terrain-samples S] "
                            "[--stock-terrain 0.1|all|none] [--threads T] [--plot PNG] [--skip-terrain] [--skip-bunny] "
                            "[--terrain-runs K] [--ratios 50,25,10,5,1] [--no-error] [--no-stock] "
-                           "[--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir DIR] [--quad-no-uv] [--quad-seed K] [--where-max]\n", argv[0]);
+                           "[--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir DIR] [--quad-no-uv] [--quad-seed K] [--where-max] [--pause S] [--meshopt-huge-pages]\n", argv[0]);
       return 2;
     }
   }
