@@ -326,13 +326,6 @@ void CollapseEngine::takeLiveEntries(EntryVector& out) {
   heap_.clear(), rest_.clear();
 }
 
-void CollapseEngine::appendLiveEntries(EntryVector& out) const {
-  for (const Entry& e : heap_)
-    if (!(s_.estate[e.edge()] & kGone)) out.push_back(e);
-  for (const Entry& e : rest_)
-    if (!(s_.estate[e.edge()] & kGone)) out.push_back(e);
-}
-
 bool CollapseEngine::topologyOk(const Plan& plan) {
   // OpenMesh's TriConnectivity::is_collapse_ok, with the one-ring test done
   // on a small local list instead of status tags: tags would be writes to
@@ -755,7 +748,7 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
     popTop();
     if (region_ != kSharedRegion) {
       // The faces beyond the two that vanish get rewired too: their third
-      // vertices must be ours as well, or the edge waits for the border pass.
+      // vertices must be ours as well, or the edge waits for a later level.
       const HalfedgeHandle o = m_.opposite_halfedge_handle(plan.h);
       if ((!m_.is_boundary(plan.h) && !mayTouch(m_.to_vertex_handle(m_.next_halfedge_handle(plan.h)))) ||
           (!m_.is_boundary(o) && !mayTouch(m_.to_vertex_handle(m_.next_halfedge_handle(o))))) {

@@ -31,8 +31,9 @@ struct EngineStats {
   size_t rejectedTopology = 0, rejectedFlip = 0, rejectedSliver = 0;
   double maxErrorSq = 0.0;
   // Where the loop's time goes (profiling): heap tops looked at, of them
-  // entries of deleted edges, dirty entries that sank, edges left for the
-  // border pass, entries pushed by collapses, compactions.
+  // entries of deleted edges, dirty entries that sank, edges left for a
+  // later level (a vertex beside them not this engine's), entries
+  // pushed by collapses, compactions.
   size_t tops = 0, deletedTops = 0, sank = 0, notOurs = 0, pushed = 0, compactions = 0;
   size_t evaluations = 0;  // cost evaluations (seeding, tops, re-queued edges)
 };
@@ -92,13 +93,11 @@ class CollapseEngine {
   // 5M-triangle mesh queues millions of edges and collapses a few per cent
   // of them). run() splits the same way at its round's limit.
   void seedEntries(EntryVector&& entries, size_t heapTarget = SIZE_MAX);
-  // Appends the queued entries whose edges are still alive, dirty ones
-  // with their stale keys (re-evaluated when they reach the top, as in the
-  // engine that queued them): the engine of the next level takes them over
-  // instead of evaluating those edges again.
-  void appendLiveEntries(EntryVector& out) const;
-  // The same, for an engine that is done: its own heap becomes `out` when
-  // `out` is empty (no copy); the engine's queue is empty afterwards.
+  // Hands the queued entries whose edges are still alive to `out`, dirty
+  // ones with their stale keys (re-evaluated when they reach the top, as in
+  // this engine): the engine of the next level takes them over instead of
+  // evaluating those edges again. This engine's own heap becomes `out` when
+  // `out` is empty (no copy); its queue is empty afterwards.
   void takeLiveEntries(EntryVector& out);
   // Evaluates one edge into an entry; false if it cannot collapse at all.
   bool entryFor(uint32_t edge, Entry& out) const;

@@ -69,11 +69,10 @@ struct Setup {
 
 // Regions: equal runs of the Morton-ordered faces. Their number depends on
 // the mesh only, so the output does not depend on the thread count. At
-// most 64: more regions than that only lengthen the border strips (and the
-// serial border pass that finishes them) with no more cores to use; 64
-// still balances well over the threads (measured on the 5M scan tile: 200
-// regions of 25k faces spent 2.2 s in the border pass at 50%, 64 regions
-// 0.65 s).
+// most 64: more regions lengthen the border strips, and their floors
+// (region_levels.cpp) hold back more of the work for the serial last
+// region at low targets (250 regions on the 5M scan tile: 2.2 s in it at
+// 1%); 64 still balance well over the threads.
 size_t regionCount(size_t nf, const DecimateOptions& opt) {
   const size_t per = std::max<size_t>(1000, opt.facesPerRegion);
   return std::clamp<size_t>((nf + per / 2) / per, 1, 64);
