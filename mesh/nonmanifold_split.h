@@ -46,6 +46,10 @@ struct NonManifoldSplitStats {
 // Makes `tris` edge- and vertex-manifold and consistently paired by giving
 // each fan of a split vertex its own id. New ids start at `vertexCount`;
 // copiedFrom[id - vertexCount] is the original id each duplicate copies.
+// A split vertex keeps its id for the fan of its first corner (in corner
+// order); vertices away from the defects keep theirs, and their corners
+// are not rewritten. The work beyond two analyses is in the size of the
+// defects' fans, not of the mesh.
 // On return `topology` describes the (now manifold) result, so callers that
 // need twins do not analyse twice.
 NonManifoldSplitStats splitNonManifold(std::span<uint32_t> tris, uint32_t vertexCount,

@@ -202,30 +202,45 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   uint32_t nv = uint32_t(posOfOm.size());
   traceMark("first-use numbering");
 
-  CornerTopology topo = analyzeCorners(tris, nv, threads);
+  // On a manifold mesh the split is the analysis alone (twins and counts).
+  CornerTopology topo;
+  std::vector<uint32_t> copiedFrom;
+  rep.nonManifold = splitNonManifold(std::span<uint32_t>(tris.data(), tris.size()), nv, copiedFrom, topo, threads);
   traceMark("analyzeCorners");
   if (!topo.manifold()) {
-    std::vector<uint32_t> copiedFrom;
-    rep.nonManifold = splitNonManifold(std::span<uint32_t>(tris.data(), tris.size()), nv, copiedFrom, topo, threads);
-    if (!topo.manifold()) {
-      error = "the mesh has non-manifold edges that could not be split (" +
-              std::to_string(topo.nonManifoldEdges) + " left)";
-      return false;
-    }
+    error = "the mesh has non-manifold edges that could not be split (" +
+            std::to_string(topo.nonManifoldEdges) + " left)";
+    return false;
+  }
+  if (!copiedFrom.empty()) {
+    // The corners now on copies, in order (few: the defects' fans), found
+    // in parallel.
+    const unsigned workers = std::max(1u, threads);
+    auto onCopy = [&](size_t c) { return tris[c] >= nv; };
+    const std::vector<size_t> offsets = keptOffsets(nc, workers, onCopy);
+    std::vector<uint32_t> copyCorners(offsets[workers]);
+    parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
+      size_t next = offsets[w];
+      for (size_t c = b; c < e; ++c)
+        if (onCopy(c)) copyCorners[next++] = uint32_t(c);
+    }, 1);
     // A split vertex's copies need wedges of their own: a wedge belongs to
     // one vertex, because a vertex that moves takes its wedges along.
     std::unordered_map<uint64_t, uint32_t> copyWedge;
-    for (size_t c = 0; c < tris.size(); ++c) {
-      if (tris[c] < nv) continue;
+    for (const uint32_t c : copyCorners) {
       const uint64_t key = (uint64_t(tris[c]) << 32) | wedges[c];
       auto [it, added] = copyWedge.try_emplace(key, uint32_t(su.wedgeRep.size()));
       if (added) su.wedgeRep.push_back(su.wedgeRep[wedges[c]]);
       wedges[c] = it->second;
     }
     for (uint32_t from : copiedFrom) posOfOm.push_back(posOfOm[from]);
+    // A vertex that was split keeps the fan of its first corner (the split
+    // gives the vertex's own id to the fan it meets first in corner order),
+    // so only the copies need first corners.
+    firstCorner.resize(posOfOm.size(), UINT32_MAX);
+    for (const uint32_t c : copyCorners)
+      if (firstCorner[tris[c]] == UINT32_MAX) firstCorner[tris[c]] = c;
     nv = uint32_t(posOfOm.size());
-    firstCorner.assign(nv, UINT32_MAX);
-    for (size_t c = tris.size(); c-- > 0;) firstCorner[tris[c]] = uint32_t(c);
   }
 
   // Positions go straight into OpenMesh's point array (double, relative to

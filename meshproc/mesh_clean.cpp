@@ -219,10 +219,11 @@ bool cleanMesh(MeshData& mesh, const CleanOptions& options, CleanReport& r, std:
     const std::vector<uint32_t> posOf = weldMap(mesh.positions, {}, {}, nPos);
     std::vector<uint32_t> ptris(faces.tri.size());
     for (size_t c = 0; c < ptris.size(); ++c) ptris[c] = posOf[faces.tri[c]];
-    CornerTopology topo = analyzeCorners(ptris, nPos, threads);
-    if (!topo.manifold()) {
-      std::vector<uint32_t> posCopies;
-      const NonManifoldSplitStats s = splitNonManifold(ptris, nPos, posCopies, topo, threads);
+    // On a manifold mesh the split is one analysis and changes nothing.
+    CornerTopology topo;
+    std::vector<uint32_t> posCopies;
+    const NonManifoldSplitStats s = splitNonManifold(ptris, nPos, posCopies, topo, threads);
+    if (s.nonManifoldEdges > 0 || s.nonManifoldVertices > 0) {
       r.nonManifoldEdges = s.nonManifoldEdges;
       r.nonManifoldVertices = s.nonManifoldVertices;
       r.facesDetached = s.facesDetached;

@@ -137,6 +137,52 @@ class TestMeshprocClean : public QObject {
     }
   }
 
+  void nonManifoldSplitRewritesOnlyTheDefectsFans() {
+    MeshData m = hs::test::curvedGrid(200, 10.0, 0.3, false);  // 40,401 vertices
+    const uint32_t nv = uint32_t(m.vertexCount());
+    const std::vector<uint32_t> grid = m.indices;
+    // Interior vertices away from the border and from each other.
+    const size_t f0 = 2 * (50 * 200 + 50), f1 = 2 * (120 * 200 + 130), f2 = 2 * (170 * 200 + 20);
+    const uint32_t a = grid[f0 * 3], b = grid[f0 * 3 + 1], v = grid[f1 * 3], w = grid[f2 * 3];
+    std::vector<uint32_t> tris = grid;
+    // A fin along a -> b (three faces on the edge), a triangle touching the
+    // grid at v only (a bow-tie) and a face that repeats w (no fan).
+    tris.insert(tris.end(), {a, b, nv, v, nv + 1, nv + 2, w, w, nv + 3});
+    const uint32_t n = nv + 4;
+    std::vector<uint32_t> firstUse(n, UINT32_MAX);
+    for (size_t c = tris.size(); c-- > 0;) firstUse[tris[c]] = uint32_t(c);
+
+    std::vector<uint32_t> reference;
+    for (unsigned threads : {1u, 2u, 3u}) {
+      const QString where = QString("threads %1").arg(threads);
+      std::vector<uint32_t> out = tris, copiedFrom;
+      CornerTopology topo = analyzeCorners(out, n, threads);
+      QVERIFY(!topo.manifold());
+      const NonManifoldSplitStats s = splitNonManifold(out, n, copiedFrom, topo, threads);
+      QCOMPARE(s.nonManifoldEdges, size_t(1));
+      QCOMPARE(s.nonManifoldVertices, size_t(1));  // v; the repeated face is not a fan
+      // The fin's a and b (the grid keeps them), v's extra triangle, w's two
+      // corners in the face that repeats it: one copy each.
+      QCOMPARE(s.verticesAdded, size_t(5));
+      QCOMPARE(copiedFrom, (std::vector<uint32_t>{a, b, v, w, w}));
+      // Manifold now, and the topology handed back is the result's.
+      const CornerTopology fresh = analyzeCorners(out, n + uint32_t(copiedFrom.size()), 1);
+      QVERIFY2(fresh.manifold(), qPrintable(where));
+      QVERIFY(std::equal(topo.twin.begin(), topo.twin.end(), fresh.twin.begin(), fresh.twin.end()));
+      // Every corner names the vertex it named or a copy of it; only the
+      // defects' vertices are rewritten, and each keeps its first corner.
+      for (size_t c = 0; c < out.size(); ++c) {
+        const uint32_t source = out[c] < n ? out[c] : copiedFrom[out[c] - n];
+        QCOMPARE(source, tris[c]);
+        if (out[c] != tris[c]) QVERIFY2(source == a || source == b || source == v || source == w, qPrintable(where));
+      }
+      for (uint32_t u = 0; u < n; ++u) QCOMPARE(out[firstUse[u]], u);
+      QVERIFY(std::equal(out.begin(), out.begin() + grid.size(), grid.begin()));  // the grid's own corners untouched
+      if (reference.empty()) reference = out;
+      QVERIFY2(out == reference, qPrintable(where));
+    }
+  }
+
   void nanCoordinatesAreQuarantined() {
     MeshData m = hs::test::curvedGrid(4, 1.0, 0.0, false);
     const size_t faces = m.triangleCount();
