@@ -102,6 +102,22 @@ std::vector<size_t> keptOffsets(size_t n, unsigned workers, Keep&& keep) {
   return offsets;
 }
 
+// The i in [0, n) with keep(i), in increasing order, found in parallel (a
+// count and a fill over the same ranges). For sparse selections out of a
+// large array: n must fit 32 bits.
+template <class Keep>
+std::vector<uint32_t> keptIndices(size_t n, unsigned threads, Keep&& keep) {
+  const unsigned workers = std::max(1u, resolveThreads(threads));
+  const std::vector<size_t> offsets = keptOffsets(n, workers, keep);
+  std::vector<uint32_t> kept(offsets[workers]);
+  parallelRanges(n, workers, [&](size_t b, size_t e, unsigned r) {
+    size_t next = offsets[r];
+    for (size_t i = b; i < e; ++i)
+      if (keep(i)) kept[next++] = uint32_t(i);
+  }, 1);
+  return kept;
+}
+
 // fn(task, slot) for every task in [0, count), handed out one at a time so
 // uneven tasks balance. `slot` in [0, min(threads, count)) is never used by
 // two tasks at once (per-slot scratch memory is safe); results must depend

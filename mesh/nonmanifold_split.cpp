@@ -335,15 +335,8 @@ NonManifoldSplitStats splitNonManifold(std::span<uint32_t> tris, uint32_t vertex
     // Every corner of a touched vertex, in corner order.
     std::vector<uint8_t> isTouched(nv, 0);
     for (const uint32_t v : touched) isTouched[v] = 1;
-    auto keep = [&](size_t c) { return tris[c] < nv && isTouched[tris[c]]; };
-    const unsigned workers = std::max(1u, resolveThreads(threads));
-    const std::vector<size_t> offsets = keptOffsets(nc, workers, keep);
-    std::vector<uint32_t> corners(offsets[workers]);
-    parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
-      size_t next = offsets[w];
-      for (size_t c = b; c < e; ++c)
-        if (keep(c)) corners[next++] = uint32_t(c);
-    }, 1);
+    const std::vector<uint32_t> corners =
+        keptIndices(nc, threads, [&](size_t c) { return tris[c] < nv && isTouched[tris[c]]; });
 
     // Two corners leaving one vertex share its fan when one's edge is
     // twinned with the edge coming back into the vertex before the other.

@@ -215,15 +215,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   if (!copiedFrom.empty()) {
     // The corners now on copies, in order (few: the defects' fans), found
     // in parallel.
-    const unsigned workers = std::max(1u, threads);
-    auto onCopy = [&](size_t c) { return tris[c] >= nv; };
-    const std::vector<size_t> offsets = keptOffsets(nc, workers, onCopy);
-    std::vector<uint32_t> copyCorners(offsets[workers]);
-    parallelRanges(nc, workers, [&](size_t b, size_t e, unsigned w) {
-      size_t next = offsets[w];
-      for (size_t c = b; c < e; ++c)
-        if (onCopy(c)) copyCorners[next++] = uint32_t(c);
-    }, 1);
+    const std::vector<uint32_t> copyCorners = keptIndices(nc, threads, [&](size_t c) { return tris[c] >= nv; });
     // A split vertex's copies need wedges of their own: a wedge belongs to
     // one vertex, because a vertex that moves takes its wedges along.
     std::unordered_map<uint64_t, uint32_t> copyWedge;

@@ -1,8 +1,9 @@
-// core/large_pages and core/uninit_array (the decimator's large arrays) and
-// keptOffsets (core/parallel): blocks are aligned and usable end to end,
-// advising and faulting in leaves contents as they were, a vector resized
-// on huge pages keeps its elements and value-initialises the new ones, and
-// the per-range offsets equal a serial count for any number of workers.
+// core/large_pages and core/uninit_array (the decimator's large arrays),
+// keptOffsets and keptIndices (core/parallel): blocks are aligned and
+// usable end to end, advising and faulting in leaves contents as they
+// were, a vector resized on huge pages keeps its elements and
+// value-initialises the new ones, and the per-range offsets and the kept
+// indices equal a serial compaction for any number of workers.
 #include <QtTest>
 
 #include <algorithm>
@@ -94,6 +95,8 @@ class TestLargePages : public QObject {
             if (keep(i)) compacted[next++] = i;
         }, 1);
         QCOMPARE(compacted, serial);
+        // keptIndices does the same compaction.
+        QCOMPARE(keptIndices(n, workers, keep), std::vector<uint32_t>(serial.begin(), serial.end()));
       }
   }
 };
