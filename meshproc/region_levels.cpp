@@ -200,17 +200,21 @@ ScheduleResult runRegionLevels(DecimationState& st, size_t regions0, size_t targ
     // A catching-up level's one round has level 0's last threshold: its
     // queues are split there as they are built.
     const float catchUpLimit = level > 0 && countTarget && level0Ran ? level0Limit : HUGE_VALF;
+    // Region r's engine and the queues of its halves, whose engines are
+    // then done with (each task touches only its own two).
     auto make = [&](size_t r) {
       auto e = std::make_unique<CollapseEngine>(st, last ? kSharedRegion : uint16_t(r), level);
       EntryVector taken;
       if (level > 0)
-        for (size_t c = 2 * r; c < std::min(2 * r + 2, engines.size()); ++c) engines[c]->takeLiveEntries(taken);
+        for (size_t c = 2 * r; c < std::min(2 * r + 2, engines.size()); ++c) {
+          engines[c]->takeLiveEntries(taken);
+          engines[c].reset();
+        }
       return std::pair(std::move(e), std::move(taken));
     };
     if (!last) {
       parallelTasks(regions, threads, [&](size_t r, unsigned) {
         auto [e, taken] = make(r);
-        for (size_t c = 2 * r; level > 0 && c < std::min(2 * r + 2, engines.size()); ++c) engines[c].reset();
         if (level == 0)
           e->seedRange(uint32_t(lv.edgeBegin(level, r)), uint32_t(lv.edgeBegin(level, r + 1)), std::move(taken));
         else
@@ -222,7 +226,6 @@ ScheduleResult runRegionLevels(DecimationState& st, size_t regions0, size_t targ
       // evaluation is most of the time here), and only about 8x the
       // collapses still to make go into the heap (CollapseEngine::seedEntries).
       auto [e, taken] = make(0);
-      engines.clear();
       std::vector<EntryVector> parts(std::max(1u, threads));
       std::vector<size_t> evaluated(parts.size(), 0);
       parallelRanges(m.n_edges(), unsigned(parts.size()), [&](size_t b, size_t en, unsigned w) {
