@@ -147,11 +147,15 @@ void CollapseEngine::siftUp(size_t i) {
   heap_[i] = e;
 }
 
-void CollapseEngine::popTop() {
-  s_.estate[heap_[0].edge()] &= kGone;
+void CollapseEngine::removeTop() {
   heap_[0] = heap_.back();
   heap_.pop_back();
   if (!heap_.empty()) siftDown(0);
+}
+
+void CollapseEngine::popTop() {
+  s_.estate[heap_[0].edge()] &= kGone;
+  removeTop();
 }
 
 void CollapseEngine::compact() {
@@ -228,14 +232,11 @@ void CollapseEngine::seedAround(std::span<const uint32_t> vertices, EntryVector&
     } while (it != start);
   }
   for (const uint32_t edge : seen) s_.estate[edge] &= uint8_t(~kSeen);
-  if (keyLimit < HUGE_VALF && entries.size() > kSplitMin) {
-    heap_ = std::move(entries);
-    rest_.clear();
-    for (const Entry& e : heap_) s_.estate[e.edge()] |= kQueued;
+  adopt(std::move(entries));
+  if (keyLimit < HUGE_VALF && heap_.size() > kSplitMin)
     splitAt(Entry::make(keyLimit, UINT32_MAX).packed);
-    return;
-  }
-  seedEntries(std::move(entries));
+  else
+    heapify();
 }
 
 size_t CollapseEngine::evaluateUnqueued(uint32_t begin, uint32_t end, EntryVector& out) const {
@@ -255,13 +256,17 @@ size_t CollapseEngine::evaluateUnqueued(uint32_t begin, uint32_t end, EntryVecto
   return evaluated;
 }
 
-void CollapseEngine::seedEntries(EntryVector&& entries, size_t heapTarget) {
+void CollapseEngine::adopt(EntryVector&& entries) {
   heap_ = std::move(entries);
   rest_.clear();
   restAbove_ = UINT64_MAX;
   // |=: entries taken over from the regions' queues may be dirty (their
   // keys stale), and stay so until they reach the top.
   for (const Entry& e : heap_) s_.estate[e.edge()] |= kQueued;
+}
+
+void CollapseEngine::seedEntries(EntryVector&& entries, size_t heapTarget) {
+  adopt(std::move(entries));
   if (heapTarget < heap_.size() / 2) {
     // The split: the heapTarget-th smallest of a sample (deterministic).
     const size_t stride = std::max<size_t>(1, heap_.size() / 65536);
@@ -735,9 +740,7 @@ bool CollapseEngine::run(size_t& liveFacesOut, size_t targetFaces, float keyLimi
         if (fresh.packed > restAbove_) {
           // Past what the heap holds: it waits with the rest (still queued).
           rest_.push_back(fresh);
-          heap_[0] = heap_.back();
-          heap_.pop_back();
-          if (!heap_.empty()) siftDown(0);
+          removeTop();
           continue;
         }
         heap_[0] = fresh;

@@ -148,7 +148,9 @@ class CollapseEngine {
   void compact();
   void siftDown(size_t i);
   void siftUp(size_t i);
-  void popTop();
+  void removeTop();  // the heap without its top; the edge's state untouched
+  void popTop();     // removeTop, and the edge no longer queued
+  void adopt(EntryVector&& entries);  // the queue becomes `entries`, not yet ordered
   void splitAt(uint64_t bound);
   void heapify();
 
