@@ -84,6 +84,14 @@ void parallelRanges(size_t n, unsigned threads, Fn&& fn, size_t minPerRange = 40
   });
 }
 
+// Sets n elements from `first` to `value` on every worker: each worker
+// first-touches the part it will use first in the parallel passes after
+// (and on 5M-element arrays the fill itself is worth splitting).
+template <class It, class T>
+void parallelFill(It first, size_t n, const T& value, unsigned threads) {
+  parallelRanges(n, threads, [&](size_t b, size_t e, unsigned) { std::fill(first + b, first + e, value); });
+}
+
 // Where each range of parallelRanges(n, workers, ..., 1) starts in a
 // compacted order: offsets[r] counts the i before range r's begin with
 // keep(i), offsets[workers] all of them (ranges parallelRanges leaves

@@ -41,7 +41,7 @@ void computeVertexNormals(MeshData& mesh, unsigned threads) {
   // 4 KiB page on this project's machines, core/large_pages.h).
   const size_t nv = mesh.positions.size();
   UninitArray<glm::dvec3> acc(nv);
-  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) { std::fill(acc.begin() + b, acc.begin() + e, glm::dvec3(0.0)); });
+  parallelFill(acc.begin(), nv, glm::dvec3(0.0), threads);
   for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
     const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
     const glm::dvec3 pa(mesh.positions[a]), pb(mesh.positions[b]), pc(mesh.positions[c]);

@@ -112,7 +112,7 @@ CornerTopology analyze(std::span<const uint32_t> tris, uint32_t nv, const Outgoi
   CornerTopology t;
   PerWorkerLists edgeLists(threads), bowTieLists(threads);
   t.twin.reset(tris.size());
-  parallelRanges(tris.size(), threads, [&](size_t b, size_t e, unsigned) { std::fill(t.twin.begin() + b, t.twin.begin() + e, kNoCorner); });
+  parallelFill(t.twin.begin(), tris.size(), kNoCorner, threads);
   std::atomic<size_t> nmEdges{0}, boundary{0}, nmVertices{0};
   // Twins: every vertex resolves its own outgoing corners, so the writes of
   // different workers never touch the same corner.

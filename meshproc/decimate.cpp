@@ -28,10 +28,6 @@ using OpenMesh::EdgeHandle;
 using OpenMesh::FaceHandle;
 using OpenMesh::HalfedgeHandle;
 using OpenMesh::VertexHandle;
-using Clock = DecimateClock;
-
-double since(Clock::time_point t) { return secondsSince(t); }
-
 thread_local DecimateTrace* gTrace = nullptr;
 inline void traceMark(const char* what) {
   if (gTrace) gTrace->mark(what);
@@ -400,9 +396,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
   rep.boundaryVertices = nBoundary, rep.seamVertices = nSeam, rep.fixedVertices = nFixed;
   rep.lockedVertices = nLocked;
   st.estate.reset(m.n_edges());
-  parallelRanges(st.estate.size(), threads, [&](size_t b, size_t e, unsigned) {
-    std::fill(st.estate.begin() + b, st.estate.begin() + e, uint8_t(0));
-  });
+  parallelFill(st.estate.begin(), st.estate.size(), uint8_t(0), threads);
   rep.degenerateFacesRemoved = su.degenerate;
   traceMark("quadrics+classes");
 
@@ -425,8 +419,8 @@ MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su,
   // name; corners of two faces name one wedge with the same vertex (a
   // wedge belongs to one vertex), written as relaxed atomic stores.
   UninitArray<uint32_t> omOfInput(nfIn), wedgeVertex(nWedge);
-  parallelRanges(nfIn, threads, [&](size_t b, size_t e, unsigned) { std::fill(omOfInput.begin() + b, omOfInput.begin() + e, UINT32_MAX); });
-  parallelRanges(nWedge, threads, [&](size_t b, size_t e, unsigned) { std::fill(wedgeVertex.begin() + b, wedgeVertex.begin() + e, UINT32_MAX); });
+  parallelFill(omOfInput.begin(), nfIn, UINT32_MAX, threads);
+  parallelFill(wedgeVertex.begin(), nWedge, UINT32_MAX, threads);
   std::atomic<size_t> live{0};
   parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
     size_t n = 0;
@@ -503,7 +497,7 @@ MeshData extract(const MeshData& in, const DecimationState& st, const Setup& su,
 }  // namespace
 
 DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Progress* progress) {
-  const auto t0 = Clock::now();
+  const auto t0 = DecimateClock::now();
   DecimateResult result;
   DecimateReport& rep = result.report;
   const size_t nfIn = in.triangleCount(), nvIn = in.vertexCount();
@@ -539,7 +533,7 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
     // Nothing to remove: the input is the answer, unchanged.
     result.mesh = in;
     rep.trianglesOut = nfIn, rep.verticesOut = nvIn, rep.targetReached = true;
-    rep.secondsTotal = since(t0);
+    rep.secondsTotal = secondsSince(t0);
     return result;
   }
 
@@ -556,7 +550,7 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   st.maxErrorSq = std::isfinite(opt.maxError) ? opt.maxError * opt.maxError : HUGE_VAL;
   Setup su;
   if (!setUp(in, opt, threads, st, su, rep, result.error)) return result;
-  rep.secondsSetup = since(t0);
+  rep.secondsSetup = secondsSince(t0);
   if (isCancelled(progress)) {
     result.cancelled = true;
     return result;
@@ -587,14 +581,14 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   }
 
   reportProgress(progress, 0.92, "Writing decimated mesh");
-  const auto t3 = Clock::now();
+  const auto t3 = DecimateClock::now();
   result.mesh = extract(in, st, su, opt.copyTextures, threads);
   rep.trianglesOut = result.mesh.triangleCount();
   rep.verticesOut = result.mesh.vertexCount();
   rep.targetReached = !countTarget || rep.trianglesOut <= target;
-  rep.secondsOutput = since(t3);
+  rep.secondsOutput = secondsSince(t3);
   traceMark("output");
-  rep.secondsTotal = since(t0);
+  rep.secondsTotal = secondsSince(t0);
   reportProgress(progress, 1.0, "Decimated");
   return result;
 }

@@ -82,7 +82,7 @@ void buildDecimationMesh(std::span<const uint32_t> tris, std::span<const uint32_
   // (In parallel: each boundary vertex and each boundary halfedge is
   // written by one corner only.)
   UninitArray<int> boundaryOut(nv);
-  parallelRanges(nv, threads, [&](size_t b, size_t e, unsigned) { std::fill(boundaryOut.begin() + b, boundaryOut.begin() + e, -1); });
+  parallelFill(boundaryOut.begin(), nv, -1, threads);
   parallelRanges(nc, threads, [&](size_t b, size_t e, unsigned) {
     for (size_t c = b; c < e; ++c)
       if (twin[c] == kNoCorner) boundaryOut[tris[nextCorner(uint32_t(c))]] = int(heOf[c] ^ 1u);
