@@ -40,6 +40,7 @@
 #include "mesh/weld.h"
 #include "core/large_pages.h"
 #include "meshproc/decimate.h"
+#include "meshproc/decimate_trace.h"
 #include "meshproc/closest_point_bvh.h"
 #include "meshproc/error_metrics.h"
 #include "peers.h"
@@ -78,12 +79,6 @@ void meshoptDeallocate(void* p) {
   if (it == gMeshoptBlocks.end()) return;
   hs::freeLarge(p, it->second);
   gMeshoptBlocks.erase(it);
-}
-
-long minorFaults() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_minflt;
 }
 
 struct Row {
@@ -135,10 +130,10 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
   for (int i = 0; i < runs; ++i) {
     if (gPause > 0) std::this_thread::sleep_for(std::chrono::duration<double>(gPause));
     const double c0 = cpuSeconds(CLOCK_PROCESS_CPUTIME_ID);
-    const long f0 = minorFaults();
+    const long f0 = DecimateTrace::minorFaults();
     const auto t0 = Clock::now();
     DecimateResult d = decimate(in, o);
-    fOurs.push_back(double(minorFaults() - f0));
+    fOurs.push_back(double(DecimateTrace::minorFaults() - f0));
     const double t = seconds(t0, Clock::now());
     cOurs.push_back(cpuSeconds(CLOCK_PROCESS_CPUTIME_ID) - c0);
     if (!d.ok()) {
@@ -158,11 +153,11 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
     const size_t triangles = oursOut.triangleCount();
     if (gPause > 0) std::this_thread::sleep_for(std::chrono::duration<double>(gPause));
     const double c1 = cpuSeconds(CLOCK_THREAD_CPUTIME_ID);
-    const long f1 = minorFaults();
+    const long f1 = DecimateTrace::minorFaults();
     const auto t1 = Clock::now();
     n = meshopt_simplify(dst.data(), in.indices.data(), in.indices.size(), &in.positions[0].x, in.positions.size(),
                          sizeof(glm::vec3), triangles * 3, 1e30f, 0, nullptr);
-    fMeshopt.push_back(double(minorFaults() - f1));
+    fMeshopt.push_back(double(DecimateTrace::minorFaults() - f1));
     tMeshopt.push_back(seconds(t1, Clock::now()));
     cMeshopt.push_back(cpuSeconds(CLOCK_THREAD_CPUTIME_ID) - c1);
   }
