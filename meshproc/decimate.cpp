@@ -565,7 +565,7 @@ DecimateResult decimate(const MeshData& in, const DecimateOptions& opt, const Pr
   rep.levels = sched.levels;
   rep.lastRegionCollapses = sched.finalCollapses;
   rep.secondsRegions = sched.secondsParallel;
-  rep.secondsBorders = sched.secondsFinal;
+  rep.secondsLastRegion = sched.secondsFinal;
   if (sched.cancelled) {
     result.cancelled = true;
     return result;

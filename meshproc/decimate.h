@@ -72,9 +72,8 @@ struct DecimateReport {
   unsigned levels = 0;                // levels of merged regions that ran rounds (region_levels.h)
   size_t lastRegionCollapses = 0;     // of `collapses`, those of the last, single region (serial)
   // secondsRegions: the levels of two or more regions (parallel);
-  // secondsBorders: the last level, one region finishing the count (its
-  // JSON name, seconds_border_pass, is the serial border pass it replaced).
-  double secondsSetup = 0, secondsRegions = 0, secondsBorders = 0, secondsOutput = 0, secondsTotal = 0;
+  // secondsLastRegion: the last level, one region finishing the count.
+  double secondsSetup = 0, secondsRegions = 0, secondsLastRegion = 0, secondsOutput = 0, secondsTotal = 0;
 };
 
 struct DecimateResult {

@@ -12,7 +12,7 @@ namespace {
 // IO (Writer or Reader) and the report (const when writing):
 //
 //   io.count(key, r.member [, old key])   whole number >= 0
-//   io.number(key, r.member)              double (null when not finite)
+//   io.number(key, r.member [, old key])  double (null when not finite)
 //   io.flag / io.text / io.texts / io.indices / io.vec3
 //   io.derived(key, fn)                   written from other members, not read
 //   io.object(key, fields)                an object that is always there
@@ -30,7 +30,7 @@ class Writer {
   void count(const char* key, const T& v, const char* /*oldKey*/ = nullptr) {
     out[key] = v;
   }
-  void number(const char* key, double v) { out[key] = num(v); }
+  void number(const char* key, double v, const char* /*oldKey*/ = nullptr) { out[key] = num(v); }
   void flag(const char* key, bool v) { out[key] = v; }
   void text(const char* key, const std::string& v) { out[key] = v; }
   void texts(const char* key, const std::vector<std::string>& v) { out[key] = v; }
@@ -90,11 +90,13 @@ class Reader {
     int64_t i = 0;
     if (check(r_.integer(*m, jsonPath(path_, at), i, 0, int64_t(hi)))) v = T(i);
   }
-  void number(const char* key, double& v) {
+  void number(const char* key, double& v, const char* oldKey = nullptr) {
+    const char* at = key;
     const Json* m = JsonReader::member(obj_, key);
+    if (!m && oldKey) m = JsonReader::member(obj_, at = oldKey);
     if (!m) return;
     if (m->is_null()) v = std::numeric_limits<double>::quiet_NaN();  // written for a value that was not finite
-    else check(r_.number(*m, jsonPath(path_, key), v));
+    else check(r_.number(*m, jsonPath(path_, at), v));
   }
   void flag(const char* key, bool& v) { check(r_.optBoolean(obj_, path_, key, v)); }
   void text(const char* key, std::string& v) { check(r_.optString(obj_, path_, key, v)); }
@@ -266,9 +268,14 @@ void decimateFields(IO& io, R& r) {
   io.number("max_estimated_error_m", r.maxEstimatedError);
   io.count("regions", r.regions);
   io.count("threads", r.threads);
+  io.count("rounds", r.rounds);
+  io.count("levels", r.levels);
+  io.count("last_region_collapses", r.lastRegionCollapses);
   io.number("seconds_setup", r.secondsSetup);
   io.number("seconds_regions", r.secondsRegions);
-  io.number("seconds_border_pass", r.secondsBorders);
+  // Reports written before region levels replaced the serial border pass
+  // (issue 11) name the last region's time after that pass.
+  io.number("seconds_last_region", r.secondsLastRegion, "seconds_border_pass");
   io.number("seconds_output", r.secondsOutput);
   io.number("seconds", r.secondsTotal);
 }

@@ -124,7 +124,7 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
   o.threads = threads;
   if (gFacesPerRegion) o.facesPerRegion = gFacesPerRegion;
   std::vector<double> cOurs, cMeshopt, fOurs, fMeshopt;
-  std::vector<double> tOurs, tMeshopt, tSetup, tRegions, tBorders, tOutput;
+  std::vector<double> tOurs, tMeshopt, tSetup, tRegions, tLastRegion, tOutput;
   std::vector<uint32_t> dst(in.indices.size());
   size_t n = 0;
   for (int i = 0; i < runs; ++i) {
@@ -142,7 +142,7 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
     }
     tOurs.push_back(t);
     tSetup.push_back(d.report.secondsSetup), tRegions.push_back(d.report.secondsRegions);
-    tBorders.push_back(d.report.secondsBorders), tOutput.push_back(d.report.secondsOutput);
+    tLastRegion.push_back(d.report.secondsLastRegion), tOutput.push_back(d.report.secondsOutput);
     if (i == 0) {
       ours.report = d.report;
       oursOut = std::move(d.mesh);
@@ -185,7 +185,7 @@ void runPair(const MeshData& in, double ratio, int runs, unsigned threads, Row& 
   std::fprintf(stderr, "ours %g%%: minor page faults median %.0f, meshopt %.0f\n", ratio * 100, median(fOurs), median(fMeshopt));
   ours.triangles = oursOut.triangleCount();
   ours.report.secondsSetup = median(tSetup), ours.report.secondsRegions = median(tRegions);
-  ours.report.secondsBorders = median(tBorders), ours.report.secondsOutput = median(tOutput);
+  ours.report.secondsLastRegion = median(tLastRegion), ours.report.secondsOutput = median(tOutput);
   meshopt.time = median(tMeshopt);
   dst.resize(n);
   meshopt.triangles = n / 3;
@@ -264,7 +264,7 @@ void printWorst(const MeshData& original, const MeshData& result, const char* wh
 void printHeader(const char* name, const MeshData& m, double samplesPerFace) {
   std::printf("\n## %s: %zu triangles, %zu vertices (error: %.0f samples per original face each way, seed 1)\n\n",
               name, m.triangleCount(), m.vertexCount(), samplesPerFace);
-  std::printf("| target | method | triangles | time s | CPU s | input Mtri/s | Hausdorff m | Hausdorff / diag | mean m | RMS m | flips | time / meshopt | Hausdorff / meshopt | phases s: setup / regions / border / output | error measure s |\n");
+  std::printf("| target | method | triangles | time s | CPU s | input Mtri/s | Hausdorff m | Hausdorff / diag | mean m | RMS m | flips | time / meshopt | Hausdorff / meshopt | phases s: setup / regions / last region / output | error measure s |\n");
   std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
 }
 
@@ -278,7 +278,7 @@ void printRow(const Row& r, const MeshData& in, const Row* meshopt) {
   char phases[96] = "";
   if (r.report.trianglesIn)
     std::snprintf(phases, sizeof phases, "%.3f / %.3f / %.3f / %.3f", r.report.secondsSetup, r.report.secondsRegions,
-                  r.report.secondsBorders, r.report.secondsOutput);
+                  r.report.secondsLastRegion, r.report.secondsOutput);
   char cpu[32] = "";
   if (r.cpu > 0) std::snprintf(cpu, sizeof cpu, "%.4f", r.cpu);
   std::printf("| %g%% | %s | %zu | %.4f | %s | %.2f | %.3e | %.3e | %.3e | %.3e | %zu | %s | %s | %s | %.2f |\n", r.ratio * 100,

@@ -154,6 +154,36 @@ class TestMeshprocError : public QObject {
     }
   }
 
+  // The decimation's schedule (rounds, levels, the last region's share) is
+  // in the report; the last region's time was "seconds_border_pass" before
+  // region levels replaced that pass, and that key is still read.
+  void decimationReportKeys() {
+    DecimateOptions o;
+    o.targetRatio = 0.2;
+    o.facesPerRegion = 8000;  // 10 regions on an 80,000-face grid: levels run above their floors
+    const DecimateResult r = decimate(curvedGrid(200, 7.0, 0.4, false), o);
+    QVERIFY2(r.ok(), r.error.c_str());
+    QVERIFY(r.report.regions > 1 && r.report.rounds > 0 && r.report.levels > 0);
+    const hs::Json j = toJson(r.report);
+    QCOMPARE(j.at("rounds").get<unsigned>(), r.report.rounds);
+    QCOMPARE(j.at("levels").get<unsigned>(), r.report.levels);
+    QCOMPARE(j.at("last_region_collapses").get<size_t>(), r.report.lastRegionCollapses);
+    QVERIFY(j.contains("seconds_last_region") && !j.contains("seconds_border_pass"));
+    std::string error;
+    hs::JsonReader reader(error);
+    const std::optional<hs::Json> old =
+        hs::parseJson(R"({"decimation": {"collapses": 9, "seconds_border_pass": 0.25}})", error);
+    QVERIFY2(old, error.c_str());
+    ProcessReport p;
+    QVERIFY2(fromJson(reader, *old, "process_report", p), error.c_str());
+    QCOMPARE(p.decimation.collapses, size_t(9));
+    QCOMPARE(p.decimation.secondsLastRegion, 0.25);
+    const std::optional<hs::Json> bad = hs::parseJson(R"({"decimation": {"seconds_border_pass": "slow"}})", error);
+    QVERIFY2(bad, error.c_str());
+    QVERIFY(!fromJson(reader, *bad, "process_report", p));
+    QVERIFY2(error.find("process_report.decimation.seconds_border_pass") == 0, error.c_str());
+  }
+
   // One key for primitives no triangle came from; reports written before it
   // say "skipped_lines", which is still read. A member of the wrong type is
   // refused with its path.
