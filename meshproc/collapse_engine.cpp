@@ -196,7 +196,6 @@ void CollapseEngine::push(const Entry& e) {
 
 void CollapseEngine::seedRange(uint32_t begin, uint32_t end, EntryVector&& taken) {
   EntryVector entries = std::move(taken);
-  entries.reserve(entries.size() + (end - begin));
   stats_.evaluations += evaluateUnqueued(begin, end, entries);
   seedEntries(std::move(entries));
 }
@@ -242,6 +241,11 @@ void CollapseEngine::seedAround(std::span<const uint32_t> vertices, EntryVector&
 size_t CollapseEngine::evaluateUnqueued(uint32_t begin, uint32_t end, EntryVector& out) const {
   size_t evaluated = 0;
   Entry e;
+  // Room for every edge of the range at once: grown by doubling, a queue
+  // of millions (the last region's) was copied a dozen times into fresh
+  // pages, and their first touches were most of this pass's page faults.
+  // Capacity that stays unused is never touched.
+  out.reserve(out.size() + (end - begin));
   for (uint32_t edge = begin; edge < end; ++edge) {
     const uint8_t state = s_.estate[edge];
     if (state & kGone) {
@@ -288,6 +292,10 @@ void CollapseEngine::splitAt(uint64_t bound) {
   // compacted in place and rest_ rebuilt in a scratch vector kept between
   // calls (a round starts with one of these in every region).
   scratch_.clear();
+  // Room for the worst case up front, as in evaluateUnqueued: the first
+  // split of a large queue grew these by doubling into fresh pages.
+  scratch_.reserve(heap_.size() + rest_.size());
+  heap_.reserve(heap_.size() + rest_.size());
   auto gone = [&](const Entry& e) {
     if (!(s_.estate[e.edge()] & kGone)) return false;
     s_.estate[e.edge()] = kGone;  // a queued entry of a deleted edge: dropped here
