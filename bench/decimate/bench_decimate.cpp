@@ -21,6 +21,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -344,6 +345,12 @@ int main(int argc, char** argv) {
                            "[--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir DIR] [--quad-no-uv] [--quad-seed K] [--where-max] [--pause S] [--meshopt-huge-pages]\n", argv[0]);
       return 2;
     }
+  }
+  // The peers' files go there: a directory that is not there yet is made
+  // (the peers' programs would each fail on a missing one).
+  if (std::error_code ec; !std::filesystem::is_directory(workDir) && !std::filesystem::create_directories(workDir, ec)) {
+    std::fprintf(stderr, "--work-dir %s: cannot create it: %s\n", workDir.c_str(), ec.message().c_str());
+    return 2;
   }
   // MESHOPTIMIZER_VERSION is major*1000 + minor*10 (180 = 0.18).
   std::printf("# Decimation: ours vs meshopt_simplify %d.%d vs OpenMesh DecimaterT (machine: %u hardware threads)\n",
