@@ -242,9 +242,9 @@ size_t CollapseEngine::evaluateUnqueued(uint32_t begin, uint32_t end, EntryVecto
   size_t evaluated = 0;
   Entry e;
   // Room for every edge of the range at once: grown by doubling, a queue
-  // of millions (the last region's) was copied a dozen times into fresh
-  // pages, and their first touches were most of this pass's page faults.
-  // Capacity that stays unused is never touched.
+  // of millions (the last region's) was copied into fresh pages at every
+  // doubling, each of them a first touch. Capacity that stays unused is
+  // never touched.
   out.reserve(out.size() + (end - begin));
   for (uint32_t edge = begin; edge < end; ++edge) {
     const uint8_t state = s_.estate[edge];
