@@ -24,6 +24,7 @@
 #include "bench/common/plot.h"
 #include "mesh/primitives.h"
 #include "render/offscreen_renderer.h"
+#include "scene/light_units.h"
 #include "scene/mesh_materials.h"
 
 using namespace hs;
@@ -79,7 +80,10 @@ scene::SceneState sphereGrid(int segments, int pointLights) {
   for (int i = 0; i < pointLights; ++i) {
     scene::Entity p;
     p.name = "Point";
-    p.light = scene::Light{scene::Light::Type::Point, {1.0f, 0.9f, 0.8f}, 3.0f, 30.0f};
+    // 3.0 at 1 m in the units this bench was written in, before lights took
+    // lumens (1.7 million lm): at 3 lm they no longer changed the 8-bit image.
+    p.light = scene::Light{scene::Light::Type::Point, {1.0f, 0.9f, 0.8f},
+                           float(scene::legacyLightIntensity(scene::Light::Type::Point, 3.0)), 30.0f};
     p.transform.translation = {(i % 4 - 1.5) * 3.5, -2.5, (i / 4 - 0.5) * 3.0};
     add(p);
   }
