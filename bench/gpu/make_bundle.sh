@@ -4,7 +4,7 @@
 # OpenImageIO (the device machine: see bench/gpu/README.md):
 #
 #   bench/gpu/make_bundle.sh [BUILD_DIR]      # default: build/
-#   -> .gpubundle/hs-gpu-bundle.tar.xz        (ignored through .git/info/exclude)
+#   -> .gpubundle/hs-gpu-bundle.tar.xz        (ignored through .gitignore)
 #
 # Layout of the archive (one folder, hs-gpu/):
 #   bin/           the benchmarks (stripped copies; bench/gpu/run_benches.sh lists them)
