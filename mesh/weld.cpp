@@ -8,6 +8,7 @@
 #include <cstring>
 #include <memory>
 
+#include "core/large_pages.h"
 #include "core/parallel.h"
 #include "mesh/radix_sort.h"
 
@@ -129,7 +130,11 @@ PositionWedgeWeld weldPositionsAndWedges(std::span<const glm::vec3> positions, s
     if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) lo = glm::min(lo, p), hi = glm::max(hi, p);
   if (!(lo.x <= hi.x)) lo = hi = glm::vec3(0.0f);
   const glm::vec3 scale = 1023.0f / glm::max(hi - lo, glm::vec3(1e-30f));
-  std::vector<uint64_t> order(n);
+  // Every array of n here is first touched on huge pages by all workers
+  // (resizeOnHugePages): zero-filled by std::vector on one thread, the
+  // tile's 2.5M vertices cost 20k page faults, most of this weld's time.
+  std::vector<uint64_t> order;
+  resizeOnHugePages(order, n, workers);
   parallelRanges(n, workers, [&](size_t b, size_t e, unsigned) {
     for (size_t i = b; i < e; ++i) {
       // Non-finite coordinates clamp into some cell; equal bits still meet.
@@ -140,7 +145,9 @@ PositionWedgeWeld weldPositionsAndWedges(std::span<const glm::vec3> positions, s
   });
   radixSortByKey(order, 30, workers);
   // First vertex (smallest index) of each position and each position+UV.
-  std::vector<uint32_t> posRep(n), wedgeRep(n);
+  std::vector<uint32_t> posRep, wedgeRep;
+  resizeOnHugePages(posRep, n, workers);
+  resizeOnHugePages(wedgeRep, n, workers);
   auto posKey = [&](uint32_t i) {
     const glm::vec3& p = positions[i];
     return std::array<uint32_t, 3>{canonicalBits(p.x), canonicalBits(p.y), canonicalBits(p.z)};
@@ -199,7 +206,7 @@ PositionWedgeWeld weldPositionsAndWedges(std::span<const glm::vec3> positions, s
   auto number = [&](std::vector<uint32_t>& rep, std::vector<uint32_t>& out, std::vector<uint32_t>& firstOf,
                     uint32_t& count) {
     std::vector<size_t> firsts(workers + 1, 0);
-    out.resize(n);
+    resizeOnHugePages(out, n, workers);
     parallelRanges(n, workers, [&](size_t b, size_t e, unsigned w) {
       size_t c = 0;
       for (size_t i = b; i < e; ++i) c += rep[i] == i;
@@ -207,7 +214,7 @@ PositionWedgeWeld weldPositionsAndWedges(std::span<const glm::vec3> positions, s
     }, 1);
     for (unsigned w = 0; w < workers; ++w) firsts[w + 1] += firsts[w];
     count = uint32_t(firsts[workers]);
-    firstOf.resize(count);
+    resizeOnHugePages(firstOf, count, workers);
     parallelRanges(n, workers, [&](size_t b, size_t e, unsigned w) {
       uint32_t next = uint32_t(firsts[w]);
       for (size_t i = b; i < e; ++i)
