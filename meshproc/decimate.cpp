@@ -269,33 +269,28 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
 
   // Classes, and quadrics: each vertex sums the planes of its own faces and
   // constrained edges, so vertices are independent and run in parallel.
-  // The faces' unit normals and weights are worked out once, in a pass of
-  // their own (each vertex then loads one record a face and one corner,
-  // not three corners and the cross product, square root and division
-  // that a plane costs: that was most of this phase). In float, 16 bytes a
-  // face: the vertex records store their quadrics in float anyway
-  // (QuadricF), and the offset is taken in double from the face's own
-  // corner, relative to the vertex.
+  // Each face's plane is worked out by each of its three vertices, from
+  // the face's corners in their own order (the same bits every time):
+  // three times the arithmetic of one pass of planes, but no array of them
+  // (200 MB at 5M faces, whose first touch cost more than the arithmetic).
   auto& m = st.mesh;
   const OpenMesh::Vec3d* const points = m.points();
   auto pointOf = [&](size_t v) { return glm::dvec3(points[v][0], points[v][1], points[v][2]); };
-  struct FacePlane {
-    glm::vec3 n;  // unit normal (0 for a degenerate face)
-    float w;      // weight; 0 for a degenerate face
+  struct Plane {
+    glm::dvec3 n;
+    double d, w;
   };
-  UninitArray<FacePlane> planes(nf);
-  parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned) {
-    for (size_t f = b; f < e; ++f) {
-      const glm::dvec3 pa = pointOf(st.fv[f * 3]), pb = pointOf(st.fv[f * 3 + 1]), pc = pointOf(st.fv[f * 3 + 2]);
-      const glm::dvec3 n = glm::cross(pb - pa, pc - pa);
-      const double len = glm::length(n);
-      // Weight sqrt(area), not area: the error then scales linearly with
-      // size, so small features (a spike, a thin fin) are not outvoted by
-      // the large faces around them (the weighting meshoptimizer uses;
-      // measured lower Hausdorff on the bunny at every ratio than area).
-      planes[f] = len > 0 ? FacePlane{glm::vec3(n / len), float(std::sqrt(0.5 * len))} : FacePlane{glm::vec3(0.0f), 0.0f};
-    }
-  });
+  auto planeOf = [&](size_t f) -> Plane {
+    const glm::dvec3 pa = pointOf(st.fv[f * 3]), pb = pointOf(st.fv[f * 3 + 1]), pc = pointOf(st.fv[f * 3 + 2]);
+    const glm::dvec3 n = glm::cross(pb - pa, pc - pa);
+    const double len = glm::length(n);
+    // Weight sqrt(area), not area: the error then scales linearly with
+    // size, so small features (a spike, a thin fin) are not outvoted by
+    // the large faces around them (the weighting meshoptimizer uses;
+    // measured lower Hausdorff on the bunny at every ratio than area).
+    if (len > 0) return {n / len, -glm::dot(n / len, pa), std::sqrt(0.5 * len)};
+    return {glm::dvec3(0.0), 0.0, 0.0};
+  };
   // Vertices whose corners all use one wedge and one material cannot end a
   // seam edge: only edges at a "mixed" vertex need the full seam test.
   // (Every corner against its vertex's first corner, in parallel: the
@@ -345,12 +340,8 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
       do {
         const FaceHandle f = m.face_handle(it);
         if (f.is_valid()) {
-          const FacePlane& pl = planes[size_t(f.idx())];
-          if (pl.w > 0) {
-            // Through the face's first corner: n.(x - pa) = 0, with x = pv + y.
-            const glm::dvec3 n(pl.n);
-            q += Quadric::plane(n, glm::dot(n, pv - pointOf(st.fv[size_t(f.idx()) * 3])), double(pl.w));
-          }
+          const Plane pl = planeOf(size_t(f.idx()));
+          if (pl.w > 0) q += Quadric::plane(pl.n, pl.d + glm::dot(pl.n, pv), pl.w);
           const uint16_t fr = regionOfFace(size_t(f.idx()), regions, nf);
           if (region == kSharedRegion) region = fr;
           else if (fr != region) shared = true;
@@ -372,7 +363,7 @@ bool setUp(const MeshData& in, const DecimateOptions& opt, unsigned threads, Dec
           const double len2 = glm::dot(edge, edge);
           for (const FaceHandle g : {f, m.face_handle(m.opposite_halfedge_handle(it))}) {
             if (!g.is_valid()) continue;
-            glm::dvec3 side = glm::cross(edge, glm::dvec3(planes[size_t(g.idx())].n));
+            glm::dvec3 side = glm::cross(edge, planeOf(size_t(g.idx())).n);
             const double sl = glm::length(side);
             if (!(sl > 0)) continue;
             side /= sl;

@@ -188,18 +188,14 @@ class TestDeterminism : public QObject {
   static constexpr uint64_t kHydraulicGrid = 0xc2f70af625ac8da6ull;
   static constexpr uint64_t kErosionTerrain = 0xee94f7296e296fbeull;
   static constexpr uint64_t kPaintRules = 0x3b6d8d09148bde52ull;
-  // Decimation changed on purpose (issue 11 item 4), twice. After level
-  // 0's rounds the regions merge pairwise and catch their strips up in
-  // parallel (meshproc/region_levels.cpp), and a round's threshold is
-  // sampled from the heap and the entries waiting beside it: same Hausdorff
-  // on the bunny at 50% and within 2% at 10% and 1% (docs/meshes.md,
-  // "Seventh round"). Then the face planes of the quadrics were worked out
-  // once per face, in float, instead of in double by each corner's vertex:
-  // the bunny's Hausdorff the same at 50, 25 and 5%, +1% at 10%, -5% at 1%
-  // ("Ninth round").
-  static constexpr uint64_t kDecimate50 = 0x58b0edd1ee7f58abull;
-  static constexpr uint64_t kDecimate10 = 0x9276c1315390ebcdull;
-  static constexpr uint64_t kDecimate1 = 0xcc1275430582e17full;
+  // Decimation changed on purpose (issue 11 item 4): after level 0's rounds
+  // the regions merge pairwise and catch their strips up in parallel
+  // (meshproc/region_levels.cpp), and a round's threshold is sampled from
+  // the heap and the entries waiting beside it. Same Hausdorff on the bunny
+  // at 50% and within 2% at 10% and 1% (docs/meshes.md, "Seventh round").
+  static constexpr uint64_t kDecimate50 = 0xd7075b9ec32fbf98ull;
+  static constexpr uint64_t kDecimate10 = 0x4c5c595bc7333becull;
+  static constexpr uint64_t kDecimate1 = 0xe13228fa78973de0ull;
 };
 
 QTEST_GUILESS_MAIN(TestDeterminism)
