@@ -72,21 +72,9 @@ bool CollapseEngine::evaluate(uint32_t edge, Plan& plan) const {
     return true;
   }
   const Quadric q = da.q.load() + db.q.load().translated(-t);
-  const glm::dvec3 mid = 0.5 * t;
   const double len2 = glm::dot(t, t);
   glm::dvec3 p;
-  double cost;
-  // The optimum is trusted within one edge length of the edge; beyond that
-  // the quadric is near-singular in some direction and the best of the
-  // endpoints and the midpoint is the safer choice.
-  if (q.minimize(mid, p) && glm::dot(p - mid, p - mid) <= len2) {
-    cost = q.evaluate(p);
-  } else {
-    p = mid, cost = q.evaluate(mid);
-    const double ea = q.evaluate(glm::dvec3(0.0)), eb = q.evaluate(t);
-    if (ea < cost) p = glm::dvec3(0.0), cost = ea;
-    if (eb < cost) p = t, cost = eb;
-  }
+  const double cost = placeOnEdge(q, glm::dvec3(0.0), t, p);
   plan.h = h0;
   plan.p = pa + p;
   plan.moves = true;

@@ -97,6 +97,23 @@ struct Quadric {
   }
 };
 
+// Where the vertex that merges edge (a, b) goes, and Q there: the
+// quadric's optimum when it lies within one edge length of the midpoint;
+// beyond that the quadric is near-singular in some direction and the
+// cheapest of the midpoint and the two ends is the safer choice. The
+// decimator's rule (CollapseEngine::evaluate), shared with the benchmarks'
+// prototypes so that they place vertices as it does.
+inline double placeOnEdge(const Quadric& q, const glm::dvec3& a, const glm::dvec3& b, glm::dvec3& p) {
+  const glm::dvec3 mid = 0.5 * (a + b), ab = b - a;
+  if (q.minimize(mid, p) && glm::dot(p - mid, p - mid) <= glm::dot(ab, ab)) return q.evaluate(p);
+  p = mid;
+  double cost = q.evaluate(mid);
+  const double ea = q.evaluate(a), eb = q.evaluate(b);
+  if (ea < cost) p = a, cost = ea;
+  if (eb < cost) p = b, cost = eb;
+  return cost;
+}
+
 // A quadric stored in single precision relative to its own vertex (the
 // decimator's per-vertex record; arithmetic is done in double after
 // load()). Relative to the vertex, every term is of the size of the

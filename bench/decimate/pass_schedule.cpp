@@ -15,6 +15,7 @@
 namespace hs::bench {
 namespace {
 
+using hs::mesh::placeOnEdge;
 using hs::mesh::Quadric;
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point& t) {
@@ -151,17 +152,8 @@ hs::mesh::MeshData decimateInPasses(const hs::mesh::MeshData& in, size_t targetT
         const Quadric qq = q[a] + q[b];
         const double inv = qq.weight > 0 ? 1.0 / qq.weight : 0.0;
         if (cls[a] == kFree && cls[b] == kFree && !opt.endpointPlacement) {
-          const glm::dvec3 mid = 0.5 * (pos[a] + pos[b]);
           glm::dvec3 p;
-          double cost;
-          if (qq.minimize(mid, p) && glm::dot(p - mid, p - mid) <= len2) {
-            cost = qq.evaluate(p);
-          } else {
-            p = mid, cost = qq.evaluate(mid);
-            const double ea = qq.evaluate(pos[a]), eb = qq.evaluate(pos[b]);
-            if (ea < cost) p = pos[a], cost = ea;
-            if (eb < cost) p = pos[b], cost = eb;
-          }
+          const double cost = placeOnEdge(qq, pos[a], pos[b], p);
           cands.push_back({float(cost * inv + opt.lengthWeight * len2), a, b, p});
           continue;
         }
