@@ -21,9 +21,9 @@
 #include <meshoptimizer.h>
 
 #include "bench/common/bench_util.h"
-#include "mesh/mesh_import.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
+#include "bunny.h"
 #include "pass_schedule.h"
 #include "scan_terrain.h"
 
@@ -32,7 +32,7 @@ using hs::bench::median;
 using hs::bench::nowSeconds;
 
 int main(int argc, char** argv) {
-  std::string bunnyPath = HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj";
+  std::string bunnyPath = hs::bench::kBunnyPath;
   std::vector<double> ratios{50, 10, 1};
   int runs = 7, tileQuads = 0;
   hs::bench::PassScheduleOptions popt;
@@ -70,14 +70,9 @@ int main(int argc, char** argv) {
   };
   std::vector<Dataset> sets;
   {
-    ImportOptions io;
-    io.up = UpAxis::Z;
-    ImportResult r = importMesh(bunnyPath, io);
-    if (!r.ok()) {
-      std::fprintf(stderr, "%s\n", r.error.c_str());
-      return 1;
-    }
-    sets.push_back({"Stanford bunny", std::move(*r.mesh), 10.0});
+    std::optional<MeshData> bunny = hs::bench::loadBunny(bunnyPath);
+    if (!bunny) return 1;
+    sets.push_back({"Stanford bunny", std::move(*bunny), 10.0});
   }
   if (tileQuads > 0) {
     MeshData t = hs::bench::scanTerrain(tileQuads, 500.0);

@@ -37,13 +37,13 @@
 
 #include "bench/common/bench_util.h"
 #include "bench/common/plot.h"
-#include "mesh/mesh_import.h"
 #include "mesh/weld.h"
 #include "core/large_pages.h"
 #include "meshproc/decimate.h"
 #include "meshproc/decimate_trace.h"
 #include "meshproc/closest_point_bvh.h"
 #include "meshproc/error_metrics.h"
+#include "bunny.h"
 #include "peers.h"
 #include "quad_scan.h"
 #include "scan_terrain.h"
@@ -292,7 +292,7 @@ void printRow(const Row& r, const MeshData& in, const Row* meshopt) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string bunnyPath = HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj";
+  std::string bunnyPath = hs::bench::kBunnyPath;
   std::string plotPath = "bench_decimate.png", stockTerrain = "0.1";
   int terrainQuads = 1580, runs = 5, terrainRuns = 3;
   bool measureErrors = true;
@@ -367,14 +367,9 @@ int main(int argc, char** argv) {
   };
   std::vector<Dataset> sets;
   if (!skipBunny) {
-    ImportOptions io;
-    io.up = UpAxis::Z;
-    ImportResult r = importMesh(bunnyPath, io);
-    if (!r.ok()) {
-      std::fprintf(stderr, "%s\n", r.error.c_str());
-      return 1;
-    }
-    sets.push_back({"Stanford bunny", "Stanford bunny 69k", std::move(*r.mesh), 10.0, runs, true, true, false, true});
+    std::optional<MeshData> bunny = hs::bench::loadBunny(bunnyPath);
+    if (!bunny) return 1;
+    sets.push_back({"Stanford bunny", "Stanford bunny 69k", std::move(*bunny), 10.0, runs, true, true, false, true});
   }
   if (!skipQuad) {
     MeshData q = hs::bench::quadScan(180, 30.0, quadSeed);
