@@ -86,13 +86,20 @@ ClosestPointBvh::ClosestPointBvh(const MeshData& mesh, unsigned threads) {
   std::vector<uint32_t> codes(nf);
   faceOfSlot_.resize(nf);
   slotOfFace_.resize(nf);
-  corners_.resize(nf * 3);
+  tris_.resize(nf);
   for (size_t s = 0; s < nf; ++s) {
     const uint32_t f = uint32_t(order[s]);
     codes[s] = uint32_t(order[s] >> 32);
     faceOfSlot_[s] = f;
     slotOfFace_[f] = uint32_t(s);
-    for (size_t k = 0; k < 3; ++k) corners_[s * 3 + k] = pos[mesh.indices[size_t(f) * 3 + k]];
+    SlotTriangle& t = tris_[s];
+    for (size_t k = 0; k < 3; ++k) t.v[k] = pos[mesh.indices[size_t(f) * 3 + k]];
+    const glm::dvec3 a(t.v[0]), e1 = glm::dvec3(t.v[1]) - a, e2 = glm::dvec3(t.v[2]) - a;
+    const glm::dvec3 c = glm::cross(e1, e2);
+    const double len = glm::length(c);
+    // The normal's direction is good to about 1e-16 |e1| |e2| / |c| in
+    // double (then 6e-8 in float); kept where that is under 1e-8.
+    t.n = len > 1e8 * 1e-16 * glm::length(e1) * glm::length(e2) && len > 0 ? glm::vec3(c / len) : glm::vec3(0.0f);
   }
   nodes_.reserve(nf / 2 + 16);
   nodes_.push_back({});
@@ -108,8 +115,9 @@ void ClosestPointBvh::build(uint32_t slot, uint32_t begin, uint32_t end, const s
   if (end - begin <= kLeafSize) {
     n.first = begin, n.count = end - begin;
     for (int a = 0; a < 3; ++a) n.lo[a] = HUGE_VALF, n.hi[a] = -HUGE_VALF;
-    for (uint32_t s = begin * 3; s < end * 3; ++s)
-      for (int a = 0; a < 3; ++a) n.lo[a] = std::min(n.lo[a], corners_[s][a]), n.hi[a] = std::max(n.hi[a], corners_[s][a]);
+    for (uint32_t s = begin; s < end; ++s)
+      for (const glm::vec3& v : tris_[s].v)
+        for (int a = 0; a < 3; ++a) n.lo[a] = std::min(n.lo[a], v[a]), n.hi[a] = std::max(n.hi[a], v[a]);
     nodes_[slot] = n;
     return;
   }
@@ -137,9 +145,30 @@ void ClosestPointBvh::build(uint32_t slot, uint32_t begin, uint32_t end, const s
 }
 
 void ClosestPointBvh::testSlot(uint32_t slot, const glm::dvec3& q, Hit& best) const {
-  const glm::dvec3 a(corners_[slot * 3]), b(corners_[slot * 3 + 1]), c(corners_[slot * 3 + 2]);
+  const SlotTriangle& t = tris_[slot];
+  // Two lower bounds of the distance before the exact test, each a few
+  // multiplications against its dozens: the distance from the triangle's
+  // plane, which rejects the neighbours of the nearest triangle on a
+  // curved surface (their boxes hold the point as well), and from its box.
+  // The plane's is made smaller by what the float normal (1e-6 of the
+  // distance from the corner, with room to spare) and the double rounding
+  // of the exact test (1e-12 of the coordinates) could hide, so a triangle
+  // at the best distance, a tie, is never rejected.
+  const glm::dvec3 qa = q - glm::dvec3(t.v[0]);
+  const double plane = std::abs(glm::dot(glm::dvec3(t.n), qa)) -
+                       1e-6 * (std::abs(qa.x) + std::abs(qa.y) + std::abs(qa.z)) -
+                       1e-12 * (std::abs(q.x) + std::abs(q.y) + std::abs(q.z)) - 1e-12;
+  if (plane > 0 && plane * plane > best.distanceSq) return;
+  double boxSq = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double l = double(std::min({t.v[0][a], t.v[1][a], t.v[2][a]}));
+    const double h = double(std::max({t.v[0][a], t.v[1][a], t.v[2][a]}));
+    const double e = q[a] < l ? l - q[a] : q[a] > h ? q[a] - h : 0.0;
+    boxSq += e * e;
+  }
+  if (boxSq > best.distanceSq) return;
   glm::dvec3 point, bary;
-  const double d = closestPointOnTriangle(q, a, b, c, point, bary);
+  const double d = closestPointOnTriangle(q, glm::dvec3(t.v[0]), glm::dvec3(t.v[1]), glm::dvec3(t.v[2]), point, bary);
   if (d < best.distanceSq || (d == best.distanceSq && faceOfSlot_[slot] < best.face)) {
     best.distanceSq = d;
     best.face = faceOfSlot_[slot];
@@ -185,6 +214,128 @@ ClosestPointBvh::Hit ClosestPointBvh::closest(const glm::dvec3& q, uint32_t hint
   return best;
 }
 
+uint32_t ClosestPointBvh::closestMany(std::span<const glm::dvec3> points, uint32_t hintFace, std::span<Hit> hits,
+                                      ManyScratch& scratch) const {
+  const size_t n = points.size();
+  if (n == 0) return hintFace;
+  // Points in the order of a Morton curve through their box, so that each
+  // is near the one before: the face's samples come in random order, and
+  // on a face much larger than the target's triangles the hint from a
+  // point across the face bounds nothing.
+  std::vector<uint32_t>& order = scratch.order;
+  order.resize(n);
+  glm::dvec3 lo = points[0], hi = points[0];
+  for (size_t k = 1; k < n; ++k) lo = glm::min(lo, points[k]), hi = glm::max(hi, points[k]);
+  if (n > kOrderFrom) {
+    const glm::dvec3 scale = 1023.0 / glm::max(hi - lo, glm::dvec3(1e-300));
+    std::vector<uint64_t>& keys = scratch.keys;
+    keys.resize(n);
+    for (size_t k = 0; k < n; ++k) {
+      const glm::uvec3 c = glm::uvec3(glm::clamp((points[k] - lo) * scale, glm::dvec3(0.0), glm::dvec3(1023.0)));
+      keys[k] = (uint64_t(mortonCode10(c.x, c.y, c.z)) << 32) | k;
+    }
+    std::sort(keys.begin(), keys.end());
+    for (size_t k = 0; k < n; ++k) order[k] = uint32_t(keys[k]);
+  } else {
+    for (size_t k = 0; k < n; ++k) order[k] = uint32_t(k);
+  }
+  // Chunks of consecutive points along the curve: each is small, so few
+  // leaves lie near it, however large the face.
+  uint32_t hint = hintFace;
+  for (size_t c0 = 0; c0 < n; c0 += kChunk) {
+    const size_t c1 = std::min(n, c0 + kChunk);
+    hint = closestChunk(points, std::span<const uint32_t>(order).subspan(c0, c1 - c0), hint, hits, scratch);
+  }
+  return hint;
+}
+
+uint32_t ClosestPointBvh::closestChunk(std::span<const glm::dvec3> points, std::span<const uint32_t> order,
+                                       uint32_t hintFace, std::span<Hit> hits, ManyScratch& scratch) const {
+  const size_t n = order.size();
+  auto walkEach = [&](size_t from) {
+    ++scratch.walkedChunks;
+    for (size_t i = from; i < n; ++i) hits[order[i]] = closest(points[order[i]], hits[order[i - 1]].face);
+    return hits[order[n - 1]].face;
+  };
+  hits[order[0]] = closest(points[order[0]], hintFace);
+  if (n == 1 || !hits[order[0]].found()) return walkEach(1);
+  // Every point is at most its distance from the first point's triangle
+  // from its own nearest one, which then lies in a leaf within the largest
+  // such distance of the points' box.
+  const uint32_t seedSlot = slotOfFace_[hits[order[0]].face];
+  double bound = hits[order[0]].distanceSq;
+  glm::dvec3 lo = points[order[0]], hi = lo;
+  for (size_t i = 1; i < n; ++i) {
+    Hit& h = hits[order[i]];
+    h = Hit{};
+    testSlot(seedSlot, points[order[i]], h);
+    bound = std::max(bound, h.distanceSq);
+    lo = glm::min(lo, points[order[i]]), hi = glm::max(hi, points[order[i]]);
+  }
+  // The margin keeps a leaf whose box distance rounds a hair above the
+  // bound it meets exactly.
+  const double limit = bound * (1.0 + 1e-9) + 1e-300;
+  auto boxBoxDistSq = [&](const Node& nd) {
+    double d = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double l = double(nd.lo[a]), h = double(nd.hi[a]);
+      const double e = hi[a] < l ? l - hi[a] : lo[a] > h ? lo[a] - h : 0.0;
+      d += e * e;
+    }
+    return d;
+  };
+  std::vector<uint32_t>& leaves = scratch.leaves;
+  leaves.clear();
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const uint32_t i = stack[--top];
+    const Node& nd = nodes_[i];
+    if (boxBoxDistSq(nd) > limit) continue;
+    if (nd.count > 0) {
+      leaves.push_back(i);
+      if (leaves.size() > kMaxLeaves) return walkEach(1);  // seeds are overwritten: same hits
+      continue;
+    }
+    stack[top++] = nd.first + 1;
+    stack[top++] = nd.first;
+  }
+  ++scratch.scannedChunks;
+  // The leaves' boxes in double, one array per bound, so that each point's
+  // box distances are a loop the compiler vectorises.
+  const size_t nl = leaves.size();
+  std::vector<double>& bx = scratch.boxes;
+  bx.resize(nl * 7);
+  double* lx = bx.data();
+  double *ly = lx + nl, *lz = ly + nl, *hx = lz + nl, *hy = hx + nl, *hz = hy + nl, *dist = hz + nl;
+  for (size_t j = 0; j < nl; ++j) {
+    const Node& nd = nodes_[leaves[j]];
+    lx[j] = nd.lo[0], ly[j] = nd.lo[1], lz[j] = nd.lo[2], hx[j] = nd.hi[0], hy[j] = nd.hi[1], hz[j] = nd.hi[2];
+  }
+  for (size_t i = 1; i < n; ++i) {
+    const glm::dvec3& q = points[order[i]];
+    Hit& best = hits[order[i]];
+    // The point before is usually nearest to the same triangle: a tight
+    // bound before the scan. Both triangles tried are not tried again.
+    const uint32_t prevSlot = slotOfFace_[hits[order[i - 1]].face];
+    if (prevSlot != seedSlot) testSlot(prevSlot, q, best);
+    for (size_t j = 0; j < nl; ++j) {
+      const double ex = std::max(0.0, std::max(lx[j] - q.x, q.x - hx[j]));
+      const double ey = std::max(0.0, std::max(ly[j] - q.y, q.y - hy[j]));
+      const double ez = std::max(0.0, std::max(lz[j] - q.z, q.z - hz[j]));
+      dist[j] = ex * ex + ey * ey + ez * ez;
+    }
+    for (size_t j = 0; j < nl; ++j) {
+      if (dist[j] > best.distanceSq) continue;
+      const Node& nd = nodes_[leaves[j]];
+      for (uint32_t s = nd.first; s < nd.first + nd.count; ++s)
+        if (s != seedSlot && s != prevSlot) testSlot(s, q, best);
+    }
+  }
+  return hits[order[n - 1]].face;
+}
+
 bool ClosestPointBvh::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tMin,
                                double tMax) const {
   if (nodes_.empty() || !(tMax >= tMin)) return false;
@@ -206,7 +357,7 @@ bool ClosestPointBvh::occluded(const glm::dvec3& origin, const glm::dvec3& direc
     return true;
   };
   auto hitsTriangle = [&](uint32_t slot) {
-    const glm::dvec3 a(corners_[slot * 3]), b(corners_[slot * 3 + 1]), c(corners_[slot * 3 + 2]);
+    const glm::dvec3 a(tris_[slot].v[0]), b(tris_[slot].v[1]), c(tris_[slot].v[2]);
     const glm::dvec3 e1 = b - a, e2 = c - a;
     const glm::dvec3 p = glm::cross(direction, e2);
     const double det = glm::dot(e1, p);

@@ -8,6 +8,7 @@
 // Queries are const and may run from any number of threads at once.
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -35,6 +36,31 @@ class ClosestPointBvh {
   // previous query's) gives an early bound that prunes most of the tree.
   Hit closest(const glm::dvec3& q, uint32_t hintFace = UINT32_MAX) const;
 
+  // Nearest points of several points close together (the samples of one
+  // face): hits[k] is what closest(points[k]) returns, bit for bit (the
+  // least squared distance, ties to the lowest face index). The error
+  // report's queries come in such groups. The points are taken in the
+  // order of a Morton curve through their box (a face's samples come in
+  // random order), in chunks of kChunk consecutive ones: a chunk's first
+  // point is looked up, its triangle bounds every other point's distance,
+  // and when few leaves (kMaxLeaves) lie within that bound of the chunk's
+  // box, one walk collects them and each point scans only those instead of
+  // walking from the root; otherwise each point walks, hinted by the one
+  // before. Returns the last point's face (a hint for the next group).
+  // `scratch` keeps its memory from one call to the next, and counts the
+  // chunks each way (for tests and benchmarks).
+  struct ManyScratch {
+    std::vector<uint32_t> leaves, order;
+    std::vector<uint64_t> keys;
+    std::vector<double> boxes;
+    size_t scannedChunks = 0, walkedChunks = 0;
+  };
+  uint32_t closestMany(std::span<const glm::dvec3> points, uint32_t hintFace, std::span<Hit> hits,
+                       ManyScratch& scratch) const;
+  static constexpr size_t kChunk = 16;
+  static constexpr size_t kMaxLeaves = 32;  // past this, a walk per point is cheaper (bench_error_measure)
+  static constexpr size_t kOrderFrom = 8;   // fewer points are taken as they come
+
   // Does a triangle cross the segment from `origin` along `direction` (not
   // necessarily unit) for parameters t in [tMin, tMax]? An any-hit query
   // (shadow rays): the first triangle found ends it. Both sides of a
@@ -52,10 +78,19 @@ class ClosestPointBvh {
     uint32_t count;  // leaf: triangles; inner: 0
   };
   void testSlot(uint32_t slot, const glm::dvec3& q, Hit& best) const;
+  uint32_t closestChunk(std::span<const glm::dvec3> points, std::span<const uint32_t> order, uint32_t hintFace,
+                        std::span<Hit> hits, ManyScratch& scratch) const;
   void build(uint32_t slot, uint32_t begin, uint32_t end, const std::vector<uint32_t>& codes, int bit);
 
   std::vector<Node> nodes_;
-  std::vector<glm::vec3> corners_;     // 3 per slot, in tree order
+  // A slot's triangle: its corners, and its unit normal for the plane
+  // bound testSlot tries first (zero where the cross product is too ill-
+  // conditioned to trust in float: slivers are then only boxed).
+  struct SlotTriangle {
+    glm::vec3 v[3];
+    glm::vec3 n;
+  };
+  std::vector<SlotTriangle> tris_;     // one per slot, in tree order
   std::vector<uint32_t> faceOfSlot_;   // slot -> mesh face
   std::vector<uint32_t> slotOfFace_;   // mesh face -> slot (for hints)
 };

@@ -95,16 +95,26 @@ bool sampleDistances(const MeshData& from, const std::vector<uint64_t>& first, u
   parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned w) {
     uint32_t hint = UINT32_MAX;
     double mx = 0;
+    // One face's samples are looked up together (closestMany).
+    std::vector<glm::dvec3> points;
+    std::vector<ClosestPointBvh::Hit> hits;
+    ClosestPointBvh::ManyScratch scratch;
     for (size_t f = b; f < e && !stop; ++f) {
       if ((f & 4095) == 0 && isCancelled(progress)) stop = true;
+      const uint64_t count = first[f + 1] - first[f];
+      if (count == 0) continue;
       const glm::dvec3 pa = corner(from, f, 0) + offset, pb = corner(from, f, 1) + offset,
                        pc = corner(from, f, 2) + offset;
-      for (uint64_t k = first[f]; k < first[f + 1]; ++k) {
-        const glm::dvec3 bc = sampleBarycentric(seed, uint32_t(f), k - first[f]);
-        const auto hit = target.closest(bc.x * pa + bc.y * pb + bc.z * pc, hint);
-        hint = hit.face;
-        const double d = std::sqrt(hit.distanceSq);
-        out[k] = float(d);
+      points.resize(count);
+      hits.resize(count);
+      for (uint64_t k = 0; k < count; ++k) {
+        const glm::dvec3 bc = sampleBarycentric(seed, uint32_t(f), k);
+        points[k] = bc.x * pa + bc.y * pb + bc.z * pc;
+      }
+      hint = target.closestMany(points, hint, hits, scratch);
+      for (uint64_t k = 0; k < count; ++k) {
+        const double d = std::sqrt(hits[k].distanceSq);
+        out[first[f] + k] = float(d);
         mx = std::max(mx, d);
       }
     }
