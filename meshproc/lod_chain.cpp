@@ -75,6 +75,7 @@ LodChain buildLodChain(const MeshData& base, const LodOptions& options, const Pr
     lod.hausdorff = std::max(e.hausdorff, chain.levels.back().hausdorff);
     lod.hausdorffRel = e.rel(lod.hausdorff);
     lod.meanError = e.mean;
+    lod.samplesPerFace = e.samplesPerFace;
     lod.decimateSeconds = std::chrono::duration<double>(t1 - t0).count();
     lod.errorSeconds = e.seconds;
     lod.mesh = std::move(r.mesh);

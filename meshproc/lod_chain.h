@@ -27,6 +27,7 @@ struct Lod {
   double hausdorff = 0;         // metres, symmetric, against level 0
   double hausdorffRel = 0;      // of level 0's bounding-box diagonal
   double meanError = 0;         // metres
+  double samplesPerFace = 0;    // the rate its error was measured at (0: level 0, not measured)
   double decimateSeconds = 0, errorSeconds = 0;
 };
 

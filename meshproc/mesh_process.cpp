@@ -95,6 +95,7 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
     lo.decimate.maxError = std::numeric_limits<double>::infinity();
     lo.decimate.lockedVertices.clear();  // per input vertex: meaningless on later levels
     lo.error = options.error;
+    lo.error.samplesPerFace = std::min(options.error.samplesPerFace, options.lodSamplesPerFace);
     LodChain chain = buildLodChain(result.mesh, lo, sub.get());
     if (chain.cancelled) {
       result.cancelled = true;
@@ -106,7 +107,7 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
     }
     for (size_t i = 0; i < chain.levels.size(); ++i) {
       Lod& l = chain.levels[i];
-      rep.lods.push_back({l.triangles, l.hausdorff, l.hausdorffRel, l.decimateSeconds + l.errorSeconds});
+      rep.lods.push_back({l.triangles, l.hausdorff, l.hausdorffRel, l.decimateSeconds + l.errorSeconds, l.samplesPerFace});
       if (i > 0) result.lods.push_back(std::move(l.mesh));
     }
   }

@@ -40,6 +40,13 @@ struct ProcessOptions {
 
   int lodLevels = 0;         // coarser levels after the result (lod_chain.h)
   double lodRatio = 0.25;
+  // The LOD levels' error reports sample fewer points than the result's
+  // (error.samplesPerFace, if that is lower, wins): a level's error only
+  // picks it on screen, and at 2 samples a face the Hausdorff came within
+  // 2.5% of that at 10 (the result's rate) and 5% of the densest measured,
+  // on the bunny and a 2M-triangle scan tile, in 0.3-0.5 of the time
+  // (bench_error_measure --convergence, docs/meshes.md).
+  double lodSamplesPerFace = 2.0;
 };
 
 // ProcessOptions' parameters as the import offers them, declared once
@@ -52,6 +59,7 @@ struct LodSummary {
   size_t triangles = 0;
   double hausdorff = 0, hausdorffRel = 0;  // against level 0 (the processed mesh)
   double seconds = 0;                      // decimation + measurement
+  double samplesPerFace = 0;               // its error report's rate (0: level 0, or not recorded)
 };
 
 struct ProcessReport {

@@ -345,6 +345,7 @@ void processFields(IO& io, R& r) {
     l.number("hausdorff_m", lod.hausdorff);
     l.number("hausdorff_rel", lod.hausdorffRel);
     l.number("seconds", lod.seconds);
+    l.number("samples_per_face", lod.samplesPerFace);
   });
   io.number("seconds", r.seconds);
 }

@@ -23,6 +23,7 @@ Json optionsJson(const mesh::ProcessOptions& o) {
   j["lod_levels"] = o.lodLevels;
   j["lod_ratio"] = o.lodRatio;
   j["samples_per_face"] = o.error.samplesPerFace;
+  j["lod_samples_per_face"] = o.lodSamplesPerFace;
   return j;
 }
 
@@ -32,6 +33,10 @@ bool readOptions(JsonReader& r, const Json& j, const std::string& path, mesh::Pr
       !r.optInteger(j, path, "lod_levels", o.lodLevels, 0, 1000) || !r.optNumber(j, path, "lod_ratio", o.lodRatio) ||
       !r.optNumber(j, path, "samples_per_face", o.error.samplesPerFace))
     return false;
+  // Reports written before LOD levels had their own rate measured them at
+  // the result's.
+  o.lodSamplesPerFace = o.error.samplesPerFace;
+  if (!r.optNumber(j, path, "lod_samples_per_face", o.lodSamplesPerFace)) return false;
   if (const Json* t = JsonReader::member(j, "target_triangles"); t && !t->is_null()) {
     int64_t n = 0;
     if (!r.integer(*t, jsonPath(path, "target_triangles"), n, 0, int64_t(1) << 53)) return false;

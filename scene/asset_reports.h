@@ -36,7 +36,7 @@ struct AssetProcessReport {
   mesh::ProcessReport report;
   // What was asked, written as "options": decimate, target_ratio,
   // target_triangles, max_error_m (null: no bound), lod_levels, lod_ratio,
-  // samples_per_face. Only those members are kept.
+  // samples_per_face, lod_samples_per_face. Only those members are kept.
   mesh::ProcessOptions options;
   std::optional<TileWeldReport> tiles;
 };

@@ -114,7 +114,8 @@ ReportSection lodSection(const std::vector<mesh::LodSummary>& lods) {
     const mesh::LodSummary& l = lods[level];
     r.add("lods[" + std::to_string(level) + "]", "Level " + std::to_string(level),
           count(l.triangles) + " triangles, hausdorff_m " + metres(l.hausdorff) + " (" + percent(l.hausdorffRel) +
-              "), " + seconds(l.seconds));
+              "), " + seconds(l.seconds) +
+              (l.samplesPerFace > 0 ? ", " + fmt3(l.samplesPerFace) + " samples per face" : std::string()));
   }
   return r.s;
 }

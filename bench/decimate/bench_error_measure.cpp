@@ -13,13 +13,20 @@
 // Then the whole report (ErrorMeter::measure) on every thread, as an
 // import runs it.
 //
+// With --convergence 1,2,5,...: instead, what the report's own
+// approximation buys. The report samples the surfaces (its Hausdorff is a
+// lower bound that rises with the rate); for each rate it prints the
+// measure's time and its Hausdorff, mean and 95th percentile as shares of
+// those at the densest rate listed.
+//
 // usage: bench_error_measure [--quads N] [--ratios 50,10,1] [--runs K] [--samples-per-face S]
-//                            [--skip-bunny] [--skip-tile]
+//                            [--skip-bunny] [--skip-tile] [--convergence 1,2,5,10,20,100]
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -114,6 +121,49 @@ CgalTriangles cgalTriangles(const MeshData& m) {
   return t;
 }
 
+std::vector<double> parseList(const std::string& list, double scale) {
+  std::vector<double> v;
+  for (size_t p = 0; p < list.size();) {
+    const size_t q = list.find(',', p);
+    v.push_back(std::atof(list.substr(p, q - p).c_str()) * scale);
+    p = q == std::string::npos ? list.size() : q + 1;
+  }
+  return v;
+}
+
+// The report at each sampling rate, against the densest one.
+void convergence(const std::string& name, const MeshData& original, const std::vector<double>& ratios,
+                 const std::vector<double>& rates) {
+  for (double r : ratios) {
+    DecimateOptions d;
+    d.targetRatio = r;
+    const DecimateResult dr = decimate(original, d);
+    if (!dr.ok()) {
+      std::fprintf(stderr, "%s at %g: %s\n", name.c_str(), r, dr.error.c_str());
+      return;
+    }
+    std::vector<ErrorReport> reports;
+    std::vector<double> seconds;
+    for (double rate : rates) {
+      ErrorOptions eo;
+      eo.samplesPerFace = rate;
+      eo.maxSamples = UINT64_MAX;  // the rate as asked, past the report's cap
+      const ErrorMeter meter(original, eo);
+      const double t0 = nowSeconds();
+      reports.push_back(meter.measure(dr.mesh));
+      seconds.push_back(nowSeconds() - t0);
+    }
+    const ErrorReport& ref = reports.back();
+    for (size_t i = 0; i < rates.size(); ++i) {
+      const ErrorReport& e = reports[i];
+      std::printf("| %s | %g%% | %g | %llu | %.3f | %.4e | %.4f | %.4e | %.4f | %.4e | %.4f |\n", name.c_str(), r * 100.0,
+                  rates[i], static_cast<unsigned long long>(e.forward.samples + e.backward.samples), seconds[i],
+                  e.hausdorff, e.hausdorff / ref.hausdorff, e.mean, e.mean / ref.mean, e.p95, e.p95 / ref.p95);
+      std::fflush(stdout);
+    }
+  }
+}
+
 struct Row {
   double perPoint = 0, perFace = 0, cgal = 0;
 };
@@ -173,6 +223,7 @@ int main(int argc, char** argv) {
   int quads = 1000, runs = 3;
   double samplesPerFace = 10.0;
   std::vector<double> ratios = {0.5, 0.1, 0.01};
+  std::vector<double> rates;
   bool bunny = true, tile = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -182,31 +233,16 @@ int main(int argc, char** argv) {
     else if (a == "--samples-per-face") samplesPerFace = std::atof(next().c_str());
     else if (a == "--skip-bunny") bunny = false;
     else if (a == "--skip-tile") tile = false;
-    else if (a == "--ratios") {
-      ratios.clear();
-      std::string list = next();
-      for (size_t p = 0; p < list.size();) {
-        const size_t q = list.find(',', p);
-        ratios.push_back(std::atof(list.substr(p, q - p).c_str()) / 100.0);
-        p = q == std::string::npos ? list.size() : q + 1;
-      }
-    } else {
+    else if (a == "--ratios") ratios = parseList(next(), 0.01);
+    else if (a == "--convergence") rates = parseList(next(), 1.0);
+    else {
       std::fprintf(stderr,
                    "usage: %s [--quads N] [--ratios 50,10,1] [--runs K] [--samples-per-face S] [--skip-bunny] "
-                   "[--skip-tile]\n",
+                   "[--skip-tile] [--convergence 1,2,5,10,20,100]\n",
                    argv[0]);
       return 2;
     }
   }
-
-  std::printf("# Error report queries: per point vs per face (closestMany) vs CGAL AABB_tree (1 thread each)\n");
-  std::printf("load average at start: %s\n\n", hs::bench::loadAverageLine().c_str());
-  std::printf("%g samples per original face in each direction, %d interleaved runs, medians; both decimated by ours.\n\n",
-              samplesPerFace, runs);
-  std::printf("| mesh | target | direction | points | per point s | per face s | CGAL s | per face Mpts/s | CGAL Mpts/s "
-              "| per point / per face | CGAL / per face | chunks scanned | distances differing (per point vs per face) | "
-              "max abs(ours - CGAL) m | max distance m | build s: ours / CGAL |\n");
-  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
 
   struct Input {
     std::string name;
@@ -218,6 +254,28 @@ int main(int argc, char** argv) {
     else return 1;
   }
   if (tile) inputs.push_back({"scan tile " + std::to_string(2 * quads * quads / 1000) + "k", hs::bench::scanTerrain(quads, 500.0)});
+
+  if (!rates.empty()) {
+    std::sort(rates.begin(), rates.end());
+    std::printf("# Error report: its sampling rate against its time (ErrorMeter::measure, %u threads)\n",
+                hardwareThreads());
+    std::printf("load average at start: %s\n\n", hs::bench::loadAverageLine().c_str());
+    std::printf("Shares are of the densest rate's figures (%g samples per original face each way, no cap); each "
+                "mesh decimated by ours.\n\n", rates.back());
+    std::printf("| mesh | target | samples per face | samples (both ways) | measure s | Hausdorff m | of densest | "
+                "mean m | of densest | p95 m | of densest |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const Input& in : inputs) convergence(in.name, in.mesh, ratios, rates);
+    return 0;
+  }
+
+  std::printf("# Error report queries: per point vs per face (closestMany) vs CGAL AABB_tree (1 thread each)\n");
+  std::printf("load average at start: %s\n\n", hs::bench::loadAverageLine().c_str());
+  std::printf("%g samples per original face in each direction, %d interleaved runs, medians; both decimated by ours.\n\n",
+              samplesPerFace, runs);
+  std::printf("| mesh | target | direction | points | per point s | per face s | CGAL s | per face Mpts/s | CGAL Mpts/s "
+              "| per point / per face | CGAL / per face | chunks scanned | distances differing (per point vs per face) | "
+              "max abs(ours - CGAL) m | max distance m | build s: ours / CGAL |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
 
   struct Whole {
     std::string mesh, ratio;

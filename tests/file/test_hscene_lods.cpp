@@ -124,6 +124,9 @@ class TestHsceneLods : public QObject {
     for (size_t k = 1; k < 3; ++k)  // the double itself (numbers are written to read back exactly)
       QCOMPARE(lods[k].value("hausdorff_m", -1.0), a.lods[k - 1].hausdorff);
     QCOMPARE(rep.value("options", hs::Json()).value("lod_levels", -1), 2);
+    // The levels' rate: the lower of the result's (2 here) and the levels' own.
+    QCOMPARE(rep.value("options", hs::Json()).value("lod_samples_per_face", -1.0), 2.0);
+    QCOMPARE(lods[1].value("samples_per_face", -1.0), 2.0);
 
     // Undo removes the entity, the asset and with it every level and the report.
     doc_.undoStack()->undo();
@@ -319,6 +322,9 @@ class TestHsceneLods : public QObject {
     QCOMPARE(report->options.lodLevels, 2);
     QCOMPARE(report->options.decimation.targetRatio, 0.5);
     QVERIFY(std::isinf(report->options.decimation.maxError));  // null: no bound
+    // Before the levels had a rate of their own they were measured at the
+    // result's, which is what the report then says.
+    QCOMPARE(report->options.lodSamplesPerFace, report->options.error.samplesPerFace);
     QCOMPARE(a.importReport.at("triangles_in").get<int>(), 1600);
     QCOMPARE(a.importReport.at("skipped_primitives").get<int>(), 0);
     for (const Json* r : {&a.importReport, &a.processReport}) {

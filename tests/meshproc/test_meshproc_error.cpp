@@ -92,6 +92,15 @@ class TestMeshprocError : public QObject {
     QVERIFY(dec.contains("seconds"));
     QCOMPARE(root.at("lods").size(), size_t(3));
     QVERIFY(root.at("lods")[2].at("hausdorff_m").get<double>() >= root.at("lods")[1].at("hausdorff_m").get<double>());
+    // The result's report at its rate, the levels at theirs (level 0 is
+    // the result itself: nothing measured).
+    QCOMPARE(err.at("samples_per_face").get<double>(), o.error.samplesPerFace);
+    QCOMPARE(root.at("lods")[0].at("samples_per_face").get<double>(), 0.0);
+    for (size_t level : {1u, 2u}) {
+      const double rate = root.at("lods")[level].at("samples_per_face").get<double>();
+      // Each level's samples are whole numbers over the result's faces.
+      QVERIFY2(std::abs(rate - o.lodSamplesPerFace) < 1e-9, qPrintable(QString::number(rate)));
+    }
     QVERIFY(root.at("cleaning").contains("duplicate_vertices_welded"));
   }
 
