@@ -253,7 +253,7 @@ uint32_t ClosestPointBvh::closestChunk(std::span<const glm::dvec3> points, std::
                                        uint32_t hintFace, std::span<Hit> hits, ManyScratch& scratch) const {
   const size_t n = order.size();
   auto walkEach = [&](size_t from) {
-    ++scratch.walkedChunks;
+    scratch.walkedChunks += n > 1;
     for (size_t i = from; i < n; ++i) hits[order[i]] = closest(points[order[i]], hits[order[i - 1]].face);
     return hits[order[n - 1]].face;
   };
