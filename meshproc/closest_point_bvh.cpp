@@ -8,6 +8,21 @@
 #include "mesh/radix_sort.h"
 
 namespace hs::mesh {
+namespace {
+
+// Squared distance between the box [l, h] and the box [lo, hi] (a point
+// where lo == hi): every lower bound the queries prune with.
+inline double boxGapSq(const float l[3], const float h[3], const glm::dvec3& lo, const glm::dvec3& hi) {
+  double d = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double la = double(l[a]), ha = double(h[a]);
+    const double e = hi[a] < la ? la - hi[a] : lo[a] > ha ? lo[a] - ha : 0.0;
+    d += e * e;
+  }
+  return d;
+}
+
+}  // namespace
 
 double closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
                               const glm::dvec3& c, glm::dvec3& closest, glm::dvec3& bary) {
@@ -159,14 +174,10 @@ void ClosestPointBvh::testSlot(uint32_t slot, const glm::dvec3& q, Hit& best) co
                        1e-6 * (std::abs(qa.x) + std::abs(qa.y) + std::abs(qa.z)) -
                        1e-12 * (std::abs(q.x) + std::abs(q.y) + std::abs(q.z)) - 1e-12;
   if (plane > 0 && plane * plane > best.distanceSq) return;
-  double boxSq = 0;
-  for (int a = 0; a < 3; ++a) {
-    const double l = double(std::min({t.v[0][a], t.v[1][a], t.v[2][a]}));
-    const double h = double(std::max({t.v[0][a], t.v[1][a], t.v[2][a]}));
-    const double e = q[a] < l ? l - q[a] : q[a] > h ? q[a] - h : 0.0;
-    boxSq += e * e;
-  }
-  if (boxSq > best.distanceSq) return;
+  float l[3], h[3];
+  for (int a = 0; a < 3; ++a)
+    l[a] = std::min({t.v[0][a], t.v[1][a], t.v[2][a]}), h[a] = std::max({t.v[0][a], t.v[1][a], t.v[2][a]});
+  if (boxGapSq(l, h, q, q) > best.distanceSq) return;
   glm::dvec3 point, bary;
   const double d = closestPointOnTriangle(q, glm::dvec3(t.v[0]), glm::dvec3(t.v[1]), glm::dvec3(t.v[2]), point, bary);
   if (d < best.distanceSq || (d == best.distanceSq && faceOfSlot_[slot] < best.face)) {
@@ -181,16 +192,7 @@ ClosestPointBvh::Hit ClosestPointBvh::closest(const glm::dvec3& q, uint32_t hint
   Hit best;
   if (nodes_.empty()) return best;
   if (hintFace < slotOfFace_.size()) testSlot(slotOfFace_[hintFace], q, best);
-  auto boxDistSq = [&](const Node& n) {
-    double d = 0;
-    for (int a = 0; a < 3; ++a) {
-      const double v = q[a];
-      const double lo = double(n.lo[a]), hi = double(n.hi[a]);
-      const double e = v < lo ? lo - v : v > hi ? v - hi : 0.0;
-      d += e * e;
-    }
-    return d;
-  };
+  auto boxDistSq = [&](const Node& n) { return boxGapSq(n.lo, n.hi, q, q); };
   uint32_t stack[128];
   int top = 0;
   stack[top++] = 0;
@@ -224,9 +226,9 @@ uint32_t ClosestPointBvh::closestMany(std::span<const glm::dvec3> points, uint32
   // point across the face bounds nothing.
   std::vector<uint32_t>& order = scratch.order;
   order.resize(n);
-  glm::dvec3 lo = points[0], hi = points[0];
-  for (size_t k = 1; k < n; ++k) lo = glm::min(lo, points[k]), hi = glm::max(hi, points[k]);
   if (n > kOrderFrom) {
+    glm::dvec3 lo = points[0], hi = points[0];
+    for (size_t k = 1; k < n; ++k) lo = glm::min(lo, points[k]), hi = glm::max(hi, points[k]);
     const glm::dvec3 scale = 1023.0 / glm::max(hi - lo, glm::dvec3(1e-300));
     std::vector<uint64_t>& keys = scratch.keys;
     keys.resize(n);
@@ -252,13 +254,14 @@ uint32_t ClosestPointBvh::closestMany(std::span<const glm::dvec3> points, uint32
 uint32_t ClosestPointBvh::closestChunk(std::span<const glm::dvec3> points, std::span<const uint32_t> order,
                                        uint32_t hintFace, std::span<Hit> hits, ManyScratch& scratch) const {
   const size_t n = order.size();
-  auto walkEach = [&](size_t from) {
+  // Every point after the first by its own walk, hinted by the one before.
+  auto walkEach = [&] {
     scratch.walkedChunks += n > 1;
-    for (size_t i = from; i < n; ++i) hits[order[i]] = closest(points[order[i]], hits[order[i - 1]].face);
+    for (size_t i = 1; i < n; ++i) hits[order[i]] = closest(points[order[i]], hits[order[i - 1]].face);
     return hits[order[n - 1]].face;
   };
   hits[order[0]] = closest(points[order[0]], hintFace);
-  if (n == 1 || !hits[order[0]].found()) return walkEach(1);
+  if (n == 1 || !hits[order[0]].found()) return walkEach();
   // Every point is at most its distance from the first point's triangle
   // from its own nearest one, which then lies in a leaf within the largest
   // such distance of the points' box.
@@ -275,15 +278,6 @@ uint32_t ClosestPointBvh::closestChunk(std::span<const glm::dvec3> points, std::
   // The margin keeps a leaf whose box distance rounds a hair above the
   // bound it meets exactly.
   const double limit = bound * (1.0 + 1e-9) + 1e-300;
-  auto boxBoxDistSq = [&](const Node& nd) {
-    double d = 0;
-    for (int a = 0; a < 3; ++a) {
-      const double l = double(nd.lo[a]), h = double(nd.hi[a]);
-      const double e = hi[a] < l ? l - hi[a] : lo[a] > h ? lo[a] - h : 0.0;
-      d += e * e;
-    }
-    return d;
-  };
   std::vector<uint32_t>& leaves = scratch.leaves;
   leaves.clear();
   uint32_t stack[128];
@@ -292,10 +286,10 @@ uint32_t ClosestPointBvh::closestChunk(std::span<const glm::dvec3> points, std::
   while (top > 0) {
     const uint32_t i = stack[--top];
     const Node& nd = nodes_[i];
-    if (boxBoxDistSq(nd) > limit) continue;
+    if (boxGapSq(nd.lo, nd.hi, lo, hi) > limit) continue;
     if (nd.count > 0) {
       leaves.push_back(i);
-      if (leaves.size() > kMaxLeaves) return walkEach(1);  // seeds are overwritten: same hits
+      if (leaves.size() > kMaxLeaves) return walkEach();  // seeds are overwritten: same hits
       continue;
     }
     stack[top++] = nd.first + 1;

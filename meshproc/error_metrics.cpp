@@ -103,14 +103,9 @@ bool sampleDistances(const MeshData& from, const std::vector<uint64_t>& first, u
       if ((f & 4095) == 0 && isCancelled(progress)) stop = true;
       const uint64_t count = first[f + 1] - first[f];
       if (count == 0) continue;
-      const glm::dvec3 pa = corner(from, f, 0) + offset, pb = corner(from, f, 1) + offset,
-                       pc = corner(from, f, 2) + offset;
       points.resize(count);
       hits.resize(count);
-      for (uint64_t k = 0; k < count; ++k) {
-        const glm::dvec3 bc = sampleBarycentric(seed, uint32_t(f), k);
-        points[k] = bc.x * pa + bc.y * pb + bc.z * pc;
-      }
+      faceSamples(from, f, seed, offset, points);
       hint = target.closestMany(points, hint, hits, scratch);
       for (uint64_t k = 0; k < count; ++k) {
         const double d = std::sqrt(hits[k].distanceSq);

@@ -35,6 +35,16 @@ std::vector<uint64_t> allocateSamples(const MeshData& mesh, uint64_t total) {
   return first;
 }
 
+void faceSamples(const MeshData& mesh, size_t face, uint64_t seed, const glm::dvec3& offset,
+                 std::span<glm::dvec3> out) {
+  auto corner = [&](size_t k) { return glm::dvec3(mesh.positions[mesh.indices[face * 3 + k]]) + offset; };
+  const glm::dvec3 a = corner(0), b = corner(1), c = corner(2);
+  for (size_t k = 0; k < out.size(); ++k) {
+    const glm::dvec3 bc = sampleBarycentric(seed, uint32_t(face), k);
+    out[k] = bc.x * a + bc.y * b + bc.z * c;
+  }
+}
+
 glm::dvec3 sampleBarycentric(uint64_t seed, uint32_t face, uint64_t k) {
   const uint64_t h = splitmix(splitmix(seed ^ (uint64_t(face) << 20)) ^ k);
   const double r1 = unit(h), r2 = unit(splitmix(h));

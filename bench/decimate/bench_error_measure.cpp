@@ -64,14 +64,8 @@ Samples samplesOn(const MeshData& m, uint64_t total, uint64_t seed) {
   Samples s;
   s.first = allocateSamples(m, total);
   s.points.resize(s.first.back());
-  for (size_t f = 0; f < m.triangleCount(); ++f) {
-    const glm::dvec3 a(m.positions[m.indices[f * 3]]), b(m.positions[m.indices[f * 3 + 1]]),
-        c(m.positions[m.indices[f * 3 + 2]]);
-    for (uint64_t k = s.first[f]; k < s.first[f + 1]; ++k) {
-      const glm::dvec3 bc = sampleBarycentric(seed, uint32_t(f), k - s.first[f]);
-      s.points[k] = bc.x * a + bc.y * b + bc.z * c;
-    }
-  }
+  for (size_t f = 0; f < m.triangleCount(); ++f)
+    faceSamples(m, f, seed, glm::dvec3(0.0), std::span(s.points).subspan(s.first[f], s.first[f + 1] - s.first[f]));
   return s;
 }
 
