@@ -7,8 +7,9 @@ Masked: table columns whose header names a time, a rate, a ratio of times or
 a load (ms, s, frames/s, x ratios of times, load, CPU, share), numbers after
 "load", durations ("0.3 s", "12 ms"), /proc/loadavg lines,
 bench_environment's "cpu ms" column, temporary paths and the "$ command" line
-run_benches.sh writes. What is left (triangle counts, draw calls, image
-errors, memory, fragment counts) must be identical.
+run_benches.sh writes, bench_decimate's CPU seconds and page faults. What
+is left (triangle counts, draw calls, image errors, memory, fragment
+counts, decimation output hashes and errors) must be identical.
 """
 import difflib
 import re
@@ -16,7 +17,7 @@ import sys
 
 TIME_HEADER = re.compile(
     r"\bms\b|\bs\b|s/frame|frames/s|load|time / full|phong / gouraud|brute / clustered|stereo / mono|"
-    r"after / before|share|cpu|wall",
+    r"after / before|time / meshopt|share|cpu|wall",
     re.I,
 )
 LOADAVG = re.compile(r"[0-9.]+ [0-9.]+ [0-9.]+ \d+/\d+ \d+")
@@ -60,6 +61,9 @@ def mask(lines):
         line = re.sub(r"\b\d+(\.\d+)? ?(ms|s)\b", "<t>", line)
         line = re.sub(r"ratio [0-9.]+x", "ratio <x>", line)
         line = re.sub(r"CPU [0-9.]+ s", "CPU <t>", line)
+        # bench_decimate's per-target lines on stderr: CPU seconds and page faults
+        # (its output hashes, on the lines before them, must agree).
+        line = re.sub(r"(: CPU s|: minor page faults) .*", r"\1 <masked>", line)
         out.append(line)
     return out
 

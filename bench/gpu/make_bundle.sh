@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Packs the renderer's benchmarks and the Debian 12 shared libraries they need
-# into one archive that runs on a machine without Qt, OpenMesh, Assimp or
-# OpenImageIO (the device machine: see bench/gpu/README.md):
+# Packs the renderer's benchmarks, the decimation benchmark (a CPU one: the
+# device machine is a quiet one, where this project's machines are shared) and
+# the Debian 12 shared libraries they need into one archive that runs on a
+# machine without Qt, OpenMesh, Assimp or OpenImageIO (the device machine: see
+# bench/gpu/README.md):
 #
 #   bench/gpu/make_bundle.sh [BUILD_DIR]      # default: build/
 #   -> .gpubundle/hs-gpu-bundle.tar.xz        (ignored through .gitignore)
@@ -28,7 +30,8 @@ build=$(cd "${1:-$root/build}" && pwd)
 out_dir=$root/.gpubundle
 benches="bench/render/bench_render bench/render/bench_mesh_lod bench/render/bench_frame
 bench/render/bench_shading bench/render/bench_shadows bench/render/bench_environment
-bench/render/bench_lights bench/render/bench_ao bench/render/bench_dof bench/oit/bench_oit"
+bench/render/bench_lights bench/render/bench_ao bench/render/bench_dof bench/oit/bench_oit
+bench/decimate/bench_decimate"
 libdir=/usr/lib/x86_64-linux-gnu
 # glvnd's loaders: dlopened by libepoxy (libEGL.so.1, libOpenGL.so.0, libGL.so.1), not in ldd.
 glvnd="libEGL.so.1 libOpenGL.so.0 libGLdispatch.so.0 libGL.so.1 libGLX.so.0 libGLESv2.so.2"

@@ -54,7 +54,7 @@ say "# run_benches.sh $([ $quick = 1 ] && echo --quick) at $(date -u +%Y-%m-%dT%
 B=$work/hs-gpu
 if [ -n "${HS_GPU_SYSTEM:-}" ]; then
   mkdir -p "$B/bin"
-  for f in "$HS_GPU_SYSTEM"/bench/render/bench_* "$HS_GPU_SYSTEM"/bench/oit/bench_oit; do ln -s "$(cd "$(dirname "$f")" && pwd)/$(basename "$f")" "$B/bin/"; done
+  for f in "$HS_GPU_SYSTEM"/bench/render/bench_* "$HS_GPU_SYSTEM"/bench/oit/bench_oit "$HS_GPU_SYSTEM"/bench/decimate/bench_decimate; do ln -s "$(cd "$(dirname "$f")" && pwd)/$(basename "$f")" "$B/bin/"; done
   echo "system build $HS_GPU_SYSTEM, this machine's libraries" > "$B/MANIFEST"
 else
   [ -f "$bundle" ] || { say "FAIL: no bundle at $bundle (bench/gpu/make_bundle.sh makes it)"; finish 3; }
@@ -135,15 +135,42 @@ say "EGL vendor: ${__EGL_VENDOR_LIBRARY_FILENAMES:-the default folders of glvnd}
   echo "== /dev"; ls -l /dev/nvidia* /dev/dri 2>&1
 } > "$logs/driver.txt" 2>&1
 
-# bench_oit reads the bunny from the source folder baked into it (HS_SOURCE_DIR).
+# The benchmarks, most wanted first: name, timeout s, GPU arguments, quick
+# arguments, and the CPUs a CPU benchmark is pinned to (taskset; empty for the
+# renderer's, which need an OpenGL context). Plots go to the log folder ({} is
+# replaced by it). bench_decimate measures issue 11's speed target (ours on two
+# threads against meshopt_simplify on one), so it gets two cores of a machine
+# nothing else runs on; the bunny and the 5M scan tile, its error included.
+benches=(
+  "bench_render|60|--frames 300 --warmup 30|--frames 1 --warmup 0 --size 320x180|"
+  "bench_oit|120|--sizes 640x480,1920x1080 --runs 30 --plot {}/bench_oit.png|--sizes 160x120 --runs 1 --plot {}/bench_oit.png|"
+  "bench_frame|60|--frames 60 --rounds 5|--frames 1 --rounds 1 --size 320x180|"
+  "bench_shading|90|--frames 60 --warmup 10 --plot {}/bench_shading.png|--frames 1 --warmup 0 --size 320x180 --plot {}/bench_shading.png|"
+  "bench_lights|60|--frames 30 --plot {}/bench_lights.png|--frames 1 --quick --plot {}/bench_lights.png|"
+  "bench_mesh_lod|60|--frames 60|--frames 1 --size 320x180 --grid 3|"
+  "bench_shadows|120|--frames 15 --plot {}/bench_shadows.png|--frames 1 --size 320x180 --quick --plot {}/bench_shadows.png|"
+  "bench_dof|60|--frames 15 --samples 128 --plot {}/bench_dof.png|--frames 1 --size 160x120 --samples 64 --plot {}/bench_dof.png|"
+  "bench_ao|90|--frames 30|--frames 1 --size 160x120 --rays 16|"
+  "bench_environment|40|--frames 61|--frames 1|"
+  "bench_decimate|300|--skip-quad --no-peers --no-stock --ratios 50,10,1 --runs 9 --terrain-runs 5 --plot {}/bench_decimate.png|--skip-terrain --skip-quad --no-peers --no-stock --ratios 10 --runs 1 --plot {}/bench_decimate.png|0,1"
+)
+selected() { [ -z "${HS_GPU_ONLY:-}" ] || [[ " $HS_GPU_ONLY " == *" $1 "* ]]; }
+need_gl=0
+for entry in "${benches[@]}"; do
+  IFS='|' read -r name _ _ _ cpus <<< "$entry"
+  selected "$name" && [ -z "$cpus" ] && need_gl=1
+done
+
+# bench_oit and bench_decimate read the bunny from the source folder baked into them (HS_SOURCE_DIR).
 src=$(awk '/^source_dir/ {print $2}' "$B/MANIFEST")
 if [ -n "$src" ] && [ ! -e "$src/resources/demo/stanford-bunny.obj" ]; then
-  mkdir -p "$(dirname "$src")" && ln -sfn "$root" "$src" && say "linked $src -> $root (bench_oit's HS_SOURCE_DIR)"
+  mkdir -p "$(dirname "$src")" && ln -sfn "$root" "$src" && say "linked $src -> $root (the benchmarks' HS_SOURCE_DIR)"
 fi
 
-# 4. A probe: one small frame. The default EGL order first (Mesa surfaceless, EGL
-#    devices, the default display), then HS_EGL_PLATFORM=device; it must name a
-#    hardware renderer. The probe's LD_DEBUG=libs trace shows where each library came from.
+# 4. A probe, when a renderer benchmark is chosen: one small frame. The default
+#    EGL order first (Mesa surfaceless, EGL devices, the default display), then
+#    HS_EGL_PLATFORM=device; it must name a hardware renderer. The probe's
+#    LD_DEBUG=libs trace shows where each library came from.
 is_software() { grep -qiE 'llvmpipe|softpipe|swrast|software rasterizer' "$1"; }
 probe() {
   LD_DEBUG=libs LD_DEBUG_OUTPUT=$logs/probe-$1.lddebug timeout -k 5 60 \
@@ -151,52 +178,48 @@ probe() {
 }
 egl_choice=""
 for p in default device; do
+  [ $need_gl = 0 ] && break
   if [ $p = device ]; then export HS_EGL_PLATFORM=device; else unset HS_EGL_PLATFORM; fi
   probe $p; rc=$?
   say "probe ($p EGL platform): exit $rc: $(grep -m1 'demo scene' "$logs/probe-$p.log" || tail -2 "$logs/probe-$p.log" | tr '\n' ' ')"
   if [ $rc = 0 ] && { ! is_software "$logs/probe-$p.log" || [ "${HS_GPU_ALLOW_SOFTWARE:-0}" = 1 ]; }; then egl_choice=$p; break; fi
 done
-if [ -z "$egl_choice" ]; then
+if [ $need_gl = 0 ]; then
+  say "probe: skipped (the benchmarks chosen need no OpenGL context)"
+elif [ -z "$egl_choice" ]; then
   say "FAIL: no hardware OpenGL context (probe logs and LD_DEBUG traces in logs.tar.gz; driver.txt lists the driver's files)"
   finish 3
 fi
-if [ $egl_choice = device ]; then export HS_EGL_PLATFORM=device; else unset HS_EGL_PLATFORM; fi
-from_bundle=$(grep -ohE 'calling init: /[^ ]+' "$logs/probe-$egl_choice.lddebug".* 2>/dev/null | awk '{print $3}' | sort -u)
-say "probe loaded $(echo "$from_bundle" | grep -c "^$B/lib/") libraries from the bundle, $(echo "$from_bundle" | grep -vc "^$B/" ) from the host:"
-echo "$from_bundle" | grep -v "^$B/" | sed 's/^/  host: /' | tee -a "$summary"
+if [ "$egl_choice" = device ]; then export HS_EGL_PLATFORM=device; else unset HS_EGL_PLATFORM; fi
+if [ $need_gl = 1 ]; then
+  from_bundle=$(grep -ohE 'calling init: /[^ ]+' "$logs/probe-$egl_choice.lddebug".* 2>/dev/null | awk '{print $3}' | sort -u)
+  say "probe loaded $(echo "$from_bundle" | grep -c "^$B/lib/") libraries from the bundle, $(echo "$from_bundle" | grep -vc "^$B/" ) from the host:"
+  echo "$from_bundle" | grep -v "^$B/" | sed 's/^/  host: /' | tee -a "$summary"
+fi
 
-# 5. The benchmarks, most wanted first: name, timeout s, GPU arguments, quick arguments.
-#    Plots go to the log folder ({} is replaced by it).
-benches=(
-  "bench_render|60|--frames 300 --warmup 30|--frames 1 --warmup 0 --size 320x180"
-  "bench_oit|120|--sizes 640x480,1920x1080 --runs 30 --plot {}/bench_oit.png|--sizes 160x120 --runs 1 --plot {}/bench_oit.png"
-  "bench_frame|60|--frames 60 --rounds 5|--frames 1 --rounds 1 --size 320x180"
-  "bench_shading|90|--frames 60 --warmup 10 --plot {}/bench_shading.png|--frames 1 --warmup 0 --size 320x180 --plot {}/bench_shading.png"
-  "bench_lights|60|--frames 30 --plot {}/bench_lights.png|--frames 1 --quick --plot {}/bench_lights.png"
-  "bench_mesh_lod|60|--frames 60|--frames 1 --size 320x180 --grid 3"
-  "bench_shadows|120|--frames 15 --plot {}/bench_shadows.png|--frames 1 --size 320x180 --quick --plot {}/bench_shadows.png"
-  "bench_dof|60|--frames 15 --samples 128 --plot {}/bench_dof.png|--frames 1 --size 160x120 --samples 64 --plot {}/bench_dof.png"
-  "bench_ao|90|--frames 30|--frames 1 --size 160x120 --rays 16"
-  "bench_environment|40|--frames 61|--frames 1"
-)
 failed=0
 say ""
 for entry in "${benches[@]}"; do
-  IFS='|' read -r name limit gpu_args quick_args <<< "$entry"
-  if [ -n "${HS_GPU_ONLY:-}" ] && [[ " $HS_GPU_ONLY " != *" $name "* ]]; then continue; fi
+  IFS='|' read -r name limit gpu_args quick_args cpus <<< "$entry"
+  selected "$name" || continue
+  pin=()
+  if [ -n "$cpus" ]; then
+    if command -v taskset >/dev/null; then pin=(taskset -c "$cpus"); else say "$name: no taskset here: not pinned to CPUs $cpus"; fi
+  fi
   args=$gpu_args; [ $quick = 1 ] && args=$quick_args
   args=${args//\{\}/$logs}
   left=$(( deadline_s - ($(date +%s) - t0) ))
   [ "$left" -lt "$limit" ] && limit=$left
   if [ "$limit" -lt 15 ]; then say "$name: SKIPPED (deadline: ${left} s left)"; failed=1; continue; fi
   log=$logs/$name.log
-  echo "\$ $name $args   (timeout ${limit}s, HS_EGL_PLATFORM=${HS_EGL_PLATFORM:-})" > "$log"
+  echo "\$ ${pin[*]} $name $args   (timeout ${limit}s, HS_EGL_PLATFORM=${HS_EGL_PLATFORM:-})" > "$log"
   s=$(date +%s%N)
   # shellcheck disable=SC2086
-  (cd "$logs" && timeout -k 5 "$limit" "$B/bin/$name" $args) >> "$log" 2>&1
+  (cd "$logs" && timeout -k 5 "$limit" "${pin[@]}" "$B/bin/$name" $args) >> "$log" 2>&1
   rc=$?
   wall_ds=$(( ($(date +%s%N) - s) / 100000000 ))
   renderer=$(grep -m1 -E ' [|] [0-9]\.[0-9]' "$log" | cut -c1-200)
+  [ -n "$cpus" ] && renderer="CPU benchmark, ${pin[*]:-not pinned}, $(grep -m1 -oE 'machine: [^)]*' "$log")"
   note=""
   [ $rc = 124 ] || [ $rc = 137 ] && note=" TIMED OUT"
   is_software "$log" && [ "${HS_GPU_ALLOW_SOFTWARE:-0}" != 1 ] && note="$note SOFTWARE RENDERER"
