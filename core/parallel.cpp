@@ -2,9 +2,12 @@
 
 #include <array>
 #include <atomic>
+#include <cerrno>
 #include <memory>
 #include <mutex>
 #include <thread>
+
+#include <sched.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -30,10 +33,28 @@ tbb::task_arena& arenaFor(unsigned threads) {
 
 }  // namespace
 
-unsigned hardwareThreads() {
-  // hardware_concurrency() is a system call (sched_getaffinity) on Linux:
-  // ask once, not in every loop of a 100,000-iteration solver.
-  static const unsigned n = std::max(1u, std::thread::hardware_concurrency());
+unsigned allowedCpus() {
+#ifdef __linux__
+  // The mask's size grows until the kernel accepts it (EINVAL: the machine
+  // has more CPUs than the set holds).
+  for (int cpus = 1024; cpus <= (1 << 16); cpus *= 2) {
+    cpu_set_t* set = CPU_ALLOC(cpus);
+    if (!set) break;
+    const size_t bytes = CPU_ALLOC_SIZE(cpus);
+    CPU_ZERO_S(bytes, set);
+    const int rc = sched_getaffinity(0, bytes, set);
+    const int count = rc == 0 ? CPU_COUNT_S(bytes, set) : 0;
+    const int err = errno;
+    CPU_FREE(set);
+    if (rc == 0 && count > 0) return unsigned(count);
+    if (rc != 0 && err != EINVAL) break;
+  }
+#endif
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+unsigned availableThreads() {
+  static const unsigned n = allowedCpus();
   return n;
 }
 

@@ -25,14 +25,25 @@
 
 namespace hs {
 
-// Threads of this machine (at least 1); asked once.
-unsigned hardwareThreads();
+// CPUs the calling thread may run on now: its affinity mask, which
+// taskset, Slurm's task binding and container cpusets set; where the mask
+// cannot be read, the machine's hardware threads. At least 1; asked anew at
+// every call.
+unsigned allowedCpus();
 
-// Threads to use for a request: 0 (or negative) means every hardware
-// thread; more than the hardware has is capped to it.
+// The threads this process's loops may use: allowedCpus() of the first
+// call, kept (solvers ask in every loop). Not hardware_concurrency(), which
+// counts the machine's CPUs whatever the process may use: bound to one CPU
+// of two, a CLI import asked oneTBB for a worker it could not have, and
+// oneTBB (which reads the mask) printed a warning into the run's output;
+// bound to 2 CPUs of a 64-core farm node, 64 import workers would start.
+unsigned availableThreads();
+
+// Threads to use for a request: 0 (or negative) means every available
+// thread; more than are available is capped to them.
 template <class T>
 T resolveThreads(T requested) {
-  const auto hw = T(hardwareThreads());
+  const auto hw = T(availableThreads());
   return requested <= T(0) ? hw : std::min(requested, hw);
 }
 

@@ -144,7 +144,7 @@ TileImportResult importTiles(const std::vector<std::string>& paths, const TileIm
   // taken in order; when tile i fails, only tiles after i are stopped and
   // skipped, so the error and the reports are those of reading one by one.
   const size_t n = paths.size();
-  const unsigned slots = unsigned(std::min<size_t>(n, options.maxParallel == 0 ? hardwareThreads()
+  const unsigned slots = unsigned(std::min<size_t>(n, options.maxParallel == 0 ? availableThreads()
                                                                                  : options.maxParallel));
   std::vector<ImportResult> results(n);
   std::vector<std::atomic<double>> fraction(n);

@@ -50,7 +50,7 @@ struct DecimateOptions {
   // their levels keep the material indices and share the base's images.
   bool copyTextures = true;
 
-  unsigned threads = 0;            // 0 = every hardware thread
+  unsigned threads = 0;            // 0 = every available thread (core/parallel.h)
   size_t facesPerRegion = 25000;   // partition size (at most 64 regions); fixes the output, whatever the thread count
 };
 

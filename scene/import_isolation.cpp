@@ -506,7 +506,7 @@ unsigned tileReadParallelism(const std::vector<std::string>& paths, const mesh::
   const bool anyWorker = std::any_of(paths.begin(), paths.end(),
                                      [&](const std::string& p) { return readsWithAssimp(p, options); });
   if (!anyWorker) return 1;
-  unsigned n = hardwareThreads();
+  unsigned n = availableThreads();
   WorkerLimits limits;
   std::string ignored;  // a bad setting is reported by the tile's own read
   if (workerLimits(limits, ignored) && limits.memoryBytes > 0) {

@@ -48,9 +48,9 @@ bool workerLimits(WorkerLimits& limits, std::string& error);
 // readers already use every core on one file, and reading two at once
 // would only raise the peak memory. Otherwise one worker per tile read at
 // once (ImportWorkerPool keeps it for the next tile), as many at once as
-// there are hardware threads and as fit the machine's memory
-// under the workers' limit (physical memory / HS_IMPORT_MEMORY_LIMIT: 2 at
-// the default 50%; every hardware thread with the limit off).
+// this process may use CPUs (availableThreads) and as fit the machine's
+// memory under the workers' limit (physical memory / HS_IMPORT_MEMORY_LIMIT:
+// 2 at the default 50%; every available CPU with the limit off).
 unsigned tileReadParallelism(const std::vector<std::string>& paths, const mesh::ImportOptions& options);
 
 // Workers kept for the files of one import (a multi-tile scan): each read

@@ -25,7 +25,7 @@ struct StrokeUpdate {
 
 class Stroke {
  public:
-  // `threads`: 0 = all hardware threads (dabs over ~32 rows are split).
+  // `threads`: 0 = all available threads (dabs over ~32 rows are split).
   Stroke(Terrain& terrain, const BrushSettings& settings, int threads = 0);
 
   // Pen at `local` (metres from the terrain origin) with `pressure` in [0,1].

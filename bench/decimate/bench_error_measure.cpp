@@ -252,7 +252,7 @@ int main(int argc, char** argv) {
   if (!rates.empty()) {
     std::sort(rates.begin(), rates.end());
     std::printf("# Error report: its sampling rate against its time (ErrorMeter::measure, %u threads)\n",
-                hardwareThreads());
+                availableThreads());
     std::printf("load average at start: %s\n\n", hs::bench::loadAverageLine().c_str());
     std::printf("Shares are of the densest rate's figures (%g samples per original face each way, no cap); each "
                 "mesh decimated by ours.\n\n", rates.back());
@@ -303,12 +303,12 @@ int main(int argc, char** argv) {
       }
       // The share of the whole report that the queries are, had they run
       // on every thread as the report runs them (one thread here).
-      whole.push_back({in.name, ratio, median(t), (f.perFace + b.perFace) / double(hardwareThreads()) / median(t)});
+      whole.push_back({in.name, ratio, median(t), (f.perFace + b.perFace) / double(availableThreads()) / median(t)});
     }
   }
   std::printf("\nThe whole report (ErrorMeter::measure, %u threads: the queries above plus the result's BVH, its "
               "polylines, normals and UVs, and the statistics):\n\n| mesh | target | measure s | queries' share (est.) |\n|---|---|---:|---:|\n",
-              hardwareThreads());
+              availableThreads());
   for (const Whole& w : whole)
     std::printf("| %s | %s | %.3f | %.0f%% |\n", w.mesh.c_str(), w.ratio.c_str(), w.seconds, 100.0 * w.queryShare);
   return 0;

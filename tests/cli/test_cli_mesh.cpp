@@ -1,7 +1,7 @@
 // `hybridscape-cli import` with the photogrammetry options, run as a user
 // runs it: --decimate-to (count and share), --max-error, --lods, --origin
 // (auto sidecar, by hand), several tiles as one asset, --clean, the printed
-// summary and the --report fields, `info` listing the LODs, and bad values
+// summary and the --report fields, the thread count under a CPU binding, `info` listing the LODs, and bad values
 // each refused in one line with the scene file left byte for byte.
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -9,9 +9,12 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <sched.h>
+
 #include <cmath>
 
 #include "cli_runner.h"
+#include "core/parallel.h"
 #include "file_bytes.h"
 #include "mesh/mesh_import.h"
 #include "scene/hscene_file.h"
@@ -171,6 +174,48 @@ class TestCliMesh : public QObject {
     const size_t t = s->assets.begin()->second.data->triangleCount();
     QVERIFY2(std::abs(double(t) - 6945.0) <= 2.0, qPrintable(QString::number(t)));
     QVERIFY(s->assets.begin()->second.lods.empty());
+  }
+
+  // Bound to one CPU (as taskset, or a farm's binding of a job to its
+  // cores, leaves a process), an import decimates on one thread and prints
+  // no oneTBB warning; unbound, it uses every CPU it may. The thread count
+  // follows the process's affinity mask, not the machine's CPUs: counted
+  // from the machine, it asked oneTBB for a worker the mask did not allow,
+  // and oneTBB printed "TBB Warning: The number of workers is currently
+  // limited to 0" into the run's output.
+  void boundToOneCpuDecimatesOnOneThread() {
+    if (allowedCpus() < 2) QSKIP("this test process has one CPU: binding the CLI to one changes nothing");
+    cpu_set_t mine;
+    CPU_ZERO(&mine);
+    QCOMPARE(sched_getaffinity(0, sizeof mine, &mine), 0);
+    int cpu = 0;
+    while (!CPU_ISSET(cpu, &mine)) ++cpu;
+    auto importWith = [&](const QString& name, bool bound) {
+      const QString f = newScene(name + ".hscene");
+      QProcess p;
+      p.setWorkingDirectory(tmp_.path());
+      if (bound)
+        p.setChildProcessModifier([cpu] {  // in the child, before exec: a system call only
+          cpu_set_t one;
+          CPU_ZERO(&one);
+          CPU_SET(cpu, &one);
+          sched_setaffinity(0, sizeof one, &one);
+        });
+      p.start(kCli, {"import", kBunny, f, "--decimate-to", "50%", "--report", path(name + ".json")});
+      Run r;
+      if (p.waitForFinished(120000) && p.exitStatus() == QProcess::NormalExit) r.code = p.exitCode();
+      r.out = QString::fromLocal8Bit(p.readAllStandardOutput());
+      r.err = QString::fromLocal8Bit(p.readAllStandardError());
+      return r;
+    };
+    const Run bound = importWith("bound", true);
+    QVERIFY2(bound.code == 0, qPrintable(bound.err));
+    QVERIFY2(!bound.err.contains("TBB") && !bound.out.contains("TBB"), qPrintable(bound.err + bound.out));
+    QCOMPARE(readReport(path("bound.json"))["processing"].toObject()["decimation"].toObject()["threads"].toInt(), 1);
+    const Run free = importWith("unbound", false);
+    QVERIFY2(free.code == 0, qPrintable(free.err));
+    QCOMPARE(readReport(path("unbound.json"))["processing"].toObject()["decimation"].toObject()["threads"].toInt(),
+             CPU_COUNT(&mine));
   }
 
   void maxErrorIsMet() {
