@@ -25,6 +25,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/parallel.h"
 #include "file_bytes.h"
 #include "mesh/mesh_import.h"
 #include "mesh/tile_merge.h"
@@ -72,6 +73,14 @@ QStringList childProcesses() {
     if (ppid == self) out << QString::fromStdString(pid + " " + line.substr(0, close + 1) + " " + state);
   }
   return out;
+}
+
+// /proc/PID/oom_score_adj, or -10000 when it cannot be read.
+int oomScoreAdj(const QString& pid) {
+  std::ifstream f("/proc/" + pid.toStdString() + "/oom_score_adj");
+  int adj = -10000;
+  f >> adj;
+  return adj;
 }
 
 bool sameTextures(const mesh::MeshData& a, const mesh::MeshData& b) {
@@ -278,7 +287,13 @@ class TestImportIsolation : public QObject {
         QCOMPARE(r.report.warnings, here.report.warnings);
       }
       QCOMPARE(pool.workersStarted(), 1u);
-      QCOMPARE(childProcesses().size(), qsizetype(1));  // kept, waiting for the next file
+      const QStringList kept = childProcesses();
+      QCOMPARE(kept.size(), qsizetype(1));  // kept, waiting for the next file
+      // The kernel's first choice when memory runs out, before this process
+      // (the editor, with the user's scene): see tools/import_worker/main.cpp.
+      QCOMPARE(oomScoreAdj(kept[0].section(' ', 0, 0)), 1000);
+      const int self = oomScoreAdj(QString::number(getpid()));
+      QVERIFY2(self > -10000 && self < 1000, qPrintable(QString::number(self)));  // this process: as it was
       const mesh::ImportResult garbage = pool.read(path("garbage.fbx"), {});
       QCOMPARE(garbage.error, mesh::importMesh(path("garbage.fbx")).error);
       QVERIFY(pool.read(glb, {}).ok());
@@ -297,7 +312,7 @@ class TestImportIsolation : public QObject {
   // the workers' memory limit allow; tiles the own readers read, one by one.
   void tileReadParallelismFollowsCoresAndMemoryLimit() {
     const std::vector<std::string> fbx = {"a.fbx", "b.fbx", "c.fbx", "d.fbx"};
-    const unsigned cores = std::thread::hardware_concurrency() ? std::thread::hardware_concurrency() : 1;
+    const unsigned cores = availableThreads();  // the CPUs this process may use
     {
       EnvVar limit("HS_IMPORT_MEMORY_LIMIT", "0");  // no limit: the cores decide
       QCOMPARE(scene::tileReadParallelism(fbx, {}), std::min(cores, 4u));

@@ -150,6 +150,17 @@ int main(int argc, char** argv) {
   // no core file for it.
   const rlimit noCore{0, 0};
   setrlimit(RLIMIT_CORE, &noCore);
+  // When memory runs out (RAM and swap, or a container's limit), the
+  // kernel ends the process it scores worst, by size: that could be the
+  // editor holding the user's unsaved scene rather than this worker
+  // reading a huge file. 1000 makes this worker the first choice; its
+  // parent then reports the worker killed (SIGKILL) and keeps its scene.
+  // Any process may raise its own score; where /proc is missing, nothing
+  // changes.
+  if (FILE* adj = std::fopen("/proc/self/oom_score_adj", "w")) {
+    std::fputs("1000", adj);
+    std::fclose(adj);
+  }
 
   int resultFd = -1;
   std::string outPath, path;
