@@ -36,7 +36,8 @@ unsigned allowedCpus();
 // counts the machine's CPUs whatever the process may use: bound to one CPU
 // of two, a CLI import asked oneTBB for a worker it could not have, and
 // oneTBB (which reads the mask) printed a warning into the run's output;
-// bound to 2 CPUs of a 64-core farm node, 64 import workers would start.
+// and a job bound to 2 CPUs of a 64-core farm node sized its import
+// workers and tile threads by the node, not by the job.
 unsigned availableThreads();
 
 // Threads to use for a request: 0 (or negative) means every available

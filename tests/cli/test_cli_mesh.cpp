@@ -1,8 +1,9 @@
 // `hybridscape-cli import` with the photogrammetry options, run as a user
 // runs it: --decimate-to (count and share), --max-error, --lods, --origin
 // (auto sidecar, by hand), several tiles as one asset, --clean, the printed
-// summary and the --report fields, the thread count under a CPU binding, `info` listing the LODs, and bad values
-// each refused in one line with the scene file left byte for byte.
+// summary and the --report fields, the thread count under a CPU binding,
+// `info` listing the LODs, and bad values each refused in one line with the
+// scene file left byte for byte.
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
