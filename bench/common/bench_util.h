@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -26,6 +27,19 @@ inline double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
+}
+
+// A comma-separated list of numbers ("50,10,1"), each divided by `divisor`
+// (100: percentages as ratios); an empty item reads as 0. The benchmarks'
+// --ratios and similar options.
+inline std::vector<double> numberList(const std::string& list, double divisor = 1.0) {
+  std::vector<double> v;
+  for (size_t p = 0; p < list.size();) {
+    const size_t q = list.find(',', p);
+    v.push_back(std::atof(list.substr(p, q - p).c_str()) / divisor);
+    p = q == std::string::npos ? list.size() : q + 1;
+  }
+  return v;
 }
 
 // The 1-minute load average (-1 if unknown).

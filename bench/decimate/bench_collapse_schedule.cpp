@@ -14,7 +14,6 @@
 // keeps UV seams, and the prototype, which has none, do the same job.
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -51,11 +50,8 @@ int main(int argc, char** argv) {
     else if (a == "--lock") popt.lockOneRings = next() == "rings";
     else if (a == "--placement") popt.endpointPlacement = next() == "endpoint";
     else if (a == "--tile") tileQuads = std::atoi(next().c_str());
-    else if (a == "--ratios") {
-      ratios.clear();
-      std::stringstream ss(next());
-      for (std::string r; std::getline(ss, r, ',');) ratios.push_back(std::atof(r.c_str()));
-    } else {
+    else if (a == "--ratios") ratios = hs::bench::numberList(next());
+    else {
       std::fprintf(stderr,
                    "usage: %s [--bunny PATH] [--ratios 50,10,1] [--runs 7] [--pass-limit 1.5] [--lock ends|rings] "
                    "[--placement optimal|endpoint] [--tile N]\n",

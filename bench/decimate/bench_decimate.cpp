@@ -312,16 +312,7 @@ int main(int argc, char** argv) {
     else if (a == "--runs") runs = std::max(1, std::atoi(next().c_str()));
     else if (a == "--terrain-runs") terrainRuns = std::max(1, std::atoi(next().c_str()));
     else if (a == "--no-error") measureErrors = false;
-    else if (a == "--ratios") {
-      ratios.clear();
-      const std::string list = next();
-      for (size_t b = 0; b < list.size();) {
-        size_t e = list.find(',', b);
-        if (e == std::string::npos) e = list.size();
-        ratios.push_back(std::atof(list.substr(b, e - b).c_str()) / 100.0);
-        b = e + 1;
-      }
-    }
+    else if (a == "--ratios") ratios = hs::bench::numberList(next(), 100.0);
     else if (a == "--terrain-samples") terrainSamples = std::atof(next().c_str());
     else if (a == "--stock-terrain") stockTerrain = next();
     else if (a == "--threads") threads = unsigned(std::atoi(next().c_str()));

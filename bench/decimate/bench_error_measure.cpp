@@ -115,16 +115,6 @@ CgalTriangles cgalTriangles(const MeshData& m) {
   return t;
 }
 
-std::vector<double> parseList(const std::string& list, double scale) {
-  std::vector<double> v;
-  for (size_t p = 0; p < list.size();) {
-    const size_t q = list.find(',', p);
-    v.push_back(std::atof(list.substr(p, q - p).c_str()) * scale);
-    p = q == std::string::npos ? list.size() : q + 1;
-  }
-  return v;
-}
-
 // The report at each sampling rate, against the densest one.
 void convergence(const std::string& name, const MeshData& original, const std::vector<double>& ratios,
                  const std::vector<double>& rates) {
@@ -227,8 +217,8 @@ int main(int argc, char** argv) {
     else if (a == "--samples-per-face") samplesPerFace = std::atof(next().c_str());
     else if (a == "--skip-bunny") bunny = false;
     else if (a == "--skip-tile") tile = false;
-    else if (a == "--ratios") ratios = parseList(next(), 0.01);
-    else if (a == "--convergence") rates = parseList(next(), 1.0);
+    else if (a == "--ratios") ratios = hs::bench::numberList(next(), 100.0);
+    else if (a == "--convergence") rates = hs::bench::numberList(next());
     else {
       std::fprintf(stderr,
                    "usage: %s [--quads N] [--ratios 50,10,1] [--runs K] [--samples-per-face S] [--skip-bunny] "
