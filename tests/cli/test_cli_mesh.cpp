@@ -193,21 +193,14 @@ class TestCliMesh : public QObject {
     while (!CPU_ISSET(cpu, &mine)) ++cpu;
     auto importWith = [&](const QString& name, bool bound) {
       const QString f = newScene(name + ".hscene");
-      QProcess p;
-      p.setWorkingDirectory(tmp_.path());
-      if (bound)
-        p.setChildProcessModifier([cpu] {  // in the child, before exec: a system call only
-          cpu_set_t one;
-          CPU_ZERO(&one);
-          CPU_SET(cpu, &one);
-          sched_setaffinity(0, sizeof one, &one);
-        });
-      p.start(kCli, {"import", kBunny, f, "--decimate-to", "50%", "--report", path(name + ".json")});
-      Run r;
-      if (p.waitForFinished(120000) && p.exitStatus() == QProcess::NormalExit) r.code = p.exitCode();
-      r.out = QString::fromLocal8Bit(p.readAllStandardOutput());
-      r.err = QString::fromLocal8Bit(p.readAllStandardError());
-      return r;
+      auto bindToOne = [cpu] {
+        cpu_set_t one;
+        CPU_ZERO(&one);
+        CPU_SET(cpu, &one);
+        sched_setaffinity(0, sizeof one, &one);
+      };
+      return test::runCli({"import", kBunny, f, "--decimate-to", "50%", "--report", path(name + ".json")},
+                          tmp_.path(), 120000, bound ? std::function<void()>(bindToOne) : std::function<void()>());
     };
     const Run bound = importWith("bound", true);
     QVERIFY2(bound.code == 0, qPrintable(bound.err));

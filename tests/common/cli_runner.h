@@ -7,6 +7,8 @@
 #include <QStringList>
 #include <QtGlobal>
 
+#include <functional>
+
 namespace hs::test {
 
 // The built program (the suite's CMake target depends on it).
@@ -23,9 +25,13 @@ struct CliRun {
 // Runs hybridscape-cli with `args` in `workDir` (the test's environment) and
 // waits up to `timeoutMs`; a run that does not finish by then is killed,
 // reported with a warning, and comes back with code -1 and no output.
-inline CliRun runCli(const QStringList& args, const QString& workDir, int timeoutMs = 120000) {
+// `inChild`, when given, runs in the child before exec (QProcess's child
+// process modifier: system calls only, e.g. binding it to a CPU).
+inline CliRun runCli(const QStringList& args, const QString& workDir, int timeoutMs = 120000,
+                     const std::function<void()>& inChild = {}) {
   QProcess p;
   p.setWorkingDirectory(workDir);
+  if (inChild) p.setChildProcessModifier(inChild);
   p.start(kCli, args);
   CliRun r;
   if (!p.waitForFinished(timeoutMs)) {
