@@ -20,6 +20,7 @@
 #include <mutex>
 #include <string_view>
 
+#include "core/memory_limit.h"
 #include "core/parallel.h"
 #include "core/subprocess.h"
 #include "mesh/import_wire.h"
@@ -473,7 +474,10 @@ bool workerLimits(WorkerLimits& limits, std::string& error) {
   limits = {};
   const char* memory = std::getenv("HS_IMPORT_MEMORY_LIMIT");
   std::string text = memory && *memory ? memory : "50%";
-  const double physical = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGESIZE));
+  // A share of what this process may use: the machine's memory, or its
+  // control group's limit where lower (a Slurm job, a container).
+  const MemoryLimit available = memoryLimit();
+  const double usable = double(available.bytes);
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   const bool percent = end && *end == '%' && end[1] == '\0';
@@ -485,11 +489,13 @@ bool workerLimits(WorkerLimits& limits, std::string& error) {
   }
   if (value > 0.0) {
     // At least 64 MiB: the worker's own libraries take tens of MiB.
-    limits.memoryBytes = uint64_t(std::max(percent ? physical * value / 100.0 : value * 1048576.0, 67108864.0));
+    limits.memoryBytes = uint64_t(std::max(percent ? usable * value / 100.0 : value * 1048576.0, 67108864.0));
     char what[96];
-    if (percent) std::snprintf(what, sizeof what, "%s of %.1f GiB", text.c_str(), physical / 1073741824.0);
+    if (percent) std::snprintf(what, sizeof what, "%s of %.1f GiB", text.c_str(), usable / 1073741824.0);
     else std::snprintf(what, sizeof what, "set to %s MiB", text.c_str());
     limits.memoryText = what;
+    if (percent && !available.cgroup.empty())
+      limits.memoryText += ", the memory limit of control group " + available.cgroup;
   }
   const char* watchdog = std::getenv("HS_IMPORT_WATCHDOG_S");
   text = watchdog && *watchdog ? watchdog : "300";
@@ -510,8 +516,8 @@ unsigned tileReadParallelism(const std::vector<std::string>& paths, const mesh::
   WorkerLimits limits;
   std::string ignored;  // a bad setting is reported by the tile's own read
   if (workerLimits(limits, ignored) && limits.memoryBytes > 0) {
-    const double physical = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGESIZE));
-    n = std::min(n, unsigned(std::max(1.0, std::floor(physical / double(limits.memoryBytes)))));
+    const double usable = double(memoryLimit().bytes);
+    n = std::min(n, unsigned(std::max(1.0, std::floor(usable / double(limits.memoryBytes)))));
   }
   return std::max(1u, std::min<unsigned>(n, unsigned(paths.size())));
 }

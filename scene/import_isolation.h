@@ -27,12 +27,15 @@ bool readsWithAssimp(const std::string& path, const mesh::ImportOptions& options
 // Empty if none is there; `lookedAt` then lists where it looked.
 std::string findImportWorker(std::string* lookedAt = nullptr);
 
-// What the worker may use. It runs under a memory limit (RLIMIT_AS), a
-// share of the machine's memory, so a file that asks for too much stops
-// with an error saying so instead of taking the machine; and under a
-// watchdog that stops it when it reports no progress for a while (a reader
-// spinning on a damaged file). Set by the environment:
-//   HS_IMPORT_MEMORY_LIMIT  "50%" of the physical memory (the default), a
+// What the worker may use. It runs under a memory limit (RLIMIT_AS on
+// what it maps beyond its own libraries), a share of the memory this
+// process may use (core/memory_limit.h: the machine's, or its control
+// group's limit where lower, as in a Slurm job or a container), so a
+// file that asks for too much stops with an error
+// saying so instead of taking the machine or getting the job killed; and
+// under a watchdog that stops it when it reports no progress for a while
+// (a reader spinning on a damaged file). Set by the environment:
+//   HS_IMPORT_MEMORY_LIMIT  "50%" of that memory (the default), a
 //                           number of MiB ("4096"), or "0": no limit
 //   HS_IMPORT_WATCHDOG_S    seconds without progress (default 300), "0": none
 struct WorkerLimits {
@@ -49,7 +52,7 @@ bool workerLimits(WorkerLimits& limits, std::string& error);
 // would only raise the peak memory. Otherwise one worker per tile read at
 // once (ImportWorkerPool keeps it for the next tile), as many at once as
 // this process may use CPUs (availableThreads) and as fit the machine's
-// memory under the workers' limit (physical memory / HS_IMPORT_MEMORY_LIMIT:
+// memory under the workers' limit (usable memory / HS_IMPORT_MEMORY_LIMIT:
 // 2 at the default 50%; every available CPU with the limit off).
 unsigned tileReadParallelism(const std::vector<std::string>& paths, const mesh::ImportOptions& options);
 

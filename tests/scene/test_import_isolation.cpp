@@ -27,6 +27,7 @@
 
 #include "core/parallel.h"
 #include "file_bytes.h"
+#include "memory_group.h"
 #include "mesh/mesh_import.h"
 #include "mesh/tile_merge.h"
 #include "scene/import_isolation.h"
@@ -549,6 +550,43 @@ class TestImportIsolation : public QObject {
     int status = 0;
     QCOMPARE(waitpid(child, &status, 0), child);
     QVERIFY2(WIFEXITED(status) && WEXITSTATUS(status) == 0, qPrintable(QString::number(status)));
+  }
+
+  // Under a control group's memory limit (a Slurm job, a container) the
+  // share is of that limit, not of the machine: a worker sized by the
+  // machine oversteps the job, and the kernel kills inside the group
+  // instead of an allocation failing with a message. Run in a child moved
+  // into a group made here (memory_group.h); each check is its own exit
+  // code.
+  void theShareIsOfTheControlGroupsLimit() {
+    const uint64_t limit = uint64_t(1) << 30;
+    const hs::test::MemoryGroup group(limit);
+    if (!group.made)
+      QSKIP(qPrintable(QString::fromStdString("no memory control group can be made here (" + group.why +
+                                              "); tests/core/test_memory_limit checks the parser on made-up trees")));
+    const std::vector<std::string> fbx = {"a.fbx", "b.fbx", "c.fbx", "d.fbx"};
+    const pid_t child = fork();
+    QVERIFY(child >= 0);
+    if (child == 0) {
+      if (!group.join()) _exit(2);
+      scene::WorkerLimits limits;
+      std::string error;
+      ::unsetenv("HS_IMPORT_MEMORY_LIMIT");
+      if (!scene::workerLimits(limits, error) || limits.memoryBytes != limit / 2) _exit(3);
+      if (limits.memoryText != "50% of 1.0 GiB, the memory limit of control group " + group.relative) _exit(4);
+      // 600 MiB a worker: 40 would fit the machine's memory, one the group's.
+      ::setenv("HS_IMPORT_MEMORY_LIMIT", "600", 1);
+      if (scene::tileReadParallelism(fbx, {}) != 1) _exit(5);
+      // A worker under half the group's limit still reads a file.
+      ::unsetenv("HS_IMPORT_MEMORY_LIMIT");
+      const mesh::ImportResult r = scene::importMeshIsolated(kData + "/textured_quad.glb", {});
+      if (!r.ok()) std::fprintf(stderr, "%s\n", r.error.c_str());
+      _exit(r.ok() ? 0 : 6);
+    }
+    int status = 0;
+    QCOMPARE(waitpid(child, &status, 0), child);
+    QVERIFY2(WIFEXITED(status), qPrintable(QString::number(status)));
+    QCOMPARE(WEXITSTATUS(status), 0);
   }
 
   void limitSettingsThatMakeNoSenseAreNamed() {

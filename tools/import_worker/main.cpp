@@ -143,6 +143,17 @@ bool writeResult(int fd, const std::string& outPath, const hs::mesh::ImportResul
   return true;
 }
 
+// The address space mapped now (/proc/self/statm's first field), 0 where
+// it cannot be read.
+rlim_t addressSpaceNow() {
+  unsigned long pages = 0;
+  if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(f, "%lu", &pages) != 1) pages = 0;
+    std::fclose(f);
+  }
+  return rlim_t(pages) * rlim_t(sysconf(_SC_PAGESIZE));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -243,14 +254,19 @@ int main(int argc, char** argv) {
     writeAll(STDOUT_FILENO, hs::mesh::importProgressLine(f, stage));
   });
 
-  // The limit starts here, after our own threads have their stacks.
+  // The limit starts here, after our own threads have their stacks, and
+  // bounds what reading adds to the address space the worker started with:
+  // its libraries alone map 500-700 MiB (OpenImageIO's dependencies: 260
+  // shared libraries), so an absolute limit of 512 MiB (half of a 1 GiB
+  // job) left nothing and even a 2 KB file "ran out of memory".
   if (memoryLimit) {
+    rlim_t limitAs = addressSpaceNow() + memoryLimit;
     // A limit already set from outside (ulimit -v) and lower stays: we
     // only ever lower it.
     rlimit limit{};
-    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_max != RLIM_INFINITY && limit.rlim_max < memoryLimit)
-      memoryLimit = limit.rlim_max;
-    limit = {memoryLimit, memoryLimit};
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_max != RLIM_INFINITY && limit.rlim_max < limitAs)
+      limitAs = limit.rlim_max;
+    limit = {limitAs, limitAs};
     if (setrlimit(RLIMIT_AS, &limit) != 0)
       return usage("--memory-limit-mb: cannot set the limit: " + std::string(std::strerror(errno)));
     std::set_new_handler(outOfMemory);
