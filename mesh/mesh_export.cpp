@@ -7,9 +7,7 @@
 #include <fstream>
 #include <random>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
+#include "core/image_io.h"
 #include "mesh/export/export_geometry.h"
 #include "mesh/mesh_import.h"
 
@@ -112,19 +110,17 @@ std::string textureFileBytes(const Texture& t, bool pngOrJpeg, std::string& exte
   else if (!pngOrJpeg && (startsWith({'I', 'I', 42, 0}) || startsWith({'M', 'M', 0, 42}))) extension = ".tif";
   else extension.clear();
   if (!extension.empty()) return std::string(e.begin(), e.end());
-  // Pixels only (or an encoding other tools may not read): PNG through OIIO.
+  // Pixels only (or an encoding other tools may not read): PNG through OpenImageIO.
   if (t.width <= 0 || t.height <= 0 || t.rgba.size() != size_t(t.width) * size_t(t.height) * 4) {
     error = "texture '" + t.name + "' has no pixels to write";
     return {};
   }
   extension = ".png";
-  std::vector<unsigned char> buffer;
-  OIIO::Filesystem::IOVecOutput vec(buffer);
-  auto out = OIIO::ImageOutput::create("out.png", &vec);
-  OIIO::ImageSpec spec(t.width, t.height, 4, OIIO::TypeDesc::UINT8);
-  if (!out || !out->open("out.png", spec) || !out->write_image(OIIO::TypeDesc::UINT8, t.rgba.data()) ||
-      !out->close()) {
-    error = "texture '" + t.name + "' could not be encoded as PNG: " + OIIO::geterror();
+  std::vector<uint8_t> buffer;
+  image_io::Spec spec;
+  spec.width = t.width, spec.height = t.height, spec.channels = 4, spec.format = image_io::PixelType::UInt8;
+  if (std::string why; !image_io::encode("png", spec, image_io::PixelType::UInt8, t.rgba.data(), buffer, why)) {
+    error = "texture '" + t.name + "' could not be encoded as PNG: " + why;
     return {};
   }
   return std::string(buffer.begin(), buffer.end());

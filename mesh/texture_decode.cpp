@@ -3,11 +3,7 @@
 #include <filesystem>
 #include <new>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
-
+#include "core/image_io.h"
 #include "mesh/byte_source.h"
 
 namespace hs::mesh {
@@ -16,10 +12,10 @@ namespace {
 // Largest texture we accept: 32k x 32k (photogrammetry atlases reach 16k).
 constexpr int kMaxTextureSide = 32768;
 
-// Reads an open ImageInput into RGBA8, expanding grey/RGB and dropping
+// Reads an open image into RGBA8, expanding grey/RGB and dropping
 // extra channels, converting float/16-bit data to 8-bit.
-bool readRgba8(OIIO::ImageInput& in, const std::string& what, Texture& out, std::string& error) {
-  const OIIO::ImageSpec& spec = in.spec();
+bool readRgba8(image_io::Reader& in, const std::string& what, Texture& out, std::string& error) {
+  const image_io::Spec& spec = in.spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSide ||
       spec.height > kMaxTextureSide) {
     error = what + ": image size " + std::to_string(spec.width) + "x" +
@@ -27,7 +23,7 @@ bool readRgba8(OIIO::ImageInput& in, const std::string& what, Texture& out, std:
             std::to_string(kMaxTextureSide) + " per side)";
     return false;
   }
-  const int nch = spec.nchannels;
+  const int nch = spec.channels;
   if (nch <= 0 || nch > 64) {
     error = what + ": " + std::to_string(nch) + " channels per pixel is out of range (1 to 64)";
     return false;
@@ -46,8 +42,7 @@ bool readRgba8(OIIO::ImageInput& in, const std::string& what, Texture& out, std:
   // A decoder may complain and still return true: libjpeg fills a JPEG cut
   // short with grey and only warns ("Premature end of JPEG file"), so
   // anything it said makes the image unreadable, not half grey.
-  const bool read = in.read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT8, pixels.data());
-  if (const std::string complaint = in.geterror(); !read || !complaint.empty()) {
+  if (std::string complaint; !in.read(nch, image_io::PixelType::UInt8, pixels.data(), complaint)) {
     error = what + ": cannot decode image: " + (complaint.empty() ? std::string("unknown error") : complaint);
     return false;
   }
@@ -112,28 +107,22 @@ bool decodeTextureMemory(std::span<const uint8_t> bytes, const std::string& form
     error = what + ": no image data";
     return false;
   }
-  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-  // The file name only tells OIIO which format to try first.
+  // The file name only tells OpenImageIO which format to try first.
   const std::string pseudoName = "embedded." + (formatHint.empty() ? std::string("png") : formatHint);
-  auto in = OIIO::ImageInput::open(pseudoName, nullptr, &reader);
-  if (!in) {
+  std::string reason;
+  auto in = image_io::openMemory(bytes, pseudoName, reason);
+  if (!in && image_io::available()) {
     // The hint may be wrong (an embedded JPEG tagged "png"): try the others.
     for (const char* ext : {"png", "jpg", "tga", "bmp", "tif", "exr", "hdr", "webp"}) {
-      OIIO::Filesystem::IOMemReader retry(bytes.data(), bytes.size());
-      in = OIIO::ImageInput::open(std::string("embedded.") + ext, nullptr, &retry);
-      if (in) {
-        const bool ok = readRgba8(*in, what, out, error);
-        in->close();
-        return ok;
-      }
+      std::string ignored;
+      if ((in = image_io::openMemory(bytes, std::string("embedded.") + ext, ignored))) break;
     }
-    std::string reason = OIIO::geterror();
+  }
+  if (!in) {
     error = what + ": not a readable image" + (reason.empty() ? "" : " (" + reason + ")");
     return false;
   }
-  const bool ok = readRgba8(*in, what, out, error);
-  in->close();
-  return ok;
+  return readRgba8(*in, what, out, error);
 }
 
 bool decodeTextureInPlace(Texture& texture, std::string& error) {

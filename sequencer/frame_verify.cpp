@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include <OpenImageIO/imageio.h>
-
+#include "core/image_io.h"
 #include "core/parallel.h"
 #include "sequencer/frame_structure.h"
 #include "sequencer/output_pattern.h"
@@ -21,19 +20,20 @@ FrameCheck checkFrameFile(const std::string& path, int width, int height, const 
     c.problem = path + ": missing";
     return c;
   }
-  auto in = OIIO::ImageInput::open(path);
+  std::string why;
+  auto in = image_io::open(path, why);
   if (!in) {
-    c.problem = path + ": not a readable image (" + OIIO::geterror() + ")";
+    c.problem = path + ": not a readable image (" + why + ")";
     return c;
   }
-  const OIIO::ImageSpec& spec = in->spec();
+  const image_io::Spec& spec = in->spec();
   if (spec.width != width || spec.height != height) {
     c.problem = path + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ", expected " +
                 std::to_string(width) + "x" + std::to_string(height);
     return c;
   }
   if (!jobTag.empty()) {
-    const std::string desc = spec.get_string_attribute("ImageDescription");
+    const std::string desc = spec.attribute("ImageDescription");
     if (desc != frameDescription(jobTag)) {
       c.problem = path + ": written by another export (its description is '" + desc + "')";
       return c;
@@ -47,11 +47,10 @@ FrameCheck checkFrameFile(const std::string& path, int width, int height, const 
     return c;
   }
   if (deep || unknown) {
-    std::vector<uint8_t> pixels(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels) * 4);
+    std::vector<uint8_t> pixels(size_t(spec.width) * size_t(spec.height) * size_t(spec.channels) * 4);
     // A decoder may complain and still return true: libjpeg fills a JPEG
     // cut short with grey and only warns ("Premature end of JPEG file").
-    const bool read = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
-    if (const std::string complaint = in->geterror(); !read || !complaint.empty()) {
+    if (std::string complaint; !in->read(spec.channels, image_io::PixelType::Float, pixels.data(), complaint)) {
       c.problem = path + ": damaged (" + complaint + ")";
       return c;
     }

@@ -7,11 +7,10 @@
 #include <filesystem>
 #include <vector>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "core/image_io.h"
 #include "core/srgb.h"
 
 namespace hs::sequencer {
@@ -50,41 +49,6 @@ const char* oiioFormatName(ImageFormat f) {
   return "png";
 }
 
-// An in-memory file for OpenImageIO writers: unlike OIIO's IOVecOutput it
-// reads back and seeks anywhere, which libtiff needs to write its directory
-// (with IOVecOutput OIIO 2.4 writes TIFFs without their ImageLength).
-class MemoryFile final : public OIIO::Filesystem::IOProxy {
- public:
-  explicit MemoryFile(std::vector<uint8_t>& bytes) : IOProxy("", Write), bytes_(bytes) {}
-  const char* proxytype() const override { return "hs-memory"; }
-  size_t read(void* buf, size_t size) override {
-    const size_t n = pread(buf, size, m_pos);
-    m_pos += int64_t(n);
-    return n;
-  }
-  size_t write(const void* buf, size_t size) override {
-    const size_t n = pwrite(buf, size, m_pos);
-    m_pos += int64_t(n);
-    return n;
-  }
-  size_t pread(void* buf, size_t size, int64_t offset) override {
-    if (offset < 0 || size_t(offset) >= bytes_.size()) return 0;
-    const size_t n = std::min(size, bytes_.size() - size_t(offset));
-    std::memcpy(buf, bytes_.data() + offset, n);
-    return n;
-  }
-  size_t pwrite(const void* buf, size_t size, int64_t offset) override {
-    if (offset < 0) return 0;
-    if (bytes_.size() < size_t(offset) + size) bytes_.resize(size_t(offset) + size);
-    std::memcpy(bytes_.data() + offset, buf, size);
-    return size;
-  }
-  size_t size() const override { return bytes_.size(); }
-
- private:
-  std::vector<uint8_t>& bytes_;
-};
-
 }  // namespace
 
 bool encodeImage(ImageFormat format, const ImageView& img, std::vector<uint8_t>& bytes, std::string& error,
@@ -95,15 +59,16 @@ bool encodeImage(ImageFormat format, const ImageView& img, std::vector<uint8_t>&
   }
   // Pixel data in the form the format wants.
   const size_t n = size_t(img.width) * size_t(img.height);
-  OIIO::ImageSpec spec;
+  image_io::Spec spec;
+  spec.width = img.width, spec.height = img.height;
   std::vector<uint8_t> bytes8;
   std::vector<uint16_t> bytes16;
   std::vector<float> floats;
   const void* pixels = nullptr;
-  OIIO::TypeDesc memoryType = OIIO::TypeDesc::UINT8;  // what `pixels` holds; OIIO converts to spec.format
+  image_io::PixelType memoryType = image_io::PixelType::UInt8;  // what `pixels` holds; converted to spec.format
   if (format == ImageFormat::Exr) {
     // Linear RGBA half float; sRGB input is decoded.
-    spec = OIIO::ImageSpec(img.width, img.height, 4, OIIO::TypeDesc::HALF);
+    spec.channels = 4, spec.format = image_io::PixelType::Half;
     if (img.rgbaF) {
       pixels = img.rgbaF;
     } else {
@@ -112,10 +77,10 @@ bool encodeImage(ImageFormat format, const ImageView& img, std::vector<uint8_t>&
         floats[i] = (i % 4) == 3 ? float(img.rgba8[i]) / 255.0f : srgb8ToLinear(img.rgba8[i]);
       pixels = floats.data();
     }
-    memoryType = OIIO::TypeDesc::FLOAT;
-    spec.attribute("compression", "zip");
+    memoryType = image_io::PixelType::Float;
+    spec.text.emplace_back("compression", "zip");
   } else if (format == ImageFormat::Png && options.png16) {
-    spec = OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::UINT16);
+    spec.channels = 3, spec.format = image_io::PixelType::UInt16;
     bytes16.resize(n * 3);
     for (size_t i = 0; i < n; ++i)
       for (int c = 0; c < 3; ++c) {
@@ -124,39 +89,27 @@ bool encodeImage(ImageFormat format, const ImageView& img, std::vector<uint8_t>&
         bytes16[i * 3 + size_t(c)] = uint16_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 65535.0f));
       }
     pixels = bytes16.data();
-    memoryType = OIIO::TypeDesc::UINT16;
+    memoryType = image_io::PixelType::UInt16;
   } else {
     // 8-bit sRGB RGB: frames are opaque, and JPEG has no alpha anyway.
-    spec = OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
+    spec.channels = 3, spec.format = image_io::PixelType::UInt8;
     bytes8.resize(n * 3);
     for (size_t i = 0; i < n; ++i)
       for (int c = 0; c < 3; ++c)
         bytes8[i * 3 + size_t(c)] = img.rgba8 ? img.rgba8[i * 4 + size_t(c)] : linearToSrgb8(img.rgbaF[i * 4 + size_t(c)]);
     pixels = bytes8.data();
-    if (format == ImageFormat::Jpeg) spec.attribute("CompressionQuality", std::clamp(options.jpegQuality, 1, 100));
-    if (format == ImageFormat::Tiff) spec.attribute("compression", "zip");
+    if (format == ImageFormat::Jpeg) spec.ints.emplace_back("CompressionQuality", std::clamp(options.jpegQuality, 1, 100));
+    if (format == ImageFormat::Tiff) spec.text.emplace_back("compression", "zip");
     // sRGB is what 8-bit PNG/JPEG/TIFF mean anyway. Not for TIFF: OIIO 2.4
     // then writes an extra directory that breaks the file when it encodes
     // to memory ("missing required ImageLength").
-    if (format != ImageFormat::Tiff) spec.attribute("oiio:ColorSpace", "sRGB");
+    if (format != ImageFormat::Tiff) spec.text.emplace_back("oiio:ColorSpace", "sRGB");
   }
-  if (format == ImageFormat::Png) spec.attribute("png:compressionLevel", std::clamp(options.pngCompression, 0, 9));
-  if (!options.description.empty()) spec.attribute("ImageDescription", options.description);
+  if (format == ImageFormat::Png) spec.ints.emplace_back("png:compressionLevel", std::clamp(options.pngCompression, 0, 9));
+  if (!options.description.empty()) spec.text.emplace_back("ImageDescription", options.description);
 
-  bytes.clear();
-  MemoryFile proxy(bytes);
-  auto out = OIIO::ImageOutput::create(oiioFormatName(format));
-  if (!out) {
-    error = std::string("no ") + imageFormatName(format) + " writer (" + OIIO::geterror() + ")";
-    return false;
-  }
-  if (!out->supports("ioproxy") || !out->set_ioproxy(&proxy)) {
-    error = std::string("the ") + imageFormatName(format) + " writer cannot encode to memory";
-    return false;
-  }
-  const std::string nominal = std::string("frame.") + oiioFormatName(format);
-  if (!out->open(nominal, spec) || !out->write_image(memoryType, pixels) || !out->close()) {
-    error = std::string("encoding ") + imageFormatName(format) + " failed: " + out->geterror();
+  if (std::string why; !image_io::encode(oiioFormatName(format), spec, memoryType, pixels, bytes, why)) {
+    error = std::string("encoding ") + imageFormatName(format) + " failed: " + why;
     return false;
   }
   return true;

@@ -7,8 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include <OpenImageIO/imageio.h>
-
+#include "core/image_io.h"
 #include "terrain/dem_export.h"
 #include "terrain/raw_sidecar.h"
 
@@ -35,26 +34,30 @@ bool parseDouble(const std::string& s, double& out) {
   return end && *end == '\0' && std::isfinite(out);
 }
 
-void putMetadata(OIIO::ImageSpec& spec, const Heightfield& hf, const HeightRange* range) {
+void putMetadata(image_io::Spec& spec, const Heightfield& hf, const HeightRange* range) {
+  auto put = [&](const char* name, std::string value) { spec.text.emplace_back(name, std::move(value)); };
   if (range) {
-    spec.attribute("hs:height_min", num(double(range->min)));
-    spec.attribute("hs:height_max", num(double(range->max)));
+    put("hs:height_min", num(double(range->min)));
+    put("hs:height_max", num(double(range->max)));
   }
-  spec.attribute("hs:spacing_x", num(hf.spacing().x));
-  spec.attribute("hs:spacing_y", num(hf.spacing().y));
-  spec.attribute("hs:origin_x", num(hf.origin().x));
-  spec.attribute("hs:origin_y", num(hf.origin().y));
-  spec.attribute("hs:origin_z", num(hf.origin().z));
-  if (hf.geo().valid()) spec.attribute("hs:crs_wkt", hf.geo().crsWkt);
-  spec.attribute("ImageDescription", "Hybridscape heightmap; row 0 = north; see hs:* for range and georeferencing");
+  put("hs:spacing_x", num(hf.spacing().x));
+  put("hs:spacing_y", num(hf.spacing().y));
+  put("hs:origin_x", num(hf.origin().x));
+  put("hs:origin_y", num(hf.origin().y));
+  put("hs:origin_z", num(hf.origin().z));
+  if (hf.geo().valid()) put("hs:crs_wkt", hf.geo().crsWkt);
+  put("ImageDescription", "Hybridscape heightmap; row 0 = north; see hs:* for range and georeferencing");
 }
 
-Status writeImage(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc type, const void* data) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) return Status::failure(path + ": cannot write this image format (" + OIIO::geterror() + ")");
-  if (!out->open(path, spec)) return Status::failure(path + ": cannot create the file (" + out->geterror() + ")");
-  if (!out->write_image(type, data)) return Status::failure(path + ": write failed (" + out->geterror() + ")");
-  if (!out->close()) return Status::failure(path + ": write failed (" + out->geterror() + ")");
+// A single-image spec of `format`.
+image_io::Spec imageSpec(int w, int h, int channels, image_io::PixelType format) {
+  image_io::Spec spec;
+  spec.width = w, spec.height = h, spec.channels = channels, spec.format = format;
+  return spec;
+}
+
+Status writeImage(const std::string& path, const image_io::Spec& spec, image_io::PixelType type, const void* data) {
+  if (std::string why; !image_io::writeFile(path, spec, type, data, why)) return Status::failure(path + ": " + why);
   return {};
 }
 
@@ -142,11 +145,11 @@ Result<HeightExportReport> exportHeightmap(const Heightfield& hf, const std::str
       return rep;
     }
     case HeightmapFormat::Exr32: {
-      OIIO::ImageSpec spec(w, h, 1, OIIO::TypeDesc::FLOAT);
-      spec.channelnames = {"Y"};
-      spec.attribute("compression", "zip");
+      image_io::Spec spec = imageSpec(w, h, 1, image_io::PixelType::Float);
+      spec.channelNames = {"Y"};
+      spec.text.emplace_back("compression", "zip");
       putMetadata(spec, hf, nullptr);
-      Status s = writeImage(path, spec, OIIO::TypeDesc::FLOAT, heights.data());
+      Status s = writeImage(path, spec, image_io::PixelType::Float, heights.data());
       if (!s) return R::failure(s.error);
       return rep;
     }
@@ -154,10 +157,10 @@ Result<HeightExportReport> exportHeightmap(const Heightfield& hf, const std::str
       rep.range = range;
       rep.quantisationStep = (double(range.max) - double(range.min)) / 65535.0;
       const auto q = quantise(heights, range, rep.clampedSamples);
-      OIIO::ImageSpec spec(w, h, 1, OIIO::TypeDesc::UINT16);
-      spec.attribute("oiio:ColorSpace", "Linear");
+      image_io::Spec spec = imageSpec(w, h, 1, image_io::PixelType::UInt16);
+      spec.text.emplace_back("oiio:ColorSpace", "Linear");
       putMetadata(spec, hf, &range);
-      Status s = writeImage(path, spec, OIIO::TypeDesc::UINT16, q.data());
+      Status s = writeImage(path, spec, image_io::PixelType::UInt16, q.data());
       if (!s) return R::failure(s.error);
       return rep;
     }
@@ -248,9 +251,10 @@ Result<Heightfield> importHeightmap(const std::string& path, const HeightmapImpo
     return build(path, std::move(v), w, h, spacing, origin, wkt);
   }
 
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return R::failure(path + ": not an image OpenImageIO can read (" + OIIO::geterror() + ")");
-  const OIIO::ImageSpec& spec = in->spec();
+  std::string why;
+  auto in = image_io::open(path, why);
+  if (!in) return R::failure(path + ": not an image OpenImageIO can read (" + why + ")");
+  const image_io::Spec& spec = in->spec();
   const int w = spec.width, h = spec.height;
   if (w < 2 || h < 2 || w > kMaxSamples || h > kMaxSamples)
     return R::failure(path + ": is " + std::to_string(w) + " x " + std::to_string(h) +
@@ -259,18 +263,17 @@ Result<Heightfield> importHeightmap(const std::string& path, const HeightmapImpo
   // Channel 0 only, as float: integer formats come back normalised to 0..1.
   // A decoder may complain and still return true: libjpeg fills a JPEG cut
   // short with grey and only warns, so anything it said refuses the file.
-  const bool read = in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, v.data());
-  if (const std::string complaint = in->geterror(); !read || !complaint.empty())
+  if (std::string complaint; !in->read(1, image_io::PixelType::Float, v.data(), complaint))
     return R::failure(path + ": cannot read the pixels; the file is damaged or truncated (" + complaint + ")");
-  auto attr = [&](const char* name, double& out) { return parseDouble(spec.get_string_attribute(name), out); };
+  auto attr = [&](const char* name, double& out) { return parseDouble(spec.attribute(name), out); };
   double mn = 0, mx = 0, sx = 1, sy = 1, ox = 0, oy = 0, oz = 0;
   const bool hasRange = attr("hs:height_min", mn) && attr("hs:height_max", mx);
   const bool hasSpacing = attr("hs:spacing_x", sx) && attr("hs:spacing_y", sy);
   attr("hs:origin_x", ox);
   attr("hs:origin_y", oy);
   attr("hs:origin_z", oz);
-  const bool isFloat = spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF ||
-                       spec.format.basetype == OIIO::TypeDesc::DOUBLE;
+  const bool isFloat = spec.format == image_io::PixelType::Float || spec.format == image_io::PixelType::Half ||
+                       spec.format == image_io::PixelType::Double;
   if (!isFloat) {
     HeightRange r{float(mn), float(mx)};
     if (opt.range) r = *opt.range;
@@ -281,13 +284,13 @@ Result<Heightfield> importHeightmap(const std::string& path, const HeightmapImpo
     // Re-quantise to the exact 16-bit code before scaling, so the round
     // trip lands on the same value the exporter meant.
     const double span = double(r.max) - double(r.min);
-    const double levels = spec.format.basetype == OIIO::TypeDesc::UINT8 ? 255.0 : 65535.0;
+    const double levels = spec.format == image_io::PixelType::UInt8 ? 255.0 : 65535.0;
     for (float& x : v) x = float(double(r.min) + span * std::round(double(x) * levels) / levels);
   }
   glm::dvec2 spacing{sx, sy};
   if (opt.sizeMetres) spacing = *opt.sizeMetres / glm::dvec2(w - 1, h - 1);
   else if (!hasSpacing) warn("no spacing recorded; 1 m per sample");
-  return build(path, std::move(v), w, h, spacing, {ox, oy, oz}, spec.get_string_attribute("hs:crs_wkt"));
+  return build(path, std::move(v), w, h, spacing, {ox, oy, oz}, spec.attribute("hs:crs_wkt"));
 }
 
 Result<std::string> exportPaintLayerImage(const PaintLayers& paint, int layer, const std::string& path, int bits) {
@@ -298,11 +301,13 @@ Result<std::string> exportPaintLayerImage(const PaintLayers& paint, int layer, c
   std::vector<float> v(size_t(w) * size_t(h));
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) v[size_t(h - 1 - y) * size_t(w) + size_t(x)] = paint.weight(layer, x, y);
-  const OIIO::TypeDesc type = isExr ? OIIO::TypeDesc::FLOAT : bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
-  OIIO::ImageSpec spec(w, h, 1, type);
-  spec.attribute("oiio:ColorSpace", "Linear");
-  spec.attribute("ImageDescription", "Hybridscape paint weights, layer '" + paint.material(layer).name + "'; row 0 = north");
-  Status s = writeImage(path, spec, OIIO::TypeDesc::FLOAT, v.data());
+  const image_io::PixelType type =
+      isExr ? image_io::PixelType::Float : bits == 16 ? image_io::PixelType::UInt16 : image_io::PixelType::UInt8;
+  image_io::Spec spec = imageSpec(w, h, 1, type);
+  spec.text.emplace_back("oiio:ColorSpace", "Linear");
+  spec.text.emplace_back("ImageDescription",
+                         "Hybridscape paint weights, layer '" + paint.material(layer).name + "'; row 0 = north");
+  Status s = writeImage(path, spec, image_io::PixelType::Float, v.data());
   if (!s) return R::failure(s.error);
   return path;
 }
@@ -318,10 +323,10 @@ Result<std::string> exportSplatMap(const PaintLayers& paint, int first, const st
         if (first + c < paint.layerCount())
           v[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + size_t(c)] =
               uint8_t(std::lround(double(paint.raw(first + c, x, y)) * 255.0 / 65535.0));
-  OIIO::ImageSpec spec(w, h, 4, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "Linear");
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  Status s = writeImage(path, spec, OIIO::TypeDesc::UINT8, v.data());
+  image_io::Spec spec = imageSpec(w, h, 4, image_io::PixelType::UInt8);
+  spec.text.emplace_back("oiio:ColorSpace", "Linear");
+  spec.ints.emplace_back("oiio:UnassociatedAlpha", 1);
+  Status s = writeImage(path, spec, image_io::PixelType::UInt8, v.data());
   if (!s) return R::failure(s.error);
   return path;
 }

@@ -4,10 +4,11 @@
 #   A. from the unpacked bundle, in an empty environment (env -i: nothing but
 #      PATH and HOME), so only the bundle's libraries and the host's glibc,
 #      libstdc++ and Mesa can be found, and
-#   B. from the build folder on this machine's libraries (the real OpenImageIO),
+#   B. from the build folder on this machine's libraries (with the image module),
 # then compares the two logs of each with the timings masked (compare_logs.py):
 # triangle counts, draw calls, image errors, memory must be identical, and no
-# benchmark may call the OpenImageIO stub (run_benches.sh flags "LOADED IMAGES").
+# benchmark may need an image (the bundle has no image module; run_benches.sh
+# flags "LOADED IMAGES").
 #
 #   bench/gpu/check_bundle.sh [BUILD_DIR] [OUTDIR]     # about 2.5 min of CPU on 2 cores
 set -uo pipefail

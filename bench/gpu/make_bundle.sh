@@ -13,8 +13,9 @@
 #   lib/           every library they load, but glibc's, libstdc++ and libgcc_s
 #                  (the host's, newer, are used), with glvnd's loaders (libEGL,
 #                  libOpenGL, libGLdispatch, libGL, libGLX, libGLESv2) that libepoxy
-#                  dlopens, and a stub of OpenImageIO (oiio_stub.cpp) instead of the
-#                  real one and its ~260 libraries
+#                  dlopens; not the image module (hybridscape-image-io.so: OpenImageIO
+#                  and its ~260 libraries, core/image_io.h), so a benchmark that reads
+#                  or writes an image says "the image module ... is missing"
 #   lib-fallback/  libstdc++ and libgcc_s, used only where the host's are older
 #   plugins/       Qt's offscreen platform (the plots' QGuiApplication)
 #   fonts/         DejaVu Sans and a relocatable fonts.conf, for the plots' text
@@ -22,7 +23,7 @@
 #                  bench_oit (HS_SOURCE_DIR), and the newest glibc symbol version needed
 #
 # Libraries are found with ldd on this machine (Debian 12), so this runs where the
-# build was made. Needs g++, the OpenImageIO headers (libopenimageio-dev), xz.
+# build was made. Needs xz.
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -49,40 +50,31 @@ for f in $qpa $fonts; do [ -f "$f" ] || { echo "make_bundle: $f is missing" >&2;
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 stage=$work/hs-gpu
-mkdir -p "$stage"/{bin,lib,lib-fallback,plugins/platforms,fonts} "$work/stub"
+mkdir -p "$stage"/{bin,lib,lib-fallback,plugins/platforms,fonts}
 
-# 1. The OpenImageIO stub, from the real headers (same vtable layouts).
-g++ -std=c++17 -O2 -fPIC -shared -DHS_OIIO_STUB_UTIL -Wl,-soname,libOpenImageIO_Util.so.2.4 \
-  -o "$work/stub/libOpenImageIO_Util.so.2.4" "$root/bench/gpu/oiio_stub.cpp"
-g++ -std=c++17 -O2 -fPIC -shared -Wl,-soname,libOpenImageIO.so.2.4 \
-  -o "$work/stub/libOpenImageIO.so.2.4" "$root/bench/gpu/oiio_stub.cpp" "$work/stub/libOpenImageIO_Util.so.2.4"
-cp "$work/stub"/libOpenImageIO*.so.2.4 "$stage/lib/"
-
-# 2. The benchmarks.
+# 1. The benchmarks.
 for b in $benches; do
   cp "$build/$b" "$stage/bin/"
   strip --strip-unneeded "$stage/bin/$(basename "$b")"
 done
 cp "$qpa" "$stage/plugins/platforms/"
 
-# 3. Every library they and the plugin load (ldd, with the stub first so that
-#    OpenImageIO's own dependencies are not followed), plus glvnd's loaders.
+# 2. Every library they and the plugin load (ldd), plus glvnd's loaders.
 roots="$(for b in $benches; do echo "$build/$b"; done) $qpa $(for g in $glvnd; do echo $libdir/$g; done)"
 for r in $roots; do
   [ -e "$r" ] || { echo "make_bundle: $r is missing (glvnd: apt-get install libegl1 libopengl0 libgl1 libgles2)" >&2; exit 1; }
-  LD_LIBRARY_PATH=$work/stub ldd "$r" | awk '/=> not found/ {print "MISSING " $1} /=> \// {print $1 " " $3}'
+  ldd "$r" | awk '/=> not found/ {print "MISSING " $1} /=> \// {print $1 " " $3}'
 done | sort -u > "$work/deps.txt"
 if grep -q '^MISSING' "$work/deps.txt"; then grep '^MISSING' "$work/deps.txt" >&2; exit 1; fi
 for g in $glvnd; do echo "$g $libdir/$g"; done >> "$work/deps.txt"
 sort -u -o "$work/deps.txt" "$work/deps.txt"
 while read -r name path; do
-  case "$path" in "$work"/stub/*) continue ;; esac
   if [[ $name =~ $glibc_re ]]; then continue; fi
   if [[ $name =~ $cxxrt_re ]]; then dest=lib-fallback; else dest=lib; fi
   cp -L "$path" "$stage/$dest/$name"
 done < "$work/deps.txt"
 
-# 4. Fonts for the plots: a fonts.conf whose folder is its own (prefix="relative").
+# 3. Fonts for the plots: a fonts.conf whose folder is its own (prefix="relative").
 cp $fonts "$stage/fonts/"
 cat > "$stage/fonts/fonts.conf" <<'EOF'
 <?xml version="1.0"?>
@@ -93,7 +85,7 @@ cat > "$stage/fonts/fonts.conf" <<'EOF'
 </fontconfig>
 EOF
 
-# 5. The manifest: what is here, and what the host must provide.
+# 4. The manifest: what is here, and what the host must provide.
 glibc_max=$(for f in "$stage"/bin/* "$stage"/lib/* "$stage"/plugins/platforms/*; do objdump -T "$f"; done |
   grep -oE '\(GLIBC_2\.[0-9]+\)' | tr -d '()' | sort -uV | tail -1)
 glibcxx_max=$(for f in "$stage"/bin/* "$stage"/lib/* "$stage"/plugins/platforms/*; do objdump -T "$f"; done |

@@ -50,7 +50,7 @@ say "# run_benches.sh $([ $quick = 1 ] && echo --quick) at $(date -u +%Y-%m-%dT%
 
 # 1. Unpack the bundle (tar -J needs the xz program; Python's tarfile where it is missing).
 #    HS_GPU_SYSTEM=BUILD_DIR instead runs that build's own binaries on this machine's
-#    libraries (the real OpenImageIO): the reference bench/gpu/check_bundle.sh compares with.
+#    libraries (and image module): the reference bench/gpu/check_bundle.sh compares with.
 B=$work/hs-gpu
 if [ -n "${HS_GPU_SYSTEM:-}" ]; then
   mkdir -p "$B/bin"
@@ -223,7 +223,8 @@ for entry in "${benches[@]}"; do
   note=""
   [ $rc = 124 ] || [ $rc = 137 ] && note=" TIMED OUT"
   is_software "$log" && [ "${HS_GPU_ALLOW_SOFTWARE:-0}" != 1 ] && note="$note SOFTWARE RENDERER"
-  grep -q 'HS-OIIO-STUB' "$log" && note="$note LOADED IMAGES (stub: $(grep -c 'HS-OIIO-STUB' "$log") calls)"
+  # The bundle has no image module (make_bundle.sh): a benchmark that needs an image says so.
+  grep -q 'image module hybridscape-image-io.so (OpenImageIO) is missing' "$log" && note="$note LOADED IMAGES (none in the bundle)"
   [ $rc != 0 ] || [ -n "$note" ] && failed=1
   say "$name: exit $rc$note, $((wall_ds / 10)).$((wall_ds % 10)) s"
   say "  ${renderer:-(no renderer line)}"

@@ -53,7 +53,9 @@ MeshData scanPatch() {
   t.name = "rock.png";
   t.width = t.height = 4;
   for (int i = 0; i < 16; ++i)
-    t.rgba.insert(t.rgba.end(), {uint8_t(i * 16), uint8_t(255 - i * 16), uint8_t(i * 7), 255});
+    // Alpha below 1 on most texels: the texels must come back as they are
+    // (straight colour), not with the alpha multiplied in or divided out.
+    t.rgba.insert(t.rgba.end(), {uint8_t(i * 16), uint8_t(255 - i * 16), uint8_t(i * 7), uint8_t(255 - i * 15)});
   m.textures = {t};
   return m;
 }

@@ -35,6 +35,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/image_io.h"
 #include "mesh/import_wire.h"
 #include "mesh/mesh_import.h"
 
@@ -254,12 +255,17 @@ int main(int argc, char** argv) {
     writeAll(STDOUT_FILENO, hs::mesh::importProgressLine(f, stage));
   });
 
-  // The limit starts here, after our own threads have their stacks, and
-  // bounds what reading adds to the address space the worker started with:
-  // its libraries alone map 500-700 MiB (OpenImageIO's dependencies: 260
-  // shared libraries), so an absolute limit of 512 MiB (half of a 1 GiB
-  // job) left nothing and even a 2 KB file "ran out of memory".
+  // The limit starts here, after our own threads have their stacks and the
+  // image module is loaded, and bounds what reading adds to the address
+  // space the worker then has. The libraries alone map 500-700 MiB
+  // (OpenImageIO's dependencies: 260 shared libraries), so an absolute
+  // limit of 512 MiB (half of a 1 GiB job) left nothing and even a 2 KB
+  // file "ran out of memory". The module is loaded here, not on the first
+  // texture (core/image_io.h), because loading it under the limit would
+  // count its libraries against the file: textured scans are what this
+  // worker mostly reads.
   if (memoryLimit) {
+    hs::image_io::available();
     rlim_t limitAs = addressSpaceNow() + memoryLimit;
     // A limit already set from outside (ulimit -v) and lower stays: we
     // only ever lower it.
