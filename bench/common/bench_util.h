@@ -9,9 +9,22 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "core/parallel.h"
+
 namespace hs::bench {
+
+// The machine's hardware threads, and how many of them this process may
+// use when that is fewer (taskset, a Slurm binding: bench/gpu pins
+// bench_decimate to two CPUs of sixteen).
+inline std::string threadsText() {
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency()), allowed = allowedCpus();
+  std::string s = std::to_string(hw) + " hardware threads";
+  if (allowed < hw) s += ", " + std::to_string(allowed) + " of them allowed to this process";
+  return s;
+}
 
 inline double nowSeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();

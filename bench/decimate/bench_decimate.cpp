@@ -344,8 +344,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   // MESHOPTIMIZER_VERSION is major*1000 + minor*10 (180 = 0.18).
-  std::printf("# Decimation: ours vs meshopt_simplify %d.%d vs OpenMesh DecimaterT (machine: %u hardware threads)\n",
-              MESHOPTIMIZER_VERSION / 1000, (MESHOPTIMIZER_VERSION % 1000) / 10, std::thread::hardware_concurrency());
+  std::printf("# Decimation: ours vs meshopt_simplify %d.%d vs OpenMesh DecimaterT (machine: %s)\n",
+              MESHOPTIMIZER_VERSION / 1000, (MESHOPTIMIZER_VERSION % 1000) / 10, hs::bench::threadsText().c_str());
   std::printf("load average at start: %s\n", hs::bench::loadAverageLine().c_str());
 
   struct Dataset {

@@ -187,8 +187,8 @@ int main(int argc, char** argv) {
   constexpr double kFilm = 36000.0, kReferenceHours = 7.0 + 15.0;
 
   std::printf("bench_export: side-by-side 3840x1080 frames (two 1920x1080 eyes), %d-frame samples\n", sample);
-  std::printf("machine: %u hardware threads, load average %.2f at start; output in %s\n",
-              std::thread::hardware_concurrency(), loadAverage(), outDir.c_str());
+  std::printf("machine: %s, load average %.2f at start; output in %s\n",
+              hs::bench::threadsText().c_str(), loadAverage(), outDir.c_str());
   auto t0 = Clock::now();
   const Valley valley(4800, 1080);
   std::printf("synthetic valley image built in %.2f s (stands in for render/; bench_export_render measures it)\n\n", seconds(t0));

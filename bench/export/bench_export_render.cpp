@@ -149,8 +149,8 @@ int main(int argc, char** argv) {
   std::printf("bench_export_render: the demo's stereo flight ('%s', off-axis), side by side %dx%d (two %dx%d eyes),\n"
               "frames %s, MSAA 4x\n",
               cam ? cam->name.c_str() : "?", 2 * eyeW, eyeH, eyeW, eyeH, frames.toString().c_str());
-  std::printf("GL: %s (EGL %s); %u hardware threads, load average %.2f at start\n\n", renderer.glDescription().c_str(),
-              renderer.eglPlatform().c_str(), std::thread::hardware_concurrency(), loadAverage());
+  std::printf("GL: %s (EGL %s); %s, load average %.2f at start\n\n", renderer.glDescription().c_str(),
+              renderer.eglPlatform().c_str(), bench::threadsText().c_str(), loadAverage());
 
   // Warm up (mesh upload, buffers) so the tables measure steady frames.
   renderOnly(renderer, *demo, FrameList::range(0, 0), eyeW, eyeH, Kind::Display8, 2, false);

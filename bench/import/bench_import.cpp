@@ -272,8 +272,8 @@ int main(int argc, char** argv) {
   fs::remove(scanPly, ec);
 
   const double load = hs::bench::loadAverage();
-  std::printf("\nOBJ and PLY import, best of %d (Release build; %u hardware threads; load average %.2f)\n\n", runs,
-              std::thread::hardware_concurrency(), load);
+  std::printf("\nOBJ and PLY import, best of %d (Release build; %s; load average %.2f)\n\n", runs,
+              hs::bench::threadsText().c_str(), load);
   std::printf("| file | MB | triangles | reader | best s | MB/s | M triangles/s | own / Assimp | peak MB | max position error |\n");
   std::printf("| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   for (size_t i = 0; i < rows.size(); ++i) {

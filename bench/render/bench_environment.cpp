@@ -131,8 +131,8 @@ int main(int argc, char** argv) {
   int frames = 9;
   for (int i = 1; i < argc; ++i)
     if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::max(1, std::atoi(argv[++i]));
-  std::printf("bench_environment, load %s, %u hardware threads\n", bench::loadAverageLine().c_str(),
-              std::thread::hardware_concurrency());
+  std::printf("bench_environment, load %s, %s\n", bench::loadAverageLine().c_str(),
+              bench::threadsText().c_str());
   accuracyTable();
   gpuTable(frames);
   std::printf("load after: %s\n", bench::loadAverageLine().c_str());

@@ -127,8 +127,8 @@ int main(int argc, char** argv) {
   std::printf("levels: %zu", asset.data->triangleCount());
   for (const auto& l : asset.lods) std::printf(", %zu (%.3g m)", l.triangles, l.hausdorff);
   std::printf(" triangles (Hausdorff from level 0, bunny units)\n");
-  std::printf("median of %d frames each, the bounds interleaved; load average %.2f on %u hardware threads\n\n", frames,
-              loadAverage(), std::thread::hardware_concurrency());
+  std::printf("median of %d frames each, the bounds interleaved; load average %.2f on %s\n\n", frames,
+              loadAverage(), hs::bench::threadsText().c_str());
 
   const render::RenderView view = render::viewFromCamera(s, s.cameras().front(), width, height);
   const std::vector<double> bounds = {0.0, 0.5, 1.0, 2.0, 4.0, 8.0};

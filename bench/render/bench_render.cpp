@@ -70,9 +70,9 @@ int main(int argc, char** argv) {
     const char* name;
     scene::Antialiasing aa;
   };
-  std::printf("demo scene at %dx%d from '%s', %s (EGL %s)\nmedian of %d frames after %d warm-up frames; load average %.2f on %u hardware threads\n\n",
+  std::printf("demo scene at %dx%d from '%s', %s (EGL %s)\nmedian of %d frames after %d warm-up frames; load average %.2f on %s\n\n",
               width, height, demo->find(cams.front())->name.c_str(), renderer.glDescription().c_str(),
-              renderer.eglPlatform().c_str(), frames, warmup, bench::loadAverage(), std::thread::hardware_concurrency());
+              renderer.eglPlatform().c_str(), frames, warmup, bench::loadAverage(), bench::threadsText().c_str());
   std::printf("| anti-aliasing | renderOnly ms | render + readback ms | difference ms | frames/s (with readback) | triangles drawn | draw calls |\n");
   std::printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   for (const Mode& m : {Mode{"none", scene::Antialiasing::None}, Mode{"FXAA", scene::Antialiasing::Fxaa},

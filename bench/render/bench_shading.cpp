@@ -161,9 +161,9 @@ int main(int argc, char** argv) {
   options.passTimings = true;
 
   std::printf("%d x %d Blinn-Phong spheres at %dx%d, %s (EGL %s)\n"
-              "opaque pass GPU time, median of %d frames after %d warm-up; load average %s on %u hardware threads\n\n",
+              "opaque pass GPU time, median of %d frames after %d warm-up; load average %s on %s\n\n",
               kColumns, kRows, width, height, renderer.glDescription().c_str(), renderer.eglPlatform().c_str(),
-              frames, warmup, bench::loadAverageLine().c_str(), std::thread::hardware_concurrency());
+              frames, warmup, bench::loadAverageLine().c_str(), bench::threadsText().c_str());
   std::printf("| lights | triangles (all spheres) | px per triangle | flat ms | Gouraud ms | Phong ms | Phong / Gouraud | "
               "Gouraud error: mean, >6 levels | flat error: mean, >6 levels |\n");
   std::printf("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
