@@ -169,6 +169,35 @@ class TestCli : public QObject {
     QVERIFY(load(f));
   }
 
+  // Without the image module (core/image_io.h) the CLI still opens, edits
+  // and saves a scene, and the textures it could not decode come back
+  // unchanged; what needs an image says the module is missing.
+  void withoutTheImageModuleTexturesSurviveASave() {
+    const QString f = path("no_images.hscene");
+    QVERIFY(QFile::copy(demo_, f));
+    qputenv("HS_IMAGE_IO_MODULE", "/nonexistent/hybridscape-image-io.so");
+    const Run edit = cli({"sequence", f, "--fps", "30"});
+    const Run render = cli({"render", f, "--out", path("no_images.png"), "--size", "64x32"});
+    qunsetenv("HS_IMAGE_IO_MODULE");
+    QVERIFY2(edit.code == 0, qPrintable(edit.err));
+    QCOMPARE(render.code, 1);
+    QVERIFY2(render.err.contains("the image module hybridscape-image-io.so (OpenImageIO) is missing") &&
+                 render.err.contains("/nonexistent/hybridscape-image-io.so (not there)"),
+             qPrintable(render.err));
+    const auto before = load(demo_), after = load(f);
+    QVERIFY(before && after);
+    QCOMPARE(after->sequence.rate.fps(), 30.0);
+    QVERIFY(!before->textures.empty());
+    QCOMPARE(after->textures.size(), before->textures.size());
+    for (const auto& [id, t] : before->textures) {
+      const auto& u = after->textures.at(id);
+      QVERIFY(t.image && u.image);
+      QVERIFY(!t.image->rgba.empty());
+      QCOMPARE(u.image->encoded, t.image->encoded);
+      QCOMPARE(u.image->rgba, t.image->rgba);
+    }
+  }
+
   void demoAndInfoJson() {
     const auto s = load(demo_);
     QVERIFY(s);
