@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 
@@ -9,6 +10,8 @@ namespace hs::image_io {
 namespace {
 
 constexpr const char* kModuleName = "hybridscape-image-io.so";
+
+std::atomic<LoadHook> gLoadHook{nullptr};
 
 struct Loaded {
   const Backend* backend = nullptr;
@@ -32,6 +35,14 @@ const Loaded& loaded() {
       if (!ec) candidates.push_back((self.parent_path() / kModuleName).string());
     }
     std::string tried;
+    const LoadHook hook = gLoadHook.load();
+    if (hook) hook(true);
+    struct After {
+      LoadHook hook;
+      ~After() {
+        if (hook) hook(false);
+      }
+    } after{hook};
     for (const std::string& path : candidates) {
       std::error_code ec;
       if (!std::filesystem::is_regular_file(path, ec)) {
@@ -82,6 +93,8 @@ std::string Spec::attribute(const std::string& name) const {
     if (n == name) return v;
   return {};
 }
+
+void setLoadHook(LoadHook hook) { gLoadHook.store(hook); }
 
 bool available(std::string* where) {
   const Loaded& l = loaded();

@@ -84,6 +84,13 @@ bool encode(const std::string& format, const Spec& spec, PixelType memoryType, c
 // where it was found or looked.
 bool available(std::string* where = nullptr);
 
+// Called on the loading thread just before the module is loaded (true) and
+// just after (false), once per process. The import worker lifts its
+// address-space limit around it: the module's ~260 libraries map 500-700
+// MiB, which are not the file's doing. Set before the first image call.
+using LoadHook = void (*)(bool before);
+void setLoadHook(LoadHook hook);
+
 // The module's side: one object with the calls above, returned by the
 // module's `hs_image_io_backend` (extern "C"). Both sides are built together
 // from this header, so C++ types cross between them.

@@ -21,6 +21,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -155,6 +156,24 @@ rlim_t addressSpaceNow() {
   return rlim_t(pages) * rlim_t(sysconf(_SC_PAGESIZE));
 }
 
+// Around the image module's loading: the soft limit goes up to the hard
+// one, and afterwards comes back raised by what the module mapped.
+rlim_t gHardLimit = RLIM_INFINITY;
+void liftLimitWhileLoading(bool before) {
+  static rlim_t soft = 0, mappedBefore = 0;
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0) return;
+  if (before) {
+    soft = limit.rlim_cur, mappedBefore = addressSpaceNow();
+    limit.rlim_cur = gHardLimit;
+  } else {
+    const rlim_t now = addressSpaceNow();
+    const rlim_t added = now > mappedBefore ? now - mappedBefore : 0;
+    limit.rlim_cur = soft == RLIM_INFINITY ? soft : std::min<rlim_t>(soft + added, gHardLimit);
+  }
+  setrlimit(RLIMIT_AS, &limit);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -255,26 +274,24 @@ int main(int argc, char** argv) {
     writeAll(STDOUT_FILENO, hs::mesh::importProgressLine(f, stage));
   });
 
-  // The limit starts here, after our own threads have their stacks and the
-  // image module is loaded, and bounds what reading adds to the address
-  // space the worker then has. The libraries alone map 500-700 MiB
-  // (OpenImageIO's dependencies: 260 shared libraries), so an absolute
-  // limit of 512 MiB (half of a 1 GiB job) left nothing and even a 2 KB
-  // file "ran out of memory". The module is loaded here, not on the first
-  // texture (core/image_io.h), because loading it under the limit would
-  // count its libraries against the file: textured scans are what this
-  // worker mostly reads.
+  // The limit starts here, after our own threads have their stacks, and
+  // bounds what reading adds to the address space the worker then has:
+  // its libraries map hundreds of MiB, so an absolute limit of 512 MiB
+  // (half of a 1 GiB job) once left nothing and even a 2 KB file "ran out
+  // of memory". Only the soft limit is set, so that it can be lifted while
+  // the image module loads (on the first texture, core/image_io.h: its
+  // ~260 libraries map 500-700 MiB more, which are not the file's doing
+  // either); loading it up front cost every worker 0.4 s, textures or not.
   if (memoryLimit) {
-    hs::image_io::available();
-    rlim_t limitAs = addressSpaceNow() + memoryLimit;
+    rlimit limit{};
+    if (getrlimit(RLIMIT_AS, &limit) != 0) limit = {RLIM_INFINITY, RLIM_INFINITY};
+    gHardLimit = limit.rlim_max;
     // A limit already set from outside (ulimit -v) and lower stays: we
     // only ever lower it.
-    rlimit limit{};
-    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_max != RLIM_INFINITY && limit.rlim_max < limitAs)
-      limitAs = limit.rlim_max;
-    limit = {limitAs, limitAs};
+    limit.rlim_cur = std::min<rlim_t>(addressSpaceNow() + memoryLimit, gHardLimit);
     if (setrlimit(RLIMIT_AS, &limit) != 0)
       return usage("--memory-limit-mb: cannot set the limit: " + std::string(std::strerror(errno)));
+    hs::image_io::setLoadHook(liftLimitWhileLoading);
     std::set_new_handler(outOfMemory);
     std::set_terminate(terminateUnderLimit);
   }
