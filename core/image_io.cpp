@@ -35,6 +35,9 @@ const Loaded& loaded() {
       if (!ec) candidates.push_back((self.parent_path() / kModuleName).string());
     }
     std::string tried;
+    auto note = [&](const std::string& path, const std::string& why) {
+      tried += (tried.empty() ? "" : ", ") + path + " (" + why + ")";
+    };
     const LoadHook hook = gLoadHook.load();
     if (hook) hook(true);
     struct After {
@@ -46,19 +49,19 @@ const Loaded& loaded() {
     for (const std::string& path : candidates) {
       std::error_code ec;
       if (!std::filesystem::is_regular_file(path, ec)) {
-        tried += (tried.empty() ? "" : ", ") + path + " (not there)";
+        note(path, "not there");
         continue;
       }
       void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
       if (!handle) {
         const char* why = ::dlerror();
-        tried += (tried.empty() ? "" : ", ") + path + " (" + (why ? why : "cannot load") + ")";
+        note(path, why ? why : "cannot load");
         continue;
       }
       using Entry = const Backend* (*)();
       const auto entry = reinterpret_cast<Entry>(::dlsym(handle, "hs_image_io_backend"));
       if (!entry) {
-        tried += (tried.empty() ? "" : ", ") + path + " (no hs_image_io_backend in it)";
+        note(path, "no hs_image_io_backend in it");
         ::dlclose(handle);
         continue;
       }
@@ -74,18 +77,19 @@ const Loaded& loaded() {
   return l;
 }
 
+// The module's calls, or null with `error` saying why there are none.
+const Backend* backend(std::string& error) {
+  const Loaded& l = loaded();
+  if (!l.backend) error = l.where;
+  return l.backend;
+}
+
 }  // namespace
 
-size_t bytesPerChannel(PixelType t) {
-  switch (t) {
-    case PixelType::UInt8: return 1;
-    case PixelType::UInt16:
-    case PixelType::Half: return 2;
-    case PixelType::Float: return 4;
-    case PixelType::Double: return 8;
-    case PixelType::Other: break;
-  }
-  return 0;
+Spec Spec::of(int width, int height, int channels, PixelType format) {
+  Spec s;
+  s.width = width, s.height = height, s.channels = channels, s.format = format;
+  return s;
 }
 
 std::string Spec::attribute(const std::string& name) const {
@@ -103,41 +107,25 @@ bool available(std::string* where) {
 }
 
 std::unique_ptr<Reader> open(const std::string& path, std::string& error) {
-  const Loaded& l = loaded();
-  if (!l.backend) {
-    error = l.where;
-    return nullptr;
-  }
-  return l.backend->open(path, error);
+  const Backend* b = backend(error);
+  return b ? b->open(path, error) : nullptr;
 }
 
 std::unique_ptr<Reader> openMemory(std::span<const uint8_t> bytes, const std::string& nameHint, std::string& error) {
-  const Loaded& l = loaded();
-  if (!l.backend) {
-    error = l.where;
-    return nullptr;
-  }
-  return l.backend->openMemory(bytes, nameHint, error);
+  const Backend* b = backend(error);
+  return b ? b->openMemory(bytes, nameHint, error) : nullptr;
 }
 
 bool writeFile(const std::string& path, const Spec& spec, PixelType memoryType, const void* pixels,
                std::string& error) {
-  const Loaded& l = loaded();
-  if (!l.backend) {
-    error = l.where;
-    return false;
-  }
-  return l.backend->writeFile(path, spec, memoryType, pixels, error);
+  const Backend* b = backend(error);
+  return b && b->writeFile(path, spec, memoryType, pixels, error);
 }
 
 bool encode(const std::string& format, const Spec& spec, PixelType memoryType, const void* pixels,
             std::vector<uint8_t>& bytes, std::string& error) {
-  const Loaded& l = loaded();
-  if (!l.backend) {
-    error = l.where;
-    return false;
-  }
-  return l.backend->encode(format, spec, memoryType, pixels, bytes, error);
+  const Backend* b = backend(error);
+  return b && b->encode(format, spec, memoryType, pixels, bytes, error);
 }
 
 }  // namespace hs::image_io

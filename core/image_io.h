@@ -33,7 +33,6 @@ namespace hs::image_io {
 
 // Pixel types, in files and in memory.
 enum class PixelType : uint8_t { UInt8, UInt16, Half, Float, Double, Other };
-size_t bytesPerChannel(PixelType t);
 
 // What an image file holds, or is to hold.
 struct Spec {
@@ -47,6 +46,8 @@ struct Spec {
   std::vector<std::pair<std::string, int>> ints;
   // The text attribute `name`, "" when there is none.
   std::string attribute(const std::string& name) const;
+  // A spec with its size, channels and pixel type, no metadata.
+  static Spec of(int width, int height, int channels, PixelType format);
 };
 
 // An image file open for reading.

@@ -117,8 +117,7 @@ std::string textureFileBytes(const Texture& t, bool pngOrJpeg, std::string& exte
   }
   extension = ".png";
   std::vector<uint8_t> buffer;
-  image_io::Spec spec;
-  spec.width = t.width, spec.height = t.height, spec.channels = 4, spec.format = image_io::PixelType::UInt8;
+  const auto spec = image_io::Spec::of(t.width, t.height, 4, image_io::PixelType::UInt8);
   if (std::string why; !image_io::encode("png", spec, image_io::PixelType::UInt8, t.rgba.data(), buffer, why)) {
     error = "texture '" + t.name + "' could not be encoded as PNG: " + why;
     return {};

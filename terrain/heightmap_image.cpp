@@ -49,13 +49,6 @@ void putMetadata(image_io::Spec& spec, const Heightfield& hf, const HeightRange*
   put("ImageDescription", "Hybridscape heightmap; row 0 = north; see hs:* for range and georeferencing");
 }
 
-// A single-image spec of `format`.
-image_io::Spec imageSpec(int w, int h, int channels, image_io::PixelType format) {
-  image_io::Spec spec;
-  spec.width = w, spec.height = h, spec.channels = channels, spec.format = format;
-  return spec;
-}
-
 Status writeImage(const std::string& path, const image_io::Spec& spec, image_io::PixelType type, const void* data) {
   if (std::string why; !image_io::writeFile(path, spec, type, data, why)) return Status::failure(path + ": " + why);
   return {};
@@ -145,7 +138,7 @@ Result<HeightExportReport> exportHeightmap(const Heightfield& hf, const std::str
       return rep;
     }
     case HeightmapFormat::Exr32: {
-      image_io::Spec spec = imageSpec(w, h, 1, image_io::PixelType::Float);
+      image_io::Spec spec = image_io::Spec::of(w, h, 1, image_io::PixelType::Float);
       spec.channelNames = {"Y"};
       spec.text.emplace_back("compression", "zip");
       putMetadata(spec, hf, nullptr);
@@ -157,7 +150,7 @@ Result<HeightExportReport> exportHeightmap(const Heightfield& hf, const std::str
       rep.range = range;
       rep.quantisationStep = (double(range.max) - double(range.min)) / 65535.0;
       const auto q = quantise(heights, range, rep.clampedSamples);
-      image_io::Spec spec = imageSpec(w, h, 1, image_io::PixelType::UInt16);
+      image_io::Spec spec = image_io::Spec::of(w, h, 1, image_io::PixelType::UInt16);
       spec.text.emplace_back("oiio:ColorSpace", "Linear");
       putMetadata(spec, hf, &range);
       Status s = writeImage(path, spec, image_io::PixelType::UInt16, q.data());
@@ -303,7 +296,7 @@ Result<std::string> exportPaintLayerImage(const PaintLayers& paint, int layer, c
     for (int x = 0; x < w; ++x) v[size_t(h - 1 - y) * size_t(w) + size_t(x)] = paint.weight(layer, x, y);
   const image_io::PixelType type =
       isExr ? image_io::PixelType::Float : bits == 16 ? image_io::PixelType::UInt16 : image_io::PixelType::UInt8;
-  image_io::Spec spec = imageSpec(w, h, 1, type);
+  image_io::Spec spec = image_io::Spec::of(w, h, 1, type);
   spec.text.emplace_back("oiio:ColorSpace", "Linear");
   spec.text.emplace_back("ImageDescription",
                          "Hybridscape paint weights, layer '" + paint.material(layer).name + "'; row 0 = north");
@@ -323,7 +316,7 @@ Result<std::string> exportSplatMap(const PaintLayers& paint, int first, const st
         if (first + c < paint.layerCount())
           v[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + size_t(c)] =
               uint8_t(std::lround(double(paint.raw(first + c, x, y)) * 255.0 / 65535.0));
-  image_io::Spec spec = imageSpec(w, h, 4, image_io::PixelType::UInt8);
+  image_io::Spec spec = image_io::Spec::of(w, h, 4, image_io::PixelType::UInt8);
   spec.text.emplace_back("oiio:ColorSpace", "Linear");
   spec.ints.emplace_back("oiio:UnassociatedAlpha", 1);
   Status s = writeImage(path, spec, image_io::PixelType::UInt8, v.data());

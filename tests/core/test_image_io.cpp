@@ -40,12 +40,6 @@ bool openImageIoMapped() {
   return s.str().find("libOpenImageIO") != std::string::npos;
 }
 
-io::Spec specOf(int w, int h, int channels, io::PixelType t) {
-  io::Spec s;
-  s.width = w, s.height = h, s.channels = channels, s.format = t;
-  return s;
-}
-
 std::vector<uint8_t> gradientRgba(int w, int h) {
   std::vector<uint8_t> p(size_t(w) * size_t(h) * 4);
   for (int y = 0; y < h; ++y)
@@ -77,7 +71,7 @@ class TestImageIo : public QObject {
       std::vector<uint8_t> bytes;
       std::string error2;
       const uint8_t pixel[4] = {1, 2, 3, 4};
-      const bool encoded = io::encode("png", specOf(1, 1, 4, io::PixelType::UInt8), io::PixelType::UInt8, pixel, bytes, error2);
+      const bool encoded = io::encode("png", io::Spec::of(1, 1, 4, io::PixelType::UInt8), io::PixelType::UInt8, pixel, bytes, error2);
       const bool named = error.find("/nonexistent/hybridscape-image-io.so (not there)") != std::string::npos &&
                          error.find("HS_IMAGE_IO_MODULE") != std::string::npos && error == error2;
       _exit(!opened && !encoded && !io::available() && named ? 0 : 1);
@@ -119,7 +113,7 @@ class TestImageIo : public QObject {
     const std::vector<uint8_t> rgba = gradientRgba(w, h);
     std::vector<uint8_t> png;
     std::string error;
-    QVERIFY2(io::encode("png", specOf(w, h, 4, io::PixelType::UInt8), io::PixelType::UInt8, rgba.data(), png, error),
+    QVERIFY2(io::encode("png", io::Spec::of(w, h, 4, io::PixelType::UInt8), io::PixelType::UInt8, rgba.data(), png, error),
              error.c_str());
     QImage decoded = QImage::fromData(png.data(), int(png.size()), "PNG").convertToFormat(QImage::Format_RGBA8888);
     QCOMPARE(decoded.width(), w);
@@ -149,7 +143,7 @@ class TestImageIo : public QObject {
     std::vector<uint16_t> ramp(size_t(w) * size_t(h));
     for (size_t i = 0; i < ramp.size(); ++i) ramp[i] = uint16_t(i * 219 % 65536);
     std::string error;
-    io::Spec png16 = specOf(w, h, 1, io::PixelType::UInt16);
+    io::Spec png16 = io::Spec::of(w, h, 1, io::PixelType::UInt16);
     png16.text = {{"ImageDescription", "ramp"}};
     QVERIFY2(io::writeFile(path("ramp.png"), png16, io::PixelType::UInt16, ramp.data(), error), error.c_str());
     auto in = io::open(path("ramp.png"), error);
@@ -166,7 +160,7 @@ class TestImageIo : public QObject {
 
     std::vector<float> heights(size_t(w) * size_t(h));
     for (size_t i = 0; i < heights.size(); ++i) heights[i] = float(std::sin(double(i) * 0.37) * 1234.5678 - 17.0);
-    io::Spec exr = specOf(w, h, 1, io::PixelType::Float);
+    io::Spec exr = io::Spec::of(w, h, 1, io::PixelType::Float);
     exr.channelNames = {"Y"};
     exr.text = {{"compression", "zip"}, {"hs:origin_x", "656059.25"}};
     QVERIFY2(io::writeFile(path("h.exr"), exr, io::PixelType::Float, heights.data(), error), error.c_str());
@@ -192,7 +186,7 @@ class TestImageIo : public QObject {
       }
     std::string error;
     for (const char* format : {"tiff", "jpeg"}) {
-      io::Spec spec = specOf(w, h, 3, io::PixelType::UInt8);
+      io::Spec spec = io::Spec::of(w, h, 3, io::PixelType::UInt8);
       spec.ints = {{"CompressionQuality", 95}};
       std::vector<uint8_t> bytes;
       QVERIFY2(io::encode(format, spec, io::PixelType::UInt8, rgb.data(), bytes, error), error.c_str());
@@ -220,7 +214,7 @@ class TestImageIo : public QObject {
     const int w = 200, h = 200;
     const std::vector<uint8_t> rgba = gradientRgba(w, h);
     std::vector<uint8_t> png;
-    QVERIFY(io::encode("png", specOf(w, h, 4, io::PixelType::UInt8), io::PixelType::UInt8, rgba.data(), png, error));
+    QVERIFY(io::encode("png", io::Spec::of(w, h, 4, io::PixelType::UInt8), io::PixelType::UInt8, rgba.data(), png, error));
     png.resize(png.size() / 2);
     auto in = io::openMemory(png, "cut.png", error);
     QVERIFY2(in, error.c_str());
@@ -230,13 +224,13 @@ class TestImageIo : public QObject {
     QVERIFY(!error.empty());
 
     const uint8_t pixel[4] = {1, 2, 3, 4};
-    QVERIFY(!io::writeFile(path("x.unknownformat"), specOf(1, 1, 4, io::PixelType::UInt8), io::PixelType::UInt8, pixel,
+    QVERIFY(!io::writeFile(path("x.unknownformat"), io::Spec::of(1, 1, 4, io::PixelType::UInt8), io::PixelType::UInt8, pixel,
                            error));
     QVERIFY2(error.find("cannot write this image format") == 0, error.c_str());
-    QVERIFY(!io::writeFile(path("no/such/folder/x.png"), specOf(1, 1, 4, io::PixelType::UInt8), io::PixelType::UInt8,
+    QVERIFY(!io::writeFile(path("no/such/folder/x.png"), io::Spec::of(1, 1, 4, io::PixelType::UInt8), io::PixelType::UInt8,
                            pixel, error));
     QVERIFY2(error.find("cannot create the file") == 0, error.c_str());
-    QVERIFY(!io::encode("no-such-format", specOf(1, 1, 4, io::PixelType::UInt8), io::PixelType::UInt8, pixel, png,
+    QVERIFY(!io::encode("no-such-format", io::Spec::of(1, 1, 4, io::PixelType::UInt8), io::PixelType::UInt8, pixel, png,
                         error));
     QVERIFY(!error.empty());
   }
