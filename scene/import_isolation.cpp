@@ -477,6 +477,7 @@ bool workerLimits(WorkerLimits& limits, std::string& error) {
   // A share of what this process may use: the machine's memory, or its
   // control group's limit where lower (a Slurm job, a container).
   const MemoryLimit available = memoryLimit();
+  limits.usableBytes = available.bytes;
   const double usable = double(available.bytes);
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
@@ -516,8 +517,7 @@ unsigned tileReadParallelism(const std::vector<std::string>& paths, const mesh::
   WorkerLimits limits;
   std::string ignored;  // a bad setting is reported by the tile's own read
   if (workerLimits(limits, ignored) && limits.memoryBytes > 0) {
-    const double usable = double(memoryLimit().bytes);
-    n = std::min(n, unsigned(std::max(1.0, std::floor(usable / double(limits.memoryBytes)))));
+    n = std::min(n, unsigned(std::max(1.0, std::floor(double(limits.usableBytes) / double(limits.memoryBytes)))));
   }
   return std::max(1u, std::min<unsigned>(n, unsigned(paths.size())));
 }

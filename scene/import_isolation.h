@@ -30,17 +30,18 @@ std::string findImportWorker(std::string* lookedAt = nullptr);
 // What the worker may use. It runs under a memory limit (RLIMIT_AS on
 // what it maps beyond its own libraries), a share of the memory this
 // process may use (core/memory_limit.h: the machine's, or its control
-// group's limit where lower, as in a Slurm job or a container), so a
-// file that asks for too much stops with an error
-// saying so instead of taking the machine or getting the job killed; and
-// under a watchdog that stops it when it reports no progress for a while
-// (a reader spinning on a damaged file). Set by the environment:
+// group's limit where lower, as in a Slurm job or a container), so a file
+// that asks for too much stops with an error saying so instead of taking
+// the machine or getting the job killed; and under a watchdog that stops
+// it when it reports no progress for a while (a reader spinning on a
+// damaged file). Set by the environment:
 //   HS_IMPORT_MEMORY_LIMIT  "50%" of that memory (the default), a
 //                           number of MiB ("4096"), or "0": no limit
 //   HS_IMPORT_WATCHDOG_S    seconds without progress (default 300), "0": none
 struct WorkerLimits {
   uint64_t memoryBytes = 0;     // 0: none
   std::string memoryText;       // how it was set, for messages ("50% of 125.8 GiB")
+  uint64_t usableBytes = 0;     // what a share is of (core/memory_limit.h's memoryLimit().bytes)
   double watchdogSeconds = 0;   // 0: none
 };
 // False with `error` naming the variable when one is set to nonsense.

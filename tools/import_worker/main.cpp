@@ -158,18 +158,17 @@ rlim_t addressSpaceNow() {
 
 // Around the image module's loading: the soft limit goes up to the hard
 // one, and afterwards comes back raised by what the module mapped.
-rlim_t gHardLimit = RLIM_INFINITY;
 void liftLimitWhileLoading(bool before) {
   static rlim_t soft = 0, mappedBefore = 0;
   rlimit limit{};
   if (getrlimit(RLIMIT_AS, &limit) != 0) return;
   if (before) {
     soft = limit.rlim_cur, mappedBefore = addressSpaceNow();
-    limit.rlim_cur = gHardLimit;
+    limit.rlim_cur = limit.rlim_max;
   } else {
     const rlim_t now = addressSpaceNow();
     const rlim_t added = now > mappedBefore ? now - mappedBefore : 0;
-    limit.rlim_cur = soft == RLIM_INFINITY ? soft : std::min<rlim_t>(soft + added, gHardLimit);
+    limit.rlim_cur = soft == RLIM_INFINITY ? soft : std::min<rlim_t>(soft + added, limit.rlim_max);
   }
   setrlimit(RLIMIT_AS, &limit);
 }
@@ -285,10 +284,9 @@ int main(int argc, char** argv) {
   if (memoryLimit) {
     rlimit limit{};
     if (getrlimit(RLIMIT_AS, &limit) != 0) limit = {RLIM_INFINITY, RLIM_INFINITY};
-    gHardLimit = limit.rlim_max;
     // A limit already set from outside (ulimit -v) and lower stays: we
     // only ever lower it.
-    limit.rlim_cur = std::min<rlim_t>(addressSpaceNow() + memoryLimit, gHardLimit);
+    limit.rlim_cur = std::min<rlim_t>(addressSpaceNow() + memoryLimit, limit.rlim_max);
     if (setrlimit(RLIMIT_AS, &limit) != 0)
       return usage("--memory-limit-mb: cannot set the limit: " + std::string(std::strerror(errno)));
     hs::image_io::setLoadHook(liftLimitWhileLoading);
