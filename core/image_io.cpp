@@ -1,15 +1,11 @@
 #include "core/image_io.h"
 
-#include <dlfcn.h>
-
 #include <atomic>
-#include <cstdlib>
-#include <filesystem>
+
+#include "core/module_loader.h"
 
 namespace hs::image_io {
 namespace {
-
-constexpr const char* kModuleName = "hybridscape-image-io.so";
 
 std::atomic<LoadHook> gLoadHook{nullptr};
 
@@ -22,57 +18,21 @@ struct Loaded {
 // may outlive any caller's scope).
 const Loaded& loaded() {
   static const Loaded l = [] {
-    Loaded r;
-    std::vector<std::string> candidates;
-    if (const char* env = std::getenv("HS_IMAGE_IO_MODULE"); env && *env) {
-      candidates.push_back(env);
-    } else {
+    static constexpr ModuleSpec kSpec{
+        .fileName = "hybridscape-image-io.so",
+        .envVar = "HS_IMAGE_IO_MODULE",
 #ifdef HS_IMAGE_IO_MODULE_PATH
-      candidates.push_back(HS_IMAGE_IO_MODULE_PATH);
+        .buildPath = HS_IMAGE_IO_MODULE_PATH,
+#else
+        .buildPath = nullptr,
 #endif
-      std::error_code ec;
-      const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-      if (!ec) candidates.push_back((self.parent_path() / kModuleName).string());
-    }
-    std::string tried;
-    auto note = [&](const std::string& path, const std::string& why) {
-      tried += (tried.empty() ? "" : ", ") + path + " (" + why + ")";
+        .entrySymbol = "hs_image_io_backend",
+        .kind = "image module",
+        .wraps = "OpenImageIO",
+        .without = "no image can be read or written",
     };
-    const LoadHook hook = gLoadHook.load();
-    if (hook) hook(true);
-    struct After {
-      LoadHook hook;
-      ~After() {
-        if (hook) hook(false);
-      }
-    } after{hook};
-    for (const std::string& path : candidates) {
-      std::error_code ec;
-      if (!std::filesystem::is_regular_file(path, ec)) {
-        note(path, "not there");
-        continue;
-      }
-      void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!handle) {
-        const char* why = ::dlerror();
-        note(path, why ? why : "cannot load");
-        continue;
-      }
-      using Entry = const Backend* (*)();
-      const auto entry = reinterpret_cast<Entry>(::dlsym(handle, "hs_image_io_backend"));
-      if (!entry) {
-        note(path, "no hs_image_io_backend in it");
-        ::dlclose(handle);
-        continue;
-      }
-      r.backend = entry();
-      r.where = path;
-      return r;
-    }
-    r.where = "the image module " + std::string(kModuleName) + " (OpenImageIO) is missing, so no image can be read " +
-              "or written; looked at " + (tried.empty() ? std::string("nothing") : tried) +
-              "; HS_IMAGE_IO_MODULE names it";
-    return r;
+    const LoadedModule m = loadModule(kSpec, gLoadHook.load());
+    return Loaded{static_cast<const Backend*>(m.entry), m.where};
   }();
   return l;
 }

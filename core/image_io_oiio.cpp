@@ -196,7 +196,9 @@ class OiioBackend final : public Backend {
 }  // namespace
 }  // namespace hs::image_io
 
-extern "C" __attribute__((visibility("default"))) const hs::image_io::Backend* hs_image_io_backend() {
+// The module's entry point (core/module_loader.h): its calls, as the
+// Backend of image_io.h.
+extern "C" __attribute__((visibility("default"))) const void* hs_image_io_backend() {
   static const hs::image_io::OiioBackend backend;
-  return &backend;
+  return static_cast<const hs::image_io::Backend*>(&backend);
 }
