@@ -8,7 +8,7 @@ BUILD_PACKAGES=(
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev libgl-dev
   libglm-dev libassimp-dev libopenimageio-dev openimageio-tools libopenmesh-dev libgdal-dev
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libsqlite3-dev libmeshoptimizer-dev
-  libtbb-dev nlohmann-json3-dev libxxhash-dev libcli11-dev zlib1g-dev
+  libtbb-dev nlohmann-json3-dev libxxhash-dev libcli11-dev zlib1g-dev libdeflate-dev
   libcgal-dev
 )
 # Tests: an X server for the GUI smoke test, Mesa for headless EGL, ffmpeg

@@ -1,7 +1,9 @@
-#include "terrain/dem_import.h"
-
+// The GDAL side of a DEM import (terrain/gdal_door.h): opening the file,
+// the window, the target CRS, reading and reprojecting, vertical units.
+// Built into the GDAL module, hybridscape-gdal.so, not into hs_terrain; the
+// rest of the import (nodata fill, resizing, the heightfield) is
+// dem_import.cpp's.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +15,7 @@
 #include <ogr_srs_api.h>
 
 #include "terrain/crs_util.h"
+#include "terrain/gdal_side.h"
 #include "terrain/gdal_util.h"
 
 namespace hs::terrain {
@@ -174,12 +177,9 @@ double verticalUnitScale(const char* unit, std::string& name) {
   return 1.0;
 }
 
-DemImportResult run(const std::string& path, const DemImportOptions& opt, const Progress* progress) {
-  const auto t0 = std::chrono::steady_clock::now();
-  DemImportResult res;
-  DemImportReport& rep = res.report;
-  rep.file = path;
-  rep.resampling = resamplingName(opt.resampling);
+// Throws Fail; `cancelled` is set when it stops for a Cancel.
+void read(const std::string& path, const DemImportOptions& opt, const Progress* progress, gdal_door::DemRaster& out,
+          DemImportReport& rep, bool& cancelled) {
   auto fail = [&](const std::string& m) { throw Fail{path + ": " + m}; };
 
   ensureGdalRegistered();
@@ -409,7 +409,7 @@ DemImportResult run(const std::string& path, const DemImportOptions& opt, const 
     DatasetPtr warped(GDALWarp("", nullptr, 1, &srcH, wo, &usageError));
     GDALWarpAppOptionsFree(wo);
     if (isCancelled(progress)) {
-      res.cancelled = true;
+      cancelled = true;
       throw Fail{path + ": import cancelled"};
     }
     if (!warped)
@@ -419,7 +419,7 @@ DemImportResult run(const std::string& path, const DemImportOptions& opt, const 
     if (GDALRasterIO(GDALGetRasterBand(warped.get(), 1), GF_Read, 0, 0, gw, gh, values.data(), gw, gh, GDT_Float32, 0,
                      0) != CE_None)
       fail("cannot read the reprojected elevations; the file may be damaged or truncated (" + gdalErrors.lastError() + ")");
-    valid.resize(values.size());
+    valid = std::vector<uint8_t>(values.size());
     for (size_t i = 0; i < values.size(); ++i) valid[i] = std::isfinite(values[i]) ? 1 : 0;
     px = (xmax - xmin) / gw;
     py = (ymax - ymin) / gh;
@@ -437,12 +437,12 @@ DemImportResult run(const std::string& path, const DemImportOptions& opt, const 
     extra.pProgressData = &pd;
     if (GDALRasterIOEx(band, GF_Read, wx0, wy0, ww, wh, values.data(), gw, gh, GDT_Float32, 0, 0, &extra) != CE_None) {
       if (isCancelled(progress)) {
-        res.cancelled = true;
+        cancelled = true;
         throw Fail{path + ": import cancelled"};
       }
       fail("cannot read the elevations; the file is damaged or truncated (" + gdalErrors.lastError() + ")");
     }
-    valid.resize(values.size());
+    valid = std::vector<uint8_t>(values.size());
     const float ndf = float(nd);
     for (size_t i = 0; i < values.size(); ++i)
       valid[i] = std::isfinite(values[i]) && !(noData && (values[i] == ndf || double(values[i]) == nd)) ? 1 : 0;
@@ -513,89 +513,33 @@ DemImportResult run(const std::string& path, const DemImportOptions& opt, const 
   if (std::find(valid.begin(), valid.end(), uint8_t(1)) == valid.end())
     fail(std::string("every sample") + (win.units != DemWindow::Units::Full ? " in the window" : "") +
          " is nodata" + (noData ? " (" + fmt(nd) + ")" : "") + "; there is no elevation to import");
-  reportProgress(progress, 0.65, "filling nodata");
-  if (!fillNodata(values, valid, gw, gh, opt.fill, opt.idwMaxDistancePixels, rep.fill, progress))
-    fail("no valid elevation to fill from");
-  if (rep.fill.filled) {
-    const double share = double(rep.fill.filled) / double(values.size());
-    rep.warnings.push_back(std::to_string(rep.fill.filled) + " nodata samples (" + fmt(std::round(share * 1e4) / 100) +
-                           "%) in " + std::to_string(rep.fill.voids) + " voids filled by " + rep.fill.method);
-    if (share > 0.5) rep.warnings.push_back("more than half of the terrain is filled, not measured");
-  }
-  if (isCancelled(progress)) {
-    res.cancelled = true;
-    throw Fail{path + ": import cancelled"};
-  }
-
-  // --- resize ------------------------------------------------------------
-  int outW = opt.samplesX ? opt.samplesX : gw, outH = opt.samplesY ? opt.samplesY : gh;
-  if (outW != gw || outH != gh) {
-    reportProgress(progress, 0.85, "resampling");
-    values = resampleGrid(values, gw, gh, outW, outH, opt.resampling);
-    px *= double(gw - 1) / double(outW - 1);
-    py *= double(gh - 1) / double(outH - 1);
-  }
-
-  // --- heightfield (row 0 = south) ------------------------------------------
-  HeightfieldDesc desc;
-  desc.samplesX = outW;
-  desc.samplesY = outH;
-  desc.sizeMetres = {px * (outW - 1), py * (outH - 1)};
-  desc.origin = {sw.x, sw.y, 0.0};
-  auto hf = Heightfield::create(desc);
-  if (!hf) fail(hf.error());
-  Heightfield field = hf.take();
-  for (int y = 0; y < outH / 2; ++y)  // north-first rows -> south-first
-    std::swap_ranges(values.begin() + long(y) * outW, values.begin() + long(y + 1) * outW,
-                     values.begin() + long(outH - 1 - y) * outW);
-  field.write(field.bounds(), values);  // also computes the tile bounds
-  GeoReference geo;
-  geo.crsWkt = outWkt;
-  geo.crsName = rep.targetCrs;
-  geo.epsg = rep.targetEpsg;
-  field.setGeo(geo);
-
-  rep.samplesX = outW;
-  rep.samplesY = outH;
-  rep.spacing = field.spacing();
-  rep.groundSize = field.sizeMetres();
-  rep.origin = {sw.x, sw.y};
-  const HeightRange hr = field.range();
-  rep.heightMin = hr.min;
-  rep.heightMax = hr.max;
   for (const auto& w : gdalErrors.warnings()) rep.warnings.push_back("GDAL: " + w);
-  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  reportProgress(progress, 1.0, "done");
-  res.heightfield = std::move(field);
-  return res;
+  out.width = gw;
+  out.height = gh;
+  out.values = std::move(values);
+  out.valid = std::move(valid);
+  out.spacing = {px, py};
+  out.southWest = sw;
+  out.crsWkt = std::move(outWkt);
 }
 
 }  // namespace
 
-DemImportResult importDem(const std::string& path, const DemImportOptions& options, const Progress* progress) {
-  // Fail is thrown only inside run() and caught here: no exception crosses the API.
-  DemImportResult partial;
+bool gdal_side::readDem(const std::string& path, const DemImportOptions& options, const Progress* progress,
+                        gdal_door::DemRaster& out, DemImportReport& report, std::string& error, bool& cancelled) {
+  // Fail is thrown only inside read() and caught here: no exception crosses
+  // the module's boundary.
+  cancelled = false;
   try {
-    return run(path, options, progress);
+    read(path, options, progress, out, report, cancelled);
+    return true;
   } catch (const Fail& f) {
-    partial.error = f.msg;
-    partial.report.file = path;
-    partial.cancelled = isCancelled(progress);
+    error = f.msg;
   } catch (const std::exception& e) {
-    partial.error = path + ": " + e.what();
-    partial.report.file = path;
+    error = path + ": " + e.what();
   }
-  return partial;
-}
-
-std::string summary(const DemImportReport& r) {
-  std::ostringstream s;
-  s << r.file << ": " << r.driver << " " << r.sourceWidth << "x" << r.sourceHeight << " " << r.sourceCrs;
-  if (r.reprojected) s << " -> " << r.targetCrs;
-  s << ", terrain " << r.samplesX << "x" << r.samplesY << " samples, " << r.groundSize.x << " x " << r.groundSize.y
-    << " m, heights " << r.heightMin << ".." << r.heightMax << " m";
-  if (r.fill.filled) s << ", " << r.fill.filled << " nodata samples filled (" << r.fill.method << ")";
-  return s.str();
+  cancelled = cancelled || isCancelled(progress);
+  return false;
 }
 
 }  // namespace hs::terrain

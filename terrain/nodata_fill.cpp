@@ -5,10 +5,7 @@
 #include <cmath>
 #include <deque>
 
-#include <gdal.h>
-#include <gdal_alg.h>
-
-#include "terrain/gdal_util.h"
+#include "terrain/gdal_door.h"
 
 namespace hs::terrain {
 
@@ -138,13 +135,6 @@ void diffusionFill(std::vector<float>& values, const std::vector<uint8_t>& valid
     if (!valid[i]) values[i] = float(pyr[0].v[i]);
 }
 
-int gdalProgress(double complete, const char*, void* data) {
-  const Progress* p = static_cast<const Progress*>(data);
-  if (!p) return TRUE;
-  p->report(complete, "filling nodata");
-  return p->cancelled() ? FALSE : TRUE;
-}
-
 }  // namespace
 
 bool fillNodata(std::vector<float>& values, const std::vector<uint8_t>& validIn, int w, int h, NodataFill method,
@@ -159,28 +149,11 @@ bool fillNodata(std::vector<float>& values, const std::vector<uint8_t>& validIn,
   countVoids(valid, w, h, r);
 
   if (method == NodataFill::InverseDistance) {
-    ensureGdalRegistered();
-    GdalErrorCapture capture;
-    DatasetPtr ds(GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 1, GDT_Float32, nullptr));
-    if (ds) {
-      GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
-      const float sentinel = -FLT_MAX;
-      std::vector<float> buf = values;
-      for (size_t i = 0; i < buf.size(); ++i)
-        if (!valid[i]) buf[i] = sentinel;
-      GDALSetRasterNoDataValue(band, double(sentinel));
-      if (GDALRasterIO(band, GF_Write, 0, 0, w, h, buf.data(), w, h, GDT_Float32, 0, 0) == CE_None) {
-        const double dist = idwMaxDistance > 0.0 ? idwMaxDistance : 100.0;
-        GDALFillNodata(band, nullptr, dist, 0, 0, nullptr, gdalProgress, const_cast<Progress*>(progress));
-        if (GDALRasterIO(band, GF_Read, 0, 0, w, h, buf.data(), w, h, GDT_Float32, 0, 0) == CE_None) {
-          for (size_t i = 0; i < buf.size(); ++i)
-            if (!valid[i] && buf[i] != sentinel && std::isfinite(buf[i])) {
-              values[i] = buf[i];
-              valid[i] = 1;
-            }
-        }
-      }
-    }
+    std::string missing;
+    if (const gdal_door::Backend* gdal = gdal_door::backend(missing))
+      gdal->fillInverseDistance(values, valid, w, h, idwMaxDistance > 0.0 ? idwMaxDistance : 100.0, progress);
+    else
+      r.method = "diffusion (harmonic; inverse distance needs GDAL: " + missing + ")";
   }
   // Whatever is left (all of it for Diffusion) by harmonic interpolation.
   r.byDiffusion = valid.size() - size_t(std::count(valid.begin(), valid.end(), uint8_t(1)));

@@ -3,7 +3,13 @@
 #include <bit>
 #include <cstring>
 
-#include <cpl_conv.h>
+#include <memory>
+
+// libdeflate, not zlib: the same zlib streams GDAL's CPLZLibDeflate wrote
+// here before (GDAL uses libdeflate for it; byte for byte the same at level
+// 6, so tile hashes did not change), without linking GDAL for two calls
+// (terrain/gdal_door.h says why GDAL is loaded only when needed).
+#include <libdeflate.h>
 
 namespace hs::terrain {
 namespace {
@@ -27,6 +33,30 @@ T get(const uint8_t*& p) {
   return v;
 }
 
+struct CompressorFree {
+  void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
+};
+struct DecompressorFree {
+  void operator()(libdeflate_decompressor* d) const { libdeflate_free_decompressor(d); }
+};
+
+// A zlib stream of `in` at level 6 into `out`; its size, or 0 when it does
+// not fit. One compressor per thread: allocating one costs more than
+// compressing a tile.
+size_t deflateZlib(std::span<const uint8_t> in, std::span<uint8_t> out) {
+  thread_local std::unique_ptr<libdeflate_compressor, CompressorFree> c(libdeflate_alloc_compressor(6));
+  return c ? libdeflate_zlib_compress(c.get(), in.data(), in.size(), out.data(), out.size()) : 0;
+}
+
+// Inflates a zlib stream that must fill `out` exactly.
+bool inflateZlib(std::span<const uint8_t> in, std::span<uint8_t> out) {
+  thread_local std::unique_ptr<libdeflate_decompressor, DecompressorFree> d(libdeflate_alloc_decompressor());
+  size_t got = 0;
+  return d && libdeflate_zlib_decompress(d.get(), in.data(), in.size(), out.data(), out.size(), &got) ==
+                  LIBDEFLATE_SUCCESS &&
+         got == out.size();
+}
+
 template <class T>
 std::vector<uint8_t> encode(TileKind kind, int tile, int layer, const T* data, T fill) {
   std::vector<uint8_t> payload;
@@ -47,9 +77,8 @@ std::vector<uint8_t> encode(TileKind kind, int tile, int layer, const T* data, T
     for (int i = 0; i < kTileSamples; ++i)
       for (size_t b = 0; b < sizeof(T); ++b) planes[b * kTileSamples + size_t(i)] = src[size_t(i) * sizeof(T) + b];
     payload.resize(planes.size() + 1024);
-    size_t outBytes = 0;
-    if (CPLZLibDeflate(planes.data(), planes.size(), 6, payload.data(), payload.size(), &outBytes) &&
-        outBytes < planes.size()) {
+    const size_t outBytes = deflateZlib(planes, payload);
+    if (outBytes > 0 && outBytes < planes.size()) {
       payload.resize(outBytes);
       flags |= kDeflate;
     } else {
@@ -94,8 +123,7 @@ Status decodeInto(TileGrid<T>& grid, int tile, uint8_t flags, std::span<const ui
   std::vector<uint8_t> raw(sizeof(T) * kTileSamples);
   if (flags & kDeflate) {
     std::vector<uint8_t> planes(raw.size());
-    size_t got = 0;
-    if (!CPLZLibInflate(payload.data(), payload.size(), planes.data(), planes.size(), &got) || got != planes.size())
+    if (!inflateZlib(payload, planes))
       return Status::failure(what + ": compressed tile data is damaged");
     for (int i = 0; i < kTileSamples; ++i)
       for (size_t b = 0; b < sizeof(T); ++b) raw[size_t(i) * sizeof(T) + b] = planes[b * kTileSamples + size_t(i)];

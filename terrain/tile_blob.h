@@ -7,7 +7,7 @@
 //   | u32 tile index | u32 layer | u32 payload bytes | u64 FNV-1a of payload
 //   | payload
 // flags bit 0: uniform (payload is one sample: a flat or empty tile is ~40 bytes)
-// flags bit 1: byte-plane shuffled + deflate (zlib through GDAL's CPL)
+// flags bit 1: byte-plane shuffled + deflate (a zlib stream, through libdeflate)
 // A decoder checks every field and the checksum, so a damaged blob is an
 // error that names the tile, never a half-loaded terrain.
 #include <cstdint>

@@ -275,6 +275,41 @@ class TestCliTerrain : public QObject {
     expectError({"terrain", "export", f, "--out", path("h.png"), "--range", "5,1"}, 2, {"--range"});
     expectError({"terrain", "export", path("no.hscene"), "--out", path("h.png")}, 1, {"no.hscene"});
   }
+
+  // Without the GDAL module (terrain/gdal_door.h) a DEM import and a
+  // GeoTIFF export fail saying which module is missing and where it was
+  // looked for, the scene file stays as it was, and the rest works: a new
+  // terrain, an export to PNG.
+  void withoutTheGdalModuleDemsFailAndNothingElse() {
+    const QString f = newScene("no_gdal.hscene");
+    const QString missing = "/nonexistent/hybridscape-gdal.so";
+    qputenv("HS_GDAL_MODULE", missing.toUtf8());
+    const QByteArray before = [&] {
+      QFile in(f);
+      return in.open(QIODevice::ReadOnly) ? in.readAll() : QByteArray();
+    }();
+    const Run import = cli({"terrain", "import", kDem, f});
+    QFile again(f);
+    QVERIFY(again.open(QIODevice::ReadOnly));
+    const bool unchanged = again.readAll() == before;
+    const Run made = cli({"terrain", "new", f, "--size", "100", "--resolution", "65", "--hills"});
+    const Run tif = cli({"terrain", "export", f, "--out", path("no_gdal.tif")});
+    const Run png = cli({"terrain", "export", f, "--out", path("no_gdal.png")});
+    qunsetenv("HS_GDAL_MODULE");
+    QCOMPARE(import.code, 1);
+    for (const QString& err : {import.err, tif.err}) {
+      QVERIFY2(err.contains("the GDAL module hybridscape-gdal.so (GDAL and PROJ) is missing") &&
+                   err.contains(missing + " (not there)") && err.contains("HS_GDAL_MODULE names it"),
+               qPrintable(err));
+    }
+    QVERIFY2(import.err.contains("dem_wgs84.tif"), qPrintable(import.err));
+    QVERIFY(!before.isEmpty() && unchanged);
+    QVERIFY2(made.code == 0, qPrintable(made.err));
+    QCOMPARE(tif.code, 1);
+    QVERIFY2(tif.err.contains("no_gdal.tif"), qPrintable(tif.err));
+    QVERIFY(!QFileInfo::exists(path("no_gdal.tif")));
+    QVERIFY2(png.code == 0 && QFileInfo::exists(path("no_gdal.png")), qPrintable(png.err));
+  }
 };
 
 QTEST_GUILESS_MAIN(TestCliTerrain)

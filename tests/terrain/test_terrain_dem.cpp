@@ -3,10 +3,13 @@
 #include <QtTest>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 #include <OpenImageIO/imageio.h>
+#include <cpl_conv.h>
 #include <cpl_string.h>
 #include <gdal.h>
 #include <gdal_utils.h>
@@ -17,6 +20,7 @@
 #include "terrain/dem_import.h"
 #include "terrain/heightmap_image.h"
 #include "terrain/raw_sidecar.h"
+#include "terrain/tile_blob.h"
 #include "terrain/terrain.h"
 
 using namespace hs::terrain;
@@ -477,6 +481,39 @@ class TestDem : public QObject {
     QVERIFY(sp->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, rgba.data()));
     QCOMPARE(int(rgba[(31 * 64 + 0) * 4 + 2]), 255);  // layer 2 in blue
     QCOMPARE(int(rgba[(31 * 64 + 40) * 4 + 0]), 255); // layer 0 in red
+  }
+
+  // Tile blobs are deflated with libdeflate since GDAL left hs_terrain
+  // (gdal_door.h); before, GDAL's CPLZLibDeflate wrote them. The streams
+  // must be GDAL's byte for byte (so that a saved terrain's blobs, and the
+  // hashes of them, do not change) and GDAL must read them.
+  void tileBlobsAreTheBytesGdalWrote() {
+    auto t = Terrain::create(HeightfieldDesc{260, 140, {259.0, 139.0}, {}, 0.0f, {}});
+    QVERIFY(t.ok());
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> noise(0.f, 2.f);
+    for (int y = 0; y < 140; ++y)
+      for (int x = 0; x < 260; ++x)
+        t->height.heights().set(x, y, 300.0f + 20.0f * std::sin(x * 0.05f) * std::cos(y * 0.07f) + noise(rng));
+    int deflated = 0;
+    for (int tile = 0; tile < t->height.heights().tileCount(); ++tile) {
+      const std::vector<uint8_t> blob = encodeHeightTile(t->height, tile);
+      constexpr size_t kHeader = 32, kFlags = 7, kPayloadBytes = 20;
+      QVERIFY(blob.size() > kHeader);
+      if (!(blob[kFlags] & 2)) continue;  // not deflated
+      ++deflated;
+      uint32_t n = 0;
+      std::memcpy(&n, &blob[kPayloadBytes], 4);
+      QCOMPARE(size_t(n), blob.size() - kHeader);
+      std::vector<uint8_t> planes(TileGrid<float>::tileBytes()), again(planes.size() + 1024);
+      size_t got = 0, redone = 0;
+      QVERIFY(CPLZLibInflate(&blob[kHeader], n, planes.data(), planes.size(), &got));
+      QCOMPARE(got, planes.size());
+      QVERIFY(CPLZLibDeflate(planes.data(), planes.size(), 6, again.data(), again.size(), &redone));
+      again.resize(redone);
+      QVERIFY(std::equal(again.begin(), again.end(), blob.begin() + long(kHeader), blob.end()));
+    }
+    QVERIFY(deflated >= 4);
   }
 
   void cancelledImport() {

@@ -1,0 +1,15 @@
+#pragma once
+// The GDAL module's calls (terrain/gdal_door.h's Backend), one file each:
+// dem_read_gdal.cpp, nodata_idw_gdal.cpp, geotiff_write_gdal.cpp. Only the
+// module (gdal_module.cpp) and tests of GDAL's side include this.
+#include "terrain/gdal_door.h"
+
+namespace hs::terrain::gdal_side {
+
+bool readDem(const std::string& path, const DemImportOptions& options, const Progress* progress,
+             gdal_door::DemRaster& out, DemImportReport& report, std::string& error, bool& cancelled);
+void fillInverseDistance(std::vector<float>& values, std::vector<uint8_t>& valid, int width, int height,
+                         double maxDistancePixels, const Progress* progress);
+Status writeGeoTiff(const gdal_door::GeoTiffRaster& raster, const std::string& path);
+
+}  // namespace hs::terrain::gdal_side
