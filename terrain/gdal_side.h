@@ -1,7 +1,8 @@
 #pragma once
 // The GDAL module's calls (terrain/gdal_door.h's Backend), one file each:
-// dem_read_gdal.cpp, nodata_idw_gdal.cpp, geotiff_write_gdal.cpp. Only the
-// module (gdal_module.cpp) and tests of GDAL's side include this.
+// dem_read_gdal.cpp, nodata_idw_gdal.cpp, geotiff_write_gdal.cpp, and the
+// module's entry point (gdal_module.cpp) that hands them out. Nothing in
+// hs_terrain includes this: it goes through the door.
 #include "terrain/gdal_door.h"
 
 namespace hs::terrain::gdal_side {
