@@ -235,14 +235,14 @@ bool readWithAssimp(const std::string& path, const ImportOptions& options,
         m.diffuseTexture = it->second;
       } else {
         Texture tex;
-        std::string texError;
+        std::string texError, texNote;
         bool ok = false;
         if (const aiTexture* emb = scene->GetEmbeddedTexture(key.c_str())) {
           tex.name = key;
           if (emb->mHeight == 0) {  // compressed (PNG/JPEG bytes), mWidth is the byte count
             const auto* bytes = reinterpret_cast<const uint8_t*>(emb->pcData);
             ok = decodeTextureMemory({bytes, emb->mWidth}, emb->achFormatHint,
-                                     path + ": embedded texture " + key, tex, texError);
+                                     path + ": embedded texture " + key, tex, texError, &texNote);
             if (ok) tex.encoded.assign(bytes, bytes + emb->mWidth);
           } else {  // raw BGRA texels
             tex.width = int(emb->mWidth);
@@ -260,17 +260,18 @@ bool readWithAssimp(const std::string& path, const ImportOptions& options,
         } else {
           std::filesystem::path tp(key);
           if (tp.is_relative()) tp = std::filesystem::path(baseDir) / tp;
-          ok = decodeTextureFile(tp.string(), tex, texError);
+          ok = decodeTextureFile(tp.string(), tex, texError, &texNote);
           if (!ok && !std::filesystem::exists(tp)) {
             // Exporters often write absolute paths from the artist's machine:
             // look for the bare file name next to the mesh.
             const auto local = std::filesystem::path(baseDir) / tp.filename();
             std::string localError;
-            if (decodeTextureFile(local.string(), tex, localError)) ok = true;
+            if (decodeTextureFile(local.string(), tex, localError, &texNote)) ok = true;
           }
           tex.name = tp.filename().string();
         }
         if (ok) {
+          if (!texNote.empty()) report.warnings.push_back(path + ": material '" + m.name + "': " + texNote);
           m.diffuseTexture = textureByKey[key] = int(out.textures.size());
           out.textures.push_back(std::move(tex));
         } else if (options.strictTextures) {

@@ -686,9 +686,10 @@ bool readObj(const ByteSource& source, const std::string& baseDir, const ImportO
         continue;
       }
       Texture tex;
-      std::string texError;
+      std::string texError, texNote;
       reportProgress(progress, 0.92, "Loading textures");
-      if (decodeTextureFile(texPath, tex, texError)) {
+      if (decodeTextureFile(texPath, tex, texError, &texNote)) {
+        if (!texNote.empty()) report.warnings.push_back(name + ": material '" + m.name + "': " + texNote);
         m.diffuseTexture = textureByPath[texPath] = int(out.textures.size());
         tex.name = src->diffuseMap;
         out.textures.push_back(std::move(tex));

@@ -403,9 +403,10 @@ bool readPly(const ByteSource& source, const std::string& baseDir, const ImportO
     Material m;
     m.name = std::filesystem::path(h.textureFiles[t]).stem().string();
     Texture tex;
-    std::string texError;
+    std::string texError, texNote;
     const std::string path = (std::filesystem::path(baseDir) / h.textureFiles[t]).string();
-    if (!out.uvs.empty() && decodeTextureFile(path, tex, texError)) {
+    if (!out.uvs.empty() && decodeTextureFile(path, tex, texError, &texNote)) {
+      if (!texNote.empty()) report.warnings.push_back(file + ": " + texNote);
       tex.name = h.textureFiles[t];
       m.diffuseTexture = int(out.textures.size());
       out.textures.push_back(std::move(tex));

@@ -13,8 +13,8 @@ namespace {
 constexpr int kMaxTextureSide = 32768;
 
 // Reads an open image into RGBA8, expanding grey/RGB and dropping
-// extra channels, converting float/16-bit data to 8-bit.
-bool readRgba8(image_io::Reader& in, const std::string& what, Texture& out, std::string& error) {
+// extra channels (said in `note`), converting float/16-bit data to 8-bit.
+bool readRgba8(image_io::Reader& in, const std::string& what, Texture& out, std::string& error, std::string* note) {
   const image_io::Spec& spec = in.spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSide ||
       spec.height > kMaxTextureSide) {
@@ -46,6 +46,12 @@ bool readRgba8(image_io::Reader& in, const std::string& what, Texture& out, std:
     error = what + ": cannot decode image: " + (complaint.empty() ? std::string("unknown error") : complaint);
     return false;
   }
+  if (nch > 4 && note) {
+    std::string names;
+    for (size_t c = 0; c < spec.channelNames.size(); ++c) names += (c ? ", " : "") + spec.channelNames[c];
+    *note = what + ": " + std::to_string(nch) + " channels" + (names.empty() ? "" : " (" + names + ")") +
+            "; drawn from the first 4, the others are kept in the file but not used";
+  }
   out.width = spec.width;
   out.height = spec.height;
   out.rgba.resize(size_t(spec.width) * spec.height * 4);
@@ -71,7 +77,7 @@ bool readRgba8(image_io::Reader& in, const std::string& what, Texture& out, std:
 
 }  // namespace
 
-bool decodeTextureFile(const std::string& path, Texture& out, std::string& error) {
+bool decodeTextureFile(const std::string& path, Texture& out, std::string& error, std::string* note) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) {
     error = "texture file not found: " + path;
@@ -95,14 +101,14 @@ bool decodeTextureFile(const std::string& path, Texture& out, std::string& error
   if (!ext.empty()) ext.erase(0, 1);
   Texture t;
   t.name = std::filesystem::path(path).filename().string();
-  if (!decodeTextureMemory(bytes, ext, "texture " + path, t, error)) return false;
+  if (!decodeTextureMemory(bytes, ext, "texture " + path, t, error, note)) return false;
   t.encoded = std::move(bytes);
   out = std::move(t);
   return true;
 }
 
 bool decodeTextureMemory(std::span<const uint8_t> bytes, const std::string& formatHint,
-                         const std::string& what, Texture& out, std::string& error) {
+                         const std::string& what, Texture& out, std::string& error, std::string* note) {
   if (bytes.empty()) {
     error = what + ": no image data";
     return false;
@@ -122,7 +128,7 @@ bool decodeTextureMemory(std::span<const uint8_t> bytes, const std::string& form
     error = what + ": not a readable image" + (reason.empty() ? "" : " (" + reason + ")");
     return false;
   }
-  return readRgba8(*in, what, out, error);
+  return readRgba8(*in, what, out, error, note);
 }
 
 bool decodeTextureInPlace(Texture& texture, std::string& error) {
@@ -130,7 +136,7 @@ bool decodeTextureInPlace(Texture& texture, std::string& error) {
   std::string ext = std::filesystem::path(texture.name).extension().string();
   if (!ext.empty()) ext.erase(0, 1);
   Texture decoded;
-  if (!decodeTextureMemory(texture.encoded, ext, "texture " + texture.name, decoded, error))
+  if (!decodeTextureMemory(texture.encoded, ext, "texture " + texture.name, decoded, error, nullptr))
     return false;
   texture.width = decoded.width;
   texture.height = decoded.height;

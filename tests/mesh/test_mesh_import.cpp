@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/image_io.h"
 #include "file_bytes.h"
 #include "mesh/mesh_import.h"
 #include "mesh_fixture_spec.h"
@@ -426,6 +427,41 @@ class TestMeshImport : public QObject {
     for (int i = 0; i < 200; ++i) png += char(rng() & 0xff);
     writeFile(dir + "/broken.png", png);
     expectTextureProblem(dir, "Bark", "broken.png", "Bark");
+  }
+
+  // A texture with a fifth channel (a TIFF with R, G, B, A and one more) is drawn
+  // from its first four; both readers say so in the report, and the pixels
+  // are the file's first four channels. (Textures of 1 to 4 channels say
+  // nothing: objMtlPng, glbWithEmbeddedTexture and fbxWithTexture expect no
+  // warning at all.)
+  void textureWithMoreThanFourChannelsSaysSo() {
+    const std::string dir = path("five_channels");
+    fs::create_directories(dir);
+    constexpr int w = 2, h = 2, nch = 5;
+    std::vector<uint8_t> pixels(size_t(w) * h * nch);
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = uint8_t(10 * (i / nch) + i % nch + 1);
+    hs::image_io::Spec spec = hs::image_io::Spec::of(w, h, nch, hs::image_io::PixelType::UInt8);
+    spec.channelNames = {"R", "G", "B", "A", "Z"};
+    std::string error;
+    QVERIFY2(hs::image_io::writeFile(dir + "/five.tif", spec, hs::image_io::PixelType::UInt8, pixels.data(), error),
+             error.c_str());
+    writeFile(dir + "/m.mtl", "newmtl Scan\nKd 1 1 1\nmap_Kd five.tif\n");
+    writeFile(dir + "/m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl Scan\n"
+                              "f 1/1 2/2 3/3\n");
+    for (const Reader reader : {Reader::Obj, Reader::Assimp}) {
+      ImportOptions options;
+      options.reader = reader;
+      const ImportResult r = importMesh(dir + "/m.obj", options);
+      QVERIFY2(r.ok(), r.error.c_str());
+      // (TIFF keeps no name for the fifth channel: OpenImageIO calls it "channel4".)
+      QVERIFY2(anyWarningContains(r.report, "five.tif: 5 channels (R, G, B, A, ", "; drawn from the first 4, the others"),
+               joinWarnings(r.report).c_str());
+      QCOMPARE(r.mesh->textures.size(), size_t(1));
+      const Texture& t = r.mesh->textures.front();
+      QCOMPARE(t.width, w);
+      for (size_t p = 0; p < size_t(w) * h; ++p)
+        for (size_t c = 0; c < 4; ++c) QCOMPARE(t.rgba[p * 4 + c], pixels[p * nch + c]);
+    }
   }
 
   void emptyFile() {
