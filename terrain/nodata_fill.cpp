@@ -1,7 +1,6 @@
 #include "terrain/nodata_fill.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 #include <deque>
 

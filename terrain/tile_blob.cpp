@@ -2,13 +2,13 @@
 
 #include <bit>
 #include <cstring>
-
 #include <memory>
 
 // libdeflate, not zlib: the same zlib streams GDAL's CPLZLibDeflate wrote
-// here before (GDAL uses libdeflate for it; byte for byte the same at level
-// 6, so tile hashes did not change), without linking GDAL for two calls
-// (terrain/gdal_door.h says why GDAL is loaded only when needed).
+// here before (GDAL 3.6 uses libdeflate for it; byte for byte the same at
+// level 6, so a saved terrain's blobs do not change), without linking GDAL
+// for two calls (terrain/gdal_door.h says why GDAL is loaded only when
+// needed).
 #include <libdeflate.h>
 
 namespace hs::terrain {
