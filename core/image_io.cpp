@@ -9,40 +9,28 @@ namespace {
 
 std::atomic<LoadHook> gLoadHook{nullptr};
 
-struct Loaded {
-  const Backend* backend = nullptr;
-  std::string where;  // the module's path, or where it was looked for and why it failed
-};
-
 // Loaded once, on the first call, and kept (never unloaded: readers it made
 // may outlive any caller's scope).
-const Loaded& loaded() {
-  static const Loaded l = [] {
-    static constexpr ModuleSpec kSpec{
-        .fileName = "hybridscape-image-io.so",
-        .envVar = "HS_IMAGE_IO_MODULE",
+const LoadedModule& loaded() {
+  static constexpr ModuleSpec kSpec{
+      .fileName = "hybridscape-image-io.so",
+      .envVar = "HS_IMAGE_IO_MODULE",
 #ifdef HS_IMAGE_IO_MODULE_PATH
-        .buildPath = HS_IMAGE_IO_MODULE_PATH,
+      .buildPath = HS_IMAGE_IO_MODULE_PATH,
 #else
-        .buildPath = nullptr,
+      .buildPath = nullptr,
 #endif
-        .entrySymbol = "hs_image_io_backend",
-        .kind = "image module",
-        .wraps = "OpenImageIO",
-        .without = "no image can be read or written",
-    };
-    const LoadedModule m = loadModule(kSpec, gLoadHook.load());
-    return Loaded{static_cast<const Backend*>(m.entry), m.where};
-  }();
-  return l;
+      .entrySymbol = "hs_image_io_backend",
+      .kind = "image module",
+      .wraps = "OpenImageIO",
+      .without = "no image can be read or written",
+  };
+  static const LoadedModule m = loadModule(kSpec, gLoadHook.load());
+  return m;
 }
 
 // The module's calls, or null with `error` saying why there are none.
-const Backend* backend(std::string& error) {
-  const Loaded& l = loaded();
-  if (!l.backend) error = l.where;
-  return l.backend;
-}
+const Backend* backend(std::string& error) { return loaded().calls<Backend>(error); }
 
 }  // namespace
 
@@ -60,11 +48,7 @@ std::string Spec::attribute(const std::string& name) const {
 
 void setLoadHook(LoadHook hook) { gLoadHook.store(hook); }
 
-bool available(std::string* where) {
-  const Loaded& l = loaded();
-  if (where) *where = l.where;
-  return l.backend != nullptr;
-}
+bool available(std::string* where) { return loaded().available(where); }
 
 std::unique_ptr<Reader> open(const std::string& path, std::string& error) {
   const Backend* b = backend(error);

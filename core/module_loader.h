@@ -29,6 +29,19 @@ struct LoadedModule {
   // module is missing, what fails without it, where it was looked for and
   // why each place failed, and which variable names it.
   std::string where;
+
+  // The entry's calls as the door's `Calls`, or nullptr with `error` set to
+  // `where` (why there are none).
+  template <class Calls>
+  const Calls* calls(std::string& error) const {
+    if (!entry) error = where;
+    return static_cast<const Calls*>(entry);
+  }
+  // Whether it loaded; `whereOut` gets `where`.
+  bool available(std::string* whereOut) const {
+    if (whereOut) *whereOut = where;
+    return entry != nullptr;
+  }
 };
 
 // Called on the loading thread just before dlopen (true) and just after

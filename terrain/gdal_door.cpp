@@ -5,45 +5,29 @@
 namespace hs::terrain::gdal_door {
 namespace {
 
-struct Loaded {
-  const Backend* backend = nullptr;
-  std::string where;
-};
-
 // Loaded once, on the first call, and kept for the rest of the process.
-const Loaded& loaded() {
-  static const Loaded l = [] {
-    static constexpr ModuleSpec kSpec{
-        .fileName = "hybridscape-gdal.so",
-        .envVar = "HS_GDAL_MODULE",
+const LoadedModule& loaded() {
+  static constexpr ModuleSpec kSpec{
+      .fileName = "hybridscape-gdal.so",
+      .envVar = "HS_GDAL_MODULE",
 #ifdef HS_GDAL_MODULE_PATH
-        .buildPath = HS_GDAL_MODULE_PATH,
+      .buildPath = HS_GDAL_MODULE_PATH,
 #else
-        .buildPath = nullptr,
+      .buildPath = nullptr,
 #endif
-        .entrySymbol = "hs_gdal_backend",
-        .kind = "GDAL module",
-        .wraps = "GDAL and PROJ",
-        .without = "no elevation model can be imported and no GeoTIFF written",
-    };
-    const LoadedModule m = loadModule(kSpec);
-    return Loaded{static_cast<const Backend*>(m.entry), m.where};
-  }();
-  return l;
+      .entrySymbol = "hs_gdal_backend",
+      .kind = "GDAL module",
+      .wraps = "GDAL and PROJ",
+      .without = "no elevation model can be imported and no GeoTIFF written",
+  };
+  static const LoadedModule m = loadModule(kSpec);
+  return m;
 }
 
 }  // namespace
 
-const Backend* backend(std::string& error) {
-  const Loaded& l = loaded();
-  if (!l.backend) error = l.where;
-  return l.backend;
-}
+const Backend* backend(std::string& error) { return loaded().calls<Backend>(error); }
 
-bool available(std::string* where) {
-  const Loaded& l = loaded();
-  if (where) *where = l.where;
-  return l.backend != nullptr;
-}
+bool available(std::string* where) { return loaded().available(where); }
 
 }  // namespace hs::terrain::gdal_door
