@@ -1,6 +1,7 @@
 #include "render/gpu_terrain.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <set>
 
@@ -44,7 +45,7 @@ void GpuTerrain::release() {
 
 size_t GpuTerrain::gpuBytes() const {
   const size_t n = size_t(w_) * size_t(h_);
-  return (height_ ? n * 4 : 0) + (holes_ ? n : 0) + (weights_ ? n * size_t(slices_) : 0);
+  return (height_ ? n * 4 : 0) + (holes_ ? n : 0) + (weights_ ? n * 4 * size_t(weightGroups()) : 0);
 }
 
 void GpuTerrain::createHeights(const scene::TerrainData& data) {
@@ -128,7 +129,7 @@ bool GpuTerrain::ensureWeights(const terrain::PaintLayers& paint, TerrainUploadS
   if (weights_) glDeleteTextures(1, &weights_);
   slices_ = count;
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &weights_);
-  glTextureStorage3D(weights_, 1, GL_R8, w_, h_, slices_);
+  glTextureStorage3D(weights_, 1, GL_RGBA8, w_, h_, weightGroups());
   glTextureParameteri(weights_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(weights_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(weights_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -139,27 +140,36 @@ bool GpuTerrain::ensureWeights(const terrain::PaintLayers& paint, TerrainUploadS
 
 void GpuTerrain::uploadWeights(const terrain::PaintLayers& paint, const Region& r, TerrainUploadStats& s) {
   if (!weights_) return;
-  unpackFromTiles();
-  for (int l = 0; l < paint.layerCount(); ++l) {
-    const int slice = weightSlice(l);
-    if (slice < 0) continue;
-    const auto& g = paint.grid(l);
-    g.forEachTile(r, [&](int t, const Region& part) {
-      const uint16_t* tile = g.tile(t);
-      if (!tile) {
-        const uint8_t v = g.fill() ? 255 : 0;
-        glClearTexSubImage(weights_, 0, part.x0, part.y0, slice, part.width(), part.height(), 1, GL_RED,
-                           GL_UNSIGNED_BYTE, &v);
-      } else {
-        // 16-bit weights into an 8-bit texture: GL converts while uploading.
-        glTextureSubImage3D(weights_, 0, part.x0, part.y0, slice, part.width(), part.height(), 1, GL_RED,
-                            GL_UNSIGNED_SHORT, tile + terrain::TileGrid<uint16_t>::localIndex(part.x0, part.y0));
-        s.bytes += part.samples() * 2;
+  // The layers in each group of four slices (-1: a channel no layer uses).
+  std::vector<std::array<int, 4>> groups(size_t(weightGroups()), {-1, -1, -1, -1});
+  for (int l = 0; l < paint.layerCount(); ++l)
+    if (const int slice = weightSlice(l); slice >= 0) groups[size_t(slice / 4)][size_t(slice % 4)] = l;
+  // Repacked here (four layers' tiles into one RGBA8 rectangle), so rows
+  // are tight, not tile rows.
+  std::vector<uint8_t> texels;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    paint.grid(0).forEachTile(r, [&](int t, const Region& part) {
+      texels.assign(part.samples() * 4, 0);
+      for (int c = 0; c < 4; ++c) {
+        const int layer = groups[g][size_t(c)];
+        if (layer < 0) continue;
+        const auto& grid = paint.grid(layer);
+        const uint16_t* tile = grid.tile(t);
+        for (int y = 0; y < part.height(); ++y)
+          for (int x = 0; x < part.width(); ++x) {
+            const uint32_t v =
+                tile ? tile[terrain::TileGrid<uint16_t>::localIndex(part.x0 + x, part.y0 + y)] : grid.fill();
+            // Round to nearest: v / 65535 * 255 (never exactly halfway).
+            texels[(size_t(y) * size_t(part.width()) + size_t(x)) * 4 + size_t(c)] =
+                uint8_t((v * 255u + 32767u) / 65535u);
+          }
       }
+      glTextureSubImage3D(weights_, 0, part.x0, part.y0, GLint(g), part.width(), part.height(), 1, GL_RGBA,
+                          GL_UNSIGNED_BYTE, texels.data());
+      s.bytes += texels.size();
       ++s.regions;
     });
   }
-  unpackDefaults();
 }
 
 TerrainUploadStats GpuTerrain::sync(const scene::TerrainData& data) {

@@ -215,27 +215,34 @@ TerrainFrameStats TerrainPass::draw(const scene::SceneState& state, const std::v
     TerrainMaterialTextures& tex = materials_[t.asset->data->instance()];
     for (const std::string& problem : tex.update(mats))
       newProblems_.push_back("terrain '" + t.asset->name + "', " + problem);
+    // Only the layers that weigh anything somewhere: a layer never painted
+    // is a constant 0 (gpu_terrain.h) and would cost every pixel a turn of
+    // the shader's loop for nothing (three of the demo's eight).
     int slice[16], albedoLayer[16], normalLayer[16];
     float weightConst[16], rough[16], tiling[16];
     glm::vec3 albedo[16];
+    int drawn = 0;
     for (int i = 0; i < layers; ++i) {
-      slice[i] = t.gpu->weightSlice(i);
-      weightConst[i] = t.gpu->constWeight(i);
-      albedo[i] = mats[size_t(i)].albedo;
-      rough[i] = mats[size_t(i)].roughness;
-      tiling[i] = std::max(mats[size_t(i)].tilingMetres, 1e-3f);
-      albedoLayer[i] = tex.albedoSlice(i);
-      normalLayer[i] = tex.normalSlice(i);
+      if (t.gpu->weightSlice(i) < 0 && t.gpu->constWeight(i) == 0.0f) continue;
+      slice[drawn] = t.gpu->weightSlice(i);
+      weightConst[drawn] = t.gpu->constWeight(i);
+      albedo[drawn] = mats[size_t(i)].albedo;
+      rough[drawn] = mats[size_t(i)].roughness;
+      tiling[drawn] = std::max(mats[size_t(i)].tilingMetres, 1e-3f);
+      albedoLayer[drawn] = tex.albedoSlice(i);
+      normalLayer[drawn] = tex.normalSlice(i);
+      ++drawn;
     }
-    p.set("uLayerCount", layers);
-    if (layers > 0) {
-      glProgramUniform1iv(p.id(), p.loc("uWeightSlice"), layers, slice);
-      glProgramUniform1fv(p.id(), p.loc("uWeightConst"), layers, weightConst);
-      glProgramUniform3fv(p.id(), p.loc("uAlbedo"), layers, &albedo[0].x);
-      glProgramUniform1fv(p.id(), p.loc("uRoughness"), layers, rough);
-      glProgramUniform1fv(p.id(), p.loc("uTiling"), layers, tiling);
-      glProgramUniform1iv(p.id(), p.loc("uAlbedoLayer"), layers, albedoLayer);
-      glProgramUniform1iv(p.id(), p.loc("uNormalLayer"), layers, normalLayer);
+    p.set("uLayerCount", drawn);
+    p.set("uWeightGroups", t.gpu->weightGroups());
+    if (drawn > 0) {
+      glProgramUniform1iv(p.id(), p.loc("uWeightSlice"), drawn, slice);
+      glProgramUniform1fv(p.id(), p.loc("uWeightConst"), drawn, weightConst);
+      glProgramUniform3fv(p.id(), p.loc("uAlbedo"), drawn, &albedo[0].x);
+      glProgramUniform1fv(p.id(), p.loc("uRoughness"), drawn, rough);
+      glProgramUniform1fv(p.id(), p.loc("uTiling"), drawn, tiling);
+      glProgramUniform1iv(p.id(), p.loc("uAlbedoLayer"), drawn, albedoLayer);
+      glProgramUniform1iv(p.id(), p.loc("uNormalLayer"), drawn, normalLayer);
     }
     glBindTextureUnit(kUnitWeights, t.gpu->weightTexture());
     glBindTextureUnit(kUnitAlbedo, tex.albedo());

@@ -17,8 +17,9 @@ uniform usampler2D uHoles;
 
 const int MAX_LAYERS = 16;
 uniform int uLayerCount;
-uniform int uWeightSlice[MAX_LAYERS];    // slice of uWeights, or -1: constant uWeightConst
+uniform int uWeightSlice[MAX_LAYERS];    // slice s: channel s % 4 of uWeights' layer s / 4; -1: uWeightConst
 uniform float uWeightConst[MAX_LAYERS];
+uniform int uWeightGroups;               // uWeights' layers (four slices each)
 uniform sampler2DArray uWeights;
 uniform vec3 uAlbedo[MAX_LAYERS];        // linear
 uniform float uRoughness[MAX_LAYERS];
@@ -55,8 +56,19 @@ void main() {
   vec3 tn = vec3(0.0);
   float rough = 0.0, total = 0.0;
   vec2 wuv = (vSample + 0.5) / vec2(uSamples);
+  // Every painted weight in one fetch per four layers (gpu_terrain.h).
+  // Named vectors and a channel mask rather than an indexed array, which
+  // llvmpipe keeps in memory.
+  vec4 w0 = vec4(0.0), w1 = vec4(0.0), w2 = vec4(0.0), w3 = vec4(0.0);
+  if (uWeightGroups > 0) w0 = texture(uWeights, vec3(wuv, 0.0));
+  if (uWeightGroups > 1) w1 = texture(uWeights, vec3(wuv, 1.0));
+  if (uWeightGroups > 2) w2 = texture(uWeights, vec3(wuv, 2.0));
+  if (uWeightGroups > 3) w3 = texture(uWeights, vec3(wuv, 3.0));
   for (int i = 0; i < uLayerCount; ++i) {
-    float w = uWeightSlice[i] < 0 ? uWeightConst[i] : texture(uWeights, vec3(wuv, float(uWeightSlice[i]))).r;
+    const int slice = uWeightSlice[i];
+    const int g = slice >> 2;
+    const vec4 group = g == 0 ? w0 : (g == 1 ? w1 : (g == 2 ? w2 : w3));
+    float w = slice < 0 ? uWeightConst[i] : dot(group, vec4(equal(ivec4(0, 1, 2, 3), ivec4(slice & 3))));
     if (w < 1e-3) continue;
     vec2 uv = vLocal / uTiling[i];
     vec3 a = uAlbedo[i];

@@ -3,7 +3,8 @@
 // UTM-coordinate equality (camera-relative: a terrain at 500 km / 4400 km
 // renders as at the origin), the measured screen-space error against the
 // full-resolution mesh within the bound, a brush dab uploading exactly its
-// region, holes drawn as holes and not pickable, and scenes without terrain
+// region, the paint weights on the GPU as the document's (four layers to a
+// texel), holes drawn as holes and not pickable, and scenes without terrain
 // not running the pass.
 #include <QTemporaryDir>
 #include <QtTest>
@@ -14,6 +15,7 @@
 #include "image_compare.h"
 #include "look_from.h"
 #include "terrain_screen_error.h"
+#include "render/gpu_terrain.h"
 #include "render/offscreen_renderer.h"
 #include "scene/document.h"
 #include "scene/fields.h"
@@ -244,6 +246,65 @@ class TestTerrainRender : public QObject {
     const hs::Image img = r_.render(s.state(), s.view(320, 180), false, &after);
     QCOMPARE(after.terrainUploadBytes, size_t(0));  // already up to date
     QVERIFY(img.rgba8 != before.rgba8);             // and it shows
+  }
+
+  // The weight texture holds every painted layer's 16-bit weights rounded
+  // to 8 bits, four layers to a texel (gpu_terrain.h), read back and
+  // compared sample by sample with the document's; after a dab on one layer
+  // only its region is uploaded again, and the texture still matches.
+  void paintWeightsPackFourLayersToATexel() {
+    TerrainScene s(257, 256.0);
+    terrain::PaintLayers& paint = s.data().terrain().paint;
+    QVERIFY(paint.layerCount() >= 7);
+    // Five layers painted in different patterns (with layer 0 reduced, six
+    // have tiles: two groups); layer 4 and those above 6 never painted.
+    const int painted[] = {1, 2, 3, 5, 6};
+    for (int k = 0; k < 5; ++k)
+      for (int y = 0; y < 257; ++y)
+        for (int x = 0; x < 257; ++x)
+          if ((x * (k + 3) + y * (7 - k)) % 11 < k + 2) paint.blend(x, y, painted[k], 0.15f + 0.1f * float(k));
+    s.data().noteChanged(s.data().heights().bounds(), scene::kTerrainPaint);
+    r_.makeCurrent();
+    render::GpuTerrain gpu;
+    gpu.sync(s.data());
+    auto check = [&](const char* when) {
+      int slices = 0;
+      for (int l = 0; l < paint.layerCount(); ++l) slices += gpu.weightSlice(l) >= 0;
+      QCOMPARE(gpu.weightSlice(4), -1);
+      QCOMPARE(slices, 6);
+      QCOMPARE(gpu.weightGroups(), 2);
+      std::vector<uint8_t> texels(size_t(257) * 257 * 4 * 2);
+      glGetTextureImage(gpu.weightTexture(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(texels.size()), texels.data());
+      std::vector<int> owner(8, -1);  // slice -> layer
+      for (int l = 0; l < paint.layerCount(); ++l)
+        if (gpu.weightSlice(l) >= 0) owner[size_t(gpu.weightSlice(l))] = l;
+      size_t wrong = 0, nonzero = 0;
+      for (int slice = 0; slice < 8; ++slice)
+        for (int y = 0; y < 257; ++y)
+          for (int x = 0; x < 257; ++x) {
+            const size_t at = ((size_t(slice / 4) * 257 + size_t(y)) * 257 + size_t(x)) * 4 + size_t(slice % 4);
+            const int layer = owner[size_t(slice)];
+            const int want = layer < 0 ? 0 : int(std::lround(double(paint.weight(layer, x, y)) * 255.0));
+            wrong += texels[at] != want;
+            nonzero += texels[at] != 0;
+          }
+      qInfo("%s: %d slices in %d texel layers, %zu of %d weights wrong, %zu nonzero", when, slices,
+            gpu.weightGroups(), wrong, 8 * 257 * 257, nonzero);
+      QCOMPARE(wrong, size_t(0));
+      QVERIFY(nonzero > size_t(257) * 257);
+    };
+    check("first upload");
+    if (QTest::currentTestFailed()) return;
+    // A dab on layer 6 over a 40 x 30 region.
+    const terrain::Region dab{100, 50, 140, 80};
+    for (int y = dab.y0; y < dab.y1; ++y)
+      for (int x = dab.x0; x < dab.x1; ++x) paint.blend(x, y, 6, 0.5f);
+    s.data().noteChanged(dab, scene::kTerrainPaint);
+    const render::TerrainUploadStats up = gpu.sync(s.data());
+    QVERIFY(!up.full);
+    QCOMPARE(up.bytes, size_t(dab.samples()) * 4 * 2);  // both groups' texels of the region, once
+    check("after a dab");
+    gpu.release();
   }
 
   void holesAreNotDrawnAndNotPicked() {
