@@ -145,7 +145,8 @@ void GpuTerrain::uploadWeights(const terrain::PaintLayers& paint, const Region& 
   for (int l = 0; l < paint.layerCount(); ++l)
     if (const int slice = weightSlice(l); slice >= 0) groups[size_t(slice / 4)][size_t(slice % 4)] = l;
   // Repacked here (four layers' tiles into one RGBA8 rectangle), so rows
-  // are tight, not tile rows.
+  // are tight, not tile rows, whatever unpacking state another upload left.
+  unpackDefaults();
   std::vector<uint8_t> texels;
   for (size_t g = 0; g < groups.size(); ++g) {
     paint.grid(0).forEachTile(r, [&](int t, const Region& part) {
