@@ -99,6 +99,7 @@ struct Renderer::Impl {
   gl::DebugMessages debug;
   // Timer queries in a ring so reading one never stalls on the current frame.
   gl::Query timers[3];
+  std::chrono::steady_clock::time_point timerBegun[3];  // when each was begun, by the wall clock
   int timerFrame = 0;
   double lastGpuMs = -1.0;
   // The last frame's graph, holding what it keeps (HDR colour, depth) until
@@ -215,15 +216,25 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   GLuint timer = 0;
   if (options.measureGpuTime) {
     // Read the query from two frames ago if it is done; never wait for it.
-    const GLuint old = d.timers[(d.timerFrame + 1) % 3].id();
+    const int oldSlot = (d.timerFrame + 1) % 3;
+    const GLuint old = d.timers[oldSlot].id();
     GLint available = 0;
     if (d.timerFrame >= 2) glGetQueryObjectiv(old, GL_QUERY_RESULT_AVAILABLE, &available);
     if (available) {
       GLuint64 ns = 0;
       glGetQueryObjectui64v(old, GL_QUERY_RESULT, &ns);
-      d.lastGpuMs = double(ns) * 1e-6;
+      // No GPU interval is longer than the wall time since it was begun.
+      // llvmpipe answered a renderer's first frame with its end timestamp
+      // alone (95 minutes: the machine's uptime), its beginning never
+      // stamped: it went into a scene with no tiles, before any framebuffer
+      // was bound. Such a value is dropped (test_frame_graph).
+      const double ms = double(ns) * 1e-6;
+      const double wallMs =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - d.timerBegun[oldSlot]).count();
+      d.lastGpuMs = ms <= wallMs ? ms : -1.0;
     }
     timer = d.timers[d.timerFrame % 3].id();
+    d.timerBegun[d.timerFrame % 3] = std::chrono::steady_clock::now();
     glBeginQuery(GL_TIME_ELAPSED, timer);
   }
 
