@@ -225,9 +225,9 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
       glGetQueryObjectui64v(old, GL_QUERY_RESULT, &ns);
       // No GPU interval is longer than the wall time since it was begun.
       // llvmpipe answered a renderer's first frame with its end timestamp
-      // alone (95 minutes: the machine's uptime), its beginning never
-      // stamped: it went into a scene with no tiles, before any framebuffer
-      // was bound. Such a value is dropped (test_frame_graph).
+      // alone (95 minutes: the machine's uptime), its beginning not stamped
+      // (probably queued before any framebuffer was bound, so in no tile).
+      // Such a value is dropped (test_frame_graph).
       const double ms = double(ns) * 1e-6;
       const double wallMs =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - d.timerBegun[oldSlot]).count();
