@@ -5,6 +5,8 @@
 #include <chrono>
 #include <set>
 
+#include "terrain/paint_layers.h"
+
 namespace hs::render {
 namespace {
 
@@ -158,11 +160,9 @@ void GpuTerrain::uploadWeights(const terrain::PaintLayers& paint, const Region& 
         const uint16_t* tile = grid.tile(t);
         for (int y = 0; y < part.height(); ++y)
           for (int x = 0; x < part.width(); ++x) {
-            const uint32_t v =
+            const uint16_t v =
                 tile ? tile[terrain::TileGrid<uint16_t>::localIndex(part.x0 + x, part.y0 + y)] : grid.fill();
-            // Round to nearest: v / 65535 * 255 (never exactly halfway).
-            texels[(size_t(y) * size_t(part.width()) + size_t(x)) * 4 + size_t(c)] =
-                uint8_t((v * 255u + 32767u) / 65535u);
+            texels[(size_t(y) * size_t(part.width()) + size_t(x)) * 4 + size_t(c)] = terrain::weightByte(v);
           }
       }
       glTextureSubImage3D(weights_, 0, part.x0, part.y0, GLint(g), part.width(), part.height(), 1, GL_RGBA,

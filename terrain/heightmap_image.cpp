@@ -314,8 +314,7 @@ Result<std::string> exportSplatMap(const PaintLayers& paint, int first, const st
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 4; ++c)
         if (first + c < paint.layerCount())
-          v[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + size_t(c)] =
-              uint8_t(std::lround(double(paint.raw(first + c, x, y)) * 255.0 / 65535.0));
+          v[(size_t(h - 1 - y) * size_t(w) + size_t(x)) * 4 + size_t(c)] = weightByte(paint.raw(first + c, x, y));
   image_io::Spec spec = image_io::Spec::of(w, h, 4, image_io::PixelType::UInt8);
   spec.text.emplace_back("oiio:ColorSpace", "Linear");
   spec.ints.emplace_back("oiio:UnassociatedAlpha", 1);

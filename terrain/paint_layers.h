@@ -22,6 +22,10 @@ namespace hs::terrain {
 
 constexpr int kMaxPaintLayers = 16;
 constexpr uint16_t kWeightOne = 65535;
+// A 16-bit weight as 8 bits, rounded to nearest (raw * 255 / 65535 is
+// never exactly halfway): what an 8-bit splat map and the renderer's weight
+// texture hold, so the two agree.
+constexpr uint8_t weightByte(uint16_t raw) { return uint8_t((uint32_t(raw) * 255u + 32767u) / 65535u); }
 
 struct Material {
   std::string name = "Material";
