@@ -240,6 +240,97 @@ struct CornerSets {
   }
 };
 
+// After a split, is the mesh manifold now? Decided on the corners whose
+// edge has a rewritten end: `rewritten` (sorted) holds every corner of
+// every split vertex, so it holds every corner that now names a split
+// vertex or one of its copies, and their previous corners are the edges
+// coming into them. Every edge whose twins can differ from this round's
+// analysis has such an end (the defects' edges and fans all do), so a
+// whole-mesh analysis of the result would agree with this round's
+// everywhere else. On true, `topology` is the result's (twins of those
+// corners rewritten, counts set); on false its twins are part-written and
+// the caller analyses the whole mesh. Only for meshes whose faces are all
+// valid: a face that repeats an id becomes a face when its corners get
+// copies, which a fresh analysis counts and this one would not.
+bool manifoldAfterSplit(std::span<const uint32_t> tris, std::span<const uint32_t> rewritten,
+                        const OutgoingLists& before, uint32_t nvBefore, CornerTopology& topology,
+                        unsigned threads) {
+  std::vector<uint32_t> near;
+  near.reserve(rewritten.size() * 2);
+  for (const uint32_t c : rewritten) near.push_back(c), near.push_back(prevCorner(c));
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  auto key = [](uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; };
+  std::vector<std::pair<uint64_t, uint32_t>> edges;  // (a -> b, corner), sorted
+  edges.reserve(near.size());
+  for (const uint32_t c : near) edges.push_back({key(tris[c], tris[nextCorner(c)]), c});
+  std::sort(edges.begin(), edges.end());
+  auto range = [&](uint64_t k) {
+    return std::equal_range(edges.begin(), edges.end(), std::pair<uint64_t, uint32_t>{k, 0},
+                            [](const auto& x, const auto& y) { return x.first < y.first; });
+  };
+  UninitArray<uint32_t>& twin = topology.twin;
+  for (const uint32_t c : near) {
+    const uint32_t a = tris[c], b = tris[nextCorner(c)];
+    const auto same = range(key(a, b)), back = range(key(b, a));
+    if (same.second - same.first != 1 || back.second - back.first > 1) return false;  // a non-manifold edge
+    twin[c] = back.first == back.second ? kNoCorner : back.first->second;
+  }
+  // One fan per vertex at either end of those edges (the others' corners
+  // and twins are as the round's analysis found them: one fan each).
+  std::vector<uint32_t> ends;
+  for (const uint32_t c : near) ends.push_back(tris[c]), ends.push_back(tris[nextCorner(c)]);
+  std::sort(ends.begin(), ends.end());
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+  std::vector<std::pair<uint32_t, uint32_t>> copyCorners;  // (copy id, corner): the copies' corners
+  for (const uint32_t c : rewritten)
+    if (tris[c] >= nvBefore) copyCorners.push_back({tris[c], c});
+  std::sort(copyCorners.begin(), copyCorners.end());
+  std::vector<uint32_t> fan;
+  for (const uint32_t v : ends) {
+    fan.clear();
+    if (v < nvBefore) {  // an id kept: its corners are some of those it had
+      for (const uint64_t x : before.of(v))
+        if (tris[entryCorner(x)] == v) fan.push_back(entryCorner(x));
+    } else {
+      auto it = std::lower_bound(copyCorners.begin(), copyCorners.end(), std::pair<uint32_t, uint32_t>{v, 0});
+      for (; it != copyCorners.end() && it->first == v; ++it) fan.push_back(it->second);
+    }
+    const size_t k = fan.size();
+    if (k < 2) continue;
+    const uint32_t start = fan[0];
+    size_t count = 1;
+    bool closed = false;
+    for (uint32_t c = start; count <= k;) {
+      const uint32_t n = twin[prevCorner(c)];
+      if (n == kNoCorner) break;
+      if (n == start) {
+        closed = true;
+        break;
+      }
+      ++count;
+      c = n;
+    }
+    if (!closed)
+      for (uint32_t c = start; count <= k;) {
+        const uint32_t tw = twin[c];
+        if (tw == kNoCorner) break;
+        c = nextCorner(tw);
+        ++count;
+      }
+    if (count < k) return false;  // still a bow-tie
+  }
+  std::atomic<size_t> open{0};
+  parallelRanges(twin.size(), threads, [&](size_t b, size_t e, unsigned) {
+    size_t n = 0;
+    for (size_t c = b; c < e; ++c) n += twin[c] == kNoCorner;
+    open += n;
+  });
+  topology.boundaryEdges = open;
+  topology.nonManifoldEdges = topology.nonManifoldVertices = 0;
+  return true;
+}
+
 }  // namespace
 
 CornerTopology analyzeCorners(std::span<const uint32_t> tris, uint32_t vertexCount, unsigned threads) {
@@ -266,11 +357,14 @@ NonManifoldSplitStats splitNonManifold(std::span<uint32_t> tris, uint32_t vertex
   // for the corners. (A real scan has a few hundred defects among
   // millions of faces; a union-find over every corner was a serial pass
   // of 15 ms on a 65k-triangle mesh.) The result is the same as joining
-  // the fans of every vertex.
+  // the fans of every vertex. Whether a round left the mesh manifold is
+  // checked on the rewritten corners too (manifoldAfterSplit); only when
+  // it did not does the next round analyse the whole mesh again.
   for (int round = 0; round < 4; ++round) {
     const OutgoingLists l = buildOutgoing(tris, nv, threads);
     Defects defects;
     topology = analyze(tris, nv, l, threads, &defects);
+    ++stats.wholeMeshAnalyses;
     if (round == 0) {
       stats.nonManifoldEdges = topology.nonManifoldEdges;
       stats.nonManifoldVertices = topology.nonManifoldVertices;
@@ -330,7 +424,11 @@ NonManifoldSplitStats splitNonManifold(std::span<uint32_t> tris, uint32_t vertex
           for (uint32_t k = 0; k < 3; ++k)
             if (tris[f * 3 + k] < nv) invalidLists.lists[w].push_back(tris[f * 3 + k]);
     });
-    for (const auto& list : invalidLists.lists) touched.insert(touched.end(), list.begin(), list.end());
+    bool allFacesValid = true;
+    for (const auto& list : invalidLists.lists) {
+      touched.insert(touched.end(), list.begin(), list.end());
+      allFacesValid &= list.empty();
+    }
 
     // Every corner of a touched vertex, in corner order.
     std::vector<uint8_t> isTouched(nv, 0);
@@ -361,7 +459,11 @@ NonManifoldSplitStats splitNonManifold(std::span<uint32_t> tris, uint32_t vertex
       }
       tris[c] = idOfRoot[r];
     }
+    const uint32_t nvBefore = nv;
     nv = originalCount + uint32_t(copiedFrom.size());
+    // Usually one split leaves the mesh manifold; confirming that where the
+    // split wrote spares a second analysis of the whole mesh.
+    if (allFacesValid && manifoldAfterSplit(tris, corners, l, nvBefore, topology, threads)) break;
   }
   stats.verticesAdded = nv - originalCount;
   return stats;

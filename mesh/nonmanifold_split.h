@@ -41,6 +41,7 @@ struct NonManifoldSplitStats {
   size_t nonManifoldVertices = 0;  // bow-tie vertices found before splitting
   size_t verticesAdded = 0;        // duplicates created
   size_t facesDetached = 0;        // faces given their own vertices (last resort, see .cpp)
+  size_t wholeMeshAnalyses = 0;    // 1 when the mesh was manifold or one split made it so
 };
 
 // Makes `tris` edge- and vertex-manifold and consistently paired by giving
@@ -48,8 +49,10 @@ struct NonManifoldSplitStats {
 // copiedFrom[id - vertexCount] is the original id each duplicate copies.
 // A split vertex keeps its id for the fan of its first corner (in corner
 // order); vertices away from the defects keep theirs, and their corners
-// are not rewritten. The work beyond two analyses is in the size of the
-// defects' fans, not of the mesh.
+// are not rewritten. The work beyond one analysis of the whole mesh is in
+// the size of the defects' fans, not of the mesh, unless a defect needs
+// more than one round (a face hanging on both ends of its edge, a face
+// that repeats an id): each further round analyses the whole mesh.
 // On return `topology` describes the (now manifold) result, so callers that
 // need twins do not analyse twice.
 NonManifoldSplitStats splitNonManifold(std::span<uint32_t> tris, uint32_t vertexCount,
