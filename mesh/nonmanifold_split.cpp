@@ -1,6 +1,7 @@
 #include "mesh/nonmanifold_split.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <memory>
 
@@ -387,19 +388,34 @@ NonManifoldSplitStats splitNonManifold(std::span<uint32_t> tris, uint32_t vertex
       std::sort(corners.begin(), corners.end());
       std::vector<uint8_t> paired(corners.size(), 0);
       bool firstPairMade = false;
-      for (size_t i = 0; i < corners.size(); ++i) {
-        if (paired[i]) continue;
-        for (size_t j = i + 1; j < corners.size(); ++j)
-          if (!paired[j] && corners[j].second != corners[i].second) {
-            if (round == 0 || !firstPairMade) {
-              twin[corners[i].first] = corners[j].first;
-              twin[corners[j].first] = corners[i].first;
-              paired[i] = paired[j] = 1;
-              firstPairMade = true;
+      // A face and its copy the other way round (a back face on the same
+      // three vertices) are paired with each other only when nothing else
+      // is left: paired so, the face leaves the surface with its copy
+      // (glued along all three edges they close into a two-face pillow),
+      // and decimated results had a hole where it had been
+      // (test_meshproc_decimate::meshesWithRandomDefectsDecimate). Paired
+      // with the surface, the face stays in it and the copy comes off.
+      auto sameVertices = [&](uint32_t c, uint32_t d) {
+        std::array<uint32_t, 3> x{tris[c / 3 * 3], tris[c / 3 * 3 + 1], tris[c / 3 * 3 + 2]},
+            y{tris[d / 3 * 3], tris[d / 3 * 3 + 1], tris[d / 3 * 3 + 2]};
+        std::sort(x.begin(), x.end()), std::sort(y.begin(), y.end());
+        return x == y;
+      };
+      for (const bool avoidCopies : {true, false})
+        for (size_t i = 0; i < corners.size(); ++i) {
+          if (paired[i]) continue;
+          for (size_t j = i + 1; j < corners.size(); ++j)
+            if (!paired[j] && corners[j].second != corners[i].second) {
+              if (avoidCopies && sameVertices(corners[i].first, corners[j].first)) continue;
+              if (round == 0 || !firstPairMade) {
+                twin[corners[i].first] = corners[j].first;
+                twin[corners[j].first] = corners[i].first;
+                paired[i] = paired[j] = 1;
+                firstPairMade = true;
+              }
+              break;
             }
-            break;
-          }
-      }
+        }
       if (round > 0)
         for (size_t i = 0; i < corners.size(); ++i) {
           // Without any pair the first face keeps the edge as its boundary.

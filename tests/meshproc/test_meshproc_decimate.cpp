@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 #include <set>
 
 #include "mesh/mesh_import.h"
@@ -330,7 +331,7 @@ class TestMeshprocDecimate : public QObject {
   // collapses.
   void regionLevelsFollowOneGreedyOrder() {
     const MeshData in = bunny();
-    for (double ratio : {0.5, 0.1}) {
+    for (double ratio : {0.1, 0.02}) {
       DecimateOptions one, many;
       one.targetRatio = many.targetRatio = ratio;
       one.facesPerRegion = 10000000;
@@ -375,6 +376,79 @@ class TestMeshprocDecimate : public QObject {
       }
     QCOMPARE(border, size_t(160));
     QCOMPARE(r.report.fixedVertices, size_t(160));
+  }
+
+  // Scans come with defects: fins (three faces on an edge), faces that
+  // touch the surface at one vertex (bow-ties), faces stored twice, either
+  // way round. Random ones of each kind on a grid with a UV seam, several
+  // regions: each decimates (the defects are split, never refused) to a
+  // valid mesh near its target, the same for any thread count, with no
+  // boundary or seam vertex off the input's (the error report's check:
+  // a hole opened in the surface puts one there). When the split paired
+  // a face with its reversed copy, the face left the surface with it and
+  // 10 of these 40 meshes came out of 2% with a hole where it had been.
+  void meshesWithRandomDefectsDecimate() {
+    const MeshData grid = curvedGrid(40, 10.0, 0.4, true);  // 3,200 faces
+    const size_t gridFaces = grid.triangleCount();
+    std::mt19937 rng(11);
+    for (int trial = 0; trial < 40; ++trial) {
+      MeshData in = grid;
+      auto addVertex = [&](const glm::vec3& p) {
+        in.positions.push_back(p);
+        in.uvs.push_back({0.25f, 0.25f});
+        in.normals.push_back({0, 0, 1});
+        return uint32_t(in.positions.size() - 1);
+      };
+      const int defects = 1 + trial % 13;
+      for (int d = 0; d < defects; ++d) {
+        const size_t f = rng() % gridFaces;
+        const uint32_t k = rng() % 3;
+        const uint32_t a = grid.indices[f * 3 + k], b = grid.indices[f * 3 + (k + 1) % 3],
+                       c = grid.indices[f * 3 + (k + 2) % 3];
+        const glm::vec3 up = grid.positions[a] + glm::vec3(0.05f, 0.1f, 0.6f);
+        switch ((trial + d) % 5) {
+          case 0: in.indices.insert(in.indices.end(), {a, b, addVertex(up)}); break;  // a fin
+          case 1: in.indices.insert(in.indices.end(), {b, a, addVertex(up)}); break;  // a fin, other way round
+          case 2: {                                                                   // a bow-tie at a
+            const uint32_t x = addVertex(up), y = addVertex(up + glm::vec3(0.2f, 0.0f, 0.0f));
+            in.indices.insert(in.indices.end(), {a, x, y});
+            break;
+          }
+          case 3: in.indices.insert(in.indices.end(), {a, b, c}); break;  // the face twice
+          case 4: in.indices.insert(in.indices.end(), {a, c, b}); break;  // the face twice, flipped
+        }
+      }
+      in.submeshes = {{0, uint32_t(in.indices.size()), -1}};
+      for (double ratio : {0.1, 0.02}) {
+        const QString where = QString("trial %1, ratio %2").arg(trial).arg(ratio);
+        uint64_t first = 0;
+        for (unsigned threads : {1u, 2u}) {
+          DecimateOptions o;
+          o.targetRatio = ratio;
+          o.threads = threads;
+          o.facesPerRegion = 1000;  // 3 regions
+          const DecimateResult r = decimate(in, o);
+          QVERIFY2(r.ok(), qPrintable(where + ": " + QString::fromStdString(r.error)));
+          const MeshData& out = r.mesh;
+          QVERIFY2(out.triangleCount() <= size_t(std::ceil(ratio * in.triangleCount() * 1.05)),
+                   qPrintable(where + QString(": %1 triangles").arg(out.triangleCount())));
+          for (size_t t = 0; t < out.triangleCount(); ++t) {
+            const uint32_t i = out.indices[t * 3], j = out.indices[t * 3 + 1], l = out.indices[t * 3 + 2];
+            QVERIFY2(i < out.vertexCount() && j < out.vertexCount() && l < out.vertexCount(), qPrintable(where));
+            QVERIFY2(i != j && j != l && i != l, qPrintable(where));
+          }
+          const uint64_t h = contentHash(out);
+          if (threads == 1) {
+            first = h;
+            const ErrorReport e = measureError(in, out, {});
+            QCOMPARE(e.constrainedVerticesMoved, size_t(0));
+            QVERIFY2(std::isfinite(e.hausdorff) && e.rel(e.hausdorff) < 0.02,
+                     qPrintable(where + QString(": Hausdorff %1 of diagonal %2").arg(e.hausdorff).arg(e.bboxDiagonal)));
+          }
+          QVERIFY2(h == first, qPrintable(where + ": differs between 1 and 2 threads"));
+        }
+      }
+    }
   }
 
   void badInputIsRefusedWithAMessage() {
