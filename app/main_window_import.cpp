@@ -73,6 +73,8 @@ void MainWindow::onImportFinished(bool* ok) {
   // after a decimation the whole of it: what the user gave up, measured.
   if (const std::string line = scene::processReportSummary(report); !line.empty())
     messages_->info(QString("%1: %2").arg(name, QString::fromStdString(line)));
+  for (const std::string& w : scene::processWarnings(report))
+    messages_->warning(QString("%1: %2").arg(name, QString::fromStdString(w)));
   if (decimated) showErrorReport(this, QString::fromStdString(doc_.state().find(id)->name), report);
   statusBar()->showMessage(summary, 5000);
   *ok = true;

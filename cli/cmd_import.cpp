@@ -9,6 +9,7 @@
 #include "core/escape_control.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
+#include "scene/mesh_report_text.h"
 #include "scene/import_pipeline.h"
 #include "scene/operations.h"
 
@@ -70,6 +71,7 @@ int runImport(int argc, char** argv) {
     std::printf("georeferencing offset %.3f,%.3f,%.3f from %s\n", importReport.geoOffset.x, importReport.geoOffset.y,
                 importReport.geoOffset.z, importReport.geoOffsetSource.c_str());
   printProcessReport(processReport);
+  for (const std::string& w : scene::processWarnings(processReport)) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return 0;
 }
 

@@ -67,7 +67,7 @@ struct ProcessReport {
   CleanReport cleaning;
   bool decimated = false;
   DecimateReport decimation;
-  int maxErrorPasses = 0;    // decimation runs it took to meet maxError (1 = first try)
+  int maxErrorPasses = 0;    // decimation runs made for maxError (1 = first try; if none met it, the closest is kept)
   bool errorMeasured = false;
   ErrorReport error;         // original (after cleaning) -> decimated
   std::vector<LodSummary> lods;  // level 0 first

@@ -77,7 +77,7 @@ ReportSection errorSection(const mesh::ErrorReport& e) {
   return r.s;
 }
 
-ReportSection decimationSection(const mesh::ProcessReport& p) {
+ReportSection decimationSection(const mesh::ProcessReport& p, double maxError) {
   const mesh::DecimateReport& d = p.decimation;
   Rows r("Decimation");
   r.add("triangles_in", "Triangles in", count(d.trianglesIn))
@@ -87,8 +87,11 @@ ReportSection decimationSection(const mesh::ProcessReport& p) {
       .add("collapses", "Edge collapses", count(d.collapses))
       .add("rejected_normal_flip", "Collapses refused (flip / sliver / topology)",
            count(d.rejectedFlip) + " / " + count(d.rejectedSliver) + " / " + count(d.rejectedTopology));
+  if (std::isfinite(maxError) && maxError > 0 && p.errorMeasured)
+    r.add("max_error_m", "Maximum error asked",
+          metres(maxError) + (p.error.hausdorff <= maxError ? " (met)" : " (NOT met: the run measured closest to it is kept)"));
   if (p.maxErrorPasses > 1)
-    r.add("decimation_passes", "Runs to meet the maximum error", std::to_string(p.maxErrorPasses));
+    r.add("decimation_passes", "Runs for the maximum error", std::to_string(p.maxErrorPasses));
   r.add("seconds", "Decimation time", seconds(d.secondsTotal));
   return r.s;
 }
@@ -138,7 +141,7 @@ std::vector<ReportSection> processReportSections(const Json& json) {
   if (!stored) return out;
   const mesh::ProcessReport& p = stored->report;
   if (p.errorMeasured) out.push_back(errorSection(p.error));
-  if (p.decimated) out.push_back(decimationSection(p));
+  if (p.decimated) out.push_back(decimationSection(p, stored->options.decimation.maxError));
   if (!p.lods.empty()) out.push_back(lodSection(p.lods));
   if (p.cleaned) out.push_back(cleaningSection(p.cleaning));
   if (stored->tiles) out.push_back(tilesSection(*stored->tiles));
@@ -169,6 +172,19 @@ std::string processReportSummary(const Json& json) {
   if (levels > 1) s += ", " + std::to_string(levels - 1) + " LOD level" + (levels > 2 ? "s" : "");
   s += ", " + seconds(p.seconds);
   return s;
+}
+
+std::vector<std::string> processWarnings(const Json& json) {
+  std::vector<std::string> out;
+  const std::optional<AssetProcessReport> stored = readProcessReport(json);
+  if (!stored) return out;
+  const mesh::ProcessReport& p = stored->report;
+  const double wanted = stored->options.decimation.maxError;
+  if (p.decimated && std::isfinite(wanted) && wanted > 0 && p.errorMeasured && p.error.hausdorff > wanted)
+    out.push_back("the maximum error of " + metres(wanted) + " was not met: " + std::to_string(p.maxErrorPasses) +
+                  " decimation runs measured above it; the closest (hausdorff_m " + metres(p.error.hausdorff) +
+                  ") is kept");
+  return out;
 }
 
 }  // namespace hs::scene

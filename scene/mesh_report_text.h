@@ -31,4 +31,8 @@ std::vector<ReportSection> processReportSections(const Json& processReport);
 // the diagonal), mean_m ..., 3 LODs, 0.4 s"; empty when there is no report.
 std::string processReportSummary(const Json& processReport);
 
+// What the processing could not do as asked, one line each (a maximum
+// error no run met); the editor's Messages and the CLI's stderr show them.
+std::vector<std::string> processWarnings(const Json& processReport);
+
 }  // namespace hs::scene

@@ -16,6 +16,7 @@
 #include "scene/edit.h"
 #include "scene/hscene_file.h"
 #include "scene/import_pipeline.h"
+#include "scene/mesh_report_text.h"
 #include "scene/operations.h"
 #include "scene/scene_json.h"
 
@@ -394,6 +395,41 @@ class TestHsceneLods : public QObject {
     QVERIFY(p2.tiles && p2.tiles->borderVerticesMerged == 21);
     QCOMPARE(i2.tiles.size(), size_t(2));
     QCOMPARE(i2.tiles[1].file, std::string("b.obj"));
+  }
+
+  // A maximum error no decimation run met is said, in the report's rows
+  // and as a warning (the editor's Messages, the CLI's stderr); whether it
+  // was met follows from the stored options and the measured error, so
+  // reports saved before this say it too.
+  void anUnmetMaximumErrorIsSaid() {
+    AssetProcessReport p;
+    p.report.decimated = true;
+    p.report.decimation.trianglesIn = 1000;
+    p.report.decimation.trianglesOut = 120;
+    p.report.maxErrorPasses = 4;
+    p.report.errorMeasured = true;
+    p.report.error.hausdorff = 0.031;
+    p.options.decimate = true;
+    p.options.decimation.maxError = 0.02;
+    auto row = [](const Json& report) {
+      for (const ReportSection& s : processReportSections(report))
+        for (const ReportRow& r : s.rows)
+          if (r.key == "max_error_m") return r.value;
+      return std::string();
+    };
+    std::vector<std::string> w = processWarnings(toJson(p));
+    QCOMPARE(w.size(), size_t(1));
+    QVERIFY2(w[0].find("0.02 m") != std::string::npos && w[0].find("0.031 m") != std::string::npos &&
+                 w[0].find("4 decimation runs") != std::string::npos,
+             w[0].c_str());
+    QVERIFY2(row(toJson(p)).find("NOT met") != std::string::npos, row(toJson(p)).c_str());
+    p.report.error.hausdorff = 0.015;
+    QVERIFY(processWarnings(toJson(p)).empty());
+    QVERIFY2(row(toJson(p)).find("(met)") != std::string::npos, row(toJson(p)).c_str());
+    p.options.decimation.maxError = std::numeric_limits<double>::infinity();  // a triangle target only
+    p.report.error.hausdorff = 0.031;
+    QVERIFY(processWarnings(toJson(p)).empty());
+    QVERIFY(row(toJson(p)).empty());
   }
 
   // The old hashes are really checked: a changed byte in a format-3 file's

@@ -1,12 +1,14 @@
 #pragma once
 // Meshes with known shape for the mesh-processing tests: a gently curved
-// grid (optionally with a UV seam along a staircase line), an icosphere, and
-// OBJ writing with exact decimal coordinates.
+// grid (optionally with a UV seam along a staircase line), scan defects
+// added to it at random, an icosphere, and OBJ writing with exact decimal
+// coordinates.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <random>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -138,6 +140,49 @@ inline void writeObj(const std::string& path, const MeshData& m, glm::dvec3 offs
       std::fprintf(f, "f %u %u %u\n", m.indices[i] + 1, m.indices[i + 1] + 1, m.indices[i + 2] + 1);
   }
   std::fclose(f);
+}
+
+// One scan defect on `in` (a copy of `grid`, whose faces are picked by
+// `rng`): 0 a fin (a third face on an edge), 1 a fin the other way round,
+// 2 a triangle touching the surface at one vertex (a bow-tie), 3 a face
+// stored twice, 4 a face twice the other way round, 5 a loose triangle
+// above the surface, 6 a two-sided flap (a triangle and its reverse on
+// vertices of their own), 7 a face that repeats a vertex. New vertices
+// sit 0.6 above the surface, with UV (0.25, 0.25).
+inline void addDefect(MeshData& in, const MeshData& grid, int kind, std::mt19937& rng) {
+  auto addVertex = [&](const glm::vec3& p) {
+    in.positions.push_back(p);
+    if (!in.uvs.empty()) in.uvs.push_back({0.25f, 0.25f});
+    if (!in.normals.empty()) in.normals.push_back({0, 0, 1});
+    return uint32_t(in.positions.size() - 1);
+  };
+  const size_t f = rng() % grid.triangleCount();
+  const uint32_t k = rng() % 3;
+  const uint32_t a = grid.indices[f * 3 + k], b = grid.indices[f * 3 + (k + 1) % 3],
+                 c = grid.indices[f * 3 + (k + 2) % 3];
+  const glm::vec3 up = grid.positions[a] + glm::vec3(0.05f, 0.1f, 0.6f);
+  auto add = [&](std::initializer_list<uint32_t> ids) { in.indices.insert(in.indices.end(), ids); };
+  switch (kind) {
+    case 0: add({a, b, addVertex(up)}); break;
+    case 1: add({b, a, addVertex(up)}); break;
+    case 2: {
+      const uint32_t x = addVertex(up), y = addVertex(up + glm::vec3(0.2f, 0.0f, 0.0f));
+      add({a, x, y});
+      break;
+    }
+    case 3: add({a, b, c}); break;
+    case 4: add({a, c, b}); break;
+    case 5:
+    case 6: {
+      const uint32_t x = addVertex(up), y = addVertex(up + glm::vec3(0.3f, 0.0f, 0.0f)),
+                     z = addVertex(up + glm::vec3(0.0f, 0.3f, 0.0f));
+      add({x, y, z});
+      if (kind == 6) add({x, z, y});
+      break;
+    }
+    case 7: add({a, a, b}); break;
+  }
+  if (!in.submeshes.empty()) in.submeshes.back().indexCount = uint32_t(in.indices.size()) - in.submeshes.back().firstIndex;
 }
 
 inline void writeText(const std::string& path, const std::string& text) {

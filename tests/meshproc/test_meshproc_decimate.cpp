@@ -389,36 +389,11 @@ class TestMeshprocDecimate : public QObject {
   // 10 of these 40 meshes came out of 2% with a hole where it had been.
   void meshesWithRandomDefectsDecimate() {
     const MeshData grid = curvedGrid(40, 10.0, 0.4, true);  // 3,200 faces
-    const size_t gridFaces = grid.triangleCount();
     std::mt19937 rng(11);
     for (int trial = 0; trial < 40; ++trial) {
       MeshData in = grid;
-      auto addVertex = [&](const glm::vec3& p) {
-        in.positions.push_back(p);
-        in.uvs.push_back({0.25f, 0.25f});
-        in.normals.push_back({0, 0, 1});
-        return uint32_t(in.positions.size() - 1);
-      };
       const int defects = 1 + trial % 13;
-      for (int d = 0; d < defects; ++d) {
-        const size_t f = rng() % gridFaces;
-        const uint32_t k = rng() % 3;
-        const uint32_t a = grid.indices[f * 3 + k], b = grid.indices[f * 3 + (k + 1) % 3],
-                       c = grid.indices[f * 3 + (k + 2) % 3];
-        const glm::vec3 up = grid.positions[a] + glm::vec3(0.05f, 0.1f, 0.6f);
-        switch ((trial + d) % 5) {
-          case 0: in.indices.insert(in.indices.end(), {a, b, addVertex(up)}); break;  // a fin
-          case 1: in.indices.insert(in.indices.end(), {b, a, addVertex(up)}); break;  // a fin, other way round
-          case 2: {                                                                   // a bow-tie at a
-            const uint32_t x = addVertex(up), y = addVertex(up + glm::vec3(0.2f, 0.0f, 0.0f));
-            in.indices.insert(in.indices.end(), {a, x, y});
-            break;
-          }
-          case 3: in.indices.insert(in.indices.end(), {a, b, c}); break;  // the face twice
-          case 4: in.indices.insert(in.indices.end(), {a, c, b}); break;  // the face twice, flipped
-        }
-      }
-      in.submeshes = {{0, uint32_t(in.indices.size()), -1}};
+      for (int d = 0; d < defects; ++d) hs::test::addDefect(in, grid, (trial + d) % 5, rng);
       for (double ratio : {0.1, 0.02}) {
         const QString where = QString("trial %1, ratio %2").arg(trial).arg(ratio);
         uint64_t first = 0;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
@@ -231,6 +232,50 @@ class TestMeshprocError : public QObject {
     QVERIFY2(r.report.error.hausdorff <= 0.01, qPrintable(QString::number(r.report.error.hausdorff)));
     QVERIFY(r.mesh.triangleCount() < 60 * 60 * 2 / 4);
     QVERIFY(r.report.maxErrorPasses >= 1);
+  }
+
+  // The estimate can understate one feature's distance several times (a
+  // fin, a loose flap): runs then measured about the same maximum while
+  // the estimate shrank by 10% a run, and 3 of these 40 random defect
+  // meshes were still above the bound after the runs allowed. A run that
+  // comes no closer now halves the estimate. And when no run meets it,
+  // the run measured closest is kept, never one further than the first.
+  void maxErrorIsMetOnMeshesWithDefects() {
+    std::mt19937 rng(5);
+    int retried = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+      const int n = 10 + int(rng() % 40);
+      const double amplitude = 0.3 * double(rng() % 3);
+      const MeshData grid = curvedGrid(n, 10.0, amplitude, rng() % 2 == 0);
+      MeshData in = grid;
+      const int defects = int(rng() % 12);
+      for (int d = 0; d < defects; ++d) hs::test::addDefect(in, grid, int(rng() % 8), rng);
+      ProcessOptions o;
+      o.decimate = true;
+      o.decimation.targetRatio = 0;
+      o.decimation.maxError = 0.05;
+      o.decimation.facesPerRegion = 1000;
+      o.error.samplesPerFace = 2;
+      const ProcessResult r = processMesh(in, o);
+      const QString where = QString("trial %1: hausdorff %2 after %3 runs")
+                                .arg(trial)
+                                .arg(r.report.error.hausdorff)
+                                .arg(r.report.maxErrorPasses);
+      QVERIFY2(r.ok(), r.error.c_str());
+      QVERIFY2(r.report.errorMeasured && r.report.error.hausdorff <= 0.05, qPrintable(where));
+      retried += r.report.maxErrorPasses > 1;
+      if (r.report.maxErrorPasses > 1) {
+        ProcessOptions once = o;
+        once.maxErrorRetries = 0;
+        const ProcessResult first = processMesh(in, once);
+        QVERIFY2(first.report.error.hausdorff > 0.05, qPrintable(where));  // it needed the retries
+        ProcessOptions two = o;
+        two.maxErrorRetries = 1;
+        const ProcessResult r2 = processMesh(in, two);
+        QVERIFY2(r2.report.error.hausdorff <= first.report.error.hausdorff, qPrintable(where));
+      }
+    }
+    QVERIFY2(retried >= 10, qPrintable(QString::number(retried)));  // 23 of 40 take more than one run
   }
 
   void nonManifoldCountsInAndOut() {
