@@ -388,34 +388,52 @@ NonManifoldSplitStats splitNonManifold(std::span<uint32_t> tris, uint32_t vertex
       std::sort(corners.begin(), corners.end());
       std::vector<uint8_t> paired(corners.size(), 0);
       bool firstPairMade = false;
-      // A face and its copy the other way round (a back face on the same
-      // three vertices) are paired with each other only when nothing else
-      // is left: paired so, the face leaves the surface with its copy
-      // (glued along all three edges they close into a two-face pillow),
-      // and decimated results had a hole where it had been
-      // (test_meshproc_decimate::meshesWithRandomDefectsDecimate). Paired
-      // with the surface, the face stays in it and the copy comes off.
+      // Which faces to pair: those that sit firmly in the surface, so that
+      // the defect (a fin, a sliver, a loose copy) is what comes off, not
+      // a face of the surface. Pairs are taken best first:
+      // * a face and its copy the other way round (a back face on the same
+      //   three vertices) only when nothing else is left: paired so, the
+      //   face left the surface with its copy and decimated results had a
+      //   hole where it had been;
+      // * then by how many of the two faces' other edges have a twin (a
+      //   fin's or a sliver's have none): paired by corner order, a sliver
+      //   fin that came first took a surface face's place and the face was
+      //   detached in the next round, leaving a hole that decimation
+      //   opened into a crack (test_meshproc_decimate::meshesWithRandomDefectsDecimate);
+      // * then by corner order (deterministic).
       auto sameVertices = [&](uint32_t c, uint32_t d) {
         std::array<uint32_t, 3> x{tris[c / 3 * 3], tris[c / 3 * 3 + 1], tris[c / 3 * 3 + 2]},
             y{tris[d / 3 * 3], tris[d / 3 * 3 + 1], tris[d / 3 * 3 + 2]};
         std::sort(x.begin(), x.end()), std::sort(y.begin(), y.end());
         return x == y;
       };
-      for (const bool avoidCopies : {true, false})
-        for (size_t i = 0; i < corners.size(); ++i) {
-          if (paired[i]) continue;
-          for (size_t j = i + 1; j < corners.size(); ++j)
-            if (!paired[j] && corners[j].second != corners[i].second) {
-              if (avoidCopies && sameVertices(corners[i].first, corners[j].first)) continue;
-              if (round == 0 || !firstPairMade) {
-                twin[corners[i].first] = corners[j].first;
-                twin[corners[j].first] = corners[i].first;
-                paired[i] = paired[j] = 1;
-                firstPairMade = true;
-              }
-              break;
-            }
-        }
+      auto anchoring = [&](uint32_t c) {
+        return int(twin[nextCorner(c)] != kNoCorner) + int(twin[prevCorner(c)] != kNoCorner);
+      };
+      struct Candidate {
+        bool copies;
+        int anchoring;
+        uint32_t i, j;
+      };
+      std::vector<Candidate> candidates;
+      for (uint32_t i = 0; i < corners.size(); ++i)
+        for (uint32_t j = i + 1; j < corners.size(); ++j)
+          if (corners[j].second != corners[i].second)
+            candidates.push_back({sameVertices(corners[i].first, corners[j].first),
+                                  anchoring(corners[i].first) + anchoring(corners[j].first), i, j});
+      std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+        if (x.copies != y.copies) return !x.copies;
+        if (x.anchoring != y.anchoring) return x.anchoring > y.anchoring;
+        return std::pair(x.i, x.j) < std::pair(y.i, y.j);
+      });
+      for (const Candidate& p : candidates) {
+        if (paired[p.i] || paired[p.j]) continue;
+        if (round > 0 && firstPairMade) break;
+        twin[corners[p.i].first] = corners[p.j].first;
+        twin[corners[p.j].first] = corners[p.i].first;
+        paired[p.i] = paired[p.j] = 1;
+        firstPairMade = true;
+      }
       if (round > 0)
         for (size_t i = 0; i < corners.size(); ++i) {
           // Without any pair the first face keeps the edge as its boundary.

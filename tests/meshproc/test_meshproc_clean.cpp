@@ -241,6 +241,39 @@ class TestMeshprocClean : public QObject {
     QVERIFY2(analysedAgain >= 3, qPrintable(QString::number(analysedAgain)));
   }
 
+  // A sliver fin on an edge (a scan's splinter: a third face on the edge,
+  // its free vertex a millimetre from one end) must be what comes off,
+  // whatever the face order: paired by corner order, a fin listed first
+  // took the place of the surface's own face across the edge, which the
+  // next round detached, leaving a hole in the surface.
+  void aSliverFinComesOffNotTheSurfaceFace() {
+    const MeshData grid = hs::test::curvedGrid(14, 10.0, 0.3, false);
+    const uint32_t nv = uint32_t(grid.vertexCount());
+    const size_t gridBorder = analyzeCorners(grid.indices, nv).boundaryEdges;
+    int edges = 0;
+    for (size_t f = 0; f < grid.triangleCount(); f += 7)
+      for (uint32_t k = 0; k < 3; ++k) {
+        const uint32_t a = grid.indices[f * 3 + k], b = grid.indices[f * 3 + (k + 1) % 3];
+        for (bool finFirst : {true, false}) {
+          std::vector<uint32_t> tris;
+          if (finFirst) tris.insert(tris.end(), {a, b, nv});
+          tris.insert(tris.end(), grid.indices.begin(), grid.indices.end());
+          if (!finFirst) tris.insert(tris.end(), {a, b, nv});
+          std::vector<uint32_t> copiedFrom;
+          CornerTopology topo;
+          const NonManifoldSplitStats s = splitNonManifold(tris, nv + 1, copiedFrom, topo, 2);
+          const QString where = QString("face %1, edge %2, fin %3").arg(f).arg(k).arg(finFirst ? "first" : "last");
+          if (s.nonManifoldEdges == 0) continue;  // a border edge: the fin only extends the surface
+          ++edges;
+          QCOMPARE(s.facesDetached, size_t(0));
+          // The surface whole (its own border only) and the fin apart (its three edges).
+          QVERIFY2(topo.boundaryEdges == gridBorder + 3,
+                   qPrintable(where + QString(": %1 boundary edges, not %2").arg(topo.boundaryEdges).arg(gridBorder + 3)));
+        }
+      }
+    QVERIFY(edges > 100);
+  }
+
   void nanCoordinatesAreQuarantined() {
     MeshData m = hs::test::curvedGrid(4, 1.0, 0.0, false);
     const size_t faces = m.triangleCount();
