@@ -147,8 +147,11 @@ inline void writeObj(const std::string& path, const MeshData& m, glm::dvec3 offs
 // 2 a triangle touching the surface at one vertex (a bow-tie), 3 a face
 // stored twice, 4 a face twice the other way round, 5 a loose triangle
 // above the surface, 6 a two-sided flap (a triangle and its reverse on
-// vertices of their own), 7 a face that repeats a vertex. New vertices
-// sit 0.6 above the surface, with UV (0.25, 0.25).
+// vertices of their own), 7 a face that repeats a vertex, 8 a fin of zero
+// area (its free vertex at the edge's midpoint), 9 a face whose corner is
+// an unwelded copy of the surface's vertex, 10 a splinter: a fin whose
+// free vertex is the next float after one end of its edge. New vertices
+// of kinds 0-6 sit 0.6 above the surface, with UV (0.25, 0.25).
 inline void addDefect(MeshData& in, const MeshData& grid, int kind, std::mt19937& rng) {
   auto addVertex = [&](const glm::vec3& p) {
     in.positions.push_back(p);
@@ -181,6 +184,13 @@ inline void addDefect(MeshData& in, const MeshData& grid, int kind, std::mt19937
       break;
     }
     case 7: add({a, a, b}); break;
+    case 8: add({a, b, addVertex(0.5f * (grid.positions[a] + grid.positions[b]))}); break;
+    case 9: add({addVertex(grid.positions[a]), b, c}); break;
+    case 10: {
+      const glm::vec3 p = grid.positions[a];
+      add({a, b, addVertex({std::nextafter(p.x, p.x + 1.0f), p.y, p.z})});
+      break;
+    }
   }
   if (!in.submeshes.empty()) in.submeshes.back().indexCount = uint32_t(in.indices.size()) - in.submeshes.back().firstIndex;
 }

@@ -1,0 +1,138 @@
+// A seeded campaign of defective surfaces through the whole processing
+// (docs/reliability.md, "Defective surfaces through the decimator"): grids
+// of 10-50 cells, flat or curved, with or without a UV seam, some at UTM
+// coordinates, each with up to 14 scan defects of the kinds
+// hs::test::addDefect makes, cleaned, decimated to 2%, 10%, 50% or a 5 cm
+// maximum error, with 0-2 LOD levels and the error report, on one thread
+// and on two. Every result must be valid (indices in range, no face
+// repeating a vertex, finite positions), the same on both thread counts,
+// with no boundary or seam vertex off the input's polylines, a Hausdorff
+// below 5% of the diagonal (2% targets aside: a handful of triangles
+// cannot follow a small grid), and a maximum error met as measured.
+//
+//   meshproc_defect_campaign [--trials N] [--seed S] [--only T [--without D]]
+//
+// --only T runs trial T alone (the same mesh as in the whole run);
+// --without D leaves its D-th defect (from 0) out, to find which one a
+// failure needs.
+// Prints each failing case (seed and trial reproduce it) and a count; exits
+// 1 when any failed. Not a test: the tests hold the cases it found
+// (test_meshproc_clean, test_meshproc_decimate, test_meshproc_error).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+
+#include "meshproc/error_metrics.h"
+#include "meshproc/mesh_process.h"
+#include "mesh_builders.h"
+
+using namespace hs::mesh;
+
+int main(int argc, char** argv) {
+  int trials = 300, only = -1, without = -1;
+  unsigned seed = 1;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--trials")) trials = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--seed")) seed = unsigned(std::atoi(argv[i + 1]));
+    else if (!std::strcmp(argv[i], "--only")) only = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--without")) without = std::atoi(argv[i + 1]);
+    else {
+      std::fprintf(stderr, "usage: %s [--trials N] [--seed S] [--only T [--without D]]\n", argv[0]);
+      return 2;
+    }
+  }
+  std::mt19937 rng(seed);
+  int failed = 0, maxErrorRuns = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const int n = 10 + int(rng() % 41);
+    const bool seam = rng() % 2 == 0;
+    MeshData grid = hs::test::curvedGrid(n, 10.0, 0.3 * double(rng() % 3), seam);
+    const bool utm = rng() % 4 == 0;
+    if (utm) grid.origin = glm::dvec3(656059.0, 5514553.0, 1713.0);
+    MeshData in = grid;
+    const int defects = int(rng() % 15);
+    std::string kinds;
+    for (int d = 0; d < defects; ++d) {
+      const int kind = int(rng() % 11);
+      kinds += (kinds.empty() ? "" : ",") + std::to_string(kind);
+      if (d == without && trial == only) {
+        MeshData scratch = grid;  // left out, with the same draws: later defects stay where they were
+        hs::test::addDefect(scratch, grid, kind, rng);
+      } else {
+        hs::test::addDefect(in, grid, kind, rng);
+      }
+    }
+    ProcessOptions o;
+    o.decimate = true;
+    const int target = int(rng() % 4);
+    const double ratios[] = {0.02, 0.1, 0.5};
+    if (target < 3) {
+      o.decimation.targetRatio = ratios[target];
+    } else {
+      o.decimation.targetRatio = 0;
+      o.decimation.maxError = 0.05;
+      ++maxErrorRuns;
+    }
+    o.decimation.lockBoundaries = rng() % 5 == 0;
+    o.decimation.facesPerRegion = 1000;
+    o.lodLevels = int(rng() % 3);
+    o.error.samplesPerFace = 2;
+    if (only >= 0 && trial != only) continue;
+    char where[256];
+    std::snprintf(where, sizeof where, "seed %u trial %d: %dx%d grid%s%s, defects [%s], %s%s", seed, trial, n, n,
+                  seam ? ", seam" : "", utm ? ", UTM" : "", kinds.c_str(),
+                  target < 3 ? (std::to_string(int(ratios[target] * 100)) + "%").c_str() : "max error 0.05 m",
+                  o.decimation.lockBoundaries ? ", borders locked" : "");
+    uint64_t hashes[2] = {0, 0};
+    bool bad = false;
+    auto fail = [&](const std::string& what) {
+      std::printf("%s: %s\n", where, what.c_str());
+      bad = true;
+    };
+    for (unsigned threads : {1u, 2u}) {
+      o.decimation.threads = o.error.threads = o.cleaning.threads = threads;
+      const ProcessResult r = processMesh(in, o);
+      if (!r.ok()) {
+        fail("refused: " + r.error);
+        break;
+      }
+      const MeshData& out = r.mesh;
+      for (size_t t = 0; t < out.triangleCount(); ++t) {
+        const uint32_t i = out.indices[t * 3], j = out.indices[t * 3 + 1], l = out.indices[t * 3 + 2];
+        if (i >= out.vertexCount() || j >= out.vertexCount() || l >= out.vertexCount() || i == j || j == l || i == l) {
+          fail("face " + std::to_string(t) + " is invalid");
+          break;
+        }
+      }
+      for (const auto& p : out.positions)
+        if (!std::isfinite(p.x + p.y + p.z)) {
+          fail("a position is not finite");
+          break;
+        }
+      for (const MeshData& level : r.lods)
+        for (uint32_t i : level.indices)
+          if (i >= level.vertexCount()) {
+            fail("a LOD level's index is out of range");
+            break;
+          }
+      const ErrorReport& e = r.report.error;
+      if (threads == 1) {
+        if (e.constrainedVerticesMoved)
+          fail(std::to_string(e.constrainedVerticesMoved) + " boundary/seam vertices off the input's, by up to " +
+               std::to_string(e.constrainedMaxDeviation) + " m");
+        if (target != 0 && !(e.rel(e.hausdorff) < 0.05)) fail("Hausdorff " + std::to_string(e.rel(e.hausdorff)) + " of the diagonal");
+        if (target == 3 && !(e.hausdorff <= 0.05))
+          fail("maximum error not met: " + std::to_string(e.hausdorff) + " m after " +
+               std::to_string(r.report.maxErrorPasses) + " runs");
+      }
+      hashes[threads - 1] = contentHash(out);
+    }
+    if (!bad && hashes[0] != hashes[1]) fail("differs between 1 and 2 threads");
+    failed += bad;
+  }
+  std::printf("%d of %d cases failed (%d with a maximum error)\n", failed, trials, maxErrorRuns);
+  return failed ? 1 : 0;
+}
