@@ -1,7 +1,7 @@
 // A seeded campaign of defective surfaces through the whole processing
 // (docs/reliability.md, "Defective surfaces through the decimator"): grids
-// of 10-50 cells, flat or curved, with or without a UV seam, some at UTM
-// coordinates, each with up to 14 scan defects of the kinds
+// of 10-50 cells, flat or curved, with or without a UV seam, a third with
+// two materials, some at UTM coordinates, each with up to 14 scan defects of the kinds
 // hs::test::addDefect makes, cleaned, decimated to 2%, 10%, 50% or a 5 cm
 // maximum error, with 0-2 LOD levels and the error report, on one thread
 // and on two. Every result must be valid (indices in range, no face
@@ -52,6 +52,20 @@ int main(int argc, char** argv) {
     MeshData grid = hs::test::curvedGrid(n, 10.0, 0.3 * double(rng() % 3), seam);
     const bool utm = rng() % 4 == 0;
     if (utm) grid.origin = glm::dvec3(656059.0, 5514553.0, 1713.0);
+    if (rng() % 3 == 0) {
+      // Two materials, split down the middle (a material border is a seam).
+      std::vector<uint32_t> left, right;
+      for (size_t f = 0; f < grid.triangleCount(); ++f) {
+        const float cx = (grid.positions[grid.indices[f * 3]].x + grid.positions[grid.indices[f * 3 + 1]].x +
+                          grid.positions[grid.indices[f * 3 + 2]].x) / 3.0f;
+        auto& side = cx < 5.0f ? left : right;
+        side.insert(side.end(), grid.indices.begin() + f * 3, grid.indices.begin() + f * 3 + 3);
+      }
+      grid.indices = left;
+      grid.indices.insert(grid.indices.end(), right.begin(), right.end());
+      grid.materials.resize(2);
+      grid.submeshes = {{0, uint32_t(left.size()), 0}, {uint32_t(left.size()), uint32_t(right.size()), 1}};
+    }
     MeshData in = grid;
     const int defects = int(rng() % 15);
     std::string kinds;
@@ -82,8 +96,8 @@ int main(int argc, char** argv) {
     o.error.samplesPerFace = 2;
     if (only >= 0 && trial != only) continue;
     char where[256];
-    std::snprintf(where, sizeof where, "seed %u trial %d: %dx%d grid%s%s, defects [%s], %s%s", seed, trial, n, n,
-                  seam ? ", seam" : "", utm ? ", UTM" : "", kinds.c_str(),
+    std::snprintf(where, sizeof where, "seed %u trial %d: %dx%d grid%s%s%s, defects [%s], %s%s", seed, trial, n, n,
+                  seam ? ", seam" : "", grid.submeshes.size() > 1 ? ", 2 materials" : "", utm ? ", UTM" : "", kinds.c_str(),
                   target < 3 ? (std::to_string(int(ratios[target] * 100)) + "%").c_str() : "max error 0.05 m",
                   o.decimation.lockBoundaries ? ", borders locked" : "");
     uint64_t hashes[2] = {0, 0};
