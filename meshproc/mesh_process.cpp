@@ -56,6 +56,7 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
     const int passes = errorTarget ? 1 + std::max(0, options.maxErrorRetries) : 1;
     std::optional<ErrorMeter> meter;
     // Over the bound on every run, the run measured closest to it is kept.
+    bool met = !errorTarget, haveClosest = false;
     MeshData closest;
     DecimateReport closestDecimation;
     ErrorReport closestError;
@@ -83,26 +84,29 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
         return done();
       }
       // Met, or nothing more to tighten: keep this one.
-      if (!errorTarget || rep.error.hausdorff <= wanted || rep.error.hausdorff <= 0) break;
-      const bool first = closest.indices.empty();
-      const bool closer = first || rep.error.hausdorff < closestError.hausdorff;
+      if (!errorTarget || rep.error.hausdorff <= wanted || rep.error.hausdorff <= 0) {
+        met = true;
+        break;
+      }
       // The estimate steers by quadric error, which can understate the
       // distance of one feature (a fin, a flap) several times: runs then
       // measure about the same maximum while the estimate shrinks by 10% a
       // run (random defect meshes needed up to 8 runs). A run that did not
       // come at least 3% closer halves it.
-      const bool progressed = first || rep.error.hausdorff < 0.97 * closestError.hausdorff;
+      const bool progressed = !haveClosest || rep.error.hausdorff < 0.97 * closestError.hausdorff;
       const double step = 0.9 * wanted / rep.error.hausdorff;
       d.maxError *= progressed ? step : std::min(step, 0.5);
-      if (closer) {
-        closest = result.mesh;
+      if (!haveClosest || rep.error.hausdorff < closestError.hausdorff) {
+        closest = std::move(result.mesh);
         closestDecimation = rep.decimation;
         closestError = rep.error;
-      } else if (pass + 1 == passes) {
-        result.mesh = std::move(closest);
-        rep.decimation = closestDecimation;
-        rep.error = closestError;
+        haveClosest = true;
       }
+    }
+    if (!met && haveClosest) {
+      result.mesh = std::move(closest);
+      rep.decimation = closestDecimation;
+      rep.error = closestError;
     }
   } else {
     result.mesh = std::move(input);
