@@ -108,6 +108,32 @@ struct PerWorkerLists {
   }
 };
 
+// Corners reached from `start` (a corner leaving a vertex with k corners)
+// by walking through twins around the vertex, both ways when the fan is
+// open; fewer than k means the vertex's faces form more than one fan.
+size_t fanSize(std::span<const uint32_t> twin, uint32_t start, size_t k) {
+  size_t count = 1;
+  bool closed = false;
+  for (uint32_t c = start; count <= k;) {
+    const uint32_t n = twin[prevCorner(c)];
+    if (n == kNoCorner) break;
+    if (n == start) {
+      closed = true;
+      break;
+    }
+    ++count;
+    c = n;
+  }
+  if (!closed)
+    for (uint32_t c = start; count <= k;) {
+      const uint32_t tw = twin[c];
+      if (tw == kNoCorner) break;
+      c = nextCorner(tw);
+      ++count;
+    }
+  return count;
+}
+
 CornerTopology analyze(std::span<const uint32_t> tris, uint32_t nv, const OutgoingLists& l, unsigned threads,
                        Defects* defects = nullptr) {
   CornerTopology t;
@@ -178,27 +204,7 @@ CornerTopology analyze(std::span<const uint32_t> tris, uint32_t nv, const Outgoi
           break;
         }
       if (touchesNonManifold) continue;
-      const uint32_t start = entryCorner(list[0]);
-      size_t count = 1;
-      bool closed = false;
-      for (uint32_t c = start; count <= k;) {
-        const uint32_t n = t.twin[prevCorner(c)];
-        if (n == kNoCorner) break;
-        if (n == start) {
-          closed = true;
-          break;
-        }
-        ++count;
-        c = n;
-      }
-      if (!closed)
-        for (uint32_t c = start; count <= k;) {
-          const uint32_t tw = t.twin[c];
-          if (tw == kNoCorner) break;
-          c = nextCorner(tw);
-          ++count;
-        }
-      if (count < k) {
+      if (fanSize({t.twin.data(), t.twin.size()}, entryCorner(list[0]), k) < k) {
         ++nm;
         if (defects) bowTieLists.lists[w].push_back(uint32_t(v));
       }
@@ -302,27 +308,7 @@ bool manifoldAfterSplit(std::span<const uint32_t> tris, std::span<const uint32_t
     }
     const size_t k = fan.size();
     if (k < 2) continue;
-    const uint32_t start = fan[0];
-    size_t count = 1;
-    bool closed = false;
-    for (uint32_t c = start; count <= k;) {
-      const uint32_t n = twin[prevCorner(c)];
-      if (n == kNoCorner) break;
-      if (n == start) {
-        closed = true;
-        break;
-      }
-      ++count;
-      c = n;
-    }
-    if (!closed)
-      for (uint32_t c = start; count <= k;) {
-        const uint32_t tw = twin[c];
-        if (tw == kNoCorner) break;
-        c = nextCorner(tw);
-        ++count;
-      }
-    if (count < k) return false;  // still a bow-tie
+    if (fanSize({twin.data(), twin.size()}, fan[0], k) < k) return false;  // still a bow-tie
   }
   std::atomic<size_t> open{0};
   parallelRanges(twin.size(), threads, [&](size_t b, size_t e, unsigned) {
