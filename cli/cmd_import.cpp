@@ -9,8 +9,8 @@
 #include "core/escape_control.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
-#include "scene/mesh_report_text.h"
 #include "scene/import_pipeline.h"
+#include "scene/mesh_report_text.h"
 #include "scene/operations.h"
 
 namespace hs::cli {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "scene/asset_reports.h"
 
@@ -77,7 +78,17 @@ ReportSection errorSection(const mesh::ErrorReport& e) {
   return r.s;
 }
 
-ReportSection decimationSection(const mesh::ProcessReport& p, double maxError) {
+// Whether the result met the maximum error asked for; nothing when none
+// was asked (or the result was not measured). Follows from the stored
+// options and the measured error, so older reports answer too.
+std::optional<bool> maxErrorMet(const AssetProcessReport& a) {
+  const double wanted = a.options.decimation.maxError;
+  if (!a.report.decimated || !a.report.errorMeasured || !std::isfinite(wanted) || !(wanted > 0)) return std::nullopt;
+  return a.report.error.hausdorff <= wanted;
+}
+
+ReportSection decimationSection(const AssetProcessReport& a) {
+  const mesh::ProcessReport& p = a.report;
   const mesh::DecimateReport& d = p.decimation;
   Rows r("Decimation");
   r.add("triangles_in", "Triangles in", count(d.trianglesIn))
@@ -87,9 +98,10 @@ ReportSection decimationSection(const mesh::ProcessReport& p, double maxError) {
       .add("collapses", "Edge collapses", count(d.collapses))
       .add("rejected_normal_flip", "Collapses refused (flip / sliver / topology)",
            count(d.rejectedFlip) + " / " + count(d.rejectedSliver) + " / " + count(d.rejectedTopology));
-  if (std::isfinite(maxError) && maxError > 0 && p.errorMeasured)
+  if (const std::optional<bool> met = maxErrorMet(a))
     r.add("max_error_m", "Maximum error asked",
-          metres(maxError) + (p.error.hausdorff <= maxError ? " (met)" : " (NOT met: the run measured closest to it is kept)"));
+          metres(a.options.decimation.maxError) +
+              (*met ? " (met)" : " (NOT met: the run measured closest to it is kept)"));
   if (p.maxErrorPasses > 1)
     r.add("decimation_passes", "Runs for the maximum error", std::to_string(p.maxErrorPasses));
   r.add("seconds", "Decimation time", seconds(d.secondsTotal));
@@ -141,7 +153,7 @@ std::vector<ReportSection> processReportSections(const Json& json) {
   if (!stored) return out;
   const mesh::ProcessReport& p = stored->report;
   if (p.errorMeasured) out.push_back(errorSection(p.error));
-  if (p.decimated) out.push_back(decimationSection(p, stored->options.decimation.maxError));
+  if (p.decimated) out.push_back(decimationSection(*stored));
   if (!p.lods.empty()) out.push_back(lodSection(p.lods));
   if (p.cleaned) out.push_back(cleaningSection(p.cleaning));
   if (stored->tiles) out.push_back(tilesSection(*stored->tiles));
@@ -179,9 +191,9 @@ std::vector<std::string> processWarnings(const Json& json) {
   const std::optional<AssetProcessReport> stored = readProcessReport(json);
   if (!stored) return out;
   const mesh::ProcessReport& p = stored->report;
-  const double wanted = stored->options.decimation.maxError;
-  if (p.decimated && std::isfinite(wanted) && wanted > 0 && p.errorMeasured && p.error.hausdorff > wanted)
-    out.push_back("the maximum error of " + metres(wanted) + " was not met: " + std::to_string(p.maxErrorPasses) +
+  if (maxErrorMet(*stored) == false)
+    out.push_back("the maximum error of " + metres(stored->options.decimation.maxError) +
+                  " was not met: " + std::to_string(p.maxErrorPasses) +
                   " decimation runs measured above it; the closest (hausdorff_m " + metres(p.error.hausdorff) +
                   ") is kept");
   return out;
