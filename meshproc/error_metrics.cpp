@@ -35,7 +35,14 @@ struct Polylines {
 
 // Boundary edges, seams (the faces on either side use different UVs or
 // materials) and non-manifold edges, found on the position-welded topology.
-Polylines findPolylines(const MeshData& m, unsigned threads) {
+// `reference`: also the edges between a face and its own reversed copy.
+// Such a pair is one two-sided face, glued to itself along its border
+// edges; once the cleaning or the decimation parts the copy from it (or
+// lets it go), those edges are the surface's border, and the result's
+// vertices on them stand where the input's were. Only the original's
+// polylines, the reference a result is checked against, count them: a
+// result's vertex is checked if the result has it on a border.
+Polylines findPolylines(const MeshData& m, unsigned threads, bool reference) {
   Polylines pl;
   pl.posOf = weldMap(m.positions, {}, {}, pl.positions);
   uint32_t nWedge = 0;
@@ -56,7 +63,8 @@ Polylines findPolylines(const MeshData& m, unsigned threads) {
     bool constrained = t == kNoCorner;
     if (!constrained) {
       if (t < c) continue;  // seen from the twin
-      constrained = mat[c / 3] != mat[t / 3] || wedgeOf[m.indices[c]] != wedgeOf[m.indices[nextCorner(t)]] ||
+      const bool ownReversedCopy = tris[nextCorner(nextCorner(c))] == tris[nextCorner(nextCorner(t))];
+      constrained = (reference && ownReversedCopy) || mat[c / 3] != mat[t / 3] || wedgeOf[m.indices[c]] != wedgeOf[m.indices[nextCorner(t)]] ||
                     wedgeOf[m.indices[nextCorner(c)]] != wedgeOf[m.indices[t]];
     }
     if (!constrained) continue;
@@ -176,7 +184,7 @@ ErrorMeter::ErrorMeter(const MeshData& original, const ErrorOptions& options)
   Original& o = *o_;
   o.threads = resolveThreads(options.threads);
   o.bvh = ClosestPointBvh(original, o.threads);
-  o.polylines = findPolylines(original, o.threads);
+  o.polylines = findPolylines(original, o.threads, true);
   if (!o.polylines.segments.indices.empty()) o.polylineBvh = ClosestPointBvh(o.polylines.segments, o.threads);
   o.material = faceMaterial(original);
   const Bounds b = original.bounds();
@@ -289,7 +297,7 @@ ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress) con
   }
 
   // Boundary and seam vertices of the result against the original polylines.
-  const Polylines sp = findPolylines(s, o.threads);
+  const Polylines sp = findPolylines(s, o.threads, false);
   r.nonManifoldOut = sp.nonManifold;
   std::vector<uint8_t> seen(sp.positions, 0);
   const double tol = 1e-6 * o.diagonal;

@@ -278,6 +278,42 @@ class TestMeshprocError : public QObject {
     QVERIFY2(retried >= 10, qPrintable(QString::number(retried)));  // 23 of 40 take more than one run
   }
 
+  // A face stored again the other way round glues itself to its own
+  // border edges: in the input's topology the corner of a grid whose one
+  // face has such a copy is no border vertex. The result (the copy gone,
+  // the corner where it was) is on the input's border all the same, and
+  // the report must not count its corner as moved; a corner that did move
+  // still counts. Found by meshproc_defect_campaign (5 of 6,000 cases).
+  void aReversedCopyOfACornerFaceIsNoMovedCorner() {
+    const int n = 12;
+    const MeshData grid = curvedGrid(n, 10.0, 0.3, false);
+    const size_t f = size_t(2 * (n - 1));  // the only face at the corner (n, 0)
+    const uint32_t a = grid.indices[f * 3], b = grid.indices[f * 3 + 1], c = grid.indices[f * 3 + 2];
+    QCOMPARE(grid.positions[b], glm::vec3(10.0f, 0.0f, grid.positions[b].z));  // the corner is b
+    MeshData in = grid;
+    in.indices.insert(in.indices.end(), {a, c, b});
+    in.submeshes.back().indexCount = uint32_t(in.indices.size());
+
+    const ErrorReport same = measureError(in, grid);
+    QVERIFY(same.constrainedVerticesOut >= size_t(4 * n));
+    QCOMPARE(same.constrainedVerticesMoved, size_t(0));
+
+    MeshData moved = grid;
+    moved.positions[b].x += 0.3f;  // off the border, outwards
+    const ErrorReport off = measureError(in, moved);
+    QCOMPARE(off.constrainedVerticesMoved, size_t(1));
+    QVERIFY(std::abs(off.constrainedMaxDeviation - 0.3) < 1e-4);
+
+    ProcessOptions o;
+    o.decimate = true;
+    o.decimation.targetRatio = 0.02;
+    o.decimation.facesPerRegion = 100;
+    const ProcessResult r = processMesh(in, o);
+    QVERIFY2(r.ok(), r.error.c_str());
+    QVERIFY(r.report.errorMeasured);
+    QCOMPARE(r.report.error.constrainedVerticesMoved, size_t(0));
+  }
+
   void nonManifoldCountsInAndOut() {
     // Two triangles sharing one corner only (a bow-tie) and three faces on one edge.
     MeshData m;
