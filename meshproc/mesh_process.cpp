@@ -61,7 +61,12 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
     DecimateReport closestDecimation;
     ErrorReport closestError;
     for (int pass = 0; pass < passes; ++pass) {
-      SubProgress sub(progress, 0.1 + 0.5 * pass / passes, 0.1 + 0.5 * (pass + 1) / passes);
+      // Most runs are the first or the second: each run gets half of
+      // what the bar has left (a single run all of it), 70% of that for
+      // the decimation, the rest for measuring.
+      const double lo = 0.1 + 0.7 * (1.0 - std::ldexp(1.0, -pass)),
+                   hi = passes == 1 ? 0.8 : 0.1 + 0.7 * (1.0 - std::ldexp(1.0, -pass - 1)), mid = lo + 0.7 * (hi - lo);
+      SubProgress sub(progress, lo, mid);
       DecimateResult r = decimate(input, d, sub.get());
       if (r.cancelled) {
         result.cancelled = true;
@@ -76,7 +81,7 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
       result.mesh = std::move(r.mesh);
       if (!options.measureError && !errorTarget) break;
       if (!meter) meter.emplace(input, options.error);
-      SubProgress subE(progress, 0.6, 0.8);
+      SubProgress subE(progress, mid, hi);
       rep.error = meter->measure(result.mesh, subE.get());
       rep.errorMeasured = !rep.error.cancelled;
       if (rep.error.cancelled) {

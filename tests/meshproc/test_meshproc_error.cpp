@@ -3,6 +3,7 @@
 // round trips byte for byte, non-manifold counts.
 #include <QtTest>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -11,6 +12,7 @@
 #include "meshproc/error_metrics.h"
 #include "meshproc/mesh_process.h"
 #include "meshproc/report_json.h"
+#include "defect_cases.h"
 #include "mesh_builders.h"
 
 using namespace hs::mesh;
@@ -312,6 +314,31 @@ class TestMeshprocError : public QObject {
     QVERIFY2(r.ok(), r.error.c_str());
     QVERIFY(r.report.errorMeasured);
     QCOMPARE(r.report.error.constrainedVerticesMoved, size_t(0));
+  }
+
+  // The cases meshproc_defect_campaign found failing at stop 29 (seeds 1-3,
+  // 2,000 trials each), replayed with the campaign's own checks: ten
+  // maximum errors still over the bound after the 3 retries allowed then
+  // (0-13% over; 6 retries meet all of them, in at most 5 runs) and five
+  // corners counted as moved because of a face's reversed copy.
+  void campaignCasesThatOnceFailedPass() {
+    const std::vector<std::pair<unsigned, std::vector<int>>> found = {
+        {1, {82, 179, 195, 852, 1196, 1682}}, {2, {96, 401, 707, 1193, 1258, 1836}}, {3, {528, 1717, 1991}}};
+    int maxErrorCases = 0;
+    for (const auto& [seed, trials] : found) {
+      hs::test::DefectCases cases(seed);
+      for (int trial = 0; trial <= trials.back(); ++trial) {
+        const hs::test::DefectCase c = cases.next();
+        if (std::find(trials.begin(), trials.end(), trial) == trials.end()) continue;
+        const hs::test::DefectOutcome r = hs::test::checkDefectCase(c);
+        QVERIFY2(r.failures.empty(), qPrintable(QString::fromStdString(c.where + ": " + (r.failures.empty() ? "" : r.failures[0]))));
+        if (c.target == 3) {
+          ++maxErrorCases;
+          QVERIFY2(r.runs >= 2, c.where.c_str());  // each needed reruns; none met the bound at once
+        }
+      }
+    }
+    QCOMPARE(maxErrorCases, 11);  // the ten, and one of the two corners (seed 1 trial 195)
   }
 
   void nonManifoldCountsInAndOut() {
