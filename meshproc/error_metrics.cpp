@@ -94,6 +94,26 @@ double signedVolume(const MeshData& m, const glm::dvec3& ref) {
 // Distances from `total` seeded samples on `from` (plus its vertices, for the
 // maximum) to the surface in `target`. `offset` takes `from`'s local
 // coordinates into the target's. Face samples land in `out`.
+// The largest distance from `from`'s vertices (shifted by `offset`) to
+// `target`'s surface: the vertices' part of a direction's maximum.
+double vertexDistanceMax(const MeshData& from, const ClosestPointBvh& target, const glm::dvec3& offset,
+                         unsigned threads) {
+  std::vector<double> maxOf(std::max(1u, threads), 0.0);
+  parallelRanges(from.vertexCount(), threads, [&](size_t b, size_t e, unsigned w) {
+    uint32_t hint = UINT32_MAX;
+    double mx = 0;
+    for (size_t v = b; v < e; ++v) {
+      const auto hit = target.closest(glm::dvec3(from.positions[v]) + offset, hint);
+      hint = hit.face;
+      mx = std::max(mx, std::sqrt(hit.distanceSq));
+    }
+    maxOf[w] = std::max(maxOf[w], mx);
+  });
+  double m = 0;
+  for (double x : maxOf) m = std::max(m, x);
+  return m;
+}
+
 bool sampleDistances(const MeshData& from, const std::vector<uint64_t>& first, uint64_t seed,
                      const ClosestPointBvh& target, const glm::dvec3& offset, float* out, double& maxDist,
                      unsigned threads, const Progress* progress) {
@@ -123,17 +143,8 @@ bool sampleDistances(const MeshData& from, const std::vector<uint64_t>& first, u
     }
     maxOf[w] = std::max(maxOf[w], mx);
   }, 256);
-  parallelRanges(from.vertexCount(), threads, [&](size_t b, size_t e, unsigned w) {
-    uint32_t hint = UINT32_MAX;
-    double mx = 0;
-    for (size_t v = b; v < e; ++v) {
-      const auto hit = target.closest(glm::dvec3(from.positions[v]) + offset, hint);
-      hint = hit.face;
-      mx = std::max(mx, std::sqrt(hit.distanceSq));
-    }
-    maxOf[w] = std::max(maxOf[w], mx);
-  });
   for (double m : maxOf) maxDist = std::max(maxDist, m);
+  maxDist = std::max(maxDist, vertexDistanceMax(from, target, offset, threads));
   return !stop;
 }
 
@@ -198,6 +209,13 @@ ErrorMeter::ErrorMeter(const MeshData& original, const ErrorOptions& options)
 }
 
 ErrorMeter::~ErrorMeter() = default;
+
+double ErrorMeter::vertexHausdorff(const MeshData& s) const {
+  const Original& o = *o_;
+  const glm::dvec3 toOrig = s.origin - o.mesh.origin;
+  const ClosestPointBvh sBvh(s, o.threads);
+  return std::max(vertexDistanceMax(o.mesh, sBvh, -toOrig, o.threads), vertexDistanceMax(s, o.bvh, toOrig, o.threads));
+}
 
 ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress) const {
   const auto t0 = std::chrono::steady_clock::now();

@@ -341,6 +341,42 @@ class TestMeshprocError : public QObject {
     QCOMPARE(maxErrorCases, 11);  // the ten, and one of the two corners (seed 1 trial 195)
   }
 
+  // vertexHausdorff, which lets a maximum-error run over its bound be
+  // rerun without the full measure, is the largest distance from a vertex
+  // of either mesh to the other's surface (brute force over every face
+  // here), and never above the report's Hausdorff.
+  void vertexHausdorffIsTheVerticesMaximum() {
+    const MeshData orig = curvedGrid(24, 10.0, 0.4, true);
+    DecimateOptions d;
+    d.targetRatio = 0.1;
+    const DecimateResult r = decimate(orig, d);
+    QVERIFY2(r.ok(), r.error.c_str());
+    const MeshData& s = r.mesh;
+    const glm::dvec3 toOrig = s.origin - orig.origin;
+    auto farthest = [](const MeshData& from, const MeshData& to, const glm::dvec3& offset) {
+      double worst = 0;
+      for (const glm::vec3& v : from.positions) {
+        double best = HUGE_VAL;
+        for (size_t f = 0; f < to.triangleCount(); ++f) {
+          glm::dvec3 p, bary;
+          best = std::min(best, closestPointOnTriangle(glm::dvec3(v) + offset, glm::dvec3(to.positions[to.indices[f * 3]]),
+                                                       glm::dvec3(to.positions[to.indices[f * 3 + 1]]),
+                                                       glm::dvec3(to.positions[to.indices[f * 3 + 2]]), p, bary));
+        }
+        worst = std::max(worst, std::sqrt(best));
+      }
+      return worst;
+    };
+    const double brute = std::max(farthest(orig, s, -toOrig), farthest(s, orig, toOrig));
+    const ErrorMeter meter(orig);
+    const double atVertices = meter.vertexHausdorff(s);
+    QVERIFY2(brute > 1e-3, qPrintable(QString::number(brute)));  // 10% of a curved grid is off it somewhere
+    QVERIFY2(std::abs(atVertices - brute) <= 1e-12 * brute,
+             qPrintable(QString("%1 vs %2").arg(atVertices, 0, 'g', 17).arg(brute, 0, 'g', 17)));
+    const ErrorReport e = meter.measure(s);
+    QVERIFY(atVertices <= e.hausdorff);
+  }
+
   void nonManifoldCountsInAndOut() {
     // Two triangles sharing one corner only (a bow-tie) and three faces on one edge.
     MeshData m;
