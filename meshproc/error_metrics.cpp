@@ -64,7 +64,8 @@ Polylines findPolylines(const MeshData& m, unsigned threads, bool reference) {
     if (!constrained) {
       if (t < c) continue;  // seen from the twin
       const bool ownReversedCopy = tris[nextCorner(nextCorner(c))] == tris[nextCorner(nextCorner(t))];
-      constrained = (reference && ownReversedCopy) || mat[c / 3] != mat[t / 3] || wedgeOf[m.indices[c]] != wedgeOf[m.indices[nextCorner(t)]] ||
+      constrained = (reference && ownReversedCopy) || mat[c / 3] != mat[t / 3] ||
+                    wedgeOf[m.indices[c]] != wedgeOf[m.indices[nextCorner(t)]] ||
                     wedgeOf[m.indices[nextCorner(c)]] != wedgeOf[m.indices[t]];
     }
     if (!constrained) continue;
@@ -91,9 +92,6 @@ double signedVolume(const MeshData& m, const glm::dvec3& ref) {
   return v / 6.0;
 }
 
-// Distances from `total` seeded samples on `from` (plus its vertices, for the
-// maximum) to the surface in `target`. `offset` takes `from`'s local
-// coordinates into the target's. Face samples land in `out`.
 // The largest distance from `from`'s vertices (shifted by `offset`) to
 // `target`'s surface: the vertices' part of a direction's maximum.
 double vertexDistanceMax(const MeshData& from, const ClosestPointBvh& target, const glm::dvec3& offset,
@@ -114,6 +112,9 @@ double vertexDistanceMax(const MeshData& from, const ClosestPointBvh& target, co
   return m;
 }
 
+// Distances from `total` seeded samples on `from` (plus its vertices, for the
+// maximum) to the surface in `target`. `offset` takes `from`'s local
+// coordinates into the target's. Face samples land in `out`.
 bool sampleDistances(const MeshData& from, const std::vector<uint64_t>& first, uint64_t seed,
                      const ClosestPointBvh& target, const glm::dvec3& offset, float* out, double& maxDist,
                      unsigned threads, const Progress* progress) {

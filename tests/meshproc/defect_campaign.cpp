@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
   }
   std::printf("%d of %d cases failed (%d with a maximum error)\n", failed, only >= 0 ? 1 : trials, maxErrorRuns);
   if (maxErrorRuns > 0)
-    std::printf("maximum-error cases: %.3f runs on average, at most %d; %.2f%% of the input's triangles kept on average\n",
+    std::printf("maximum-error cases: %.3f runs on average, at most %d; "
+                "%.2f%% of the input's triangles kept on average\n",
                 runsSum / maxErrorRuns, runsMost, 100.0 * keptSum / maxErrorRuns);
   return failed ? 1 : 0;
 }

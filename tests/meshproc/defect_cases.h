@@ -86,10 +86,11 @@ class DefectCases {
     o.lodLevels = int(rng_() % 3);
     o.error.samplesPerFace = 2;
     char where[256];
-    std::snprintf(where, sizeof where, "seed %u trial %d: %dx%d grid x %g%s%s%s, defects [%s], %s%s", seed_, c.trial, n, n,
-                  c.scale, seam ? ", seam" : "", grid.submeshes.size() > 1 ? ", 2 materials" : "", utm ? ", UTM" : "",
-                  kinds.c_str(),
-                  c.target < 3 ? (std::to_string(int(ratios[c.target] * 100)) + "%").c_str() : "max error 0.05 m x scale",
+    const std::string targetText =
+        c.target < 3 ? std::to_string(int(ratios[c.target] * 100)) + "%" : "max error 0.05 m x scale";
+    std::snprintf(where, sizeof where, "seed %u trial %d: %dx%d grid x %g%s%s%s, defects [%s], %s%s", seed_, c.trial, n,
+                  n, c.scale, seam ? ", seam" : "", grid.submeshes.size() > 1 ? ", 2 materials" : "",
+                  utm ? ", UTM" : "", kinds.c_str(), targetText.c_str(),
                   o.decimation.lockBoundaries ? ", borders locked" : "");
     c.where = where;
     return c;

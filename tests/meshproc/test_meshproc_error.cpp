@@ -331,7 +331,8 @@ class TestMeshprocError : public QObject {
         const hs::test::DefectCase c = cases.next();
         if (std::find(trials.begin(), trials.end(), trial) == trials.end()) continue;
         const hs::test::DefectOutcome r = hs::test::checkDefectCase(c);
-        QVERIFY2(r.failures.empty(), qPrintable(QString::fromStdString(c.where + ": " + (r.failures.empty() ? "" : r.failures[0]))));
+        const std::string what = c.where + ": " + (r.failures.empty() ? "" : r.failures[0]);
+        QVERIFY2(r.failures.empty(), what.c_str());
         if (c.target == 3) {
           ++maxErrorCases;
           QVERIFY2(r.runs >= 2, c.where.c_str());  // each needed reruns; none met the bound at once
@@ -359,9 +360,9 @@ class TestMeshprocError : public QObject {
         double best = HUGE_VAL;
         for (size_t f = 0; f < to.triangleCount(); ++f) {
           glm::dvec3 p, bary;
-          best = std::min(best, closestPointOnTriangle(glm::dvec3(v) + offset, glm::dvec3(to.positions[to.indices[f * 3]]),
-                                                       glm::dvec3(to.positions[to.indices[f * 3 + 1]]),
-                                                       glm::dvec3(to.positions[to.indices[f * 3 + 2]]), p, bary));
+          const glm::dvec3 a(to.positions[to.indices[f * 3]]), b(to.positions[to.indices[f * 3 + 1]]),
+              c(to.positions[to.indices[f * 3 + 2]]);
+          best = std::min(best, closestPointOnTriangle(glm::dvec3(v) + offset, a, b, c, p, bary));
         }
         worst = std::max(worst, std::sqrt(best));
       }
