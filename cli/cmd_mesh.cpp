@@ -29,6 +29,7 @@ int runMeshExport(int argc, char** argv) {
   std::printf("wrote %s as %s: %zu triangles, %zu vertices%s\n", o.what.c_str(), mesh::exportFormatName(o.format),
               o.result.triangles, o.result.vertices, request.world ? ", world coordinates" : "");
   for (const std::string& f : o.result.written) std::printf("  %s\n", f.c_str());
+  for (const std::string& w : o.result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return 0;
 }
 

@@ -165,18 +165,27 @@ ExportResult exportMesh(const MeshData& mesh, const std::string& path, const Exp
   if (!ok) return r;
   // Relative positions: the placed origin beside the file as import's
   // offset sidecars hold it: in world axes (easting, northing, up), which
-  // import adds after turning the file's axes to Z-up. GLB keeps it in its
-  // node instead.
+  // import adds after turning the file's axes to Z-up. For GLB too: its
+  // node's translation would hold it only as a UTM offset that viewers
+  // apply (that is --world); relative, the file is the mesh around zero.
+  // A file that needs no offset (world positions, or an origin at zero)
+  // writes none, but one left beside it by an earlier export to the same
+  // name (of a mesh placed elsewhere) would move it on an import that reads
+  // sidecars (`--origin auto`): that one is overwritten with a zero offset.
   const glm::dvec3 placedOrigin = glm::dvec3(options.transform * glm::dvec4(mesh.origin, 1.0));
-  if (!options.world && options.format != ExportFormat::Glb && placedOrigin != glm::dvec3(0.0)) {
-    std::string text;
-    for (int i = 0; i < 3; ++i) {
-      if (i) text += ' ';
-      appendNumber(text, placedOrigin[i]);
-    }
-    text += '\n';
+  {
+    const bool needed = !options.world && placedOrigin != glm::dvec3(0.0);
     const std::string sidecar = (parent / (fs::path(path).stem().string() + "_offset.xyz")).string();
-    if (!files.add(sidecar, text, r.error)) return r;
+    std::error_code ec;
+    if (needed || fs::exists(sidecar, ec)) {
+      std::string text;
+      for (int i = 0; i < 3; ++i) {
+        if (i) text += ' ';
+        appendNumber(text, needed ? placedOrigin[i] : 0.0);
+      }
+      text += '\n';
+      if (!files.add(sidecar, text, r.error)) return r;
+    }
   }
   if (isCancelled(progress)) {
     r.error = path + ": the export was cancelled";
@@ -187,6 +196,25 @@ ExportResult exportMesh(const MeshData& mesh, const std::string& path, const Exp
   r.vertices = mesh.positions.size();
   r.triangles = mesh.triangleCount();
   r.origin = placedOrigin;
+  if (options.format == ExportFormat::Ply) {
+    // What PLY cannot hold is said, not only written into its header.
+    std::vector<int> used, textures;
+    for (const Submesh& sm : mesh.submeshes)
+      if (sm.indexCount > 0 && std::find(used.begin(), used.end(), sm.material) == used.end()) {
+        used.push_back(sm.material);
+        const int t = sm.material >= 0 && size_t(sm.material) < mesh.materials.size()
+                          ? mesh.materials[size_t(sm.material)].diffuseTexture
+                          : -1;
+        if (t >= 0 && size_t(t) < mesh.textures.size() && std::find(textures.begin(), textures.end(), t) == textures.end())
+          textures.push_back(t);
+      }
+    if (used.size() > 1 || textures.size() > 1)
+      r.warnings.push_back(path + ": PLY holds no materials and one texture: the faces of " +
+                           std::to_string(used.size()) + " materials are written as one surface" +
+                           (textures.size() > 1 ? ", with 1 of their " + std::to_string(textures.size()) + " textures"
+                                                : std::string()) +
+                           " (OBJ and GLB keep them)");
+  }
   reportProgress(progress, 1.0, "Done");
   return r;
 }

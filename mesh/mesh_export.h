@@ -7,7 +7,8 @@
 // translation, which glTF stores as JSON numbers, i.e. doubles), or
 // relative to the mesh's placed origin O = transform * origin, as floats,
 // with O (world axes) in a Pix4D-style offset sidecar `<stem>_offset.xyz` beside it
-// (mesh/georef_sidecar.h: `import --origin auto` reads it back). glTF is
+// (mesh/georef_sidecar.h: `import --origin auto` reads it back), for
+// every format. glTF is
 // Y-up by specification; OBJ and PLY are written Y-up (the convention of
 // DCC tools, and what import assumes without --up) unless `zUp`
 // (photogrammetry tools' convention).
@@ -41,6 +42,7 @@ struct ExportOptions {
 
 struct ExportResult {
   std::string error;                // empty on success; names the file
+  std::vector<std::string> warnings;  // what the format could not hold (PLY: materials, textures after the first)
   std::vector<std::string> written; // every file written, the mesh first
   size_t vertices = 0, triangles = 0;
   glm::dvec3 origin{0.0};           // the placed origin (what a sidecar holds)

@@ -14,10 +14,10 @@ const OperationDecl& meshExportOperation() {
           "its world transform applied in double) or, if no entity has that name, a mesh asset (as imported). "
           "The format follows the extension (or --format). Without --world, positions are written relative to "
           "the mesh's origin as floats, and the origin goes into <out>_offset.xyz beside the file (import "
-          "--origin auto reads it back); GLB keeps it in its node instead. With --world, positions are absolute "
+          "--origin auto reads it back), for every format. With --world, positions are absolute "
           "(UTM): OBJ writes every digit, PLY writes doubles, GLB puts the origin into its node's translation. "
           "OBJ writes its MTL and textures beside it; PLY keeps the first texture (MeshLab's TextureFile comment) "
-          "and no materials.",
+          "and no materials, and says so when the mesh has more.",
       .notes = "Files appear only when complete: a failed export leaves nothing half-written.",
       .positionals = {{.name = "scene.hscene", .help = "the scene file"},
                       {.name = "asset-or-entity", .help = "an entity with a mesh, or a mesh asset"},

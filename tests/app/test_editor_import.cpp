@@ -17,6 +17,8 @@
 #include <QTest>
 #include <QTreeWidget>
 
+#include <fstream>
+
 #include "app/app_settings.h"
 #include "app/error_curve.h"
 #include "app/error_report_dialog.h"
@@ -253,6 +255,25 @@ class EditorImportTest : public QObject {
     QCOMPARE(int(prompts_->errors.size()), errorsBefore + 1);
     QVERIFY2(prompts_->errors.back().contains("--lod 3"), qPrintable(prompts_->errors.back()));
     QVERIFY(!QFile::exists(dir.filePath("bad.obj")));
+
+    // A PLY of a mesh with two materials: written, and what PLY drops is
+    // in Messages.
+    {
+      std::ofstream mtl(dir.filePath("two.mtl").toStdString());
+      mtl << "newmtl rock\nKd 0.5 0.4 0.3\nnewmtl moss\nKd 0.1 0.6 0.2\n";
+      std::ofstream obj(dir.filePath("two.obj").toStdString());
+      obj << "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+             "usemtl rock\nf 1 2 3\nf 1 3 4\nusemtl moss\nf 2 5 6\nf 2 6 3\n";
+    }
+    QVERIFY(w_->importMeshFile(dir.filePath("two.obj"), true));
+    scene::MeshExportRequest ply = request;
+    ply.target = w_->document().state().find(w_->selection().primary())->name;
+    ply.out = dir.filePath("two.ply").toStdString();
+    QVERIFY(w_->exportMesh(ply, true));
+    QVERIFY(QFile::exists(dir.filePath("two.ply")));
+    QVERIFY2(w_->messages()->lastText().contains("PLY holds no materials") &&
+                 w_->messages()->lastText().contains("2 materials"),
+             qPrintable(w_->messages()->lastText()));
   }
 
   void cleanupTestCase() { w_.reset(); }

@@ -13,6 +13,7 @@
 #include <sched.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "cli_runner.h"
 #include "core/parallel.h"
@@ -52,6 +53,16 @@ void writeTile(const QString& path, double x0, int n, double step) {
       text += "f " + QByteArray::number(a) + " " + QByteArray::number(d) + " " + QByteArray::number(c) + "\n";
     }
   f.write(text);
+}
+
+// Two quads side by side, one material each (the MTL beside it).
+void writeTwoMaterials(const QString& dir) {
+  const std::string d = dir.toStdString();
+  std::ofstream mtl(d + "/two.mtl");
+  mtl << "newmtl rock\nKd 0.5 0.4 0.3\nnewmtl moss\nKd 0.1 0.6 0.2\n";
+  std::ofstream obj(d + "/two.obj");
+  obj << "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+         "usemtl rock\nf 1 2 3\nf 1 3 4\nusemtl moss\nf 2 5 6\nf 2 6 3\n";
 }
 
 }  // namespace
@@ -367,6 +378,21 @@ class TestCliMesh : public QObject {
     expectRefused({"mesh", "export", f, name, path("x.stl")}, 1, {"x.stl", ".ply"}, f);
     expectRefused({"mesh", "export", f, name, path("x.obj"), "--lod", "40"}, 2, {"--lod"}, f);
     QVERIFY(!QFile::exists(path("lod9.obj")) && !QFile::exists(path("n.obj")) && !QFile::exists(path("x.obj")));
+  }
+
+  // PLY holds no materials: exporting a mesh with two says so on stderr
+  // (the file is still written and the exit is 0); OBJ says nothing.
+  void plyExportSaysWhatItDrops() {
+    writeTwoMaterials(tmp_.path());
+    const QString f = newScene("two.hscene");
+    Run r = cli({"import", path("two.obj"), f, "--up", "z"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    r = cli({"mesh", "export", f, "two", path("two_out.ply")});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.err.startsWith("warning: " + path("two_out.ply")) && r.err.contains("2 materials"), qPrintable(r.err));
+    QVERIFY(QFile::exists(path("two_out.ply")));
+    r = cli({"mesh", "export", f, "two", path("two_out.obj")});
+    QVERIFY2(r.code == 0 && !r.err.contains("warning"), qPrintable(r.err));
   }
 
   void readerCrashIsOneLine() {

@@ -205,7 +205,7 @@ class TestMeshExport : public QObject {
   }
 
   // GLB read by Assimp: same triangles (relative to the node: no world
-  // translation without --world) and UVs (MeshData and glTF share a convention,
+  // translation without --world, the origin in the sidecar) and UVs (MeshData and glTF share a convention,
   // kept by the importer); --world puts the origin, Y-up, in the node's
   // translation as JSON doubles.
   void glbRoundTripThroughAssimp() {
@@ -219,6 +219,15 @@ class TestMeshExport : public QObject {
     local.origin = glm::dvec3(0.0);
     QByteArray why;
     QVERIFY2(sameTriangles(local, *back.mesh, 1e-6, why), why);
+    // The origin is in the sidecar, as for OBJ and PLY: --origin auto puts
+    // the mesh back where it was.
+    ImportOptions io;
+    io.geoOffsetMode = ImportOptions::GeoOffsetMode::Auto;
+    QVERIFY(exportMesh(m, path("alone.glb"), o).ok());  // a stem no other test writes
+    QVERIFY(fs::exists(path("alone_offset.xyz")));
+    const ImportResult placed = importMesh(path("alone.glb"), io);
+    QVERIFY2(placed.ok(), placed.error.c_str());
+    QVERIFY2(sameTriangles(m, *placed.mesh, 1e-6, why), why);
     QVERIFY(sameUvs(m, *back.mesh, 1e-6f));
     // Both materials with their colours (Assimp adds a default one of its own).
     for (const Material& want : m.materials) {
@@ -274,6 +283,74 @@ class TestMeshExport : public QObject {
   }
 
   // Bad requests: an error naming the file, nothing written.
+  // A mesh at the origin written over an earlier export of a georeferenced
+  // one: the sidecar the first left would put the second 5,000 km away on
+  // an import that reads sidecars. It is overwritten with a zero offset
+  // (and so for a world export); GLB reads none of it. Found by
+  // meshproc_defect_campaign --export.
+  void aStaleOffsetSidecarIsOverwritten() {
+    const MeshData geo = scanPatch();
+    MeshData local = geo;
+    local.origin = glm::dvec3(0.0);
+    for (const bool world : {false, true})
+      for (const ExportFormat f : {ExportFormat::Obj, ExportFormat::Ply}) {
+        const std::string file = path(f == ExportFormat::Obj ? "stale.obj" : "stale.ply");
+        ExportOptions o;
+        o.format = f;
+        o.zUp = true;
+        QVERIFY(exportMesh(geo, file, o).ok());
+        QVERIFY(fs::exists(path("stale_offset.xyz")));
+        o.world = world;
+        const MeshData& second = world ? geo : local;
+        const ExportResult r = exportMesh(second, file, o);
+        QVERIFY2(r.ok(), r.error.c_str());
+        ImportOptions io;
+        io.up = UpAxis::Z;
+        io.geoOffsetMode = ImportOptions::GeoOffsetMode::Auto;
+        const ImportResult back = importMesh(file, io);
+        QVERIFY2(back.ok(), back.error.c_str());
+        QByteArray why;
+        QVERIFY2(sameTriangles(second, *back.mesh, 1e-6, why), why + (world ? " (world)" : ""));
+        QCOMPARE(readAll(path("stale_offset.xyz")), std::string("0 0 0\n"));
+        fs::remove(path("stale_offset.xyz"));
+      }
+    // No sidecar beside it, none needed: none written.
+    ExportOptions o;
+    o.format = ExportFormat::Obj;
+    const ExportResult r = exportMesh(local, path("plain.obj"), o);
+    QVERIFY2(r.ok(), r.error.c_str());
+    QVERIFY(!fs::exists(path("plain_offset.xyz")));
+  }
+
+  // PLY holds no materials and one texture: a mesh with more says so in
+  // the result's warnings (which the CLI and the editor show), naming the
+  // file; OBJ and GLB keep them and say nothing.
+  void whatPlyCannotHoldIsSaid() {
+    const MeshData m = scanPatch();  // two materials with faces, one texture
+    ExportOptions o;
+    o.format = ExportFormat::Ply;
+    const ExportResult r = exportMesh(m, path("two.ply"), o);
+    QVERIFY2(r.ok(), r.error.c_str());
+    QCOMPARE(r.warnings.size(), size_t(1));
+    QVERIFY2(r.warnings[0].find(path("two.ply")) == 0 && r.warnings[0].find("2 materials") != std::string::npos &&
+                 r.warnings[0].find("textures") == std::string::npos,
+             r.warnings[0].c_str());
+    MeshData two = m;
+    two.textures.push_back(two.textures[0]);
+    two.materials[1].diffuseTexture = 1;
+    const ExportResult t = exportMesh(two, path("two.ply"), o);
+    QCOMPARE(t.warnings.size(), size_t(1));
+    QVERIFY2(t.warnings[0].find("1 of their 2 textures") != std::string::npos, t.warnings[0].c_str());
+    MeshData one = m;
+    one.submeshes = {{0, uint32_t(one.indices.size()), 0}};
+    QVERIFY(exportMesh(one, path("one.ply"), o).warnings.empty());
+    for (const ExportFormat f : {ExportFormat::Obj, ExportFormat::Glb}) {
+      o.format = f;
+      const ExportResult k = exportMesh(m, path(f == ExportFormat::Obj ? "two.obj" : "two.glb"), o);
+      QVERIFY2(k.ok() && k.warnings.empty(), k.error.c_str());
+    }
+  }
+
   void refusalsWriteNothing() {
     const MeshData m = scanPatch();
     ExportOptions o;

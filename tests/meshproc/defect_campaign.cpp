@@ -7,11 +7,13 @@
 // grid's size, with 0-2 LOD levels and the error report, on one thread
 // and on two (the cases and the checks: defect_cases.h).
 //
-//   meshproc_defect_campaign [--trials N] [--seed S] [--only T [--without D]] [--retries R]
+//   meshproc_defect_campaign [--trials N] [--seed S] [--only T [--without D]] [--retries R] [--export DIR]
 //
 // --retries R sets ProcessOptions::maxErrorRetries (default: its default);
 // the summary gives the runs and the triangles kept over the maximum-error
 // cases, to compare policies on the same meshes.
+// --export DIR also writes each result as OBJ, PLY and GLB into DIR and
+// reads it back (checkExportRoundTrip in defect_cases.h).
 // --only T runs trial T alone (the same mesh as in the whole run);
 // --without D leaves its D-th defect (from 0) out, to find which one a
 // failure needs.
@@ -28,6 +30,7 @@
 
 int main(int argc, char** argv) {
   int trials = 300, only = -1, without = -1, retries = -1;
+  std::string exportDir;
   unsigned seed = 1;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--trials")) trials = std::atoi(argv[i + 1]);
@@ -35,8 +38,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--only")) only = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--without")) without = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--retries")) retries = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--export")) exportDir = argv[i + 1];
     else {
-      std::fprintf(stderr, "usage: %s [--trials N] [--seed S] [--only T [--without D]] [--retries R]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--trials N] [--seed S] [--only T [--without D]] [--retries R] [--export DIR]\n", argv[0]);
       return 2;
     }
   }
@@ -47,7 +51,8 @@ int main(int argc, char** argv) {
     hs::test::DefectCase c = cases.next(trial == only ? without : -1);
     if (only >= 0 && trial != only) continue;
     if (retries >= 0) c.options.maxErrorRetries = retries;
-    const hs::test::DefectOutcome r = hs::test::checkDefectCase(c);
+    const hs::test::DefectOutcome r =
+        hs::test::checkDefectCase(c, exportDir.empty() ? std::string() : exportDir + "/case");
     for (const std::string& f : r.failures) std::printf("%s: %s\n", c.where.c_str(), f.c_str());
     failed += !r.failures.empty();
     if (c.target == 3) {

@@ -4,12 +4,15 @@
 // is reached by generating those before it (about a millisecond each).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "mesh/mesh_export.h"
+#include "mesh/mesh_import.h"
 #include "meshproc/error_metrics.h"
 #include "meshproc/mesh_process.h"
 #include "mesh_builders.h"
@@ -109,6 +112,103 @@ inline DefectCase defectCase(unsigned seed, int trial, int without = -1) {
   return cases.next(without);
 }
 
+// Exports `m` as OBJ and GLB (relative, with the offset sidecar) and binary
+// PLY (world: doubles, Z up), reads each back with --origin auto
+// (our OBJ and PLY readers, Assimp for GLB) and compares every triangle's
+// corners, at their world places, and UVs, to float precision of the
+// mesh's extent. Returns what differed, per format.
+inline std::vector<std::string> checkExportRoundTrip(const hs::mesh::MeshData& m, const std::string& stem) {
+  using namespace hs::mesh;
+  std::vector<std::string> failures;
+  const Bounds b = m.bounds();
+  const double extent = b.empty ? 1.0 : glm::length(glm::dvec3(b.max) - glm::dvec3(b.min)) +
+                                            glm::length(glm::dvec3(b.max)) + glm::length(glm::dvec3(b.min));
+  struct Way {
+    ExportFormat format;
+    const char* ext;
+    bool world;
+    double tolerance;  // metres
+  };
+  // The file's doubles (world PLY) are exact; MeshData holds them as floats
+  // about a double origin again, so every way comes back to float precision.
+  const Way ways[] = {{ExportFormat::Obj, ".obj", false, 4e-7 * extent},
+                      {ExportFormat::Ply, ".ply", true, 4e-7 * extent},
+                      {ExportFormat::Glb, ".glb", false, 4e-7 * extent}};
+  for (const Way& w : ways) {
+    ExportOptions eo;
+    eo.format = w.format;
+    eo.world = w.world;
+    eo.zUp = true;
+    const std::string path = stem + w.ext;
+    const ExportResult er = exportMesh(m, path, eo);
+    if (!er.ok()) {
+      failures.push_back(std::string(w.ext) + ": export failed: " + er.error);
+      continue;
+    }
+    ImportOptions io;
+    io.up = w.format == ExportFormat::Glb ? UpAxis::Auto : UpAxis::Z;
+    // Relative files have their origin in the sidecar, which --origin
+    // auto reads; the one file name is reused from case to case, so a
+    // sidecar left by an earlier case must not move this one.
+    io.geoOffsetMode = ImportOptions::GeoOffsetMode::Auto;
+    io.recenter = false;
+    const ImportResult back = importMesh(path, io);
+    if (!back.ok()) {
+      failures.push_back(std::string(w.ext) + ": import failed: " + back.error);
+      continue;
+    }
+    const MeshData& g = *back.mesh;
+    if (g.triangleCount() != m.triangleCount()) {
+      failures.push_back(std::string(w.ext) + ": " + std::to_string(g.triangleCount()) + " triangles back of " +
+                         std::to_string(m.triangleCount()));
+      continue;
+    }
+    double worst = 0;
+    float worstUv = 0;
+    const bool uvs = !m.uvs.empty() && m.uvs.size() == m.positions.size();
+    for (size_t c = 0; c < m.indices.size(); ++c) {
+      const glm::dvec3 want = m.origin + glm::dvec3(m.positions[m.indices[c]]);
+      const glm::dvec3 got = g.origin + glm::dvec3(g.positions[g.indices[c]]);
+      worst = std::max(worst, glm::length(want - got));
+      if (uvs && g.uvs.size() == g.positions.size())
+        worstUv = std::max(worstUv, glm::length(m.uvs[m.indices[c]] - g.uvs[g.indices[c]]));
+    }
+    // Materials: faces that share one share one when read back, and faces
+    // of different ones stay apart (names may be made up on the way).
+    // (pairs is sorted, so the distinct first members are runs.)
+    auto materialOf = [](const MeshData& mesh) {
+      std::vector<int> mat(mesh.triangleCount(), -1);
+      for (const Submesh& sm : mesh.submeshes)
+        for (size_t f = sm.firstIndex / 3; f < std::min(mesh.triangleCount(), size_t(sm.firstIndex + sm.indexCount) / 3); ++f)
+          mat[f] = sm.material;
+      return mat;
+    };
+    const std::vector<int> mm = materialOf(m), gm = materialOf(g);
+    std::vector<std::pair<int, int>> pairs;
+    for (size_t f = 0; f < mm.size(); ++f) pairs.emplace_back(mm[f], gm[f]);
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    bool oneToOne = true;
+    for (size_t i = 0; i < pairs.size(); ++i)
+      for (size_t j = i + 1; j < pairs.size(); ++j)
+        oneToOne &= (pairs[i].first == pairs[j].first) == (pairs[i].second == pairs[j].second);
+    // PLY holds no materials, and must say so when there were several.
+    size_t used = 0;
+    for (size_t i = 0; i < pairs.size(); ++i) used += i == 0 || pairs[i].first != pairs[i - 1].first;
+    if (w.format == ExportFormat::Ply) {
+      if (used > 1 && er.warnings.empty()) failures.push_back(std::string(w.ext) + ": materials dropped unsaid");
+    } else if (!oneToOne) {
+      failures.push_back(std::string(w.ext) + ": faces changed material");
+    }
+    if (!(worst <= w.tolerance))
+      failures.push_back(std::string(w.ext) + ": a corner came back " + std::to_string(worst) + " m off (tolerance " +
+                         std::to_string(w.tolerance) + " m)");
+    if (uvs && g.uvs.size() != g.positions.size()) failures.push_back(std::string(w.ext) + ": UVs lost");
+    if (!(worstUv <= 1e-6f)) failures.push_back(std::string(w.ext) + ": a UV came back " + std::to_string(worstUv) + " off");
+  }
+  return failures;
+}
+
 // What processing a case gave, by the campaign's checks.
 struct DefectOutcome {
   std::vector<std::string> failures;  // empty: the case passed
@@ -122,7 +222,7 @@ struct DefectOutcome {
 // boundary or seam vertex off the input's polylines, a Hausdorff below 5%
 // of the diagonal (2% targets aside: a handful of triangles cannot follow
 // a small grid), and a maximum error met as measured.
-inline DefectOutcome checkDefectCase(const DefectCase& c) {
+inline DefectOutcome checkDefectCase(const DefectCase& c, const std::string& exportStem = {}) {
   using namespace hs::mesh;
   DefectOutcome result;
   auto fail = [&](const std::string& what) { result.failures.push_back(what); };
@@ -155,6 +255,8 @@ inline DefectOutcome checkDefectCase(const DefectCase& c) {
           break;
         }
     const ErrorReport& e = r.report.error;
+    if (threads == 1 && !exportStem.empty())
+      for (const std::string& f : checkExportRoundTrip(out, exportStem)) fail("export " + f);
     if (threads == 1) {
       result.runs = r.report.maxErrorPasses;
       result.kept = double(out.triangleCount()) / double(c.in.triangleCount());
