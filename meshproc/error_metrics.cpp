@@ -112,6 +112,83 @@ double vertexDistanceMax(const MeshData& from, const ClosestPointBvh& target, co
   return m;
 }
 
+// A bound from above on the largest distance from `from`'s surface to
+// `target`'s (offset: `from`'s frame -> the target's). For a point p of a
+// piece of a face, and any triangle T of the target, dist(p, target) <=
+// dist(p, T), and dist(., T) is convex (T is convex), so over the piece it
+// is largest at a corner: the piece's bound is the least, over the
+// triangles nearest its corners, of the largest corner distance to that
+// triangle. A piece whose bound is above `threshold` (1 + `slack`) is cut
+// into four (edge midpoints) down to `maxDepth`; one at or below the
+// threshold cannot hold a point further than it, and one within the slack
+// above it keeps its bound. Returns the largest bound left above the
+// threshold (0 when none), and counts the pieces examined.
+double distanceUpperBound(const MeshData& from, const MeshData& target, const ClosestPointBvh& bvh,
+                          const glm::dvec3& offset, double threshold, double slack, int maxDepth, unsigned threads,
+                          uint64_t& pieces) {
+  const size_t nf = from.triangleCount();
+  std::vector<double> maxOf(std::max(1u, threads), 0.0);
+  std::vector<uint64_t> countOf(std::max(1u, threads), 0);
+  const double t2 = threshold * threshold, slack2 = t2 * (1.0 + slack) * (1.0 + slack);
+  parallelRanges(nf, threads, [&](size_t b, size_t e, unsigned w) {
+    struct Piece {
+      glm::dvec3 p[3];
+      uint32_t near[3];
+      int depth;
+    };
+    std::vector<Piece> stack;
+    uint32_t hint = UINT32_MAX;
+    auto nearest = [&](const glm::dvec3& q) {
+      const auto hit = bvh.closest(q, hint);
+      hint = hit.face;
+      return hit.face;
+    };
+    auto distSq = [&](const glm::dvec3& q, uint32_t t) {
+      glm::dvec3 cp, bary;
+      return closestPointOnTriangle(q, corner(target, t, 0), corner(target, t, 1), corner(target, t, 2), cp, bary);
+    };
+    double mx = 0;
+    uint64_t count = 0;
+    for (size_t f = b; f < e; ++f) {
+      Piece root;
+      for (int k = 0; k < 3; ++k) root.p[k] = corner(from, f, size_t(k)) + offset, root.near[k] = nearest(root.p[k]);
+      root.depth = 0;
+      stack.push_back(root);
+      while (!stack.empty()) {
+        const Piece pc = stack.back();
+        stack.pop_back();
+        ++count;
+        double bound = HUGE_VAL;
+        for (int i = 0; i < 3 && bound > t2; ++i) {
+          if ((i == 1 && pc.near[1] == pc.near[0]) || (i == 2 && (pc.near[2] == pc.near[0] || pc.near[2] == pc.near[1])))
+            continue;
+          double worst = 0;
+          for (int k = 0; k < 3 && worst < bound; ++k) worst = std::max(worst, distSq(pc.p[k], pc.near[i]));
+          bound = std::min(bound, worst);
+        }
+        if (bound <= t2) continue;
+        if (pc.depth >= maxDepth || bound <= slack2) {
+          mx = std::max(mx, std::sqrt(bound));
+          continue;
+        }
+        const glm::dvec3 m01 = 0.5 * (pc.p[0] + pc.p[1]), m12 = 0.5 * (pc.p[1] + pc.p[2]), m20 = 0.5 * (pc.p[2] + pc.p[0]);
+        const uint32_t n01 = nearest(m01), n12 = nearest(m12), n20 = nearest(m20);
+        const int d = pc.depth + 1;
+        stack.push_back({{pc.p[0], m01, m20}, {pc.near[0], n01, n20}, d});
+        stack.push_back({{m01, pc.p[1], m12}, {n01, pc.near[1], n12}, d});
+        stack.push_back({{m20, m12, pc.p[2]}, {n20, n12, pc.near[2]}, d});
+        stack.push_back({{m01, m12, m20}, {n01, n12, n20}, d});
+      }
+    }
+    maxOf[w] = std::max(maxOf[w], mx);
+    countOf[w] += count;
+  }, 64);
+  double m = 0;
+  for (double x : maxOf) m = std::max(m, x);
+  for (uint64_t c : countOf) pieces += c;
+  return m;
+}
+
 // Distances from `total` seeded samples on `from` (plus its vertices, for the
 // maximum) to the surface in `target`. `offset` takes `from`'s local
 // coordinates into the target's. Face samples land in `out`.
@@ -216,6 +293,21 @@ double ErrorMeter::vertexHausdorff(const MeshData& s) const {
   const glm::dvec3 toOrig = s.origin - o.mesh.origin;
   const ClosestPointBvh sBvh(s, o.threads);
   return std::max(vertexDistanceMax(o.mesh, sBvh, -toOrig, o.threads), vertexDistanceMax(s, o.bvh, toOrig, o.threads));
+}
+
+HausdorffBound ErrorMeter::hausdorffUpperBound(const MeshData& s, double lowerBound, double slack,
+                                               int maxDepth) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Original& o = *o_;
+  const glm::dvec3 toOrig = s.origin - o.mesh.origin;
+  const ClosestPointBvh sBvh(s, o.threads);
+  HausdorffBound h;
+  h.lower = lowerBound;
+  const double fwd = distanceUpperBound(o.mesh, s, sBvh, -toOrig, lowerBound, slack, maxDepth, o.threads, h.pieces);
+  const double bwd = distanceUpperBound(s, o.mesh, o.bvh, toOrig, lowerBound, slack, maxDepth, o.threads, h.pieces);
+  h.upper = std::max({lowerBound, fwd, bwd});
+  h.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return h;
 }
 
 ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress) const {

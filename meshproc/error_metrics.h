@@ -80,6 +80,12 @@ struct ErrorReport {
 // count as cuts).
 NonManifoldCounts countNonManifold(const MeshData& mesh, unsigned threads = 0);
 
+struct HausdorffBound {
+  double lower = 0, upper = 0;  // metres: lower <= Hausdorff <= upper
+  uint64_t pieces = 0;          // face pieces examined, both directions
+  double seconds = 0;
+};
+
 // Holds what depends on the original only (its BVH, polylines, area), so
 // one original can be compared with many results (LOD chains, benchmarks).
 class ErrorMeter {
@@ -93,6 +99,17 @@ class ErrorMeter {
   // so its Hausdorff is never below this; a fraction of its cost (no face
   // samples), for telling quickly that a result is over a bound.
   double vertexHausdorff(const MeshData& simplified) const;
+  // A certified bracket of the Hausdorff distance: the sampled maximum
+  // (measure()'s, passed as `lowerBound`) is reached by some point, and no
+  // point of either surface is further from the other than `upper`. Each
+  // face is bounded through the triangles nearest its corners (the
+  // distance to one triangle is convex, so largest at a corner) and cut
+  // into four where that bound is more than `slack` above the lower one,
+  // down to `maxDepth` levels (4^maxDepth pieces a face at most): the
+  // upper bound is then at most `slack` above the lower one wherever the
+  // depth sufficed.
+  HausdorffBound hausdorffUpperBound(const MeshData& simplified, double lowerBound, double slack = 0.01,
+                                     int maxDepth = 8) const;
 
  private:
   struct Original;
