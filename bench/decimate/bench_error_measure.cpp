@@ -17,7 +17,8 @@
 // approximation buys. The report samples the surfaces (its Hausdorff is a
 // lower bound that rises with the rate); for each rate it prints the
 // measure's time and its Hausdorff, mean and 95th percentile as shares of
-// those at the densest rate listed.
+// those at the densest rate listed, and the certified upper bound of the
+// Hausdorff from that maximum (ErrorMeter::hausdorffUpperBound).
 //
 // usage: bench_error_measure [--quads N] [--ratios 50,10,1] [--runs K] [--samples-per-face S]
 //                            [--skip-bunny] [--skip-tile] [--convergence 1,2,5,10,20,100]
