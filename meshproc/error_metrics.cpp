@@ -118,7 +118,8 @@ double vertexDistanceMax(const MeshData& from, const ClosestPointBvh& target, co
 // dist(p, T), and dist(., T) is convex (T is convex), so over the piece it
 // is largest at a corner: the piece's bound is the least, over the
 // triangles nearest its corners, of the largest corner distance to that
-// triangle. A piece whose bound is above `threshold` (1 + `slack`) is cut
+// triangle; and through two of them, parted by a plane (pairBound). A
+// piece whose bound is above `threshold` (1 + `slack`) is cut
 // into four (edge midpoints) down to `maxDepth`; one at or below the
 // threshold cannot hold a point further than it, and one within the slack
 // above it keeps its bound. Returns the largest bound left above the
@@ -147,6 +148,51 @@ double distanceUpperBound(const MeshData& from, const MeshData& target, const Cl
       glm::dvec3 cp, bary;
       return closestPointOnTriangle(q, corner(target, t, 0), corner(target, t, 1), corner(target, t, 2), cp, bary);
     };
+    // The bound of a triangular piece through triangles ta and tb (squared),
+    // giving up once it cannot beat `best`.
+    auto pairBound = [&](const glm::dvec3 (&p)[3], uint32_t ta, uint32_t tb, double best) {
+      glm::dvec3 va[3], vb[3];
+      for (int k = 0; k < 3; ++k) va[k] = corner(target, ta, size_t(k)), vb[k] = corner(target, tb, size_t(k));
+      // Their shared edge (by position), if any.
+      int shared[2], n = 0;
+      for (int k = 0; k < 3 && n < 2; ++k)
+        for (int l = 0; l < 3; ++l)
+          if (va[k] == vb[l]) {
+            shared[n++] = k;
+            break;
+          }
+      const glm::dvec3 ca = (va[0] + va[1] + va[2]) / 3.0, cb = (vb[0] + vb[1] + vb[2]) / 3.0;
+      glm::dvec3 normal, origin;
+      if (n == 2) {
+        const glm::dvec3 edge = va[shared[1]] - va[shared[0]];
+        const glm::dvec3 na = glm::normalize(glm::cross(va[1] - va[0], va[2] - va[0]));
+        const glm::dvec3 nb = glm::normalize(glm::cross(vb[1] - vb[0], vb[2] - vb[0]));
+        normal = glm::cross(edge, na + nb);
+        origin = va[shared[0]];
+      } else {
+        normal = cb - ca;  // the plane halfway between their centres
+        origin = 0.5 * (ca + cb);
+      }
+      if (!(glm::dot(normal, normal) > 0) || !std::isfinite(glm::dot(normal, normal))) return HUGE_VAL;
+      const bool aPositive = glm::dot(ca - origin, normal) >= 0;
+      double side[3];
+      for (int k = 0; k < 3; ++k) side[k] = glm::dot(p[k] - origin, normal);
+      double worst = 0;
+      auto consider = [&](const glm::dvec3& q, bool positive) {
+        worst = std::max(worst, distSq(q, positive == aPositive ? ta : tb));
+      };
+      for (int k = 0; k < 3 && worst < best; ++k) {
+        consider(p[k], side[k] >= 0);
+        const int l = (k + 1) % 3;
+        if ((side[k] < 0) != (side[l] < 0)) {  // the edge crosses the plane: the point is on both pieces
+          const double t = side[k] / (side[k] - side[l]);
+          const glm::dvec3 q = p[k] + t * (p[l] - p[k]);
+          consider(q, true);
+          consider(q, false);
+        }
+      }
+      return worst;
+    };
     double mx = 0;
     uint64_t count = 0;
     for (size_t f = b; f < e; ++f) {
@@ -166,6 +212,18 @@ double distanceUpperBound(const MeshData& from, const MeshData& target, const Cl
           for (int k = 0; k < 3 && worst < bound; ++k) worst = std::max(worst, distSq(pc.p[k], pc.near[i]));
           bound = std::min(bound, worst);
         }
+        // Two triangles: any plane parts the piece into two convex pieces,
+        // each bounded through one of them at its corners (the piece's
+        // corners on that side and where its edges cross the plane). The
+        // plane through their shared edge, halfway between their normals,
+        // makes the bound tight for a piece lying over both.
+        for (int i = 0; i < 3 && bound > slack2; ++i)
+          for (int j = i + 1; j < 3 && bound > slack2; ++j) {
+            const uint32_t ta = pc.near[i], tb = pc.near[j];
+            if (ta == tb) continue;
+            const double pair = pairBound(pc.p, ta, tb, bound);
+            bound = std::min(bound, pair);
+          }
         if (bound <= t2) continue;
         if (pc.depth >= maxDepth || bound <= slack2) {
           mx = std::max(mx, std::sqrt(bound));

@@ -386,9 +386,9 @@ class TestMeshprocError : public QObject {
   // The certified bracket: a far denser sampling than the report's (an
   // independent estimate from below) lands between the report's maximum
   // and the upper bound, at every ratio, also at UTM coordinates; and the
-  // bound is of use, within 10% of the dense sampling's maximum. (At 50%
-  // here the report's 10 samples a face found 4.93 mm, 3,000 a face
-  // 5.63 mm, the bound 5.92 mm.)
+  // bound is of use, within 2% of the dense sampling's maximum (its slack
+  // is 1%). At 50% here the report's 10 samples a face found 4.93 mm,
+  // 3,000 a face 5.63 mm, the bound 5.68 mm.
   void hausdorffUpperBoundBracketsTheTruth_data() {
     QTest::addColumn<double>("ratio");
     QTest::addColumn<bool>("utm");
@@ -418,7 +418,7 @@ class TestMeshprocError : public QObject {
     qInfo("%s", qPrintable(what));
     QCOMPARE(h.lower, e.hausdorff);
     QVERIFY2(denser <= h.upper, qPrintable(what));
-    QVERIFY2(e.hausdorff <= denser && h.upper <= 1.1 * denser, qPrintable(what));
+    QVERIFY2(e.hausdorff <= denser && h.upper <= 1.02 * denser, qPrintable(what));
   }
 
   void nonManifoldCountsInAndOut() {
