@@ -205,8 +205,8 @@ ExportResult exportMesh(const MeshData& mesh, const std::string& path, const Exp
         const int t = sm.material >= 0 && size_t(sm.material) < mesh.materials.size()
                           ? mesh.materials[size_t(sm.material)].diffuseTexture
                           : -1;
-        if (t >= 0 && size_t(t) < mesh.textures.size() && std::find(textures.begin(), textures.end(), t) == textures.end())
-          textures.push_back(t);
+        const bool listed = std::find(textures.begin(), textures.end(), t) != textures.end();
+        if (t >= 0 && size_t(t) < mesh.textures.size() && !listed) textures.push_back(t);
       }
     if (used.size() > 1 || textures.size() > 1)
       r.warnings.push_back(path + ": PLY holds no materials and one texture: the faces of " +

@@ -206,8 +206,8 @@ double distanceUpperBound(const MeshData& from, const MeshData& target, const Cl
         ++count;
         double bound = HUGE_VAL;
         for (int i = 0; i < 3 && bound > t2; ++i) {
-          if ((i == 1 && pc.near[1] == pc.near[0]) || (i == 2 && (pc.near[2] == pc.near[0] || pc.near[2] == pc.near[1])))
-            continue;
+          const bool seen = (i >= 1 && pc.near[i] == pc.near[0]) || (i == 2 && pc.near[2] == pc.near[1]);
+          if (seen) continue;
           double worst = 0;
           for (int k = 0; k < 3 && worst < bound; ++k) worst = std::max(worst, distSq(pc.p[k], pc.near[i]));
           bound = std::min(bound, worst);
@@ -229,7 +229,8 @@ double distanceUpperBound(const MeshData& from, const MeshData& target, const Cl
           mx = std::max(mx, std::sqrt(bound));
           continue;
         }
-        const glm::dvec3 m01 = 0.5 * (pc.p[0] + pc.p[1]), m12 = 0.5 * (pc.p[1] + pc.p[2]), m20 = 0.5 * (pc.p[2] + pc.p[0]);
+        const glm::dvec3 m01 = 0.5 * (pc.p[0] + pc.p[1]), m12 = 0.5 * (pc.p[1] + pc.p[2]),
+                         m20 = 0.5 * (pc.p[2] + pc.p[0]);
         const uint32_t n01 = nearest(m01), n12 = nearest(m12), n20 = nearest(m20);
         const int d = pc.depth + 1;
         stack.push_back({{pc.p[0], m01, m20}, {pc.near[0], n01, n20}, d});

@@ -179,7 +179,8 @@ inline std::vector<std::string> checkExportRoundTrip(const hs::mesh::MeshData& m
     auto materialOf = [](const MeshData& mesh) {
       std::vector<int> mat(mesh.triangleCount(), -1);
       for (const Submesh& sm : mesh.submeshes)
-        for (size_t f = sm.firstIndex / 3; f < std::min(mesh.triangleCount(), size_t(sm.firstIndex + sm.indexCount) / 3); ++f)
+        for (size_t f = sm.firstIndex / 3;
+             f < std::min(mesh.triangleCount(), size_t(sm.firstIndex + sm.indexCount) / 3); ++f)
           mat[f] = sm.material;
       return mat;
     };
@@ -204,7 +205,8 @@ inline std::vector<std::string> checkExportRoundTrip(const hs::mesh::MeshData& m
       failures.push_back(std::string(w.ext) + ": a corner came back " + std::to_string(worst) + " m off (tolerance " +
                          std::to_string(w.tolerance) + " m)");
     if (uvs && g.uvs.size() != g.positions.size()) failures.push_back(std::string(w.ext) + ": UVs lost");
-    if (!(worstUv <= 1e-6f)) failures.push_back(std::string(w.ext) + ": a UV came back " + std::to_string(worstUv) + " off");
+    if (!(worstUv <= 1e-6f))
+      failures.push_back(std::string(w.ext) + ": a UV came back " + std::to_string(worstUv) + " off");
   }
   return failures;
 }
