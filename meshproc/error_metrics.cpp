@@ -248,9 +248,10 @@ double distanceUpperBound(const MeshData& from, const MeshData& target, const Cl
   return m;
 }
 
-// Distances from `total` seeded samples on `from` (plus its vertices, for the
-// maximum) to the surface in `target`. `offset` takes `from`'s local
-// coordinates into the target's. Face samples land in `out`.
+// Distances from `total` seeded samples on `from` to the surface in
+// `target` (its vertices are vertexDistanceMax's). `offset` takes `from`'s
+// local coordinates into the target's. Face samples land in `out`, their
+// largest in `maxDist`.
 bool sampleDistances(const MeshData& from, const std::vector<uint64_t>& first, uint64_t seed,
                      const ClosestPointBvh& target, const glm::dvec3& offset, float* out, double& maxDist,
                      unsigned threads, const Progress* progress) {
@@ -281,7 +282,6 @@ bool sampleDistances(const MeshData& from, const std::vector<uint64_t>& first, u
     maxOf[w] = std::max(maxOf[w], mx);
   }, 256);
   for (double m : maxOf) maxDist = std::max(maxDist, m);
-  maxDist = std::max(maxDist, vertexDistanceMax(from, target, offset, threads));
   return !stop;
 }
 
@@ -347,11 +347,14 @@ ErrorMeter::ErrorMeter(const MeshData& original, const ErrorOptions& options)
 
 ErrorMeter::~ErrorMeter() = default;
 
-double ErrorMeter::vertexHausdorff(const MeshData& s) const {
+ErrorMeter::VertexCheck ErrorMeter::checkVertices(const MeshData& s) const {
   const Original& o = *o_;
   const glm::dvec3 toOrig = s.origin - o.mesh.origin;
-  const ClosestPointBvh sBvh(s, o.threads);
-  return std::max(vertexDistanceMax(o.mesh, sBvh, -toOrig, o.threads), vertexDistanceMax(s, o.bvh, toOrig, o.threads));
+  VertexCheck v;
+  v.bvh = ClosestPointBvh(s, o.threads);
+  v.forward = vertexDistanceMax(o.mesh, v.bvh, -toOrig, o.threads);
+  v.backward = vertexDistanceMax(s, o.bvh, toOrig, o.threads);
+  return v;
 }
 
 HausdorffBound ErrorMeter::hausdorffUpperBound(const MeshData& s, double lowerBound, double slack,
@@ -369,7 +372,7 @@ HausdorffBound ErrorMeter::hausdorffUpperBound(const MeshData& s, double lowerBo
   return h;
 }
 
-ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress) const {
+ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress, const VertexCheck* check) const {
   const auto t0 = std::chrono::steady_clock::now();
   const Original& o = *o_;
   const MeshData& orig = o.mesh;
@@ -385,12 +388,15 @@ ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress) con
   r.areaOut = area(s);
   r.volumeOut = signedVolume(s, o.volumeRef - toOrig);
 
-  const ClosestPointBvh sBvh(s, o.threads);
+  const VertexCheck own = check ? VertexCheck{} : checkVertices(s);
+  const VertexCheck& atVertices = check ? *check : own;
+  const ClosestPointBvh& sBvh = atVertices.bvh;
   const std::vector<uint64_t> sFirst = allocateSamples(s, o.total);
   const uint64_t nFwd = o.first.back(), nBwd = sFirst.back();
   std::vector<float> d(nFwd + nBwd);
   reportProgress(progress, 0.1, "Measuring error (original to result)");
-  double fwdMax = 0, bwdMax = 0;
+  // Each direction's maximum: its samples' and its vertices'.
+  double fwdMax = atVertices.forward, bwdMax = atVertices.backward;
   bool ok = sampleDistances(orig, o.first, o.opt.seed, sBvh, -toOrig, d.data(), fwdMax, o.threads, progress);
   reportProgress(progress, 0.5, "Measuring error (result to original)");
   ok = ok && sampleDistances(s, sFirst, o.opt.seed + 1, o.bvh, toOrig, d.data() + nFwd, bwdMax, o.threads, progress);

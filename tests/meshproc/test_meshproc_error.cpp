@@ -347,10 +347,11 @@ class TestMeshprocError : public QObject {
     QCOMPARE(maxErrorCases, 11);  // the ten, and one of the two corners (seed 1 trial 195)
   }
 
-  // vertexHausdorff, which lets a maximum-error run over its bound be
-  // rerun without the full measure, is the largest distance from a vertex
-  // of either mesh to the other's surface (brute force over every face
-  // here), and never above the report's Hausdorff.
+  // checkVertices, which lets a maximum-error run over its bound be rerun
+  // without the full measure, finds the largest distance from a vertex of
+  // either mesh to the other's surface (brute force over every face here),
+  // never above the report's Hausdorff; and a report made with it is the
+  // report made without it.
   void vertexHausdorffIsTheVerticesMaximum() {
     const MeshData orig = curvedGrid(24, 10.0, 0.4, true);
     DecimateOptions d;
@@ -373,14 +374,24 @@ class TestMeshprocError : public QObject {
       }
       return worst;
     };
-    const double brute = std::max(farthest(orig, s, -toOrig), farthest(s, orig, toOrig));
+    const double bruteForward = farthest(orig, s, -toOrig), bruteBackward = farthest(s, orig, toOrig);
+    const double brute = std::max(bruteForward, bruteBackward);
     const ErrorMeter meter(orig);
-    const double atVertices = meter.vertexHausdorff(s);
+    const ErrorMeter::VertexCheck check = meter.checkVertices(s);
+    const double atVertices = check.hausdorff();
     QVERIFY2(brute > 1e-3, qPrintable(QString::number(brute)));  // 10% of a curved grid is off it somewhere
     QVERIFY2(std::abs(atVertices - brute) <= 1e-12 * brute,
              qPrintable(QString("%1 vs %2").arg(atVertices, 0, 'g', 17).arg(brute, 0, 'g', 17)));
+    QVERIFY(std::abs(check.forward - bruteForward) <= 1e-12 * brute);
+    QVERIFY(std::abs(check.backward - bruteBackward) <= 1e-12 * brute);
     const ErrorReport e = meter.measure(s);
     QVERIFY(atVertices <= e.hausdorff);
+    const ErrorReport withCheck = meter.measure(s, nullptr, &check);
+    QCOMPARE(withCheck.hausdorff, e.hausdorff);
+    QCOMPARE(withCheck.forward.max, e.forward.max);
+    QCOMPARE(withCheck.backward.max, e.backward.max);
+    QCOMPARE(withCheck.mean, e.mean);
+    QCOMPARE(withCheck.p95, e.p95);
   }
 
   // The certified bracket: a far denser sampling than the report's (an
