@@ -17,8 +17,6 @@
 #include <QTest>
 #include <QTreeWidget>
 
-#include <fstream>
-
 #include "app/app_settings.h"
 #include "app/error_curve.h"
 #include "app/error_report_dialog.h"
@@ -32,6 +30,7 @@
 #include "app/selection.h"
 #include "app/viewport_widget.h"
 #include "editor_fixture.h"
+#include "two_material_obj.h"
 
 using namespace hs;
 using hs::app::MainWindow;
@@ -258,14 +257,8 @@ class EditorImportTest : public QObject {
 
     // A PLY of a mesh with two materials: written, and what PLY drops is
     // in Messages.
-    {
-      std::ofstream mtl(dir.filePath("two.mtl").toStdString());
-      mtl << "newmtl rock\nKd 0.5 0.4 0.3\nnewmtl moss\nKd 0.1 0.6 0.2\n";
-      std::ofstream obj(dir.filePath("two.obj").toStdString());
-      obj << "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
-             "usemtl rock\nf 1 2 3\nf 1 3 4\nusemtl moss\nf 2 5 6\nf 2 6 3\n";
-    }
-    QVERIFY(w_->importMeshFile(dir.filePath("two.obj"), true));
+    const std::string two = test::writeTwoMaterialObj(dir.path().toStdString());
+    QVERIFY(w_->importMeshFile(QString::fromStdString(two), true));
     scene::MeshExportRequest ply = request;
     ply.target = w_->document().state().find(w_->selection().primary())->name;
     ply.out = dir.filePath("two.ply").toStdString();

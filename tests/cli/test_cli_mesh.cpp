@@ -13,13 +13,13 @@
 #include <sched.h>
 
 #include <cmath>
-#include <fstream>
 
 #include "cli_runner.h"
 #include "core/parallel.h"
 #include "file_bytes.h"
 #include "mesh/mesh_import.h"
 #include "scene/hscene_file.h"
+#include "two_material_obj.h"
 
 using namespace hs;
 using hs::test::kCli;
@@ -53,16 +53,6 @@ void writeTile(const QString& path, double x0, int n, double step) {
       text += "f " + QByteArray::number(a) + " " + QByteArray::number(d) + " " + QByteArray::number(c) + "\n";
     }
   f.write(text);
-}
-
-// Two quads side by side, one material each (the MTL beside it).
-void writeTwoMaterials(const QString& dir) {
-  const std::string d = dir.toStdString();
-  std::ofstream mtl(d + "/two.mtl");
-  mtl << "newmtl rock\nKd 0.5 0.4 0.3\nnewmtl moss\nKd 0.1 0.6 0.2\n";
-  std::ofstream obj(d + "/two.obj");
-  obj << "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
-         "usemtl rock\nf 1 2 3\nf 1 3 4\nusemtl moss\nf 2 5 6\nf 2 6 3\n";
 }
 
 }  // namespace
@@ -383,9 +373,9 @@ class TestCliMesh : public QObject {
   // PLY holds no materials: exporting a mesh with two says so on stderr
   // (the file is still written and the exit is 0); OBJ says nothing.
   void plyExportSaysWhatItDrops() {
-    writeTwoMaterials(tmp_.path());
+    const QString obj = QString::fromStdString(test::writeTwoMaterialObj(tmp_.path().toStdString()));
     const QString f = newScene("two.hscene");
-    Run r = cli({"import", path("two.obj"), f, "--up", "z"});
+    Run r = cli({"import", obj, f, "--up", "z"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     r = cli({"mesh", "export", f, "two", path("two_out.ply")});
     QVERIFY2(r.code == 0, qPrintable(r.err));
