@@ -150,6 +150,14 @@ ImportDialog::ImportDialog(const QStringList& files, const mesh::ImportOptions& 
   decimateLayout->addWidget(values, 1);
   connect(targetKind_, &QComboBox::currentIndexChanged, values, &QStackedWidget::setCurrentIndex);
   procForm->addRow("Decimate", decimateRow);
+  // The flag is declared as an opt-out (--no-refine); the dialog asks it
+  // the positive way round, with the declaration's words as its tooltip.
+  const ParamDecl& noRefine = paramIn(processing, "no_refine");
+  refine_ = new QCheckBox("Move vertices to lower the largest error (minimax)", procBox);
+  refine_->setObjectName("refine");
+  refine_->setToolTip(QString::fromStdString("Unchecked: " + noRefine.help));
+  refine_->setChecked(settings.value("import/refine", true).toBool());
+  procForm->addRow("Refine", refine_);
   const ParamDecl& lods = paramIn(processing, "lods");
   lods_ = paramIntSpin(lods, procBox);
   lods_->setObjectName("lodLevels");
@@ -274,6 +282,7 @@ scene::MeshImportRequest ImportDialog::request() const {
       p.decimation.maxError = maxError_->value();
       break;
   }
+  p.refine = refine_->isChecked();
   p.lodLevels = lods_->value();
   r.process = p.clean || p.decimate || p.lodLevels > 0;
   return r;
@@ -340,6 +349,7 @@ void ImportDialog::remember() const {
   QSettings s;
   s.setValue("import/clean", clean_->isChecked());
   s.setValue("import/decimate", decimate_->isChecked());
+  s.setValue("import/refine", refine_->isChecked());
   s.setValue("import/target", targetKind_->currentIndex());
   s.setValue("import/ratio", ratio_->value());
   s.setValue("import/triangles", triangles_->value());

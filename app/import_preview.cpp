@@ -82,7 +82,6 @@ struct ImportPreview::Run {
       Progress s(&progress, 0.3 + 0.7 * double(i) / double(targets.size()), 0.3 + 0.7 * double(i + 1) / double(targets.size()));
       const auto t0 = std::chrono::steady_clock::now();
       mesh::DecimateResult r = mesh::decimate(original, d, &s);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (r.cancelled || progress.cancelled()) {
         cancelled = true;
         return;
@@ -91,6 +90,16 @@ struct ImportPreview::Run {
         error = read.import.file + ": " + r.error;
         return;
       }
+      // As the import will: refined unless the dialog says not to.
+      if (request.processing.refine) {
+        mesh::RefineOptions ro = request.processing.refinement;
+        ro.lockedOriginalVertices = d.lockedVertices;
+        if (mesh::refineMaxError(meter, r.mesh, ro, &s).cancelled) {
+          cancelled = true;
+          return;
+        }
+      }
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const mesh::ErrorReport e = meter.measure(r.mesh, &s);
       if (e.cancelled) {
         cancelled = true;

@@ -327,6 +327,9 @@ struct ErrorMeter::Original {
   Original(const MeshData& m, const ErrorOptions& o) : mesh(m), opt(o) {}
 };
 
+const MeshData& ErrorMeter::original() const { return o_->mesh; }
+const ClosestPointBvh& ErrorMeter::originalBvh() const { return o_->bvh; }
+
 ErrorMeter::ErrorMeter(const MeshData& original, const ErrorOptions& options)
     : o_(std::make_unique<Original>(original, options)) {
   Original& o = *o_;

@@ -91,6 +91,9 @@ struct HausdorffBound {
 class ErrorMeter {
  public:
   ErrorMeter(const MeshData& original, const ErrorOptions& options = {});
+  // It keeps a reference to the original (original()): a temporary would
+  // be gone before the first measurement.
+  ErrorMeter(const MeshData&& original, const ErrorOptions& options = {}) = delete;
   ~ErrorMeter();
   // What a result's vertices alone say: the largest distance from a vertex
   // of the original to the result's surface (forward) and back, with the
@@ -119,6 +122,11 @@ class ErrorMeter {
   // depth sufficed.
   HausdorffBound hausdorffUpperBound(const MeshData& simplified, double lowerBound, double slack = 0.01,
                                      int maxDepth = 8) const;
+
+  // The original it measures against, and its BVH (for passes that query
+  // it too: max_error_refine.h).
+  const MeshData& original() const;
+  const ClosestPointBvh& originalBvh() const;
 
  private:
   struct Original;

@@ -63,6 +63,17 @@ LodChain buildLodChain(const MeshData& base, const LodOptions& options, const Pr
       return chain;
     }
     if (r.mesh.triangleCount() >= prev.triangleCount()) break;  // nothing more to take
+    double refineSeconds = 0;
+    if (options.refine) {
+      RefineOptions ro = options.refinement;
+      ro.threads = d.threads;
+      const RefineReport rr = refineMaxError(meter, r.mesh, ro, progress ? &sub : nullptr);
+      if (rr.cancelled) {
+        chain.cancelled = true;
+        return chain;
+      }
+      refineSeconds = rr.seconds;
+    }
     const ErrorReport e = meter.measure(r.mesh, progress ? &sub : nullptr);
     if (e.cancelled) {
       chain.cancelled = true;
@@ -77,6 +88,7 @@ LodChain buildLodChain(const MeshData& base, const LodOptions& options, const Pr
     lod.meanError = e.mean;
     lod.samplesPerFace = e.samplesPerFace;
     lod.decimateSeconds = std::chrono::duration<double>(t1 - t0).count();
+    lod.refineSeconds = refineSeconds;
     lod.errorSeconds = e.seconds;
     lod.mesh = std::move(r.mesh);
     chain.levels.push_back(std::move(lod));

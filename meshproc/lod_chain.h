@@ -10,6 +10,7 @@
 #include "mesh/mesh_data.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
+#include "meshproc/max_error_refine.h"
 
 namespace hs::mesh {
 
@@ -19,6 +20,8 @@ struct LodOptions {
   size_t minTriangles = 64;     // stop the chain before a level would go below this
   DecimateOptions decimate;     // flags for every level (target fields are set per level)
   ErrorOptions error;           // how each level's error is measured
+  bool refine = true;           // refine each level against level 0 (max_error_refine.h)
+  RefineOptions refinement;
 };
 
 struct Lod {
@@ -28,7 +31,7 @@ struct Lod {
   double hausdorffRel = 0;      // of level 0's bounding-box diagonal
   double meanError = 0;         // metres
   double samplesPerFace = 0;    // the rate its error was measured at (0: level 0, not measured)
-  double decimateSeconds = 0, errorSeconds = 0;
+  double decimateSeconds = 0, refineSeconds = 0, errorSeconds = 0;
 };
 
 struct LodChain {

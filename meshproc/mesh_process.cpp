@@ -64,6 +64,7 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
     bool met = !errorTarget, haveClosest = false, closestMeasured = false;
     MeshData closest;
     DecimateReport closestDecimation;
+    RefineReport closestRefinement;
     ErrorReport closestError;
     double closestDistance = 0;
     for (int pass = 0; pass < passes; ++pass) {
@@ -72,7 +73,8 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
       // the decimation, the rest for measuring.
       const double lo = 0.1 + 0.7 * (1.0 - std::ldexp(1.0, -pass)),
                    hi = passes == 1 ? 0.8 : 0.1 + 0.7 * (1.0 - std::ldexp(1.0, -pass - 1)), mid = lo + 0.7 * (hi - lo);
-      SubProgress sub(progress, lo, mid);
+      const double refineFrom = options.refine ? lo + 0.8 * (mid - lo) : mid;
+      SubProgress sub(progress, lo, refineFrom);
       DecimateResult r = decimate(input, d, sub.get());
       if (r.cancelled) {
         result.cancelled = true;
@@ -85,8 +87,22 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
       rep.decimation = r.report;
       rep.maxErrorPasses = pass + 1;
       result.mesh = std::move(r.mesh);
+      if (options.refine || options.measureError || errorTarget) {
+        if (!meter) meter.emplace(input, options.error);
+      }
+      if (options.refine) {
+        SubProgress subR(progress, refineFrom, mid);
+        RefineOptions ro = options.refinement;
+        ro.lockedOriginalVertices = d.lockedVertices;
+        ro.threads = d.threads;
+        rep.refinement = refineMaxError(*meter, result.mesh, ro, subR.get());
+        rep.refined = true;
+        if (rep.refinement.cancelled) {
+          result.cancelled = true;
+          return done();
+        }
+      }
       if (!options.measureError && !errorTarget) break;
-      if (!meter) meter.emplace(input, options.error);
       std::optional<ErrorMeter::VertexCheck> check;
       if (errorTarget && pass + 1 < passes) check = meter->checkVertices(result.mesh);
       double distance = check ? check->hausdorff() : 0.0;
@@ -117,6 +133,7 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
       if (!haveClosest || distance < closestDistance) {
         closest = std::move(result.mesh);
         closestDecimation = rep.decimation;
+        closestRefinement = rep.refinement;
         if (measured) closestError = rep.error;
         closestDistance = distance;
         closestMeasured = measured;
@@ -126,6 +143,7 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
     if (!met && haveClosest) {
       result.mesh = std::move(closest);
       rep.decimation = closestDecimation;
+      rep.refinement = closestRefinement;
       if (closestMeasured) {
         rep.error = closestError;
       } else {
@@ -150,6 +168,8 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
     lo.decimate = options.decimation;
     lo.decimate.maxError = std::numeric_limits<double>::infinity();
     lo.decimate.lockedVertices.clear();  // per input vertex: meaningless on later levels
+    lo.refine = options.refine;
+    lo.refinement = options.refinement;
     lo.error = options.error;
     lo.error.samplesPerFace = std::min(options.error.samplesPerFace, options.lodSamplesPerFace);
     LodChain chain = buildLodChain(result.mesh, lo, sub.get());
@@ -163,7 +183,7 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
     }
     for (size_t i = 0; i < chain.levels.size(); ++i) {
       Lod& l = chain.levels[i];
-      rep.lods.push_back({l.triangles, l.hausdorff, l.hausdorffRel, l.decimateSeconds + l.errorSeconds, l.samplesPerFace});
+      rep.lods.push_back({l.triangles, l.hausdorff, l.hausdorffRel, l.decimateSeconds + l.refineSeconds + l.errorSeconds, l.samplesPerFace});
       if (i > 0) result.lods.push_back(std::move(l.mesh));
     }
   }

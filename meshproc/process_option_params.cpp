@@ -26,6 +26,9 @@ const std::vector<ParamDecl>& processOptionDecls() {
          .help = "build N coarser levels of detail (a quarter each) with their measured error; the renderer picks "
                  "one per instance",
          .valueName = "N", .editor = true},
+        {.key = "no_refine", .option = "no-refine", .label = "No vertex refinement", .type = ParamType::Flag,
+         .help = "keep the decimator's least-squares vertex places: skip the refinement that moves the vertices "
+                 "around the largest distances (15-30% less Hausdorff error, about half a measurement's time)"},
         {.key = "clean", .option = "clean", .label = "Clean", .type = ParamType::Flag,
          .help = "clean without decimating (implied by the three above): weld duplicates, remove degenerate "
                  "faces, split non-manifold spots"},

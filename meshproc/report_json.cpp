@@ -333,10 +333,21 @@ void errorFields(IO& io, R& r) {
 }
 
 template <class IO, class R>
+void refineFields(IO& io, R& r) {
+  io.count("candidates", r.candidates);
+  io.count("moved", r.moved);
+  io.count("iterations", r.iterations);
+  io.number("largest_before_m", r.largestBefore);
+  io.number("largest_after_m", r.largestAfter);
+  io.number("seconds", r.seconds);
+}
+
+template <class IO, class R>
 void processFields(IO& io, R& r) {
   io.nullable("cleaning", r.cleaned, [&](auto& c) { cleanFields(c, r.cleaning); });
   io.nullable("decimation", r.decimated, [&](auto& d) { decimateFields(d, r.decimation); });
   if (r.decimated) io.count("decimation_passes", r.maxErrorPasses);
+  io.nullable("refinement", r.refined, [&](auto& f) { refineFields(f, r.refinement); });
   io.nullable("error", r.errorMeasured, [&](auto& e) { errorFields(e, r.error); });
   // Level 0 (the processed mesh) first; a level's number is its place.
   io.list("lods", r.lods, [&](auto& l, auto& lod, size_t level) {

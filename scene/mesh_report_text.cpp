@@ -105,6 +105,12 @@ ReportSection decimationSection(const AssetProcessReport& a) {
   if (p.maxErrorPasses > 1)
     r.add("decimation_passes", "Runs for the maximum error", std::to_string(p.maxErrorPasses));
   r.add("seconds", "Decimation time", seconds(d.secondsTotal));
+  if (p.refined) {
+    const mesh::RefineReport& f = p.refinement;
+    r.add("refinement", "Vertices refined (minimax)",
+          count(f.moved) + " moved of " + count(f.candidates) + " near the largest distance, sampled " +
+              metres(f.largestBefore) + " -> " + metres(f.largestAfter) + ", " + seconds(f.seconds));
+  }
   return r.s;
 }
 

@@ -11,6 +11,7 @@
 #include <QRegularExpression>
 #include <QSignalSpy>
 #include <QTableWidget>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QLineEdit>
 #include <QTemporaryDir>
@@ -110,7 +111,16 @@ class EditorImportTest : public QObject {
     QVERIFY(dialog);
     dialog->setDecimation(true, app::ImportDialog::Target::Ratio, 20.0);
     dialog->setLodLevels(2);
+    // The refinement is asked the positive way round; --no-refine's words
+    // are its tooltip.
+    auto* refine = dialog->findChild<QCheckBox*>("refine");
+    QVERIFY(refine);
+    QVERIFY(refine->toolTip().contains("least-squares"));
+    refine->setChecked(false);
+    QVERIFY(!dialog->request().processing.refine);
+    refine->setChecked(true);
     const scene::MeshImportRequest request = dialog->request();
+    QVERIFY(request.processing.refine);
     QVERIFY(request.process && request.processing.decimate);
     QCOMPARE(request.processing.decimation.targetRatio, 0.2);
     QCOMPARE(request.processing.lodLevels, 2);
@@ -161,12 +171,13 @@ class EditorImportTest : public QObject {
     QVERIFY(a->lods[0].data->triangleCount() < a->data->triangleCount());
     QVERIFY(a->lods[1].hausdorff >= a->lods[0].hausdorff && a->lods[0].hausdorff > 0);
     QVERIFY(a->processReport.contains("error") && a->processReport["error"].contains("hausdorff_m"));
+    QVERIFY(a->processReport["refinement"].is_object() && a->processReport["refinement"]["moved"].get<int>() > 0);
 
     // The error report is shown, and its summary is in Messages.
     QTRY_COMPARE(reportWindows().size(), 1);
     app::ErrorReportDialog* report = reportWindows().front();
     for (const char* key : {"hausdorff_m", "hausdorff_rel", "mean_m", "rms_m", "p95_m", "flipped_normals",
-                            "uv_displacement_texels", "boundary_seam_vertices_moved", "area_change_rel"})
+                            "uv_displacement_texels", "boundary_seam_vertices_moved", "area_change_rel", "refinement"})
       QVERIFY2(treeHasField(report->tree(), key), key);
     report->close();
     QTRY_COMPARE(reportWindows().size(), 0);

@@ -97,6 +97,29 @@ class TestCliMesh : public QObject {
     QVERIFY2(QFileInfo(kCli).isExecutable(), qPrintable(kCli + " is not built"));
   }
 
+  // The refinement (max_error_refine.h) runs unless --no-refine: its
+  // report says what moved, and the measured Hausdorff is the lower one.
+  void noRefineKeepsTheDecimatorsPlaces() {
+    QJsonObject runs[2];
+    for (int off = 0; off < 2; ++off) {
+      const QString f = newScene(off ? "plain.hscene" : "refined.hscene");
+      const QString report = path(off ? "plain.json" : "refined.json");
+      QStringList args = {"import", kBunny, f, "--decimate-to", "10%", "--report", report};
+      if (off) args << "--no-refine";
+      const Run r = cli(args);
+      QVERIFY2(r.code == 0, qPrintable(r.err));
+      QCOMPARE(r.out.contains("refinement"), !off);
+      runs[off] = readReport(report)["processing"].toObject();
+    }
+    const QJsonObject refinement = runs[0]["refinement"].toObject();
+    QVERIFY(refinement["moved"].toInt() > 0 && refinement["moved"].toInt() <= refinement["candidates"].toInt());
+    QVERIFY(refinement["largest_after_m"].toDouble() < refinement["largest_before_m"].toDouble());
+    QVERIFY(refinement["seconds"].isDouble());
+    QVERIFY(runs[1]["refinement"].isNull());
+    QCOMPARE(runs[0]["decimation"].toObject()["triangles_out"], runs[1]["decimation"].toObject()["triangles_out"]);
+    QVERIFY(runs[0]["error"].toObject()["hausdorff_m"].toDouble() < runs[1]["error"].toObject()["hausdorff_m"].toDouble());
+  }
+
   // The example: a count target, LODs, and a report with plain names.
   void decimateToACountWithLodsAndReport() {
     const QString f = newScene("count.hscene");

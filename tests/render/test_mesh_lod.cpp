@@ -149,9 +149,10 @@ class TestMeshLod : public QObject {
   }
 
   // The bunny is 0.15 m tall: scaled 10 times (a 1.5 m rock) it spans the
-  // chain's levels over a few metres at 320 x 240.
+  // chain's levels over a few metres at 320 x 240. (With refined levels,
+  // whose errors are 25-30% lower, level 1 is drawn from about 2 m.)
   void nearInstanceDrawsFullResolution() {
-    const auto s = bunnyScene(2.0, 10.0);
+    const auto s = bunnyScene(1.5, 10.0);
     render::FrameStats stats;
     r_.render(s, cameraView(s, 320, 240), false, &stats);
     QCOMPARE(stats.instancesDrawn, size_t(1));
@@ -251,7 +252,12 @@ class TestMeshLod : public QObject {
   // projected error is up to about 0.65 px (level 1 there: 0.87% of the
   // pixels); nearer, where it approaches the full pixel, the coarser
   // normals' shading makes 1.2-1.5% (level 1) and 1.6-2.4% (level 2). The
-  // rule bounds the geometry, not the shading.
+  // rule bounds the geometry, not the shading. Since the levels are
+  // refined (max_error_refine.h) their errors are 25-32% lower, so each is
+  // drawn nearer, where the bunny covers more of the image: level 1 last
+  // at 3.83 m instead of 4.53 m, 1.12% of the pixels against 0.82% (a
+  // silhouette 4.53 / 3.83 = 1.18x longer); at the same spot the refined
+  // level differs less (level 2 at 8 m: 0.70% against 0.72%). Hence 1.25%.
   void onePixelBoundMatchesFullResolution() {
     double lastLevel1 = 0.0;
     for (double d = 2.0; d < 20.0; d += 0.01) {
@@ -280,7 +286,7 @@ class TestMeshLod : public QObject {
       QVERIFY(cmp.sizeMatches);
       // Geometry moves by at most a pixel, so only edge pixels change
       // noticeably (and shading a little where normals were averaged).
-      QVERIFY2(cmp.differingShare <= 0.01, cmp.summary().c_str());
+      QVERIFY2(cmp.differingShare <= 0.0125, cmp.summary().c_str());
       QVERIFY2(worst.differingShare > 1.5 * cmp.differingShare, worst.summary().c_str());
     }
   }

@@ -1,0 +1,365 @@
+#include "meshproc/max_error_refine.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "core/parallel.h"
+#include "meshproc/closest_point_bvh.h"
+#include "meshproc/error_metrics.h"
+
+namespace hs::mesh {
+namespace {
+
+// One sample's distance after a move d along the vertex normal:
+// sqrt(across + (along - weight d)^2).
+struct Constraint {
+  double across, along, weight;
+};
+
+double worst(const std::vector<Constraint>& cs, double d) {
+  double m = 0.0;
+  for (const Constraint& c : cs) {
+    const double a = c.along - c.weight * d;
+    m = std::max(m, c.across + a * a);
+  }
+  return m;
+}
+
+// The move in [-reach, reach] that minimises the largest squared distance
+// (convex in d: a maximum of convex parabolas), by ternary search; ties
+// (a flat bottom) go towards 0 through a vanishing pull.
+double minimaxMove(const std::vector<Constraint>& cs, double reach) {
+  const double pull = 1e-9;
+  auto f = [&](double d) { return worst(cs, d) + pull * d * d; };
+  double lo = -reach, hi = reach;
+  for (int i = 0; i < 60; ++i) {
+    const double a = lo + (hi - lo) / 3.0, b = hi - (hi - lo) / 3.0;
+    if (f(a) < f(b))
+      hi = b;
+    else
+      lo = a;
+  }
+  return 0.5 * (lo + hi);
+}
+
+uint64_t positionKey(const glm::vec3& p) {
+  const glm::vec3 q = p + glm::vec3(0.0f);  // -0 and +0 compare equal: one key
+  uint32_t b[3];
+  std::memcpy(b, &q, sizeof b);
+  uint64_t h = 0x9E3779B97F4A7C15ull;
+  for (uint32_t x : b) h = (h ^ x) * 0xBF58476D1CE4E5B9ull, h ^= h >> 31;
+  return h;
+}
+
+}  // namespace
+
+RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const RefineOptions& opt,
+                            const Progress* progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RefineReport rep;
+  auto finish = [&] {
+    rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return rep;
+  };
+  const MeshData& original = meter.original();
+  const ClosestPointBvh& originalBvh = meter.originalBvh();
+  const size_t nv = result.positions.size(), nf = result.triangleCount(), no = original.positions.size();
+  if (nf == 0 || no == 0 || originalBvh.empty() || opt.iterations <= 0) return finish();
+  const unsigned threads = resolveThreads(opt.threads);
+  // Result frame -> original frame: add `shift`.
+  const glm::dvec3 shift = result.origin - original.origin;
+  const std::vector<uint32_t>& idx = result.indices;
+  reportProgress(progress, 0.0, "Refining vertices");
+
+  // Faces around each vertex (in face order), and each face's material.
+  std::vector<uint32_t> fanStart(nv + 1, 0), fan(nf * 3);
+  for (uint32_t v : idx) ++fanStart[v + 1];
+  for (size_t v = 0; v < nv; ++v) fanStart[v + 1] += fanStart[v];
+  {
+    std::vector<uint32_t> fill(fanStart.begin(), fanStart.end() - 1);
+    for (size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) fan[fill[idx[f * 3 + k]]++] = uint32_t(f);
+  }
+  std::vector<int> material(nf, -1);
+  for (const Submesh& s : result.submeshes)
+    for (size_t f = s.firstIndex / 3; f < std::min(nf, size_t(s.firstIndex + s.indexCount) / 3); ++f)
+      material[f] = s.material;
+
+  // Screening: each original vertex's nearest result face and distance,
+  // and each result face's largest distance to the original at a coarse
+  // grid (corners and edge midpoints).
+  const ClosestPointBvh resultBvh(result, threads);
+  std::vector<uint32_t> nearFace(no);
+  std::vector<float> nearDist(no);
+  parallelFor(int64_t(no), int(threads), 1024, [&](int64_t b, int64_t e) {
+    uint32_t hint = UINT32_MAX;
+    for (int64_t i = b; i < e; ++i) {
+      const auto h = resultBvh.closest(glm::dvec3(original.positions[size_t(i)]) - shift, hint);
+      nearFace[size_t(i)] = h.face, nearDist[size_t(i)] = float(std::sqrt(h.distanceSq)), hint = h.face;
+    }
+  });
+  if (isCancelled(progress)) return rep.cancelled = true, finish();
+  std::vector<float> faceWorst(nf, 0.0f);
+  parallelFor(int64_t(nf), int(threads), 256, [&](int64_t b, int64_t e) {
+    uint32_t hint = UINT32_MAX;
+    for (int64_t f = b; f < e; ++f) {
+      glm::dvec3 c[3];
+      for (int k = 0; k < 3; ++k) c[k] = glm::dvec3(result.positions[idx[size_t(f) * 3 + size_t(k)]]) + shift;
+      const glm::dvec3 pts[6] = {c[0], c[1], c[2], 0.5 * (c[0] + c[1]), 0.5 * (c[1] + c[2]), 0.5 * (c[2] + c[0])};
+      double m = 0.0;
+      for (const glm::dvec3& p : pts) {
+        const auto h = originalBvh.closest(p, hint);
+        m = std::max(m, h.distanceSq), hint = h.face;
+      }
+      faceWorst[size_t(f)] = float(std::sqrt(m));
+    }
+  });
+  if (isCancelled(progress)) return rep.cancelled = true, finish();
+  // Original vertices by nearest face (counting sort: in vertex order).
+  // (None found: a vertex the BVH could not place, e.g. not finite.)
+  std::vector<uint32_t> nearStart(nf + 1, 0), nearOf(no);
+  for (uint32_t f : nearFace)
+    if (f < nf) ++nearStart[f + 1];
+  for (size_t f = 0; f < nf; ++f) nearStart[f + 1] += nearStart[f];
+  {
+    std::vector<uint32_t> fill(nearStart.begin(), nearStart.end() - 1);
+    for (size_t i = 0; i < no; ++i)
+      if (nearFace[i] < nf) {
+        nearOf[fill[nearFace[i]]++] = uint32_t(i);
+        faceWorst[nearFace[i]] = std::max(faceWorst[nearFace[i]], nearDist[i]);
+      }
+  }
+  const float largest = *std::max_element(faceWorst.begin(), faceWorst.end());
+  rep.largestBefore = rep.largestAfter = largest;
+  if (!(largest > 0.0f)) return finish();
+
+  // Candidates: near the largest distance, interior, manifold, one
+  // material around, a position of their own, not locked.
+  auto localWorst = [&](size_t v) {
+    float m = 0.0f;
+    for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) m = std::max(m, faceWorst[fan[s]]);
+    return m;
+  };
+  auto closedFan = [&](size_t v) {
+    // Each neighbour follows v in one face and precedes it in another.
+    std::vector<uint32_t> next, prev;
+    const int mat = material[fan[fanStart[v]]];
+    for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) {
+      const uint32_t f = fan[s];
+      if (material[f] != mat) return false;
+      const int k = idx[f * 3] == v ? 0 : idx[f * 3 + 1] == v ? 1 : 2;
+      next.push_back(idx[f * 3 + (k + 1) % 3]);
+      prev.push_back(idx[f * 3 + (k + 2) % 3]);
+    }
+    std::sort(next.begin(), next.end());
+    std::sort(prev.begin(), prev.end());
+    return next.size() >= 3 && next == prev && std::adjacent_find(next.begin(), next.end()) == next.end();
+  };
+  std::vector<uint32_t> cand;
+  for (size_t v = 0; v < nv; ++v)
+    if (fanStart[v + 1] > fanStart[v] && localWorst(v) >= float(opt.candidateShare) * largest && closedFan(v))
+      cand.push_back(uint32_t(v));
+  // Positions that other vertices, or locked original vertices, hold.
+  {
+    std::vector<std::pair<uint64_t, uint32_t>> keys(cand.size());
+    for (size_t j = 0; j < cand.size(); ++j) keys[j] = {positionKey(result.positions[cand[j]]), uint32_t(j)};
+    std::sort(keys.begin(), keys.end());
+    std::vector<uint8_t> taken(cand.size(), 0);
+    auto mark = [&](const glm::vec3& p, uint32_t self) {
+      const uint64_t key = positionKey(p);
+      for (auto it = std::lower_bound(keys.begin(), keys.end(), std::pair{key, 0u}); it != keys.end() && it->first == key;
+           ++it)
+        if (cand[it->second] != self && result.positions[cand[it->second]] == p) taken[it->second] = 1;
+    };
+    for (size_t v = 0; v < nv; ++v) mark(result.positions[v], uint32_t(v));
+    if (opt.lockedOriginalVertices.size() == no)
+      for (size_t i = 0; i < no; ++i)
+        if (opt.lockedOriginalVertices[i]) mark(glm::vec3(glm::dvec3(original.positions[i]) - shift), UINT32_MAX);
+    size_t kept = 0;
+    for (size_t j = 0; j < cand.size(); ++j)
+      if (!taken[j]) cand[kept++] = cand[j];
+    cand.resize(kept);
+  }
+  rep.candidates = cand.size();
+  if (cand.empty()) return finish();
+  // The largest distance away from the candidates (what refining them
+  // cannot lower).
+  float elsewhere = 0.0f;
+  {
+    std::vector<uint8_t> isCand(nv, 0);
+    for (uint32_t v : cand) isCand[v] = 1;
+    for (size_t f = 0; f < nf; ++f)
+      if (!isCand[idx[f * 3]] && !isCand[idx[f * 3 + 1]] && !isCand[idx[f * 3 + 2]])
+        elsewhere = std::max(elsewhere, faceWorst[f]);
+  }
+
+  // The sample grid of a result face, as barycentric weights.
+  std::vector<glm::dvec3> grid;
+  const int level = std::max(1, opt.sampleLevel);
+  for (int i = 0; i <= level; ++i)
+    for (int j = 0; j <= level - i; ++j) grid.emplace_back(double(i) / level, double(j) / level, double(level - i - j) / level);
+
+  const double cosTurn = std::cos(opt.maxNormalTurnDeg * 3.14159265358979323846 / 180.0);
+  std::vector<double> localMax(cand.size(), 0.0), move(cand.size(), 0.0), best(cand.size(), 0.0);
+  std::vector<glm::dvec3> normal(cand.size());
+  std::vector<uint8_t> movedOnce(cand.size(), 0);
+  auto corner = [&](uint32_t f, int k) { return glm::dvec3(result.positions[idx[size_t(f) * 3 + size_t(k)]]); };
+
+  // The faces around the candidates, and what a round measures on each:
+  // the vector from each grid sample to the original's nearest point, and
+  // from the nearest point of the face to each original vertex whose
+  // nearest face it was at the screening, with that point's weights.
+  std::vector<uint32_t> active, slotOf(nf, UINT32_MAX);
+  for (uint32_t v : cand)
+    for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s)
+      if (slotOf[fan[s]] == UINT32_MAX) slotOf[fan[s]] = uint32_t(active.size()), active.push_back(fan[s]);
+  std::sort(active.begin(), active.end());
+  for (size_t a = 0; a < active.size(); ++a) slotOf[active[a]] = uint32_t(a);
+  std::vector<size_t> nearFrom(active.size() + 1, 0);
+  for (size_t a = 0; a < active.size(); ++a) nearFrom[a + 1] = nearFrom[a] + (nearStart[active[a] + 1] - nearStart[active[a]]);
+  const size_t gn = grid.size();
+  std::vector<glm::vec3> backE(active.size() * gn);
+  struct Near {
+    glm::vec3 e, bary;
+  };
+  std::vector<Near> nearE(nearFrom.back());
+  // Faces whose corners moved since they were measured (all at first).
+  std::vector<uint8_t> stale(active.size(), 1);
+  std::vector<uint32_t> todo;
+  auto measureFaces = [&] {
+    todo.clear();
+    for (size_t a = 0; a < active.size(); ++a)
+      if (stale[a]) todo.push_back(uint32_t(a));
+    parallelFor(int64_t(todo.size()), int(threads), 64, [&](int64_t b, int64_t e) {
+      std::vector<glm::dvec3> pts(gn);
+      std::vector<ClosestPointBvh::Hit> hits(gn);
+      ClosestPointBvh::ManyScratch scratch;
+      uint32_t hint = UINT32_MAX;
+      for (int64_t i = b; i < e; ++i) {
+        const size_t a = todo[size_t(i)];
+        const uint32_t f = active[a];
+        const glm::dvec3 c0 = corner(f, 0), c1 = corner(f, 1), c2 = corner(f, 2);
+        for (size_t g = 0; g < gn; ++g) pts[g] = grid[g].x * c0 + grid[g].y * c1 + grid[g].z * c2 + shift;
+        hint = originalBvh.closestMany(pts, hint, hits, scratch);
+        for (size_t g = 0; g < gn; ++g) backE[a * gn + g] = glm::vec3(hits[g].point - pts[g]);
+        for (uint32_t s = nearStart[f], t = 0; s < nearStart[f + 1]; ++s, ++t) {
+          const glm::dvec3 p = glm::dvec3(original.positions[nearOf[s]]) - shift;
+          glm::dvec3 q, bary;
+          closestPointOnTriangle(p, c0, c1, c2, q, bary);
+          nearE[nearFrom[a] + t] = {glm::vec3(p - q), glm::vec3(bary)};
+        }
+      }
+    });
+  };
+
+  // Candidate j's samples at the positions measureFaces() saw; returns its
+  // local maximum (squared), leaving its samples in `cs`.
+  auto gather = [&](size_t j, std::vector<Constraint>& cs, glm::dvec3& n) {
+    const uint32_t v = cand[j];
+    cs.clear();
+    glm::dvec3 sum(0.0);
+    for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) {
+      const uint32_t f = fan[s];
+      sum += glm::cross(corner(f, 1) - corner(f, 0), corner(f, 2) - corner(f, 0));
+    }
+    const double len = glm::length(sum);
+    n = len > 0 ? sum / len : glm::dvec3(0.0);
+    if (!(len > 0)) return 0.0;
+    auto add = [&](const glm::vec3& ef, double w) {
+      if (!(w > 0)) return;
+      const glm::dvec3 e(ef);
+      const double along = glm::dot(e, n);
+      cs.push_back({std::max(0.0, glm::dot(e, e) - along * along), along, w});
+    };
+    for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) {
+      const uint32_t f = fan[s], a = slotOf[f];
+      const int k = idx[size_t(f) * 3] == v ? 0 : idx[size_t(f) * 3 + 1] == v ? 1 : 2;
+      for (size_t g = 0; g < gn; ++g) add(backE[size_t(a) * gn + g], grid[g][k]);
+      for (size_t t = nearFrom[a]; t < nearFrom[a + 1]; ++t) add(nearE[t].e, double(nearE[t].bary[k]));
+    }
+    return worst(cs, 0.0);
+  };
+
+  // Largest move that keeps every face around v within the normal turn
+  // limit (halved up to four times), or 0.
+  auto safeMove = [&](uint32_t v, const glm::dvec3& n, double d) {
+    double shortest = HUGE_VAL;
+    for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) {
+      const uint32_t f = fan[s];
+      for (int k = 0; k < 3; ++k) shortest = std::min(shortest, glm::length(corner(f, (k + 1) % 3) - corner(f, k)));
+    }
+    d = std::clamp(d, -opt.maxMoveEdgeShare * shortest, opt.maxMoveEdgeShare * shortest);
+    for (int attempt = 0; attempt < 5; ++attempt, d *= 0.5) {
+      bool ok = true;
+      for (uint32_t s = fanStart[v]; s < fanStart[v + 1] && ok; ++s) {
+        const uint32_t f = fan[s];
+        glm::dvec3 c[3] = {corner(f, 0), corner(f, 1), corner(f, 2)};
+        const glm::dvec3 before = glm::cross(c[1] - c[0], c[2] - c[0]);
+        for (int k = 0; k < 3; ++k)
+          if (idx[size_t(f) * 3 + size_t(k)] == v) c[k] += d * n;
+        const glm::dvec3 after = glm::cross(c[1] - c[0], c[2] - c[0]);
+        const double lb = glm::length(before), la = glm::length(after);
+        ok = lb > 0 && la > 0 && glm::dot(before, after) >= cosTurn * lb * la;
+      }
+      if (ok) return d;
+    }
+    return 0.0;
+  };
+
+  const size_t count = cand.size();
+  for (int round = 0; round <= opt.iterations; ++round) {
+    const bool last = round == opt.iterations;  // the last pass only measures
+    measureFaces();
+    parallelFor(int64_t(count), int(threads), 16, [&](int64_t b, int64_t e) {
+      std::vector<Constraint> cs;
+      for (int64_t j = b; j < e; ++j) {
+        // Unchanged around it since the last round: so are its samples.
+        const uint32_t v = cand[size_t(j)];
+        bool changed = false;
+        for (uint32_t s = fanStart[v]; s < fanStart[v + 1] && !changed; ++s) changed = stale[slotOf[fan[s]]] != 0;
+        if (!changed) continue;
+        glm::dvec3 n;
+        localMax[size_t(j)] = gather(size_t(j), cs, n);
+        normal[size_t(j)] = n;
+        best[size_t(j)] = 0.0;
+        if (last || cs.empty()) continue;
+        const double reach = 2.0 * std::sqrt(localMax[size_t(j)]);
+        const double d = minimaxMove(cs, reach);
+        best[size_t(j)] = worst(cs, d) < localMax[size_t(j)] ? d : 0.0;
+      }
+    });
+    if (isCancelled(progress)) return rep.cancelled = true, finish();
+    double roundMax = double(elsewhere) * double(elsewhere);
+    for (double m : localMax) roundMax = std::max(roundMax, m);
+    if (round == 0) rep.largestBefore = std::sqrt(roundMax);
+    rep.largestAfter = std::sqrt(roundMax);
+    if (last) break;
+    const double gate = opt.moveShare * opt.moveShare * roundMax;
+    size_t moves = 0;
+    parallelFor(int64_t(count), int(threads), 64, [&](int64_t b, int64_t e) {
+      for (int64_t j = b; j < e; ++j) {
+        const size_t k = size_t(j);
+        move[k] = best[k] != 0.0 && localMax[k] >= gate ? safeMove(cand[k], normal[k], opt.damping * best[k]) : 0.0;
+      }
+    });
+    std::fill(stale.begin(), stale.end(), 0);
+    for (size_t j = 0; j < count; ++j)
+      if (move[j] != 0.0) {
+        const uint32_t v = cand[j];
+        for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) stale[slotOf[fan[s]]] = 1;
+        result.positions[v] = glm::vec3(glm::dvec3(result.positions[v]) + move[j] * normal[j]);
+        movedOnce[j] = 1, ++moves;
+      }
+    rep.iterations = round + 1;
+    reportProgress(progress, double(round + 1) / double(opt.iterations + 1), "Refining vertices");
+    if (moves == 0) break;
+  }
+  for (uint8_t m : movedOnce) rep.moved += m;
+  if (rep.moved) computeVertexNormals(result, threads);
+  reportProgress(progress, 1.0, "Refined");
+  return finish();
+}
+
+}  // namespace hs::mesh
