@@ -101,22 +101,56 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     }
   });
   if (isCancelled(progress)) return rep.cancelled = true, finish();
-  std::vector<float> faceWorst(nf, 0.0f);
-  parallelFor(int64_t(nf), int(threads), 256, [&](int64_t b, int64_t e) {
+  // Each vertex once, and each edge's midpoint once: from the face that
+  // runs it from the lower vertex number to the higher (the other face of
+  // a consistently oriented edge runs it the other way; a border edge run
+  // the other way is left to its corners).
+  std::vector<float> vertexDist(nv, 0.0f), faceWorst(nf, 0.0f);
+  parallelFor(int64_t(nv), int(threads), 1024, [&](int64_t b, int64_t e) {
     uint32_t hint = UINT32_MAX;
-    for (int64_t f = b; f < e; ++f) {
-      glm::dvec3 c[3];
-      for (int k = 0; k < 3; ++k) c[k] = glm::dvec3(result.positions[idx[size_t(f) * 3 + size_t(k)]]) + shift;
-      const glm::dvec3 pts[6] = {c[0], c[1], c[2], 0.5 * (c[0] + c[1]), 0.5 * (c[1] + c[2]), 0.5 * (c[2] + c[0])};
-      double m = 0.0;
-      for (const glm::dvec3& p : pts) {
-        const auto h = originalBvh.closest(p, hint);
-        m = std::max(m, h.distanceSq), hint = h.face;
-      }
-      faceWorst[size_t(f)] = float(std::sqrt(m));
+    for (int64_t v = b; v < e; ++v) {
+      const auto h = originalBvh.closest(glm::dvec3(result.positions[size_t(v)]) + shift, hint);
+      vertexDist[size_t(v)] = float(std::sqrt(h.distanceSq)), hint = h.face;
     }
   });
+  std::vector<float> midDist(nf * 3, 0.0f);
+  parallelFor(int64_t(nf), int(threads), 1024, [&](int64_t b, int64_t e) {
+    uint32_t hint = UINT32_MAX;
+    for (int64_t f = b; f < e; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = idx[size_t(f) * 3 + size_t(k)], c = idx[size_t(f) * 3 + size_t(k + 1) % 3];
+        if (a > c) continue;
+        const glm::dvec3 mid = 0.5 * (glm::dvec3(result.positions[a]) + glm::dvec3(result.positions[c])) + shift;
+        const auto h = originalBvh.closest(mid, hint);
+        midDist[size_t(f) * 3 + size_t(k)] = float(std::sqrt(h.distanceSq)), hint = h.face;
+      }
+  });
   if (isCancelled(progress)) return rep.cancelled = true, finish();
+  // A face's worst: its corners, its edges' midpoints (found in either
+  // face of the edge), and the original vertices nearest to it (below).
+  {
+    std::vector<std::pair<uint64_t, float>> edgeMid;
+    edgeMid.reserve(nf * 3 / 2 + 16);
+    for (size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = idx[f * 3 + size_t(k)], c = idx[f * 3 + size_t(k + 1) % 3];
+        if (a <= c) edgeMid.push_back({uint64_t(a) << 32 | c, midDist[f * 3 + size_t(k)]});
+      }
+    std::sort(edgeMid.begin(), edgeMid.end());
+    parallelFor(int64_t(nf), int(threads), 1024, [&](int64_t b, int64_t e) {
+      for (int64_t f = b; f < e; ++f) {
+        float m = 0.0f;
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t a = idx[size_t(f) * 3 + size_t(k)], c = idx[size_t(f) * 3 + size_t(k + 1) % 3];
+          m = std::max(m, vertexDist[a]);
+          const uint64_t key = uint64_t(std::min(a, c)) << 32 | std::max(a, c);
+          const auto it = std::lower_bound(edgeMid.begin(), edgeMid.end(), std::pair{key, -1.0f});
+          if (it != edgeMid.end() && it->first == key) m = std::max(m, it->second);
+        }
+        faceWorst[size_t(f)] = m;
+      }
+    });
+  }
   // Original vertices by nearest face (counting sort: in vertex order).
   // (None found: a vertex the BVH could not place, e.g. not finite.)
   std::vector<uint32_t> nearStart(nf + 1, 0), nearOf(no);
