@@ -218,6 +218,13 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
   }
   rep.candidates = cand.size();
   if (cand.empty()) return finish();
+  // The screening's local maxima stand for the candidates' own until they
+  // are gathered: a candidate is gathered (its faces sampled densely) only
+  // once the screening puts it near the moving gate, so a mesh with many
+  // candidates and few that move (a 5M-triangle tile at 50%: 75k and 2k)
+  // pays for the few.
+  std::vector<double> screen(cand.size());
+  for (size_t j = 0; j < cand.size(); ++j) screen[j] = double(localWorst(cand[j])) * double(localWorst(cand[j]));
   // The largest distance away from the candidates (what refining them
   // cannot lower).
   float elsewhere = 0.0f;
@@ -236,7 +243,8 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     for (int j = 0; j <= level - i; ++j) grid.emplace_back(double(i) / level, double(j) / level, double(level - i - j) / level);
 
   const double cosTurn = std::cos(opt.maxNormalTurnDeg * 3.14159265358979323846 / 180.0);
-  std::vector<double> localMax(cand.size(), 0.0), move(cand.size(), 0.0), best(cand.size(), 0.0);
+  std::vector<double> localMax = screen, move(cand.size(), 0.0), best(cand.size(), 0.0);
+  std::vector<uint8_t> gathered(cand.size(), 0);
   std::vector<glm::dvec3> normal(cand.size());
   std::vector<uint8_t> movedOnce(cand.size(), 0);
   auto corner = [&](uint32_t f, int k) { return glm::dvec3(result.positions[idx[size_t(f) * 3 + size_t(k)]]); };
@@ -259,13 +267,14 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     glm::vec3 e, bary;
   };
   std::vector<Near> nearE(nearFrom.back());
-  // Faces whose corners moved since they were measured (all at first).
-  std::vector<uint8_t> stale(active.size(), 1);
+  // Faces measured at the current positions (none at first), and those to
+  // measure in this round.
+  std::vector<uint8_t> fresh(active.size(), 0), wanted(active.size(), 0);
   std::vector<uint32_t> todo;
   auto measureFaces = [&] {
     todo.clear();
     for (size_t a = 0; a < active.size(); ++a)
-      if (stale[a]) todo.push_back(uint32_t(a));
+      if (wanted[a] && !fresh[a]) todo.push_back(uint32_t(a)), fresh[a] = 1;
     parallelFor(int64_t(todo.size()), int(threads), 64, [&](int64_t b, int64_t e) {
       std::vector<glm::dvec3> pts(gn);
       std::vector<ClosestPointBvh::Hit> hits(gn);
@@ -345,15 +354,28 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
   const size_t count = cand.size();
   for (int round = 0; round <= opt.iterations; ++round) {
     const bool last = round == opt.iterations;  // the last pass only measures
+    // Who is gathered: those gathered before whose faces moved since (the
+    // rest keep their samples), and those the screening now puts within
+    // reach of the gate (the last, measuring pass only the former).
+    double estimate = double(elsewhere) * double(elsewhere);
+    for (double m : localMax) estimate = std::max(estimate, m);
+    const double reachGate = 0.8 * 0.8 * opt.moveShare * opt.moveShare * estimate;
+    std::vector<uint8_t> want(count, 0);
+    std::fill(wanted.begin(), wanted.end(), 0);
+    for (size_t j = 0; j < count; ++j) {
+      const uint32_t v = cand[j];
+      bool changed = false;
+      for (uint32_t s = fanStart[v]; s < fanStart[v + 1] && !changed; ++s) changed = !fresh[slotOf[fan[s]]];
+      want[j] = gathered[j] ? changed : !last && localMax[j] >= reachGate;
+      if (want[j])
+        for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) wanted[slotOf[fan[s]]] = 1;
+    }
     measureFaces();
     parallelFor(int64_t(count), int(threads), 16, [&](int64_t b, int64_t e) {
       std::vector<Constraint> cs;
       for (int64_t j = b; j < e; ++j) {
-        // Unchanged around it since the last round: so are its samples.
-        const uint32_t v = cand[size_t(j)];
-        bool changed = false;
-        for (uint32_t s = fanStart[v]; s < fanStart[v + 1] && !changed; ++s) changed = stale[slotOf[fan[s]]] != 0;
-        if (!changed) continue;
+        if (!want[size_t(j)]) continue;
+        gathered[size_t(j)] = 1;
         glm::dvec3 n;
         localMax[size_t(j)] = gather(size_t(j), cs, n);
         normal[size_t(j)] = n;
@@ -375,14 +397,13 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     parallelFor(int64_t(count), int(threads), 64, [&](int64_t b, int64_t e) {
       for (int64_t j = b; j < e; ++j) {
         const size_t k = size_t(j);
-        move[k] = best[k] != 0.0 && localMax[k] >= gate ? safeMove(cand[k], normal[k], opt.damping * best[k]) : 0.0;
+        move[k] = gathered[k] && best[k] != 0.0 && localMax[k] >= gate ? safeMove(cand[k], normal[k], opt.damping * best[k]) : 0.0;
       }
     });
-    std::fill(stale.begin(), stale.end(), 0);
     for (size_t j = 0; j < count; ++j)
       if (move[j] != 0.0) {
         const uint32_t v = cand[j];
-        for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) stale[slotOf[fan[s]]] = 1;
+        for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) fresh[slotOf[fan[s]]] = 0;
         result.positions[v] = glm::vec3(glm::dvec3(result.positions[v]) + move[j] * normal[j]);
         movedOnce[j] = 1, ++moves;
       }
