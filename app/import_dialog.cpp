@@ -158,6 +158,12 @@ ImportDialog::ImportDialog(const QStringList& files, const mesh::ImportOptions& 
   refine_->setToolTip(QString::fromStdString("Unchecked: " + noRefine.help));
   refine_->setChecked(settings.value("import/refine", true).toBool());
   procForm->addRow("Refine", refine_);
+  const ParamDecl& certify = paramIn(processing, "certify");
+  certify_ = new QCheckBox("Bound the error from above (a certified maximum)", procBox);
+  certify_->setObjectName("certify");
+  certify_->setToolTip(QString::fromStdString(certify.help));
+  certify_->setChecked(settings.value("import/certify", false).toBool());
+  procForm->addRow(paramLabel(certify), certify_);
   const ParamDecl& lods = paramIn(processing, "lods");
   lods_ = paramIntSpin(lods, procBox);
   lods_->setObjectName("lodLevels");
@@ -283,6 +289,7 @@ scene::MeshImportRequest ImportDialog::request() const {
       break;
   }
   p.refine = refine_->isChecked();
+  p.error.certify = certify_->isChecked();
   p.lodLevels = lods_->value();
   r.process = p.clean || p.decimate || p.lodLevels > 0;
   return r;
@@ -350,6 +357,7 @@ void ImportDialog::remember() const {
   s.setValue("import/clean", clean_->isChecked());
   s.setValue("import/decimate", decimate_->isChecked());
   s.setValue("import/refine", refine_->isChecked());
+  s.setValue("import/certify", certify_->isChecked());
   s.setValue("import/target", targetKind_->currentIndex());
   s.setValue("import/ratio", ratio_->value());
   s.setValue("import/triangles", triangles_->value());

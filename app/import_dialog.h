@@ -59,7 +59,7 @@ class ImportDialog : public QDialog {
   QComboBox *up_ = nullptr, *reader_ = nullptr, *targetKind_ = nullptr;
   QRadioButton *originAuto_ = nullptr, *originFile_ = nullptr, *originManual_ = nullptr;
   QDoubleSpinBox* origin_[3] = {nullptr, nullptr, nullptr};
-  QCheckBox *clean_ = nullptr, *decimate_ = nullptr, *refine_ = nullptr;
+  QCheckBox *clean_ = nullptr, *decimate_ = nullptr, *refine_ = nullptr, *certify_ = nullptr;
   QDoubleSpinBox *ratio_ = nullptr, *maxError_ = nullptr;
   QSpinBox *triangles_ = nullptr, *lods_ = nullptr;
   QPushButton *previewButton_ = nullptr, *cancelPreviewButton_ = nullptr, *importButton_ = nullptr;

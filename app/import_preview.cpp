@@ -76,6 +76,7 @@ struct ImportPreview::Run {
 
     mesh::ErrorOptions eo = request.processing.error;
     eo.samplesPerFace = kSamplesPerFace;
+    eo.certify = false;  // the preview ranks targets; the import certifies
     const mesh::ErrorMeter meter(original, eo);
     for (size_t i = 0; i < targets.size(); ++i) {
       const auto& [d, isChosen] = targets[i];

@@ -66,6 +66,7 @@ bool parseImportRequest(const OperationArgs& args, scene::MeshImportRequest& req
     p.decimate = true;
   }
   p.refine = !args.flag("no_refine");
+  p.error.certify = args.flag("certify");
   p.lodLevels = int(args.integer("lods"));
   request.process = p.decimate || p.lodLevels > 0 || args.flag("clean");
   return true;

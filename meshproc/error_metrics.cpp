@@ -493,6 +493,14 @@ ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress, con
     }
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (o.opt.certify && !isCancelled(progress)) {
+    reportProgress(progress, 0.95, "Certifying the maximum");
+    const HausdorffBound b = hausdorffUpperBound(s, r.hausdorff, 0.01, 10);
+    r.certified = true;
+    r.hausdorffUpper = std::max(b.upper, r.hausdorff);
+    r.certifiedPieces = b.pieces;
+    r.certifySeconds = b.seconds;
+  }
   reportProgress(progress, 1.0, "Error measured");
   return r;
 }

@@ -27,6 +27,10 @@ struct ErrorOptions {
   // Texture size for UV displacement in texels; 0 = the size of the
   // material's decoded texture (no texture: UV displacement not measured).
   int textureWidth = 0, textureHeight = 0;
+  // Also bound the Hausdorff from above (hausdorffUpperBound, depth 10,
+  // 1% slack), so the report says how far the sampled maximum can be off:
+  // about 1-3x the measurement's time (docs/meshes.md).
+  bool certify = false;
   unsigned threads = 0;
 };
 
@@ -49,6 +53,14 @@ struct ErrorReport {
   // Symmetric: Hausdorff is the larger maximum; mean, RMS and 95th
   // percentile are over both directions' samples together.
   double hausdorff = 0, mean = 0, rms = 0, p95 = 0;
+
+  // With ErrorOptions::certify: no point of either surface is further
+  // from the other than hausdorffUpper (the sampled `hausdorff` is reached
+  // by some point: the true Hausdorff lies between the two).
+  bool certified = false;
+  double hausdorffUpper = 0;
+  uint64_t certifiedPieces = 0;
+  double certifySeconds = 0;
 
   size_t flippedNormals = 0;  // simplified faces facing against the original surface at their centre
   size_t facesChecked = 0;

@@ -115,7 +115,9 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
           result.cancelled = true;
           return done();
         }
-        distance = rep.error.hausdorff;
+        // Certified (ErrorOptions::certify): judged by the upper bound, so
+        // "met" holds for every point, not only the sampled ones.
+        distance = rep.error.certified ? rep.error.hausdorffUpper : rep.error.hausdorff;
         // Met, or nothing more to tighten: keep this one.
         if (!errorTarget || distance <= wanted || distance <= 0) {
           met = true;
@@ -172,6 +174,7 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
     lo.refinement = options.refinement;
     lo.error = options.error;
     lo.error.samplesPerFace = std::min(options.error.samplesPerFace, options.lodSamplesPerFace);
+    lo.error.certify = false;  // a level's error only picks it on screen
     LodChain chain = buildLodChain(result.mesh, lo, sub.get());
     if (chain.cancelled) {
       result.cancelled = true;

@@ -46,7 +46,7 @@ struct ProcessOptions {
   RefineOptions refinement;
 
   bool measureError = true;  // the error report for the decimated result
-  ErrorOptions error;
+  ErrorOptions error;        // error.certify: a certified upper bound too, which judges maxError
 
   int lodLevels = 0;         // coarser levels after the result (lod_chain.h)
   double lodRatio = 0.25;
@@ -62,7 +62,7 @@ struct ProcessOptions {
 // ProcessOptions' parameters as the import offers them, declared once
 // (`import`, the Import dialog): decimate_to (the CLI's text: 500k, 2M,
 // 10%), target_ratio_pct and target_triangles (decimateTargetDecls()),
-// max_error_m, lods, no_refine, clean.
+// max_error_m, lods, no_refine, certify, clean.
 const std::vector<ParamDecl>& processOptionDecls();
 
 struct LodSummary {

@@ -306,6 +306,12 @@ void errorFields(IO& io, R& r) {
   io.object("result_to_original", [&](auto& d) { distanceFields(d, r.backward, r.bboxDiagonal); });
   io.number("samples_per_face", r.samplesPerFace);
   io.count("seed", r.seed);
+  io.nullable("hausdorff_certified", r.certified, [&](auto& c) {
+    c.number("upper_m", r.hausdorffUpper);
+    c.derived("upper_rel", [&] { return r.rel(r.hausdorffUpper); });
+    c.count("pieces", r.certifiedPieces);
+    c.number("seconds", r.certifySeconds);
+  });
   io.count("flipped_normals", r.flippedNormals);
   io.count("faces_checked", r.facesChecked);
   io.nullable("uv_displacement_texels", r.uvMeasured, [&](auto& u) {

@@ -21,6 +21,7 @@ Json optionsJson(const mesh::ProcessOptions& o) {
     j["max_error_m"] = std::isfinite(o.decimation.maxError) ? Json(o.decimation.maxError) : Json();
   }
   j["refine"] = o.refine;
+  j["certify"] = o.error.certify;
   j["lod_levels"] = o.lodLevels;
   j["lod_ratio"] = o.lodRatio;
   j["samples_per_face"] = o.error.samplesPerFace;
@@ -32,7 +33,7 @@ bool readOptions(JsonReader& r, const Json& j, const std::string& path, mesh::Pr
   o.refine = false;  // reports written before the refinement existed have no "refine": none ran
   if (!r.object(j, path) || !r.optBoolean(j, path, "decimate", o.decimate) ||
       !r.optNumber(j, path, "target_ratio", o.decimation.targetRatio) ||
-      !r.optBoolean(j, path, "refine", o.refine) ||
+      !r.optBoolean(j, path, "refine", o.refine) || !r.optBoolean(j, path, "certify", o.error.certify) ||
       !r.optInteger(j, path, "lod_levels", o.lodLevels, 0, 1000) || !r.optNumber(j, path, "lod_ratio", o.lodRatio) ||
       !r.optNumber(j, path, "samples_per_face", o.error.samplesPerFace))
     return false;

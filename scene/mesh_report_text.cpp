@@ -59,6 +59,10 @@ ReportSection errorSection(const mesh::ErrorReport& e) {
       .add("rms_m", "RMS distance", metres(e.rms))
       .add("p95_m", "95th percentile distance", metres(e.p95))
       .add("flipped_normals", "Flipped normals", count(e.flippedNormals) + " of " + count(e.facesChecked) + " faces");
+  if (e.certified)
+    r.add("hausdorff_certified", "Hausdorff, certified at most",
+          metres(e.hausdorffUpper) + " (" + percent(e.rel(e.hausdorffUpper)) + "; the true one lies between " +
+              metres(e.hausdorff) + " and this), " + seconds(e.certifySeconds));
   if (e.uvMeasured) {
     r.add("uv_displacement_texels", "UV displacement (max / mean / p95)",
           fmt3(e.uvMaxTexels) + " / " + fmt3(e.uvMeanTexels) + " / " + fmt3(e.uvP95Texels) + " texels");
@@ -84,7 +88,8 @@ ReportSection errorSection(const mesh::ErrorReport& e) {
 std::optional<bool> maxErrorMet(const AssetProcessReport& a) {
   const double wanted = a.options.decimation.maxError;
   if (!a.report.decimated || !a.report.errorMeasured || !std::isfinite(wanted) || !(wanted > 0)) return std::nullopt;
-  return a.report.error.hausdorff <= wanted;
+  const mesh::ErrorReport& e = a.report.error;
+  return (e.certified ? e.hausdorffUpper : e.hausdorff) <= wanted;
 }
 
 ReportSection decimationSection(const AssetProcessReport& a) {
@@ -101,7 +106,8 @@ ReportSection decimationSection(const AssetProcessReport& a) {
   if (const std::optional<bool> met = maxErrorMet(a))
     r.add("max_error_m", "Maximum error asked",
           metres(a.options.decimation.maxError) +
-              (*met ? " (met)" : " (NOT met: the run measured closest to it is kept)"));
+              (*met ? (p.error.certified ? " (met, certified)" : " (met)")
+                    : " (NOT met: the run measured closest to it is kept)"));
   if (p.maxErrorPasses > 1)
     r.add("decimation_passes", "Runs for the maximum error", std::to_string(p.maxErrorPasses));
   r.add("seconds", "Decimation time", seconds(d.secondsTotal));
@@ -185,6 +191,7 @@ std::string processReportSummary(const Json& json) {
     const mesh::ErrorReport& e = p.error;
     s += ", hausdorff_m " + metres(e.hausdorff) + " (" + percent(e.rel(e.hausdorff)) + " of the diagonal), mean_m " +
          metres(e.mean) + ", p95_m " + metres(e.p95) + ", flipped_normals " + count(e.flippedNormals);
+    if (e.certified) s += ", certified at most " + metres(e.hausdorffUpper);
   }
   const size_t levels = p.lods.size();
   if (levels > 1) s += ", " + std::to_string(levels - 1) + " LOD level" + (levels > 2 ? "s" : "");
@@ -201,6 +208,7 @@ std::vector<std::string> processWarnings(const Json& json) {
     out.push_back("the maximum error of " + metres(stored->options.decimation.maxError) +
                   " was not met: " + std::to_string(p.maxErrorPasses) +
                   " decimation runs measured above it; the closest (hausdorff_m " + metres(p.error.hausdorff) +
+                  (p.error.certified ? ", certified at most " + metres(p.error.hausdorffUpper) : std::string()) +
                   ") is kept");
   return out;
 }

@@ -119,6 +119,11 @@ class EditorImportTest : public QObject {
     refine->setChecked(false);
     QVERIFY(!dialog->request().processing.refine);
     refine->setChecked(true);
+    auto* certify = dialog->findChild<QCheckBox*>("certify");
+    QVERIFY(certify);
+    certify->setChecked(true);
+    QVERIFY(dialog->request().processing.error.certify);
+    certify->setChecked(false);
     const scene::MeshImportRequest request = dialog->request();
     QVERIFY(request.processing.refine);
     QVERIFY(request.process && request.processing.decimate);

@@ -120,6 +120,20 @@ class TestCliMesh : public QObject {
     QVERIFY(runs[0]["error"].toObject()["hausdorff_m"].toDouble() < runs[1]["error"].toObject()["hausdorff_m"].toDouble());
   }
 
+  // --certify: the report's certified upper bound, printed and stored.
+  void certifyBoundsTheHausdorff() {
+    const QString f = newScene("certified.hscene");
+    const QString report = path("certified.json");
+    const Run r = cli({"import", kBunny, f, "--decimate-to", "10%", "--certify", "--report", report});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("hausdorff_certified"), qPrintable(r.out));
+    const QJsonObject e = readReport(report)["processing"].toObject()["error"].toObject();
+    const QJsonObject c = e["hausdorff_certified"].toObject();
+    QVERIFY(c["upper_m"].toDouble() >= e["hausdorff_m"].toDouble());
+    QVERIFY(c["upper_m"].toDouble() < 1.5 * e["hausdorff_m"].toDouble());
+    QVERIFY(c["pieces"].toDouble() > 0 && c["seconds"].isDouble());
+  }
+
   // The example: a count target, LODs, and a report with plain names.
   void decimateToACountWithLodsAndReport() {
     const QString f = newScene("count.hscene");

@@ -443,6 +443,54 @@ class TestMeshprocError : public QObject {
     QVERIFY2(e.hausdorff <= denser && h.upper <= 1.02 * denser, qPrintable(what));
   }
 
+  // ErrorOptions::certify: the report carries the certified upper bound
+  // (a dense sampling never passes it), and a maximum error is then met
+  // by the bound, so by every point: checked by 1,000 samples a face.
+  // On this smooth grid the 10 samples a face see less than the true
+  // maximum (docs/meshes.md, "How far off the sampled maximum can be"):
+  // uncertified, this bound was "met" at 1.91 mm sampled by a result
+  // whose maximum is 2.20 mm (logged, not asserted: that is the
+  // sampling's miss, not a property to keep); certified, a third run
+  // met it at 1.80 mm.
+  void aCertifiedMaximumErrorHoldsEverywhere() {
+    const MeshData orig = curvedGrid(40, 10.0, 0.8, false);
+    ErrorOptions dense;
+    dense.samplesPerFace = 1000;
+    dense.seed = 5;
+    for (bool certify : {false, true}) {
+      ProcessOptions o;
+      o.decimate = true;
+      o.decimation.targetRatio = 0.0;
+      o.decimation.maxError = 0.0021;
+      o.error.certify = certify;
+      const ProcessResult r = processMesh(orig, o);
+      QVERIFY2(r.ok(), r.error.c_str());
+      const ErrorReport& e = r.report.error;
+      const double truth = measureError(orig, r.mesh, dense).hausdorff;
+      qInfo("certify %d: sampled %.5g, certified %.5g, 1000 a face %.5g m; %zu triangles, %d runs", int(certify),
+            e.hausdorff, e.hausdorffUpper, truth, r.mesh.triangleCount(), r.report.maxErrorPasses);
+      QCOMPARE(e.certified, certify);
+      QVERIFY(e.hausdorff <= 0.0021);
+      if (!certify) continue;
+      QVERIFY(e.hausdorff <= e.hausdorffUpper && e.certifiedPieces > 0 && e.certifySeconds > 0);
+      QVERIFY(truth <= e.hausdorffUpper);
+      QVERIFY(e.hausdorffUpper <= 0.0021);
+      QVERIFY(truth <= 0.0021);
+      // The report keeps it.
+      const std::string text = hs::writeJson(toJson(r.report));
+      std::string error;
+      const std::optional<hs::Json> doc = hs::parseJson(text, error);
+      QVERIFY2(doc, error.c_str());
+      QCOMPARE((*doc)["error"]["hausdorff_certified"]["upper_m"].get<double>(), e.hausdorffUpper);
+      hs::JsonReader reader(error);
+      ProcessReport back;
+      QVERIFY2(fromJson(reader, *doc, "", back), error.c_str());
+      QVERIFY(back.error.certified);
+      QCOMPARE(back.error.hausdorffUpper, e.hausdorffUpper);
+      QCOMPARE(back.error.certifiedPieces, e.certifiedPieces);
+    }
+  }
+
   void nonManifoldCountsInAndOut() {
     // Two triangles sharing one corner only (a bow-tie) and three faces on one edge.
     MeshData m;
