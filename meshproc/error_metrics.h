@@ -29,7 +29,7 @@ struct ErrorOptions {
   int textureWidth = 0, textureHeight = 0;
   // Also bound the Hausdorff from above (hausdorffUpperBound, depth 10,
   // 1% slack), so the report says how far the sampled maximum can be off:
-  // about 1-3x the measurement's time (docs/meshes.md).
+  // up to 3x the measurement's time at 50%, a fifth at 1% (docs/meshes.md).
   bool certify = false;
   unsigned threads = 0;
 };

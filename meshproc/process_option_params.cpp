@@ -31,7 +31,7 @@ const std::vector<ParamDecl>& processOptionDecls() {
                  "around the largest distances (15-30% less Hausdorff error, about half a measurement's time)"},
         {.key = "certify", .option = "certify", .label = "Certify the maximum error", .type = ParamType::Flag,
          .help = "also bound the Hausdorff error from above (no point is further), and judge --max-error by that "
-                 "bound; 1-3x the measurement's time"},
+                 "bound; up to 3x the measurement's time"},
         {.key = "clean", .option = "clean", .label = "Clean", .type = ParamType::Flag,
          .help = "clean without decimating (implied by the three above): weld duplicates, remove degenerate "
                  "faces, split non-manifold spots"},
