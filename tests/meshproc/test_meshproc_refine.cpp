@@ -21,11 +21,12 @@ namespace {
 // planes through the apex. `result`: its corners and the centre at
 // height `centre` (four triangles), which lies on the tent's planes
 // exactly when centre == h.
-MeshData tent(double h, glm::dvec3 origin = glm::dvec3(0.0)) {
+MeshData tent(double h, glm::dvec3 origin = glm::dvec3(0.0), double size = 1.0) {
   MeshData m;
   m.origin = origin;
   for (int j = -1; j <= 1; ++j)
-    for (int i = -1; i <= 1; ++i) m.positions.emplace_back(float(i), float(j), i == 0 && j == 0 ? float(h) : 0.0f);
+    for (int i = -1; i <= 1; ++i)
+      m.positions.emplace_back(float(i * size), float(j * size), i == 0 && j == 0 ? float(h) : 0.0f);
   auto id = [](int i, int j) { return uint32_t((j + 1) * 3 + (i + 1)); };
   const int ring[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}};
   for (int k = 0; k < 8; ++k)
@@ -35,10 +36,11 @@ MeshData tent(double h, glm::dvec3 origin = glm::dvec3(0.0)) {
   return m;
 }
 
-MeshData coarseTent(double centre, glm::dvec3 origin = glm::dvec3(0.0)) {
+MeshData coarseTent(double centre, glm::dvec3 origin = glm::dvec3(0.0), double size = 1.0) {
   MeshData m;
   m.origin = origin;
-  m.positions = {{0, 0, float(centre)}, {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  const float a = float(size);
+  m.positions = {{0, 0, float(centre)}, {-a, -a, 0}, {a, -a, 0}, {a, a, 0}, {-a, a, 0}};
   m.indices = {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1};
   m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
   computeVertexNormals(m);
@@ -88,6 +90,23 @@ class TestMeshprocRefine : public QObject {
       const double after = meter.measure(result).hausdorff;
       QVERIFY(std::abs(after - h * left) < 0.05 * h);  // the rest of the rise, as the error report measures it
       QVERIFY(std::abs(r.largestBefore - before) < 1e-6 && std::abs(r.largestAfter - after) < 0.05 * h);
+    }
+  }
+
+  // The same tent from 2 mm to 20 km across: the moves scale with it
+  // (nothing in the solver is an absolute length).
+  void theApexAtEveryScale() {
+    for (double size : {1e-3, 1.0, 1e4}) {
+      const double h = 0.1 * size;
+      const MeshData original = tent(h, glm::dvec3(0.0), size);
+      const ErrorMeter meter(original);
+      MeshData result = coarseTent(0.0, glm::dvec3(0.0), size);
+      RefineOptions o;
+      o.iterations = 1;
+      const RefineReport r = refineMaxError(meter, result, o);
+      QCOMPARE(r.moved, size_t(1));
+      const double rise = double(result.positions[0].z) / h;
+      QVERIFY2(std::abs(rise - 0.7) < 0.02, qPrintable(QString("size %1: rose %2 h").arg(size).arg(rise)));
     }
   }
 
