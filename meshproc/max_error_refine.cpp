@@ -247,6 +247,8 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
   std::vector<uint8_t> gathered(cand.size(), 0);
   std::vector<glm::dvec3> normal(cand.size());
   std::vector<uint8_t> movedOnce(cand.size(), 0);
+  std::vector<uint32_t> candOf(nv, UINT32_MAX);
+  for (size_t j = 0; j < cand.size(); ++j) candOf[cand[j]] = uint32_t(j);
   auto corner = [&](uint32_t f, int k) { return glm::dvec3(result.positions[idx[size_t(f) * 3 + size_t(k)]]); };
 
   // The faces around the candidates, and what a round measures on each:
@@ -263,6 +265,22 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
   for (size_t a = 0; a < active.size(); ++a) nearFrom[a + 1] = nearFrom[a] + (nearStart[active[a] + 1] - nearStart[active[a]]);
   const size_t gn = grid.size();
   std::vector<glm::vec3> backE(active.size() * gn);
+  // The original's normal nearest each face's centre (the grid point
+  // closest to it): the error report counts a face whose normal points
+  // against it as flipped, and no move may turn a face over that way.
+  size_t centreSample = 0;
+  for (size_t g = 1; g < gn; ++g)
+    if (glm::length(grid[g] - glm::dvec3(1.0 / 3.0)) < glm::length(grid[centreSample] - glm::dvec3(1.0 / 3.0)))
+      centreSample = g;
+  std::vector<glm::vec3> originalNormal(active.size(), glm::vec3(0.0f));
+  auto originalFaceNormal = [&](uint32_t f) {
+    const glm::dvec3 a(original.positions[original.indices[size_t(f) * 3]]),
+        b(original.positions[original.indices[size_t(f) * 3 + 1]]),
+        c(original.positions[original.indices[size_t(f) * 3 + 2]]);
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const double len = glm::length(n);
+    return len > 0 ? glm::vec3(n / len) : glm::vec3(0.0f);
+  };
   struct Near {
     glm::vec3 e, bary;
   };
@@ -287,6 +305,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
         for (size_t g = 0; g < gn; ++g) pts[g] = grid[g].x * c0 + grid[g].y * c1 + grid[g].z * c2 + shift;
         hint = originalBvh.closestMany(pts, hint, hits, scratch);
         for (size_t g = 0; g < gn; ++g) backE[a * gn + g] = glm::vec3(hits[g].point - pts[g]);
+        originalNormal[a] = hits[centreSample].found() ? originalFaceNormal(hits[centreSample].face) : glm::vec3(0.0f);
         for (uint32_t s = nearStart[f], t = 0; s < nearStart[f + 1]; ++s, ++t) {
           const glm::dvec3 p = glm::dvec3(original.positions[nearOf[s]]) - shift;
           glm::dvec3 q, bary;
@@ -325,8 +344,25 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     return worst(cs, 0.0);
   };
 
-  // Largest move that keeps every face around v within the normal turn
-  // limit (halved up to four times), or 0.
+  // Face f with its corners moved by shiftOf(corner): within the turn
+  // limit of how it is now, and not turned against the original surface
+  // if it faced along it.
+  auto faceStaysFair = [&](uint32_t f, auto&& shiftOf) {
+    glm::dvec3 c[3] = {corner(f, 0), corner(f, 1), corner(f, 2)};
+    const glm::dvec3 before = glm::cross(c[1] - c[0], c[2] - c[0]);
+    for (int k = 0; k < 3; ++k) c[k] += shiftOf(idx[size_t(f) * 3 + size_t(k)]);
+    const glm::dvec3 after = glm::cross(c[1] - c[0], c[2] - c[0]);
+    const double lb = glm::length(before), la = glm::length(after);
+    if (!(lb > 0 && la > 0 && glm::dot(before, after) >= cosTurn * lb * la)) return false;
+    if (glm::dot(before, glm::dvec3(originalNormal[slotOf[f]])) <= 0) return true;  // it did not face along
+    // The original's face nearest the moved centre (the error report's
+    // test: near a crease the nearest face changes with the move).
+    const auto hit = originalBvh.closest((c[0] + c[1] + c[2]) / 3.0 + shift);
+    return !hit.found() || glm::dot(after, glm::dvec3(originalFaceNormal(hit.face))) > 0;
+  };
+
+  // Largest move that keeps every face around v fair (alone; halved up
+  // to four times), or 0.
   auto safeMove = [&](uint32_t v, const glm::dvec3& n, double d) {
     double shortest = HUGE_VAL;
     for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) {
@@ -336,16 +372,8 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     d = std::clamp(d, -opt.maxMoveEdgeShare * shortest, opt.maxMoveEdgeShare * shortest);
     for (int attempt = 0; attempt < 5; ++attempt, d *= 0.5) {
       bool ok = true;
-      for (uint32_t s = fanStart[v]; s < fanStart[v + 1] && ok; ++s) {
-        const uint32_t f = fan[s];
-        glm::dvec3 c[3] = {corner(f, 0), corner(f, 1), corner(f, 2)};
-        const glm::dvec3 before = glm::cross(c[1] - c[0], c[2] - c[0]);
-        for (int k = 0; k < 3; ++k)
-          if (idx[size_t(f) * 3 + size_t(k)] == v) c[k] += d * n;
-        const glm::dvec3 after = glm::cross(c[1] - c[0], c[2] - c[0]);
-        const double lb = glm::length(before), la = glm::length(after);
-        ok = lb > 0 && la > 0 && glm::dot(before, after) >= cosTurn * lb * la;
-      }
+      for (uint32_t s = fanStart[v]; s < fanStart[v + 1] && ok; ++s)
+        ok = faceStaysFair(fan[s], [&](uint32_t w) { return w == v ? d * n : glm::dvec3(0.0); });
       if (ok) return d;
     }
     return 0.0;
@@ -400,6 +428,30 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
         move[k] = gathered[k] && best[k] != 0.0 && localMax[k] >= gate ? safeMove(cand[k], normal[k], opt.damping * best[k]) : 0.0;
       }
     });
+    // Neighbours move in the same round: a face with two or three moving
+    // corners is checked with all their moves, and where it would not
+    // stay fair its moving corners move half as far (after four halvings,
+    // not at all), until every face is fair.
+    auto shiftOf = [&](uint32_t w) {
+      const uint32_t j = candOf[w];
+      return j != UINT32_MAX && move[j] != 0.0 ? move[j] * normal[j] : glm::dvec3(0.0);
+    };
+    std::vector<uint8_t> halved(count, 0);
+    for (bool again = true; again;) {
+      again = false;
+      for (size_t j = 0; j < count; ++j) {
+        if (move[j] == 0.0) continue;
+        const uint32_t v = cand[j];
+        for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) {
+          const uint32_t f = fan[s];
+          if (faceStaysFair(f, shiftOf)) continue;
+          for (int k = 0; k < 3; ++k)
+            if (const uint32_t c = candOf[idx[size_t(f) * 3 + size_t(k)]]; c != UINT32_MAX && move[c] != 0.0)
+              move[c] = ++halved[c] > 4 ? 0.0 : 0.5 * move[c], again = true;
+          break;
+        }
+      }
+    }
     for (size_t j = 0; j < count; ++j)
       if (move[j] != 0.0) {
         const uint32_t v = cand[j];

@@ -22,7 +22,8 @@
 // on their input polylines, as the decimator guarantees), whose position
 // no other vertex shares, and not locked. A move is along the vertex
 // normal, at most `maxMoveEdgeShare` of its shortest edge, and refused
-// where a face around it would turn by more than `maxNormalTurnDeg`. UVs
+// where a face around it would turn by more than `maxNormalTurnDeg` or
+// come to face against the original surface (no new flipped faces). UVs
 // stay: a move along the normal keeps the surface point under the
 // texture.
 //
