@@ -70,7 +70,8 @@ ProcessResult processMesh(MeshData input, const ProcessOptions& options, const P
     for (int pass = 0; pass < passes; ++pass) {
       // Most runs are the first or the second: each run gets half of
       // what the bar has left (a single run all of it), 70% of that for
-      // the decimation, the rest for measuring.
+      // the decimation (a fifth of it for the refinement, when on), the
+      // rest for measuring.
       const double lo = 0.1 + 0.7 * (1.0 - std::ldexp(1.0, -pass)),
                    hi = passes == 1 ? 0.8 : 0.1 + 0.7 * (1.0 - std::ldexp(1.0, -pass - 1)), mid = lo + 0.7 * (hi - lo);
       const double refineFrom = options.refine ? lo + 0.8 * (mid - lo) : mid;
