@@ -60,6 +60,14 @@ void computeVertexNormals(MeshData& mesh, unsigned threads) {
   });
 }
 
+std::vector<int> faceMaterials(const MeshData& mesh) {
+  std::vector<int> mat(mesh.triangleCount(), -1);
+  for (const Submesh& s : mesh.submeshes)
+    for (size_t f = s.firstIndex / 3; f < std::min(mesh.triangleCount(), size_t(s.firstIndex + s.indexCount) / 3); ++f)
+      mat[f] = s.material;
+  return mat;
+}
+
 void recenter(MeshData& mesh) {
   const Bounds b = mesh.bounds();
   if (b.empty) return;

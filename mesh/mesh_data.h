@@ -62,6 +62,11 @@ struct MeshData {
 // Area-weighted vertex normals (generated only where a mesh has none).
 void computeVertexNormals(MeshData& mesh, unsigned threads = 1);
 
+// Per face: the material of the submesh it belongs to (-1 where none, or
+// the default material). Material groups decide seams and which texture a
+// face's UVs refer to.
+std::vector<int> faceMaterials(const MeshData& mesh);
+
 // Moves the origin to the centre of the bounding box so positions are small
 // floats; the world position of every vertex stays the same to double precision.
 void recenter(MeshData& mesh);

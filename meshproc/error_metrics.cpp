@@ -15,16 +15,6 @@ namespace {
 
 glm::dvec3 corner(const MeshData& m, size_t f, size_t k) { return glm::dvec3(m.positions[m.indices[f * 3 + k]]); }
 
-// Per face: the submesh it belongs to (material groups decide seams and
-// which texture a face's UVs refer to).
-std::vector<int> faceMaterial(const MeshData& m) {
-  std::vector<int> mat(m.triangleCount(), -1);
-  for (const Submesh& s : m.submeshes)
-    for (size_t f = s.firstIndex / 3; f < std::min(m.triangleCount(), size_t(s.firstIndex + s.indexCount) / 3); ++f)
-      mat[f] = s.material;
-  return mat;
-}
-
 struct Polylines {
   std::vector<uint8_t> constrainedPos;  // per welded position
   std::vector<uint32_t> posOf;          // per vertex
@@ -53,7 +43,7 @@ Polylines findPolylines(const MeshData& m, unsigned threads, bool reference) {
   for (size_t c = 0; c < tris.size(); ++c) tris[c] = pl.posOf[m.indices[c]];
   const CornerTopology topo = analyzeCorners(tris, pl.positions, threads);
   pl.nonManifold = {topo.nonManifoldEdges, topo.nonManifoldVertices};
-  const std::vector<int> mat = faceMaterial(m);
+  const std::vector<int> mat = faceMaterials(m);
   pl.constrainedPos.assign(pl.positions, 0);
   pl.segments.origin = m.origin;
   for (uint32_t c = 0; c < tris.size(); ++c) {
@@ -337,7 +327,7 @@ ErrorMeter::ErrorMeter(const MeshData& original, const ErrorOptions& options)
   o.bvh = ClosestPointBvh(original, o.threads);
   o.polylines = findPolylines(original, o.threads, true);
   if (!o.polylines.segments.indices.empty()) o.polylineBvh = ClosestPointBvh(o.polylines.segments, o.threads);
-  o.material = faceMaterial(original);
+  o.material = faceMaterials(original);
   const Bounds b = original.bounds();
   o.diagonal = b.empty ? 0.0 : glm::length(glm::dvec3(b.max) - glm::dvec3(b.min));
   o.volumeRef = b.empty ? glm::dvec3(0.0) : (glm::dvec3(b.min) + glm::dvec3(b.max)) * 0.5;
@@ -360,12 +350,13 @@ ErrorMeter::VertexCheck ErrorMeter::checkVertices(const MeshData& s) const {
   return v;
 }
 
-HausdorffBound ErrorMeter::hausdorffUpperBound(const MeshData& s, double lowerBound, double slack,
-                                               int maxDepth) const {
+HausdorffBound ErrorMeter::hausdorffUpperBound(const MeshData& s, double lowerBound, double slack, int maxDepth,
+                                               const VertexCheck* check) const {
   const auto t0 = std::chrono::steady_clock::now();
   const Original& o = *o_;
   const glm::dvec3 toOrig = s.origin - o.mesh.origin;
-  const ClosestPointBvh sBvh(s, o.threads);
+  const ClosestPointBvh own = check ? ClosestPointBvh() : ClosestPointBvh(s, o.threads);
+  const ClosestPointBvh& sBvh = check ? check->bvh : own;
   HausdorffBound h;
   h.lower = lowerBound;
   const double fwd = distanceUpperBound(o.mesh, s, sBvh, -toOrig, lowerBound, slack, maxDepth, o.threads, h.pieces);
@@ -422,7 +413,7 @@ ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress, con
   // surface there, and where the texture lands.
   reportProgress(progress, 0.85, "Checking normals and texture coordinates");
   const size_t nf = s.triangleCount();
-  const std::vector<int> sMat = faceMaterial(s);
+  const std::vector<int> sMat = faceMaterials(s);
   const bool uvBoth = !s.uvs.empty() && s.uvs.size() == s.positions.size() && !orig.uvs.empty() &&
                       orig.uvs.size() == orig.positions.size();
   auto texSize = [&](int material) -> glm::ivec2 {
@@ -495,7 +486,7 @@ ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress, con
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (o.opt.certify && !isCancelled(progress)) {
     reportProgress(progress, 0.95, "Certifying the maximum");
-    const HausdorffBound b = hausdorffUpperBound(s, r.hausdorff, 0.01, 10);
+    const HausdorffBound b = hausdorffUpperBound(s, r.hausdorff, 0.01, 10, &atVertices);
     r.certified = true;
     r.hausdorffUpper = std::max(b.upper, r.hausdorff);
     r.certifiedPieces = b.pieces;

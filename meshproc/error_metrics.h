@@ -131,9 +131,10 @@ class ErrorMeter {
   // into four where that bound is more than `slack` above the lower one,
   // down to `maxDepth` levels (4^maxDepth pieces a face at most): the
   // upper bound is then at most `slack` above the lower one wherever the
-  // depth sufficed.
+  // depth sufficed. `check`, as for measure(): its BVH of the result is
+  // used instead of building one.
   HausdorffBound hausdorffUpperBound(const MeshData& simplified, double lowerBound, double slack = 0.01,
-                                     int maxDepth = 8) const;
+                                     int maxDepth = 8, const VertexCheck* check = nullptr) const;
 
   // The original it measures against, and its BVH (for passes that query
   // it too: max_error_refine.h).

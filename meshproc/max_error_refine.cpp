@@ -82,10 +82,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     for (size_t f = 0; f < nf; ++f)
       for (int k = 0; k < 3; ++k) fan[fill[idx[f * 3 + k]]++] = uint32_t(f);
   }
-  std::vector<int> material(nf, -1);
-  for (const Submesh& s : result.submeshes)
-    for (size_t f = s.firstIndex / 3; f < std::min(nf, size_t(s.firstIndex + s.indexCount) / 3); ++f)
-      material[f] = s.material;
+  const std::vector<int> material = faceMaterials(result);
 
   // Screening: each original vertex's nearest result face and distance,
   // and each result face's largest distance to the original at a coarse
@@ -223,8 +220,8 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
   // once the screening puts it near the moving gate, so a mesh with many
   // candidates and few that move (a 5M-triangle tile at 50%: 75k and 2k)
   // pays for the few.
-  std::vector<double> screen(cand.size());
-  for (size_t j = 0; j < cand.size(); ++j) screen[j] = double(localWorst(cand[j])) * double(localWorst(cand[j]));
+  std::vector<double> localMax(cand.size());  // squared, the screening's until gathered
+  for (size_t j = 0; j < cand.size(); ++j) localMax[j] = double(localWorst(cand[j])) * double(localWorst(cand[j]));
   // The largest distance away from the candidates (what refining them
   // cannot lower).
   float elsewhere = 0.0f;
@@ -243,7 +240,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     for (int j = 0; j <= level - i; ++j) grid.emplace_back(double(i) / level, double(j) / level, double(level - i - j) / level);
 
   const double cosTurn = std::cos(opt.maxNormalTurnDeg * 3.14159265358979323846 / 180.0);
-  std::vector<double> localMax = screen, move(cand.size(), 0.0), best(cand.size(), 0.0);
+  std::vector<double> move(cand.size(), 0.0), best(cand.size(), 0.0);
   std::vector<uint8_t> gathered(cand.size(), 0);
   std::vector<glm::dvec3> normal(cand.size());
   std::vector<uint8_t> movedOnce(cand.size(), 0);

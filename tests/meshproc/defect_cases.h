@@ -176,15 +176,7 @@ inline std::vector<std::string> checkExportRoundTrip(const hs::mesh::MeshData& m
     // Materials: faces that share one share one when read back, and faces
     // of different ones stay apart (names may be made up on the way).
     // (pairs is sorted, so the distinct first members are runs.)
-    auto materialOf = [](const MeshData& mesh) {
-      std::vector<int> mat(mesh.triangleCount(), -1);
-      for (const Submesh& sm : mesh.submeshes)
-        for (size_t f = sm.firstIndex / 3;
-             f < std::min(mesh.triangleCount(), size_t(sm.firstIndex + sm.indexCount) / 3); ++f)
-          mat[f] = sm.material;
-      return mat;
-    };
-    const std::vector<int> mm = materialOf(m), gm = materialOf(g);
+    const std::vector<int> mm = faceMaterials(m), gm = faceMaterials(g);
     std::vector<std::pair<int, int>> pairs;
     for (size_t f = 0; f < mm.size(); ++f) pairs.emplace_back(mm[f], gm[f]);
     std::sort(pairs.begin(), pairs.end());
