@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 
 #include "defect_cases.h"
 
@@ -43,6 +44,13 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "usage: %s [--trials N] [--seed S] [--only T [--without D]] [--retries R] [--export DIR]\n", argv[0]);
       return 2;
     }
+  }
+  // A folder that is not there is made (every case's export would fail
+  // on it, 2,000 failures saying the same thing).
+  if (std::error_code ec; !exportDir.empty() && !std::filesystem::is_directory(exportDir) &&
+                          !std::filesystem::create_directories(exportDir, ec)) {
+    std::fprintf(stderr, "--export %s: cannot create it: %s\n", exportDir.c_str(), ec.message().c_str());
+    return 2;
   }
   hs::test::DefectCases cases(seed);
   int failed = 0, maxErrorRuns = 0, runsMost = 0;
