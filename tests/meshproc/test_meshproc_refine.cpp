@@ -93,6 +93,25 @@ class TestMeshprocRefine : public QObject {
     }
   }
 
+  // Results it cannot improve come back as they were, nothing in them
+  // turned into NaN: no faces at all; a centre collapsed onto a corner
+  // (zero-area faces, a position two vertices share).
+  void degenerateResultsAreLeftAlone() {
+    const MeshData original = tent(0.1);
+    const ErrorMeter meter(original);
+    MeshData empty;
+    const RefineReport none = refineMaxError(meter, empty);
+    QCOMPARE(none.candidates, size_t(0));
+    QCOMPARE(none.moved, size_t(0));
+    MeshData collapsed = coarseTent(0.0);
+    collapsed.positions[0] = collapsed.positions[1];
+    const MeshData before = collapsed;
+    const RefineReport r = refineMaxError(meter, collapsed);
+    QCOMPARE(r.moved, size_t(0));
+    QCOMPARE(collapsed.positions, before.positions);
+    QVERIFY(std::isfinite(r.largestBefore) && std::isfinite(r.largestAfter));
+  }
+
   // The same tent from 2 mm to 20 km across: the moves scale with it
   // (nothing in the solver is an absolute length).
   void theApexAtEveryScale() {
