@@ -11,8 +11,8 @@
 // stands out by the whole noise amplitude. Moving the vertex to the centre
 // of its distances' range (the Chebyshev centre, along its normal) lowers
 // that maximum. Measured (docs/meshes.md, "Minimax refinement"): the
-// Hausdorff falls 15-30% on the bunny and the quad scan at 50-1% and 17-19%
-// on a 5M-triangle scan tile, the mean rises 0-3% (8% on the quad scan at
+// Hausdorff falls 11-32% on the bunny, the quad scans and a 5M-triangle
+// scan tile at 50-1%, the mean rises 0-4% (8-10% on the quad scans at
 // 1%), for a fraction of a measurement's time.
 //
 // What moves: only vertices whose neighbourhood is near the largest
