@@ -2,8 +2,8 @@
 // Step timings of the decimator on stderr when HS_DECIMATE_TRACE is set
 // (wall and process CPU seconds since the previous mark; with
 // HS_DECIMATE_ROUNDS also every round's work): for profiling, off
-// otherwise. Shared by the setup (decimate.cpp) and the parallel schedule
-// (region_levels.cpp).
+// otherwise. Shared by the setup (decimate.cpp), the parallel schedule
+// (region_levels.cpp) and the minimax refinement (max_error_refine.cpp).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>

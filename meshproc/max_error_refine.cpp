@@ -7,6 +7,7 @@
 
 #include "core/parallel.h"
 #include "meshproc/closest_point_bvh.h"
+#include "meshproc/decimate_trace.h"
 #include "meshproc/error_metrics.h"
 
 namespace hs::mesh {
@@ -58,6 +59,7 @@ uint64_t positionKey(const glm::vec3& p) {
 RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const RefineOptions& opt,
                             const Progress* progress) {
   const auto t0 = std::chrono::steady_clock::now();
+  DecimateTrace trace;
   RefineReport rep;
   auto finish = [&] {
     rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -87,7 +89,9 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
   // Screening: each original vertex's nearest result face and distance,
   // and each result face's largest distance to the original at a coarse
   // grid (corners and edge midpoints).
+  trace.mark("refine: fans");
   const ClosestPointBvh resultBvh(result, threads);
+  trace.mark("refine: result bvh");
   std::vector<uint32_t> nearFace(no);
   std::vector<float> nearDist(no);
   parallelFor(int64_t(no), int(threads), 1024, [&](int64_t b, int64_t e) {
@@ -98,6 +102,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     }
   });
   if (isCancelled(progress)) return rep.cancelled = true, finish();
+  trace.mark("refine: original->result");
   // Each vertex once, and each edge's midpoint once: from the face that
   // runs it from the lower vertex number to the higher (the other face of
   // a consistently oriented edge runs it the other way; a border edge run
@@ -123,31 +128,34 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
       }
   });
   if (isCancelled(progress)) return rep.cancelled = true, finish();
-  // A face's worst: its corners, its edges' midpoints (found in either
-  // face of the edge), and the original vertices nearest to it (below).
-  {
-    std::vector<std::pair<uint64_t, float>> edgeMid;
-    edgeMid.reserve(nf * 3 / 2 + 16);
-    for (size_t f = 0; f < nf; ++f)
+  // A face's worst: its corners, its edges' midpoints (an edge this face
+  // runs from the higher vertex to the lower has its midpoint in the face
+  // that runs it the other way, found in the lower vertex's fan: a walk of
+  // a few faces, where a sorted table of edges cost a binary search of
+  // the whole table per edge), and the original vertices nearest to it
+  // (below).
+  parallelFor(int64_t(nf), int(threads), 1024, [&](int64_t b, int64_t e) {
+    for (int64_t f = b; f < e; ++f) {
+      float m = 0.0f;
       for (int k = 0; k < 3; ++k) {
-        const uint32_t a = idx[f * 3 + size_t(k)], c = idx[f * 3 + size_t(k + 1) % 3];
-        if (a <= c) edgeMid.push_back({uint64_t(a) << 32 | c, midDist[f * 3 + size_t(k)]});
-      }
-    std::sort(edgeMid.begin(), edgeMid.end());
-    parallelFor(int64_t(nf), int(threads), 1024, [&](int64_t b, int64_t e) {
-      for (int64_t f = b; f < e; ++f) {
-        float m = 0.0f;
-        for (int k = 0; k < 3; ++k) {
-          const uint32_t a = idx[size_t(f) * 3 + size_t(k)], c = idx[size_t(f) * 3 + size_t(k + 1) % 3];
-          m = std::max(m, vertexDist[a]);
-          const uint64_t key = uint64_t(std::min(a, c)) << 32 | std::max(a, c);
-          const auto it = std::lower_bound(edgeMid.begin(), edgeMid.end(), std::pair{key, -1.0f});
-          if (it != edgeMid.end() && it->first == key) m = std::max(m, it->second);
+        const uint32_t a = idx[size_t(f) * 3 + size_t(k)], c = idx[size_t(f) * 3 + size_t(k + 1) % 3];
+        m = std::max(m, vertexDist[a]);
+        if (a <= c) {
+          m = std::max(m, midDist[size_t(f) * 3 + size_t(k)]);
+          continue;
         }
-        faceWorst[size_t(f)] = m;
+        for (uint32_t s = fanStart[c]; s < fanStart[c + 1]; ++s) {
+          const uint32_t g = fan[s];
+          const int j = idx[size_t(g) * 3] == c ? 0 : idx[size_t(g) * 3 + 1] == c ? 1 : 2;
+          if (idx[size_t(g) * 3 + size_t(j + 1) % 3] == a) {
+            m = std::max(m, midDist[size_t(g) * 3 + size_t(j)]);
+            break;
+          }
+        }
       }
-    });
-  }
+      faceWorst[size_t(f)] = m;
+    }
+  });
   // Original vertices by nearest face (counting sort: in vertex order).
   // (None found: a vertex the BVH could not place, e.g. not finite.)
   std::vector<uint32_t> nearStart(nf + 1, 0), nearOf(no);
@@ -162,6 +170,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
         faceWorst[nearFace[i]] = std::max(faceWorst[nearFace[i]], nearDist[i]);
       }
   }
+  trace.mark("refine: result->original");
   const float largest = *std::max_element(faceWorst.begin(), faceWorst.end());
   rep.largestBefore = rep.largestAfter = largest;
   if (!(largest > 0.0f)) return finish();
@@ -214,6 +223,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     cand.resize(kept);
   }
   rep.candidates = cand.size();
+  trace.mark("refine: candidates");
   if (cand.empty()) return finish();
   // The screening's local maxima stand for the candidates' own until they
   // are gathered: a candidate is gathered (its faces sampled densely) only
@@ -351,6 +361,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
     const glm::dvec3 after = glm::cross(c[1] - c[0], c[2] - c[0]);
     const double lb = glm::length(before), la = glm::length(after);
     if (!(lb > 0 && la > 0 && glm::dot(before, after) >= cosTurn * lb * la)) return false;
+    if (!opt.keepFacingOriginal) return true;
     if (glm::dot(before, glm::dvec3(originalNormal[slotOf[f]])) <= 0) return true;  // it did not face along
     // The original's face nearest the moved centre (the error report's
     // test: near a crease the nearest face changes with the move).
@@ -396,6 +407,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
         for (uint32_t s = fanStart[v]; s < fanStart[v + 1]; ++s) wanted[slotOf[fan[s]]] = 1;
     }
     measureFaces();
+    trace.mark("refine: measure faces");
     parallelFor(int64_t(count), int(threads), 16, [&](int64_t b, int64_t e) {
       std::vector<Constraint> cs;
       for (int64_t j = b; j < e; ++j) {
@@ -411,6 +423,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
         best[size_t(j)] = worst(cs, d) < localMax[size_t(j)] ? d : 0.0;
       }
     });
+    trace.mark("refine: gather+solve");
     if (isCancelled(progress)) return rep.cancelled = true, finish();
     double roundMax = double(elsewhere) * double(elsewhere);
     for (double m : localMax) roundMax = std::max(roundMax, m);
@@ -425,6 +438,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
         move[k] = gathered[k] && best[k] != 0.0 && localMax[k] >= gate ? safeMove(cand[k], normal[k], opt.damping * best[k]) : 0.0;
       }
     });
+    trace.mark("refine: safe moves");
     // Neighbours move in the same round: a face with two or three moving
     // corners is checked with all their moves, and where it would not
     // stay fair its moving corners move half as far (after four halvings,
@@ -449,6 +463,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
         }
       }
     }
+    trace.mark("refine: conflicts");
     for (size_t j = 0; j < count; ++j)
       if (move[j] != 0.0) {
         const uint32_t v = cand[j];

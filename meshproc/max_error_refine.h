@@ -61,6 +61,10 @@ struct RefineOptions {
   int sampleLevel = 3;          // result -> original: (L+1)(L+2)/2 samples a face (10)
   double maxMoveEdgeShare = 0.25;
   double maxNormalTurnDeg = 30.0;
+  // No face that faced along the original surface may come to face
+  // against it (the error report's flip test). Off only to show in a test
+  // what it prevents.
+  bool keepFacingOriginal = true;
   // One per original vertex (the decimator's lockedVertices): result
   // vertices at a locked vertex's position stay.
   std::vector<uint8_t> lockedOriginalVertices;

@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "defect_cases.h"
 #include "mesh_builders.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
@@ -209,6 +210,38 @@ class TestMeshprocRefine : public QObject {
           QCOMPARE(at.count({p.x, p.y, p.z}), size_t(1));
         }
       }
+  }
+
+  // The guard against turning a face over (RefineOptions::
+  // keepFacingOriginal): on defect-campaign meshes where a move without it
+  // leaves a face facing against the original surface near its centre
+  // (the error report's flip count), with it the refined result has no
+  // more flipped faces than the decimation alone. The cases were found by
+  // running the campaign's meshes with the guard off; at least one must
+  // still show what it prevents, or the test no longer tests the guard
+  // (then look for another case the same way).
+  void noMoveTurnsAFaceAgainstTheOriginal() {
+    const std::vector<std::pair<unsigned, int>> found = {{1, 43}, {1, 816}, {2, 249}};
+    int shown = 0;
+    for (const auto& [seed, trial] : found) {
+      hs::test::DefectCase c = hs::test::defectCase(seed, trial);
+      c.options.lodLevels = 0;
+      c.options.error.samplesPerFace = 10;
+      size_t flips[3];  // decimated only; refined without the guard; refined
+      for (int mode = 0; mode < 3; ++mode) {
+        ProcessOptions o = c.options;
+        o.refine = mode > 0;
+        o.refinement.keepFacingOriginal = mode == 2;
+        const ProcessResult r = processMesh(c.in, o);
+        QVERIFY2(r.ok(), c.where.c_str());
+        flips[mode] = r.report.error.flippedNormals;
+      }
+      qInfo("%s: flipped faces %zu decimated, %zu refined without the guard, %zu with it", c.where.c_str(), flips[0],
+            flips[1], flips[2]);
+      QVERIFY2(flips[2] <= flips[0], c.where.c_str());
+      shown += flips[1] > flips[0];
+    }
+    QVERIFY2(shown >= 1, "no case turns a face over without the guard any more: find new ones (see the comment)");
   }
 
   // Locked input vertices keep their place; the result is the same for
