@@ -17,6 +17,7 @@
 #include "mesh/weld.h"
 #include "meshproc/collapse_engine.h"
 #include "meshproc/decimate_trace.h"
+#include "meshproc/float_store.h"
 #include "meshproc/decimation_state.h"
 #include "meshproc/region_levels.h"
 #include "core/uninit_array.h"
@@ -76,18 +77,8 @@ size_t regionCount(size_t nf, const DecimateOptions& opt) {
 inline uint16_t regionOfFace(size_t f, size_t regions, size_t nf) { return uint16_t(f * regions / nf); }
 
 // A vertex record's position (float) in double, loaded from the record
-// after the store that rounded it. GCC 12's SLP vectorizer (-O3) was seen
-// to forward the double value past that store's rounding when the face
-// planes were worked out in the same loop: the quadric's origin then sat
-// off the record's position by the float rounding (about 1e-10 m on the
-// bunny, 61 um at 500 m from the centre). The empty asm makes the compiler
-// assume the record may have changed, so it reloads the float.
-inline glm::dvec3 recordPosition(const glm::vec3& stored) {
-#if defined(__GNUC__)
-  asm volatile("" : : "r"(&stored) : "memory");
-#endif
-  return glm::dvec3(stored);
-}
+// after the store that rounded it (float_store.h says why).
+inline glm::dvec3 recordPosition(const glm::vec3& stored) { return reloaded(stored); }
 
 // Welds, orders spatially, splits non-manifold spots and builds the
 // OpenMesh mesh plus every side array. Returns false with `error` set.

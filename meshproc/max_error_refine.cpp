@@ -9,41 +9,16 @@
 #include "meshproc/closest_point_bvh.h"
 #include "meshproc/decimate_trace.h"
 #include "meshproc/error_metrics.h"
+#include "meshproc/float_store.h"
+#include "meshproc/minimax_move.h"
 
 namespace hs::mesh {
 namespace {
 
-// One sample's distance after a move d along the vertex normal:
-// sqrt(across + (along - weight d)^2).
-struct Constraint {
-  double across, along, weight;
-};
-
-double worst(const std::vector<Constraint>& cs, double d) {
-  double m = 0.0;
-  for (const Constraint& c : cs) {
-    const double a = c.along - c.weight * d;
-    m = std::max(m, c.across + a * a);
-  }
-  return m;
-}
-
-// The move in [-reach, reach] that minimises the largest squared distance
-// (convex in d: a maximum of convex parabolas), by ternary search; ties
-// (a flat bottom) go towards 0 through a vanishing pull.
-double minimaxMove(const std::vector<Constraint>& cs, double reach) {
-  const double pull = 1e-9;
-  auto f = [&](double d) { return worst(cs, d) + pull * d * d; };
-  double lo = -reach, hi = reach;
-  for (int i = 0; i < 60; ++i) {
-    const double a = lo + (hi - lo) / 3.0, b = hi - (hi - lo) / 3.0;
-    if (f(a) < f(b))
-      hi = b;
-    else
-      lo = a;
-  }
-  return 0.5 * (lo + hi);
-}
+using minimax::Constraint;
+using minimax::minimaxMove;
+using minimax::towardsLeastSquares;
+using minimax::worst;
 
 uint64_t positionKey(const glm::vec3& p) {
   const glm::vec3 q = p + glm::vec3(0.0f);  // -0 and +0 compare equal: one key
@@ -272,22 +247,22 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
   for (size_t a = 0; a < active.size(); ++a) nearFrom[a + 1] = nearFrom[a] + (nearStart[active[a] + 1] - nearStart[active[a]]);
   const size_t gn = grid.size();
   std::vector<glm::vec3> backE(active.size() * gn);
-  // The original's normal nearest each face's centre (the grid point
-  // closest to it): the error report counts a face whose normal points
-  // against it as flipped, and no move may turn a face over that way.
-  size_t centreSample = 0;
-  for (size_t g = 1; g < gn; ++g)
-    if (glm::length(grid[g] - glm::dvec3(1.0 / 3.0)) < glm::length(grid[centreSample] - glm::dvec3(1.0 / 3.0)))
-      centreSample = g;
-  std::vector<glm::vec3> originalNormal(active.size(), glm::vec3(0.0f));
-  auto originalFaceNormal = [&](uint32_t f) {
-    const glm::dvec3 a(original.positions[original.indices[size_t(f) * 3]]),
-        b(original.positions[original.indices[size_t(f) * 3 + 1]]),
-        c(original.positions[original.indices[size_t(f) * 3 + 2]]);
-    const glm::dvec3 n = glm::cross(b - a, c - a);
-    const double len = glm::length(n);
-    return len > 0 ? glm::vec3(n / len) : glm::vec3(0.0f);
+  // Whether a face, corners given in the result's frame, faces against
+  // the original surface at its centre: the error report's flip test
+  // (error_metrics.cpp), the same arithmetic to the bit, so that a face
+  // the report does not count as flipped is never turned into one it
+  // does (a test of the original's normal at a nearby sample disagreed
+  // with it on faces nearly across the surface).
+  auto facesAgainst = [&](const glm::dvec3 (&c)[3]) {
+    const glm::dvec3 a = c[0] + shift, b = c[1] + shift, cc = c[2] + shift;
+    const glm::dvec3 n = glm::cross(b - a, cc - a);
+    if (!(glm::dot(n, n) > 0)) return false;
+    const auto hit = originalBvh.closest((a + b + cc) / 3.0);
+    if (!hit.found()) return false;
+    auto oc = [&](int k) { return glm::dvec3(original.positions[original.indices[size_t(hit.face) * 3 + size_t(k)]]); };
+    return glm::dot(n, glm::cross(oc(1) - oc(0), oc(2) - oc(0))) < 0;
   };
+  std::vector<uint8_t> against(active.size(), 0);  // as measured with the face's current corners
   struct Near {
     glm::vec3 e, bary;
   };
@@ -312,7 +287,10 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
         for (size_t g = 0; g < gn; ++g) pts[g] = grid[g].x * c0 + grid[g].y * c1 + grid[g].z * c2 + shift;
         hint = originalBvh.closestMany(pts, hint, hits, scratch);
         for (size_t g = 0; g < gn; ++g) backE[a * gn + g] = glm::vec3(hits[g].point - pts[g]);
-        originalNormal[a] = hits[centreSample].found() ? originalFaceNormal(hits[centreSample].face) : glm::vec3(0.0f);
+        {
+          const glm::dvec3 now[3] = {c0, c1, c2};
+          against[a] = facesAgainst(now);
+        }
         for (uint32_t s = nearStart[f], t = 0; s < nearStart[f + 1]; ++s, ++t) {
           const glm::dvec3 p = glm::dvec3(original.positions[nearOf[s]]) - shift;
           glm::dvec3 q, bary;
@@ -353,20 +331,20 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
 
   // Face f with its corners moved by shiftOf(corner): within the turn
   // limit of how it is now, and not turned against the original surface
-  // if it faced along it.
+  // if it faced along it. The moved corners are rounded to float as they
+  // will be stored, so the test sees what the report will.
   auto faceStaysFair = [&](uint32_t f, auto&& shiftOf) {
     glm::dvec3 c[3] = {corner(f, 0), corner(f, 1), corner(f, 2)};
     const glm::dvec3 before = glm::cross(c[1] - c[0], c[2] - c[0]);
-    for (int k = 0; k < 3; ++k) c[k] += shiftOf(idx[size_t(f) * 3 + size_t(k)]);
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 stored(c[k] + shiftOf(idx[size_t(f) * 3 + size_t(k)]));
+      c[k] = reloaded(stored);
+    }
     const glm::dvec3 after = glm::cross(c[1] - c[0], c[2] - c[0]);
     const double lb = glm::length(before), la = glm::length(after);
     if (!(lb > 0 && la > 0 && glm::dot(before, after) >= cosTurn * lb * la)) return false;
-    if (!opt.keepFacingOriginal) return true;
-    if (glm::dot(before, glm::dvec3(originalNormal[slotOf[f]])) <= 0) return true;  // it did not face along
-    // The original's face nearest the moved centre (the error report's
-    // test: near a crease the nearest face changes with the move).
-    const auto hit = originalBvh.closest((c[0] + c[1] + c[2]) / 3.0 + shift);
-    return !hit.found() || glm::dot(after, glm::dvec3(originalFaceNormal(hit.face))) > 0;
+    if (!opt.keepFacingOriginal || against[slotOf[f]]) return true;
+    return !facesAgainst(c);
   };
 
   // Largest move that keeps every face around v fair (alone; halved up
@@ -419,7 +397,8 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
         best[size_t(j)] = 0.0;
         if (last || cs.empty()) continue;
         const double reach = 2.0 * std::sqrt(localMax[size_t(j)]);
-        const double d = minimaxMove(cs, reach);
+        double d = minimaxMove(cs, reach);
+        if (opt.leastSquaresSlack > 0) d = towardsLeastSquares(cs, d, reach, opt.leastSquaresSlack);
         best[size_t(j)] = worst(cs, d) < localMax[size_t(j)] ? d : 0.0;
       }
     });
