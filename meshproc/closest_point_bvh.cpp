@@ -189,9 +189,19 @@ void ClosestPointBvh::testSlot(uint32_t slot, const glm::dvec3& q, Hit& best) co
 }
 
 ClosestPointBvh::Hit ClosestPointBvh::closest(const glm::dvec3& q, uint32_t hintFace) const {
+  return walk<false>(q, hintFace, 0.0);
+}
+
+ClosestPointBvh::Hit ClosestPointBvh::closestUnless(const glm::dvec3& q, uint32_t hintFace, double stopSq) const {
+  return walk<true>(q, hintFace, stopSq);
+}
+
+template <bool kStop>
+ClosestPointBvh::Hit ClosestPointBvh::walk(const glm::dvec3& q, uint32_t hintFace, double stopSq) const {
   Hit best;
   if (nodes_.empty()) return best;
   if (hintFace < slotOfFace_.size()) testSlot(slotOfFace_[hintFace], q, best);
+  if (kStop && best.distanceSq < stopSq) return best;
   auto boxDistSq = [&](const Node& n) { return boxGapSq(n.lo, n.hi, q, q); };
   uint32_t stack[128];
   int top = 0;
@@ -201,6 +211,7 @@ ClosestPointBvh::Hit ClosestPointBvh::closest(const glm::dvec3& q, uint32_t hint
     if (boxDistSq(n) > best.distanceSq) continue;
     if (n.count > 0) {
       for (uint32_t s = n.first; s < n.first + n.count; ++s) testSlot(s, q, best);
+      if (kStop && best.distanceSq < stopSq) return best;
       continue;
     }
     const double dl = boxDistSq(nodes_[n.first]), dr = boxDistSq(nodes_[n.first + 1]);

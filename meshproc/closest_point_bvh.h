@@ -36,6 +36,13 @@ class ClosestPointBvh {
   // previous query's) gives an early bound that prunes most of the tree.
   Hit closest(const glm::dvec3& q, uint32_t hintFace = UINT32_MAX) const;
 
+  // closest(), except that the walk ends at the first triangle found
+  // within sqrt(stopSq): a distance at least stopSq is exact, one below it
+  // an upper bound (still below stopSq). For screenings that only need
+  // the large distances exactly (max_error_refine.cpp): the walk that
+  // confirms a small distance is most of a query's work.
+  Hit closestUnless(const glm::dvec3& q, uint32_t hintFace, double stopSq) const;
+
   // Nearest points of several points close together (the samples of one
   // face): hits[k] is what closest(points[k]) returns, bit for bit (the
   // least squared distance, ties to the lowest face index). The error
@@ -78,6 +85,8 @@ class ClosestPointBvh {
     uint32_t count;  // leaf: triangles; inner: 0
   };
   void testSlot(uint32_t slot, const glm::dvec3& q, Hit& best) const;
+  template <bool kStop>
+  Hit walk(const glm::dvec3& q, uint32_t hintFace, double stopSq) const;
   uint32_t closestChunk(std::span<const glm::dvec3> points, std::span<const uint32_t> order, uint32_t hintFace,
                         std::span<Hit> hits, ManyScratch& scratch) const;
   void build(uint32_t slot, uint32_t begin, uint32_t end, const std::vector<uint32_t>& codes, int bit);

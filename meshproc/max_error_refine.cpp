@@ -78,6 +78,17 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
   });
   if (isCancelled(progress)) return rep.cancelled = true, finish();
   trace.mark("refine: original->result");
+  // Result -> original, only the distances that can make a candidate need
+  // to be exact: those from `candidateShare` of the largest so far (the
+  // original's vertices') up. Below that a query stops at the first
+  // triangle that near (an upper bound, still below it): the candidates
+  // and the largest distance are the same. Only the largest distance away
+  // from the candidates, below that share, can come out higher, and it
+  // steers the rounds only once they have halved the largest (never seen:
+  // the same moves on every mesh of docs/meshes.md's table).
+  const float fromOriginal = no ? *std::max_element(nearDist.begin(), nearDist.end()) : 0.0f;
+  const double exactFrom = opt.candidateShare * double(fromOriginal);
+  const double stopSq = exactFrom * exactFrom * (1.0 - 1e-6);
   // Each vertex once, and each edge's midpoint once: from the face that
   // runs it from the lower vertex number to the higher (the other face of
   // a consistently oriented edge runs it the other way; a border edge run
@@ -86,7 +97,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
   parallelFor(int64_t(nv), int(threads), 1024, [&](int64_t b, int64_t e) {
     uint32_t hint = UINT32_MAX;
     for (int64_t v = b; v < e; ++v) {
-      const auto h = originalBvh.closest(glm::dvec3(result.positions[size_t(v)]) + shift, hint);
+      const auto h = originalBvh.closestUnless(glm::dvec3(result.positions[size_t(v)]) + shift, hint, stopSq);
       vertexDist[size_t(v)] = float(std::sqrt(h.distanceSq)), hint = h.face;
     }
   });
@@ -98,7 +109,7 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
         const uint32_t a = idx[size_t(f) * 3 + size_t(k)], c = idx[size_t(f) * 3 + size_t(k + 1) % 3];
         if (a > c) continue;
         const glm::dvec3 mid = 0.5 * (glm::dvec3(result.positions[a]) + glm::dvec3(result.positions[c])) + shift;
-        const auto h = originalBvh.closest(mid, hint);
+        const auto h = originalBvh.closestUnless(mid, hint, stopSq);
         midDist[size_t(f) * 3 + size_t(k)] = float(std::sqrt(h.distanceSq)), hint = h.face;
       }
   });

@@ -11,9 +11,9 @@
 // stands out by the whole noise amplitude. Moving the vertex to the centre
 // of its distances' range (the Chebyshev centre, along its normal) lowers
 // that maximum. Measured (docs/meshes.md, "Minimax refinement"): the
-// Hausdorff falls 11-32% on the bunny, the quad scans and a 5M-triangle
-// scan tile at 50-1%, the mean rises 0-4% (8-10% on the quad scans at
-// 1%), for a fraction of a measurement's time.
+// Hausdorff falls 7-36% on the bunny, the quad scans and a 5M-triangle
+// scan tile at 50-1%, the mean moves by -4% to +5%, for a fraction of a
+// measurement's time.
 //
 // What moves: only vertices whose neighbourhood is near the largest
 // distance (their local maximum at least `candidateShare` of the mesh's,

@@ -41,7 +41,7 @@ struct ProcessOptions {
 
   // After each decimation run (and each LOD level), move the vertices
   // around the largest distances to lower it (max_error_refine.h: the
-  // Hausdorff 11-32% lower for about half a measurement's time).
+  // Hausdorff 7-36% lower for about half a measurement's time).
   bool refine = true;
   RefineOptions refinement;
 

@@ -28,7 +28,7 @@ const std::vector<ParamDecl>& processOptionDecls() {
          .valueName = "N", .editor = true},
         {.key = "no_refine", .option = "no-refine", .label = "No vertex refinement", .type = ParamType::Flag,
          .help = "keep the decimator's least-squares vertex places: skip the refinement that moves the vertices "
-                 "around the largest distances (11-32% less Hausdorff error, about half a measurement's time)"},
+                 "around the largest distances (7-36% less Hausdorff error, about half a measurement's time)"},
         {.key = "certify", .option = "certify", .label = "Certify the maximum error", .type = ParamType::Flag,
          .help = "also bound the Hausdorff error from above (no point is further), and judge --max-error by that "
                  "bound; up to 3x the measurement's time"},

@@ -149,6 +149,41 @@ class TestMeshprocBvh : public QObject {
     QVERIFY(!hit[0].found());
   }
 
+  // closestUnless() against brute force: a distance at least the stop is
+  // exact (the same face as closest()), one below it is an upper bound
+  // still below the stop; both cases well represented, with and without a
+  // hint, and a stop of 0 (never stops) is closest() itself.
+  void closestUnlessIsExactFromItsStop() {
+    const MeshData m = curvedGrid(30, 4.0, 0.3, false);
+    const ClosestPointBvh bvh(m);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int exact = 0, early = 0, shortened = 0;
+    uint32_t hint = UINT32_MAX;
+    for (int i = 0; i < 2000; ++i) {
+      // Near the surface (a vertex, moved by up to 0.2 across and 0.3 up
+      // or down); stops up to 0.15 away.
+      const glm::dvec3 q = glm::dvec3(m.positions[size_t(i * 7919) % m.positions.size()]) +
+                           glm::dvec3(0.2 * u(rng), 0.2 * u(rng), 0.3 * u(rng));
+      const double stop = i % 3 == 0 ? 0.0 : 0.075 * (u(rng) + 1.0);
+      const double stopSq = stop * stop;
+      const auto [bruteD, bruteF] = bruteClosest(m, q);
+      const auto h = bvh.closestUnless(q, i % 2 ? hint : UINT32_MAX, stopSq);
+      if (bruteD >= stopSq) {
+        QCOMPARE(h.distanceSq, bruteD);
+        QCOMPARE(h.face, bruteF);
+        ++exact;
+      } else {
+        QVERIFY(h.distanceSq < stopSq && h.distanceSq >= bruteD);
+        QVERIFY(h.found());
+        ++early, shortened += h.distanceSq > bruteD;
+      }
+      hint = h.face;
+    }
+    qInfo("%d exact, %d below the stop (%d of them an upper bound above the least)", exact, early, shortened);
+    QVERIFY(exact > 300 && early > 300 && shortened > 20);
+  }
+
   // Axis-aligned directions (zero components: the slab test's division by
   // zero) and the interval's ends.
   void axisRaysAndInterval() {
