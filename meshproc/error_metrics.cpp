@@ -320,6 +320,21 @@ struct ErrorMeter::Original {
 const MeshData& ErrorMeter::original() const { return o_->mesh; }
 const ClosestPointBvh& ErrorMeter::originalBvh() const { return o_->bvh; }
 
+ErrorMeter::Facing ErrorMeter::facing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                                      uint32_t hintFace) const {
+  Facing r;
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  if (!(glm::dot(n, n) > 0)) return r;
+  r.hit = o_->bvh.closest((a + b + c) / 3.0, hintFace);
+  if (!r.hit.found()) return r;
+  const MeshData& orig = o_->mesh;
+  const glm::dvec3 on = glm::cross(corner(orig, r.hit.face, 1) - corner(orig, r.hit.face, 0),
+                                   corner(orig, r.hit.face, 2) - corner(orig, r.hit.face, 0));
+  r.checked = true;
+  r.against = glm::dot(n, on) < 0;
+  return r;
+}
+
 ErrorMeter::ErrorMeter(const MeshData& original, const ErrorOptions& options)
     : o_(std::make_unique<Original>(original, options)) {
   Original& o = *o_;
@@ -429,16 +444,12 @@ ErrorReport ErrorMeter::measure(const MeshData& s, const Progress* progress, con
   parallelRanges(nf, o.threads, [&](size_t b, size_t e, unsigned) {
     uint32_t hint = UINT32_MAX;
     for (size_t f = b; f < e; ++f) {
-      const glm::dvec3 a = corner(s, f, 0) + toOrig, bb = corner(s, f, 1) + toOrig, c = corner(s, f, 2) + toOrig;
-      const glm::dvec3 n = glm::cross(bb - a, c - a);
-      if (!(glm::dot(n, n) > 0)) continue;
-      const auto hit = o.bvh.closest((a + bb + c) / 3.0, hint);
-      if (!hit.found()) continue;
+      const Facing facingF = facing(corner(s, f, 0) + toOrig, corner(s, f, 1) + toOrig, corner(s, f, 2) + toOrig, hint);
+      if (!facingF.checked) continue;
+      const auto& hit = facingF.hit;
       hint = hit.face;
-      const glm::dvec3 on = glm::cross(corner(orig, hit.face, 1) - corner(orig, hit.face, 0),
-                                       corner(orig, hit.face, 2) - corner(orig, hit.face, 0));
       checked[f] = 1;
-      flipped[f] = glm::dot(n, on) < 0;
+      flipped[f] = facingF.against;
       if (uvBoth && sMat[f] == o.material[hit.face]) {
         const glm::ivec2 size = texSize(sMat[f]);
         if (size.x > 0 && size.y > 0) {

@@ -136,6 +136,18 @@ class ErrorMeter {
   HausdorffBound hausdorffUpperBound(const MeshData& simplified, double lowerBound, double slack = 0.01,
                                      int maxDepth = 8, const VertexCheck* check = nullptr) const;
 
+  // The report's flip test of one face, corners in the original's frame:
+  // the original's face nearest the face's centre (`hit`) and whether the
+  // two normals point apart. A face without area, or with no original face
+  // found, is not checked. measure() counts `flippedNormals` with it; the
+  // refinement (max_error_refine.h) keeps faces from turning over with the
+  // same test, to the bit. `hintFace` as for ClosestPointBvh::closest.
+  struct Facing {
+    bool checked = false, against = false;
+    ClosestPointBvh::Hit hit;
+  };
+  Facing facing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, uint32_t hintFace = UINT32_MAX) const;
+
   // The original it measures against, and its BVH (for passes that query
   // it too: max_error_refine.h).
   const MeshData& original() const;

@@ -259,20 +259,12 @@ RefineReport refineMaxError(const ErrorMeter& meter, MeshData& result, const Ref
   const size_t gn = grid.size();
   std::vector<glm::vec3> backE(active.size() * gn);
   // Whether a face, corners given in the result's frame, faces against
-  // the original surface at its centre: the error report's flip test
-  // (error_metrics.cpp), the same arithmetic to the bit, so that a face
-  // the report does not count as flipped is never turned into one it
-  // does (a test of the original's normal at a nearby sample disagreed
-  // with it on faces nearly across the surface).
-  auto facesAgainst = [&](const glm::dvec3 (&c)[3]) {
-    const glm::dvec3 a = c[0] + shift, b = c[1] + shift, cc = c[2] + shift;
-    const glm::dvec3 n = glm::cross(b - a, cc - a);
-    if (!(glm::dot(n, n) > 0)) return false;
-    const auto hit = originalBvh.closest((a + b + cc) / 3.0);
-    if (!hit.found()) return false;
-    auto oc = [&](int k) { return glm::dvec3(original.positions[original.indices[size_t(hit.face) * 3 + size_t(k)]]); };
-    return glm::dot(n, glm::cross(oc(1) - oc(0), oc(2) - oc(0))) < 0;
-  };
+  // the original surface at its centre: the error report's own flip test
+  // (ErrorMeter::facing), so that a face the report does not count as
+  // flipped is never turned into one it does (a test of the original's
+  // normal at a nearby sample disagreed with it on faces nearly across the
+  // surface).
+  auto facesAgainst = [&](const glm::dvec3 (&c)[3]) { return meter.facing(c[0] + shift, c[1] + shift, c[2] + shift).against; };
   std::vector<uint8_t> against(active.size(), 0);  // as measured with the face's current corners
   struct Near {
     glm::vec3 e, bary;
