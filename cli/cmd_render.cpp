@@ -9,6 +9,7 @@
 
 #include "render/frame_stats_json.h"
 #include "render/offscreen_renderer.h"
+#include "scene/animation.h"
 #include "scene/hscene_file.h"
 #include "scene/render_operation.h"
 #include "scene/world_bounds.h"
@@ -22,6 +23,7 @@ int runRender(int argc, char** argv) {
   // Any sequence option (--frames, --layout, --video, ...) makes it a sequence render.
   if (isSequenceRender(args)) {
     if (args.has("stats")) return args.usage("--stats applies to one frame, not a sequence");
+    if (args.has("time_s")) return args.usage("--at applies to one frame; a sequence's frames have their own times");
     return renderFrames(args);
   }
   if (args.positionals().size() != 1) return args.usage("expected one scene file");
@@ -37,6 +39,12 @@ int runRender(int argc, char** argv) {
   std::string error;
   std::optional<scene::SceneState> state = openScene(args.positionals()[0], error);
   if (!state) return args.fail(error);
+  if (args.has("time_s")) {
+    // The timeline at t: what a sequence render's frame at t sees (scene::animatedState).
+    std::vector<std::string> warnings;
+    *state = scene::animatedState(*state, scene::compileSequence(*state), args.number("time_s"), &warnings);
+    for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
   applyAntialiasing(args, *state);
 
   render::RenderView view;

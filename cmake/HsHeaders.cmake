@@ -29,3 +29,30 @@ function(hs_expose_headers target)
     target_include_directories(${target} PUBLIC ${dir})
   endif()
 endfunction()
+
+# hs_expose_header_files(target folder header...)
+#
+# Like hs_expose_headers, for a library with an inside: only the listed
+# headers of `folder` are reachable through `target`'s include directory
+# (a link per file), the rest of the folder is not. render/ uses it: app/
+# and cli/ see the renderer's public headers, not its passes and pools
+# (those are for hs_render itself and, through hs_render_internal, for
+# tests and benchmarks).
+function(hs_expose_header_files target folder)
+  set(dir ${PROJECT_BINARY_DIR}/include/${target})
+  # A build tree configured before the split has a link to the whole folder
+  # here: remove the link (not what it points to) first, or the file links
+  # below would be made inside the source folder.
+  if(IS_SYMLINK ${dir}/${folder})
+    file(REMOVE ${dir}/${folder})
+  endif()
+  foreach(header IN LISTS ARGN)
+    set(link ${dir}/${folder}/${header})
+    get_filename_component(parent ${link} DIRECTORY)
+    file(MAKE_DIRECTORY ${parent})
+    if(NOT IS_SYMLINK ${link})
+      file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${folder}/${header} ${link} SYMBOLIC)
+    endif()
+  endforeach()
+  target_include_directories(${target} PUBLIC ${dir})
+endfunction()

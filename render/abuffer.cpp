@@ -72,9 +72,13 @@ void sizePool(ABufferInfo& info, size_t capBytes, bool tail) {
     info.bytes = fixed + capacity * kABufferNodeBytes + (tail ? std::max<size_t>(tailBytes, 32) : 0);
     return;
   }
-  if (fixed + capacity * kABufferNodeBytes > capBytes) {
+  // Buffers are made in size classes (resource_pool.h), at most 1/8 over
+  // what they ask: asking for 8/9 of the cap keeps what is allocated
+  // within it.
+  const size_t budget = capBytes / 9 * 8;
+  if (fixed + capacity * kABufferNodeBytes > budget) {
     tailBytes = tail ? pixels * kOitTailBytesPerPixel : 0;
-    const size_t room = capBytes > fixed + tailBytes ? (capBytes - fixed - tailBytes) / kABufferNodeBytes : 0;
+    const size_t room = budget > fixed + tailBytes ? (budget - fixed - tailBytes) / kABufferNodeBytes : 0;
     const auto [cap, kept] = perPixelCap(info.pixelCounts, info.maxPerPixel, room);
     info.perPixelCap = cap;
     capacity = kept;

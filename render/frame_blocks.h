@@ -3,6 +3,7 @@
 // the frame's uniform and storage buffers and their binding points. Members
 // match the GLSL declarations one for one (vec3 data travels in vec4 slots,
 // as std140 pads it anyway). Include only inside render/.
+#include <cmath>
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -40,8 +41,18 @@ struct FrameBlock {
   glm::vec4 params{0.0f};  // ambient, exposure multiplier (light_units.h), light count, unused
   // Sky and environment: x = 1 when EnvironmentBlock and its cube are live.
   glm::vec4 environment{0.0f};
+  // The frame's time (scene::SceneTime): x: seconds from the sequence's
+  // start, y: frame number, z: fract(seconds) taken in double (periodic
+  // effects keep full precision late in a long shot), w: 1 / fps.
+  glm::vec4 time{0.0f};
 };
-static_assert(sizeof(FrameBlock) == 7 * 16);
+static_assert(sizeof(FrameBlock) == 8 * 16);
+
+// FrameBlock.time of a scene time.
+inline glm::vec4 frameTimeOf(double seconds, int64_t frame, double fps) {
+  return glm::vec4(float(seconds), float(frame), float(seconds - std::floor(seconds)),
+                   fps > 0.0 ? float(1.0 / fps) : 0.0f);
+}
 
 // Binding 6 (shaders/environment.glsl), written by the environment pass:
 // sh by shaders/env_sh.comp, params by the CPU.

@@ -1,63 +1,117 @@
 #include "render/frame_graph.h"
 
+#include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <map>
+#include <stdexcept>
 #include <utility>
 
 #include "render/gl/gl_handle.h"
 
 namespace hs::render {
+namespace {
 
-TextureRef PassBuilder::create(const std::string& name, const TextureDesc& desc) {
+int strictSetting() {
+  if (const char* e = std::getenv("HS_FRAME_GRAPH_STRICT")) return e[0] == '1' ? 1 : 0;
+#ifdef NDEBUG
+  return 0;
+#else
+  return 1;
+#endif
+}
+std::atomic<int> gStrict{-1};  // -1: not decided yet
+
+}  // namespace
+
+void FrameGraph::setStrictVersions(bool on) { gStrict = on ? 1 : 0; }
+bool FrameGraph::strictVersions() {
+  if (gStrict < 0) gStrict = strictSetting();
+  return gStrict == 1;
+}
+
+GLbitfield barrierBitsFor(Usage u, bool texture) {
+  GLbitfield bits = 0;
+  if (any(u, Usage::RenderTarget)) bits |= GL_FRAMEBUFFER_BARRIER_BIT;
+  if (any(u, Usage::Sampled)) bits |= GL_TEXTURE_FETCH_BARRIER_BIT;  // textures and texture buffers
+  if (any(u, Usage::Storage))
+    bits |= texture ? GL_SHADER_IMAGE_ACCESS_BARRIER_BIT
+                    : GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT;
+  if (any(u, Usage::Indirect)) bits |= GL_COMMAND_BARRIER_BIT;
+  if (any(u, Usage::Vertex)) bits |= GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT;
+  if (any(u, Usage::Uniform)) bits |= GL_UNIFORM_BARRIER_BIT;
+  if (any(u, Usage::Readback))
+    bits |= texture ? GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT
+                    : GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT;
+  if (any(u, Usage::Transfer))
+    bits |= texture ? GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT : GL_BUFFER_UPDATE_BARRIER_BIT;
+  return bits;
+}
+
+TextureRef PassBuilder::create(const std::string& name, const TextureDesc& desc, Usage usage) {
   FrameGraph::Resource r;
   r.name = name;
   r.texture = true;
   r.tdesc = desc;
   const uint32_t i = graph_.addResource(std::move(r));
   graph_.passes_[pass_].creates.push_back(i);
-  return write(TextureRef{i});
+  return write(TextureRef{i, 0}, usage);
 }
 
-BufferRef PassBuilder::create(const std::string& name, const BufferDesc& desc) {
+BufferRef PassBuilder::create(const std::string& name, const BufferDesc& desc, Usage usage) {
   FrameGraph::Resource r;
   r.name = name;
   r.texture = false;
   r.bdesc = desc;
   const uint32_t i = graph_.addResource(std::move(r));
   graph_.passes_[pass_].creates.push_back(i);
-  return write(BufferRef{i});
+  return write(BufferRef{i, 0}, usage);
 }
 
-BufferRef PassBuilder::createSized(const std::string& name, std::function<BufferDesc()> desc) {
+BufferRef PassBuilder::createSized(const std::string& name, std::function<BufferDesc()> desc, Usage usage) {
   FrameGraph::Resource r;
   r.name = name;
   r.texture = false;
   r.lateDesc = std::move(desc);
   const uint32_t i = graph_.addResource(std::move(r));
   graph_.passes_[pass_].creates.push_back(i);
-  return write(BufferRef{i});
+  return write(BufferRef{i, 0}, usage);
 }
 
-TextureRef PassBuilder::read(TextureRef t) {
-  graph_.passes_[pass_].accesses.push_back({t.index, graph_.resources_[t.index].version, false});
-  return t;
+void PassBuilder::checkVersion(uint32_t index, uint32_t version, bool texture) const {
+  const FrameGraph::Resource& r = graph_.resources_[index];
+  if (version == 0 || version == r.version) return;
+  const std::string what = "frame graph: pass '" + graph_.passes_[pass_].name + "' uses version " +
+                           std::to_string(version) + " of " + (texture ? "texture '" : "buffer '") + r.name +
+                           "', which a later write replaced (now version " + std::to_string(r.version) + ")";
+  if (FrameGraph::strictVersions()) throw std::logic_error(what);
+  graph_.staleReads_.push_back(what);
 }
 
-TextureRef PassBuilder::write(TextureRef t) {
+TextureRef PassBuilder::read(TextureRef t, Usage usage) {
+  checkVersion(t.index, t.version, true);
+  const uint32_t v = graph_.resources_[t.index].version;
+  graph_.passes_[pass_].accesses.push_back({t.index, v, false, usage});
+  return TextureRef{t.index, v};
+}
+
+TextureRef PassBuilder::write(TextureRef t, Usage usage) {
   auto& r = graph_.resources_[t.index];
-  graph_.passes_[pass_].accesses.push_back({t.index, ++r.version, true});
-  return t;
+  graph_.passes_[pass_].accesses.push_back({t.index, ++r.version, true, usage});
+  return TextureRef{t.index, r.version};
 }
 
-BufferRef PassBuilder::read(BufferRef b) {
-  graph_.passes_[pass_].accesses.push_back({b.index, graph_.resources_[b.index].version, false});
-  return b;
+BufferRef PassBuilder::read(BufferRef b, Usage usage) {
+  checkVersion(b.index, b.version, false);
+  const uint32_t v = graph_.resources_[b.index].version;
+  graph_.passes_[pass_].accesses.push_back({b.index, v, false, usage});
+  return BufferRef{b.index, v};
 }
 
-BufferRef PassBuilder::write(BufferRef b) {
+BufferRef PassBuilder::write(BufferRef b, Usage usage) {
   auto& r = graph_.resources_[b.index];
-  graph_.passes_[pass_].accesses.push_back({b.index, ++r.version, true});
-  return b;
+  graph_.passes_[pass_].accesses.push_back({b.index, ++r.version, true, usage});
+  return BufferRef{b.index, r.version};
 }
 
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
@@ -66,12 +120,16 @@ GLuint PassResources::texture(TextureRef t) const { return graph_.resources_[t.i
 GLuint PassResources::buffer(BufferRef b) const { return graph_.resources_[b.index].id; }
 const TextureDesc& PassResources::desc(TextureRef t) const { return graph_.resources_[t.index].tdesc; }
 const BufferDesc& PassResources::desc(BufferRef b) const { return graph_.resources_[b.index].bdesc; }
+bool PassResources::fresh(TextureRef t) const { return graph_.resources_[t.index].fresh; }
+bool PassResources::fresh(BufferRef b) const { return graph_.resources_[b.index].fresh; }
 
-GLuint PassResources::framebuffer(const std::vector<TextureRef>& colors, TextureRef depth, int layer) const {
+GLuint PassResources::framebuffer(const std::vector<TextureRef>& colors, TextureRef depth, int layer, int level) const {
   std::vector<GLuint> ids;
   for (TextureRef c : colors) ids.push_back(texture(c));
-  return graph_.pool_.framebuffer(ids, depth.valid() ? texture(depth) : 0, layer);
+  return graph_.pool_.framebuffer(ids, depth.valid() ? texture(depth) : 0, layer, level);
 }
+
+GLuint PassResources::sampler(const SamplerDesc& s) const { return graph_.pool_.sampler(s); }
 
 uint32_t FrameGraph::addResource(Resource r) {
   resources_.push_back(std::move(r));
@@ -86,7 +144,7 @@ TextureRef FrameGraph::importTexture(const std::string& name, GLuint texture, co
   r.imported = texture;
   r.id = texture;  // known from the start: keptTexture finds it even when no pass touches it
   r.version = 1;  // its content exists before the frame
-  return TextureRef{addResource(std::move(r))};
+  return TextureRef{addResource(std::move(r)), 1};
 }
 
 BufferRef FrameGraph::importBuffer(const std::string& name, GLuint buffer, const BufferDesc& desc) {
@@ -95,8 +153,49 @@ BufferRef FrameGraph::importBuffer(const std::string& name, GLuint buffer, const
   r.texture = false;
   r.bdesc = desc;
   r.imported = buffer;
+  r.id = buffer;
   r.version = 1;
-  return BufferRef{addResource(std::move(r))};
+  return BufferRef{addResource(std::move(r)), 1};
+}
+
+TextureRef FrameGraph::persistentTexture(const std::string& name, const TextureDesc& desc, int lifetimeFrames) {
+  Resource r;
+  r.name = name;
+  r.texture = true;
+  r.tdesc = desc;
+  r.persistent = true;
+  r.imported = pool_.namedTexture(name, desc, lifetimeFrames, &r.fresh);
+  r.id = r.imported;
+  r.version = 1;  // last frame's content
+  return TextureRef{addResource(std::move(r)), 1};
+}
+
+BufferRef FrameGraph::persistentBuffer(const std::string& name, const BufferDesc& desc, int lifetimeFrames) {
+  Resource r;
+  r.name = name;
+  r.texture = false;
+  r.bdesc = desc;
+  r.persistent = true;
+  r.imported = pool_.namedBuffer(name, desc, lifetimeFrames, &r.fresh);
+  r.id = r.imported;
+  r.version = 1;
+  return BufferRef{addResource(std::move(r)), 1};
+}
+
+void FrameGraph::readback(const std::string& name, BufferRef b, size_t offset, size_t bytes,
+                          std::function<void(const void*, size_t)> deliver) {
+  struct Data {
+    BufferRef b;
+  };
+  addPass<Data>(
+      name,
+      [&](PassBuilder& pb, Data& d) {
+        d.b = pb.read(b, Usage::Readback);
+        pb.sideEffect();
+      },
+      [this, offset, bytes, deliver = std::move(deliver)](const Data& d, const PassResources& r) {
+        pool_.queueReadback(r.buffer(d.b), offset, bytes, deliver);
+      });
 }
 
 uint32_t FrameGraph::beginPass(const std::string& name) {
@@ -105,6 +204,28 @@ uint32_t FrameGraph::beginPass(const std::string& name) {
 }
 
 void FrameGraph::keep(TextureRef t) { resources_[t.index].kept = true; }
+void FrameGraph::keep(BufferRef b) { resources_[b.index].kept = true; }
+
+GLbitfield FrameGraph::placeBarriers(const Pass& pass) {
+  GLbitfield bits = 0;
+  for (const Access& a : pass.accesses) {
+    const Resource& r = resources_[a.resource];
+    if (r.dirty) bits |= barrierBitsFor(a.usage, r.texture) & ~r.visibleBits;
+  }
+  if (bits) {
+    glMemoryBarrier(bits);
+    // One barrier covers every earlier write, whichever resource it went to.
+    for (Resource& r : resources_)
+      if (r.dirty) r.visibleBits |= bits;
+  }
+  // This pass's own incoherent writes need a barrier before their next use.
+  for (const Access& a : pass.accesses)
+    if (a.write && any(a.usage, Usage::Storage)) {
+      resources_[a.resource].dirty = true;
+      resources_[a.resource].visibleBits = 0;
+    }
+  return bits;
+}
 
 void FrameGraph::cull() {
   // Who wrote each version.
@@ -143,6 +264,10 @@ void FrameGraph::cull() {
 
 void FrameGraph::execute(bool timestamps) {
   cull();
+  // A persistent resource may hold an incoherent write from the last frame:
+  // its first use here gets a barrier.
+  for (Resource& r : resources_)
+    if (r.persistent) r.dirty = true;
   records_.clear();
   std::vector<std::pair<gl::Query, gl::Query>> queries;
   for (uint32_t p = 0; p < passes_.size(); ++p) {
@@ -164,8 +289,9 @@ void FrameGraph::execute(bool timestamps) {
       }
       if (r.lateDesc) r.bdesc = r.lateDesc();
       r.id = r.texture ? pool_.acquireTexture(r.tdesc, r.name) : pool_.acquireBuffer(r.bdesc, r.name);
-      rec.gpuBytes += r.texture ? r.tdesc.bytes() : r.bdesc.bytes;
+      rec.gpuBytes += r.texture ? r.tdesc.bytes() : bufferSizeClass(r.bdesc.bytes);
     }
+    rec.barriers = placeBarriers(pass);
     // With timestamps each pass is fenced on both sides, and so is each
     // timestamp: drivers that run GL work when they flush (llvmpipe does)
     // would otherwise put one pass's work between another's timestamps, and
@@ -211,6 +337,7 @@ void FrameGraph::execute(bool timestamps) {
 }
 
 GLuint FrameGraph::keptTexture(TextureRef t) const { return t.valid() ? resources_[t.index].id : 0; }
+GLuint FrameGraph::keptBuffer(BufferRef b) const { return b.valid() ? resources_[b.index].id : 0; }
 
 void FrameGraph::reset() {
   for (Resource& r : resources_)
@@ -221,6 +348,7 @@ void FrameGraph::reset() {
     }
   resources_.clear();
   passes_.clear();
+  staleReads_.clear();
 }
 
 }  // namespace hs::render

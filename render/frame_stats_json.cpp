@@ -15,11 +15,13 @@ Json frameStatsJson(const FrameStats& stats, const std::vector<GpuAllocation>& r
   size_t bytes = 0;
   for (const GpuAllocation& a : registry) {
     resources.push_back({{"name", a.name}, {"kind", a.kind}, {"bytes", a.bytes}, {"transient", a.transient}});
+    if (a.users.size() > 1) resources.back()["users"] = a.users;  // pooled memory several resources used in turn
     bytes += a.bytes;
   }
   Json j;
   j["passes"] = std::move(passes);
   j["gpu_bytes"] = bytes;
+  j["idle_gpu_bytes"] = stats.idleGpuBytes;  // pooled, unused this frame, kept for reuse
   j["triangles"] = stats.trianglesDrawn;
   j["draw_calls"] = stats.drawCalls;
   j["instances_drawn"] = stats.instancesDrawn;

@@ -1,5 +1,7 @@
 #include "render/oit.h"
 
+#include "render/passes/fullscreen_pass.h"
+
 #include <algorithm>
 #include <functional>
 #include <string>
@@ -76,17 +78,17 @@ void takeCounters(OitViewInfo& info, const ABufferCounters& c, bool counts) {
 // variant reads.
 void runResolve(FrameContext& frame, const PassResources& r, TextureRef hdr, int w, int h,
                 const std::vector<std::string>& defines, const std::function<void(GlProgram&)>& setup) {
-  glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({hdr}));
-  glViewport(0, 0, w, h);
-  glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   glEnable(GL_BLEND);
   glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);  // the opaque colour's alpha (AO's) stays
-  GlProgram& p = frame.res.program({"fullscreen.vert", "oit_resolve.frag", "", defines});
-  p.use();
-  setup(p);
-  glBindVertexArray(frame.res.emptyVao.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  FullscreenDraw draw;
+  draw.fragment = "oit_resolve.frag";
+  draw.defines = defines;
+  draw.framebuffer = r.framebuffer({hdr});
+  draw.width = w;
+  draw.height = h;
+  draw.uniforms = setup;  // binds the variant's inputs too
+  drawFullscreen(frame, draw);
   glDisable(GL_BLEND);
   restoreDepth();
   for (unsigned u = 0; u < 4; ++u) glBindTextureUnit(kOitTextureUnit + u, 0);
@@ -358,15 +360,16 @@ TextureRef addReferenceMode(FrameGraph& graph, FrameContext& frame, const ViewCo
           GLuint any = 0;
           glGetQueryObjectuiv(query.id(), GL_QUERY_RESULT, &any);
           if (!any) break;
-          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.accum}));
-          glDisable(GL_DEPTH_TEST);
           glEnable(GL_BLEND);
           glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
-          GlProgram& p = frame.res.program({"fullscreen.vert", "oit_resolve.frag", "", {"OIT_PEEL_ACCUMULATE"}});
-          p.use();
-          glBindTextureUnit(kOitTextureUnit, r.texture(d.color));
-          glBindVertexArray(frame.res.emptyVao.id());
-          glDrawArrays(GL_TRIANGLES, 0, 3);
+          FullscreenDraw accumulate;
+          accumulate.fragment = "oit_resolve.frag";
+          accumulate.defines = {"OIT_PEEL_ACCUMULATE"};
+          accumulate.framebuffer = r.framebuffer({d.accum});
+          accumulate.width = w;
+          accumulate.height = h;
+          accumulate.textures = {{kOitTextureUnit, r.texture(d.color)}};
+          drawFullscreen(frame, accumulate);
           glDisable(GL_BLEND);
         }
         restoreDepth();
@@ -451,16 +454,17 @@ TextureRef addDepthComplexityPass(FrameGraph& graph, FrameContext& frame, const 
             d.hdr = b.write(b.read(hdr));
           },
           [&frame, w = v.view.width, h = v.view.height, info = c.info](const Data& d, const PassResources& r) {
-            glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.hdr}));
-            glViewport(0, 0, w, h);
-            glDisable(GL_DEPTH_TEST);
-            GlProgram& p = frame.res.program({"fullscreen.vert", "oit_heatmap.frag", "", {}});
-            p.use();
-            glBindImageTexture(kABufferCountsImage, r.texture(d.counts), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-            p.set("uMaxCount", float(std::max<uint32_t>(info->maxPerPixel, 1)));
-            p.set("uInvExposure", float(1.0 / scene::exposureMultiplier(frame.settings.exposureEv100)));
-            glBindVertexArray(frame.res.emptyVao.id());
-            glDrawArrays(GL_TRIANGLES, 0, 3);
+            FullscreenDraw draw;
+            draw.fragment = "oit_heatmap.frag";
+            draw.framebuffer = r.framebuffer({d.hdr});
+            draw.width = w;
+            draw.height = h;
+            draw.uniforms = [&](GlProgram& p) {
+              glBindImageTexture(kABufferCountsImage, r.texture(d.counts), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+              p.set("uMaxCount", float(std::max<uint32_t>(info->maxPerPixel, 1)));
+              p.set("uInvExposure", float(1.0 / scene::exposureMultiplier(frame.settings.exposureEv100)));
+            };
+            drawFullscreen(frame, draw);
             restoreDepth();
           })
       .hdr;

@@ -117,7 +117,7 @@ struct Renderer::Impl {
   // `lightsInView`: the point and spot lights that can light a pixel of a
   // view (none: the shaders loop over no light).
   void uploadFrameData(const RenderWorld& world, const VisibleSet& visible, const scene::SceneSettings& settings,
-                       const std::vector<ViewTarget>& views, size_t lightsInView) {
+                       const scene::SceneTime& time, const std::vector<ViewTarget>& views, size_t lightsInView) {
     FrameBlock f;
     if (world.sun) {
       f.sunDir = glm::vec4(glm::vec3(-world.sun->direction), 1.0f);
@@ -128,6 +128,7 @@ struct Renderer::Impl {
     f.groundColor = glm::vec4(settings.groundColor, 0.0f);
     f.params = glm::vec4(settings.ambientIntensity, float(scene::exposureMultiplier(settings.exposureEv100)), float(lightsInView ? world.lights.size() : 0), 0.0f);
     f.environment = glm::vec4(settings.sky == scene::SkyModel::Analytic ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+    f.time = frameTimeOf(time.seconds, time.frame, time.fps);
 
     res.frameBlock.upload(&f, sizeof f);
 
@@ -254,7 +255,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   stats.instancesCulled = visible.culled;
   stats.instancesAtCoarserLod = visible.coarser;
   const size_t lightsInView = pointLightsInView(world, views);
-  d.uploadFrameData(world, visible, settings, targets, lightsInView);
+  d.uploadFrameData(world, visible, settings, state.time, targets, lightsInView);
   res.materials.build(state, visible, res.meshes, res.materialBlock);
 
   // Reversed-Z: depth 1 at the near plane, 0 at the far plane.
@@ -283,11 +284,12 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   const DrawList translucent = translucentSubmeshes(frame);
   std::vector<std::shared_ptr<OitViewInfo>> oitViews(viewContexts.size());
   for (const ViewContext& v : viewContexts) {
-    const SceneTargets scene = addOpaquePass(*graph, frame, v);
-    if (!world.terrains.empty()) addTerrainPass(*graph, frame, v, scene);
-    addSkyPass(*graph, frame, v, scene);
-    if (settings.showGrid && options.showGrid) addGridPass(*graph, frame, v, scene);
-    if (options.overlay && !options.overlay->empty()) addOverlayPass(*graph, frame, v, scene, *options.overlay);
+    SceneTargets scene = addOpaquePass(*graph, frame, v);
+    if (!world.terrains.empty()) scene = addTerrainPass(*graph, frame, v, scene);
+    scene = addSkyPass(*graph, frame, v, scene);
+    if (settings.showGrid && options.showGrid) scene = addGridPass(*graph, frame, v, scene);
+    if (options.overlay && !options.overlay->empty())
+      scene = addOverlayPass(*graph, frame, v, scene, *options.overlay);
     TextureRef hdr = addResolvePass(*graph, frame, v, scene);
     hdr = addAmbientOcclusionPasses(*graph, frame, v, scene, hdr);  // per eye; none with AO off
     // Transparency over the opaque colour, tested against a single-sample depth.
@@ -329,6 +331,8 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
 
   stats.gpuMs = d.lastGpuMs;
   for (const GpuAllocation& a : resourceRegistry()) stats.gpuBytes += a.bytes;
+  stats.idleGpuBytes = idlePoolBytes();
+  stats.gpuAllocationsMade = res.pool.allocationsMade();
   stats.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return stats;
 }
@@ -381,7 +385,7 @@ void Renderer::readDepth(void* dst, size_t view) {
 std::vector<GpuAllocation> Renderer::resourceRegistry() const {
   std::vector<GpuAllocation> out;
   for (const PoolAllocation& a : d_->res.pool.registry())
-    out.push_back({a.name, a.texture ? "texture" : "buffer", a.bytes, !a.persistent});
+    if (a.idleFrames == 0) out.push_back({a.name, a.texture ? "texture" : "buffer", a.bytes, !a.persistent, a.users});
   const RenderResources& res = d_->res;
   const size_t frameBuffers = res.frameBlock.capacity + res.viewBlocks.capacity + res.lights.capacity +
                               res.objects.capacity + res.objectIndices.capacity + res.overlayVertices.capacity +
@@ -394,6 +398,13 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
   if (const size_t t = res.meshes.tangentBytes()) out.push_back({"mesh_tangents", "buffer", t, false});
   if (const size_t f = res.fogBlock.capacity) out.push_back({"fog_block", "buffer", f, false});
   return out;
+}
+
+size_t Renderer::idlePoolBytes() const {
+  size_t n = 0;
+  for (const PoolAllocation& a : d_->res.pool.registry())
+    if (a.idleFrames > 0) n += a.bytes;
+  return n;
 }
 
 scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView& view, int x, int y) {
@@ -415,7 +426,7 @@ PickHit Renderer::pickSurface(const scene::SceneState& state, const RenderView& 
 
   const RenderWorld world = RenderWorld::build(state);
   const VisibleSet visible = buildVisibleSet(world, res.meshes, {view}, &view, state.settings.meshLodErrorPixels);
-  d.uploadFrameData(world, visible, state.settings, {ViewTarget{view, 0, {}}}, 0);  // picking lights nothing
+  d.uploadFrameData(world, visible, state.settings, state.time, {ViewTarget{view, 0, {}}}, 0);  // picking lights nothing
   ViewBlock vb = viewBlockOf(view, visible.origin);
   vb.projection = glm::mat4(n * view.projection());
   res.viewBlocks.upload(&vb, sizeof vb);
@@ -621,6 +632,8 @@ std::optional<FrameStats> Renderer::renderLensReference(const scene::SceneState&
   glBindFramebuffer(GL_FRAMEBUFFER, targets.back().fbo);
   stats.gpuBytes = 0;
   for (const GpuAllocation& a : resourceRegistry()) stats.gpuBytes += a.bytes;
+  stats.idleGpuBytes = idlePoolBytes();
+  stats.gpuAllocationsMade = res.pool.allocationsMade();
   return stats;
 }
 

@@ -45,6 +45,9 @@ struct GpuAllocation {
   std::string kind;  // "texture", "buffer", "meshes", "terrains"
   size_t bytes = 0;
   bool transient = false;  // from the frame graph's pool (not persistent)
+  // Pooled memory serves several resources of a frame in turn: all of them,
+  // `name` (the last) included.
+  std::vector<std::string> users{};
 };
 
 // Transparency (render/oit.h) in one frame, summed over its views; all
@@ -77,7 +80,14 @@ struct FrameStats {
   double terrainUploadMs = 0.0;  // CPU time of those uploads and the LOD bookkeeping
   double cpuMs = 0.0;
   double gpuMs = -1.0;     // from a timer query of an earlier frame; -1 until known
-  size_t gpuBytes = 0;     // everything the renderer holds (resourceRegistry())
+  size_t gpuBytes = 0;     // what the frame holds (resourceRegistry())
+  // Pooled targets no pass of this frame used, kept a few frames for a
+  // frame that asks again (a viewport switching mono and stereo): held on
+  // the GPU too, not in gpuBytes.
+  size_t idleGpuBytes = 0;
+  // GL textures and buffers the pool has made since the renderer began:
+  // flat while frames reuse what they had.
+  size_t gpuAllocationsMade = 0;
   std::vector<PassStats> passes;  // the passes that ran, in order
   // Clustered lights (render/passes/light_culling.h): point and spot lights
   // whose range reaches a view; clusters reached by more lights than the
@@ -200,8 +210,12 @@ class Renderer {
   // pack buffer, for the stereo comfort check.
   void readDepth(void* dst, size_t view = 0);
 
-  // Everything the renderer holds on the GPU now (see GpuAllocation).
+  // What the renderer holds on the GPU for the last frame (see
+  // GpuAllocation): its pooled targets and everything persistent. Pooled
+  // targets that frame did not use, kept for reuse, are counted apart
+  // (FrameStats::idleGpuBytes, idlePoolBytes).
   std::vector<GpuAllocation> resourceRegistry() const;
+  size_t idlePoolBytes() const;
 
   // The entity under window pixel (x, y) (origin top-left), or 0. Renders an
   // id pass for that pixel only.

@@ -5,6 +5,7 @@
 namespace hs::render {
 
 GLenum TextureDesc::target() const {
+  if (depth > 1) return GL_TEXTURE_3D;
   if (cube) return layers > 1 ? GL_TEXTURE_CUBE_MAP_ARRAY : GL_TEXTURE_CUBE_MAP;
   if (samples > 1) return layers > 1 ? GL_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_TEXTURE_2D_MULTISAMPLE;
   return layers > 1 || array ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D;
@@ -25,14 +26,37 @@ size_t bytesPerTexel(GLenum format) {
 
 size_t TextureDesc::bytes() const {
   size_t texels = 0;
-  int w = width, h = height;
+  int w = width, h = height, d = std::max(depth, 1);
   for (int l = 0; l < std::max(levels, 1); ++l) {
-    texels += size_t(std::max(w, 1)) * size_t(std::max(h, 1));
+    texels += size_t(std::max(w, 1)) * size_t(std::max(h, 1)) * size_t(std::max(d, 1));
     w /= 2;
     h /= 2;
+    d /= 2;
   }
   return texels * bytesPerTexel(format) * size_t(std::max(samples, 1)) * size_t(std::max(layers, 1)) *
          (cube ? 6u : 1u);
+}
+
+size_t bufferSizeClass(size_t bytes) {
+  if (bytes <= 256) return 256;
+  // The octave [2^k, 2^(k+1)) in eight equal steps of 2^(k-3).
+  int k = 0;
+  while ((size_t(2) << k) <= bytes) ++k;  // 2^k <= bytes < 2^(k+1)
+  const size_t step = size_t(1) << (k - 3);
+  return (bytes + step - 1) / step * step;
+}
+
+void ResourcePool::noteUser(std::vector<std::string>& users, uint64_t& usersFrame, const std::string& name) const {
+  if (usersFrame != frame_) {
+    users.clear();
+    usersFrame = frame_;
+  }
+  if (std::find(users.begin(), users.end(), name) == users.end()) users.push_back(name);
+}
+
+ResourcePool::~ResourcePool() {
+  for (Readback& r : readbacks_)
+    if (r.fence) glDeleteSync(r.fence);
 }
 
 GLuint ResourcePool::acquireTexture(const TextureDesc& desc, const std::string& name) {
@@ -40,8 +64,14 @@ GLuint ResourcePool::acquireTexture(const TextureDesc& desc, const std::string& 
     if (!e.inUse && !e.persistent && e.desc == desc) {
       e.inUse = e.usedThisFrame = true;
       e.name = name;
+      noteUser(e.users, e.usersFrame, name);
       return id;
     }
+  return makeTexture(desc, name);
+}
+
+GLuint ResourcePool::makeTexture(const TextureDesc& desc, const std::string& name) {
+  ++allocationsMade_;
   gl::Texture t = gl::createTexture(desc.target());
   const GLuint id = t.id();
   const int levels = std::max(desc.levels, 1);
@@ -58,6 +88,9 @@ GLuint ResourcePool::acquireTexture(const TextureDesc& desc, const std::string& 
     case GL_TEXTURE_CUBE_MAP_ARRAY:
       glTextureStorage3D(id, levels, desc.format, desc.width, desc.height, desc.layers * 6);
       break;
+    case GL_TEXTURE_3D:
+      glTextureStorage3D(id, levels, desc.format, desc.width, desc.height, desc.depth);
+      break;
     default:  // 2D and cube maps
       glTextureStorage2D(id, levels, desc.format, desc.width, desc.height);
   }
@@ -73,6 +106,7 @@ GLuint ResourcePool::acquireTexture(const TextureDesc& desc, const std::string& 
   e.desc = desc;
   e.name = name;
   e.inUse = e.usedThisFrame = true;
+  noteUser(e.users, e.usersFrame, name);
   textures_.emplace(id, std::move(e));
   return id;
 }
@@ -98,20 +132,31 @@ GLuint ResourcePool::persistentTexture(const TextureDesc& desc, const std::strin
 }
 
 GLuint ResourcePool::acquireBuffer(const BufferDesc& desc, const std::string& name) {
+  const size_t cls = bufferSizeClass(desc.bytes);
   for (auto& [id, e] : buffers_)
-    if (!e.inUse && !e.persistent && e.desc == desc) {
+    if (!e.inUse && !e.persistent && e.classBytes == cls) {
       e.inUse = e.usedThisFrame = true;
       e.name = name;
+      e.desc = desc;
+      noteUser(e.users, e.usersFrame, name);
       return id;
     }
+  return makeBuffer(desc, name);
+}
+
+GLuint ResourcePool::makeBuffer(const BufferDesc& desc, const std::string& name) {
+  ++allocationsMade_;
   gl::Buffer b = gl::createBuffer();
   const GLuint id = b.id();
-  glNamedBufferStorage(id, GLsizeiptr(std::max<size_t>(desc.bytes, 4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  const size_t cls = bufferSizeClass(desc.bytes);
+  glNamedBufferStorage(id, GLsizeiptr(cls), nullptr, GL_DYNAMIC_STORAGE_BIT);
   BufferEntry e;
   e.buffer = std::move(b);
   e.desc = desc;
+  e.classBytes = cls;
   e.name = name;
   e.inUse = e.usedThisFrame = true;
+  noteUser(e.users, e.usersFrame, name);
   buffers_.emplace(id, std::move(e));
   return id;
 }
@@ -127,25 +172,125 @@ void ResourcePool::releaseBuffer(GLuint buffer) {
 }
 
 GLuint ResourcePool::persistentBuffer(const BufferDesc& desc, const std::string& name) {
-  const GLuint id = acquireBuffer(desc, name);
+  const GLuint id = makeBuffer(desc, name);
   buffers_.at(id).persistent = true;
   return id;
 }
 
-GLuint ResourcePool::framebuffer(const std::vector<GLuint>& colors, GLuint depth, int layer) {
-  FramebufferKey key{colors, depth, layer};
+GLuint ResourcePool::namedTexture(const std::string& key, const TextureDesc& desc, int lifetimeFrames, bool* fresh) {
+  for (auto it = textures_.begin(); it != textures_.end(); ++it) {
+    TextureEntry& e = it->second;
+    if (e.key != key) continue;
+    if (e.desc == desc) {
+      e.usedThisFrame = true;
+      e.lifetimeFrames = lifetimeFrames;
+      if (fresh) *fresh = false;
+      return it->first;
+    }
+    dropFramebuffersOf(it->first);
+    textures_.erase(it);  // a new description: made again below
+    break;
+  }
+  const GLuint id = makeTexture(desc, key);
+  TextureEntry& e = textures_.at(id);
+  e.persistent = true;
+  e.inUse = false;
+  e.key = key;
+  e.lifetimeFrames = lifetimeFrames;
+  if (fresh) *fresh = true;
+  return id;
+}
+
+GLuint ResourcePool::namedBuffer(const std::string& key, const BufferDesc& desc, int lifetimeFrames, bool* fresh) {
+  for (auto it = buffers_.begin(); it != buffers_.end(); ++it) {
+    BufferEntry& e = it->second;
+    if (e.key != key) continue;
+    if (e.desc == desc) {
+      e.usedThisFrame = true;
+      e.lifetimeFrames = lifetimeFrames;
+      if (fresh) *fresh = false;
+      return it->first;
+    }
+    buffers_.erase(it);
+    break;
+  }
+  const GLuint id = makeBuffer(desc, key);
+  BufferEntry& e = buffers_.at(id);
+  e.persistent = true;
+  e.inUse = false;
+  e.key = key;
+  e.lifetimeFrames = lifetimeFrames;
+  if (fresh) *fresh = true;
+  return id;
+}
+
+GLuint ResourcePool::sampler(const SamplerDesc& d) {
+  if (auto it = samplers_.find(d); it != samplers_.end()) return it->second.id();
+  GLuint id = 0;
+  glCreateSamplers(1, &id);
+  gl::Sampler s(id);
+  glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, GLint(d.minFilter));
+  glSamplerParameteri(id, GL_TEXTURE_MAG_FILTER, GLint(d.magFilter));
+  glSamplerParameteri(id, GL_TEXTURE_WRAP_S, GLint(d.wrap));
+  glSamplerParameteri(id, GL_TEXTURE_WRAP_T, GLint(d.wrap));
+  glSamplerParameteri(id, GL_TEXTURE_WRAP_R, GLint(d.wrap));
+  if (d.compareFunc != GL_NONE) {
+    glSamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glSamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, GLint(d.compareFunc));
+  }
+  if (d.maxAnisotropy > 1.0f) glSamplerParameterf(id, GL_TEXTURE_MAX_ANISOTROPY, d.maxAnisotropy);
+  samplers_.emplace(d, std::move(s));
+  return id;
+}
+
+void ResourcePool::queueReadback(GLuint buffer, size_t offset, size_t bytes,
+                                 std::function<void(const void*, size_t)> deliver) {
+  Readback r;
+  r.staging = gl::createBuffer();
+  r.bytes = bytes;
+  r.deliver = std::move(deliver);
+  glNamedBufferStorage(r.staging.id(), GLsizeiptr(std::max<size_t>(bytes, 4)), nullptr,
+                       GL_MAP_READ_BIT | GL_CLIENT_STORAGE_BIT);
+  if (bytes) glCopyNamedBufferSubData(buffer, r.staging.id(), GLintptr(offset), 0, GLsizeiptr(bytes));
+  r.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  readbacks_.push_back(std::move(r));
+}
+
+size_t ResourcePool::pollReadbacks(bool wait) {
+  size_t delivered = 0;
+  for (auto it = readbacks_.begin(); it != readbacks_.end();) {
+    // Flush on waiting so the fence is sure to reach the GPU.
+    const GLenum s = glClientWaitSync(it->fence, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0,
+                                      wait ? GLuint64(10'000'000'000) : 0);
+    if (s != GL_ALREADY_SIGNALED && s != GL_CONDITION_SATISFIED) {
+      ++it;
+      continue;
+    }
+    glDeleteSync(it->fence);
+    Readback r = std::move(*it);
+    it = readbacks_.erase(it);
+    const void* p = r.bytes ? glMapNamedBufferRange(r.staging.id(), 0, GLsizeiptr(r.bytes), GL_MAP_READ_BIT) : nullptr;
+    if (r.deliver) r.deliver(p, p ? r.bytes : 0);
+    if (p) glUnmapNamedBuffer(r.staging.id());
+    ++delivered;
+  }
+  return delivered;
+}
+
+GLuint ResourcePool::framebuffer(const std::vector<GLuint>& colors, GLuint depth, int layer, int level) {
+  FramebufferKey key{colors, depth, layer, level};
   if (auto it = framebuffers_.find(key); it != framebuffers_.end()) return it->second.id();
   gl::Framebuffer f = gl::createFramebuffer();
   std::vector<GLenum> draw;
   for (size_t i = 0; i < colors.size(); ++i) {
     const GLenum attachment = GLenum(GL_COLOR_ATTACHMENT0 + i);
-    if (layer >= 0) glNamedFramebufferTextureLayer(f.id(), attachment, colors[i], 0, layer);
-    else glNamedFramebufferTexture(f.id(), attachment, colors[i], 0);
+    if (layer >= 0) glNamedFramebufferTextureLayer(f.id(), attachment, colors[i], level, layer);
+    else glNamedFramebufferTexture(f.id(), attachment, colors[i], level);
     draw.push_back(attachment);
   }
   if (depth) {
-    if (layer >= 0) glNamedFramebufferTextureLayer(f.id(), GL_DEPTH_ATTACHMENT, depth, 0, layer);
-    else glNamedFramebufferTexture(f.id(), GL_DEPTH_ATTACHMENT, depth, 0);
+    if (layer >= 0) glNamedFramebufferTextureLayer(f.id(), GL_DEPTH_ATTACHMENT, depth, level, layer);
+    else glNamedFramebufferTexture(f.id(), GL_DEPTH_ATTACHMENT, depth, level);
   }
   if (draw.empty()) glNamedFramebufferDrawBuffer(f.id(), GL_NONE);
   else glNamedFramebufferDrawBuffers(f.id(), GLsizei(draw.size()), draw.data());
@@ -164,45 +309,58 @@ void ResourcePool::dropFramebuffersOf(GLuint texture) {
   }
 }
 
+namespace {
+// Whether an entry goes at a frame's end: an idle pooled one after
+// kIdleFramesKept idle frames, a named one after its lifetime.
+template <class Entry>
+bool expire(Entry& e, int keptFrames) {
+  if (e.persistent && e.key.empty()) return false;  // its owner releases it
+  if (e.inUse || e.usedThisFrame) {
+    e.idleFrames = 0;
+    e.usedThisFrame = false;
+    return false;
+  }
+  return ++e.idleFrames > (e.key.empty() ? keptFrames : e.lifetimeFrames);
+}
+}  // namespace
+
 void ResourcePool::endFrame() {
+  ++frame_;
   for (auto it = textures_.begin(); it != textures_.end();) {
-    TextureEntry& e = it->second;
-    if (!e.persistent && !e.inUse && !e.usedThisFrame) {
+    if (expire(it->second, kIdleFramesKept)) {
       dropFramebuffersOf(it->first);
       it = textures_.erase(it);
-      continue;
+    } else {
+      ++it;
     }
-    e.usedThisFrame = false;
-    ++it;
   }
-  for (auto it = buffers_.begin(); it != buffers_.end();) {
-    BufferEntry& e = it->second;
-    if (!e.persistent && !e.inUse && !e.usedThisFrame) {
-      it = buffers_.erase(it);
-      continue;
-    }
-    e.usedThisFrame = false;
-    ++it;
-  }
+  for (auto it = buffers_.begin(); it != buffers_.end();)
+    it = expire(it->second, kIdleFramesKept) ? buffers_.erase(it) : std::next(it);
 }
 
 void ResourcePool::clear() {
   framebuffers_.clear();
+  samplers_.clear();
   textures_.clear();
   buffers_.clear();
+  for (Readback& r : readbacks_)
+    if (r.fence) glDeleteSync(r.fence);
+  readbacks_.clear();
 }
 
 std::vector<PoolAllocation> ResourcePool::registry() const {
   std::vector<PoolAllocation> out;
-  for (const auto& [id, e] : textures_) out.push_back({e.name, true, e.desc.bytes(), e.inUse, e.persistent});
-  for (const auto& [id, e] : buffers_) out.push_back({e.name, false, e.desc.bytes, e.inUse, e.persistent});
+  for (const auto& [id, e] : textures_)
+    out.push_back({e.name, true, e.desc.bytes(), e.inUse, e.persistent, e.idleFrames, e.users});
+  for (const auto& [id, e] : buffers_)
+    out.push_back({e.name, false, e.classBytes, e.inUse, e.persistent, e.idleFrames, e.users});
   return out;
 }
 
 size_t ResourcePool::bytes() const {
   size_t n = 0;
   for (const auto& [id, e] : textures_) n += e.desc.bytes();
-  for (const auto& [id, e] : buffers_) n += e.desc.bytes;
+  for (const auto& [id, e] : buffers_) n += e.classBytes;
   return n;
 }
 

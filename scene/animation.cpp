@@ -61,6 +61,8 @@ bool applyPropertyValue(Entity& entity, const std::string& property, const seque
 SceneState animatedState(const SceneState& base, const sequencer::CompiledSequence& compiled, double t,
                          std::vector<std::string>* warnings) {
   SceneState out = base;
+  const sequencer::FrameRate rate = compiled.sequence().rate;
+  out.time = SceneTime{t, sequencer::frameAtTime(t, rate), rate.fps()};
   if (compiled.sequence().bindings.empty()) return out;
   // Aim targets: an entity's world position with the animated values of its
   // chain applied (the state the sequencer passes in), parents first.

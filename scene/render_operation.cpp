@@ -58,6 +58,11 @@ const OperationDecl& renderOperation() {
                             "write the frame's passes (CPU and GPU time, GPU memory each), GPU memory held, "
                             "triangles and draw calls as JSON (one frame, not a sequence)",
                             "FILE.json"));
+    o.params.push_back({.key = "time_s", .option = "at", .label = "Time", .unit = Unit::Seconds, .min = 0.0,
+                        .max = 1e7,
+                        .help = "render the scene as its timeline has it at this time (one frame; the same pixels "
+                                "as that frame of a sequence render). Without it: the document as it is, at t = 0",
+                        .valueName = "SECONDS"});
     for (const ParamDecl& p : sequencer::exportParamDecls())
       if (p.key != "size_px" && p.key != "quality") o.params.push_back(p);
     return o;

@@ -2,6 +2,7 @@
 // The document's content as a value: entities, assets and settings. Edits
 // replace parts of it through patches (edit.h); the renderer, the CLI and the
 // file writer only read it.
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -147,6 +148,17 @@ struct SceneSettings {
   bool operator==(const SceneSettings&) const = default;
 };
 
+// The time a state shows (DESIGN.md, "Time and determinism"): set by
+// animatedState, the one place a scene is evaluated at a time; the
+// document's own state is t = 0. The renderer passes it to shaders
+// (FrameBlock.time), so wind, particles and grain are functions of t too.
+struct SceneTime {
+  double seconds = 0.0;  // from the sequence's start
+  int64_t frame = 0;     // the frame nearest `seconds` at `fps`
+  double fps = 60.0;
+  bool operator==(const SceneTime&) const = default;
+};
+
 struct SceneState {
   std::map<EntityId, Entity> entities;  // ordered: deterministic iteration and files
   std::vector<EntityId> roots;          // top-level entities in outliner order
@@ -159,6 +171,8 @@ struct SceneState {
   SceneSettings settings;
   // The timeline: tracks per entity, frame rate, playback/export range.
   sequencer::Sequence sequence;
+  // When this state is (not saved: a document is at t = 0).
+  SceneTime time;
 
   const Entity* find(EntityId id) const;
   const MeshAsset* findAsset(AssetId id) const;

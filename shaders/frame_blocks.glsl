@@ -27,6 +27,8 @@ layout(std140, binding = 0) uniform FrameBlock {
   vec4 params;        // x: ambient intensity, y: exposure multiplier, z: light count, w: unused
   // Sky and environment (environment.glsl):
   vec4 environment;   // x: 1 when the environment maps (block 6, unit 12) hold the analytic sky
+  // The frame's time, a pure function of the timeline (render/frame_blocks.h):
+  vec4 time;          // x: seconds, y: frame number, z: fract(seconds) (from double), w: 1 / fps
 } frame;
 
 layout(std140, binding = 1) uniform ViewBlock {

@@ -94,6 +94,14 @@ bool preprocessShader(std::string_view file, const std::vector<std::string>& def
   return expand(file, out, files, done, stack, error);
 }
 
+bool expandShaderInclude(std::string_view file, std::string& out, std::string& error) {
+  std::vector<std::string> files;
+  std::set<std::string> done;
+  std::vector<std::string> stack;
+  out.clear();
+  return expand(file, out, files, done, stack, error);
+}
+
 GlProgram* ShaderLibrary::get(const ProgramDesc& desc, std::string& error) {
   const std::string key = desc.key();
   if (auto it = programs_.find(key); it != programs_.end()) return it->second.get();

@@ -35,6 +35,12 @@ struct ProgramDesc {
 bool preprocessShader(std::string_view file, const std::vector<std::string>& defines, std::string& out,
                       std::vector<std::string>& files, std::string& error);
 
+// The text of an include file (frame_blocks.glsl) with its own includes
+// expanded, for a program written outside shaders/ that must read the
+// renderer's blocks exactly as its shaders do (tests' probes). The caller
+// puts the #version line first.
+bool expandShaderInclude(std::string_view file, std::string& out, std::string& error);
+
 class ShaderLibrary {
  public:
   // The program for `desc`, built on its first use; nullptr with `error`

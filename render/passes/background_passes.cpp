@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "render/fog_block.h"
+#include "render/passes/fullscreen_pass.h"
 
 namespace hs::render {
 namespace {
@@ -16,40 +17,35 @@ struct Over {
 };
 void declareOver(PassBuilder& b, Over& d, const SceneTargets& t) {
   d.t = t;
-  b.read(d.t.color);
-  b.write(d.t.color);
-  b.read(d.t.depth);
+  d.t.color = b.write(b.read(t.color));
+  d.t.depth = b.read(t.depth);
 }
 
 }  // namespace
 
-void addSkyPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& targets) {
-  graph.addPass<Over>(
+SceneTargets addSkyPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& targets) {
+  return graph.addPass<Over>(
       v.named("sky"), [&](PassBuilder& b, Over& d) { declareOver(b, d, targets); },
-      [&frame, index = v.index](const Over& d, const PassResources& r) {
+      [&frame, index = v.index, w = v.view.width, h = v.view.height](const Over& d, const PassResources& r) {
         // Where the depth is still the cleared far value: covered pixels cost nothing.
-        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.t.color}, d.t.depth));
-        frame.res.bindView(index);
-        std::vector<std::string> defines = fogDefines(frame.settings);
+        FullscreenDraw draw;
+        draw.fragment = "sky.frag";
+        draw.defines = fogDefines(frame.settings);
         if (frame.settings.sky == scene::SkyModel::Analytic) {
-          defines.push_back("SKY_ANALYTIC");
-          GlProgram& p = frame.res.program({"fullscreen.vert", "sky.frag", "", defines});
-          setSkyUniforms(p, frame.res.environment.sky());
-          p.use();
-        } else {
-          frame.res.program({"fullscreen.vert", "sky.frag", "", defines}).use();
+          draw.defines.push_back("SKY_ANALYTIC");
+          draw.uniforms = [&frame](GlProgram& p) { setSkyUniforms(p, frame.res.environment.sky()); };
         }
-        glDepthFunc(GL_EQUAL);
-        glDepthMask(GL_FALSE);
-        glBindVertexArray(frame.res.emptyVao.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glDepthFunc(GL_GREATER);
-        glDepthMask(GL_TRUE);
-      });
+        draw.framebuffer = r.framebuffer({d.t.color}, d.t.depth);
+        draw.width = w;
+        draw.height = h;
+        draw.view = int(index);
+        draw.depthFunc = GL_EQUAL;
+        drawFullscreen(frame, draw);
+      }).t;
 }
 
-void addGridPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& targets) {
-  graph.addPass<Over>(
+SceneTargets addGridPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& targets) {
+  return graph.addPass<Over>(
       v.named("grid"), [&](PassBuilder& b, Over& d) { declareOver(b, d, targets); },
       [&frame, &view = v.view, index = v.index](const Over& d, const PassResources& r) {
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.t.color}, d.t.depth));
@@ -70,12 +66,12 @@ void addGridPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, c
         glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
         glDisable(GL_BLEND);
         glDepthMask(GL_TRUE);
-      });
+      }).t;
 }
 
-void addOverlayPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& targets,
+SceneTargets addOverlayPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& targets,
                     const Overlay& overlay) {
-  graph.addPass<Over>(
+  return graph.addPass<Over>(
       v.named("overlay"), [&](PassBuilder& b, Over& d) { declareOver(b, d, targets); },
       [&frame, &view = v.view, index = v.index, &o = overlay](const Over& d, const PassResources& r) {
         struct Vertex {
@@ -103,7 +99,7 @@ void addOverlayPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v
         glDisable(GL_BLEND);
         glEnable(GL_DEPTH_TEST);
         glDepthMask(GL_TRUE);
-      });
+      }).t;
 }
 
 }  // namespace hs::render

@@ -7,9 +7,9 @@
 
 namespace hs::render {
 
-void addSkyPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const SceneTargets& targets);
-void addGridPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const SceneTargets& targets);
-void addOverlayPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const SceneTargets& targets,
+SceneTargets addSkyPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const SceneTargets& targets);
+SceneTargets addGridPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const SceneTargets& targets);
+SceneTargets addOverlayPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const SceneTargets& targets,
                     const Overlay& overlay);
 
 }  // namespace hs::render

@@ -5,6 +5,7 @@
 #include "render/abuffer.h"
 #include "render/draw_list.h"
 #include "render/passes/dof_passes.h"
+#include "render/passes/fullscreen_pass.h"
 
 namespace hs::render {
 namespace {
@@ -49,9 +50,9 @@ TextureRef addLayeredDofPasses(FrameGraph& graph, FrameContext& frame, const Vie
         TextureDesc array{w, h, GL_RGBA16F};
         array.layers = layers;
         array.array = true;
-        d.color = b.create(v.named("dof_layer_color"), array);
+        d.color = b.create(v.named("dof_layer_color"), array, Usage::Storage);
         array.format = GL_R16F;
-        d.coc = b.create(v.named("dof_layer_coc"), array);
+        d.coc = b.create(v.named("dof_layer_coc"), array, Usage::Storage);
       },
       [&frame, view = v.view, lens, nearest, layers, abuffer](const Layers& d, const PassResources& r) {
         GlProgram& p = frame.res.program({"", "", "dof_layers.comp", {}});
@@ -64,38 +65,21 @@ TextureRef addLayeredDofPasses(FrameGraph& graph, FrameContext& frame, const Vie
         glBindImageTexture(5, r.texture(d.coc), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16F);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glDispatchCompute(GLuint((view.width + 7) / 8), GLuint((view.height + 7) / 8), 1);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        // The composite's texture fetch barrier: the graph's (Usage::Storage writes).
         glBindTextureUnit(24, 0);
         glBindTextureUnit(25, 0);
       });
 
-  struct Composite {
-    TextureRef color, coc, out;
+  FullscreenPass composite;
+  composite.name = v.named("dof_composite");
+  composite.fragment = "dof_composite.frag";
+  composite.inputs = {{26, split.color}, {27, split.coc}};
+  composite.outputName = v.named("dof_color");
+  composite.output = TextureDesc{w, h, GL_RGBA16F};
+  composite.uniforms = [view = v.view, lens, nearest, layers](GlProgram& p) {
+    setLayerUniforms(p, view, lens, nearest, layers);
   };
-  return graph
-      .addPass<Composite>(
-          v.named("dof_composite"),
-          [&](PassBuilder& b, Composite& d) {
-            d.color = b.read(split.color);
-            d.coc = b.read(split.coc);
-            d.out = b.create(v.named("dof_color"), TextureDesc{w, h, GL_RGBA16F});
-          },
-          [&frame, view = v.view, lens, nearest, layers](const Composite& d, const PassResources& r) {
-            glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.out}));
-            glViewport(0, 0, view.width, view.height);
-            glDisable(GL_DEPTH_TEST);
-            GlProgram& p = frame.res.program({"fullscreen.vert", "dof_composite.frag", "", {}});
-            setLayerUniforms(p, view, lens, nearest, layers);
-            p.use();
-            glBindTextureUnit(26, r.texture(d.color));
-            glBindTextureUnit(27, r.texture(d.coc));
-            glBindVertexArray(frame.res.emptyVao.id());
-            glDrawArrays(GL_TRIANGLES, 0, 3);
-            glBindTextureUnit(26, 0);
-            glBindTextureUnit(27, 0);
-            glEnable(GL_DEPTH_TEST);
-          })
-      .out;
+  return addFullscreenPass(graph, frame, v, std::move(composite));
 }
 
 }  // namespace hs::render

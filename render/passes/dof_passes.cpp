@@ -5,6 +5,7 @@
 
 #include "render/gpu_mesh_cache.h"
 #include "render/passes/dof_layered.h"
+#include "render/passes/fullscreen_pass.h"
 #include "render/passes/output_passes.h"
 
 namespace hs::render {
@@ -30,64 +31,28 @@ void setCocUniforms(GlProgram& p, const RenderView& view, const DofLens& lens, d
 TextureRef addCocTilePass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef depth,
                           const DofLens& lens, double nearest) {
   const int tw = (v.view.width + 15) / 16, th = (v.view.height + 15) / 16;
-  struct Data {
-    TextureRef depth, tiles;
-  };
-  return graph
-      .addPass<Data>(
-          v.named("dof_tiles"),
-          [&](PassBuilder& b, Data& d) {
-            d.depth = b.read(depth);
-            d.tiles = b.create(v.named("dof_tiles"), TextureDesc{tw, th, GL_R16F});
-          },
-          [&frame, view = v.view, lens, nearest, tw, th](const Data& d, const PassResources& r) {
-            glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.tiles}));
-            glViewport(0, 0, tw, th);
-            glDisable(GL_DEPTH_TEST);
-            GlProgram& p = frame.res.program({"fullscreen.vert", "dof_tiles.frag", "", {}});
-            setCocUniforms(p, view, lens, nearest);
-            p.use();
-            glBindTextureUnit(25, r.texture(d.depth));
-            glBindVertexArray(frame.res.emptyVao.id());
-            glDrawArrays(GL_TRIANGLES, 0, 3);
-            glBindTextureUnit(25, 0);
-            glEnable(GL_DEPTH_TEST);
-          })
-      .tiles;
+  FullscreenPass p;
+  p.name = v.named("dof_tiles");
+  p.fragment = "dof_tiles.frag";
+  p.inputs = {{25, depth}};
+  p.outputName = v.named("dof_tiles");
+  p.output = TextureDesc{tw, th, GL_R16F};
+  p.uniforms = [view = v.view, lens, nearest](GlProgram& prog) { setCocUniforms(prog, view, lens, nearest); };
+  return addFullscreenPass(graph, frame, v, std::move(p));
 }
 
 TextureRef addGatherPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& scene,
                          TextureRef hdr, const DofLens& lens, double nearest) {
   const TextureRef depth = addDepthResolvePass(graph, frame, v, scene);
   const TextureRef tiles = addCocTilePass(graph, frame, v, depth, lens, nearest);
-  struct Data {
-    TextureRef hdr, depth, tiles, out;
-  };
-  return graph
-      .addPass<Data>(
-          v.named("dof_gather"),
-          [&](PassBuilder& b, Data& d) {
-            d.hdr = b.read(hdr);
-            d.depth = b.read(depth);
-            d.tiles = b.read(tiles);
-            d.out = b.create(v.named("dof_color"), TextureDesc{v.view.width, v.view.height, GL_RGBA16F});
-          },
-          [&frame, view = v.view, lens, nearest](const Data& d, const PassResources& r) {
-            glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.out}));
-            glViewport(0, 0, view.width, view.height);
-            glDisable(GL_DEPTH_TEST);
-            GlProgram& p = frame.res.program({"fullscreen.vert", "dof_gather.frag", "", {}});
-            setCocUniforms(p, view, lens, nearest);
-            p.use();
-            glBindTextureUnit(24, r.texture(d.hdr));
-            glBindTextureUnit(25, r.texture(d.depth));
-            glBindTextureUnit(26, r.texture(d.tiles));
-            glBindVertexArray(frame.res.emptyVao.id());
-            glDrawArrays(GL_TRIANGLES, 0, 3);
-            for (unsigned u = 24; u <= 26; ++u) glBindTextureUnit(u, 0);
-            glEnable(GL_DEPTH_TEST);
-          })
-      .out;
+  FullscreenPass p;
+  p.name = v.named("dof_gather");
+  p.fragment = "dof_gather.frag";
+  p.inputs = {{24, hdr}, {25, depth}, {26, tiles}};
+  p.outputName = v.named("dof_color");
+  p.output = TextureDesc{v.view.width, v.view.height, GL_RGBA16F};
+  p.uniforms = [view = v.view, lens, nearest](GlProgram& prog) { setCocUniforms(prog, view, lens, nearest); };
+  return addFullscreenPass(graph, frame, v, std::move(p));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "render/passes/output_passes.h"
 
+#include "render/passes/fullscreen_pass.h"
 #include "scene/light_units.h"
 
 namespace hs::render {
@@ -50,49 +51,32 @@ TextureRef addDepthResolvePass(FrameGraph& graph, FrameContext& frame, const Vie
 
 void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef hdr) {
   const bool fxaa = frame.settings.antialiasing == scene::Antialiasing::Fxaa;
-  struct Data {
-    TextureRef hdr, ldr;
+  FullscreenPass tm;
+  tm.name = v.named("tonemap");
+  tm.fragment = "tonemap.frag";
+  tm.inputs = {{0, hdr}};
+  if (fxaa) {
+    tm.outputName = v.named("ldr_color");
+    tm.output = TextureDesc{v.view.width, v.view.height, GL_RGBA8};
+  } else {
+    tm.toTarget = true;  // draws into the caller's framebuffer
+  }
+  tm.uniforms = [&frame, fxaa](GlProgram& p) {
+    p.set("uExposure", float(scene::exposureMultiplier(frame.settings.exposureEv100)));
+    p.set("uFilmic", frame.settings.tonemap == scene::Tonemap::Aces);
+    p.set("uLumaInAlpha", fxaa);
   };
-  const Data& tm = graph.addPass<Data>(
-      v.named("tonemap"),
-      [&](PassBuilder& b, Data& d) {
-        d.hdr = b.read(hdr);
-        if (fxaa) d.ldr = b.create(v.named("ldr_color"), TextureDesc{v.view.width, v.view.height, GL_RGBA8});
-        else b.sideEffect();  // draws into the caller's framebuffer
-      },
-      [&frame, target = v.target, w = v.view.width, h = v.view.height, fxaa](const Data& d, const PassResources& r) {
-        GlProgram& p = frame.res.program({"fullscreen.vert", "tonemap.frag", "", {}});
-        p.use();
-        p.set("uExposure", float(scene::exposureMultiplier(frame.settings.exposureEv100)));
-        p.set("uFilmic", frame.settings.tonemap == scene::Tonemap::Aces);
-        p.set("uLumaInAlpha", fxaa);
-        glBindFramebuffer(GL_FRAMEBUFFER, fxaa ? r.framebuffer({d.ldr}) : target);
-        glViewport(0, 0, w, h);
-        glDisable(GL_DEPTH_TEST);
-        glBindTextureUnit(0, r.texture(d.hdr));
-        glBindVertexArray(frame.res.emptyVao.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glEnable(GL_DEPTH_TEST);
-      });
+  const TextureRef ldr = addFullscreenPass(graph, frame, v, std::move(tm));
   if (!fxaa) return;
-  graph.addPass<Data>(
-      v.named("fxaa"),
-      [&](PassBuilder& b, Data& d) {
-        d.ldr = b.read(tm.ldr);
-        b.sideEffect();
-      },
-      [&frame, target = v.target, w = v.view.width, h = v.view.height](const Data& d, const PassResources& r) {
-        GlProgram& p = frame.res.program({"fullscreen.vert", "fxaa.frag", "", {}});
-        p.use();
-        p.set("uTexel", glm::vec2(1.0f / float(w), 1.0f / float(h)));
-        glBindFramebuffer(GL_FRAMEBUFFER, target);
-        glViewport(0, 0, w, h);
-        glDisable(GL_DEPTH_TEST);
-        glBindTextureUnit(0, r.texture(d.ldr));
-        glBindVertexArray(frame.res.emptyVao.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glEnable(GL_DEPTH_TEST);
-      });
+  FullscreenPass aa;
+  aa.name = v.named("fxaa");
+  aa.fragment = "fxaa.frag";
+  aa.inputs = {{0, ldr}};
+  aa.toTarget = true;
+  aa.uniforms = [w = v.view.width, h = v.view.height](GlProgram& p) {
+    p.set("uTexel", glm::vec2(1.0f / float(w), 1.0f / float(h)));
+  };
+  addFullscreenPass(graph, frame, v, std::move(aa));
 }
 
 }  // namespace hs::render

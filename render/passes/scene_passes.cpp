@@ -93,18 +93,16 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
       });
 }
 
-void addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& targets) {
+SceneTargets addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& targets) {
   struct Data {
     SceneTargets t;
   };
-  graph.addPass<Data>(
+  return graph.addPass<Data>(
       v.named("terrain"),
       [&](PassBuilder& b, Data& d) {
         d.t = targets;
-        b.read(d.t.color);
-        b.write(d.t.color);
-        b.read(d.t.depth);
-        b.write(d.t.depth);
+        d.t.color = b.write(b.read(targets.color));
+        d.t.depth = b.write(b.read(targets.depth));
         readShadowMaps(b, frame);
         readLightGrid(b, frame);
       },
@@ -122,7 +120,7 @@ void addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v
         frame.stats.terrainPatches += ts.patches;
         frame.stats.terrainUploadBytes += ts.upload.bytes;
         frame.stats.terrainUploadMs += ts.upload.cpuMs;
-      });
+      }).t;
 }
 
 }  // namespace hs::render

@@ -23,7 +23,8 @@ gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode, bool normalMap = false,
 
 // Creates the view's scene targets, clears them, draws the visible meshes.
 SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewContext& view);
-// Draws the visible terrains into `targets` (only added when there are any).
-void addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const SceneTargets& targets);
+// Draws the visible terrains into `targets` (only added when there are
+// any); returns the targets' new versions.
+SceneTargets addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const SceneTargets& targets);
 
 }  // namespace hs::render

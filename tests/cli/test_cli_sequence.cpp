@@ -391,6 +391,29 @@ class TestCliSequence : public QObject {
     expectError({"render", path("missing.hscene"), "--frames", "0-3", "--out", out}, 1, {"missing.hscene"});
   }
 
+  // One frame at a time of the timeline (render --at): the flight camera
+  // has moved by t = 2 s, the same t gives the same bytes, and --at belongs
+  // to one frame only.
+  void oneFrameAtATime() {
+    auto one = [&](const QString& file, const QString& at) {
+      QStringList a{"render", demo_, "--out", path(file), "--size", "96x54", "--camera", "Flight Camera"};
+      if (!at.isEmpty()) a << "--at" << at;
+      const Run r = cli(a);
+      QVERIFY2(r.code == 0, qPrintable(r.err));
+    };
+    one("at0.png", "0");
+    one("at2.png", "2");
+    one("at2_again.png", "2");
+    one("document.png", "");
+    const std::string at0 = test::readFile(path("at0.png").toStdString()),
+                      at2 = test::readFile(path("at2.png").toStdString());
+    QVERIFY(!at0.empty() && !at2.empty());
+    QVERIFY(at2 != at0);  // the camera flew on
+    QCOMPARE(test::readFile(path("at2_again.png").toStdString()), at2);
+    expectError({"render", demo_, "--out", path("x.png"), "--at", "-1"}, 2, {"--at"});
+    expectError(render(path("err") + "/f_%03d.png", "0-3", {"--at", "2"}), 2, {"--at", "one frame"});
+  }
+
   void farmSlurmScriptsActedOutWithBash() {
     // What Slurm would do, without Slurm: every array task of render.sbatch
     // (SLURM_ARRAY_TASK_ID), then verify.sbatch; a lost frame is reported
