@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -14,8 +15,10 @@
 #include "particles/evaluate.h"
 #include "particles/motion.h"
 #include "particles/noise.h"
+#include "particles/presets.h"
 #include "particles/rng.h"
 #include "particles/spawn.h"
+#include "particles/sprites.h"
 
 using namespace hs::particles;
 using glm::dvec3;
@@ -486,6 +489,82 @@ class TestParticles : public QObject {
     qInfo("noise gradient vs finite differences %.3g; curl divergence %.3g", worstGrad, worstDiv);
     QVERIFY(worstGrad < 1e-6);
     QVERIFY(worstDiv < 1e-5);
+  }
+
+  void presetsAreValidAndRun() {
+    const HeightFieldCollider ground = hills({500000.0, 4400000.0, 300.0});
+    for (const std::string& name : presetNames()) {
+      PresetOptions o;
+      o.at = {500000.0, 4400000.0, 300.0};
+      o.area = glm::dvec4(499980.0, 4399980.0, 500020.0, 4400020.0);
+      o.seed = 3;
+      std::string err;
+      const std::vector<EmitterDesc> es = makePreset(name, o, err);
+      QVERIFY2(!es.empty(), err.c_str());
+      for (const EmitterDesc& e : es) {
+        const std::vector<std::string> v = validate(e);
+        QVERIFY2(v.empty(), v.empty() ? "" : v.front().c_str());
+        std::string jerr;
+        const auto back = emitterFromJsonText(hs::writeJson(emitterToJson(e)), jerr);
+        QVERIFY2(back && *back == e, jerr.c_str());
+        auto ev = Evaluator::create(e, {nullptr, {&ground}}, err);
+        QVERIFY2(ev, err.c_str());
+        const Frame f = ev->frame(12.0);
+        qInfo("%s: %zu live at t = 12 s, %llu replay steps", e.name.c_str(), f.particles.size(),
+              (unsigned long long)f.replaySteps);
+        QVERIFY2(!f.particles.empty(), e.name.c_str());
+        QVERIFY(f.leftOut == 0);
+        for (const Particle& p : f.particles) QVERIFY(finite(p.position) && finite(p.velocity) && std::isfinite(p.size));
+      }
+    }
+    std::string err;
+    QVERIFY(makePreset("rain", {}, err).empty());
+    QVERIFY(err.find("snow, fog, torch, campfire, dust") != std::string::npos);
+    PresetOptions o;
+    o.rate = 123.0;
+    o.name = "Monastery torch";
+    const auto torch = torchPreset(o);
+    QCOMPARE(torch.size(), size_t(2));
+    QCOMPARE(torch[0].rate, 123.0);
+    QCOMPARE(torch[0].name, std::string("Monastery torch flame"));
+  }
+
+  void spritesAreDeterministicAndShaped() {
+    const hs::Image a = snowflakeSprite(64, 1), b = snowflakeSprite(64, 1), c = snowflakeSprite(64, 2);
+    QVERIFY(a == b);
+    QVERIFY(!(a == c));
+    auto alpha = [](const hs::Image& im, int x, int y) { return int(im.rgba8[(size_t(y) * size_t(im.width) + size_t(x)) * 4 + 3]); };
+    QCOMPARE(alpha(a, 0, 0), 0);
+    QVERIFY(alpha(a, 32, 32) > 200);  // the hub
+    // Six-fold: coverage sampled along a circle repeats every 60 degrees.
+    int agree = 0, total = 0;
+    for (int i = 0; i < 360; ++i) {
+      const double ang = i * std::numbers::pi / 180.0, ang2 = ang + std::numbers::pi / 3.0;
+      const double r = 20.0;
+      const int v1 = alpha(a, int(32 + r * std::cos(ang)), int(32 + r * std::sin(ang))) > 127;
+      const int v2 = alpha(a, int(32 + r * std::cos(ang2)), int(32 + r * std::sin(ang2))) > 127;
+      agree += v1 == v2;
+      ++total;
+    }
+    QVERIFY2(agree > total * 9 / 10, qPrintable(QString("%1 of %2").arg(agree).arg(total)));
+    const hs::Image s = smokePuffSprite(64, 4);
+    QVERIFY(s == smokePuffSprite(64, 4));
+    QCOMPARE(alpha(s, 0, 0), 0);
+    QVERIFY(alpha(s, 32, 32) > 100);
+    const Flipbook f = flameFlipbook(32, 16, 9), g = flameFlipbook(32, 16, 9);
+    QVERIFY(f.atlas == g.atlas);
+    QCOMPARE(f.columns, 4);
+    QCOMPARE(f.rows, 4);
+    QCOMPARE(f.atlas.width, 128);
+    // Frames differ from each other, and the flame is brighter at its base than at its tip.
+    int differing = 0, baseA = 0, tipA = 0;
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x) {
+        differing += alpha(f.atlas, x, y) != alpha(f.atlas, 32 + x, y);
+        (y > 20 ? baseA : tipA) += y > 20 || y < 11 ? alpha(f.atlas, x, y) : 0;
+      }
+    QVERIFY(differing > 20);
+    QVERIFY(baseA > tipA);
   }
 
   void badInputNamesEmitterAndField() {
