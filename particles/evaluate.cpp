@@ -101,10 +101,12 @@ double Evaluator::birth(ParticleId id) const {
   return e_.bursts[b].t;
 }
 
-ParticleStart Evaluator::start(ParticleId id) const {
+ParticleStart Evaluator::start(ParticleId id) const { return startAt(id, birth(id)); }
+
+ParticleStart Evaluator::startAt(ParticleId id, double birthTime) const {
   const ParticleRng r = rngOf(e_.seed, id);
   ParticleStart s;
-  s.birth = birth(id);
+  s.birth = birthTime;
   s.lifetime = r.range(Attr::Lifetime, e_.lifetimeMin, e_.lifetimeMax);
   s.size = r.range(Attr::Size, e_.sizeMin, e_.sizeMax);
   s.rotationDeg = r.range(Attr::Rotation, e_.rotationMinDeg, e_.rotationMaxDeg);
@@ -330,52 +332,73 @@ Frame Evaluator::frame(double t, ReplayCache* cache, int threads) const {
   const uint64_t cap = uint64_t(e_.maxLive);
   uint64_t counted = 0;
   bool estimated = false;
-  // Visits one candidate; false once counting stops.
-  auto visit = [&](ParticleId id) {
+  // Visits one candidate born at `b`; false once counting stops. Only the
+  // lifetime is drawn here; the rest of the start is made in parallel below.
+  auto visit = [&](ParticleId id, double b) {
     if (kept.size() < cap) {
-      ParticleStart st = start(id);
-      const double age = t - st.birth;
-      if (age >= 0.0 && age < st.lifetime) {
+      const double life = rngOf(e_.seed, id).range(Attr::Lifetime, e_.lifetimeMin, e_.lifetimeMax);
+      const double age = t - b;
+      if (age >= 0.0 && age < life) {
         ++out.live;
-        kept.push_back({id, st});
+        kept.push_back({id, ParticleStart{.birth = b}});
       }
       return true;
     }
     if (counted >= kMaxCounted) return false;
     ++counted;
-    const ParticleRng r = rngOf(e_.seed, id);
-    const double life = r.range(Attr::Lifetime, e_.lifetimeMin, e_.lifetimeMax);
-    if (t - birth(id) < life) ++out.live;
+    const double life = rngOf(e_.seed, id).range(Attr::Lifetime, e_.lifetimeMin, e_.lifetimeMax);
+    if (t - b < life) ++out.live;
     return true;
   };
   // The rate's candidates: born in (t - lifetimeMax, t].
   const uint64_t k0 = spawn_.bornBy(t - window), k1 = spawn_.bornBy(t);
   uint64_t k = k0;
   size_t nb = 0;
+  {
+    uint64_t expect = k1 - k0;
+    for (size_t b : burstOrder) expect += uint64_t(e_.bursts[b].count);
+    kept.reserve(size_t(std::min(expect, cap)));
+  }
   bool going = true;
-  uint64_t remainingEstimate = 0;
+  uint64_t burstResume = 0;  // the interrupted burst's next index
   while (going && (k < k1 || nb < burstOrder.size())) {
     const double tk = k < k1 ? spawn_.birth(k) : kInf;
     if (nb < burstOrder.size() && e_.bursts[burstOrder[nb]].t <= tk) {
       const Burst& b = e_.bursts[burstOrder[nb]];
-      for (uint64_t i = 0; i < uint64_t(b.count) && going; ++i) {
-        going = visit({uint32_t(burstOrder[nb] + 1), i});
-        if (!going) remainingEstimate += uint64_t(b.count) - i;
+      uint64_t i = 0;
+      for (; i < uint64_t(b.count) && going; ++i) going = visit({uint32_t(burstOrder[nb] + 1), i}, b.t);
+      if (!going) {
+        burstResume = i - 1;
+        break;
       }
       ++nb;
       continue;
     }
-    going = visit({0, k});
-    if (!going) remainingEstimate += k1 - k;
+    going = visit({0, k}, tk);
+    if (!going) break;
     ++k;
   }
   if (!going) {
-    // Too many to count: the rest by their expected survival.
+    // Too many to count one by one: the rest by the survival of an even
+    // sample of them (4096 per stream), scaled to their number.
     estimated = true;
-    for (; nb < burstOrder.size(); ++nb) remainingEstimate += uint64_t(e_.bursts[burstOrder[nb]].count);
-    const double lifeSpan = e_.lifetimeMax - e_.lifetimeMin;
-    (void)lifeSpan;
-    out.live += remainingEstimate / 2;  // roughly half of a window of lifetimes survives
+    auto sampled = [&](uint32_t stream, uint64_t from, uint64_t to, auto birthOf) {
+      const uint64_t total = to - from, m = std::min<uint64_t>(total, 4096);
+      if (m == 0) return uint64_t(0);
+      uint64_t alive = 0;
+      for (uint64_t j = 0; j < m; ++j) {
+        const uint64_t idx = from + j * total / m;
+        const ParticleId id{stream, idx};
+        alive += t - birthOf(idx) < rngOf(e_.seed, id).range(Attr::Lifetime, e_.lifetimeMin, e_.lifetimeMax);
+      }
+      return uint64_t(std::llround(double(alive) * double(total) / double(m)));
+    };
+    for (size_t q = nb; q < burstOrder.size(); ++q) {
+      const Burst& b = e_.bursts[burstOrder[q]];
+      out.live += sampled(uint32_t(burstOrder[q] + 1), q == nb ? burstResume : 0, uint64_t(b.count),
+                          [&](uint64_t) { return b.t; });
+    }
+    out.live += sampled(0, k, k1, [&](uint64_t idx) { return spawn_.birth(idx); });
   }
   out.leftOut = out.live > kept.size() ? out.live - kept.size() : 0;
   out.leftOutExact = !estimated;
@@ -388,7 +411,11 @@ Frame Evaluator::frame(double t, ReplayCache* cache, int threads) const {
   // Evaluate the kept ones: cache lookups in order, the work in parallel,
   // the cache updated in order.
   const size_t n = kept.size();
-  std::vector<Particle> result(n);
+  parallelFor(int64_t(n), threads, 1024, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i) kept[size_t(i)].start = startAt(kept[size_t(i)].id, kept[size_t(i)].start.birth);
+  });
+  std::vector<Particle>& result = out.particles;
+  result.resize(n);
   if (replay_) {
     if (cache && cache->emitterKey_ != key_) {
       cache->clear();
@@ -434,11 +461,7 @@ Frame Evaluator::frame(double t, ReplayCache* cache, int threads) const {
       }
     });
   }
-  out.particles.reserve(n);
-  for (Particle& p : result) {
-    if (p.alive) out.particles.push_back(p);
-    else ++out.killed;
-  }
+  out.killed = uint64_t(std::erase_if(result, [](const Particle& p) { return !p.alive; }));
   return out;
 }
 

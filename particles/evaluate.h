@@ -171,6 +171,7 @@ class Evaluator {
 
  private:
   Evaluator(const EmitterDesc& e, EvaluatorInputs inputs);
+  ParticleStart startAt(ParticleId id, double birthTime) const;
   void advance(ReplayState& s, double t0, double tau) const;
   Particle finish(ParticleId id, const ParticleStart& st, const ReplayState& rs, double t) const;
 

@@ -127,13 +127,16 @@ Flipbook flameFlipbook(int frameSize, int frames, uint32_t seed) {
         // A teardrop: wide at the base, narrowing to the tip, its edge torn by the noise.
         const double width = 0.55 * std::pow(std::max(0.0, 1.0 - v), 0.7) * (1.0 - std::exp(-v * 12.0)) + 0.02;
         const double edge = std::abs(u + 0.15 * n * v) / width;
-        double intensity = (1.0 - smoothstep(0.55, 1.0, edge + 0.35 * n)) * (1.0 - smoothstep(0.6, 1.0, v + 0.2 * n));
-        intensity = std::clamp(intensity, 0.0, 1.0);
-        // Black body-ish ramp: red, orange, yellow, white.
-        const double r = std::clamp(intensity * 2.2, 0.0, 1.0);
-        const double g = std::clamp(intensity * 1.6 - 0.35, 0.0, 1.0);
-        const double b = std::clamp(intensity * 2.0 - 1.3, 0.0, 1.0);
-        put(f.atlas, ox + x, oy + y, r, g, b, intensity);
+        // 1 on the axis near the base, falling to 0 at the torn edge and towards the tip.
+        const double radial = 1.0 - smoothstep(0.0, 1.0, edge + 0.35 * n);
+        const double vertical = 1.0 - smoothstep(0.35, 1.0, v + 0.2 * n);
+        const double intensity = std::clamp(radial * vertical, 0.0, 1.0);
+        // Black body-ish ramp (linear): deep red at the edge, orange, yellow, near white in the core.
+        const double r = std::clamp(intensity * 1.8, 0.0, 1.0);
+        const double g = std::clamp(intensity * intensity * 1.2 - 0.1, 0.0, 1.0);
+        const double b = std::clamp(std::pow(intensity, 4.0) - 0.3, 0.0, 1.0);
+        const double alpha = smoothstep(0.0, 0.3, intensity);
+        put(f.atlas, ox + x, oy + y, r, g, b, alpha);
       }
   }
   return f;
