@@ -24,7 +24,7 @@ constexpr double kSkin = 1e-5;
 // Contacts in one step beyond this: the particle is resting.
 constexpr int kMaxContactsPerStep = 8;
 // Candidates counted one by one for the cap's message; more are estimated.
-constexpr uint64_t kMaxCounted = uint64_t(1) << 26;
+constexpr uint64_t kMaxCounted = uint64_t(1) << 24;
 
 // Two unit vectors perpendicular to unit `a` and to each other.
 void basis(const glm::dvec3& a, glm::dvec3& b1, glm::dvec3& b2) {

@@ -453,6 +453,24 @@ class TestParticles : public QObject {
     QVERIFY(f.message.find("Blizzard") != std::string::npos);
     QVERIFY(f.message.find(std::to_string(f.leftOut)) != std::string::npos);
     for (size_t i = 1; i < f.particles.size(); ++i) QVERIFY(f.particles[i].birth >= f.particles[i - 1].birth);
+    // Too many to count one by one (7.5e7 live): estimated from a sample, said so.
+    e.lifetimeMin = 5.0;
+    e.lifetimeMax = 10.0;
+    e.bursts = {{2.5, 3000000}};
+    ev = Evaluator::create(e, {}, err);
+    const Frame big = ev->frame(20.0);
+    qInfo("%s", big.message.c_str());
+    QVERIFY(!big.leftOutExact);
+    QVERIFY(big.message.find("(estimated)") != std::string::npos);
+    QCOMPARE(big.particles.size(), size_t(100000));
+    const double expected = 1e7 * 7.5;  // the burst is dead by t = 20
+    QVERIFY2(std::abs(double(big.live) - expected) < 0.01 * expected, qPrintable(QString::number(big.live)));
+    const Frame withBurst = ev->frame(9.0);  // the burst (age 6.5 s, 70% alive) is in the window
+    const double expected2 = 1e7 * (5.0 + (9.0 - 5.0) - 0.5 * (9.0 - 5.0) * (9.0 - 5.0) / 5.0) + 0.7 * 3e6;
+    qInfo("%s", withBurst.message.c_str());
+    QVERIFY2(std::abs(double(withBurst.live) - expected2) < 0.01 * expected2,
+             qPrintable(QString("%1 vs %2").arg(withBurst.live).arg(expected2)));
+    e.bursts.clear();
     // Lifetime 0: nothing is ever alive; gravity 0: straight lines.
     e.lifetimeMin = e.lifetimeMax = 0.0;
     e.rate = 1000;
