@@ -323,6 +323,15 @@ std::vector<std::string> validate(const EmitterDesc& e) {
     checkNumber(e, at, paramIn(emitterParamDecls(), "rate_per_s"), e.rateKeys.keys[i].value, out);
   }
   checkIncreasing(e, "rate_keys", e.rateKeys.keys, out);
+  for (size_t i = 0; i < e.windKeys.size(); ++i) {
+    const std::string at = "wind_keys[" + std::to_string(i) + "]";
+    checkNumber(e, at, keyTimeDecl(), e.windKeys[i].t, out);
+    std::string why;
+    const glm::dvec3 w = e.windKeys[i].wind;
+    if (!checkParam(paramIn(emitterParamDecls(), "wind_m_per_s"), Json::array({w.x, w.y, w.z}), why))
+      out.push_back(prefix(e, at) + why);
+  }
+  checkIncreasing(e, "wind_keys", e.windKeys, out);
   for (size_t i = 0; i < e.bursts.size(); ++i) {
     const std::string at = "bursts[" + std::to_string(i) + "]";
     checkNumber(e, at, keyTimeDecl(), e.bursts[i].t, out);
@@ -358,6 +367,9 @@ Json emitterToJson(const EmitterDesc& e) {
   Json b = Json::array();
   for (const Burst& x : e.bursts) b.push_back(Json::array({x.t, x.count}));
   j["bursts"] = b;
+  Json wk = Json::array();
+  for (const WindKey& k : e.windKeys) wk.push_back(Json::array({k.t, k.wind.x, k.wind.y, k.wind.z}));
+  j["wind_keys"] = wk;
   Json s = Json::array();
   for (const CurveKey& k : e.sizeOverLife.keys) s.push_back(Json::array({k.t, k.value}));
   j["size_over_life"] = s;
@@ -395,7 +407,8 @@ std::optional<EmitterDesc> emitterFromJson(const Json& j, std::string& error) {
   };
   if (!r.object(j, "")) return fail(err);
   if (const Json* n = r.required(j, "", "name"); !n || !r.string(*n, "name", e.name)) return fail(err);
-  std::set<std::string, std::less<>> known = {"name", "rate_keys", "bursts", "size_over_life", "colour_over_life"};
+  std::set<std::string, std::less<>> known = {"name", "rate_keys", "bursts", "wind_keys", "size_over_life",
+                                                "colour_over_life"};
   for (const EmitterField& f : emitterFields()) {
     known.insert(f.decl->key);
     const Json* v = r.required(j, "", f.decl->key);
@@ -419,6 +432,9 @@ std::optional<EmitterDesc> emitterFromJson(const Json& j, std::string& error) {
       return fail("bursts: count " + formatNumber(x[1]) + " is not a whole number from 0 to 10000000");
     e.bursts.push_back({x[0], int64_t(x[1])});
   }
+  rows.clear();
+  if (!readRows(r, j, "wind_keys", 4, "[t, x, y, z]", rows)) return fail(err);
+  for (auto& x : rows) e.windKeys.push_back({x[0], {x[1], x[2], x[3]}});
   rows.clear();
   if (!readRows(r, j, "size_over_life", 2, "[x, multiplier]", rows)) return fail(err);
   for (auto& x : rows) e.sizeOverLife.keys.push_back({x[0], x[1]});

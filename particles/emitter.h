@@ -26,6 +26,7 @@
 
 #include "core/json.h"
 #include "core/params.h"
+#include "particles/motion.h"
 
 namespace hs::particles {
 
@@ -106,6 +107,7 @@ struct EmitterDesc {
   glm::dvec3 gravity{0.0, 0.0, -9.81};  // m/s^2
   double drag = 0.0;                    // k, per second
   glm::dvec3 wind{0.0};                 // m/s, the air's velocity
+  std::vector<WindKey> windKeys{};      // keyed wind over scene time (piecewise linear); none: `wind`
   double turbulence = 0.0;              // m/s^2, curl-noise acceleration's scale
   double turbulenceFrequency = 0.2;     // per metre
   double turbulenceEvolution = 0.1;     // per second: how fast the noise field changes
@@ -162,13 +164,13 @@ bool setEmitterField(EmitterDesc& e, std::string_view key, const Json& value, st
 // Every problem of `e`, each naming the emitter and the field: values out
 // of their declared ranges or not finite, min above max, a zero direction,
 // curves with keys not strictly increasing (coincident keys) or out of
-// [0, 1] for over-life curves, negative or NaN rates and burst counts, a
+// [0, 1] for over-life curves, wind keys out of the wind's range, negative or NaN rates and burst counts, a
 // mesh shape without a mesh name. Empty: valid.
 std::vector<std::string> validate(const EmitterDesc& e);
 
 // JSON (core/json.h): an object with "name", every declared key, and the
 // lists "rate_keys" [[t, rate], ...], "bursts" [[t, count], ...],
-// "size_over_life" [[x, multiplier], ...], "colour_over_life" [[x, r, g, b,
+// "wind_keys" [[t, x, y, z], ...], "size_over_life" [[x, multiplier], ...], "colour_over_life" [[x, r, g, b,
 // a], ...]. emitterFromJson is strict: every key must be there with the
 // right type and a finite value in range, and unknown keys are refused
 // (a typo is not silently ignored); the error names the emitter, the JSON

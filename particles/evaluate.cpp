@@ -165,13 +165,13 @@ void Evaluator::advance(ReplayState& s, double t0, double tau) const {
   Forces f = forces_;
   if (e_.turbulence > 0.0) {
     // Second order: the turbulence at the step's predicted midpoint.
-    const glm::dvec3 mid = exactMotion(s.k, f, 0.5 * tau).x;
+    const glm::dvec3 mid = exactMotionKeyed(s.k, f, e_.windKeys, t0, 0.5 * tau).x;
     f.gravity += turbulenceAt(mid, t0 + 0.5 * tau, e_.turbulence, e_.turbulenceFrequency, e_.turbulenceEvolution,
                               e_.seed);
   }
   double remaining = tau, now = t0;
   for (int contact = 0; contact <= kMaxContactsPerStep; ++contact) {
-    const Kinematics next = exactMotion(s.k, f, remaining);
+    const Kinematics next = exactMotionKeyed(s.k, f, e_.windKeys, now, remaining);
     if (!collide_) {
       s.k = next;
       return;
@@ -184,7 +184,7 @@ void Evaluator::advance(ReplayState& s, double t0, double tau) const {
     if (contact == kMaxContactsPerStep) break;
     // The hit time on the exact trajectory: where it crosses the tangent plane at the hit.
     const glm::dvec3 n = hit->normal, P = hit->point - e_.origin;
-    auto dist = [&](double x) { return glm::dot(exactMotion(s.k, f, x).x - P, n); };
+    auto dist = [&](double x) { return glm::dot(exactMotionKeyed(s.k, f, e_.windKeys, now, x).x - P, n); };
     double lo = 0.0, hi = remaining;
     if (dist(0.0) <= 0.0) {
       hi = 0.0;
@@ -194,7 +194,7 @@ void Evaluator::advance(ReplayState& s, double t0, double tau) const {
         (dist(m) > 0.0 ? lo : hi) = m;
       }
     }
-    Kinematics c = exactMotion(s.k, f, hi);
+    Kinematics c = exactMotionKeyed(s.k, f, e_.windKeys, now, hi);
     c.x += n * (kSkin - glm::dot(c.x - P, n));
     switch (e_.collision) {
       case CollisionMode::None: break;
@@ -287,7 +287,7 @@ Particle Evaluator::particle(ParticleId id, double t, ReplayCache* cache) const 
   ReplayState rs;
   rs.k = st.state;
   if (!replay_) {
-    rs.k = exactMotion(st.state, forces_, t - st.birth);
+    rs.k = exactMotionKeyed(st.state, forces_, e_.windKeys, st.birth, t - st.birth);
     return finish(id, st, rs, t);
   }
   if (cache && cache->emitterKey_ != key_) {
@@ -456,7 +456,7 @@ Frame Evaluator::frame(double t, ReplayCache* cache, int threads) const {
       for (int64_t i = b; i < e; ++i) {
         const Candidate& c = kept[size_t(i)];
         ReplayState rs;
-        rs.k = exactMotion(c.start.state, forces_, t - c.start.birth);
+        rs.k = exactMotionKeyed(c.start.state, forces_, e_.windKeys, c.start.birth, t - c.start.birth);
         result[size_t(i)] = finish(c.id, c.start, rs, t);
       }
     });

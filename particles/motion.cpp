@@ -34,6 +34,62 @@ double phi2(double z) {
   return (z + std::expm1(-z)) / (z * z);
 }
 
+double phi3(double z) {
+  if (z < 1.0) {
+    // sum_{n>=0} (-z)^n / (n + 3)!, to z^17.
+    double c[18];
+    double f = 6.0;  // 3!
+    for (int n = 0; n < 18; ++n) {
+      c[n] = 1.0 / f;
+      f *= double(n + 4);
+    }
+    double r = 0.0;
+    for (int n = 17; n >= 0; --n) r = c[n] - z * r;
+    return r;
+  }
+  return (0.5 * z * z - z - std::expm1(-z)) / (z * z * z);
+}
+
+glm::dvec3 windAt(const std::vector<WindKey>& keys, double t, const glm::dvec3& fallback) {
+  if (keys.empty()) return fallback;
+  if (t <= keys.front().t) return keys.front().wind;
+  if (t >= keys.back().t) return keys.back().wind;
+  size_t i = 1;
+  while (keys[i].t < t) ++i;
+  const WindKey &a = keys[i - 1], &b = keys[i];
+  return a.wind + (b.wind - a.wind) * ((t - a.t) / (b.t - a.t));
+}
+
+Kinematics exactMotionLinear(const Kinematics& s, double drag, const glm::dvec3& f0, const glm::dvec3& f1, double tau) {
+  const double z = drag * tau;
+  const glm::dvec3 a0 = f0 - drag * s.v;
+  const double p2 = phi2(z);
+  Kinematics r;
+  r.v = s.v + a0 * (tau * phi1(z)) + f1 * (tau * tau * p2);
+  r.x = s.x + s.v * tau + a0 * (tau * tau * p2) + f1 * (tau * tau * tau * phi3(z));
+  return r;
+}
+
+Kinematics exactMotionKeyed(const Kinematics& s0, const Forces& f, const std::vector<WindKey>& keys, double t0,
+                            double tau) {
+  if (keys.empty()) return exactMotion(s0, f, tau);
+  Kinematics s = s0;
+  const double end = t0 + tau;
+  double t = t0;
+  while (t < end) {
+    // The stretch from t to the next key (or the end).
+    size_t i = 0;
+    while (i < keys.size() && keys[i].t <= t) ++i;
+    const double next = i < keys.size() ? std::min(end, keys[i].t) : end;
+    glm::dvec3 slope(0.0);
+    if (i > 0 && i < keys.size()) slope = (keys[i].wind - keys[i - 1].wind) / (keys[i].t - keys[i - 1].t);
+    const glm::dvec3 w = windAt(keys, t, f.wind);
+    s = exactMotionLinear(s, f.drag, f.gravity + f.drag * w, f.drag * slope, next - t);
+    t = next;
+  }
+  return s;
+}
+
 Kinematics exactMotion(const Kinematics& s, const Forces& f, double tau) {
   const double z = f.drag * tau;
   const glm::dvec3 a0 = f.gravity + f.drag * (f.wind - s.v);

@@ -14,9 +14,18 @@
 // there), so both are accurate to a few ulps for every z >= 0; for
 // k tau >> 1, v -> w + g/k and x grows by (w + g/k) tau, as it must.
 //
+// Wind keyed over time (piecewise linear, held outside its keys) keeps an
+// exact solution: on a stretch where the forcing f(s) = g + k w(s) is
+// f0 + f1 s,
+//     v(tau) = v0 + tau phi1(k tau) (f0 - k v0) + tau^2 phi2(k tau) f1
+//     x(tau) = x0 + v0 tau + tau^2 phi2(k tau) (f0 - k v0) + tau^3 phi3(k tau) f1
+//     phi3(z) = (z^2/2 - z + 1 - e^-z) / z^3                  phi3(0) = 1/6
+// applied stretch by stretch between wind keys.
+//
 // The explicit integrators below are references for tests and the
 // benchmark's error-against-run-time table, not used by the evaluator.
 #include <functional>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -35,9 +44,26 @@ struct Kinematics {
 
 double phi1(double z);
 double phi2(double z);
+double phi3(double z);
+
+// A wind key: the air's velocity at scene time t.
+struct WindKey {
+  double t = 0.0;
+  glm::dvec3 wind{0.0};
+  bool operator==(const WindKey&) const = default;
+};
+// The wind at scene time t (keys strictly increasing in t; none: `fallback`).
+glm::dvec3 windAt(const std::vector<WindKey>& keys, double t, const glm::dvec3& fallback);
 
 // The exact state after tau >= 0.
 Kinematics exactMotion(const Kinematics& s, const Forces& f, double tau);
+
+// The exact state after tau >= 0 with forcing f0 + f1 s (s: time since the start).
+Kinematics exactMotionLinear(const Kinematics& s, double drag, const glm::dvec3& f0, const glm::dvec3& f1, double tau);
+// The exact state after tau >= 0 starting at scene time t0 under keyed wind
+// (f.wind is used when `keys` is empty: then this is exactMotion).
+Kinematics exactMotionKeyed(const Kinematics& s, const Forces& f, const std::vector<WindKey>& keys, double t0,
+                            double tau);
 
 // One step of size h of the reference integrators (acceleration from `f`).
 Kinematics eulerStep(const Kinematics& s, const Forces& f, double h);              // explicit Euler
