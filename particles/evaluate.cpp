@@ -465,4 +465,27 @@ Frame Evaluator::frame(double t, ReplayCache* cache, int threads) const {
   return out;
 }
 
+std::vector<PackedParticle> packFrame(const Frame& frame, const glm::dvec3& emitterOrigin, const glm::dvec3& relativeTo,
+                                      uint32_t seed) {
+  const glm::dvec3 offset = emitterOrigin - relativeTo;  // double, before any float
+  std::vector<PackedParticle> out(frame.particles.size());
+  for (size_t i = 0; i < out.size(); ++i) {
+    const Particle& p = frame.particles[i];
+    PackedParticle& q = out[i];
+    const glm::dvec3 x = offset + p.position;
+    for (int c = 0; c < 3; ++c) {
+      q.position[c] = float(x[c]);
+      q.velocity[c] = float(p.velocity[c]);
+    }
+    for (int c = 0; c < 4; ++c) q.colour[c] = float(p.colour[c]);
+    q.size = float(p.size);
+    q.rotationDeg = float(p.rotationDeg);
+    q.frame = uint32_t(p.frame);
+    q.variant = hashKey(seed, p.id.stream ^ (uint32_t(p.id.index >> 32) * 0x9e3779b9U), uint32_t(p.id.index),
+                        uint32_t(Attr::Variant));
+    q.pad[0] = q.pad[1] = 0;
+  }
+  return out;
+}
+
 }  // namespace hs::particles

@@ -139,6 +139,24 @@ struct Frame {
   std::string message;              // the cap's message, naming the emitter, when something was left out
 };
 
+// What a draw source uploads for one particle: floats, the position relative
+// to `relativeTo` (the camera's world position, say) formed in double
+// before the conversion, so an emitter and a camera at UTM coordinates lose
+// nothing (DESIGN.md, "Coordinates and scale"). 64 bytes (std430: four vec4s).
+struct PackedParticle {
+  float position[3];
+  float size;
+  float colour[4];  // linear RGB, opacity
+  float velocity[3];
+  float rotationDeg;
+  uint32_t frame;    // flipbook frame
+  uint32_t variant;  // a random 32 bits of the particle (sprite variants, flicker)
+  uint32_t pad[2];
+};
+static_assert(sizeof(PackedParticle) == 64);
+std::vector<PackedParticle> packFrame(const Frame& frame, const glm::dvec3& emitterOrigin, const glm::dvec3& relativeTo,
+                                      uint32_t seed = 0);
+
 struct EvaluatorInputs {
   const SurfaceSampler* surface = nullptr;  // the mesh shape's surface
   std::vector<const Collider*> colliders{};

@@ -460,6 +460,29 @@ class TestParticles : public QObject {
     }
   }
 
+  void stiffEmittersStayFiniteThroughTheEvaluator() {
+    // k = 1e7 with turbulence (replayed) and without: every state finite, at
+    // the terminal velocity w + (g + a_turb) / k after the first microseconds.
+    for (double turbulence : {0.0, 50.0}) {
+      EmitterDesc e = fountain();
+      e.drag = 1e7;
+      e.turbulence = turbulence;
+      e.replayStep = 1.0 / 60.0;  // k h = 1.7e5
+      std::string err;
+      auto ev = Evaluator::create(e, {}, err);
+      QVERIFY2(ev, err.c_str());
+      const Frame f = ev->frame(3.0);
+      QVERIFY(f.particles.size() > 500);
+      double worst = 0;
+      for (const Particle& p : f.particles) {
+        QVERIFY(finite(p.position) && finite(p.velocity));
+        if (p.age > 1e-3) worst = std::max(worst, maxAbs(p.velocity - e.wind) - (9.81 + 3 * turbulence) / e.drag);
+      }
+      qInfo("k = 1e7, turbulence %g: largest speed beyond the terminal bound %.3g m/s", turbulence, worst);
+      QVERIFY(worst <= 1e-9);
+    }
+  }
+
   void utmCoordinatesLoseNothing() {
     EmitterDesc near = fountain();
     EmitterDesc far = near;
@@ -488,6 +511,19 @@ class TestParticles : public QObject {
       }
     }
     qInfo("UTM (500000, 4400000, 300) vs origin: %.3g m apart, deepest %.3g m", worst, deepest);
+    // Packed for the GPU relative to a camera 40 m away at UTM coordinates: float positions to 1e-5 m.
+    const dvec3 camera = far.origin + dvec3(30.0, -25.0, 8.0);
+    const Frame cf = b->frame(4.0);
+    const std::vector<PackedParticle> packed = packFrame(cf, far.origin, camera, far.seed);
+    QCOMPARE(packed.size(), cf.particles.size());
+    double packErr = 0;
+    for (size_t i = 0; i < packed.size(); ++i) {
+      const dvec3 truth = (far.origin + cf.particles[i].position) - camera;  // both near, exact enough in double
+      const dvec3 got(packed[i].position[0], packed[i].position[1], packed[i].position[2]);
+      packErr = std::max(packErr, maxAbs(got - truth));
+    }
+    qInfo("packed (float, camera-relative) positions: %.3g m from the double ones", packErr);
+    QVERIFY(packErr < 1e-5);
     QVERIFY(worst < 1e-4);
     QVERIFY(deepest <= 1e-3);
   }
