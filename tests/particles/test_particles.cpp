@@ -282,6 +282,61 @@ class TestParticles : public QObject {
     }
   }
 
+  void shapesPlaceParticlesWhereTheySay() {
+    EmitterDesc e = fountain();
+    e.spreadDeg = 0;
+    e.direction = {0, 0, 1};
+    std::string err;
+    auto starts = [&](const EmitterDesc& x, const SurfaceSampler* surface = nullptr) {
+      auto ev = Evaluator::create(x, {surface, {}}, err);
+      std::vector<ParticleStart> v;
+      if (!ev) return v;
+      for (uint64_t k = 0; k < 2000; ++k) v.push_back(ev->start({0, k}));
+      return v;
+    };
+    e.shape = Shape::Box;
+    e.boxHalf = {1, 2, 3};
+    dvec3 lo(1e9), hi(-1e9);
+    for (const ParticleStart& s : starts(e)) lo = glm::min(lo, s.state.x), hi = glm::max(hi, s.state.x);
+    QVERIFY(hi.x <= 1 && lo.x >= -1 && hi.y <= 2 && lo.y >= -2 && hi.z <= 3 && lo.z >= -3);
+    QVERIFY(hi.x > 0.99 && lo.z < -2.99);  // fills it
+    e.shape = Shape::Sphere;
+    e.radius = 2.0;
+    e.surfaceOnly = true;
+    e.alongNormal = true;
+    for (const ParticleStart& s : starts(e)) {
+      QVERIFY(std::abs(glm::length(s.state.x) - 2.0) < 1e-12);
+      QVERIFY(glm::dot(glm::normalize(s.state.x), glm::normalize(s.state.v)) > 1 - 1e-12);  // outwards
+    }
+    e.alongNormal = false;
+    e.surfaceOnly = false;
+    e.shape = Shape::Cone;
+    e.radius = 1.0;
+    e.coneAngleDeg = 30.0;
+    for (const ParticleStart& s : starts(e)) {
+      QVERIFY(std::abs(s.state.x.z) < 1e-12 && glm::length(s.state.x) <= 1.0 + 1e-12);
+      const double lean = std::acos(glm::normalize(s.state.v).z) * 180.0 / std::numbers::pi;
+      QVERIFY(std::abs(lean - 30.0 * glm::length(s.state.x)) < 1e-6);  // leans out with the distance from the axis
+    }
+    // A mesh: a tilted square of two triangles; births on it, velocities along its normal.
+    const dvec3 a{0, 0, 0}, b{2, 0, 1}, c{2, 2, 1}, d{0, 2, 0};
+    const TriangleSurface surface({a, b, c, a, c, d});
+    e.shape = Shape::Mesh;
+    e.mesh = "Roof";
+    e.alongNormal = true;
+    const dvec3 n = glm::normalize(glm::cross(b - a, d - a));
+    int left = 0;
+    for (const ParticleStart& s : starts(e, &surface)) {
+      QVERIFY(std::abs(glm::dot(s.state.x - a, n)) < 1e-12);
+      QVERIFY(s.state.x.y >= -1e-12 && s.state.x.y <= 2 + 1e-12 && s.state.x.x >= -1e-12 && s.state.x.x <= 2 + 1e-12);
+      QVERIFY(glm::dot(glm::normalize(s.state.v), n) > 1 - 1e-12);
+      left += s.state.x.y > s.state.x.x;
+    }
+    QVERIFY(left > 850 && left < 1150);  // area-weighted: half on each triangle
+    QVERIFY(starts(e).empty());          // no surface: refused
+    QVERIFY(err.find("'Roof' is missing") != std::string::npos);
+  }
+
   void exactFrameIsPureFunctionOfTime() {
     std::string err;
     auto ev = Evaluator::create(fountain(), {}, err);
