@@ -357,7 +357,7 @@ Frame Evaluator::frame(double t, ReplayCache* cache, int threads) const {
   {
     uint64_t expect = k1 - k0;
     for (size_t b : burstOrder) expect += uint64_t(e_.bursts[b].count);
-    kept.reserve(size_t(std::min(expect, cap)));
+    kept.reserve(size_t(std::min({expect, cap, uint64_t(1) << 22})));
   }
   bool going = true;
   uint64_t burstResume = 0;  // the interrupted burst's next index

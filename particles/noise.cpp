@@ -10,8 +10,8 @@ namespace {
 
 // A unit-ish gradient for a lattice corner: one of the 12 cube-edge
 // directions (Perlin's improved noise), chosen by the hash.
-glm::dvec3 cornerGradient(int32_t ix, int32_t iy, int32_t iz, uint32_t seed) {
-  const uint32_t h = hashU32(hashU32(hashU32(hashU32(seed) ^ uint32_t(ix)) ^ uint32_t(iy)) ^ uint32_t(iz));
+glm::dvec3 cornerGradient(uint32_t ix, uint32_t iy, uint32_t iz, uint32_t seed) {
+  const uint32_t h = hashU32(hashU32(hashU32(hashU32(seed) ^ ix) ^ iy) ^ iz);
   static constexpr double g[12][3] = {{1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1}, {-1, 0, 1},
                                       {1, 0, -1}, {-1, 0, -1}, {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}};
   const auto& r = g[(h >> 8) % 12];
@@ -22,15 +22,17 @@ glm::dvec3 cornerGradient(int32_t ix, int32_t iy, int32_t iz, uint32_t seed) {
 
 NoiseSample gradientNoise(const glm::dvec3& p, uint32_t seed) {
   const glm::dvec3 fl{std::floor(p.x), std::floor(p.y), std::floor(p.z)};
-  const int32_t ix = int32_t(fl.x), iy = int32_t(fl.y), iz = int32_t(fl.z);
+  // Lattice coordinates wrap modulo 2^32 (through int64: no overflow for any
+  // sample point a scene can make, t * evolution included).
+  const uint32_t ix = uint32_t(int64_t(fl.x)), iy = uint32_t(int64_t(fl.y)), iz = uint32_t(int64_t(fl.z));
   const glm::dvec3 f = p - fl;
   const glm::dvec3 u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
   const glm::dvec3 du = 30.0 * f * f * (f * (f - 2.0) + 1.0);
 
-  const glm::dvec3 ga = cornerGradient(ix, iy, iz, seed), gb = cornerGradient(ix + 1, iy, iz, seed),
-                   gc = cornerGradient(ix, iy + 1, iz, seed), gd = cornerGradient(ix + 1, iy + 1, iz, seed),
-                   ge = cornerGradient(ix, iy, iz + 1, seed), gf = cornerGradient(ix + 1, iy, iz + 1, seed),
-                   gg = cornerGradient(ix, iy + 1, iz + 1, seed), gh = cornerGradient(ix + 1, iy + 1, iz + 1, seed);
+  const glm::dvec3 ga = cornerGradient(ix, iy, iz, seed), gb = cornerGradient(ix + 1u, iy, iz, seed),
+                   gc = cornerGradient(ix, iy + 1u, iz, seed), gd = cornerGradient(ix + 1u, iy + 1u, iz, seed),
+                   ge = cornerGradient(ix, iy, iz + 1u, seed), gf = cornerGradient(ix + 1u, iy, iz + 1u, seed),
+                   gg = cornerGradient(ix, iy + 1u, iz + 1u, seed), gh = cornerGradient(ix + 1u, iy + 1u, iz + 1u, seed);
   auto dot = [](const glm::dvec3& a, const glm::dvec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
   const double va = dot(ga, f), vb = dot(gb, f - glm::dvec3(1, 0, 0)), vc = dot(gc, f - glm::dvec3(0, 1, 0)),
                vd = dot(gd, f - glm::dvec3(1, 1, 0)), ve = dot(ge, f - glm::dvec3(0, 0, 1)),
