@@ -16,7 +16,7 @@ Json vec3Json(const glm::dvec3& v) { return Json::array({v.x, v.y, v.z}); }
 glm::dvec3 jsonVec3(const Json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
 Json pairJson(double a, double b) { return Json::array({a, b}); }
 
-constexpr const char* kShapes[] = {"point", "box", "sphere", "disc", "cone", "mesh"};
+constexpr const char* kShapes[] = {"point", "box", "sphere", "disc", "cone", "mesh", "terrain"};
 constexpr const char* kCollisions[] = {"none", "bounce", "kill", "stick"};
 
 template <class E, size_t N>
@@ -85,9 +85,9 @@ const std::vector<ParamDecl>& emitterParamDecls() {
          .defaultValue = d.maxLive, .help = "cap on live particles; the oldest are kept and the rest counted as left out",
          .editor = true, .decimals = 0, .group = gWhen},
         {.key = "shape", .label = "Shape", .type = ParamType::Choice, .defaultValue = shapeName(d.shape),
-         .choices = {kShapes, kShapes + 6}, .help = "where particles are born", .editor = true, .group = gWhen},
+         .choices = {kShapes, kShapes + 7}, .help = "where particles are born (terrain: on the ground inside the box's x, y extent)", .editor = true, .group = gWhen},
         {.key = "box_half_m", .label = "Box half extents", .unit = Unit::Metres, .min = 0.0, .max = 1e5,
-         .defaultValue = vec3Json(d.boxHalf), .help = "box shape: half its size along x, y, z", .count = 3,
+         .defaultValue = vec3Json(d.boxHalf), .help = "box shape: half its size along x, y, z; terrain shape: the area's half size in x, y and the height above ground in z", .count = 3,
          .editor = true, .group = gWhen},
         {.key = "radius_m", .label = "Radius", .unit = Unit::Metres, .min = 0.0, .max = 1e5, .defaultValue = d.radius,
          .help = "sphere, disc and cone shapes: the radius", .editor = true, .group = gWhen},

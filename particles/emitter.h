@@ -30,7 +30,9 @@
 
 namespace hs::particles {
 
-enum class Shape { Point, Box, Sphere, Disc, Cone, Mesh };
+// Terrain: over the ground inside the box's x, y extent, from the ground up
+// to the box's z half extent above it (the ground is given at evaluation).
+enum class Shape { Point, Box, Sphere, Disc, Cone, Mesh, Terrain };
 enum class CollisionMode { None, Bounce, Kill, Stick };
 
 const char* shapeName(Shape s);
@@ -87,7 +89,7 @@ struct EmitterDesc {
 
   // Where particles are born, relative to the origin.
   Shape shape = Shape::Point;
-  glm::dvec3 boxHalf{1.0, 1.0, 1.0};  // Box: half extents
+  glm::dvec3 boxHalf{1.0, 1.0, 1.0};  // Box: half extents; Terrain: x, y half extents and the height above ground
   double radius = 1.0;                // Sphere, Disc, Cone (base)
   bool surfaceOnly = false;           // Sphere/Disc: on the surface/rim only
   double coneAngleDeg = 25.0;         // Cone: half-angle of the opening

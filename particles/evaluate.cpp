@@ -82,6 +82,10 @@ std::optional<Evaluator> Evaluator::create(const EmitterDesc& e, EvaluatorInputs
     error = "emitter '" + e.name + "', field 'mesh': the mesh '" + e.mesh + "' is missing (no surface to emit from)";
     return std::nullopt;
   }
+  if (e.shape == Shape::Terrain && !inputs.ground) {
+    error = "emitter '" + e.name + "', field 'shape': the shape is 'terrain' but no terrain was given to emit from";
+    return std::nullopt;
+  }
   if (e.turbulence > 0.0 || (e.collision != CollisionMode::None && !inputs.colliders.empty())) {
     const double steps = e.lifetimeMax / e.replayStep;
     if (steps > 1e7) {
@@ -136,6 +140,14 @@ ParticleStart Evaluator::startAt(ParticleId id, double birthTime) const {
         const double lean = e_.coneAngleDeg * kPi / 180.0 * rho;
         base = normal = std::cos(lean) * axis + std::sin(lean) * radial;
       }
+      break;
+    }
+    case Shape::Terrain: {
+      const double wx = e_.origin.x + (2.0 * a - 1.0) * e_.boxHalf.x, wy = e_.origin.y + (2.0 * b - 1.0) * e_.boxHalf.y;
+      const double ground = in_.ground ? in_.ground->height(wx, wy) : e_.origin.z;
+      // Relative coordinates formed from world ones in double (exact for the x, y offsets).
+      pos = {wx - e_.origin.x, wy - e_.origin.y, ground - e_.origin.z + c * e_.boxHalf.z};
+      normal = in_.ground ? in_.ground->normal(wx, wy) : axis;
       break;
     }
     case Shape::Mesh: {

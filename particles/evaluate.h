@@ -160,6 +160,7 @@ std::vector<PackedParticle> packFrame(const Frame& frame, const glm::dvec3& emit
 struct EvaluatorInputs {
   const SurfaceSampler* surface = nullptr;  // the mesh shape's surface
   std::vector<const Collider*> colliders{};
+  const HeightFieldCollider* ground = nullptr;  // the terrain shape's ground (world coordinates)
 };
 
 class Evaluator {

@@ -335,6 +335,29 @@ class TestParticles : public QObject {
     QVERIFY(left > 850 && left < 1150);  // area-weighted: half on each triangle
     QVERIFY(starts(e).empty());          // no surface: refused
     QVERIFY(err.find("'Roof' is missing") != std::string::npos);
+    // Terrain: on the ground (hills at UTM coordinates) up to 0.5 m above it, inside the area.
+    EmitterDesc t = fountain();
+    t.origin = {500000.0, 4400000.0, 320.0};
+    t.shape = Shape::Terrain;
+    t.boxHalf = {20.0, 10.0, 0.5};
+    t.alongNormal = true;
+    t.spreadDeg = 0;
+    const HeightFieldCollider ground = hills({500000.0, 4400000.0, 300.0});
+    auto tev = Evaluator::create(t, {nullptr, {}}, err);
+    QVERIFY(!tev && err.find("'terrain'") != std::string::npos);
+    tev = Evaluator::create(t, {nullptr, {}, &ground}, err);
+    QVERIFY2(tev, err.c_str());
+    double lowest = 1e9, highest = -1e9;
+    for (uint64_t k = 0; k < 2000; ++k) {
+      const ParticleStart s = tev->start({0, k});
+      const dvec3 w = t.origin + s.state.x;
+      QVERIFY(std::abs(s.state.x.x) <= 20.0 && std::abs(s.state.x.y) <= 10.0);
+      const double above = w.z - ground.height(w.x, w.y);
+      lowest = std::min(lowest, above), highest = std::max(highest, above);
+      QVERIFY(glm::dot(glm::normalize(s.state.v), ground.normal(w.x, w.y)) > 1 - 1e-9);
+    }
+    qInfo("terrain shape: births from %.3g to %.3g m above the ground", lowest, highest);
+    QVERIFY(lowest >= -1e-9 && highest <= 0.5 + 1e-9 && highest > 0.45);
   }
 
   void exactFrameIsPureFunctionOfTime() {
