@@ -105,6 +105,20 @@ double Evaluator::birth(ParticleId id) const {
   return e_.bursts[b].t;
 }
 
+uint64_t Evaluator::candidates(double t) const {
+  const double window = e_.lifetimeMax;
+  uint64_t n = spawn_.bornBy(t) - spawn_.bornBy(t - window);
+  for (const Burst& b : e_.bursts)
+    if (b.t <= t && t - b.t < window) n += uint64_t(b.count);
+  return n;
+}
+
+uint64_t Evaluator::liveCount(double t, bool* estimated) const {
+  const Census c = census(t, 0, nullptr);
+  if (estimated) *estimated = c.estimated;
+  return c.live;
+}
+
 ParticleStart Evaluator::start(ParticleId id) const { return startAt(id, birth(id)); }
 
 ParticleStart Evaluator::startAt(ParticleId id, double birthTime) const {
@@ -325,25 +339,20 @@ Particle Evaluator::particle(ParticleId id, double t, ReplayCache* cache) const 
   return finish(id, st, rs, t);
 }
 
-Frame Evaluator::frame(double t, ReplayCache* cache, int threads) const {
-  Frame out;
-  out.t = t;
+Evaluator::Census Evaluator::census(double t, uint64_t cap, std::vector<Candidate>* keptOut) const {
+  Census out;
   const double window = e_.lifetimeMax;
   // Candidates in birth order: the rate's stream is already in order;
   // bursts (one birth time each) slot in before rate particles of the same time.
-  struct Candidate {
-    ParticleId id;
-    ParticleStart start;
-  };
-  std::vector<Candidate> kept;
+  std::vector<Candidate> none;
+  std::vector<Candidate>& kept = keptOut ? *keptOut : none;
   std::vector<size_t> burstOrder;
   for (size_t b = 0; b < e_.bursts.size(); ++b)
     if (e_.bursts[b].count > 0 && e_.bursts[b].t <= t && t - e_.bursts[b].t < window) burstOrder.push_back(b);
   std::stable_sort(burstOrder.begin(), burstOrder.end(),
                    [&](size_t x, size_t y) { return e_.bursts[x].t < e_.bursts[y].t; });
-  const uint64_t cap = uint64_t(e_.maxLive);
   uint64_t counted = 0;
-  bool estimated = false;
+  bool& estimated = out.estimated;
   // Visits one candidate born at `b`; false once counting stops. Only the
   // lifetime is drawn here; the rest of the start is made in parallel below.
   auto visit = [&](ParticleId id, double b) {
@@ -412,6 +421,17 @@ Frame Evaluator::frame(double t, ReplayCache* cache, int threads) const {
     }
     out.live += sampled(0, k, k1, [&](uint64_t idx) { return spawn_.birth(idx); });
   }
+  return out;
+}
+
+Frame Evaluator::frame(double t, ReplayCache* cache, int threads) const {
+  Frame out;
+  out.t = t;
+  const uint64_t cap = uint64_t(e_.maxLive);
+  std::vector<Candidate> kept;
+  const Census counts = census(t, cap, &kept);
+  out.live = counts.live;
+  const bool estimated = counts.estimated;
   out.leftOut = out.live > kept.size() ? out.live - kept.size() : 0;
   out.leftOutExact = !estimated;
   if (out.leftOut > 0) {

@@ -182,6 +182,15 @@ class Evaluator {
   // Every live particle at t, oldest first, at most max_live of them.
   Frame frame(double t, ReplayCache* cache = nullptr, int threads = 0) const;
 
+  // Without evaluating anyone: the particles born in the live window at t
+  // (an upper bound of the live ones; O(1) plus the bursts: 0 means the
+  // emitter costs nothing at t), and the live count by lifetimes before the
+  // cap (what `info --time` lists; particles a collision kills are not
+  // known without the replay and count as live; past 2^24 candidates it is
+  // estimated, `estimated` says so).
+  uint64_t candidates(double t) const;
+  uint64_t liveCount(double t, bool* estimated = nullptr) const;
+
   // The replay's state at scene time t from `from` (a state at a whole step
   // of the particle born at `birth`), stepping on the birth-anchored grid.
   // `stepsTaken` counts the work.
@@ -190,6 +199,16 @@ class Evaluator {
 
  private:
   Evaluator(const EmitterDesc& e, EvaluatorInputs inputs);
+  struct Candidate {
+    ParticleId id;
+    ParticleStart start;  // only the birth until frame() fills the rest
+  };
+  struct Census {
+    uint64_t live = 0;
+    bool estimated = false;
+  };
+  // The live window's census in birth order; the first `cap` alive ones go to `kept`.
+  Census census(double t, uint64_t cap, std::vector<Candidate>* kept) const;
   ParticleStart startAt(ParticleId id, double birthTime) const;
   void advance(ReplayState& s, double t0, double tau) const;
   Particle finish(ParticleId id, const ParticleStart& st, const ReplayState& rs, double t) const;

@@ -381,6 +381,17 @@ class TestParticles : public QObject {
     for (uint64_t i = ev->schedule().bornBy(7.25 - 4.0); i < ev->schedule().bornBy(7.25); ++i)
       alive += ev->particle({0, i}, 7.25).alive;
     QCOMPARE(uint64_t(f1.particles.size()), alive);
+    // The counts without evaluation: live by lifetimes, candidates an upper bound; nothing before the start.
+    QCOMPARE(ev->liveCount(7.25), alive);
+    QVERIFY(ev->candidates(7.25) >= alive && ev->candidates(7.25) < alive * 2);
+    EmitterDesc later = fountain();
+    later.start = 100.0;
+    later.duration = 10.0;
+    auto lev = Evaluator::create(later, {}, err);
+    QCOMPARE(lev->candidates(99.0), uint64_t(0));
+    QVERIFY(lev->frame(99.0).particles.empty());
+    QVERIFY(lev->candidates(105.0) > 0);
+    QCOMPARE(lev->candidates(114.01), uint64_t(0));  // emission over and every lifetime (<= 4 s) past
   }
 
   void replayColdWarmAndSequenceAreBitIdentical() {
@@ -622,6 +633,7 @@ class TestParticles : public QObject {
     QVERIFY(f.leftOutExact);
     QVERIFY(f.live > 7000000 && f.live < 8000000);  // 1e7/s x 0.75 s expected
     QCOMPARE(f.leftOut, f.live - 100000);
+    QCOMPARE(ev->liveCount(3.0), f.live);
     QVERIFY(f.message.find("Blizzard") != std::string::npos);
     QVERIFY(f.message.find(std::to_string(f.leftOut)) != std::string::npos);
     for (size_t i = 1; i < f.particles.size(); ++i) QVERIFY(f.particles[i].birth >= f.particles[i - 1].birth);
