@@ -239,6 +239,9 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
     glBeginQuery(GL_TIME_ELAPSED, timer);
   }
 
+  // Readbacks earlier frames queued (FrameGraph::readback) whose fences
+  // have signalled: delivered now, never waited for.
+  res.pool.pollReadbacks();
   // The last frame's kept targets go back to the pool now.
   d.lastFrame.reset();
   d.keptHdr.clear();
