@@ -1,0 +1,510 @@
+#include "foliage/tools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/params.h"
+#include "core/parallel.h"
+
+namespace hs::foliage {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+uint64_t mix(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+uint64_t key4(uint64_t a, uint64_t b, uint64_t c, uint64_t d) { return mix(a ^ mix(b ^ mix(c ^ mix(d)))); }
+double unit(uint64_t h) { return double(h >> 11) * (1.0 / 9007199254740992.0); }
+double unitOf(uint64_t key, uint64_t j) { return unit(mix(key ^ mix(j + 0x51ED27ull))); }
+
+bool inSet(const TypeSet& set, uint16_t t) { return set.empty() || std::find(set.begin(), set.end(), t) != set.end(); }
+
+std::string typeContext(const FoliageType& t) { return "foliage type \"" + t.name + "\""; }
+
+// Points of one type near a stroke, in cells of the spacing's size: the
+// Poisson test's neighbour search.
+class PoissonGrid {
+ public:
+  PoissonGrid(const glm::dvec2& lo, const glm::dvec2& hi, double r) : lo_(lo), r_(r) {
+    const glm::dvec2 ext = glm::max(hi - lo, glm::dvec2(1e-9));
+    cell_ = std::max(r, std::sqrt(ext.x * ext.y / double(1 << 24)));
+    nx_ = std::max(1, int(std::min(ext.x / cell_ + 1.0, 1e7)));
+    ny_ = std::max(1, int(std::min(ext.y / cell_ + 1.0, 1e7)));
+    head_.assign(size_t(nx_) * size_t(ny_), -1);
+  }
+  void insert(const glm::dvec3& p) {
+    const size_t c = index(cx(p.x), cy(p.y));
+    pts_.push_back(p);
+    next_.push_back(head_[c]);
+    head_[c] = int32_t(pts_.size() - 1);
+  }
+  // Is any point closer than r to p (3D)?
+  bool conflicts(const glm::dvec3& p) const {
+    const int x = cx(p.x), y = cy(p.y);
+    const double r2 = r_ * r_;
+    for (int yy = std::max(0, y - 1); yy <= std::min(ny_ - 1, y + 1); ++yy)
+      for (int xx = std::max(0, x - 1); xx <= std::min(nx_ - 1, x + 1); ++xx)
+        for (int32_t i = head_[index(xx, yy)]; i >= 0; i = next_[size_t(i)]) {
+          const glm::dvec3 d = pts_[size_t(i)] - p;
+          if (glm::dot(d, d) < r2) return true;
+        }
+    return false;
+  }
+
+ private:
+  int cx(double x) const { return std::clamp(int(std::floor((x - lo_.x) / cell_)), 0, nx_ - 1); }
+  int cy(double y) const { return std::clamp(int(std::floor((y - lo_.y) / cell_)), 0, ny_ - 1); }
+  size_t index(int x, int y) const { return size_t(y) * size_t(nx_) + size_t(x); }
+  glm::dvec2 lo_;
+  double r_, cell_ = 1.0;
+  int nx_ = 1, ny_ = 1;
+  std::vector<int32_t> head_, next_;
+  std::vector<glm::dvec3> pts_;
+};
+
+// Every instance of `type` whose XY lies in [lo, hi].
+template <class Fn>
+void forEachOfType(const FoliageStore& store, uint16_t type, const glm::dvec2& lo, const glm::dvec2& hi, Fn&& fn) {
+  store.forEachCellIn(lo, hi, [&](const CellKey& k, const Cell& c) {
+    for (const Run& r : c.runs)
+      if (r.type == type)
+        for (const PackedInstance& p : r.items) {
+          const glm::dvec3 pos = unpackPosition(p, k);
+          if (pos.x >= lo.x && pos.x <= hi.x && pos.y >= lo.y && pos.y <= hi.y) fn(pos, p, r.surface);
+        }
+  });
+}
+
+// A candidate's source: the terrain, or a mesh's triangles (cumulative areas).
+struct MeshSource {
+  const MeshGround* mesh;
+  std::vector<uint32_t> faces;
+  std::vector<double> cumulative;
+};
+
+struct Evaluated {
+  bool ok = false;
+  bool filtered = false;  // refused by the filters (else outside)
+  Instance inst;
+};
+
+void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const Region2& region, double factor,
+               uint64_t seed, unsigned threads, EditResult& res) {
+  const FoliageType& t = store.type(type);
+  OpStats& st = res.stats;
+  const std::string ctx = typeContext(t);
+  const double perM2 = t.densityPerHa * std::clamp(factor, 0.0, 10.0) / 1e4;
+  if (!(perM2 > 0.0)) {
+    st.messages.push_back(ctx + ": density 0: nothing placed");
+    return;
+  }
+  glm::dvec2 lo, hi;
+  region.bounds(lo, hi);
+  const double regionArea = region.area();
+  if (!(regionArea > 0.0)) {
+    st.messages.push_back(ctx + ": the region is empty (radius or area 0): nothing placed");
+    return;
+  }
+  const double r = t.spacing;
+  const double margin = r + std::abs(t.sinkDepth) + 1.0;
+  // What is there already: the Poisson grid, and the share of the density
+  // still missing in the region.
+  PoissonGrid grid(lo - margin, hi + margin, r);
+  size_t existing = 0;
+  forEachOfType(store, type, lo - margin, hi + margin, [&](const glm::dvec3& pos, const PackedInstance&, Surface) {
+    if (r > 0.0) grid.insert(pos);
+    if (region.contains(glm::dvec2(pos))) ++existing;
+  });
+  const double target = perM2 * regionArea;
+  const double share = std::max(0.0, 1.0 - double(existing) / target);
+  if (share <= 0.0) return;
+
+  int layer = -1;
+  if (!t.layer.empty() && ground.terrain && t.surface != SurfaceFilter::Meshes) {
+    layer = terrainLayerIndex(*ground.terrain, t.layer);
+    if (layer < 0) {
+      st.messages.push_back(ctx + ": layer: the terrain has no paint layer \"" + t.layer +
+                            "\"; nothing placed on the terrain");
+    }
+  }
+  const bool onTerrain = ground.terrain && t.surface != SurfaceFilter::Meshes && (t.layer.empty() || layer >= 0);
+  const bool onMeshes = t.surface != SurfaceFilter::Terrain;
+
+  // Candidate counts: terrain uniform over the region's bounds, meshes by
+  // the area of their triangles under them.
+  const uint64_t typeKey = key4(seed, type, 0x7E11ull, 0);
+  auto countFor = [&](double lambda, uint64_t salt) {
+    const double fl = std::floor(lambda);
+    return uint64_t(fl) + (unitOf(typeKey, salt) < lambda - fl ? 1u : 0u);
+  };
+  std::vector<MeshSource> meshes;
+  std::vector<uint64_t> firstOf{0};  // candidate index ranges: [terrain, mesh 0, mesh 1, ...]
+  double lambdaTerrain = onTerrain ? perM2 * share * region.boundsArea() : 0.0;
+  double lambdaTotal = lambdaTerrain;
+  std::vector<double> lambdaMesh;
+  if (onMeshes)
+    for (const MeshGround* m : ground.meshes) {
+      MeshSource s{m, {}, {}};
+      m->trianglesIn(lo, hi, s.faces);
+      double sum = 0.0;
+      s.cumulative.reserve(s.faces.size());
+      for (uint32_t f : s.faces) s.cumulative.push_back(sum += m->area(f));
+      lambdaMesh.push_back(perM2 * share * sum);
+      lambdaTotal += lambdaMesh.back();
+      meshes.push_back(std::move(s));
+    }
+  double cap = 1.0;
+  if (lambdaTotal > kMaxCandidates) {
+    cap = kMaxCandidates / lambdaTotal;
+    st.messages.push_back(ctx + ": " + formatNumber(std::round(lambdaTotal)) + " candidates asked for; capped at " +
+                          formatNumber(kMaxCandidates) + " (lower the density or the area)");
+  }
+  firstOf.push_back(countFor(lambdaTerrain * cap, 1));
+  for (size_t m = 0; m < meshes.size(); ++m) firstOf.push_back(firstOf.back() + countFor(lambdaMesh[m] * cap, 2 + m));
+  const uint64_t total = firstOf.back();
+  st.candidates += total;
+  if (total == 0) return;
+
+  auto evaluate = [&](uint64_t i, int attempt, Evaluated& out) {
+    out.ok = out.filtered = false;
+    const uint64_t key = key4(typeKey, i, uint64_t(attempt), 0xCA4Dull);
+    std::optional<SurfacePoint> sp;
+    double weight = 0.0;
+    if (i < firstOf[1]) {
+      const glm::dvec2 xy(lo.x + (hi.x - lo.x) * unitOf(key, 0), lo.y + (hi.y - lo.y) * unitOf(key, 1));
+      if (!region.contains(xy)) return;
+      sp = terrainSurface(ground.terrain->height, xy);
+      if (!sp) return;
+      if (layer >= 0) weight = terrainLayerWeight(*ground.terrain, layer, xy);
+    } else {
+      const size_t m = size_t(std::upper_bound(firstOf.begin(), firstOf.end(), i) - firstOf.begin()) - 2;
+      const MeshSource& s = meshes[m];
+      const double a = unitOf(key, 0) * s.cumulative.back();
+      const size_t f = std::min(size_t(std::upper_bound(s.cumulative.begin(), s.cumulative.end(), a) -
+                                       s.cumulative.begin()), s.faces.size() - 1);
+      const double u = std::sqrt(unitOf(key, 1)), v = unitOf(key, 2);
+      sp = s.mesh->pointOn(s.faces[f], glm::dvec3(1.0 - u, u * (1.0 - v), u * v));
+      if (!region.contains(glm::dvec2(sp->position))) return;
+    }
+    if (!passesFilters(t, *sp, weight)) {
+      out.filtered = true;
+      return;
+    }
+    out.inst = makeInstance(t, type, *sp, seed, key);
+    out.inst.position = quantized(out.inst.position);
+    out.ok = true;
+  };
+
+  std::vector<uint64_t> pending(total);
+  for (uint64_t i = 0; i < total; ++i) pending[i] = i;
+  std::vector<Evaluated> eval;
+  std::vector<Instance> accepted;
+  for (int attempt = 0; attempt < kAttempts && !pending.empty(); ++attempt) {
+    eval.assign(pending.size(), Evaluated{});
+    parallelFor(int64_t(pending.size()), int(threads), 2048, [&](int64_t b, int64_t e) {
+      for (int64_t k = b; k < e; ++k) evaluate(pending[size_t(k)], attempt, eval[size_t(k)]);
+    });
+    std::vector<uint64_t> again;
+    for (size_t k = 0; k < pending.size(); ++k) {
+      const Evaluated& ev = eval[k];
+      if (!ev.ok) {
+        (ev.filtered ? st.filtered : st.outside)++;
+        continue;
+      }
+      if (r > 0.0 && grid.conflicts(ev.inst.position)) {
+        if (attempt + 1 == kAttempts)
+          ++st.spacingRejected;
+        else
+          again.push_back(pending[k]);
+        continue;
+      }
+      if (r > 0.0) grid.insert(ev.inst.position);
+      accepted.push_back(ev.inst);
+    }
+    pending = std::move(again);
+  }
+  for (const Instance& in : accepted) store.add(in, &res.undo);
+  st.placed += accepted.size();
+}
+
+glm::dquat alignTo(const glm::dvec3& n, double maxDeg) {
+  const glm::dvec3 z(0, 0, 1);
+  const glm::dvec3 axis = glm::cross(z, n);
+  const double s = glm::length(axis);
+  if (s < 1e-12) return glm::dquat(1, 0, 0, 0);  // along +Z (or -Z: no single tilt; keep upright)
+  double angle = std::atan2(s, n.z);
+  angle = std::min(angle, maxDeg * kPi / 180.0);
+  return glm::angleAxis(angle, axis / s);
+}
+
+}  // namespace
+
+bool passesFilters(const FoliageType& t, const SurfacePoint& sp, double layerWeight) {
+  if (t.surface == SurfaceFilter::Terrain && sp.surface != Surface::Terrain) return false;
+  if (t.surface == SurfaceFilter::Meshes && sp.surface != Surface::Mesh) return false;
+  if (!(sp.slopeDeg >= t.slopeDeg.x && sp.slopeDeg <= t.slopeDeg.y)) return false;
+  const double z = sp.position.z;
+  if (!(z >= t.altitude.x && z <= t.altitude.y)) return false;
+  if (!t.layer.empty() && sp.surface == Surface::Terrain &&
+      !(layerWeight >= t.layerWeight.x && layerWeight <= t.layerWeight.y))
+    return false;
+  return true;
+}
+
+Instance makeInstance(const FoliageType& t, uint16_t type, const SurfacePoint& sp, uint64_t seed, uint64_t key) {
+  const uint64_t k = key4(seed, key, 0x1257ull, 0);
+  Instance in;
+  in.type = type;
+  in.surface = sp.surface;
+  const double yaw = t.randomYaw ? unitOf(k, 10) * 2.0 * kPi : 0.0;
+  const double pitch = t.randomPitchDeg * kPi / 180.0 * unitOf(k, 11);
+  const double dir = unitOf(k, 12) * 2.0 * kPi;
+  glm::dquat q = glm::angleAxis(yaw, glm::dvec3(0, 0, 1));
+  if (pitch > 0.0) q = glm::angleAxis(pitch, glm::dvec3(std::cos(dir), std::sin(dir), 0.0)) * q;
+  if (t.alignToNormal) q = alignTo(sp.normal, t.alignMaxDeg) * q;
+  in.rotation = glm::normalize(q);
+  const double s = t.scale.x + (t.scale.y - t.scale.x) * unitOf(k, 13);
+  if (t.scaleMode == ScaleMode::Uniform)
+    in.scale = glm::dvec3(s);
+  else
+    in.scale = glm::dvec3(s, s, t.scaleZ.x + (t.scaleZ.y - t.scaleZ.x) * unitOf(k, 14));
+  const glm::dvec3 up = in.rotation * glm::dvec3(0, 0, 1);
+  in.position = sp.position - up * t.sinkDepth;
+  return in;
+}
+
+// --- painting -------------------------------------------------------------------------
+
+EditResult paint(FoliageStore& store, const Ground& ground, const PaintParams& p) {
+  EditResult res;
+  if (p.types.empty()) res.stats.messages.push_back("paint: no foliage type chosen: nothing placed");
+  if (!(p.densityFactor >= 0.0 && p.densityFactor <= 10.0))
+    res.stats.messages.push_back("paint: density factor " + formatNumber(p.densityFactor) +
+                                 " is out of range (0 to 10); using " +
+                                 formatNumber(std::clamp(std::isnan(p.densityFactor) ? 1.0 : p.densityFactor, 0.0, 10.0)));
+  const double factor = std::isnan(p.densityFactor) ? 1.0 : std::clamp(p.densityFactor, 0.0, 10.0);
+  for (uint16_t type : p.types) {
+    if (type >= store.types().size()) {
+      res.stats.messages.push_back("paint: no foliage type " + std::to_string(type));
+      continue;
+    }
+    placeType(store, ground, type, p.region, factor, key4(p.seed, type, 0xFA1Full, 0), p.threads, res);
+  }
+  return res;
+}
+
+EditResult fill(FoliageStore& store, const Ground& ground, const Region2& area, const TypeSet& types, uint64_t seed,
+                unsigned threads) {
+  PaintParams p;
+  p.region = area;
+  p.types = types;
+  p.seed = seed;
+  p.threads = threads;
+  return paint(store, ground, p);
+}
+
+EditResult scatter(FoliageStore& store, const Ground& ground, const TypeSet& types, uint64_t seed,
+                   const std::optional<Region2>& area, unsigned threads) {
+  Region2 region;
+  if (area) {
+    region = *area;
+  } else {
+    glm::dvec2 lo, hi;
+    ground.bounds(lo, hi);
+    region = Region2::rect(lo, hi);
+  }
+  return fill(store, ground, region, types, seed, threads);
+}
+
+// --- erasing and selections --------------------------------------------------------------
+
+EditResult erase(FoliageStore& store, const Region2& region, const TypeSet& types) {
+  EditResult res;
+  glm::dvec2 lo, hi;
+  region.bounds(lo, hi);
+  const std::vector<CellKey> keys = store.cellsIn(lo, hi);
+  for (const CellKey& k : keys) {
+    // Look before editing, so cells with nothing to erase stay out of the undo.
+    const Cell* c = store.cell(k);
+    bool any = false;
+    for (const Run& r : c->runs)
+      if (inSet(types, r.type))
+        for (const PackedInstance& p : r.items) any = any || region.contains(glm::dvec2(unpackPosition(p, k)));
+    if (!any) continue;
+    for (Run& r : store.edit(k, &res.undo).runs) {
+      if (!inSet(types, r.type)) continue;
+      const size_t before = r.items.size();
+      r.items.erase(std::remove_if(r.items.begin(), r.items.end(),
+                                   [&](const PackedInstance& p) { return region.contains(glm::dvec2(unpackPosition(p, k))); }),
+                    r.items.end());
+      res.stats.removed += before - r.items.size();
+    }
+  }
+  store.prune(res.undo.keys());
+  return res;
+}
+
+std::vector<uint32_t> Selection::ids() const {
+  std::vector<uint32_t> v;
+  for (const auto& [k, id] : items) v.push_back(id);
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+Selection selectPoint(const FoliageStore& store, const glm::dvec3& point, double radius, const TypeSet& types) {
+  Selection s;
+  double best = radius * radius;
+  bool found = false;
+  std::pair<CellKey, uint32_t> hit;
+  store.forEachCellIn(glm::dvec2(point) - radius, glm::dvec2(point) + radius, [&](const CellKey& k, const Cell& c) {
+    for (const Run& r : c.runs)
+      if (inSet(types, r.type))
+        for (const PackedInstance& p : r.items) {
+          const glm::dvec3 d = unpackPosition(p, k) - point;
+          const double d2 = glm::dot(d, d);
+          if (d2 <= best && (!found || d2 < best || p.id < hit.second)) {
+            best = d2;
+            hit = {k, p.id};
+            found = true;
+          }
+        }
+  });
+  if (found) s.items.push_back(hit);
+  return s;
+}
+
+Selection selectRegion(const FoliageStore& store, const Region2& region, const TypeSet& types) {
+  Selection s;
+  glm::dvec2 lo, hi;
+  region.bounds(lo, hi);
+  store.forEachCellIn(lo, hi, [&](const CellKey& k, const Cell& c) {
+    for (const Run& r : c.runs)
+      if (inSet(types, r.type))
+        for (const PackedInstance& p : r.items)
+          if (region.contains(glm::dvec2(unpackPosition(p, k)))) s.items.push_back({k, p.id});
+  });
+  std::sort(s.items.begin(), s.items.end());
+  return s;
+}
+
+namespace {
+
+// Takes the selected instances out of their cells (decoded), recording undo.
+std::vector<Instance> takeSelected(FoliageStore& store, const Selection& sel, FoliageUndo& undo) {
+  std::map<CellKey, std::vector<uint32_t>> byCell;
+  for (const auto& [k, id] : sel.items) byCell[k].push_back(id);
+  std::vector<Instance> out;
+  for (auto& [k, ids] : byCell) {
+    if (!store.cell(k)) continue;
+    std::sort(ids.begin(), ids.end());
+    for (Run& r : store.edit(k, &undo).runs) {
+      auto keep = std::stable_partition(r.items.begin(), r.items.end(), [&](const PackedInstance& p) {
+        return !std::binary_search(ids.begin(), ids.end(), p.id);
+      });
+      for (auto it = keep; it != r.items.end(); ++it) {
+        Instance in = unpack(*it, store.type(r.type).scaleMode, k);
+        in.type = r.type;
+        in.surface = r.surface;
+        out.push_back(in);
+      }
+      r.items.erase(keep, r.items.end());
+    }
+  }
+  return out;
+}
+
+// The surface an instance stands on near `pos` (its own kind first).
+std::optional<SurfacePoint> surfaceNear(const Ground& ground, const glm::dvec3& pos, Surface kind) {
+  if (kind == Surface::Terrain && ground.terrain) return terrainSurface(ground.terrain->height, glm::dvec2(pos));
+  std::optional<SurfacePoint> best;
+  double bestD = std::numeric_limits<double>::infinity();
+  for (const MeshGround* m : ground.meshes)
+    if (auto sp = m->closest(pos, 1e4)) {
+      const double d = glm::length(sp->position - pos);
+      if (d < bestD) {
+        bestD = d;
+        best = sp;
+      }
+    }
+  return best;
+}
+
+}  // namespace
+
+EditResult moveSelection(FoliageStore& store, const Ground& ground, Selection& sel, const glm::dvec3& offset,
+                         bool snap) {
+  EditResult res;
+  std::vector<Instance> taken = takeSelected(store, sel, res.undo);
+  sel.items.clear();
+  for (Instance in : taken) {
+    const Instance old = in;
+    in.position += offset;
+    if (snap) {
+      const FoliageType& t = store.type(in.type);
+      const glm::dvec3 up = in.rotation * glm::dvec3(0, 0, 1);
+      const glm::dvec3 anchor = in.position + up * t.sinkDepth;
+      if (auto sp = surfaceNear(ground, anchor, in.surface)) {
+        in.position = sp->position - up * t.sinkDepth;
+      } else {
+        in = old;
+        res.stats.messages.push_back("move: instance " + std::to_string(in.id) +
+                                     " has no surface under its new place; left where it was");
+      }
+    }
+    in.position = quantized(in.position);
+    if (in.position != old.position) ++res.stats.moved;
+    store.add(in, &res.undo, true);
+    sel.items.push_back({cellOf(in.position), in.id});
+  }
+  std::sort(sel.items.begin(), sel.items.end());
+  store.prune(res.undo.keys());
+  return res;
+}
+
+EditResult deleteSelection(FoliageStore& store, Selection& sel) {
+  EditResult res;
+  res.stats.removed = takeSelected(store, sel, res.undo).size();
+  sel.items.clear();
+  store.prune(res.undo.keys());
+  return res;
+}
+
+EditResult reapply(FoliageStore& store, const Ground& ground, Selection& sel, uint64_t seed) {
+  EditResult res;
+  std::vector<Instance> taken = takeSelected(store, sel, res.undo);
+  sel.items.clear();
+  for (const Instance& old : taken) {
+    const FoliageType& t = store.type(old.type);
+    const glm::dvec3 up = old.rotation * glm::dvec3(0, 0, 1);
+    // The surface point it was placed at: its anchor, before the sink.
+    const glm::dvec3 anchor = old.position + up * t.sinkDepth;
+    std::optional<SurfacePoint> sp = surfaceNear(ground, anchor, old.surface);
+    double weight = 0.0;
+    if (sp && sp->surface == Surface::Terrain && !t.layer.empty() && ground.terrain)
+      weight = terrainLayerWeight(*ground.terrain, terrainLayerIndex(*ground.terrain, t.layer), glm::dvec2(anchor));
+    if (!sp || !passesFilters(t, *sp, weight)) {
+      ++res.stats.removed;
+      continue;
+    }
+    Instance in = makeInstance(t, old.type, *sp, seed, old.id);
+    in.id = old.id;
+    in.position = quantized(in.position);
+    store.add(in, &res.undo, true);
+    sel.items.push_back({cellOf(in.position), in.id});
+    ++res.stats.changed;
+  }
+  if (res.stats.removed)
+    res.stats.messages.push_back("reapply: " + std::to_string(res.stats.removed) +
+                                 " instances no longer pass their type's filters; removed");
+  std::sort(sel.items.begin(), sel.items.end());
+  store.prune(res.undo.keys());
+  return res;
+}
+
+}  // namespace hs::foliage
