@@ -401,6 +401,13 @@ void FoliageStore::recordNextId(FoliageUndo* undo) const {
   }
 }
 
+uint32_t FoliageStore::takeIds(uint32_t n, FoliageUndo* undo) {
+  recordNextId(undo);
+  const uint32_t first = nextId_;
+  nextId_ += n;
+  return first;
+}
+
 uint32_t FoliageStore::add(Instance in, FoliageUndo* undo, bool keepId) {
   if (!keepId) {
     recordNextId(undo);

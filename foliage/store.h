@@ -136,6 +136,8 @@ class FoliageStore {
   void prune(const std::vector<CellKey>& keys);
   uint32_t nextId() const { return nextId_; }
   void setNextId(uint32_t id) { nextId_ = id; }
+  // Takes n consecutive ids (recording the next id in `undo`); returns the first.
+  uint32_t takeIds(uint32_t n, FoliageUndo* undo);
   // Records the next id in `undo` (before an edit that takes ids).
   void recordNextId(FoliageUndo* undo) const;
 

@@ -81,17 +81,13 @@ void forEachOfType(const FoliageStore& store, uint16_t type, const glm::dvec2& l
   });
 }
 
-// A candidate's source: the terrain, or a mesh's triangles (cumulative areas).
-struct MeshSource {
-  const MeshGround* mesh;
-  std::vector<uint32_t> faces;
-  std::vector<double> cumulative;
-};
-
+// A candidate that passed the filters: where and how it would stand.
 struct Evaluated {
-  bool ok = false;
-  bool filtered = false;  // refused by the filters (else outside)
-  Instance inst;
+  uint32_t slot;      // index into the attempt's pending list
+  uint32_t rot;       // packed rotation
+  uint16_t scale;     // packed scale
+  Surface surface;
+  glm::dvec3 position;  // quantised
 };
 
 void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const Region2& region, double factor,
@@ -136,100 +132,169 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
   const bool onTerrain = ground.terrain && t.surface != SurfaceFilter::Meshes && (t.layer.empty() || layer >= 0);
   const bool onMeshes = t.surface != SurfaceFilter::Terrain;
 
-  // Candidate counts: terrain uniform over the region's bounds, meshes by
-  // the area of their triangles under them.
+  // Candidates by strata, in an order that walks the ground (so the
+  // surface reads and the Poisson grid stay in cache): the terrain part of
+  // the region's bounds in 64 m tiles, row by row, then each mesh's
+  // triangles under the region in index order. A stratum gets candidates
+  // in proportion to its area (tile area; triangle area), by cumulative
+  // rounding from a seeded offset, so the total is the expected count.
   const uint64_t typeKey = key4(seed, type, 0x7E11ull, 0);
-  auto countFor = [&](double lambda, uint64_t salt) {
-    const double fl = std::floor(lambda);
-    return uint64_t(fl) + (unitOf(typeKey, salt) < lambda - fl ? 1u : 0u);
+  struct Stratum {
+    const MeshGround* mesh;  // null: a terrain tile
+    uint32_t face;
+    glm::dvec2 lo, hi;       // a terrain tile's rectangle
   };
-  std::vector<MeshSource> meshes;
-  std::vector<uint64_t> firstOf{0};  // candidate index ranges: [terrain, mesh 0, mesh 1, ...]
-  double lambdaTerrain = onTerrain ? perM2 * share * region.boundsArea() : 0.0;
-  double lambdaTotal = lambdaTerrain;
-  std::vector<double> lambdaMesh;
-  if (onMeshes)
+  std::vector<Stratum> strata;
+  std::vector<double> weights;  // areas
+  if (onTerrain) {
+    const double tile = std::max(64.0, 2.0 * r);
+    const int tx = std::max(1, int(std::ceil((hi.x - lo.x) / tile))), ty = std::max(1, int(std::ceil((hi.y - lo.y) / tile)));
+    for (int y = 0; y < ty; ++y)
+      for (int x = 0; x < tx; ++x) {
+        const glm::dvec2 a = lo + glm::dvec2(x, y) * tile, b = glm::min(a + tile, hi);
+        if (b.x > a.x && b.y > a.y) {
+          strata.push_back({nullptr, 0, a, b});
+          weights.push_back((b.x - a.x) * (b.y - a.y));
+        }
+      }
+  }
+  if (onMeshes) {
+    std::vector<uint32_t> faces;
     for (const MeshGround* m : ground.meshes) {
-      MeshSource s{m, {}, {}};
-      m->trianglesIn(lo, hi, s.faces);
-      double sum = 0.0;
-      s.cumulative.reserve(s.faces.size());
-      for (uint32_t f : s.faces) s.cumulative.push_back(sum += m->area(f));
-      lambdaMesh.push_back(perM2 * share * sum);
-      lambdaTotal += lambdaMesh.back();
-      meshes.push_back(std::move(s));
+      m->trianglesIn(lo, hi, faces);
+      for (uint32_t f : faces) {
+        strata.push_back({m, f, {}, {}});
+        weights.push_back(m->area(f));
+      }
     }
-  double cap = 1.0;
+  }
+  double lambdaTotal = 0.0;
+  for (double w : weights) lambdaTotal += w;
+  lambdaTotal *= perM2 * share;
+  double scaleBy = perM2 * share;
   if (lambdaTotal > kMaxCandidates) {
-    cap = kMaxCandidates / lambdaTotal;
+    scaleBy *= kMaxCandidates / lambdaTotal;
     st.messages.push_back(ctx + ": " + formatNumber(std::round(lambdaTotal)) + " candidates asked for; capped at " +
                           formatNumber(kMaxCandidates) + " (lower the density or the area)");
   }
-  firstOf.push_back(countFor(lambdaTerrain * cap, 1));
-  for (size_t m = 0; m < meshes.size(); ++m) firstOf.push_back(firstOf.back() + countFor(lambdaMesh[m] * cap, 2 + m));
+  std::vector<uint64_t> firstOf(strata.size() + 1, 0);
+  {
+    double cum = unitOf(typeKey, 1);
+    for (size_t i = 0; i < strata.size(); ++i) {
+      cum += weights[i] * scaleBy;
+      firstOf[i + 1] = std::max(firstOf[i], uint64_t(std::floor(cum)));
+    }
+  }
   const uint64_t total = firstOf.back();
   st.candidates += total;
   if (total == 0) return;
 
-  auto evaluate = [&](uint64_t i, int attempt, Evaluated& out) {
-    out.ok = out.filtered = false;
+  // Attempt 0 throws uniformly in its stratum; a candidate refused for
+  // spacing is thrown again near where it first fell (within twice the
+  // spacing on the terrain, on the same triangle on a mesh), so retries
+  // keep the density local and mostly stay where the filters said yes.
+  auto stratumOf = [&](uint64_t i) {
+    return size_t(std::upper_bound(firstOf.begin(), firstOf.end(), i) - firstOf.begin()) - 1;
+  };
+  // 0: passed (out filled), 1: outside, 2: filtered.
+  auto evaluate = [&](uint64_t i, size_t si, int attempt, Evaluated& out) -> int {
     const uint64_t key = key4(typeKey, i, uint64_t(attempt), 0xCA4Dull);
+    const Stratum& sr = strata[si];
     std::optional<SurfacePoint> sp;
-    double weight = 0.0;
-    if (i < firstOf[1]) {
-      const glm::dvec2 xy(lo.x + (hi.x - lo.x) * unitOf(key, 0), lo.y + (hi.y - lo.y) * unitOf(key, 1));
-      if (!region.contains(xy)) return;
+    if (!sr.mesh) {
+      const uint64_t k0 = attempt == 0 ? key : key4(typeKey, i, 0, 0xCA4Dull);
+      glm::dvec2 xy(sr.lo.x + (sr.hi.x - sr.lo.x) * unitOf(k0, 0), sr.lo.y + (sr.hi.y - sr.lo.y) * unitOf(k0, 1));
+      if (attempt > 0) {
+        const double rr = 2.0 * r * std::sqrt(unitOf(key, 0)), a = 2.0 * kPi * unitOf(key, 1);
+        xy += glm::dvec2(rr * std::cos(a), rr * std::sin(a));
+      }
+      if (!region.contains(xy)) return 1;
       sp = terrainSurface(ground.terrain->height, xy);
-      if (!sp) return;
-      if (layer >= 0) weight = terrainLayerWeight(*ground.terrain, layer, xy);
+      if (!sp) return 1;
+      if (!passesFilters(t, *sp, 0.0, false)) return 2;
+      if (layer >= 0 && !passesLayer(t, terrainLayerWeight(*ground.terrain, layer, xy))) return 2;
     } else {
-      const size_t m = size_t(std::upper_bound(firstOf.begin(), firstOf.end(), i) - firstOf.begin()) - 2;
-      const MeshSource& s = meshes[m];
-      const double a = unitOf(key, 0) * s.cumulative.back();
-      const size_t f = std::min(size_t(std::upper_bound(s.cumulative.begin(), s.cumulative.end(), a) -
-                                       s.cumulative.begin()), s.faces.size() - 1);
       const double u = std::sqrt(unitOf(key, 1)), v = unitOf(key, 2);
-      sp = s.mesh->pointOn(s.faces[f], glm::dvec3(1.0 - u, u * (1.0 - v), u * v));
-      if (!region.contains(glm::dvec2(sp->position))) return;
+      sp = sr.mesh->pointOn(sr.face, glm::dvec3(1.0 - u, u * (1.0 - v), u * v));
+      if (!region.contains(glm::dvec2(sp->position))) return 1;
+      if (!passesFilters(t, *sp, 0.0)) return 2;
     }
-    if (!passesFilters(t, *sp, weight)) {
-      out.filtered = true;
-      return;
-    }
-    out.inst = makeInstance(t, type, *sp, seed, key);
-    out.inst.position = quantized(out.inst.position);
-    out.ok = true;
+    const Instance in = makeInstance(t, type, *sp, seed, key);
+    out.position = quantized(in.position);
+    out.rot = packRotation(in.rotation);
+    out.scale = packScale(t.scaleMode, in.scale);
+    out.surface = sp->surface;
+    return 0;
   };
 
   std::vector<uint64_t> pending(total);
   for (uint64_t i = 0; i < total; ++i) pending[i] = i;
-  std::vector<Evaluated> eval;
-  std::vector<Instance> accepted;
+  std::vector<Evaluated> accepted;
+  const unsigned ranges = resolveThreads(threads) * 8;
+  std::vector<std::vector<Evaluated>> passed(ranges);
+  std::vector<size_t> outside(ranges), filtered(ranges);
   for (int attempt = 0; attempt < kAttempts && !pending.empty(); ++attempt) {
-    eval.assign(pending.size(), Evaluated{});
-    parallelFor(int64_t(pending.size()), int(threads), 2048, [&](int64_t b, int64_t e) {
-      for (int64_t k = b; k < e; ++k) evaluate(pending[size_t(k)], attempt, eval[size_t(k)]);
+    // Evaluate in parallel, each range into its own list, in order.
+    const size_t n = pending.size();
+    const size_t used = std::max<size_t>(1, std::min<size_t>(ranges, n / 1024));
+    parallelFor(int64_t(used), int(threads), 1, [&](int64_t b, int64_t e) {
+      for (int64_t rg = b; rg < e; ++rg) {
+        auto& out = passed[size_t(rg)];
+        out.clear();
+        outside[size_t(rg)] = filtered[size_t(rg)] = 0;
+        const size_t from = n * size_t(rg) / used, to = n * size_t(rg + 1) / used;
+        Evaluated ev;
+        size_t si = from < to ? stratumOf(pending[from]) : 0;
+        for (size_t k = from; k < to; ++k) {
+          while (pending[k] >= firstOf[si + 1]) ++si;  // pending is sorted
+          const int verdict = evaluate(pending[k], si, attempt, ev);
+          if (verdict == 0) {
+            ev.slot = uint32_t(k);
+            out.push_back(ev);
+          } else {
+            (verdict == 1 ? outside : filtered)[size_t(rg)]++;
+          }
+        }
+      }
     });
+    // Accept in candidate order, on this thread.
     std::vector<uint64_t> again;
-    for (size_t k = 0; k < pending.size(); ++k) {
-      const Evaluated& ev = eval[k];
-      if (!ev.ok) {
-        (ev.filtered ? st.filtered : st.outside)++;
-        continue;
+    for (size_t rg = 0; rg < used; ++rg) {
+      st.outside += outside[rg];
+      st.filtered += filtered[rg];
+      for (const Evaluated& ev : passed[rg]) {
+        if (r > 0.0 && grid.conflicts(ev.position)) {
+          if (attempt + 1 == kAttempts)
+            ++st.spacingRejected;
+          else
+            again.push_back(pending[ev.slot]);
+          continue;
+        }
+        if (r > 0.0) grid.insert(ev.position);
+        accepted.push_back(ev);
       }
-      if (r > 0.0 && grid.conflicts(ev.inst.position)) {
-        if (attempt + 1 == kAttempts)
-          ++st.spacingRejected;
-        else
-          again.push_back(pending[k]);
-        continue;
-      }
-      if (r > 0.0) grid.insert(ev.inst.position);
-      accepted.push_back(ev.inst);
     }
     pending = std::move(again);
   }
-  for (const Instance& in : accepted) store.add(in, &res.undo);
+  // Ids in acceptance order; then into the cells, one cell at a time.
+  const uint32_t firstId = store.takeIds(uint32_t(accepted.size()), &res.undo);
+  std::vector<std::pair<CellKey, uint32_t>> order(accepted.size());
+  for (size_t i = 0; i < accepted.size(); ++i) order[i] = {cellOf(accepted[i].position), uint32_t(i)};
+  std::sort(order.begin(), order.end());
+  for (size_t i = 0; i < order.size();) {
+    const CellKey k = order[i].first;
+    Cell& cell = store.edit(k, &res.undo);
+    for (; i < order.size() && order[i].first == k; ++i) {
+      const Evaluated& ev = accepted[order[i].second];
+      Instance in;
+      in.position = ev.position;
+      PackedInstance p = pack(in, t.scaleMode, k);
+      p.rot = ev.rot;
+      p.scale = ev.scale;
+      p.id = firstId + order[i].second;
+      cell.run(type, ev.surface).items.push_back(p);
+    }
+  }
   st.placed += accepted.size();
 }
 
@@ -245,15 +310,17 @@ glm::dquat alignTo(const glm::dvec3& n, double maxDeg) {
 
 }  // namespace
 
-bool passesFilters(const FoliageType& t, const SurfacePoint& sp, double layerWeight) {
+bool passesLayer(const FoliageType& t, double layerWeight) {
+  return layerWeight >= t.layerWeight.x && layerWeight <= t.layerWeight.y;
+}
+
+bool passesFilters(const FoliageType& t, const SurfacePoint& sp, double layerWeight, bool checkLayer) {
   if (t.surface == SurfaceFilter::Terrain && sp.surface != Surface::Terrain) return false;
   if (t.surface == SurfaceFilter::Meshes && sp.surface != Surface::Mesh) return false;
   if (!(sp.slopeDeg >= t.slopeDeg.x && sp.slopeDeg <= t.slopeDeg.y)) return false;
   const double z = sp.position.z;
   if (!(z >= t.altitude.x && z <= t.altitude.y)) return false;
-  if (!t.layer.empty() && sp.surface == Surface::Terrain &&
-      !(layerWeight >= t.layerWeight.x && layerWeight <= t.layerWeight.y))
-    return false;
+  if (checkLayer && !t.layer.empty() && sp.surface == Surface::Terrain && !passesLayer(t, layerWeight)) return false;
   return true;
 }
 

@@ -104,7 +104,8 @@ EditResult reapply(FoliageStore& store, const Ground& ground, Selection& selecti
 Instance makeInstance(const FoliageType& t, uint16_t type, const SurfacePoint& sp, uint64_t seed, uint64_t key);
 // Do the type's filters keep this point? `layerWeight` is the terrain's
 // weight of the type's layer there (ignored without a layer filter, and
-// for mesh points).
-bool passesFilters(const FoliageType& t, const SurfacePoint& sp, double layerWeight);
+// for mesh points; not checked when !checkLayer).
+bool passesFilters(const FoliageType& t, const SurfacePoint& sp, double layerWeight, bool checkLayer = true);
+bool passesLayer(const FoliageType& t, double layerWeight);
 
 }  // namespace hs::foliage

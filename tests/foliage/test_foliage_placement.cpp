@@ -94,10 +94,10 @@ class TestFoliagePlacement : public QObject {
     const double target = 800.0 * 512.0 * 512.0 / 1e4;
     qInfo("%zu instances for %.0f wanted", s.instanceCount(), target);
     QVERIFY(std::abs(double(s.instanceCount()) / target - 1.0) < 0.05);
-    // A second scatter over the same area adds (almost) nothing.
+    // A second scatter over the same area only tops up what the first missed.
     const size_t before = s.instanceCount();
     scatter(s, g, {0}, 12);
-    QVERIFY(double(s.instanceCount() - before) < 0.01 * target);
+    QVERIFY(double(s.instanceCount() - before) < 0.02 * target);
   }
 
   void slopeFilterAtExactLimits() {
