@@ -284,6 +284,17 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
   for (size_t i = 0; i < order.size();) {
     const CellKey k = order[i].first;
     Cell& cell = store.edit(k, &res.undo);
+    // Reservations: exact for a scatter into empty cells (16 bytes per
+    // record, not a doubling vector's up to 32), by half again when a dab
+    // adds a few to a full cell.
+    size_t adds[2] = {0, 0};
+    for (size_t j = i; j < order.size() && order[j].first == k; ++j) ++adds[int(accepted[order[j].second].surface)];
+    for (int sf = 0; sf < 2; ++sf)
+      if (adds[sf]) {
+        auto& items = cell.run(type, Surface(sf)).items;
+        if (items.capacity() < items.size() + adds[sf])
+          items.reserve(std::max(items.size() + adds[sf], items.size() * 3 / 2));
+      }
     for (; i < order.size() && order[i].first == k; ++i) {
       const Evaluated& ev = accepted[order[i].second];
       Instance in;

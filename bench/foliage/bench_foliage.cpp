@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
   pine.scale = {0.8, 1.3};
   const double share = keptShare(pine, t);
   const double areaHa = double(n - 1) * double(n - 1) / 1e4;
-  pine.densityPerHa = 1e6 * scale / (areaHa * share);
+  pine.densityPerHa = 1.035e6 * scale / (areaHa * share);  // the Poisson refusals take ~3%
   std::printf("scatter: density %.0f/ha, spacing %.1f m, slope 0-35 deg, altitude 0-400 m, layer weight 0.1-1 "
               "(the filters keep %.1f%% of the area)\n",
               pine.densityPerHa, pine.spacing, share * 100.0);
