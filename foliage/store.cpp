@@ -88,6 +88,11 @@ std::vector<uint8_t> rawPayload(const Cell& cell) {
 
 }  // namespace
 
+uint64_t rawPayloadHash(const Cell& cell) {
+  const std::vector<uint8_t> raw = rawPayload(cell);
+  return contentHash(raw.data(), raw.size());
+}
+
 std::vector<uint8_t> encodeCell(const CellKey& key, const Cell& cell, int level) {
   const std::vector<uint8_t> raw = rawPayload(cell);
   thread_local std::unique_ptr<Deflater> deflater;

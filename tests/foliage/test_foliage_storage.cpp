@@ -1,8 +1,10 @@
 // Foliage types (declarations, validation, JSON), the 16-byte instance
 // record (its error bounds, at UTM coordinates too), cell blobs (round
 // trip, corrupt and truncated blobs), dirty tracking, stable ids, undo.
+#include <map>
 #include <random>
 
+#include "foliage/manifest.h"
 #include "foliage_fixtures.h"
 
 using namespace fx;
@@ -310,6 +312,60 @@ class TestFoliageStorage : public QObject {
     for (size_t i = 0; i < save.write.size(); ++i) QVERIFY(t.load(save.write[i], save.blobs[i]).ok());
     QCOMPARE(t.allInstances()[0].id, next);
     QCOMPARE(t.nextId(), next + 1);
+  }
+
+  // The scene's view: a manifest and a blob per cell. One damaged, stale or
+  // missing blob drops that cell with a message naming it; the rest loads
+  // with the same ids.
+  void manifestLoadsAroundDamagedCells() {
+    FoliageStore s = filled(8000, 12, glm::dvec3(5e5, 4.4e6, 100));
+    erase(s, Region2::disc({5e5 + 50, 4.4e6 + 50}, 10));  // ids with gaps, next id past them
+    const hs::Json manifest = manifestJson(s);
+    const SaveSet save = s.dirty();
+    std::map<CellKey, std::vector<uint8_t>> file;
+    for (size_t i = 0; i < save.write.size(); ++i) file[save.write[i]] = save.blobs[i];
+    auto reader = [&](const CellKey& k) -> std::optional<std::vector<uint8_t>> {
+      auto it = file.find(k);
+      if (it == file.end()) return std::nullopt;
+      return it->second;
+    };
+    // Through text, as the document keeps it.
+    std::string error;
+    const auto parsed = hs::parseJson(hs::writeJson(manifest), error);
+    QVERIFY(parsed);
+    FoliageStore t;
+    LoadReport rep;
+    QVERIFY2(loadStore(*parsed, reader, t, rep, error), error.c_str());
+    QCOMPARE(rep.cellsDropped, size_t(0));
+    QVERIFY(same(snapshot(s), snapshot(t)));
+    QVERIFY(t.types() == s.types());
+
+    // Damage three cells: truncate one, drop one, replace one by a valid
+    // blob of another version of that cell.
+    auto it = file.begin();
+    const CellKey truncated = it->first, missing = std::next(it)->first, stale = std::next(it, 2)->first;
+    file[truncated].resize(file[truncated].size() - 3);
+    file.erase(missing);
+    Cell other = *s.cell(stale);
+    other.runs[0].items.pop_back();
+    file[stale] = encodeCell(stale, other);
+    FoliageStore u;
+    LoadReport bad;
+    QVERIFY(loadStore(*parsed, reader, u, bad, error));
+    QCOMPARE(bad.cellsDropped, size_t(3));
+    QCOMPARE(bad.cellsLoaded, s.cellCount() - 3);
+    const size_t lost = s.cell(truncated)->count() + s.cell(missing)->count() + s.cell(stale)->count();
+    QCOMPARE(bad.instancesDropped, lost);
+    QCOMPARE(u.instanceCount(), s.instanceCount() - lost);
+    QVERIFY(anyContains(bad.messages, {"foliage cell " + cellName(truncated), "byte offset", "truncated"}));
+    QVERIFY(anyContains(bad.messages, {"foliage cell " + cellName(missing), "missing"}));
+    QVERIFY(anyContains(bad.messages, {"foliage cell " + cellName(stale), "another version"}));
+    QCOMPARE(u.nextId(), s.nextId());  // ids of the lost cells are not handed out again
+    // A bad manifest is an error with its path.
+    hs::Json broken = manifest;
+    broken["cells"][1]["hash"] = "xyz";
+    QVERIFY(!loadStore(broken, reader, u, bad, error));
+    QVERIFY2(error.find("foliage.cells[1].hash") != std::string::npos, error.c_str());
   }
 
   void scaleModeChangeReencodes() {
