@@ -90,8 +90,33 @@ struct Evaluated {
   glm::dvec3 position;  // quantised
 };
 
+// A paint-layer region: the terrain where `layer` weighs at least `min`.
+struct LayerMask {
+  int layer = -1;
+  double min = 0.5;
+};
+
+// The area of the mask within the region: the terrain cells whose centre
+// is in both.
+double maskedArea(const terrain::Terrain& tr, const Region2& region, const LayerMask& mask) {
+  glm::dvec2 lo, hi;
+  region.bounds(lo, hi);
+  const terrain::Heightfield& hf = tr.height;
+  const glm::dvec2 o(hf.origin()), sp = hf.spacing();
+  const int x0 = std::max(0, int(std::floor((lo.x - o.x) / sp.x))), y0 = std::max(0, int(std::floor((lo.y - o.y) / sp.y)));
+  const int x1 = std::min(hf.samplesX() - 2, int(std::ceil((hi.x - o.x) / sp.x)));
+  const int y1 = std::min(hf.samplesY() - 2, int(std::ceil((hi.y - o.y) / sp.y)));
+  size_t cells = 0;
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const glm::dvec2 c = o + (glm::dvec2(x, y) + 0.5) * sp;
+      cells += region.contains(c) && terrainLayerWeight(tr, mask.layer, c) >= mask.min;
+    }
+  return double(cells) * sp.x * sp.y;
+}
+
 void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const Region2& region, double factor,
-               uint64_t seed, unsigned threads, EditResult& res) {
+               uint64_t seed, unsigned threads, EditResult& res, const LayerMask* mask) {
   const FoliageType& t = store.type(type);
   OpStats& st = res.stats;
   const std::string ctx = typeContext(t);
@@ -102,11 +127,15 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
   }
   glm::dvec2 lo, hi;
   region.bounds(lo, hi);
-  const double regionArea = region.area();
+  const double regionArea = mask ? maskedArea(*ground.terrain, region, *mask) : region.area();
   if (!(regionArea > 0.0)) {
-    st.messages.push_back(ctx + ": the region is empty (radius or area 0): nothing placed");
+    st.messages.push_back(ctx + (mask ? ": the paint layer covers none of the region: nothing placed"
+                                      : ": the region is empty (radius or area 0): nothing placed"));
     return;
   }
+  auto inMask = [&](const glm::dvec2& xy) {
+    return !mask || terrainLayerWeight(*ground.terrain, mask->layer, xy) >= mask->min;
+  };
   const double r = t.spacing;
   const double margin = r + std::abs(t.sinkDepth) + 1.0;
   // What is there already: the Poisson grid, and the share of the density
@@ -115,7 +144,7 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
   size_t existing = 0;
   forEachOfType(store, type, lo - margin, hi + margin, [&](const glm::dvec3& pos, const PackedInstance&, Surface) {
     if (r > 0.0) grid.insert(pos);
-    if (region.contains(glm::dvec2(pos))) ++existing;
+    if (region.contains(glm::dvec2(pos)) && inMask(glm::dvec2(pos))) ++existing;
   });
   const double target = perM2 * regionArea;
   const double share = std::max(0.0, 1.0 - double(existing) / target);
@@ -130,7 +159,7 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
     }
   }
   const bool onTerrain = ground.terrain && t.surface != SurfaceFilter::Meshes && (t.layer.empty() || layer >= 0);
-  const bool onMeshes = t.surface != SurfaceFilter::Terrain;
+  const bool onMeshes = t.surface != SurfaceFilter::Terrain && !mask;
 
   // Candidates by strata, in an order that walks the ground (so the
   // surface reads and the Poisson grid stay in cache): the terrain part of
@@ -208,7 +237,7 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
         const double rr = 2.0 * r * std::sqrt(unitOf(key, 0)), a = 2.0 * kPi * unitOf(key, 1);
         xy += glm::dvec2(rr * std::cos(a), rr * std::sin(a));
       }
-      if (!region.contains(xy)) return 1;
+      if (!region.contains(xy) || !inMask(xy)) return 1;
       sp = terrainSurface(ground.terrain->height, xy);
       if (!sp) return 1;
       if (!passesFilters(t, *sp, 0.0, false)) return 2;
@@ -372,7 +401,38 @@ EditResult paint(FoliageStore& store, const Ground& ground, const PaintParams& p
       res.stats.messages.push_back("paint: no foliage type " + std::to_string(type));
       continue;
     }
-    placeType(store, ground, type, p.region, factor, key4(p.seed, type, 0xFA1Full, 0), p.threads, res);
+    placeType(store, ground, type, p.region, factor, key4(p.seed, type, 0xFA1Full, 0), p.threads, res, nullptr);
+  }
+  return res;
+}
+
+EditResult fillLayer(FoliageStore& store, const Ground& ground, const std::string& layer, double minWeight,
+                     const TypeSet& types, uint64_t seed, const std::optional<Region2>& area, unsigned threads) {
+  EditResult res;
+  if (!ground.terrain) {
+    res.stats.messages.push_back("fill: paint layer \"" + layer + "\": there is no terrain");
+    return res;
+  }
+  LayerMask mask;
+  mask.layer = terrainLayerIndex(*ground.terrain, layer);
+  mask.min = std::clamp(std::isnan(minWeight) ? 0.5 : minWeight, 0.0, 1.0);
+  if (mask.layer < 0) {
+    res.stats.messages.push_back("fill: the terrain has no paint layer \"" + layer + "\": nothing placed");
+    return res;
+  }
+  Region2 region;
+  if (area) {
+    region = *area;
+  } else {
+    const glm::dvec2 o(ground.terrain->height.origin());
+    region = Region2::rect(o, o + ground.terrain->height.sizeMetres());
+  }
+  for (uint16_t type : types) {
+    if (type >= store.types().size()) {
+      res.stats.messages.push_back("fill: no foliage type " + std::to_string(type));
+      continue;
+    }
+    placeType(store, ground, type, region, 1.0, key4(seed, type, 0xF111ull, 0), threads, res, &mask);
   }
   return res;
 }

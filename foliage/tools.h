@@ -67,6 +67,12 @@ EditResult paint(FoliageStore& store, const Ground& ground, const PaintParams& p
 // type with a paint-layer filter fills only that layer's region.
 EditResult fill(FoliageStore& store, const Ground& ground, const Region2& area, const TypeSet& types,
                 uint64_t seed, unsigned threads = 0);
+// Fills a paint-layer region: the terrain where `layer` (a material name)
+// weighs at least `minWeight`, within `area` (default: the whole terrain).
+// Terrain only; the types' own filters apply too.
+EditResult fillLayer(FoliageStore& store, const Ground& ground, const std::string& layer, double minWeight,
+                     const TypeSet& types, uint64_t seed, const std::optional<Region2>& area = std::nullopt,
+                     unsigned threads = 0);
 // The rule-based scatter: each type over the whole ground (or `area`), by
 // its own rules (density, spacing, slope, altitude, layer, surface).
 EditResult scatter(FoliageStore& store, const Ground& ground, const TypeSet& types, uint64_t seed,

@@ -190,6 +190,41 @@ class TestFoliagePlacement : public QObject {
              r.stats.messages[0].c_str());
   }
 
+  // Fill a paint-layer region: instances only where the layer weighs
+  // enough, at the type's density there; undo takes them away exactly.
+  void fillPaintLayerRegion() {
+    ht::Terrain t = terrain(257, 1.0, {0, 0, 0}, bumps);
+    for (int y = 0; y < 257; ++y)
+      for (int x = 0; x < 257; ++x)
+        if (std::hypot(x - 128.0, y - 100.0) < 70.0) t.paint.blend(x, y, 2, 1.0f);
+    Ground g{&t, {}};
+    FoliageStore s;
+    addType(s, type("Heather", 1500, 0.8));
+    const Snapshot before = snapshot(s);
+    EditResult r = fillLayer(s, g, t.paint.material(2).name, 0.5, {0}, 3);
+    const int layer = 2;
+    size_t inside = 0;
+    for (const Instance& in : s.allInstances()) {
+      QVERIFY(terrainLayerWeight(t, layer, glm::dvec2(in.position)) >= 0.5);
+      ++inside;
+    }
+    const double target = 1500.0 / 1e4 * 3.14159265 * 70.0 * 70.0;
+    qInfo("layer fill: %zu instances for about %.0f wanted", inside, target);
+    QVERIFY(std::abs(double(inside) / target - 1.0) < 0.06);
+    // Filling again adds almost nothing; undo restores the empty store.
+    const size_t n = s.instanceCount();
+    fillLayer(s, g, t.paint.material(2).name, 0.5, {0}, 4);
+    QVERIFY(double(s.instanceCount() - n) < 0.03 * target);
+    r.undo.swap(s);  // (undo in order: the second fill added no cell of its own)
+    FoliageStore e;
+    addType(e, type("Heather", 1500, 0.8));
+    EditResult again = fillLayer(e, g, t.paint.material(2).name, 0.5, {0}, 3);
+    again.undo.swap(e);
+    QVERIFY(same(before, snapshot(e)));
+    const EditResult none = fillLayer(e, g, "Lava", 0.5, {0}, 3);
+    QVERIFY(!none.stats.messages.empty() && none.stats.messages[0].find("Lava") != std::string::npos);
+  }
+
   void badInputIsRefusedClearly() {
     const ht::Terrain t = terrain(65, 1.0, {0, 0, 0}, bumps);
     Ground g{&t, {}};
@@ -253,7 +288,7 @@ class TestFoliagePlacement : public QObject {
   // Undo restores the exact instance set (bits and ids) after every tool,
   // redo the exact result.
   void undoAndRedoOfEveryTool() {
-    const ht::Terrain t = terrain(129, 1.0, {0, 0, 0}, bumps);
+    ht::Terrain t = terrain(129, 1.0, {0, 0, 0}, bumps);
     Ground g{&t, {}};
     FoliageStore s;
     addType(s, type("A", 2000, 1.0));
@@ -261,6 +296,7 @@ class TestFoliagePlacement : public QObject {
     b.alignToNormal = true;
     b.sinkDepth = 0.2;
     addType(s, b);
+    addType(s, type("C", 3000, 0.5));  // for the layer fill alone
     scatter(s, g, {0}, 5);
     auto check = [&](const char* what, const std::function<EditResult()>& op) {
       const Snapshot before = snapshot(s);
@@ -282,6 +318,11 @@ class TestFoliagePlacement : public QObject {
     check("erase", [&] { return erase(s, Region2::disc({60, 60}, 15)); });
     check("fill", [&] { return fill(s, g, Region2::poly({{0, 0}, {128, 0}, {0, 128}}), {1}, 3); });
     check("scatter", [&] { return scatter(s, g, {0, 1}, 77); });
+    check("layer fill", [&] {
+      for (int y = 20; y < 60; ++y)
+        for (int x = 20; x < 60; ++x) t.paint.blend(x, y, 3, 1.0f);
+      return fillLayer(s, g, t.paint.material(3).name, 0.5, {2}, 8);
+    });
     Selection sel = selectRegion(s, Region2::rect({10, 10}, {50, 90}));
     QVERIFY(sel.size() > 100);
     check("move", [&] { return moveSelection(s, g, sel, {70.0, 3.0, 0.0}, true); });
