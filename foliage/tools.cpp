@@ -27,45 +27,51 @@ bool inSet(const TypeSet& set, uint16_t t) { return set.empty() || std::find(set
 
 std::string typeContext(const FoliageType& t) { return "foliage type \"" + t.name + "\""; }
 
-// Points of one type near a stroke, in cells of the spacing's size: the
-// Poisson test's neighbour search.
+// Points near a stroke, each with the distance it keeps (the type's own
+// spacing; between competing types the mean of their spacings), in cells
+// at least that large: the Poisson test's neighbour search.
 class PoissonGrid {
  public:
-  PoissonGrid(const glm::dvec2& lo, const glm::dvec2& hi, double r) : lo_(lo), r_(r) {
+  PoissonGrid(const glm::dvec2& lo, const glm::dvec2& hi, double maxRadius) : lo_(lo) {
     const glm::dvec2 ext = glm::max(hi - lo, glm::dvec2(1e-9));
-    cell_ = std::max(r, std::sqrt(ext.x * ext.y / double(1 << 24)));
+    cell_ = std::max(maxRadius, std::sqrt(ext.x * ext.y / double(1 << 24)));
     nx_ = std::max(1, int(std::min(ext.x / cell_ + 1.0, 1e7)));
     ny_ = std::max(1, int(std::min(ext.y / cell_ + 1.0, 1e7)));
     head_.assign(size_t(nx_) * size_t(ny_), -1);
   }
-  void insert(const glm::dvec3& p) {
+  void insert(const glm::dvec3& p, double radius) {
+    if (!(radius > 0.0)) return;
     const size_t c = index(cx(p.x), cy(p.y));
-    pts_.push_back(p);
+    pts_.push_back({p, radius * radius});
     next_.push_back(head_[c]);
     head_[c] = int32_t(pts_.size() - 1);
   }
-  // Is any point closer than r to p (3D)?
+  // Is p closer (3D) to any point than that point's distance?
   bool conflicts(const glm::dvec3& p) const {
     const int x = cx(p.x), y = cy(p.y);
-    const double r2 = r_ * r_;
     for (int yy = std::max(0, y - 1); yy <= std::min(ny_ - 1, y + 1); ++yy)
       for (int xx = std::max(0, x - 1); xx <= std::min(nx_ - 1, x + 1); ++xx)
         for (int32_t i = head_[index(xx, yy)]; i >= 0; i = next_[size_t(i)]) {
-          const glm::dvec3 d = pts_[size_t(i)] - p;
-          if (glm::dot(d, d) < r2) return true;
+          const glm::dvec3 d = pts_[size_t(i)].p - p;
+          if (glm::dot(d, d) < pts_[size_t(i)].r2) return true;
         }
     return false;
   }
+  bool empty() const { return pts_.empty(); }
 
  private:
+  struct Point {
+    glm::dvec3 p;
+    double r2;
+  };
   int cx(double x) const { return std::clamp(int(std::floor((x - lo_.x) / cell_)), 0, nx_ - 1); }
   int cy(double y) const { return std::clamp(int(std::floor((y - lo_.y) / cell_)), 0, ny_ - 1); }
   size_t index(int x, int y) const { return size_t(y) * size_t(nx_) + size_t(x); }
   glm::dvec2 lo_;
-  double r_, cell_ = 1.0;
+  double cell_ = 1.0;
   int nx_ = 1, ny_ = 1;
   std::vector<int32_t> head_, next_;
-  std::vector<glm::dvec3> pts_;
+  std::vector<Point> pts_;
 };
 
 // Every instance of `type` whose XY lies in [lo, hi].
@@ -116,7 +122,8 @@ double maskedArea(const terrain::Terrain& tr, const Region2& region, const Layer
 }
 
 void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const Region2& region, double factor,
-               uint64_t seed, unsigned threads, EditResult& res, const LayerMask* mask) {
+               uint64_t seed, unsigned threads, EditResult& res, const LayerMask* mask,
+               const TypeSet& competitors = {}) {
   const FoliageType& t = store.type(type);
   OpStats& st = res.stats;
   const std::string ctx = typeContext(t);
@@ -137,15 +144,26 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
     return !mask || terrainLayerWeight(*ground.terrain, mask->layer, xy) >= mask->min;
   };
   const double r = t.spacing;
-  const double margin = r + std::abs(t.sinkDepth) + 1.0;
-  // What is there already: the Poisson grid, and the share of the density
-  // still missing in the region.
-  PoissonGrid grid(lo - margin, hi + margin, r);
+  double maxR = r;
+  for (uint16_t c : competitors)
+    if (c != type && c < store.types().size()) maxR = std::max(maxR, 0.5 * (store.type(c).spacing + r));
+  const double margin = maxR + std::abs(t.sinkDepth) + 1.0;
+  // What is there already: the Poisson grid (this type's instances, and
+  // those of competing types at the mean of the two spacings), and the
+  // share of the density still missing in the region.
+  PoissonGrid grid(lo - margin, hi + margin, maxR);
   size_t existing = 0;
   forEachOfType(store, type, lo - margin, hi + margin, [&](const glm::dvec3& pos, const PackedInstance&, Surface) {
-    if (r > 0.0) grid.insert(pos);
+    grid.insert(pos, r);
     if (region.contains(glm::dvec2(pos)) && inMask(glm::dvec2(pos))) ++existing;
   });
+  for (uint16_t c : competitors)
+    if (c != type && c < store.types().size()) {
+      const double rc = 0.5 * (store.type(c).spacing + r);
+      forEachOfType(store, c, lo - margin, hi + margin,
+                    [&](const glm::dvec3& pos, const PackedInstance&, Surface) { grid.insert(pos, rc); });
+    }
+  const bool useGrid = maxR > 0.0;
   const double target = perM2 * regionArea;
   const double share = std::max(0.0, 1.0 - double(existing) / target);
   if (share <= 0.0) return;
@@ -292,14 +310,14 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
       st.outside += outside[rg];
       st.filtered += filtered[rg];
       for (const Evaluated& ev : passed[rg]) {
-        if (r > 0.0 && grid.conflicts(ev.position)) {
+        if (useGrid && grid.conflicts(ev.position)) {
           if (attempt + 1 == kAttempts)
             ++st.spacingRejected;
           else
             again.push_back(pending[ev.slot]);
           continue;
         }
-        if (r > 0.0) grid.insert(ev.position);
+        grid.insert(ev.position, r);
         accepted.push_back(ev);
       }
     }
@@ -448,7 +466,7 @@ EditResult fill(FoliageStore& store, const Ground& ground, const Region2& area, 
 }
 
 EditResult scatter(FoliageStore& store, const Ground& ground, const TypeSet& types, uint64_t seed,
-                   const std::optional<Region2>& area, unsigned threads) {
+                   const std::optional<Region2>& area, unsigned threads, bool compete) {
   Region2 region;
   if (area) {
     region = *area;
@@ -457,7 +475,16 @@ EditResult scatter(FoliageStore& store, const Ground& ground, const TypeSet& typ
     ground.bounds(lo, hi);
     region = Region2::rect(lo, hi);
   }
-  return fill(store, ground, region, types, seed, threads);
+  if (!compete) return fill(store, ground, region, types, seed, threads);
+  EditResult res;
+  for (uint16_t type : types) {
+    if (type >= store.types().size()) {
+      res.stats.messages.push_back("scatter: no foliage type " + std::to_string(type));
+      continue;
+    }
+    placeType(store, ground, type, region, 1.0, key4(seed, type, 0xFA1Full, 0), threads, res, nullptr, types);
+  }
+  return res;
 }
 
 // --- erasing and selections --------------------------------------------------------------

@@ -74,9 +74,12 @@ EditResult fillLayer(FoliageStore& store, const Ground& ground, const std::strin
                      const TypeSet& types, uint64_t seed, const std::optional<Region2>& area = std::nullopt,
                      unsigned threads = 0);
 // The rule-based scatter: each type over the whole ground (or `area`), by
-// its own rules (density, spacing, slope, altitude, layer, surface).
+// its own rules (density, spacing, slope, altitude, layer, surface). With
+// `compete`, the types compete for room in the order given (the first, the
+// trees, win): an instance keeps from those of every other type in the set
+// the mean of the two types' spacings (their collision radii added).
 EditResult scatter(FoliageStore& store, const Ground& ground, const TypeSet& types, uint64_t seed,
-                   const std::optional<Region2>& area = std::nullopt, unsigned threads = 0);
+                   const std::optional<Region2>& area = std::nullopt, unsigned threads = 0, bool compete = false);
 
 // Removes the instances (of `types`; empty: all) whose XY lies in the region.
 EditResult erase(FoliageStore& store, const Region2& region, const TypeSet& types = {});

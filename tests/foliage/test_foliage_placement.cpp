@@ -225,6 +225,34 @@ class TestFoliagePlacement : public QObject {
     QVERIFY(!none.stats.messages.empty() && none.stats.messages[0].find("Lava") != std::string::npos);
   }
 
+  // Species compete in the rule-based scatter: shrubs keep the mean of the
+  // two spacings from trees (without competition some stand closer).
+  void speciesCompete() {
+    const ht::Terrain t = terrain(129, 1.0, {0, 0, 0}, bumps);
+    Ground g{&t, {}};
+    auto nearestTree = [](const std::vector<Instance>& all) {
+      double best = std::numeric_limits<double>::infinity();
+      for (const Instance& a : all)
+        if (a.type == 1)
+          for (const Instance& b : all)
+            if (b.type == 0) best = std::min(best, glm::length(a.position - b.position));
+      return best;
+    };
+    for (bool compete : {false, true}) {
+      FoliageStore s;
+      addType(s, type("Tree", 150, 6.0));
+      addType(s, type("Shrub", 2500, 1.0));
+      scatter(s, g, {0, 1}, 9, std::nullopt, 0, compete);
+      const auto all = s.allInstances();
+      QVERIFY(s.instanceCount(0) > 100 && s.instanceCount(1) > 1000);
+      const double d = nearestTree(all);
+      qInfo("compete %d: %zu trees, %zu shrubs, nearest shrub to a tree %.3f m", int(compete), s.instanceCount(0),
+            s.instanceCount(1), d);
+      QCOMPARE(d >= 3.5, compete);
+      QVERIFY(closestPair(all, 0) >= 6.0 && closestPair(all, 1) >= 1.0);
+    }
+  }
+
   void badInputIsRefusedClearly() {
     const ht::Terrain t = terrain(65, 1.0, {0, 0, 0}, bumps);
     Ground g{&t, {}};
