@@ -7,6 +7,8 @@
 #include "foliage/ground_follow.h"
 #include "foliage_fixtures.h"
 #include "meshproc/closest_point_bvh.h"
+#include "terrain/erosion_thermal.h"
+#include "terrain/stroke.h"
 
 using namespace fx;
 
@@ -445,6 +447,61 @@ class TestFoliagePlacement : public QObject {
     }
     undo.swap(s);
     QVERIFY(same(prior, snapshot(s)));
+  }
+
+  // Through the terrain library's own edits: a raise stroke and a thermal
+  // erosion under the instances. After each, every instance stands on the
+  // drawn surface within 1 mm; undoing the terrain step and the foliage
+  // step of the same edit restores both exactly.
+  void followsRealStrokesAndErosion() {
+    ht::Terrain t = terrain(257, 1.0, {5e5, 4.4e6, 200}, bumps);
+    Ground g{&t, {}};
+    FoliageStore s;
+    FoliageType ft = type("Birch", 1200, 1.5);
+    ft.alignToNormal = true;
+    ft.sinkDepth = 0.25;
+    addType(s, ft);
+    scatter(s, g, {0}, 6);
+    auto worst = [&] {
+      double w = 0.0;
+      for (const Instance& in : s.allInstances()) {
+        const glm::dvec3 anchor = in.position + in.rotation * glm::dvec3(0, 0, 1) * ft.sinkDepth;
+        w = std::max(w, std::abs(anchor.z - terrainSurface(t.height, glm::dvec2(anchor))->position.z));
+      }
+      return w;
+    };
+    const double placed = worst();
+    const Snapshot start = snapshot(s);
+    // A stroke of raise dabs across the middle.
+    ht::Heightfield before = t.height.clone();
+    ht::BrushSettings bs;
+    bs.tool = ht::BrushTool::Raise;
+    bs.radius = 30.0;
+    bs.strength = 3.0f;
+    ht::Stroke stroke(t, bs, 1);
+    for (int i = 0; i <= 10; ++i) stroke.moveTo({60.0 + 14.0 * i, 128.0 + 3.0 * i});
+    ht::UndoStep step = stroke.finish();
+    FollowStats st;
+    FoliageUndo fu = followGround(s, before, t.height, step.region(), &st);
+    const double afterStroke = worst();
+    // A thermal erosion of the whole terrain.
+    before = t.height.clone();
+    ht::ThermalParams tp;
+    tp.talusDegrees = 20.0;
+    tp.iterations = 20;
+    ht::erodeThermal(t.height, tp, ht::ErosionMask::whole(t.height));
+    FollowStats st2;
+    FoliageUndo fu2 = followGround(s, before, t.height, t.height.bounds(), &st2);
+    const double afterErosion = worst();
+    qInfo("worst distance to the surface: %.3f mm placed, %.3f mm after the stroke (%zu moved), %.3f mm after "
+          "erosion (%zu moved)", placed * 1e3, afterStroke * 1e3, st.moved, afterErosion * 1e3, st2.moved);
+    QVERIFY(st.moved > 500 && st2.moved > 500);
+    QVERIFY(afterStroke <= 1e-3 && afterErosion <= 1e-3);
+    // Undo the erosion's foliage step, then the stroke's (the terrain is
+    // the document's to restore; the foliage comes back exactly).
+    fu2.swap(s);
+    fu.swap(s);
+    QVERIFY(same(start, snapshot(s)));
   }
 
   // A scan at UTM coordinates: instances lie on its surface within 1 mm,
