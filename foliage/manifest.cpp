@@ -31,6 +31,33 @@ Json manifestJson(const FoliageStore& store) {
   return j;
 }
 
+Json infoJson(const FoliageStore& store) {
+  std::vector<size_t> count(store.types().size(), 0);
+  size_t runBytes = 0;
+  for (const auto& [k, c] : store.cells())
+    for (const Run& r : c.runs) {
+      count[r.type] += r.items.size();
+      runBytes += r.items.capacity() * sizeof(PackedInstance);
+    }
+  Json types = Json::array();
+  size_t total = 0;
+  for (size_t i = 0; i < count.size(); ++i) {
+    Json t = Json::object();
+    t["name"] = store.type(i).name;
+    t["mesh"] = store.type(i).mesh;
+    t["instances"] = count[i];
+    t["bytes"] = count[i] * sizeof(PackedInstance);
+    types.push_back(std::move(t));
+    total += count[i];
+  }
+  Json j = Json::object();
+  j["types"] = std::move(types);
+  j["instances"] = total;
+  j["cells"] = store.cellCount();
+  j["bytes"] = runBytes + store.cellCount() * (sizeof(Cell) + sizeof(CellKey));
+  return j;
+}
+
 bool loadStore(const Json& manifest, const std::function<std::optional<std::vector<uint8_t>>(const CellKey&)>& readBlob,
                FoliageStore& out, LoadReport& report, std::string& error) {
   JsonReader r(error);

@@ -28,6 +28,11 @@ uint64_t cellContentHash(const Cell& cell);
 //  "instances": n, "hash": "16 hex digits"}, ...]} (cells in key order).
 Json manifestJson(const FoliageStore& store);
 
+// What `info` shows: per type its name, mesh, instance count and the bytes
+// its records take in memory, then the totals and the cell count.
+// {"types": [{"name", "mesh", "instances", "bytes"}], "instances", "cells", "bytes"}
+Json infoJson(const FoliageStore& store);
+
 struct LoadReport {
   size_t cellsLoaded = 0, cellsDropped = 0, instancesDropped = 0;
   std::vector<std::string> messages;  // one per dropped cell

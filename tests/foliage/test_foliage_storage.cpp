@@ -329,6 +329,10 @@ class TestFoliageStorage : public QObject {
       if (it == file.end()) return std::nullopt;
       return it->second;
     };
+    const hs::Json info = infoJson(s);
+    QCOMPARE(info["instances"].get<size_t>(), s.instanceCount());
+    QCOMPARE(info["types"][1]["name"].get<std::string>(), std::string("Grass"));
+    QCOMPARE(info["types"][1]["instances"].get<size_t>(), s.instanceCount(1));
     // Through text, as the document keeps it.
     std::string error;
     const auto parsed = hs::parseJson(hs::writeJson(manifest), error);
