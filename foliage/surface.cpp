@@ -164,6 +164,11 @@ std::optional<SurfacePoint> MeshGround::closest(const glm::dvec3& world, double 
   return p;
 }
 
+bool MeshGround::covers(const glm::dvec3& world, double height) const {
+  if (bvh_.empty() || world.x < lo_.x || world.y < lo_.y || world.x > hi_.x || world.y > hi_.y) return false;
+  return bvh_.occluded(world - mesh_->origin + glm::dvec3(0.0, 0.0, 0.01), glm::dvec3(0.0, 0.0, 1.0), 0.0, height);
+}
+
 // --- ground and regions ------------------------------------------------------------
 
 void Ground::bounds(glm::dvec2& lo, glm::dvec2& hi) const {

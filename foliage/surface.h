@@ -54,6 +54,9 @@ class MeshGround {
   SurfacePoint pointOn(uint32_t face, const glm::dvec3& bary) const;
   // The nearest surface point to a world position (within maxDistance).
   std::optional<SurfacePoint> closest(const glm::dvec3& world, double maxDistance) const;
+  // Is there a triangle of this mesh above `world` within `height` (a
+  // point inside the scan's footprint, or under a ledge)? Any hit will do.
+  bool covers(const glm::dvec3& world, double height) const;
   glm::dvec2 lo() const { return lo_; }
   glm::dvec2 hi() const { return hi_; }
 
@@ -72,6 +75,10 @@ class MeshGround {
 struct Ground {
   const terrain::Terrain* terrain = nullptr;
   std::vector<const MeshGround*> meshes;
+  // Terrain points with a mesh above them within this height take no
+  // foliage: a forest on the valley floor does not grow inside a scanned
+  // pillar standing on it, nor right under its ledges. 0: off.
+  double coverHeight = 100.0;
   // World XY bounds of everything (the whole-scene scatter's area).
   void bounds(glm::dvec2& lo, glm::dvec2& hi) const;
 };

@@ -259,11 +259,19 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
       sp = terrainSurface(ground.terrain->height, xy);
       if (!sp) return 1;
       if (!passesFilters(t, *sp, 0.0, false)) return 2;
+      if (ground.coverHeight > 0.0)
+        for (const MeshGround* m : ground.meshes)
+          if (m->covers(sp->position, ground.coverHeight)) return 1;
       if (layer >= 0 && !passesLayer(t, terrainLayerWeight(*ground.terrain, layer, xy))) return 2;
     } else {
       const double u = std::sqrt(unitOf(key, 1)), v = unitOf(key, 2);
       sp = sr.mesh->pointOn(sr.face, glm::dvec3(1.0 - u, u * (1.0 - v), u * v));
       if (!region.contains(glm::dvec2(sp->position))) return 1;
+      // Under the terrain (the buried foot of a scan): no foliage.
+      if (ground.terrain)
+        if (auto ts = terrainSurface(ground.terrain->height, glm::dvec2(sp->position));
+            ts && ts->position.z > sp->position.z + 0.01)
+          return 1;
       if (!passesFilters(t, *sp, 0.0)) return 2;
     }
     const Instance in = makeInstance(t, type, *sp, seed, key);

@@ -504,6 +504,37 @@ class TestFoliagePlacement : public QObject {
     QVERIFY(same(start, snapshot(s)));
   }
 
+  // A scan standing on the terrain (a closed box sunk 5 m into it): with
+  // both surfaces, no terrain instance grows inside its footprint, and
+  // instances stand on its top and on its sides above the ground (none on
+  // the buried part); with the cover test off, the terrain under it fills.
+  void noTerrainFoliageInsideAScan() {
+    const ht::Terrain t = terrain(129, 1.0, {0, 0, 0}, [](double, double) { return 10.0; });
+    hs::mesh::MeshData box;
+    box.origin = {60, 60, 17.5};
+    for (int i = 0; i < 8; ++i)
+      box.positions.emplace_back(i & 1 ? 20.f : -20.f, i & 2 ? 20.f : -20.f, i & 4 ? 12.5f : -12.5f);
+    box.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    box.submeshes.push_back({0, uint32_t(box.indices.size()), -1});
+    MeshGround mg(box);
+    for (double cover : {100.0, 0.0}) {
+      Ground g{&t, {&mg}, cover};
+      FoliageStore s;
+      addType(s, type("Fern", 2000, 0.6));
+      scatter(s, g, {0}, 2);
+      size_t inside = 0, onTop = 0, onSides = 0;
+      for (const Instance& in : s.allInstances()) {
+        const bool within = in.position.x > 40.01 && in.position.x < 79.99 && in.position.y > 40.01 && in.position.y < 79.99;
+        if (in.surface == Surface::Terrain) inside += within;
+        if (in.surface == Surface::Mesh) (std::abs(in.position.z - 30.0) < 0.01 ? onTop : onSides)++;
+        if (in.surface == Surface::Mesh) QVERIFY(in.position.z >= 10.0 - 0.01);  // none buried under the terrain
+      }
+      qInfo("cover %.0f m: %zu terrain instances inside the box, %zu on its top, %zu on its sides", cover, inside, onTop, onSides);
+      QCOMPARE(inside == 0, cover > 0.0);
+      QVERIFY(onTop > 100 && onSides > 100);
+    }
+  }
+
   // A scan at UTM coordinates: instances lie on its surface within 1 mm,
   // tilted toward its normal by at most the type's maximum angle.
   void onMeshAtUtm() {
