@@ -282,54 +282,59 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
     return 0;
   };
 
-  std::vector<uint64_t> pending(total);
-  for (uint64_t i = 0; i < total; ++i) pending[i] = i;
+  // In batches of candidates (all attempts of one batch, then the next),
+  // so the working memory stays bounded however many are thrown.
   std::vector<Evaluated> accepted;
   const unsigned ranges = resolveThreads(threads) * 8;
   std::vector<std::vector<Evaluated>> passed(ranges);
   std::vector<size_t> outside(ranges), filtered(ranges);
-  for (int attempt = 0; attempt < kAttempts && !pending.empty(); ++attempt) {
-    // Evaluate in parallel, each range into its own list, in order.
-    const size_t n = pending.size();
-    const size_t used = std::max<size_t>(1, std::min<size_t>(ranges, n / 1024));
-    parallelFor(int64_t(used), int(threads), 1, [&](int64_t b, int64_t e) {
-      for (int64_t rg = b; rg < e; ++rg) {
-        auto& out = passed[size_t(rg)];
-        out.clear();
-        outside[size_t(rg)] = filtered[size_t(rg)] = 0;
-        const size_t from = n * size_t(rg) / used, to = n * size_t(rg + 1) / used;
-        Evaluated ev;
-        size_t si = from < to ? stratumOf(pending[from]) : 0;
-        for (size_t k = from; k < to; ++k) {
-          while (pending[k] >= firstOf[si + 1]) ++si;  // pending is sorted
-          const int verdict = evaluate(pending[k], si, attempt, ev);
-          if (verdict == 0) {
-            ev.slot = uint32_t(k);
-            out.push_back(ev);
-          } else {
-            (verdict == 1 ? outside : filtered)[size_t(rg)]++;
+  std::vector<uint64_t> pending;
+  for (uint64_t b0 = 0; b0 < total; b0 += kBatch) {
+    pending.resize(size_t(std::min(total, b0 + kBatch) - b0));
+    for (size_t i = 0; i < pending.size(); ++i) pending[i] = b0 + i;
+    for (int attempt = 0; attempt < kAttempts && !pending.empty(); ++attempt) {
+      // Evaluate in parallel, each range into its own list, in order.
+      const size_t n = pending.size();
+      const size_t used = std::max<size_t>(1, std::min<size_t>(ranges, n / 1024));
+      parallelFor(int64_t(used), int(threads), 1, [&](int64_t b, int64_t e) {
+        for (int64_t rg = b; rg < e; ++rg) {
+          auto& out = passed[size_t(rg)];
+          out.clear();
+          outside[size_t(rg)] = filtered[size_t(rg)] = 0;
+          const size_t from = n * size_t(rg) / used, to = n * size_t(rg + 1) / used;
+          Evaluated ev;
+          size_t si = from < to ? stratumOf(pending[from]) : 0;
+          for (size_t k = from; k < to; ++k) {
+            while (pending[k] >= firstOf[si + 1]) ++si;  // pending is sorted
+            const int verdict = evaluate(pending[k], si, attempt, ev);
+            if (verdict == 0) {
+              ev.slot = uint32_t(k);
+              out.push_back(ev);
+            } else {
+              (verdict == 1 ? outside : filtered)[size_t(rg)]++;
+            }
           }
         }
-      }
-    });
-    // Accept in candidate order, on this thread.
-    std::vector<uint64_t> again;
-    for (size_t rg = 0; rg < used; ++rg) {
-      st.outside += outside[rg];
-      st.filtered += filtered[rg];
-      for (const Evaluated& ev : passed[rg]) {
-        if (useGrid && grid.conflicts(ev.position)) {
-          if (attempt + 1 == kAttempts)
-            ++st.spacingRejected;
-          else
-            again.push_back(pending[ev.slot]);
-          continue;
+      });
+      // Accept in candidate order, on this thread.
+      std::vector<uint64_t> again;
+      for (size_t rg = 0; rg < used; ++rg) {
+        st.outside += outside[rg];
+        st.filtered += filtered[rg];
+        for (const Evaluated& ev : passed[rg]) {
+          if (useGrid && grid.conflicts(ev.position)) {
+            if (attempt + 1 == kAttempts)
+              ++st.spacingRejected;
+            else
+              again.push_back(pending[ev.slot]);
+            continue;
+          }
+          grid.insert(ev.position, r);
+          accepted.push_back(ev);
         }
-        grid.insert(ev.position, r);
-        accepted.push_back(ev);
       }
+      pending = std::move(again);
     }
-    pending = std::move(again);
   }
   // Ids in acceptance order; then into the cells, one cell at a time.
   const uint32_t firstId = store.takeIds(uint32_t(accepted.size()), &res.undo);

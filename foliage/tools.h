@@ -29,10 +29,13 @@
 namespace hs::foliage {
 
 constexpr int kAttempts = 4;
-// An operation throws at most this many candidates (a density of 100 per
-// m^2 over 5 km^2); more is capped with a message, never an allocation
-// that fails.
-constexpr double kMaxCandidates = 5e8;
+// An operation throws at most this many candidates per type (a density of
+// 100 per m^2 over 0.5 km^2, 50 per hectare over 10,000 km^2); more is
+// capped with a message, never an allocation that fails. They are thrown
+// in batches of kBatch (all attempts of a batch, then the next), so the
+// working memory is bounded by the batch, not the total.
+constexpr double kMaxCandidates = 5e7;
+constexpr uint64_t kBatch = uint64_t(1) << 22;
 
 struct OpStats {
   size_t candidates = 0;       // thrown (first attempts)
