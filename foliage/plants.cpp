@@ -31,6 +31,7 @@ struct Rng {
 };
 
 struct Builder {
+  int lod = 0;  // detail: stems get half the segments and sides per level
   std::vector<glm::vec3> pos;
   std::vector<glm::vec2> uv;
   std::vector<uint32_t> bark, leaves;
@@ -100,19 +101,25 @@ TreeShape shapeOf(PlantKind kind) {
 
 void stem(Builder& b, Rng& rng, const PlantParams& p, const TreeShape& sh, int level, const glm::dvec3& start,
           const glm::dquat& dir, double length, double radius) {
-  const int segs = sh.segments[std::min(level, 3)];
+  // The stem's bend is drawn once and spread over its segments, so the
+  // random draws (and with them the whole plant) do not depend on the
+  // resolution: a coarser level of detail is the same plant.
+  const int segs = std::max(2, sh.segments[std::min(level, 3)] >> b.lod);
   std::vector<glm::dvec3> pts{start};
   std::vector<glm::dquat> frames{dir};
   std::vector<double> rad{radius};
   glm::dquat q = dir;
   const double curve = sh.curve * kPi / 180.0 * (level == 0 ? 0.3 : 1.0);
+  const double bend = curve * 2.0 * (rng.unit() - 0.3);
   for (int i = 1; i <= segs; ++i) {
-    q = q * glm::angleAxis(curve / segs * 2.0 * (rng.unit() - 0.3), glm::dvec3(1, 0, 0));
+    q = q * glm::angleAxis(bend / segs, glm::dvec3(1, 0, 0));
     pts.push_back(pts.back() + q * glm::dvec3(0, 0, length / segs));
     frames.push_back(q);
     rad.push_back(std::max(radius * (1.0 - sh.taper * double(i) / segs), radius * 0.05));
   }
-  b.tube(pts, frames, rad, std::max(3, p.sides >> std::min(level, 2)));
+  // From the second level of detail on, the twigs (the last level, which
+  // carries the leaves) are not drawn: too thin to see that far.
+  if (!(b.lod >= 2 && level == p.levels && level > 0)) b.tube(pts, frames, rad, std::max(3, (p.sides >> std::min(level, 2)) >> b.lod));
   auto along = [&](double t, glm::dvec3& at, glm::dquat& f, double& r) {
     const double x = std::clamp(t, 0.0, 1.0) * segs;
     const int i = std::min(int(x), segs - 1);
@@ -295,7 +302,9 @@ PlantParams defaultPlant(PlantKind kind, uint64_t seed) {
   return p;
 }
 
-mesh::MeshData generatePlant(const PlantParams& in, PlantStats* stats, std::vector<std::string>* warnings) {
+namespace {
+
+mesh::MeshData buildPlant(const PlantParams& in, int lod, PlantStats* stats, std::vector<std::string>* warnings) {
   std::vector<std::string> w;
   const auto& d = plantParamDecls();
   PlantParams p = in;
@@ -309,6 +318,7 @@ mesh::MeshData generatePlant(const PlantParams& in, PlantStats* stats, std::vect
   if (warnings) warnings->insert(warnings->end(), w.begin(), w.end());
 
   Builder b;
+  b.lod = lod;
   Rng rng{p.seed * 0x2545F4914F6CDD1Dull + uint64_t(p.kind)};
   switch (p.kind) {
     case PlantKind::Broadleaf:
@@ -352,6 +362,104 @@ mesh::MeshData generatePlant(const PlantParams& in, PlantStats* stats, std::vect
   b.stats.triangles = m.triangleCount();
   if (stats) *stats = b.stats;
   return m;
+}
+
+}  // namespace
+
+mesh::MeshData generatePlant(const PlantParams& in, PlantStats* stats, std::vector<std::string>* warnings) {
+  return buildPlant(in, 0, stats, warnings);
+}
+
+namespace {
+
+// Appends the triangles `idx` of `from` (their vertices copied, moved by
+// `place`) to `to` as indices into it.
+template <class Place>
+void appendTriangles(mesh::MeshData& to, const mesh::MeshData& from, const uint32_t* idx, size_t n, Place&& place,
+                     std::vector<uint32_t>& out) {
+  std::map<uint32_t, uint32_t> remap;
+  for (size_t k = 0; k < n; ++k) {
+    auto [it, fresh] = remap.try_emplace(idx[k], uint32_t(to.positions.size()));
+    if (fresh) {
+      to.positions.push_back(place(from.positions[idx[k]]));
+      to.normals.push_back(from.normals[idx[k]]);
+      to.uvs.push_back(from.uvs[idx[k]]);
+    }
+    out.push_back(it->second);
+  }
+}
+
+}  // namespace
+
+// Leaves are many small disconnected cards and stems many small open
+// tubes, which the decimator cannot merge (it keeps their open borders:
+// a broadleaf went from 14.1k to 11.3k triangles and stopped), so a
+// plant's levels are made the way game engines thin trees: the stems
+// generated again with half the segments and sides per level (the same
+// plant: its random draws do not depend on the resolution), the leaves by
+// keeping a seeded share of the cards
+// (sqrt(ratio) per level: half of them for the default 0.25) grown by
+// 1/sqrt(share) about their centres so the crown keeps its coverage
+// (grass keeps a share of its blades, ungrown). Each level's error is
+// measured against the full plant with meshproc's measureError.
+mesh::LodChain generatePlantLods(const PlantParams& p, const mesh::LodOptions& options, PlantStats* stats) {
+  mesh::MeshData full = generatePlant(p, stats);
+  const mesh::Submesh* leafSm = nullptr;
+  const mesh::Submesh* barkSm = nullptr;
+  for (const mesh::Submesh& sm : full.submeshes) (sm.material == 1 ? leafSm : barkSm) = &sm;
+  if (!leafSm) return mesh::buildLodChain(full, options);
+
+  mesh::LodChain out;
+  mesh::Lod base;
+  base.mesh = full;
+  base.triangles = full.triangleCount();
+  out.levels.push_back(std::move(base));
+  const size_t elem = p.kind == PlantKind::Grass ? 24 : 6;  // a blade's or a card's indices
+  const size_t elements = leafSm->indexCount / elem;
+  mesh::ErrorOptions eo;
+  eo.samplesPerFace = 4.0;
+  for (int level = 1; level <= options.levels; ++level) {
+    const double share = std::pow(std::sqrt(std::clamp(options.ratio, 0.01, 1.0)), level);
+    const double grow = p.kind == PlantKind::Grass ? 1.0 : 1.0 / std::sqrt(share);
+    mesh::MeshData m;
+    m.origin = full.origin;
+    m.materials = full.materials;  // level 0 holds the texture (as buildLodChain's levels)
+    std::vector<uint32_t> barkIdx, leafIdx;
+    if (barkSm) {
+      // The same plant with stems of fewer segments and sides.
+      const mesh::MeshData b = buildPlant(p, level, nullptr, nullptr);
+      for (const mesh::Submesh& sm : b.submeshes)
+        if (sm.material == 0)
+          appendTriangles(m, b, b.indices.data() + sm.firstIndex, sm.indexCount, [](const glm::vec3& v) { return v; },
+                          barkIdx);
+    }
+    for (size_t e = 0; e < elements; ++e) {
+      Rng pick{p.seed ^ (uint64_t(e) * 0x9E3779B97F4A7C15ull) ^ 0x1EAFull};
+      if (pick.unit() >= share) continue;
+      const uint32_t* idx = full.indices.data() + leafSm->firstIndex + e * elem;
+      glm::vec3 centre(0.0f);
+      for (size_t k = 0; k < elem; ++k) centre += full.positions[idx[k]];
+      centre /= float(elem);
+      appendTriangles(m, full, idx, elem, [&](const glm::vec3& v) { return centre + (v - centre) * float(grow); },
+                      leafIdx);
+    }
+    m.indices = barkIdx;
+    m.indices.insert(m.indices.end(), leafIdx.begin(), leafIdx.end());
+    if (!barkIdx.empty()) m.submeshes.push_back({0, uint32_t(barkIdx.size()), 0});
+    if (!leafIdx.empty()) m.submeshes.push_back({uint32_t(barkIdx.size()), uint32_t(leafIdx.size()), 1});
+    const size_t tris = m.triangleCount();
+    if (tris >= out.levels.back().triangles || tris < options.minTriangles) break;
+    mesh::Lod lod;
+    const mesh::ErrorReport e = mesh::measureError(full, m, eo);
+    lod.triangles = tris;
+    lod.hausdorff = std::max(e.hausdorff, out.levels.back().hausdorff);
+    lod.hausdorffRel = e.bboxDiagonal > 0.0 ? lod.hausdorff / e.bboxDiagonal : 0.0;
+    lod.meanError = e.mean;
+    lod.samplesPerFace = e.samplesPerFace;
+    lod.mesh = std::move(m);
+    out.levels.push_back(std::move(lod));
+  }
+  return out;
 }
 
 mesh::Texture leafTexture(PlantKind kind, int size) {

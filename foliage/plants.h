@@ -16,6 +16,7 @@
 
 #include "core/params.h"
 #include "mesh/mesh_data.h"
+#include "meshproc/lod_chain.h"
 
 namespace hs::foliage {
 
@@ -46,6 +47,12 @@ struct PlantStats {
 // declared ranges are clamped (warnings appended to `warnings` when given).
 mesh::MeshData generatePlant(const PlantParams& p, PlantStats* stats = nullptr,
                              std::vector<std::string>* warnings = nullptr);
+
+// The plant and its LOD chain from the project's decimator (meshproc's
+// buildLodChain: each level measured against the full plant, Hausdorff and
+// mean error in metres), as an imported asset gets.
+mesh::LodChain generatePlantLods(const PlantParams& p, const mesh::LodOptions& options = {},
+                                 PlantStats* stats = nullptr);
 
 // The leaf (or blade) texture: size x size RGBA, sRGB, alpha 0 outside.
 mesh::Texture leafTexture(PlantKind kind, int size = 64);

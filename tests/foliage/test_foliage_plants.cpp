@@ -65,12 +65,33 @@ class TestFoliagePlants : public QObject {
       QVERIFY(st.leaves > 0);
     }
   }
+  // Generated plants get their LOD chain from the decimator, errors
+  // measured against the full plant, coarser levels with fewer triangles.
+  void lodChains() {
+    for (PlantKind k : {PlantKind::Broadleaf, PlantKind::Conifer, PlantKind::Grass, PlantKind::Rock}) {
+      const hs::mesh::LodChain chain = generatePlantLods(defaultPlant(k, 5));
+      QVERIFY2(chain.error.empty(), chain.error.c_str());
+      QString row;
+      for (const auto& l : chain.levels)
+        row += QString(" %1 tris (%2 m)").arg(l.triangles).arg(l.hausdorff, 0, 'f', 3);
+      qInfo("%s:%s", plantKindName(k), qPrintable(row));
+      QVERIFY(chain.levels.size() >= 3);
+      QVERIFY(chain.levels.back().triangles * 4 <= chain.levels[0].triangles);  // stems and leaves thin too
+      for (size_t i = 1; i < chain.levels.size(); ++i) {
+        QVERIFY(chain.levels[i].triangles < chain.levels[i - 1].triangles);
+        QVERIFY(chain.levels[i].hausdorff >= chain.levels[i - 1].hausdorff);
+        QVERIFY(std::isfinite(chain.levels[i].hausdorff));
+      }
+    }
+  }
   void outOfRangeIsClampedWithAMessage() {
     PlantParams p = defaultPlant(PlantKind::Broadleaf);
     p.levels = 9;
     p.height = -3;
     std::vector<std::string> w;
     const auto m = generatePlant(p, nullptr, &w);
+    QVERIFY(identical(generatePlantLods(defaultPlant(PlantKind::Shrub, 3)).levels[1].mesh,
+                      generatePlantLods(defaultPlant(PlantKind::Shrub, 3)).levels[1].mesh));
     QVERIFY(m.triangleCount() > 0);
     QCOMPARE(w.size(), size_t(2));
     QVERIFY2(w[0].find("plant (broadleaf)") == 0, w[0].c_str());
