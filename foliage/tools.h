@@ -6,15 +6,17 @@
 // and scripts call these; the document wraps the undo data in its step.
 //
 // Placement (docs/foliage.md, "Placement"): Poisson-disk dart throwing,
-// deterministic for a seed. Candidates come from a counter-based hash of
-// (seed, type, source, index, attempt): uniform in the region's bounds on
-// the terrain, area-weighted on mesh triangles under the region. Each is
-// evaluated (surface point, filters, rotation, scale, quantised position)
-// in parallel; then, in candidate order, one thread accepts those at least
+// deterministic for a seed. Candidates come in strata that walk the ground
+// (64 m terrain tiles of the region's bounds, then the mesh triangles
+// under it), as many per stratum as its area asks, each from a
+// counter-based hash of (seed, type, index, attempt). Each is evaluated
+// (surface point, filters, rotation, scale, quantised position) in
+// parallel; then, in candidate order, one thread accepts those at least
 // the type's spacing (3D) from every instance of that type already there
-// (earlier strokes included, from the store) or accepted before, through a
-// grid of cells the size of the spacing. A candidate refused for spacing
-// is thrown again elsewhere (up to kAttempts); one the filters refuse is
+// (earlier strokes included, from the store) or accepted before (and, in a
+// competing scatter, the mean spacing from other types), through a grid of
+// cells the size of the spacing. A candidate refused for spacing is thrown
+// again near its first throw (up to kAttempts); one the filters refuse is
 // not (the filters thin the density, they do not move it). Ids follow the
 // acceptance order. The result depends on the seed only, never on the
 // number of threads.
