@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <unordered_map>
 
 #include "core/params.h"
 #include "core/parallel.h"
@@ -29,48 +30,68 @@ std::string typeContext(const FoliageType& t) { return "foliage type \"" + t.nam
 
 // Points near a stroke, each with the distance it keeps (the type's own
 // spacing; between competing types the mean of their spacings), in cells
-// at least that large: the Poisson test's neighbour search.
+// as large as the largest distance: the Poisson test's neighbour search.
+// Dense (an array of at most 2^24 cell heads, cells up to 4x the distance
+// wide); past that (a region spanning a terrain and a distant scan) sparse,
+// a hash map of the cells that hold points, so memory and time follow the
+// points, not the region.
 class PoissonGrid {
  public:
   PoissonGrid(const glm::dvec2& lo, const glm::dvec2& hi, double maxRadius) : lo_(lo) {
+    if (!(maxRadius > 0.0)) return;  // no spacing: never asked
     const glm::dvec2 ext = glm::max(hi - lo, glm::dvec2(1e-9));
+    // Dense cells may grow up to 4x the distance to stay within 2^24.
     cell_ = std::max(maxRadius, std::sqrt(ext.x * ext.y / double(1 << 24)));
-    nx_ = std::max(1, int(std::min(ext.x / cell_ + 1.0, 1e7)));
-    ny_ = std::max(1, int(std::min(ext.y / cell_ + 1.0, 1e7)));
-    head_.assign(size_t(nx_) * size_t(ny_), -1);
+    sparse_ = cell_ > 4.0 * maxRadius;
+    if (sparse_) cell_ = maxRadius;
+    const double nx = std::floor(ext.x / cell_) + 1.0, ny = std::floor(ext.y / cell_) + 1.0;
+    nx_ = int(std::min(nx, 2e9));
+    ny_ = int(std::min(ny, 2e9));
+    if (!sparse_) head_.assign(size_t(nx_) * size_t(ny_), -1);
   }
   void insert(const glm::dvec3& p, double radius) {
-    if (!(radius > 0.0)) return;
-    const size_t c = index(cx(p.x), cy(p.y));
+    if (!(radius > 0.0) || !(cell_ > 0.0)) return;
+    int32_t& h = headAt(cx(p.x), cy(p.y));
     pts_.push_back({p, radius * radius});
-    next_.push_back(head_[c]);
-    head_[c] = int32_t(pts_.size() - 1);
+    next_.push_back(h);
+    h = int32_t(pts_.size() - 1);
   }
   // Is p closer (3D) to any point than that point's distance?
   bool conflicts(const glm::dvec3& p) const {
+    if (pts_.empty()) return false;
     const int x = cx(p.x), y = cy(p.y);
     for (int yy = std::max(0, y - 1); yy <= std::min(ny_ - 1, y + 1); ++yy)
       for (int xx = std::max(0, x - 1); xx <= std::min(nx_ - 1, x + 1); ++xx)
-        for (int32_t i = head_[index(xx, yy)]; i >= 0; i = next_[size_t(i)]) {
+        for (int32_t i = headOf(xx, yy); i >= 0; i = next_[size_t(i)]) {
           const glm::dvec3 d = pts_[size_t(i)].p - p;
           if (glm::dot(d, d) < pts_[size_t(i)].r2) return true;
         }
     return false;
   }
-  bool empty() const { return pts_.empty(); }
 
  private:
   struct Point {
     glm::dvec3 p;
     double r2;
   };
-  int cx(double x) const { return std::clamp(int(std::floor((x - lo_.x) / cell_)), 0, nx_ - 1); }
-  int cy(double y) const { return std::clamp(int(std::floor((y - lo_.y) / cell_)), 0, ny_ - 1); }
-  size_t index(int x, int y) const { return size_t(y) * size_t(nx_) + size_t(x); }
+  int cx(double x) const { return int(std::clamp(std::floor((x - lo_.x) / cell_), 0.0, double(nx_ - 1))); }
+  int cy(double y) const { return int(std::clamp(std::floor((y - lo_.y) / cell_), 0.0, double(ny_ - 1))); }
+  static uint64_t key(int x, int y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); }
+  int32_t& headAt(int x, int y) {
+    if (!sparse_) return head_[size_t(y) * size_t(nx_) + size_t(x)];
+    return sparseHead_.try_emplace(key(x, y), -1).first->second;
+  }
+  int32_t headOf(int x, int y) const {
+    if (!sparse_) return head_[size_t(y) * size_t(nx_) + size_t(x)];
+    auto it = sparseHead_.find(key(x, y));
+    return it == sparseHead_.end() ? -1 : it->second;
+  }
   glm::dvec2 lo_;
-  double cell_ = 1.0;
+  double cell_ = 0.0;
   int nx_ = 1, ny_ = 1;
+  bool sparse_ = false;
   std::vector<int32_t> head_, next_;
+  std::unordered_map<uint64_t, int32_t> sparseHead_;
   std::vector<Point> pts_;
 };
 
@@ -194,11 +215,18 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
   std::vector<Stratum> strata;
   std::vector<double> weights;  // areas
   if (onTerrain) {
-    const double tile = std::max(64.0, 2.0 * r);
-    const int tx = std::max(1, int(std::ceil((hi.x - lo.x) / tile))), ty = std::max(1, int(std::ceil((hi.y - lo.y) / tile)));
+    // Over the part of the region's bounds the terrain covers (a region
+    // reaching far off the terrain, such as the bounds of a terrain and a
+    // distant scan, costs nothing there), in at most 2^20 tiles.
+    const glm::dvec2 to(ground.terrain->height.origin());
+    const glm::dvec2 tlo = glm::max(lo, to), thi = glm::min(hi, to + ground.terrain->height.sizeMetres());
+    const glm::dvec2 ext = glm::max(thi - tlo, glm::dvec2(0.0));
+    const double tile = std::max({64.0, 2.0 * r, std::sqrt(ext.x * ext.y / double(1 << 20))});
+    const int tx = thi.x > tlo.x ? std::max(1, int(std::ceil(ext.x / tile))) : 0;
+    const int ty = thi.y > tlo.y ? std::max(1, int(std::ceil(ext.y / tile))) : 0;
     for (int y = 0; y < ty; ++y)
       for (int x = 0; x < tx; ++x) {
-        const glm::dvec2 a = lo + glm::dvec2(x, y) * tile, b = glm::min(a + tile, hi);
+        const glm::dvec2 a = tlo + glm::dvec2(x, y) * tile, b = glm::min(a + tile, thi);
         if (b.x > a.x && b.y > a.y) {
           strata.push_back({nullptr, 0, a, b});
           weights.push_back((b.x - a.x) * (b.y - a.y));

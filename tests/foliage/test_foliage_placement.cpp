@@ -535,6 +535,28 @@ class TestFoliagePlacement : public QObject {
     }
   }
 
+  // A terrain and a scan 300 km apart: the scatter over both (their joint
+  // bounds) throws only where there is ground and keeps its Poisson grid
+  // sparse, so it takes what the two surfaces take, not the bounds.
+  void groundsFarApart() {
+    const ht::Terrain t = terrain(129, 1.0, {0, 0, 0}, bumps);
+    const hs::mesh::MeshData m = gridMesh(40, 100.0, {2e5, 2.2e5, 50}, [](double x, double) { return 0.2 * x; });
+    MeshGround mg(m);
+    Ground g{&t, {&mg}};
+    FoliageStore s;
+    addType(s, type("Fern", 2000, 0.8));
+    QElapsedTimer timer;
+    timer.start();
+    const EditResult r = scatter(s, g, {0}, 4);
+    qInfo("%zu instances (%zu candidates) in %lld ms", s.instanceCount(), r.stats.candidates, timer.elapsed());
+    size_t onMesh = 0;
+    for (const Instance& in : s.allInstances()) onMesh += in.surface == Surface::Mesh;
+    QVERIFY(onMesh > 1000 && s.instanceCount() - onMesh > 2000);
+    QVERIFY(r.stats.candidates < 20000);
+    QVERIFY(timer.elapsed() < 5000);
+    QVERIFY(closestPair(s.allInstances(), 0) >= 0.8);
+  }
+
   // A scan at UTM coordinates: instances lie on its surface within 1 mm,
   // tilted toward its normal by at most the type's maximum angle.
   void onMeshAtUtm() {
