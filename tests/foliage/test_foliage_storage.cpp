@@ -4,6 +4,7 @@
 #include <map>
 #include <random>
 
+#include "foliage/foliage_operations.h"
 #include "foliage/manifest.h"
 #include "foliage_fixtures.h"
 
@@ -370,6 +371,67 @@ class TestFoliageStorage : public QObject {
     broken["cells"][1]["hash"] = "xyz";
     QVERIFY(!loadStore(broken, reader, u, bad, error));
     QVERIFY2(error.find("foliage.cells[1].hash") != std::string::npos, error.c_str());
+  }
+
+  // The operations the CLI and the editor will share: declared once, the
+  // type's options among them, values checked with messages naming the
+  // option, and turned into the domain's structs.
+  void operationsAreDeclaredOnce() {
+    for (const hs::OperationDecl* op : {&foliageTypeAddOperation(), &foliageScatterOperation(),
+                                        &foliageClearOperation(), &foliagePlantOperation()}) {
+      QVERIFY(!op->name.empty() && !op->positionals.empty());
+      for (const hs::ParamDecl& p : op->params) {
+        std::string error;
+        if (!p.defaultValue.is_null()) QVERIFY2(hs::checkParam(p, p.defaultValue, error), (op->name + ": " + error).c_str());
+      }
+    }
+    for (const hs::ParamDecl& p : foliageTypeParamDecls()) QVERIFY(foliageTypeAddOperation().find(p.key));
+    std::string error;
+    QVERIFY(!hs::parseParam(foliageTypeAddOperation().param("density_per_ha"), "1e9", error));
+    QVERIFY2(error.find("--density") == 0 && error.find("out of range") != std::string::npos, error.c_str());
+    QVERIFY(!hs::parseParam(foliageScatterOperation().param("slope_deg"), "40,10", error));
+    QVERIFY2(error.find("--slope") == 0, error.c_str());
+    const auto slope = hs::parseParam(foliageScatterOperation().param("slope_deg"), "5,30", error);
+    QVERIFY(slope);
+
+    FoliageType t;
+    hs::Json v = hs::Json::object();
+    v["mesh"] = "Pine LOD";
+    v["density_per_ha"] = 250;
+    v["slope_deg"] = hs::Json::array({0, 30});
+    v["surface"] = "terrain";
+    QVERIFY2(typeFromValues("Pine", v, t, error), error.c_str());
+    QCOMPARE(t.name, std::string("Pine"));
+    QCOMPARE(t.mesh, std::string("Pine LOD"));
+    QCOMPARE(t.densityPerHa, 250.0);
+    QCOMPARE(t.slopeDeg, glm::dvec2(0, 30));
+    QCOMPARE(t.surface, SurfaceFilter::Terrain);
+    QCOMPARE(t.spacing, FoliageType{}.spacing);  // not given: the default
+    v.erase("mesh");
+    QVERIFY(!typeFromValues("Pine", v, t, error));
+    QVERIFY2(error.find("\"Pine\"") != std::string::npos && error.find("mesh") != std::string::npos, error.c_str());
+
+    hs::Json sv = hs::Json::object();
+    sv["density_per_ha"] = 40;
+    sv["slope_deg"] = *slope;
+    sv["region"] = hs::Json::array({10, 20, -5, 70});
+    const FoliageType r = scatterRules(type("Pine", 100, 2), sv);
+    QCOMPARE(r.densityPerHa, 40.0);
+    QCOMPARE(r.slopeDeg, glm::dvec2(5, 30));
+    QCOMPARE(r.spacing, 2.0);
+    const auto region = regionFromValues(sv);
+    QVERIFY(region && region->lo == glm::dvec2(-5, 20) && region->hi == glm::dvec2(10, 70));
+    QVERIFY(!regionFromValues(hs::Json::object()));
+
+    hs::Json pv = hs::Json::object();
+    pv["kind"] = "conifer";
+    pv["seed"] = 5;
+    pv["levels"] = 1;
+    const PlantParams pp = plantFromValues(pv);
+    QCOMPARE(pp.kind, PlantKind::Conifer);
+    QCOMPARE(pp.seed, uint64_t(5));
+    QCOMPARE(pp.levels, 1);
+    QCOMPARE(pp.height, defaultPlant(PlantKind::Conifer).height);
   }
 
   void scaleModeChangeReencodes() {
