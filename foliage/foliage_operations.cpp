@@ -1,0 +1,177 @@
+#include "foliage/foliage_operations.h"
+
+#include <type_traits>
+
+namespace hs::foliage {
+namespace {
+
+const PositionalDecl kScene{.name = "scene.hscene", .help = "the scene file (saved afterwards)"};
+
+ParamDecl regionParam() {
+  return {.key = "region", .option = "region", .label = "Region", .unit = Unit::Metres, .min = -1e7, .max = 1e7,
+          .help = "only within this world rectangle (x0,y0 south-west, x1,y1 north-east)",
+          .valueName = "X0,Y0,X1,Y1", .count = 4};
+}
+
+ParamDecl seedParam() {
+  return {.key = "seed", .option = "seed", .label = "Seed", .min = 0, .max = 2147483647, .integer = true,
+          .defaultValue = 1, .help = "the same seed places the same instances with the same ids", .valueName = "S"};
+}
+
+// A declaration of the type's without its default: a scatter option that
+// overrides the type only when given.
+ParamDecl override(const char* key, const char* help) {
+  ParamDecl p = paramIn(foliageTypeParamDecls(), key);
+  p.defaultValue = nullptr;
+  p.help = help;
+  p.group.clear();
+  return p;
+}
+
+glm::dvec2 pairOf(const Json& j) { return {j[0].get<double>(), j[1].get<double>()}; }
+
+}  // namespace
+
+const OperationDecl& foliageTypeAddOperation() {
+  static const OperationDecl op = [] {
+    OperationDecl o{.name = "foliage type add",
+                    .summary = "add a foliage type drawing a mesh asset",
+                    .usage = "<name> --mesh <asset> <scene.hscene> [options]",
+                    .description = "Adds a foliage type: the mesh asset that draws it (with its LODs) and how its "
+                                   "instances are placed and drawn. Values outside the ranges below are refused.",
+                    .positionals = {{.name = "name", .help = "the type's name (unique in the scene)"}, kScene}};
+    o.params.push_back({.key = "mesh", .option = "mesh", .label = "Mesh", .type = ParamType::Text,
+                        .help = "the mesh asset that draws the type", .valueName = "ASSET", .required = true,
+                        .editor = true});
+    appendParams(o.params, foliageTypeParamDecls());
+    return o;
+  }();
+  return op;
+}
+
+const OperationDecl& foliageScatterOperation() {
+  static const OperationDecl op = [] {
+    OperationDecl o{.name = "foliage scatter",
+                    .summary = "scatter a foliage type by rule over the terrain and meshes",
+                    .usage = "<type> <scene.hscene> [options]",
+                    .description = "Places instances of a type over the whole scene (or a region) by its rules: "
+                                   "Poisson-disk at its spacing, its density, slope, altitude and paint-layer "
+                                   "filters; the options below override them for this scatter. One undo step.",
+                    .positionals = {{.name = "type", .help = "the foliage type"}, kScene}};
+    o.params = {
+        override("density_per_ha", "instances per hectare (default: the type's)"),
+        regionParam(),
+        override("layer", "only where this paint layer weighs within the type's weight range (default: the type's)"),
+        override("slope_deg", "slope range kept (default: the type's)"),
+        override("altitude_m", "altitude range kept (default: the type's)"),
+        override("surface", "terrain, meshes or both (default: the type's)"),
+        seedParam(),
+    };
+    return o;
+  }();
+  return op;
+}
+
+const OperationDecl& foliageClearOperation() {
+  static const OperationDecl op = [] {
+    OperationDecl o{.name = "foliage clear",
+                    .summary = "remove a foliage type's instances",
+                    .usage = "<type> <scene.hscene> [--region x0,y0,x1,y1]",
+                    .description = "Removes every instance of a type (or those in a region). One undo step.",
+                    .positionals = {{.name = "type", .help = "the foliage type"}, kScene}};
+    o.params = {regionParam()};
+    return o;
+  }();
+  return op;
+}
+
+const OperationDecl& foliagePlantOperation() {
+  static const OperationDecl op = [] {
+    OperationDecl o{.name = "foliage plant",
+                    .summary = "generate a plant (tree, shrub, grass, rock) as a mesh asset",
+                    .usage = "<name> --kind broadleaf|conifer|shrub|grass|rock <scene.hscene> [options]",
+                    .description = "Generates a plant after Weber & Penn (trees), or a shrub, grass clump or rock, "
+                                   "with its LODs, as a mesh asset a foliage type can draw. The same seed gives the "
+                                   "same plant.",
+                    .positionals = {{.name = "name", .help = "the asset's name"}, kScene}};
+    o.params = plantParamDecls();
+    for (ParamDecl& p : o.params)
+      if (p.key == "kind") p.required = true;
+    return o;
+  }();
+  return op;
+}
+
+bool typeFromValues(const std::string& name, const Json& values, FoliageType& out, std::string& error) {
+  const OperationDecl& op = foliageTypeAddOperation();
+  if (!values.is_object()) {
+    error = "foliage type add: expected the values as an object";
+    return false;
+  }
+  for (auto it = values.begin(); it != values.end(); ++it) {
+    const ParamDecl* p = op.find(it.key());
+    if (!p) {
+      error = "foliage type add: no option " + it.key();
+      return false;
+    }
+    if (!checkParam(*p, it.value(), error)) return false;
+  }
+  // Through the type's own strict reader: the declared keys are its keys.
+  Json j = values;
+  j["name"] = name;
+  if (!j.contains("mesh")) j["mesh"] = "";
+  if (!fromJson(j, out, error)) return false;
+  const std::vector<std::string> problems = validate(out);
+  if (!problems.empty()) {
+    error = problems.front();
+    return false;
+  }
+  return true;
+}
+
+FoliageType scatterRules(const FoliageType& type, const Json& values) {
+  FoliageType t = type;
+  auto get = [&](const char* k) -> const Json* {
+    auto it = values.find(k);
+    return it == values.end() || it->is_null() ? nullptr : &*it;
+  };
+  if (const Json* v = get("density_per_ha")) t.densityPerHa = v->get<double>();
+  if (const Json* v = get("layer")) t.layer = v->get<std::string>();
+  if (const Json* v = get("slope_deg")) t.slopeDeg = pairOf(*v);
+  if (const Json* v = get("altitude_m")) t.altitude = pairOf(*v);
+  if (const Json* v = get("surface")) {
+    const std::string s = v->get<std::string>();
+    t.surface = s == "terrain" ? SurfaceFilter::Terrain : s == "meshes" ? SurfaceFilter::Meshes : SurfaceFilter::Both;
+  }
+  return t;
+}
+
+std::optional<Region2> regionFromValues(const Json& values) {
+  auto it = values.find("region");
+  if (it == values.end() || !it->is_array() || it->size() != 4) return std::nullopt;
+  const Json& r = *it;
+  return Region2::rect({r[0].get<double>(), r[1].get<double>()}, {r[2].get<double>(), r[3].get<double>()});
+}
+
+PlantParams plantFromValues(const Json& values) {
+  PlantKind kind = PlantKind::Broadleaf;
+  if (auto it = values.find("kind"); it != values.end() && it->is_string())
+    for (int k = 0; k <= int(PlantKind::Rock); ++k)
+      if (*it == plantKindName(PlantKind(k))) kind = PlantKind(k);
+  PlantParams p = defaultPlant(kind);
+  auto num = [&](const char* k, auto& field) {
+    if (auto it = values.find(k); it != values.end() && it->is_number()) field = std::remove_reference_t<decltype(field)>(it->template get<double>());
+  };
+  double seed = double(p.seed);
+  num("seed", seed);
+  p.seed = uint64_t(seed);
+  num("height_m", p.height);
+  num("levels", p.levels);
+  num("branches", p.branches);
+  num("leaf_size_m", p.leafSize);
+  num("leaves_per_branch", p.leavesPerBranch);
+  num("sides", p.sides);
+  return p;
+}
+
+}  // namespace hs::foliage
