@@ -177,50 +177,51 @@ GLuint ResourcePool::persistentBuffer(const BufferDesc& desc, const std::string&
   return id;
 }
 
-GLuint ResourcePool::namedTexture(const std::string& key, const TextureDesc& desc, int lifetimeFrames, bool* fresh) {
-  for (auto it = textures_.begin(); it != textures_.end(); ++it) {
-    TextureEntry& e = it->second;
+namespace {
+// The entry named `key` in `entries` if its description is still `desc`;
+// else the old one dropped (drop(id)) and nothing found. Shared by named
+// textures and buffers.
+template <class Entries, class Desc, class Drop>
+GLuint findNamed(Entries& entries, const std::string& key, const Desc& desc, int lifetimeFrames, Drop drop) {
+  for (auto it = entries.begin(); it != entries.end(); ++it) {
+    auto& e = it->second;
     if (e.key != key) continue;
     if (e.desc == desc) {
       e.usedThisFrame = true;
       e.lifetimeFrames = lifetimeFrames;
-      if (fresh) *fresh = false;
       return it->first;
     }
-    dropFramebuffersOf(it->first);
-    textures_.erase(it);  // a new description: made again below
+    drop(it->first);
+    entries.erase(it);  // a new description: the caller makes it again
     break;
   }
-  const GLuint id = makeTexture(desc, key);
-  TextureEntry& e = textures_.at(id);
+  return 0;
+}
+
+template <class Entry>
+void markNamed(Entry& e, const std::string& key, int lifetimeFrames) {
   e.persistent = true;
   e.inUse = false;
   e.key = key;
   e.lifetimeFrames = lifetimeFrames;
-  if (fresh) *fresh = true;
+}
+}  // namespace
+
+GLuint ResourcePool::namedTexture(const std::string& key, const TextureDesc& desc, int lifetimeFrames, bool* fresh) {
+  GLuint id = findNamed(textures_, key, desc, lifetimeFrames, [this](GLuint t) { dropFramebuffersOf(t); });
+  if (fresh) *fresh = id == 0;
+  if (id) return id;
+  id = makeTexture(desc, key);
+  markNamed(textures_.at(id), key, lifetimeFrames);
   return id;
 }
 
 GLuint ResourcePool::namedBuffer(const std::string& key, const BufferDesc& desc, int lifetimeFrames, bool* fresh) {
-  for (auto it = buffers_.begin(); it != buffers_.end(); ++it) {
-    BufferEntry& e = it->second;
-    if (e.key != key) continue;
-    if (e.desc == desc) {
-      e.usedThisFrame = true;
-      e.lifetimeFrames = lifetimeFrames;
-      if (fresh) *fresh = false;
-      return it->first;
-    }
-    buffers_.erase(it);
-    break;
-  }
-  const GLuint id = makeBuffer(desc, key);
-  BufferEntry& e = buffers_.at(id);
-  e.persistent = true;
-  e.inUse = false;
-  e.key = key;
-  e.lifetimeFrames = lifetimeFrames;
-  if (fresh) *fresh = true;
+  GLuint id = findNamed(buffers_, key, desc, lifetimeFrames, [](GLuint) {});
+  if (fresh) *fresh = id == 0;
+  if (id) return id;
+  id = makeBuffer(desc, key);
+  markNamed(buffers_.at(id), key, lifetimeFrames);
   return id;
 }
 
