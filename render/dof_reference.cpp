@@ -2,6 +2,8 @@
 
 #include <epoxy/gl.h>
 
+#include "render/passes/fullscreen_pass.h"
+
 namespace hs::render {
 
 GLuint acquireLensAccumulation(RenderResources& res, int width, int height) {
@@ -12,20 +14,17 @@ GLuint acquireLensAccumulation(RenderResources& res, int width, int height) {
 }
 
 void accumulateLensSample(RenderResources& res, GLuint frame, GLuint accum, int width, int height, float weight) {
-  glBindFramebuffer(GL_FRAMEBUFFER, res.pool.framebuffer({accum}, 0));
-  glViewport(0, 0, width, height);
-  glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
-  GlProgram& p = res.program({"fullscreen.vert", "dof_accumulate.frag", "", {}});
-  p.set("uWeight", weight);
-  p.use();
-  glBindTextureUnit(24, frame);
-  glBindVertexArray(res.emptyVao.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindTextureUnit(24, 0);
+  FullscreenDraw draw;
+  draw.fragment = "dof_accumulate.frag";
+  draw.framebuffer = res.pool.framebuffer({accum}, 0);
+  draw.width = width;
+  draw.height = height;
+  draw.textures = {{24, frame}};
+  draw.uniforms = [weight](GlProgram& p) { p.set("uWeight", weight); };
+  drawFullscreen(res, draw);
   glDisable(GL_BLEND);
-  glEnable(GL_DEPTH_TEST);
 }
 
 }  // namespace hs::render

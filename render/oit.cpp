@@ -88,7 +88,7 @@ void runResolve(FrameContext& frame, const PassResources& r, TextureRef hdr, int
   draw.width = w;
   draw.height = h;
   draw.uniforms = setup;  // binds the variant's inputs too
-  drawFullscreen(frame, draw);
+  drawFullscreen(frame.res, draw);
   glDisable(GL_BLEND);
   restoreDepth();
   for (unsigned u = 0; u < 4; ++u) glBindTextureUnit(kOitTextureUnit + u, 0);
@@ -369,7 +369,7 @@ TextureRef addReferenceMode(FrameGraph& graph, FrameContext& frame, const ViewCo
           accumulate.width = w;
           accumulate.height = h;
           accumulate.textures = {{kOitTextureUnit, r.texture(d.color)}};
-          drawFullscreen(frame, accumulate);
+          drawFullscreen(frame.res, accumulate);
           glDisable(GL_BLEND);
         }
         restoreDepth();
@@ -464,7 +464,7 @@ TextureRef addDepthComplexityPass(FrameGraph& graph, FrameContext& frame, const 
               p.set("uMaxCount", float(std::max<uint32_t>(info->maxPerPixel, 1)));
               p.set("uInvExposure", float(1.0 / scene::exposureMultiplier(frame.settings.exposureEv100)));
             };
-            drawFullscreen(frame, draw);
+            drawFullscreen(frame.res, draw);
             restoreDepth();
           })
       .hdr;

@@ -40,7 +40,7 @@ SceneTargets addSkyPass(FrameGraph& graph, FrameContext& frame, const ViewContex
         draw.height = h;
         draw.view = int(index);
         draw.depthFunc = GL_EQUAL;
-        drawFullscreen(frame, draw);
+        drawFullscreen(frame.res, draw);
       }).t;
 }
 

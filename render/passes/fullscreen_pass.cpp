@@ -2,7 +2,7 @@
 
 namespace hs::render {
 
-void drawFullscreen(FrameContext& frame, const FullscreenDraw& draw) {
+void drawFullscreen(RenderResources& res, const FullscreenDraw& draw) {
   glBindFramebuffer(GL_FRAMEBUFFER, draw.framebuffer);
   glViewport(0, 0, draw.width, draw.height);
   if (draw.depthFunc) {
@@ -12,12 +12,12 @@ void drawFullscreen(FrameContext& frame, const FullscreenDraw& draw) {
   } else {
     glDisable(GL_DEPTH_TEST);
   }
-  if (draw.view >= 0) frame.res.bindView(size_t(draw.view));
-  GlProgram& p = frame.res.program({"fullscreen.vert", draw.fragment, "", draw.defines});
+  if (draw.view >= 0) res.bindView(size_t(draw.view));
+  GlProgram& p = res.program({"fullscreen.vert", draw.fragment, "", draw.defines});
   p.use();
   if (draw.uniforms) draw.uniforms(p);
   for (const auto& [unit, texture] : draw.textures) glBindTextureUnit(unit, texture);
-  glBindVertexArray(frame.res.emptyVao.id());
+  glBindVertexArray(res.emptyVao.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   for (const auto& [unit, texture] : draw.textures) glBindTextureUnit(unit, 0);
   glEnable(GL_DEPTH_TEST);
@@ -52,7 +52,7 @@ TextureRef addFullscreenPass(FrameGraph& graph, FrameContext& frame, const ViewC
             for (const auto& [unit, t] : d.inputs) draw.textures.emplace_back(unit, r.texture(t));
             draw.uniforms = p.uniforms;
             draw.view = p.bindView ? index : -1;
-            drawFullscreen(frame, draw);
+            drawFullscreen(frame.res, draw);
           })
       .out;
 }

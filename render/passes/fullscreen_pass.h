@@ -30,8 +30,9 @@ struct FullscreenDraw {
   GLenum depthFunc = 0;
 };
 // Leaves the depth test on, writing, GL_GREATER (the frame's default) and
-// blending as it was.
-void drawFullscreen(FrameContext& frame, const FullscreenDraw& draw);
+// blending as it was. Needs only the renderer's resources, so paths outside
+// a frame graph (the lens-sampled DoF reference's accumulation) use it too.
+void drawFullscreen(RenderResources& res, const FullscreenDraw& draw);
 
 struct FullscreenPass {
   std::string name;                   // the pass's name, with the view's suffix
