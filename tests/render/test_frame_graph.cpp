@@ -18,6 +18,7 @@
 #include <epoxy/gl.h>
 
 #include "core/json.h"
+#include "gl_test_program.h"
 #include "render/frame_graph.h"
 #include "render/offscreen_renderer.h"
 #include "render/resource_pool.h"
@@ -102,9 +103,6 @@ size_t registryCount(const std::vector<GpuAllocation>& reg, const std::string& p
 // with no clear before it (as the terrain pass draws into the opaque pass's
 // targets).
 GLuint busyProgram() {
-  static const char* vs =
-      "#version 450 core\n"
-      "void main() { vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2); gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }\n";
   static const char* fs =
       "#version 450 core\n"
       "uniform int uIterations;\n"
@@ -114,34 +112,12 @@ GLuint busyProgram() {
       "  for (int i = 0; i < uIterations; ++i) v = vec2(sin(v.x + v.y), cos(v.x - 0.5 * v.y));\n"
       "  color = vec4(v, 0.0, 1.0);\n"
       "}\n";
-  const GLuint p = glCreateProgram();
-  for (auto [type, src] : {std::pair{GL_VERTEX_SHADER, vs}, std::pair{GL_FRAGMENT_SHADER, fs}}) {
-    const GLuint sh = glCreateShader(type);
-    glShaderSource(sh, 1, &src, nullptr);
-    glCompileShader(sh);
-    glAttachShader(p, sh);
-    glDeleteShader(sh);
-  }
-  glLinkProgram(p);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  return ok ? p : 0;
+  return test::linkProgram({{GL_VERTEX_SHADER, test::kFullscreenTriangleVs}, {GL_FRAGMENT_SHADER, fs}});
 }
 
 // A compute program from `body` (after the #version line), 0 on failure.
 GLuint computeProgram(const std::string& body) {
-  const std::string src = "#version 450 core\n" + body;
-  const char* c = src.c_str();
-  const GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
-  glShaderSource(sh, 1, &c, nullptr);
-  glCompileShader(sh);
-  const GLuint p = glCreateProgram();
-  glAttachShader(p, sh);
-  glLinkProgram(p);
-  glDeleteShader(sh);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  return ok ? p : 0;
+  return test::linkProgram({{GL_COMPUTE_SHADER, "#version 450 core\n" + body}});
 }
 
 double millisSince(std::chrono::steady_clock::time_point t0) {

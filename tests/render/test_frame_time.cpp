@@ -13,6 +13,7 @@
 
 #include <epoxy/gl.h>
 
+#include "gl_test_program.h"
 #include "render/gl/shader_library.h"
 #include "render/offscreen_renderer.h"
 #include "scene/animation.h"
@@ -26,9 +27,6 @@ namespace {
 GLuint buildProbe(std::string& error) {
   std::string block;
   if (!render::gl::expandShaderInclude("frame_blocks.glsl", block, error)) return 0;
-  const std::string vs =
-      "#version 450 core\n"
-      "void main() { vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2); gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }\n";
   // Time-dependent noise: each pixel a hash of its position and the frame
   // number, modulated by fract(t); alpha carries the frame number.
   const std::string fs = "#version 450 core\n" + block +
@@ -40,26 +38,7 @@ GLuint buildProbe(std::string& error) {
                          "  uint h = hash(p.x + 977u * p.y + 7919u * uint(frame.time.y));\n"
                          "  color = vec4(float(h & 0xffffu) / 65535.0, frame.time.z, frame.time.x, frame.time.y);\n"
                          "}\n";
-  const GLuint prog = glCreateProgram();
-  for (auto [type, src] : {std::pair{GL_VERTEX_SHADER, vs}, std::pair{GL_FRAGMENT_SHADER, fs}}) {
-    const GLuint sh = glCreateShader(type);
-    const char* c = src.c_str();
-    glShaderSource(sh, 1, &c, nullptr);
-    glCompileShader(sh);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      char log[2048] = {};
-      glGetShaderInfoLog(sh, sizeof log, nullptr, log);
-      error = log;
-    }
-    glAttachShader(prog, sh);
-    glDeleteShader(sh);
-  }
-  glLinkProgram(prog);
-  GLint ok = 0;
-  glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-  return ok ? prog : 0;
+  return test::linkProgram({{GL_VERTEX_SHADER, test::kFullscreenTriangleVs}, {GL_FRAGMENT_SHADER, fs}}, &error);
 }
 
 }  // namespace
