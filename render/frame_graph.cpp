@@ -53,9 +53,7 @@ TextureRef PassBuilder::create(const std::string& name, const TextureDesc& desc,
   r.name = name;
   r.texture = true;
   r.tdesc = desc;
-  const uint32_t i = graph_.addResource(std::move(r));
-  graph_.passes_[pass_].creates.push_back(i);
-  return write(TextureRef{i, 0}, usage);
+  return write(TextureRef{graph_.addCreated(pass_, std::move(r)), 0}, usage);
 }
 
 BufferRef PassBuilder::create(const std::string& name, const BufferDesc& desc, Usage usage) {
@@ -63,9 +61,7 @@ BufferRef PassBuilder::create(const std::string& name, const BufferDesc& desc, U
   r.name = name;
   r.texture = false;
   r.bdesc = desc;
-  const uint32_t i = graph_.addResource(std::move(r));
-  graph_.passes_[pass_].creates.push_back(i);
-  return write(BufferRef{i, 0}, usage);
+  return write(BufferRef{graph_.addCreated(pass_, std::move(r)), 0}, usage);
 }
 
 BufferRef PassBuilder::createSized(const std::string& name, std::function<BufferDesc()> desc, Usage usage) {
@@ -73,46 +69,29 @@ BufferRef PassBuilder::createSized(const std::string& name, std::function<Buffer
   r.name = name;
   r.texture = false;
   r.lateDesc = std::move(desc);
-  const uint32_t i = graph_.addResource(std::move(r));
-  graph_.passes_[pass_].creates.push_back(i);
-  return write(BufferRef{i, 0}, usage);
+  return write(BufferRef{graph_.addCreated(pass_, std::move(r)), 0}, usage);
 }
 
-void PassBuilder::checkVersion(uint32_t index, uint32_t version, bool texture) const {
-  const FrameGraph::Resource& r = graph_.resources_[index];
-  if (version == 0 || version == r.version) return;
-  const std::string what = "frame graph: pass '" + graph_.passes_[pass_].name + "' uses version " +
-                           std::to_string(version) + " of " + (texture ? "texture '" : "buffer '") + r.name +
-                           "', which a later write replaced (now version " + std::to_string(r.version) + ")";
-  if (FrameGraph::strictVersions()) throw std::logic_error(what);
-  graph_.staleReads_.push_back(what);
+uint32_t PassBuilder::access(uint32_t index, uint32_t version, bool write, Usage usage) {
+  FrameGraph::Resource& r = graph_.resources_[index];
+  if (write) {
+    ++r.version;
+  } else if (version != 0 && version != r.version) {
+    // Reading through a reference a later write replaced.
+    const std::string what = "frame graph: pass '" + graph_.passes_[pass_].name + "' uses version " +
+                             std::to_string(version) + " of " + (r.texture ? "texture '" : "buffer '") + r.name +
+                             "', which a later write replaced (now version " + std::to_string(r.version) + ")";
+    if (FrameGraph::strictVersions()) throw std::logic_error(what);
+    graph_.staleReads_.push_back(what);
+  }
+  graph_.passes_[pass_].accesses.push_back({index, r.version, write, usage});
+  return r.version;
 }
 
-TextureRef PassBuilder::read(TextureRef t, Usage usage) {
-  checkVersion(t.index, t.version, true);
-  const uint32_t v = graph_.resources_[t.index].version;
-  graph_.passes_[pass_].accesses.push_back({t.index, v, false, usage});
-  return TextureRef{t.index, v};
-}
-
-TextureRef PassBuilder::write(TextureRef t, Usage usage) {
-  auto& r = graph_.resources_[t.index];
-  graph_.passes_[pass_].accesses.push_back({t.index, ++r.version, true, usage});
-  return TextureRef{t.index, r.version};
-}
-
-BufferRef PassBuilder::read(BufferRef b, Usage usage) {
-  checkVersion(b.index, b.version, false);
-  const uint32_t v = graph_.resources_[b.index].version;
-  graph_.passes_[pass_].accesses.push_back({b.index, v, false, usage});
-  return BufferRef{b.index, v};
-}
-
-BufferRef PassBuilder::write(BufferRef b, Usage usage) {
-  auto& r = graph_.resources_[b.index];
-  graph_.passes_[pass_].accesses.push_back({b.index, ++r.version, true, usage});
-  return BufferRef{b.index, r.version};
-}
+TextureRef PassBuilder::read(TextureRef t, Usage usage) { return {t.index, access(t.index, t.version, false, usage)}; }
+TextureRef PassBuilder::write(TextureRef t, Usage usage) { return {t.index, access(t.index, t.version, true, usage)}; }
+BufferRef PassBuilder::read(BufferRef b, Usage usage) { return {b.index, access(b.index, b.version, false, usage)}; }
+BufferRef PassBuilder::write(BufferRef b, Usage usage) { return {b.index, access(b.index, b.version, true, usage)}; }
 
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
 
@@ -136,15 +115,25 @@ uint32_t FrameGraph::addResource(Resource r) {
   return uint32_t(resources_.size() - 1);
 }
 
+uint32_t FrameGraph::addCreated(uint32_t pass, Resource r) {
+  const uint32_t i = addResource(std::move(r));
+  passes_[pass].creates.push_back(i);
+  return i;
+}
+
+uint32_t FrameGraph::addExisting(Resource r, GLuint id) {
+  r.imported = id;
+  r.id = id;      // known from the start: keptTexture finds it even when no pass touches it
+  r.version = 1;  // its content exists before the frame (a persistent one's: last frame's)
+  return addResource(std::move(r));
+}
+
 TextureRef FrameGraph::importTexture(const std::string& name, GLuint texture, const TextureDesc& desc) {
   Resource r;
   r.name = name;
   r.texture = true;
   r.tdesc = desc;
-  r.imported = texture;
-  r.id = texture;  // known from the start: keptTexture finds it even when no pass touches it
-  r.version = 1;  // its content exists before the frame
-  return TextureRef{addResource(std::move(r)), 1};
+  return TextureRef{addExisting(std::move(r), texture), 1};
 }
 
 BufferRef FrameGraph::importBuffer(const std::string& name, GLuint buffer, const BufferDesc& desc) {
@@ -152,10 +141,7 @@ BufferRef FrameGraph::importBuffer(const std::string& name, GLuint buffer, const
   r.name = name;
   r.texture = false;
   r.bdesc = desc;
-  r.imported = buffer;
-  r.id = buffer;
-  r.version = 1;
-  return BufferRef{addResource(std::move(r)), 1};
+  return BufferRef{addExisting(std::move(r), buffer), 1};
 }
 
 TextureRef FrameGraph::persistentTexture(const std::string& name, const TextureDesc& desc, int lifetimeFrames) {
@@ -164,10 +150,8 @@ TextureRef FrameGraph::persistentTexture(const std::string& name, const TextureD
   r.texture = true;
   r.tdesc = desc;
   r.persistent = true;
-  r.imported = pool_.namedTexture(name, desc, lifetimeFrames, &r.fresh);
-  r.id = r.imported;
-  r.version = 1;  // last frame's content
-  return TextureRef{addResource(std::move(r)), 1};
+  const GLuint id = pool_.namedTexture(name, desc, lifetimeFrames, &r.fresh);
+  return TextureRef{addExisting(std::move(r), id), 1};
 }
 
 BufferRef FrameGraph::persistentBuffer(const std::string& name, const BufferDesc& desc, int lifetimeFrames) {
@@ -176,10 +160,8 @@ BufferRef FrameGraph::persistentBuffer(const std::string& name, const BufferDesc
   r.texture = false;
   r.bdesc = desc;
   r.persistent = true;
-  r.imported = pool_.namedBuffer(name, desc, lifetimeFrames, &r.fresh);
-  r.id = r.imported;
-  r.version = 1;
-  return BufferRef{addResource(std::move(r)), 1};
+  const GLuint id = pool_.namedBuffer(name, desc, lifetimeFrames, &r.fresh);
+  return BufferRef{addExisting(std::move(r), id), 1};
 }
 
 void FrameGraph::readback(const std::string& name, BufferRef b, size_t offset, size_t bytes,

@@ -91,7 +91,9 @@ class PassBuilder {
  private:
   friend class FrameGraph;
   PassBuilder(FrameGraph& g, uint32_t pass) : graph_(g), pass_(pass) {}
-  void checkVersion(uint32_t index, uint32_t version, bool texture) const;
+  // Records a read or write of `index`; returns the version it names. A
+  // read through a replaced `version` throws or is recorded (strict mode).
+  uint32_t access(uint32_t index, uint32_t version, bool write, Usage usage);
   FrameGraph& graph_;
   uint32_t pass_;
 };
@@ -237,6 +239,10 @@ class FrameGraph {
     bool alive = false;
   };
   uint32_t addResource(Resource r);
+  // A resource pass `pass` creates.
+  uint32_t addCreated(uint32_t pass, Resource r);
+  // A resource that exists before the frame (imported or persistent).
+  uint32_t addExisting(Resource r, GLuint id);
   uint32_t beginPass(const std::string& name);
   void cull();
   GLbitfield placeBarriers(const Pass& pass);

@@ -403,12 +403,7 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
   return out;
 }
 
-size_t Renderer::idlePoolBytes() const {
-  size_t n = 0;
-  for (const PoolAllocation& a : d_->res.pool.registry())
-    if (a.idleFrames > 0) n += a.bytes;
-  return n;
-}
+size_t Renderer::idlePoolBytes() const { return d_->res.pool.idleBytes(); }
 
 scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView& view, int x, int y) {
   return pickSurface(state, view, x, y).entity;

@@ -365,6 +365,13 @@ size_t ResourcePool::bytes() const {
   return n;
 }
 
+size_t ResourcePool::idleBytes() const {
+  size_t n = 0;
+  for (const auto& [id, e] : textures_) n += e.idleFrames > 0 ? e.desc.bytes() : 0;
+  for (const auto& [id, e] : buffers_) n += e.idleFrames > 0 ? e.classBytes : 0;
+  return n;
+}
+
 const TextureDesc* ResourcePool::describe(GLuint texture) const {
   auto it = textures_.find(texture);
   return it == textures_.end() ? nullptr : &it->second.desc;

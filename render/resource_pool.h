@@ -133,6 +133,8 @@ class ResourcePool {
 
   std::vector<PoolAllocation> registry() const;
   size_t bytes() const;
+  // Bytes of pooled targets no pass used in the last frame (kept for reuse).
+  size_t idleBytes() const;
   // Texture descriptions by id, for passes that need the size of an import.
   const TextureDesc* describe(GLuint texture) const;
 
