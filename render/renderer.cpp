@@ -333,9 +333,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   glBindFramebuffer(GL_FRAMEBUFFER, targets.back().fbo);
 
   stats.gpuMs = d.lastGpuMs;
-  for (const GpuAllocation& a : resourceRegistry()) stats.gpuBytes += a.bytes;
-  stats.idleGpuBytes = idlePoolBytes();
-  stats.gpuAllocationsMade = res.pool.allocationsMade();
+  fillMemoryStats(stats);
   stats.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return stats;
 }
@@ -404,6 +402,13 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
 }
 
 size_t Renderer::idlePoolBytes() const { return d_->res.pool.idleBytes(); }
+
+void Renderer::fillMemoryStats(FrameStats& stats) const {
+  stats.gpuBytes = 0;
+  for (const GpuAllocation& a : resourceRegistry()) stats.gpuBytes += a.bytes;
+  stats.idleGpuBytes = idlePoolBytes();
+  stats.gpuAllocationsMade = d_->res.pool.allocationsMade();
+}
 
 scene::EntityId Renderer::pick(const scene::SceneState& state, const RenderView& view, int x, int y) {
   return pickSurface(state, view, x, y).entity;
@@ -628,10 +633,7 @@ std::optional<FrameStats> Renderer::renderLensReference(const scene::SceneState&
   d.lastFrame = std::move(graph);
   res.pool.endFrame();
   glBindFramebuffer(GL_FRAMEBUFFER, targets.back().fbo);
-  stats.gpuBytes = 0;
-  for (const GpuAllocation& a : resourceRegistry()) stats.gpuBytes += a.bytes;
-  stats.idleGpuBytes = idlePoolBytes();
-  stats.gpuAllocationsMade = res.pool.allocationsMade();
+  fillMemoryStats(stats);
   return stats;
 }
 

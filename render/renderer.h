@@ -264,6 +264,8 @@ class Renderer {
   void shutdown();
 
  private:
+  // The frame's memory figures (gpuBytes, idleGpuBytes, gpuAllocationsMade).
+  void fillMemoryStats(FrameStats& stats) const;
   // settings.depth_of_field = reference (render/dof_reference.h); nullopt
   // when no view needs depth of field (the frame then renders as usual).
   std::optional<FrameStats> renderLensReference(const scene::SceneState& state, const std::vector<ViewTarget>& views,
