@@ -98,7 +98,7 @@ void resetABufferCounters(GLuint buffer, int width) {
 }
 
 FragmentCount addFragmentCountPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v,
-                                   const std::string& name, const DrawList& draws, TextureRef depth,
+                                   const std::string& name, SurfaceSet draws, TextureRef depth,
                                    ABufferDepthTest test) {
   FragmentCount out;
   out.info = std::make_shared<ABufferInfo>();
@@ -111,6 +111,7 @@ FragmentCount addFragmentCountPass(FrameGraph& graph, FrameContext& frame, const
   const Count& count = graph.addPass<Count>(
       v.named(name + "_count"),
       [&](PassBuilder& b, Count& d) {
+        declareSources(b, frame, DrawVariant::Surface, draws);
         d.depth = b.read(depth);
         d.counts = b.create(v.named(name + "_counts"), TextureDesc{v.view.width, v.view.height, GL_R32UI});
         d.counters = b.create(v.named(name + "_counters"), BufferDesc{sizeof(ABufferCounters)});
@@ -125,7 +126,7 @@ FragmentCount addFragmentCountPass(FrameGraph& graph, FrameContext& frame, const
         frame.res.bindView(index);
         glBindImageTexture(kABufferCountsImage, r.texture(d.counts), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kABufferCountersBinding, r.buffer(d.counters));
-        drawSubmeshes(frame, draws, {}, "abuffer_count.frag");
+        drawSurfaces(frame, r, index, draws, {}, "abuffer_count.frag");
         restoreDepthState();
         // Read back now: the A-buffer sizes its pool from it before the
         // capture (the frame's one wait for the GPU in between).
@@ -154,7 +155,7 @@ FragmentCount addFragmentCountPass(FrameGraph& graph, FrameContext& frame, const
 
 ABuffer addABufferCapture(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const ABufferRequest& request) {
   ABuffer out;
-  if (request.draws.empty()) return out;
+  if (!anySource(frame, DrawVariant::Surface, request.draws)) return out;
   const FragmentCount count =
       addFragmentCountPass(graph, frame, v, request.name, request.draws, request.depth, request.depthTest);
   const std::shared_ptr<ABufferInfo> info = count.info;
@@ -179,6 +180,7 @@ ABuffer addABufferCapture(FrameGraph& graph, FrameContext& frame, const ViewCont
   const Capture& cap = graph.addPass<Capture>(
       v.named(request.name + "_capture"),
       [&](PassBuilder& b, Capture& d) {
+        declareSources(b, frame, DrawVariant::Surface, request.draws);
         d.depth = b.read(request.depth);
         d.counts = b.read(count.counts);
         d.counters = b.write(b.read(count.counters));
@@ -229,7 +231,7 @@ ABuffer addABufferCapture(FrameGraph& graph, FrameContext& frame, const ViewCont
         glViewport(0, 0, w, h);
         setDepthTest(test);
         frame.res.bindView(index);
-        drawSubmeshes(frame, draws, {}, "abuffer_keys.frag");
+        drawSurfaces(frame, r, index, draws, {}, "abuffer_keys.frag");
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
         // 3. Each pixel's keys in order (abuffer_sort_keys.comp).
@@ -248,7 +250,7 @@ ABuffer addABufferCapture(FrameGraph& graph, FrameContext& frame, const ViewCont
         defines.push_back("HS_OIT_ABUFFER");
         if (tail) defines.push_back("HS_OIT_TAIL");
         defines.insert(defines.end(), extra.begin(), extra.end());
-        drawSubmeshes(frame, draws, defines);
+        drawSurfaces(frame, r, index, draws, defines);
         restoreDepthState();
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                         GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -1,6 +1,7 @@
 #pragma once
 // The A-buffer capture (issue 13; shaders/abuffer.glsl is the GLSL side):
-// draws a given draw list into per-pixel ranges of fragments: a node pool
+// draws a set of the frame's surfaces (draw_source.h: every source's
+// Surface variant) into per-pixel ranges of fragments: a node pool
 // in a storage buffer (colour as two half pairs, depth, key: 16 bytes per
 // fragment) where each pixel's fragments are contiguous and sorted front to
 // back, and the starts of the ranges (one uint per pixel). Shared by the
@@ -14,11 +15,11 @@
 // total back (one small wait) and sizes the pool for exactly this frame's
 // fragments, capped by `memoryCapBytes`. "<name>_capture" then
 //   1. turns the counts into ranges (a prefix sum, shaders/abuffer_scan.comp),
-//   2. draws the list with a derivative-free shader that hands each
+//   2. draws the surfaces with a derivative-free shader that hands each
 //      fragment a node of its pixel and writes its depth and key there
 //      (shaders/abuffer_keys.frag, which says why not in the lit shader),
 //   3. sorts each pixel's range by depth (shaders/abuffer_sort_keys.comp),
-//   4. draws the list again with the mesh shader's HS_OIT_ABUFFER variant
+//   4. draws them again with the mesh shader's HS_OIT_ABUFFER variant
 //      (full lighting): each fragment finds its node and writes its colour.
 // No step depends on the order fragments arrive in, so a frame captures
 // the same bits every time (the linked lists of Yang et al. 2010, built
@@ -39,7 +40,7 @@
 #include <string>
 #include <vector>
 
-#include "render/draw_list.h"
+#include "render/draw_source.h"
 #include "render/frame_context.h"
 
 namespace hs::render {
@@ -77,7 +78,7 @@ enum class ABufferDepthTest {
 
 struct ABufferRequest {
   std::string name = "abuffer";  // prefix of its passes and resources ("oit", "dof"); the view's suffix follows
-  DrawList draws;
+  SurfaceSet draws = SurfaceSet::Translucent;  // which surfaces of the frame's sources
   // The view's single-sample opaque depth (reversed Z). It sizes the
   // buffers, and with ABufferDepthTest::Opaque fragments behind it are not
   // captured (it is attached read-only, never written).
@@ -132,11 +133,11 @@ struct FragmentCount {
   std::shared_ptr<ABufferInfo> info;
 };
 FragmentCount addFragmentCountPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view,
-                                   const std::string& name, const DrawList& draws, TextureRef depth,
+                                   const std::string& name, SurfaceSet draws, TextureRef depth,
                                    ABufferDepthTest test);
 
-// Adds the counting and capture passes for `view`. With an empty draw list
-// it adds nothing and returns invalid refs (nothing is allocated).
+// Adds the counting and capture passes for `view`. With no source having
+// such surfaces it adds nothing and returns invalid refs (nothing is allocated).
 ABuffer addABufferCapture(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const ABufferRequest& request);
 
 // Declares a later pass's reads of the A-buffer (starts, nodes, counters,

@@ -4,17 +4,20 @@
 // rendered from points of the lens's aperture (dof_lens.h lensDiscSamples,
 // lensSampleView: a fixed seed, the focus plane held still), summed in
 // float. Slow by design (N real renders); tests and bench_dof measure the
-// post passes against it. Renderer::renderViews drives the loop; this is
-// its GL part. Include only inside render/.
-#include "render/render_resources.h"
+// post passes against it. Renderer::renderViews drives the loop; the sums
+// are persistent textures of the frame graph, one per view. Include only
+// inside render/.
+#include "render/frame_context.h"
 
 namespace hs::render {
 
-// An RGBA32F accumulation target of w x h, cleared to 0 (from the pool,
-// named "dof_reference_accum"; release it with pool.releaseTexture).
-GLuint acquireLensAccumulation(RenderResources& res, int width, int height);
+// View v's sum ("dof_reference_sum" and the view's suffix: RGBA32F, the
+// view's size), a persistent texture that lives while frames ask for it.
+TextureRef lensSumTexture(FrameGraph& graph, const ViewContext& v);
 
-// accum += weight * frame (an HDR texture of the same size).
-void accumulateLensSample(RenderResources& res, GLuint frame, GLuint accum, int width, int height, float weight);
+// The "dof_reference_sample" pass of a lens sample's frame: sum += weight
+// * hdr (additive blending), the sum cleared first when `first`.
+void addLensSamplePass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef hdr, bool first,
+                       float weight);
 
 }  // namespace hs::render

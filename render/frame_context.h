@@ -4,6 +4,7 @@
 // the statistics the passes add to. Include only inside render/.
 #include <string>
 
+#include "render/draw_source.h"
 #include "render/frame_graph.h"
 #include "render/render_resources.h"
 #include "render/render_world.h"
@@ -34,6 +35,11 @@ struct FrameContext {
   // lights that reach a view, and the grid when the frame has one.
   size_t lightsInView = 0;
   BufferRef lightGrid{}, lightIndices{};
+  // The kinds of geometry the frame draws (draw_source.h), in drawing
+  // order, and its shadow views (each shadow map layer's volume, relative
+  // to the frame origin), which every source culled once.
+  std::vector<DrawSource*> sources{};
+  std::vector<Frustum> shadowViews{};
 };
 
 // One view of the frame: its camera, its index in the view block buffer,

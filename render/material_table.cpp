@@ -118,20 +118,16 @@ GLuint MaterialTable::texture(const scene::SceneState& state, const scene::Mater
   return s.texture;
 }
 
-GLuint MaterialTable::baseColorTexture(const scene::SceneState& state, const scene::Material& m, const GpuMesh& mesh,
-                                       GpuMeshCache& meshes) {
-  if (!mesh.hasUvs) return 0;
-  return texture(state, m, "base_color_texture", m.baseColorTexture, mesh, meshes, false);
-}
-
-void MaterialTable::build(const scene::SceneState& state, const VisibleSet& visible, GpuMeshCache& meshes,
-                          GrowingBuffer& buffer) {
+void MaterialTable::build(const scene::SceneState& state, const std::vector<DrawItem>& draws,
+                          std::pair<size_t, size_t> depthOnly, GpuMeshCache& meshes, GrowingBuffer& buffer) {
   block_.clear();
   byId_.clear();
-  perDraw_.assign(visible.draws.size(), {});
+  perDraw_.assign(draws.size(), {});
   std::map<std::pair<scene::AssetId, size_t>, DrawMaterial> fallbacks;
-  for (size_t d = 0; d < visible.draws.size(); ++d) {
-    const DrawItem& it = visible.draws[d];
+  std::map<scene::MaterialId, DrawMaterial> depthOnlyById;
+  for (size_t d = 0; d < draws.size(); ++d) {
+    const DrawItem& it = draws[d];
+    const bool drawnLit = d < depthOnly.first || d >= depthOnly.second;
     const scene::MeshAsset* asset = it.asset;
     const mesh::MeshData& base = asset && asset->data ? *asset->data : *it.mesh->data;
     for (const mesh::Submesh& sm : it.mesh->data->submeshes) {
@@ -140,13 +136,20 @@ void MaterialTable::build(const scene::SceneState& state, const VisibleSet& visi
           asset && slot < asset->materialSlots.size() ? asset->materialSlots[slot] : scene::kNoMaterial;
       const scene::Material* m = state.findMaterial(id);
       if (m) {
-        auto found = byId_.find(id);
-        if (found == byId_.end()) {
+        // A draw only shadow views draw needs the base colour of a
+        // material that casts cut-out, nothing else: its own entry.
+        std::map<scene::MaterialId, DrawMaterial>& cache = drawnLit ? byId_ : depthOnlyById;
+        auto found = cache.find(id);
+        if (found == cache.end()) {
           DrawMaterial dm;
           GpuMaterial g = gpuMaterialOf(*m);
-          dm.textures[0] = texture(state, *m, "base_color_texture", m->baseColorTexture, *it.mesh, meshes, false);
-          dm.textures[1] = texture(state, *m, "normal_map", m->normalMap, *it.mesh, meshes, true);
-          dm.textures[2] = texture(state, *m, "height_map", m->heightMap, *it.mesh, meshes, false);
+          const bool castsCutout = m->alphaCutout || m->opacity < 1.0f;
+          if (drawnLit || castsCutout)
+            dm.textures[0] = texture(state, *m, "base_color_texture", m->baseColorTexture, *it.mesh, meshes, false);
+          if (drawnLit) {
+            dm.textures[1] = texture(state, *m, "normal_map", m->normalMap, *it.mesh, meshes, true);
+            dm.textures[2] = texture(state, *m, "height_map", m->heightMap, *it.mesh, meshes, false);
+          }
           // A base colour texture needs UVs to be sampled at all.
           if (!it.mesh->hasUvs) dm.textures[0] = dm.textures[1] = dm.textures[2] = 0;
           if (dm.textures[0]) g.kind.y |= kMatBaseTexture;
@@ -156,14 +159,18 @@ void MaterialTable::build(const scene::SceneState& state, const VisibleSet& visi
           dm.shading = m->shading;
           dm.twoSided = m->twoSided;
           dm.translucent = m->opacity < 1.0f && !m->alphaCutout;
+          dm.castsCutout = castsCutout;
+          dm.opacity = m->opacity;
+          dm.alphaThreshold = m->alphaThreshold;
           const bool perPixel = m->shading != scene::ShadingMode::Gouraud;
           dm.normalMap = perPixel && dm.textures[1] != 0;
           dm.parallax = perPixel && dm.textures[2] != 0 && m->heightScale > 0.0f;
           block_.push_back(g);
-          found = byId_.emplace(id, dm).first;
+          found = cache.emplace(id, dm).first;
         }
-        // Tangents only for meshes a normal- or height-mapped material draws.
-        if (found->second.normalMap || found->second.parallax) meshes.addTangents(*it.mesh);
+        // Tangents only for meshes a normal- or height-mapped material draws
+        // in view (shadow casters draw depth alone).
+        if (drawnLit && (found->second.normalMap || found->second.parallax)) meshes.addTangents(*it.mesh);
         perDraw_[d].push_back(found->second);
         continue;
       }

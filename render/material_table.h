@@ -24,7 +24,7 @@ namespace hs::render {
 class GpuMeshCache;
 struct GpuMesh;
 struct GrowingBuffer;
-struct VisibleSet;
+struct DrawItem;
 
 struct DrawMaterial {
   uint32_t index = 0;                  // into the frame's MaterialBlock
@@ -38,20 +38,26 @@ struct DrawMaterial {
   // Opacity under 1 and no alpha cut-out: drawn by the transparency path
   // (render/oit.h), not the opaque pass.
   bool translucent = false;
+  // Shadow casting (shaders/shadow_depth.frag's ALPHA_CUTOUT variant): a
+  // document material with alpha cut-out or opacity under 1 casts through
+  // its holes (cut-out, at `alphaThreshold`) or a hashed share of its
+  // surface (translucent); every other material casts as a solid.
+  bool castsCutout = false;
+  float opacity = 1.0f;
+  float alphaThreshold = 0.5f;
 };
 
 class MaterialTable {
  public:
-  // Resolves the material of every submesh of every draw of `visible` and
-  // uploads the block into `buffer` (bound at kMaterialBufferBinding).
-  void build(const scene::SceneState& state, const VisibleSet& visible, GpuMeshCache& meshes, GrowingBuffer& buffer);
+  // Resolves the material of every submesh of every draw of `visible` (the
+  // shadow-only casters' too) and uploads the block into `buffer` (bound at
+  // kMaterialBufferBinding).
+  // `depthOnly` is the range of draws only shadow views draw (no tangents
+  // for them).
+  void build(const scene::SceneState& state, const std::vector<DrawItem>& draws, std::pair<size_t, size_t> depthOnly,
+             GpuMeshCache& meshes, GrowingBuffer& buffer);
   const DrawMaterial& forDraw(size_t draw, size_t submesh) const { return perDraw_[draw][submesh]; }
   size_t materialCount() const { return block_.size(); }
-  // The base colour texture of `m` drawn on `mesh` (0: none, undrawable, or
-  // the mesh has no UVs), reported like the draws' own: for the shadow
-  // passes' cut-out casters, which need not be in view.
-  GLuint baseColorTexture(const scene::SceneState& state, const scene::Material& m, const GpuMesh& mesh,
-                          GpuMeshCache& meshes);
 
   // Frees standalone textures the state no longer has (or whose content changed).
   void collect(const scene::SceneState& state);

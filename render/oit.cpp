@@ -112,7 +112,7 @@ void runComputeResolve(FrameContext& frame, const PassResources& r, TextureRef h
 
 // The A-buffer, or with `fixedLayers` the thesis's fixed-depth array (the
 // same capture with every pixel's range that long: render/abuffer.h).
-TextureRef addABufferMode(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const DrawList& draws,
+TextureRef addABufferMode(FrameGraph& graph, FrameContext& frame, const ViewContext& v, SurfaceSet draws,
                           TextureRef depth, TextureRef hdr, const std::shared_ptr<OitViewInfo>& info,
                           int fixedLayers) {
   ABufferRequest req;
@@ -153,7 +153,7 @@ TextureRef addABufferMode(FrameGraph& graph, FrameContext& frame, const ViewCont
       .hdr;
 }
 
-TextureRef addKBufferMode(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const DrawList& draws,
+TextureRef addKBufferMode(FrameGraph& graph, FrameContext& frame, const ViewContext& v, SurfaceSet draws,
                           TextureRef depth, TextureRef hdr, const std::shared_ptr<OitViewInfo>& info) {
   const int w = v.view.width, h = v.view.height;
   const size_t pixels = size_t(w) * size_t(h);
@@ -175,6 +175,7 @@ TextureRef addKBufferMode(FrameGraph& graph, FrameContext& frame, const ViewCont
   const Depth& dp = graph.addPass<Depth>(
       v.named("oit_kbuffer_depth"),
       [&](PassBuilder& b, Depth& d) {
+        declareSources(b, frame, DrawVariant::Surface, draws);
         d.depth = b.read(depth);
         d.slots = b.create(v.named("oit_kbuffer_keys"), TextureDesc{w, h, GL_R32UI, 1, k, 1, false, true});
         d.counts = b.create(v.named("oit_counts"), TextureDesc{w, h, GL_R32UI});
@@ -191,7 +192,7 @@ TextureRef addKBufferMode(FrameGraph& graph, FrameContext& frame, const ViewCont
         glBindImageTexture(kABufferCountsImage, r.texture(d.counts), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
         glBindImageTexture(kOitImage2, r.texture(d.slots), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kABufferCountersBinding, r.buffer(d.counters));
-        drawSubmeshes(frame, draws, {kDefine}, "oit_kbuffer_depth.frag");
+        drawSurfaces(frame, r, index, draws, {kDefine}, "oit_kbuffer_depth.frag");
         restoreDepth();
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
       });
@@ -202,6 +203,7 @@ TextureRef addKBufferMode(FrameGraph& graph, FrameContext& frame, const ViewCont
   const Color& cp = graph.addPass<Color>(
       v.named("oit_kbuffer_color"),
       [&](PassBuilder& b, Color& d) {
+        declareSources(b, frame, DrawVariant::Surface, draws);
         d.depth = b.read(depth);
         d.slots = b.read(dp.slots);
         b.read(dp.counts);
@@ -223,7 +225,7 @@ TextureRef addKBufferMode(FrameGraph& graph, FrameContext& frame, const ViewCont
         glBindImageTexture(kOitImage3, r.texture(d.colors), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32UI);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kABufferCountersBinding, r.buffer(d.counters));
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOitTailBinding, r.buffer(d.tail));
-        drawSubmeshes(frame, draws, drawDefines(frame, {"HS_OIT_KBUFFER", "HS_OIT_TAIL", kDefine}));
+        drawSurfaces(frame, r, index, draws, drawDefines(frame, {"HS_OIT_KBUFFER", "HS_OIT_TAIL", kDefine}));
         restoreDepth();
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
       });
@@ -256,7 +258,7 @@ TextureRef addKBufferMode(FrameGraph& graph, FrameContext& frame, const ViewCont
       .hdr;
 }
 
-TextureRef addWeightedMode(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const DrawList& draws,
+TextureRef addWeightedMode(FrameGraph& graph, FrameContext& frame, const ViewContext& v, SurfaceSet draws,
                            TextureRef depth, TextureRef hdr, const std::shared_ptr<OitViewInfo>& info) {
   const int w = v.view.width, h = v.view.height;
   info->bytes = size_t(w) * size_t(h) * (8 + 2);
@@ -266,6 +268,7 @@ TextureRef addWeightedMode(FrameGraph& graph, FrameContext& frame, const ViewCon
   const Draw& dr = graph.addPass<Draw>(
       v.named("oit_weighted"),
       [&](PassBuilder& b, Draw& d) {
+        declareSources(b, frame, DrawVariant::Surface, draws);
         d.depth = b.read(depth);
         d.accum = b.create(v.named("oit_accum"), TextureDesc{w, h, GL_RGBA16F});
         d.revealage = b.create(v.named("oit_revealage"), TextureDesc{w, h, GL_R16F});
@@ -285,7 +288,7 @@ TextureRef addWeightedMode(FrameGraph& graph, FrameContext& frame, const ViewCon
         glEnable(GL_BLEND);
         glBlendFunci(0, GL_ONE, GL_ONE);
         glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
-        drawSubmeshes(frame, draws, drawDefines(frame, {"HS_OIT_WEIGHTED"}));
+        drawSurfaces(frame, r, index, draws, drawDefines(frame, {"HS_OIT_WEIGHTED"}));
         glDisable(GL_BLEND);
         restoreDepth();
       });
@@ -309,7 +312,7 @@ TextureRef addWeightedMode(FrameGraph& graph, FrameContext& frame, const ViewCon
       .hdr;
 }
 
-TextureRef addReferenceMode(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const DrawList& draws,
+TextureRef addReferenceMode(FrameGraph& graph, FrameContext& frame, const ViewContext& v, SurfaceSet draws,
                             TextureRef depth, TextureRef hdr, const std::shared_ptr<OitViewInfo>& info) {
   const int w = v.view.width, h = v.view.height;
   info->bytes = size_t(w) * size_t(h) * (16 + 4 + 4 + 16);
@@ -319,6 +322,7 @@ TextureRef addReferenceMode(FrameGraph& graph, FrameContext& frame, const ViewCo
   const Peel& pe = graph.addPass<Peel>(
       v.named("oit_reference"),
       [&](PassBuilder& b, Peel& d) {
+        declareSources(b, frame, DrawVariant::Surface, draws);
         d.depth = b.read(depth);
         d.color = b.create(v.named("oit_peel_color"), TextureDesc{w, h, GL_RGBA32F});
         d.depthA = b.create(v.named("oit_peel_depth_a"), TextureDesc{w, h, GL_DEPTH_COMPONENT32F});
@@ -355,7 +359,7 @@ TextureRef addReferenceMode(FrameGraph& graph, FrameContext& frame, const ViewCo
           glBindTextureUnit(kOitTextureUnit, r.texture(last));
           glBindTextureUnit(kOitTextureUnit + 1, r.texture(d.depth));
           glBeginQuery(GL_ANY_SAMPLES_PASSED, query.id());
-          drawSubmeshes(frame, draws, defines);
+          drawSurfaces(frame, r, index, draws, defines);
           glEndQuery(GL_ANY_SAMPLES_PASSED);
           GLuint any = 0;
           glGetQueryObjectuiv(query.id(), GL_QUERY_RESULT, &any);
@@ -396,20 +400,12 @@ TextureRef addReferenceMode(FrameGraph& graph, FrameContext& frame, const ViewCo
 
 }  // namespace
 
-DrawList translucentSubmeshes(const FrameContext& frame) {
-  DrawList out;
-  for (size_t d = 0; d < frame.visible.draws.size(); ++d)
-    for (size_t s = 0; s < frame.visible.draws[d].mesh->data->submeshes.size(); ++s)
-      if (frame.res.materials.forDraw(d, s).translucent) out.push_back({uint32_t(d), uint32_t(s)});
-  return out;
-}
-
-TextureRef addTransparencyPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const DrawList& draws,
+TextureRef addTransparencyPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, SurfaceSet draws,
                                  TextureRef depth, TextureRef hdr, bool counted, std::shared_ptr<OitViewInfo>& info) {
   info = std::make_shared<OitViewInfo>();
-  if (draws.empty()) return hdr;
+  if (!anySource(frame, DrawVariant::Surface, draws)) return hdr;
   // The translucent surfaces, once, however many passes draw them.
-  frame.stats.trianglesDrawn += triangleCount(frame, draws);
+  frame.stats.trianglesDrawn += sourceTriangles(frame, draws);
   switch (frame.settings.transparency) {
     case scene::Transparency::ABuffer: return addABufferMode(graph, frame, v, draws, depth, hdr, info, 0);
     case scene::Transparency::ABufferFixed:
@@ -438,7 +434,7 @@ TextureRef addTransparencyPasses(FrameGraph& graph, FrameContext& frame, const V
   return addReferenceMode(graph, frame, v, draws, depth, hdr, info);
 }
 
-TextureRef addDepthComplexityPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const DrawList& draws,
+TextureRef addDepthComplexityPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, SurfaceSet draws,
                                   TextureRef depth, TextureRef hdr) {
   const FragmentCount c = addFragmentCountPass(graph, frame, v, "depth_complexity", draws, depth,
                                                ABufferDepthTest::Opaque);

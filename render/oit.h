@@ -15,13 +15,10 @@
 #include <vector>
 
 #include "render/abuffer.h"
-#include "render/draw_list.h"
+#include "render/draw_source.h"
 #include "render/frame_context.h"
 
 namespace hs::render {
-
-// The translucent submeshes of the frame's visible set (empty: no OIT).
-DrawList translucentSubmeshes(const FrameContext& frame);
 
 // What one view's transparency passes found (read after execute).
 struct OitViewInfo {
@@ -37,16 +34,16 @@ struct OitViewInfo {
 
 // Adds the view's transparency passes over `hdr` (the opaque colour,
 // single-sample) with `depth` (the opaque depth, single-sample) and returns
-// the composited colour; `hdr` itself when `draws` is empty. `counted`
+// the composited colour; `hdr` itself when no source has such surfaces. `counted`
 // adds a counting pass to modes that have none of their own (weighted,
 // reference) so their fragments per pixel are known.
 TextureRef addTransparencyPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& view,
-                                 const DrawList& draws, TextureRef depth, TextureRef hdr, bool counted,
+                                 SurfaceSet draws, TextureRef depth, TextureRef hdr, bool counted,
                                  std::shared_ptr<OitViewInfo>& info);
 
 // Draws the view's depth complexity (fragments per pixel of `draws`) as a
 // heat map over `hdr` (RenderOptions::depthComplexity).
 TextureRef addDepthComplexityPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view,
-                                  const DrawList& draws, TextureRef depth, TextureRef hdr);
+                                  SurfaceSet draws, TextureRef depth, TextureRef hdr);
 
 }  // namespace hs::render

@@ -12,12 +12,15 @@
 #include "render/gl/gl_debug.h"
 #include "render/fog_block.h"
 #include "render/gpu_lights.h"
+#include "render/mesh_source.h"
+#include "render/terrain_source.h"
 #include "render/oit.h"
 #include "render/passes/ao_passes.h"
 #include "render/passes/background_passes.h"
 #include "render/passes/dof_passes.h"
 #include "render/dof_reference.h"
 #include "render/passes/environment_pass.h"
+#include "render/passes/group_combine.h"
 #include "render/passes/light_culling.h"
 #include "render/passes/output_passes.h"
 #include "render/passes/scene_passes.h"
@@ -47,6 +50,9 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
       {"fullscreen.vert", "dof_gather.frag", "", {}}, {"fullscreen.vert", "dof_accumulate.frag", "", {}},
       {"fullscreen.vert", "dof_tiles.frag", "", {}}, {"", "", "dof_layers.comp", {}},
       {"fullscreen.vert", "dof_composite.frag", "", {}},
+      // Instanced draw sources (instanced_source.h)
+      {"mesh.vert", "mesh.frag", "", {"INSTANCED"}}, {"", "", "instance_cull.comp", {}},
+      {"", "", "instance_commands.comp", {}},
   };
   return programs;
 }
@@ -102,17 +108,44 @@ struct Renderer::Impl {
   std::chrono::steady_clock::time_point timerBegun[3];  // when each was begun, by the wall clock
   int timerFrame = 0;
   double lastGpuMs = -1.0;
-  // The last frame's graph, holding what it keeps (HDR colour, depth) until
-  // the next frame.
-  std::unique_ptr<FrameGraph> lastFrame;
-  std::vector<TextureRef> keptHdr, keptDepth;
-  std::vector<glm::ivec2> keptSizes;
-  // Depth of field's reference (dof_reference.h): true while the lens
-  // samples render (each a plain pinhole frame), and the float sums the
-  // last reference frame keeps (its HDR images) until the next frame.
-  bool lensSampling = false;
-  std::vector<GLuint> lensAccum;
-  std::vector<GLuint> lensDepth;  // the reference's pinhole depth per view (with keepDepth)
+  // The last frame's graphs (one per view group, and the one combining
+  // them), holding what they keep (HDR colour, depth) until the next frame,
+  // and what each view of the frame kept, in order over the groups.
+  struct Kept {
+    const FrameGraph* hdrGraph = nullptr;
+    const FrameGraph* depthGraph = nullptr;
+    TextureRef hdr, depth;
+    glm::ivec2 size{0};
+  };
+  std::vector<std::unique_ptr<FrameGraph>> frames;
+  std::vector<Kept> kept;
+  // While renderGroups runs: the graphs and views of its earlier groups,
+  // which a later group's frame does not drop.
+  bool inGroups = false;
+  size_t groupFrames = 0, groupKept = 0;
+  // Depth of field's reference (dof_reference.h): while the lens samples
+  // render (each a plain pinhole frame adding its HDR images, times
+  // lensWeight, to the persistent sums; the first clears them), and while
+  // its pinhole frame at the lens centre renders (the depth it keeps).
+  bool lensSampling = false, lensPinhole = false;
+  int lensSample = 0;
+  float lensWeight = 0.0f;
+  std::vector<std::shared_ptr<DrawSource>> extraSources;  // setDrawSources
+
+  // The suffix of a view's passes and resources: its name, and from the
+  // second group of renderGroups on the group's ("[g1/left]").
+  size_t groupIndex = 0;
+  std::string suffix(const std::string& name) const {
+    std::string tag = groupIndex ? "g" + std::to_string(groupIndex) : "";
+    if (!tag.empty() && !name.empty()) tag += "/";
+    tag += name;
+    return tag.empty() ? "" : "[" + tag + "]";
+  }
+
+  void resetKept() {
+    frames.resize(groupFrames);
+    kept.resize(groupKept);
+  }
 
   // `lightsInView`: the point and spot lights that can light a pixel of a
   // view (none: the shaders loop over no light).
@@ -136,9 +169,6 @@ struct Renderer::Impl {
     for (const WorldLight& l : world.lights) lights.push_back(gpuLight(l, visible.origin));
     res.lights.reserve(std::max<size_t>(lights.size(), 1) * sizeof(GpuLight));
     res.lights.upload(lights.data(), lights.size() * sizeof(GpuLight));
-    res.objects.reserve(std::max<size_t>(visible.objects.size(), 1) * sizeof(GpuObject));
-    res.objects.upload(visible.objects.data(), visible.objects.size() * sizeof(GpuObject));
-    res.ensureObjectIndices(visible.objects.size());
 
     std::vector<uint8_t> blocks(views.size() * res.viewStride);
     for (size_t i = 0; i < views.size(); ++i) {
@@ -153,6 +183,19 @@ struct Renderer::Impl {
       res.fogBlock.upload(&fog, sizeof fog);
       glBindBufferRange(GL_UNIFORM_BUFFER, kFogBlockBinding, res.fogBlock.buffer.id(), 0, sizeof fog);
     }
+  }
+
+  // The object data and materials of every mesh draw, the shadow-only
+  // casters' too: after the shadow views chose them (planShadows).
+  // The other sources' materials follow the meshes' (DrawSource::addMaterials).
+  void uploadDraws(FrameContext& frame, const VisibleSet& visible) {
+    res.objects.reserve(std::max<size_t>(visible.objects.size(), 1) * sizeof(GpuObject));
+    res.objects.upload(visible.objects.data(), visible.objects.size() * sizeof(GpuObject));
+    res.ensureObjectIndices(visible.objects.size());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBufferBinding, res.objects.buffer.id());
+    std::vector<DrawItem> draws = visible.draws;
+    for (DrawSource* s : frame.sources) s->addMaterials(frame, draws);
+    res.materials.build(*frame.world.state, draws, {visible.inView, visible.draws.size()}, res.meshes, res.materialBlock);
   }
 };
 
@@ -207,7 +250,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
     if (t.view.width <= 0 || t.view.height <= 0) return stats;
   // Depth of field, reference: N pinhole frames over the lens, averaged
   // (none when no view needs it: the frame renders as below).
-  if (state.settings.depthOfField == scene::DepthOfField::Reference && !d_->lensSampling)
+  if (state.settings.depthOfField == scene::DepthOfField::Reference && !d_->lensSampling && !d_->lensPinhole)
     if (std::optional<FrameStats> s = renderLensReference(state, targets, options)) return *s;
   const auto t0 = std::chrono::steady_clock::now();
   Impl& d = *d_;
@@ -215,7 +258,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   const scene::SceneSettings& settings = state.settings;
 
   GLuint timer = 0;
-  if (options.measureGpuTime) {
+  if (options.measureGpuTime && !d.inGroups) {
     // Read the query from two frames ago if it is done; never wait for it.
     const int oldSlot = (d.timerFrame + 1) % 3;
     const GLuint old = d.timers[oldSlot].id();
@@ -242,24 +285,20 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   // Readbacks earlier frames queued (FrameGraph::readback) whose fences
   // have signalled: delivered now, never waited for.
   res.pool.pollReadbacks();
-  // The last frame's kept targets go back to the pool now.
-  d.lastFrame.reset();
-  d.keptHdr.clear();
-  d.keptDepth.clear();
-  d.keptSizes.clear();
-  if (!d.lensSampling) releaseLensTextures(d);
+  // The last frame's kept targets go back to the pool now (but for the
+  // earlier groups' of this frame).
+  d.resetKept();
 
   // Once per frame, whatever the number of views.
   const RenderWorld world = RenderWorld::build(state);
   std::vector<RenderView> views;
   for (const ViewTarget& t : targets) views.push_back(t.view);
   const RenderView& lodView = options.lodView ? *options.lodView : views.front();
-  const VisibleSet visible = buildVisibleSet(world, res.meshes, views, &lodView, settings.meshLodErrorPixels);
+  VisibleSet visible = buildVisibleSet(world, res.meshes, views, &lodView, settings.meshLodErrorPixels);
   stats.instancesCulled = visible.culled;
   stats.instancesAtCoarserLod = visible.coarser;
   const size_t lightsInView = pointLightsInView(world, views);
   d.uploadFrameData(world, visible, settings, state.time, targets, lightsInView);
-  res.materials.build(state, visible, res.meshes, res.materialBlock);
 
   // Reversed-Z: depth 1 at the near plane, 0 at the far plane.
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -276,19 +315,28 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   frame.lightsInView = lightsInView;
   std::vector<ViewContext> viewContexts;
   for (size_t i = 0; i < targets.size(); ++i)
-    viewContexts.push_back({targets[i].view, i, targets[i].fbo, targets[i].name.empty() ? "" : "[" + targets[i].name + "]"});
+    viewContexts.push_back({targets[i].view, i, targets[i].fbo, d.suffix(targets[i].name)});
+  // What the frame draws (draw_source.h), in drawing order.
+  MeshSource meshSource(visible, world, res.meshes, res.materials);
+  TerrainSource terrainSource(world);
+  frame.sources = {&meshSource, &terrainSource};
+  for (const auto& s : d.extraSources) frame.sources.push_back(s.get());
+  // Shadow views first: each source culls its casters once.
+  const ShadowPlan shadows = planShadows(frame);
+  d.uploadDraws(frame, visible);
+  for (DrawSource* s : frame.sources) s->addPreparePasses(*graph, frame);
   // Shadows: once per frame, before the views that read them.
-  addShadowPasses(*graph, frame);
+  addShadowPasses(*graph, frame, shadows);
   // Eye-independent: once per frame, before the views.
   addEnvironmentPass(*graph, frame);
   // Clustered lights: once per frame, one grid per view.
   addLightCullingPass(*graph, frame, viewContexts);
-  // Transparency (render/oit.h): the frame's translucent submeshes; none, no OIT pass or buffer.
-  const DrawList translucent = translucentSubmeshes(frame);
+  // Transparency (render/oit.h): the sources' translucent surfaces; none, no OIT pass or buffer.
+  const bool translucent = anySource(frame, DrawVariant::Surface, SurfaceSet::Translucent);
   std::vector<std::shared_ptr<OitViewInfo>> oitViews(viewContexts.size());
   for (const ViewContext& v : viewContexts) {
     SceneTargets scene = addOpaquePass(*graph, frame, v);
-    if (!world.terrains.empty()) scene = addTerrainPass(*graph, frame, v, scene);
+    scene = addSourcePasses(*graph, frame, v, scene);
     scene = addSkyPass(*graph, frame, v, scene);
     if (settings.showGrid && options.showGrid) scene = addGridPass(*graph, frame, v, scene);
     if (options.overlay && !options.overlay->empty())
@@ -297,28 +345,29 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
     hdr = addAmbientOcclusionPasses(*graph, frame, v, scene, hdr);  // per eye; none with AO off
     // Transparency over the opaque colour, tested against a single-sample depth.
     TextureRef singleDepth;
-    if (!translucent.empty() || options.keepDepth) singleDepth = addDepthResolvePass(*graph, frame, v, scene);
-    hdr = addTransparencyPasses(*graph, frame, v, translucent, singleDepth, hdr, options.oitCounts, oitViews[v.index]);
-    if (options.depthComplexity && !translucent.empty())
-      hdr = addDepthComplexityPass(*graph, frame, v, translucent, singleDepth, hdr);
+    if (translucent || options.keepDepth) singleDepth = addDepthResolvePass(*graph, frame, v, scene);
+    hdr = addTransparencyPasses(*graph, frame, v, SurfaceSet::Translucent, singleDepth, hdr, options.oitCounts,
+                                oitViews[v.index]);
+    if (options.depthComplexity && translucent)
+      hdr = addDepthComplexityPass(*graph, frame, v, SurfaceSet::Translucent, singleDepth, hdr);
     hdr = addDepthOfFieldPasses(*graph, frame, v, scene, hdr);       // none with DoF off or no blur
-    addToneMapPasses(*graph, frame, v, hdr);
-    if (options.keepHdr) graph->keep(hdr);
-    d.keptHdr.push_back(options.keepHdr ? hdr : TextureRef{});
-    TextureRef depth;
-    if (options.keepDepth) {
-      depth = singleDepth;
-      graph->keep(depth);
-    }
-    d.keptDepth.push_back(depth);
-    d.keptSizes.emplace_back(v.view.width, v.view.height);
+    // A lens sample of the depth of field's reference adds its image to
+    // the sums instead of showing it.
+    if (d.lensSampling) addLensSamplePass(*graph, frame, v, hdr, d.lensSample == 0, d.lensWeight);
+    else addToneMapPasses(*graph, frame, v, hdr);
+    Impl::Kept k;
+    k.hdrGraph = k.depthGraph = graph.get();
+    k.size = {v.view.width, v.view.height};
+    if (options.keepHdr) graph->keep(k.hdr = hdr);
+    if (options.keepDepth) graph->keep(k.depth = singleDepth);
+    d.kept.push_back(k);
   }
   graph->execute(options.passTimings);
   for (const PassRecord& r : graph->records())
     if (r.ran) stats.passes.push_back({r.name, r.cpuMs, r.gpuMs, r.gpuBytes});
   stats.oit = oitStats(settings, oitViews);
-  d.lastFrame = std::move(graph);
-  res.pool.endFrame();
+  d.frames.push_back(std::move(graph));
+  if (!d.inGroups) res.pool.endFrame();  // renderGroups ends its frame once
 
   if (timer) {
     glEndQuery(GL_TIME_ELAPSED);
@@ -358,11 +407,12 @@ Image Renderer::readDisplay(unsigned targetFbo, int width, int height) const {
 
 Image Renderer::readHdr(size_t view) const {
   Image img;
-  if (!d_->lastFrame || view >= d_->keptHdr.size()) return img;
-  const GLuint tex = d_->lastFrame->keptTexture(d_->keptHdr[view]);
+  if (view >= d_->kept.size() || !d_->kept[view].hdrGraph) return img;
+  const Impl::Kept& k = d_->kept[view];
+  const GLuint tex = k.hdrGraph->keptTexture(k.hdr);
   if (!tex) return img;
-  img.width = d_->keptSizes[view].x;
-  img.height = d_->keptSizes[view].y;
+  img.width = k.size.x;
+  img.height = k.size.y;
   img.rgbaF.resize(size_t(img.width) * size_t(img.height) * 4);
   glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, GLsizei(img.rgbaF.size() * sizeof(float)), img.rgbaF.data());
   flipRows(img.rgbaF.data(), size_t(img.width) * 4 * sizeof(float), size_t(img.height));  // GL rows are bottom-up
@@ -370,16 +420,16 @@ Image Renderer::readHdr(size_t view) const {
 }
 
 void Renderer::readHdrInto(void* dst, size_t bytes, size_t view) const {
-  if (!d_->lastFrame || view >= d_->keptHdr.size()) return;
-  if (const GLuint tex = d_->lastFrame->keptTexture(d_->keptHdr[view]))
+  if (view >= d_->kept.size() || !d_->kept[view].hdrGraph) return;
+  if (const GLuint tex = d_->kept[view].hdrGraph->keptTexture(d_->kept[view].hdr))
     glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, GLsizei(bytes), dst);
 }
 
 void Renderer::readDepth(void* dst, size_t view) {
-  if (!d_->lastFrame || view >= d_->keptDepth.size()) return;
-  const GLuint tex = d_->lastFrame->keptTexture(d_->keptDepth[view]);
+  if (view >= d_->kept.size() || !d_->kept[view].depthGraph) return;
+  const GLuint tex = d_->kept[view].depthGraph->keptTexture(d_->kept[view].depth);
   if (!tex) return;
-  const glm::ivec2 size = d_->keptSizes[view];
+  const glm::ivec2 size = d_->kept[view].size;
   glGetTextureImage(tex, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(size_t(size.x) * size_t(size.y) * 4), dst);
 }
 
@@ -428,57 +478,93 @@ PickHit Renderer::pickSurface(const scene::SceneState& state, const RenderView& 
   n[3][1] = -cy * view.height;
 
   const RenderWorld world = RenderWorld::build(state);
-  const VisibleSet visible = buildVisibleSet(world, res.meshes, {view}, &view, state.settings.meshLodErrorPixels);
+  VisibleSet visible = buildVisibleSet(world, res.meshes, {view}, &view, state.settings.meshLodErrorPixels);
   d.uploadFrameData(world, visible, state.settings, state.time, {ViewTarget{view, 0, {}}}, 0);  // picking lights nothing
   ViewBlock vb = viewBlockOf(view, visible.origin);
   vb.projection = glm::mat4(n * view.projection());
   res.viewBlocks.upload(&vb, sizeof vb);
-  res.bindView(0);
 
-  const GLuint color = res.pool.acquireTexture(TextureDesc{1, 1, GL_R32UI}, "pick_id");
-  const GLuint depth = res.pool.acquireTexture(TextureDesc{1, 1, GL_DEPTH_COMPONENT32F}, "pick_depth");
-  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-  glBindFramebuffer(GL_FRAMEBUFFER, res.pool.framebuffer({color}, depth));
-  glViewport(0, 0, 1, 1);
-  glDisable(GL_BLEND);
-  glEnable(GL_DEPTH_TEST);
-  glDepthMask(GL_TRUE);
-  glDepthFunc(GL_GREATER);
-  const GLuint zero[4] = {0, 0, 0, 0};
-  const float clearDepth = 0.0f;
-  glClearBufferuiv(GL_COLOR, 0, zero);
-  glClearBufferfv(GL_DEPTH, 0, &clearDepth);
-  res.program({"mesh.vert", "pick.frag", "", {}}).use();
-  for (const DrawItem& it : visible.draws) {
-    glBindVertexArray(it.mesh->vao);
-    for (const auto& sm : it.mesh->data->submeshes)
-      glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(sm.indexCount), GL_UNSIGNED_INT,
-                                          reinterpret_cast<const void*>(uintptr_t(sm.firstIndex) * sizeof(uint32_t)),
-                                          1, it.object);
+  // A frame of one pass (the id pass) over the frame's sources; each
+  // source's ids follow the one before's (meshes, then terrains).
+  FrameStats stats;
+  const RenderOptions options;
+  const std::vector<RenderView> views{view};
+  FrameContext frame{res, world, visible, state.settings, options, view, stats};
+  frame.views = &views;
+  MeshSource meshSource(visible, world, res.meshes, res.materials);
+  TerrainSource terrainSource(world);
+  frame.sources = {&meshSource, &terrainSource};
+  for (const auto& s : d.extraSources) frame.sources.push_back(s.get());
+  d.uploadDraws(frame, visible);
+  FrameGraph graph(res.pool);
+  for (DrawSource* s : frame.sources) s->addPreparePasses(graph, frame);
+  struct Pick {
+    TextureRef id, depth;
+    GLuint picked = 0;
+    float depthValue = 0.0f;
+  };
+  std::vector<uint32_t> bases;
+  uint32_t next = 1;  // 0: nothing
+  for (DrawSource* s : frame.sources) {
+    bases.push_back(next);
+    next += s->pickIds();
   }
-  // Terrains after the meshes, ids following theirs (holes are not hit).
-  const size_t meshIds = visible.objects.size();
-  if (!world.terrains.empty()) res.terrain.drawPick(state, world.terrains, view, unsigned(meshIds + 1));
-  GLuint id = 0;
-  glReadPixels(0, 0, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &id);
-  // The depth the id pass left (the narrowing scales x and y only): the
-  // view depth of the surface, for focus picking (depth of field).
-  float depthValue = 0.0f;
-  glReadPixels(0, 0, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depthValue);
-  res.pool.releaseTexture(color);
-  res.pool.releaseTexture(depth);
+  const Pick& pick = graph.addPass<Pick>(
+      "pick",
+      [&](PassBuilder& b, Pick& p) {
+        p.id = b.create("pick_id", TextureDesc{1, 1, GL_R32UI});
+        p.depth = b.create("pick_depth", TextureDesc{1, 1, GL_DEPTH_COMPONENT32F});
+        declareSources(b, frame, DrawVariant::Pick);
+        b.sideEffect();
+      },
+      [&](const Pick& p, const PassResources& r) {
+        glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({p.id}, p.depth));
+        glViewport(0, 0, 1, 1);
+        glDisable(GL_BLEND);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glDepthFunc(GL_GREATER);
+        const GLuint zero[4] = {0, 0, 0, 0};
+        const float clearDepth = 0.0f;
+        glClearBufferuiv(GL_COLOR, 0, zero);
+        glClearBufferfv(GL_DEPTH, 0, &clearDepth);
+        res.bindView(0);
+        for (size_t i = 0; i < frame.sources.size(); ++i) {
+          if (!frame.sources[i]->has(DrawVariant::Pick)) continue;
+          DrawCall call;
+          call.variant = DrawVariant::Pick;
+          call.pickBase = bases[i];
+          frame.sources[i]->draw(frame, call, r);
+        }
+        auto& out = const_cast<Pick&>(p);
+        glReadPixels(0, 0, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &out.picked);
+        // The depth the id pass left (the narrowing scales x and y only): the
+        // view depth of the surface, for focus picking (depth of field).
+        glReadPixels(0, 0, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &out.depthValue);
+      });
+  graph.execute();
   glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
   glDepthFunc(GL_LESS);
   glBindVertexArray(0);
   glUseProgram(0);
   PickHit hit;
-  if (id > meshIds && id <= meshIds + world.terrains.size()) hit.entity = world.terrains[id - meshIds - 1];
-  else if (id > 0 && id <= meshIds) hit.entity = visible.entities[id - 1];
-  if (id > 0 && depthValue > 0.0f) {
+  const uint32_t id = pick.picked;
+  for (size_t i = 0; i < frame.sources.size() && id; ++i)
+    if (id >= bases[i] && id < bases[i] + frame.sources[i]->pickIds()) {
+      const PickedItem item = frame.sources[i]->picked(id - bases[i]);
+      hit.entity = item.entity;
+      hit.instance = item.instance;
+    }
+  if (id > 0 && pick.depthValue > 0.0f) {
     const glm::dmat4 p = view.projection();  // reversed Z: 1/z = (depth + p22) / p32
-    hit.viewDepth = p[3][2] / (double(depthValue) + p[2][2]);
+    hit.viewDepth = p[3][2] / (double(pick.depthValue) + p[2][2]);
   }
   return hit;
+}
+
+void Renderer::setDrawSources(std::vector<std::shared_ptr<DrawSource>> sources) {
+  d_->extraSources = std::move(sources);
 }
 
 void Renderer::collectGarbage(const scene::SceneState& state) {
@@ -534,19 +620,12 @@ std::vector<std::string> Renderer::takeDofProblems() {
   return out;
 }
 
-// The reference's sums and pinhole depths go back to the pool (at its next
-// frame or the next frame of another mode).
-void Renderer::releaseLensTextures(Impl& d) {
-  for (GLuint t : d.lensAccum) d.res.pool.releaseTexture(t);
-  for (GLuint t : d.lensDepth) d.res.pool.releaseTexture(t);
-  d.lensAccum.clear();
-  d.lensDepth.clear();
-}
-
 // Depth of field, reference (dof_reference.h): the lens samples are whole
-// frames through renderViews (with lensSampling set, so each is a pinhole
-// frame), their HDR images summed in float, then one small graph tone maps
-// the sums into the targets and keeps them for readHdr.
+// frames through renderViews (with lensSampling set: each is a pinhole
+// frame whose last pass adds its HDR images to persistent sums in the
+// frame graph), then, when the caller keeps depth, one pinhole frame at the
+// lens centre for it, then one small graph tone maps the sums into the
+// targets and keeps them for readHdr.
 std::optional<FrameStats> Renderer::renderLensReference(const scene::SceneState& state,
                                                          const std::vector<ViewTarget>& targets,
                                                          const RenderOptions& options) {
@@ -566,75 +645,114 @@ std::optional<FrameStats> Renderer::renderLensReference(const scene::SceneState&
 
   const int n = std::clamp(state.settings.dofReferenceSamples, 64, 1024);
   const std::vector<glm::dvec2> disc = lensDiscSamples(n);
-  releaseLensTextures(d);
-  for (const RenderView& v : views) d.lensAccum.push_back(acquireLensAccumulation(res, v.width, v.height));
   RenderOptions o = options;
-  o.keepHdr = true;
+  o.keepHdr = false;
   o.keepDepth = false;
   o.measureGpuTime = false;
   o.passTimings = false;
   o.lodView = &lodView;  // every sample draws the same levels of detail
   FrameStats stats;
   d.lensSampling = true;
+  d.lensWeight = 1.0f / float(n);
+  for (int k = 0; k < n; ++k) {
+    d.lensSample = k;
+    std::vector<ViewTarget> sample = targets;
+    for (size_t i = 0; i < sample.size(); ++i)
+      if (lenses[i].valid) sample[i].view = lensSampleView(views[i], lenses[i], disc[size_t(k)]);
+    stats = renderViews(state, sample, o);
+  }
+  d.lensSampling = false;
   if (options.keepDepth) {
     // The depth a caller reads (the export's comfort check, the focus
     // pick) is the pinhole frame's, as with the other modes: one more
-    // frame at the lens centre, its depth kept past the samples.
+    // frame at the lens centre, its graph kept with the sums'.
     RenderOptions pinhole = o;
-    pinhole.keepHdr = false;
     pinhole.keepDepth = true;
+    d.lensPinhole = true;
     renderViews(state, targets, pinhole);
-    for (size_t i = 0; i < views.size(); ++i) {
-      const GLuint tex = res.pool.acquireTexture(TextureDesc{views[i].width, views[i].height, GL_DEPTH_COMPONENT32F},
-                                                 "dof_reference_depth");
-      glCopyImageSubData(d.lastFrame->keptTexture(d.keptDepth[i]), GL_TEXTURE_2D, 0, 0, 0, 0, tex, GL_TEXTURE_2D, 0, 0,
-                         0, 0, views[i].width, views[i].height, 1);
-      d.lensDepth.push_back(tex);
-    }
+    d.lensPinhole = false;
+  } else {
+    d.resetKept();
   }
-  for (const glm::dvec2& p : disc) {
-    std::vector<ViewTarget> sample = targets;
-    for (size_t i = 0; i < sample.size(); ++i)
-      if (lenses[i].valid) sample[i].view = lensSampleView(views[i], lenses[i], p);
-    stats = renderViews(state, sample, o);
-    for (size_t i = 0; i < views.size(); ++i)
-      accumulateLensSample(res, d.lastFrame->keptTexture(d.keptHdr[i]), d.lensAccum[i], views[i].width,
-                           views[i].height, 1.0f / float(n));
-  }
-  d.lensSampling = false;
 
   // Tone map the sums into the targets.
-  d.lastFrame.reset();
-  d.keptHdr.clear();
-  d.keptDepth.clear();
-  d.keptSizes.clear();
   auto graph = std::make_unique<FrameGraph>(res.pool);
   FrameStats finalStats;
   FrameContext frame{res, world, visible, state.settings, options, lodView, finalStats};
   for (size_t i = 0; i < targets.size(); ++i) {
-    const ViewContext v{targets[i].view, i, targets[i].fbo, targets[i].name.empty() ? "" : "[" + targets[i].name + "]"};
-    const TextureRef sum = graph->importTexture(v.named("dof_reference"), d.lensAccum[i],
-                                                TextureDesc{views[i].width, views[i].height, GL_RGBA32F});
+    const ViewContext v{targets[i].view, i, targets[i].fbo, d.suffix(targets[i].name)};
+    const TextureRef sum = lensSumTexture(*graph, v);
     addToneMapPasses(*graph, frame, v, sum);
-    if (options.keepHdr) graph->keep(sum);
-    d.keptHdr.push_back(options.keepHdr ? sum : TextureRef{});
-    TextureRef depth;
-    if (i < d.lensDepth.size()) {
-      depth = graph->importTexture(v.named("dof_reference_depth"), d.lensDepth[i],
-                                   TextureDesc{views[i].width, views[i].height, GL_DEPTH_COMPONENT32F});
-      graph->keep(depth);
-    }
-    d.keptDepth.push_back(depth);
-    d.keptSizes.emplace_back(views[i].width, views[i].height);
+    if (d.kept.size() <= d.groupKept + i) d.kept.emplace_back();
+    Impl::Kept& k = d.kept[d.groupKept + i];
+    k.size = {views[i].width, views[i].height};
+    k.hdrGraph = graph.get();
+    k.hdr = {};
+    if (options.keepHdr) graph->keep(k.hdr = sum);
   }
   graph->execute(false);
   for (const PassRecord& r : graph->records())
     if (r.ran) stats.passes.push_back({r.name, r.cpuMs, r.gpuMs, r.gpuBytes});
-  d.lastFrame = std::move(graph);
-  res.pool.endFrame();
+  d.frames.push_back(std::move(graph));
+  if (!d.inGroups) res.pool.endFrame();
   glBindFramebuffer(GL_FRAMEBUFFER, targets.back().fbo);
   fillMemoryStats(stats);
   return stats;
+}
+
+std::vector<FrameStats> Renderer::renderGroups(const scene::SceneState& state, const std::vector<ViewGroup>& groups,
+                                               const RenderOptions& options, const GroupCombine* combine) {
+  std::vector<FrameStats> out;
+  Impl& d = *d_;
+  if (!d.ready || groups.empty()) return out;
+  d.groupFrames = d.groupKept = 0;
+  d.resetKept();  // the last frame's
+  d.inGroups = true;
+  for (const ViewGroup& g : groups) {
+    d.groupIndex = size_t(&g - groups.data());
+    RenderOptions o = options;
+    o.lodView = g.lodView;
+    if (combine) o.keepHdr = true;
+    out.push_back(renderViews(state, g.targets, o));
+    // What this group keeps stays through the next groups.
+    d.groupFrames = d.frames.size();
+    d.groupKept = d.kept.size();
+  }
+  if (combine && !combine->targets.empty()) {
+    // The last graph: view i of every group, weighted and summed, tone
+    // mapped into combine->targets[i].
+    auto graph = std::make_unique<FrameGraph>(d.res.pool);
+    const RenderWorld world = RenderWorld::build(state);
+    const VisibleSet visible;
+    FrameStats stats;
+    FrameContext frame{d.res, world, visible, state.settings, options, combine->targets.front().view, stats};
+    for (size_t i = 0; i < combine->targets.size(); ++i) {
+      const ViewTarget& t = combine->targets[i];
+      const ViewContext v{t.view, i, t.fbo, t.name.empty() ? "" : "[" + t.name + "]"};
+      std::vector<std::pair<TextureRef, float>> images;
+      for (size_t g = 0, first = 0; g < groups.size(); first += groups[g].targets.size(), ++g) {
+        if (i >= groups[g].targets.size() || g >= combine->weights.size()) continue;
+        const Impl::Kept& k = d.kept[first + i];
+        const GLuint tex = k.hdrGraph ? k.hdrGraph->keptTexture(k.hdr) : 0;
+        if (!tex) continue;
+        images.emplace_back(graph->importTexture(v.named("group" + std::to_string(g)), tex,
+                                                 TextureDesc{k.size.x, k.size.y, GL_RGBA16F}),
+                            combine->weights[g]);
+      }
+      addToneMapPasses(*graph, frame, v, addGroupCombinePass(*graph, frame, v, images));
+    }
+    graph->execute(options.passTimings);
+    FrameStats& last = out.back();
+    for (const PassRecord& r : graph->records())
+      if (r.ran) last.passes.push_back({r.name, r.cpuMs, r.gpuMs, r.gpuBytes});
+    d.frames.push_back(std::move(graph));
+  }
+  d.inGroups = false;
+  d.groupIndex = 0;
+  d.groupFrames = d.groupKept = 0;
+  d.res.pool.endFrame();
+  for (FrameStats& s : out) fillMemoryStats(s);
+  return out;
 }
 
 std::vector<std::string> Renderer::takeLightProblems() {
@@ -652,7 +770,8 @@ std::vector<SunCascadeInfo> Renderer::sunCascades() const {
 
 void Renderer::shutdown() {
   if (!d_->ready) return;
-  d_->lastFrame.reset();
+  d_->frames.clear();
+  d_->kept.clear();
   d_->res.meshes.clear();
   d_->res.materials.clear();
   d_->res.terrain.release();

@@ -26,6 +26,8 @@
 
 namespace hs::render {
 
+class DrawSource;  // render/draw_source.h (inside the renderer)
+
 // One pass of the last frame (frame_graph.h): CPU time around its
 // commands, GPU time between timestamps (with RenderOptions::passTimings),
 // and the bytes of the transient resources it brought into use.
@@ -150,6 +152,7 @@ struct TerrainUpload {
 struct PickHit {
   scene::EntityId entity = scene::kNoEntity;
   double viewDepth = 0.0;
+  uint32_t instance = UINT32_MAX;  // an instanced source's instance id (UINT32_MAX: the entity as a whole)
 };
 
 // One cascade of the sun's shadow maps in the last frame (tests, benchmarks):
@@ -167,6 +170,23 @@ struct SunCascadeInfo {
 struct BuiltProgram {
   std::string name;  // "mesh.vert + mesh.frag [FOG_HEIGHT]"
   std::vector<std::string> defines;
+};
+
+// One camera or stereo pair of a frame that holds several (a transition
+// between two shots, Renderer::renderGroups): its targets, and the view
+// that chooses its levels of detail (null: targets[0].view).
+struct ViewGroup {
+  std::vector<ViewTarget> targets;
+  const RenderView* lodView = nullptr;
+};
+
+// How renderGroups combines its groups' images: view i of every group
+// (linear HDR, exposure applied), weighted and summed, then tone mapped
+// into targets[i] like a frame's own output (a cross-fade between two
+// shots: weights 1 - a and a).
+struct GroupCombine {
+  std::vector<ViewTarget> targets;  // one per view of a group; every group has as many
+  std::vector<float> weights;       // one per group
 };
 
 class Renderer {
@@ -194,6 +214,16 @@ class Renderer {
   // options.lodView (views[0] when it is null). Stats are the frame's.
   FrameStats renderViews(const scene::SceneState& state, const std::vector<ViewTarget>& views,
                          const RenderOptions& options = {});
+  // Several view groups in one frame: each group has its own visible set,
+  // levels of detail, shadow maps and light grid, rendered by a frame
+  // graph of its own in turn (they share the pool, the mesh and terrain
+  // caches and the environment), into its own targets, exactly as
+  // renderViews would render it alone. With `combine`, their HDR images
+  // are then combined into combine->targets (a last graph). readHdr and
+  // readDepth number the views of all groups in order. One group costs
+  // what renderViews costs. GPU time is not measured (per-pass timings are).
+  std::vector<FrameStats> renderGroups(const scene::SceneState& state, const std::vector<ViewGroup>& groups,
+                                       const RenderOptions& options = {}, const GroupCombine* combine = nullptr);
 
   // Reads back what the last render() wrote to `targetFbo`.
   Image readDisplay(unsigned targetFbo, int width, int height) const;
@@ -222,6 +252,11 @@ class Renderer {
   scene::EntityId pick(const scene::SceneState& state, const RenderView& view, int x, int y);
   // The same id pass with the surface's depth there (focus picking).
   PickHit pickSurface(const scene::SceneState& state, const RenderView& view, int x, int y);
+
+  // Kinds of geometry drawn after the document's meshes and terrains
+  // (render/draw_source.h, inside the renderer): tests and benchmarks add
+  // their own; foliage and particles will come from the document.
+  void setDrawSources(std::vector<std::shared_ptr<DrawSource>> sources);
 
   // Frees GPU copies of assets that left the scene.
   void collectGarbage(const scene::SceneState& state);
@@ -272,7 +307,6 @@ class Renderer {
                                                 const RenderOptions& options);
 
   struct Impl;
-  static void releaseLensTextures(Impl& d);
   std::unique_ptr<Impl> d_;
 };
 

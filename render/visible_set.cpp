@@ -8,6 +8,29 @@
 #include "render/mesh_lod.h"
 
 namespace hs::render {
+namespace {
+
+// Appends the draw of `inst` at its chosen level.
+uint32_t addDraw(VisibleSet& set, const MeshInstanceRef& inst, InstanceBounds& b, GpuMeshCache& cache) {
+  const GpuMesh* g = cache.get(*inst.asset);
+  if (b.lodLevel > 0)
+    if (const GpuMesh* coarser = cache.get(*inst.asset, b.lodLevel)) g = coarser;
+  const glm::dmat4& w = inst.world;
+  // Relative to the frame origin, formed in double (DESIGN.md).
+  glm::dmat4 rel = w;
+  rel[3] = glm::dvec4(glm::dvec3(w[3]) - set.origin, 1.0);
+  GpuObject o;
+  o.model = glm::mat4(rel);
+  o.normalMatrix = glm::mat4(glm::mat3(glm::inverseTranspose(glm::dmat3(w))));
+  o.tint = glm::vec4(inst.tint, 1.0f);
+  b.draw = int32_t(set.draws.size());
+  set.draws.push_back({uint32_t(set.objects.size()), g, inst.asset});
+  set.objects.push_back(o);
+  set.entities.push_back(inst.entity);
+  return uint32_t(b.draw);
+}
+
+}  // namespace
 
 VisibleSet buildVisibleSet(const RenderWorld& world, GpuMeshCache& cache, const std::vector<RenderView>& views,
                            const RenderView* lodView, double lodErrorPixels) {
@@ -17,43 +40,44 @@ VisibleSet buildVisibleSet(const RenderWorld& world, GpuMeshCache& cache, const 
   set.origin = lv.eye;
   std::vector<Frustum> frusta;
   for (const RenderView& v : views) frusta.push_back(frustumOf(v));
-  for (const MeshInstanceRef& inst : world.meshes) {
+  set.instances.resize(world.meshes.size());
+  for (size_t i = 0; i < world.meshes.size(); ++i) {
+    const MeshInstanceRef& inst = world.meshes[i];
+    InstanceBounds& b = set.instances[i];
+    b.radius = -1.0;  // no data: never drawn
     const GpuMesh* g = cache.get(*inst.asset);
     if (!g) continue;
     const glm::dmat4& w = inst.world;
     const glm::dvec3 centre = glm::dvec3(w * glm::dvec4(glm::dvec3(g->bounds.center()), 1.0));
     const double maxScale = std::max({glm::length(glm::dvec3(w[0])), glm::length(glm::dvec3(w[1])),
                                       glm::length(glm::dvec3(w[2]))});
-    const double radius = double(g->bounds.radius()) * maxScale;
+    b.centre = centre - set.origin;
+    b.radius = double(g->bounds.radius()) * maxScale;
+    // The coarsest LOD within the scene's pixel bound (mesh_lod.h), as seen
+    // from the LOD view: the same level in every view, shadow views too,
+    // so a mesh shadows itself with its own triangles.
+    if (!inst.asset->lods.empty())
+      b.lodLevel = chooseMeshLod(inst.asset->lodErrors(), centre - lv.eye, double(g->bounds.radius()), maxScale, lv,
+                                 lodErrorPixels)
+                       .level;
     bool inside = false;
-    for (size_t i = 0; i < views.size() && !inside; ++i)
-      inside = frusta[i].intersectsSphere(centre - views[i].eye, radius);
+    for (size_t v = 0; v < views.size() && !inside; ++v)
+      inside = frusta[v].intersectsSphere(centre - views[v].eye, b.radius);
     if (!inside) {
       ++set.culled;
       continue;
     }
-    // The coarsest LOD within the scene's pixel bound (mesh_lod.h), as seen
-    // from the LOD view.
-    if (!inst.asset->lods.empty()) {
-      const MeshLodChoice lod = chooseMeshLod(inst.asset->lodErrors(), centre - lv.eye, double(g->bounds.radius()),
-                                              maxScale, lv, lodErrorPixels);
-      if (lod.level > 0) {
-        if (const GpuMesh* coarser = cache.get(*inst.asset, lod.level)) g = coarser;
-        ++set.coarser;
-      }
-    }
-    // Relative to the frame origin, formed in double (DESIGN.md).
-    glm::dmat4 rel = w;
-    rel[3] = glm::dvec4(glm::dvec3(w[3]) - set.origin, 1.0);
-    GpuObject o;
-    o.model = glm::mat4(rel);
-    o.normalMatrix = glm::mat4(glm::mat3(glm::inverseTranspose(glm::dmat3(w))));
-    o.tint = glm::vec4(inst.tint, 1.0f);
-    set.draws.push_back({uint32_t(set.objects.size()), g, inst.asset});
-    set.objects.push_back(o);
-    set.entities.push_back(inst.entity);
+    if (b.lodLevel > 0) ++set.coarser;
+    addDraw(set, inst, b, cache);
   }
+  set.inView = set.draws.size();
   return set;
+}
+
+uint32_t addCasterDraw(VisibleSet& set, const RenderWorld& world, GpuMeshCache& cache, size_t instance) {
+  InstanceBounds& b = set.instances[instance];
+  if (b.draw >= 0) return uint32_t(b.draw);
+  return addDraw(set, world.meshes[instance], b, cache);
 }
 
 }  // namespace hs::render

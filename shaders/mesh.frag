@@ -54,7 +54,12 @@ void main() {
 #endif
 #endif
   vec4 texel = hasFlag(m, MAT_BASE_TEXTURE) ? texture(uBaseColorTexture, uv) : vec4(1.0);
-  vec4 base = vec4(m.baseColor.rgb * objects[vObject].tint.rgb, m.baseColor.a) * texel;
+#ifdef INSTANCED
+  vec3 tint = vec3(1.0);  // vObject is an instance id (mesh.vert)
+#else
+  vec3 tint = objects[vObject].tint.rgb;
+#endif
+  vec4 base = vec4(m.baseColor.rgb * tint, m.baseColor.a) * texel;
   if (hasFlag(m, MAT_ALPHA_CUTOUT) && base.a < m.emission.a) discard;
 #ifdef SHADING_GOURAUD
   outColor = vec4(vLit * texel.rgb, 0.0);  // alpha: no ambient share to occlude (per-vertex light)

@@ -3,6 +3,13 @@
 // relative to the frame origin, formed in double on the CPU, so vertices far
 // from the world origin arrive here as small floats.
 //
+// Variant INSTANCED draws an instanced source's instances (render/
+// instanced_source.h; shaders/instances.glsl): gl_InstanceID indexes the
+// view's list of its type from uInstanceBase, the instance's compact record
+// gives the placement (uniform scale: the rotation is the normal matrix),
+// and vObject carries its stable id (picking, the transparency key); no
+// per-object tint.
+//
 // Variant SHADING_GOURAUD lights here, once per vertex (the survey's
 // Gouraud shading), with the material's untextured colour; mesh.frag then
 // multiplies the interpolated light by the texture.
@@ -16,7 +23,13 @@ out vec3 vLit;
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
+#ifdef INSTANCED
+#include "instances.glsl"
+layout(std430, binding = 19) readonly buffer VisibleInstances { uint visibleInstances[]; };
+uniform uint uInstanceBase;  // this view's and type's first slot
+#else
 layout(location = 7) in uint aObject;  // per instance: index into objects[]
+#endif
 #ifdef HAS_TANGENTS
 layout(location = 3) in vec4 aTangent;  // mesh/tangents.h; only meshes with normal or height maps have them
 out vec4 vTangent;
@@ -34,19 +47,32 @@ flat out uint vObject;
 invariant gl_Position;
 
 void main() {
+#ifdef INSTANCED
+  Instance inst = instances[visibleInstances[uInstanceBase + uint(gl_InstanceID)]];
+  mat3 rotation = instanceRotation(inst);
+  vec3 p = rotation * (aPosition * inst.positionScale.w) + instanceOrigin(inst) - view.eyeOffset.xyz;
+  vNormal = rotation * aNormal;
+  vObject = inst.rotationTypeId.w;
+  vec3 tint = vec3(1.0);
+#ifdef HAS_TANGENTS
+  vTangent = vec4(rotation * aTangent.xyz, aTangent.w);
+#endif
+#else
   Object o = objects[aObject];
   vec3 p = (o.model * vec4(aPosition, 1.0)).xyz - view.eyeOffset.xyz;
-  vEyePos = p;
   vNormal = mat3(o.normalMatrix) * aNormal;
-  vUv = aUv;
   vObject = aObject;
+  vec3 tint = o.tint.rgb;
 #ifdef HAS_TANGENTS
   vTangent = vec4(mat3(o.model) * aTangent.xyz, aTangent.w);
 #endif
+#endif
+  vEyePos = p;
+  vUv = aUv;
   gl_Position = view.projection * (view.viewRotation * vec4(p, 1.0));
 #ifdef SHADING_GOURAUD
   Material m = materials[uMaterial];
-  vec3 albedo = m.baseColor.rgb * o.tint.rgb;
+  vec3 albedo = m.baseColor.rgb * tint;
   if (hasFlag(m, MAT_UNLIT)) {
     vLit = applyFog(albedo + m.emission.rgb, p);
   } else {

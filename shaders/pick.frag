@@ -1,5 +1,7 @@
 #version 450 core
-// Writes the index (1-based) of the drawn object for viewport picking.
+// Writes the drawn object's pick id for viewport picking: the source's
+// first id (render/draw_source.h DrawCall::pickBase) plus the object index.
 flat in uint vObject;
+uniform uint uPickBase;
 layout(location = 0) out uint outId;
-void main() { outId = vObject + 1u; }
+void main() { outId = uPickBase + vObject; }

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "render/abuffer.h"
-#include "render/draw_list.h"
+#include "render/draw_source.h"
 #include "render/passes/dof_passes.h"
 #include "render/passes/fullscreen_pass.h"
 
@@ -33,7 +33,7 @@ TextureRef addLayeredDofPasses(FrameGraph& graph, FrameContext& frame, const Vie
   const int w = v.view.width, h = v.view.height;
   ABufferRequest request;
   request.name = "dof";
-  request.draws = allSubmeshes(frame.visible);
+  request.draws = SurfaceSet::All;
   request.depth = depth;
   request.depthTest = ABufferDepthTest::None;  // every surface, the hidden ones too
   const ABuffer abuffer = addABufferCapture(graph, frame, v, request);  // the caller made sure a mesh is in view

@@ -63,7 +63,8 @@ double nearestDrawnDepth(const RenderWorld& world, const VisibleSet& visible, co
   const glm::dvec3 fwd = view.forward();
   // The nearest corner of each drawn mesh's box (tighter than its sphere
   // for long thin things).
-  for (const DrawItem& it : visible.draws) {
+  for (size_t d = 0; d < visible.inView; ++d) {
+    const DrawItem& it = visible.draws[d];
     const glm::dmat4 m(visible.objects[it.object].model);
     const mesh::Bounds& b = it.mesh->bounds;
     for (int c = 0; c < 8; ++c) {
@@ -99,7 +100,7 @@ TextureRef addDepthOfFieldPasses(FrameGraph& graph, FrameContext& frame, const V
   const double nearest = nearestDrawnDepth(frame.world, frame.visible, v.view);
   // Layered needs meshes to capture; without one in view the opaque image
   // is the only layer, which is what gather blurs.
-  if (mode == scene::DepthOfField::Layered && !frame.visible.draws.empty())
+  if (mode == scene::DepthOfField::Layered && anySource(frame, DrawVariant::Surface, SurfaceSet::All))
     return addLayeredDofPasses(graph, frame, v, hdr, addDepthResolvePass(graph, frame, v, scene), lens, nearest);
   return addGatherPass(graph, frame, v, scene, hdr, lens, nearest);
 }

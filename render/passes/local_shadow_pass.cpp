@@ -11,12 +11,10 @@ namespace {
 
 struct LocalShadowData {
   TextureRef maps;
-  BufferRef data, views, casters;
+  BufferRef data, views;
   std::vector<LocalShadow> shadows;
-  std::vector<ShadowCaster> meshes;
-  std::vector<GpuObject> objects;
-  std::vector<std::vector<uint32_t>> perLayer;  // caster indices per layer
-  std::vector<Frustum> volumes;                 // per layer, frame-relative
+  size_t firstView = 0;  // the layers' shadow views (FrameContext::shadowViews)
+  size_t layers = 0;
   int layerSize = 0;
 };
 
@@ -27,8 +25,8 @@ std::string lightName(const FrameContext& frame, const WorldLight& l) {
 
 }  // namespace
 
-void addLocalShadowPass(FrameGraph& graph, FrameContext& frame, const ShadowConfig& config, int maxTextureSize,
-                        ShadowBlock& block) {
+void planLocalShadows(FrameContext& frame, int maxTextureSize, ShadowBlock& block, ShadowPlan& plan) {
+  const ShadowConfig& config = plan.config;
   ShadowResources& sh = frame.res.shadows;
   sh.local.clear();
   std::string problem;
@@ -54,22 +52,27 @@ void addLocalShadowPass(FrameGraph& graph, FrameContext& frame, const ShadowConf
   }
   block.localParams =
       glm::vec4(float(frame.world.lights.size()), 1.0f / float(layerSize), float(config.pcfRadius), 0.0f);
+  std::vector<Frustum> volumes;
+  for (const LocalShadow& s : sh.local)
+    for (const LocalShadowFace& f : s.faces) volumes.push_back(localShadowVolume(s, f));
+  plan.localLayers = volumes.size();
+  plan.localLayerSize = layerSize;
+  plan.localFirstView = addShadowViews(frame, volumes);
+}
 
+void addLocalShadowPass(FrameGraph& graph, FrameContext& frame, const ShadowPlan& plan) {
+  ShadowResources& sh = frame.res.shadows;
+  if (sh.local.empty()) return;
+  const int layerSize = plan.localLayerSize, layers = int(plan.localLayers);
   const size_t viewStride = frame.res.viewStride;
   const LocalShadowData& data = graph.addPass<LocalShadowData>(
       "shadow_local",
-      [&frame, &sh, layerSize, layers, viewStride](PassBuilder& b, LocalShadowData& d) {
+      [&frame, &sh, &plan, layerSize, layers, viewStride](PassBuilder& b, LocalShadowData& d) {
         d.shadows = sh.local;
         d.layerSize = layerSize;
-        gatherShadowCasters(frame, d.meshes, d.objects);
-        for (const LocalShadow& s : d.shadows)
-          for (const LocalShadowFace& f : s.faces) {
-            d.volumes.push_back(localShadowVolume(s, f));
-            std::vector<uint32_t>& list = d.perLayer.emplace_back();
-            for (size_t i = 0; i < d.meshes.size(); ++i)
-              if (d.volumes.back().intersectsSphere(d.meshes[i].centre, d.meshes[i].radius))
-                list.push_back(uint32_t(i));
-          }
+        d.layers = plan.localLayers;
+        d.firstView = plan.localFirstView;
+        declareSources(b, frame, DrawVariant::Depth);
         // Every layer at the largest light's size; a smaller light draws
         // into its corner (params.w says how much of the layer it uses).
         TextureDesc maps{layerSize, layerSize, GL_DEPTH_COMPONENT32F, 1, layers};
@@ -78,11 +81,8 @@ void addLocalShadowPass(FrameGraph& graph, FrameContext& frame, const ShadowConf
         d.data = b.create("local_shadow_data",
                           BufferDesc{shadowBufferBytes(frame.world.lights.size() * sizeof(GpuLocalShadow))});
         d.views = b.create("local_shadow_views", BufferDesc{shadowBufferBytes(size_t(layers) * viewStride)});
-        if (!d.objects.empty())
-          d.casters = b.create("local_shadow_casters", BufferDesc{shadowBufferBytes(d.objects.size() * sizeof(GpuObject))});
       },
       [&frame, viewStride](const LocalShadowData& d, const PassResources& r) {
-        RenderResources& resources = frame.res;
         const GLuint maps = r.texture(d.maps);
         glTextureParameteri(maps, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
         glTextureParameteri(maps, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
@@ -100,7 +100,7 @@ void addLocalShadowPass(FrameGraph& graph, FrameContext& frame, const ShadowConf
         // One view block per layer: the face's clip matrix as the projection
         // (positions are already relative to the frame origin).
         const GLuint views = r.buffer(d.views);
-        std::vector<uint8_t> blocks(d.perLayer.size() * viewStride);
+        std::vector<uint8_t> blocks(d.layers * viewStride);
         std::vector<int> sizes;
         for (const LocalShadow& s : d.shadows)
           for (const LocalShadowFace& f : s.faces) {
@@ -112,26 +112,21 @@ void addLocalShadowPass(FrameGraph& graph, FrameContext& frame, const ShadowConf
             sizes.push_back(s.resolution);
           }
         glNamedBufferSubData(views, 0, GLsizeiptr(blocks.size()), blocks.data());
-        if (d.casters.valid()) {
-          resources.ensureObjectIndices(d.objects.size());
-          glNamedBufferSubData(r.buffer(d.casters), 0, GLsizeiptr(d.objects.size() * sizeof(GpuObject)), d.objects.data());
-          glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBufferBinding, r.buffer(d.casters));
-        }
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(kCasterSlopeOffset, kCasterConstantOffset);
         glDisable(GL_CULL_FACE);  // open scans cast from both sides
-        for (size_t l = 0; l < d.perLayer.size(); ++l) {
+        for (size_t l = 0; l < d.layers; ++l) {
           glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({}, d.maps, int(l)));
           const float clearDepth = 0.0f;  // far: lit
           glClearBufferfv(GL_DEPTH, 0, &clearDepth);
           glViewport(0, 0, sizes[l], sizes[l]);
           glBindBufferRange(GL_UNIFORM_BUFFER, kViewBlockBinding, views, GLintptr(l * viewStride), sizeof(ViewBlock));
-          drawShadowCasters(resources, d.meshes, d.perLayer[l]);
-          if (!frame.world.terrains.empty())
-            resources.terrain.drawShadow(*frame.world.state, frame.world.terrains, frame.lodView, d.volumes[l]);
+          DrawCall call;
+          call.variant = DrawVariant::Depth;
+          call.shadowView = d.firstView + l;
+          drawSources(frame, call, r);
         }
         glDisable(GL_POLYGON_OFFSET_FILL);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBufferBinding, resources.objects.buffer.id());
       });
   frame.localShadowMaps = data.maps;
   frame.localShadowData = data.data;

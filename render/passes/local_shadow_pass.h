@@ -11,14 +11,17 @@
 // resources of the frame graph). Include only inside render/.
 #include "render/frame_blocks.h"
 #include "render/frame_context.h"
-#include "render/shadow_cascades.h"
+#include "render/passes/shadow_passes.h"
 
 namespace hs::render {
 
-// Chooses the casting lights, fills block.localParams (x = 0 when none) and
-// adds the pass; sets frame.localShadowMaps and frame.localShadowData.
-void addLocalShadowPass(FrameGraph& graph, FrameContext& frame, const ShadowConfig& config, int maxTextureSize,
-                        ShadowBlock& block);
+// Chooses the casting lights (frame.res.shadows.local), fills
+// block.localParams (x = 0 when none) and adds their layers' shadow views
+// (plan.localFirstView, localLayers, localLayerSize).
+void planLocalShadows(FrameContext& frame, int maxTextureSize, ShadowBlock& block, ShadowPlan& plan);
+// Adds the pass when a light casts; sets frame.localShadowMaps and
+// frame.localShadowData.
+void addLocalShadowPass(FrameGraph& graph, FrameContext& frame, const ShadowPlan& plan);
 
 // For the passes that light surfaces: declare the reads, bind at draw time.
 void readLocalShadowMaps(PassBuilder& b, const FrameContext& frame);

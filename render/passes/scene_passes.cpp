@@ -36,6 +36,8 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
                            TextureDesc{v.view.width, v.view.height, GL_DEPTH_COMPONENT32F, samples});
         readShadowMaps(b, frame);
         readLightGrid(b, frame);
+        for (DrawSource* s : frame.sources)
+          if (s->ownPass().empty() && s->has(DrawVariant::Surface, SurfaceSet::Opaque)) s->declare(b, DrawVariant::Surface);
       },
       [&frame, index = v.index, w = v.view.width, h = v.view.height](const SceneTargets& t, const PassResources& r) {
         glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({t.color}, t.depth));
@@ -45,82 +47,46 @@ SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewCon
         glDepthMask(GL_TRUE);
         glClearBufferfv(GL_COLOR, 0, clearColor);
         glClearBufferfv(GL_DEPTH, 0, &clearDepth);
-        if (frame.visible.draws.empty()) return;
-        frame.res.bindView(index);
-        bindShadowMaps(frame, r);
-        bindLightGrid(frame, r, index);
-        // One program per shading mode a material uses (shaders/mesh.frag's
-        // variants), built on first use: none for modes nobody uses.
-        GlProgram* programs[3][2][2] = {};
-        const bool debugNormal = frame.options.debugShadingNormal;
-        const std::vector<std::string> fog = surfaceDefines(frame);
-        auto programFor = [&](const DrawMaterial& mat) -> GlProgram& {
-          GlProgram*& p = programs[int(mat.shading)][mat.normalMap][mat.parallax];
-          if (!p) p = &frame.res.program(meshProgramDesc(mat.shading, mat.normalMap, mat.parallax, debugNormal, fog));
-          return *p;
-        };
-        GlProgram* current = nullptr;
-        GLuint bound[3] = {0, 0, 0};
-        int culling = -1;
-        for (size_t d = 0; d < frame.visible.draws.size(); ++d) {
-          const DrawItem& it = frame.visible.draws[d];
-          glBindVertexArray(it.mesh->vao);
-          const mesh::MeshData& m = *it.mesh->data;
-          for (size_t s = 0; s < m.submeshes.size(); ++s) {
-            const mesh::Submesh& sm = m.submeshes[s];
-            const DrawMaterial& mat = frame.res.materials.forDraw(d, s);
-            if (mat.translucent) continue;  // the transparency path draws it (render/oit.h)
-            GlProgram& p = programFor(mat);
-            if (&p != current) (current = &p)->use();
-            p.set("uMaterial", unsigned(mat.index));
-            for (unsigned u = 0; u < 3; ++u)
-              if (mat.textures[u] && mat.textures[u] != bound[u]) glBindTextureUnit(kMaterialTextureUnit + u, bound[u] = mat.textures[u]);
-            // One-sided materials cull their back faces; scans are seen from both sides.
-            if (int(!mat.twoSided) != culling) {
-              culling = int(!mat.twoSided);
-              culling ? glEnable(GL_CULL_FACE) : glDisable(GL_CULL_FACE);
-            }
-            glDrawElementsInstancedBaseInstance(
-                GL_TRIANGLES, GLsizei(sm.indexCount), GL_UNSIGNED_INT,
-                reinterpret_cast<const void*>(uintptr_t(sm.firstIndex) * sizeof(uint32_t)), 1, it.object);
-            frame.stats.trianglesDrawn += sm.indexCount / 3;
-            ++frame.stats.drawCalls;
+        DrawCall call{DrawVariant::Surface, SurfaceSet::Opaque, index, surfaceDefines(frame)};
+        bool bound = false;
+        for (DrawSource* s : frame.sources) {
+          if (!s->ownPass().empty() || !s->has(DrawVariant::Surface, SurfaceSet::Opaque)) continue;
+          if (!bound) {
+            frame.res.bindView(index);
+            bindShadowMaps(frame, r);
+            bindLightGrid(frame, r, index);
+            bound = true;
           }
-          ++frame.stats.instancesDrawn;
+          s->draw(frame, call, r);
         }
-        glDisable(GL_CULL_FACE);
-        for (unsigned u = 0; u < 3; ++u) glBindTextureUnit(kMaterialTextureUnit + u, 0);
       });
 }
 
-SceneTargets addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const SceneTargets& targets) {
-  struct Data {
-    SceneTargets t;
-  };
-  return graph.addPass<Data>(
-      v.named("terrain"),
-      [&](PassBuilder& b, Data& d) {
-        d.t = targets;
-        d.t.color = b.write(b.read(targets.color));
-        d.t.depth = b.write(b.read(targets.depth));
-        readShadowMaps(b, frame);
-        readLightGrid(b, frame);
-      },
-      [&frame, &view = v.view, index = v.index](const Data& d, const PassResources& r) {
-        glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.t.color}, d.t.depth));
-        frame.res.bindView(index);
-        bindShadowMaps(frame, r);
-        bindLightGrid(frame, r, index);
-        const TerrainFrameStats ts =
-            frame.res.terrain.draw(*frame.world.state, frame.world.terrains, view, frame.lodView,
-                                   surfaceDefines(frame));
-        frame.stats.trianglesDrawn += ts.triangles;
-        frame.stats.drawCalls += ts.terrains;
-        frame.stats.terrainTriangles += ts.triangles;
-        frame.stats.terrainPatches += ts.patches;
-        frame.stats.terrainUploadBytes += ts.upload.bytes;
-        frame.stats.terrainUploadMs += ts.upload.cpuMs;
-      }).t;
+SceneTargets addSourcePasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, SceneTargets targets) {
+  for (DrawSource* source : frame.sources) {
+    if (source->ownPass().empty() || !source->has(DrawVariant::Surface, SurfaceSet::Opaque)) continue;
+    struct Data {
+      SceneTargets t;
+    };
+    targets = graph.addPass<Data>(
+        v.named(source->ownPass()),
+        [&](PassBuilder& b, Data& d) {
+          d.t = targets;
+          d.t.color = b.write(b.read(targets.color));
+          d.t.depth = b.write(b.read(targets.depth));
+          readShadowMaps(b, frame);
+          readLightGrid(b, frame);
+          source->declare(b, DrawVariant::Surface);
+        },
+        [&frame, source, index = v.index](const Data& d, const PassResources& r) {
+          glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer({d.t.color}, d.t.depth));
+          frame.res.bindView(index);
+          bindShadowMaps(frame, r);
+          bindLightGrid(frame, r, index);
+          source->draw(frame, DrawCall{DrawVariant::Surface, SurfaceSet::Opaque, index, surfaceDefines(frame)}, r);
+        }).t;
+  }
+  return targets;
 }
 
 }  // namespace hs::render

@@ -1,7 +1,9 @@
 #pragma once
-// The passes that fill a view's scene colour and depth: opaque meshes (which
-// also create and clear the targets) and terrains. Include only inside
-// render/.
+// The passes that fill a view's scene colour and depth with the frame's
+// draw sources (draw_source.h): the opaque pass (which also creates and
+// clears the targets) draws every source without a lit pass of its own,
+// then each source that has one (terrain) draws in its own. Include only
+// inside render/.
 #include "render/frame_context.h"
 
 namespace hs::render {
@@ -21,10 +23,12 @@ struct SceneTargets {
 gl::ProgramDesc meshProgramDesc(scene::ShadingMode mode, bool normalMap = false, bool parallax = false,
                                 bool debugNormal = false, const std::vector<std::string>& extra = {});
 
-// Creates the view's scene targets, clears them, draws the visible meshes.
+// Creates the view's scene targets, clears them, draws the opaque surfaces
+// of the sources without a pass of their own (meshes).
 SceneTargets addOpaquePass(FrameGraph& graph, FrameContext& frame, const ViewContext& view);
-// Draws the visible terrains into `targets` (only added when there are
-// any); returns the targets' new versions.
-SceneTargets addTerrainPass(FrameGraph& graph, FrameContext& frame, const ViewContext& view, const SceneTargets& targets);
+// One pass per source with a lit pass of its own that has something to
+// draw (terrain: only for scenes with a visible terrain), into `targets`;
+// returns the targets' new versions.
+SceneTargets addSourcePasses(FrameGraph& graph, FrameContext& frame, const ViewContext& view, SceneTargets targets);
 
 }  // namespace hs::render

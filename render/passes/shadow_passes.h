@@ -8,14 +8,28 @@
 // transient resources, so they exist only in frames that draw them.
 // Include only inside render/.
 #include "render/frame_context.h"
+#include "render/shadow_cascades.h"
 
 namespace hs::render {
 
-// Resolves the settings, computes the sun's cascades (shadow_cascades.h),
-// uploads the frame's ShadowBlock (cascade count 0 when there are none) and
-// adds the sun's shadow pass if the frame casts, and the spot and point
-// lights' pass. Sets frame.sunShadowMap (and the local maps).
-void addShadowPasses(FrameGraph& graph, FrameContext& frame);
+// What planShadows decided, for addShadowPasses.
+struct ShadowPlan {
+  ShadowConfig config;
+  size_t sunFirstView = 0;    // the cascades' shadow views (FrameContext::shadowViews)
+  size_t localFirstView = 0;  // the spot and point lights' layers'
+  size_t localLayers = 0;
+  int localLayerSize = 0;
+};
+
+// Resolves the settings, computes the sun's cascades (shadow_cascades.h)
+// and the spot and point lights' maps (local_shadow_pass.h), uploads the
+// frame's ShadowBlock (cascade count 0 when there are none) and adds their
+// shadow views, so every draw source culls its casters once, before the
+// sources prepare their draws (draw_source.h).
+ShadowPlan planShadows(FrameContext& frame);
+// Adds the spot and point lights' pass and the sun's pass, each only if
+// something casts. Sets frame.sunShadowMap (and the local maps).
+void addShadowPasses(FrameGraph& graph, FrameContext& frame, const ShadowPlan& plan);
 
 // For the passes that light surfaces (opaque meshes, terrain): declare the
 // read of the frame's shadow maps in setup, bind them in execute.

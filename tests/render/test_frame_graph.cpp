@@ -689,7 +689,10 @@ class TestFrameGraph : public QObject {
   // The demo's frame lists the same passes, in the same order, and the same
   // registry entries as the renderer before part 3 (a file written by that
   // renderer's `render --stats`): the graph's upgrades, the full-screen
-  // helper and the frame's time changed no pass and no resource.
+  // helper, the frame's time and the draw sources changed no pass and no
+  // resource, but for the two the draw sources made redundant: the shadow
+  // passes' own copies of the casters' object data (`sun_shadow_casters`,
+  // `local_shadow_casters`), now a part of the frame's one object buffer.
   void plainFrameListsTheSamePassesAndResources() {
     std::ifstream in(std::string(HS_TEST_DATA_DIR) + "/demo_frame_registry_stop39.json");
     QVERIFY(in.good());
@@ -717,7 +720,11 @@ class TestFrameGraph : public QObject {
     // shared memory, never an allocation of its own.
     using Entry = std::pair<std::string, std::string>;
     std::set<Entry> expected, got, hiddenBefore;
-    for (const auto& r : before["resources"]) expected.emplace(r[0].get<std::string>(), r[1].get<std::string>());
+    const std::set<std::string> removed = {"sun_shadow_casters", "local_shadow_casters"};
+    for (const auto& r : before["resources"]) {
+      const std::string name = r[0].get<std::string>();
+      if (!removed.count(name)) expected.emplace(name, r[1].get<std::string>());
+    }
     for (const GpuAllocation& a : fresh.renderer().resourceRegistry()) {
       got.emplace(a.name, a.kind);
       for (const std::string& u : a.users) {
@@ -726,6 +733,11 @@ class TestFrameGraph : public QObject {
       }
     }
     for (const Entry& e : expected) QVERIFY2(got.count(e), ("missing: " + e.first).c_str());
+    for (const std::string& r : removed)
+      QVERIFY2(!got.count({r, "buffer"}), ("still there: " + r).c_str());
+    size_t removedBefore = 0;
+    for (const auto& r : before["resources"]) removedBefore += removed.count(r[0].get<std::string>());
+    QCOMPARE(removedBefore, size_t(1));  // the file had the sun's (the demo's lamps cast no shadow)
     for (const Entry& g : got)
       if (!expected.count(g)) QVERIFY2(hiddenBefore.count(g), ("a resource of its own that was not there: " + g.first).c_str());
   }
