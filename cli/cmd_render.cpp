@@ -24,6 +24,7 @@ int runRender(int argc, char** argv) {
   if (isSequenceRender(args)) {
     if (args.has("stats")) return args.usage("--stats applies to one frame, not a sequence");
     if (args.has("time_s")) return args.usage("--at applies to one frame; a sequence's frames have their own times");
+    if (args.has("mix_camera")) return args.usage("--mix-camera applies to one frame (a sequence's cuts and transitions come from its timeline)");
     return renderFrames(args);
   }
   if (args.positionals().size() != 1) return args.usage("expected one scene file");
@@ -47,17 +48,22 @@ int runRender(int argc, char** argv) {
   }
   applyAntialiasing(args, *state);
 
+  // A camera by name, or why there is none.
+  auto namedCamera = [&](const std::string& name, std::string& why) -> scene::EntityId {
+    const scene::EntityId id = state->findByName(name);
+    if (id != scene::kNoEntity && state->find(id)->camera) return id;
+    std::string known;
+    for (scene::EntityId c : state->cameras()) known += (known.empty() ? "" : ", ") + ("'" + state->find(c)->name + "'");
+    why = "no camera named '" + name + "' in " + args.positionals()[0] +
+          (known.empty() ? " (it has no cameras)" : " (cameras: " + known + ")");
+    return scene::kNoEntity;
+  };
   render::RenderView view;
   std::string from;
   if (args.has("camera")) {
     const std::string name = args.text("camera");
-    const scene::EntityId id = state->findByName(name);
-    if (id == scene::kNoEntity || !state->find(id)->camera) {
-      std::string known;
-      for (scene::EntityId c : state->cameras()) known += (known.empty() ? "" : ", ") + ("'" + state->find(c)->name + "'");
-      return args.fail("no camera named '" + name + "' in " + args.positionals()[0] +
-                           (known.empty() ? " (it has no cameras)" : " (cameras: " + known + ")"));
-    }
+    const scene::EntityId id = namedCamera(name, error);
+    if (id == scene::kNoEntity) return args.fail(error);
     view = render::viewFromCamera(*state, id, width, height);
     from = "camera '" + name + "'";
   } else if (const auto cams = state->cameras(); !cams.empty()) {
@@ -79,7 +85,19 @@ int runRender(int argc, char** argv) {
   options.passTimings = args.has("stats");
   options.oitCounts = args.has("stats");  // fragments per pixel in every transparency mode
   const bool hdr = *format == sequencer::ImageFormat::Exr;
-  const hs::Image img = renderer.render(*state, view, hdr, &stats, options);
+  hs::Image img;
+  if (args.has("mix_camera")) {
+    // Two shots in one frame, mixed in linear light (Renderer::renderGroups).
+    const std::string name = args.text("mix_camera");
+    const scene::EntityId id = namedCamera(name, error);
+    if (id == scene::kNoEntity) return args.fail(error);
+    const float mix = float(args.number("mix"));
+    img = renderer.renderMix(*state, {view, render::viewFromCamera(*state, id, width, height)}, {1.0f - mix, mix}, hdr,
+                             &stats, options);
+    from += " mixed with camera '" + name + "' (" + std::to_string(mix).substr(0, 4) + ")";
+  } else {
+    img = renderer.render(*state, view, hdr, &stats, options);
+  }
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   hs::ImageView iv{img.width, img.height, img.rgba8.empty() ? nullptr : img.rgba8.data(),
                           img.rgbaF.empty() ? nullptr : img.rgbaF.data()};

@@ -63,7 +63,12 @@ glm::quat instanceRotation(const GpuInstance& g) {
                                   unpackSnorm16(g.rotation[0] >> 16), unpackSnorm16(g.rotation[1])));
 }
 
-InstancedSource::InstancedSource(std::string name, Culling culling) : name_(std::move(name)), culling_(culling) {}
+InstancedSource::InstancedSource(std::string name, Culling culling) : name_(std::move(name)), culling_(culling) {
+  // Its instance buffer's name in the pool: its own, so two sources of one
+  // name (the same field culled two ways) never take each other's data.
+  static uint64_t serial = 0;
+  bufferName_ = name_ + "_instances#" + std::to_string(++serial);
+}
 InstancedSource::~InstancedSource() = default;
 
 void InstancedSource::setInstances(InstanceSet set) {
@@ -164,7 +169,7 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
   const Upload& up = graph.addPass<Upload>(
       name_ + "_upload",
       [&](PassBuilder& b, Upload& d) {
-        d.instances = b.write(graph.persistentBuffer(name_ + "_instances", BufferDesc{n * sizeof(GpuInstance)}),
+        d.instances = b.write(graph.persistentBuffer(bufferName_, BufferDesc{n * sizeof(GpuInstance)}),
                               Usage::Transfer);
         d.cells = b.create(name_ + "_cells", BufferDesc{cells.size() * sizeof(glm::vec4)}, Usage::Transfer);
         if (!gpu) d.visible = b.create(name_ + "_visible", BufferDesc{visibleBytes}, Usage::Transfer);

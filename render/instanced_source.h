@@ -88,7 +88,7 @@ class InstancedSource final : public DrawSource {
   void drawParts(FrameContext& frame, const PassResources& r, size_t view, const DrawCall& call);
   void bindInstances(const PassResources& r) const;
 
-  std::string name_;
+  std::string name_, bufferName_;
   Culling culling_;
   InstanceSet set_;
   uint64_t revision_ = 1, uploaded_ = 0;

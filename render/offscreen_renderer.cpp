@@ -46,6 +46,40 @@ Image OffscreenRenderer::render(const scene::SceneState& state, const RenderView
   return hdr ? d_->renderer.readHdr() : d_->renderer.readDisplay(d_->output.fbo(), view.width, view.height);
 }
 
+Image OffscreenRenderer::renderMix(const scene::SceneState& state, const std::vector<RenderView>& views,
+                                   const std::vector<float>& weights, bool hdr, FrameStats* stats,
+                                   const RenderOptions& options) {
+  d_->egl.makeCurrent();
+  if (views.empty()) return {};
+  std::vector<ViewGroup> groups;
+  for (size_t i = 0; i < views.size(); ++i) {
+    while (d_->extraOutputs.size() <= i) d_->extraOutputs.push_back(std::make_unique<OutputTarget>());
+    d_->extraOutputs[i]->ensure(views[i].width, views[i].height);
+    groups.push_back({{ViewTarget{views[i], d_->extraOutputs[i]->fbo(), {}}}, nullptr});
+  }
+  d_->output.ensure(views[0].width, views[0].height);
+  GroupCombine combine;
+  combine.targets = {ViewTarget{views[0], d_->output.fbo(), {}}};
+  combine.weights = weights;
+  RenderOptions o = options;
+  o.keepHdr = hdr;
+  const std::vector<FrameStats> s = d_->renderer.renderGroups(state, groups, o, &combine);
+  if (stats && !s.empty()) {
+    // The frame's figures: the groups' draws summed, the last group's passes (with the mix).
+    *stats = s.back();
+    stats->passes.clear();
+    for (size_t i = 0; i < s.size(); ++i) {
+      if (i + 1 < s.size()) {
+        stats->trianglesDrawn += s[i].trianglesDrawn;
+        stats->drawCalls += s[i].drawCalls;
+      }
+      stats->passes.insert(stats->passes.end(), s[i].passes.begin(), s[i].passes.end());
+    }
+  }
+  return hdr ? d_->renderer.readHdr(views.size())
+             : d_->renderer.readDisplay(d_->output.fbo(), views[0].width, views[0].height);
+}
+
 FrameStats OffscreenRenderer::renderOnly(const scene::SceneState& state, const RenderView& view,
                                          const RenderOptions& options) {
   d_->egl.makeCurrent();

@@ -27,6 +27,11 @@ class OffscreenRenderer {
   // Renders `view` and reads it back: 8-bit sRGB, or linear float with `hdr`.
   Image render(const scene::SceneState& state, const RenderView& view, bool hdr = false,
                FrameStats* stats = nullptr, const RenderOptions& options = {});
+  // Several shots in one frame (Renderer::renderGroups), mixed by
+  // `weights` (one per view) into one image, read back like render()'s.
+  Image renderMix(const scene::SceneState& state, const std::vector<RenderView>& views,
+                  const std::vector<float>& weights, bool hdr = false, FrameStats* stats = nullptr,
+                  const RenderOptions& options = {});
   // Renders without reading back (benchmarks of the GPU side); waits for the GPU.
   FrameStats renderOnly(const scene::SceneState& state, const RenderView& view, const RenderOptions& options = {});
   // The same for several views of one frame (Renderer::renderViews: the two

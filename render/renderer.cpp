@@ -739,7 +739,15 @@ std::vector<FrameStats> Renderer::renderGroups(const scene::SceneState& state, c
                                                  TextureDesc{k.size.x, k.size.y, GL_RGBA16F}),
                             combine->weights[g]);
       }
-      addToneMapPasses(*graph, frame, v, addGroupCombinePass(*graph, frame, v, images));
+      const TextureRef mixed = addGroupCombinePass(*graph, frame, v, images);
+      addToneMapPasses(*graph, frame, v, mixed);
+      Impl::Kept k;
+      k.size = {t.view.width, t.view.height};
+      if (options.keepHdr) {
+        k.hdrGraph = graph.get();
+        graph->keep(k.hdr = mixed);
+      }
+      d.kept.push_back(k);
     }
     graph->execute(options.passTimings);
     FrameStats& last = out.back();

@@ -220,7 +220,8 @@ class Renderer {
   // caches and the environment), into its own targets, exactly as
   // renderViews would render it alone. With `combine`, their HDR images
   // are then combined into combine->targets (a last graph). readHdr and
-  // readDepth number the views of all groups in order. One group costs
+  // readDepth number the views of all groups in order, then (with keepHdr)
+  // the combined images. One group costs
   // what renderViews costs. GPU time is not measured (per-pass timings are).
   std::vector<FrameStats> renderGroups(const scene::SceneState& state, const std::vector<ViewGroup>& groups,
                                        const RenderOptions& options = {}, const GroupCombine* combine = nullptr);

@@ -63,6 +63,15 @@ const OperationDecl& renderOperation() {
                         .help = "render the scene as its timeline has it at this time (one frame; the same pixels "
                                 "as that frame of a sequence render). Without it: the document as it is, at t = 0",
                         .valueName = "SECONDS"});
+    // Two shots in one frame (the renderer's view groups): a cross-fade still.
+    o.params.push_back({.key = "mix_camera", .option = "mix-camera", .label = "Mix camera", .type = ParamType::Text,
+                        .help = "a second camera rendered in the same frame (its own visible set, levels of detail, "
+                                "shadows and lights) and mixed with the first by --mix (one frame)",
+                        .valueName = "NAME"});
+    o.params.push_back({.key = "mix", .option = "mix", .label = "Mix", .min = 0.0, .max = 1.0, .defaultValue = 0.5,
+                        .help = "the second camera's share of the mixed frame (0: the first camera's image, 1: the "
+                                "second's), summed in linear light before the tone map",
+                        .valueName = "0..1"});
     for (const ParamDecl& p : sequencer::exportParamDecls())
       if (p.key != "size_px" && p.key != "quality") o.params.push_back(p);
     return o;

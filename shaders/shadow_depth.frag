@@ -1,5 +1,5 @@
 #version 450 core
-// Shadow maps hold depth only (render/passes/shadow_casters.cpp). Variant
+// Shadow maps hold depth only (the draw sources' Depth variant, render/draw_source.h). Variant
 // ALPHA_CUTOUT, for submeshes whose material cuts out (foliage cards): the
 // fragments mesh.frag drops (opacity x base colour alpha under the
 // threshold) are dropped here too, so the shadow has the card's holes.

@@ -535,6 +535,54 @@ class TestCli : public QObject {
     QVERIFY(!fs::exists(path("c.png").toStdString()));
   }
 
+  // --mix-camera: two shots in one frame (the renderer's view groups),
+  // mixed in linear light. --mix 0 is the first camera's frame and --mix 1
+  // the second's, pixel for pixel (EXR, linear); 0.5 is their mean.
+  void renderMixesTwoCameras() {
+    auto pixels = [](const QString& file) {
+      std::vector<float> px;
+      auto in = OIIO::ImageInput::open(file.toStdString());
+      if (!in) return px;
+      const OIIO::ImageSpec spec = in->spec();
+      px.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+      in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data());
+      return px;
+    };
+    auto render = [&](const QString& name, const QStringList& extra) {
+      const QString out = path(name);
+      const Run r = cli(QStringList{"render", demo_, "--out", out, "--size", "64x36", "--no-grid", "--aa", "none"} + extra);
+      return std::make_pair(r, pixels(out));
+    };
+    const auto [ra, a] = render("a.exr", {"--camera", "Main Camera"});
+    const auto [rb, b] = render("b.exr", {"--camera", "Flight Camera"});
+    QVERIFY2(ra.code == 0 && rb.code == 0, qPrintable(ra.err + rb.err));
+    const auto [r0, m0] = render("m0.exr", {"--camera", "Main Camera", "--mix-camera", "Flight Camera", "--mix", "0"});
+    const auto [r1, m1] = render("m1.exr", {"--camera", "Main Camera", "--mix-camera", "Flight Camera", "--mix", "1"});
+    const auto [rh, mh] = render("mh.exr", {"--camera", "Main Camera", "--mix-camera", "Flight Camera"});
+    QVERIFY2(r0.code == 0 && r1.code == 0 && rh.code == 0, qPrintable(r0.err + r1.err + rh.err));
+    QVERIFY2(rh.out.contains("mixed with camera 'Flight Camera'"), qPrintable(rh.out));
+    QVERIFY(!a.empty() && a.size() == b.size() && a.size() == m0.size() && a.size() == mh.size());
+    double d0 = 0, d1 = 0, dh = 0, ab = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      d0 = std::max(d0, std::abs(double(m0[i]) - double(a[i])));
+      d1 = std::max(d1, std::abs(double(m1[i]) - double(b[i])));
+      // Half floats: the mean within their rounding.
+      dh = std::max(dh, std::abs(double(mh[i]) - 0.5 * (double(a[i]) + double(b[i]))) / std::max(1.0, std::abs(double(mh[i]))));
+      ab = std::max(ab, std::abs(double(a[i]) - double(b[i])));
+    }
+    QCOMPARE(d0, 0.0);
+    QCOMPARE(d1, 0.0);
+    QVERIFY2(dh < 2e-3, qPrintable(QString::number(dh)));
+    QVERIFY(ab > 0.05);  // two different shots
+    // A camera that is not there, and a sequence, are refused with the reason.
+    const Run bad = cli({"render", demo_, "--out", path("x.png"), "--mix-camera", "Nobody"});
+    QCOMPARE(bad.code, 1);
+    QVERIFY2(bad.err.contains("no camera named 'Nobody'") && bad.err.contains("Main Camera"), qPrintable(bad.err));
+    const Run seq = cli({"render", demo_, "--out", path("f_%05d.png"), "--frames", "0-1", "--mix-camera", "Flight Camera"});
+    QCOMPARE(seq.code, 2);
+    QVERIFY2(seq.err.contains("--mix-camera applies to one frame"), qPrintable(seq.err));
+  }
+
   void renderToUnknownExtension() {
     expectError({"render", demo_, "--out", path("frame.bmp")}, 1, {"frame.bmp", ".png"});
     expectError({"render", demo_, "--out", path("frame")}, 1, {"frame"});
