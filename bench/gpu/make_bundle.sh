@@ -31,7 +31,7 @@ build=$(cd "${1:-$root/build}" && pwd)
 out_dir=$root/.gpubundle
 benches="bench/render/bench_render bench/render/bench_mesh_lod bench/render/bench_frame
 bench/render/bench_shading bench/render/bench_shadows bench/render/bench_environment
-bench/render/bench_lights bench/render/bench_ao bench/render/bench_dof bench/oit/bench_oit
+bench/render/bench_lights bench/render/bench_ao bench/render/bench_dof bench/render/bench_instances bench/oit/bench_oit
 bench/decimate/bench_decimate"
 libdir=/usr/lib/x86_64-linux-gnu
 # glvnd's loaders: dlopened by libepoxy (libEGL.so.1, libOpenGL.so.0, libGL.so.1), not in ldd.

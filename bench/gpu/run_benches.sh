@@ -145,6 +145,7 @@ benches=(
   "bench_render|60|--frames 300 --warmup 30|--frames 1 --warmup 0 --size 320x180|"
   "bench_oit|120|--sizes 640x480,1920x1080 --runs 30 --plot {}/bench_oit.png|--sizes 160x120 --runs 1 --plot {}/bench_oit.png|"
   "bench_frame|60|--frames 60 --rounds 5|--frames 1 --rounds 1 --size 320x180|"
+  "bench_instances|120|--frames 30 --size 1920x1080|--frames 1 --size 320x180 --counts 10000|"
   "bench_shading|90|--frames 60 --warmup 10 --plot {}/bench_shading.png|--frames 1 --warmup 0 --size 320x180 --plot {}/bench_shading.png|"
   "bench_lights|60|--frames 30 --plot {}/bench_lights.png|--frames 1 --quick --plot {}/bench_lights.png|"
   "bench_mesh_lod|60|--frames 60|--frames 1 --size 320x180 --grid 3|"

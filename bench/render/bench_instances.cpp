@@ -19,6 +19,7 @@
 // instances, divided by the count).
 //
 //   bench_instances [--frames N] [--counts 10000,100000,1000000] [--size WxH] [--skip-entities-over N]
+//                   [--altitude M]   (lower: fewer instances in view, culling weighs more)
 #include <QCoreApplication>
 
 #include <cmath>
@@ -49,6 +50,7 @@ struct Options {
   int frames = 5, width = 1280, height = 720;
   std::vector<double> counts = {1e4, 1e5, 1e6};
   size_t entitiesUpTo = 1000000;  // (a) above this count is skipped
+  double altitude = 60.0;         // the camera's height over the field (m)
 };
 
 scene::SceneState baseScene() {
@@ -117,7 +119,7 @@ render::RenderView topView(const Options& o) {
   v.width = o.width;
   v.height = o.height;
   v.fovY = glm::radians(60.0);
-  v.eye = {0.3, 0.2, 60.0};
+  v.eye = {0.3, 0.2, o.altitude};
   v.orientation = sequencer::lookRotation(glm::dvec3(0.0, 0.001, -1.0));
   return v;
 }
@@ -175,8 +177,11 @@ int main(int argc, char** argv) {
     else if (a == "--counts" && i + 1 < argc) o.counts = bench::numberList(argv[++i]);
     else if (a == "--size" && i + 1 < argc) std::sscanf(argv[++i], "%dx%d", &o.width, &o.height);
     else if (a == "--skip-entities-over" && i + 1 < argc) o.entitiesUpTo = size_t(std::atof(argv[++i]));
+    else if (a == "--altitude" && i + 1 < argc) o.altitude = std::atof(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_instances [--frames N] [--counts A,B,C] [--size WxH] [--skip-entities-over N]\n");
+      std::fprintf(stderr,
+                   "usage: bench_instances [--frames N] [--counts A,B,C] [--size WxH] [--skip-entities-over N] "
+                   "[--altitude M]\n");
       return 2;
     }
   }
@@ -186,8 +191,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_instances: %s\n", error.c_str());
     return 1;
   }
-  std::printf("# bench_instances: %dx%d, %d frames (median), %s\n# %s\n# %s\n\n", o.width, o.height, o.frames,
-              r.glDescription().c_str(), bench::threadsText().c_str(), bench::loadAverageLine().c_str());
+  std::printf("# bench_instances: %dx%d, camera %.0f m above the field, %d frames (median), %s\n# %s\n# %s\n\n",
+              o.width, o.height, o.altitude, o.frames, r.glDescription().c_str(), bench::threadsText().c_str(),
+              bench::loadAverageLine().c_str());
   std::printf("| instances | way | frame ms | CPU ms | draw calls | visible | GPU bytes / instance | frame vs (a) |\n");
   std::printf("|---:|---|---:|---:|---:|---:|---:|---:|\n");
   const scene::SceneState base = baseScene();
