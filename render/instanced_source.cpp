@@ -208,7 +208,8 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
         d.typeBase = b.create(name_ + "_type_base", BufferDesc{types * 4}, Usage::Transfer);
         d.parts = b.create(name_ + "_parts", BufferDesc{parts.size() * sizeof(glm::uvec4)}, Usage::Transfer);
       },
-      [this, &frame, n, views, types, spheres, planes, parts](const Cull& d, const PassResources& r) {
+      [this, &frame, n, views, types, cellCount = cells.size(), spheres, planes, parts](const Cull& d,
+                                                                                         const PassResources& r) {
         upload(r.buffer(d.spheres), spheres);
         upload(r.buffer(d.planes), planes);
         upload(r.buffer(d.typeBase), typeBase_);
@@ -229,6 +230,7 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
         cullProgram.set("uInstances", unsigned(n));
         cullProgram.set("uViews", unsigned(views));
         cullProgram.set("uTypes", unsigned(types));
+        cullProgram.set("uCells", unsigned(cellCount));
         glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
         // Within the pass: the commands read the counts.
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

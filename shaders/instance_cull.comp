@@ -19,13 +19,18 @@ layout(std430, binding = 23) readonly buffer TypeBase { uint typeBase[]; };     
 uniform uint uInstances;
 uniform uint uViews;
 uniform uint uTypes;
+uniform uint uCells;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= uInstances) return;
   Instance inst = instances[i];
   uint type = instanceType(inst);
+  // A type or cell the source does not have, or a type whose mesh is gone
+  // (radius < 0): never drawn, never read past a buffer.
+  if (type >= uTypes || instanceCell(inst) >= uCells) return;
   vec4 sphere = typeSpheres[type];
+  if (sphere.w < 0.0) return;
   float s = inst.positionScale.w;
   vec3 c = instanceOrigin(inst) + instanceRotation(inst) * (sphere.xyz * s);
   float radius = sphere.w * abs(s);

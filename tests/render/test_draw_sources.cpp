@@ -271,6 +271,26 @@ class TestDrawSources : public QObject {
     QVERIFY(darker > 200);
   }
 
+  // Instances naming a type or a cell the set does not have are drawn by
+  // neither path (and read no buffer past its end): the image is the
+  // valid instances' alone.
+  void unknownTypesAndCellsAreNotDrawn() {
+    const std::vector<Placed> placed = grid();
+    const render::InstanceSet valid = instanceSet(placed);
+    render::InstanceSet bad = valid;
+    bad.instances.push_back(render::packInstance({1, 1, 1}, glm::quat(1, 0, 0, 0), 1.0f, 5, 0, 1));
+    bad.instances.push_back(render::packInstance({1, 1, 1}, glm::quat(1, 0, 0, 0), 1.0f, 0, 99, 2));
+    const scene::SceneState s = baseScene(1.0f);
+    for (auto culling : {InstancedSource::Culling::Gpu, InstancedSource::Culling::Cpu}) {
+      auto good = std::make_shared<InstancedSource>("spheres", culling);
+      auto withBad = std::make_shared<InstancedSource>("spheres", culling);
+      good->setInstances(valid);
+      withBad->setInstances(bad);
+      const Image a = renderWith(s, good), b = renderWith(s, withBad);
+      QCOMPARE(compare(a, b, 0.0).max, 0.0);
+    }
+  }
+
   void pickingReturnsEachInstancesId() {
     const std::vector<Placed> placed = grid();
     const render::InstanceSet set = instanceSet(placed);
