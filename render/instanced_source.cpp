@@ -5,8 +5,8 @@
 
 #include "render/frame_context.h"
 #include "render/gpu_mesh_cache.h"
+#include "render/material_binding.h"
 #include "render/material_table.h"
-#include "render/passes/scene_passes.h"
 
 namespace hs::render {
 namespace {
@@ -289,40 +289,26 @@ void InstancedSource::drawParts(FrameContext& frame, const PassResources& r, siz
   bindInstances(r);
   std::vector<std::string> defines = call.defines;
   defines.push_back("INSTANCED");
-  const bool debugNormal = frame.options.debugShadingNormal;
-  GlProgram* current = nullptr;
-  int culling = -1;
+  MaterialBinding binding(frame, defines, call.fragment);
   for (size_t k = 0; k < parts_.size(); ++k) {
     const Part& part = parts_[k];
     if (call.variant == DrawVariant::Surface && !wanted(part, call.surfaces)) continue;
     const DrawMaterial& mat = materials_->forDraw(materialDraw_[part.type], part.submesh);
     GlProgram* p = nullptr;
-    if (call.variant == DrawVariant::Pick) p = &frame.res.program({"mesh.vert", "pick.frag", "", {"INSTANCED"}});
-    else if (call.variant == DrawVariant::Depth)
+    if (call.variant == DrawVariant::Pick) {
+      p = &frame.res.program({"mesh.vert", "pick.frag", "", {"INSTANCED"}});
+      p->use();
+      p->set("uPickBase", call.pickBase);
+    } else if (call.variant == DrawVariant::Depth) {
       p = &frame.res.program({"mesh.vert", "shadow_depth.frag", "",
                               mat.castsCutout ? std::vector<std::string>{"INSTANCED", "ALPHA_CUTOUT"}
                                               : std::vector<std::string>{"INSTANCED"}});
-    else if (!call.fragment.empty()) p = &frame.res.program({"mesh.vert", call.fragment, "", defines});
-    else p = &frame.res.program(meshProgramDesc(mat.shading, mat.normalMap, mat.parallax, debugNormal, defines));
-    if (p != current) (current = p)->use();
-    p->set("uInstanceBase", unsigned(view * n + typeBase_[part.type]));
-    if (call.variant == DrawVariant::Pick) {
-      p->set("uPickBase", call.pickBase);
-    } else if (call.variant == DrawVariant::Depth) {
-      if (mat.castsCutout) {
-        glBindTextureUnit(kMaterialTextureUnit, mat.textures[0]);
-        p->set("uCutout", glm::vec4(mat.opacity, mat.alphaThreshold, mat.textures[0] ? 1.0f : 0.0f,
-                                    mat.translucent ? 1.0f : 0.0f));
-      }
+      p->use();
+      if (mat.castsCutout) bindCutout(*p, mat);
     } else {
-      p->set("uMaterial", unsigned(mat.index));
-      for (unsigned u = 0; u < 3; ++u)
-        if (mat.textures[u]) glBindTextureUnit(kMaterialTextureUnit + u, mat.textures[u]);
-      if (int(!mat.twoSided) != culling) {
-        culling = int(!mat.twoSided);
-        culling ? glEnable(GL_CULL_FACE) : glDisable(GL_CULL_FACE);
-      }
+      p = &binding.apply(mat);
     }
+    p->set("uInstanceBase", unsigned(view * n + typeBase_[part.type]));
     const GLuint vao = meshes_[part.type]->vao;
     glBindVertexArray(vao);
     // Attribute 7 is the document meshes' object index (divisor 1): off,
@@ -343,8 +329,7 @@ void InstancedSource::drawParts(FrameContext& frame, const PassResources& r, siz
     }
     glEnableVertexArrayAttrib(vao, 7);
   }
-  glDisable(GL_CULL_FACE);
-  for (unsigned u = 0; u < 3; ++u) glBindTextureUnit(kMaterialTextureUnit + u, 0);
+  binding.finish();
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 }
 

@@ -2,8 +2,8 @@
 
 #include "render/frame_context.h"
 #include "render/gpu_mesh_cache.h"
+#include "render/material_binding.h"
 #include "render/material_table.h"
-#include "render/passes/scene_passes.h"
 
 namespace hs::render {
 namespace {
@@ -83,22 +83,11 @@ void MeshSource::draw(FrameContext& frame, const DrawCall& call, const PassResou
 }
 
 // The opaque pass's, the transparency passes' and the depth of field
-// capture's draws: one program per material variant in use (built on
-// first use: none for modes nobody uses), or the pass's own fragment.
+// capture's draws, each submesh with its material (material_binding.h).
 void MeshSource::drawSurfaceSet(FrameContext& frame, const DrawCall& call) const {
   if (visible_.inView == 0) return;
   const bool lit = call.surfaces == SurfaceSet::Opaque;  // the opaque pass counts what it draws
-  const bool debugNormal = frame.options.debugShadingNormal;
-  GlProgram* programs[3][2][2] = {};
-  auto programFor = [&](const DrawMaterial& mat) -> GlProgram& {
-    if (!call.fragment.empty()) return frame.res.program({"mesh.vert", call.fragment, "", call.defines});
-    GlProgram*& p = programs[int(mat.shading)][mat.normalMap][mat.parallax];
-    if (!p) p = &frame.res.program(meshProgramDesc(mat.shading, mat.normalMap, mat.parallax, debugNormal, call.defines));
-    return *p;
-  };
-  GlProgram* current = nullptr;
-  GLuint bound[3] = {0, 0, 0};
-  int culling = -1;
+  MaterialBinding binding(frame, call.defines, call.fragment);
   for (size_t d = 0; d < visible_.inView; ++d) {
     const DrawItem& it = visible_.draws[d];
     const mesh::MeshData& m = *it.mesh->data;
@@ -110,25 +99,14 @@ void MeshSource::drawSurfaceSet(FrameContext& frame, const DrawCall& call) const
         vaoBound = true;
       }
       const mesh::Submesh& sm = m.submeshes[s];
-      const DrawMaterial& mat = materials_.forDraw(d, s);
-      GlProgram& p = programFor(mat);
-      if (&p != current) (current = &p)->use();
-      p.set("uMaterial", unsigned(mat.index));
-      for (unsigned u = 0; u < 3; ++u)
-        if (mat.textures[u] && mat.textures[u] != bound[u]) glBindTextureUnit(kMaterialTextureUnit + u, bound[u] = mat.textures[u]);
-      // One-sided materials cull their back faces; scans are seen from both sides.
-      if (int(!mat.twoSided) != culling) {
-        culling = int(!mat.twoSided);
-        culling ? glEnable(GL_CULL_FACE) : glDisable(GL_CULL_FACE);
-      }
+      binding.apply(materials_.forDraw(d, s));
       drawRange(sm.firstIndex, sm.indexCount, it.object);
       if (lit) frame.stats.trianglesDrawn += sm.indexCount / 3;
       ++frame.stats.drawCalls;
     }
     if (lit) ++frame.stats.instancesDrawn;
   }
-  glDisable(GL_CULL_FACE);
-  for (unsigned u = 0; u < 3; ++u) glBindTextureUnit(kMaterialTextureUnit + u, 0);
+  binding.finish();
 }
 
 // A shadow view's casters: whole meshes with the plain depth program (no
@@ -166,9 +144,7 @@ void MeshSource::drawDepth(FrameContext& frame, const std::vector<uint32_t>& dra
     for (size_t s = 0; s < subs.size(); ++s) {
       const DrawMaterial& mat = materials_.forDraw(d, s);
       if (!mat.castsCutout) continue;
-      glBindTextureUnit(kMaterialTextureUnit, mat.textures[0]);
-      cutout.set("uCutout", glm::vec4(mat.opacity, mat.alphaThreshold, mat.textures[0] ? 1.0f : 0.0f,
-                                      mat.translucent ? 1.0f : 0.0f));
+      bindCutout(cutout, mat);
       drawRange(subs[s].firstIndex, subs[s].indexCount, it.object);
     }
   }
