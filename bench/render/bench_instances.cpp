@@ -34,9 +34,8 @@
 #include "render/instanced_source.h"
 #include "render/offscreen_renderer.h"
 #include "render/renderer.h"
-#include "scene/light_units.h"
-#include "scene/mesh_materials.h"
 #include "scene/scene_state.h"
+#include "tests/common/scene_parts.h"
 #include "sequencer/camera_path.h"
 
 using namespace hs;
@@ -58,30 +57,8 @@ scene::SceneState baseScene() {
   s.settings.showGrid = false;
   s.settings.shadows = false;
   s.settings.ambientIntensity = 0.3f;
-  auto addAsset = [&](scene::AssetId id, mesh::MeshData m, glm::vec3 color) {
-    scene::MeshAsset a;
-    a.id = id;
-    a.name = "Asset " + std::to_string(id);
-    a.contentHash = mesh::contentHash(m);
-    a.data = std::make_shared<const mesh::MeshData>(std::move(m));
-    scene::Material mat;
-    mat.id = id;
-    mat.asset = id;
-    mat.name = a.name;
-    mat.baseColor = color;
-    a.materialSlots.assign(scene::materialSlotCount(*a.data), mat.id);
-    s.materials.emplace(mat.id, mat);
-    s.assets.emplace(a.id, a);
-  };
-  addAsset(kSphere, mesh::uvSphere(0.5f, 32, 32), {0.3f, 0.6f, 0.25f});
-  scene::Entity sun;
-  sun.id = 1;
-  sun.name = "Sun";
-  sun.light = scene::Light{};
-  sun.light->intensity = float(scene::legacyLightIntensity(scene::Light::Type::Sun, 1.0));
-  sun.transform.rotation = scene::fromEulerDegrees({50, 0, -35});
-  s.entities.emplace(sun.id, sun);
-  s.roots.push_back(sun.id);
+  test::addMeshAsset(s, kSphere, "Sphere", mesh::uvSphere(0.5f, 32, 32), {0.3f, 0.6f, 0.25f});
+  test::addSun(s, 1, {50, 0, -35});
   return s;
 }
 

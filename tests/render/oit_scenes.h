@@ -7,10 +7,9 @@
 #include <string>
 
 #include "look_from.h"
+#include "scene_parts.h"
 #include "mesh/primitives.h"
 #include "render/render_view.h"
-#include "scene/light_units.h"
-#include "scene/mesh_materials.h"
 #include "scene/scene_state.h"
 
 namespace hs::test {
@@ -23,22 +22,7 @@ struct OitScene {
 // A square mesh asset `id` (gridPlane, facing +Z) with its own material
 // `id`: `color`, `opacity`, unlit or lit.
 inline void addQuadAsset(scene::SceneState& s, uint32_t id, float size, glm::vec3 color, float opacity, bool unlit) {
-  scene::MeshAsset a;
-  a.id = id;
-  a.name = "Quad " + std::to_string(id);
-  mesh::MeshData mesh = mesh::gridPlane(size, 1);
-  a.contentHash = mesh::contentHash(mesh);
-  a.data = std::make_shared<const mesh::MeshData>(std::move(mesh));
-  scene::Material m;
-  m.id = id;
-  m.asset = id;
-  m.name = a.name + " / material";
-  m.baseColor = color;
-  m.opacity = opacity;
-  m.unlit = unlit;
-  a.materialSlots.assign(scene::materialSlotCount(*a.data), m.id);
-  s.materials.emplace(m.id, m);
-  s.assets.emplace(a.id, a);
+  addMeshAsset(s, id, "Quad " + std::to_string(id), mesh::gridPlane(size, 1), color, opacity, unlit);
 }
 
 inline void addInstance(scene::SceneState& s, uint32_t entity, uint32_t asset, glm::dvec3 at) {
@@ -70,16 +54,7 @@ inline OitScene stackScene(int layers, bool lit, int size = 96) {
     addQuadAsset(s, id, 2.0f + 0.3f * float(i), color, 0.25f + 0.1f * float(i % 5), !lit);
     addInstance(s, id, id, {0.15 * (i % 2 ? 1 : -1) * i, 0.1 * i, 0.2 * i});
   }
-  if (lit) {
-    scene::Entity sun;
-    sun.id = 1000;
-    sun.name = "Sun";
-    sun.light = scene::Light{};
-    sun.light->intensity = float(scene::legacyLightIntensity(scene::Light::Type::Sun, 1.0));
-    sun.transform.rotation = scene::fromEulerDegrees({40, 0, -20});
-    s.entities.emplace(sun.id, sun);
-    s.roots.push_back(sun.id);
-  }
+  if (lit) addSun(s, 1000, {40, 0, -20});
   out.view.width = out.view.height = size;
   out.view.fovY = glm::radians(40.0);
   out.view.eye = {0.0, 0.0, 8.0};

@@ -18,9 +18,8 @@
 #include "render/instanced_source.h"
 #include "render/offscreen_renderer.h"
 #include "render/renderer.h"
-#include "scene/light_units.h"
-#include "scene/mesh_materials.h"
 #include "scene/scene_state.h"
+#include "scene_parts.h"
 
 using namespace hs;
 using render::InstancedSource;
@@ -47,24 +46,8 @@ scene::SceneState baseScene(float opacity) {
   s.settings.antialiasing = scene::Antialiasing::None;
   s.settings.ambientIntensity = 0.3f;
   s.settings.shadows = true;
-  auto addAsset = [&](scene::AssetId id, mesh::MeshData m, glm::vec3 color, float alpha) {
-    scene::MeshAsset a;
-    a.id = id;
-    a.name = "Asset " + std::to_string(id);
-    a.contentHash = mesh::contentHash(m);
-    a.data = std::make_shared<const mesh::MeshData>(std::move(m));
-    scene::Material mat;
-    mat.id = id;
-    mat.asset = id;
-    mat.name = a.name;
-    mat.baseColor = color;
-    mat.opacity = alpha;
-    a.materialSlots.assign(scene::materialSlotCount(*a.data), mat.id);
-    s.materials.emplace(mat.id, mat);
-    s.assets.emplace(a.id, a);
-  };
-  addAsset(1, mesh::gridPlane(40.0f, 4), {0.6f, 0.6f, 0.55f}, 1.0f);
-  addAsset(kSphere, mesh::uvSphere(0.6f, 32, 32), {0.8f, 0.25f, 0.2f}, opacity);
+  test::addMeshAsset(s, 1, "Ground", mesh::gridPlane(40.0f, 4), {0.6f, 0.6f, 0.55f});
+  test::addMeshAsset(s, kSphere, "Sphere", mesh::uvSphere(0.6f, 32, 32), {0.8f, 0.25f, 0.2f}, opacity);
   scene::Entity ground;
   ground.id = 1;
   ground.name = "Ground";
@@ -72,15 +55,7 @@ scene::SceneState baseScene(float opacity) {
   ground.transform.translation = kUtm + glm::dvec3(5.0, 5.0, 0.0);
   s.entities.emplace(ground.id, ground);
   s.roots.push_back(ground.id);
-  scene::Entity sun;
-  sun.id = 1000;
-  sun.name = "Sun";
-  sun.light = scene::Light{};
-  sun.light->intensity = float(scene::legacyLightIntensity(scene::Light::Type::Sun, 1.0));
-  sun.light->castsShadows = true;
-  sun.transform.rotation = scene::fromEulerDegrees({50, 0, -35});
-  s.entities.emplace(sun.id, sun);
-  s.roots.push_back(sun.id);
+  test::addSun(s, 1000, {50, 0, -35}, true);
   return s;
 }
 
