@@ -722,7 +722,9 @@ std::vector<FrameStats> Renderer::renderGroups(const scene::SceneState& state, c
     // The last graph: view i of every group, weighted and summed, tone
     // mapped into combine->targets[i].
     auto graph = std::make_unique<FrameGraph>(d.res.pool);
-    const RenderWorld world = RenderWorld::build(state);
+    // Its passes (the combine, the tone map) read the settings alone: no
+    // world or visible set is built for them.
+    const RenderWorld world;
     const VisibleSet visible;
     FrameStats stats;
     FrameContext frame{d.res, world, visible, state.settings, options, combine->targets.front().view, stats};
