@@ -108,6 +108,9 @@ class FoliageStore {
   // with an error when the name is taken or there are 65535 types.
   int addType(const FoliageType& t, std::vector<std::string>& messages);
   int findType(const std::string& name) const;
+  // Puts back a types list as it was (the undo of a type edit): no checks,
+  // the records must name only types the list has.
+  void setTypes(std::vector<FoliageType> types) { types_ = std::move(types); }
   // Replaces a type's settings; a changed scale mode re-encodes its records.
   void setType(size_t i, const FoliageType& t, FoliageUndo* undo, std::vector<std::string>& warnings);
 

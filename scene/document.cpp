@@ -93,6 +93,15 @@ void Document::notifyTerrainChanged(TerrainId id) {
   emit changed(c);
 }
 
+FoliageData& Document::foliage() { return foliageOf(state_); }
+
+void Document::notifyFoliageChanged() {
+  if (state_.foliage) state_.foliage->touch();
+  ChangeSet c;
+  c.foliage = true;
+  emit changed(c);
+}
+
 void Document::setFilePath(const QString& path) {
   if (path == filePath_) return;
   filePath_ = path;

@@ -21,6 +21,7 @@ struct ChangeSet {
   bool settings = false;
   bool sequence = false;           // tracks, keys, frame rate or range
   std::vector<TerrainId> terrains; // terrains whose values or tiles changed
+  bool foliage = false;            // foliage types or instances
   bool reset = false;              // a whole new state (new/open)
 };
 
@@ -56,6 +57,12 @@ class Document : public QObject {
   TerrainUndoBudget& terrainUndo() { return terrainUndo_; }
   // Tells views that terrain `id`'s tiles changed (a stroke, a terrain undo).
   void notifyTerrainChanged(TerrainId id);
+
+  // The scene's foliage (foliage_data.h), made empty when it has none.
+  // Edits go through pushFoliageEdit (foliage_command.h).
+  FoliageData& foliage();
+  // Tells views that the foliage changed (an edit, an undo, ground following).
+  void notifyFoliageChanged();
 
   // Called by the undo command; not for general use.
   void applyFromCommand(const ScenePatch& patch, bool forward);

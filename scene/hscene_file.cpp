@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "core/content_hash.h"
+#include "scene/foliage_file.h"
 #include "scene/hscene_recovery.h"
 #include "scene/hscene_schema.h"
 #include "scene/legacy_hashes.h"
@@ -119,6 +120,7 @@ std::map<std::string, BlobSource> wantedBlobs(const SceneState& s) {
     if (t.standalone() && t.image)
       out[textureKey(id)] = {toHex(t.contentHash), [image = t.image] { return encodeTexture(*image); }, false};
   addTerrainBlobs(s, out);
+  addFoliageBlobs(s, out);
   return out;
 }
 
@@ -157,7 +159,7 @@ bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std
   for (const auto& [key, source] : wanted) {
     const std::string& hash = source.hash;
     if (auto it = existing.find(key); it != existing.end() && it->second == hash) {
-      ++(source.terrainTile ? report.tilesUnchanged : report.blobsUnchanged);
+      ++(source.terrainTile ? report.tilesUnchanged : source.foliageCell ? report.cellsUnchanged : report.blobsUnchanged);
       continue;
     }
     del.bind(1, key);
@@ -179,6 +181,9 @@ bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std
     if (source.terrainTile) {
       ++report.tilesWritten;
       report.tileBytesWritten += bytes.size();
+    } else if (source.foliageCell) {
+      ++report.cellsWritten;
+      report.cellBytesWritten += bytes.size();
     } else {
       ++report.blobsWritten;
     }
@@ -189,7 +194,9 @@ bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std
     del.step(error);
     del.reset();
     if (!error.empty()) return false;
-    ++(key.rfind("terrain/", 0) == 0 ? report.tilesRemoved : report.blobsRemoved);
+    ++(key.rfind("terrain/", 0) == 0        ? report.tilesRemoved
+       : key.rfind("foliage/", 0) == 0 ? report.cellsRemoved
+                                         : report.blobsRemoved);
   }
   return true;
 }
@@ -511,6 +518,8 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
   if (!state->terrains.empty() &&
       !loadTerrainTiles(db, *state, path, version, error, progress))
     return std::nullopt;
+  // Foliage cells: a damaged one is dropped with a warning, the rest load.
+  loadFoliageCells(db, *state, path, report->warnings);
   reportProgress(progress, 1.0, "Loaded");
   return state;
 }

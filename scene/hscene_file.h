@@ -31,7 +31,12 @@ struct SaveReport {
   size_t tilesUnchanged = 0;
   size_t tilesRemoved = 0;
   uint64_t tileBytesWritten = 0;
-  uint64_t bytesWritten = 0;  // everything, tiles included
+  // Foliage cell blobs (foliage_file.h), counted apart as tiles are.
+  size_t cellsWritten = 0;
+  size_t cellsUnchanged = 0;
+  size_t cellsRemoved = 0;
+  uint64_t cellBytesWritten = 0;
+  uint64_t bytesWritten = 0;  // everything, tiles and cells included
   bool incremental = false;  // updated an existing scene file in place
   double seconds = 0.0;
 };

@@ -4,7 +4,10 @@
 #include <cctype>
 #include <charconv>
 #include <map>
+#include <set>
 #include <utility>
+
+#include "scene/foliage_file.h"
 
 namespace hs::scene {
 namespace {
@@ -70,11 +73,13 @@ SchemaCheck checkSchema(SqliteDb& db, std::string& error) {
 
 std::vector<std::string> danglingBlobKeys(SqliteDb& db, const SceneState& state, std::string& error) {
   std::vector<std::string> out;
+  const std::set<std::string> cells = foliageCellKeys(state);
   SqliteStmt q(db, "SELECT DISTINCT key FROM blobs ORDER BY key");
   while (q.step(error)) {
     const std::string key = q.text(0);
     if (const auto id = idAfter(key, "mesh/"); id && state.assets.count(AssetId(*id))) continue;
     if (const auto id = idAfter(key, "terrain/"); id && state.terrains.count(TerrainId(*id))) continue;
+    if (cells.count(key)) continue;  // a foliage cell (foliage_file.h)
     // A standalone texture's bytes (format 5; a mesh's textures live in its mesh blob).
     if (const auto id = idAfter(key, "texture/"); id) {
       const TextureAsset* t = state.findTexture(TextureId(*id));

@@ -11,6 +11,7 @@
 #include "scene/key_value_ranges.h"
 #include "scene/light_units.h"
 #include "scene/object_tracks.h"
+#include "scene/foliage_file.h"
 #include "scene/terrain_json.h"
 #include "sequencer/sequence_json.h"
 
@@ -475,6 +476,16 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
       seq && !sequencer::readSequence(r, *seq, "sequence", s.sequence))
     return std::nullopt;
   if (r.failed()) return std::nullopt;
+  if (const Json* f = JsonReader::member(json, "foliage"); f && !f->is_null()) {
+    std::string e;
+    if (!foliageFromJson(*f, s, e)) {
+      // "foliage.cells[1].hash: expected 16 hex digits": its path and what.
+      const size_t colon = e.find(": ");
+      r.fail(colon == std::string::npos ? "foliage" : e.substr(0, colon),
+             colon == std::string::npos ? e : e.substr(colon + 2));
+      return std::nullopt;
+    }
+  }
   // Keyed values are held to their fields' ranges like the static ones.
   clampKeyValues(s, r.warnings);
   // Material and settings tracks: their targets and fields checked, keys clamped.
@@ -538,6 +549,8 @@ Json sceneToJson(const SceneState& state) {
   for (const auto& [id, t] : state.textures) textures.push_back(textureToJson(t));
   root["textures"] = std::move(textures);
   root["terrains"] = terrainsToJson(state);
+  // Foliage types and the manifest of its cells (foliage_file.h).
+  if (Json f = foliageToJson(state); !f.is_null()) root["foliage"] = std::move(f);
   // The timeline, in the sequencer's own shape (sequence_json.h).
   root["sequence"] = sequencer::sequenceToJson(state.sequence);
   return root;

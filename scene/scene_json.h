@@ -4,7 +4,7 @@
 // data (mesh arrays, textures, terrain tiles) is not in it; assets carry
 // their content hash instead. Members are written in a fixed order
 // (format, version, settings, roots, entities, assets, materials,
-// textures, terrains, sequence),
+// textures, terrains, foliage, sequence),
 // so files diff cleanly.
 #include <optional>
 #include <string>
@@ -43,7 +43,10 @@ namespace hs::scene {
 // (migrateToPhysicalLightUnits). The analytic sky is brighter against the
 // sun than before (it is now tied to the lights' unit): that is the fix.
 // A version-7 reader would show a version-8 file π times too bright.
-constexpr int kSceneFormatVersion = 8;
+// 9: foliage (the description's "foliage" manifest, blobs
+// "foliage/cell/X_Y_Z"; foliage_file.h). A version-8 reader ignores the
+// member and its next save would drop the foliage.
+constexpr int kSceneFormatVersion = 9;
 constexpr int kFirstPhysicalLightsFormat = 6;
 constexpr int kFirstPerLightShadowsFormat = 7;
 constexpr int kFirstPhysicalBrdfFormat = 8;

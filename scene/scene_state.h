@@ -13,6 +13,7 @@
 #include "core/json.h"
 #include "mesh/mesh_data.h"
 #include "scene/entity.h"
+#include "scene/foliage_data.h"
 #include "scene/light_units.h"
 #include "scene/material.h"
 #include "scene/terrain_asset.h"
@@ -165,6 +166,9 @@ struct SceneState {
   std::map<AssetId, MeshAsset> assets;
   // Terrains (scene/terrain_asset.h): small values here, tiles shared.
   std::map<TerrainId, TerrainAsset> terrains;
+  // Foliage types and instances (foliage_data.h); null: none. Shared by
+  // copies of the state, edited in place (FoliageCommand undoes).
+  std::shared_ptr<FoliageData> foliage;
   // Materials and textures (scene/material.h), referred to by mesh assets.
   std::map<MaterialId, Material> materials;
   std::map<TextureId, TextureAsset> textures;

@@ -6,10 +6,15 @@
 // bitwise exact). The edit is already applied when the command is pushed,
 // so its first redo does nothing. Its memory counts against the document's
 // TerrainUndoBudget, which may drop it (oldest first).
+//
+// Foliage standing on the terrain follows its ground (foliage/
+// ground_follow.h): the instances the edit moved or removed are part of the
+// same step (their cells' befores, swapped with the store's alongside).
 #include <memory>
 
 #include <QUndoCommand>
 
+#include "foliage/store.h"
 #include "scene/document.h"
 #include "terrain/undo_step.h"
 
@@ -18,7 +23,7 @@ namespace hs::scene {
 class TerrainCommand : public QUndoCommand, public TerrainUndoEntry {
  public:
   TerrainCommand(Document& doc, TerrainId id, std::shared_ptr<TerrainData> data, terrain::UndoStep step,
-                 const QString& text);
+                 const QString& text, foliage::FoliageUndo foliage = {});
   ~TerrainCommand() override;
 
   void redo() override;
@@ -35,6 +40,8 @@ class TerrainCommand : public QUndoCommand, public TerrainUndoEntry {
   TerrainId id_;
   std::shared_ptr<TerrainData> data_;  // keeps the tiles alive if the terrain is deleted meanwhile
   terrain::UndoStep step_;
+  std::shared_ptr<FoliageData> foliageData_;  // the store `foliage_` belongs to
+  foliage::FoliageUndo foliage_;
   size_t bytes_;
   bool applied_ = true;  // the edit was made before the push
   bool registered_ = false;

@@ -29,6 +29,7 @@ struct BlobSource {
   std::string hash;
   std::function<std::vector<uint8_t>()> bytes;
   bool terrainTile = false;
+  bool foliageCell = false;  // foliage_file.h
 };
 
 std::string terrainTileKey(TerrainId id, terrain::TileKind kind, int layer, int tileX, int tileY);

@@ -78,6 +78,9 @@ class Heightfield {
   }
   glm::dvec2 sizeMetres() const { return spacing_ * glm::dvec2(samplesX() - 1, samplesY() - 1); }
   const glm::dvec3& origin() const { return origin_; }
+  // Places the samples elsewhere (a terrain entity's world origin, for
+  // tools that work in world coordinates on a copy-on-write clone).
+  void setOrigin(const glm::dvec3& o) { origin_ = o; }
   const GeoReference& geo() const { return geo_; }
   void setGeo(GeoReference g) { geo_ = std::move(g); }
   HeightfieldDesc desc() const;

@@ -1,0 +1,189 @@
+#include "scene/foliage_ops.h"
+
+#include "scene/edit.h"
+#include "scene/foliage_command.h"
+#include "scene/mesh_materials.h"
+
+namespace hs::scene::ops {
+namespace {
+
+FoliageOutcome refused(std::string error) {
+  FoliageOutcome out;
+  out.ok = false;
+  out.error = std::move(error);
+  return out;
+}
+
+std::string count(size_t n, const char* what) { return std::to_string(n) + " " + what; }
+
+// The edit's result as an outcome, its undo data pushed as one step.
+FoliageOutcome record(Document& doc, foliage::EditResult r, const QString& text) {
+  FoliageOutcome out;
+  out.stats = r.stats;
+  out.messages = r.stats.messages;
+  pushFoliageEdit(doc, std::move(r.undo), text);
+  out.summary = count(r.stats.placed, "placed") + ", " + count(r.stats.removed, "removed") + "; " +
+                count(doc.foliage().store().instanceCount(), "instances") + " in " +
+                count(doc.foliage().store().cellCount(), "cells");
+  return out;
+}
+
+std::string checkTypes(const foliage::FoliageStore& store, const foliage::TypeSet& types) {
+  for (uint16_t t : types)
+    if (t >= store.types().size()) return "foliage type " + std::to_string(t) + " does not exist";
+  return {};
+}
+
+}  // namespace
+
+FoliageOutcome addFoliageType(Document& doc, const foliage::FoliageType& type) {
+  if (foliageTypeAsset(doc.state(), type) == kNoAsset)
+    return refused("foliage type \"" + type.name + "\": mesh: no mesh asset named \"" + type.mesh +
+                   "\" in the scene (add one with `foliage plant` or `import`)");
+  if (const std::vector<std::string> problems = foliage::validate(type); !problems.empty())
+    return refused(problems.front());
+  foliage::FoliageStore& store = doc.foliage().store();
+  std::vector<foliage::FoliageType> before = store.types();
+  FoliageOutcome out;
+  if (store.addType(type, out.messages) < 0) return refused(out.messages.back());
+  pushFoliageTypes(doc, std::move(before), {}, QString("Add foliage type %1").arg(QString::fromStdString(type.name)));
+  out.summary = "foliage type \"" + type.name + "\" draws \"" + type.mesh + "\"";
+  return out;
+}
+
+FoliageOutcome setFoliageType(Document& doc, size_t index, const foliage::FoliageType& type) {
+  foliage::FoliageStore& store = doc.foliage().store();
+  if (index >= store.types().size()) return refused("foliage type " + std::to_string(index) + " does not exist");
+  if (const int other = store.findType(type.name); other >= 0 && size_t(other) != index)
+    return refused("foliage type \"" + type.name + "\": name: a type of that name exists");
+  if (foliageTypeAsset(doc.state(), type) == kNoAsset)
+    return refused("foliage type \"" + type.name + "\": mesh: no mesh asset named \"" + type.mesh + "\"");
+  if (const std::vector<std::string> problems = foliage::validate(type); !problems.empty())
+    return refused(problems.front());
+  std::vector<foliage::FoliageType> before = store.types();
+  FoliageOutcome out;
+  foliage::FoliageUndo cells;
+  store.setType(index, type, &cells, out.messages);
+  pushFoliageTypes(doc, std::move(before), std::move(cells),
+                   QString("Change foliage type %1").arg(QString::fromStdString(type.name)));
+  out.summary = "foliage type \"" + type.name + "\" changed";
+  return out;
+}
+
+FoliageOutcome scatterFoliage(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
+                              uint64_t seed, const std::optional<foliage::Region2>& region,
+                              const std::optional<foliage::FoliageType>& rules, unsigned threads) {
+  foliage::FoliageStore& store = doc.foliage().store();
+  foliage::TypeSet set = types;
+  if (set.empty())
+    for (size_t t = 0; t < store.types().size(); ++t) set.push_back(uint16_t(t));
+  if (set.empty()) return refused("the scene has no foliage types (add one with `foliage type add`)");
+  if (std::string e = checkTypes(store, set); !e.empty()) return refused(e);
+  if (ground.empty()) return refused("the scene has nothing to scatter on (no visible terrain or mesh)");
+  // The overrides stand in for the type's rules during this scatter only.
+  std::optional<foliage::FoliageType> saved;
+  std::vector<std::string> warnings;
+  if (rules && set.size() == 1) {
+    saved = store.type(set[0]);
+    foliage::FoliageType r = *rules;
+    r.name = saved->name;
+    r.mesh = saved->mesh;
+    r.scaleMode = saved->scaleMode;  // the records' encoding stays
+    store.setType(set[0], r, nullptr, warnings);
+  }
+  foliage::EditResult r = foliage::scatter(store, ground.ground(), set, seed, region, threads, set.size() > 1);
+  if (saved) store.setType(set[0], *saved, nullptr, warnings);
+  r.stats.messages.insert(r.stats.messages.end(), warnings.begin(), warnings.end());
+  const std::string name = set.size() == 1 ? store.type(set[0]).name : std::to_string(set.size()) + " types";
+  return record(doc, std::move(r), QString("Scatter %1").arg(QString::fromStdString(name)));
+}
+
+FoliageOutcome paintFoliage(Document& doc, const FoliageGround& ground, const foliage::PaintParams& params,
+                            bool fill, const QString& text) {
+  foliage::FoliageStore& store = doc.foliage().store();
+  if (params.types.empty()) return refused("no foliage type chosen to paint");
+  if (std::string e = checkTypes(store, params.types); !e.empty()) return refused(e);
+  foliage::EditResult r = fill ? foliage::fill(store, ground.ground(), params.region, params.types, params.seed,
+                                               params.threads)
+                               : foliage::paint(store, ground.ground(), params);
+  return record(doc, std::move(r), text);
+}
+
+FoliageOutcome eraseFoliage(Document& doc, const std::optional<foliage::Region2>& region,
+                            const foliage::TypeSet& types, const QString& text) {
+  foliage::FoliageStore& store = doc.foliage().store();
+  if (std::string e = checkTypes(store, types); !e.empty()) return refused(e);
+  // Everywhere: the rectangle around every cell.
+  foliage::Region2 area = foliage::Region2::rect(glm::dvec2(0.0), glm::dvec2(0.0));
+  if (region) {
+    area = *region;
+  } else if (!store.cells().empty()) {
+    glm::dvec2 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+    for (const auto& [k, c] : store.cells()) {
+      lo = glm::min(lo, glm::dvec2(k.origin()));
+      hi = glm::max(hi, glm::dvec2(k.origin()) + foliage::kCellSize);
+    }
+    area = foliage::Region2::rect(lo, hi);
+  }
+  return record(doc, foliage::erase(store, area, types), text);
+}
+
+AssetId addPlantAsset(Document& doc, const std::string& name, const foliage::PlantParams& params,
+                      std::string& error, foliage::PlantStats* stats) {
+  if (name.empty()) {
+    error = "foliage plant: the asset needs a name";
+    return kNoAsset;
+  }
+  for (const auto& [id, a] : doc.state().assets)
+    if (a.name == name) {
+      error = "foliage plant: a mesh asset named \"" + name + "\" exists";
+      return kNoAsset;
+    }
+  mesh::LodChain chain = foliage::generatePlantLods(params, {}, stats);
+  if (!chain.error.empty() || chain.levels.empty()) {
+    error = "foliage plant \"" + name + "\": " + (chain.error.empty() ? "no mesh made" : chain.error);
+    return kNoAsset;
+  }
+  MeshAsset asset;
+  asset.id = doc.allocateAssetId();
+  asset.name = name;
+  asset.sourcePath = std::string("generated: ") + foliage::plantKindName(params.kind) + ", seed " +
+                     std::to_string(params.seed);
+  for (size_t k = 1; k < chain.levels.size(); ++k) {
+    // Coarser levels draw with the asset's material slots (level 0's
+    // texture); their own material list must not name a texture they lack.
+    for (mesh::Material& m : chain.levels[k].mesh.materials)
+      if (m.diffuseTexture >= int(chain.levels[k].mesh.textures.size())) m.diffuseTexture = -1;
+    MeshLod l;
+    l.contentHash = mesh::contentHash(chain.levels[k].mesh);
+    l.triangles = chain.levels[k].mesh.triangleCount();
+    l.hausdorff = chain.levels[k].hausdorff;
+    l.data = std::make_shared<const mesh::MeshData>(std::move(chain.levels[k].mesh));
+    asset.lods.push_back(std::move(l));
+  }
+  asset.contentHash = mesh::contentHash(chain.levels[0].mesh);
+  asset.data = std::make_shared<const mesh::MeshData>(std::move(chain.levels[0].mesh));
+
+  Edit e(doc, QString("Generate plant %1").arg(QString::fromStdString(name)));
+  MeshMaterials made = makeMeshMaterials(
+      asset, {[&doc] { return doc.allocateMaterialId(); }, [&doc] { return doc.allocateTextureId(); },
+              [&doc](const std::string& n) { return doc.state().findMaterialByName(n) != kNoMaterial; }});
+  for (TextureAsset& t : made.textures) e.addTexture(std::move(t));
+  for (Material& m : made.materials) {
+    // Leaves and blades are cards: their texture's alpha is the outline,
+    // and they are seen from both sides. Bark and rock are closed enough.
+    m.twoSided = m.baseColorTexture != kNoTexture;
+    if (m.baseColorTexture != kNoTexture) {
+      m.alphaCutout = true;
+      m.alphaThreshold = 0.5f;
+    }
+    m.roughness = 0.8f;
+    e.addMaterial(std::move(m));
+  }
+  asset.materialSlots = std::move(made.slotIds);
+  const AssetId id = e.addAsset(std::move(asset));
+  e.commit();
+  return id;
+}
+
+}  // namespace hs::scene::ops

@@ -1,0 +1,53 @@
+#pragma once
+// The foliage operations on a document, shared by the editor and
+// `hybridscape-cli foliage` (declared once in foliage/foliage_operations.h):
+// each changes the document's foliage (foliage_data.h) through the domain's
+// tools and records one undo step (foliage_command.h). Messages name the
+// type and what was capped, refused or dropped.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "foliage/plants.h"
+#include "foliage/tools.h"
+#include "scene/document.h"
+#include "scene/foliage_ground.h"
+
+namespace hs::scene::ops {
+
+struct FoliageOutcome {
+  bool ok = true;
+  std::string error;                  // when !ok: what was refused, naming the type or asset
+  std::vector<std::string> messages;  // warnings (clamped values, caps)
+  foliage::OpStats stats;
+  std::string summary;                // one line: what changed
+};
+
+// Adds a type drawing the mesh asset `type.mesh` (which must exist).
+FoliageOutcome addFoliageType(Document& doc, const foliage::FoliageType& type);
+// Replaces type `index`'s settings (its name may change if free).
+FoliageOutcome setFoliageType(Document& doc, size_t index, const foliage::FoliageType& type);
+
+// The rule-based scatter of one type (or, with `types` empty, of every type
+// in order, competing for room) over the ground or a region. `rules`: the
+// type's rules with `foliage scatter`'s overrides (foliage::scatterRules);
+// nullopt: the type's own.
+FoliageOutcome scatterFoliage(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
+                              uint64_t seed, const std::optional<foliage::Region2>& region = std::nullopt,
+                              const std::optional<foliage::FoliageType>& rules = std::nullopt,
+                              unsigned threads = 0);
+// A brush dab (or a fill of an area: `fill` true).
+FoliageOutcome paintFoliage(Document& doc, const FoliageGround& ground, const foliage::PaintParams& params,
+                            bool fill = false, const QString& text = "Paint foliage");
+// Removes the types' (or every type's) instances in the region (nullopt:
+// everywhere).
+FoliageOutcome eraseFoliage(Document& doc, const std::optional<foliage::Region2>& region,
+                            const foliage::TypeSet& types, const QString& text = "Erase foliage");
+
+// A generated plant (foliage/plants.h) with its LOD chain as a mesh asset
+// (no entity: foliage types draw it), its leaves a two-sided cut-out
+// material. Returns the asset's id, or kNoAsset with `error`.
+AssetId addPlantAsset(Document& doc, const std::string& name, const foliage::PlantParams& params,
+                      std::string& error, foliage::PlantStats* stats = nullptr);
+
+}  // namespace hs::scene::ops
