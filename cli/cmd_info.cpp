@@ -5,6 +5,7 @@
 #include "cli/operation_options.h"
 #include "cli/scene_open.h"
 #include "cli/terrain_info.h"
+#include "foliage/manifest.h"
 #include "core/json.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
@@ -183,6 +184,7 @@ Json infoJson(const std::string& path, const scene::SceneState& s) {
   for (scene::EntityId id : s.cameras()) cameras.push_back(s.find(id)->name);
   o["cameras"] = std::move(cameras);
   o["terrains"] = terrainInfoJson(s);
+  o["foliage"] = s.foliage ? foliage::infoJson(s.foliage->store()) : Json(nullptr);
   o["sequence"] = sequenceJson(s);
   o["tracks"] = tracksJson(s);
   const scene::WorldBox box = scene::worldBounds(s);
@@ -195,6 +197,17 @@ Json infoJson(const std::string& path, const scene::SceneState& s) {
   o["bounds_m"] = std::move(bounds);
   o["settings"] = scene::sceneToJson(s).at("settings");
   return o;
+}
+
+// Per type its mesh, instance count and memory (foliage/manifest.h infoJson).
+void printFoliageInfo(const scene::SceneState& s) {
+  if (!s.foliage || s.foliage->empty()) return;
+  const Json info = foliage::infoJson(s.foliage->store());
+  std::printf("foliage: %zu instances in %zu cells (%.1f MiB)\n", info["instances"].get<size_t>(),
+              info["cells"].get<size_t>(), double(info["bytes"].get<size_t>()) / (1024.0 * 1024.0));
+  for (const Json& t : info["types"])
+    std::printf("  %s: mesh \"%s\", %zu instances\n", t["name"].get<std::string>().c_str(),
+                t["mesh"].get<std::string>().c_str(), t["instances"].get<size_t>());
 }
 
 void printTree(const scene::SceneState& s, scene::EntityId id, int depth) {
@@ -215,7 +228,7 @@ int runInfo(int argc, char** argv) {
       .usage = "<scene.hscene> [--json]",
       .description = "Lists the scene's entities (hierarchy, components, world positions), mesh assets (triangles, "
                      "vertices, textures, size in metres, origin, LOD levels with their triangles and Hausdorff "
-                     "error, the processing summary), cameras, terrains and tracks, and the scene's extent in "
+                     "error, the processing summary), cameras, terrains, foliage types with their instance counts and tracks, and the scene's extent in "
                      "metres.",
       .positionals = {{.name = "scene.hscene", .help = "the scene file"}},
       .params = {{.key = "json", .option = "json", .label = "JSON", .type = ParamType::Flag,
@@ -260,6 +273,7 @@ int runInfo(int argc, char** argv) {
       std::printf("  %s  (%s)\n", m.name.c_str(), scene::formatFieldValue(model.type, model.get(m), model.enumNames).c_str());
   }
   printTerrainInfo(*s);
+  printFoliageInfo(*s);
   printTracks(*s);
   std::printf("hierarchy:\n");
   for (scene::EntityId r : s->roots) printTree(*s, r, 0);

@@ -21,6 +21,7 @@ const std::vector<Command>& commands() {
       {"set", "set an entity property or a scene setting", runSet},
       {"material", "materials: list (--json), set <material> <field> <value>", runMaterial},
       {"terrain", "terrains: new, import (DEM), erode, paint-rules, export", runTerrain},
+      {"foliage", "foliage: plant (generate), type add, scatter, clear", runFoliage},
       {"mesh", "meshes: export (OBJ, PLY, GLB)", runMesh},
       {"light", "lights: add a sun, point or spot light", runLight},
       {"key", sequencer::keyOperation().summary.c_str(), runKey},
