@@ -9,6 +9,7 @@
 #include "scene/asset_reports.h"
 #include "scene/demo_dof.h"
 #include "scene/demo_lights.h"
+#include "scene/demo_foliage.h"
 #include "scene/demo_glass.h"
 #include "scene/demo_materials.h"
 #include "scene/demo_terrain.h"
@@ -320,6 +321,8 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
     if (e.light && e.light->type != Light::Type::Point) e.light->castsShadows = true;
   // Glass spheres and a pond, drawn by the transparency path (docs/rendering.md "Transparency").
   addDemoTranslucentSamples(s);
+  // Generated pines, plane trees, junipers and boulders scattered over the valley (docs/foliage.md).
+  if (!addDemoFoliage(s, error)) return std::nullopt;
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

@@ -128,24 +128,14 @@ FoliageOutcome eraseFoliage(Document& doc, const std::optional<foliage::Region2>
   return record(doc, foliage::erase(store, area, types), text);
 }
 
-AssetId addPlantAsset(Document& doc, const std::string& name, const foliage::PlantParams& params,
-                      std::string& error, foliage::PlantStats* stats) {
-  if (name.empty()) {
-    error = "foliage plant: the asset needs a name";
-    return kNoAsset;
-  }
-  for (const auto& [id, a] : doc.state().assets)
-    if (a.name == name) {
-      error = "foliage plant: a mesh asset named \"" + name + "\" exists";
-      return kNoAsset;
-    }
+std::optional<MeshAsset> makePlantAsset(const std::string& name, const foliage::PlantParams& params,
+                                        std::string& error, foliage::PlantStats* stats) {
   mesh::LodChain chain = foliage::generatePlantLods(params, {}, stats);
   if (!chain.error.empty() || chain.levels.empty()) {
     error = "foliage plant \"" + name + "\": " + (chain.error.empty() ? "no mesh made" : chain.error);
-    return kNoAsset;
+    return std::nullopt;
   }
   MeshAsset asset;
-  asset.id = doc.allocateAssetId();
   asset.name = name;
   asset.sourcePath = std::string("generated: ") + foliage::plantKindName(params.kind) + ", seed " +
                      std::to_string(params.seed);
@@ -163,25 +153,42 @@ AssetId addPlantAsset(Document& doc, const std::string& name, const foliage::Pla
   }
   asset.contentHash = mesh::contentHash(chain.levels[0].mesh);
   asset.data = std::make_shared<const mesh::MeshData>(std::move(chain.levels[0].mesh));
+  return asset;
+}
 
+void applyPlantLook(Material& m) {
+  const bool card = m.baseColorTexture != kNoTexture;
+  m.twoSided = card;
+  m.alphaCutout = card;
+  m.alphaThreshold = 0.5f;
+  m.roughness = 0.8f;
+}
+
+AssetId addPlantAsset(Document& doc, const std::string& name, const foliage::PlantParams& params,
+                      std::string& error, foliage::PlantStats* stats) {
+  if (name.empty()) {
+    error = "foliage plant: the asset needs a name";
+    return kNoAsset;
+  }
+  for (const auto& [id, a] : doc.state().assets)
+    if (a.name == name) {
+      error = "foliage plant: a mesh asset named \"" + name + "\" exists";
+      return kNoAsset;
+    }
+  std::optional<MeshAsset> asset = makePlantAsset(name, params, error, stats);
+  if (!asset) return kNoAsset;
+  asset->id = doc.allocateAssetId();
   Edit e(doc, QString("Generate plant %1").arg(QString::fromStdString(name)));
   MeshMaterials made = makeMeshMaterials(
-      asset, {[&doc] { return doc.allocateMaterialId(); }, [&doc] { return doc.allocateTextureId(); },
-              [&doc](const std::string& n) { return doc.state().findMaterialByName(n) != kNoMaterial; }});
+      *asset, {[&doc] { return doc.allocateMaterialId(); }, [&doc] { return doc.allocateTextureId(); },
+               [&doc](const std::string& n) { return doc.state().findMaterialByName(n) != kNoMaterial; }});
   for (TextureAsset& t : made.textures) e.addTexture(std::move(t));
   for (Material& m : made.materials) {
-    // Leaves and blades are cards: their texture's alpha is the outline,
-    // and they are seen from both sides. Bark and rock are closed enough.
-    m.twoSided = m.baseColorTexture != kNoTexture;
-    if (m.baseColorTexture != kNoTexture) {
-      m.alphaCutout = true;
-      m.alphaThreshold = 0.5f;
-    }
-    m.roughness = 0.8f;
+    applyPlantLook(m);
     e.addMaterial(std::move(m));
   }
-  asset.materialSlots = std::move(made.slotIds);
-  const AssetId id = e.addAsset(std::move(asset));
+  asset->materialSlots = std::move(made.slotIds);
+  const AssetId id = e.addAsset(std::move(*asset));
   e.commit();
   return id;
 }

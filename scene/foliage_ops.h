@@ -44,6 +44,14 @@ FoliageOutcome paintFoliage(Document& doc, const FoliageGround& ground, const fo
 FoliageOutcome eraseFoliage(Document& doc, const std::optional<foliage::Region2>& region,
                             const foliage::TypeSet& types, const QString& text = "Erase foliage");
 
+// A generated plant's asset (foliage/plants.h: its mesh and LOD chain, no
+// id, no materials yet); `error` when the generator failed.
+std::optional<MeshAsset> makePlantAsset(const std::string& name, const foliage::PlantParams& params,
+                                        std::string& error, foliage::PlantStats* stats = nullptr);
+// A plant material's look: leaves and blades (textured: their alpha is the
+// outline) cut out and two-sided; bark and rock opaque and one-sided.
+void applyPlantLook(Material& m);
+
 // A generated plant (foliage/plants.h) with its LOD chain as a mesh asset
 // (no entity: foliage types draw it), its leaves a two-sided cut-out
 // material. Returns the asset's id, or kNoAsset with `error`.

@@ -1,0 +1,20 @@
+#pragma once
+// The demo scene's foliage (docs/foliage.md): four generated plants (a
+// black pine, a plane tree, a juniper shrub, a boulder) with their LOD
+// chains, and four foliage types scattered by rule over the demo valley
+// with competition (trees first, shrubs keep room around the trunks): pines
+// on the slopes and pillar ledges, plane trees on the low floor, shrubs
+// wherever it is not too steep, boulders tilted to the ground. The clearing
+// where the bunnies and the samples stand is kept free. Deterministic (fixed
+// seeds), made in about a second.
+#include <string>
+
+#include "scene/scene_state.h"
+
+namespace hs::scene {
+
+// Adds the plants' assets and materials and the scattered foliage to `s`,
+// which must have its terrain already (scene/demo_terrain.h).
+bool addDemoFoliage(SceneState& s, std::string& error);
+
+}  // namespace hs::scene
