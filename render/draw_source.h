@@ -49,6 +49,9 @@ struct DrawCall {
   std::string fragment{};            // Surface: a pass's fragment shader (empty: the material's)
   size_t shadowView = 0;             // Depth: index into FrameContext::shadowViews
   uint32_t pickBase = 0;             // Pick: this source's first id
+  // Pick: the pixel of the view the 1x1 id target stands for, from its
+  // lower left (screen-space dithers, shaders/instance_fade.glsl, follow it).
+  glm::ivec2 pickPixel{0};
 };
 
 // What a pick id names: an entity and, for an instanced source, the

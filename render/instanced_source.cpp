@@ -2,19 +2,40 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include <glm/gtc/packing.hpp>
 
 #include "render/frame_context.h"
 #include "render/gpu_mesh_cache.h"
 #include "render/material_binding.h"
 #include "render/material_table.h"
+#include "render/mesh_lod.h"
 
 namespace hs::render {
 namespace {
 
-// Storage bindings of shaders/instances.glsl and the culling shaders.
+// Storage bindings of shaders/instances.glsl, mesh.vert's INSTANCED
+// variant and the culling shaders.
 constexpr unsigned kInstanceBinding = 17, kCellBinding = 18, kVisibleBinding = 19;
-constexpr unsigned kCullBinding0 = 20, kCullBinding1 = 21, kCountsBinding = 22, kTypeBaseBinding = 23;
+constexpr unsigned kTypeCullBinding = 20, kPlanesBinding = 21, kCountsBinding = 22, kGroupBaseBinding = 23;
+constexpr unsigned kLevelsBinding = 24, kGroupTotalsBinding = 25, kLodDistanceBinding = 26;
+constexpr unsigned kPartsBinding = 20, kCommandsBinding = 21;  // instance_commands.comp's own
 constexpr size_t kCommandBytes = 5 * sizeof(uint32_t);  // DrawElementsIndirectCommand
+constexpr uint32_t kCulled = 0xFFFFFFFFu;               // an instance's level: no view draws it
+// Beyond the cull distance by more than this share the culling passes drop
+// an instance; closer, mesh.vert's fade (1 from the cull distance on)
+// drops its pixels. So the image does not depend on whether the GPU's
+// float and the CPU's double round a distance at the boundary alike.
+constexpr float kCullSlack = 1.0f + 1e-5f;
+
+// shaders/instances.glsl InstanceTypeCull, std430.
+struct GpuTypeCull {
+  glm::vec4 sphere{0.0f, 0.0f, 0.0f, -1.0f};  // level 0's bounds (mesh space); w < 0: draws nothing
+  glm::vec4 cull{0.0f};                       // x: radius of every level, y: cull distance, z: wind margin per |scale z|
+  glm::uvec4 info{0u};                        // x: first group, y: levels, z: casts shadows
+};
+static_assert(sizeof(GpuTypeCull) == 48);
 
 uint32_t packSnorm2x16(float a, float b) {
   auto one = [](float v) { return uint32_t(uint16_t(int16_t(std::lround(std::clamp(v, -1.0f, 1.0f) * 32767.0f)))); };
@@ -22,6 +43,19 @@ uint32_t packSnorm2x16(float a, float b) {
 }
 
 float unpackSnorm16(uint32_t bits) { return std::max(float(int16_t(uint16_t(bits))) / 32767.0f, -1.0f); }
+
+// shaders/instances.glsl instanceHash: lowbias32.
+uint32_t windHash(uint32_t h) {
+  h ^= h >> 16;
+  h *= 0x7FEB352Du;
+  h ^= h >> 15;
+  h *= 0x846CA68Bu;
+  h ^= h >> 16;
+  return h;
+}
+
+// The largest |factor| of a scale, as chooseMeshLod and the sphere take it.
+double maxAbsScale(const glm::vec3& s) { return std::max({std::abs(double(s.x)), std::abs(double(s.y)), std::abs(double(s.z))}); }
 
 // A view's planes relative to the frame origin (Frustum planes are relative
 // to their view's eye, `eyeRel` from the origin). A plane with no normal (an
@@ -45,12 +79,12 @@ void upload(GLuint buffer, const std::vector<T>& data) {
 
 }  // namespace
 
-GpuInstance packInstance(const glm::vec3& positionInCell, const glm::quat& rotation, float scale, uint16_t type,
-                         uint16_t cell, uint32_t id) {
+GpuInstance packInstance(const glm::vec3& positionInCell, const glm::quat& rotation, glm::vec2 scaleXyZ,
+                         uint16_t type, uint16_t cell, uint32_t id) {
   const glm::quat q = glm::normalize(rotation);
   GpuInstance g;
   g.position = positionInCell;
-  g.scale = scale;
+  g.scaleXyZ = glm::packHalf2x16(scaleXyZ);
   g.rotation[0] = packSnorm2x16(q.x, q.y);
   g.rotation[1] = packSnorm2x16(q.z, q.w);
   g.typeAndCell = uint32_t(type) | uint32_t(cell) << 16;
@@ -58,9 +92,47 @@ GpuInstance packInstance(const glm::vec3& positionInCell, const glm::quat& rotat
   return g;
 }
 
+GpuInstance packInstance(const glm::vec3& positionInCell, const glm::quat& rotation, float scale, uint16_t type,
+                         uint16_t cell, uint32_t id) {
+  return packInstance(positionInCell, rotation, glm::vec2(scale), type, cell, id);
+}
+
 glm::quat instanceRotation(const GpuInstance& g) {
   return glm::normalize(glm::quat(unpackSnorm16(g.rotation[1] >> 16), unpackSnorm16(g.rotation[0]),
                                   unpackSnorm16(g.rotation[0] >> 16), unpackSnorm16(g.rotation[1])));
+}
+
+glm::vec3 instanceScale(const GpuInstance& g) {
+  const glm::vec2 s = glm::unpackHalf2x16(g.scaleXyZ);
+  return {s.x, s.x, s.y};
+}
+
+glm::vec3 instanceWindOffset(float response, float heightAboveOrigin, float meshHeight, float scaleZ, uint32_t id,
+                             double seconds) {
+  if (!(response > 0.0f) || !(meshHeight > 0.0f)) return glm::vec3(0.0f);
+  constexpr float tau = 6.28318531f;
+  const float h = std::clamp(heightAboveOrigin / meshHeight, 0.0f, 1.0f);
+  const float worldHeight = meshHeight * std::abs(scaleZ);
+  const float phase = tau * float(windHash(id) >> 8) * (1.0f / 16777216.0f);
+  const float t = float(seconds - 60.0 * std::floor(seconds / 60.0));  // the shader's t mod 60 s
+  auto wave = [&](float hz, float shift) { return std::sin(tau * (hz * t - std::floor(hz * t)) + shift); };
+  const float bend = 0.6f + 0.4f * wave(0.5f, phase);
+  const float gust = 0.3f * wave(1.3f, 1.7f * phase) * (0.5f + 0.5f * wave(0.2f, 0.5f * phase));
+  const glm::vec2 across(-kWindDirection.y, kWindDirection.x);
+  const glm::vec2 move = kWindBend * response * worldHeight * h * h * (kWindDirection * bend + across * gust);
+  const float stem = h * worldHeight;
+  const float drop = stem > 0.0f ? glm::dot(move, move) / (2.0f * stem) : 0.0f;
+  return {move, -drop};
+}
+
+float instanceWindMargin(float response, float worldHeight) {
+  if (!(response > 0.0f)) return 0.0f;
+  // |move| <= a |(bend, gust)| <= a sqrt(1 + 0.3^2) with a = kWindBend x
+  // response x height at the top (h = 1); the drop is |move|^2 / (2 h
+  // height) <= (1.0441 a)^2 h^3 / (2 height) <= 0.5451 a^2 / height. One
+  // per cent more for float rounding.
+  const float a = kWindBend * response;
+  return 1.01f * std::abs(worldHeight) * (1.0441f * a + 0.5451f * a * a);
 }
 
 InstancedSource::InstancedSource(std::string name, Culling culling) : name_(std::move(name)), culling_(culling) {
@@ -80,46 +152,65 @@ void InstancedSource::setInstances(InstanceSet set) {
 
 bool InstancedSource::wanted(const Part& part, SurfaceSet surfaces) const {
   if (surfaces == SurfaceSet::All) return true;
-  return materials_->forDraw(materialDraw_[part.type], part.submesh).translucent == (surfaces == SurfaceSet::Translucent);
+  return materials_->forDraw(groups_[part.group].materialDraw, part.submesh).translucent ==
+         (surfaces == SurfaceSet::Translucent);
 }
 
 bool InstancedSource::has(DrawVariant variant, SurfaceSet surfaces) const {
   if (!active_) return false;
+  if (variant == DrawVariant::Depth) return anyCaster_;
   if (variant != DrawVariant::Surface) return true;
   return std::any_of(parts_.begin(), parts_.end(), [&](const Part& p) { return wanted(p, surfaces); });
 }
 
 void InstancedSource::addMaterials(FrameContext& frame, std::vector<DrawItem>& draws) {
   active_ = false;
+  anyCaster_ = false;
   parts_.clear();
-  meshes_.assign(set_.types.size(), nullptr);
-  materialDraw_.assign(set_.types.size(), 0);
+  groups_.clear();
+  types_.assign(set_.types.size(), TypeFrame{});
   if (set_.instances.empty() || !frame.world.state) return;
   for (size_t t = 0; t < set_.types.size(); ++t) {
-    const scene::MeshAsset* asset = frame.world.state->findAsset(set_.types[t]);
-    const GpuMesh* mesh = asset ? frame.res.meshes.get(*asset) : nullptr;
-    if (!mesh) continue;  // a type whose asset is gone draws nothing
-    meshes_[t] = mesh;
-    materialDraw_[t] = draws.size();
-    draws.push_back({0, mesh, asset});
-    const auto& subs = mesh->data->submeshes;
-    for (size_t s = 0; s < subs.size(); ++s)
-      parts_.push_back({uint32_t(t), subs[s].firstIndex, subs[s].indexCount, uint32_t(s)});
+    TypeFrame& tf = types_[t];
+    const scene::MeshAsset* asset = frame.world.state->findAsset(set_.types[t].mesh);
+    const GpuMesh* base = asset ? frame.res.meshes.get(*asset) : nullptr;
+    if (!base) continue;  // a type whose asset is gone draws nothing
+    tf.asset = asset;
+    tf.errors = asset->lodErrors();
+    tf.firstGroup = uint32_t(groups_.size());
+    tf.levels = uint32_t(tf.errors.size());
+    const glm::vec3 centre = base->bounds.center();
+    tf.lodSphere = glm::vec4(centre, base->bounds.radius());
+    tf.height = base->bounds.empty ? 0.0f : std::max(base->bounds.max.z, 0.0f);
+    tf.windPerScaleZ = instanceWindMargin(set_.types[t].windResponse, tf.height);
+    anyCaster_ = anyCaster_ || set_.types[t].castShadows;
+    for (uint32_t level = 0; level < tf.levels; ++level) {
+      // Level 0's mesh where the cache has no such level (as the mesh source draws it).
+      const GpuMesh* mesh = level == 0 ? base : frame.res.meshes.get(*asset, int(level));
+      if (!mesh) mesh = base;
+      // A sphere about level 0's centre that holds this level too.
+      if (!mesh->bounds.empty)
+        tf.cullRadius = std::max(tf.cullRadius, glm::length(mesh->bounds.center() - centre) + mesh->bounds.radius());
+      const uint32_t group = uint32_t(groups_.size());
+      groups_.push_back({uint32_t(t), level, mesh, draws.size()});
+      draws.push_back({0, mesh, asset});
+      const auto& subs = mesh->data->submeshes;
+      for (size_t s = 0; s < subs.size(); ++s)
+        parts_.push_back({group, uint32_t(t), subs[s].firstIndex, subs[s].indexCount, uint32_t(s)});
+    }
+    // Float rounding of a centre far from the mesh origin: a hair more.
+    tf.cullRadius *= 1.0f + 1e-6f;
   }
   materials_ = &frame.res.materials;
   active_ = !parts_.empty();
+  if (!active_) anyCaster_ = false;
 }
 
 void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
   if (!active_) return;
-  const size_t n = set_.instances.size(), types = set_.types.size();
+  const size_t n = set_.instances.size(), types = types_.size(), groups = groups_.size();
   cameraViews_ = frame.views ? frame.views->size() : 0;
   const size_t views = cameraViews_ + frame.shadowViews.size();
-  // Each type's first slot in a view's list (a view's list holds every instance at most once).
-  typeBase_.assign(types, 0);
-  std::vector<uint32_t> perType(types, 0);
-  for (const GpuInstance& g : set_.instances) ++perType[std::min<size_t>(g.typeAndCell & 0xFFFFu, types - 1)];
-  for (size_t t = 1; t < types; ++t) typeBase_[t] = typeBase_[t - 1] + perType[t - 1];
   std::vector<glm::vec4> planes;
   for (size_t v = 0; v < cameraViews_; ++v)
     appendPlanes(frustumOf((*frame.views)[v]), (*frame.views)[v].eye - frame.visible.origin, planes);
@@ -127,43 +218,91 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
   std::vector<glm::vec4> cells;
   for (const glm::dvec3& c : set_.cells) cells.emplace_back(glm::vec3(c - frame.visible.origin), 0.0f);
   if (cells.empty()) cells.emplace_back(0.0f);
-  // The types' bounding spheres in mesh space.
-  std::vector<glm::vec4> spheres(types, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
-  for (size_t t = 0; t < types; ++t)
-    if (meshes_[t]) spheres[t] = glm::vec4(meshes_[t]->bounds.center(), meshes_[t]->bounds.radius());
+  // The LOD view (mesh_lod.h): its eye relative to the frame origin, and
+  // for each group the distance (in the mesh's own metres: divided by the
+  // instance's largest scale) from which its level's error projects within
+  // the pixel bound. mesh::projectedErrorPixels(e, d) <= bound is
+  // d >= e x height / (2 tan(fovY / 2) bound): the GPU compares, the CPU
+  // asks chooseMeshLod itself.
+  const RenderView& lodView = frame.lodView;
+  const glm::dvec3 lodEyeD = lodView.eye - frame.visible.origin;
+  lodEye_ = glm::vec3(lodEyeD);
+  const double bound = frame.settings.meshLodErrorPixels;
+  const double pixelsPerMetreAt1m = double(lodView.height) / (2.0 * std::tan(0.5 * lodView.fovY));
+  std::vector<float> lodDistances(groups, std::numeric_limits<float>::infinity());
+  std::vector<GpuTypeCull> typeCull(types);
+  for (size_t t = 0; t < types; ++t) {
+    const TypeFrame& tf = types_[t];
+    if (!tf.asset) continue;
+    for (uint32_t l = 0; l < tf.levels; ++l)
+      if (l == 0) lodDistances[tf.firstGroup] = 0.0f;
+      else if (bound > 0 && lodView.fovY > 0 && pixelsPerMetreAt1m > 0)
+        lodDistances[tf.firstGroup + l] = float(tf.errors[l] * pixelsPerMetreAt1m / bound);
+    typeCull[t].sphere = tf.lodSphere;
+    typeCull[t].cull = glm::vec4(tf.cullRadius, set_.types[t].cullDistance, tf.windPerScaleZ, 0.0f);
+    typeCull[t].info = glm::uvec4(tf.firstGroup, tf.levels, set_.types[t].castShadows ? 1u : 0u, 0u);
+  }
 
   const bool gpu = culling_ == Culling::Gpu;
-  std::vector<uint32_t> cpuVisible;
+  std::vector<uint32_t> cpuVisible, cpuGroupBase;
   if (!gpu) {
-    // The same test as shaders/instance_cull.comp, in double, each list in
-    // instance order.
-    cpuCounts_.assign(views * types, 0);
-    cpuVisible.assign(views * n, 0);
+    // The same choices as the compute passes, in double: the level by
+    // chooseMeshLod (the mesh source's rule), the cull distance, then the
+    // sphere test per view; each list in instance order.
+    std::vector<uint32_t> level(n, kCulled), totals(groups, 0);
     for (size_t i = 0; i < n; ++i) {
       const GpuInstance& g = set_.instances[i];
       const size_t type = g.typeAndCell & 0xFFFFu, cell = g.typeAndCell >> 16;
-      if (type >= types || spheres[type].w < 0.0f || cell >= cells.size()) continue;
-      const glm::dmat3 rot = glm::mat3_cast(glm::dquat(instanceRotation(g)));
+      if (type >= types || !types_[type].asset || cell >= cells.size()) continue;
+      const TypeFrame& tf = types_[type];
+      const glm::dvec3 origin = glm::dvec3(cells[cell]) + glm::dvec3(g.position);
+      const double cullDistance = set_.types[type].cullDistance;
+      if (cullDistance > 0 && glm::length(origin - lodEyeD) > cullDistance * double(kCullSlack)) continue;
+      const glm::dvec3 s(instanceScale(g));
+      const glm::dvec3 centre = origin + glm::mat3_cast(glm::dquat(instanceRotation(g))) * (glm::dvec3(tf.lodSphere) * s);
+      level[i] = uint32_t(chooseMeshLod(tf.errors, centre - lodEyeD, double(tf.lodSphere.w),
+                                        maxAbsScale(glm::vec3(s)), lodView, bound)
+                              .level);
+      ++totals[tf.firstGroup + level[i]];
+    }
+    cpuGroupBase.assign(groups, 0);
+    for (size_t k = 1; k < groups; ++k) cpuGroupBase[k] = cpuGroupBase[k - 1] + totals[k - 1];
+    cpuCounts_.assign(views * groups, 0);
+    cpuVisible.assign(views * n, 0);
+    for (size_t i = 0; i < n; ++i) {
+      if (level[i] == kCulled) continue;
+      const GpuInstance& g = set_.instances[i];
+      const size_t type = g.typeAndCell & 0xFFFFu, cell = g.typeAndCell >> 16;
+      const TypeFrame& tf = types_[type];
+      const size_t group = tf.firstGroup + level[i];
+      const glm::dvec3 s(instanceScale(g));
       const glm::dvec3 centre = glm::dvec3(cells[cell]) + glm::dvec3(g.position) +
-                                rot * (glm::dvec3(spheres[type]) * double(g.scale));
-      const double radius = double(spheres[type].w) * std::abs(double(g.scale));
-      for (size_t v = 0; v < views; ++v) {
+                                glm::mat3_cast(glm::dquat(instanceRotation(g))) * (glm::dvec3(tf.lodSphere) * s);
+      const double radius = double(tf.cullRadius) * maxAbsScale(glm::vec3(s)) + double(tf.windPerScaleZ) * std::abs(s.z);
+      const size_t casting = set_.types[type].castShadows ? views : cameraViews_;
+      for (size_t v = 0; v < casting; ++v) {
         bool inside = true;
         for (size_t k = 0; k < 6 && inside; ++k) {
           const glm::dvec4 p(planes[v * 6 + k]);
           inside = glm::dot(glm::dvec3(p), centre) + p.w >= -radius;
         }
-        if (inside) cpuVisible[v * n + typeBase_[type] + cpuCounts_[v * types + type]++] = uint32_t(i);
+        if (inside) cpuVisible[v * n + cpuGroupBase[group] + cpuCounts_[v * groups + group]++] = uint32_t(i);
       }
     }
     int64_t seen = 0;
+    std::vector<int64_t> byLevel;
     for (size_t v = 0; v < cameraViews_; ++v)
-      for (size_t t = 0; t < types; ++t) seen += cpuCounts_[v * types + t];
+      for (size_t k = 0; k < groups; ++k) {
+        seen += cpuCounts_[v * groups + k];
+        if (byLevel.size() <= groups_[k].level) byLevel.resize(groups_[k].level + 1, 0);
+        byLevel[groups_[k].level] += cpuCounts_[v * groups + k];
+      }
     *lastVisible_ = seen;
+    *lastByLevel_ = std::move(byLevel);
   }
 
   struct Upload {
-    BufferRef instances, cells, visible;
+    BufferRef instances, cells, visible, groupBase;
   };
   const size_t visibleBytes = std::max<size_t>(cpuVisible.size(), 1) * 4;  // before the execute takes the list
   const Upload& up = graph.addPass<Upload>(
@@ -172,27 +311,38 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
         d.instances = b.write(graph.persistentBuffer(bufferName_, BufferDesc{n * sizeof(GpuInstance)}),
                               Usage::Transfer);
         d.cells = b.create(name_ + "_cells", BufferDesc{cells.size() * sizeof(glm::vec4)}, Usage::Transfer);
-        if (!gpu) d.visible = b.create(name_ + "_visible", BufferDesc{visibleBytes}, Usage::Transfer);
+        if (!gpu) {
+          d.visible = b.create(name_ + "_visible", BufferDesc{visibleBytes}, Usage::Transfer);
+          d.groupBase = b.create(name_ + "_group_base", BufferDesc{groups * 4}, Usage::Transfer);
+        }
       },
-      [this, cells, cpuVisible = std::move(cpuVisible)](const Upload& d, const PassResources& r) {
+      [this, cells, cpuVisible = std::move(cpuVisible), cpuGroupBase](const Upload& d, const PassResources& r) {
         if (r.fresh(d.instances) || uploaded_ != revision_) {
           upload(r.buffer(d.instances), set_.instances);
           uploaded_ = revision_;
         }
         upload(r.buffer(d.cells), cells);
         if (d.visible.valid()) upload(r.buffer(d.visible), cpuVisible);
+        if (d.groupBase.valid()) upload(r.buffer(d.groupBase), cpuGroupBase);
       });
   instanceBuffer_ = up.instances;
   cells_ = up.cells;
   visible_ = up.visible;
+  groupBase_ = up.groupBase;
   commands_ = {};
   if (!gpu) return;
 
-  // The GPU's culling and its commands (one per view and part).
+  // The GPU's choices, lists and commands (one per view and part):
+  //   instance_lod.comp     per instance: its level, or culled by distance;
+  //                         each group's total
+  //   instance_groups.comp  each group's first slot in a view's list
+  //   instance_cull.comp    per instance and view: the sphere test, a slot
+  //                         in the view's part of its group
+  //   instance_commands.comp per view and part: the instance count.
   std::vector<glm::uvec4> parts;
-  for (const Part& p : parts_) parts.emplace_back(p.indexCount, p.firstIndex, p.type, 0u);
+  for (const Part& p : parts_) parts.emplace_back(p.indexCount, p.firstIndex, p.group, 0u);
   struct Cull {
-    BufferRef instances, cells, visible, counts, commands, spheres, planes, typeBase, parts;
+    BufferRef instances, cells, visible, counts, commands, typeCull, planes, groupBase, parts, levels, totals, lodDistances;
   };
   const Cull& cull = graph.addPass<Cull>(
       name_ + "_cull",
@@ -200,60 +350,93 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
         d.instances = b.read(up.instances);
         d.cells = b.read(up.cells);
         d.visible = b.create(name_ + "_visible", BufferDesc{views * n * 4});
-        d.counts = b.create(name_ + "_counts", BufferDesc{views * types * 4});
+        d.counts = b.create(name_ + "_counts", BufferDesc{views * groups * 4});
         d.commands = b.create(name_ + "_commands", BufferDesc{views * parts.size() * kCommandBytes});
-        d.spheres = b.create(name_ + "_types", BufferDesc{spheres.size() * sizeof(glm::vec4)}, Usage::Transfer);
+        d.groupBase = b.create(name_ + "_group_base", BufferDesc{groups * 4});
+        d.levels = b.create(name_ + "_levels", BufferDesc{n * 4});
+        d.totals = b.create(name_ + "_group_totals", BufferDesc{groups * 4});
+        d.typeCull = b.create(name_ + "_types", BufferDesc{typeCull.size() * sizeof(GpuTypeCull)}, Usage::Transfer);
         d.planes = b.create(name_ + "_planes", BufferDesc{std::max<size_t>(planes.size(), 1) * sizeof(glm::vec4)},
                             Usage::Transfer);
-        d.typeBase = b.create(name_ + "_type_base", BufferDesc{types * 4}, Usage::Transfer);
+        d.lodDistances = b.create(name_ + "_lod_distances", BufferDesc{groups * 4}, Usage::Transfer);
         d.parts = b.create(name_ + "_parts", BufferDesc{parts.size() * sizeof(glm::uvec4)}, Usage::Transfer);
       },
-      [this, &frame, n, views, types, cellCount = cells.size(), spheres, planes, parts](const Cull& d,
-                                                                                         const PassResources& r) {
-        upload(r.buffer(d.spheres), spheres);
+      [this, &frame, n, views, types, groups, cellCount = cells.size(), typeCull, planes, parts, lodDistances](
+          const Cull& d, const PassResources& r) {
+        upload(r.buffer(d.typeCull), typeCull);
         upload(r.buffer(d.planes), planes);
-        upload(r.buffer(d.typeBase), typeBase_);
+        upload(r.buffer(d.lodDistances), lodDistances);
         upload(r.buffer(d.parts), parts);
         const GLuint zero = 0;
         glClearNamedBufferData(r.buffer(d.counts), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glClearNamedBufferData(r.buffer(d.totals), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, r.buffer(d.instances));
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCellBinding, r.buffer(d.cells));
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, r.buffer(d.visible));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullBinding0, r.buffer(d.spheres));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullBinding1, r.buffer(d.planes));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTypeCullBinding, r.buffer(d.typeCull));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPlanesBinding, r.buffer(d.planes));
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding, r.buffer(d.counts));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTypeBaseBinding, r.buffer(d.typeBase));
-        // Uploads and clears before the dispatch read them.
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGroupBaseBinding, r.buffer(d.groupBase));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLevelsBinding, r.buffer(d.levels));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGroupTotalsBinding, r.buffer(d.totals));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLodDistanceBinding, r.buffer(d.lodDistances));
+        // Uploads and clears before the dispatches read them.
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        const GLuint instanceGroups = GLuint((n + 63) / 64);
+        GlProgram& lod = frame.res.program({"", "", "instance_lod.comp", {}});
+        lod.use();
+        lod.set("uInstances", unsigned(n));
+        lod.set("uTypes", unsigned(types));
+        lod.set("uCells", unsigned(cellCount));
+        lod.set("uLodEye", lodEye_);
+        lod.set("uCullSlack", kCullSlack);
+        glDispatchCompute(instanceGroups, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the totals
+        GlProgram& prefix = frame.res.program({"", "", "instance_groups.comp", {}});
+        prefix.use();
+        prefix.set("uGroups", unsigned(groups));
+        glDispatchCompute(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the levels and the groups' places
         GlProgram& cullProgram = frame.res.program({"", "", "instance_cull.comp", {}});
         cullProgram.use();
         cullProgram.set("uInstances", unsigned(n));
         cullProgram.set("uViews", unsigned(views));
-        cullProgram.set("uTypes", unsigned(types));
-        cullProgram.set("uCells", unsigned(cellCount));
-        glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
-        // Within the pass: the commands read the counts.
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        cullProgram.set("uCameraViews", unsigned(cameraViews_));
+        cullProgram.set("uGroups", unsigned(groups));
+        glDispatchCompute(instanceGroups, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the counts
         GlProgram& commands = frame.res.program({"", "", "instance_commands.comp", {}});
         commands.use();
         commands.set("uParts", unsigned(parts.size()));
         commands.set("uViews", unsigned(views));
-        commands.set("uTypes", unsigned(types));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullBinding0, r.buffer(d.parts));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullBinding1, r.buffer(d.commands));
+        commands.set("uGroups", unsigned(groups));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPartsBinding, r.buffer(d.parts));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCommandsBinding, r.buffer(d.commands));
         glDispatchCompute(GLuint((parts.size() * views + 63) / 64), 1, 1);
-        // The passes that draw read the commands and lists: the graph's
-        // barrier (Usage::Indirect and Storage reads of Storage writes).
+        // The passes that draw read the commands, lists and places: the
+        // graph's barrier (Usage::Indirect and Storage reads of Storage writes).
       });
   visible_ = cull.visible;
+  groupBase_ = cull.groupBase;
   commands_ = cull.commands;
   // The visible counts, a frame or more later, for the statistics.
-  graph.readback(name_ + "_counts", cull.counts, 0, views * types * 4,
-                 [seen = lastVisible_, cameraViews = cameraViews_, types](const void* data, size_t) {
+  std::vector<uint32_t> groupLevel;
+  for (const Group& g : groups_) groupLevel.push_back(g.level);
+  graph.readback(name_ + "_counts", cull.counts, 0, views * groups * 4,
+                 [seen = lastVisible_, byLevel = lastByLevel_, cameraViews = cameraViews_, groupLevel](const void* data,
+                                                                                                     size_t) {
                    const auto* c = static_cast<const uint32_t*>(data);
+                   const size_t groupCount = groupLevel.size();
                    int64_t sum = 0;
-                   for (size_t i = 0; i < cameraViews * types; ++i) sum += c[i];
+                   std::vector<int64_t> levels;
+                   for (size_t v = 0; v < cameraViews; ++v)
+                     for (size_t k = 0; k < groupCount; ++k) {
+                       sum += c[v * groupCount + k];
+                       if (levels.size() <= groupLevel[k]) levels.resize(groupLevel[k] + 1, 0);
+                       levels[groupLevel[k]] += c[v * groupCount + k];
+                     }
                    *seen = sum;
+                   *byLevel = std::move(levels);
                  });
 }
 
@@ -262,6 +445,7 @@ void InstancedSource::declare(PassBuilder& b, DrawVariant) const {
   b.read(instanceBuffer_);
   b.read(cells_);
   b.read(visible_);
+  b.read(groupBase_);
   if (commands_.valid()) b.read(commands_, Usage::Indirect);
 }
 
@@ -269,31 +453,38 @@ void InstancedSource::bindInstances(const PassResources& r) const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBinding, r.buffer(instanceBuffer_));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCellBinding, r.buffer(cells_));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, r.buffer(visible_));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGroupBaseBinding, r.buffer(groupBase_));
   if (commands_.valid()) glBindBuffer(GL_DRAW_INDIRECT_BUFFER, r.buffer(commands_));
 }
 
 size_t InstancedSource::triangles(SurfaceSet surfaces) const {
   if (culling_ == Culling::Gpu || !active_) return 0;  // the GPU's counts come back later (lastVisible)
   size_t n = 0;
-  const size_t types = set_.types.size();
+  const size_t groups = groups_.size();
   for (const Part& p : parts_)
     if (wanted(p, surfaces))
-      for (size_t v = 0; v < cameraViews_; ++v) n += size_t(cpuCounts_[v * types + p.type]) * (p.indexCount / 3);
+      for (size_t v = 0; v < cameraViews_; ++v) n += size_t(cpuCounts_[v * groups + p.group]) * (p.indexCount / 3);
   return n;
 }
 
 // Draws view `view`'s visible instances of every wanted part: one program
 // per material variant (or the pass's fragment), mesh.vert's INSTANCED.
 void InstancedSource::drawParts(FrameContext& frame, const PassResources& r, size_t view, const DrawCall& call) {
-  const size_t n = set_.instances.size(), types = set_.types.size();
+  const size_t n = set_.instances.size(), groups = groups_.size();
   bindInstances(r);
   std::vector<std::string> defines = call.defines;
   defines.push_back("INSTANCED");
   MaterialBinding binding(frame, defines, call.fragment);
+  // Picking draws one pixel into a 1x1 target: the dither (shaders/
+  // instance_fade.glsl) takes that pixel's place in the view.
+  const glm::ivec2 ditherOffset = call.variant == DrawVariant::Pick ? call.pickPixel : glm::ivec2(0);
   for (size_t k = 0; k < parts_.size(); ++k) {
     const Part& part = parts_[k];
+    const InstanceType& type = set_.types[part.type];
     if (call.variant == DrawVariant::Surface && !wanted(part, call.surfaces)) continue;
-    const DrawMaterial& mat = materials_->forDraw(materialDraw_[part.type], part.submesh);
+    if (call.variant == DrawVariant::Depth && !type.castShadows) continue;
+    const Group& group = groups_[part.group];
+    const DrawMaterial& mat = materials_->forDraw(group.materialDraw, part.submesh);
     GlProgram* p = nullptr;
     if (call.variant == DrawVariant::Pick) {
       p = &frame.res.program({"mesh.vert", "pick.frag", "", {"INSTANCED"}});
@@ -308,8 +499,14 @@ void InstancedSource::drawParts(FrameContext& frame, const PassResources& r, siz
     } else {
       p = &binding.apply(mat);
     }
-    p->set("uInstanceBase", unsigned(view * n + typeBase_[part.type]));
-    const GLuint vao = meshes_[part.type]->vao;
+    p->set("uInstanceBase", unsigned(view * n));
+    p->set("uGroup", part.group);
+    p->set("uLodEye", lodEye_);
+    // The wind's height: level 0's, so a level change does not change the sway.
+    p->set("uInstanceType", glm::vec4(type.cullDistance, type.fadeLength, type.windResponse,
+                                      type.windResponse > 0.0f ? types_[part.type].height : 0.0f));
+    p->set("uDitherOffset", ditherOffset);
+    const GLuint vao = group.mesh->vao;
     glBindVertexArray(vao);
     // Attribute 7 is the document meshes' object index (divisor 1): off,
     // so no instance reads past its buffer.
@@ -319,7 +516,7 @@ void InstancedSource::drawParts(FrameContext& frame, const PassResources& r, siz
       glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
                                   reinterpret_cast<const void*>((view * parts_.size() + k) * kCommandBytes), 1, 0);
       ++frame.stats.drawCalls;
-    } else if (const uint32_t count = cpuCounts_[view * types + part.type]) {
+    } else if (const uint32_t count = cpuCounts_[view * groups + part.group]) {
       glDrawElementsInstanced(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT, indices, GLsizei(count));
       ++frame.stats.drawCalls;
       if (call.variant == DrawVariant::Surface && call.surfaces == SurfaceSet::Opaque) {

@@ -2,23 +2,40 @@
 // A draw source for many instances of a few meshes (foliage, scattered
 // rocks; draw_source.h): instances in the compact 32-byte format below,
 // grouped in cells whose origins are kept in double and sent relative to
-// the frame origin. Each frame it culls every instance against every view
-// the frame draws (the camera views, then the shadow views) and draws each
-// view's visible instances of each type with one instanced draw per part
-// (a submesh of the type's mesh), in one of two ways:
-//   Culling::Gpu  a compute pass ("<name>_cull": shaders/instance_cull.comp
-//                 and instance_commands.comp) writes the visible lists and
-//                 the indirect commands; the passes draw them with
-//                 glMultiDrawElementsIndirect, the CPU never sees a count
-//                 (they come back a frame later, FrameGraph::readback, for
-//                 the statistics);
-//   Culling::Cpu  the CPU culls (the same sphere test, in double) and
-//                 uploads the lists; glDrawElementsInstanced.
+// the frame origin. Each frame, for every instance, once:
+//   - its level of detail, from its type's mesh asset's LOD chain by the
+//     rule of mesh_lod.h chooseMeshLod, seen from the frame's LOD view
+//     (FrameContext::lodView), so both eyes and every shadow view draw the
+//     level a mesh entity at that place would draw;
+//   - whether it is beyond its type's cull distance from the LOD eye (then
+//     no view draws it); over the last InstanceType::fadeLength metres
+//     before it, mesh.vert gives it a fade share and every fragment shader
+//     that draws it discards that share of its pixels by an ordered 8x8
+//     dither (shaders/instance_fade.glsl): lit, shadow depth, picking and
+//     the transparency passes alike, so its shadow fades with it;
+// then, for each view (the camera views, then the shadow views; a type
+// that does not cast shadows is in none of those), the sphere test. A
+// view's list is sorted into draw groups (type, level), and each view draws
+// one instanced draw per part (a submesh of a group's mesh), in one of two
+// ways:
+//   Culling::Gpu  compute passes ("<name>_cull": shaders/instance_lod.comp,
+//                 instance_groups.comp, instance_cull.comp and
+//                 instance_commands.comp) write the levels, the groups'
+//                 places, the visible lists and the indirect commands; the
+//                 passes draw them with glMultiDrawElementsIndirect, the
+//                 CPU never sees a count (they come back a frame later,
+//                 FrameGraph::readback, for the statistics);
+//   Culling::Cpu  the CPU chooses (chooseMeshLod itself, in double), culls
+//                 (the same sphere test, in double) and uploads the lists;
+//                 glDrawElementsInstanced. The reference the tests compare
+//                 the GPU's choices with.
 // Both draw with mesh.vert's INSTANCED variant and the type's materials;
 // the instance's stable id reaches the fragment shader as vObject (the id
 // pass writes pickBase + id, the transparency key hashes it with the
-// primitive). The instance data lives in a persistent buffer of the frame
-// graph, uploaded when setInstances changed it. Include only inside render/.
+// primitive). Vertices sway in the wind (instanceWindOffset below) as a
+// pure function of the frame's time. The instance data lives in a
+// persistent buffer of the frame graph, uploaded when setInstances changed
+// it. Include only inside render/.
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,22 +53,73 @@ class MaterialTable;
 // One instance (std430, shaders/instances.glsl), 32 bytes.
 struct GpuInstance {
   glm::vec3 position{0.0f};  // relative to its cell's origin (m)
-  float scale = 1.0f;        // uniform
+  // The scale as two halves, packHalf2x16(xy, z): one factor across (x and
+  // y of the mesh) and one along its height (z); equal for a uniform scale.
+  // Halves keep 11 significant bits (0.05 %), as close as the foliage
+  // store's own encoding and more; the struct stays 32 bytes.
+  uint32_t scaleXyZ = 0x3C003C00u;           // (1, 1)
   uint32_t rotation[2] = {0, 0x7FFF0000u};  // unit quaternion (x, y | z, w) as snorm16 pairs
-  uint32_t typeAndCell = 0;  // type | cell << 16
-  uint32_t id = 0;           // stable: picking, the transparency key
+  uint32_t typeAndCell = 0;                 // type | cell << 16
+  uint32_t id = 0;                          // stable: picking, the transparency key
 };
 static_assert(sizeof(GpuInstance) == 32);
 
-// Packs an instance; `rotation` is normalised first.
+// Packs an instance; `rotation` is normalised first. `scaleXyZ`: x the
+// factor across (mesh x and y), y the factor along the height (mesh z).
+GpuInstance packInstance(const glm::vec3& positionInCell, const glm::quat& rotation, glm::vec2 scaleXyZ,
+                         uint16_t type, uint16_t cell, uint32_t id);
+// A uniform scale (both halves `scale`).
 GpuInstance packInstance(const glm::vec3& positionInCell, const glm::quat& rotation, float scale, uint16_t type,
                          uint16_t cell, uint32_t id);
 // The rotation an instance stores (after snorm16 rounding, normalised).
 glm::quat instanceRotation(const GpuInstance& instance);
+// The scale an instance stores per mesh axis (xy, xy, z), after half rounding.
+glm::vec3 instanceScale(const GpuInstance& instance);
+
+// Wind (shaders/instances.glsl instanceWindOffset, the same model in
+// float; this copy is for tests and bounds). A vertex `heightAboveOrigin`
+// metres above the instance's origin along the mesh's z (before scale),
+// of a mesh whose bounds reach `meshHeight` above it, on an instance
+// scaled by `scaleZ` along z, moves by a main bend along the fixed wind
+// direction kWindDirection (a steady lean plus a 0.5 Hz sway) and a
+// smaller gust across it (1.3 Hz flutter under a 0.2 Hz envelope), each
+// instance in its own phase (a hash of its id). The bend grows with the
+// square of the relative height h = clamp(height / meshHeight, 0, 1) (a
+// cantilever's first mode, roughly): at the top the horizontal move is up
+// to kWindBend x response x the instance's height (2 % per unit of
+// response); the vertex also drops by the move's square over twice its
+// height, so a bent stem keeps about its length. Response 0 moves nothing
+// (the shader does not even evaluate it). The frequencies are multiples of
+// 1/60 Hz and the shader folds t to t mod 60 s using FrameBlock.time's
+// double-taken fraction, so a frame late in a long shot sways as exactly
+// as the first.
+inline constexpr float kWindBend = 0.02f;
+inline const glm::vec2 kWindDirection{0.8f, 0.6f};  // towards east-north-east, unit
+glm::vec3 instanceWindOffset(float response, float heightAboveOrigin, float meshHeight, float scaleZ, uint32_t id,
+                             double seconds);
+// The most instanceWindOffset can move any vertex of an instance whose
+// height (mesh bounds top x |scaleZ|) is `worldHeight`: the cull sphere
+// grows by it, so culling stays conservative in the wind.
+float instanceWindMargin(float response, float worldHeight);
+
+// How an instance type is drawn (foliage/foliage_type.h has the
+// document's side of these).
+struct InstanceType {
+  scene::AssetId mesh = scene::kNoAsset;  // a mesh asset of the document; its LOD chain and materials draw it
+  // Metres from the LOD view's eye to the instance's origin beyond which
+  // no view draws it; 0: never culled by distance.
+  float cullDistance = 0.0f;
+  // Metres before cullDistance over which it fades out (dithered): the
+  // share of its pixels dropped grows linearly from 0 to 1. 0: no fade.
+  float fadeLength = 0.0f;
+  // 0: stiff (a rock, no displacement at all); 1: a tree's sway; up to 10.
+  float windResponse = 0.0f;
+  bool castShadows = true;  // false: left out of every shadow view
+};
 
 struct InstanceSet {
-  std::vector<scene::AssetId> types;  // mesh assets of the document (their materials draw them)
-  std::vector<glm::dvec3> cells;      // world origins of the cells
+  std::vector<InstanceType> types;  // an instance's type indexes this
+  std::vector<glm::dvec3> cells;    // world origins of the cells
   std::vector<GpuInstance> instances;
   scene::EntityId entity = scene::kNoEntity;  // what picking an instance names, with its id
 };
@@ -66,9 +134,12 @@ class InstancedSource final : public DrawSource {
   void setInstances(InstanceSet set);
   const InstanceSet& instances() const { return set_; }
   Culling culling() const { return culling_; }
-  // Visible instances summed over the views of a frame that has been
+  // Visible instances summed over the camera views of a frame that has been
   // delivered (GPU: a frame or more late; CPU: the last frame); -1: none yet.
   int64_t lastVisible() const { return *lastVisible_; }
+  // The same, per level of detail (index: the level, over every type);
+  // empty: none yet.
+  std::vector<int64_t> lastVisibleByLevel() const { return *lastByLevel_; }
 
   std::string ownPass() const override { return name_; }
   bool has(DrawVariant variant, SurfaceSet surfaces) const override;
@@ -81,8 +152,27 @@ class InstancedSource final : public DrawSource {
   PickedItem picked(uint32_t k) const override { return {set_.entity, k}; }
 
  private:
+  // This frame's view of a type: its asset, its draw groups (one per level
+  // of its LOD chain: firstGroup .. firstGroup + levels - 1; levels 0: its
+  // asset is gone, it draws nothing), the sphere that chooses its level
+  // (level 0's bounds, mesh space), a radius about the same centre that
+  // holds every level, and its wind's height and margin.
+  struct TypeFrame {
+    const scene::MeshAsset* asset = nullptr;
+    uint32_t firstGroup = 0, levels = 0;
+    glm::vec4 lodSphere{0.0f, 0.0f, 0.0f, -1.0f};
+    float cullRadius = 0.0f;
+    float height = 0.0f;           // level 0's bounds top above the origin (m, mesh space; 0: no wind)
+    float windPerScaleZ = 0.0f;    // instanceWindMargin per unit |scale z|
+    std::vector<double> errors;    // MeshAsset::lodErrors()
+  };
+  struct Group {
+    uint32_t type = 0, level = 0;
+    const GpuMesh* mesh = nullptr;  // the level's (level 0's where the cache has no such level)
+    size_t materialDraw = 0;        // its draw in the MaterialTable
+  };
   struct Part {
-    uint32_t type = 0, firstIndex = 0, indexCount = 0, submesh = 0;
+    uint32_t group = 0, type = 0, firstIndex = 0, indexCount = 0, submesh = 0;
   };
   bool wanted(const Part& part, SurfaceSet surfaces) const;
   void drawParts(FrameContext& frame, const PassResources& r, size_t view, const DrawCall& call);
@@ -93,19 +183,20 @@ class InstancedSource final : public DrawSource {
   InstanceSet set_;
   uint64_t revision_ = 1, uploaded_ = 0;
   uint32_t maxId_ = 0;
-  // This frame's: the types' meshes (null: asset gone) and their draws in
-  // the MaterialTable, the parts, the types' first slots in a view's list,
-  // and the frame's resources.
-  std::vector<const GpuMesh*> meshes_;
-  std::vector<size_t> materialDraw_;
-  const MaterialTable* materials_ = nullptr;
+  // This frame's types, groups and parts, the MaterialTable, the LOD eye
+  // relative to the frame origin, and the frame's resources.
+  std::vector<TypeFrame> types_;
+  std::vector<Group> groups_;
   std::vector<Part> parts_;
-  std::vector<uint32_t> typeBase_;
-  std::vector<uint32_t> cpuCounts_;  // Cpu: visible per view and type
+  const MaterialTable* materials_ = nullptr;
+  glm::vec3 lodEye_{0.0f};
+  std::vector<uint32_t> cpuCounts_;  // Cpu: visible per view and group
   size_t cameraViews_ = 0;
-  BufferRef instanceBuffer_, cells_, visible_, commands_;
+  bool anyCaster_ = false;
+  BufferRef instanceBuffer_, cells_, visible_, groupBase_, commands_;
   bool active_ = false;  // something to draw this frame
   std::shared_ptr<int64_t> lastVisible_ = std::make_shared<int64_t>(-1);
+  std::shared_ptr<std::vector<int64_t>> lastByLevel_ = std::make_shared<std::vector<int64_t>>();
 };
 
 }  // namespace hs::render

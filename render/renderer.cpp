@@ -535,6 +535,7 @@ PickHit Renderer::pickSurface(const scene::SceneState& state, const RenderView& 
           DrawCall call;
           call.variant = DrawVariant::Pick;
           call.pickBase = bases[i];
+          call.pickPixel = {x, int(view.height) - 1 - y};
           frame.sources[i]->draw(frame, call, r);
         }
         auto& out = const_cast<Pick&>(p);

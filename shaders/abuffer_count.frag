@@ -5,9 +5,15 @@
 // sizes the node pool before the capture draws the same fragments again.
 // Early tests: a fragment behind the opaque depth must not count.
 layout(early_fragment_tests) in;
+#ifdef INSTANCED
+#include "instance_fade.glsl"  // the lit pass drops the same fragments
+#endif
 #include "abuffer.glsl"
 
 void main() {
   if (gl_HelperInvocation) return;  // stores nothing (oit_main.glsl)
+#ifdef INSTANCED
+  instanceFadeDiscard();
+#endif
   abufferCountFragment(ivec2(gl_FragCoord.xy));
 }

@@ -16,6 +16,9 @@
 // keeps does not depend on arrival order either; such a range is ordered
 // by key alone (abufferByKey). The others reach the tail in the lit pass.
 layout(early_fragment_tests) in;
+#ifdef INSTANCED
+#include "instance_fade.glsl"  // the lit pass drops the same fragments
+#endif
 #include "abuffer.glsl"
 #define OIT_KEY_ONLY
 #include "oit_kbuffer.glsl"
@@ -24,6 +27,9 @@ flat in uint vObject;
 
 void main() {
   if (gl_HelperInvocation) return;  // stores nothing (oit_main.glsl)
+#ifdef INSTANCED
+  instanceFadeDiscard();
+#endif
   const ivec2 p = ivec2(gl_FragCoord.xy);
   const uint pixel = abufferPixel(p);
   const uint start = abufferStarts[pixel], kept = abufferStarts[pixel + 1u] - start;

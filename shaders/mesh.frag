@@ -9,6 +9,8 @@
 //   HAS_NORMAL_MAP   tangent-space normal map
 //   HAS_PARALLAX     parallax occlusion mapping from the height map
 // DEBUG_SHADING_NORMAL writes the shading normal (world axes) instead of a colour.
+// INSTANCED (an instanced source's instances): no tint, and the fade's
+// dithered discard (instance_fade.glsl) next to the cut-out's.
 #include "lighting.glsl"
 #include "material_surface.glsl"
 #if defined(HAS_NORMAL_MAP) || defined(HAS_PARALLAX)
@@ -17,6 +19,9 @@ in vec4 vTangent;
 #endif
 #ifdef HS_OIT
 #include "oit_output.glsl"
+#endif
+#ifdef INSTANCED
+#include "instance_fade.glsl"
 #endif
 
 in vec3 vEyePos;
@@ -61,6 +66,10 @@ void main() {
 #endif
   vec4 base = vec4(m.baseColor.rgb * tint, m.baseColor.a) * texel;
   if (hasFlag(m, MAT_ALPHA_CUTOUT) && base.a < m.emission.a) discard;
+#ifdef INSTANCED
+  // After the texture reads (their derivatives), as the cut-out is.
+  instanceFadeDiscard();
+#endif
 #ifdef SHADING_GOURAUD
   outColor = vec4(vLit * texel.rgb, 0.0);  // alpha: no ambient share to occlude (per-vertex light)
 #else

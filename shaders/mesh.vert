@@ -5,10 +5,16 @@
 //
 // Variant INSTANCED draws an instanced source's instances (render/
 // instanced_source.h; shaders/instances.glsl): gl_InstanceID indexes the
-// view's list of its type from uInstanceBase, the instance's compact record
-// gives the placement (uniform scale: the rotation is the normal matrix),
-// and vObject carries its stable id (picking, the transparency key); no
-// per-object tint.
+// view's part of its draw group's list (uInstanceBase + the group's first
+// slot), the instance's compact record gives the placement (a scale across
+// and one along the height: normals take the inverse transpose,
+// R (n / s), normalised in mesh.frag as the meshes' normal matrix is), the
+// type's wind sways it (instances.glsl instanceWindOffset, a pure function
+// of FrameBlock.time; response 0 skips it, so a stiff type is placed to
+// the bit as with no wind), vInstanceFade carries the share of its pixels
+// its fade drops (instance_fade.glsl), and vObject its stable id (picking,
+// the transparency key); no per-object tint. The wind bends positions,
+// not normals: a bend of a few degrees at most at the tip.
 //
 // Variant SHADING_GOURAUD lights here, once per vertex (the survey's
 // Gouraud shading), with the material's untextured colour; mesh.frag then
@@ -26,7 +32,12 @@ layout(location = 2) in vec2 aUv;
 #ifdef INSTANCED
 #include "instances.glsl"
 layout(std430, binding = 19) readonly buffer VisibleInstances { uint visibleInstances[]; };
-uniform uint uInstanceBase;  // this view's and type's first slot
+layout(std430, binding = 23) readonly buffer InstanceGroupBase { uint instanceGroupBase[]; };
+uniform uint uInstanceBase;  // this view's first slot
+uniform uint uGroup;         // the draw group (type, level) of the part drawn
+uniform vec3 uLodEye;        // the LOD view's eye, relative to the frame origin
+uniform vec4 uInstanceType;  // x: cull distance (0: none), y: fade length, z: wind response, w: mesh height (0: no wind)
+flat out float vInstanceFade;
 #else
 layout(location = 7) in uint aObject;  // per instance: index into objects[]
 #endif
@@ -48,14 +59,20 @@ invariant gl_Position;
 
 void main() {
 #ifdef INSTANCED
-  Instance inst = instances[visibleInstances[uInstanceBase + uint(gl_InstanceID)]];
+  Instance inst = instances[visibleInstances[uInstanceBase + instanceGroupBase[uGroup] + uint(gl_InstanceID)]];
   mat3 rotation = instanceRotation(inst);
-  vec3 p = rotation * (aPosition * inst.positionScale.w) + instanceOrigin(inst) - view.eyeOffset.xyz;
-  vNormal = rotation * aNormal;
+  vec3 scale = instanceScale(inst);
+  vec3 origin = instanceOrigin(inst);
+  vec3 p = rotation * (aPosition * scale) + origin;
+  if (uInstanceType.z > 0.0 && uInstanceType.w > 0.0)
+    p += instanceWindOffset(uInstanceType.z, aPosition.z, uInstanceType.w, scale.z, inst.rotationTypeId.w, frame.time);
+  p -= view.eyeOffset.xyz;
+  vNormal = rotation * (aNormal / scale);
   vObject = inst.rotationTypeId.w;
+  vInstanceFade = instanceFade(length(origin - uLodEye), uInstanceType.x, uInstanceType.y);
   vec3 tint = vec3(1.0);
 #ifdef HAS_TANGENTS
-  vTangent = vec4(rotation * aTangent.xyz, aTangent.w);
+  vTangent = vec4(rotation * (aTangent.xyz * scale), aTangent.w);
 #endif
 #else
   Object o = objects[aObject];

@@ -2,12 +2,18 @@
 // K-buffer pass 1 (oit_kbuffer.glsl): the fragment's key into the pixel's
 // K sorted slots; also counts the pixel's fragments (depth complexity).
 layout(early_fragment_tests) in;
+#ifdef INSTANCED
+#include "instance_fade.glsl"  // the lit pass drops the same fragments
+#endif
 #include "abuffer.glsl"
 #include "oit_kbuffer.glsl"
 flat in uint vObject;
 
 void main() {
   if (gl_HelperInvocation) return;  // stores nothing (oit_main.glsl)
+#ifdef INSTANCED
+  instanceFadeDiscard();
+#endif
   const ivec2 p = ivec2(gl_FragCoord.xy);
   abufferCountFragment(p);
   uint v = oitKey(gl_FragCoord.z, vObject, uint(gl_PrimitiveID));

@@ -10,6 +10,11 @@
 // the light through, and two layers (a glass sphere's near and far side)
 // pass different texels, about (1 - a)^2. A pure function of the frame:
 // the same shadow every render.
+// INSTANCED: an instanced source's caster drops the pixels its fade
+// drops in the views (instance_fade.glsl), so its shadow fades with it.
+#ifdef INSTANCED
+#include "instance_fade.glsl"
+#endif
 #ifdef ALPHA_CUTOUT
 in vec2 vUv;
 layout(binding = 0) uniform sampler2D uBaseColorTexture;
@@ -28,6 +33,9 @@ float texelHash() {
 #endif
 
 void main() {
+#ifdef INSTANCED
+  instanceFadeDiscard();
+#endif
 #ifdef ALPHA_CUTOUT
   float alpha = uCutout.x * (uCutout.z > 0.5 ? texture(uBaseColorTexture, vUv).a : 1.0);
   if (alpha < (uCutout.w > 0.5 ? texelHash() : uCutout.y)) discard;

@@ -18,8 +18,17 @@
 // instance (the registry's total against the same scene without
 // instances, divided by the count).
 //
+// --lods gives the sphere a chain of two coarser levels (12 and 6
+// segments) with errors of 10 and 12.5 cm, so at the default size and
+// altitude the instances (and the entities, by the same rule) draw all
+// three levels by distance (a smaller image: coarser ones); the GPU path
+// then chooses a level per instance in its compute pass and draws one
+// group per level. A row after each count gives the instances the GPU
+// path drew at each level (read back).
+//
 //   bench_instances [--frames N] [--counts 10000,100000,1000000] [--size WxH] [--skip-entities-over N]
 //                   [--altitude M]   (lower: fewer instances in view, culling weighs more)
+//                   [--lods]
 #include <QCoreApplication>
 
 #include <cmath>
@@ -50,14 +59,27 @@ struct Options {
   std::vector<double> counts = {1e4, 1e5, 1e6};
   size_t entitiesUpTo = 1000000;  // (a) above this count is skipped
   double altitude = 60.0;         // the camera's height over the field (m)
+  bool lods = false;              // the sphere with a chain of three levels
 };
 
-scene::SceneState baseScene() {
+scene::SceneState baseScene(const Options& o) {
   scene::SceneState s;
   s.settings.showGrid = false;
   s.settings.shadows = false;
   s.settings.ambientIntensity = 0.3f;
   test::addMeshAsset(s, kSphere, "Sphere", mesh::uvSphere(0.5f, 32, 32), {0.3f, 0.6f, 0.25f});
+  if (o.lods) {
+    scene::MeshAsset& a = s.assets.at(kSphere);
+    for (int k = 0; k < 2; ++k) {
+      mesh::MeshData m = mesh::uvSphere(0.5f, k == 0 ? 12 : 6, k == 0 ? 12 : 6);
+      scene::MeshLod lod;
+      lod.contentHash = mesh::contentHash(m);
+      lod.triangles = m.triangleCount();
+      lod.hausdorff = k == 0 ? 0.10 : 0.125;
+      lod.data = std::make_shared<const mesh::MeshData>(std::move(m));
+      a.lods.push_back(std::move(lod));
+    }
+  }
   test::addSun(s, 1, {50, 0, -35});
   return s;
 }
@@ -75,7 +97,7 @@ std::vector<glm::dvec3> field(size_t n) {
 
 render::InstanceSet instanceSet(const std::vector<glm::dvec3>& places) {
   render::InstanceSet set;
-  set.types = {kSphere};
+  set.types = {render::InstanceType{kSphere}};
   // 128 m cells (the foliage issue's order of size).
   const double cell = 128.0;
   std::map<std::pair<long, long>, uint16_t> cells;
@@ -155,10 +177,11 @@ int main(int argc, char** argv) {
     else if (a == "--size" && i + 1 < argc) std::sscanf(argv[++i], "%dx%d", &o.width, &o.height);
     else if (a == "--skip-entities-over" && i + 1 < argc) o.entitiesUpTo = size_t(std::atof(argv[++i]));
     else if (a == "--altitude" && i + 1 < argc) o.altitude = std::atof(argv[++i]);
+    else if (a == "--lods") o.lods = true;
     else {
       std::fprintf(stderr,
                    "usage: bench_instances [--frames N] [--counts A,B,C] [--size WxH] [--skip-entities-over N] "
-                   "[--altitude M]\n");
+                   "[--altitude M] [--lods]\n");
       return 2;
     }
   }
@@ -168,12 +191,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_instances: %s\n", error.c_str());
     return 1;
   }
-  std::printf("# bench_instances: %dx%d, camera %.0f m above the field, %d frames (median), %s\n# %s\n# %s\n\n",
-              o.width, o.height, o.altitude, o.frames, r.glDescription().c_str(), bench::threadsText().c_str(),
-              bench::loadAverageLine().c_str());
+  std::printf("# bench_instances: %dx%d, camera %.0f m above the field, %d frames (median), %s%s\n# %s\n# %s\n\n",
+              o.width, o.height, o.altitude, o.frames, o.lods ? "3 LOD levels, " : "", r.glDescription().c_str(),
+              bench::threadsText().c_str(), bench::loadAverageLine().c_str());
   std::printf("| instances | way | frame ms | CPU ms | draw calls | visible | GPU bytes / instance | frame vs (a) |\n");
   std::printf("|---:|---|---:|---:|---:|---:|---:|---:|\n");
-  const scene::SceneState base = baseScene();
+  const scene::SceneState base = baseScene(o);
   r.renderOnly(base, topView(o));
   const size_t baseline = registryBytes(r.renderer());
   for (double countD : o.counts) {
@@ -198,11 +221,13 @@ int main(int argc, char** argv) {
       rows.back().skipped = true;
     }
     const render::InstanceSet set = instanceSet(places);
+    std::vector<int64_t> byLevel;
     for (auto [culling, name] : {std::pair{render::InstancedSource::Culling::Cpu, "(b) cpu-culled instanced"},
                                  std::pair{render::InstancedSource::Culling::Gpu, "(c) gpu-culled indirect"}}) {
       auto src = std::make_shared<render::InstancedSource>("bench_instances", culling);
       src->setInstances(set);
       rows.push_back(measure(r, base, src, name, count, baseline, o));
+      byLevel = src->lastVisibleByLevel();
     }
     for (const Row& row : rows) {
       if (row.skipped) {
@@ -214,6 +239,12 @@ int main(int argc, char** argv) {
                   row.cpuMs, row.drawCalls, static_cast<long long>(row.visible), row.bytesPerInstance,
                   rows[0].skipped ? "-" : (std::to_string(vsA).substr(0, 5) + "x").c_str());
       std::fflush(stdout);
+    }
+    if (o.lods) {
+      std::string levels;
+      for (size_t l = 0; l < byLevel.size(); ++l)
+        levels += (l ? ", " : "") + std::string("level ") + std::to_string(l) + ": " + std::to_string(byLevel[l]);
+      std::printf("| %zu | (c) drawn by level | %s | | | | | |\n", count, levels.c_str());
     }
   }
   return 0;
