@@ -21,10 +21,16 @@
 #define LIGHT_CLUSTERS (LIGHT_TILES_X * LIGHT_TILES_Y * LIGHT_SLICES)
 
 // Depth slice of a view-space distance d (metres in front of the eye).
+// A distance that is not a number or infinite (a fragment whose inputs
+// were extrapolated far off its triangle: a sliver covering a sample under
+// MSAA interpolates at the pixel centre) still gets a slice of the grid:
+// int() of an infinite or NaN float is undefined (x86 gives INT_MIN), and an
+// index off the grid reads a count from anywhere, which made the light loop
+// run for minutes on a CPU rasteriser.
 int lightSliceOf(float d) {
-  if (d < LIGHT_SLICE_NEAR) return 0;
+  if (!(d >= LIGHT_SLICE_NEAR)) return 0;  // NaN too
   const float scale = float(LIGHT_SLICES - 2) / log(LIGHT_SLICE_FAR / LIGHT_SLICE_NEAR);
-  return min(1 + int(floor(log(d / LIGHT_SLICE_NEAR) * scale)), LIGHT_SLICES - 1);
+  return min(1 + int(floor(log(min(d, LIGHT_SLICE_FAR) / LIGHT_SLICE_NEAR) * scale)), LIGHT_SLICES - 1);
 }
 
 // The near distance of slice k (k = LIGHT_SLICES: infinity).

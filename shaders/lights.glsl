@@ -52,7 +52,7 @@ vec3 directLighting(Surface s) {
                      ivec2(LIGHT_TILES_X - 1, LIGHT_TILES_Y - 1));
   float depth = -(mat3(view.viewRotation) * s.position).z;
   int cluster = lightClusterIndex(tile, lightSliceOf(depth));
-  uint n = clusterCounts[cluster];
+  uint n = min(clusterCounts[cluster], uint(LIGHT_CLUSTER_CAP));
   uint base = uint(cluster) * uint(LIGHT_CLUSTER_CAP);
   for (uint k = 0u; k < n; ++k) color += pointOrSpotLight(s, int(clusterLights[base + k]));
 #else
