@@ -25,6 +25,7 @@
 #include "render/passes/output_passes.h"
 #include "render/passes/scene_passes.h"
 #include "render/passes/shadow_passes.h"
+#include "render/foliage_sources.h"
 #include "render/render_resources.h"
 #include "scene/light_units.h"
 
@@ -131,6 +132,13 @@ struct Renderer::Impl {
   int lensSample = 0;
   float lensWeight = 0.0f;
   std::vector<std::shared_ptr<DrawSource>> extraSources;  // setDrawSources
+  FoliageSources foliage;  // the document's foliage (foliage_sources.h)
+  // The sources every frame draws after the meshes and terrains: the
+  // document's foliage, then the extra ones.
+  void addSources(const scene::SceneState& state, FrameContext& frame) {
+    for (const auto& s : foliage.update(state)) frame.sources.push_back(s.get());
+    for (const auto& s : extraSources) frame.sources.push_back(s.get());
+  }
 
   // The suffix of a view's passes and resources: its name, and from the
   // second group of renderGroups on the group's ("[g1/left]").
@@ -320,7 +328,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   MeshSource meshSource(visible, world, res.meshes, res.materials);
   TerrainSource terrainSource(world);
   frame.sources = {&meshSource, &terrainSource};
-  for (const auto& s : d.extraSources) frame.sources.push_back(s.get());
+  d.addSources(state, frame);
   // Shadow views first: each source culls its casters once.
   const ShadowPlan shadows = planShadows(frame);
   d.uploadDraws(frame, visible);
@@ -494,7 +502,7 @@ PickHit Renderer::pickSurface(const scene::SceneState& state, const RenderView& 
   MeshSource meshSource(visible, world, res.meshes, res.materials);
   TerrainSource terrainSource(world);
   frame.sources = {&meshSource, &terrainSource};
-  for (const auto& s : d.extraSources) frame.sources.push_back(s.get());
+  d.addSources(state, frame);
   d.uploadDraws(frame, visible);
   FrameGraph graph(res.pool);
   for (DrawSource* s : frame.sources) s->addPreparePasses(graph, frame);

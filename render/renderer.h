@@ -256,7 +256,8 @@ class Renderer {
 
   // Kinds of geometry drawn after the document's meshes and terrains
   // (render/draw_source.h, inside the renderer): tests and benchmarks add
-  // their own; foliage and particles will come from the document.
+  // their own. The document's foliage is drawn without this (foliage_sources.h);
+  // particles will come from the document too.
   void setDrawSources(std::vector<std::shared_ptr<DrawSource>> sources);
 
   // Frees GPU copies of assets that left the scene.
