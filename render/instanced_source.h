@@ -85,14 +85,15 @@ glm::vec3 instanceScale(const GpuInstance& instance);
 // smaller gust across it (1.3 Hz flutter under a 0.2 Hz envelope), each
 // instance in its own phase (a hash of its id). The bend grows with the
 // square of the relative height h = clamp(height / meshHeight, 0, 1) (a
-// cantilever's first mode, roughly): at the top the horizontal move is up
-// to kWindBend x response x the instance's height (2 % per unit of
-// response); the vertex also drops by the move's square over twice its
-// height, so a bent stem keeps about its length. Response 0 moves nothing
-// (the shader does not even evaluate it). The frequencies are multiples of
-// 1/60 Hz and the shader folds t to t mod 60 s using FrameBlock.time's
-// double-taken fraction, so a frame late in a long shot sways as exactly
-// as the first.
+// cantilever's first mode, roughly): at the top the bend moves up to
+// kWindBend x response x the instance's height along the wind (2 % per
+// unit of response), the gust up to 0.3 of that across it; the vertex
+// also drops by the move's square over twice its height, so a bent stem
+// keeps about its length (docs/rendering.md "Instanced sources").
+// Response 0 moves nothing (the shader does not even evaluate it). The
+// frequencies are multiples of 1/60 Hz and the shader folds t to t mod
+// 60 s using FrameBlock.time's double-taken fraction, so a frame late in a
+// long shot sways as exactly as the first.
 inline constexpr float kWindBend = 0.02f;
 inline const glm::vec2 kWindDirection{0.8f, 0.6f};  // towards east-north-east, unit
 glm::vec3 instanceWindOffset(float response, float heightAboveOrigin, float meshHeight, float scaleZ, uint32_t id,

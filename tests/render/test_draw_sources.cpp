@@ -135,8 +135,9 @@ void addLodSphere(scene::SceneState& s, const std::vector<double>& errors) {
   }
 }
 
-// The same instances as document entities, with the rotation the packed
-// instance stores (snorm16), so both paths place the same spheres.
+// The same instances as document entities (of `asset`), with the rotation
+// and scale the packed instance stores (snorm16, halves), so both paths
+// place the same spheres.
 void addEntities(scene::SceneState& s, const std::vector<Placed>& placed, const render::InstanceSet& set,
                  scene::AssetId asset = kSphere) {
   for (size_t i = 0; i < placed.size(); ++i) {
@@ -146,7 +147,7 @@ void addEntities(scene::SceneState& s, const std::vector<Placed>& placed, const 
     e.mesh = scene::MeshInstance{asset};
     e.transform.translation = placed[i].world;
     e.transform.rotation = glm::dquat(render::instanceRotation(set.instances[i]));
-    e.transform.scale = glm::dvec3(render::instanceScale(set.instances[i]));  // as stored (halves)
+    e.transform.scale = glm::dvec3(render::instanceScale(set.instances[i]));
     s.entities.emplace(e.id, e);
     s.roots.push_back(e.id);
   }
