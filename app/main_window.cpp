@@ -24,6 +24,8 @@
 
 #include "app/autosave.h"
 #include "app/background_job.h"
+#include "app/foliage_panel.h"
+#include "app/foliage_tool.h"
 #include "app/icons.h"
 #include "app/import_job.h"
 #include "app/message_panel.h"
@@ -38,6 +40,7 @@
 #include "app/status_bar.h"
 #include "app/timeline_clock.h"
 #include "app/terrain_panel.h"
+#include "app/terrain_tool.h"
 #include "app/viewport_widget.h"
 #include "render/renderer.h"
 #include "scene/light_units.h"
@@ -147,6 +150,19 @@ void MainWindow::createDocks() {
   terrain_ = new TerrainPanel(*this);
   tabifyDockWidget(settingsDock, dock("Terrain", "terrainDock", terrain_, Qt::RightDockWidgetArea));
   viewport_->setTerrainTool(terrain_->tool());
+  // Foliage: a tab beside Terrain; its brush draws in the viewport too.
+  foliage_ = new FoliagePanel(*this);
+  tabifyDockWidget(settingsDock, dock("Foliage", "foliageDock", foliage_, Qt::RightDockWidgetArea));
+  viewport_->setFoliageTool(foliage_->tool());
+  // One brush at a time: the left button cannot sculpt and paint foliage at
+  // once. Choosing a tool in one panel turns the other's off (each then
+  // emits again with nothing active, which stops there).
+  connect(terrain_->tool(), &TerrainTool::settingsChanged, this, [this] {
+    if (terrain_->tool()->active()) foliage_->tool()->setKind(FoliageToolKind::Off);
+  });
+  connect(foliage_->tool(), &FoliageTool::settingsChanged, this, [this] {
+    if (foliage_->tool()->active()) terrain_->tool()->setKind(TerrainToolKind::Off);
+  });
   // Materials: a tab beside them too, opened from a mesh's properties.
   materials_ = new MaterialsPanel(doc_, this);
   QDockWidget* materialsDock = dock("Materials", "materialsDock", materials_, Qt::RightDockWidgetArea);
@@ -340,6 +356,7 @@ void MainWindow::createMenus() {
   create->addAction(icon(Icon::PointLight), "Sp&ot Light", this, [this] { createEntity(Create::SpotLight); });
 
   terrain_->populateMenu(menuBar()->addMenu("Te&rrain"));
+  foliage_->populateMenu(menuBar()->addMenu("Fo&liage"));
 
   QMenu* tools = menuBar()->addMenu("&Transform");
   tools->addAction(selectModeAct_);

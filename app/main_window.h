@@ -31,6 +31,7 @@ class PathEditor;
 class BackgroundJob;
 class MeshExportDialog;
 class ExportDialog;
+class FoliagePanel;
 class Keying;
 class StereoPreviewSettings;
 class TimelineClock;
@@ -70,6 +71,8 @@ class MainWindow : public QMainWindow {
   TimelinePanel* timeline() const { return timeline_; }
   // The Terrain panel and its brush (terrain_panel.h).
   TerrainPanel* terrainPanel() const { return terrain_; }
+  // The Foliage panel and its brush (foliage_panel.h).
+  FoliagePanel* foliagePanel() const { return foliage_; }
   Keying* keying() const { return keying_; }
   StereoPreviewSettings* stereoPreview() const { return stereo_; }
   // Camera paths: the editing state and actions, and the Camera Path dock.
@@ -198,6 +201,7 @@ class MainWindow : public QMainWindow {
   int errorsShown_ = 0;  // errors the Messages tab was raised for (main_window_timeline.cpp)
   ExportDialog* exportDialog_ = nullptr;
   TerrainPanel* terrain_ = nullptr;
+  FoliagePanel* foliage_ = nullptr;
   std::unique_ptr<BackgroundJob> docJob_;
   std::unique_ptr<BackgroundJob> exportJob_;  // File > Export Mesh
   std::unique_ptr<ImportJob> importJob_;

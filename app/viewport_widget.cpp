@@ -11,6 +11,7 @@
 #include <QVBoxLayout>
 #include <QWheelEvent>
 
+#include "app/foliage_tool.h"
 #include "app/overlay_builder.h"
 #include "app/selection.h"
 #include "app/terrain_tool.h"
@@ -123,6 +124,7 @@ void ViewportWidget::paintGL() {
   drawPathOverlay(state, view, overlay);
   if (!pathOwnsGizmo()) gizmo_.draw(state, selection_.ids(), view, overlay);
   if (terrainTool_) terrainTool_->drawOverlay(state, overlay);
+  if (foliageTool_) foliageTool_->drawOverlay(state, overlay);
   render::RenderOptions options;
   options.showGrid = showGrid_;
   options.overlay = overlay.empty() ? nullptr : &overlay;
@@ -302,6 +304,7 @@ void ViewportWidget::mousePressEvent(QMouseEvent* e) {
       } else {
         const glm::dvec2 px = toPixel(e->position());
         if (terrainPress(e->position())) break;  // a terrain brush stroke begins
+        if (foliagePress(e->position(), e->modifiers())) break;  // a foliage brush stroke begins
         if (pathPress(e->position())) break;     // a camera path's point is grabbed
         const GizmoHandle h =
             pathOwnsGizmo() ? GizmoHandle::None : gizmo_.hitTest(displayedState(), selection_.ids(), camera_.view(), px);
@@ -349,9 +352,11 @@ void ViewportWidget::mouseMoveEvent(QMouseEvent* e) {
       break;
     case Drag::Click: break;
     case Drag::Terrain: terrainMove(pos); break;
+    case Drag::Foliage: foliageMove(pos); break;
     case Drag::PathPoint: pathMove(pos, e->modifiers()); break;
     case Drag::None: {
       terrainMove(pos);  // the brush circle follows the cursor
+      foliageMove(pos);
       pathMove(pos, e->modifiers());  // the path point handles' highlight
       const GizmoHandle h = pathOwnsGizmo() ? GizmoHandle::None
                                             : gizmo_.hitTest(displayedState(), selection_.ids(), camera_.view(), toPixel(pos));
@@ -369,9 +374,11 @@ void ViewportWidget::mouseReleaseEvent(QMouseEvent* e) {
   const bool ends = (b == Qt::RightButton && (drag_ == Drag::Fly || drag_ == Drag::Dolly)) ||
                     (b == Qt::MiddleButton && drag_ == Drag::Pan) ||
                     (b == Qt::LeftButton && (drag_ == Drag::Orbit || drag_ == Drag::Gizmo || drag_ == Drag::Click ||
-                                             drag_ == Drag::Terrain || drag_ == Drag::PathPoint));
+                                             drag_ == Drag::Terrain || drag_ == Drag::Foliage ||
+                                             drag_ == Drag::PathPoint));
   if (!ends) return;
   if (drag_ == Drag::Terrain) terrainEnd();
+  if (drag_ == Drag::Foliage) foliageEnd();
   if (drag_ == Drag::Fly) endFly();
   if (drag_ == Drag::Gizmo) gizmo_.endDrag();
   if (drag_ == Drag::PathPoint) pathEnd();
@@ -446,6 +453,7 @@ void ViewportWidget::keyReleaseEvent(QKeyEvent* e) {
 
 void ViewportWidget::focusOutEvent(QFocusEvent* e) {
   if (drag_ == Drag::Terrain) terrainEnd();
+  if (drag_ == Drag::Foliage) foliageEnd();
   if (drag_ == Drag::Fly) {
     endFly();
     drag_ = Drag::None;

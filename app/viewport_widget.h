@@ -20,6 +20,7 @@ class QLabel;
 namespace hs::app {
 
 class ComfortReadout;
+class FoliageTool;
 class PathEditor;
 class PathPointDrag;
 class Selection;
@@ -71,6 +72,10 @@ class ViewportWidget : public QOpenGLWidget {
   // The terrain brush: while it has a tool, left-mouse strokes sculpt and
   // paint the terrain under the cursor (viewport_terrain.cpp).
   void setTerrainTool(TerrainTool* tool) { terrainTool_ = tool; }
+  // The foliage brush: while it has a tool, left-mouse strokes paint,
+  // erase or select foliage on the ground under the cursor
+  // (viewport_foliage.cpp). The panels keep one of the two brushes active.
+  void setFoliageTool(FoliageTool* tool) { foliageTool_ = tool; }
   // Camera paths: the drawn points can be picked and dragged, the selected
   // point with move handles (viewport_path.cpp).
   void setPathEditor(PathEditor* editor);
@@ -119,7 +124,7 @@ class ViewportWidget : public QOpenGLWidget {
   void focusOutEvent(QFocusEvent* e) override;
 
  private:
-  enum class Drag { None, Click, Gizmo, Fly, Orbit, Pan, Dolly, Terrain, PathPoint };
+  enum class Drag { None, Click, Gizmo, Fly, Orbit, Pan, Dolly, Terrain, Foliage, PathPoint };
   void releaseGl();
   void onDocumentChanged(const scene::ChangeSet& changes);
   void tickFly();
@@ -151,6 +156,10 @@ class ViewportWidget : public QOpenGLWidget {
   bool terrainPress(const QPointF& pos);  // viewport_terrain.cpp
   void terrainMove(const QPointF& pos);
   void terrainEnd();
+  FoliageTool* foliageTool_ = nullptr;
+  bool foliagePress(const QPointF& pos, Qt::KeyboardModifiers modifiers);  // viewport_foliage.cpp
+  void foliageMove(const QPointF& pos);
+  void foliageEnd();
   QElapsedTimer flyClock_;
 
   TimelineClock* clock_ = nullptr;

@@ -169,6 +169,24 @@ bool MeshGround::covers(const glm::dvec3& world, double height) const {
   return bvh_.occluded(world - mesh_->origin + glm::dvec3(0.0, 0.0, 0.01), glm::dvec3(0.0, 0.0, 1.0), 0.0, height);
 }
 
+std::optional<SurfacePoint> MeshGround::raycast(const glm::dvec3& origin, const glm::dvec3& direction,
+                                                double maxDistance) const {
+  if (bvh_.empty() || !(maxDistance > 0.0)) return std::nullopt;
+  const double far = std::min(maxDistance, 1e8);  // an infinite one cannot be halved
+  const glm::dvec3 o = origin - mesh_->origin;
+  if (!bvh_.occluded(o, direction, 0.0, far)) return std::nullopt;
+  // Invariant: a triangle is crossed within [lo, hi], none before lo.
+  double lo = 0.0, hi = far;
+  for (int i = 0; i < 64 && hi - lo > 1e-3; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (bvh_.occluded(o, direction, lo, mid)) hi = mid;
+    else lo = mid;
+  }
+  // The crossed triangle is within 1 mm of the point: its closest point
+  // gives the face's normal and slope.
+  return closest(origin + direction * hi, 1e-2);
+}
+
 // --- ground and regions ------------------------------------------------------------
 
 void Ground::bounds(glm::dvec2& lo, glm::dvec2& hi) const {

@@ -57,6 +57,12 @@ class MeshGround {
   // Is there a triangle of this mesh above `world` within `height` (a
   // point inside the scan's footprint, or under a ledge)? Any hit will do.
   bool covers(const glm::dvec3& world, double height) const;
+  // The first surface point along a ray from `origin` (world) in the unit
+  // `direction`, within maxDistance (an editor brush's pick on a scan):
+  // found to within 1 mm by halving the interval where any triangle is
+  // crossed, so it needs no nearest-hit walk of its own.
+  std::optional<SurfacePoint> raycast(const glm::dvec3& origin, const glm::dvec3& direction,
+                                      double maxDistance) const;
   glm::dvec2 lo() const { return lo_; }
   glm::dvec2 hi() const { return hi_; }
 

@@ -1,5 +1,6 @@
 #include "scene/operation_registry.h"
 
+#include "foliage/foliage_operations.h"
 #include "scene/hscene_repair.h"
 #include "scene/import_pipeline.h"
 #include "scene/light_add_operation.h"
@@ -29,6 +30,10 @@ const std::vector<const OperationDecl*>& sharedOperations() {
       &sequencer::farmVerifyOperation(),
       &repairOperation(),
       &lightAddOperation(),
+      &foliage::foliageTypeAddOperation(),
+      &foliage::foliageScatterOperation(),
+      &foliage::foliageClearOperation(),
+      &foliage::foliagePlantOperation(),
   };
   return list;
 }

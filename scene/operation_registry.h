@@ -10,8 +10,9 @@
 
 namespace hs::scene {
 
-// import, mesh export, terrain new/import/erode/paint-rules/export, render, sequence,
-// key, path, farm slurm, farm verify.
+// import, mesh export, terrain new/import/erode/paint-rules/layer/export, render,
+// sequence, key, path, farm slurm, farm verify, repair, light add, foliage type
+// add/scatter/clear/plant.
 const std::vector<const OperationDecl*>& sharedOperations();
 // The operation named `name` ("terrain erode"); nullptr if none.
 const OperationDecl* findOperation(std::string_view name);

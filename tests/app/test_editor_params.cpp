@@ -6,8 +6,10 @@
 // a choice lists exactly the declared choices in order. The CLI is checked
 // against the same declarations (tests/cli/test_cli_params.cpp): the two
 // frontends cannot drift apart.
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QLineEdit>
 #include <QSpinBox>
 #include <QTest>
 
@@ -17,6 +19,7 @@
 
 #include "app/camera_path_panel.h"
 #include "app/export_dialog.h"
+#include "app/foliage_dialogs.h"
 #include "app/import_dialog.h"
 #include "app/main_window.h"
 #include "app/mesh_export_dialog.h"
@@ -75,6 +78,14 @@ class EditorParamsTest : public QObject {
     roots_["path"] = {w_->cameraPathPanel()};
     dialogs_.push_back(w_->makeMeshExportDialog());
     roots_["mesh export"] = {dialogs_.back().get()};
+    foliage::FoliageType pines;
+    pines.name = "Pines";
+    pines.mesh = "Pine";
+    roots_["foliage type add"] = {open<app::FoliageTypeDialog>(nullptr, QStringList{"Pine"}, QStringList{"Grass"}),
+                                  open<app::FoliageTypeDialog>(nullptr, QStringList{"Pine"}, QStringList{}, &pines)};
+    roots_["foliage scatter"] = {
+        open<app::FoliageScatterDialog>(nullptr, std::vector<foliage::FoliageType>{pines}, 0, QStringList{"Grass"})};
+    roots_["foliage plant"] = {open<app::PlantDialog>(nullptr, "Plant")};
   }
 
   void cleanupTestCase() {
@@ -105,6 +116,18 @@ class EditorParamsTest : public QObject {
     QVERIFY2(roots_.count(op->name), qPrintable(operation + " shows parameters in the editor but this test opens "
                                                             "none of its dialogs"));
     const std::vector<QWidget*>& roots = roots_.at(op->name);
+    // A flag is a check box; a text a line to type in or a list of names
+    // (a type's mesh: the scene's assets). Neither has a range to compare.
+    if (p.type == ParamType::Flag || p.type == ParamType::Text) {
+      const std::vector<QWidget*> fields = fieldsOf(roots, p.key, -1);
+      QVERIFY2(!fields.empty(), qPrintable(operation + ": no field for " + key));
+      for (QWidget* w : fields) {
+        const bool fits = p.type == ParamType::Flag ? qobject_cast<QCheckBox*>(w) != nullptr
+                                                    : qobject_cast<QLineEdit*>(w) || qobject_cast<QComboBox*>(w);
+        QVERIFY2(fits, qPrintable(operation + ": the field of " + key + " is a " + w->metaObject()->className()));
+      }
+      return;
+    }
     if (p.type == ParamType::Choice) {
       const std::vector<QWidget*> fields = fieldsOf(roots, p.key, -1);
       QVERIFY2(!fields.empty(), qPrintable(operation + ": no field for " + key));

@@ -146,6 +146,10 @@ class TestCliParams : public QObject {
         {"farm verify", {{"farm", "verify", "--frames", "0-1", "--out", frames}, "frame(s) missing"}},
         {"repair", {{"repair", missing_, tmp_.filePath("repaired.hscene")}, missing_}},
         {"light add", {{"light", "add", missing_, "--type", "spot"}, missing_}},
+        {"foliage type add", {{"foliage", "type", "add", "T", "--mesh", "M", missing_}, missing_}},
+        {"foliage scatter", {{"foliage", "scatter", "T", missing_}, missing_}},
+        {"foliage clear", {{"foliage", "clear", "T", missing_}, missing_}},
+        {"foliage plant", {{"foliage", "plant", "P", "--kind", "rock", missing_}, missing_}},
     };
   }
 

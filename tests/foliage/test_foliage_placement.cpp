@@ -595,6 +595,40 @@ class TestFoliagePlacement : public QObject {
     QVERIFY(worstTilt > 14.0);
     QVERIFY(closestPair(s.allInstances(), 0) >= 0.8);
   }
+
+  // The editor brush's pick on a scan (MeshGround::raycast): the first
+  // surface along the ray within 1 mm, at UTM coordinates, from above and
+  // at a slant; a ray that misses, or stops short, finds nothing.
+  void raycastFindsTheFirstSurface() {
+    const glm::dvec3 origin(512345.0, 4412345.0, 420.0);
+    // A plane z = 0.25 x (local) under a second layer 10 m above it: the
+    // upper one is hit first from above.
+    hs::mesh::MeshData m = gridMesh(20, 100.0, origin, [](double x, double) { return 0.25 * x; });
+    const hs::mesh::MeshData upper = gridMesh(4, 20.0, origin + glm::dvec3(60, 60, 40), [](double, double) { return 0.0; });
+    const uint32_t base = uint32_t(m.positions.size());
+    for (const glm::vec3& p : upper.positions) m.positions.push_back(p + glm::vec3(60, 60, 40));
+    for (uint32_t i : upper.indices) m.indices.push_back(base + i);
+    m.submeshes = {{0, uint32_t(m.indices.size()), -1}};
+    MeshGround mg(m);
+    const glm::dvec3 down(0, 0, -1);
+    auto hit = mg.raycast(origin + glm::dvec3(30.0, 40.0, 500.0), down, 1e4);
+    QVERIFY(hit);
+    QVERIFY(std::abs(hit->position.z - (origin.z + 7.5)) <= 1e-3);
+    QVERIFY(std::abs(hit->slopeDeg - glm::degrees(std::atan(0.25))) < 1e-6);
+    hit = mg.raycast(origin + glm::dvec3(70.0, 70.0, 500.0), down, 1e4);  // over the upper layer
+    QVERIFY(hit);
+    QVERIFY(std::abs(hit->position.z - (origin.z + 40.0)) <= 1e-3);
+    // At a slant from the side: the point on the plane along the ray.
+    const glm::dvec3 from = origin + glm::dvec3(-50.0, 10.0, 60.0);
+    const glm::dvec3 dir = glm::normalize(glm::dvec3(1.0, 0.0, -1.0));
+    hit = mg.raycast(from, dir, 1e4);
+    QVERIFY(hit);
+    // The ray z = 60 - (x + 50) meets z = 0.25 x at x = 8, z = 2.
+    QVERIFY(glm::length(hit->position - (origin + glm::dvec3(8.0, 10.0, 2.0))) <= 2e-3);
+    QVERIFY(!mg.raycast(origin + glm::dvec3(200.0, 40.0, 500.0), down, 1e4));  // beside the scan
+    QVERIFY(!mg.raycast(origin + glm::dvec3(30.0, 40.0, 500.0), down, 100.0));  // stops short
+    QVERIFY(!mg.raycast(origin + glm::dvec3(30.0, 40.0, 500.0), -down, 1e4));  // looking up
+  }
 };
 
 QTEST_GUILESS_MAIN(TestFoliagePlacement)

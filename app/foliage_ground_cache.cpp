@@ -1,0 +1,30 @@
+#include "app/foliage_ground_cache.h"
+
+#include <QCursor>
+#include <QGuiApplication>
+
+namespace hs::app {
+
+FoliageGroundCache::FoliageGroundCache(scene::Document& doc, QObject* parent) : QObject(parent), doc_(doc) {
+  connect(&doc_, &scene::Document::changed, this, [this](const scene::ChangeSet& c) {
+    // Anything that may move, add or remove a surface: entities (a
+    // transform, visibility, a mesh component), assets, terrain tiles (the
+    // ground holds a copy-on-write clone of the heights as they were).
+    // Foliage edits alone leave the ground as it is.
+    if (c.reset || c.hierarchy || c.assets || !c.entities.empty() || !c.terrains.empty()) ground_.reset();
+  });
+}
+
+FoliageGroundCache::~FoliageGroundCache() = default;
+
+const scene::FoliageGround& FoliageGroundCache::ground() {
+  if (!ground_) {
+    QGuiApplication::setOverrideCursor(QCursor(Qt::WaitCursor));
+    ground_ = std::make_unique<scene::FoliageGround>(doc_.state());
+    ++builds_;
+    QGuiApplication::restoreOverrideCursor();
+  }
+  return *ground_;
+}
+
+}  // namespace hs::app

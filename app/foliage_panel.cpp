@@ -1,0 +1,485 @@
+#include "app/foliage_panel.h"
+
+#include <algorithm>
+
+#include <QActionGroup>
+#include <QButtonGroup>
+#include <QCheckBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QCursor>
+#include <QGuiApplication>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QLocale>
+#include <QMenu>
+#include <QPushButton>
+#include <QSettings>
+#include <QSpinBox>
+#include <QToolButton>
+#include <QTreeWidget>
+#include <QVBoxLayout>
+
+#include "app/foliage_dialogs.h"
+#include "app/foliage_ground_cache.h"
+#include "app/form_widgets.h"
+#include "app/main_window.h"
+#include "app/message_panel.h"
+#include "app/prompts.h"
+#include "app/viewport_widget.h"
+#include "foliage/foliage_operations.h"
+#include "scene/foliage_data.h"
+#include "scene/foliage_ops.h"
+#include "scene/terrain_asset.h"
+
+namespace hs::app {
+namespace {
+
+const FoliageToolKind kKinds[] = {FoliageToolKind::Off, FoliageToolKind::Paint, FoliageToolKind::Erase,
+                                  FoliageToolKind::Select};
+
+// The busy cursor over work done on the UI thread (see foliage_panel.h).
+struct BusyCursor {
+  BusyCursor() { QGuiApplication::setOverrideCursor(QCursor(Qt::WaitCursor)); }
+  ~BusyCursor() { QGuiApplication::restoreOverrideCursor(); }
+  BusyCursor(const BusyCursor&) = delete;
+  BusyCursor& operator=(const BusyCursor&) = delete;
+};
+
+QString number(size_t n) { return QLocale().toString(qulonglong(n)); }
+
+}  // namespace
+
+FoliagePanel::FoliagePanel(MainWindow& window)
+    : QWidget(&window),
+      window_(window),
+      doc_(window.document()),
+      ground_(new FoliageGroundCache(doc_, this)),
+      tool_(new FoliageTool(doc_, *ground_, this)) {
+  setObjectName("foliagePanel");
+  // The brush of the last session.
+  QSettings s;
+  FoliageBrush b;
+  b.radius = s.value("foliage/radius", 10.0).toDouble();
+  b.densityFactor = s.value("foliage/density", 1.0).toDouble();
+  b.seed = s.value("foliage/seed", 1).toULongLong();
+  tool_->setBrush(b);
+  buildUi();
+  connect(&doc_, &scene::Document::changed, this, [this](const scene::ChangeSet& c) {
+    if (c.foliage || c.assets || c.reset) refresh();
+  });
+  connect(doc_.undoStack(), &QUndoStack::indexChanged, this, [this] { refresh(); });
+  connect(tool_, &FoliageTool::settingsChanged, this, [this] {
+    refreshBrush();
+    window_.viewport()->update();
+  });
+  connect(tool_, &FoliageTool::selectionChanged, this, [this] {
+    refreshSelection();
+    window_.viewport()->update();
+  });
+  connect(tool_, &FoliageTool::strokeFinished, this, [this](const QString& text, bool warning) {
+    warning ? window_.messages()->warning(text) : window_.messages()->info(text);
+  });
+  refreshBrush();
+  refresh();
+}
+
+FoliagePanel::~FoliagePanel() {
+  QSettings s;
+  s.setValue("foliage/radius", tool_->brush().radius);
+  s.setValue("foliage/density", tool_->brush().densityFactor);
+  s.setValue("foliage/seed", qulonglong(tool_->brush().seed));
+}
+
+void FoliagePanel::buildUi() {
+  auto* content = new QWidget;
+  auto* v = new QVBoxLayout(content);
+  info_ = new QLabel(content);
+  info_->setObjectName("foliageInfo");
+  info_->setWordWrap(true);
+  v->addWidget(info_);
+
+  list_ = new QTreeWidget(content);
+  list_->setObjectName("foliageTypes");
+  list_->setHeaderLabels({"Type", "Mesh", "Instances"});
+  list_->setRootIsDecorated(false);
+  list_->setSelectionMode(QAbstractItemView::SingleSelection);
+  list_->setToolTip("The scene's foliage types. The brush works on the selected type, or on every checked one "
+                    "when \"Checked types\" is on. Double-click to edit.");
+  list_->header()->setStretchLastSection(false);
+  list_->header()->setSectionResizeMode(0, QHeaderView::Stretch);
+  list_->header()->setSectionResizeMode(1, QHeaderView::Stretch);
+  list_->header()->setSectionResizeMode(2, QHeaderView::ResizeToContents);
+  list_->setMinimumHeight(120);
+  connect(list_, &QTreeWidget::currentItemChanged, this, [this] {
+    if (updating_) return;
+    tool_->setTypes(brushTypes());
+    refresh();
+  });
+  connect(list_, &QTreeWidget::itemChanged, this, [this] {
+    if (!updating_) tool_->setTypes(brushTypes());
+  });
+  connect(list_, &QTreeWidget::itemDoubleClicked, this, [this] { requestEditType(); });
+  v->addWidget(list_, 1);
+
+  auto* buttons = new QGridLayout;
+  auto button = [&](const QString& text, const char* name, const QString& tip, auto fn, int r, int c) {
+    auto* b = new QPushButton(text, content);
+    b->setObjectName(name);
+    b->setToolTip(tip);
+    connect(b, &QPushButton::clicked, this, fn);
+    buttons->addWidget(b, r, c);
+    return b;
+  };
+  button("Generate Plant…", "foliageGeneratePlant", "A tree, shrub, grass clump or rock as a mesh asset with its LODs",
+         [this] { requestGeneratePlant(); }, 0, 0);
+  button("New Type…", "foliageNewType", "A foliage type drawing one of the scene's mesh assets",
+         [this] { requestNewType(); }, 0, 1);
+  editType_ = button("Edit Type…", "foliageEditType", "The selected type's settings", [this] { requestEditType(); }, 1, 0);
+  scatter_ = button("Scatter…", "foliageScatter",
+                    "Place instances by rule over the whole ground: the selected type, or every type competing",
+                    [this] { requestScatter(); }, 1, 1);
+  clear_ = button("Clear", "foliageClear", "Remove every instance of the selected type", [this] { requestClear(); }, 2, 0);
+  v->addLayout(buttons);
+
+  auto* brush = new QGroupBox("Brush", content);
+  auto* bl = new QVBoxLayout(brush);
+  auto* row = new QHBoxLayout;
+  tools_ = new QButtonGroup(this);
+  tools_->setExclusive(true);
+  for (int i = 0; i < int(std::size(kKinds)); ++i) {
+    QToolButton* b = namedToolButton(brush, foliageToolLabel(kKinds[i]),
+                                     qPrintable(QString("foliageTool_%1").arg(foliageToolLabel(kKinds[i]))), {});
+    b->setCheckable(true);
+    b->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
+    b->setMinimumWidth(0);
+    tools_->addButton(b, i);
+    row->addWidget(b);
+  }
+  tools_->button(0)->setToolTip("No foliage brush: clicks select entities and the gizmo moves them");
+  tools_->button(1)->setToolTip("Paint instances of the brush's types up to their density (one undo step per stroke)");
+  tools_->button(2)->setToolTip("Erase the brush's types (with none chosen: every type) under the brush");
+  tools_->button(3)->setToolTip("Click: the nearest instance within the radius; drag: every instance under the "
+                                "brush; Shift adds to the selection");
+  connect(tools_, &QButtonGroup::idClicked, this, [this](int id) { tool_->setKind(kKinds[id]); });
+  bl->addLayout(row);
+  auto* form = new QFormLayout;
+  radius_ = numberSpin(brush, FoliageTool::kMinRadius, FoliageTool::kMaxRadius, 1.0, 2, " m", "Brush radius");
+  radius_->setObjectName("foliageRadius");
+  density_ = numberSpin(brush, 0.0, FoliageTool::kMaxDensityFactor, 0.1, 2, "×",
+                        "Paint: times each type's density (1: the type's own)");
+  density_->setObjectName("foliageDensity");
+  seed_ = new QSpinBox(brush);
+  seed_->setObjectName("foliageSeed");
+  seed_->setRange(0, 2147483647);
+  seed_->setKeyboardTracking(false);
+  seed_->setToolTip("Paint: each stroke's dabs draw their seeds from it; Reapply: the rotation, scale and sink");
+  useChecked_ = new QCheckBox("Checked types (else the selected one)", brush);
+  useChecked_->setObjectName("foliageUseChecked");
+  useChecked_->setToolTip("Paint several types at once, each to its density and spacing");
+  form->addRow("Radius", radius_);
+  form->addRow("Density", density_);
+  form->addRow("Seed", seed_);
+  form->addRow(useChecked_);
+  bl->addLayout(form);
+  connect(radius_, &QDoubleSpinBox::valueChanged, this, [this] { brushFromWidgets(); });
+  connect(density_, &QDoubleSpinBox::valueChanged, this, [this] { brushFromWidgets(); });
+  connect(seed_, &QSpinBox::valueChanged, this, [this] { brushFromWidgets(); });
+  connect(useChecked_, &QCheckBox::toggled, this, [this] { tool_->setTypes(brushTypes()); });
+  v->addWidget(brush);
+
+  auto* sel = new QGroupBox("Selected instances", content);
+  auto* sl = new QGridLayout(sel);
+  selectionInfo_ = new QLabel(sel);
+  selectionInfo_->setObjectName("foliageSelectionInfo");
+  sl->addWidget(selectionInfo_, 0, 0, 1, 3);
+  auto selButton = [&](const QString& text, const char* name, const QString& tip, auto fn, int c) {
+    auto* b = new QPushButton(text, sel);
+    b->setObjectName(name);
+    b->setToolTip(tip);
+    connect(b, &QPushButton::clicked, this, fn);
+    sl->addWidget(b, 1, c);
+    return b;
+  };
+  deleteSelection_ = selButton("Delete", "foliageDeleteSelection", "Remove the selected instances (one undo step)",
+                               [this] { tool_->deleteSelection(); }, 0);
+  reapply_ = selButton("Reapply", "foliageReapply",
+                       "Draw rotation, scale and sink again from each type's current settings; instances its "
+                       "filters now refuse are removed (one undo step)",
+                       [this] { tool_->reapplySelection(); }, 1);
+  deselect_ = selButton("Deselect", "foliageDeselect", "Empty the selection", [this] { tool_->clearSelection(); }, 2);
+  v->addWidget(sel);
+
+  putInScrollArea(this, content);
+}
+
+void FoliagePanel::populateMenu(QMenu* menu) {
+  menu->addAction("&Generate Plant…", this, [this] { requestGeneratePlant(); });
+  menu->addAction("&New Foliage Type…", this, [this] { requestNewType(); });
+  menu->addAction("&Edit Foliage Type…", this, [this] { requestEditType(); });
+  menu->addSeparator();
+  menu->addAction("&Scatter…", this, [this] { requestScatter(); });
+  menu->addAction("&Clear Type", this, [this] { requestClear(); });
+  menu->addSeparator();
+  auto* group = new QActionGroup(this);
+  for (FoliageToolKind k : kKinds) {
+    const QString text = k == FoliageToolKind::Off ? QString("Brush &Off") : QString("%1 Brush").arg(foliageToolLabel(k));
+    QAction* a = menu->addAction(text, this, [this, k] { tool_->setKind(k); });
+    a->setCheckable(true);
+    a->setChecked(tool_->kind() == k);
+    group->addAction(a);
+    toolActions_ << a;
+  }
+  menu->addSeparator();
+  menu->addAction("&Delete Selected Instances", this, [this] { tool_->deleteSelection(); });
+  menu->addAction("&Reapply to Selected Instances", this, [this] { tool_->reapplySelection(); });
+  menu->addAction("Deselect Instances", this, [this] { tool_->clearSelection(); });
+}
+
+int FoliagePanel::currentType() const {
+  const QTreeWidgetItem* it = list_->currentItem();
+  return it ? list_->indexOfTopLevelItem(const_cast<QTreeWidgetItem*>(it)) : -1;
+}
+
+void FoliagePanel::setCurrentType(int index) {
+  if (QTreeWidgetItem* it = list_->topLevelItem(index)) list_->setCurrentItem(it);
+}
+
+void FoliagePanel::setTypeChecked(int index, bool checked) {
+  if (QTreeWidgetItem* it = list_->topLevelItem(index)) it->setCheckState(0, checked ? Qt::Checked : Qt::Unchecked);
+}
+
+foliage::TypeSet FoliagePanel::brushTypes() const {
+  foliage::TypeSet out;
+  if (useChecked_->isChecked()) {
+    for (int i = 0; i < list_->topLevelItemCount(); ++i)
+      if (list_->topLevelItem(i)->checkState(0) == Qt::Checked) out.push_back(uint16_t(i));
+  } else if (currentType() >= 0) {
+    out.push_back(uint16_t(currentType()));
+  }
+  return out;
+}
+
+void FoliagePanel::refresh() {
+  const foliage::FoliageStore* store = scene::foliageStoreOf(doc_.state());
+  const size_t n = store ? store->types().size() : 0;
+  updating_ = true;
+  // Rows follow the types' order (the brush and the commands use indices);
+  // check marks stay on their rows.
+  while (list_->topLevelItemCount() > int(n)) delete list_->takeTopLevelItem(list_->topLevelItemCount() - 1);
+  while (list_->topLevelItemCount() < int(n)) {
+    auto* it = new QTreeWidgetItem(list_);
+    it->setFlags(it->flags() | Qt::ItemIsUserCheckable);
+    it->setCheckState(0, Qt::Unchecked);
+    it->setTextAlignment(2, Qt::AlignRight | Qt::AlignVCenter);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const foliage::FoliageType& t = store->type(i);
+    QTreeWidgetItem* it = list_->topLevelItem(int(i));
+    it->setText(0, QString::fromStdString(t.name));
+    it->setText(1, QString::fromStdString(t.mesh));
+    it->setText(2, number(store->instanceCount(uint16_t(i))));
+    it->setToolTip(1, scene::foliageTypeAsset(doc_.state(), t) == scene::kNoAsset
+                          ? QString("No mesh asset of this name in the scene: the type draws nothing")
+                          : QString());
+  }
+  if (!list_->currentItem() && n > 0) list_->setCurrentItem(list_->topLevelItem(0));
+  updating_ = false;
+  tool_->setTypes(brushTypes());
+  const bool selected = currentType() >= 0;
+  editType_->setEnabled(selected);
+  clear_->setEnabled(selected);
+  scatter_->setEnabled(n > 0);
+  if (n == 0)
+    info_->setText("No foliage types. Generate Plant… (or import a mesh), then New Type… to draw it.");
+  else
+    info_->setText(QString("%1 type(s), %2 instances in %3 cells of 64 m")
+                       .arg(n)
+                       .arg(number(store->instanceCount()))
+                       .arg(number(store->cellCount())));
+  refreshSelection();
+}
+
+void FoliagePanel::refreshBrush() {
+  updating_ = true;
+  const FoliageBrush& b = tool_->brush();
+  for (int i = 0; i < int(std::size(kKinds)); ++i)
+    if (kKinds[i] == tool_->kind()) {
+      tools_->button(i)->setChecked(true);
+      if (i < toolActions_.size()) toolActions_[i]->setChecked(true);
+    }
+  radius_->setValue(b.radius);
+  density_->setValue(b.densityFactor);
+  seed_->setValue(int(std::min<uint64_t>(b.seed, 2147483647)));
+  updating_ = false;
+}
+
+void FoliagePanel::brushFromWidgets() {
+  if (updating_) return;
+  FoliageBrush b = tool_->brush();
+  b.radius = radius_->value();
+  b.densityFactor = density_->value();
+  b.seed = uint64_t(seed_->value());
+  tool_->setBrush(b);
+}
+
+void FoliagePanel::refreshSelection() {
+  const size_t n = tool_->selection().size();
+  selectionInfo_->setText(n ? QString("%1 selected").arg(number(n)) : QString("None (the Select brush picks them)"));
+  for (QPushButton* b : {deleteSelection_, reapply_, deselect_}) b->setEnabled(n > 0);
+}
+
+QStringList FoliagePanel::meshNames() const {
+  QStringList names;
+  for (const auto& [id, a] : doc_.state().assets) names << QString::fromStdString(a.name);
+  names.sort(Qt::CaseInsensitive);
+  return names;
+}
+
+QStringList FoliagePanel::layerNames() const {
+  // The terrain foliage stands on (scene::FoliageGround: the first visible one).
+  QStringList names;
+  for (scene::EntityId id : scene::terrainEntities(doc_.state(), true))
+    if (const scene::TerrainAsset* t = scene::terrainOf(doc_.state(), id)) {
+      for (const auto& m : t->materials) names << QString::fromStdString(m.name);
+      break;
+    }
+  return names;
+}
+
+bool FoliagePanel::report(bool ok, const std::string& error, const std::vector<std::string>& messages,
+                          const std::string& summary, const QString& title) {
+  for (const std::string& m : messages) window_.messages()->warning(title + ": " + QString::fromStdString(m));
+  if (!ok) {
+    window_.messages()->error(title + ": " + QString::fromStdString(error));
+    window_.prompts().showError(this, title, QString::fromStdString(error));
+    return false;
+  }
+  if (!summary.empty()) window_.messages()->info(title + ": " + QString::fromStdString(summary));
+  return true;
+}
+
+// --- commands ---------------------------------------------------------------
+
+scene::AssetId FoliagePanel::generatePlant(const QString& name, const foliage::PlantParams& params) {
+  std::string error;
+  foliage::PlantStats stats;
+  scene::AssetId id = scene::kNoAsset;
+  {
+    const BusyCursor busy;  // a conifer with its LODs: a fraction of a second
+    id = scene::ops::addPlantAsset(doc_, name.toStdString(), params, error, &stats);
+  }
+  if (id == scene::kNoAsset) {
+    report(false, error, {}, {}, "Generate Plant");
+    return id;
+  }
+  const scene::MeshAsset* a = doc_.state().findAsset(id);
+  report(true, {}, {},
+         std::string("mesh asset \"") + a->name + "\": " + foliage::plantKindName(params.kind) + ", " +
+             std::to_string(a->data->triangleCount()) + " triangles, " + std::to_string(a->lods.size() + 1) +
+             " levels of detail",
+         "Generate Plant");
+  return id;
+}
+
+bool FoliagePanel::addType(const foliage::FoliageType& type) {
+  const scene::ops::FoliageOutcome out = scene::ops::addFoliageType(doc_, type);
+  if (!report(out.ok, out.error, out.messages, out.summary, "New Foliage Type")) return false;
+  setCurrentType(int(doc_.foliage().store().types().size()) - 1);
+  return true;
+}
+
+bool FoliagePanel::editType(int index, const foliage::FoliageType& type) {
+  if (index < 0) return false;
+  const scene::ops::FoliageOutcome out = scene::ops::setFoliageType(doc_, size_t(index), type);
+  return report(out.ok, out.error, out.messages, out.summary, "Edit Foliage Type");
+}
+
+bool FoliagePanel::scatter(const foliage::TypeSet& types, const Json& values) {
+  const foliage::FoliageStore& store = doc_.foliage().store();
+  for (uint16_t t : types)
+    if (t >= store.types().size()) return report(false, "foliage type " + std::to_string(t) + " does not exist", {}, {}, "Scatter");
+  // One type: its rules with the given overrides (checked as the CLI does);
+  // several compete by their own rules.
+  std::optional<foliage::FoliageType> rules;
+  if (types.size() == 1) {
+    rules = foliage::scatterRules(store.type(types[0]), values);
+    if (const std::vector<std::string> problems = foliage::validate(*rules); !problems.empty())
+      return report(false, problems.front(), {}, {}, "Scatter");
+  }
+  const uint64_t seed = values.contains("seed") && values["seed"].is_number_integer()
+                            ? values["seed"].get<uint64_t>()
+                            : uint64_t(defaultNumber(foliage::foliageScatterOperation().param("seed")));
+  scene::ops::FoliageOutcome out;
+  {
+    // On the UI thread: see foliage_panel.h (a worker needs a store snapshot).
+    const BusyCursor busy;
+    out = scene::ops::scatterFoliage(doc_, ground_->ground(), types, seed, foliage::regionFromValues(values), rules);
+  }
+  return report(out.ok, out.error, out.messages, out.summary, "Scatter");
+}
+
+bool FoliagePanel::clear(int index) {
+  if (index < 0 || size_t(index) >= doc_.foliage().store().types().size()) return false;
+  const std::string name = doc_.foliage().store().type(size_t(index)).name;
+  const scene::ops::FoliageOutcome out = scene::ops::eraseFoliage(
+      doc_, std::nullopt, {uint16_t(index)}, QString("Clear foliage %1").arg(QString::fromStdString(name)));
+  return report(out.ok, out.error, out.messages, out.summary, "Clear " + QString::fromStdString(name));
+}
+
+// --- with dialogs ---------------------------------------------------------------
+
+void FoliagePanel::requestGeneratePlant() {
+  std::string name = "Plant";
+  auto taken = [this](const std::string& n) {
+    for (const auto& [id, a] : doc_.state().assets)
+      if (a.name == n) return true;
+    return false;
+  };
+  for (int i = 2; taken(name); ++i) name = "Plant " + std::to_string(i);
+  PlantDialog d(&window_, QString::fromStdString(name));
+  if (d.exec() != QDialog::Accepted) return;
+  generatePlant(d.name(), d.params());
+}
+
+void FoliagePanel::requestNewType() {
+  const QStringList meshes = meshNames();
+  if (meshes.isEmpty()) {
+    window_.prompts().showError(this, "New Foliage Type",
+                                "The scene has no mesh asset for a type to draw: Generate Plant… or import a mesh first.");
+    return;
+  }
+  std::string name = "Foliage";
+  for (int i = 2; doc_.foliage().store().findType(name) >= 0; ++i) name = "Foliage " + std::to_string(i);
+  FoliageTypeDialog d(&window_, meshes, layerNames(), nullptr, QString::fromStdString(name));
+  if (d.exec() != QDialog::Accepted) return;
+  foliage::FoliageType t;
+  std::string error;
+  if (d.type(t, error)) addType(t);  // checked by the dialog's OK already
+}
+
+void FoliagePanel::requestEditType() {
+  const int i = currentType();
+  if (i < 0) return;
+  const foliage::FoliageType current = doc_.foliage().store().type(size_t(i));
+  FoliageTypeDialog d(&window_, meshNames(), layerNames(), &current);
+  if (d.exec() != QDialog::Accepted) return;
+  foliage::FoliageType t;
+  std::string error;
+  if (d.type(t, error)) editType(i, t);
+}
+
+void FoliagePanel::requestScatter() {
+  const std::vector<foliage::FoliageType> types = doc_.foliage().store().types();
+  if (types.empty()) return;
+  FoliageScatterDialog d(&window_, types, currentType(), layerNames());
+  if (d.exec() != QDialog::Accepted) return;
+  scatter(d.types(), d.values());
+}
+
+void FoliagePanel::requestClear() { clear(currentType()); }
+
+}  // namespace hs::app

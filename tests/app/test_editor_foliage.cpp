@@ -1,0 +1,376 @@
+// The editor's foliage tools, driven as a user drives them: on a hilly
+// terrain made through the Terrain panel, a plant generated through the
+// Foliage panel (and its dialog's kind defaults), a type added, a scatter
+// from the Scatter dialog's values (instances appear, the override does not
+// stick to the type, undo removes them), Clear; then brush strokes with the
+// mouse in the viewport: Paint adds instances as ONE undo step, Erase
+// removes them, Select (a click, then a Shift-drag) with Delete and
+// Reapply; a type edited through its dialog (and a refused combination);
+// the Foliage menu; one brush active at a time.
+#include <QAction>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QLabel>
+#include <QLineEdit>
+#include <QLocale>
+#include <QMenu>
+#include <QMenuBar>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QTest>
+#include <QToolButton>
+#include <QTreeWidget>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "app/app_settings.h"
+#include "app/foliage_dialogs.h"
+#include "app/foliage_panel.h"
+#include "app/foliage_tool.h"
+#include "app/main_window.h"
+#include "app/message_panel.h"
+#include "app/param_form.h"
+#include "app/selection.h"
+#include "app/terrain_panel.h"
+#include "app/terrain_tool.h"
+#include "app/viewport_widget.h"
+#include "editor_fixture.h"
+#include "scene/foliage_data.h"
+#include "scene/terrain_ops.h"
+#include "scene/terrain_pick.h"
+
+using namespace hs;
+using hs::app::MainWindow;
+
+class EditorFoliageTest : public QObject {
+  Q_OBJECT
+ public:
+  static void initMain() { test::initEditorMain(); }
+
+ private:
+  std::unique_ptr<MainWindow> w_;
+  test::QuietPrompts* prompts_ = nullptr;
+  app::FoliagePanel* panel_ = nullptr;
+  scene::EntityId terrain_ = scene::kNoEntity;
+
+  scene::Document& doc() { return w_->document(); }
+  const foliage::FoliageStore& store() { return doc().foliage().store(); }
+  // The undo position: one more per step pushed (count() would also hold
+  // undone steps that a push drops).
+  int steps() { return doc().undoStack()->index(); }
+
+  // The widget pixel over the terrain's surface at world XY.
+  QPoint pixelAt(const glm::dvec2& xy) {
+    const auto z = scene::terrainSurfaceAt(doc().state(), terrain_, xy);
+    if (!z) qFatal("no terrain at %g, %g", xy.x, xy.y);
+    QPoint p;
+    if (!w_->viewport()->projectToWidget(glm::dvec3(xy, *z), p)) qFatal("%g, %g is not in view", xy.x, xy.y);
+    return p;
+  }
+
+  // A press, five moves of `step` pixels and a release.
+  void stroke(const QPoint& from, const QPoint& step, Qt::KeyboardModifiers mods = Qt::NoModifier) {
+    app::ViewportWidget* vp = w_->viewport();
+    QTest::mousePress(vp, Qt::LeftButton, mods, from);
+    for (int i = 1; i <= 5; ++i) QTest::mouseMove(vp, from + step * i);
+    QTest::mouseRelease(vp, Qt::LeftButton, mods, from + step * 5);
+  }
+
+  void chooseTool(const char* label) {
+    auto* b = panel_->findChild<QToolButton*>(QString("foliageTool_%1").arg(label));
+    QVERIFY(b);
+    b->click();
+  }
+
+  // The number in a Messages line such as "Paint foliage: 40 placed, 0 removed in 7 dab(s)".
+  int dabsInLastMessage() {
+    const QString t = w_->messages()->lastText();
+    const int end = t.indexOf(" dab(s)");
+    if (end < 0) return -1;
+    const int start = t.lastIndexOf(' ', end - 1);
+    return t.mid(start + 1, end - start - 1).toInt();
+  }
+
+ private slots:
+  void initTestCase() {
+    app::initApplicationSettings();
+    w_ = std::make_unique<MainWindow>();
+    prompts_ = test::setQuietPrompts(*w_);
+    w_->resize(1000, 700);
+    w_->newScene();
+    w_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w_.get()));
+    w_->activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(w_.get()));
+    QTRY_VERIFY_WITH_TIMEOUT(w_->viewport()->framesRendered() > 0 || !w_->viewport()->rendererError().isEmpty(), 30000);
+    QVERIFY2(w_->viewport()->rendererReady(), qPrintable(w_->viewport()->rendererError()));
+    panel_ = w_->foliagePanel();
+    QVERIFY(panel_);
+    // A valley like the demo's: 256 m of fractal hills up to 12 m.
+    scene::ops::NewTerrain spec;
+    spec.name = "Valley";
+    spec.samplesX = spec.samplesY = 257;
+    spec.sizeMetres = glm::dvec2(256.0);
+    spec.heightRange = {0.0f, 12.0f};
+    spec.start = scene::ops::NewTerrain::Start::Hills;
+    terrain_ = w_->terrainPanel()->createTerrain(spec);
+    QVERIFY(terrain_ != scene::kNoEntity);
+  }
+
+  void cleanupTestCase() { w_.reset(); }
+
+  void generatePlantThroughThePanel() {
+    // The dialog puts each kind's defaults in its fields.
+    app::PlantDialog d(nullptr, "Boulder");
+    auto* kind = qobject_cast<QComboBox*>(d.form()->field("kind"));
+    QVERIFY(kind);
+    kind->setCurrentIndex(kind->findData("rock"));
+    const foliage::PlantParams rock = foliage::defaultPlant(foliage::PlantKind::Rock);
+    QCOMPARE(qobject_cast<QDoubleSpinBox*>(d.form()->field("height_m"))->value(), rock.height);
+    qobject_cast<QDoubleSpinBox*>(d.form()->field("height_m"))->setValue(1.2);
+    qobject_cast<QSpinBox*>(d.form()->field("seed"))->setValue(7);
+    const foliage::PlantParams p = d.params();
+    QCOMPARE(p.kind, foliage::PlantKind::Rock);
+    QCOMPARE(p.height, 1.2);
+    QCOMPARE(p.seed, uint64_t(7));
+
+    const int before = steps();
+    const scene::AssetId id = panel_->generatePlant(d.name(), p);
+    QVERIFY(id != scene::kNoAsset);
+    QCOMPARE(steps(), before + 1);
+    const scene::MeshAsset* a = doc().state().findAsset(id);
+    QCOMPARE(a->name, std::string("Boulder"));
+    QVERIFY(a->data->triangleCount() > 100);
+    QVERIFY(!a->lods.empty());
+    QVERIFY(w_->messages()->lastText().contains("Boulder"));
+    // The same name again is refused with a message, nothing added.
+    QVERIFY(panel_->generatePlant("Boulder", p) == scene::kNoAsset);
+    QCOMPARE(steps(), before + 1);
+    QVERIFY(!prompts_->errors.isEmpty() && prompts_->errors.last().contains("exists"));
+  }
+
+  void addType() {
+    foliage::FoliageType t;
+    t.name = "Rocks";
+    t.mesh = "Boulder";
+    t.densityPerHa = 2000.0;
+    t.spacing = 1.0;
+    const int before = steps();
+    QVERIFY(panel_->addType(t));
+    QCOMPARE(steps(), before + 1);
+    QCOMPARE(store().types().size(), size_t(1));
+    auto* list = panel_->findChild<QTreeWidget*>("foliageTypes");
+    QCOMPARE(list->topLevelItemCount(), 1);
+    QCOMPARE(list->topLevelItem(0)->text(0), QString("Rocks"));
+    QCOMPARE(list->topLevelItem(0)->text(1), QString("Boulder"));
+    QCOMPARE(list->topLevelItem(0)->text(2), QString("0"));
+    QCOMPARE(panel_->currentType(), 0);
+    QCOMPARE(panel_->brushTypes(), foliage::TypeSet{0});
+    // A type drawing a mesh the scene lacks is refused.
+    t.name = "Ghosts";
+    t.mesh = "No such mesh";
+    QVERIFY(!panel_->addType(t));
+    QCOMPARE(store().types().size(), size_t(1));
+    QVERIFY(prompts_->errors.last().contains("No such mesh"));
+  }
+
+  void scatterAndUndo() {
+    app::FoliageScatterDialog d(nullptr, store().types(), 0, {});
+    QCOMPARE(d.types(), foliage::TypeSet{0});
+    qobject_cast<QSpinBox*>(d.form()->field("seed"))->setValue(5);
+    const int before = steps();
+    QVERIFY(panel_->scatter(d.types(), d.values()));
+    QCOMPARE(steps(), before + 1);
+    const size_t n = store().instanceCount();
+    // 6.6 ha at 2000 per hectare, less what the spacing refuses.
+    QVERIFY2(n > 5000 && n < 14000, qPrintable(QString::number(n)));
+    qInfo("scatter: %zu instances", n);
+    auto* list = panel_->findChild<QTreeWidget*>("foliageTypes");
+    QCOMPARE(list->topLevelItem(0)->text(2), QLocale().toString(qulonglong(n)));
+    doc().undoStack()->undo();
+    QCOMPARE(store().instanceCount(), size_t(0));
+    QCOMPARE(list->topLevelItem(0)->text(2), QString("0"));
+    doc().undoStack()->redo();
+    QCOMPARE(store().instanceCount(), n);
+
+    // Clear: the type's instances go in one step; undo brings them back.
+    QVERIFY(panel_->clear(0));
+    QCOMPARE(store().instanceCount(), size_t(0));
+    QCOMPARE(steps(), before + 2);
+    doc().undoStack()->undo();
+    QCOMPARE(store().instanceCount(), n);
+    doc().undoStack()->undo();
+    QCOMPARE(store().instanceCount(), size_t(0));
+
+    // A density override is for this scatter only.
+    d.form()->setChecked("density_per_ha", true);
+    qobject_cast<QDoubleSpinBox*>(d.form()->field("density_per_ha"))->setValue(200.0);
+    QVERIFY(panel_->scatter(d.types(), d.values()));
+    const size_t thin = store().instanceCount();
+    QVERIFY2(thin > n / 20 && thin < n / 5, qPrintable(QString("%1 of %2").arg(thin).arg(n)));
+    QCOMPARE(store().type(0).densityPerHa, 2000.0);
+    doc().undoStack()->undo();
+    QCOMPARE(store().instanceCount(), size_t(0));
+  }
+
+  void paintStrokeIsOneUndoStep() {
+    app::ViewportWidget* vp = w_->viewport();
+    // Look down on the valley's centre from 150 m.
+    render::RenderView v = vp->currentView();
+    v.eye = {0.0, -60.0, 150.0};
+    v.orientation = glm::quatLookAt(glm::normalize(glm::dvec3(0.0, 60.0, -150.0)), glm::dvec3(0, 0, 1));
+    vp->camera().setView(v, 160.0);
+    vp->update();
+    w_->terrainPanel()->findChild<QToolButton*>("terrainTool_Raise")->click();
+    chooseTool("Paint");
+    QCOMPARE(panel_->tool()->kind(), app::FoliageToolKind::Paint);
+    QVERIFY(!w_->terrainPanel()->tool()->active());  // one brush at a time
+    panel_->findChild<QDoubleSpinBox*>("foliageRadius")->setValue(5.0);
+    QCOMPARE(panel_->tool()->brush().radius, 5.0);
+
+    const QPoint p = pixelAt({0.0, 0.0});
+    const int before = steps();
+    QTest::mousePress(vp, Qt::LeftButton, Qt::NoModifier, p);
+    QVERIFY(panel_->tool()->stroking());
+    QVERIFY(store().instanceCount() > 0);  // the first dab is in the store already ...
+    QCOMPARE(steps(), before);             // ... its undo step comes at release
+    for (int i = 1; i <= 5; ++i) QTest::mouseMove(vp, p + QPoint(12 * i, 0));
+    QTest::mouseRelease(vp, Qt::LeftButton, Qt::NoModifier, p + QPoint(60, 0));
+    QVERIFY(!panel_->tool()->stroking());
+    QCOMPARE(steps(), before + 1);  // the whole stroke, one step
+    const int dabs = dabsInLastMessage();
+    QVERIFY2(dabs >= 3, qPrintable(w_->messages()->lastText()));
+    const size_t painted = store().instanceCount();
+    QVERIFY2(painted > 30, qPrintable(QString::number(painted)));
+    qInfo("paint stroke: %d dabs, %zu instances", dabs, painted);
+    // Along the stroke: right of the start, within the radius of the path
+    // (which bends a little with the hills under a fixed pixel row).
+    for (const foliage::Instance& in : store().allInstances()) {
+      QVERIFY(in.position.x > -5.01 && in.position.x < 40.0);
+      QVERIFY(std::abs(in.position.y) < 15.0);
+      QCOMPARE(in.surface, foliage::Surface::Terrain);
+    }
+    // The stroke selected nothing and did not move the terrain entity.
+    QCOMPARE(w_->selection().primary(), terrain_);
+    doc().undoStack()->undo();
+    QCOMPARE(store().instanceCount(), size_t(0));
+    doc().undoStack()->redo();
+    QCOMPARE(store().instanceCount(), painted);
+  }
+
+  void eraseStrokeRemovesThem() {
+    chooseTool("Erase");
+    panel_->findChild<QDoubleSpinBox*>("foliageRadius")->setValue(12.0);
+    const QPoint p = pixelAt({0.0, 0.0});
+    const int before = steps();
+    stroke(p, QPoint(12, 0));
+    QCOMPARE(steps(), before + 1);
+    QCOMPARE(store().instanceCount(), size_t(0));
+    doc().undoStack()->undo();
+    QVERIFY(store().instanceCount() > 30);
+  }
+
+  void selectDeleteAndReapply() {
+    chooseTool("Select");
+    panel_->findChild<QDoubleSpinBox*>("foliageRadius")->setValue(3.0);
+    const QPoint p = pixelAt({5.0, 0.0});
+    app::ViewportWidget* vp = w_->viewport();
+    const size_t all = store().instanceCount();
+    const int before = steps();
+    // A click: the nearest instance within the radius.
+    QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, p);
+    QCOMPARE(panel_->tool()->selection().size(), size_t(1));
+    QCOMPARE(panel_->findChild<QLabel*>("foliageSelectionInfo")->text(), QString("1 selected"));
+    // A Shift-drag adds everything under the brush.
+    stroke(p, QPoint(3, 0), Qt::ShiftModifier);
+    const size_t selected = panel_->tool()->selection().size();
+    QVERIFY2(selected > 5 && selected < all, qPrintable(QString("%1 of %2").arg(selected).arg(all)));
+    qInfo("selected %zu of %zu", selected, all);
+    QCOMPARE(steps(), before);  // selecting changes no document
+
+    // Reapply: rotations and scales drawn again, the instances stay (one step).
+    const std::vector<foliage::Instance> was = store().allInstances();
+    panel_->findChild<QPushButton*>("foliageReapply")->click();
+    QCOMPARE(steps(), before + 1);
+    QCOMPARE(store().instanceCount(), all);
+    QCOMPARE(panel_->tool()->selection().size(), selected);
+    // The selected ones turned (a new random yaw), the others did not.
+    size_t turned = 0;
+    for (const foliage::Instance& in : store().allInstances())
+      for (const foliage::Instance& old : was)
+        if (old.id == in.id && std::abs(glm::dot(old.rotation, in.rotation)) < 0.9999) ++turned;
+    QVERIFY2(turned > selected / 2 && turned <= selected, qPrintable(QString("%1 of %2").arg(turned).arg(selected)));
+
+    auto* del = panel_->findChild<QPushButton*>("foliageDeleteSelection");
+    QVERIFY(del->isEnabled());
+    del->click();
+    QCOMPARE(steps(), before + 2);
+    QCOMPARE(store().instanceCount(), all - selected);
+    QVERIFY(panel_->tool()->selection().empty());
+    QVERIFY(!del->isEnabled());
+    doc().undoStack()->undo();
+    QCOMPARE(store().instanceCount(), all);
+    chooseTool("Off");
+    QVERIFY(!panel_->tool()->active());
+  }
+
+  void editTypeThroughTheDialog() {
+    const foliage::FoliageType before = store().type(0);
+    app::FoliageTypeDialog d(nullptr, {"Boulder"}, {}, &before);
+    QCOMPARE(d.nameField()->text(), QString("Rocks"));
+    auto* spacing = qobject_cast<QDoubleSpinBox*>(d.form()->field("spacing_m"));
+    QVERIFY(spacing);
+    QCOMPARE(spacing->value(), 1.0);
+    foliage::FoliageType t;
+    std::string error;
+    // Opened and taken as it is, the dialog gives the type back unchanged.
+    QVERIFY2(d.type(t, error), error.c_str());
+    QVERIFY(t == before);
+    spacing->setValue(3.0);
+    auto* mode = qobject_cast<QComboBox*>(d.form()->field("scale_mode"));
+    mode->setCurrentIndex(mode->findData("xy_z"));
+    QVERIFY2(d.type(t, error), error.c_str());
+    const int steps0 = steps();
+    QVERIFY(panel_->editType(0, t));
+    QCOMPARE(steps(), steps0 + 1);
+    QCOMPARE(store().type(0).spacing, 3.0);
+    QCOMPARE(store().type(0).scaleMode, foliage::ScaleMode::XyZ);
+    QCOMPARE(store().type(0).densityPerHa, before.densityPerHa);  // the rest as it was
+    doc().undoStack()->undo();
+    QVERIFY(store().type(0) == before);
+
+    // A combination the CLI refuses too: the dialog names it and stays open.
+    qobject_cast<QDoubleSpinBox*>(d.form()->field("fade_m"))->setValue(5000.0);
+    QVERIFY(!d.type(t, error));
+    QVERIFY2(QString::fromStdString(error).contains("fade_m"), error.c_str());
+    d.accept();
+    QVERIFY(d.result() != QDialog::Accepted);
+    QVERIFY(!d.findChild<QLabel*>("foliageTypeError")->isHidden());
+  }
+
+  void foliageMenuOffersEveryCommand() {
+    QMenu* menu = nullptr;
+    for (QAction* a : w_->menuBar()->actions())
+      if (a->text().remove('&') == "Foliage") menu = a->menu();
+    QVERIFY(menu);
+    QStringList texts;
+    for (QAction* a : menu->actions()) texts << a->text().remove('&');
+    for (const char* t : {"Generate Plant…", "New Foliage Type…", "Edit Foliage Type…", "Scatter…", "Clear Type",
+                          "Paint Brush", "Erase Brush", "Select Brush", "Brush Off", "Delete Selected Instances",
+                          "Reapply to Selected Instances"})
+      QVERIFY2(texts.contains(t), t);
+    // The menu's brush entries drive the same tool as the panel's buttons.
+    for (QAction* a : menu->actions())
+      if (a->text().remove('&') == "Erase Brush") a->trigger();
+    QCOMPARE(panel_->tool()->kind(), app::FoliageToolKind::Erase);
+    QVERIFY(panel_->findChild<QToolButton*>("foliageTool_Erase")->isChecked());
+    // Choosing a terrain tool turns the foliage brush off.
+    w_->terrainPanel()->findChild<QToolButton*>("terrainTool_Smooth")->click();
+    QVERIFY(!panel_->tool()->active());
+    QVERIFY(panel_->findChild<QToolButton*>("foliageTool_Off")->isChecked());
+    w_->terrainPanel()->findChild<QToolButton*>("terrainTool_Select")->click();
+  }
+};
+
+QTEST_MAIN(EditorFoliageTest)
+#include "test_editor_foliage.moc"
