@@ -1,0 +1,96 @@
+// `hybridscape-cli foliage ...` as a user runs it (the built program through
+// QProcess): a plant generated as an asset with LODs, a type added, a
+// scatter, `info --json` counting the instances per type, a clear of a
+// region, and every refusal one line on stderr naming the problem, the
+// scene left as it was.
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include "cli_runner.h"
+
+using namespace hs;
+using Run = hs::test::CliRun;
+
+class TestCliFoliage : public QObject {
+  Q_OBJECT
+  QTemporaryDir tmp_;
+  QString path(const QString& name) const { return tmp_.filePath(name); }
+  Run cli(const QStringList& args) { return test::runCli(args, tmp_.path()); }
+
+  void ok(const QStringList& args, Run* out = nullptr) {
+    const Run r = cli(args);
+    QVERIFY2(r.code == 0, qPrintable("hybridscape-cli " + args.join(' ') + ": " + r.err));
+    if (out) *out = r;
+  }
+
+  void expectError(const QStringList& args, int code, const QStringList& names) {
+    const Run r = cli(args);
+    const QString cmd = "hybridscape-cli " + args.join(' ');
+    QVERIFY2(r.code == code, qPrintable(QString("%1: exit %2, expected %3; stderr: %4").arg(cmd).arg(r.code).arg(code).arg(r.err)));
+    QVERIFY2(r.errLines().size() == 1, qPrintable(cmd + ": expected one line on stderr, got:\n" + r.err));
+    for (const QString& n : names) QVERIFY2(r.err.contains(n), qPrintable(QString("%1: '%2' not in: %3").arg(cmd, n, r.err)));
+  }
+
+  QJsonObject foliage(const QString& file) {
+    const Run r = cli({"info", file, "--json"});
+    return QJsonDocument::fromJson(r.out.toUtf8()).object()["foliage"].toObject();
+  }
+
+ private slots:
+  void initTestCase() { QVERIFY(tmp_.isValid()); }
+
+  void plantTypeScatterInfoClear() {
+    const QString f = test::newSceneWithCli(path("forest.hscene"), tmp_.path());
+    ok({"terrain", "new", f, "--size", "200", "--resolution", "129", "--hills", "--height", "0,20"});
+    Run plant;
+    ok({"foliage", "plant", "Stone", "--kind", "rock", "--seed", "4", f}, &plant);
+    QVERIFY2(plant.out.contains("LOD 1"), qPrintable(plant.out));
+    ok({"foliage", "type", "add", "Stones", "--mesh", "Stone", "--density", "300", "--spacing", "2", f});
+    Run scatter;
+    ok({"foliage", "scatter", "Stones", f, "--seed", "9", "--on", "terrain"}, &scatter);
+    QVERIFY2(scatter.out.contains("foliage cells written"), qPrintable(scatter.out));
+    QJsonObject info = foliage(f);
+    const int placed = info["instances"].toInt();
+    QVERIFY2(placed > 400, qPrintable(QString::number(placed)));  // 300/ha over 4 ha, thinned by spacing
+    QCOMPARE(info["types"].toArray()[0].toObject()["name"].toString(), QString("Stones"));
+    QCOMPARE(info["types"].toArray()[0].toObject()["instances"].toInt(), placed);
+    Run text;
+    ok({"info", f}, &text);
+    QVERIFY2(text.out.contains("Stones: mesh \"Stone\", " + QString::number(placed) + " instances"), qPrintable(text.out));
+    ok({"foliage", "clear", "Stones", f, "--region", "-100,-100,0,100"});
+    const int left = foliage(f)["instances"].toInt();
+    QVERIFY(left > 0 && left < placed);
+    ok({"foliage", "clear", "Stones", f});
+    QCOMPARE(foliage(f)["instances"].toInt(), 0);
+  }
+
+  void refusalsNameTheProblemAndChangeNothing() {
+    const QString f = test::newSceneWithCli(path("bad.hscene"), tmp_.path());
+    ok({"foliage", "plant", "Stone", "--kind", "rock", f});
+    const QByteArray before = [&] {
+      QFile file(f);
+      file.open(QIODevice::ReadOnly);
+      return file.readAll();
+    }();
+    expectError({"foliage", "type", "add", "T", "--mesh", "Nope", f}, 1, {"Nope"});
+    expectError({"foliage", "type", "add", "T", "--mesh", "Stone", "--density", "-1", f}, 2, {"--density"});
+    expectError({"foliage", "type", "add", "T", "--mesh", "Stone", "--density", "1e9", f}, 2, {"--density"});
+    expectError({"foliage", "scatter", "Ghost", f}, 1, {"Ghost"});
+    expectError({"foliage", "plant", "Stone", "--kind", "rock", f}, 1, {"Stone", "exists"});
+    expectError({"foliage", "plant", "X", "--kind", "palm", f}, 2, {"--kind"});
+    expectError({"foliage", "prune", f}, 2, {"unknown subcommand", "prune"});
+    // Nothing scattered on a scene with no ground.
+    ok({"foliage", "type", "add", "T", "--mesh", "Stone", f});
+    expectError({"foliage", "scatter", "T", f}, 1, {"nothing to scatter on"});
+    QFile file(f);
+    QVERIFY(file.open(QIODevice::ReadOnly));
+    QVERIFY(file.readAll() != before);  // the type add above was saved ...
+    QCOMPARE(foliage(f)["instances"].toInt(), 0);  // ... and nothing else
+  }
+};
+
+QTEST_GUILESS_MAIN(TestCliFoliage)
+#include "test_cli_foliage.moc"
