@@ -158,7 +158,10 @@ SceneState richScene() {
 }
 
 // Asset blobs: the demo's terrain tiles have their own suite (test_terrain_file).
-int blobKeyCount(const std::string& path) { return test::countBlobKeys(path, "key NOT LIKE 'terrain/%'"); }
+// Asset blobs (meshes, levels, textures): terrain tiles and foliage cells are counted apart.
+int blobKeyCount(const std::string& path) {
+  return test::countBlobKeys(path, "key NOT LIKE 'terrain/%' AND key NOT LIKE 'foliage/%'");
+}
 
 // How the editor and the CLI open a file: load into a new state and replace
 // the open document only when that worked.
@@ -237,8 +240,10 @@ class TestHsceneFile : public QObject {
     QVERIFY(tmp_.isValid());
     rich_ = richScene();
     // The demo's bunny, its two surface-detail slabs, its three glass spheres
-    // and pond (scene/demo_glass.h), and three imports.
-    QCOMPARE(rich_.assets.size(), size_t(10));
+    // and pond (scene/demo_glass.h), its four generated plants
+    // (scene/demo_foliage.h), and three imports.
+    QCOMPARE(rich_.assets.size(), size_t(14));
+    QVERIFY(rich_.foliage && rich_.foliage->store().instanceCount() > 0);
     goodFile_ = path("good.hscene");
     std::string error;
     QVERIFY2(saveScene(rich_, goodFile_, error), error.c_str());
@@ -271,7 +276,7 @@ class TestHsceneFile : public QObject {
         (t.encoded.empty() ? raw : encoded) += 1;
       }
     QCOMPARE(encoded, 2);
-    QCOMPARE(raw, 1);
+    QCOMPARE(raw, 4);  // one import's, and the generated leaves of the demo's pine, plane tree and juniper
     // Saving what was loaded gives the same description again.
     const std::string p2 = path("roundtrip2.hscene");
     QVERIFY2(saveScene(*loaded, p2, error), error.c_str());
