@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mesh/tangents.h"
 
@@ -72,6 +73,18 @@ std::unique_ptr<GpuMesh> uploadGeometry(const std::shared_ptr<const mesh::MeshDa
   g->bounds = m.bounds();
   g->hash = hash;
   g->hasUvs = m.uvs.size() == m.positions.size();
+  g->uvBounds.assign(m.submeshes.size(), glm::vec4(0.0f));
+  if (g->hasUvs)
+    for (size_t s = 0; s < m.submeshes.size(); ++s) {
+      const mesh::Submesh& sm = m.submeshes[s];
+      glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+      for (uint32_t k = sm.firstIndex; k < sm.firstIndex + sm.indexCount && k < m.indices.size(); ++k)
+        if (const uint32_t i = m.indices[k]; i < m.uvs.size() && std::isfinite(m.uvs[i].x) && std::isfinite(m.uvs[i].y)) {
+          lo = glm::min(lo, m.uvs[i]);
+          hi = glm::max(hi, m.uvs[i]);
+        }
+      if (lo.x <= hi.x) g->uvBounds[s] = glm::vec4(lo, hi);
+    }
   glCreateBuffers(4, g->buffers);
   glNamedBufferStorage(g->buffers[0], GLsizeiptr(m.positions.size() * sizeof(glm::vec3)), m.positions.data(), 0);
   glNamedBufferStorage(g->buffers[1], GLsizeiptr(m.normals.size() * sizeof(glm::vec3)), m.normals.data(), 0);

@@ -25,6 +25,9 @@ struct GpuMesh {
   uint64_t hash = 0;
   size_t gpuBytes = 0;
   bool hasUvs = false;
+  // Per submesh: the range its vertices' UVs span (min u, min v, max u,
+  // max v); the shaders hold the UV they sample at to it (shaders/mesh_uv.glsl).
+  std::vector<glm::vec4> uvBounds;
   bool ownsTextures = true;  // false for LOD levels: `textures` are level 0's
   // Attribute 3 (vec4, mesh/tangents.h), made only when a normal- or
   // height-mapped material draws the mesh (GpuMeshCache::addTangents).

@@ -20,6 +20,7 @@ GlProgram& MaterialBinding::apply(const DrawMaterial& mat) {
   }
   if (p != current_) (current_ = p)->use();
   p->set("uMaterial", unsigned(mat.index));
+  p->set("uUvBounds", mat.uvBounds);  // shaders/mesh_uv.glsl
   for (unsigned u = 0; u < 3; ++u)
     if (mat.textures[u] && mat.textures[u] != bound_[u]) glBindTextureUnit(kMaterialTextureUnit + u, bound_[u] = mat.textures[u]);
   // One-sided materials cull their back faces; scans are seen from both sides.
@@ -39,6 +40,7 @@ void bindCutout(GlProgram& program, const DrawMaterial& mat) {
   glBindTextureUnit(kMaterialTextureUnit, mat.textures[0]);
   program.set("uCutout", glm::vec4(mat.opacity, mat.alphaThreshold, mat.textures[0] ? 1.0f : 0.0f,
                                    mat.translucent ? 1.0f : 0.0f));
+  program.set("uUvBounds", mat.uvBounds);
 }
 
 }  // namespace hs::render

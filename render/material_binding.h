@@ -2,8 +2,9 @@
 // What every draw source does per part it draws with a material (mesh
 // source, instanced source): choose the program of the material's variant
 // (built on first use: none for shading modes nobody uses), set its
-// material index, bind the textures that changed, cull the back faces of
-// one-sided materials; and for shadow casters, the cut-out uniforms of
+// material index and its submesh's UV range (shaders/mesh_uv.glsl), bind
+// the textures that changed, cull the back faces of one-sided materials;
+// and for shadow casters, the cut-out uniforms of
 // shaders/shadow_depth.frag. One object per draw loop; finish() leaves the
 // state as it found it. Include only inside render/.
 #include <string>
@@ -34,7 +35,8 @@ class MaterialBinding {
 };
 
 // shadow_depth.frag's ALPHA_CUTOUT inputs for a caster's material: its base
-// colour texture and uCutout (opacity, threshold, textured, hashed).
+// colour texture, uCutout (opacity, threshold, textured, hashed) and the
+// submesh's UV range (uUvBounds, shaders/mesh_uv.glsl).
 void bindCutout(GlProgram& program, const DrawMaterial& mat);
 
 }  // namespace hs::render

@@ -130,7 +130,11 @@ void MaterialTable::build(const scene::SceneState& state, const std::vector<Draw
     const bool drawnLit = d < depthOnly.first || d >= depthOnly.second;
     const scene::MeshAsset* asset = it.asset;
     const mesh::MeshData& base = asset && asset->data ? *asset->data : *it.mesh->data;
-    for (const mesh::Submesh& sm : it.mesh->data->submeshes) {
+    const auto& submeshes = it.mesh->data->submeshes;
+    for (size_t s = 0; s < submeshes.size(); ++s) {
+      const mesh::Submesh& sm = submeshes[s];
+      // A material's entry is shared by the draws that use it; the UV range is the submesh's own.
+      const glm::vec4 uvBounds = s < it.mesh->uvBounds.size() ? it.mesh->uvBounds[s] : glm::vec4(0.0f);
       const size_t slot = scene::materialSlotOf(base, sm);
       const scene::MaterialId id =
           asset && slot < asset->materialSlots.size() ? asset->materialSlots[slot] : scene::kNoMaterial;
@@ -172,6 +176,7 @@ void MaterialTable::build(const scene::SceneState& state, const std::vector<Draw
         // in view (shadow casters draw depth alone).
         if (drawnLit && (found->second.normalMap || found->second.parallax)) meshes.addTangents(*it.mesh);
         perDraw_[d].push_back(found->second);
+        perDraw_[d].back().uvBounds = uvBounds;
         continue;
       }
       // No document material (a state built in code, a slot past the list):
@@ -197,6 +202,7 @@ void MaterialTable::build(const scene::SceneState& state, const std::vector<Draw
         found = fallbacks.emplace(key, dm).first;
       }
       perDraw_[d].push_back(found->second);
+      perDraw_[d].back().uvBounds = uvBounds;
     }
   }
   if (block_.empty()) block_.emplace_back();  // a buffer of zero bytes cannot be bound

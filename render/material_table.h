@@ -45,6 +45,9 @@ struct DrawMaterial {
   bool castsCutout = false;
   float opacity = 1.0f;
   float alphaThreshold = 0.5f;
+  // The UV range of the drawn submesh (GpuMesh::uvBounds): the texture
+  // lookups hold their UV to it (shaders/mesh_uv.glsl). All zero: none.
+  glm::vec4 uvBounds{0.0f};
 };
 
 class MaterialTable {

@@ -13,6 +13,7 @@
 // dithered discard (instance_fade.glsl) next to the cut-out's.
 #include "lighting.glsl"
 #include "material_surface.glsl"
+#include "mesh_uv.glsl"
 #if defined(HAS_NORMAL_MAP) || defined(HAS_PARALLAX)
 #include "surface_detail.glsl"
 in vec4 vTangent;
@@ -36,7 +37,7 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
   Material m = materials[uMaterial];
-  vec2 uv = vUv;
+  vec2 uv = meshUv(vUv);  // held to the submesh's UV range (mesh_uv.glsl)
 #ifndef SHADING_GOURAUD
 #ifdef SHADING_FLAT
   vec3 n = normalize(cross(dFdx(vEyePos), dFdy(vEyePos)));
@@ -52,7 +53,7 @@ void main() {
 #ifdef HAS_PARALLAX
   vec3 toEye = normalize(-vEyePos);
   vec3 v = vec3(dot(toEye, frame.t), dot(toEye, frame.up), dot(toEye, frame.n));
-  uv = parallaxUv(uv, v, m.detail.y * uvPerMetre(vUv, vEyePos));
+  uv = parallaxUv(uv, v, m.detail.y * uvPerMetre(uv, vEyePos));
 #endif
 #ifdef HAS_NORMAL_MAP
   n = normalFromMap(frame, texture(uNormalMap, uv).rgb, m.detail.x);

@@ -1,13 +1,14 @@
 // The end of mesh.frag's HS_OIT variants (oit_output.glsl renamed its main
 // meshShade): shade, take the material's opacity, store the fragment.
 #undef main
+#include "mesh_uv.glsl"
 
 // The material's opacity x the base texture's alpha (mesh.frag's own
 // `base.a`; parallax-shifted UVs are not followed here).
 float oitOpacity() {
   Material m = materials[uMaterial];
   float a = m.baseColor.a;
-  if (hasFlag(m, MAT_BASE_TEXTURE)) a *= texture(uBaseColorTexture, vUv).a;
+  if (hasFlag(m, MAT_BASE_TEXTURE)) a *= texture(uBaseColorTexture, meshUv(vUv)).a;
   return clamp(a, 0.0, 1.0);
 }
 

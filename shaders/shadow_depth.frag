@@ -16,6 +16,7 @@
 #include "instance_fade.glsl"
 #endif
 #ifdef ALPHA_CUTOUT
+#include "mesh_uv.glsl"
 in vec2 vUv;
 layout(binding = 0) uniform sampler2D uBaseColorTexture;
 uniform vec4 uCutout;  // x: opacity, y: threshold, z: 1 with a base colour texture, w: 1 translucent (hashed)
@@ -37,7 +38,7 @@ void main() {
   instanceFadeDiscard();
 #endif
 #ifdef ALPHA_CUTOUT
-  float alpha = uCutout.x * (uCutout.z > 0.5 ? texture(uBaseColorTexture, vUv).a : 1.0);
+  float alpha = uCutout.x * (uCutout.z > 0.5 ? texture(uBaseColorTexture, meshUv(vUv)).a : 1.0);
   if (alpha < (uCutout.w > 0.5 ? texelHash() : uCutout.y)) discard;
 #endif
 }
