@@ -140,10 +140,6 @@ std::optional<MeshAsset> makePlantAsset(const std::string& name, const foliage::
   asset.sourcePath = std::string("generated: ") + foliage::plantKindName(params.kind) + ", seed " +
                      std::to_string(params.seed);
   for (size_t k = 1; k < chain.levels.size(); ++k) {
-    // Coarser levels draw with the asset's material slots (level 0's
-    // texture); their own material list must not name a texture they lack.
-    for (mesh::Material& m : chain.levels[k].mesh.materials)
-      if (m.diffuseTexture >= int(chain.levels[k].mesh.textures.size())) m.diffuseTexture = -1;
     MeshLod l;
     l.contentHash = mesh::contentHash(chain.levels[k].mesh);
     l.triangles = chain.levels[k].mesh.triangleCount();

@@ -454,10 +454,10 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
   };
   // One mesh (or LOD level) decoded and checked.
   auto loadMesh = [&](const std::string& key, const std::string& what, uint64_t hash,
-                      std::shared_ptr<const mesh::MeshData>& out) {
+                      std::shared_ptr<const mesh::MeshData>& out, size_t baseTextures = 0) {
     std::vector<uint8_t> bytes;
     if (!readBlob(key, what, bytes)) return false;
-    std::optional<mesh::MeshData> mesh = decodeMesh(bytes.data(), bytes.size(), what, e);
+    std::optional<mesh::MeshData> mesh = decodeMesh(bytes.data(), bytes.size(), what, e, baseTextures);
     if (!mesh) {
       error = e;
       return false;
@@ -481,7 +481,7 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
     if (!loadMesh(meshKey(id), what, asset.contentHash, asset.data)) return std::nullopt;
     for (size_t k = 0; k < asset.lods.size(); ++k)
       if (!loadMesh(lodKey(id, k + 1), what + ", LOD " + std::to_string(k + 1), asset.lods[k].contentHash,
-                    asset.lods[k].data))
+                    asset.lods[k].data, asset.data->textures.size()))
         return std::nullopt;
     if (version < kFirstXxh3Format) {  // checked by the old hash; the document holds the current one
       asset.contentHash = mesh::contentHash(*asset.data);

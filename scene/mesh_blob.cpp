@@ -1,5 +1,7 @@
 #include "scene/mesh_blob.h"
 
+#include <algorithm>
+
 #include <cstring>
 
 #include "mesh/mesh_geometry_codec.h"
@@ -100,7 +102,7 @@ std::vector<uint8_t> encodeMesh(const mesh::MeshData& m) {
 }
 
 std::optional<mesh::MeshData> decodeMesh(const uint8_t* data, size_t size, const std::string& what,
-                                         std::string& error) {
+                                         std::string& error, size_t baseTextures) {
   Reader r{data, size, 0, what, error};
   char magic[8];
   if (!r.need(sizeof magic, "header")) return std::nullopt;
@@ -162,7 +164,8 @@ std::optional<mesh::MeshData> decodeMesh(const uint8_t* data, size_t size, const
         s.material >= int(m.materials.size()))
       return bad("a submesh range or material is out of bounds");
   for (const auto& mat : m.materials)
-    if (mat.diffuseTexture >= int(m.textures.size())) return bad("a material's texture index is out of bounds");
+    if (mat.diffuseTexture >= int(std::max(m.textures.size(), baseTextures)))
+      return bad("a material's texture index is out of bounds");
   return m;
 }
 

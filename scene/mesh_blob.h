@@ -13,8 +13,11 @@
 namespace hs::scene {
 
 std::vector<uint8_t> encodeMesh(const mesh::MeshData& mesh);
-// `what` names the blob in messages ("mesh asset 3").
+// `what` names the blob in messages ("mesh asset 3"). A LOD level keeps
+// its base's material list without copies of its textures
+// (meshproc/lod_chain.h): `baseTextures`, the base's texture count, is
+// how many textures its materials may name.
 std::optional<mesh::MeshData> decodeMesh(const uint8_t* data, size_t size, const std::string& what,
-                                         std::string& error);
+                                         std::string& error, size_t baseTextures = 0);
 
 }  // namespace hs::scene

@@ -18,11 +18,13 @@
 #include "file_bytes.h"
 #include "hscene_sql.h"
 #include "mesh/mesh_import.h"
+#include "mesh/primitives.h"
 #include "scene/demo_scene.h"
 #include "scene/document.h"
 #include "scene/edit.h"
 #include "scene/hscene_file.h"
 #include "scene/mesh_blob.h"
+#include "scene/mesh_materials.h"
 #include "scene/operations.h"
 #include "scene/scene_json.h"
 #include "truncation.h"
@@ -390,6 +392,45 @@ class TestHsceneFile : public QObject {
     loaded = loadScene(p, error);
     QVERIFY2(loaded, error.c_str());
     QVERIFY(stateDifference(doc.state(), *loaded).empty());
+  }
+
+  // A textured mesh's LOD levels keep its material list without copies of
+  // its textures (meshproc/lod_chain.h): such a scene saves and opens again
+  // (it was written and then refused as "texture index out of bounds").
+  void texturedAssetWithLodsOpensAgain() {
+    mesh::MeshData base = mesh::gridPlane(4.0f, 8);
+    base.textures.push_back(mesh::Texture{"checks", {}, 2, 2, std::vector<uint8_t>(16, 200)});
+    base.materials = {{"tex", glm::vec4(1.0f), 0}};
+    for (mesh::Submesh& sm : base.submeshes) sm.material = 0;
+    mesh::MeshData level = base;
+    level.textures.clear();  // as buildLodChain leaves its levels
+    level.indices.resize(level.indices.size() / 2);
+    level.submeshes = {{0, uint32_t(level.indices.size()), 0}};
+    SceneState s;
+    MeshAsset a;
+    a.id = 1;
+    a.name = "Textured";
+    a.contentHash = mesh::contentHash(base);
+    a.data = std::make_shared<const mesh::MeshData>(base);
+    MeshLod lod;
+    lod.contentHash = mesh::contentHash(level);
+    lod.triangles = level.triangleCount();
+    lod.hausdorff = 0.1;
+    lod.data = std::make_shared<const mesh::MeshData>(level);
+    a.lods.push_back(lod);
+    s.assets.emplace(a.id, a);
+    addMeshMaterials(s, a.id);
+    const std::string p = path("textured_lods.hscene");
+    std::string error;
+    QVERIFY2(saveScene(s, p, error), error.c_str());
+    const auto loaded = loadScene(p, error);
+    QVERIFY2(loaded, error.c_str());
+    QCOMPARE(loaded->findAsset(1)->lods.size(), size_t(1));
+    QCOMPARE(loaded->findAsset(1)->lods[0].data->materials[0].diffuseTexture, 0);
+    // A level naming a texture its base does not have either is still refused.
+    const std::vector<uint8_t> blob = encodeMesh(level);
+    QVERIFY(!decodeMesh(blob.data(), blob.size(), "level", error, 0));
+    QVERIFY(decodeMesh(blob.data(), blob.size(), "level", error, 1));
   }
 
   void saveAsToANewPath() {
