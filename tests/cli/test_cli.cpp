@@ -220,9 +220,12 @@ class TestCli : public QObject {
     }
     // Assets: the bunny, with the triangle count of the scan's OBJ file,
     // then the two surface-detail slabs (scene/demo_materials.h) and the
-    // three glass spheres and the pond (scene/demo_glass.h).
+    // three glass spheres and the pond (scene/demo_glass.h), then the four
+    // generated plants its foliage draws (scene/demo_foliage.h).
     const QJsonArray assets = info["assets"].toArray();
-    QCOMPARE(assets.size(), 7);
+    QCOMPARE(assets.size(), 11);
+    QCOMPARE(info["foliage"].toObject()["types"].toArray().size(), 4);
+    QVERIFY(info["foliage"].toObject()["instances"].toInt() > 1000);
     const std::string bunny = readFile(HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj");
     size_t faces = 0;
     for (size_t pos = 0; (pos = bunny.find("\nf ", pos)) != std::string::npos; ++pos) ++faces;
