@@ -18,6 +18,9 @@ Json pairJson(double a, double b) { return Json::array({a, b}); }
 
 constexpr const char* kShapes[] = {"point", "box", "sphere", "disc", "cone", "mesh", "terrain"};
 constexpr const char* kCollisions[] = {"none", "bounce", "kill", "stick"};
+constexpr const char* kSprites[] = {"snowflake", "smoke", "flame", "spark"};
+constexpr const char* kBlends[] = {"alpha", "additive"};
+constexpr const char* kFacings[] = {"camera", "velocity"};
 
 template <class E, size_t N>
 E enumFrom(const char* const (&names)[N], const std::string& s) {
@@ -34,6 +37,9 @@ std::string prefix(const EmitterDesc& e, std::string_view field) {
 
 const char* shapeName(Shape s) { return kShapes[int(s)]; }
 const char* collisionName(CollisionMode c) { return kCollisions[int(c)]; }
+const char* spriteName(Sprite s) { return kSprites[int(s)]; }
+const char* blendName(Blend b) { return kBlends[int(b)]; }
+const char* facingName(Facing f) { return kFacings[int(f)]; }
 
 double Curve::eval(double t, double fallback) const {
   if (keys.empty()) return fallback;
@@ -155,6 +161,21 @@ const std::vector<ParamDecl>& emitterParamDecls() {
         {.key = "flipbook_frames", .label = "Flipbook frames", .min = 1, .max = 1024, .integer = true,
          .defaultValue = d.flipbookFrames, .help = "sprite frames played over a particle's life", .editor = true,
          .decimals = 0, .group = gLook},
+        {.key = "sprite", .label = "Sprite", .type = ParamType::Choice, .defaultValue = spriteName(d.sprite),
+         .choices = {kSprites, kSprites + 4}, .help = "the particle's picture (generated: snowflake, smoke puff, "
+         "flame flipbook, round spark)", .editor = true, .group = gLook},
+        {.key = "blend", .label = "Blend", .type = ParamType::Choice, .defaultValue = blendName(d.blend),
+         .choices = {kBlends, kBlends + 2}, .help = "alpha: covers what is behind; additive: adds light (fire, sparks)",
+         .editor = true, .group = gLook},
+        {.key = "facing", .label = "Facing", .type = ParamType::Choice, .defaultValue = facingName(d.facing),
+         .choices = {kFacings, kFacings + 2}, .help = "the quad faces the camera, or is stretched along the velocity",
+         .editor = true, .group = gLook},
+        {.key = "soft_m", .label = "Soft distance", .unit = Unit::Metres, .min = 0.0, .max = 1000.0,
+         .defaultValue = d.softDistance, .help = "fades a particle over this distance in front of opaque surfaces (0: hard edges)",
+         .editor = true, .step = 0.1, .group = gLook},
+        {.key = "lit", .label = "Lit", .type = ParamType::Flag, .defaultValue = d.lit,
+         .help = "lit by the sun and the sky (snow, fog, smoke); off: the colour is emitted light (fire)",
+         .editor = true, .group = gLook},
     };
   }();
   return decls;
@@ -256,6 +277,15 @@ const std::vector<EmitterField>& emitterFields() {
            [](E& e, const Json& v) { e.replayStep = v.get<double>(); }),
       bind("flipbook_frames", [](const E& e) { return Json(e.flipbookFrames); },
            [](E& e, const Json& v) { e.flipbookFrames = int(v.get<double>()); }),
+      bind("sprite", [](const E& e) { return Json(spriteName(e.sprite)); },
+           [](E& e, const Json& v) { e.sprite = enumFrom<Sprite>(kSprites, v.get<std::string>()); }),
+      bind("blend", [](const E& e) { return Json(blendName(e.blend)); },
+           [](E& e, const Json& v) { e.blend = enumFrom<Blend>(kBlends, v.get<std::string>()); }),
+      bind("facing", [](const E& e) { return Json(facingName(e.facing)); },
+           [](E& e, const Json& v) { e.facing = enumFrom<Facing>(kFacings, v.get<std::string>()); }),
+      bind("soft_m", [](const E& e) { return Json(e.softDistance); },
+           [](E& e, const Json& v) { e.softDistance = v.get<double>(); }),
+      bind("lit", [](const E& e) { return Json(e.lit); }, [](E& e, const Json& v) { e.lit = v.get<bool>(); }),
   };
   return fields;
 }

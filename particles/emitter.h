@@ -34,9 +34,20 @@ namespace hs::particles {
 // to the box's z half extent above it (the ground is given at evaluation).
 enum class Shape { Point, Box, Sphere, Disc, Cone, Mesh, Terrain };
 enum class CollisionMode { None, Bounce, Kill, Stick };
+// How a particle is drawn (render/particle_source.h): its sprite (sprites.h:
+// generated, no outside asset), how it blends (alpha: over what is behind,
+// sorted with every other translucent surface; additive: light added, fire
+// and sparks), and which way its quad faces (the camera, or stretched along
+// its velocity for sparks and rain).
+enum class Sprite { Snowflake, Smoke, Flame, Spark };
+enum class Blend { Alpha, Additive };
+enum class Facing { Camera, Velocity };
 
 const char* shapeName(Shape s);
 const char* collisionName(CollisionMode c);
+const char* spriteName(Sprite s);
+const char* blendName(Blend b);
+const char* facingName(Facing f);
 
 // A piecewise-linear function of one variable: keys with strictly increasing
 // t (coincident keys are refused by validate()), held constant before the
@@ -128,6 +139,11 @@ struct EmitterDesc {
   Curve sizeOverLife{};      // multiplies the size; no keys: 1
   ColourCurve colourOverLife{};  // no keys: white, opaque
   int flipbookFrames = 1;    // sprite frames played over the life
+  Sprite sprite = Sprite::Smoke;
+  Blend blend = Blend::Alpha;
+  Facing facing = Facing::Camera;
+  double softDistance = 0.5;  // metres over which a particle fades in front of opaque geometry (0: hard)
+  bool lit = true;            // lit by the sun (with its shadows) and the sky; false: its colour is emitted light
 
   bool operator==(const EmitterDesc&) const = default;
 
@@ -144,7 +160,8 @@ struct EmitterDesc {
 // along_normal speed_m_per_s lifetime_s size_m rotation_deg spin_deg_per_s
 // gravity_m_per_s2 drag_per_s wind_m_per_s turbulence_m_per_s2
 // turbulence_frequency_per_m turbulence_evolution_per_s collision
-// restitution friction rest_speed_m_per_s replay_step_s flipbook_frames.
+// restitution friction rest_speed_m_per_s replay_step_s flipbook_frames
+// sprite blend facing soft_m lit.
 const std::vector<ParamDecl>& emitterParamDecls();
 
 // A declared parameter bound to its EmitterDesc member: the one table the

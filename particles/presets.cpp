@@ -64,6 +64,8 @@ std::vector<EmitterDesc> snowPreset(const PresetOptions& o) {
   e.collision = CollisionMode::Stick;
   e.replayStep = 1.0 / 30.0;
   e.colourOverLife.keys = {{0.0, {1, 1, 1, 0}}, {0.05, {1, 1, 1, 0.9}}, {0.9, {1, 1, 1, 0.9}}, {1.0, {1, 1, 1, 0}}};
+  e.sprite = Sprite::Snowflake;
+  e.softDistance = 0.1;
   return {e};
 }
 
@@ -89,6 +91,8 @@ std::vector<EmitterDesc> fogBankPreset(const PresetOptions& o) {
   e.sizeOverLife.keys = {{0.0, 0.7}, {1.0, 1.3}};
   e.colourOverLife.keys = {{0.0, {0.85, 0.87, 0.9, 0}}, {0.3, {0.85, 0.87, 0.9, 0.22}}, {0.7, {0.85, 0.87, 0.9, 0.22}},
                            {1.0, {0.85, 0.87, 0.9, 0}}};
+  e.sprite = Sprite::Smoke;
+  e.softDistance = 5.0;  // a bank meets the ground and the pillars without a seam
   return {e};
 }
 
@@ -117,6 +121,10 @@ EmitterDesc flame(const std::string& name, const PresetOptions& o, uint32_t salt
   e.sizeOverLife.keys = {{0.0, 0.6}, {0.2, 1.0}, {1.0, 0.25}};
   e.colourOverLife.keys = {{0.0, {6.0, 3.0, 0.8, 0.0}}, {0.1, {6.0, 3.0, 0.8, 1.0}}, {0.6, {3.0, 0.9, 0.15, 0.7}},
                            {1.0, {1.0, 0.2, 0.02, 0.0}}};
+  e.sprite = Sprite::Flame;
+  e.blend = Blend::Additive;
+  e.lit = false;
+  e.softDistance = 0.2;
   return e;
 }
 
@@ -143,6 +151,8 @@ EmitterDesc smoke(const std::string& name, const PresetOptions& o, uint32_t salt
   e.replayStep = 1.0 / 60.0;
   e.sizeOverLife.keys = {{0.0, 0.5}, {1.0, 3.0}};
   e.colourOverLife.keys = {{0.0, {0.25, 0.24, 0.23, 0.0}}, {0.15, {0.25, 0.24, 0.23, 0.45}}, {1.0, {0.4, 0.4, 0.4, 0.0}}};
+  e.sprite = Sprite::Smoke;
+  e.softDistance = 0.5;
   return e;
 }
 
@@ -175,6 +185,11 @@ std::vector<EmitterDesc> campfirePreset(const PresetOptions& o) {
   embers.collision = CollisionMode::Kill;
   embers.replayStep = 1.0 / 120.0;
   embers.colourOverLife.keys = {{0.0, {8.0, 3.0, 0.6, 1.0}}, {0.7, {4.0, 1.0, 0.1, 1.0}}, {1.0, {1.0, 0.1, 0.0, 0.0}}};
+  embers.sprite = Sprite::Spark;
+  embers.blend = Blend::Additive;
+  embers.facing = Facing::Velocity;
+  embers.lit = false;
+  embers.softDistance = 0.0;
   return {flame(n + " flames", o, 5, rate, 0.4, 0.3), smoke(n + " smoke", o, 6, rate * 0.1, 0.9, 0.4), embers};
 }
 
@@ -202,6 +217,8 @@ std::vector<EmitterDesc> dustPreset(const PresetOptions& o) {
   e.replayStep = 1.0 / 30.0;
   e.sizeOverLife.keys = {{0.0, 0.5}, {1.0, 1.5}};
   e.colourOverLife.keys = {{0.0, {0.62, 0.52, 0.38, 0}}, {0.3, {0.62, 0.52, 0.38, 0.3}}, {1.0, {0.62, 0.52, 0.38, 0}}};
+  e.sprite = Sprite::Smoke;
+  e.softDistance = 1.0;
   return {e};
 }
 

@@ -5,6 +5,7 @@
 // animation tracks all work.
 #include <glm/glm.hpp>
 
+#include "particles/emitter.h"
 #include "scene/ids.h"
 
 namespace hs::scene {
@@ -72,6 +73,18 @@ struct TerrainInstance {
   TerrainId terrain = kNoTerrain;
   double lodErrorPixels = 1.0;  // screen-space error bound of the LOD, pixels
   bool operator==(const TerrainInstance&) const = default;
+};
+
+// A particle emitter (docs/particles.md, "In the document"). The emitter's
+// world origin is the entity's world translation plus desc.origin (an offset,
+// usually 0); rotation and scale are ignored, like a terrain's: directions,
+// gravity and wind are world vectors (Z up). The particles at scene time t
+// are a pure function of desc and t (particles/evaluate.h). One emitter per
+// entity: a preset with several (a torch: flame and smoke) is a parent with
+// an emitter child each, so `set EMITTER particles.FIELD` names one.
+struct ParticleEmitter {
+  particles::EmitterDesc desc{};
+  bool operator==(const ParticleEmitter&) const = default;
 };
 
 // Full-frame sensor height (36 x 24 mm), for focal length <-> field of view.

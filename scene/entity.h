@@ -21,6 +21,7 @@ struct Entity {
   std::optional<Light> light;
   std::optional<Camera> camera;
   std::optional<TerrainInstance> terrain;
+  std::optional<ParticleEmitter> particles;
 
   bool operator==(const Entity&) const = default;
 };

@@ -307,6 +307,12 @@ std::vector<ComponentInfo> buildEntityComponents() {
       "terrain", "Terrain", &Entity::terrain,
       {doubleField<Entity>("lod_error_px", "LOD error bound", 0.1, 64.0, 0.1, "px",
                            [](Entity& e) -> double& { return e.terrain->lodErrorPixels; })}));
+  // An emitter's parameters are declared once in particles/emitter.h
+  // (emitterParamDecls: numbers, MIN,MAX pairs, choices, lists and curves
+  // this table has no types for); scene_json writes the component as
+  // emitterToJson, `set EMITTER particles.FIELD` and the Particles panel go
+  // through scene/particle_ops.h.
+  out.push_back(optionalComponent<ParticleEmitter>("particles", "Particles", &Entity::particles, {}));
   return out;
 }
 

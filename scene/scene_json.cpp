@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "core/content_hash.h"
+#include "particles/emitter.h"
 #include "scene/asset_reports.h"
 #include "scene/fields.h"
 #include "scene/key_value_ranges.h"
@@ -64,6 +65,8 @@ Json entityToJson(const Entity& e) {
       if (f.serialized) co[f.key] = fieldToJson(f, e);
     // A reference, not a field (fields.cpp says why).
     if (c.key == "terrain") co["terrain_id"] = e.terrain->terrain;
+    // An emitter is its own declared table (particles/emitter.h, fields.cpp says why).
+    if (c.key == "particles") co = particles::emitterToJson(e.particles->desc);
     components[c.key] = std::move(co);
   }
   o["components"] = std::move(components);
@@ -273,6 +276,15 @@ struct Reader : JsonReader {
       if (!c || !c->optional) return fail(p, "unknown component");
       if (!object(co, p)) return false;
       c->add(e);
+      if (key == "particles") {
+        // Strict, as a hand-written emitter is: a damaged one refuses the
+        // file with its path (particles/emitter.h names emitter and field).
+        std::string error;
+        std::optional<particles::EmitterDesc> d = particles::emitterFromJson(co, error);
+        if (!d) return fail(p, error);
+        e.particles->desc = std::move(*d);
+        continue;
+      }
       for (const auto& f : c->fields) {
         if (!f.serialized) continue;
         const Json* v = member(co, f.key);

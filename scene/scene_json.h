@@ -46,7 +46,9 @@ namespace hs::scene {
 // 9: foliage (the description's "foliage" manifest, blobs
 // "foliage/cell/X_Y_Z"; foliage_file.h). A version-8 reader ignores the
 // member and its next save would drop the foliage.
-constexpr int kSceneFormatVersion = 9;
+// 10: particle emitters (an entity's "particles" component: the emitter's
+// JSON, particles/emitter.h). A version-9 reader refuses the unknown component.
+constexpr int kSceneFormatVersion = 10;
 constexpr int kFirstPhysicalLightsFormat = 6;
 constexpr int kFirstPerLightShadowsFormat = 7;
 constexpr int kFirstPhysicalBrdfFormat = 8;

@@ -1,0 +1,69 @@
+#pragma once
+// A scene's particle emitters where they are, and what their particles meet
+// (docs/particles.md, "In the document"): the one place editor, CLI, info
+// and renderer turn an entity's ParticleEmitter into something
+// particles::Evaluator takes, so they cannot disagree on an origin, a
+// collider or a mesh surface.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "particles/evaluate.h"
+#include "scene/foliage_ground.h"
+#include "scene/scene_state.h"
+
+namespace hs::scene {
+
+// The entity's emitter with its world origin (the entity's world
+// translation plus desc.origin) and its name (the entity's); nullopt if the
+// entity has no emitter.
+std::optional<particles::EmitterDesc> emitterInWorld(const SceneState& state, EntityId id);
+
+struct PlacedEmitter {
+  EntityId entity = kNoEntity;
+  particles::EmitterDesc desc{};  // origin in world, name the entity's
+};
+// Every effectively visible emitter, depth-first (outliner order).
+std::vector<PlacedEmitter> visibleEmitters(const SceneState& state);
+
+// What particles collide with and are born on: the first visible terrain
+// (the ground of `terrain` shapes and a collider) and the visible mesh
+// entities (colliders; a `mesh` shape's surface is the mesh entity of that
+// name, its level 0 in world space). Building it costs what the meshes cost
+// (a BVH each); keep one while the scene's entities and assets stay.
+class ParticleWorld {
+ public:
+  explicit ParticleWorld(const SceneState& state);
+  ParticleWorld(const ParticleWorld&) = delete;
+  ParticleWorld& operator=(const ParticleWorld&) = delete;
+
+  // The evaluator's inputs for `desc` (world origin): colliders when it
+  // collides, the ground when its shape is `terrain`, the surface when it is
+  // `mesh` (null when no visible mesh entity has that name: Evaluator::create
+  // then refuses with "the mesh '...' is missing").
+  particles::EvaluatorInputs inputs(const particles::EmitterDesc& desc);
+  // The evaluator for `desc`, or nullopt with `error` naming emitter and field.
+  std::optional<particles::Evaluator> evaluator(const particles::EmitterDesc& desc, std::string& error);
+
+ private:
+  const SceneState& state_;
+  FoliageGround ground_;  // terrain and meshes in world space
+  std::unique_ptr<particles::HeightFieldCollider> terrain_;
+  std::vector<std::unique_ptr<particles::RaycastCollider>> meshes_;
+  std::vector<std::unique_ptr<particles::TriangleSurface>> surfaces_;  // kept for evaluators made here
+};
+
+// The live particles of every visible emitter at the state's time, as
+// `info --time` lists them: by lifetimes, before a collision's kills
+// (Evaluator::liveCount; `estimated` past 2^24 candidates).
+struct EmitterCount {
+  EntityId entity = kNoEntity;
+  std::string name;
+  uint64_t live = 0;
+  bool estimated = false;
+  std::string error;  // an emitter the evaluator refuses: why
+};
+std::vector<EmitterCount> liveParticleCounts(const SceneState& state, double t);
+
+}  // namespace hs::scene
