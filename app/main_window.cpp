@@ -25,6 +25,7 @@
 #include "app/autosave.h"
 #include "app/background_job.h"
 #include "app/foliage_panel.h"
+#include "app/particles_panel.h"
 #include "app/foliage_tool.h"
 #include "app/icons.h"
 #include "app/import_job.h"
@@ -62,6 +63,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setCentralWidget(viewport_);
   createDocks();
   createTimeline();
+  particles_->followClock(clock_);
   createActions();
   createMenus();
   createToolBar();
@@ -154,6 +156,15 @@ void MainWindow::createDocks() {
   foliage_ = new FoliagePanel(*this);
   tabifyDockWidget(settingsDock, dock("Foliage", "foliageDock", foliage_, Qt::RightDockWidgetArea));
   viewport_->setFoliageTool(foliage_->tool());
+  // Particles: a tab beside Foliage; the viewport draws them at the playhead.
+  particles_ = new ParticlesPanel(*this);
+  QDockWidget* particlesDock = dock("Particles", "particlesDock", particles_, Qt::RightDockWidgetArea);
+  tabifyDockWidget(settingsDock, particlesDock);
+  properties_->setParticlesHook([this, particlesDock](scene::EntityId id) {
+    particles_->setCurrentEmitter(id);
+    particlesDock->show();
+    particlesDock->raise();
+  });
   // One brush at a time: the left button cannot sculpt and paint foliage at
   // once. Choosing a tool in one panel turns the other's off (each then
   // emits again with nothing active, which stops there).
@@ -357,6 +368,7 @@ void MainWindow::createMenus() {
 
   terrain_->populateMenu(menuBar()->addMenu("Te&rrain"));
   foliage_->populateMenu(menuBar()->addMenu("Fo&liage"));
+  particles_->populateMenu(menuBar()->addMenu("&Particles"));
 
   QMenu* tools = menuBar()->addMenu("&Transform");
   tools->addAction(selectModeAct_);

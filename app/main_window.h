@@ -47,6 +47,7 @@ class Selection;
 class SettingsPanel;
 class MaterialsPanel;
 class LightsPanel;
+class ParticlesPanel;
 class StatusBarInfo;
 class ViewportWidget;
 
@@ -73,6 +74,8 @@ class MainWindow : public QMainWindow {
   TerrainPanel* terrainPanel() const { return terrain_; }
   // The Foliage panel and its brush (foliage_panel.h).
   FoliagePanel* foliagePanel() const { return foliage_; }
+  // The Particles panel (particles_panel.h).
+  ParticlesPanel* particlesPanel() const { return particles_; }
   Keying* keying() const { return keying_; }
   StereoPreviewSettings* stereoPreview() const { return stereo_; }
   // Camera paths: the editing state and actions, and the Camera Path dock.
@@ -202,6 +205,7 @@ class MainWindow : public QMainWindow {
   ExportDialog* exportDialog_ = nullptr;
   TerrainPanel* terrain_ = nullptr;
   FoliagePanel* foliage_ = nullptr;
+  ParticlesPanel* particles_ = nullptr;
   std::unique_ptr<BackgroundJob> docJob_;
   std::unique_ptr<BackgroundJob> exportJob_;  // File > Export Mesh
   std::unique_ptr<ImportJob> importJob_;

@@ -17,6 +17,7 @@
 #include "app/material_slots_widget.h"
 #include "app/selection.h"
 #include "app/terrain_component_picker.h"
+#include "particles/emitter.h"
 #include "scene/operations.h"
 
 namespace hs::app {
@@ -129,6 +130,28 @@ QWidget* PropertyPanel::buildSection(const scene::ComponentInfo& c, const scene:
   }
   // Which terrain it shows is a reference, not a field: its own row.
   if (c.key == "terrain") form->insertRow(0, "Terrain", new TerrainPicker(doc_, e.id, newTerrain_, body));
+  // An emitter's forty fields and its lists are the Particles panel's
+  // (fields.cpp says why they are not fields here): a summary and a way there.
+  if (c.key == "particles") {
+    const particles::EmitterDesc& d = e.particles->desc;
+    auto* summary = new QLabel(QString("%1 from a %2, %3 per s, %4..%5 s")
+                                   .arg(particles::spriteName(d.sprite), particles::shapeName(d.shape))
+                                   .arg(d.rate)
+                                   .arg(d.lifetimeMin)
+                                   .arg(d.lifetimeMax),
+                               body);
+    summary->setWordWrap(true);
+    summary->setStyleSheet("QLabel { color: #8f9095; }");
+    form->addRow(summary);
+    auto* edit = new QPushButton("Particles…", body);
+    edit->setObjectName("editParticles");
+    edit->setToolTip("Edit this emitter's fields in the Particles panel");
+    const scene::EntityId id = e.id;
+    connect(edit, &QPushButton::clicked, this, [this, id] {
+      if (particlesHook_) particlesHook_(id);
+    });
+    form->addRow(edit);
+  }
   if (c.key == "mesh") {
     meshInfo_ = new QLabel(body);
     meshInfo_->setWordWrap(true);

@@ -55,6 +55,9 @@ class PropertyPanel : public QWidget {
   // Mesh components: "Materials…" calls this with the mesh's asset (set by
   // the main window: shows the Materials panel on the asset's first material).
   void setMaterialsHook(std::function<void(scene::AssetId asset)> hook) { materialsHook_ = std::move(hook); }
+  // What the particles section's "Particles…" button does (show the emitter
+  // in the Particles panel, particles_panel.h).
+  void setParticlesHook(std::function<void(scene::EntityId emitter)> hook) { particlesHook_ = std::move(hook); }
 
  signals:
   // A value that was not applied as typed: refused by its field's rule, or
@@ -68,6 +71,7 @@ class PropertyPanel : public QWidget {
     FieldEditor* editor;
   };
   std::function<void(scene::AssetId)> materialsHook_;
+  std::function<void(scene::EntityId)> particlesHook_;
   void onDocumentChanged(const scene::ChangeSet& changes);
   // The structure (which sections) depends on the primary entity and its components.
   std::string structureKey() const;

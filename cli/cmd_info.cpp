@@ -5,12 +5,14 @@
 #include "cli/operation_options.h"
 #include "cli/scene_open.h"
 #include "cli/terrain_info.h"
+#include "cli/time_arg.h"
 #include "foliage/manifest.h"
 #include "core/json.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
 #include "scene/mesh_report_text.h"
 #include "scene/object_tracks.h"
+#include "scene/particle_world.h"
 #include "scene/scene_json.h"
 #include "scene/world_bounds.h"
 #include "sequencer/key_edit.h"
@@ -138,7 +140,25 @@ void printTracks(const scene::SceneState& s) {
   }
 }
 
-Json infoJson(const std::string& path, const scene::SceneState& s) {
+Json particlesJson(const scene::SceneState& s, double time) {
+  Json o = Json::object();
+  o["time_s"] = time;
+  Json list = Json::array();
+  for (const scene::EmitterCount& c : scene::liveParticleCounts(s, time)) {
+    Json e = Json::object();
+    e["entity"] = c.entity;
+    e["name"] = c.name;
+    e["live"] = c.live;
+    e["estimated"] = c.estimated;
+    if (!c.error.empty()) e["error"] = c.error;
+    e["emitter"] = particles::emitterToJson(s.find(c.entity)->particles->desc);
+    list.push_back(std::move(e));
+  }
+  o["emitters"] = std::move(list);
+  return o;
+}
+
+Json infoJson(const std::string& path, const scene::SceneState& s, double time) {
   Json o = Json::object();
   o["file"] = path;
   o["format_version"] = scene::sceneFileVersion(path);
@@ -185,6 +205,7 @@ Json infoJson(const std::string& path, const scene::SceneState& s) {
   o["cameras"] = std::move(cameras);
   o["terrains"] = terrainInfoJson(s);
   o["foliage"] = s.foliage ? foliage::infoJson(s.foliage->store()) : Json(nullptr);
+  o["particles"] = particlesJson(s, time);
   o["sequence"] = sequenceJson(s);
   o["tracks"] = tracksJson(s);
   const scene::WorldBox box = scene::worldBounds(s);
@@ -197,6 +218,27 @@ Json infoJson(const std::string& path, const scene::SceneState& s) {
   o["bounds_m"] = std::move(bounds);
   o["settings"] = scene::sceneToJson(s).at("settings");
   return o;
+}
+
+// Per visible emitter its sprite, rate and live particles at `time`
+// (scene/particle_world.h liveParticleCounts).
+void printParticlesInfo(const scene::SceneState& s, double time) {
+  const std::vector<scene::EmitterCount> counts = scene::liveParticleCounts(s, time);
+  if (counts.empty()) return;
+  uint64_t total = 0;
+  for (const scene::EmitterCount& c : counts) total += c.live;
+  std::printf("particles at %.3f s: %llu live in %zu emitter(s)\n", time, static_cast<unsigned long long>(total),
+              counts.size());
+  for (const scene::EmitterCount& c : counts) {
+    const particles::EmitterDesc& d = s.find(c.entity)->particles->desc;
+    if (!c.error.empty())
+      std::printf("  %s: cannot be evaluated: %s\n", c.name.c_str(), c.error.c_str());
+    else
+      std::printf("  %s: %s %s, %s particles live (rate %g per s, lifetime %g..%g s, max %lld)\n", c.name.c_str(),
+                  particles::spriteName(d.sprite), particles::blendName(d.blend),
+                  (c.estimated ? "about " + std::to_string(c.live) : std::to_string(c.live)).c_str(), d.rateAt(time),
+                  d.lifetimeMin, d.lifetimeMax, static_cast<long long>(d.maxLive));
+  }
 }
 
 // Per type its mesh, instance count and memory (foliage/manifest.h infoJson).
@@ -225,14 +267,17 @@ int runInfo(int argc, char** argv) {
   static const OperationDecl decl{
       .name = "info",
       .summary = "show what a scene holds (--json for JSON)",
-      .usage = "<scene.hscene> [--json]",
+      .usage = "<scene.hscene> [--json] [--time SECONDS|FRAMEf]",
       .description = "Lists the scene's entities (hierarchy, components, world positions), mesh assets (triangles, "
                      "vertices, textures, size in metres, origin, LOD levels with their triangles and Hausdorff "
-                     "error, the processing summary), cameras, terrains, foliage types with their instance counts and tracks, and the scene's extent in "
-                     "metres.",
+                     "error, the processing summary), cameras, terrains, foliage types with their instance counts, particle emitters with their live particles at --time, "
+                     "tracks, and the scene's extent in metres.",
       .positionals = {{.name = "scene.hscene", .help = "the scene file"}},
       .params = {{.key = "json", .option = "json", .label = "JSON", .type = ParamType::Flag,
-                  .help = "print it as JSON"}}};
+                  .help = "print it as JSON"},
+                 {.key = "time", .option = "time", .label = "Time", .type = ParamType::Text,
+                  .help = "scene time the particle counts are for: seconds, or a frame as 150f (default 0)",
+                  .valueName = "T"}}};
   OperationArgs args(decl);
   if (auto code = args.parse(argc, argv)) return *code;
   if (args.positionals().size() != 1) return args.usage("expected one scene file");
@@ -240,8 +285,10 @@ int runInfo(int argc, char** argv) {
   std::string error;
   std::optional<scene::SceneState> s = openScene(path, error);
   if (!s) return args.fail(error);
+  double time = 0.0;
+  if (args.has("time") && !parseTimeArg(args.text("time"), s->sequence.rate, time, error)) return args.usage(error);
   if (args.flag("json")) {
-    std::printf("%s\n", writeJson(infoJson(path, *s)).c_str());
+    std::printf("%s\n", writeJson(infoJson(path, *s, time)).c_str());
     return 0;
   }
   std::printf("%s (scene format %d)\n", path.c_str(), scene::sceneFileVersion(path));
@@ -274,6 +321,7 @@ int runInfo(int argc, char** argv) {
   }
   printTerrainInfo(*s);
   printFoliageInfo(*s);
+  printParticlesInfo(*s, time);
   printTracks(*s);
   std::printf("hierarchy:\n");
   for (scene::EntityId r : s->roots) printTree(*s, r, 0);

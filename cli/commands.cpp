@@ -22,6 +22,7 @@ const std::vector<Command>& commands() {
       {"material", "materials: list (--json), set <material> <field> <value>", runMaterial},
       {"terrain", "terrains: new, import (DEM), erode, paint-rules, export", runTerrain},
       {"foliage", "foliage: plant (generate), type add, scatter, clear", runFoliage},
+      {"particles", "particle emitters: add a preset (snow, fog, torch, campfire, dust)", runParticles},
       {"mesh", "meshes: export (OBJ, PLY, GLB)", runMesh},
       {"light", "lights: add a sun, point or spot light", runLight},
       {"key", sequencer::keyOperation().summary.c_str(), runKey},

@@ -118,17 +118,33 @@ OperationArgs::~OperationArgs() = default;
 
 std::optional<int> OperationArgs::parse(int argc, char** argv) {
   std::vector<std::string> args(argv, argv + argc);
+  // CLI11 splits a value written "[a,b]" into a list of its own; a JSON list
+  // (`set Snow particles.rate_keys "[[0, 100], [30, 400]]"`) must arrive
+  // as typed. A marker in front hides the bracket; it is taken off below.
+  constexpr char kKeep = '\x1f';
+  for (std::string& a : args)
+    if (!a.empty() && a.front() == '[') a.insert(a.begin(), kKeep);
   std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+  const auto unmark = [&] {
+    auto strip = [](std::string& v) {
+      if (!v.empty() && v.front() == kKeep) v.erase(v.begin());
+    };
+    for (std::string& v : positionals_) strip(v);
+    for (auto& [key, v] : raw_) strip(v);
+  };
   try {
     app_->parse(args);
+    unmark();
   } catch (const CLI::CallForHelp&) {
     std::printf("%s", help().c_str());
     return 0;
   } catch (const CLI::ParseError& e) {
     return usage(e.what());
   }
-  for (const std::string& extra : app_->remaining())
+  for (std::string extra : app_->remaining()) {
+    if (!extra.empty() && extra.front() == kKeep) extra.erase(extra.begin());
     return usage(extra.rfind("-", 0) == 0 ? "unknown option " + extra : "unexpected argument '" + extra + "'");
+  }
   for (const ParamDecl& p : op_.params) {
     if (p.option.empty()) continue;
     const CLI::Option* o = options_.at(p.key);

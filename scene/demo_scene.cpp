@@ -12,6 +12,7 @@
 #include "scene/demo_foliage.h"
 #include "scene/demo_glass.h"
 #include "scene/demo_materials.h"
+#include "scene/demo_particles.h"
 #include "scene/demo_terrain.h"
 #include "scene/mesh_materials.h"
 #include "scene/object_tracks.h"
@@ -323,6 +324,8 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   addDemoTranslucentSamples(s);
   // Generated pines, plane trees, junipers and boulders scattered over the valley (docs/foliage.md).
   if (!addDemoFoliage(s, error)) return std::nullopt;
+  // Snow, a fog bank between the pillars and a torch on the tallest (docs/particles.md).
+  if (!addDemoParticles(s, error)) return std::nullopt;
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

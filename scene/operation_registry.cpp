@@ -1,6 +1,7 @@
 #include "scene/operation_registry.h"
 
 #include "foliage/foliage_operations.h"
+#include "particles/particle_operations.h"
 #include "scene/hscene_repair.h"
 #include "scene/import_pipeline.h"
 #include "scene/light_add_operation.h"
@@ -34,6 +35,7 @@ const std::vector<const OperationDecl*>& sharedOperations() {
       &foliage::foliageScatterOperation(),
       &foliage::foliageClearOperation(),
       &foliage::foliagePlantOperation(),
+      &particles::particlesAddOperation(),
   };
   return list;
 }

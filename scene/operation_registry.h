@@ -12,7 +12,7 @@ namespace hs::scene {
 
 // import, mesh export, terrain new/import/erode/paint-rules/layer/export, render,
 // sequence, key, path, farm slurm, farm verify, repair, light add, foliage type
-// add/scatter/clear/plant.
+// add/scatter/clear/plant, particles add.
 const std::vector<const OperationDecl*>& sharedOperations();
 // The operation named `name` ("terrain erode"); nullptr if none.
 const OperationDecl* findOperation(std::string_view name);

@@ -25,23 +25,31 @@ std::vector<PlacedEmitter> visibleEmitters(const SceneState& state) {
   return out;
 }
 
-ParticleWorld::ParticleWorld(const SceneState& state) : state_(state), ground_(state, true) {
-  const foliage::Ground& g = ground_.ground();
-  if (g.terrain) {
-    const terrain::Heightfield* hf = &g.terrain->height;
-    // Off the grid or over a hole there is nothing to meet: far below.
-    terrain_ = std::make_unique<particles::HeightFieldCollider>(
-        [hf](double x, double y) {
-          const auto p = foliage::terrainSurface(*hf, {x, y});
-          return p ? p->position.z : -1e30;
-        },
-        [hf](double x, double y) {
-          const auto p = foliage::terrainSurface(*hf, {x, y});
-          return p ? p->normal : glm::dvec3(0.0, 0.0, 1.0);
-        },
-        std::min(0.25, 0.5 * std::min(hf->spacing().x, hf->spacing().y)));
-  }
-  for (const foliage::MeshGround* m : g.meshes)
+void ParticleWorld::buildTerrain() {
+  if (terrainBuilt_) return;
+  terrainBuilt_ = true;
+  terrainGround_ = std::make_unique<FoliageGround>(state_, false);
+  const terrain::Terrain* t = terrainGround_->ground().terrain;
+  if (!t) return;
+  const terrain::Heightfield* hf = &t->height;
+  // Off the grid or over a hole there is nothing to meet: far below.
+  terrain_ = std::make_unique<particles::HeightFieldCollider>(
+      [hf](double x, double y) {
+        const auto p = foliage::terrainSurface(*hf, {x, y});
+        return p ? p->position.z : -1e30;
+      },
+      [hf](double x, double y) {
+        const auto p = foliage::terrainSurface(*hf, {x, y});
+        return p ? p->normal : glm::dvec3(0.0, 0.0, 1.0);
+      },
+      std::min(0.25, 0.5 * std::min(hf->spacing().x, hf->spacing().y)));
+}
+
+void ParticleWorld::buildMeshes() {
+  if (meshesBuilt_) return;
+  meshesBuilt_ = true;
+  meshGround_ = std::make_unique<FoliageGround>(state_, true);
+  for (const foliage::MeshGround* m : meshGround_->ground().meshes)
     meshes_.push_back(std::make_unique<particles::RaycastCollider>(
         [m](const glm::dvec3& from, const glm::dvec3& to) -> std::optional<particles::Hit> {
           const glm::dvec3 d = to - from;
@@ -57,13 +65,18 @@ ParticleWorld::ParticleWorld(const SceneState& state) : state_(state), ground_(s
         }));
 }
 
-particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& desc) {
+particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& desc, bool colliders) {
   particles::EvaluatorInputs in;
-  if (desc.collision != particles::CollisionMode::None) {
+  if (colliders && desc.collision != particles::CollisionMode::None) {
+    buildTerrain();
+    buildMeshes();
     if (terrain_) in.colliders.push_back(terrain_.get());
     for (const auto& m : meshes_) in.colliders.push_back(m.get());
   }
-  if (desc.shape == particles::Shape::Terrain) in.ground = terrain_.get();
+  if (desc.shape == particles::Shape::Terrain) {
+    buildTerrain();
+    in.ground = terrain_.get();
+  }
   if (desc.shape == particles::Shape::Mesh) {
     for (EntityId id : state_.depthFirstOrder()) {
       const Entity* e = state_.find(id);
@@ -83,8 +96,9 @@ particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& d
   return in;
 }
 
-std::optional<particles::Evaluator> ParticleWorld::evaluator(const particles::EmitterDesc& desc, std::string& error) {
-  return particles::Evaluator::create(desc, inputs(desc), error);
+std::optional<particles::Evaluator> ParticleWorld::evaluator(const particles::EmitterDesc& desc, std::string& error,
+                                                             bool colliders) {
+  return particles::Evaluator::create(desc, inputs(desc, colliders), error);
 }
 
 std::vector<EmitterCount> liveParticleCounts(const SceneState& state, double t) {
@@ -96,7 +110,7 @@ std::vector<EmitterCount> liveParticleCounts(const SceneState& state, double t) 
     EmitterCount c;
     c.entity = p.entity;
     c.name = p.desc.name;
-    if (auto ev = world.evaluator(p.desc, c.error)) c.live = ev->liveCount(t, &c.estimated);
+    if (auto ev = world.evaluator(p.desc, c.error, false)) c.live = ev->liveCount(t, &c.estimated);
     out.push_back(std::move(c));
   }
   return out;

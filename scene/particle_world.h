@@ -30,11 +30,13 @@ std::vector<PlacedEmitter> visibleEmitters(const SceneState& state);
 // What particles collide with and are born on: the first visible terrain
 // (the ground of `terrain` shapes and a collider) and the visible mesh
 // entities (colliders; a `mesh` shape's surface is the mesh entity of that
-// name, its level 0 in world space). Building it costs what the meshes cost
-// (a BVH each); keep one while the scene's entities and assets stay.
+// name, its level 0 in world space). What an emitter needs is built when
+// first asked for: the terrain (no samples copied), the meshes' BVHs only
+// for an emitter that collides (what the meshes cost). Keep one while the
+// scene's entities and assets stay; it refers to `state`, which must outlive it.
 class ParticleWorld {
  public:
-  explicit ParticleWorld(const SceneState& state);
+  explicit ParticleWorld(const SceneState& state) : state_(state) {}
   ParticleWorld(const ParticleWorld&) = delete;
   ParticleWorld& operator=(const ParticleWorld&) = delete;
 
@@ -42,13 +44,20 @@ class ParticleWorld {
   // collides, the ground when its shape is `terrain`, the surface when it is
   // `mesh` (null when no visible mesh entity has that name: Evaluator::create
   // then refuses with "the mesh '...' is missing").
-  particles::EvaluatorInputs inputs(const particles::EmitterDesc& desc);
+  // `colliders` false: none even for a colliding emitter (counting the live
+  // particles needs no replay, so no BVH).
+  particles::EvaluatorInputs inputs(const particles::EmitterDesc& desc, bool colliders = true);
   // The evaluator for `desc`, or nullopt with `error` naming emitter and field.
-  std::optional<particles::Evaluator> evaluator(const particles::EmitterDesc& desc, std::string& error);
+  std::optional<particles::Evaluator> evaluator(const particles::EmitterDesc& desc, std::string& error,
+                                                bool colliders = true);
 
  private:
+  void buildTerrain();
+  void buildMeshes();
+
   const SceneState& state_;
-  FoliageGround ground_;  // terrain and meshes in world space
+  std::unique_ptr<FoliageGround> terrainGround_, meshGround_;  // in world space
+  bool terrainBuilt_ = false, meshesBuilt_ = false;
   std::unique_ptr<particles::HeightFieldCollider> terrain_;
   std::vector<std::unique_ptr<particles::RaycastCollider>> meshes_;
   std::vector<std::unique_ptr<particles::TriangleSurface>> surfaces_;  // kept for evaluators made here

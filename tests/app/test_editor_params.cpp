@@ -20,6 +20,7 @@
 #include "app/camera_path_panel.h"
 #include "app/export_dialog.h"
 #include "app/foliage_dialogs.h"
+#include "app/particles_panel.h"
 #include "app/import_dialog.h"
 #include "app/main_window.h"
 #include "app/mesh_export_dialog.h"
@@ -86,6 +87,7 @@ class EditorParamsTest : public QObject {
     roots_["foliage scatter"] = {
         open<app::FoliageScatterDialog>(nullptr, std::vector<foliage::FoliageType>{pines}, 0, QStringList{"Grass"})};
     roots_["foliage plant"] = {open<app::PlantDialog>(nullptr, "Plant")};
+    roots_["particles add"] = {open<app::ParticlesAddDialog>(nullptr, glm::dvec3(0.0))};
   }
 
   void cleanupTestCase() {

@@ -150,6 +150,7 @@ class TestCliParams : public QObject {
         {"foliage scatter", {{"foliage", "scatter", "T", missing_}, missing_}},
         {"foliage clear", {{"foliage", "clear", "T", missing_}, missing_}},
         {"foliage plant", {{"foliage", "plant", "P", "--kind", "rock", missing_}, missing_}},
+        {"particles add", {{"particles", "add", "snow", missing_}, missing_}},
     };
   }
 

@@ -1,0 +1,372 @@
+// Particle emitters in the document (docs/particles.md, "In the document"):
+// presets as entities through the command API (one undo step, parent and
+// children for several emitters, origins where asked), every field set
+// checked as a file's emitter is (a refused value names emitter and field
+// and leaves the document as it was), the .hscene round trip, a damaged
+// emitter refusing the file with its path, the scene's colliders (snow
+// sticks on the terrain within 1 mm of the terrain's own surface), a mesh
+// shape born on its entity's surface, UTM-sized positions, and the live
+// counts `info --time` prints against the evaluator's own frame.
+#include <QtTest>
+
+#include <cmath>
+#include <filesystem>
+
+#include <sqlite3.h>
+
+#include "foliage/surface.h"
+#include "particles/evaluate.h"
+#include "scene/demo_scene.h"
+#include "scene/document.h"
+#include "scene/foliage_ground.h"
+#include "scene/hscene_file.h"
+#include "scene/operations.h"
+#include "scene/particle_ops.h"
+#include "scene/particle_world.h"
+#include "scene/scene_json.h"
+#include "scene/terrain_ops.h"
+
+using namespace hs;
+using namespace hs::scene;
+
+namespace {
+
+EntityId makeTerrain(Document& doc) {
+  ops::NewTerrain spec;
+  spec.name = "Valley";
+  spec.samplesX = spec.samplesY = 65;
+  spec.sizeMetres = glm::dvec2(128.0);
+  spec.start = ops::NewTerrain::Start::Hills;
+  spec.heightRange = {0.0f, 20.0f};
+  std::string error;
+  const EntityId id = ops::addTerrain(doc, spec, error);
+  if (id == kNoEntity) qFatal("addTerrain: %s", error.c_str());
+  return id;
+}
+
+EntityId addPreset(Document& doc, const char* preset, particles::PresetOptions o, bool atGiven = true) {
+  std::string error;
+  const EntityId id = ops::addParticles(doc, preset, o, atGiven, error);
+  if (id == kNoEntity) qFatal("addParticles %s: %s", preset, error.c_str());
+  return id;
+}
+
+// A small emitter: a point, a few particles a second, closed form only.
+particles::EmitterDesc small(double rate = 20.0) {
+  particles::EmitterDesc d;
+  d.rate = rate;
+  d.lifetimeMin = d.lifetimeMax = 2.0;
+  d.speedMin = d.speedMax = 1.0;
+  d.start = 0.0;
+  return d;
+}
+
+// An entity with `d` as its emitter, through the command API (three steps).
+EntityId addEmitter(Document& doc, const std::string& name, const glm::dvec3& at, const particles::EmitterDesc& d) {
+  Transform t;
+  t.translation = at;
+  const EntityId id = ops::addEmpty(doc, name, t);
+  std::string error;
+  if (!ops::addComponent(doc, id, *findComponent("particles")) || !ops::setEmitter(doc, id, d, error))
+    qFatal("addEmitter: %s", error.c_str());
+  return id;
+}
+
+std::string tempPath(const char* name) {
+  static QTemporaryDir dir;
+  return dir.filePath(name).toStdString();
+}
+
+}  // namespace
+
+class TestSceneParticles : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void presetsBecomeEntitiesInOneUndoStep() {
+    Document doc;
+    const int before = doc.undoStack()->count();
+    const glm::dvec3 at(120.0, 310.0, 412.0);
+    const EntityId torch = addPreset(doc, "torch", {.name = "Gate torch", .at = at});
+    std::string error;
+    const std::vector<particles::EmitterDesc> made = particles::makePreset("torch", {.name = "Gate torch", .at = at}, error);
+    QCOMPARE(doc.undoStack()->count(), before + 1);
+    const Entity group = *doc.state().find(torch);  // a copy: undo below removes it
+    QCOMPARE(group.name, std::string("Gate torch"));
+    QVERIFY(!group.particles);
+    QCOMPARE(group.children.size(), size_t(2));  // flame and smoke
+    for (size_t i = 0; i < group.children.size(); ++i) {
+      const EntityId c = group.children[i];
+      const auto d = emitterInWorld(doc.state(), c);
+      QVERIFY(d);
+      QVERIFY2(glm::length(d->origin - made[i].origin) < 1e-9, "each emitter sits where the preset put it");
+      QCOMPARE(d->name, doc.state().find(c)->name);
+      QVERIFY(particles::validate(*d).empty());
+    }
+    QCOMPARE(doc.state().find(group.children[0])->name, std::string("Gate torch flame"));
+    QCOMPARE(emitterInWorld(doc.state(), group.children[0])->origin, at);  // the flame at the torch itself
+    // One emitter: one entity, named after the preset; a second gets " 2".
+    const EntityId snow = addPreset(doc, "snow", {.area = glm::dvec4(-10, -10, 10, 10)}, false);
+    QCOMPARE(doc.state().find(snow)->name, std::string("Snow"));
+    QVERIFY(doc.state().find(snow)->particles);
+    const EntityId snow2 = addPreset(doc, "snow", {});
+    QCOMPARE(doc.state().find(snow2)->name, std::string("Snow 2"));
+    doc.undoStack()->undo();
+    doc.undoStack()->undo();
+    doc.undoStack()->undo();
+    QVERIFY(!doc.state().find(torch));
+    for (EntityId c : group.children) QVERIFY(!doc.state().find(c));
+    doc.undoStack()->redo();
+    QVERIFY(doc.state().find(torch) && doc.state().find(torch)->children.size() == 2);
+  }
+
+  void unknownPresetListsTheNames() {
+    Document doc;
+    std::string error;
+    QCOMPARE(ops::addParticles(doc, "rain", {}, true, error), kNoEntity);
+    for (const char* n : {"rain", "snow", "fog", "torch", "campfire", "dust"})
+      QVERIFY2(error.find(n) != std::string::npos, error.c_str());
+    QCOMPARE(doc.undoStack()->count(), 0);
+  }
+
+  void areaPresetsStandOnTheGround() {
+    Document doc;
+    makeTerrain(doc);
+    const EntityId fog = addPreset(doc, "fog", {.area = glm::dvec4(-20, -30, 40, 10)}, false);
+    const FoliageGround ground(doc.state(), false);
+    const auto surface = foliage::terrainSurface(ground.ground().terrain->height, {10.0, -10.0});
+    QVERIFY(surface);
+    const auto d = emitterInWorld(doc.state(), fog);
+    QCOMPARE(d->origin.x, 10.0);
+    QCOMPARE(d->origin.y, -10.0);
+    // The fog bank's box sits 3 m above the ground at the area's centre.
+    QVERIFY2(std::abs(d->origin.z - (surface->position.z + 3.0)) < 1e-9, std::to_string(d->origin.z).c_str());
+  }
+
+  void refusedValuesNameEmitterAndFieldAndChangeNothing() {
+    Document doc;
+    const EntityId id = addPreset(doc, "dust", {.name = "Road dust"});
+    const SceneState before = doc.state();
+    const int steps = doc.undoStack()->count();
+    struct Case {
+      const char* key;
+      Json value;
+      const char* says;
+    };
+    const Case cases[] = {
+        {"drag_per_s", std::nan(""), "drag_per_s"},
+        {"drag_per_s", -1.0, "drag_per_s"},
+        {"rate_per_s", -5.0, "rate_per_s"},
+        {"lifetime_s", Json::array({5.0, 1.0}), "lifetime_s"},
+        {"size_m", Json::array({std::nan(""), 1.0}), "size_m"},
+        {"rate_keys", Json::parse("[[1, 10], [1, 20]]"), "rate_keys"},
+        {"colour_over_life", Json::parse("[[0, 1, 1, 1]]"), "colour_over_life"},
+        {"shape", "blob", "shape"},
+        {"no_such_field", 1.0, "no_such_field"},
+    };
+    for (const Case& c : cases) {
+      std::string error;
+      QVERIFY2(!ops::setEmitterValue(doc, id, c.key, c.value, error), c.key);
+      QVERIFY2(error.find(c.says) != std::string::npos, error.c_str());
+      if (std::string(c.key) != "no_such_field")
+        QVERIFY2(error.find("Road dust") != std::string::npos, error.c_str());
+    }
+    QCOMPARE(doc.undoStack()->count(), steps);
+    QVERIFY(doc.state().find(id)->particles->desc == before.find(id)->particles->desc);
+    // A good value is one undo step; Undo gives the old one back.
+    std::string error;
+    bool changed = false;
+    QVERIFY2(ops::setEmitterValue(doc, id, "rate_keys", Json::parse("[[0, 10], [5, 400]]"), error, {}, &changed),
+             error.c_str());
+    QVERIFY(changed);
+    QCOMPARE(doc.undoStack()->count(), steps + 1);
+    QCOMPARE(doc.state().find(id)->particles->desc.rateAt(2.5), 10.0 + 0.5 * 390.0);
+    doc.undoStack()->undo();
+    QVERIFY(doc.state().find(id)->particles->desc == before.find(id)->particles->desc);
+    // Text as `set` takes it.
+    auto v = ops::parseEmitterValue("Road dust", "speed_m_per_s", "0.5,2", error);
+    QVERIFY2(v, error.c_str());
+    QVERIFY(ops::setEmitterValue(doc, id, "speed_m_per_s", *v, error));
+    QCOMPARE(doc.state().find(id)->particles->desc.speedMax, 2.0);
+    QVERIFY(!ops::parseEmitterValue("Road dust", "bursts", "[[0, 5]", error));
+    QVERIFY2(error.find("bursts") != std::string::npos, error.c_str());
+  }
+
+  void fileRoundTripKeepsEveryEmitter() {
+    Document doc;
+    addPreset(doc, "campfire", {.at = {3, 4, 5}, .seed = 9});
+    const EntityId snow = addPreset(doc, "snow", {.area = glm::dvec4(0, 0, 50, 50), .rate = 1234.0});
+    std::string error;
+    QVERIFY(ops::setEmitterValue(doc, snow, "bursts", Json::parse("[[2, 100]]"), error));
+    const std::string path = tempPath("round.hscene");
+    QVERIFY2(saveScene(doc.state(), path, error), error.c_str());
+    QCOMPARE(sceneFileVersion(path), kSceneFormatVersion);
+    auto loaded = loadScene(path, error);
+    QVERIFY2(loaded, error.c_str());
+    size_t emitters = 0;
+    for (const auto& [id, e] : doc.state().entities) {
+      if (!e.particles) continue;
+      ++emitters;
+      const Entity* l = loaded->find(id);
+      QVERIFY(l && l->particles);
+      QVERIFY2(l->particles->desc == e.particles->desc, e.name.c_str());
+      QVERIFY(l->transform == e.transform);
+    }
+    QCOMPARE(emitters, size_t(4));
+  }
+
+  void damagedEmitterRefusesTheFileWithItsPath() {
+    Document doc;
+    addPreset(doc, "snow", {});
+    const std::string path = tempPath("damaged.hscene");
+    std::string error;
+    QVERIFY(saveScene(doc.state(), path, error));
+    {
+      sqlite3* db = nullptr;
+      QCOMPARE(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+      const char* sql = "UPDATE document SET json = replace(json, '\"drag_per_s\": 8.0', '\"drag_per_s\": \"strong\"') "
+                        "WHERE instr(json, '\"drag_per_s\": 8.0') > 0";
+      QCOMPARE(sqlite3_exec(db, sql, nullptr, nullptr, nullptr), SQLITE_OK);
+      QCOMPARE(sqlite3_changes(db), 1);  // the snow's drag was there to damage
+      sqlite3_close(db);
+    }
+    QVERIFY(!loadScene(path, error));
+    for (const char* part : {"components.particles", "drag_per_s", "strong", "Snow"})
+      QVERIFY2(error.find(part) != std::string::npos, error.c_str());
+  }
+
+  void snowSticksOnTheTerrainWithinAMillimetre() {
+    Document doc;
+    makeTerrain(doc);
+    particles::EmitterDesc d = small(400.0);
+    d.shape = particles::Shape::Box;
+    d.boxHalf = {30.0, 30.0, 1.0};
+    d.direction = {0, 0, -1};
+    d.speedMin = 2.0, d.speedMax = 6.0;
+    d.lifetimeMin = d.lifetimeMax = 8.0;
+    d.collision = particles::CollisionMode::Stick;
+    d.gravity = {0, 0, -9.81};
+    d.drag = 0.5;
+    const EntityId id = addEmitter(doc, "Flakes", {0, 0, 30}, d);
+    ParticleWorld world(doc.state());
+    std::string error;
+    auto ev = world.evaluator(*emitterInWorld(doc.state(), id), error);
+    QVERIFY2(ev, error.c_str());
+    const particles::Frame f = ev->frame(6.0);
+    QVERIFY(f.particles.size() > 500);
+    const FoliageGround ground(doc.state(), false);
+    size_t resting = 0;
+    double worst = 0.0;
+    for (const particles::Particle& p : f.particles) {
+      const glm::dvec3 w = glm::dvec3(0, 0, 30) + p.position;
+      const auto s = foliage::terrainSurface(ground.ground().terrain->height, {w.x, w.y});
+      QVERIFY(s);
+      worst = std::max(worst, s->position.z - w.z);
+      if (p.fate == particles::Fate::Resting) {
+        ++resting;
+        QVERIFY2(std::abs(w.z - s->position.z) < 1e-3, std::to_string(w.z - s->position.z).c_str());
+      }
+    }
+    QVERIFY2(worst < 1e-3, std::to_string(worst).c_str());
+    QVERIFY2(resting > 100, std::to_string(resting).c_str());
+  }
+
+  void meshShapeIsBornOnItsEntitysSurface() {
+    std::string error;
+    auto demo = buildDemoScene(error);
+    QVERIFY2(demo, error.c_str());
+    Document doc;
+    doc.reset(std::move(*demo), QString());
+    particles::EmitterDesc d = small(200.0);
+    d.shape = particles::Shape::Mesh;
+    d.mesh = "Stanford Bunny";
+    d.speedMin = d.speedMax = 0.0;
+    d.gravity = glm::dvec3(0.0);
+    const EntityId id = addEmitter(doc, "Bunny sparks", {1, 2, 3}, d);
+    ParticleWorld world(doc.state());
+    const auto placed = emitterInWorld(doc.state(), id);
+    auto ev = world.evaluator(*placed, error);
+    QVERIFY2(ev, error.c_str());
+    const particles::Frame f = ev->frame(1.0);
+    QVERIFY(f.particles.size() > 50);
+    // Standing still, every particle lies on the bunny: within 1 mm of it.
+    const FoliageGround ground(doc.state(), true);
+    const foliage::MeshGround* bunny = nullptr;
+    for (const foliage::MeshGround* m : ground.ground().meshes)
+      if (m->triangleCount() == 69451 && glm::length(m->mesh().origin) < 50.0 && !bunny) bunny = m;
+    QVERIFY(bunny);
+    for (const particles::Particle& p : f.particles) {
+      const auto c = bunny->closest(placed->origin + p.position, 0.01);
+      QVERIFY2(c && glm::length(c->position - (placed->origin + p.position)) < 1e-3, "off the surface");
+    }
+    // A name no visible mesh entity has: refused, naming it.
+    std::string why;
+    QVERIFY(ops::setEmitterValue(doc, id, "mesh", "Monastery roof", why));
+    QVERIFY(!world.evaluator(*emitterInWorld(doc.state(), id), why));
+    QVERIFY2(why.find("Monastery roof") != std::string::npos, why.c_str());
+  }
+
+  void utmPositionsStayFiniteAndExact() {
+    Document doc;
+    const glm::dvec3 utm(500000.0, 4400000.0, 300.0);
+    const EntityId torch = addPreset(doc, "torch", {.at = utm});
+    for (EntityId c : doc.state().find(torch)->children) {
+      const auto d = emitterInWorld(doc.state(), c);
+      QVERIFY2(glm::length(d->origin - utm) < 2.0, "flame at the torch, smoke just above");
+      ParticleWorld world(doc.state());
+      std::string error;
+      auto ev = world.evaluator(*d, error);
+      QVERIFY2(ev, error.c_str());
+      const particles::Frame f = ev->frame(12.25);
+      QVERIFY(!f.particles.empty());
+      for (const particles::Particle& p : f.particles) {
+        QVERIFY(std::isfinite(p.position.x) && std::isfinite(p.position.y) && std::isfinite(p.position.z));
+        QVERIFY2(glm::length(p.position) < 50.0, "a torch's particles stay near it");
+      }
+    }
+  }
+
+  void liveCountsMatchTheEvaluatedFrame() {
+    Document doc;
+    const EntityId a = addEmitter(doc, "A", {0, 0, 0}, small(50.0));
+    particles::EmitterDesc late = small(10.0);
+    late.start = 5.0;
+    const EntityId b = addEmitter(doc, "B", {5, 0, 0}, late);
+    const EntityId hidden = addEmitter(doc, "Hidden", {9, 0, 0}, small(10.0));
+    QVERIFY(ops::setField(doc, hidden, *findEntityField("entity.visible"), FieldValue(false)));
+    for (double t : {0.0, 1.0, 3.0, 6.0}) {
+      const std::vector<EmitterCount> counts = liveParticleCounts(doc.state(), t);
+      QCOMPARE(counts.size(), size_t(2));  // the hidden one is not listed
+      for (const EmitterCount& c : counts) {
+        QVERIFY(c.error.empty());
+        ParticleWorld world(doc.state());
+        std::string error;
+        auto ev = world.evaluator(*emitterInWorld(doc.state(), c.entity), error);
+        QCOMPARE(c.live, uint64_t(ev->frame(t).particles.size()));
+      }
+      QCOMPARE(counts[0].entity, a);
+      QCOMPARE(counts[1].entity, b);
+    }
+    QCOMPARE(liveParticleCounts(doc.state(), 3.0)[1].live, uint64_t(0));  // B starts at 5 s
+  }
+
+  void demoHasSnowFogAndATorch() {
+    std::string error;
+    auto demo = buildDemoScene(error);
+    QVERIFY2(demo, error.c_str());
+    std::vector<std::string> names;
+    for (const PlacedEmitter& p : visibleEmitters(*demo)) names.push_back(p.desc.name);
+    QVERIFY(std::find(names.begin(), names.end(), "Snow") != names.end());
+    QVERIFY(std::find(names.begin(), names.end(), "Fog bank") != names.end());
+    QVERIFY(std::find(names.begin(), names.end(), "Monastery torch flame") != names.end());
+    QVERIFY(std::find(names.begin(), names.end(), "Monastery torch smoke") != names.end());
+    // Something to see at the first frame: every emitter is already running.
+    for (const EmitterCount& c : liveParticleCounts(*demo, 0.0)) {
+      QVERIFY2(c.error.empty(), c.error.c_str());
+      QVERIFY2(c.live > 0, c.name.c_str());
+    }
+  }
+};
+
+QTEST_GUILESS_MAIN(TestSceneParticles)
+#include "test_scene_particles.moc"
