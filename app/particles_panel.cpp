@@ -234,6 +234,9 @@ void ParticlesPanel::refreshForm() {
   const Json j = particles::emitterToJson(e->particles->desc);
   for (const ParamDecl& p : particles::emitterParamDecls())
     if (p.editor && j.contains(p.key)) form_->setValue(p.key, j[p.key]);
+  // What the fields show now (rounded to their decimals): an edit is a
+  // field that differs from this, never one the rounding made differ.
+  shown_ = form_->values();
   for (auto& [key, edit] : lists_)
     if (j.contains(key)) edit->setText(QString::fromStdString(j[key].dump()));
   updating_ = false;
@@ -243,10 +246,12 @@ void ParticlesPanel::formEdited() {
   if (updating_ || current_ == scene::kNoEntity) return;
   const scene::Entity* e = doc_.state().find(current_);
   if (!e || !e->particles) return;
-  const Json now = particles::emitterToJson(e->particles->desc);
   const Json values = form_->values();
   for (auto it = values.begin(); it != values.end(); ++it)
-    if (!now.contains(it.key()) || now[it.key()] != it.value()) setValue(current_, it.key(), it.value());
+    if (!shown_.contains(it.key()) || shown_[it.key()] != it.value()) {
+      shown_[it.key()] = it.value();
+      setValue(current_, it.key(), it.value());
+    }
 }
 
 void ParticlesPanel::listEdited(const std::string& key, QLineEdit* edit) {

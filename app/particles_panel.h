@@ -87,6 +87,7 @@ class ParticlesPanel : public QWidget {
   QWidget* fields_ = nullptr;
   ParamForm* form_ = nullptr;
   std::vector<std::pair<std::string, QLineEdit*>> lists_;
+  Json shown_;  // the form's values as refreshForm() left them
 };
 
 }  // namespace hs::app

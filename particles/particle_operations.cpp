@@ -34,7 +34,7 @@ const OperationDecl& particlesAddOperation() {
         {.key = "rate", .option = "rate", .label = "Rate", .unit = Unit::PerSecond, .min = 0.0, .max = 1e7,
          .help = "particles per second of the main emitter (the others scale with it; default: the preset's)",
          .valueName = "R", .editor = true},
-        {.key = "seed", .option = "seed", .label = "Seed", .min = 0, .max = 4294967295.0, .integer = true,
+        {.key = "seed", .option = "seed", .label = "Seed", .min = 0, .max = 2147483647, .integer = true,
          .defaultValue = 1, .help = "the same seed gives the same particles", .valueName = "S", .editor = true},
     };
     return o;

@@ -709,10 +709,12 @@ class TestFrameGraph : public QObject {
     OffscreenRenderer fresh;
     std::string error;
     QVERIFY2(fresh.initialize(error), error.c_str());
-    // The demo as it was then: its foliage came later (its passes and
-    // buffers are the instanced source's, test_draw_sources).
+    // The demo as it was then: its foliage and particles came later (their
+    // passes and buffers are the instanced source's, test_draw_sources, and
+    // the particle source's, test_particle_render).
     scene::SceneState then = demo_;
     then.foliage.reset();
+    for (auto& [id, e] : then.entities) e.particles.reset();
     fresh.render(then, v, false, &st, o);
     std::vector<std::string> passes;
     for (const auto& p : before["passes"]) passes.push_back(p.get<std::string>());
