@@ -35,12 +35,6 @@ class SpawnSchedule {
   uint64_t bornBy(double t) const;
   // The jitter u_k of particle k.
   double jitter(uint64_t k) const;
-  // The piecewise-linear rate itself (a GPU evaluation inverts N(t) from
-  // them, render/particle_gpu_eval.h): segment boundaries in scene time, the
-  // rate and N at each. Empty: no particles.
-  const std::vector<double>& boundaries() const { return at_; }
-  const std::vector<double>& rates() const { return rate_; }
-  const std::vector<double>& cumulative() const { return cum_; }
 
  private:
   uint32_t seed_ = 0;
