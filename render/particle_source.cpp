@@ -56,30 +56,50 @@ struct ViewVolume {
 }  // namespace
 
 ParticleSource::ParticleSource(ParticleSprites& sprites, std::vector<particles::PackedParticle> particles,
-                               std::vector<ParticleDraw> draws, size_t views)
-    : sprites_(sprites), particles_(std::move(particles)), draws_(std::move(draws)), views_(views) {}
+                               std::vector<ParticleGpuJob> gpuJobs, std::vector<ParticleDraw> draws, size_t views)
+    : sprites_(sprites),
+      particles_(std::move(particles)),
+      gpuJobs_(std::move(gpuJobs)),
+      draws_(std::move(draws)),
+      views_(views) {
+  records_ = particles_.size();
+  for (const ParticleGpuJob& j : gpuJobs_) records_ += j.data.candidates;
+}
 
 bool ParticleSource::has(DrawVariant variant, SurfaceSet surfaces) const {
   // Translucent surfaces only: no shadows (Depth), no picking, not in the
   // opaque pass, not in the layered depth of field's capture (All).
-  return variant == DrawVariant::Surface && surfaces == SurfaceSet::Translucent && !particles_.empty();
+  return variant == DrawVariant::Surface && surfaces == SurfaceSet::Translucent && records_ > 0;
 }
 
 void ParticleSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
-  (void)frame;
   struct Upload {
     BufferRef particles;
   };
-  const size_t bytes = particles_.size() * sizeof(particles::PackedParticle);
+  const size_t bytes = records_ * sizeof(particles::PackedParticle);
   const Upload& up = graph.addPass<Upload>(
       "particles_upload",
       [&](PassBuilder& b, Upload& d) {
         d.particles = b.create("particles", BufferDesc{bytes}, Usage::Transfer);
       },
-      [this, bytes](const Upload& d, const PassResources& r) {
-        glNamedBufferSubData(r.buffer(d.particles), 0, GLsizeiptr(bytes), particles_.data());
+      [this](const Upload& d, const PassResources& r) {
+        if (!particles_.empty())
+          glNamedBufferSubData(r.buffer(d.particles), 0, GLsizeiptr(particles_.size() * sizeof(particles::PackedParticle)),
+                               particles_.data());
       });
   buffer_ = up.particles;
+  if (gpuJobs_.empty()) return;
+  // The emitters without replay: evaluated into the rest of the buffer.
+  struct Evaluate {
+    BufferRef particles;
+  };
+  const Evaluate& ev = graph.addPass<Evaluate>(
+      "particles_evaluate", [&](PassBuilder& b, Evaluate& d) { d.particles = b.write(b.read(buffer_)); },
+      [this, &frame](const Evaluate& d, const PassResources& r) {
+        GlProgram& p = frame.res.program({"", "", "particle_eval.comp", {}});
+        for (const ParticleGpuJob& j : gpuJobs_) dispatchGpuEvaluation(p, j.data, r.buffer(d.particles), j.first);
+      });
+  buffer_ = ev.particles;
 }
 
 void ParticleSource::declare(PassBuilder& builder, DrawVariant variant) const {
@@ -87,7 +107,7 @@ void ParticleSource::declare(PassBuilder& builder, DrawVariant variant) const {
 }
 
 size_t ParticleSource::triangles(SurfaceSet surfaces) const {
-  return surfaces == SurfaceSet::Translucent ? particles_.size() * 2 * views_ : 0;
+  return surfaces == SurfaceSet::Translucent ? records_ * 2 * views_ : 0;
 }
 
 void ParticleSource::draw(FrameContext& frame, const DrawCall& call, const PassResources& r) {
@@ -186,7 +206,9 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
 
   const double t = state.time.seconds;
   std::vector<particles::PackedParticle> all;
-  std::vector<ParticleDraw> draws;
+  std::vector<ParticleDraw> draws, gpuDraws;
+  std::vector<ParticleGpuJob> jobs;
+  uint32_t gpuRecords = 0;
   uint32_t index = 0;
   for (const scene::PlacedEmitter& pe : placed) {
     const uint32_t object = kObjectBase + index++;
@@ -197,6 +219,25 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     }
     // Nothing born in the live window: the emitter costs nothing at t.
     if (e.evaluator->candidates(t) == 0) continue;
+    ParticleDraw d;
+    d.layerBase = ParticleSprites::layerBase(pe.desc.sprite);
+    d.layerCount = ParticleSprites::layerCount(pe.desc.sprite);
+    d.additive = pe.desc.blend == particles::Blend::Additive;
+    d.lit = pe.desc.lit;
+    d.alongVelocity = pe.desc.facing == particles::Facing::Velocity;
+    d.softDistance = float(pe.desc.softDistance);
+    d.object = object;
+    if (frame.options.gpuParticles && gpuEvaluable(*e.evaluator, t)) {
+      // The compute pass evaluates every candidate (the dead ones draw
+      // nothing); no per-particle culling on the CPU.
+      ParticleGpuJob job{gpuEmitterData(*e.evaluator, t, origin, pe.desc.seed), gpuRecords};
+      d.first = gpuRecords;  // after the CPU's records: moved below
+      d.count = job.data.candidates;
+      gpuRecords += d.count;
+      jobs.push_back(std::move(job));
+      gpuDraws.push_back(d);
+      continue;
+    }
     // Once per scene time: a second view group or a lens sample of the
     // same frame reuses it.
     if (!e.evaluated || e.time != t) {
@@ -206,8 +247,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     }
     if (e.frame.particles.empty()) continue;
     std::vector<particles::PackedParticle> packed = particles::packFrame(e.frame, pe.desc.origin, origin, pe.desc.seed);
-    const bool along = pe.desc.facing == particles::Facing::Velocity;
-    ParticleDraw d;
+    const bool along = d.alongVelocity;
     d.first = uint32_t(all.size());
     for (const particles::PackedParticle& q : packed) {
       if (!(q.colour[3] > 0.0f) || !(q.size > 0.0f)) continue;
@@ -220,19 +260,19 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     }
     d.count = uint32_t(all.size()) - d.first;
     if (d.count == 0) continue;
-    d.layerBase = ParticleSprites::layerBase(pe.desc.sprite);
-    d.layerCount = ParticleSprites::layerCount(pe.desc.sprite);
-    d.additive = pe.desc.blend == particles::Blend::Additive;
-    d.lit = pe.desc.lit;
-    d.alongVelocity = along;
-    d.softDistance = float(pe.desc.softDistance);
-    d.object = object;
     draws.push_back(d);
   }
-  if (all.empty()) return nullptr;
-  frame.stats.particlesDrawn += all.size();
+  if (all.empty() && jobs.empty()) return nullptr;
+  // The compute pass's records follow the CPU's.
+  const uint32_t cpuRecords = uint32_t(all.size());
+  for (ParticleGpuJob& j : jobs) j.first += cpuRecords;
+  for (ParticleDraw& d : gpuDraws) {
+    d.first += cpuRecords;
+    draws.push_back(d);
+  }
+  frame.stats.particlesDrawn += all.size() + gpuRecords;
   const size_t views = frame.views ? frame.views->size() : 1;
-  source_ = std::make_unique<ParticleSource>(sprites_, std::move(all), std::move(draws), views);
+  source_ = std::make_unique<ParticleSource>(sprites_, std::move(all), std::move(jobs), std::move(draws), views);
   return source_.get();
 }
 

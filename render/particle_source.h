@@ -20,6 +20,7 @@
 
 #include "particles/evaluate.h"
 #include "render/draw_source.h"
+#include "render/particle_gpu_eval.h"
 #include "render/particle_sprites.h"
 #include "scene/particle_world.h"
 #include "scene/scene_state.h"
@@ -35,21 +36,31 @@ struct ParticleDraw {
   uint32_t object = 0;                // the transparency key's object
 };
 
-// One frame's particles (made by ParticleSources::update).
+// An emitter the compute pass evaluates (RenderOptions::gpuParticles):
+// its records go from `first` in the frame's buffer.
+struct ParticleGpuJob {
+  GpuEmitterData data;
+  uint32_t first = 0;
+};
+
+// One frame's particles (made by ParticleSources::update): the CPU's
+// records first, then the compute pass's.
 class ParticleSource final : public DrawSource {
  public:
   ParticleSource(ParticleSprites& sprites, std::vector<particles::PackedParticle> particles,
-                 std::vector<ParticleDraw> draws, size_t views);
+                 std::vector<ParticleGpuJob> gpuJobs, std::vector<ParticleDraw> draws, size_t views);
   bool has(DrawVariant variant, SurfaceSet surfaces) const override;
   void addPreparePasses(FrameGraph& graph, FrameContext& frame) override;
   void declare(PassBuilder& builder, DrawVariant variant) const override;
   void draw(FrameContext& frame, const DrawCall& call, const PassResources& resources) override;
   size_t triangles(SurfaceSet surfaces) const override;
-  size_t particleCount() const { return particles_.size(); }
+  size_t recordCount() const { return records_; }
 
  private:
   ParticleSprites& sprites_;
   std::vector<particles::PackedParticle> particles_;
+  std::vector<ParticleGpuJob> gpuJobs_;
+  size_t records_ = 0;  // the CPU's and the compute pass's
   std::vector<ParticleDraw> draws_;
   size_t views_ = 1;
   BufferRef buffer_{};

@@ -56,7 +56,7 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
       {"mesh.vert", "mesh.frag", "", {"INSTANCED"}}, {"", "", "instance_cull.comp", {}},
       {"", "", "instance_commands.comp", {}},
       // Particles (particle_source.h)
-      {"particle.vert", "particle.frag", "", {"HS_PARTICLE"}},
+      {"particle.vert", "particle.frag", "", {"HS_PARTICLE"}}, {"", "", "particle_eval.comp", {}},
   };
   return programs;
 }
