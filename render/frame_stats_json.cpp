@@ -25,6 +25,7 @@ Json frameStatsJson(const FrameStats& stats, const std::vector<GpuAllocation>& r
   j["triangles"] = stats.trianglesDrawn;
   j["draw_calls"] = stats.drawCalls;
   j["instances_drawn"] = stats.instancesDrawn;
+  j["particles_drawn"] = stats.particlesDrawn;
   j["instances_culled"] = stats.instancesCulled;
   j["cpu_ms"] = stats.cpuMs;
   // The frame's timer query answers an earlier frame; with per-pass

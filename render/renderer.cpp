@@ -26,6 +26,7 @@
 #include "render/passes/scene_passes.h"
 #include "render/passes/shadow_passes.h"
 #include "render/foliage_sources.h"
+#include "render/particle_source.h"
 #include "render/render_resources.h"
 #include "scene/light_units.h"
 
@@ -54,6 +55,8 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
       // Instanced draw sources (instanced_source.h)
       {"mesh.vert", "mesh.frag", "", {"INSTANCED"}}, {"", "", "instance_cull.comp", {}},
       {"", "", "instance_commands.comp", {}},
+      // Particles (particle_source.h)
+      {"particle.vert", "particle.frag", "", {"HS_PARTICLE"}}, {"", "", "particle_eval.comp", {}},
   };
   return programs;
 }
@@ -133,10 +136,13 @@ struct Renderer::Impl {
   float lensWeight = 0.0f;
   std::vector<std::shared_ptr<DrawSource>> extraSources;  // setDrawSources
   FoliageSources foliage;  // the document's foliage (foliage_sources.h)
+  ParticleSources particles;  // the document's emitters (particle_source.h)
   // The sources every frame draws after the meshes and terrains: the
-  // document's foliage, then the extra ones.
+  // document's foliage, its particles (when any is live in view), then the
+  // extra ones.
   void addSources(const scene::SceneState& state, FrameContext& frame) {
     for (const auto& s : foliage.update(state)) frame.sources.push_back(s.get());
+    if (DrawSource* p = particles.update(state, frame)) frame.sources.push_back(p);
     for (const auto& s : extraSources) frame.sources.push_back(s.get());
   }
 

@@ -74,6 +74,7 @@ struct FrameStats {
   size_t trianglesDrawn = 0;
   size_t drawCalls = 0;
   size_t instancesDrawn = 0;
+  size_t particlesDrawn = 0;     // particles in the frame's buffer (render/particle_source.h), each view draws them
   size_t instancesCulled = 0;
   size_t instancesAtCoarserLod = 0;  // drawn with a mesh LOD level above 0 (mesh_lod.h)
   size_t terrainTriangles = 0;   // included in trianglesDrawn
@@ -114,6 +115,9 @@ struct RenderOptions {
   const RenderView* lodView = nullptr;
   bool passTimings = false;      // GPU timestamps per pass; waits for them (stats, benchmarks)
   bool keepDepth = false;        // keep a single-sample depth for readDepth()
+  // Emitters without replay evaluated by a compute pass (render/
+  // particle_gpu_eval.h) instead of on the CPU; not culled per particle.
+  bool gpuParticles = false;
   // Meshes write their shading normal (world axes, after normal and
   // parallax mapping) instead of a colour: read it with keepHdr/readHdr
   // (tests of the maps). Gouraud materials are not affected.

@@ -8,12 +8,18 @@ layout(early_fragment_tests) in;
 #ifdef INSTANCED
 #include "instance_fade.glsl"  // the lit pass drops the same fragments
 #endif
+#ifdef HS_PARTICLE
+#include "particle_cover.glsl"  // particle.frag drops the same fragments
+#endif
 #include "abuffer.glsl"
 
 void main() {
   if (gl_HelperInvocation) return;  // stores nothing (oit_main.glsl)
 #ifdef INSTANCED
   instanceFadeDiscard();
+#endif
+#ifdef HS_PARTICLE
+  particleCoverDiscard();
 #endif
   abufferCountFragment(ivec2(gl_FragCoord.xy));
 }

@@ -5,6 +5,9 @@ layout(early_fragment_tests) in;
 #ifdef INSTANCED
 #include "instance_fade.glsl"  // the lit pass drops the same fragments
 #endif
+#ifdef HS_PARTICLE
+#include "particle_cover.glsl"  // particle.frag drops the same fragments
+#endif
 #include "abuffer.glsl"
 #include "oit_kbuffer.glsl"
 flat in uint vObject;
@@ -13,6 +16,9 @@ void main() {
   if (gl_HelperInvocation) return;  // stores nothing (oit_main.glsl)
 #ifdef INSTANCED
   instanceFadeDiscard();
+#endif
+#ifdef HS_PARTICLE
+  particleCoverDiscard();
 #endif
   const ivec2 p = ivec2(gl_FragCoord.xy);
   abufferCountFragment(p);

@@ -13,15 +13,7 @@ float oitOpacity() {
 }
 
 
-#if defined(HS_OIT_ABUFFER) || defined(HS_OIT_KBUFFER)
-// What finds no place: counted, and summed into the tail where there is one.
-void oitOverflow(vec4 c) {
-  atomicAdd(abufferCounters.overflow, 1u);
-#ifdef HS_OIT_TAIL
-  oitTailAdd(abufferPixel(ivec2(gl_FragCoord.xy)), c);
-#endif
-}
-#endif
+#include "oit_store.glsl"
 
 void main() {
   const ivec2 p = ivec2(gl_FragCoord.xy);
@@ -37,48 +29,5 @@ void main() {
   // derivatives of its neighbours) must store nothing (see abuffer.glsl on
   // why every atomic here is a buffer's).
   if (gl_HelperInvocation) return;
-#if defined(HS_OIT_ABUFFER)
-  // The key pass gave this fragment a node holding its depth and key, in
-  // its pixel's sorted range (abuffer_keys.frag): find it by binary search
-  // in the range's order. No node (over the cap, or a full tie whose twin
-  // took it): the tail.
-  const uint key = oitKey(gl_FragCoord.z, vObject, uint(gl_PrimitiveID));
-  const uvec2 me = uvec2(floatBitsToUint(gl_FragCoord.z), key);
-  const uint pixel = abufferPixel(p), begin = abufferStarts[pixel];
-  const uint range = abufferStarts[pixel + 1u] - begin, count = imageLoad(uABufferCounts, p).x;
-  const bool byKey = count > range;  // abufferByKey
-  // The nodes in use: a fixed array's range past the pixel's fragments stays empty.
-  const uint end = begin + min(count, range);
-  uint lo = begin, hi = end;
-  while (lo < hi) {
-    const uint mid = (lo + hi) / 2u;
-    const uvec2 there = abufferNodes[mid].zw;
-    if (byKey ? there.y < key : abufferNearer(there, me)) lo = mid + 1u;
-    else hi = mid;
-  }
-  const uvec4 found = lo < end ? abufferNodes[lo] : uvec4(0u);
-  if (lo < end && found.w == key && (byKey || found.z == me.x) && !abufferWritten(found))
-    abufferNodes[lo] = abufferNode(c, gl_FragCoord.z, key);
-  else
-    oitOverflow(c);
-#elif defined(HS_OIT_KBUFFER)
-  const uint key = oitKey(gl_FragCoord.z, vObject, uint(gl_PrimitiveID));
-  for (int i = 0; i < OIT_K; ++i) {
-    const uint slot = imageLoad(uOitSlots, ivec3(p, i)).x;
-    if (slot == key) {
-      imageStore(uOitColors, ivec3(p, i), uvec4(packHalf2x16(c.rg), packHalf2x16(c.ba), 0u, 0u));
-      return;
-    }
-    if (slot > key) break;
-  }
-  oitOverflow(c);
-#elif defined(HS_OIT_WEIGHTED)
-  // McGuire & Bavoil 2013, eq. 10: nearer layers weigh more (d in metres).
-  const float d = length(vEyePos);
-  const float w = c.a * clamp(10.0 / (1e-5 + pow(d / 5.0, 2.0) + pow(d / 200.0, 6.0)), 1e-2, 3e3);
-  outColor = vec4(c.rgb * c.a, c.a) * w;
-  oitRevealage = c.a;
-#elif defined(HS_OIT_PEEL)
-  outColor = c;
-#endif
+  oitStore(c, vObject, length(vEyePos));
 }

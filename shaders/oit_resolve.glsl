@@ -53,7 +53,9 @@ void main() {
 #endif
 #ifdef OIT_PEEL_ACCUMULATE
   const vec4 c = texelFetch(uOitLayer, p, 0);
-  outColor = vec4(c.rgb * c.a, c.a);
+  // An additive layer (opacity < 0, oit_composite.glsl) adds its colour and
+  // leaves the transmittance.
+  outColor = c.a < 0.0 ? vec4(c.rgb, 0.0) : vec4(c.rgb * c.a, c.a);
   return;
 #endif
   OitComposite s = oitBegin();

@@ -17,6 +17,9 @@
 layout(std430, binding = 14) coherent buffer OitTail { uvec4 oitTail[]; };
 
 void oitTailAdd(uint pixelIndex, vec4 c) {
+  // An additive layer (oit_composite.glsl) cannot join an opacity-weighted
+  // mean: it is dropped (already counted as overflow).
+  if (c.a < 0.0) return;
   const float a = clamp(c.a, 0.0, 0.999);
   const uvec3 rgb = uvec3(clamp(c.rgb * a, 0.0, OIT_TAIL_MAX_COLOR) * OIT_TAIL_SCALE + 0.5);
   atomicAdd(oitTail[2u * pixelIndex].x, rgb.r);

@@ -1,0 +1,146 @@
+#include "render/particle_gpu_eval.h"
+
+#include <algorithm>
+
+#include <epoxy/gl.h>
+
+#include "render/gl/gl_handle.h"
+#include "render/gl_program.h"
+
+namespace hs::render {
+namespace {
+
+// Slots of the doubles and integers (shaders/particle_eval.comp; keep in step).
+enum : size_t {
+  D_OFFSET = 0, D_T = 3, D_LIFE = 4, D_SIZE = 6, D_ROT = 8, D_SPIN = 10, D_SPEED = 12, D_DIR = 14, D_SPREAD = 17,
+  D_BOX = 18, D_RADIUS = 21, D_CONE = 22, D_GRAVITY = 23, D_DRAG = 26, D_WIND = 27, D_SEGMENTS = 32,
+  MAX_SEGMENTS = 64, D_SIZE_KEYS = 224, MAX_KEYS = 16, D_COLOUR_KEYS = 256, D_BURST_BIRTH = 352,
+  MAX_BURSTS = 64, D_COUNT = D_BURST_BIRTH + MAX_BURSTS + 1,
+};
+enum : size_t {
+  U_SEED = 0, U_SHAPE = 1, U_SURFACE_ONLY = 2, U_ALONG_NORMAL = 3, U_FLIPBOOK = 4, U_SIZE_KEYS = 5,
+  U_COLOUR_KEYS = 6, U_RANGES = 7, U_PACK_SEED = 8, U_SEGMENTS = 9, U_RANGE0 = 16,
+};
+
+// The rate's segments as SpawnSchedule's constructor makes them (spawn.cpp),
+// the same arithmetic in the same order, so the shader's inverse starts
+// from the same doubles.
+void segments(const particles::EmitterDesc& e, std::vector<double>& at, std::vector<double>& rate,
+              std::vector<double>& cum) {
+  const double a = e.start, b = e.start + e.duration;
+  if (!(b > a)) return;
+  at.push_back(a);
+  for (const particles::CurveKey& k : e.rateKeys.keys)
+    if (k.t > a && k.t < b) at.push_back(k.t);
+  at.push_back(b);
+  for (double t : at) rate.push_back(std::max(0.0, e.rateKeys.eval(t, e.rate)));
+  cum.push_back(0.0);
+  for (size_t i = 1; i < at.size(); ++i) cum.push_back(cum.back() + 0.5 * (rate[i - 1] + rate[i]) * (at[i] - at[i - 1]));
+}
+
+}  // namespace
+
+bool gpuEvaluable(const particles::Evaluator& ev, double t, std::string* why) {
+  const particles::EmitterDesc& e = ev.desc();
+  auto no = [&](const char* reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  if (ev.replays()) return no("turbulence or collision (the replay)");
+  if (e.shape == particles::Shape::Mesh || e.shape == particles::Shape::Terrain) return no("a mesh or terrain shape");
+  if (!e.windKeys.empty()) return no("keyed wind");
+  if (e.rateKeys.keys.size() + 2 > MAX_SEGMENTS) return no("too many rate keys");
+  if (e.sizeOverLife.keys.size() > MAX_KEYS || e.colourOverLife.keys.size() > MAX_KEYS) return no("too many life keys");
+  if (e.bursts.size() > MAX_BURSTS) return no("too many bursts");
+  const uint64_t n = ev.candidates(t);
+  if (n > uint64_t(e.maxLive)) return no("more candidates than max_live (the cap chooses)");
+  if (n > uint64_t(UINT32_MAX)) return no("too many candidates");
+  return true;
+}
+
+GpuEmitterData gpuEmitterData(const particles::Evaluator& ev, double t, const glm::dvec3& relativeTo,
+                              uint32_t packSeed) {
+  const particles::EmitterDesc& e = ev.desc();
+  GpuEmitterData g;
+  std::vector<double>& d = g.doubles;
+  d.assign(D_COUNT, 0.0);
+  auto put3 = [&](size_t slot, const glm::dvec3& v) {
+    for (int c = 0; c < 3; ++c) d[slot + size_t(c)] = v[c];
+  };
+  put3(D_OFFSET, e.origin - relativeTo);  // double, before any float (packFrame)
+  d[D_T] = t;
+  d[D_LIFE] = e.lifetimeMin, d[D_LIFE + 1] = e.lifetimeMax;
+  d[D_SIZE] = e.sizeMin, d[D_SIZE + 1] = e.sizeMax;
+  d[D_ROT] = e.rotationMinDeg, d[D_ROT + 1] = e.rotationMaxDeg;
+  d[D_SPIN] = e.spinMinDegPerS, d[D_SPIN + 1] = e.spinMaxDegPerS;
+  d[D_SPEED] = e.speedMin, d[D_SPEED + 1] = e.speedMax;
+  put3(D_DIR, e.direction);
+  d[D_SPREAD] = e.spreadDeg;
+  put3(D_BOX, e.boxHalf);
+  d[D_RADIUS] = e.radius;
+  d[D_CONE] = e.coneAngleDeg;
+  put3(D_GRAVITY, e.gravity);
+  d[D_DRAG] = e.drag;
+  put3(D_WIND, e.wind);
+  std::vector<double> at, rate, cum;
+  segments(e, at, rate, cum);
+  for (size_t i = 0; i < at.size(); ++i) {
+    d[D_SEGMENTS + i] = at[i];
+    d[D_SEGMENTS + MAX_SEGMENTS + i] = rate[i];
+    d[D_SEGMENTS + 2 * MAX_SEGMENTS + i] = cum[i];
+  }
+  for (size_t i = 0; i < e.sizeOverLife.keys.size(); ++i) {
+    d[D_SIZE_KEYS + 2 * i] = e.sizeOverLife.keys[i].t;
+    d[D_SIZE_KEYS + 2 * i + 1] = e.sizeOverLife.keys[i].value;
+  }
+  for (size_t i = 0; i < e.colourOverLife.keys.size(); ++i) {
+    d[D_COLOUR_KEYS + 5 * i] = e.colourOverLife.keys[i].t;
+    for (int c = 0; c < 4; ++c) d[D_COLOUR_KEYS + 5 * i + 1 + size_t(c)] = e.colourOverLife.keys[i].rgba[c];
+  }
+
+  std::vector<uint32_t>& u = g.ints;
+  u.assign(U_RANGE0, 0u);
+  u[U_SEED] = e.seed;
+  u[U_SHAPE] = uint32_t(e.shape);
+  u[U_SURFACE_ONLY] = e.surfaceOnly ? 1u : 0u;
+  u[U_ALONG_NORMAL] = e.alongNormal ? 1u : 0u;
+  u[U_FLIPBOOK] = uint32_t(std::max(e.flipbookFrames, 1));
+  u[U_SIZE_KEYS] = uint32_t(e.sizeOverLife.keys.size());
+  u[U_COLOUR_KEYS] = uint32_t(e.colourOverLife.keys.size());
+  u[U_PACK_SEED] = packSeed;
+  u[U_SEGMENTS] = uint32_t(at.size());
+  // The candidates in the CPU's order: the rate's window (t - lifetime_max, t],
+  // then each burst in it (Evaluator::candidates).
+  auto range = [&](uint32_t stream, uint64_t first, uint64_t count, double birth) {
+    d[D_BURST_BIRTH + u[U_RANGES]] = birth;
+    u.push_back(stream);
+    u.push_back(uint32_t(first));
+    u.push_back(uint32_t(first >> 32));
+    u.push_back(uint32_t(count));
+    ++u[U_RANGES];
+    g.candidates += uint32_t(count);
+  };
+  const double window = e.lifetimeMax;
+  const uint64_t first = ev.schedule().bornBy(t - window), last = ev.schedule().bornBy(t);
+  range(0, first, last - first, 0.0);
+  for (size_t b = 0; b < e.bursts.size(); ++b)
+    if (e.bursts[b].t <= t && t - e.bursts[b].t < window) range(uint32_t(b + 1), 0, uint64_t(e.bursts[b].count), e.bursts[b].t);
+  return g;
+}
+
+void dispatchGpuEvaluation(GlProgram& program, const GpuEmitterData& data, unsigned out, uint32_t first) {
+  if (data.candidates == 0) return;
+  gl::Buffer doubles = gl::createBuffer(), ints = gl::createBuffer();
+  glNamedBufferStorage(doubles.id(), GLsizeiptr(data.doubles.size() * sizeof(double)), data.doubles.data(), 0);
+  glNamedBufferStorage(ints.id(), GLsizeiptr(data.ints.size() * sizeof(uint32_t)), data.ints.data(), 0);
+  program.use();
+  program.set("uFirst", first);
+  program.set("uCount", data.candidates);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, doubles.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, ints.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, out);
+  glDispatchCompute((data.candidates + 63) / 64, 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+}  // namespace hs::render

@@ -1,0 +1,279 @@
+#include "render/particle_source.h"
+
+#include <cmath>
+#include <functional>
+
+#include <epoxy/gl.h>
+
+#include "render/frame_context.h"
+#include "render/render_view.h"
+
+namespace hs::render {
+namespace {
+
+// Storage buffer binding of the particles (shaders/particle.vert) and the
+// texture units (a material's units: particles have no material).
+constexpr unsigned kParticleBinding = 27;
+constexpr unsigned kSpriteUnit = 0, kSceneDepthUnit = 1;
+// A velocity-facing quad reaches this far along the motion: a frame's
+// travel at 30 fps, the streak a spark leaves on film.
+constexpr float kStretchSeconds = 1.0f / 30.0f;
+// Transparency keys of particles: above any mesh object index, one per emitter.
+constexpr uint32_t kObjectBase = 0x40000000u;
+
+bool needsWorld(const particles::EmitterDesc& d) {
+  return d.collision != particles::CollisionMode::None || d.shape == particles::Shape::Mesh ||
+         d.shape == particles::Shape::Terrain;
+}
+
+// What the collision world is made from: the visible mesh and terrain
+// entities where they are. A change rebuilds the world and the evaluators
+// that use it (their replay caches too: collisions change the paths).
+uint64_t worldKeyOf(const scene::SceneState& state) {
+  uint64_t h = 0x9E3779B97F4A7C15ull;
+  auto mix = [&](uint64_t v) { h = (h ^ v) * 0x100000001B3ull + (h >> 29); };
+  for (const auto& [id, e] : state.entities) {
+    if (!e.mesh && !e.terrain) continue;
+    mix(id);
+    mix(state.effectivelyVisible(id) ? 1 : 2);
+    mix(e.mesh ? e.mesh->mesh : 0);
+    mix(e.terrain ? e.terrain->terrain : 0);
+    const glm::dmat4 m = state.worldMatrix(id);
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) mix(std::hash<double>{}(m[c][r]));
+  }
+  mix(state.assets.size());
+  mix(state.terrains.size());
+  return h | 1;  // never 0 (0: "no world needed")
+}
+
+// The views' frusta with each eye relative to the frame origin.
+struct ViewVolume {
+  Frustum frustum;
+  glm::dvec3 eye;
+};
+
+}  // namespace
+
+ParticleSource::ParticleSource(ParticleSprites& sprites, std::vector<particles::PackedParticle> particles,
+                               std::vector<ParticleGpuJob> gpuJobs, std::vector<ParticleDraw> draws, size_t views)
+    : sprites_(sprites),
+      particles_(std::move(particles)),
+      gpuJobs_(std::move(gpuJobs)),
+      draws_(std::move(draws)),
+      views_(views) {
+  records_ = particles_.size();
+  for (const ParticleGpuJob& j : gpuJobs_) records_ += j.data.candidates;
+}
+
+bool ParticleSource::has(DrawVariant variant, SurfaceSet surfaces) const {
+  // Translucent surfaces only: no shadows (Depth), no picking, not in the
+  // opaque pass, not in the layered depth of field's capture (All).
+  return variant == DrawVariant::Surface && surfaces == SurfaceSet::Translucent && records_ > 0;
+}
+
+void ParticleSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
+  struct Upload {
+    BufferRef particles;
+  };
+  const size_t bytes = records_ * sizeof(particles::PackedParticle);
+  const Upload& up = graph.addPass<Upload>(
+      "particles_upload",
+      [&](PassBuilder& b, Upload& d) {
+        d.particles = b.create("particles", BufferDesc{bytes}, Usage::Transfer);
+      },
+      [this](const Upload& d, const PassResources& r) {
+        if (!particles_.empty())
+          glNamedBufferSubData(r.buffer(d.particles), 0, GLsizeiptr(particles_.size() * sizeof(particles::PackedParticle)),
+                               particles_.data());
+      });
+  buffer_ = up.particles;
+  if (gpuJobs_.empty()) return;
+  // The emitters without replay: evaluated into the rest of the buffer.
+  struct Evaluate {
+    BufferRef particles;
+  };
+  const Evaluate& ev = graph.addPass<Evaluate>(
+      "particles_evaluate", [&](PassBuilder& b, Evaluate& d) { d.particles = b.write(b.read(buffer_)); },
+      [this, &frame](const Evaluate& d, const PassResources& r) {
+        GlProgram& p = frame.res.program({"", "", "particle_eval.comp", {}});
+        for (const ParticleGpuJob& j : gpuJobs_) dispatchGpuEvaluation(p, j.data, r.buffer(d.particles), j.first);
+      });
+  buffer_ = ev.particles;
+}
+
+void ParticleSource::declare(PassBuilder& builder, DrawVariant variant) const {
+  if (variant == DrawVariant::Surface && buffer_.valid()) builder.read(buffer_);
+}
+
+size_t ParticleSource::triangles(SurfaceSet surfaces) const {
+  return surfaces == SurfaceSet::Translucent ? records_ * 2 * views_ : 0;
+}
+
+void ParticleSource::draw(FrameContext& frame, const DrawCall& call, const PassResources& r) {
+  if (!has(call.variant, call.surfaces) || !buffer_.valid()) return;
+  std::vector<std::string> defines = call.defines;
+  defines.push_back("HS_PARTICLE");  // the passes' own fragment shaders drop what particle.frag drops
+  const bool own = call.fragment.empty();
+  GlProgram& p = frame.res.program({"particle.vert", own ? "particle.frag" : call.fragment, "", defines});
+  p.use();
+  glBindVertexArray(frame.res.emptyVao.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kParticleBinding, r.buffer(buffer_));
+  glBindTextureUnit(kSpriteUnit, sprites_.texture());
+  glBindSampler(kSpriteUnit, 0);
+  bool peel = false;
+  for (const std::string& d : call.defines) peel = peel || d == "HS_OIT_PEEL";
+  if (own && !peel) {
+    // Soft particles read the opaque depth the pass tests against: the
+    // bound framebuffer's depth attachment (never written while
+    // translucent surfaces draw; the depth peel reads its own copy).
+    GLint fbo = 0, type = 0, name = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    if (fbo) {
+      glGetNamedFramebufferAttachmentParameteriv(GLuint(fbo), GL_DEPTH_ATTACHMENT,
+                                                 GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+      if (type == GL_TEXTURE)
+        glGetNamedFramebufferAttachmentParameteriv(GLuint(fbo), GL_DEPTH_ATTACHMENT,
+                                                   GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+    }
+    glBindTextureUnit(kSceneDepthUnit, GLuint(name));
+    glBindSampler(kSceneDepthUnit, 0);
+  }
+  p.set("uStretchSeconds", kStretchSeconds);
+  p.set("uSpriteTexels", float(ParticleSprites::kSize));
+  for (const ParticleDraw& d : draws_) {
+    p.set("uFirst", d.first);
+    p.set("uObject", d.object);
+    p.set("uFacing", d.alongVelocity ? 1 : 0);
+    p.set("uLayerBase", d.layerBase);
+    p.set("uLayerCount", d.layerCount);
+    p.set("uLit", d.lit);
+    p.set("uAdditive", d.additive);
+    // Without the opaque depth (a pass's own shader) nothing fades.
+    p.set("uSoftDistance", d.softDistance);
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(d.count));
+    ++frame.stats.drawCalls;
+  }
+  glBindTextureUnit(kSceneDepthUnit, 0);
+}
+
+ParticleSources::ParticleSources() = default;
+ParticleSources::~ParticleSources() = default;
+
+ParticleSources::Entry& ParticleSources::entryFor(const scene::SceneState& state, const scene::PlacedEmitter& placed) {
+  Entry& e = entries_[placed.entity];
+  const bool world = needsWorld(placed.desc);
+  if (world && (!world_ || worldState_ != &state || worldKeyOf(state) != worldKey_)) {
+    world_ = std::make_unique<scene::ParticleWorld>(state);
+    worldState_ = &state;
+    worldKey_ = worldKeyOf(state);
+  }
+  const uint64_t key = world ? worldKey_ : 0;
+  if (e.evaluator && e.desc == placed.desc && e.worldKey == key) return e;
+  if (!e.evaluator && !e.error.empty() && e.desc == placed.desc && e.worldKey == key) return e;
+  // New or changed: a new evaluator, an empty cache (its entries are keyed
+  // by the emitter's content, but its paths depend on the colliders too).
+  e = Entry{};
+  e.desc = placed.desc;
+  e.worldKey = key;
+  if (world) e.evaluator = world_->evaluator(placed.desc, e.error);
+  else e.evaluator = particles::Evaluator::create(placed.desc, {}, e.error);
+  return e;
+}
+
+DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext& frame) {
+  source_.reset();
+  errors_.clear();
+  const std::vector<scene::PlacedEmitter> placed = scene::visibleEmitters(state);
+  // Entities gone (or hidden) drop their caches.
+  for (auto it = entries_.begin(); it != entries_.end();) {
+    bool kept = false;
+    for (const scene::PlacedEmitter& p : placed) kept = kept || p.entity == it->first;
+    it = kept ? std::next(it) : entries_.erase(it);
+  }
+  if (placed.empty()) {
+    world_.reset();
+    worldState_ = nullptr;
+    return nullptr;
+  }
+  // Every view of the frame (both eyes): a particle any of them sees is kept.
+  std::vector<ViewVolume> volumes;
+  const glm::dvec3 origin = frame.visible.origin;
+  if (frame.views)
+    for (const RenderView& v : *frame.views) volumes.push_back({frustumOf(v), v.eye - origin});
+  else
+    volumes.push_back({frustumOf(frame.lodView), frame.lodView.eye - origin});
+
+  const double t = state.time.seconds;
+  std::vector<particles::PackedParticle> all;
+  std::vector<ParticleDraw> draws, gpuDraws;
+  std::vector<ParticleGpuJob> jobs;
+  uint32_t gpuRecords = 0;
+  uint32_t index = 0;
+  for (const scene::PlacedEmitter& pe : placed) {
+    const uint32_t object = kObjectBase + index++;
+    Entry& e = entryFor(state, pe);
+    if (!e.evaluator) {
+      errors_.push_back(e.error);
+      continue;
+    }
+    // Nothing born in the live window: the emitter costs nothing at t.
+    if (e.evaluator->candidates(t) == 0) continue;
+    ParticleDraw d;
+    d.layerBase = ParticleSprites::layerBase(pe.desc.sprite);
+    d.layerCount = ParticleSprites::layerCount(pe.desc.sprite);
+    d.additive = pe.desc.blend == particles::Blend::Additive;
+    d.lit = pe.desc.lit;
+    d.alongVelocity = pe.desc.facing == particles::Facing::Velocity;
+    d.softDistance = float(pe.desc.softDistance);
+    d.object = object;
+    if (frame.options.gpuParticles && gpuEvaluable(*e.evaluator, t)) {
+      // The compute pass evaluates every candidate (the dead ones draw
+      // nothing); no per-particle culling on the CPU.
+      ParticleGpuJob job{gpuEmitterData(*e.evaluator, t, origin, pe.desc.seed), gpuRecords};
+      d.first = gpuRecords;  // after the CPU's records: moved below
+      d.count = job.data.candidates;
+      gpuRecords += d.count;
+      jobs.push_back(std::move(job));
+      gpuDraws.push_back(d);
+      continue;
+    }
+    // Once per scene time: a second view group or a lens sample of the
+    // same frame reuses it.
+    if (!e.evaluated || e.time != t) {
+      e.frame = e.evaluator->frame(t, &e.cache);
+      e.time = t;
+      e.evaluated = true;
+    }
+    if (e.frame.particles.empty()) continue;
+    std::vector<particles::PackedParticle> packed = particles::packFrame(e.frame, pe.desc.origin, origin, pe.desc.seed);
+    const bool along = d.alongVelocity;
+    d.first = uint32_t(all.size());
+    for (const particles::PackedParticle& q : packed) {
+      if (!(q.colour[3] > 0.0f) || !(q.size > 0.0f)) continue;
+      const glm::dvec3 c(q.position[0], q.position[1], q.position[2]);
+      double radius = 0.5 * std::sqrt(2.0) * double(q.size);
+      if (along) radius += 0.5 * double(kStretchSeconds) * glm::length(glm::dvec3(q.velocity[0], q.velocity[1], q.velocity[2]));
+      bool seen = false;
+      for (const ViewVolume& v : volumes) seen = seen || v.frustum.intersectsSphere(c - v.eye, radius);
+      if (seen) all.push_back(q);
+    }
+    d.count = uint32_t(all.size()) - d.first;
+    if (d.count == 0) continue;
+    draws.push_back(d);
+  }
+  if (all.empty() && jobs.empty()) return nullptr;
+  // The compute pass's records follow the CPU's.
+  const uint32_t cpuRecords = uint32_t(all.size());
+  for (ParticleGpuJob& j : jobs) j.first += cpuRecords;
+  for (ParticleDraw& d : gpuDraws) {
+    d.first += cpuRecords;
+    draws.push_back(d);
+  }
+  frame.stats.particlesDrawn += all.size() + gpuRecords;
+  const size_t views = frame.views ? frame.views->size() : 1;
+  source_ = std::make_unique<ParticleSource>(sprites_, std::move(all), std::move(jobs), std::move(draws), views);
+  return source_.get();
+}
+
+}  // namespace hs::render

@@ -1,0 +1,410 @@
+// Particle emitters drawn (render/particle_source.h): each preset against a
+// golden and visibly there; soft particles fade where they meet the ground;
+// alpha and additive particles in front of and behind a translucent pane
+// composite as depth peeling does in the A-buffer, fixed array and
+// K-buffer; a frame is the same alone or after a run of frames (replay
+// cache); no emitter, or one behind the camera, costs no pass, buffer or
+// draw. Scenes at UTM coordinates (camera-relative drawing).
+#include <QtTest>
+
+#include <algorithm>
+#include <cmath>
+
+#include "look_from.h"
+#include "mesh/primitives.h"
+#include "particles/presets.h"
+#include "render/offscreen_renderer.h"
+#include "render_golden.h"
+#include "scene/scene_state.h"
+#include "scene_parts.h"
+
+using namespace hs;
+
+namespace {
+
+const glm::dvec3 kUtm(500000.0, 4400000.0, 300.0);
+constexpr scene::AssetId kGroundAsset = 1, kPaneAsset = 2;
+constexpr scene::EntityId kFirstEmitter = 100;
+
+// An opaque ground (dark, unlit: its colour is exact in every image) at the
+// UTM origin's height, a sun, no grid, no tone mapping.
+scene::SceneState ground() {
+  scene::SceneState s;
+  s.settings.showGrid = false;
+  s.settings.tonemap = scene::Tonemap::None;
+  s.settings.antialiasing = scene::Antialiasing::None;
+  s.settings.ambientIntensity = 0.3f;
+  test::addMeshAsset(s, kGroundAsset, "Ground", mesh::gridPlane(200.0f, 1), {0.05f, 0.06f, 0.08f}, 1.0f, true);
+  scene::Entity g;
+  g.id = 1;
+  g.name = "Ground";
+  g.mesh = scene::MeshInstance{kGroundAsset};
+  g.transform.translation = kUtm;
+  s.entities.emplace(g.id, g);
+  s.roots.push_back(g.id);
+  test::addSun(s, 1000, {50, 0, -30});
+  return s;
+}
+
+void addEmitters(scene::SceneState& s, const std::vector<particles::EmitterDesc>& descs) {
+  scene::EntityId id = kFirstEmitter;
+  while (s.entities.count(id)) ++id;
+  for (const particles::EmitterDesc& d : descs) {
+    scene::Entity e;
+    e.id = id++;
+    e.name = d.name;
+    e.particles = scene::ParticleEmitter{d};  // desc.origin is the world position (entity at 0)
+    s.entities.emplace(e.id, e);
+    s.roots.push_back(e.id);
+  }
+}
+
+void removeEmitters(scene::SceneState& s) {
+  for (auto it = s.entities.begin(); it != s.entities.end();)
+    if (it->second.particles) {
+      s.roots.erase(std::remove(s.roots.begin(), s.roots.end(), it->first), s.roots.end());
+      it = s.entities.erase(it);
+    } else {
+      ++it;
+    }
+}
+
+render::RenderView camera(glm::dvec3 eyeRel, glm::dvec3 atRel, int w = 160, int h = 90, double fovDeg = 60.0) {
+  render::RenderView v;
+  v.width = w;
+  v.height = h;
+  v.fovY = glm::radians(fovDeg);
+  v.eye = kUtm + eyeRel;
+  v.orientation = test::lookFrom(v.eye, kUtm + atRel).rotation;
+  return v;
+}
+
+// A still emitter: `count` particles born at t = 0 in a box around `at`
+// (relative to kUtm), living long, not moving; unlit colour `rgba`.
+particles::EmitterDesc still(const std::string& name, glm::dvec3 at, glm::dvec3 half, int count, double size,
+                             glm::dvec4 rgba, particles::Sprite sprite = particles::Sprite::Spark,
+                             particles::Blend blend = particles::Blend::Alpha, uint32_t seed = 7) {
+  particles::EmitterDesc d;
+  d.name = name;
+  d.seed = seed;
+  d.origin = kUtm + at;
+  d.rate = 0.0;
+  d.bursts = {{0.0, count}};
+  d.shape = half == glm::dvec3(0.0) ? particles::Shape::Point : particles::Shape::Box;
+  d.boxHalf = half == glm::dvec3(0.0) ? glm::dvec3(1.0) : half;
+  d.speedMin = d.speedMax = 0.0;
+  d.lifetimeMin = d.lifetimeMax = 1000.0;
+  d.sizeMin = d.sizeMax = size;
+  d.gravity = glm::dvec3(0.0);
+  d.colourOverLife.keys = {{0.0, rgba}};
+  d.sprite = sprite;
+  d.blend = blend;
+  d.softDistance = 0.0;
+  d.lit = false;
+  return d;
+}
+
+double lum(const Image& img, int x, int y) {  // top row first; 0..255
+  const uint8_t* p = &img.rgba8[(size_t(y) * img.width + x) * 4];
+  return (double(p[0]) + p[1] + p[2]) / 3.0;
+}
+
+int maxDiff(const Image& a, const Image& b) {
+  int m = 0;
+  for (size_t i = 0; i < a.rgba8.size(); ++i) m = std::max(m, std::abs(int(a.rgba8[i]) - int(b.rgba8[i])));
+  return m;
+}
+
+double meanDiff(const Image& a, const Image& b) {
+  double s = 0;
+  for (size_t i = 0; i < a.rgba8.size(); ++i) s += std::abs(int(a.rgba8[i]) - int(b.rgba8[i]));
+  return s / double(a.rgba8.size());
+}
+
+// Leaves an image next to the goldens' failures (HS_TEST_OUT_DIR) for a look.
+void keep(const std::string& name, const Image& img) {
+  QDir().mkpath(HS_TEST_OUT_DIR);
+  test::writePng(std::string(HS_TEST_OUT_DIR) + "/" + name + ".png", test::toTest(img));
+}
+
+bool passRan(const render::FrameStats& s, const std::string& part) {
+  for (const render::PassStats& p : s.passes)
+    if (p.name.find(part) != std::string::npos) return true;
+  return false;
+}
+
+size_t particleAllocations(const render::Renderer& r) {
+  size_t n = 0;
+  for (const render::GpuAllocation& a : r.resourceRegistry()) {
+    bool mine = a.name.find("particles") != std::string::npos;
+    for (const std::string& u : a.users) mine = mine || u.find("particles") != std::string::npos;
+    n += mine ? 1 : 0;
+  }
+  return n;
+}
+
+}  // namespace
+
+class TestParticleRender : public QObject {
+  Q_OBJECT
+  render::OffscreenRenderer r_;
+
+ private slots:
+  void initTestCase() {
+    std::string error;
+    QVERIFY2(r_.initialize(error), error.c_str());
+  }
+
+  // Each preset at a fixed time: its golden, and visibly more than the
+  // ground alone (a preset that draws nothing fails here, not only on the
+  // golden's first write).
+  void presetsMatchGoldens() {
+    // Snow: a small dense patch seen from close by, a few metres under the
+    // box it is born in (30 m up; the wind carries it east as it falls):
+    // flakes of 1-2.5 cm are under a pixel from farther away, and a cold
+    // frame replays every flake's path, so the patch stays small.
+    const struct {
+      const char* name;
+      double t;
+      double halfArea;  // metres around the origin (snow, fog, dust)
+      double rate;      // particles per second of the main emitter (0: the preset's)
+      render::RenderView view;
+      double minMeanDiff;  // 0..255 per channel over the image
+    } presets[] = {
+        {"snow", 2.0, 1.0, 150.0, camera({3, -2.5, 26.5}, {3, 0, 26.5}, 160, 90, 50.0), 0.03},
+        {"fog", 40.0, 5.0, 3.0, camera({0, -9.0, 1.7}, {0, 0, 1.5}), 0.5},
+        {"torch", 2.0, 0.0, 0.0, camera({0, -3.0, 1.2}, {0, 0, 0.8}), 0.05},
+        {"campfire", 2.0, 0.0, 0.0, camera({0, -3.0, 1.2}, {0, 0, 0.8}), 0.1},
+        {"dust", 8.0, 5.0, 20.0, camera({0, -9.0, 1.7}, {0, 0, 1.0}), 0.3}};
+    for (const auto& p : presets) {
+      scene::SceneState s = ground();
+      s.time.seconds = p.t;
+      const render::RenderView& view = p.view;
+      const Image empty = r_.render(s, view);
+      particles::PresetOptions o;
+      o.at = kUtm;
+      if (p.halfArea > 0)
+        o.area = glm::dvec4(kUtm.x - p.halfArea, kUtm.y - p.halfArea, kUtm.x + p.halfArea, kUtm.y + p.halfArea);
+      if (p.rate > 0) o.rate = p.rate;
+      std::string error;
+      const std::vector<particles::EmitterDesc> descs = particles::makePreset(p.name, o, error);
+      QVERIFY2(!descs.empty(), error.c_str());
+      addEmitters(s, descs);
+      render::FrameStats stats;
+      const Image img = r_.render(s, view, false, &stats);
+      QVERIFY2(stats.particlesDrawn > 0, p.name);
+      const double d = meanDiff(img, empty);
+      if (d <= p.minMeanDiff) keep(std::string("particles_") + p.name + "_faint", img);
+      QVERIFY2(d > p.minMeanDiff, (std::string(p.name) + ": mean difference " + std::to_string(d)).c_str());
+      test::verifyGolden(std::string("particles_") + p.name, img, {12, 4, 0.01});
+    }
+  }
+
+  // A white particle half sunk into the ground: with a soft distance the
+  // pixels just above the line where it meets the ground are darker (more
+  // transparent) than the hard particle's, and far above the line the same.
+  void softParticlesFadeAtTheGround() {
+    scene::SceneState s = ground();
+    s.time.seconds = 1.0;
+    const render::RenderView view = camera({0, -6.0, 1.0}, {0, 0, 0.5}, 160, 90, 40.0);
+    particles::EmitterDesc d = still("Puff", {0, 0, 0}, glm::dvec3(0.0), 1, 2.0, {1, 1, 1, 0.9});
+    addEmitters(s, {d});
+    const Image hard = r_.render(s, view);
+    removeEmitters(s);
+    d.softDistance = 1.0;
+    addEmitters(s, {d});
+    const Image soft = r_.render(s, view);
+    removeEmitters(s);
+    const Image none = r_.render(s, view);
+    // The column through the particle's centre: find the intersection line
+    // (the lowest row the hard particle brightens) going up from the bottom.
+    const int x = view.width / 2;
+    int line = -1;
+    for (int y = view.height - 1; y >= 0 && line < 0; --y)
+      if (lum(hard, x, y) > lum(none, x, y) + 20.0) line = y;
+    QVERIFY2(line > 0, "the particle is not in view");
+    const int near = line - 1;  // just above the line
+    QVERIFY2(lum(soft, x, near) < lum(hard, x, near) - 20.0,
+             qPrintable(QString("soft %1 hard %2").arg(lum(soft, x, near)).arg(lum(hard, x, near))));
+    QVERIFY(lum(soft, x, near) >= lum(none, x, near) - 1.0);  // fading, never darker than the ground
+    // Well above the line the ground behind is over a soft distance away.
+    int top = near;
+    while (top > 0 && lum(hard, x, top - 1) > lum(none, x, top - 1) + 20.0) --top;
+    const int above = (top + near) / 2 - (near - top) / 4;
+    QVERIFY(near - above > 5);
+    QVERIFY2(std::abs(lum(soft, x, above) - lum(hard, x, above)) <= 2.0,
+             qPrintable(QString("row %1: soft %2 hard %3").arg(above).arg(lum(soft, x, above)).arg(lum(hard, x, above))));
+  }
+
+  // Alpha particles in front of and behind a translucent pane, and additive
+  // sparks behind it: the A-buffer, fixed array and K-buffer composite them
+  // as depth peeling does (within 2/255), and the order matters (the pane
+  // in front of the particles differs from behind them).
+  void sortingMatchesDepthPeeling() {
+    scene::SceneState s = ground();
+    s.time.seconds = 1.0;
+    s.settings.ambientIntensity = 0.0f;
+    test::addMeshAsset(s, kPaneAsset, "Pane", mesh::gridPlane(3.0f, 1), {0.9f, 0.2f, 0.1f}, 0.5f, true);
+    scene::Entity pane;
+    pane.id = 2;
+    pane.name = "Pane";
+    pane.mesh = scene::MeshInstance{kPaneAsset};
+    pane.transform.translation = kUtm + glm::dvec3(0, 0, 1.2);
+    pane.transform.rotation = glm::angleAxis(glm::radians(90.0), glm::dvec3(1, 0, 0));  // facing -Y (the camera)
+    s.entities.emplace(pane.id, pane);
+    s.roots.push_back(pane.id);
+    const render::RenderView view = camera({0, -5.0, 1.2}, {0, 0, 1.2}, 120, 80, 45.0);
+    // Seeds with no two particles at one depth: such a full tie is what
+    // depth peeling cannot order (it keeps one of them; test_oit).
+    addEmitters(s, {still("Front", {-0.4, -0.6, 1.2}, {0.5, 0.2, 0.4}, 12, 0.5, {0.2, 0.5, 1.0, 0.6},
+                          particles::Sprite::Smoke, particles::Blend::Alpha, 11),
+                    still("Behind", {0.4, 0.6, 1.2}, {0.5, 0.2, 0.4}, 12, 0.5, {0.3, 1.0, 0.3, 0.7},
+                          particles::Sprite::Smoke, particles::Blend::Alpha, 4),
+                    still("Sparks", {0.0, 0.5, 1.0}, {0.6, 0.2, 0.3}, 20, 0.3, {3.0, 1.2, 0.3, 1.0},
+                          particles::Sprite::Spark, particles::Blend::Additive, 5)});
+    // The K-buffer keeps every layer (more go to its tail, which drops
+    // additive ones: docs/rendering.md, "Particles").
+    s.settings.kbufferK = 32;
+    s.settings.transparency = scene::Transparency::Reference;
+    render::FrameStats stats;
+    const Image reference = r_.render(s, view, false, &stats);
+    QCOMPARE(stats.particlesDrawn, size_t(44));
+    QVERIFY(stats.oit.peels >= 3);
+    for (auto mode : {scene::Transparency::ABuffer, scene::Transparency::ABufferFixed, scene::Transparency::KBuffer}) {
+      s.settings.transparency = mode;
+      const Image img = r_.render(s, view);
+      const int m = maxDiff(img, reference);
+      if (m > 2) {
+        keep("particles_sort_reference", reference);
+        keep("particles_sort_mode" + std::to_string(int(mode)), img);
+      }
+      QVERIFY2(m <= 2, qPrintable(QString("mode %1: max difference %2 from depth peeling").arg(int(mode)).arg(m)));
+    }
+    // The pane moved behind every particle: a different image, so the
+    // comparison above saw an order that matters.
+    s.entities[2].transform.translation = kUtm + glm::dvec3(0, 2.0, 1.2);
+    s.settings.transparency = scene::Transparency::Reference;
+    const Image moved = r_.render(s, view);
+    QVERIFY(meanDiff(moved, reference) > 1.0);
+    // Weighted OIT is approximate: it draws them (the image is not the pane's alone).
+    s.settings.transparency = scene::Transparency::Weighted;
+    const Image weighted = r_.render(s, view);
+    removeEmitters(s);
+    const Image paneOnly = r_.render(s, view);
+    QVERIFY(meanDiff(weighted, paneOnly) > 1.0);
+  }
+
+  // RenderOptions::gpuParticles: the emitters without replay (the fog
+  // bank, alpha puffs, additive sparks) evaluated by the compute pass draw
+  // what the CPU's records draw, within 2/255 (positions agree to a few
+  // micrometres: test_particle_gpu_eval); an emitter with replay stays on
+  // the CPU.
+  void gpuEvaluationDrawsTheSame() {
+    scene::SceneState s = ground();
+    s.time.seconds = 30.0;
+    const render::RenderView view = camera({0, -9.0, 1.7}, {0, 0, 1.5});
+    particles::PresetOptions o;
+    o.at = kUtm;
+    o.area = glm::dvec4(kUtm.x - 5, kUtm.y - 5, kUtm.x + 5, kUtm.y + 5);
+    o.rate = 3.0;
+    std::string error;
+    std::vector<particles::EmitterDesc> descs = particles::makePreset("fog", o, error);
+    QVERIFY2(!descs.empty(), error.c_str());
+    descs.push_back(still("Puffs", {-1.0, 0, 1.2}, {0.8, 0.5, 0.6}, 15, 0.6, {0.3, 0.6, 1.0, 0.7},
+                          particles::Sprite::Smoke));
+    descs.push_back(still("Sparks", {1.0, 0, 1.0}, {0.5, 0.5, 0.5}, 25, 0.2, {3.0, 1.2, 0.3, 1.0},
+                          particles::Sprite::Spark, particles::Blend::Additive));
+    particles::EmitterDesc turbulent = descs.back();
+    turbulent.name = "Turbulent";
+    turbulent.origin += glm::dvec3(0, 0, 0.8);
+    turbulent.turbulence = 1.0;
+    descs.push_back(turbulent);
+    addEmitters(s, descs);
+    render::FrameStats cpuStats, gpuStats;
+    const Image cpu = r_.render(s, view, false, &cpuStats);
+    render::RenderOptions options;
+    options.gpuParticles = true;
+    const Image gpu = r_.render(s, view, false, &gpuStats, options);
+    QVERIFY(!passRan(cpuStats, "particles_evaluate"));
+    QVERIFY(passRan(gpuStats, "particles_evaluate"));
+    QVERIFY(meanDiff(cpu, r_.render(ground(), view)) > 0.3);  // the particles are there
+    const int m = maxDiff(gpu, cpu);
+    if (m > 2) {
+      keep("particles_gpu_cpu", cpu);
+      keep("particles_gpu_gpu", gpu);
+    }
+    QVERIFY2(m <= 2, qPrintable(QString("max difference %1").arg(m)));
+  }
+
+  // Frame t = 2 rendered alone equals the same frame after t = 1.0 .. 1.95
+  // (the replay cache carried across frames), byte for byte: embers with
+  // turbulence, killed by the ground.
+  void frameAloneEqualsFrameInARun() {
+    scene::SceneState s = ground();
+    const render::RenderView view = camera({0, -3.0, 1.2}, {0, 0, 0.8});
+    particles::PresetOptions o;
+    o.at = kUtm;
+    std::string error;
+    std::vector<particles::EmitterDesc> descs = particles::makePreset("campfire", o, error);
+    QVERIFY2(!descs.empty(), error.c_str());
+    bool replays = false;
+    for (const particles::EmitterDesc& d : descs) replays = replays || d.needsReplay();
+    QVERIFY(replays);
+    addEmitters(s, descs);
+    for (int k = 0; k < 20; ++k) {
+      s.time.seconds = 1.0 + 0.05 * k;
+      r_.render(s, view);
+    }
+    s.time.seconds = 2.0;
+    const Image inRun = r_.render(s, view);
+    // A frame without the emitters drops their caches; then t = 2 cold.
+    removeEmitters(s);
+    r_.render(s, view);
+    addEmitters(s, descs);
+    const Image alone = r_.render(s, view);
+    QCOMPARE(alone.rgba8.size(), inRun.rgba8.size());
+    QCOMPARE(maxDiff(alone, inRun), 0);
+  }
+
+  // No emitter: no particle pass, buffer or texture; one in view: its
+  // upload pass and buffer; one behind the camera: nothing uploaded or
+  // drawn (and no transparency pass: nothing else is translucent). Stereo:
+  // both eyes draw the one buffer.
+  void costsNothingWithoutParticlesInView() {
+    scene::SceneState s = ground();
+    s.time.seconds = 1.0;
+    const render::RenderView view = camera({0, -6.0, 1.5}, {0, 0, 1.0});
+    render::FrameStats stats;
+    r_.render(s, view, false, &stats);
+    QVERIFY(!passRan(stats, "particles"));
+    QCOMPARE(particleAllocations(r_.renderer()), size_t(0));
+    QCOMPARE(stats.particlesDrawn, size_t(0));
+
+    addEmitters(s, {still("Ahead", {0, 0, 1.0}, {0.5, 0.5, 0.5}, 30, 0.3, {1, 1, 1, 0.8})});
+    r_.render(s, view, false, &stats);
+    QVERIFY(passRan(stats, "particles_upload"));
+    QVERIFY(passRan(stats, "oit_"));
+    QVERIFY(particleAllocations(r_.renderer()) > 0);
+    QCOMPARE(stats.particlesDrawn, size_t(30));
+
+    // The same emitter behind the camera.
+    const render::RenderView away = camera({0, -6.0, 1.5}, {0, -12.0, 1.5});
+    const size_t drawCallsBefore = stats.drawCalls;
+    r_.render(s, away, false, &stats);
+    QCOMPARE(stats.particlesDrawn, size_t(0));
+    QVERIFY(!passRan(stats, "particles"));
+    QVERIFY(!passRan(stats, "oit_"));
+    QCOMPARE(particleAllocations(r_.renderer()), size_t(0));
+    QVERIFY(stats.drawCalls < drawCallsBefore);
+
+    // A stereo pair: one evaluation, one buffer of the particles either eye sees.
+    render::RenderView left = view, right = view;
+    left.eye -= view.orientation * glm::dvec3(0.03, 0, 0);
+    right.eye += view.orientation * glm::dvec3(0.03, 0, 0);
+    const render::FrameStats pair = r_.renderViewsOnly(s, {left, right});
+    QCOMPARE(pair.particlesDrawn, size_t(30));
+  }
+};
+
+QTEST_MAIN(TestParticleRender)
+#include "test_particle_render.moc"
