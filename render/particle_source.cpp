@@ -227,7 +227,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     d.alongVelocity = pe.desc.facing == particles::Facing::Velocity;
     d.softDistance = float(pe.desc.softDistance);
     d.object = object;
-    if (frame.options.gpuParticles && gpuEvaluable(*e.evaluator, t)) {
+    if ((frame.options.gpuParticles || frame.settings.particlesOnGpu) && gpuEvaluable(*e.evaluator, t)) {
       // The compute pass evaluates every candidate (the dead ones draw
       // nothing); no per-particle culling on the CPU.
       ParticleGpuJob job{gpuEmitterData(*e.evaluator, t, origin, pe.desc.seed), gpuRecords};

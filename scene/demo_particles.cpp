@@ -16,25 +16,42 @@ bool addPreset(Document& doc, const char* preset, const particles::PresetOptions
   return false;
 }
 
+// The ground's height at a world XY (0 off the terrain).
+double groundAt(const SceneState& s, double x, double y) {
+  const FoliageGround ground(s, false);
+  if (const terrain::Terrain* t = ground.ground().terrain)
+    if (auto p = foliage::terrainSurface(t->height, {x, y})) return p->position.z;
+  return 0.0;
+}
+
+bool setValue(Document& doc, EntityId id, const char* key, const Json& v, std::string& error) {
+  if (ops::setEmitterValue(doc, id, key, v, error)) return true;
+  error = "demo particles: " + error;
+  return false;
+}
+
 bool addDemoEmitters(Document& doc, std::string& error) {
-  // Light snow over 160 x 160 m around the clearing: 200 flakes a second,
-  // about 7,000 in the air, born 30 m above the ground at the area's centre,
-  // sticking where they land. Each flake is replayed for its turbulence and
-  // collision (docs/particles.md, "The replay"): a cold frame (a farm node's
-  // first) costs about a second on two cores, a warm one milliseconds.
-  particles::PresetOptions snow{.area = glm::dvec4(-80.0, -40.0, 80.0, 120.0), .rate = 200.0, .seed = 7};
-  if (!addPreset(doc, "snow", snow, false, error)) return false;
-  // A fog bank in the gap between the first pillars and the tallest one.
-  particles::PresetOptions fog{.area = glm::dvec4(-70.0, 85.0, 60.0, 150.0), .seed = 3};
+  // Snow around the clearing, where the first camera looks: 60 x 60 m, 400
+  // flakes a second of 3 to 6 cm (larger than the preset's, to be seen at
+  // a preview's size), born 12 m above the ground, falling for about ten
+  // seconds and sticking where they land: about 5,000 in the air. Each
+  // flake is replayed for its turbulence and collision (docs/particles.md,
+  // "The replay"): a cold frame (a farm node's first) costs a few hundred
+  // milliseconds on two cores, a warm one milliseconds.
+  const double snowZ = groundAt(doc.state(), 0.0, 5.0) + 12.0 - 30.0;  // the preset adds 30 m
+  particles::PresetOptions snow{.at = {0.0, 5.0, snowZ}, .area = glm::dvec4(-30.0, -25.0, 30.0, 35.0), .rate = 400.0,
+                                .seed = 7};
+  if (!addPreset(doc, "snow", snow, true, error)) return false;
+  const EntityId flakes = doc.state().findByName("Snow");
+  if (!setValue(doc, flakes, "lifetime_s", Json::array({11.0, 13.0}), error) ||
+      !setValue(doc, flakes, "size_m", Json::array({0.03, 0.06}), error))
+    return false;
+  // A fog bank on the valley floor in front of and between the pillars.
+  particles::PresetOptions fog{.area = glm::dvec4(-90.0, 60.0, 90.0, 150.0), .seed = 3};
   if (!addPreset(doc, "fog", fog, false, error)) return false;
   // A torch on the tallest pillar's top (-12, 140), 1.2 m above its rock.
-  glm::dvec3 top(-12.0, 140.0, 0.0);
-  {
-    const FoliageGround ground(doc.state(), false);
-    if (const terrain::Terrain* t = ground.ground().terrain)
-      if (auto p = foliage::terrainSurface(t->height, {top.x, top.y})) top.z = p->position.z;
-  }
-  particles::PresetOptions torch{.name = "Monastery torch", .at = top + glm::dvec3(0.0, 0.0, 1.2), .seed = 5};
+  const glm::dvec3 top(-12.0, 140.0, groundAt(doc.state(), -12.0, 140.0) + 1.2);
+  particles::PresetOptions torch{.name = "Monastery torch", .at = top, .seed = 5};
   return addPreset(doc, "torch", torch, true, error);
 }
 

@@ -1,10 +1,10 @@
 #pragma once
-// The demo scene's particles (docs/particles.md): light snow falling over
-// the clearing and the near valley (sticking where it lands), a fog bank
-// drifting between the pillars, and a torch (flame and smoke) on top of the
-// tallest pillar, where a monastery would stand. Rates are kept low enough
-// that a frame evaluated cold (alone, on a farm node) costs about a second
-// on two cores.
+// The demo scene's particles (docs/particles.md): snow falling around the
+// clearing (sticking where it lands), a fog bank drifting in front of and
+// between the pillars, and a torch (flame and smoke) on top of the tallest
+// pillar, where a monastery would stand. Rates are kept low enough that a
+// frame evaluated cold (alone, on a farm node) costs well under a second on
+// two cores.
 #include <string>
 
 #include "scene/scene_state.h"

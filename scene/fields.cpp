@@ -389,6 +389,8 @@ std::vector<SettingsField> buildSettingsFields() {
       doubleField<S>("kbuffer_k", "K-buffer depth (K)", 1.0, 32.0, 1.0, "", [](S& s) -> int& { return s.kbufferK; }),
       doubleField<S>("oit_memory_mb", "OIT memory cap", 1.0, 16384.0, 16.0, "MiB",
                      [](S& s) -> double& { return s.oitMemoryMb; }),
+      // Where particles are evaluated (docs/particles.md, "Drawing").
+      notAnimated(boolField<S>("particles_gpu", "Particles on the GPU", [](S& s) -> bool& { return s.particlesOnGpu; })),
   };
 }
 
