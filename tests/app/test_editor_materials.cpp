@@ -212,7 +212,8 @@ class EditorMaterialsTest : public QObject {
     QVERIFY(kbuffer && scene::ops::setSettingsField(w_->document(), *mode, *kbuffer, QString()));
     QTRY_VERIFY_WITH_TIMEOUT(label->text().startsWith("kbuffer: "), 30000);
     QVERIFY(label->text().contains(QString("%1 layers per pixel").arg(s.settings.kbufferK)));
-    // Every material opaque (the bunny's and the demo's glass and pond).
+    // Every material opaque (the bunny's and the demo's glass and pond) and
+    // no particles.
     std::vector<scene::MaterialId> translucent;
     for (const auto& [mid, mat] : s.materials)
       if (mat.opacity < 1.0f) translucent.push_back(mid);
@@ -220,6 +221,13 @@ class EditorMaterialsTest : public QObject {
     for (scene::MaterialId t : translucent)
       QVERIFY(scene::ops::setMaterialField(w_->document(), t, *scene::findMaterialField("opacity"),
                                            scene::FieldValue(1.0), error));
+    // The particles (snow, fog, smoke) are translucent too: hidden.
+    std::vector<scene::EntityId> emitters;
+    for (const auto& [eid, e] : w_->document().state().entities)
+      if (e.particles) emitters.push_back(eid);
+    QVERIFY(!emitters.empty());
+    for (scene::EntityId eid : emitters)
+      QVERIFY(scene::ops::setField(w_->document(), eid, *scene::findEntityField("entity.visible"), scene::FieldValue(false)));
     QTRY_VERIFY_WITH_TIMEOUT(label->text().startsWith("No translucent surface in view"), 30000);
   }
 

@@ -130,8 +130,12 @@ class RandomEditor {
       case 5:
       case 6: {
         kind = "setField";
-        const auto& comps = entityComponents();
-        const ComponentInfo& c = comps[size_t(pick(0, int(comps.size()) - 1))];
+        // Components whose values are fields (an emitter's are its own
+        // table, scene/particle_ops.h: test_scene_particles).
+        std::vector<const ComponentInfo*> comps;
+        for (const ComponentInfo& c : entityComponents())
+          if (!c.fields.empty()) comps.push_back(&c);
+        const ComponentInfo& c = *comps[size_t(pick(0, int(comps.size()) - 1))];
         const EntityField& f = c.fields[size_t(pick(0, int(c.fields.size()) - 1))];
         kind += " " + c.key + "." + f.key;
         return ops::setField(doc_, some, f, randomValue(f), pick(0, 3) == 0 ? "scrub " + QString::fromStdString(f.key) : QString());
