@@ -212,7 +212,7 @@ void ParticlesPanel::refresh() {
 }
 
 void ParticlesPanel::refreshCounts() {
-  if (!isVisible() && list_->topLevelItemCount() == 0) return;
+  if (list_->topLevelItemCount() == 0) return;  // no emitter: nothing to count
   // At the playhead, on the document's emitters (what the viewport shows).
   const std::vector<scene::EmitterCount> counts = scene::liveParticleCounts(doc_.state(), playheadSeconds());
   for (int i = 0; i < list_->topLevelItemCount(); ++i) {
@@ -261,9 +261,7 @@ void ParticlesPanel::listEdited(const std::string& key, QLineEdit* edit) {
   const std::optional<Json> v =
       scene::ops::parseEmitterValue(owner ? owner->name : std::string(), key, edit->text().toStdString(), error);
   if (!v) {
-    window_.messages()->warning(QString::fromStdString(error));
-    error_->setText(QString::fromStdString(error));
-    error_->show();
+    showProblem(error);
     return;
   }
   const scene::Entity* e = doc_.state().find(current_);
@@ -271,14 +269,18 @@ void ParticlesPanel::listEdited(const std::string& key, QLineEdit* edit) {
   setValue(current_, key, *v);
 }
 
+void ParticlesPanel::showProblem(const std::string& error) {
+  window_.messages()->warning(QString::fromStdString(error));
+  error_->setText(QString::fromStdString(error));
+  error_->show();
+}
+
 bool ParticlesPanel::setValue(scene::EntityId id, const std::string& key, const Json& value) {
   std::string error;
   const QString merge = QString("particles/%1/%2").arg(qulonglong(id)).arg(QString::fromStdString(key));
   if (!scene::ops::setEmitterValue(doc_, id, key, value, error, merge)) {
     // The form keeps what was typed, marked; the document keeps its value.
-    window_.messages()->warning(QString::fromStdString(error));
-    error_->setText(QString::fromStdString(error));
-    error_->show();
+    showProblem(error);
     return false;
   }
   error_->hide();

@@ -75,6 +75,7 @@ class ParticlesPanel : public QWidget {
   void formEdited();
   void listEdited(const std::string& key, QLineEdit* edit);
   double playheadSeconds() const;
+  void showProblem(const std::string& error);  // in Messages and in red under the list
 
   MainWindow& window_;
   scene::Document& doc_;

@@ -108,35 +108,55 @@ std::optional<Json> parseEmitterValue(const std::string& emitter, std::string_vi
   return v;
 }
 
-bool setEmitter(Document& doc, EntityId id, const particles::EmitterDesc& desc, std::string& error,
-                const QString& mergeKey) {
+namespace {
+
+// The entity whose emitter an edit changes, or null with `error`.
+const Entity* emitterEntity(const Document& doc, EntityId id, std::string& error) {
   const Entity* ent = doc.state().find(id);
   if (!ent || !ent->particles) {
     error = ent ? "entity '" + ent->name + "' has no particles component" : "no such entity";
-    return false;
+    return nullptr;
   }
-  particles::EmitterDesc d = desc;
-  d.name = ent->name;
+  return ent;
+}
+
+// Stores `d` as the entity's emitter, validated first (messages name the
+// entity as the emitter): one undo step, none when nothing but a stale
+// stored name would differ. `changed` says whether a step was pushed.
+bool storeEmitter(Document& doc, const Entity& ent, particles::EmitterDesc d, const QString& text,
+                  const QString& mergeKey, std::string& error, bool* changed) {
+  if (changed) *changed = false;
+  d.name = ent.name;
   if (const std::vector<std::string> problems = particles::validate(d); !problems.empty()) {
     error = problems.front();
     return false;
   }
-  if (d == ent->particles->desc) return true;
-  Edit e(doc, QString("Edit emitter %1").arg(QString::fromStdString(ent->name)), mergeKey);
-  e.entity(id).particles->desc = std::move(d);
-  return e.commit();
+  particles::EmitterDesc now = ent.particles->desc;
+  now.name = ent.name;
+  if (d == now) return true;
+  Edit e(doc, text, mergeKey);
+  e.entity(ent.id).particles->desc = std::move(d);
+  const bool stored = e.commit();
+  if (changed) *changed = stored;
+  return true;
+}
+
+}  // namespace
+
+bool setEmitter(Document& doc, EntityId id, const particles::EmitterDesc& desc, std::string& error,
+                const QString& mergeKey) {
+  const Entity* ent = emitterEntity(doc, id, error);
+  return ent && storeEmitter(doc, *ent, desc, QString("Edit emitter %1").arg(QString::fromStdString(ent->name)),
+                             mergeKey, error, nullptr);
 }
 
 bool setEmitterValue(Document& doc, EntityId id, std::string_view key, const Json& value, std::string& error,
                      const QString& mergeKey, bool* changed) {
   if (changed) *changed = false;
-  const Entity* ent = doc.state().find(id);
-  if (!ent || !ent->particles) {
-    error = ent ? "entity '" + ent->name + "' has no particles component" : "no such entity";
-    return false;
-  }
+  const Entity* ent = emitterEntity(doc, id, error);
+  if (!ent) return false;
   particles::EmitterDesc d = ent->particles->desc;
-  d.name = ent->name;
+  d.name = ent->name;  // messages name the emitter as the entity is called now
   const auto& lists = emitterListKeys();
   if (std::find(lists.begin(), lists.end(), key) != lists.end()) {
     // Through the file's own reader: the same checks a saved emitter gets.
@@ -148,16 +168,8 @@ bool setEmitterValue(Document& doc, EntityId id, std::string_view key, const Jso
   } else if (!particles::setEmitterField(d, key, value, error)) {
     return false;
   }
-  if (const std::vector<std::string> problems = particles::validate(d); !problems.empty()) {
-    error = problems.front();
-    return false;
-  }
-  if (d == ent->particles->desc) return true;
-  Edit e(doc, QString("Set %1").arg(QString::fromStdString(std::string(key))), mergeKey);
-  e.entity(id).particles->desc = std::move(d);
-  const bool stored = e.commit();
-  if (changed) *changed = stored;
-  return true;
+  return storeEmitter(doc, *ent, std::move(d), QString("Set %1").arg(QString::fromStdString(std::string(key))),
+                      mergeKey, error, changed);
 }
 
 }  // namespace hs::scene::ops
