@@ -9,6 +9,7 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include "cli_checks.h"
 #include "cli_runner.h"
 
 using namespace hs;
@@ -22,16 +23,12 @@ class TestCliFoliage : public QObject {
 
   void ok(const QStringList& args, Run* out = nullptr) {
     const Run r = cli(args);
-    QVERIFY2(r.code == 0, qPrintable("hybridscape-cli " + args.join(' ') + ": " + r.err));
+    test::verifyCliOk(r, args);
     if (out) *out = r;
   }
 
   void expectError(const QStringList& args, int code, const QStringList& names) {
-    const Run r = cli(args);
-    const QString cmd = "hybridscape-cli " + args.join(' ');
-    QVERIFY2(r.code == code, qPrintable(QString("%1: exit %2, expected %3; stderr: %4").arg(cmd).arg(r.code).arg(code).arg(r.err)));
-    QVERIFY2(r.errLines().size() == 1, qPrintable(cmd + ": expected one line on stderr, got:\n" + r.err));
-    for (const QString& n : names) QVERIFY2(r.err.contains(n), qPrintable(QString("%1: '%2' not in: %3").arg(cmd, n, r.err)));
+    test::verifyCliError(cli(args), args, code, names);
   }
 
   QJsonObject foliage(const QString& file) {
