@@ -21,6 +21,7 @@ constexpr const char* kCollisions[] = {"none", "bounce", "kill", "stick"};
 constexpr const char* kSprites[] = {"snowflake", "smoke", "flame", "spark"};
 constexpr const char* kBlends[] = {"alpha", "additive"};
 constexpr const char* kFacings[] = {"camera", "velocity"};
+constexpr const char* kSpaces[] = {"local", "world"};
 
 template <class E, size_t N>
 E enumFrom(const char* const (&names)[N], const std::string& s) {
@@ -40,6 +41,19 @@ const char* collisionName(CollisionMode c) { return kCollisions[int(c)]; }
 const char* spriteName(Sprite s) { return kSprites[int(s)]; }
 const char* blendName(Blend b) { return kBlends[int(b)]; }
 const char* facingName(Facing f) { return kFacings[int(f)]; }
+const char* spaceName(Space s) { return kSpaces[int(s)]; }
+
+bool emitterKeyAddedAfter(std::string_view key, int formatVersion) {
+  // Keys each scene format added to the emitter (format 10 was the first).
+  struct Added {
+    std::string_view key;
+    int since;
+  };
+  static constexpr Added kAdded[] = {{"space", 11}, {"draw_mesh", 11}};
+  for (const Added& a : kAdded)
+    if (a.key == key) return formatVersion < a.since;
+  return false;
+}
 
 double Curve::eval(double t, double fallback) const {
   if (keys.empty()) return fallback;
@@ -103,7 +117,12 @@ const std::vector<ParamDecl>& emitterParamDecls() {
          .defaultValue = d.coneAngleDeg, .help = "cone shape: half-angle of the opening", .editor = true,
          .group = gWhen},
         {.key = "mesh", .label = "Mesh", .type = ParamType::Text, .defaultValue = d.mesh,
-         .help = "mesh shape: the asset whose surface particles are born on", .editor = true, .group = gWhen},
+         .help = "mesh shape: the entity whose mesh surface particles are born on", .editor = true, .group = gWhen},
+        {.key = "space", .label = "Space", .type = ParamType::Choice, .defaultValue = spaceName(d.space),
+         .choices = {kSpaces, kSpaces + 2},
+         .help = "local: particles move with the emitter's entity; world: they stay where the emitter was at their "
+                 "birth (a moving torch leaves its smoke behind)",
+         .editor = true, .group = gWhen},
         {.key = "direction", .label = "Direction", .min = -1e3, .max = 1e3, .defaultValue = vec3Json(d.direction),
          .help = "initial direction (normalised; not zero)", .count = 3, .editor = true, .group = gStart},
         {.key = "spread_deg", .label = "Spread", .unit = Unit::Degrees, .min = 0.0, .max = 180.0,
@@ -176,6 +195,10 @@ const std::vector<ParamDecl>& emitterParamDecls() {
         {.key = "lit", .label = "Lit", .type = ParamType::Flag, .defaultValue = d.lit,
          .help = "lit by the sun and the sky (snow, fog, smoke); off: the colour is emitted light (fire)",
          .editor = true, .group = gLook},
+        {.key = "draw_mesh", .label = "Draw mesh", .type = ParamType::Text, .defaultValue = d.drawMesh,
+         .help = "draw each particle as this entity's mesh (its LODs and materials; its largest extent is the "
+                 "particle's size); empty: the sprite",
+         .editor = true, .group = gLook},
     };
   }();
   return decls;
@@ -239,6 +262,8 @@ const std::vector<EmitterField>& emitterFields() {
       bind("cone_angle_deg", [](const E& e) { return Json(e.coneAngleDeg); },
            [](E& e, const Json& v) { e.coneAngleDeg = v.get<double>(); }),
       bind("mesh", [](const E& e) { return Json(e.mesh); }, [](E& e, const Json& v) { e.mesh = v.get<std::string>(); }),
+      bind("space", [](const E& e) { return Json(spaceName(e.space)); },
+           [](E& e, const Json& v) { e.space = enumFrom<Space>(kSpaces, v.get<std::string>()); }),
       bind("direction", [](const E& e) { return vec3Json(e.direction); },
            [](E& e, const Json& v) { e.direction = jsonVec3(v); }),
       bind("spread_deg", [](const E& e) { return Json(e.spreadDeg); },
@@ -286,6 +311,8 @@ const std::vector<EmitterField>& emitterFields() {
       bind("soft_m", [](const E& e) { return Json(e.softDistance); },
            [](E& e, const Json& v) { e.softDistance = v.get<double>(); }),
       bind("lit", [](const E& e) { return Json(e.lit); }, [](E& e, const Json& v) { e.lit = v.get<bool>(); }),
+      bind("draw_mesh", [](const E& e) { return Json(e.drawMesh); },
+           [](E& e, const Json& v) { e.drawMesh = v.get<std::string>(); }),
   };
   return fields;
 }
@@ -426,7 +453,7 @@ bool readRows(JsonReader& r, const Json& obj, const char* key, size_t n, const c
 
 }  // namespace
 
-std::optional<EmitterDesc> emitterFromJson(const Json& j, std::string& error) {
+std::optional<EmitterDesc> emitterFromJson(const Json& j, std::string& error, int formatVersion) {
   std::string err;
   JsonReader r(err);
   EmitterDesc e;
@@ -441,6 +468,7 @@ std::optional<EmitterDesc> emitterFromJson(const Json& j, std::string& error) {
                                                 "colour_over_life"};
   for (const EmitterField& f : emitterFields()) {
     known.insert(f.decl->key);
+    if (emitterKeyAddedAfter(f.decl->key, formatVersion) && !JsonReader::member(j, f.decl->key)) continue;
     const Json* v = r.required(j, "", f.decl->key);
     if (!v) return fail(err);
     std::string why;

@@ -42,12 +42,18 @@ enum class CollisionMode { None, Bounce, Kill, Stick };
 enum class Sprite { Snowflake, Smoke, Flame, Spark };
 enum class Blend { Alpha, Additive };
 enum class Facing { Camera, Velocity };
+// Which frame particles live in once born (docs/particles.md, "Simulation
+// space"): Local: the emitter's, so they move with an emitter whose entity
+// moves (a lantern's glow); World: where the emitter was at their birth, so
+// a moving torch leaves its smoke behind.
+enum class Space { Local, World };
 
 const char* shapeName(Shape s);
 const char* collisionName(CollisionMode c);
 const char* spriteName(Sprite s);
 const char* blendName(Blend b);
 const char* facingName(Facing f);
+const char* spaceName(Space s);
 
 // A piecewise-linear function of one variable: keys with strictly increasing
 // t (coincident keys are refused by validate()), held constant before the
@@ -104,7 +110,8 @@ struct EmitterDesc {
   double radius = 1.0;                // Sphere, Disc, Cone (base)
   bool surfaceOnly = false;           // Sphere/Disc: on the surface/rim only
   double coneAngleDeg = 25.0;         // Cone: half-angle of the opening
-  std::string mesh{};                 // Mesh: the surface's name (a SurfaceSampler is given at evaluation)
+  std::string mesh{};                 // Mesh: the surface's entity name (a SurfaceSampler is given at evaluation)
+  Space space = Space::Local;         // the frame particles live in after their birth
 
   // How they start.
   glm::dvec3 direction{0.0, 0.0, 1.0};  // unit vector (normalised when read)
@@ -144,6 +151,10 @@ struct EmitterDesc {
   Facing facing = Facing::Camera;
   double softDistance = 0.5;  // metres over which a particle fades in front of opaque geometry (0: hard)
   bool lit = true;            // lit by the sun (with its shadows) and the sky; false: its colour is emitted light
+  // Non-empty: each particle is drawn as this entity's mesh (its LOD chain
+  // and materials), scaled so its largest extent is the particle's size,
+  // turned by its rotation about an axis of its own; empty: a sprite.
+  std::string drawMesh{};
 
   bool operator==(const EmitterDesc&) const = default;
 
@@ -161,7 +172,8 @@ struct EmitterDesc {
 // gravity_m_per_s2 drag_per_s wind_m_per_s turbulence_m_per_s2
 // turbulence_frequency_per_m turbulence_evolution_per_s collision
 // restitution friction rest_speed_m_per_s replay_step_s flipbook_frames
-// sprite blend facing soft_m lit.
+// sprite blend facing soft_m lit, and since format 11 (kEmitterKeysSince11)
+// space draw_mesh.
 const std::vector<ParamDecl>& emitterParamDecls();
 
 // A declared parameter bound to its EmitterDesc member: the one table the
@@ -185,6 +197,8 @@ bool setEmitterField(EmitterDesc& e, std::string_view key, const Json& value, st
 // curves with keys not strictly increasing (coincident keys) or out of
 // [0, 1] for over-life curves, wind keys out of the wind's range, negative or NaN rates and burst counts, a
 // mesh shape without a mesh name. Empty: valid.
+// (The mesh shape's surface and draw_mesh name entities; whether they exist
+// is the scene's to say, at evaluation and drawing.)
 std::vector<std::string> validate(const EmitterDesc& e);
 
 // JSON (core/json.h): an object with "name", every declared key, and the
@@ -194,8 +208,12 @@ std::vector<std::string> validate(const EmitterDesc& e);
 // right type and a finite value in range, and unknown keys are refused
 // (a typo is not silently ignored); the error names the emitter, the JSON
 // path and what was wrong, and validate() runs on the result.
+// `formatVersion`: the scene file's; keys added after it (an emitter
+// written by format 10 has no "space" or "draw_mesh") take their defaults.
+inline constexpr int kEmitterFormatLatest = 11;
+bool emitterKeyAddedAfter(std::string_view key, int formatVersion);
 Json emitterToJson(const EmitterDesc& e);
-std::optional<EmitterDesc> emitterFromJson(const Json& j, std::string& error);
+std::optional<EmitterDesc> emitterFromJson(const Json& j, std::string& error, int formatVersion = kEmitterFormatLatest);
 // From text: parse errors with line and column, field errors placed in the text.
 std::optional<EmitterDesc> emitterFromJsonText(std::string_view text, std::string& error);
 

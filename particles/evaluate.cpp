@@ -132,6 +132,9 @@ ParticleStart Evaluator::startAt(ParticleId id, double birthTime) const {
 
   const double a = r.unit(Attr::ShapeA), b = r.unit(Attr::ShapeB), c = r.unit(Attr::ShapeC);
   const glm::dvec3 axis = e_.direction;
+  // Where the emitter was at the birth (world space), relative to where it is.
+  const bool moved = e_.space == Space::World && in_.originAt;
+  const glm::dvec3 bornAt = moved ? in_.originAt(birthTime) : e_.origin;
   glm::dvec3 b1, b2;
   basis(axis, b1, b2);
   glm::dvec3 pos(0.0), normal = axis, base = axis;
@@ -157,8 +160,8 @@ ParticleStart Evaluator::startAt(ParticleId id, double birthTime) const {
       break;
     }
     case Shape::Terrain: {
-      const double wx = e_.origin.x + (2.0 * a - 1.0) * e_.boxHalf.x, wy = e_.origin.y + (2.0 * b - 1.0) * e_.boxHalf.y;
-      const double ground = in_.ground ? in_.ground->height(wx, wy) : e_.origin.z;
+      const double wx = bornAt.x + (2.0 * a - 1.0) * e_.boxHalf.x, wy = bornAt.y + (2.0 * b - 1.0) * e_.boxHalf.y;
+      const double ground = in_.ground ? in_.ground->height(wx, wy) : bornAt.z;
       // Relative coordinates formed from world ones in double (exact for the x, y offsets).
       pos = {wx - e_.origin.x, wy - e_.origin.y, ground - e_.origin.z + c * e_.boxHalf.z};
       normal = in_.ground ? in_.ground->normal(wx, wy) : axis;
@@ -171,6 +174,9 @@ ParticleStart Evaluator::startAt(ParticleId id, double birthTime) const {
       break;
     }
   }
+  // The terrain shape is placed in world coordinates already; the mesh
+  // shape's surface is where its entity is now.
+  if (moved && e_.shape != Shape::Terrain && e_.shape != Shape::Mesh) pos += bornAt - e_.origin;
   if (e_.alongNormal) base = normal;
   glm::dvec3 dir = base;
   if (e_.spreadDeg > 0.0) {

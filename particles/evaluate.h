@@ -21,6 +21,7 @@
 // so an emitter at UTM coordinates loses nothing; colliders work in world
 // coordinates (origin + position).
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -161,6 +162,14 @@ struct EvaluatorInputs {
   const SurfaceSampler* surface = nullptr;  // the mesh shape's surface
   std::vector<const Collider*> colliders{};
   const HeightFieldCollider* ground = nullptr;  // the terrain shape's ground (world coordinates)
+  // World space (EmitterDesc::space): the emitter's world origin at a scene
+  // time, a pure function of it (the scene evaluates its entity's animated
+  // transform); a particle starts where the emitter was at its birth, and
+  // desc.origin (where it is at the frame's time) stays the frame of the
+  // results. Empty, or local space: the emitter never moved. A mesh shape's
+  // particles are born on the surface where the surface is (it is another
+  // entity's).
+  std::function<glm::dvec3(double)> originAt{};
 };
 
 class Evaluator {
@@ -173,6 +182,8 @@ class Evaluator {
   const SpawnSchedule& schedule() const { return spawn_; }
   uint64_t key() const { return key_; }
   bool replays() const { return replay_; }
+  // World space with an origin that moves (EvaluatorInputs::originAt).
+  bool movesInWorld() const { return e_.space == Space::World && bool(in_.originAt); }
 
   double birth(ParticleId id) const;
   ParticleStart start(ParticleId id) const;

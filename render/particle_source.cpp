@@ -169,15 +169,24 @@ ParticleSources::Entry& ParticleSources::entryFor(const scene::SceneState& state
     worldKey_ = worldKeyOf(state);
   }
   const uint64_t key = world ? worldKey_ : 0;
-  if (e.evaluator && e.desc == placed.desc && e.worldKey == key) return e;
-  if (!e.evaluator && !e.error.empty() && e.desc == placed.desc && e.worldKey == key) return e;
+  const bool sameMotion = e.motion == placed.motion || (e.motion && placed.motion && *e.motion == *placed.motion);
+  const bool same = e.desc == placed.desc && e.worldKey == key && sameMotion;
+  if (e.evaluator && same) return e;
+  if (!e.evaluator && !e.error.empty() && same) return e;
   // New or changed: a new evaluator, an empty cache (its entries are keyed
-  // by the emitter's content, but its paths depend on the colliders too).
+  // by the emitter's content, but its paths depend on the colliders and
+  // the emitter's motion too).
   e = Entry{};
   e.desc = placed.desc;
   e.worldKey = key;
-  if (world) e.evaluator = world_->evaluator(placed.desc, e.error);
-  else e.evaluator = particles::Evaluator::create(placed.desc, {}, e.error);
+  e.motion = placed.motion;
+  if (world) {
+    e.evaluator = world_->evaluator(placed.desc, e.error, true, placed.motion);
+  } else {
+    particles::EvaluatorInputs in;
+    if (placed.motion) in.originAt = [m = placed.motion](double time) { return m->originAt(time); };
+    e.evaluator = particles::Evaluator::create(placed.desc, std::move(in), e.error);
+  }
   return e;
 }
 

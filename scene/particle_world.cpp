@@ -3,6 +3,9 @@
 #include <cmath>
 
 #include "foliage/surface.h"
+#include "sequencer/track.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace hs::scene {
 
@@ -15,12 +18,97 @@ std::optional<particles::EmitterDesc> emitterInWorld(const SceneState& state, En
   return d;
 }
 
+namespace {
+
+bool movesTransform(const sequencer::Binding& b) {
+  if (b.path) return true;
+  for (const sequencer::Track& t : b.tracks) {
+    const std::string& p = sequencer::trackProperty(t);
+    if ((p == "transform.translation" || p == "transform.rotation" || p == "transform.scale") &&
+        sequencer::trackKeyCount(t) > 0)
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::shared_ptr<const EmitterMotion> EmitterMotion::of(const SceneState& state, EntityId id) {
+  const Entity* e = state.find(id);
+  if (!e || !e->particles || e->particles->desc.space != particles::Space::World) return nullptr;
+  auto m = std::make_shared<EmitterMotion>();
+  bool moves = false, path = false;
+  for (EntityId at = id; at != kNoEntity;) {
+    const Entity* x = state.find(at);
+    if (!x) break;
+    Level level{at, x->transform, std::nullopt};
+    if (const sequencer::Binding* b = state.sequence.findBinding(at); b && movesTransform(*b)) {
+      level.binding = *b;
+      moves = true;
+      path = path || b->path.has_value();
+    }
+    m->levels_.push_back(std::move(level));
+    at = x->parent;
+  }
+  if (!moves) return nullptr;
+  m->offset_ = e->particles->desc.origin;
+  if (path) m->compiled_ = std::make_shared<const sequencer::CompiledSequence>(state.sequence);
+  return m;
+}
+
+glm::dvec3 EmitterMotion::originAt(double t) const {
+  std::optional<sequencer::SequenceState> values;
+  if (compiled_) values = sequencer::evaluate(*compiled_, t);
+  glm::dmat4 m(1.0);
+  for (const Level& level : levels_) {
+    Transform local = level.transform;
+    if (level.binding && values) {
+      if (auto p = values->vector(level.id, "transform.translation")) local.translation = *p;
+      if (auto q = values->rotation(level.id, "transform.rotation")) local.rotation = *q;
+      if (auto s = values->vector(level.id, "transform.scale")) local.scale = *s;
+      if (level.binding->path) {
+        // A path gives the world position and orientation (animation.cpp).
+        Transform world = local;
+        world.scale = glm::dvec3(1.0);
+        m = world.matrix() * glm::scale(glm::dmat4(1.0), local.scale) * m;
+        return glm::dvec3(m[3]) + offset_;
+      }
+    } else if (level.binding) {
+      for (const sequencer::Track& track : level.binding->tracks) {
+        if (const auto* v = std::get_if<sequencer::VectorTrack>(&track)) {
+          const auto value = sequencer::evaluate(*v, t);
+          if (!value) continue;
+          if (v->property == "transform.translation") local.translation = *value;
+          else if (v->property == "transform.scale") local.scale = *value;
+        } else if (const auto* r = std::get_if<sequencer::RotationTrack>(&track)) {
+          const auto value = sequencer::evaluate(*r, t);
+          if (value && r->property == "transform.rotation" && glm::length(*value) > 1e-12)
+            local.rotation = glm::normalize(*value);
+        }
+      }
+    }
+    m = local.matrix() * m;
+  }
+  return glm::dvec3(m[3]) + offset_;
+}
+
+bool EmitterMotion::operator==(const EmitterMotion& o) const {
+  if (levels_.size() != o.levels_.size() || offset_ != o.offset_ || bool(compiled_) != bool(o.compiled_)) return false;
+  for (size_t i = 0; i < levels_.size(); ++i) {
+    const Level &a = levels_[i], &b = o.levels_[i];
+    if (a.id != b.id || a.transform != b.transform || bool(a.binding) != bool(b.binding)) return false;
+    if (a.binding && !(*a.binding == *b.binding)) return false;
+  }
+  // A path's aims read the rest of the sequence.
+  return !compiled_ || compiled_->sequence() == o.compiled_->sequence();
+}
+
 std::vector<PlacedEmitter> visibleEmitters(const SceneState& state) {
   std::vector<PlacedEmitter> out;
   for (EntityId id : state.depthFirstOrder()) {
     const Entity* e = state.find(id);
     if (!e || !e->particles || !state.effectivelyVisible(id)) continue;
-    out.push_back({id, *emitterInWorld(state, id)});
+    out.push_back({id, *emitterInWorld(state, id), EmitterMotion::of(state, id)});
   }
   return out;
 }
@@ -65,8 +153,10 @@ void ParticleWorld::buildMeshes() {
         }));
 }
 
-particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& desc, bool colliders) {
+particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& desc, bool colliders,
+                                                 std::shared_ptr<const EmitterMotion> motion) {
   particles::EvaluatorInputs in;
+  if (motion) in.originAt = [motion](double t) { return motion->originAt(t); };
   if (colliders && desc.collision != particles::CollisionMode::None) {
     buildTerrain();
     buildMeshes();
@@ -97,8 +187,9 @@ particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& d
 }
 
 std::optional<particles::Evaluator> ParticleWorld::evaluator(const particles::EmitterDesc& desc, std::string& error,
-                                                             bool colliders) {
-  return particles::Evaluator::create(desc, inputs(desc, colliders), error);
+                                                             bool colliders,
+                                                             std::shared_ptr<const EmitterMotion> motion) {
+  return particles::Evaluator::create(desc, inputs(desc, colliders, std::move(motion)), error);
 }
 
 std::vector<EmitterCount> liveParticleCounts(const SceneState& state, double t) {

@@ -12,6 +12,7 @@
 #include "particles/evaluate.h"
 #include "scene/foliage_ground.h"
 #include "scene/scene_state.h"
+#include "sequencer/sequence.h"
 
 namespace hs::scene {
 
@@ -20,9 +21,37 @@ namespace hs::scene {
 // entity has no emitter.
 std::optional<particles::EmitterDesc> emitterInWorld(const SceneState& state, EntityId id);
 
+// An emitter's world origin over scene time, what world space needs
+// (particles::EvaluatorInputs::originAt): its entity's world translation
+// from the transform tracks and camera paths of the entity and its parents
+// (the rest of the chain as the state has it), plus desc.origin. A pure
+// function of time, so a particle born at t_b starts at originAt(t_b) on
+// any frame and any farm node. Tracks are evaluated directly (a few binary
+// searches a particle); a path in the chain evaluates the sequence (its
+// aims at other entities use their animated translations, the sequencer's
+// rule without positions). Two are equal when they give the same origins.
+class EmitterMotion {
+ public:
+  // Null when the emitter is in local space or nothing in its chain moves.
+  static std::shared_ptr<const EmitterMotion> of(const SceneState& state, EntityId id);
+  glm::dvec3 originAt(double t) const;
+  bool operator==(const EmitterMotion& o) const;
+
+ private:
+  struct Level {
+    EntityId id = kNoEntity;
+    Transform transform{};
+    std::optional<sequencer::Binding> binding{};  // a copy; none: not animated
+  };
+  std::vector<Level> levels_;  // the entity first, then its parents
+  glm::dvec3 offset_{0.0};     // desc.origin
+  std::shared_ptr<const sequencer::CompiledSequence> compiled_;  // the state's sequence, only with a path in the chain
+};
+
 struct PlacedEmitter {
   EntityId entity = kNoEntity;
   particles::EmitterDesc desc{};  // origin in world, name the entity's
+  std::shared_ptr<const EmitterMotion> motion{};  // world space on a moving chain; else null
 };
 // Every effectively visible emitter, depth-first (outliner order).
 std::vector<PlacedEmitter> visibleEmitters(const SceneState& state);
@@ -46,10 +75,13 @@ class ParticleWorld {
   // then refuses with "the mesh '...' is missing").
   // `colliders` false: none even for a colliding emitter (counting the live
   // particles needs no replay, so no BVH).
-  particles::EvaluatorInputs inputs(const particles::EmitterDesc& desc, bool colliders = true);
+  // `motion`: the emitter's (world space on a moving chain), kept alive by the inputs.
+  particles::EvaluatorInputs inputs(const particles::EmitterDesc& desc, bool colliders = true,
+                                    std::shared_ptr<const EmitterMotion> motion = nullptr);
   // The evaluator for `desc`, or nullopt with `error` naming emitter and field.
   std::optional<particles::Evaluator> evaluator(const particles::EmitterDesc& desc, std::string& error,
-                                                bool colliders = true);
+                                                bool colliders = true,
+                                                std::shared_ptr<const EmitterMotion> motion = nullptr);
 
  private:
   void buildTerrain();

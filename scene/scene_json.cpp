@@ -132,6 +132,7 @@ Json textureToJson(const TextureAsset& t) {
 struct Reader : JsonReader {
   using JsonReader::JsonReader;
   std::vector<std::string>* warnings = nullptr;  // values clamped or repaired
+  int formatVersion = kSceneFormatVersion;       // the description's "version" (keys added later are optional)
 
   // A loaded value that breaks its field's range or rule: clamped by the
   // setter, or repaired by the field, and named in a warning.
@@ -280,7 +281,7 @@ struct Reader : JsonReader {
         // Strict, as a hand-written emitter is: a damaged one refuses the
         // file with its path (particles/emitter.h names emitter and field).
         std::string error;
-        std::optional<particles::EmitterDesc> d = particles::emitterFromJson(co, error);
+        std::optional<particles::EmitterDesc> d = particles::emitterFromJson(co, error, formatVersion);
         if (!d) return fail(p, error);
         e.particles->desc = std::move(*d);
         continue;
@@ -414,6 +415,8 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
     r.fail("format", "not a Hybridscape scene description");
     return std::nullopt;
   }
+  if (const Json* v = JsonReader::member(json, "version"); v && v->is_number())
+    r.formatVersion = int(std::clamp(v->get<double>(), 0.0, 1e6));
   if (const Json* settings = JsonReader::member(json, "settings")) {
     if (!r.object(*settings, "settings")) return std::nullopt;
     for (const auto& f : settingsFields()) {

@@ -48,7 +48,9 @@ namespace hs::scene {
 // member and its next save would drop the foliage.
 // 10: particle emitters (an entity's "particles" component: the emitter's
 // JSON, particles/emitter.h). A version-9 reader refuses the unknown component.
-constexpr int kSceneFormatVersion = 10;
+// 11: the emitter's "space" and "draw_mesh" (a format-10 emitter takes their
+// defaults: local space, sprites). A version-10 reader refuses the keys.
+constexpr int kSceneFormatVersion = 11;
 constexpr int kFirstPhysicalLightsFormat = 6;
 constexpr int kFirstPerLightShadowsFormat = 7;
 constexpr int kFirstPhysicalBrdfFormat = 8;

@@ -872,6 +872,39 @@ class TestParticles : public QObject {
     for (const hs::ParamDecl& d : emitterParamDecls()) QVERIFY2(good.contains(d.key), d.key.c_str());
     QCOMPARE(emitterFields().size(), emitterParamDecls().size());
   }
+
+  // Keys a later format added are optional in an older file's emitter (with
+  // their defaults) and required in the current one.
+  void olderFormatsTakeDefaultsForLaterKeys() {
+    EmitterDesc e = fountain();
+    e.space = Space::World;
+    e.drawMesh = "Pebble";
+    hs::Json j = emitterToJson(e);
+    QCOMPARE(j["space"].get<std::string>(), std::string("world"));
+    QCOMPARE(j["draw_mesh"].get<std::string>(), std::string("Pebble"));
+    j.erase("space");
+    j.erase("draw_mesh");
+    std::string err;
+    const auto old = emitterFromJson(j, err, 10);
+    QVERIFY2(old, err.c_str());
+    QCOMPARE(int(old->space), int(Space::Local));
+    QVERIFY(old->drawMesh.empty());
+    QVERIFY(emitterKeyAddedAfter("space", 10) && !emitterKeyAddedAfter("space", 11));
+    QVERIFY(!emitterKeyAddedAfter("lifetime_s", 10));
+    // A format-10 emitter still needs every key format 10 had.
+    hs::Json j10 = j;
+    j10.erase("lit");
+    QVERIFY(!emitterFromJson(j10, err, 10));
+    QVERIFY2(err.find("lit: missing") != std::string::npos, err.c_str());
+    // The current format requires them.
+    QVERIFY(!emitterFromJson(j, err));
+    QVERIFY2(err.find("space: missing") != std::string::npos, err.c_str());
+    // And a value of theirs is checked like any other's.
+    j["space"] = "orbit";
+    j["draw_mesh"] = "";
+    QVERIFY(!emitterFromJson(j, err));
+    QVERIFY2(err.find("'orbit' is not one of") != std::string::npos, err.c_str());
+  }
 };
 
 QTEST_GUILESS_MAIN(TestParticles)
