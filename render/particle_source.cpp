@@ -190,9 +190,20 @@ ParticleSources::Entry& ParticleSources::entryFor(const scene::SceneState& state
   return e;
 }
 
+const particles::Frame& ParticleSources::frameAt(Entry& e, double t) {
+  if (!e.evaluated || e.time != t) {
+    e.frame = e.evaluator->frame(t, &e.cache);
+    e.time = t;
+    e.evaluated = true;
+  }
+  return e.frame;
+}
+
 DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext& frame) {
   source_.reset();
   errors_.clear();
+  meshesActive_ = false;
+  if (meshes_) meshes_->clear();
   const std::vector<scene::PlacedEmitter> placed = scene::visibleEmitters(state);
   // Entities gone (or hidden) drop their caches.
   for (auto it = entries_.begin(); it != entries_.end();) {
@@ -203,6 +214,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
   if (placed.empty()) {
     world_.reset();
     worldState_ = nullptr;
+    meshes_.reset();
     return nullptr;
   }
   // Every view of the frame (both eyes): a particle any of them sees is kept.
@@ -226,6 +238,25 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
       errors_.push_back(e.error);
       continue;
     }
+    if (!pe.desc.drawMesh.empty()) {
+      // Mesh particles (particle_mesh.h): instances of the named entity's
+      // mesh, evaluated on the CPU whatever the GPU setting (the instances
+      // are made from the particles), culled per view by the instanced
+      // source (a particle out of every camera view may cast a shadow into one).
+      const scene::MeshAsset* asset = findDrawMesh(state, pe.desc.drawMesh);
+      if (!asset) {
+        errors_.push_back(drawMeshError(pe.desc));
+        continue;
+      }
+      if (e.evaluator->candidates(t) == 0) continue;
+      const particles::Frame& f = frameAt(e, t);
+      if (f.particles.empty()) continue;
+      if (!meshes_) meshes_ = std::make_unique<MeshParticleSource>();
+      std::string error;
+      meshes_->add(pe.entity, pe.desc, *asset, f, error);
+      if (!error.empty()) errors_.push_back(error);
+      continue;
+    }
     // Nothing born in the live window: the emitter costs nothing at t.
     if (e.evaluator->candidates(t) == 0) continue;
     ParticleDraw d;
@@ -247,15 +278,9 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
       gpuDraws.push_back(d);
       continue;
     }
-    // Once per scene time: a second view group or a lens sample of the
-    // same frame reuses it.
-    if (!e.evaluated || e.time != t) {
-      e.frame = e.evaluator->frame(t, &e.cache);
-      e.time = t;
-      e.evaluated = true;
-    }
-    if (e.frame.particles.empty()) continue;
-    std::vector<particles::PackedParticle> packed = particles::packFrame(e.frame, pe.desc.origin, origin, pe.desc.seed);
+    const particles::Frame& f = frameAt(e, t);
+    if (f.particles.empty()) continue;
+    std::vector<particles::PackedParticle> packed = particles::packFrame(f, pe.desc.origin, origin, pe.desc.seed);
     const bool along = d.alongVelocity;
     d.first = uint32_t(all.size());
     for (const particles::PackedParticle& q : packed) {
@@ -270,6 +295,11 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     d.count = uint32_t(all.size()) - d.first;
     if (d.count == 0) continue;
     draws.push_back(d);
+  }
+  if (meshes_) {
+    const size_t instances = meshes_->commit();
+    meshesActive_ = instances > 0;
+    frame.stats.particlesDrawn += instances;
   }
   if (all.empty() && jobs.empty()) return nullptr;
   // The compute pass's records follow the CPU's.

@@ -10,7 +10,10 @@
 // they draw in the frame's transparency passes, every mode, so they sort
 // against glass, water and each other. No shadows, no picking, not in the
 // layered depth of field's capture. A frame without a live particle in
-// view adds no pass, buffer or texture. Include only inside render/.
+// view adds no pass, buffer or texture. Emitters with a draw_mesh draw
+// their particles as that entity's mesh instead, through a second source
+// (particle_mesh.h: instances, lit, casting shadows), made only in a frame
+// where such an emitter has live particles. Include only inside render/.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -21,6 +24,7 @@
 #include "particles/evaluate.h"
 #include "render/draw_source.h"
 #include "render/particle_gpu_eval.h"
+#include "render/particle_mesh.h"
 #include "render/particle_sprites.h"
 #include "scene/particle_world.h"
 #include "scene/scene_state.h"
@@ -74,10 +78,15 @@ class ParticleSources {
  public:
   ParticleSources();
   ~ParticleSources();
-  // The frame's source (null: no live particle in any view of `frame`).
-  // Adds to frame.stats.particlesDrawn.
+  // The frame's sprite source (null: no live sprite particle in any view
+  // of `frame`); meshes() then has the frame's mesh particles. Adds to
+  // frame.stats.particlesDrawn (sprites in the buffer, mesh particles
+  // handed to the instanced source).
   DrawSource* update(const scene::SceneState& state, FrameContext& frame);
-  // Emitters the evaluator refused this frame: "emitter 'X', field ...".
+  // The last update's mesh particles (null: no emitter drew meshes).
+  DrawSource* meshes() const { return meshesActive_ ? meshes_.get() : nullptr; }
+  // Emitters the last update left out: "emitter 'X', field ..." (the
+  // evaluator refused it, or its draw_mesh names no mesh entity).
   const std::vector<std::string>& errors() const { return errors_; }
 
  private:
@@ -93,6 +102,9 @@ class ParticleSources {
     particles::Frame frame{};
   };
   Entry& entryFor(const scene::SceneState& state, const scene::PlacedEmitter& placed);
+  // The entry's particles at t, evaluated once per scene time (a second
+  // view group or a lens sample of the same frame reuses them).
+  const particles::Frame& frameAt(Entry& e, double t);
 
   std::map<scene::EntityId, Entry> entries_;
   std::unique_ptr<scene::ParticleWorld> world_;
@@ -100,6 +112,8 @@ class ParticleSources {
   uint64_t worldKey_ = 0;
   ParticleSprites sprites_;
   std::unique_ptr<ParticleSource> source_;
+  std::unique_ptr<MeshParticleSource> meshes_;  // made when an emitter first draws meshes
+  bool meshesActive_ = false;
   std::vector<std::string> errors_;
 };
 

@@ -138,11 +138,13 @@ struct Renderer::Impl {
   FoliageSources foliage;  // the document's foliage (foliage_sources.h)
   ParticleSources particles;  // the document's emitters (particle_source.h)
   // The sources every frame draws after the meshes and terrains: the
-  // document's foliage, its particles (when any is live in view), then the
-  // extra ones.
+  // document's foliage, its particles (the sprites when any is live in
+  // view, the mesh particles when an emitter with a draw_mesh has live
+  // particles), then the extra ones.
   void addSources(const scene::SceneState& state, FrameContext& frame) {
     for (const auto& s : foliage.update(state)) frame.sources.push_back(s.get());
     if (DrawSource* p = particles.update(state, frame)) frame.sources.push_back(p);
+    if (DrawSource* m = particles.meshes()) frame.sources.push_back(m);
     for (const auto& s : extraSources) frame.sources.push_back(s.get());
   }
 
@@ -577,6 +579,8 @@ PickHit Renderer::pickSurface(const scene::SceneState& state, const RenderView& 
   }
   return hit;
 }
+
+std::vector<std::string> Renderer::particleErrors() const { return d_->particles.errors(); }
 
 void Renderer::setDrawSources(std::vector<std::shared_ptr<DrawSource>> sources) {
   d_->extraSources = std::move(sources);

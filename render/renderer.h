@@ -264,6 +264,11 @@ class Renderer {
   // particles will come from the document too.
   void setDrawSources(std::vector<std::shared_ptr<DrawSource>> sources);
 
+  // Emitters the last frame left out, each naming the emitter and the
+  // field ("emitter 'Debris', field 'draw_mesh': no entity 'Rock' with a
+  // mesh"); the rest of the frame drew (render/particle_source.h).
+  std::vector<std::string> particleErrors() const;
+
   // Frees GPU copies of assets that left the scene.
   void collectGarbage(const scene::SceneState& state);
 
