@@ -4,7 +4,10 @@
 // composite as depth peeling does in the A-buffer, fixed array and
 // K-buffer; a frame is the same alone or after a run of frames (replay
 // cache); no emitter, or one behind the camera, costs no pass, buffer or
-// draw. Scenes at UTM coordinates (camera-relative drawing).
+// draw; mesh particles (draw_mesh) draw as a mesh entity placed at the
+// particle would, a missing draw_mesh is reported and loses nothing else,
+// and particlesDrawn counts them. Scenes at UTM coordinates
+// (camera-relative drawing).
 #include <QtTest>
 
 #include <algorithm>
@@ -12,8 +15,11 @@
 
 #include "look_from.h"
 #include "mesh/primitives.h"
+#include "particles/evaluate.h"
 #include "particles/presets.h"
+#include "particles/rng.h"
 #include "render/offscreen_renderer.h"
+#include "render/particle_mesh.h"
 #include "render_golden.h"
 #include "scene/scene_state.h"
 #include "scene_parts.h"
@@ -23,7 +29,7 @@ using namespace hs;
 namespace {
 
 const glm::dvec3 kUtm(500000.0, 4400000.0, 300.0);
-constexpr scene::AssetId kGroundAsset = 1, kPaneAsset = 2;
+constexpr scene::AssetId kGroundAsset = 1, kPaneAsset = 2, kRockAsset = 3;
 constexpr scene::EntityId kFirstEmitter = 100;
 
 // An opaque ground (dark, unlit: its colour is exact in every image) at the
@@ -104,6 +110,51 @@ particles::EmitterDesc still(const std::string& name, glm::dvec3 at, glm::dvec3 
   return d;
 }
 
+// An axis-aligned box from `lo` to `hi` with flat normals (24 vertices,
+// 12 triangles): off the origin and longer along x than across, so a wrong
+// centre, scale or turn of a mesh particle shows.
+mesh::MeshData box(glm::vec3 lo, glm::vec3 hi) {
+  mesh::MeshData m;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      glm::vec3 n(0.0f);
+      n[axis] = side ? 1.0f : -1.0f;
+      const uint32_t first = uint32_t(m.positions.size());
+      for (int k = 0; k < 4; ++k) {
+        glm::vec3 p;
+        p[axis] = side ? hi[axis] : lo[axis];
+        p[u] = (k == 1 || k == 2) ? hi[u] : lo[u];
+        p[v] = k >= 2 ? hi[v] : lo[v];
+        m.positions.push_back(p);
+        m.normals.push_back(n);
+        m.uvs.emplace_back(float(k == 1 || k == 2), float(k >= 2));
+      }
+      // Counter-clockwise seen from outside (u x v is +axis): one-sided
+      // materials cull the back faces.
+      const uint32_t order[2][6] = {{0, 2, 1, 0, 3, 2}, {0, 1, 2, 0, 2, 3}};
+      for (uint32_t i : order[side]) m.indices.push_back(first + i);
+    }
+  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
+  return m;
+}
+
+// The rock: a 1 x 0.5 x 0.3 m box whose centre is off its origin, lit,
+// under entity `id` named "Rock", hidden (users hide a mesh particle's
+// source so it is not drawn at its own place).
+const glm::vec3 kRockLo(0.2f, -0.1f, 0.05f), kRockHi(1.2f, 0.4f, 0.35f);
+void addHiddenRock(scene::SceneState& s, scene::EntityId id) {
+  test::addMeshAsset(s, kRockAsset, "Rock", box(kRockLo, kRockHi), {0.7f, 0.45f, 0.25f});
+  scene::Entity e;
+  e.id = id;
+  e.name = "Rock";
+  e.mesh = scene::MeshInstance{kRockAsset};
+  e.transform.translation = kUtm + glm::dvec3(30, 30, 0);
+  e.visible = false;
+  s.entities.emplace(e.id, e);
+  s.roots.push_back(e.id);
+}
+
 double lum(const Image& img, int x, int y) {  // top row first; 0..255
   const uint8_t* p = &img.rgba8[(size_t(y) * img.width + x) * 4];
   return (double(p[0]) + p[1] + p[2]) / 3.0;
@@ -119,6 +170,17 @@ double meanDiff(const Image& a, const Image& b) {
   double s = 0;
   for (size_t i = 0; i < a.rgba8.size(); ++i) s += std::abs(int(a.rgba8[i]) - int(b.rgba8[i]));
   return s / double(a.rgba8.size());
+}
+
+// Pixels whose largest channel difference is over `threshold`.
+size_t pixelsApart(const Image& a, const Image& b, int threshold) {
+  size_t n = 0;
+  for (size_t i = 0; i + 3 < a.rgba8.size(); i += 4) {
+    int m = 0;
+    for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(int(a.rgba8[i + c]) - int(b.rgba8[i + c])));
+    n += m > threshold;
+  }
+  return n;
 }
 
 // Leaves an image next to the goldens' failures (HS_TEST_OUT_DIR) for a look.
@@ -403,6 +465,204 @@ class TestParticleRender : public QObject {
     right.eye += view.orientation * glm::dvec3(0.03, 0, 0);
     const render::FrameStats pair = r_.renderViewsOnly(s, {left, right});
     QCOMPARE(pair.particlesDrawn, size_t(30));
+  }
+
+  // The axis a mesh particle turns about is a unit vector from its random
+  // bits, spread over the sphere (not one axis for every particle): the
+  // mean of 4096 axes is within 0.05 of 0 (a uniform mean's standard
+  // deviation per component is 1/sqrt(3 x 4096) = 0.009) and each octant
+  // holds 1/8 within 0.03.
+  void meshParticleAxesCoverTheSphere() {
+    glm::dvec3 sum(0.0);
+    int octants[8] = {};
+    for (uint32_t k = 0; k < 4096; ++k) {
+      const uint32_t variant = particles::hashKey(7, 0, k, uint32_t(particles::Attr::Variant));
+      const glm::dvec3 a = render::meshParticleAxis(variant);
+      QVERIFY(std::abs(glm::length(a) - 1.0) < 1e-12);
+      sum += a;
+      ++octants[(a.x > 0) + 2 * (a.y > 0) + 4 * (a.z > 0)];
+    }
+    QVERIFY2(glm::length(sum / 4096.0) < 0.05, qPrintable(QString::number(glm::length(sum / 4096.0))));
+    for (int o : octants) QVERIFY2(std::abs(o / 4096.0 - 0.125) < 0.03, qPrintable(QString::number(o)));
+  }
+
+  // One mesh particle (a burst of 1, still, fixed size, a turn and a spin)
+  // drawn as the hidden rock, against the same scene where a visible rock
+  // entity stands at the particle's transform instead: the position, size
+  // and rotation from the evaluator, the axis meshParticleAxis(variant),
+  // the scale size / largest extent (1 m) and the box's centre on the
+  // particle, all computed here from the box's corners. The sun casts
+  // shadows on a lit ground, so the particle's shadow is compared too (and
+  // a frame without shadows differs: the shadow is in view). Tolerance:
+  // the instance stores its rotation as snorm16 and its scale as a half
+  // (0.05 %), so a few edge pixels may flip: at most 0.5 % of the channels
+  // differ by more than 2/255 and the mean difference is under 0.05/255.
+  void meshParticleEqualsMeshEntityAtItsTransform() {
+    scene::SceneState s = ground();
+    s.materials[kGroundAsset].unlit = false;
+    s.materials[kGroundAsset].baseColor = {0.5f, 0.5f, 0.5f};
+    s.settings.shadows = true;
+    s.entities[1000].light->castsShadows = true;
+    s.time.seconds = 1.5;
+    addHiddenRock(s, 3);
+    particles::EmitterDesc d = still("Debris", {0.2, 0.3, 1.0}, glm::dvec3(0.0), 1, 0.9, {0, 1, 0, 1});
+    d.rotationMinDeg = d.rotationMaxDeg = 35.0;
+    d.spinMinDegPerS = d.spinMaxDegPerS = 40.0;
+    d.drawMesh = "Rock";
+    const render::RenderView view = camera({1.5, -3.5, 2.2}, {0.2, 0.3, 0.6});
+
+    // The particle as the library evaluates it.
+    std::string error;
+    const auto ev = particles::Evaluator::create(d, {}, error);
+    QVERIFY2(ev, error.c_str());
+    const particles::Frame f = ev->frame(s.time.seconds);
+    QCOMPARE(f.particles.size(), size_t(1));
+    const particles::Particle& p = f.particles[0];
+    QCOMPARE(p.rotationDeg, 35.0 + 40.0 * 1.5);  // the spin is in it
+    const uint32_t variant = particles::packFrame(f, d.origin, d.origin, d.seed)[0].variant;
+    const glm::dquat turn = glm::angleAxis(glm::radians(p.rotationDeg), render::meshParticleAxis(variant));
+    const double scale = p.size / 1.0;  // the box's longest side: 1.2 - 0.2
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(kRockLo) + glm::dvec3(kRockHi));
+
+    addEmitters(s, {d});
+    render::FrameStats particleStats;
+    const Image particle = r_.render(s, view, false, &particleStats);
+    QVERIFY(r_.renderer().particleErrors().empty());
+    QCOMPARE(particleStats.particlesDrawn, size_t(1));
+    removeEmitters(s);
+
+    scene::Entity rock;
+    rock.id = 4;
+    rock.name = "Reference rock";
+    rock.mesh = scene::MeshInstance{kRockAsset};
+    rock.transform.translation = d.origin + p.position - turn * (scale * centre);
+    rock.transform.rotation = turn;
+    rock.transform.scale = glm::dvec3(scale);
+    s.entities.emplace(rock.id, rock);
+    s.roots.push_back(rock.id);
+    render::FrameStats entityStats;
+    const Image entity = r_.render(s, view, false, &entityStats);
+    // The same mesh drawn once either way (12 triangles over the ground's 2).
+    QCOMPARE(particleStats.trianglesDrawn, entityStats.trianglesDrawn);
+
+    size_t over = 0;
+    for (size_t i = 0; i < particle.rgba8.size(); ++i) over += std::abs(int(particle.rgba8[i]) - int(entity.rgba8[i])) > 2;
+    const double overShare = double(over) / double(particle.rgba8.size());
+    const int maxD = maxDiff(particle, entity);
+    const double meanD = meanDiff(particle, entity);
+    qInfo("mesh particle against mesh entity: max difference %d/255, mean %.4f/255, %.3f %% of channels over 2/255",
+          maxD, meanD, 100.0 * overShare);
+    if (overShare > 0.005 || meanD > 0.05) {
+      keep("particles_mesh_particle", particle);
+      keep("particles_mesh_entity", entity);
+    }
+    QVERIFY(overShare <= 0.005);
+    QVERIFY(meanD < 0.05);
+    // The comparison sees something: the rock is there (against the ground
+    // alone), and its shadow is (against the same frame without shadows).
+    s.entities.erase(rock.id);
+    s.roots.erase(std::remove(s.roots.begin(), s.roots.end(), rock.id), s.roots.end());
+    // The comparison sees something: the rock (219 pixels, 1.5 % of the
+    // image, against the ground alone), its shadow (52 pixels against the
+    // same frame without shadows), and its axis (the rock turned about +z
+    // instead: 229 pixels apart). Bounds well under those.
+    const Image bare = r_.render(s, view);
+    const size_t rockPixels = pixelsApart(entity, bare, 8);
+    QVERIFY2(rockPixels > 100, qPrintable(QString::number(rockPixels)));
+    rock.transform.rotation = glm::angleAxis(glm::radians(p.rotationDeg), glm::dvec3(0, 0, 1));
+    rock.transform.translation = d.origin + p.position - rock.transform.rotation * (scale * centre);
+    s.entities.emplace(rock.id, rock);
+    s.roots.push_back(rock.id);
+    const size_t axisPixels = pixelsApart(entity, r_.render(s, view), 8);
+    QVERIFY2(axisPixels > 20, qPrintable(QString::number(axisPixels)));
+    s.entities.erase(rock.id);
+    s.roots.erase(std::remove(s.roots.begin(), s.roots.end(), rock.id), s.roots.end());
+    addEmitters(s, {d});
+    s.entities[1000].light->castsShadows = false;
+    const size_t shadowPixels = pixelsApart(particle, r_.render(s, view), 8);
+    QVERIFY2(shadowPixels > 20, qPrintable(QString::number(shadowPixels)));
+    qInfo("rock %zu pixels, turned about +z %zu pixels apart, shadow %zu pixels", rockPixels, axisPixels, shadowPixels);
+  }
+
+  // A draw_mesh naming no mesh entity (an empty entity of that name, or
+  // nothing at all): the frame renders, the error names the
+  // emitter and the field, and the other emitters (sprites and meshes)
+  // draw exactly what they draw without it.
+  void missingDrawMeshIsReportedAndLosesNothingElse() {
+    scene::SceneState s = ground();
+    s.time.seconds = 1.0;
+    addHiddenRock(s, 3);
+    scene::Entity empty;  // a name without a mesh
+    empty.id = 5;
+    empty.name = "Marker";
+    s.entities.emplace(empty.id, empty);
+    s.roots.push_back(empty.id);
+    const render::RenderView view = camera({0, -6.0, 1.5}, {0, 0, 1.0});
+    particles::EmitterDesc rocks = still("Rocks", {-0.8, 0, 1.0}, {0.4, 0.4, 0.4}, 4, 0.4, {1, 1, 1, 1});
+    rocks.drawMesh = "Rock";
+    particles::EmitterDesc sparks = still("Sparks", {0.8, 0, 1.0}, {0.4, 0.4, 0.4}, 6, 0.3, {1, 1, 1, 0.8});
+    particles::EmitterDesc marker = rocks;
+    marker.name = "Debris";
+    marker.drawMesh = "Marker";
+    particles::EmitterDesc nowhere = rocks;
+    nowhere.name = "Gravel";
+    nowhere.drawMesh = "Nowhere";
+
+    addEmitters(s, {rocks, sparks});
+    render::FrameStats goodStats;
+    const Image good = r_.render(s, view, false, &goodStats);
+    QVERIFY(r_.renderer().particleErrors().empty());
+    QCOMPARE(goodStats.particlesDrawn, size_t(10));
+    QVERIFY(meanDiff(good, r_.render(ground(), view)) > 0.3);
+    removeEmitters(s);
+
+    addEmitters(s, {marker, rocks, nowhere, sparks});
+    render::FrameStats stats;
+    const Image img = r_.render(s, view, false, &stats);
+    const std::vector<std::string> errors = r_.renderer().particleErrors();
+    QCOMPARE(errors.size(), size_t(2));
+    QCOMPARE(errors[0], std::string("emitter 'Debris', field 'draw_mesh': no entity 'Marker' with a mesh"));
+    QCOMPARE(errors[1], std::string("emitter 'Gravel', field 'draw_mesh': no entity 'Nowhere' with a mesh"));
+    QCOMPARE(stats.particlesDrawn, size_t(10));
+    QCOMPARE(maxDiff(img, good), 0);
+  }
+
+  // particlesDrawn counts mesh particles (handed to the instanced source)
+  // with the sprites; their triangles count as an instanced source's; the
+  // GPU evaluation setting leaves mesh emitters on the CPU (same image);
+  // a scene without mesh particles has no mesh particle pass or buffer.
+  void particlesDrawnCountsMeshParticles() {
+    scene::SceneState s = ground();
+    s.time.seconds = 1.0;
+    addHiddenRock(s, 3);
+    const render::RenderView view = camera({0, -6.0, 1.5}, {0, 0, 1.0});
+    render::FrameStats stats;
+    r_.render(s, view, false, &stats);
+    const size_t groundTriangles = stats.trianglesDrawn;
+    particles::EmitterDesc rocks = still("Rocks", {-0.8, 0, 1.0}, {0.4, 0.4, 0.4}, 5, 0.4, {1, 1, 1, 1});
+    rocks.drawMesh = "Rock";
+    addEmitters(s, {rocks});
+    const Image cpu = r_.render(s, view, false, &stats);
+    QCOMPARE(stats.particlesDrawn, size_t(5));
+    QCOMPARE(stats.trianglesDrawn, groundTriangles + 5 * 12);
+    QVERIFY(passRan(stats, "particle_meshes"));
+    QVERIFY(!passRan(stats, "particles_upload"));  // no sprite
+    render::RenderOptions gpu;
+    gpu.gpuParticles = true;
+    QCOMPARE(maxDiff(r_.render(s, view, false, &stats, gpu), cpu), 0);
+    QVERIFY(!passRan(stats, "particles_evaluate"));
+    QCOMPARE(stats.particlesDrawn, size_t(5));
+
+    addEmitters(s, {still("Sparks", {0.8, 0, 1.0}, {0.4, 0.4, 0.4}, 7, 0.3, {1, 1, 1, 0.8})});
+    r_.render(s, view, false, &stats);
+    QCOMPARE(stats.particlesDrawn, size_t(12));
+
+    // Without them: no pass of theirs, and their buffers go back.
+    removeEmitters(s);
+    for (int k = 0; k < 8; ++k) r_.render(s, view, false, &stats);
+    QVERIFY(!passRan(stats, "particle_meshes"));
+    for (const render::GpuAllocation& a : r_.renderer().resourceRegistry())
+      QVERIFY2(a.name.find("particle_meshes") == std::string::npos, a.name.c_str());
   }
 };
 
