@@ -582,6 +582,23 @@ class TestParticleRender : public QObject {
     const size_t shadowPixels = pixelsApart(particle, r_.render(s, view), 8);
     QVERIFY2(shadowPixels > 20, qPrintable(QString::number(shadowPixels)));
     qInfo("rock %zu pixels, turned about +z %zu pixels apart, shadow %zu pixels", rockPixels, axisPixels, shadowPixels);
+    // Picking a mesh particle names its emitter's entity: every 8th pixel
+    // the rock or its shadow changes is the emitter or the ground, and
+    // some are the emitter.
+    const scene::EntityId emitter = kFirstEmitter;
+    QVERIFY(s.entities.count(emitter) && s.entities[emitter].particles);
+    size_t onRock = 0, seen = 0;
+    for (int y = 0; y < view.height; ++y)
+      for (int x = 0; x < view.width; ++x) {
+        const size_t i = (size_t(y) * view.width + x) * 4;
+        int m = 0;
+        for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(int(entity.rgba8[i + c]) - int(bare.rgba8[i + c])));
+        if (m <= 8 || seen++ % 8) continue;
+        const scene::EntityId hit = r_.renderer().pick(s, view, x, y);
+        QVERIFY2(hit == emitter || hit == 1, qPrintable(QString("pixel %1,%2 picks %3").arg(x).arg(y).arg(hit)));
+        onRock += hit == emitter;
+      }
+    QVERIFY2(onRock >= 5, qPrintable(QString::number(onRock)));
   }
 
   // A draw_mesh naming no mesh entity (an empty entity of that name, or
