@@ -1,6 +1,7 @@
 #include "app/particles_panel.h"
 
 #include <QDialog>
+#include <QComboBox>
 #include <QDialogButtonBox>
 #include <QFormLayout>
 #include <QHBoxLayout>
@@ -15,6 +16,7 @@
 #include <QVBoxLayout>
 
 #include "app/camera_controller.h"
+#include "app/life_curve_editor.h"
 #include "app/main_window.h"
 #include "app/message_panel.h"
 #include "app/param_form.h"
@@ -26,6 +28,7 @@
 #include "scene/operations.h"
 #include "scene/particle_ops.h"
 #include "scene/particle_world.h"
+#include "scene/sequence_edits.h"
 
 namespace hs::app {
 namespace {
@@ -155,8 +158,39 @@ void ParticlesPanel::buildUi() {
     connect(e, &QLineEdit::editingFinished, this, [this, k = std::string(key), e] { listEdited(k, e); });
     listsForm->addRow(key, e);
     lists_.emplace_back(key, e);
+    // The over-life curves are drawn and dragged too (the line stays for exact values).
+    const std::string k(key);
+    if (k == "size_over_life" || k == "colour_over_life") {
+      auto* curve = new LifeCurveEditor(
+          k == "size_over_life" ? LifeCurveEditor::Kind::Size : LifeCurveEditor::Kind::Colour, fields_);
+      curve->setObjectName(QString("particles_") + key + "_curve");
+      connect(curve, &LifeCurveEditor::edited, this, [this, k](const Json& rows) {
+        if (!updating_ && current_ != scene::kNoEntity) setValue(current_, k, rows);
+      });
+      listsForm->addRow("", curve);
+      curves_.emplace_back(k, curve);
+    }
   }
   fv->addLayout(listsForm);
+
+  // Keys on the timeline for the spawn values (scene/emitter_tracks.h): the
+  // field's value in the form, keyed at the playhead; particles born after
+  // take the keyed values.
+  auto* keyRow = new QHBoxLayout;
+  keyField_ = new QComboBox(fields_);
+  keyField_->setObjectName("particlesKeyField");
+  for (const std::string& k : particles::spawnKeys())
+    keyField_->addItem(QString::fromStdString(paramIn(particles::emitterParamDecls(), k).label),
+                       QString::fromStdString(std::string(scene::kEmitterTrackPrefix) + k));
+  keyField_->setToolTip("A spawn value to key: each particle takes its value at its birth");
+  auto* key = new QPushButton("Key at Playhead", fields_);
+  key->setObjectName("particlesKey");
+  key->setToolTip("Key the chosen field's value (a MIN,MAX pair: its centre) at the playhead: one undo step");
+  connect(key, &QPushButton::clicked, this, [this] { keyAtPlayhead(keyField_->currentData().toString().toStdString()); });
+  keyRow->addWidget(new QLabel("Timeline:", fields_));
+  keyRow->addWidget(keyField_, 1);
+  keyRow->addWidget(key);
+  fv->addLayout(keyRow);
   fv->addStretch(1);
   scroll->setWidget(fields_);
   v->addWidget(scroll, 1);
@@ -239,6 +273,8 @@ void ParticlesPanel::refreshForm() {
   shown_ = form_->values();
   for (auto& [key, edit] : lists_)
     if (j.contains(key)) edit->setText(QString::fromStdString(j[key].dump()));
+  for (auto& [key, curve] : curves_)
+    if (j.contains(key)) curve->setKeys(j[key]);
   updating_ = false;
 }
 
@@ -267,6 +303,26 @@ void ParticlesPanel::listEdited(const std::string& key, QLineEdit* edit) {
   const scene::Entity* e = doc_.state().find(current_);
   if (e && e->particles && particles::emitterToJson(e->particles->desc)[key] == *v) return;
   setValue(current_, key, *v);
+}
+
+bool ParticlesPanel::keyAtPlayhead(const std::string& property) {
+  const scene::Entity* e = doc_.state().find(current_);
+  std::string error;
+  const std::optional<scene::AnimTarget> target = scene::animationTarget(property, error);
+  if (!e || !target) {
+    if (target) error = "no emitter to key";
+    showProblem(error);
+    return false;
+  }
+  const std::optional<sequencer::PropertyValue> value = scene::currentKeyValue(*e, *target);
+  if (!value) return false;
+  if (!scene::ops::setKeys(doc_, {{current_, *target, *value}}, playheadSeconds(), std::nullopt,
+                           QString("Key %1").arg(QString::fromStdString(property)), {}, &error)) {
+    if (!error.empty()) showProblem(error);
+    return false;
+  }
+  error_->hide();
+  return true;
 }
 
 void ParticlesPanel::showProblem(const std::string& error) {

@@ -20,6 +20,7 @@
 #include "core/json.h"
 #include "scene/document.h"
 
+class QComboBox;
 class QLabel;
 class QLineEdit;
 class QPushButton;
@@ -63,6 +64,9 @@ class ParticlesPanel : public QWidget {
   scene::EntityId addPreset(const Json& values);
   // One field or list of an emitter; false (reported) if refused.
   bool setValue(scene::EntityId id, const std::string& key, const Json& value);
+  // Keys the current emitter's spawn value `property` ("particles.size_m")
+  // at the playhead with its value now; false (reported) if refused.
+  bool keyAtPlayhead(const std::string& property);
 
   // --- with its dialog --------------------------------------------------------
   void requestAddPreset();
@@ -85,9 +89,11 @@ class ParticlesPanel : public QWidget {
   QLabel *info_ = nullptr, *error_ = nullptr;
   QTreeWidget* list_ = nullptr;
   QPushButton* remove_ = nullptr;
+  QComboBox* keyField_ = nullptr;
   QWidget* fields_ = nullptr;
   ParamForm* form_ = nullptr;
   std::vector<std::pair<std::string, QLineEdit*>> lists_;
+  std::vector<std::pair<std::string, class LifeCurveEditor*>> curves_;  // size and colour over life
   Json shown_;  // the form's values as refreshForm() left them
 };
 

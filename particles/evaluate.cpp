@@ -119,19 +119,73 @@ uint64_t Evaluator::liveCount(double t, bool* estimated) const {
   return c.live;
 }
 
+SpawnValues spawnValues(const EmitterDesc& e) {
+  SpawnValues v;
+  v.speedMin = e.speedMin, v.speedMax = e.speedMax, v.sizeMin = e.sizeMin, v.sizeMax = e.sizeMax;
+  v.rotationMinDeg = e.rotationMinDeg, v.rotationMaxDeg = e.rotationMaxDeg;
+  v.spinMinDegPerS = e.spinMinDegPerS, v.spinMaxDegPerS = e.spinMaxDegPerS;
+  v.spreadDeg = e.spreadDeg, v.coneAngleDeg = e.coneAngleDeg, v.radius = e.radius;
+  v.direction = e.direction, v.boxHalf = e.boxHalf;
+  return v;
+}
+
+const std::vector<std::string>& spawnKeys() {
+  static const std::vector<std::string> keys = {"speed_m_per_s", "size_m",         "rotation_deg",
+                                                "spin_deg_per_s", "spread_deg",    "cone_angle_deg",
+                                                "radius_m",       "direction",     "box_half_m"};
+  return keys;
+}
+
+bool isSpawnKey(std::string_view key) {
+  for (const std::string& k : spawnKeys())
+    if (k == key) return true;
+  return false;
+}
+
+bool setSpawnValue(SpawnValues& v, std::string_view key, const double* value, size_t count) {
+  if (!isSpawnKey(key)) return false;
+  const ParamDecl& d = paramIn(emitterParamDecls(), std::string(key));
+  auto held = [&](double x) { return std::clamp(std::isfinite(x) ? x : d.min, d.min, d.max); };
+  // A MIN,MAX pair: the track moves its centre and keeps its half-width.
+  auto centre = [&](double& lo, double& hi) {
+    const double half = 0.5 * (hi - lo), c = held(value[0]);
+    lo = std::clamp(c - half, d.min, d.max);
+    hi = std::clamp(c + half, d.min, d.max);
+  };
+  const bool triple = key == "direction" || key == "box_half_m";
+  if (count != (triple ? 3u : 1u)) return false;
+  if (key == "speed_m_per_s") centre(v.speedMin, v.speedMax);
+  else if (key == "size_m") centre(v.sizeMin, v.sizeMax);
+  else if (key == "rotation_deg") centre(v.rotationMinDeg, v.rotationMaxDeg);
+  else if (key == "spin_deg_per_s") centre(v.spinMinDegPerS, v.spinMaxDegPerS);
+  else if (key == "spread_deg") v.spreadDeg = held(value[0]);
+  else if (key == "cone_angle_deg") v.coneAngleDeg = held(value[0]);
+  else if (key == "radius_m") v.radius = held(value[0]);
+  else if (key == "box_half_m") v.boxHalf = {held(value[0]), held(value[1]), held(value[2])};
+  else if (key == "direction") {
+    const glm::dvec3 dir{held(value[0]), held(value[1]), held(value[2])};
+    const double len = glm::length(dir);
+    if (len > 0.0) v.direction = dir / len;  // a zero direction keeps the emitter's
+  }
+  return true;
+}
+
 ParticleStart Evaluator::start(ParticleId id) const { return startAt(id, birth(id)); }
 
 ParticleStart Evaluator::startAt(ParticleId id, double birthTime) const {
   const ParticleRng r = rngOf(e_.seed, id);
+  // The emitter's spawn values, or those keyed at the birth time.
+  SpawnValues sv = spawnValues(e_);
+  if (in_.spawnAt) in_.spawnAt(birthTime, sv);
   ParticleStart s;
   s.birth = birthTime;
   s.lifetime = r.range(Attr::Lifetime, e_.lifetimeMin, e_.lifetimeMax);
-  s.size = r.range(Attr::Size, e_.sizeMin, e_.sizeMax);
-  s.rotationDeg = r.range(Attr::Rotation, e_.rotationMinDeg, e_.rotationMaxDeg);
-  s.spinDegPerS = r.range(Attr::Spin, e_.spinMinDegPerS, e_.spinMaxDegPerS);
+  s.size = r.range(Attr::Size, sv.sizeMin, sv.sizeMax);
+  s.rotationDeg = r.range(Attr::Rotation, sv.rotationMinDeg, sv.rotationMaxDeg);
+  s.spinDegPerS = r.range(Attr::Spin, sv.spinMinDegPerS, sv.spinMaxDegPerS);
 
   const double a = r.unit(Attr::ShapeA), b = r.unit(Attr::ShapeB), c = r.unit(Attr::ShapeC);
-  const glm::dvec3 axis = e_.direction;
+  const glm::dvec3 axis = sv.direction;
   // Where the emitter was at the birth (world space), relative to where it is.
   const bool moved = e_.space == Space::World && in_.originAt;
   const glm::dvec3 bornAt = moved ? in_.originAt(birthTime) : e_.origin;
@@ -140,30 +194,30 @@ ParticleStart Evaluator::startAt(ParticleId id, double birthTime) const {
   glm::dvec3 pos(0.0), normal = axis, base = axis;
   switch (e_.shape) {
     case Shape::Point: break;
-    case Shape::Box: pos = (2.0 * glm::dvec3(a, b, c) - 1.0) * e_.boxHalf; break;
+    case Shape::Box: pos = (2.0 * glm::dvec3(a, b, c) - 1.0) * sv.boxHalf; break;
     case Shape::Sphere: {
       const double z = 2.0 * a - 1.0, phi = 2.0 * kPi * b, rr = std::sqrt(std::max(0.0, 1.0 - z * z));
       normal = {rr * std::cos(phi), rr * std::sin(phi), z};
-      pos = normal * (e_.radius * (e_.surfaceOnly ? 1.0 : std::cbrt(c)));
+      pos = normal * (sv.radius * (e_.surfaceOnly ? 1.0 : std::cbrt(c)));
       break;
     }
     case Shape::Disc:
     case Shape::Cone: {
       const double rho = e_.surfaceOnly ? 1.0 : std::sqrt(a), phi = 2.0 * kPi * b;
       const glm::dvec3 radial = std::cos(phi) * b1 + std::sin(phi) * b2;
-      pos = radial * (e_.radius * rho);
+      pos = radial * (sv.radius * rho);
       if (e_.shape == Shape::Cone) {
         // Unity's cone: the direction leans out in proportion to the distance from the axis.
-        const double lean = e_.coneAngleDeg * kPi / 180.0 * rho;
+        const double lean = sv.coneAngleDeg * kPi / 180.0 * rho;
         base = normal = std::cos(lean) * axis + std::sin(lean) * radial;
       }
       break;
     }
     case Shape::Terrain: {
-      const double wx = bornAt.x + (2.0 * a - 1.0) * e_.boxHalf.x, wy = bornAt.y + (2.0 * b - 1.0) * e_.boxHalf.y;
+      const double wx = bornAt.x + (2.0 * a - 1.0) * sv.boxHalf.x, wy = bornAt.y + (2.0 * b - 1.0) * sv.boxHalf.y;
       const double ground = in_.ground ? in_.ground->height(wx, wy) : bornAt.z;
       // Relative coordinates formed from world ones in double (exact for the x, y offsets).
-      pos = {wx - e_.origin.x, wy - e_.origin.y, ground - e_.origin.z + c * e_.boxHalf.z};
+      pos = {wx - e_.origin.x, wy - e_.origin.y, ground - e_.origin.z + c * sv.boxHalf.z};
       normal = in_.ground ? in_.ground->normal(wx, wy) : axis;
       break;
     }
@@ -179,8 +233,8 @@ ParticleStart Evaluator::startAt(ParticleId id, double birthTime) const {
   if (moved && e_.shape != Shape::Terrain && e_.shape != Shape::Mesh) pos += bornAt - e_.origin;
   if (e_.alongNormal) base = normal;
   glm::dvec3 dir = base;
-  if (e_.spreadDeg > 0.0) {
-    const double cosMax = std::cos(e_.spreadDeg * kPi / 180.0);
+  if (sv.spreadDeg > 0.0) {
+    const double cosMax = std::cos(sv.spreadDeg * kPi / 180.0);
     const double ct = 1.0 - r.unit(Attr::SpreadA) * (1.0 - cosMax), st = std::sqrt(std::max(0.0, 1.0 - ct * ct));
     const double phi = 2.0 * kPi * r.unit(Attr::SpreadB);
     glm::dvec3 c1, c2;
@@ -188,7 +242,7 @@ ParticleStart Evaluator::startAt(ParticleId id, double birthTime) const {
     dir = ct * base + st * (std::cos(phi) * c1 + std::sin(phi) * c2);
   }
   s.state.x = pos;
-  s.state.v = dir * r.range(Attr::Speed, e_.speedMin, e_.speedMax);
+  s.state.v = dir * r.range(Attr::Speed, sv.speedMin, sv.speedMax);
   return s;
 }
 

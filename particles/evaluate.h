@@ -24,6 +24,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -158,6 +159,32 @@ static_assert(sizeof(PackedParticle) == 64);
 std::vector<PackedParticle> packFrame(const Frame& frame, const glm::dvec3& emitterOrigin, const glm::dvec3& relativeTo,
                                       uint32_t seed = 0);
 
+// The emitter's values a particle takes at its birth: what timeline tracks
+// on an emitter may animate (docs/particles.md, "On the timeline"). A
+// particle samples them once, at its birth time, and keeps them (Niagara's
+// spawn parameters): particles alive when a value changes are not moved,
+// the motion stays closed form and a frame a pure function of t. Lifetime
+// (it sizes the live window) and the forces (the motion's closed form and
+// the replay) are per emitter; the wind and the rate have keys of their own.
+struct SpawnValues {
+  double speedMin = 0.0, speedMax = 0.0, sizeMin = 0.0, sizeMax = 0.0;
+  double rotationMinDeg = 0.0, rotationMaxDeg = 0.0, spinMinDegPerS = 0.0, spinMaxDegPerS = 0.0;
+  double spreadDeg = 0.0, coneAngleDeg = 0.0, radius = 0.0;
+  glm::dvec3 direction{0.0, 0.0, 1.0}, boxHalf{0.0};
+};
+SpawnValues spawnValues(const EmitterDesc& e);
+// The declared keys a track may animate, sampled at birth: speed_m_per_s
+// size_m rotation_deg spin_deg_per_s (MIN,MAX pairs: a track sets the
+// centre, the pair's half-width stays) spread_deg cone_angle_deg radius_m
+// direction box_half_m.
+const std::vector<std::string>& spawnKeys();
+bool isSpawnKey(std::string_view key);
+// Writes a track's value for `key` into `v`, held to the field's declared
+// range (a pair's centre moved, its half-width kept; a zero direction
+// ignored). false for a key spawnKeys() does not list or a value of the
+// wrong size (1 number, or 3 for direction and box_half_m).
+bool setSpawnValue(SpawnValues& v, std::string_view key, const double* value, size_t count);
+
 struct EvaluatorInputs {
   const SurfaceSampler* surface = nullptr;  // the mesh shape's surface
   std::vector<const Collider*> colliders{};
@@ -170,6 +197,10 @@ struct EvaluatorInputs {
   // particles are born on the surface where the surface is (it is another
   // entity's).
   std::function<glm::dvec3(double)> originAt{};
+  // Spawn values keyed on the timeline: given a birth time and the
+  // emitter's own values, writes the animated ones (a pure function of the
+  // birth time). Empty: the emitter's values for every particle.
+  std::function<void(double, SpawnValues&)> spawnAt{};
 };
 
 class Evaluator {
@@ -184,6 +215,8 @@ class Evaluator {
   bool replays() const { return replay_; }
   // World space with an origin that moves (EvaluatorInputs::originAt).
   bool movesInWorld() const { return e_.space == Space::World && bool(in_.originAt); }
+  // Spawn values animated on the timeline (EvaluatorInputs::spawnAt).
+  bool animatesSpawn() const { return bool(in_.spawnAt); }
 
   double birth(ParticleId id) const;
   ParticleStart start(ParticleId id) const;

@@ -50,6 +50,7 @@ bool gpuEvaluable(const particles::Evaluator& ev, double t, std::string* why) {
   if (e.shape == particles::Shape::Mesh || e.shape == particles::Shape::Terrain) return no("a mesh or terrain shape");
   if (!e.windKeys.empty()) return no("keyed wind");
   if (ev.movesInWorld()) return no("world space on a moving entity");
+  if (ev.animatesSpawn()) return no("spawn values keyed on the timeline");
   if (e.rateKeys.keys.size() + 2 > MAX_SEGMENTS) return no("too many rate keys");
   if (e.sizeOverLife.keys.size() > MAX_KEYS || e.colourOverLife.keys.size() > MAX_KEYS) return no("too many life keys");
   if (e.bursts.size() > MAX_BURSTS) return no("too many bursts");

@@ -169,22 +169,20 @@ ParticleSources::Entry& ParticleSources::entryFor(const scene::SceneState& state
     worldKey_ = worldKeyOf(state);
   }
   const uint64_t key = world ? worldKey_ : 0;
-  const bool sameMotion = e.motion == placed.motion || (e.motion && placed.motion && *e.motion == *placed.motion);
-  const bool same = e.desc == placed.desc && e.worldKey == key && sameMotion;
+  const bool same = e.placed.sameAs(placed) && e.worldKey == key;
   if (e.evaluator && same) return e;
   if (!e.evaluator && !e.error.empty() && same) return e;
   // New or changed: a new evaluator, an empty cache (its entries are keyed
-  // by the emitter's content, but its paths depend on the colliders and
-  // the emitter's motion too).
+  // by the emitter's content, but its paths depend on the colliders, the
+  // emitter's motion and its keyed spawn values too).
   e = Entry{};
-  e.desc = placed.desc;
+  e.placed = placed;
   e.worldKey = key;
-  e.motion = placed.motion;
   if (world) {
-    e.evaluator = world_->evaluator(placed.desc, e.error, true, placed.motion);
+    e.evaluator = world_->evaluator(placed, e.error);
   } else {
     particles::EvaluatorInputs in;
-    if (placed.motion) in.originAt = [m = placed.motion](double time) { return m->originAt(time); };
+    scene::addTimeInputs(placed, in);
     e.evaluator = particles::Evaluator::create(placed.desc, std::move(in), e.error);
   }
   return e;

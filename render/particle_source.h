@@ -91,12 +91,11 @@ class ParticleSources {
 
  private:
   struct Entry {
-    particles::EmitterDesc desc{};
+    scene::PlacedEmitter placed{};  // what it was made from
     std::optional<particles::Evaluator> evaluator;
     particles::ReplayCache cache;
     std::string error;
     uint64_t worldKey = 0;  // the collision world it was made with (0: none needed)
-    std::shared_ptr<const scene::EmitterMotion> motion;  // world space on a moving entity
     bool evaluated = false;
     double time = 0.0;      // the scene time `frame` is for
     particles::Frame frame{};

@@ -1,5 +1,6 @@
 #include "scene/animation.h"
 
+#include "scene/emitter_tracks.h"
 #include "scene/fields.h"
 #include "scene/object_tracks.h"
 
@@ -102,6 +103,9 @@ SceneState animatedState(const SceneState& base, const sequencer::CompiledSequen
       }
       continue;
     }
+    // An emitter's spawn values are sampled at each particle's birth
+    // (emitter_tracks.h), not written at the frame's time.
+    if (isEmitterTrack(s.property)) continue;
     auto it = out.entities.find(s.entity);
     if (it == out.entities.end()) {
       if (warnings) warnings->push_back("track for missing entity " + std::to_string(s.entity) + " skipped");

@@ -108,7 +108,7 @@ std::vector<PlacedEmitter> visibleEmitters(const SceneState& state) {
   for (EntityId id : state.depthFirstOrder()) {
     const Entity* e = state.find(id);
     if (!e || !e->particles || !state.effectivelyVisible(id)) continue;
-    out.push_back({id, *emitterInWorld(state, id), EmitterMotion::of(state, id)});
+    out.push_back({id, *emitterInWorld(state, id), EmitterMotion::of(state, id), EmitterSpawnTracks::of(state, id)});
   }
   return out;
 }
@@ -133,6 +133,15 @@ void ParticleWorld::buildTerrain() {
       std::min(0.25, 0.5 * std::min(hf->spacing().x, hf->spacing().y)));
 }
 
+std::optional<std::pair<double, double>> ParticleWorld::groundRange() {
+  buildTerrain();
+  const terrain::Terrain* t = terrainGround_ ? terrainGround_->ground().terrain : nullptr;
+  if (!t) return std::nullopt;
+  const terrain::HeightRange r = t->height.range();
+  const double z = t->height.origin().z;
+  return std::make_pair(z + double(r.min), z + double(r.max));
+}
+
 void ParticleWorld::buildMeshes() {
   if (meshesBuilt_) return;
   meshesBuilt_ = true;
@@ -153,10 +162,18 @@ void ParticleWorld::buildMeshes() {
         }));
 }
 
-particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& desc, bool colliders,
-                                                 std::shared_ptr<const EmitterMotion> motion) {
+bool PlacedEmitter::sameAs(const PlacedEmitter& o) const {
+  auto same = [](const auto& a, const auto& b) { return a == b || (a && b && *a == *b); };
+  return entity == o.entity && desc == o.desc && same(motion, o.motion) && same(spawn, o.spawn);
+}
+
+void addTimeInputs(const PlacedEmitter& placed, particles::EvaluatorInputs& in) {
+  if (placed.motion) in.originAt = [m = placed.motion](double t) { return m->originAt(t); };
+  if (placed.spawn) in.spawnAt = [s = placed.spawn](double birth, particles::SpawnValues& v) { s->apply(birth, v); };
+}
+
+particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& desc, bool colliders) {
   particles::EvaluatorInputs in;
-  if (motion) in.originAt = [motion](double t) { return motion->originAt(t); };
   if (colliders && desc.collision != particles::CollisionMode::None) {
     buildTerrain();
     buildMeshes();
@@ -187,9 +204,15 @@ particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& d
 }
 
 std::optional<particles::Evaluator> ParticleWorld::evaluator(const particles::EmitterDesc& desc, std::string& error,
-                                                             bool colliders,
-                                                             std::shared_ptr<const EmitterMotion> motion) {
-  return particles::Evaluator::create(desc, inputs(desc, colliders, std::move(motion)), error);
+                                                             bool colliders) {
+  return particles::Evaluator::create(desc, inputs(desc, colliders), error);
+}
+
+std::optional<particles::Evaluator> ParticleWorld::evaluator(const PlacedEmitter& placed, std::string& error,
+                                                             bool colliders) {
+  particles::EvaluatorInputs in = inputs(placed.desc, colliders);
+  addTimeInputs(placed, in);
+  return particles::Evaluator::create(placed.desc, std::move(in), error);
 }
 
 std::vector<EmitterCount> liveParticleCounts(const SceneState& state, double t) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "particles/evaluate.h"
+#include "scene/emitter_tracks.h"
 #include "scene/foliage_ground.h"
 #include "scene/scene_state.h"
 #include "sequencer/sequence.h"
@@ -52,7 +53,13 @@ struct PlacedEmitter {
   EntityId entity = kNoEntity;
   particles::EmitterDesc desc{};  // origin in world, name the entity's
   std::shared_ptr<const EmitterMotion> motion{};  // world space on a moving chain; else null
+  std::shared_ptr<const EmitterSpawnTracks> spawn{};  // spawn values keyed on the timeline; else null
+  // Whether `o` evaluates to the same particles (same emitter, motion and tracks).
+  bool sameAs(const PlacedEmitter& o) const;
 };
+// What the placed emitter adds to an evaluator's inputs: its origin over
+// time (world space) and its keyed spawn values, each kept alive by them.
+void addTimeInputs(const PlacedEmitter& placed, particles::EvaluatorInputs& in);
 // Every effectively visible emitter, depth-first (outliner order).
 std::vector<PlacedEmitter> visibleEmitters(const SceneState& state);
 
@@ -75,13 +82,17 @@ class ParticleWorld {
   // then refuses with "the mesh '...' is missing").
   // `colliders` false: none even for a colliding emitter (counting the live
   // particles needs no replay, so no BVH).
-  // `motion`: the emitter's (world space on a moving chain), kept alive by the inputs.
-  particles::EvaluatorInputs inputs(const particles::EmitterDesc& desc, bool colliders = true,
-                                    std::shared_ptr<const EmitterMotion> motion = nullptr);
+  particles::EvaluatorInputs inputs(const particles::EmitterDesc& desc, bool colliders = true);
   // The evaluator for `desc`, or nullopt with `error` naming emitter and field.
+  // The terrain's world z range (its lowest and highest sample), what
+  // particles::particleBound needs for a `terrain` shape; nullopt without a
+  // visible terrain.
+  std::optional<std::pair<double, double>> groundRange();
   std::optional<particles::Evaluator> evaluator(const particles::EmitterDesc& desc, std::string& error,
-                                                bool colliders = true,
-                                                std::shared_ptr<const EmitterMotion> motion = nullptr);
+                                                bool colliders = true);
+  // With the placed emitter's time inputs (addTimeInputs).
+  std::optional<particles::Evaluator> evaluator(const PlacedEmitter& placed, std::string& error,
+                                                bool colliders = true);
 
  private:
   void buildTerrain();

@@ -8,6 +8,7 @@
 #include "core/content_hash.h"
 #include "particles/emitter.h"
 #include "scene/asset_reports.h"
+#include "scene/emitter_tracks.h"
 #include "scene/fields.h"
 #include "scene/key_value_ranges.h"
 #include "scene/light_units.h"
@@ -505,6 +506,8 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
   clampKeyValues(s, r.warnings);
   // Material and settings tracks: their targets and fields checked, keys clamped.
   checkObjectTracks(s, r.warnings);
+  // Emitter spawn-value tracks: their keys and entities checked.
+  checkEmitterTracks(s, r.warnings);
 
   // Before format 6 lights and exposure were in relative units; before
   // format 8 the exposure was relative to EV100 15.2 and the shaders folded

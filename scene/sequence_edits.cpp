@@ -1,9 +1,11 @@
 #include "scene/sequence_edits.h"
 
+#include "scene/emitter_tracks.h"
 #include <algorithm>
 #include <cmath>
 
 #include "scene/edit.h"
+#include "scene/emitter_tracks.h"
 #include "scene/object_tracks.h"
 #include "scene/transform.h"
 
@@ -106,6 +108,12 @@ std::optional<AnimTarget> animationTarget(std::string_view fieldPath, std::strin
     return objectTarget(findMaterialField(fieldPath.substr(kMaterialTrackPrefix.size())), fieldPath, error);
   if (startsWith(fieldPath, kSettingsTrackPrefix))
     return objectTarget(findSettingsField(fieldPath.substr(kSettingsTrackPrefix.size())), fieldPath, error);
+  // An emitter's spawn values (emitter_tracks.h).
+  if (isEmitterTrack(fieldPath)) {
+    const std::optional<std::string> key = emitterTrackKey(fieldPath, &error);
+    if (!key) return std::nullopt;
+    return AnimTarget{std::string(fieldPath), emitterKeyIsVector(*key) ? TrackKind::Vector : TrackKind::Scalar};
+  }
   const EntityField* f = findEntityField(fieldPath);
   if (!f) {
     error = "no property '" + std::string(fieldPath) + "'";
@@ -128,6 +136,8 @@ std::optional<AnimTarget> animationTarget(std::string_view fieldPath, std::strin
 
 std::optional<sequencer::PropertyValue> currentKeyValue(const Entity& entity, const AnimTarget& target) {
   if (target.property == kRotationTrack) return sequencer::PropertyValue(entity.transform.rotation);
+  if (const auto key = emitterTrackKey(target.property))
+    return entity.particles ? emitterKeyValue(entity.particles->desc, *key) : std::nullopt;
   const EntityField* f = findEntityField(target.property);
   if (!f) return std::nullopt;
   const ComponentInfo* c = findComponent(target.property.substr(0, target.property.find('.')));
@@ -151,6 +161,7 @@ std::optional<sequencer::PropertyValue> parseKeyValue(const AnimTarget& target, 
     return parseObjectValue(findMaterialTrackField(target.property), target, text, error);
   if (startsWith(target.property, kSettingsTrackPrefix))
     return parseObjectValue(findSettingsTrackField(target.property), target, text, error);
+  if (const auto key = emitterTrackKey(target.property)) return parseEmitterKeyValue(*key, text, error);
   return parseObjectValue(findEntityField(target.property), target, text, error);
 }
 

@@ -3,10 +3,13 @@
 // listed), the Add Particles dialog's form, the current emitter's fields
 // edited in the form (each change one undo step, a spin box's successive
 // values merged), a refused value named in Messages with the document
-// unchanged, a keyed list typed as JSON, the live counts following the
+// unchanged, a keyed list typed as JSON, the over-life curves dragged with
+// the mouse (a key added, moved, removed; one undo step per gesture), the
+// emitter's shape and bound drawn in the viewport's overlay, the live counts following the
 // playhead (against scene::liveParticleCounts at that time), Remove with
 // Undo, the Particles menu, and the selection choosing the current emitter.
 #include <QAction>
+#include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QLabel>
 #include <QLineEdit>
@@ -18,6 +21,8 @@
 #include <QTreeWidget>
 
 #include "app/app_settings.h"
+#include "app/overlay_builder.h"
+#include "app/life_curve_editor.h"
 #include "app/camera_controller.h"
 #include "app/main_window.h"
 #include "app/message_panel.h"
@@ -27,6 +32,8 @@
 #include "app/timeline_clock.h"
 #include "app/viewport_widget.h"
 #include "editor_fixture.h"
+#include "particles/bounds.h"
+#include "scene/world_bounds.h"
 #include "scene/particle_world.h"
 
 using namespace hs;
@@ -147,6 +154,129 @@ class EditorParticlesTest : public QObject {
     emit keys->editingFinished();
     QCOMPARE(steps(), n + 1);
     QVERIFY2(w_->messages()->lastText().contains("rate_keys"), qPrintable(w_->messages()->lastText()));
+  }
+
+  void overLifeCurvesAreDraggedOneStepAGesture() {
+    auto* size = panel_->findChild<app::LifeCurveEditor*>("particles_size_over_life_curve");
+    auto* colour = panel_->findChild<app::LifeCurveEditor*>("particles_colour_over_life_curve");
+    QVERIFY(size && colour);
+    for (app::LifeCurveEditor* c : {size, colour})
+      if (c->width() < 200 || c->height() < 90) c->resize(260, 110);
+    const scene::EntityId id = panel_->currentEmitter();
+    QVERIFY(panel_->setValue(id, "size_over_life", Json::parse("[[0, 1], [1, 1]]")));
+    QVERIFY(panel_->setValue(id, "colour_over_life", Json::parse("[[0, 1, 1, 1, 1], [1, 0.5, 0.25, 0, 1]]")));
+    QCOMPARE(size->keys().size(), size_t(2));  // the document's change reached the curve
+
+    // A click between the keys adds one, dragged to (0.6, 1.2): one step.
+    int n = steps();
+    const QPoint from = size->pointAt(0.5, 0.3).toPoint(), to = size->pointAt(0.6, 1.2).toPoint();
+    QTest::mousePress(size, Qt::LeftButton, {}, from);
+    QTest::mouseMove(size, to);
+    QTest::mouseRelease(size, Qt::LeftButton, {}, to);
+    QCOMPARE(steps(), n + 1);
+    const auto& keys = current().sizeOverLife.keys;
+    QCOMPARE(keys.size(), size_t(3));
+    // Within a pixel of where the mouse let go.
+    const double px = 1.0 / (size->width() - 16), py = 1.5 / (size->height() - 12);
+    QVERIFY2(std::abs(keys[1].t - 0.6) <= 1.5 * px && std::abs(keys[1].value - 1.2) <= 1.5 * py,
+             qPrintable(QString("%1 %2").arg(keys[1].t).arg(keys[1].value)));
+    QCOMPARE(current().sizeOverLife.eval(0.0, 1.0), 1.0);
+    doc().undoStack()->undo();
+    QCOMPARE(current().sizeOverLife.keys.size(), size_t(2));
+    doc().undoStack()->redo();
+    QCOMPARE(size->keys().size(), size_t(3));
+    // A key dragged past its neighbour stops before it (keys stay increasing).
+    QTest::mousePress(size, Qt::LeftButton, {}, size->keyPoint(1).toPoint());
+    QTest::mouseMove(size, size->pointAt(1.2, 1.0).toPoint());
+    QTest::mouseRelease(size, Qt::LeftButton, {}, size->pointAt(1.2, 1.0).toPoint());
+    QVERIFY(current().sizeOverLife.keys[1].t < current().sizeOverLife.keys[2].t);
+    // Right-click removes it: one more step.
+    n = steps();
+    QTest::mouseClick(size, Qt::RightButton, {}, size->keyPoint(1).toPoint());
+    QCOMPARE(steps(), n + 1);
+    QCOMPARE(current().sizeOverLife.keys.size(), size_t(2));
+
+    // Colour: the height is the opacity; the colour is kept.
+    n = steps();
+    const QPoint k0 = colour->keyPoint(0).toPoint(), half = colour->pointAt(0.0, 0.5).toPoint();
+    QTest::mousePress(colour, Qt::LeftButton, {}, k0);
+    QTest::mouseMove(colour, half);
+    QTest::mouseRelease(colour, Qt::LeftButton, {}, half);
+    QCOMPARE(steps(), n + 1);
+    const particles::ColourKey& c0 = current().colourOverLife.keys[0];
+    QVERIFY2(std::abs(c0.rgba.a - 0.5) <= 1.0 / (colour->height() - 28) * 1.5, qPrintable(QString::number(c0.rgba.a)));
+    QCOMPARE(c0.rgba.r, 1.0);
+    QCOMPARE(current().colourOverLife.keys[1].rgba.g, 0.25);
+  }
+
+  // The viewport draws where an emitter's particles are born (its shape at
+  // its world origin) and, selected, the sphere that holds all of them.
+  void emitterShapeAndBoundAreDrawn() {
+    const scene::EntityId id = panel_->currentEmitter();
+    QVERIFY(panel_->setValue(id, "shape", "box"));
+    QVERIFY(panel_->setValue(id, "box_half_m", Json::array({2.0, 3.0, 0.5})));
+    const particles::EmitterDesc d = *scene::emitterInWorld(doc().state(), id);
+    scene::WorldBox around;
+    around.extend(d.origin - d.boxHalf);
+    around.extend(d.origin + d.boxHalf);
+    w_->viewport()->camera().frame(around);
+    const render::RenderView view = w_->viewport()->currentView();
+    auto onBox = [&](const glm::dvec3& p) {
+      const glm::dvec3 q = glm::abs(p - d.origin) - d.boxHalf;
+      const double outside = std::max({q.x, q.y, q.z});
+      return std::abs(outside) < 1e-9;
+    };
+    render::Overlay unselected, selected;
+    app::buildSceneOverlay(doc().state(), {}, view, unselected);
+    app::buildSceneOverlay(doc().state(), {id}, view, selected);
+    size_t boxEnds = 0;
+    for (const render::OverlayVertex& v : unselected.lines) boxEnds += onBox(v.position);
+    QCOMPARE(boxEnds, size_t(24));  // the box's twelve edges
+    // Selected: the bound's three great circles, all at its radius from its centre.
+    const auto b = particles::particleBound(d);
+    QVERIFY(b);
+    size_t onBound = 0;
+    for (const render::OverlayVertex& v : selected.lines)
+      onBound += std::abs(glm::length(v.position - (d.origin + b->centre)) - b->radius) < 1e-6 * b->radius;
+    QCOMPARE(onBound, size_t(3 * 48 * 2));
+    QVERIFY(selected.lines.size() > unselected.lines.size());
+    doc().undoStack()->undo();
+    doc().undoStack()->undo();
+  }
+
+  // A spawn value keyed at the playhead from the panel: one undo step, a
+  // track on the emitter's binding with the value's centre at that time.
+  void spawnValueKeyedAtThePlayhead() {
+    const scene::EntityId id = panel_->currentEmitter();
+    QVERIFY(panel_->setValue(id, "size_m", Json::array({0.2, 0.4})));
+    app::TimelineClock* clock = w_->timelineClock();
+    clock->setFrame(120);
+    auto* field = panel_->findChild<QComboBox*>("particlesKeyField");
+    auto* key = panel_->findChild<QPushButton*>("particlesKey");
+    QVERIFY(field && key);
+    field->setCurrentIndex(field->findData("particles.size_m"));
+    QVERIFY(field->currentIndex() >= 0);
+    const int n = steps();
+    key->click();
+    QCOMPARE(steps(), n + 1);
+    const sequencer::Binding* b = doc().state().sequence.findBinding(id);
+    QVERIFY(b);
+    bool found = false;
+    for (const sequencer::Track& t : b->tracks)
+      if (const auto* s = std::get_if<sequencer::ScalarTrack>(&t); s && s->property == "particles.size_m") {
+        QCOMPARE(s->keys.size(), size_t(1));
+        QCOMPARE(s->keys[0].time, clock->time());
+        QVERIFY(std::abs(s->keys[0].value - 0.3) < 1e-12);
+        found = true;
+      }
+    QVERIFY(found);
+    // The emitter itself is not changed by the track (it is sampled at births).
+    QCOMPARE(current().sizeMin, 0.2);
+    doc().undoStack()->undo();
+    QVERIFY(!doc().state().sequence.findBinding(id) ||
+            doc().state().sequence.findBinding(id)->tracks.empty());
+    doc().undoStack()->undo();
+    clock->setFrame(0);
   }
 
   void liveCountsFollowThePlayhead() {

@@ -82,6 +82,25 @@ class TestCliParticles : public QObject {
     QVERIFY2(text.out.contains("Gate torch flame: flame additive"), qPrintable(text.out));
   }
 
+  // Spawn values keyed on the timeline through `key` (the same edit as the
+  // editor's key button); fields that are not spawn values are refused.
+  void spawnValuesKeyedOnTheTimeline() {
+    const QString f = test::newSceneWithCli(path("keyed.hscene"), tmp_.path());
+    ok({"particles", "add", "dust", f, "--name", "Puff"});
+    ok({"key", "Puff", "particles.size_m", "0", "0.1", f});
+    const Run second = ok({"key", "Puff", "particles.size_m", "10", "2.1", f});
+    QVERIFY2(second.out.contains("particles.size_m") && second.out.contains("2 key(s)"), qPrintable(second.out));
+    ok({"key", "Puff", "particles.direction", "5", "1,0,0", f});
+    const std::string before = test::readFile(f.toStdString());
+    const QStringList notSpawn = {"key", "Puff", "particles.drag_per_s", "0", "1", f};
+    test::verifyCliError(cli(notSpawn), notSpawn, 1, {"particles.drag_per_s", "spawn values"});
+    const QStringList outOfRange = {"key", "Puff", "particles.size_m", "0", "-2", f};
+    test::verifyCliError(cli(outOfRange), outOfRange, 1, {"particles.size_m"});
+    const QStringList noEmitter = {"key", "Camera", "particles.size_m", "0", "1", f};
+    test::verifyCliError(cli(noEmitter), noEmitter, 1, {"Camera", "particles"});
+    QVERIFY2(test::readFile(f.toStdString()) == before, "a refused key changed the file");
+  }
+
   void refusalsNameEmitterAndFieldAndChangeNothing() {
     const QString f = test::newSceneWithCli(path("refuse.hscene"), tmp_.path());
     ok({"particles", "add", "dust", f, "--name", "Road dust"});

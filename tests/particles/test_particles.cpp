@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "particles/bounds.h"
 #include "particles/emitter.h"
 #include "particles/evaluate.h"
 #include "particles/motion.h"
@@ -440,6 +441,168 @@ class TestParticles : public QObject {
       ev->particle(p.id, t120 - 0.3, &c2);
       QVERIFY(sameBits(ev->particle(p.id, t120, &c2), p));
     }
+  }
+
+  // World space: a particle starts at originAt(birth), relative to the
+  // frame's origin; its motion after that is the local one shifted by it,
+  // collisions meet the ground where the particle really is, the terrain
+  // shape is placed around the birth-time origin, and local space ignores
+  // originAt.
+  void worldSpaceStartsWhereTheEmitterWasAtTheBirth() {
+    auto originAt = [](double t) { return dvec3(500000.0 + 12.0 * t, 4400000.0 - 3.0 * t, 300.0 + 0.5 * t * t); };
+    const double t = 3.0;
+    EmitterDesc e = fountain();
+    e.origin = originAt(t);
+    std::string err;
+    auto local = Evaluator::create(e, {}, err);
+    e.space = Space::World;
+    auto still = Evaluator::create(e, {}, err);
+    EvaluatorInputs in;
+    in.originAt = originAt;
+    auto world = Evaluator::create(e, in, err);
+    QVERIFY2(local && still && world, err.c_str());
+    QVERIFY(world->movesInWorld() && !still->movesInWorld());
+    const Frame fl = local->frame(t), fs = still->frame(t), fw = world->frame(t);
+    QCOMPARE(fw.particles.size(), fl.particles.size());
+    QVERIFY(fw.particles.size() > 100);
+    double worst = 0.0;
+    for (size_t i = 0; i < fw.particles.size(); ++i) {
+      const Particle &a = fl.particles[i], &w = fw.particles[i];
+      QVERIFY(sameBits(a, fs.particles[i]));  // world space on a still emitter is local space
+      // The same motion, shifted by where the emitter was at the birth.
+      const dvec3 shift = originAt(a.birth) - e.origin;
+      worst = std::max(worst, maxAbs(w.position - (a.position + shift)));
+      QVERIFY(w.velocity == a.velocity);
+    }
+    qInfo("world space: %zu particles, worst |x_world - (x_local + shift)| %.3g m", fw.particles.size(), worst);
+    QVERIFY(worst < 1e-6);  // the shift is added at the birth, the motion is affine in it
+    // The terrain shape: born on the ground around the birth-time origin.
+    const HeightFieldCollider ground = hills(originAt(0.0));
+    EmitterDesc terr = e;
+    terr.shape = Shape::Terrain;
+    terr.boxHalf = {5.0, 5.0, 0.0};
+    terr.speedMin = terr.speedMax = 0.0;
+    terr.gravity = dvec3(0.0);
+    terr.drag = 0.0;
+    EvaluatorInputs tin = in;
+    tin.ground = &ground;
+    auto tev = Evaluator::create(terr, tin, err);
+    QVERIFY2(tev, err.c_str());
+    for (const Particle& p : tev->frame(t).particles) {
+      const dvec3 w = terr.origin + p.position, o = originAt(p.birth);
+      QVERIFY(std::abs(w.x - o.x) <= 5.0 + 1e-6 && std::abs(w.y - o.y) <= 5.0 + 1e-6);
+      QVERIFY(std::abs(w.z - ground.height(w.x, w.y)) < 1e-6);
+    }
+    // Colliding in world space: nobody ends below the ground (1 mm).
+    EmitterDesc hit = e;
+    hit.collision = CollisionMode::Stick;
+    const HeightFieldCollider hillsHere = hills(originAt(0.0) - dvec3(0, 0, 4));
+    EvaluatorInputs cin = in;
+    cin.colliders = {&hillsHere};
+    auto cev = Evaluator::create(hit, cin, err);
+    QVERIFY2(cev, err.c_str());
+    int stuck = 0;
+    for (const Particle& p : cev->frame(t).particles) {
+      const dvec3 w = hit.origin + p.position;
+      QVERIFY(w.z > hillsHere.height(w.x, w.y) - 1e-3);
+      stuck += p.fate == Fate::Resting;
+    }
+    QVERIFY(stuck > 0);
+  }
+
+  // The bound an out-of-view test uses holds every particle a brute-force
+  // evaluation finds, over shapes, forces from none to stiff, turbulence,
+  // keyed wind and bouncing collisions; and the curl noise stays under the
+  // bound its construction gives.
+  void boundsHoldEveryParticle() {
+    double curlMax = 0.0;
+    for (int i = 0; i < 200000; ++i) {
+      const dvec3 p(0.37 * i, 0.011 * i * 1.3, -0.0071 * i);
+      curlMax = std::max(curlMax, glm::length(curlNoise(p, uint32_t(i % 7))));
+    }
+    qInfo("curl noise: largest |curl| sampled %.3f, proven bound %.3f (%.1fx)", curlMax, kCurlNoiseBound,
+          kCurlNoiseBound / curlMax);
+    QVERIFY(curlMax > 0.5 && curlMax <= kCurlNoiseBound);
+
+    const HeightFieldCollider ground = hills(dvec3(0, 0, -3));
+    struct Case {
+      const char* what;
+      EmitterDesc e;
+      bool collide;
+    };
+    std::vector<Case> cases;
+    EmitterDesc f = fountain();
+    cases.push_back({"fountain (disc, drag, wind)", f, false});
+    EmitterDesc box = f;
+    box.shape = Shape::Box, box.boxHalf = {3, 1, 2}, box.drag = 0.0, box.speedMax = 9.0;
+    cases.push_back({"box, no drag", box, false});
+    EmitterDesc stiff = f;
+    stiff.shape = Shape::Sphere, stiff.drag = 1e4, stiff.wind = {20, 0, 0};
+    cases.push_back({"sphere, k = 1e4", stiff, false});
+    EmitterDesc turb = f;
+    turb.turbulence = 4.0, turb.turbulenceFrequency = 0.7, turb.drag = 0.2;
+    cases.push_back({"turbulence", turb, false});
+    EmitterDesc keyed = f;
+    keyed.windKeys = {{0.0, {0, 0, 0}}, {1.0, {15, -4, 0}}, {3.0, {-10, 2, 1}}};
+    keyed.drag = 2.0;
+    cases.push_back({"keyed wind", keyed, false});
+    EmitterDesc bounce = f;
+    bounce.collision = CollisionMode::Bounce, bounce.restitution = 1.0, bounce.friction = 0.0, bounce.speedMax = 12;
+    bounce.wind = {8, 3, 0};
+    cases.push_back({"perfect bounce in wind", bounce, true});
+    EmitterDesc cone = f;
+    cone.shape = Shape::Cone, cone.radius = 2.0, cone.gravity = dvec3(0.0), cone.drag = 0.0;
+    cases.push_back({"cone, no forces", cone, false});
+    for (const Case& c : cases) {
+      const std::optional<ParticleBound> b = particleBound(c.e);
+      QVERIFY2(b, c.what);
+      std::string err;
+      EvaluatorInputs in;
+      if (c.collide) in.colliders = {&ground};
+      auto ev = Evaluator::create(c.e, in, err);
+      QVERIFY2(ev, err.c_str());
+      double worst = 0.0, fastest = 0.0;  // largest shares of the radius and of the speed bound reached
+      size_t n = 0;
+      const double vmax = speedBound(c.e, c.e.lifetimeMax);
+      for (double t : {0.1, 0.7, 1.9, 3.3, 5.0}) {
+        for (const Particle& p : ev->frame(t).particles) {
+          worst = std::max(worst, glm::length(p.position - b->centre) / b->radius);
+          fastest = std::max(fastest, glm::length(p.velocity) / vmax);
+          QVERIFY(glm::length(p.velocity) <= speedBound(c.e, p.age) * (1.0 + 1e-12));
+          ++n;
+        }
+      }
+      QVERIFY2(fastest <= 1.0, c.what);
+      qInfo("%-28s radius %9.2f m; %zu particles, farthest at %.3f of it", c.what, b->radius, n, worst);
+      QVERIFY(n > 100);
+      QVERIFY2(worst <= 1.0, c.what);
+    }
+    // Terrain shape: needs the ground's height range; then it holds too.
+    EmitterDesc terr = f;
+    terr.shape = Shape::Terrain;
+    terr.boxHalf = {6, 4, 1.5};
+    QVERIFY(!particleBound(terr));
+    std::string err;
+    EvaluatorInputs tin;
+    tin.ground = &ground;
+    auto tev = Evaluator::create(terr, tin, err);
+    QVERIFY2(tev, err.c_str());
+    double zmin = 1e30, zmax = -1e30;
+    for (double x = -6; x <= 6; x += 0.05)
+      for (double y = -4; y <= 4; y += 0.05) {
+        zmin = std::min(zmin, ground.height(terr.origin.x + x, terr.origin.y + y));
+        zmax = std::max(zmax, ground.height(terr.origin.x + x, terr.origin.y + y));
+      }
+    const auto tb = particleBound(terr, false, std::make_pair(zmin - 0.01, zmax + 0.01));
+    QVERIFY(tb);
+    for (const Particle& p : tev->frame(2.0).particles) QVERIFY(glm::length(p.position - tb->centre) <= tb->radius);
+    // No bound: a mesh shape, a moving world-space emitter.
+    EmitterDesc mesh = f;
+    mesh.shape = Shape::Mesh, mesh.mesh = "Roof";
+    QVERIFY(!particleBound(mesh));
+    EmitterDesc world = f;
+    world.space = Space::World;
+    QVERIFY(!particleBound(world, true) && particleBound(world, false) && particleBound(f, true));
   }
 
   void replayConvergesToTheExactSolutionWithoutForcesThatNeedIt() {

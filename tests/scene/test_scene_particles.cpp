@@ -11,12 +11,18 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include <sqlite3.h>
 
 #include "foliage/surface.h"
 #include "particles/evaluate.h"
+#include "scene/animation.h"
+#include "scene/camera_path_edits.h"
 #include "scene/demo_scene.h"
+#include "scene/edit.h"
+#include "sequencer/camera_path_edit.h"
+#include "sequencer/track.h"
 #include "scene/document.h"
 #include "scene/foliage_ground.h"
 #include "scene/hscene_file.h"
@@ -24,6 +30,7 @@
 #include "scene/particle_ops.h"
 #include "scene/particle_world.h"
 #include "scene/scene_json.h"
+#include "scene/sequence_edits.h"
 #include "scene/terrain_ops.h"
 
 using namespace hs;
@@ -70,6 +77,29 @@ EntityId addEmitter(Document& doc, const std::string& name, const glm::dvec3& at
   if (!ops::addComponent(doc, id, *findComponent("particles")) || !ops::setEmitter(doc, id, d, error))
     qFatal("addEmitter: %s", error.c_str());
   return id;
+}
+
+// A linear translation track on `id` from `a` at 0 s to `b` at 4 s.
+void moveLinearly(Document& doc, EntityId id, const glm::dvec3& a, const glm::dvec3& b) {
+  Edit e(doc, "Move");
+  sequencer::Binding binding;
+  binding.entity = id;
+  sequencer::VectorTrack move;
+  move.property = "transform.translation";
+  sequencer::VectorKey k0, k1;
+  k0.time = 0.0, k0.value = a, k0.interpolation = sequencer::Interpolation::Linear;
+  k1.time = 4.0, k1.value = b, k1.interpolation = sequencer::Interpolation::Linear;
+  move.keys = {k0, k1};
+  binding.tracks.push_back(move);
+  e.sequence().bindings.push_back(binding);
+  e.commit();
+}
+
+// World position of the entity at t, by the scene's own animation (the
+// reference EmitterMotion must agree with).
+glm::dvec3 animatedWorld(const SceneState& s, EntityId id, double t) {
+  const SceneState at = animatedState(s, compileSequence(s), t);
+  return glm::dvec3(at.worldMatrix(id)[3]);
 }
 
 std::string tempPath(const char* name) {
@@ -215,6 +245,38 @@ class TestSceneParticles : public QObject {
     QCOMPARE(emitters, size_t(4));
   }
 
+  // A format-10 file (before `space` and `draw_mesh`) opens with their
+  // defaults and is saved as the current format.
+  void format10EmittersOpenWithTheNewKeysDefaulted() {
+    Document doc;
+    const EntityId snow = addPreset(doc, "snow", {});
+    const particles::EmitterDesc want = doc.state().find(snow)->particles->desc;
+    QCOMPARE(int(want.space), int(particles::Space::Local));
+    const std::string path = tempPath("format10.hscene");
+    std::string error;
+    QVERIFY(saveScene(doc.state(), path, error));
+    {
+      sqlite3* db = nullptr;
+      QCOMPARE(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+      auto exec = [&](const char* sql) {
+        QCOMPARE(sqlite3_exec(db, sql, nullptr, nullptr, nullptr), SQLITE_OK);
+        QCOMPARE(sqlite3_changes(db), 1);
+      };
+      exec("UPDATE document SET json = replace(replace(replace(json, '\"space\": \"local\", ', ''), "
+           "'\"draw_mesh\": \"\", ', ''), '\"version\": 11', '\"version\": 10') "
+           "WHERE instr(json, '\"draw_mesh\": \"\", ') > 0 AND instr(json, '\"space\": \"local\", ') > 0");
+      exec("UPDATE meta SET value = '10' WHERE key = 'format_version'");
+      sqlite3_close(db);
+    }
+    QCOMPARE(sceneFileVersion(path), 10);
+    auto loaded = loadScene(path, error);
+    QVERIFY2(loaded, error.c_str());
+    QVERIFY(loaded->find(snow)->particles->desc == want);
+    const std::string again = tempPath("format10-saved.hscene");
+    QVERIFY(saveScene(*loaded, again, error));
+    QCOMPARE(sceneFileVersion(again), kSceneFormatVersion);
+  }
+
   void damagedEmitterRefusesTheFileWithItsPath() {
     Document doc;
     addPreset(doc, "snow", {});
@@ -348,6 +410,152 @@ class TestSceneParticles : public QObject {
       QCOMPARE(counts[1].entity, b);
     }
     QCOMPARE(liveParticleCounts(doc.state(), 3.0)[1].live, uint64_t(0));  // B starts at 5 s
+  }
+
+  // World space: a particle starts where the emitter was at its birth and
+  // stays there (no forces, no speed) while the entity moves on; local
+  // space: it moves along. The emitter's motion agrees with the scene's
+  // animation at every time, through a parent and through a camera path.
+  void worldSpaceLeavesParticlesWhereTheyWereBorn() {
+    Document doc;
+    particles::EmitterDesc d = small(4.0);
+    d.speedMin = d.speedMax = 0.0;
+    d.gravity = glm::dvec3(0.0);
+    d.lifetimeMin = d.lifetimeMax = 10.0;
+    d.origin = {0.0, 0.0, 1.5};  // an offset above the entity
+    d.space = particles::Space::World;
+    const EntityId parent = ops::addEmpty(doc, "Cart", Transform{});
+    const EntityId torch = addEmitter(doc, "Torch", {0, 0, 0}, d);
+    QVERIFY(ops::reparent(doc, torch, parent));
+    moveLinearly(doc, parent, {0, 0, 0}, {40, 8, 0});
+    const SceneState& base = doc.state();
+    for (double t : {0.5, 2.0, 3.75}) {
+      const SceneState at = animatedState(base, compileSequence(base), t);
+      const std::vector<PlacedEmitter> placed = visibleEmitters(at);
+      QCOMPARE(placed.size(), size_t(1));
+      QVERIFY(placed[0].motion);
+      for (double tb : {0.0, 0.3, 1.7, t})
+        QVERIFY(glm::length(placed[0].motion->originAt(tb) - (animatedWorld(base, torch, tb) + d.origin)) < 1e-9);
+      ParticleWorld world(at);
+      std::string error;
+      auto ev = world.evaluator(placed[0], error);
+      QVERIFY2(ev, error.c_str());
+      const particles::Frame f = ev->frame(t);
+      QVERIFY(f.particles.size() >= 2);
+      for (const particles::Particle& p : f.particles) {
+        const glm::dvec3 worldPos = placed[0].desc.origin + p.position;
+        const glm::dvec3 bornAt = animatedWorld(base, torch, p.birth) + d.origin;
+        QVERIFY2(glm::length(worldPos - bornAt) < 1e-9, qPrintable(QString::number(glm::length(worldPos - bornAt))));
+      }
+      // Local space: every particle is at the emitter's current origin.
+      PlacedEmitter local = placed[0];  // its motion kept: local space ignores it
+      local.desc.space = particles::Space::Local;
+      auto lev = world.evaluator(local, error);
+      for (const particles::Particle& p : lev->frame(t).particles) QVERIFY(glm::length(p.position) < 1e-12);
+    }
+    // Local space on the entity: no motion is derived (nothing to pay for).
+    std::string why;
+    QVERIFY(ops::setEmitterValue(doc, torch, "space", Json("local"), why));
+    QVERIFY(!EmitterMotion::of(doc.state(), torch));
+    QVERIFY(ops::setEmitterValue(doc, torch, "space", Json("world"), why));
+    QVERIFY(EmitterMotion::of(doc.state(), torch));
+    // A still chain has no motion either.
+    Document still;
+    const EntityId s = addEmitter(still, "Still", {1, 2, 3}, d);
+    QVERIFY(!EmitterMotion::of(still.state(), s));
+
+    // Through a camera path on the parent.
+    QVERIFY(ops::setPath(doc, parent, sequencer::makePathFollow({{0, 0, 0}, {20, 0, 0}, {20, 20, 0}}, 0.0, 4.0),
+                         "Follow path"));
+    const auto motion = EmitterMotion::of(doc.state(), torch);
+    QVERIFY(motion);
+    for (double tb : {0.0, 1.1, 2.5, 4.0})
+      QVERIFY2(glm::length(motion->originAt(tb) - (animatedWorld(doc.state(), torch, tb) + d.origin)) < 1e-9,
+               qPrintable(QString::number(glm::length(motion->originAt(tb) - (animatedWorld(doc.state(), torch, tb) + d.origin)))));
+  }
+
+  // A spawn value keyed on the timeline: each particle takes the track's
+  // value at its birth (a pair's centre moves, its half-width stays) and
+  // keeps it; the entity itself is not animated by it; a file keeps the
+  // track and drops one on a field that is not a spawn value, naming it.
+  void spawnValuesKeyedOnTheTimelineAreSampledAtBirth() {
+    Document doc;
+    particles::EmitterDesc d = small(10.0);
+    d.sizeMin = 0.1, d.sizeMax = 0.3;  // centre 0.2, half-width 0.1
+    d.lifetimeMin = d.lifetimeMax = 20.0;
+    d.gravity = glm::dvec3(0.0);  // velocities keep their birth direction
+    const EntityId id = addEmitter(doc, "Puff", {0, 0, 0}, d);
+    std::string error;
+    const auto target = animationTarget("particles.size_m", error);
+    QVERIFY2(target && target->kind == TrackKind::Scalar, error.c_str());
+    QVERIFY(!animationTarget("particles.drag_per_s", error));
+    QVERIFY2(error.find("spawn values") != std::string::npos, error.c_str());
+    for (auto [t, v] : {std::pair{0.0, 0.2}, std::pair{10.0, 1.2}})
+      QVERIFY(ops::setKeys(doc, {{id, *target, sequencer::PropertyValue(v)}}, t, sequencer::Interpolation::Linear,
+                           "Key size"));
+    auto centreAt = [](double birth) { return 0.2 + 0.1 * std::clamp(birth, 0.0, 10.0); };
+    std::map<uint64_t, double> sizeAt8;
+    for (double t : {8.0, 12.0}) {
+      std::vector<std::string> warnings;
+      const SceneState at = animatedState(doc.state(), compileSequence(doc.state()), t, &warnings);
+      QVERIFY2(warnings.empty(), warnings.empty() ? "" : warnings[0].c_str());
+      QCOMPARE(at.find(id)->particles->desc.sizeMin, 0.1);  // not written at the frame's time
+      const std::vector<PlacedEmitter> placed = visibleEmitters(at);
+      QVERIFY(placed.size() == 1 && placed[0].spawn);
+      ParticleWorld world(at);
+      auto keyed = world.evaluator(placed[0], error);
+      auto plain = world.evaluator(placed[0].desc, error);  // the same emitter without its track
+      QVERIFY2(keyed && plain, error.c_str());
+      const particles::Frame fk = keyed->frame(t), fp = plain->frame(t);
+      QCOMPARE(fk.particles.size(), fp.particles.size());
+      QVERIFY(fk.particles.size() > 50);
+      for (size_t i = 0; i < fk.particles.size(); ++i) {
+        const particles::Particle &k = fk.particles[i], &p = fp.particles[i];
+        QCOMPARE(k.id, p.id);
+        // The same random draw, about a centre moved by the track.
+        QVERIFY(std::abs((k.size - p.size) - (centreAt(k.birth) - 0.2)) < 1e-12);
+        if (t == 8.0) sizeAt8[k.id.index] = k.size;
+        else if (sizeAt8.count(k.id.index)) QCOMPARE(k.size, sizeAt8[k.id.index]);  // kept, not moved by later keys
+      }
+    }
+    QVERIFY(!sizeAt8.empty());
+    // A direction track turns the particles born after it.
+    const auto dir = animationTarget("particles.direction", error);
+    QVERIFY(dir && dir->kind == TrackKind::Vector);
+    QVERIFY(ops::setKeys(doc, {{id, *dir, sequencer::PropertyValue(glm::dvec3(1, 0, 0))}}, 0.0, std::nullopt, "Key"));
+    {
+      const SceneState at = animatedState(doc.state(), compileSequence(doc.state()), 3.0);
+      ParticleWorld world(at);
+      auto ev = world.evaluator(visibleEmitters(at)[0], error);
+      for (const particles::Particle& p : ev->frame(3.0).particles)
+        QVERIFY(glm::length(glm::normalize(p.velocity) - glm::dvec3(1, 0, 0)) < 1e-9);
+    }
+
+    // The file keeps the tracks; one on a field that is not a spawn value is dropped, named.
+    {
+      Edit e(doc, "Bad track");
+      sequencer::ScalarTrack bad;
+      bad.property = "particles.drag_per_s";
+      bad.keys.push_back({});
+      e.sequence().findBinding(id)->tracks.push_back(bad);
+      e.commit();
+    }
+    const std::string path = tempPath("spawn-tracks.hscene");
+    QVERIFY2(saveScene(doc.state(), path, error), error.c_str());
+    LoadReport report;
+    const auto loaded = loadScene(path, error, nullptr, &report);
+    QVERIFY2(loaded, error.c_str());
+    const sequencer::Binding* b = loaded->sequence.findBinding(id);
+    QVERIFY(b);
+    std::vector<std::string> props;
+    for (const sequencer::Track& t : b->tracks) props.push_back(sequencer::trackProperty(t));
+    QVERIFY(std::find(props.begin(), props.end(), "particles.size_m") != props.end());
+    QVERIFY(std::find(props.begin(), props.end(), "particles.direction") != props.end());
+    QVERIFY(std::find(props.begin(), props.end(), "particles.drag_per_s") == props.end());
+    bool named = false;
+    for (const std::string& w : report.warnings) named = named || (w.find("particles.drag_per_s") != std::string::npos &&
+                                                                   w.find("Puff") != std::string::npos);
+    QVERIFY(named);
   }
 
   void demoHasSnowFogAndATorch() {
