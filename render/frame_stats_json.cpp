@@ -26,6 +26,7 @@ Json frameStatsJson(const FrameStats& stats, const std::vector<GpuAllocation>& r
   j["draw_calls"] = stats.drawCalls;
   j["instances_drawn"] = stats.instancesDrawn;
   j["particles_drawn"] = stats.particlesDrawn;
+  j["emitters_out_of_view"] = stats.emittersOutOfView;
   j["instances_culled"] = stats.instancesCulled;
   j["cpu_ms"] = stats.cpuMs;
   // The frame's timer query answers an earlier frame; with per-pass

@@ -1,10 +1,12 @@
 #include "render/particle_source.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
 #include <epoxy/gl.h>
 
+#include "particles/bounds.h"
 #include "render/frame_context.h"
 #include "render/render_view.h"
 
@@ -52,6 +54,31 @@ struct ViewVolume {
   Frustum frustum;
   glm::dvec3 eye;
 };
+
+// Whether any view may see a particle of the sprite emitter: its bound
+// (particles/bounds.h: every particle it can have, proven) grown by the
+// largest sprite's reach (the quad's half-diagonal at the largest size,
+// plus half the velocity stretch at the largest speed) against each view.
+// No bound (a mesh shape, a moving world-space emitter, spawn values keyed
+// on the timeline): it may always be seen.
+bool mayBeSeen(const scene::PlacedEmitter& pe, const std::vector<ViewVolume>& volumes, const glm::dvec3& frameOrigin,
+               scene::ParticleWorld* world) {
+  if (pe.spawn) return true;
+  const particles::EmitterDesc& d = pe.desc;
+  std::optional<std::pair<double, double>> ground;
+  if (d.shape == particles::Shape::Terrain && world) ground = world->groundRange();
+  const std::optional<particles::ParticleBound> b = particles::particleBound(d, bool(pe.motion), ground);
+  if (!b) return true;
+  double sizeScale = d.sizeOverLife.keys.empty() ? 1.0 : 0.0;
+  for (const particles::CurveKey& k : d.sizeOverLife.keys) sizeScale = std::max(sizeScale, k.value);
+  double reach = 0.5 * std::sqrt(2.0) * d.sizeMax * sizeScale;
+  if (d.facing == particles::Facing::Velocity)
+    reach += 0.5 * double(kStretchSeconds) * particles::speedBound(d, d.lifetimeMax);
+  const glm::dvec3 c = d.origin + b->centre - frameOrigin;  // double, then relative
+  for (const ViewVolume& v : volumes)
+    if (v.frustum.intersectsSphere(c - v.eye, b->radius + reach)) return true;
+  return false;
+}
 
 }  // namespace
 
@@ -257,6 +284,11 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     }
     // Nothing born in the live window: the emitter costs nothing at t.
     if (e.evaluator->candidates(t) == 0) continue;
+    // Out of every view: it costs nothing either (no evaluation, no upload).
+    if (!mayBeSeen(pe, volumes, origin, world_ && needsWorld(pe.desc) ? world_.get() : nullptr)) {
+      ++frame.stats.emittersOutOfView;
+      continue;
+    }
     ParticleDraw d;
     d.layerBase = ParticleSprites::layerBase(pe.desc.sprite);
     d.layerCount = ParticleSprites::layerCount(pe.desc.sprite);

@@ -448,11 +448,14 @@ class TestParticleRender : public QObject {
     QVERIFY(passRan(stats, "oit_"));
     QVERIFY(particleAllocations(r_.renderer()) > 0);
     QCOMPARE(stats.particlesDrawn, size_t(30));
+    QCOMPARE(stats.emittersOutOfView, size_t(0));
 
-    // The same emitter behind the camera.
+    // The same emitter behind the camera: skipped by its bound (particles/
+    // bounds.h) before any evaluation.
     const render::RenderView away = camera({0, -6.0, 1.5}, {0, -12.0, 1.5});
     const size_t drawCallsBefore = stats.drawCalls;
     r_.render(s, away, false, &stats);
+    QCOMPARE(stats.emittersOutOfView, size_t(1));
     QCOMPARE(stats.particlesDrawn, size_t(0));
     QVERIFY(!passRan(stats, "particles"));
     QVERIFY(!passRan(stats, "oit_"));
@@ -465,6 +468,27 @@ class TestParticleRender : public QObject {
     right.eye += view.orientation * glm::dvec3(0.03, 0, 0);
     const render::FrameStats pair = r_.renderViewsOnly(s, {left, right});
     QCOMPARE(pair.particlesDrawn, size_t(30));
+
+    // Beside the view, with particles moving towards it: the bound holds
+    // the whole flight, so the emitter is evaluated (and its particles that
+    // reached the view drawn) rather than skipped. Box shape at 12 m to the
+    // side; speed 3 m/s towards the view's axis for 10 s reaches it.
+    particles::EmitterDesc side = still("Side", {12.0, 0, 1.0}, {0.2, 0.2, 0.2}, 40, 0.3, {1, 1, 1, 0.8});
+    side.direction = {-1, 0, 0};
+    side.speedMin = side.speedMax = 3.0;
+    side.lifetimeMin = side.lifetimeMax = 10.0;
+    removeEmitters(s);
+    addEmitters(s, {side});
+    s.time.seconds = 4.0;  // 12 m travelled: at the view's axis
+    r_.render(s, view, false, &stats);
+    QCOMPARE(stats.emittersOutOfView, size_t(0));
+    QCOMPARE(stats.particlesDrawn, size_t(40));
+    // From 200 m off, looking away, the bound (the box plus 30 m of travel)
+    // is in no view: skipped.
+    const render::RenderView farAway = camera({0, -200.0, 1.5}, {0, -400.0, 1.5});
+    r_.render(s, farAway, false, &stats);
+    QCOMPARE(stats.emittersOutOfView, size_t(1));
+    QCOMPARE(stats.particlesDrawn, size_t(0));
   }
 
   // The axis a mesh particle turns about is a unit vector from its random
