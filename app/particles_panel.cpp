@@ -165,7 +165,7 @@ void ParticlesPanel::buildUi() {
           k == "size_over_life" ? LifeCurveEditor::Kind::Size : LifeCurveEditor::Kind::Colour, fields_);
       curve->setObjectName(QString("particles_") + key + "_curve");
       connect(curve, &LifeCurveEditor::edited, this, [this, k](const Json& rows) {
-        if (!updating_ && current_ != scene::kNoEntity) setValue(current_, k, rows);
+        if (!updating_ && current_ != scene::kNoEntity) setValue(current_, k, rows, false);
       });
       listsForm->addRow("", curve);
       curves_.emplace_back(k, curve);
@@ -331,10 +331,11 @@ void ParticlesPanel::showProblem(const std::string& error) {
   error_->show();
 }
 
-bool ParticlesPanel::setValue(scene::EntityId id, const std::string& key, const Json& value) {
+bool ParticlesPanel::setValue(scene::EntityId id, const std::string& key, const Json& value, bool merge) {
   std::string error;
-  const QString merge = QString("particles/%1/%2").arg(qulonglong(id)).arg(QString::fromStdString(key));
-  if (!scene::ops::setEmitterValue(doc_, id, key, value, error, merge)) {
+  const QString mergeKey =
+      merge ? QString("particles/%1/%2").arg(qulonglong(id)).arg(QString::fromStdString(key)) : QString();
+  if (!scene::ops::setEmitterValue(doc_, id, key, value, error, mergeKey)) {
     // The form keeps what was typed, marked; the document keeps its value.
     showProblem(error);
     return false;

@@ -63,7 +63,9 @@ class ParticlesPanel : public QWidget {
   // The new top entity, or kNoEntity (reported in Messages).
   scene::EntityId addPreset(const Json& values);
   // One field or list of an emitter; false (reported) if refused.
-  bool setValue(scene::EntityId id, const std::string& key, const Json& value);
+  // `merge`: successive values of the field merge into one undo step (a
+  // spin box's drag); a curve's gesture is a step of its own.
+  bool setValue(scene::EntityId id, const std::string& key, const Json& value, bool merge = true);
   // Keys the current emitter's spawn value `property` ("particles.size_m")
   // at the playhead with its value now; false (reported) if refused.
   bool keyAtPlayhead(const std::string& property);
