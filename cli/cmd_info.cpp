@@ -232,7 +232,7 @@ void printParticlesInfo(const scene::SceneState& s, double time) {
   for (const scene::EmitterCount& c : counts) {
     const particles::EmitterDesc& d = s.find(c.entity)->particles->desc;
     if (!c.error.empty())
-      std::printf("  %s: cannot be evaluated: %s\n", c.name.c_str(), c.error.c_str());
+      std::printf("  %s: problem: %s\n", c.name.c_str(), c.error.c_str());
     else
       std::printf("  %s: %s %s, %s particles live (rate %g per s, lifetime %g..%g s, max %lld)\n", c.name.c_str(),
                   particles::spriteName(d.sprite), particles::blendName(d.blend),

@@ -43,20 +43,6 @@ MeshParticlePose meshParticlePose(const mesh::Bounds& level0, const glm::dvec3& 
   return pose;
 }
 
-const scene::MeshAsset* findDrawMesh(const scene::SceneState& state, const std::string& name) {
-  if (name.empty()) return nullptr;
-  for (const auto& [id, e] : state.entities) {  // ordered by id
-    if (!e.mesh || e.name != name) continue;
-    const scene::MeshAsset* a = state.findAsset(e.mesh->mesh);
-    if (a && a->data && !a->data->positions.empty() && !a->data->indices.empty()) return a;
-  }
-  return nullptr;
-}
-
-std::string drawMeshError(const particles::EmitterDesc& desc) {
-  return "emitter '" + desc.name + "', field 'draw_mesh': no entity '" + desc.drawMesh + "' with a mesh";
-}
-
 MeshParticleSource::MeshParticleSource() : inner_("particle_meshes", InstancedSource::Culling::Cpu) {}
 MeshParticleSource::~MeshParticleSource() = default;
 

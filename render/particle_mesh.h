@@ -55,15 +55,6 @@ double meshLargestExtent(const mesh::Bounds& level0);
 MeshParticlePose meshParticlePose(const mesh::Bounds& level0, const glm::dvec3& position, double size,
                                   double rotationDeg, uint32_t variant);
 
-// The mesh asset a draw_mesh name draws: that of the first entity (lowest
-// id) called `name` with a mesh component whose asset is in the document
-// with vertices, visible or hidden (a source hidden so it is not drawn at
-// its own place still lends its mesh). null: none.
-const scene::MeshAsset* findDrawMesh(const scene::SceneState& state, const std::string& name);
-
-// "emitter 'NAME', field 'draw_mesh': no entity 'X' with a mesh".
-std::string drawMeshError(const particles::EmitterDesc& desc);
-
 // One frame's mesh particles as a draw source: clear(), add() per emitter,
 // commit(); then it draws what its InstancedSource draws (kept across
 // frames, so its instance buffer is the same persistent buffer while the

@@ -268,9 +268,9 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
       // mesh, evaluated on the CPU whatever the GPU setting (the instances
       // are made from the particles), culled per view by the instanced
       // source (a particle out of every camera view may cast a shadow into one).
-      const scene::MeshAsset* asset = findDrawMesh(state, pe.desc.drawMesh);
+      const scene::MeshAsset* asset = scene::drawMeshAsset(state, pe.desc.drawMesh);
       if (!asset) {
-        errors_.push_back(drawMeshError(pe.desc));
+        errors_.push_back(scene::drawMeshProblem(pe.desc));
         continue;
       }
       if (e.evaluator->candidates(t) == 0) continue;

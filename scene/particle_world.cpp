@@ -103,6 +103,20 @@ bool EmitterMotion::operator==(const EmitterMotion& o) const {
   return !compiled_ || compiled_->sequence() == o.compiled_->sequence();
 }
 
+const MeshAsset* drawMeshAsset(const SceneState& state, const std::string& name) {
+  if (name.empty()) return nullptr;
+  for (const auto& [id, e] : state.entities) {  // ordered by id
+    if (!e.mesh || e.name != name) continue;
+    const MeshAsset* a = state.findAsset(e.mesh->mesh);
+    if (a && a->data && !a->data->positions.empty() && !a->data->indices.empty()) return a;
+  }
+  return nullptr;
+}
+
+std::string drawMeshProblem(const particles::EmitterDesc& desc) {
+  return "emitter '" + desc.name + "', field 'draw_mesh': no entity '" + desc.drawMesh + "' with a mesh";
+}
+
 std::vector<PlacedEmitter> visibleEmitters(const SceneState& state) {
   std::vector<PlacedEmitter> out;
   for (EntityId id : state.depthFirstOrder()) {
@@ -225,6 +239,8 @@ std::vector<EmitterCount> liveParticleCounts(const SceneState& state, double t) 
     c.entity = p.entity;
     c.name = p.desc.name;
     if (auto ev = world.evaluator(p.desc, c.error, false)) c.live = ev->liveCount(t, &c.estimated);
+    if (c.error.empty() && !p.desc.drawMesh.empty() && !drawMeshAsset(state, p.desc.drawMesh))
+      c.error = drawMeshProblem(p.desc);  // counted, but drawn as nothing
     out.push_back(std::move(c));
   }
   return out;

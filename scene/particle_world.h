@@ -49,6 +49,14 @@ class EmitterMotion {
   std::shared_ptr<const sequencer::CompiledSequence> compiled_;  // the state's sequence, only with a path in the chain
 };
 
+// The mesh asset a draw_mesh name draws (particles/emitter.h): that of the
+// first entity (lowest id) called `name` with a mesh component whose asset
+// is in the document with vertices, visible or hidden (a source hidden so
+// it is not drawn at its own place still lends its mesh). null: none.
+const MeshAsset* drawMeshAsset(const SceneState& state, const std::string& name);
+// "emitter 'NAME', field 'draw_mesh': no entity 'X' with a mesh".
+std::string drawMeshProblem(const particles::EmitterDesc& desc);
+
 struct PlacedEmitter {
   EntityId entity = kNoEntity;
   particles::EmitterDesc desc{};  // origin in world, name the entity's
@@ -114,7 +122,7 @@ struct EmitterCount {
   std::string name;
   uint64_t live = 0;
   bool estimated = false;
-  std::string error;  // an emitter the evaluator refuses: why
+  std::string error;  // an emitter the evaluator refuses, or whose draw_mesh is missing: why
 };
 std::vector<EmitterCount> liveParticleCounts(const SceneState& state, double t);
 

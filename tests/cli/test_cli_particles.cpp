@@ -99,6 +99,13 @@ class TestCliParticles : public QObject {
     const QStringList noEmitter = {"key", "Camera", "particles.size_m", "0", "1", f};
     test::verifyCliError(cli(noEmitter), noEmitter, 1, {"Camera", "particles"});
     QVERIFY2(test::readFile(f.toStdString()) == before, "a refused key changed the file");
+
+    // A draw_mesh naming no mesh entity: `info` names emitter and field.
+    ok({"set", "Puff", "particles.draw_mesh", "Pebble", f});
+    const Run info = ok({"info", f, "--time", "1"});
+    QVERIFY2(info.out.contains("Puff: problem: emitter 'Puff', field 'draw_mesh': no entity 'Pebble' with a mesh"),
+             qPrintable(info.out));
+    QVERIFY2(emitterNamed(particles(f, "1"), "Puff")["error"].toString().contains("draw_mesh"), "no error in --json");
   }
 
   void refusalsNameEmitterAndFieldAndChangeNothing() {
