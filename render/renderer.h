@@ -261,8 +261,8 @@ class Renderer {
 
   // Kinds of geometry drawn after the document's meshes and terrains
   // (render/draw_source.h, inside the renderer): tests and benchmarks add
-  // their own. The document's foliage is drawn without this (foliage_sources.h);
-  // particles will come from the document too.
+  // their own. The document's foliage and particles are drawn without this
+  // (foliage_sources.h, particle_source.h).
   void setDrawSources(std::vector<std::shared_ptr<DrawSource>> sources);
 
   // Emitters the last frame left out, each naming the emitter and the
