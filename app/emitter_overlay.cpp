@@ -95,9 +95,12 @@ void emitterGlyph(render::Overlay& o, const scene::SceneState& state, scene::Ent
     }
   }
   if (selected) {
+    scene::ParticleWorld world(state);
     std::optional<std::pair<double, double>> ground;
-    if (d.shape == S::Terrain) ground = scene::ParticleWorld(state).groundRange();
-    const auto b = particles::particleBound(d, bool(scene::EmitterMotion::of(state, id)), ground);
+    const particles::SurfaceSampler* surface = nullptr;
+    if (d.shape == S::Terrain) ground = world.groundRange();
+    if (d.shape == S::Mesh) surface = world.inputs(d, false).surface;
+    const auto b = particles::particleBound(d, bool(scene::EmitterMotion::of(state, id)), ground, surface);
     if (b) sphere(o, p + b->centre, b->radius, glm::vec4(col.r, col.g, col.b, col.a * 0.25f));
   }
 }

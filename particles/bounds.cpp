@@ -40,7 +40,8 @@ double travelBound(const EmitterDesc& e, double age) {
 }
 
 std::optional<ParticleBound> particleBound(const EmitterDesc& e, bool moves,
-                                           std::optional<std::pair<double, double>> groundRange) {
+                                           std::optional<std::pair<double, double>> groundRange,
+                                           const SurfaceSampler* surface) {
   if (moves && e.space == Space::World) return std::nullopt;
   ParticleBound b;
   switch (e.shape) {
@@ -49,7 +50,13 @@ std::optional<ParticleBound> particleBound(const EmitterDesc& e, bool moves,
     case Shape::Sphere:
     case Shape::Disc:
     case Shape::Cone: b.radius = e.radius; break;  // a cone's particles start on its base disc
-    case Shape::Mesh: return std::nullopt;
+    case Shape::Mesh: {
+      const auto box = surface ? surface->box() : std::nullopt;
+      if (!box) return std::nullopt;
+      b.centre = 0.5 * (box->first + box->second);
+      b.radius = 0.5 * glm::length(box->second - box->first);
+      break;
+    }
     case Shape::Terrain: {
       if (!groundRange) return std::nullopt;
       const double z0 = groundRange->first - e.origin.z, z1 = groundRange->second - e.origin.z + e.boxHalf.z;

@@ -24,6 +24,7 @@
 #include <glm/vec3.hpp>
 
 #include "particles/emitter.h"
+#include "particles/evaluate.h"
 
 namespace hs::particles {
 
@@ -42,10 +43,12 @@ double travelBound(const EmitterDesc& e, double age);
 
 // The sphere holding the positions of every particle of `e` at any time
 // (sizes not included: a draw adds its sprite's or mesh's reach). nullopt
-// when none can be given: a mesh shape (its surface is not known here), a
-// world-space emitter whose entity moves (`moves`), or a terrain shape
-// without the ground's height range (`groundRange`, world z min and max).
+// when none can be given: a mesh shape without its surface's box
+// (`surface`, the evaluator's SurfaceSampler), a world-space emitter whose
+// entity moves (`moves`), or a terrain shape without the ground's height
+// range (`groundRange`, world z min and max).
 std::optional<ParticleBound> particleBound(const EmitterDesc& e, bool moves = false,
-                                           std::optional<std::pair<double, double>> groundRange = std::nullopt);
+                                           std::optional<std::pair<double, double>> groundRange = std::nullopt,
+                                           const SurfaceSampler* surface = nullptr);
 
 }  // namespace hs::particles

@@ -47,6 +47,13 @@ TriangleSurface::TriangleSurface(std::vector<glm::dvec3> corners) : corners_(std
   }
 }
 
+std::optional<std::pair<glm::dvec3, glm::dvec3>> TriangleSurface::box() const {
+  if (corners_.empty()) return std::nullopt;
+  glm::dvec3 lo = corners_.front(), hi = corners_.front();
+  for (const glm::dvec3& c : corners_) lo = glm::min(lo, c), hi = glm::max(hi, c);
+  return std::make_pair(lo, hi);
+}
+
 SurfacePoint TriangleSurface::sample(double u0, double u1, double u2) const {
   if (empty()) return {};
   const double target = u0 * cdf_.back();

@@ -26,6 +26,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -51,12 +52,16 @@ class SurfaceSampler {
  public:
   virtual ~SurfaceSampler() = default;
   virtual SurfacePoint sample(double u0, double u1, double u2) const = 0;
+  // A box (emitter-relative min, max) holding every point sample() can
+  // give; nullopt when not known (then no bound: particles/bounds.h).
+  virtual std::optional<std::pair<glm::dvec3, glm::dvec3>> box() const { return std::nullopt; }
 };
 
 class TriangleSurface : public SurfaceSampler {
  public:
   explicit TriangleSurface(std::vector<glm::dvec3> corners);  // 3 per triangle, emitter-relative
   SurfacePoint sample(double u0, double u1, double u2) const override;
+  std::optional<std::pair<glm::dvec3, glm::dvec3>> box() const override;  // of the corners
   bool empty() const { return cdf_.empty() || cdf_.back() <= 0.0; }
 
  private:
@@ -210,6 +215,7 @@ class Evaluator {
   static std::optional<Evaluator> create(const EmitterDesc& e, EvaluatorInputs inputs, std::string& error);
 
   const EmitterDesc& desc() const { return e_; }
+  const EvaluatorInputs& inputs() const { return in_; }
   const SpawnSchedule& schedule() const { return spawn_; }
   uint64_t key() const { return key_; }
   bool replays() const { return replay_; }

@@ -59,15 +59,16 @@ struct ViewVolume {
 // (particles/bounds.h: every particle it can have, proven) grown by the
 // largest sprite's reach (the quad's half-diagonal at the largest size,
 // plus half the velocity stretch at the largest speed) against each view.
-// No bound (a mesh shape, a moving world-space emitter, spawn values keyed
-// on the timeline): it may always be seen.
-bool mayBeSeen(const scene::PlacedEmitter& pe, const std::vector<ViewVolume>& volumes, const glm::dvec3& frameOrigin,
-               scene::ParticleWorld* world) {
+// No bound (a moving world-space emitter, spawn values keyed on the
+// timeline, a mesh shape without its surface): it may always be seen.
+bool mayBeSeen(const scene::PlacedEmitter& pe, const particles::Evaluator& ev, const std::vector<ViewVolume>& volumes,
+               const glm::dvec3& frameOrigin, scene::ParticleWorld* world) {
   if (pe.spawn) return true;
   const particles::EmitterDesc& d = pe.desc;
   std::optional<std::pair<double, double>> ground;
   if (d.shape == particles::Shape::Terrain && world) ground = world->groundRange();
-  const std::optional<particles::ParticleBound> b = particles::particleBound(d, bool(pe.motion), ground);
+  const std::optional<particles::ParticleBound> b =
+      particles::particleBound(d, bool(pe.motion), ground, ev.inputs().surface);
   if (!b) return true;
   double sizeScale = d.sizeOverLife.keys.empty() ? 1.0 : 0.0;
   for (const particles::CurveKey& k : d.sizeOverLife.keys) sizeScale = std::max(sizeScale, k.value);
@@ -285,7 +286,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     // Nothing born in the live window: the emitter costs nothing at t.
     if (e.evaluator->candidates(t) == 0) continue;
     // Out of every view: it costs nothing either (no evaluation, no upload).
-    if (!mayBeSeen(pe, volumes, origin, world_ && needsWorld(pe.desc) ? world_.get() : nullptr)) {
+    if (!mayBeSeen(pe, *e.evaluator, volumes, origin, world_ && needsWorld(pe.desc) ? world_.get() : nullptr)) {
       ++frame.stats.emittersOutOfView;
       continue;
     }

@@ -596,10 +596,26 @@ class TestParticles : public QObject {
     const auto tb = particleBound(terr, false, std::make_pair(zmin - 0.01, zmax + 0.01));
     QVERIFY(tb);
     for (const Particle& p : tev->frame(2.0).particles) QVERIFY(glm::length(p.position - tb->centre) <= tb->radius);
-    // No bound: a mesh shape, a moving world-space emitter.
+    // A mesh shape: bounded by its surface's box (a pitched roof, off the origin).
     EmitterDesc mesh = f;
     mesh.shape = Shape::Mesh, mesh.mesh = "Roof";
     QVERIFY(!particleBound(mesh));
+    const TriangleSurface roof({dvec3(4, -3, 6), dvec3(10, -3, 6), dvec3(7, -3, 9), dvec3(4, 5, 6), dvec3(10, 5, 6),
+                                dvec3(7, 5, 9), dvec3(4, -3, 6), dvec3(7, -3, 9), dvec3(7, 5, 9)});
+    EvaluatorInputs min;
+    min.surface = &roof;
+    auto mev = Evaluator::create(mesh, min, err);
+    QVERIFY2(mev, err.c_str());
+    const auto mb = particleBound(mesh, false, std::nullopt, &roof);
+    QVERIFY(mb && glm::length(mb->centre - dvec3(7, 1, 7.5)) < 1e-12);
+    size_t meshParticles = 0;
+    for (double t : {0.5, 2.0, 4.0})
+      for (const Particle& p : mev->frame(t).particles) {
+        QVERIFY(glm::length(p.position - mb->centre) <= mb->radius);
+        ++meshParticles;
+      }
+    QVERIFY(meshParticles > 100);
+    // No bound: a moving world-space emitter.
     EmitterDesc world = f;
     world.space = Space::World;
     QVERIFY(!particleBound(world, true) && particleBound(world, false) && particleBound(f, true));
