@@ -172,7 +172,7 @@ struct EmitterDesc {
 // gravity_m_per_s2 drag_per_s wind_m_per_s turbulence_m_per_s2
 // turbulence_frequency_per_m turbulence_evolution_per_s collision
 // restitution friction rest_speed_m_per_s replay_step_s flipbook_frames
-// sprite blend facing soft_m lit, and since format 11 (kEmitterKeysSince11)
+// sprite blend facing soft_m lit, and since format 11 (emitterKeyAddedAfter)
 // space draw_mesh.
 const std::vector<ParamDecl>& emitterParamDecls();
 

@@ -136,44 +136,96 @@ SpawnValues spawnValues(const EmitterDesc& e) {
   return v;
 }
 
+namespace {
+
+// The one table of spawn values: each key's member(s) of SpawnValues and
+// its declaration (for the range a track's value is held to).
+struct SpawnMember {
+  std::string key;
+  double SpawnValues::*lo = nullptr;        // a number, or a MIN,MAX pair's MIN
+  double SpawnValues::*hi = nullptr;        // a pair's MAX
+  glm::dvec3 SpawnValues::*vec = nullptr;   // direction, box_half_m
+  const ParamDecl* decl = nullptr;
+  size_t count() const { return vec ? 3 : 1; }
+};
+
+const std::vector<SpawnMember>& spawnMembers() {
+  using V = SpawnValues;
+  static const std::vector<SpawnMember> table = [] {
+    std::vector<SpawnMember> t = {{"speed_m_per_s", &V::speedMin, &V::speedMax},
+                                  {"size_m", &V::sizeMin, &V::sizeMax},
+                                  {"rotation_deg", &V::rotationMinDeg, &V::rotationMaxDeg},
+                                  {"spin_deg_per_s", &V::spinMinDegPerS, &V::spinMaxDegPerS},
+                                  {"spread_deg", &V::spreadDeg},
+                                  {"cone_angle_deg", &V::coneAngleDeg},
+                                  {"radius_m", &V::radius},
+                                  {"direction", nullptr, nullptr, &V::direction},
+                                  {"box_half_m", nullptr, nullptr, &V::boxHalf}};
+    for (SpawnMember& m : t) m.decl = &paramIn(emitterParamDecls(), m.key);
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
 const std::vector<std::string>& spawnKeys() {
-  static const std::vector<std::string> keys = {"speed_m_per_s", "size_m",         "rotation_deg",
-                                                "spin_deg_per_s", "spread_deg",    "cone_angle_deg",
-                                                "radius_m",       "direction",     "box_half_m"};
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> k;
+    for (const SpawnMember& m : spawnMembers()) k.push_back(m.key);
+    return k;
+  }();
   return keys;
 }
 
-bool isSpawnKey(std::string_view key) {
-  for (const std::string& k : spawnKeys())
-    if (k == key) return true;
-  return false;
+int spawnSlot(std::string_view key) {
+  const std::vector<SpawnMember>& t = spawnMembers();
+  for (size_t i = 0; i < t.size(); ++i)
+    if (t[i].key == key) return int(i);
+  return -1;
+}
+
+bool isSpawnKey(std::string_view key) { return spawnSlot(key) >= 0; }
+
+size_t spawnValueCount(std::string_view key) {
+  const int slot = spawnSlot(key);
+  return slot < 0 ? 0 : spawnMembers()[size_t(slot)].count();
+}
+
+std::vector<double> spawnValue(const SpawnValues& v, std::string_view key) {
+  const int slot = spawnSlot(key);
+  if (slot < 0) return {};
+  const SpawnMember& m = spawnMembers()[size_t(slot)];
+  if (m.vec) return {(v.*m.vec).x, (v.*m.vec).y, (v.*m.vec).z};
+  if (m.hi) return {0.5 * (v.*m.lo + v.*m.hi)};
+  return {v.*m.lo};
+}
+
+void setSpawnValue(SpawnValues& v, int slot, const double* value) {
+  const SpawnMember& m = spawnMembers()[size_t(slot)];
+  const ParamDecl& d = *m.decl;
+  auto held = [&](double x) { return std::clamp(std::isfinite(x) ? x : d.min, d.min, d.max); };
+  if (m.vec) {
+    const glm::dvec3 x{held(value[0]), held(value[1]), held(value[2])};
+    if (m.vec != &SpawnValues::direction) {
+      v.*m.vec = x;
+    } else if (const double len = glm::length(x); len > 0.0) {
+      v.direction = x / len;  // a zero direction keeps the emitter's
+    }
+  } else if (m.hi) {
+    // A MIN,MAX pair: the track moves its centre and keeps its half-width.
+    const double half = 0.5 * (v.*m.hi - v.*m.lo), c = held(value[0]);
+    v.*m.lo = std::clamp(c - half, d.min, d.max);
+    v.*m.hi = std::clamp(c + half, d.min, d.max);
+  } else {
+    v.*m.lo = held(value[0]);
+  }
 }
 
 bool setSpawnValue(SpawnValues& v, std::string_view key, const double* value, size_t count) {
-  if (!isSpawnKey(key)) return false;
-  const ParamDecl& d = paramIn(emitterParamDecls(), std::string(key));
-  auto held = [&](double x) { return std::clamp(std::isfinite(x) ? x : d.min, d.min, d.max); };
-  // A MIN,MAX pair: the track moves its centre and keeps its half-width.
-  auto centre = [&](double& lo, double& hi) {
-    const double half = 0.5 * (hi - lo), c = held(value[0]);
-    lo = std::clamp(c - half, d.min, d.max);
-    hi = std::clamp(c + half, d.min, d.max);
-  };
-  const bool triple = key == "direction" || key == "box_half_m";
-  if (count != (triple ? 3u : 1u)) return false;
-  if (key == "speed_m_per_s") centre(v.speedMin, v.speedMax);
-  else if (key == "size_m") centre(v.sizeMin, v.sizeMax);
-  else if (key == "rotation_deg") centre(v.rotationMinDeg, v.rotationMaxDeg);
-  else if (key == "spin_deg_per_s") centre(v.spinMinDegPerS, v.spinMaxDegPerS);
-  else if (key == "spread_deg") v.spreadDeg = held(value[0]);
-  else if (key == "cone_angle_deg") v.coneAngleDeg = held(value[0]);
-  else if (key == "radius_m") v.radius = held(value[0]);
-  else if (key == "box_half_m") v.boxHalf = {held(value[0]), held(value[1]), held(value[2])};
-  else if (key == "direction") {
-    const glm::dvec3 dir{held(value[0]), held(value[1]), held(value[2])};
-    const double len = glm::length(dir);
-    if (len > 0.0) v.direction = dir / len;  // a zero direction keeps the emitter's
-  }
+  const int slot = spawnSlot(key);
+  if (slot < 0 || count != spawnMembers()[size_t(slot)].count()) return false;
+  setSpawnValue(v, slot, value);
   return true;
 }
 

@@ -181,13 +181,24 @@ SpawnValues spawnValues(const EmitterDesc& e);
 // The declared keys a track may animate, sampled at birth: speed_m_per_s
 // size_m rotation_deg spin_deg_per_s (MIN,MAX pairs: a track sets the
 // centre, the pair's half-width stays) spread_deg cone_angle_deg radius_m
-// direction box_half_m.
+// direction box_half_m. One table in evaluate.cpp says which member each
+// key is; everything below reads it.
 const std::vector<std::string>& spawnKeys();
 bool isSpawnKey(std::string_view key);
-// Writes a track's value for `key` into `v`, held to the field's declared
-// range (a pair's centre moved, its half-width kept; a zero direction
-// ignored). false for a key spawnKeys() does not list or a value of the
-// wrong size (1 number, or 3 for direction and box_half_m).
+// A spawn key's place in spawnKeys() (what a per-particle loop keeps
+// instead of the name); -1 for any other key.
+int spawnSlot(std::string_view key);
+// The numbers a key's track carries: 3 for direction and box_half_m, 1 for
+// the rest (a pair's centre); 0 for a key that is no spawn value.
+size_t spawnValueCount(std::string_view key);
+// The value of `key` in `v` as a track carries it (a pair's centre); empty
+// for a key that is no spawn value.
+std::vector<double> spawnValue(const SpawnValues& v, std::string_view key);
+// Writes a track's value into `v`, held to the field's declared range (a
+// pair's centre moved, its half-width kept; a zero direction ignored):
+// by slot (spawnSlot; spawnValueCount numbers), or by key, false for a key
+// that is no spawn value or a value of the wrong size.
+void setSpawnValue(SpawnValues& v, int slot, const double* value);
 bool setSpawnValue(SpawnValues& v, std::string_view key, const double* value, size_t count);
 
 struct EvaluatorInputs {

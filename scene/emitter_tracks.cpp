@@ -31,20 +31,10 @@ std::optional<std::string> emitterTrackKey(std::string_view property, std::strin
   return std::nullopt;
 }
 
-bool emitterKeyIsVector(std::string_view key) { return key == "direction" || key == "box_half_m"; }
-
 std::optional<sequencer::PropertyValue> emitterKeyValue(const particles::EmitterDesc& d, std::string_view key) {
-  if (!particles::isSpawnKey(key)) return std::nullopt;
-  const particles::SpawnValues v = particles::spawnValues(d);
-  if (key == "direction") return sequencer::PropertyValue(v.direction);
-  if (key == "box_half_m") return sequencer::PropertyValue(v.boxHalf);
-  if (key == "speed_m_per_s") return sequencer::PropertyValue(0.5 * (v.speedMin + v.speedMax));
-  if (key == "size_m") return sequencer::PropertyValue(0.5 * (v.sizeMin + v.sizeMax));
-  if (key == "rotation_deg") return sequencer::PropertyValue(0.5 * (v.rotationMinDeg + v.rotationMaxDeg));
-  if (key == "spin_deg_per_s") return sequencer::PropertyValue(0.5 * (v.spinMinDegPerS + v.spinMaxDegPerS));
-  if (key == "spread_deg") return sequencer::PropertyValue(v.spreadDeg);
-  if (key == "cone_angle_deg") return sequencer::PropertyValue(v.coneAngleDeg);
-  if (key == "radius_m") return sequencer::PropertyValue(v.radius);
+  const std::vector<double> x = particles::spawnValue(particles::spawnValues(d), key);
+  if (x.size() == 3) return sequencer::PropertyValue(glm::dvec3(x[0], x[1], x[2]));
+  if (x.size() == 1) return sequencer::PropertyValue(x[0]);
   return std::nullopt;
 }
 
@@ -56,7 +46,7 @@ std::optional<sequencer::PropertyValue> parseEmitterKeyValue(std::string_view ke
   }
   // A pair's key is one number (its centre) in the pair's range.
   ParamDecl d = paramIn(particles::emitterParamDecls(), key);
-  const bool vector = emitterKeyIsVector(key);
+  const bool vector = particles::spawnValueCount(key) == 3;
   d.count = vector ? 3 : 1;
   d.ordered = false;
   d.oneForAll = false;
@@ -75,21 +65,27 @@ std::shared_ptr<const EmitterSpawnTracks> EmitterSpawnTracks::of(const SceneStat
   const sequencer::Binding* b = state.sequence.findBinding(id);
   if (!b) return nullptr;
   auto out = std::make_shared<EmitterSpawnTracks>();
-  for (const sequencer::Track& t : b->tracks)
-    if (emitterTrackKey(sequencer::trackProperty(t)) && sequencer::trackKeyCount(t) > 0) out->tracks_.push_back(t);
+  for (const sequencer::Track& t : b->tracks) {
+    const std::optional<std::string> key = emitterTrackKey(sequencer::trackProperty(t));
+    if (!key || sequencer::trackKeyCount(t) == 0) continue;
+    // A track of the wrong kind for its key writes nothing (the load checks drop it).
+    const bool vector = particles::spawnValueCount(*key) == 3;
+    if (vector ? !std::holds_alternative<sequencer::VectorTrack>(t) : !std::holds_alternative<sequencer::ScalarTrack>(t))
+      continue;
+    out->tracks_.push_back({particles::spawnSlot(*key), t});
+  }
   if (out->tracks_.empty()) return nullptr;
   return out;
 }
 
 void EmitterSpawnTracks::apply(double birth, particles::SpawnValues& v) const {
-  for (const sequencer::Track& t : tracks_) {
-    const std::string key = sequencer::trackProperty(t).substr(kEmitterTrackPrefix.size());
-    if (const auto* s = std::get_if<sequencer::ScalarTrack>(&t)) {
-      if (const std::optional<double> x = sequencer::evaluate(*s, birth)) particles::setSpawnValue(v, key, &*x, 1);
-    } else if (const auto* w = std::get_if<sequencer::VectorTrack>(&t)) {
+  for (const SlotTrack& st : tracks_) {
+    if (const auto* s = std::get_if<sequencer::ScalarTrack>(&st.track)) {
+      if (const std::optional<double> x = sequencer::evaluate(*s, birth)) particles::setSpawnValue(v, st.slot, &*x);
+    } else if (const auto* w = std::get_if<sequencer::VectorTrack>(&st.track)) {
       if (const std::optional<glm::dvec3> x = sequencer::evaluate(*w, birth)) {
         const double xyz[3] = {x->x, x->y, x->z};
-        particles::setSpawnValue(v, key, xyz, 3);
+        particles::setSpawnValue(v, st.slot, xyz);
       }
     }
   }
@@ -103,17 +99,15 @@ void checkEmitterTracks(SceneState& state, std::vector<std::string>* warnings) {
       const std::string& p = sequencer::trackProperty(t);
       if (!isEmitterTrack(p)) return false;
       std::string why;
-      const bool kindFits = emitterTrackKey(p) &&
-                            (emitterKeyIsVector(p.substr(kEmitterTrackPrefix.size()))
-                                 ? std::holds_alternative<sequencer::VectorTrack>(t)
-                                 : std::holds_alternative<sequencer::ScalarTrack>(t));
-      if (!emitterTrackKey(p, &why)) {
-      } else if (!kindFits) {
-        why = "a track of the wrong kind";
-      } else if (!e || !e->particles) {
-        why = "the entity has no particle emitter";
-      } else {
-        return false;
+      if (const std::optional<std::string> key = emitterTrackKey(p, &why)) {
+        const bool vector = particles::spawnValueCount(*key) == 3;
+        if (vector ? !std::holds_alternative<sequencer::VectorTrack>(t)
+                   : !std::holds_alternative<sequencer::ScalarTrack>(t))
+          why = "a track of the wrong kind";
+        else if (!e || !e->particles)
+          why = "the entity has no particle emitter";
+        else
+          return false;
       }
       if (warnings)
         warnings->push_back("entity " + std::to_string(b.entity) + " '" + (e ? e->name : b.label) + "' track " + p +

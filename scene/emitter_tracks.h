@@ -30,8 +30,7 @@ inline constexpr std::string_view kEmitterTrackPrefix = "particles.";
 // other paths. `error` (when given) says why a "particles." path is not one.
 std::optional<std::string> emitterTrackKey(std::string_view property, std::string* error = nullptr);
 bool isEmitterTrack(std::string_view property);  // any "particles." path
-// Whether the key's track is a vector track (direction, box_half_m).
-bool emitterKeyIsVector(std::string_view key);
+// (A key's track is a vector track when particles::spawnValueCount is 3.)
 
 // The emitter's value now as a key (a pair's centre).
 std::optional<sequencer::PropertyValue> emitterKeyValue(const particles::EmitterDesc& d, std::string_view key);
@@ -48,7 +47,12 @@ class EmitterSpawnTracks {
   bool operator==(const EmitterSpawnTracks& o) const { return tracks_ == o.tracks_; }
 
  private:
-  std::vector<sequencer::Track> tracks_;
+  struct SlotTrack {
+    int slot = -1;  // particles::spawnSlot of the track's key: apply() runs per particle
+    sequencer::Track track;
+    bool operator==(const SlotTrack&) const = default;
+  };
+  std::vector<SlotTrack> tracks_;
 };
 
 // Load checks (scene_json): a "particles." track whose key is not a spawn

@@ -1,6 +1,5 @@
 #include "scene/sequence_edits.h"
 
-#include "scene/emitter_tracks.h"
 #include <algorithm>
 #include <cmath>
 
@@ -112,7 +111,8 @@ std::optional<AnimTarget> animationTarget(std::string_view fieldPath, std::strin
   if (isEmitterTrack(fieldPath)) {
     const std::optional<std::string> key = emitterTrackKey(fieldPath, &error);
     if (!key) return std::nullopt;
-    return AnimTarget{std::string(fieldPath), emitterKeyIsVector(*key) ? TrackKind::Vector : TrackKind::Scalar};
+    return AnimTarget{std::string(fieldPath),
+                      particles::spawnValueCount(*key) == 3 ? TrackKind::Vector : TrackKind::Scalar};
   }
   const EntityField* f = findEntityField(fieldPath);
   if (!f) {
