@@ -119,6 +119,110 @@ glm::dvec3 arrivingAngular(const std::vector<RotationKey>& keys, size_t j) {
 
 }  // namespace
 
+namespace {
+
+// The blossom of a cubic Bezier (de Casteljau with a parameter per level):
+// f(s, s, s) is the curve at s; f(s0..., s1...) the control points of its
+// piece on [s0, s1].
+double blossom(const double b[4], double u1, double u2, double u3) {
+  double p[3], q[2];
+  for (int i = 0; i < 3; ++i) p[i] = (1.0 - u1) * b[i] + u1 * b[i + 1];
+  for (int i = 0; i < 2; ++i) q[i] = (1.0 - u2) * p[i] + u2 * p[i + 1];
+  return (1.0 - u3) * q[0] + u3 * q[1];
+}
+
+template <class V>
+void widen(std::pair<V, V>& r, const V& v) {
+  for (int c = 0; c < componentCount<V>(); ++c) {
+    double lo = component(r.first, c), hi = component(r.second, c);
+    setComponent(r.first, c, std::min(lo, component(v, c)));
+    setComponent(r.second, c, std::max(hi, component(v, c)));
+  }
+}
+
+template <class V>
+std::optional<std::pair<V, V>> curveRange(const std::vector<Key<V>>& keys, double t0, double t1) {
+  const auto at0 = evaluateCurve(keys, t0);
+  if (!at0) return std::nullopt;
+  if (t1 < t0) std::swap(t0, t1);
+  std::pair<V, V> r{at0->first, at0->first};
+  widen(r, evaluateCurve(keys, t1)->first);
+  for (size_t k = 0; k < keys.size(); ++k) {
+    // A key inside the interval is a value the track takes (a jump's every side).
+    if (keys[k].time >= t0 && keys[k].time <= t1) widen(r, keys[k].value);
+    if (k + 1 >= keys.size()) continue;
+    const Key<V>& a = keys[k];
+    const Key<V>& b = keys[k + 1];
+    // Segments that overlap (t0, t1); a jump (b.time == a.time) has no inside.
+    if (!(a.time < b.time) || !(a.time < t1) || !(b.time > t0)) continue;
+    if (a.interpolation == Interpolation::Constant) {
+      widen(r, a.value);
+      continue;
+    }
+    // The part of the segment inside the window, in the eased parameter
+    // s = e(u): e is monotone, so u in [ua, ub] is s in [e(ua), e(ub)].
+    const double h = b.time - a.time;
+    const double s0 = easeValue(a.ease, std::clamp((t0 - a.time) / h, 0.0, 1.0));
+    const double s1 = easeValue(a.ease, std::clamp((t1 - a.time) / h, 0.0, 1.0));
+    V lo = a.value, hi = a.value;
+    for (int c = 0; c < componentCount<V>(); ++c) {
+      const double p0 = component(a.value, c), p1 = component(b.value, c);
+      double x0, x1;
+      if (a.interpolation == Interpolation::Linear) {
+        x0 = p0 + (p1 - p0) * s0;
+        x1 = p0 + (p1 - p0) * s1;
+      } else {
+        // The cubic's Bezier polygon on [s0, s1] (its blossom): the piece
+        // lies inside it, and it shrinks to the piece as the window does.
+        const double m0 = leavingSlope(keys, k, c) * h, m1 = arrivingSlope(keys, k + 1, c) * h;
+        const double bz[4] = {p0, p0 + m0 / 3.0, p1 - m1 / 3.0, p1};
+        const double c0 = blossom(bz, s0, s0, s0), c1 = blossom(bz, s0, s0, s1);
+        const double c2 = blossom(bz, s0, s1, s1), c3 = blossom(bz, s1, s1, s1);
+        x0 = std::min({c0, c1, c2, c3});
+        x1 = std::max({c0, c1, c2, c3});
+      }
+      setComponent(lo, c, std::min(x0, x1));
+      setComponent(hi, c, std::max(x0, x1));
+    }
+    widen(r, lo);
+    widen(r, hi);
+  }
+  return r;
+}
+
+bool sameOrientation(const glm::dquat& a, const glm::dquat& b) { return a == b || a == -b; }
+
+}  // namespace
+
+std::optional<std::pair<double, double>> valueRange(const ScalarTrack& track, double t0, double t1) {
+  return curveRange(track.keys, t0, t1);
+}
+
+std::optional<std::pair<glm::dvec3, glm::dvec3>> valueRange(const VectorTrack& track, double t0, double t1) {
+  return curveRange(track.keys, t0, t1);
+}
+
+bool turnsDuring(const RotationTrack& track, double t0, double t1) {
+  const auto& keys = track.keys;
+  if (keys.empty()) return false;
+  if (t1 < t0) std::swap(t0, t1);
+  const glm::dquat first = *evaluate(track, t0);
+  for (size_t k = 0; k < keys.size(); ++k) {
+    if (keys[k].time >= t0 && keys[k].time <= t1 && !sameOrientation(keys[k].value, first)) return true;
+    if (k + 1 >= keys.size()) continue;
+    const RotationKey& a = keys[k];
+    const RotationKey& b = keys[k + 1];
+    if (!(a.time < b.time) || !(a.time < t1) || !(b.time > t0)) continue;
+    if (!sameOrientation(a.value, first)) return true;
+    if (a.interpolation == Interpolation::Constant) continue;
+    if (!sameOrientation(b.value, first)) return true;
+    if (a.interpolation == Interpolation::Cubic &&
+        (leavingAngular(keys, k) != glm::dvec3(0.0) || arrivingAngular(keys, k + 1) != glm::dvec3(0.0)))
+      return true;
+  }
+  return false;
+}
+
 const std::string& trackProperty(const Track& t) {
   return std::visit([](const auto& x) -> const std::string& { return x.property; }, t);
 }

@@ -4,6 +4,7 @@
 // undo store); evaluating it reads only the keys and t.
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -59,6 +60,23 @@ std::optional<double> evaluate(const ScalarTrack& track, double t);
 std::optional<glm::dvec3> evaluate(const VectorTrack& track, double t);
 std::optional<glm::dquat> evaluate(const RotationTrack& track, double t);
 std::optional<bool> evaluate(const StepTrack& track, double t);
+
+// An enclosure of every value a scalar track (or each component of a
+// vector track) takes for t in [t0, t1]: the lowest and highest value, or
+// a little wider. Proven, not sampled: the piece of a cubic segment inside
+// the interval lies inside its own Bezier control polygon (the blossom of
+// p0, p0 + m0/3, p1 - m1/3, p1 on the piece's eased parameters; an ease is
+// monotone, so it only re-times the piece), which closes in on the piece
+// as the interval shrinks; linear and constant pieces give their exact
+// range. What a bound over a time window needs (particles/bounds.h).
+// nullopt: no keys.
+std::optional<std::pair<double, double>> valueRange(const ScalarTrack& track, double t0, double t1);
+std::optional<std::pair<glm::dvec3, glm::dvec3>> valueRange(const VectorTrack& track, double t0, double t1);
+// Whether a rotation track may give two different orientations at times
+// in [t0, t1] (false: evaluate() is one orientation there). Conservative:
+// any segment that overlaps the interval with different end keys or a
+// non-zero end velocity turns.
+bool turnsDuring(const RotationTrack& track, double t0, double t1);
 
 // Value and time derivative (units per second) of a scalar track; a camera
 // path uses the derivative of its progress for the speed that banking needs.

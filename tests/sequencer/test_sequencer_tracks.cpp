@@ -1,6 +1,7 @@
 // Tracks and keys: interpolation exact at keys, clamped cubics that never
 // overshoot, eases, user and broken tangents, one key, coincident keys,
 // keys at huge times, quaternion shortest paths through 179/180/181 degrees,
+// enclosures of a track's values over a window,
 // JSON round trips, frame ranges and output names.
 #include <QtTest>
 
@@ -233,6 +234,88 @@ class TestTracks : public QObject {
     // Distinct frames stay distinct: no two frames at 1e6 s collapse onto one time.
     QVERIFY(frameTime(60000001, rate) > frameTime(60000000, rate));
     QCOMPARE(frameAtTime(frameTime(60000123, rate), rate), int64_t(60000123));
+  }
+
+  // valueRange encloses every value of the track over a window (dense
+  // samples, 1e-12 of the values' scale), with user slopes that overshoot,
+  // eases, jumps, constant and linear pieces and windows that start before
+  // the first key or end after the last; for linear and constant tracks it
+  // is the exact range. turnsDuring says a rotation is still only where it is.
+  void valueRangeEnclosesTheTrack() {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    size_t windows = 0;
+    double slack = 0.0;  // how much wider than the samples' range, as a share of it
+    for (int trial = 0; trial < 300; ++trial) {
+      ScalarTrack track;
+      double t = 0.0;
+      const bool straight = trial % 3 == 0;  // linear and constant only: the range is exact
+      for (int k = 0; k < 6; ++k) {
+        const Interpolation kinds[] = {Interpolation::Cubic, Interpolation::Linear, Interpolation::Constant};
+        ScalarKey key0 = key(t, 5.0 * u(rng), straight ? kinds[1 + (trial + k) % 2] : kinds[(trial + k) % 3],
+                             Ease((trial + k) % 4));
+        if (!straight && k % 2 == 1) key0.setSlope(40.0 * u(rng));  // steep user slopes overshoot
+        track.keys.push_back(key0);
+        if (trial % 5 == 0 && k == 2) continue;  // a jump: the next key at the same time
+        t += 0.2 + std::abs(u(rng));
+      }
+      const double end = track.keys.back().time;
+      for (int w = 0; w < 5; ++w) {
+        double t0 = -0.5 + (end + 1.0) * (0.5 + 0.5 * u(rng)), t1 = t0 + (end + 1.0) * 0.3 * (1.0 + u(rng));
+        const auto r = valueRange(track, t0, t1);
+        QVERIFY(r && r->first <= r->second);
+        double lo = 1e300, hi = -1e300;
+        for (int i = 0; i <= 4000; ++i) {
+          const double v = *evaluate(track, t0 + (t1 - t0) * i / 4000.0);
+          lo = std::min(lo, v), hi = std::max(hi, v);
+        }
+        for (const ScalarKey& k : track.keys)
+          if (k.time >= t0 && k.time <= t1) lo = std::min(lo, k.value), hi = std::max(hi, k.value);
+        QVERIFY2(r->first <= lo + 1e-12 && r->second >= hi - 1e-12, qPrintable(QString("trial %1").arg(trial)));
+        if (straight) {
+          // Exact: the sampled range reaches the enclosure (a linear extreme is at a key or an end).
+          QVERIFY(std::abs(r->first - lo) < 1e-12 && std::abs(r->second - hi) < 1e-12);
+        } else if (hi > lo) {
+          slack = std::max(slack, ((r->second - r->first) - (hi - lo)) / (hi - lo));
+        }
+        ++windows;
+      }
+    }
+    qInfo("%zu windows enclosed; a cubic's polygon at most %.2fx wider than the samples' range", windows, 1.0 + slack);
+    QVERIFY(slack < 2.0);
+    // A short window on a long segment (a lifetime's worth of a minute-long
+    // move): the piece's polygon, not the segment's, so about the piece's range.
+    ScalarTrack slow;
+    slow.keys = {key(0.0, 0.0), key(60.0, 100.0)};
+    const auto piece = valueRange(slow, 30.0, 32.0);
+    const double p0 = *evaluate(slow, 30.0), p1 = *evaluate(slow, 32.0);
+    qInfo("2 s of a 60 s ease: range %.6f..%.6f, the curve %.6f..%.6f", piece->first, piece->second, p0, p1);
+    QVERIFY(piece->first <= p0 && piece->second >= p1 && (piece->second - piece->first) < 1.01 * (p1 - p0));
+    // Vector tracks: each component apart.
+    VectorTrack v;
+    v.property = "transform.translation";
+    VectorKey a, b;
+    a.time = 0.0, a.value = {0, 5, -1}, a.interpolation = Interpolation::Linear;
+    b.time = 2.0, b.value = {4, 1, -1};
+    v.keys = {a, b};
+    const auto vr = valueRange(v, 0.5, 1.0);
+    QVERIFY(vr);
+    QVERIFY(glm::length(vr->first - glm::dvec3(1, 3, -1)) < 1e-12 && glm::length(vr->second - glm::dvec3(2, 4, -1)) < 1e-12);
+    QVERIFY(!valueRange(ScalarTrack{}, 0.0, 1.0));
+
+    // Rotations: still before the first key, between equal keys and after
+    // the last; turning where the keys differ or a still pair has a spin.
+    RotationTrack r;
+    r.keys = {rkey(1.0, yaw(0)), rkey(2.0, yaw(0)), rkey(3.0, yaw(90)), rkey(4.0, yaw(90), Interpolation::Cubic)};
+    QVERIFY(!turnsDuring(r, -5.0, 1.0));
+    QVERIFY(!turnsDuring(r, 1.0, 2.0));
+    QVERIFY(turnsDuring(r, 1.5, 2.5));
+    QVERIFY(turnsDuring(r, 2.9, 3.1));
+    QVERIFY(!turnsDuring(r, 4.0, 9.0));
+    r.keys[0].interpolation = Interpolation::Cubic;
+    r.keys[0].setSlope({0, 0, 2.0});  // leaves yaw 0 spinning, comes back to it
+    QVERIFY(turnsDuring(r, 1.2, 1.4));
+    QVERIFY(!turnsDuring(RotationTrack{}, 0.0, 1.0));
   }
 
   void quaternionsTakeTheShortWay() {
