@@ -95,13 +95,12 @@ void emitterGlyph(render::Overlay& o, const scene::SceneState& state, scene::Ent
     }
   }
   if (selected) {
+    // The renderer's bound at the shown time (what decides that it is out of view).
     scene::ParticleWorld world(state);
-    std::optional<std::pair<double, double>> ground;
-    const particles::SurfaceSampler* surface = nullptr;
-    if (d.shape == S::Terrain) ground = world.groundRange();
-    if (d.shape == S::Mesh) surface = world.inputs(d, false).surface;
-    const auto b = particles::particleBound(d, bool(scene::EmitterMotion::of(state, id)), ground, surface);
-    if (b) sphere(o, p + b->centre, b->radius, glm::vec4(col.r, col.g, col.b, col.a * 0.25f));
+    const particles::SurfaceSampler* surface = d.shape == S::Mesh ? world.inputs(d, false).surface : nullptr;
+    const scene::PlacedEmitter pe{id, d, scene::EmitterMotion::of(state, id), scene::EmitterSpawnTracks::of(state, id)};
+    const auto b = scene::placedBound(pe, state.time.seconds, &world, surface);
+    if (b) sphere(o, p + b->bound.centre, b->bound.radius, glm::vec4(col.r, col.g, col.b, col.a * 0.25f));
   }
 }
 

@@ -39,10 +39,9 @@ double travelBound(const EmitterDesc& e, double age) {
   return d;
 }
 
-std::optional<ParticleBound> particleBound(const EmitterDesc& e, bool moves,
-                                           std::optional<std::pair<double, double>> groundRange,
-                                           const SurfaceSampler* surface) {
-  if (moves && e.space == Space::World) return std::nullopt;
+std::optional<ParticleBound> particleBound(const EmitterDesc& e, const BoundInputs& in) {
+  const bool moved = in.moves && e.space == Space::World;
+  if (moved && !in.birthOrigins) return std::nullopt;
   ParticleBound b;
   switch (e.shape) {
     case Shape::Point: break;
@@ -51,23 +50,50 @@ std::optional<ParticleBound> particleBound(const EmitterDesc& e, bool moves,
     case Shape::Disc:
     case Shape::Cone: b.radius = e.radius; break;  // a cone's particles start on its base disc
     case Shape::Mesh: {
-      const auto box = surface ? surface->box() : std::nullopt;
+      const auto box = in.surface ? in.surface->box() : std::nullopt;
       if (!box) return std::nullopt;
       b.centre = 0.5 * (box->first + box->second);
       b.radius = 0.5 * glm::length(box->second - box->first);
       break;
     }
     case Shape::Terrain: {
-      if (!groundRange) return std::nullopt;
-      const double z0 = groundRange->first - e.origin.z, z1 = groundRange->second - e.origin.z + e.boxHalf.z;
+      if (!in.groundRange) return std::nullopt;
+      const double z0 = in.groundRange->first - e.origin.z, z1 = in.groundRange->second - e.origin.z + e.boxHalf.z;
       b.centre = {0.0, 0.0, 0.5 * (z0 + z1)};
       b.radius = glm::length(glm::dvec3(e.boxHalf.x, e.boxHalf.y, 0.5 * (z1 - z0)));
       break;
     }
   }
+  if (moved) {
+    // Born around where the emitter was (evaluate.cpp): shifted by the
+    // origin box's centre, grown by its half diagonal. A terrain shape's
+    // height is the ground's (only x, y follow the origin); a mesh shape's
+    // surface is another entity's, wherever this one was.
+    glm::dvec3 shift = 0.5 * (in.birthOrigins->lo + in.birthOrigins->hi) - e.origin;
+    glm::dvec3 half = 0.5 * (in.birthOrigins->hi - in.birthOrigins->lo);
+    if (e.shape == Shape::Terrain) shift.z = half.z = 0.0;
+    if (e.shape != Shape::Mesh) {
+      b.centre += shift;
+      b.radius += glm::length(half);
+    }
+  }
   b.radius += travelBound(e, e.lifetimeMax);
-  if (!std::isfinite(b.radius)) return std::nullopt;
+  if (!std::isfinite(b.radius) || !std::isfinite(b.centre.x) || !std::isfinite(b.centre.y) || !std::isfinite(b.centre.z))
+    return std::nullopt;
   return b;
+}
+
+EmitterDesc widenedForSpawn(const EmitterDesc& e, const SpawnValues& lo, const SpawnValues& hi) {
+  EmitterDesc w = e;
+  // A pair's members move with its centre: the smallest minimum and the
+  // largest maximum hold every draw.
+  w.speedMin = std::min({e.speedMin, lo.speedMin, hi.speedMin});
+  w.speedMax = std::max({e.speedMax, lo.speedMax, hi.speedMax});
+  w.sizeMin = std::min({e.sizeMin, lo.sizeMin, hi.sizeMin});
+  w.sizeMax = std::max({e.sizeMax, lo.sizeMax, hi.sizeMax});
+  w.radius = std::max({std::abs(e.radius), std::abs(lo.radius), std::abs(hi.radius)});
+  w.boxHalf = glm::max(glm::abs(e.boxHalf), glm::max(glm::abs(lo.boxHalf), glm::abs(hi.boxHalf)));
+  return w;
 }
 
 }  // namespace hs::particles

@@ -41,14 +41,35 @@ struct ParticleBound {
 double speedBound(const EmitterDesc& e, double age);
 double travelBound(const EmitterDesc& e, double age);
 
+// Where a world-space emitter on a moving entity was while the particles
+// alive now were born (world coordinates, the box's corners).
+struct OriginBox {
+  glm::dvec3 lo{0.0}, hi{0.0};
+};
+
+// What a bound needs besides the emitter.
+struct BoundInputs {
+  // World space on a moving entity: its particles start where it was at
+  // their birth. Without `birthOrigins` there is then no bound.
+  bool moves = false;
+  std::optional<OriginBox> birthOrigins{};
+  std::optional<std::pair<double, double>> groundRange{};  // a terrain shape's ground: world z min and max
+  const SurfaceSampler* surface = nullptr;                 // a mesh shape's surface (its box)
+};
+
 // The sphere holding the positions of every particle of `e` at any time
 // (sizes not included: a draw adds its sprite's or mesh's reach). nullopt
-// when none can be given: a mesh shape without its surface's box
-// (`surface`, the evaluator's SurfaceSampler), a world-space emitter whose
-// entity moves (`moves`), or a terrain shape without the ground's height
-// range (`groundRange`, world z min and max).
-std::optional<ParticleBound> particleBound(const EmitterDesc& e, bool moves = false,
-                                           std::optional<std::pair<double, double>> groundRange = std::nullopt,
-                                           const SurfaceSampler* surface = nullptr);
+// when none can be given: a mesh shape without its surface's box, a moving
+// world-space emitter without its birth origins, a terrain shape without
+// the ground's height range.
+std::optional<ParticleBound> particleBound(const EmitterDesc& e, const BoundInputs& in = {});
+
+// The emitter with its spawn values widened to every value between `lo`
+// and `hi` (its spawn values with each keyed member at the smallest and the
+// largest its track takes over the births that matter): particleBound,
+// speedBound and its sizes then hold for particles whose spawn values a
+// track set (EvaluatorInputs::spawnAt). Only what a bound reads is widened
+// (speeds, sizes, radius, box); the rest stays.
+EmitterDesc widenedForSpawn(const EmitterDesc& e, const SpawnValues& lo, const SpawnValues& hi);
 
 }  // namespace hs::particles

@@ -59,25 +59,23 @@ struct ViewVolume {
 // (particles/bounds.h: every particle it can have, proven) grown by the
 // largest sprite's reach (the quad's half-diagonal at the largest size,
 // plus half the velocity stretch at the largest speed) against each view.
-// No bound (a moving world-space emitter, spawn values keyed on the
-// timeline, a mesh shape without its surface): it may always be seen.
-bool mayBeSeen(const scene::PlacedEmitter& pe, const particles::Evaluator& ev, const std::vector<ViewVolume>& volumes,
-               const glm::dvec3& frameOrigin, scene::ParticleWorld* world) {
-  if (pe.spawn) return true;
-  const particles::EmitterDesc& d = pe.desc;
-  std::optional<std::pair<double, double>> ground;
-  if (d.shape == particles::Shape::Terrain && world) ground = world->groundRange();
-  const std::optional<particles::ParticleBound> b =
-      particles::particleBound(d, bool(pe.motion), ground, ev.inputs().surface);
+// scene::placedBound widens it by the emitter's spawn tracks and its
+// motion over the births of the particles alive at t. No bound (a camera
+// path moving a world-space emitter, a mesh shape without its surface):
+// it may always be seen.
+bool mayBeSeen(const scene::PlacedEmitter& pe, double t, const particles::Evaluator& ev,
+               const std::vector<ViewVolume>& volumes, const glm::dvec3& frameOrigin, scene::ParticleWorld* world) {
+  const std::optional<scene::PlacedBound> b = scene::placedBound(pe, t, world, ev.inputs().surface);
   if (!b) return true;
+  const particles::EmitterDesc& d = b->desc;  // widened by its spawn tracks
   double sizeScale = d.sizeOverLife.keys.empty() ? 1.0 : 0.0;
   for (const particles::CurveKey& k : d.sizeOverLife.keys) sizeScale = std::max(sizeScale, k.value);
   double reach = 0.5 * std::sqrt(2.0) * d.sizeMax * sizeScale;
   if (d.facing == particles::Facing::Velocity)
     reach += 0.5 * double(kStretchSeconds) * particles::speedBound(d, d.lifetimeMax);
-  const glm::dvec3 c = d.origin + b->centre - frameOrigin;  // double, then relative
+  const glm::dvec3 c = d.origin + b->bound.centre - frameOrigin;  // double, then relative
   for (const ViewVolume& v : volumes)
-    if (v.frustum.intersectsSphere(c - v.eye, b->radius + reach)) return true;
+    if (v.frustum.intersectsSphere(c - v.eye, b->bound.radius + reach)) return true;
   return false;
 }
 
@@ -286,7 +284,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     // Nothing born in the live window: the emitter costs nothing at t.
     if (e.evaluator->candidates(t) == 0) continue;
     // Out of every view: it costs nothing either (no evaluation, no upload).
-    if (!mayBeSeen(pe, *e.evaluator, volumes, origin, world_ && needsWorld(pe.desc) ? world_.get() : nullptr)) {
+    if (!mayBeSeen(pe, t, *e.evaluator, volumes, origin, world_ && needsWorld(pe.desc) ? world_.get() : nullptr)) {
       ++frame.stats.emittersOutOfView;
       continue;
     }

@@ -91,6 +91,26 @@ void EmitterSpawnTracks::apply(double birth, particles::SpawnValues& v) const {
   }
 }
 
+std::pair<particles::SpawnValues, particles::SpawnValues> EmitterSpawnTracks::range(
+    const particles::SpawnValues& base, double t0, double t1) const {
+  std::pair<particles::SpawnValues, particles::SpawnValues> r{base, base};
+  for (const SlotTrack& st : tracks_) {
+    if (const auto* s = std::get_if<sequencer::ScalarTrack>(&st.track)) {
+      if (const auto x = sequencer::valueRange(*s, t0, t1)) {
+        particles::setSpawnValue(r.first, st.slot, &x->first);
+        particles::setSpawnValue(r.second, st.slot, &x->second);
+      }
+    } else if (const auto* w = std::get_if<sequencer::VectorTrack>(&st.track)) {
+      if (const auto x = sequencer::valueRange(*w, t0, t1)) {
+        const double lo[3] = {x->first.x, x->first.y, x->first.z}, hi[3] = {x->second.x, x->second.y, x->second.z};
+        particles::setSpawnValue(r.first, st.slot, lo);
+        particles::setSpawnValue(r.second, st.slot, hi);
+      }
+    }
+  }
+  return r;
+}
+
 void checkEmitterTracks(SceneState& state, std::vector<std::string>* warnings) {
   for (sequencer::Binding& b : state.sequence.bindings) {
     if (!sequencer::isEntityTarget(b.entity)) continue;

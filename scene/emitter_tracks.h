@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "particles/evaluate.h"
@@ -44,6 +45,11 @@ class EmitterSpawnTracks {
  public:
   static std::shared_ptr<const EmitterSpawnTracks> of(const SceneState& state, EntityId id);
   void apply(double birth, particles::SpawnValues& v) const;
+  // `base` with each keyed member at the smallest (first) and the largest
+  // (second) value its track takes for births in [t0, t1]
+  // (sequencer::valueRange), what particles::widenedForSpawn takes.
+  std::pair<particles::SpawnValues, particles::SpawnValues> range(const particles::SpawnValues& base, double t0,
+                                                                  double t1) const;
   bool operator==(const EmitterSpawnTracks& o) const { return tracks_ == o.tracks_; }
 
  private:

@@ -1,6 +1,8 @@
 #include "scene/particle_world.h"
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "foliage/surface.h"
 #include "sequencer/track.h"
@@ -92,6 +94,61 @@ glm::dvec3 EmitterMotion::originAt(double t) const {
   return glm::dvec3(m[3]) + offset_;
 }
 
+std::optional<particles::OriginBox> EmitterMotion::originRange(double t0, double t1) const {
+  if (compiled_) return std::nullopt;
+  if (t1 < t0) std::swap(t0, t1);
+  // The box (centre c, half extents h) of the chain's translation so far,
+  // from the entity up: a parent maps x to T + R S x.
+  glm::dvec3 c(0.0), h(0.0);
+  for (size_t i = 0; i < levels_.size(); ++i) {
+    const Level& level = levels_[i];
+    glm::dvec3 tLo = level.transform.translation, tHi = tLo;
+    glm::dvec3 sLo = level.transform.scale, sHi = sLo;
+    glm::dquat rotation = level.transform.rotation;
+    bool turns = false;
+    if (level.binding) {
+      for (const sequencer::Track& track : level.binding->tracks) {
+        if (const auto* v = std::get_if<sequencer::VectorTrack>(&track)) {
+          const auto r = sequencer::valueRange(*v, t0, t1);
+          if (!r) continue;
+          if (v->property == "transform.translation") std::tie(tLo, tHi) = *r;
+          else if (v->property == "transform.scale") std::tie(sLo, sHi) = *r;
+        } else if (const auto* q = std::get_if<sequencer::RotationTrack>(&track)) {
+          if (q->property != "transform.rotation" || q->keys.empty()) continue;
+          turns = sequencer::turnsDuring(*q, t0, t1);
+          // originAt's rule for the orientation a still track holds.
+          const glm::dquat value = *sequencer::evaluate(*q, t0);
+          if (glm::length(value) > 1e-12) rotation = glm::normalize(value);
+        }
+      }
+    }
+    const glm::dvec3 tc = 0.5 * (tLo + tHi), th = 0.5 * (tHi - tLo);
+    if (i == 0) {  // the entity's own rotation and scale do not move its origin
+      c = tc;
+      h = th;
+      continue;
+    }
+    if (!turns && sLo == sHi) {
+      const glm::dmat3 a = glm::mat3_cast(rotation) * glm::dmat3(glm::scale(glm::dmat4(1.0), sLo));
+      glm::dvec3 reach = th;
+      for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k) reach[r] += std::abs(a[k][r]) * h[k];  // glm: a[column][row]
+      c = tc + a * c;
+      h = reach;
+    } else {
+      // Turning or scaling: |R S x| <= s_max |x|, a ball about the translation.
+      const glm::dvec3 sMax = glm::max(glm::abs(sLo), glm::abs(sHi));
+      const double s = std::max({sMax.x, sMax.y, sMax.z});
+      const double r = s * (glm::length(c) + glm::length(h));
+      c = tc;
+      h = th + glm::dvec3(r);
+    }
+  }
+  // Rounding of the evaluation the box encloses (a few ulps of its size).
+  h += glm::dvec3(1e-12 * (glm::length(c) + glm::length(h)));
+  return particles::OriginBox{c - h + offset_, c + h + offset_};
+}
+
 bool EmitterMotion::operator==(const EmitterMotion& o) const {
   if (levels_.size() != o.levels_.size() || offset_ != o.offset_ || bool(compiled_) != bool(o.compiled_)) return false;
   for (size_t i = 0; i < levels_.size(); ++i) {
@@ -115,6 +172,27 @@ const MeshAsset* drawMeshAsset(const SceneState& state, const std::string& name)
 
 std::string drawMeshProblem(const particles::EmitterDesc& desc) {
   return "emitter '" + desc.name + "', field 'draw_mesh': no entity '" + desc.drawMesh + "' with a mesh";
+}
+
+std::optional<PlacedBound> placedBound(const PlacedEmitter& placed, double t, ParticleWorld* world,
+                                       const particles::SurfaceSampler* surface) {
+  // The particles alive at t were born in [t - lifetime_max, t].
+  const double t0 = t - std::max(0.0, placed.desc.lifetimeMax);
+  PlacedBound out;
+  out.desc = placed.desc;
+  if (placed.spawn) {
+    const auto [lo, hi] = placed.spawn->range(particles::spawnValues(placed.desc), t0, t);
+    out.desc = particles::widenedForSpawn(placed.desc, lo, hi);
+  }
+  particles::BoundInputs in;
+  in.moves = bool(placed.motion);
+  if (placed.motion) in.birthOrigins = placed.motion->originRange(t0, t);
+  if (placed.desc.shape == particles::Shape::Terrain && world) in.groundRange = world->groundRange();
+  in.surface = surface;
+  const std::optional<particles::ParticleBound> b = particles::particleBound(out.desc, in);
+  if (!b) return std::nullopt;
+  out.bound = *b;
+  return out;
 }
 
 std::vector<PlacedEmitter> visibleEmitters(const SceneState& state) {

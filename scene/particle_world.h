@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "particles/bounds.h"
 #include "particles/evaluate.h"
 #include "scene/emitter_tracks.h"
 #include "scene/foliage_ground.h"
@@ -36,6 +37,11 @@ class EmitterMotion {
   // Null when the emitter is in local space or nothing in its chain moves.
   static std::shared_ptr<const EmitterMotion> of(const SceneState& state, EntityId id);
   glm::dvec3 originAt(double t) const;
+  // A box holding originAt(t) for every t in [t0, t1], proven from the
+  // tracks' value ranges (sequencer::valueRange): each parent maps the box
+  // exactly while it does not turn or scale, and into a ball while it does.
+  // nullopt with a camera path in the chain (its curve is not enclosed here).
+  std::optional<particles::OriginBox> originRange(double t0, double t1) const;
   bool operator==(const EmitterMotion& o) const;
 
  private:
@@ -114,6 +120,20 @@ class ParticleWorld {
   std::vector<std::unique_ptr<particles::TriangleSurface>> surfaces_;  // kept for evaluators made here
 };
 
+// The bound of a placed emitter's particles alive at scene time t
+// (particles/bounds.h) with what the scene knows: for a moving world-space
+// emitter where it was over their births ([t - lifetime_max, t]), its spawn
+// tracks' values over them, the ground's height range (`world`, needed
+// for a terrain shape) and a mesh shape's surface. `desc` is the emitter
+// widened by its spawn tracks, what a draw's reach reads (sizes, speeds).
+// nullopt: none can be given (see particleBound; a camera path moving a
+// world-space emitter).
+struct PlacedBound {
+  particles::EmitterDesc desc{};
+  particles::ParticleBound bound{};
+};
+std::optional<PlacedBound> placedBound(const PlacedEmitter& placed, double t, ParticleWorld* world,
+                                       const particles::SurfaceSampler* surface);
 // The live particles of every visible emitter at the state's time, as
 // `info --time` lists them: by lifetimes, before a collision's kills
 // (Evaluator::liveCount; `estimated` past 2^24 candidates).

@@ -593,7 +593,9 @@ class TestParticles : public QObject {
         zmin = std::min(zmin, ground.height(terr.origin.x + x, terr.origin.y + y));
         zmax = std::max(zmax, ground.height(terr.origin.x + x, terr.origin.y + y));
       }
-    const auto tb = particleBound(terr, false, std::make_pair(zmin - 0.01, zmax + 0.01));
+    BoundInputs groundIn;
+    groundIn.groundRange = std::make_pair(zmin - 0.01, zmax + 0.01);
+    const auto tb = particleBound(terr, groundIn);
     QVERIFY(tb);
     for (const Particle& p : tev->frame(2.0).particles) QVERIFY(glm::length(p.position - tb->centre) <= tb->radius);
     // A mesh shape: bounded by its surface's box (a pitched roof, off the origin).
@@ -606,7 +608,9 @@ class TestParticles : public QObject {
     min.surface = &roof;
     auto mev = Evaluator::create(mesh, min, err);
     QVERIFY2(mev, err.c_str());
-    const auto mb = particleBound(mesh, false, std::nullopt, &roof);
+    BoundInputs roofIn;
+    roofIn.surface = &roof;
+    const auto mb = particleBound(mesh, roofIn);
     QVERIFY(mb && glm::length(mb->centre - dvec3(7, 1, 7.5)) < 1e-12);
     size_t meshParticles = 0;
     for (double t : {0.5, 2.0, 4.0})
@@ -615,10 +619,12 @@ class TestParticles : public QObject {
         ++meshParticles;
       }
     QVERIFY(meshParticles > 100);
-    // No bound: a moving world-space emitter.
+    // No bound: a moving world-space emitter without where it was at the births.
     EmitterDesc world = f;
     world.space = Space::World;
-    QVERIFY(!particleBound(world, true) && particleBound(world, false) && particleBound(f, true));
+    BoundInputs moving;
+    moving.moves = true;
+    QVERIFY(!particleBound(world, moving) && particleBound(world) && particleBound(f, moving));
   }
 
   void replayConvergesToTheExactSolutionWithoutForcesThatNeedIt() {

@@ -21,6 +21,7 @@
 #include "render/offscreen_renderer.h"
 #include "render/particle_mesh.h"
 #include "render_golden.h"
+#include "scene/animation.h"
 #include "scene/scene_state.h"
 #include "scene_parts.h"
 
@@ -487,6 +488,59 @@ class TestParticleRender : public QObject {
     // is in no view: skipped.
     const render::RenderView farAway = camera({0, -200.0, 1.5}, {0, -400.0, 1.5});
     r_.render(s, farAway, false, &stats);
+    QCOMPARE(stats.emittersOutOfView, size_t(1));
+    QCOMPARE(stats.particlesDrawn, size_t(0));
+  }
+
+  // A world-space emitter on a moving entity and one with spawn values
+  // keyed on the timeline have bounds too (scene::placedBound): while the
+  // particles a moving emitter left behind are still in view it is drawn
+  // although the emitter itself has flown out of it; once the whole live
+  // window was born out of view it is skipped; a keyed emitter behind the
+  // camera is skipped, in front of it drawn.
+  void movingAndKeyedEmittersHaveBoundsToo() {
+    scene::SceneState s = ground();
+    particles::EmitterDesc trail = still("Trail", {0, 0, 1.0}, {0, 0, 0}, 0, 0.3, {1, 1, 1, 0.8});
+    trail.bursts.clear();
+    trail.rate = 20.0;
+    trail.lifetimeMin = trail.lifetimeMax = 10.0;
+    trail.space = particles::Space::World;
+    addEmitters(s, {trail});
+    sequencer::Binding flies;
+    flies.entity = kFirstEmitter;
+    sequencer::VectorTrack move;
+    move.property = "transform.translation";
+    sequencer::VectorKey k0, k1;
+    k0.time = 0.0, k0.interpolation = sequencer::Interpolation::Linear;
+    k1.time = 4.0, k1.value = {300.0, 0.0, 0.0};
+    move.keys = {k0, k1};
+    flies.tracks.push_back(move);
+    s.sequence.bindings.push_back(flies);
+    const render::RenderView view = camera({0, -6.0, 1.5}, {0, 0, 1.0});
+    auto at = [&](double t) { return scene::animatedState(s, scene::compileSequence(s), t); };
+    render::FrameStats stats;
+    r_.render(at(3.0), view, false, &stats);  // the emitter 225 m to the side, its first particles ahead
+    QCOMPARE(stats.emittersOutOfView, size_t(0));
+    QVERIFY(stats.particlesDrawn > 0 && stats.particlesDrawn < 60);
+    r_.render(at(20.0), view, false, &stats);  // everything alive was born at 300 m
+    QCOMPARE(stats.emittersOutOfView, size_t(1));
+    QCOMPARE(stats.particlesDrawn, size_t(0));
+
+    s = ground();
+    addEmitters(s, {still("Keyed", {0, 0, 1.0}, {0.5, 0.5, 0.5}, 30, 0.3, {1, 1, 1, 0.8})});
+    sequencer::Binding keyed;
+    keyed.entity = kFirstEmitter;
+    sequencer::ScalarTrack size;
+    size.property = "particles.size_m";
+    sequencer::ScalarKey a, b;
+    a.value = 0.3, b.time = 2.0, b.value = 0.8;
+    size.keys = {a, b};
+    keyed.tracks.push_back(size);
+    s.sequence.bindings.push_back(keyed);
+    r_.render(at(1.0), view, false, &stats);
+    QCOMPARE(stats.emittersOutOfView, size_t(0));
+    QCOMPARE(stats.particlesDrawn, size_t(30));
+    r_.render(at(1.0), camera({0, -6.0, 1.5}, {0, -12.0, 1.5}), false, &stats);
     QCOMPARE(stats.emittersOutOfView, size_t(1));
     QCOMPARE(stats.particlesDrawn, size_t(0));
   }

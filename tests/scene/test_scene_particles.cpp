@@ -474,6 +474,130 @@ class TestSceneParticles : public QObject {
                qPrintable(QString::number(glm::length(motion->originAt(tb) - (animatedWorld(doc.state(), torch, tb) + d.origin)))));
   }
 
+  // The bound an out-of-view test uses (scene::placedBound) for a
+  // world-space emitter on a moving chain (a cubic move that overshoots its
+  // keys, under a parent that turns and scales) with speed, size and radius
+  // keyed on the timeline: the origin box holds the origin at every birth
+  // time that matters, and the bound every particle a brute-force
+  // evaluation finds, with sizes and speeds under the widened emitter's.
+  // Without the widening some particles lie outside (the test can tell).
+  // A camera path in the chain gives no bound.
+  void boundsFollowTheMotionAndTheSpawnTracks() {
+    Document doc;
+    particles::EmitterDesc d = small(25.0);
+    d.shape = particles::Shape::Sphere;
+    d.radius = 0.5;
+    d.speedMin = 1.0, d.speedMax = 2.0;
+    d.sizeMin = 0.1, d.sizeMax = 0.2;
+    d.lifetimeMin = 1.0, d.lifetimeMax = 3.0;
+    d.spreadDeg = 60.0;
+    d.gravity = glm::dvec3(0.0);  // the travel is the speed's alone: the widening shows
+    d.drag = 0.0;
+    d.origin = {0.0, 0.0, 1.5};
+    d.space = particles::Space::World;
+    const EntityId rig = ops::addEmpty(doc, "Rig", Transform{});
+    const EntityId cart = ops::addEmpty(doc, "Cart", Transform{});
+    const EntityId torch = addEmitter(doc, "Torch", {0, 0, 0}, d);
+    QVERIFY(ops::reparent(doc, torch, cart) && ops::reparent(doc, cart, rig));
+    {
+      Edit e(doc, "Animate");
+      sequencer::Binding moves;
+      moves.entity = cart;
+      sequencer::VectorTrack move;
+      move.property = "transform.translation";
+      sequencer::VectorKey k0, k1, k2;
+      k0.time = 0.0, k0.value = {0, 0, 0};
+      k0.setSlope({30, -20, 0});  // overshoots backwards in y
+      k1.time = 4.0, k1.value = {40, 8, 0};
+      k2.time = 6.0, k2.value = {40, 20, 5};
+      move.keys = {k0, k1, k2};
+      moves.tracks.push_back(move);
+      sequencer::Binding turns;
+      turns.entity = rig;
+      sequencer::RotationTrack turn;
+      sequencer::RotationKey r0, r1;
+      r0.time = 0.0, r0.interpolation = sequencer::Interpolation::Linear;
+      r1.time = 5.0, r1.value = glm::angleAxis(glm::radians(120.0), glm::dvec3(0, 0, 1));
+      turn.keys = {r0, r1};
+      sequencer::VectorTrack grow;
+      grow.property = "transform.scale";
+      sequencer::VectorKey s0, s1;
+      s0.time = 0.0, s0.value = glm::dvec3(1.0), s0.interpolation = sequencer::Interpolation::Linear;
+      s1.time = 5.0, s1.value = glm::dvec3(2.0);
+      grow.keys = {s0, s1};
+      turns.tracks = {turn, grow};
+      e.sequence().bindings.push_back(moves);
+      e.sequence().bindings.push_back(turns);
+      e.commit();
+    }
+    std::string error;
+    for (auto [key, values] : {std::pair{"particles.speed_m_per_s", std::pair{1.5, 6.0}},
+                               std::pair{"particles.size_m", std::pair{0.15, 0.6}},
+                               std::pair{"particles.radius_m", std::pair{0.5, 3.0}}}) {
+      const auto target = animationTarget(key, error);
+      QVERIFY2(target, error.c_str());
+      QVERIFY(ops::setKeys(doc, {{torch, *target, sequencer::PropertyValue(values.first)}}, 0.0, std::nullopt, "Key"));
+      QVERIFY(ops::setKeys(doc, {{torch, *target, sequencer::PropertyValue(values.second)}}, 4.0, std::nullopt, "Key"));
+    }
+    {
+      // A steep user slope: the speed track overshoots its last key.
+      Edit e(doc, "Slope");
+      for (sequencer::Track& t : e.sequence().findBinding(torch)->tracks)
+        if (auto* sc = std::get_if<sequencer::ScalarTrack>(&t); sc && sc->property == "particles.speed_m_per_s")
+          sc->keys[0].setSlope(5.0);
+      e.commit();
+    }
+    size_t n = 0, outsideUnwidened = 0;
+    double farthest = 0.0;
+    // At 12 s the chain has been still for the whole live window (the box
+    // is a point): what is left is the spawn tracks' widening.
+    for (double t : {0.5, 2.0, 3.5, 5.5, 8.0, 12.0}) {
+      const SceneState at = animatedState(doc.state(), compileSequence(doc.state()), t);
+      const std::vector<PlacedEmitter> placed = visibleEmitters(at);
+      QVERIFY(placed.size() == 1 && placed[0].motion && placed[0].spawn);
+      const PlacedEmitter& pe = placed[0];
+      ParticleWorld world(at);
+      const std::optional<PlacedBound> b = placedBound(pe, t, &world, nullptr);
+      QVERIFY(b);
+      const std::optional<particles::OriginBox> box = pe.motion->originRange(t - d.lifetimeMax, t);
+      QVERIFY(box);
+      for (int i = 0; i <= 3000; ++i) {
+        const glm::dvec3 o = pe.motion->originAt(t - d.lifetimeMax * i / 3000.0);
+        QVERIFY2(glm::all(glm::lessThanEqual(box->lo, o)) && glm::all(glm::lessThanEqual(o, box->hi)),
+                 qPrintable(QString("t %1, birth %2: origin %3 %4 %5 outside %6 %7 %8 .. %9 %10 %11")
+                                .arg(t).arg(t - d.lifetimeMax * i / 3000.0).arg(o.x).arg(o.y).arg(o.z)
+                                .arg(box->lo.x).arg(box->lo.y).arg(box->lo.z).arg(box->hi.x).arg(box->hi.y).arg(box->hi.z)));
+      }
+      particles::BoundInputs plain;
+      plain.moves = true;
+      plain.birthOrigins = box;
+      const std::optional<particles::ParticleBound> unwidened = particles::particleBound(pe.desc, plain);
+      auto ev = world.evaluator(pe, error);
+      QVERIFY2(ev, error.c_str());
+      for (const particles::Particle& p : ev->frame(t).particles) {
+        const double share = glm::length(p.position - b->bound.centre) / b->bound.radius;
+        QVERIFY2(share <= 1.0 + 1e-12, qPrintable(QString("t %1: %2 of the radius").arg(t).arg(share)));
+        QVERIFY(p.size <= b->desc.sizeMax * (1.0 + 1e-12));
+        QVERIFY(glm::length(p.velocity) <= particles::speedBound(b->desc, p.age) * (1.0 + 1e-12));
+        farthest = std::max(farthest, share);
+        if (glm::length(p.position - unwidened->centre) > unwidened->radius) ++outsideUnwidened;
+        ++n;
+      }
+    }
+    qInfo("%zu particles inside their bound (farthest at %.3f of its radius); %zu outside the unwidened one", n,
+          farthest, outsideUnwidened);
+    QVERIFY(n > 200 && outsideUnwidened > 0);
+    // A camera path moving the chain: no enclosure of its curve, no bound.
+    QVERIFY(ops::setPath(doc, cart, sequencer::makePathFollow({{0, 0, 0}, {20, 0, 0}, {20, 20, 0}}, 0.0, 4.0),
+                         "Follow path"));
+    const SceneState at = animatedState(doc.state(), compileSequence(doc.state()), 2.0);
+    const std::vector<PlacedEmitter> placed = visibleEmitters(at);
+    QVERIFY(placed.size() == 1 && placed[0].motion);
+    QVERIFY(!placed[0].motion->originRange(0.0, 2.0));
+    ParticleWorld world(at);
+    QVERIFY(!placedBound(placed[0], 2.0, &world, nullptr));
+  }
+
   // A spawn value keyed on the timeline: each particle takes the track's
   // value at its birth (a pair's centre moves, its half-width stays) and
   // keeps it; the entity itself is not animated by it; a file keeps the
