@@ -118,6 +118,13 @@ struct InstanceType {
   bool castShadows = true;  // false: left out of every shadow view
 };
 
+// The most instances one source culls on the GPU: its compute passes run
+// one invocation per instance in groups of 64, and GL promises no more than
+// 65,535 groups in a dispatch (llvmpipe allows no more); their 32 bytes
+// each then just fit the 128 MiB GL promises a storage buffer. A source of
+// more draws nothing: split the set (foliage_instances.h does).
+constexpr size_t kMaxInstancesPerSource = 65535 * 64;
+
 struct InstanceSet {
   std::vector<InstanceType> types;  // an instance's type indexes this
   std::vector<glm::dvec3> cells;    // world origins of the cells

@@ -522,6 +522,31 @@ class TestFoliageRender : public QObject {
     QVERIFY(stereoKept[0].size() != both || stereoKept[1].size() != both);
   }
 
+  // More instances than a source culls (kMaxInstancesPerSource; small
+  // here): several sets of whole cells, none over the limit unless one cell
+  // alone is, every record once.
+  void manyInstancesSplitIntoSets() {
+    const scene::SceneState s = pineField();
+    const size_t total = s.foliage->store().allInstances().size();
+    const size_t cells = s.foliage->store().cellCount();
+    QVERIFY(cells >= 20);
+    for (size_t cap : {size_t(500), size_t(1)}) {
+      const std::vector<render::InstanceSet> sets = render::foliageInstanceSets(s, cap);
+      std::set<uint32_t> ids;
+      size_t setCells = 0;
+      for (const render::InstanceSet& set : sets) {
+        QVERIFY(set.instances.size() <= cap || set.cells.size() == 1);
+        setCells += set.cells.size();
+        for (const render::GpuInstance& g : set.instances) ids.insert(g.id);
+      }
+      QCOMPARE(ids.size(), total);
+      QCOMPARE(setCells, cells);  // whole cells: none in two sets
+      if (cap == 1) QCOMPARE(sets.size(), cells);
+      else QVERIFY(sets.size() >= total / cap);
+    }
+    QCOMPARE(render::foliageInstanceSets(s).size(), size_t(1));
+  }
+
   void manyCellsSplitIntoSets() {
     scene::SceneState s;
     foliage::FoliageStore& store = scene::foliageOf(s).store();
