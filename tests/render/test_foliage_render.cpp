@@ -4,8 +4,12 @@
 // the same rocks placed as ordinary mesh entities at the decoded places (an
 // independent path: the mesh source), an erase shows on the next frame of
 // the same renderer (the sources follow the store's revision) and a store
-// of more than 65,536 cells becomes several sets, and the wind makes frame
-// t the same image whether rendered alone or after the frames before it.
+// of more than 65,536 cells (or more instances than a source culls)
+// becomes several sets, the wind makes frame t the same image whether
+// rendered alone or after the frames before it, the GPU culling keeps
+// exactly the instance ids a brute-force CPU frustum and cull-distance test
+// keeps (read back from its lists), and both eyes of a stereo pair draw
+// every instance at the mono LOD view's level.
 #include <QtTest>
 
 #include <array>
