@@ -6,7 +6,7 @@
 
 namespace hs::render {
 
-std::vector<InstanceSet> foliageInstanceSets(const scene::SceneState& state) {
+std::vector<InstanceSet> foliageInstanceSets(const scene::SceneState& state, size_t maxInstances) {
   std::vector<InstanceSet> out;
   const foliage::FoliageStore* store = scene::foliageStoreOf(state);
   if (!store || store->cellCount() == 0) return out;
@@ -24,10 +24,23 @@ std::vector<InstanceSet> foliageInstanceSets(const scene::SceneState& state) {
   keys.reserve(store->cellCount());
   for (const auto& [k, c] : store->cells()) keys.push_back(k);
   std::sort(keys.begin(), keys.end());
-  for (size_t first = 0; first < keys.size(); first += kMaxCellsPerSet) {
+  auto cellSize = [&](const foliage::CellKey& k) {
+    size_t n = 0;
+    for (const foliage::Run& run : store->cell(k)->runs) n += run.items.size();
+    return n;
+  };
+  for (size_t first = 0; first < keys.size();) {
     InstanceSet set;
     set.types = types;
-    const size_t last = std::min(keys.size(), first + kMaxCellsPerSet);
+    // Whole cells while both limits hold (at least one cell a set).
+    size_t last = first, instances = 0;
+    while (last < keys.size() && last - first < kMaxCellsPerSet) {
+      const size_t more = cellSize(keys[last]);
+      if (last > first && instances + more > maxInstances) break;
+      instances += more;
+      ++last;
+    }
+    set.instances.reserve(instances);
     for (size_t i = first; i < last; ++i) {
       const foliage::CellKey& k = keys[i];
       const uint16_t cell = uint16_t(i - first);
@@ -45,6 +58,7 @@ std::vector<InstanceSet> foliageInstanceSets(const scene::SceneState& state) {
       }
     }
     out.push_back(std::move(set));
+    first = last;
   }
   return out;
 }

@@ -10,7 +10,9 @@
 //
 // A GpuInstance names its cell in 16 bits: a set holds at most 65,536
 // cells, so a store with more (a forest over 27 km² of 64 m columns, one
-// layer high) becomes several sets, one source each.
+// layer high) becomes several sets, one source each; and a source culls at
+// most kMaxInstancesPerSource (about 4.2M) instances, so a store with more
+// becomes several sets too (whole cells each).
 #include <vector>
 
 #include "render/instanced_source.h"
@@ -22,6 +24,9 @@ constexpr size_t kMaxCellsPerSet = 65536;
 
 // The sets the state's foliage draws as (empty: none). Cells in key order,
 // so the result is the same for the same store.
-std::vector<InstanceSet> foliageInstanceSets(const scene::SceneState& state);
+// `maxInstances`: the instances a set holds at most (tests make it small);
+// a cell with more than that alone is a set of its own.
+std::vector<InstanceSet> foliageInstanceSets(const scene::SceneState& state,
+                                             size_t maxInstances = kMaxInstancesPerSource);
 
 }  // namespace hs::render

@@ -215,6 +215,8 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
   for (size_t v = 0; v < cameraViews_; ++v)
     appendPlanes(frustumOf((*frame.views)[v]), (*frame.views)[v].eye - frame.visible.origin, planes);
   for (const Frustum& f : frame.shadowViews) appendPlanes(f, glm::dvec3(0.0), planes);
+  // A plane that never culls (0, 0, 0, 1) in every place: no view culling.
+  if (!viewCulling_) planes.assign(views * 6, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   std::vector<glm::vec4> cells;
   for (const glm::dvec3& c : set_.cells) cells.emplace_back(glm::vec3(c - frame.visible.origin), 0.0f);
   if (cells.empty()) cells.emplace_back(0.0f);
@@ -299,6 +301,18 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
       }
     *lastVisible_ = seen;
     *lastByLevel_ = std::move(byLevel);
+    int64_t triangles = 0;
+    for (const Part& p : parts_)
+      for (size_t v = 0; v < cameraViews_; ++v) triangles += int64_t(cpuCounts_[v * groups + p.group]) * (p.indexCount / 3);
+    *lastTriangles_ = triangles;
+    if (reportKept_) {
+      std::vector<std::vector<KeptInstance>> kept(cameraViews_);
+      for (size_t v = 0; v < cameraViews_; ++v)
+        for (size_t k = 0; k < groups; ++k)
+          for (uint32_t j = 0; j < cpuCounts_[v * groups + k]; ++j)
+            kept[v].push_back({set_.instances[cpuVisible[v * n + cpuGroupBase[k] + j]].id, groups_[k].level});
+      *lastKept_ = std::move(kept);
+    }
   }
 
   struct Upload {
@@ -422,22 +436,62 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
   // The visible counts, a frame or more later, for the statistics.
   std::vector<uint32_t> groupLevel;
   for (const Group& g : groups_) groupLevel.push_back(g.level);
+  std::vector<int64_t> groupTriangles(groups, 0);  // every part of a group's mesh
+  for (const Part& p : parts_) groupTriangles[p.group] += p.indexCount / 3;
   graph.readback(name_ + "_counts", cull.counts, 0, views * groups * 4,
-                 [seen = lastVisible_, byLevel = lastByLevel_, cameraViews = cameraViews_, groupLevel](const void* data,
-                                                                                                     size_t) {
+                 [seen = lastVisible_, byLevel = lastByLevel_, drawn = lastTriangles_, cameraViews = cameraViews_,
+                  groupLevel, groupTriangles](const void* data, size_t) {
                    const auto* c = static_cast<const uint32_t*>(data);
                    const size_t groupCount = groupLevel.size();
-                   int64_t sum = 0;
+                   int64_t sum = 0, triangles = 0;
                    std::vector<int64_t> levels;
                    for (size_t v = 0; v < cameraViews; ++v)
                      for (size_t k = 0; k < groupCount; ++k) {
                        sum += c[v * groupCount + k];
+                       triangles += int64_t(c[v * groupCount + k]) * groupTriangles[k];
                        if (levels.size() <= groupLevel[k]) levels.resize(groupLevel[k] + 1, 0);
                        levels[groupLevel[k]] += c[v * groupCount + k];
                      }
                    *seen = sum;
                    *byLevel = std::move(levels);
+                   *drawn = triangles;
                  });
+  if (reportKept_ && cameraViews_ > 0) {
+    // Three copies of one frame: the counts and the groups' places land in
+    // `pending`, the lists' copy (queued last, so delivered last: the pool
+    // delivers in order behind fences that signal in order) reads them.
+    struct Pending {
+      std::vector<uint32_t> counts, base;
+    };
+    auto pending = std::make_shared<Pending>();
+    auto copyInto = [pending](std::vector<uint32_t> Pending::*member) {
+      return [pending, member](const void* data, size_t bytes) {
+        const auto* p = static_cast<const uint32_t*>(data);
+        ((*pending).*member).assign(p, p + bytes / 4);
+      };
+    };
+    graph.readback(name_ + "_kept_counts", cull.counts, 0, views * groups * 4, copyInto(&Pending::counts));
+    graph.readback(name_ + "_kept_base", cull.groupBase, 0, groups * 4, copyInto(&Pending::base));
+    std::vector<uint32_t> ids(n);
+    for (size_t i = 0; i < n; ++i) ids[i] = set_.instances[i].id;
+    graph.readback(name_ + "_kept", cull.visible, 0, cameraViews_ * n * 4,
+                   [pending, ids = std::move(ids), groupLevel, kept = lastKept_, cameraViews = cameraViews_, n](
+                       const void* data, size_t bytes) {
+                     const size_t groupCount = groupLevel.size();
+                     if (bytes < cameraViews * n * 4 || pending->counts.size() < cameraViews * groupCount ||
+                         pending->base.size() < groupCount)
+                       return;  // a copy failed: keep the last report
+                     const auto* list = static_cast<const uint32_t*>(data);
+                     std::vector<std::vector<KeptInstance>> out(cameraViews);
+                     for (size_t v = 0; v < cameraViews; ++v)
+                       for (size_t k = 0; k < groupCount; ++k)
+                         for (uint32_t j = 0; j < pending->counts[v * groupCount + k]; ++j) {
+                           const uint32_t i = list[v * n + pending->base[k] + j];
+                           out[v].push_back({i < n ? ids[i] : 0xFFFFFFFFu, groupLevel[k]});
+                         }
+                     *kept = std::move(out);
+                   });
+  }
 }
 
 void InstancedSource::declare(PassBuilder& b, DrawVariant) const {

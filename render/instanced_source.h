@@ -118,6 +118,13 @@ struct InstanceType {
   bool castShadows = true;  // false: left out of every shadow view
 };
 
+// The most instances one source culls on the GPU: its compute passes run
+// one invocation per instance in groups of 64, and GL promises no more than
+// 65,535 groups in a dispatch (llvmpipe allows no more); their 32 bytes
+// each then just fit the 128 MiB GL promises a storage buffer. A source of
+// more draws nothing: split the set (foliage_instances.h does).
+constexpr size_t kMaxInstancesPerSource = 65535 * 64;
+
 struct InstanceSet {
   std::vector<InstanceType> types;  // an instance's type indexes this
   std::vector<glm::dvec3> cells;    // world origins of the cells
@@ -141,6 +148,26 @@ class InstancedSource final : public DrawSource {
   // The same, per level of detail (index: the level, over every type);
   // empty: none yet.
   std::vector<int64_t> lastVisibleByLevel() const { return *lastByLevel_; }
+
+  // For tests: from the next frame on, also report which instances each
+  // camera view drew and at which level (GPU: the compute pass's lists,
+  // read back a frame or more late like the counts; CPU: the CPU's lists).
+  // Off by default: the read-back copies a list per camera view each frame.
+  struct KeptInstance {
+    uint32_t id = 0;     // GpuInstance::id
+    uint32_t level = 0;  // the level it was drawn at
+  };
+  void setReportKept(bool on) { reportKept_ = on; }
+  // Triangles the camera views drew (every surface), as lastVisible: a
+  // frame or more late on the GPU path; -1: none yet.
+  int64_t lastTrianglesDrawn() const { return *lastTriangles_; }
+  // Benchmarks: false skips the sphere test against the views (every
+  // instance within its cull distance is drawn by every view), the naive
+  // baseline culling is measured against. On by default.
+  void setViewCulling(bool on) { viewCulling_ = on; }
+  // Per camera view of the last delivered frame, in the list's order
+  // (GPU: the atomics' order); empty: none delivered yet.
+  std::vector<std::vector<KeptInstance>> lastKept() const { return *lastKept_; }
 
   std::string ownPass() const override { return name_; }
   bool has(DrawVariant variant, SurfaceSet surfaces) const override;
@@ -198,6 +225,10 @@ class InstancedSource final : public DrawSource {
   bool active_ = false;  // something to draw this frame
   std::shared_ptr<int64_t> lastVisible_ = std::make_shared<int64_t>(-1);
   std::shared_ptr<std::vector<int64_t>> lastByLevel_ = std::make_shared<std::vector<int64_t>>();
+  bool reportKept_ = false, viewCulling_ = true;
+  std::shared_ptr<int64_t> lastTriangles_ = std::make_shared<int64_t>(-1);
+  std::shared_ptr<std::vector<std::vector<KeptInstance>>> lastKept_ =
+      std::make_shared<std::vector<std::vector<KeptInstance>>>();
 };
 
 }  // namespace hs::render

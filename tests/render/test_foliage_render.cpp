@@ -4,11 +4,18 @@
 // the same rocks placed as ordinary mesh entities at the decoded places (an
 // independent path: the mesh source), an erase shows on the next frame of
 // the same renderer (the sources follow the store's revision) and a store
-// of more than 65,536 cells becomes several sets, and the wind makes frame
-// t the same image whether rendered alone or after the frames before it.
+// of more than 65,536 cells (or more instances than a source culls)
+// becomes several sets, the wind makes frame t the same image whether
+// rendered alone or after the frames before it, the GPU culling keeps
+// exactly the instance ids a brute-force CPU frustum and cull-distance test
+// keeps (read back from its lists), and both eyes of a stereo pair draw
+// every instance at the mono LOD view's level.
 #include <QtTest>
 
+#include <array>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "foliage/instance.h"
@@ -17,8 +24,10 @@
 #include "look_from.h"
 #include "mesh/primitives.h"
 #include "render/foliage_instances.h"
+#include "render/instanced_source.h"
 #include "render/offscreen_renderer.h"
 #include "scene/foliage_ground.h"
+#include "scene/foliage_ops.h"
 #include "scene/scene_state.h"
 #include "scene_parts.h"
 #include "terrain/terrain.h"
@@ -103,6 +112,190 @@ render::RenderView camera() {
   v.eye = kUtm + glm::dvec3(0.0, -30.0, 18.0);
   v.orientation = test::lookFrom(v.eye, kUtm).rotation;
   return v;
+}
+
+// A field of generated conifers (foliage/plants.h, with their LOD chain)
+// on a flat ground 400 m across at UTM, cull distance 150 m with a 20 m
+// fade, no wind (so the cull sphere is the bounds sphere alone).
+constexpr scene::AssetId kPine = 7;
+constexpr double kPineCull = 150.0;
+
+scene::SceneState pineField() {
+  scene::SceneState s;
+  s.settings.showGrid = false;
+  s.settings.shadows = false;  // the camera views' lists are the question
+  test::addMeshAsset(s, kGround, "Ground", mesh::gridPlane(400.0f, 4), {0.5f, 0.55f, 0.45f});
+  foliage::PlantParams pine = foliage::defaultPlant(foliage::PlantKind::Conifer, 11);
+  pine.height = 9.0;
+  pine.branches = 12;
+  pine.leavesPerBranch = 6;
+  pine.sides = 5;
+  std::string error;
+  std::optional<scene::MeshAsset> a = scene::ops::makePlantAsset("Pine", pine, error);
+  if (!a) qFatal("plant: %s", error.c_str());
+  a->id = kPine;
+  s.assets.emplace(kPine, std::move(*a));
+  scene::addMeshMaterials(s, kPine);
+  scene::Entity ground;
+  ground.id = 1;
+  ground.name = "Ground";
+  ground.mesh = scene::MeshInstance{kGround};
+  ground.transform.translation = kUtm;
+  s.entities.emplace(ground.id, ground);
+  s.roots.push_back(ground.id);
+  test::addSun(s, 1000, {45, 0, -30});
+  foliage::FoliageStore& store = scene::foliageOf(s).store();
+  foliage::FoliageType t;
+  t.name = "Pines";
+  t.mesh = "Pine";
+  t.densityPerHa = 250.0;
+  t.spacing = 3.0;
+  t.scaleMode = foliage::ScaleMode::XyZ;
+  t.scale = {0.6, 1.4};
+  t.scaleZ = {0.7, 1.3};
+  t.randomPitchDeg = 10.0;
+  t.windResponse = 0.0;
+  t.cullDistance = kPineCull;
+  t.fadeLength = 20.0;
+  std::vector<std::string> messages;
+  store.addType(t, messages);
+  const scene::FoliageGround g(s);
+  foliage::scatter(store, g.ground(), {0}, 7, foliage::Region2::rect(glm::dvec2(kUtm) - 190.0, glm::dvec2(kUtm) + 190.0));
+  s.foliage->touch();
+  return s;
+}
+
+// Low over the field, looking along it at a grazing angle: instances
+// behind, beside, beyond the cull distance and in view.
+render::RenderView grazing() {
+  render::RenderView v;
+  v.width = 240;
+  v.height = 135;
+  v.fovY = glm::radians(50.0);
+  v.eye = kUtm + glm::dvec3(-20.0, -110.0, 7.0);
+  v.orientation = test::lookFrom(v.eye, kUtm + glm::dvec3(15.0, 0.0, 0.0)).rotation;
+  return v;
+}
+
+// The brute-force reference, written from the documented rule alone
+// (render/instanced_source.h) in double: an instance is kept by a view when
+// its origin is within the type's cull distance of the LOD eye and its
+// sphere reaches inside all six planes of the view. The sphere: about level
+// 0's box centre (mesh space, scaled, rotated, placed), with a radius that
+// holds every level's box (|centre_l - centre_0| + half diagonal_l), times
+// the largest |scale|. The planes come from the view's parameters here
+// (fovY, aspect, off-axis shift, near, far), not from render/'s frustum.
+struct Sphere {
+  glm::dvec3 centre;
+  double radius;
+};
+
+struct Box {
+  glm::dvec3 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
+  void add(const glm::dvec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  glm::dvec3 centre() const { return 0.5 * (lo + hi); }
+  double halfDiagonal() const { return 0.5 * glm::length(hi - lo); }
+};
+
+Box boxOf(const mesh::MeshData& m) {
+  Box b;
+  for (const auto& p : m.positions) b.add(glm::dvec3(p));
+  return b;
+}
+
+// The mesh-space sphere of an asset: level 0's centre, every level inside.
+Sphere assetSphere(const scene::MeshAsset& a) {
+  const Box b0 = boxOf(*a.data);
+  Sphere s{b0.centre(), b0.halfDiagonal()};
+  for (const scene::MeshLod& l : a.lods) {
+    const Box b = boxOf(*l.data);
+    s.radius = std::max(s.radius, glm::length(b.centre() - s.centre) + b.halfDiagonal());
+  }
+  return s;
+}
+
+// Signed distances (m, positive inside) of a world point to the view's six
+// planes. In camera space (x right, y up, looking down -z, depth d = -z)
+// the projection maps x to ndc = f/aspect x/d + shift.x; -1 <= ndc <= 1
+// gives the side planes, nearClip <= d <= farClip the other two.
+std::array<double, 6> planeDistances(const render::RenderView& v, const glm::dvec3& world) {
+  const glm::dvec3 p = glm::conjugate(v.orientation) * (world - v.eye);
+  const double d = -p.z, fy = 1.0 / std::tan(0.5 * v.fovY), fx = fy / v.aspect();
+  const glm::dvec2 sh = v.projectionShift;
+  // fx x / d + sx <= 1  <=>  (1 - sx) d - fx x >= 0, normalised by |(fx, 1 - sx)|; likewise the others.
+  auto plane = [](double f, double c, double shift, double sign, double depth) {
+    const double k = 1.0 - sign * shift;  // sign +1: the right (top) plane, -1: the left (bottom)
+    return (k * depth - sign * f * c) / std::sqrt(f * f + k * k);
+  };
+  return {plane(fx, p.x, sh.x, +1.0, d), plane(fx, p.x, sh.x, -1.0, d), plane(fy, p.y, sh.y, +1.0, d),
+          plane(fy, p.y, sh.y, -1.0, d), d - v.nearClip, v.farClip - d};
+}
+
+// What the reference says of one instance for one view: kept, dropped, or
+// within `eps` of a boundary (a plane touching its sphere, or the cull
+// distance), where float on the GPU and double here may disagree.
+enum class Verdict { In, Out, Near };
+
+Verdict reference(const render::RenderView& view, const glm::dvec3& lodEye, const foliage::Instance& in,
+                  const Sphere& mesh, double cullDistance, double eps) {
+  const double toEye = glm::length(in.position - lodEye);
+  if (toEye > cullDistance + eps) return Verdict::Out;
+  bool near = std::abs(toEye - cullDistance) <= eps;
+  const glm::dvec3 centre = in.position + in.rotation * (mesh.centre * in.scale);
+  const double radius = mesh.radius * std::max({std::abs(in.scale.x), std::abs(in.scale.y), std::abs(in.scale.z)});
+  for (double dist : planeDistances(view, centre)) {
+    if (dist + radius < -eps) return Verdict::Out;
+    near = near || dist + radius <= eps;
+  }
+  return near ? Verdict::Near : Verdict::In;
+}
+
+struct IdCheck {
+  size_t compared = 0, in = 0, outByPlanes = 0, outByDistance = 0, near = 0, mismatches = 0;
+  std::string firstMismatch;
+};
+
+// The GPU's list for `view` against the reference over every instance.
+IdCheck compareWithReference(const std::vector<render::InstancedSource::KeptInstance>& kept,
+                             const render::RenderView& view, const glm::dvec3& lodEye, const scene::SceneState& s,
+                             double eps) {
+  IdCheck c;
+  std::set<uint32_t> gpu;
+  for (const auto& k : kept)
+    if (!gpu.insert(k.id).second) {
+      ++c.mismatches;  // an instance listed twice in one view
+      c.firstMismatch = "id " + std::to_string(k.id) + " twice";
+    }
+  const Sphere sphere = assetSphere(s.assets.at(kPine));
+  const std::vector<foliage::Instance> all = s.foliage->store().allInstances();
+  std::set<uint32_t> known;
+  for (const foliage::Instance& in : all) {
+    known.insert(in.id);
+    const Verdict v = reference(view, lodEye, in, sphere, kPineCull, eps);
+    if (v == Verdict::Near) {
+      ++c.near;
+      continue;
+    }
+    ++c.compared;
+    const bool cpuIn = v == Verdict::In;
+    if (cpuIn) ++c.in;
+    else if (glm::length(in.position - lodEye) > kPineCull) ++c.outByDistance;
+    else ++c.outByPlanes;
+    if (cpuIn != bool(gpu.count(in.id))) {
+      if (c.firstMismatch.empty())
+        c.firstMismatch = "id " + std::to_string(in.id) + (cpuIn ? " kept by the CPU only" : " kept by the GPU only");
+      ++c.mismatches;
+    }
+  }
+  for (uint32_t id : gpu)
+    if (!known.count(id)) {
+      ++c.mismatches;
+      c.firstMismatch = "unknown id " + std::to_string(id);
+    }
+  return c;
 }
 
 }  // namespace
@@ -220,6 +413,142 @@ class TestFoliageRender : public QObject {
     const test::CompareResult moved = test::compareImages(toTest(a), toTest(alone.render(at(1.0), camera())), 0);
     qInfo("the wind from 1 s to 2 s: %s", moved.summary().c_str());
     QVERIFY2(moved.differingShare > 0.001, "the wind moved nothing: the check above proves nothing");
+  }
+
+  // The GPU culling (instance_lod.comp's cull distance, instance_cull.comp's
+  // planes) keeps exactly the instances the brute-force reference above
+  // keeps: the ids read back from the compute pass's list for the view,
+  // against every instance of the store. Instances within kEps of a
+  // boundary are left out of the comparison: the GPU tests the packed
+  // record in float (positions relative to the frame origin, snorm16
+  // rotations, half scales: a few mm on a 10 m tree's sphere), the
+  // reference the store's doubles. 2 cm is several times that and still
+  // small against the 3 m spacing, so few instances fall in it.
+  void gpuCullingKeepsTheReferenceIds() {
+    constexpr double kEps = 0.02;
+    const scene::SceneState s = pineField();
+    QVERIFY(s.assets.at(kPine).lods.size() >= 2);
+    const std::vector<render::InstanceSet> sets = render::foliageInstanceSets(s);
+    QCOMPARE(sets.size(), size_t(1));
+    // The source the renderer makes for the document's foliage
+    // (foliage_sources.h), given the same set, drawn as an extra source
+    // with the document's own foliage taken out.
+    auto gpu = std::make_shared<render::InstancedSource>("pines", render::InstancedSource::Culling::Gpu);
+    gpu->setInstances(sets[0]);
+    gpu->setReportKept(true);
+    scene::SceneState bare = s;
+    bare.foliage.reset();
+    const render::RenderView view = grazing();
+    r_.renderer().setDrawSources({gpu});
+    r_.renderOnly(bare, view);
+    r_.renderOnly(bare, view);  // the lists come back a frame later
+    r_.renderer().setDrawSources({});
+    const auto kept = gpu->lastKept();
+    QCOMPARE(kept.size(), size_t(1));
+    const IdCheck c = compareWithReference(kept[0], view, view.eye, s, kEps);
+    qInfo("%zu instances: %zu compared (%zu kept, %zu out by the planes, %zu beyond %.0f m), %zu within %.2f m of a "
+          "boundary left out; the GPU kept %zu; %zu mismatches %s",
+          s.foliage->store().allInstances().size(), c.compared, c.in, c.outByPlanes, c.outByDistance, kPineCull,
+          c.near, kEps, kept[0].size(), c.mismatches, c.firstMismatch.c_str());
+    QVERIFY2(c.mismatches == 0, c.firstMismatch.c_str());
+    // Not a trivial set: many kept, many dropped by each rule.
+    QVERIFY(c.in >= 200 && c.outByPlanes >= 200 && c.outByDistance >= 100);
+    QVERIFY2(c.near * 100 <= c.compared, "too many instances near a boundary: the comparison says little");
+  }
+
+  // Both eyes of a stereo pair draw each instance at the same level, the
+  // one the mono LOD view chooses (DESIGN.md "Rendering"): the eyes' lists
+  // read back, every id both eyes keep at one level, equal to the mono
+  // view's; each eye's list is also the reference's for that eye's
+  // off-axis frustum (the cull distance from the LOD eye).
+  void stereoEyesDrawOneLevelPerInstance() {
+    constexpr double kEps = 0.02;
+    const scene::SceneState s = pineField();
+    scene::SceneState bare = s;
+    bare.foliage.reset();
+    const std::vector<render::InstanceSet> sets = render::foliageInstanceSets(s);
+    const render::RenderView mono = grazing();
+    std::vector<render::RenderView> eyes(2, mono);
+    // A landscape's hyperstereo (1 m between the eyes), so the eyes'
+    // frusta differ enough at the edges for their lists to differ.
+    constexpr double kHalfInteraxial = 0.5;
+    for (int e = 0; e < 2; ++e) {
+      const double side = e == 0 ? -1.0 : 1.0;  // left, right
+      eyes[size_t(e)].eye += side * kHalfInteraxial * mono.right();
+      // Converging on a plane 40 m away (a shifted frustum, not a turned one).
+      eyes[size_t(e)].projectionShift.x = -side * kHalfInteraxial / (40.0 * std::tan(0.5 * mono.fovY) * mono.aspect());
+    }
+    auto listOf = [&](const std::vector<render::RenderView>& views, const render::RenderView* lodView) {
+      auto gpu = std::make_shared<render::InstancedSource>("pines", render::InstancedSource::Culling::Gpu);
+      gpu->setInstances(sets[0]);
+      gpu->setReportKept(true);
+      render::RenderOptions o;
+      o.lodView = lodView;
+      r_.renderer().setDrawSources({gpu});
+      r_.renderViewsOnly(bare, views, o);
+      r_.renderViewsOnly(bare, views, o);
+      r_.renderer().setDrawSources({});
+      return gpu->lastKept();
+    };
+    const auto monoKept = listOf({mono}, nullptr);
+    const auto stereoKept = listOf(eyes, &mono);
+    QCOMPARE(monoKept.size(), size_t(1));
+    QCOMPARE(stereoKept.size(), size_t(2));
+    std::map<uint32_t, uint32_t> monoLevel;
+    for (const auto& k : monoKept[0]) monoLevel[k.id] = k.level;
+    std::map<uint32_t, uint32_t> leftLevel;
+    for (const auto& k : stereoKept[0]) leftLevel[k.id] = k.level;
+    size_t both = 0, differ = 0, notMono = 0;
+    std::set<uint32_t> levels;
+    for (const auto& k : stereoKept[1]) {
+      if (auto it = leftLevel.find(k.id); it != leftLevel.end()) {
+        ++both;
+        differ += it->second != k.level;
+        levels.insert(k.level);
+      }
+      if (auto it = monoLevel.find(k.id); it != monoLevel.end()) notMono += it->second != k.level;
+    }
+    for (const auto& k : stereoKept[0])
+      if (auto it = monoLevel.find(k.id); it != monoLevel.end()) notMono += it->second != k.level;
+    qInfo("left %zu, right %zu, both %zu at levels %zu distinct; %zu differ between the eyes, %zu from mono",
+          stereoKept[0].size(), stereoKept[1].size(), both, levels.size(), differ, notMono);
+    QCOMPARE(differ, size_t(0));
+    QCOMPARE(notMono, size_t(0));
+    QVERIFY(both >= 200 && levels.size() >= 2);  // several levels in view: the check can fail
+    for (int e = 0; e < 2; ++e) {
+      const IdCheck c = compareWithReference(stereoKept[size_t(e)], eyes[size_t(e)], mono.eye, s, kEps);
+      qInfo("eye %d: %zu compared, %zu kept, %zu near a boundary, %zu mismatches %s", e, c.compared, c.in, c.near,
+            c.mismatches, c.firstMismatch.c_str());
+      QVERIFY2(c.mismatches == 0, c.firstMismatch.c_str());
+      QVERIFY(c.in >= 200 && c.near * 100 <= c.compared);
+    }
+    // The eyes' frusta differ: some instance at the edge is in one list only.
+    QVERIFY(stereoKept[0].size() != both || stereoKept[1].size() != both);
+  }
+
+  // More instances than a source culls (kMaxInstancesPerSource; small
+  // here): several sets of whole cells, none over the limit unless one cell
+  // alone is, every record once.
+  void manyInstancesSplitIntoSets() {
+    const scene::SceneState s = pineField();
+    const size_t total = s.foliage->store().allInstances().size();
+    const size_t cells = s.foliage->store().cellCount();
+    QVERIFY(cells >= 20);
+    for (size_t cap : {size_t(500), size_t(1)}) {
+      const std::vector<render::InstanceSet> sets = render::foliageInstanceSets(s, cap);
+      std::set<uint32_t> ids;
+      size_t setCells = 0;
+      for (const render::InstanceSet& set : sets) {
+        QVERIFY(set.instances.size() <= cap || set.cells.size() == 1);
+        setCells += set.cells.size();
+        for (const render::GpuInstance& g : set.instances) ids.insert(g.id);
+      }
+      QCOMPARE(ids.size(), total);
+      QCOMPARE(setCells, cells);  // whole cells: none in two sets
+      if (cap == 1) QCOMPARE(sets.size(), cells);
+      else QVERIFY(sets.size() >= total / cap);
+    }
+    QCOMPARE(render::foliageInstanceSets(s).size(), size_t(1));
   }
 
   void manyCellsSplitIntoSets() {
