@@ -4,6 +4,7 @@
 #include "scene/document.h"
 #include "scene/foliage_ground.h"
 #include "scene/particle_ops.h"
+#include "scene/sequence_edits.h"
 
 namespace hs::scene {
 namespace {
@@ -46,6 +47,17 @@ bool addDemoEmitters(Document& doc, std::string& error) {
   if (!setValue(doc, flakes, "lifetime_s", Json::array({11.0, 13.0}), error) ||
       !setValue(doc, flakes, "size_m", Json::array({0.03, 0.06}), error))
     return false;
+  // The snow thickens over the shot: the flakes' size keyed on the timeline
+  // (docs/particles.md, "On the timeline"), from the field's own centre at
+  // 0 s (so the first frame is the unkeyed one) to twice it at 20 s, each
+  // flake keeping the size it was born with.
+  const std::optional<AnimTarget> size = animationTarget("particles.size_m", error);
+  if (!size ||
+      !ops::setKeys(doc, {{flakes, *size, sequencer::PropertyValue(0.045)}}, 0.0, std::nullopt, "Key", {}, &error) ||
+      !ops::setKeys(doc, {{flakes, *size, sequencer::PropertyValue(0.09)}}, 20.0, std::nullopt, "Key", {}, &error)) {
+    error = "demo particles: keying the snow's size: " + error;
+    return false;
+  }
   // A fog bank on the valley floor in front of and between the pillars.
   particles::PresetOptions fog{.area = glm::dvec4(-90.0, 60.0, 90.0, 150.0), .seed = 3};
   if (!addPreset(doc, "fog", fog, false, error)) return false;

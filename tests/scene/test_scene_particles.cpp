@@ -697,6 +697,18 @@ class TestSceneParticles : public QObject {
       QVERIFY2(c.error.empty(), c.error.c_str());
       QVERIFY2(c.live > 0, c.name.c_str());
     }
+    // The snow thickens: its size keyed from the field's own centre at 0 s
+    // (the first frame is the unkeyed one) to twice it at 20 s.
+    const EntityId snow = demo->findByName("Snow");
+    const auto tracks = EmitterSpawnTracks::of(*demo, snow);
+    QVERIFY(tracks);
+    particles::SpawnValues early = particles::spawnValues(demo->find(snow)->particles->desc), late = early;
+    const particles::SpawnValues unkeyed = early;
+    tracks->apply(0.0, early);
+    tracks->apply(20.0, late);
+    QCOMPARE(early.sizeMin, unkeyed.sizeMin);
+    QCOMPARE(early.sizeMax, unkeyed.sizeMax);
+    QVERIFY(std::abs(0.5 * (late.sizeMin + late.sizeMax) - 2.0 * 0.5 * (unkeyed.sizeMin + unkeyed.sizeMax)) < 1e-12);
   }
 };
 
