@@ -41,6 +41,18 @@ test::Rgba8Image toTest(const Image& img) { return {img.width, img.height, img.r
 const glm::dvec3 kUtm(500000.0, 4400000.0, 300.0);
 constexpr scene::AssetId kRock = 5, kGround = 1;
 
+// The ground asset kGround as an entity at kUtm, and a sun.
+void addGroundAndSun(scene::SceneState& s) {
+  scene::Entity ground;
+  ground.id = 1;
+  ground.name = "Ground";
+  ground.mesh = scene::MeshInstance{kGround};
+  ground.transform.translation = kUtm;
+  s.entities.emplace(ground.id, ground);
+  s.roots.push_back(ground.id);
+  test::addSun(s, 1000, {45, 0, -30});
+}
+
 // A flat ground mesh entity, a sun, a rock asset and a foliage type of
 // rocks (uniform and per-axis scale types) scattered on a flat plane.
 scene::SceneState forest(foliage::ScaleMode mode) {
@@ -51,14 +63,7 @@ scene::SceneState forest(foliage::ScaleMode mode) {
   s.settings.meshLodErrorPixels = 0.0;  // level 0 everywhere: the entities draw it too
   test::addMeshAsset(s, kGround, "Ground", mesh::gridPlane(60.0f, 4), {0.5f, 0.55f, 0.45f});
   test::addMeshAsset(s, kRock, "Rock", mesh::uvSphere(0.5f, 16, 12), {0.7f, 0.6f, 0.5f});
-  scene::Entity ground;
-  ground.id = 1;
-  ground.name = "Ground";
-  ground.mesh = scene::MeshInstance{kGround};
-  ground.transform.translation = kUtm;
-  s.entities.emplace(ground.id, ground);
-  s.roots.push_back(ground.id);
-  test::addSun(s, 1000, {45, 0, -30});
+  addGroundAndSun(s);
 
   foliage::FoliageStore& store = scene::foliageOf(s).store();
   foliage::FoliageType t;
@@ -136,14 +141,7 @@ scene::SceneState pineField() {
   a->id = kPine;
   s.assets.emplace(kPine, std::move(*a));
   scene::addMeshMaterials(s, kPine);
-  scene::Entity ground;
-  ground.id = 1;
-  ground.name = "Ground";
-  ground.mesh = scene::MeshInstance{kGround};
-  ground.transform.translation = kUtm;
-  s.entities.emplace(ground.id, ground);
-  s.roots.push_back(ground.id);
-  test::addSun(s, 1000, {45, 0, -30});
+  addGroundAndSun(s);
   foliage::FoliageStore& store = scene::foliageOf(s).store();
   foliage::FoliageType t;
   t.name = "Pines";
