@@ -106,11 +106,33 @@ std::optional<glm::dvec3> FoliageTool::hoverPoint() const {
   return hover_->point;
 }
 
-bool FoliageTool::begin(const glm::dvec3& origin, const glm::dvec3& direction, bool extend) {
+namespace {
+
+// The instance with `id` as a selection item, when its type is among
+// `types` (none: every type). A click's lookup: one pass over the cells.
+foliage::Selection selectDrawn(const foliage::FoliageStore& store, uint32_t id, const foliage::TypeSet& types) {
+  foliage::Selection s;
+  for (const auto& [key, cell] : store.cells())
+    for (const foliage::Run& run : cell.runs)
+      for (const foliage::PackedInstance& p : run.items)
+        if (p.id == id) {
+          if (types.empty() || std::find(types.begin(), types.end(), run.type) != types.end())
+            s.items.push_back({key, id});
+          return s;
+        }
+  return s;
+}
+
+}  // namespace
+
+bool FoliageTool::begin(const glm::dvec3& origin, const glm::dvec3& direction, bool extend,
+                        std::optional<uint32_t> drawn) {
   if (!active() || stroking_) return false;
   const auto h = pick(origin, direction);
   hover_ = h;
-  if (!h) return false;
+  foliage::Selection clicked;
+  if (kind_ == FoliageToolKind::Select && drawn) clicked = selectDrawn(doc_.foliage().store(), *drawn, types_);
+  if (!h && clicked.empty()) return false;
   if (kind_ == FoliageToolKind::Paint && types_.empty()) {
     emit strokeFinished("Paint foliage: no type chosen (select a type in the Foliage panel, or check several)",
                         true);
@@ -126,9 +148,12 @@ bool FoliageTool::begin(const glm::dvec3& origin, const glm::dvec3& direction, b
   QCoreApplication::instance()->installEventFilter(this);
   if (kind_ == FoliageToolKind::Select) {
     if (!extend) selection_.items.clear();
-    // A click: the nearest instance within the radius; a drag adds more.
-    addToSelection(foliage::selectPoint(doc_.foliage().store(), h->point, brush_.radius, types_));
-    lastDab_ = h->point;
+    // A click: the instance drawn under the cursor, else the nearest within
+    // the radius of the ground point; a drag adds more.
+    if (clicked.empty()) clicked = foliage::selectPoint(doc_.foliage().store(), h->point, brush_.radius, types_);
+    addToSelection(std::move(clicked));
+    if (h) lastDab_ = h->point;
+    else if (const auto in = doc_.foliage().store().find(*drawn)) lastDab_ = in->position;
     return true;
   }
   dab(h->point);

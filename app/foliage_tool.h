@@ -55,7 +55,12 @@ class FoliageTool : public QObject {
   // --- from the viewport (rays in world space) -----------------------------
   // Press: starts a stroke where the ray meets the ground. `extend`: Select
   // adds to the selection. False: not handled (no ground under the cursor).
-  bool begin(const glm::dvec3& origin, const glm::dvec3& direction, bool extend = false);
+  // `drawn`: the foliage instance the renderer drew under the cursor (its
+  // id pass, ViewportWidget::foliagePress): Select's click takes that one
+  // (a tree's crown against the sky or over ground far behind it), and
+  // the nearest within the radius of the ground point only without one.
+  bool begin(const glm::dvec3& origin, const glm::dvec3& direction, bool extend = false,
+             std::optional<uint32_t> drawn = std::nullopt);
   void drag(const glm::dvec3& origin, const glm::dvec3& direction);
   void end();
   bool stroking() const { return stroking_; }

@@ -4,6 +4,8 @@
 #include "app/foliage_tool.h"
 #include "app/viewport_widget.h"
 
+#include <cmath>
+
 namespace hs::app {
 
 bool ViewportWidget::foliagePress(const QPointF& pos, Qt::KeyboardModifiers modifiers) {
@@ -11,7 +13,17 @@ bool ViewportWidget::foliagePress(const QPointF& pos, Qt::KeyboardModifiers modi
   glm::dvec3 origin, direction;
   const glm::dvec2 px = toPixel(pos);
   camera_.view().pixelRay(px.x, px.y, origin, direction);
-  if (!foliageTool_->begin(origin, direction, modifiers & Qt::ShiftModifier)) return false;
+  // Select: the instance drawn under the cursor, from the renderer's id
+  // pass (foliage instances carry no entity, only their id).
+  std::optional<uint32_t> drawn;
+  if (foliageTool_->kind() == FoliageToolKind::Select && renderer_.initialized()) {
+    makeCurrent();
+    const render::PickHit hit = renderer_.pickSurface(displayedState(), camera_.view(), int(std::floor(px.x)),
+                                                      int(std::floor(px.y)));
+    doneCurrent();
+    if (hit.entity == scene::kNoEntity && hit.instance != UINT32_MAX) drawn = hit.instance;
+  }
+  if (!foliageTool_->begin(origin, direction, modifiers & Qt::ShiftModifier, drawn)) return false;
   // A press the tool refused (no type to paint) is handled without a stroke.
   drag_ = foliageTool_->stroking() ? Drag::Foliage : Drag::None;
   update();

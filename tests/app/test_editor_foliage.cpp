@@ -5,7 +5,7 @@
 // stick to the type, undo removes them), Clear; then brush strokes with the
 // mouse in the viewport: Paint adds instances as ONE undo step, Erase
 // removes them, Select (a click, then a Shift-drag) with Delete and
-// Reapply; a type edited through its dialog (and a refused combination);
+// Reapply, a click on a drawn instance; a type edited through its dialog (and a refused combination);
 // the Foliage menu; one brush active at a time.
 #include <QAction>
 #include <QComboBox>
@@ -312,6 +312,43 @@ class EditorFoliageTest : public QObject {
     QCOMPARE(store().instanceCount(), all);
     chooseTool("Off");
     QVERIFY(!panel_->tool()->active());
+  }
+
+  // Select's click takes the instance drawn under the cursor (the
+  // renderer's id pass): clicking a boulder's side from close by, where the
+  // ground behind it lies half a metre beyond the smallest radius, selects
+  // that boulder; the ground rule alone would take none there.
+  void clickOnADrawnInstanceSelectsIt() {
+    app::ViewportWidget* vp = w_->viewport();
+    const render::RenderView saved = vp->currentView();
+    // The boulder nearest to (10, 0), looked at from 4 m south and 6 m up.
+    const std::vector<foliage::Instance> all = store().allInstances();
+    QVERIFY(!all.empty());
+    const foliage::Instance* target = &all[0];
+    for (const foliage::Instance& in : all)
+      if (glm::length(glm::dvec2(in.position) - glm::dvec2(10, 0)) <
+          glm::length(glm::dvec2(target->position) - glm::dvec2(10, 0)))
+        target = &in;
+    const glm::dvec3 aim = target->position + glm::dvec3(0.0, 0.0, 0.5 * 1.2 * target->scale.z);
+    render::RenderView v = saved;
+    v.eye = target->position + glm::dvec3(0.0, -4.0, 6.0);
+    v.orientation = glm::quatLookAt(glm::normalize(aim - v.eye), glm::dvec3(0, 0, 1));
+    vp->camera().setView(v, glm::length(aim - v.eye));
+    vp->update();
+    chooseTool("Select");
+    panel_->findChild<QDoubleSpinBox*>("foliageRadius")->setValue(app::FoliageTool::kMinRadius);
+    QPoint p;
+    QVERIFY(vp->projectToWidget(aim, p));
+    QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, p);
+    QCOMPARE(panel_->tool()->selection().size(), size_t(1));
+    QCOMPARE(panel_->tool()->selection().ids(), std::vector<uint32_t>{target->id});
+    // Beside it, on bare ground: the ground rule, which finds none within 0.1 m.
+    QVERIFY(vp->projectToWidget(target->position + glm::dvec3(0.0, -1.2, 0.0), p));
+    QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, p);
+    QVERIFY(panel_->tool()->selection().empty());
+    chooseTool("Off");
+    vp->camera().setView(saved, 160.0);
+    vp->update();
   }
 
   void editTypeThroughTheDialog() {
