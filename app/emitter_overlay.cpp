@@ -98,8 +98,7 @@ void emitterGlyph(render::Overlay& o, const scene::SceneState& state, scene::Ent
     // The renderer's bound at the shown time (what decides that it is out of view).
     scene::ParticleWorld world(state);
     const particles::SurfaceSampler* surface = d.shape == S::Mesh ? world.inputs(d, false).surface : nullptr;
-    const scene::PlacedEmitter pe{id, d, scene::EmitterMotion::of(state, id), scene::EmitterSpawnTracks::of(state, id)};
-    const auto b = scene::placedBound(pe, state.time.seconds, &world, surface);
+    const auto b = scene::placedBound(*scene::placedEmitter(state, id), state.time.seconds, &world, surface);
     if (b) sphere(o, p + b->bound.centre, b->bound.radius, glm::vec4(col.r, col.g, col.b, col.a * 0.25f));
   }
 }

@@ -195,13 +195,17 @@ std::optional<PlacedBound> placedBound(const PlacedEmitter& placed, double t, Pa
   return out;
 }
 
+std::optional<PlacedEmitter> placedEmitter(const SceneState& state, EntityId id) {
+  std::optional<particles::EmitterDesc> desc = emitterInWorld(state, id);
+  if (!desc) return std::nullopt;
+  return PlacedEmitter{id, std::move(*desc), EmitterMotion::of(state, id), EmitterSpawnTracks::of(state, id)};
+}
+
 std::vector<PlacedEmitter> visibleEmitters(const SceneState& state) {
   std::vector<PlacedEmitter> out;
-  for (EntityId id : state.depthFirstOrder()) {
-    const Entity* e = state.find(id);
-    if (!e || !e->particles || !state.effectivelyVisible(id)) continue;
-    out.push_back({id, *emitterInWorld(state, id), EmitterMotion::of(state, id), EmitterSpawnTracks::of(state, id)});
-  }
+  for (EntityId id : state.depthFirstOrder())
+    if (state.effectivelyVisible(id))
+      if (std::optional<PlacedEmitter> placed = placedEmitter(state, id)) out.push_back(std::move(*placed));
   return out;
 }
 

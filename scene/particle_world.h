@@ -74,6 +74,9 @@ struct PlacedEmitter {
 // What the placed emitter adds to an evaluator's inputs: its origin over
 // time (world space) and its keyed spawn values, each kept alive by them.
 void addTimeInputs(const PlacedEmitter& placed, particles::EvaluatorInputs& in);
+// The entity's emitter placed (nullopt: it has none), what visibleEmitters
+// gives for each and the editor's overlay for the selected one.
+std::optional<PlacedEmitter> placedEmitter(const SceneState& state, EntityId id);
 // Every effectively visible emitter, depth-first (outliner order).
 std::vector<PlacedEmitter> visibleEmitters(const SceneState& state);
 
