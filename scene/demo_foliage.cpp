@@ -6,16 +6,10 @@
 #include "scene/mesh_materials.h"
 
 namespace hs::scene {
-namespace {
-
-struct DemoPlant {
-  const char* asset;
-  foliage::PlantParams params;
-};
 
 // Sizes kept modest (a few thousand triangles at full resolution) so the
 // demo renders quickly on a CPU rasteriser with LODs off (the goldens).
-std::vector<DemoPlant> plants() {
+std::vector<DemoPlant> demoPlants() {
   foliage::PlantParams pine = foliage::defaultPlant(foliage::PlantKind::Conifer, 11);
   pine.height = 11.0;
   pine.branches = 20;
@@ -32,6 +26,8 @@ std::vector<DemoPlant> plants() {
   boulder.height = 1.4;
   return {{"Black Pine", pine}, {"Plane Tree", plane}, {"Juniper", juniper}, {"Boulder", boulder}};
 }
+
+namespace {
 
 std::vector<foliage::FoliageType> types() {
   foliage::FoliageType pines;
@@ -83,7 +79,7 @@ std::vector<foliage::FoliageType> types() {
 }  // namespace
 
 bool addDemoFoliage(SceneState& s, std::string& error) {
-  for (const DemoPlant& p : plants()) {
+  for (const DemoPlant& p : demoPlants()) {
     std::optional<MeshAsset> a = ops::makePlantAsset(p.asset, p.params, error);
     if (!a) return false;
     a->id = s.maxAssetId() + 1;

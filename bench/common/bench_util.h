@@ -26,6 +26,17 @@ inline std::string threadsText() {
   return s;
 }
 
+// A field of /proc/self/status in KiB ("VmRSS:" resident now, "VmHWM:" its
+// peak); 0 when it is not there.
+inline size_t statusKiB(const char* field) {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  const std::string key(field);
+  while (std::getline(f, line))
+    if (line.compare(0, key.size(), key) == 0) return size_t(std::strtoull(line.c_str() + key.size(), nullptr, 10));
+  return 0;
+}
+
 inline double nowSeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }

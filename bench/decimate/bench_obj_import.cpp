@@ -27,20 +27,11 @@ using namespace hs::mesh;
 
 namespace {
 
-size_t statusKiB(const char* field) {
-  std::ifstream f("/proc/self/status");
-  std::string line;
-  const size_t n = std::strlen(field);
-  while (std::getline(f, line))
-    if (line.compare(0, n, field) == 0) return size_t(std::strtoull(line.c_str() + n, nullptr, 10));
-  return 0;
-}
-
 int child(const std::string& reader, const std::string& path) {
   // What the process holds before reading (the libraries: Assimp and
   // OpenImageIO alone map about 120 MB), so the import's own peak can be
   // told apart.
-  const size_t baseline = statusKiB("VmRSS:");
+  const size_t baseline = hs::bench::statusKiB("VmRSS:");
   ImportOptions o;
   o.up = UpAxis::Z;
   o.reader = reader == "assimp" ? Reader::Assimp : Reader::Obj;
@@ -53,7 +44,7 @@ int child(const std::string& reader, const std::string& path) {
   }
   // seconds triangles vertices meshBytes peakKiB baselineKiB hash
   std::printf("result %.6f %zu %zu %zu %zu %zu %016llx\n", s, r.mesh->triangleCount(), r.mesh->vertexCount(),
-              r.mesh->memoryBytes(), statusKiB("VmHWM:"), baseline, (unsigned long long)contentHash(*r.mesh));
+              r.mesh->memoryBytes(), hs::bench::statusKiB("VmHWM:"), baseline, (unsigned long long)contentHash(*r.mesh));
   return 0;
 }
 

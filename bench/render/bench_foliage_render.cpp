@@ -44,21 +44,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <random>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "bench/common/bench_util.h"
+#include "bench/common/gpu_bytes.h"
 #include "foliage/plants.h"
 #include "mesh/primitives.h"
 #include "render/instanced_source.h"
 #include "render/offscreen_renderer.h"
 #include "render/renderer.h"
+#include "scene/demo_foliage.h"
 #include "scene/foliage_ops.h"
 #include "scene/mesh_materials.h"
 #include "scene/scene_state.h"
@@ -80,30 +79,12 @@ struct Options {
   double lodPixels = 1.0;    // the culled way's mesh LOD bound (settings.meshLodErrorPixels; the project's default)  // the full way is skipped where a frame is expected to take longer
 };
 
-// Resident memory of this process (MB): now (VmRSS) or its peak (VmHWM).
-double residentMb(const char* key) {
-  std::ifstream f("/proc/self/status");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind(key, 0) == 0) return std::atof(line.c_str() + std::strlen(key)) / 1024.0;
-  return -1.0;
-}
-
-// The demo's pine and plane tree (scene/demo_foliage.cpp), a few thousand
+// The demo's pine and plane tree (scene::demoPlants), a few thousand
 // triangles at full detail, with their LOD chains and leaf materials.
 bool addPlants(scene::SceneState& s, std::string& error, std::vector<size_t>& fullTriangles) {
-  foliage::PlantParams pine = foliage::defaultPlant(foliage::PlantKind::Conifer, 11);
-  pine.height = 11.0;
-  pine.branches = 20;
-  pine.leavesPerBranch = 8;
-  pine.sides = 6;
-  foliage::PlantParams plane = foliage::defaultPlant(foliage::PlantKind::Broadleaf, 23);
-  plane.height = 9.0;
-  plane.branches = 14;
-  plane.leavesPerBranch = 8;
-  plane.sides = 6;
-  for (auto [id, name, params] : {std::tuple{kPine, "Pine", pine}, std::tuple{kPlane, "Plane Tree", plane}}) {
-    std::optional<scene::MeshAsset> a = scene::ops::makePlantAsset(name, params, error);
+  const std::vector<scene::DemoPlant> plants = scene::demoPlants();
+  for (auto [id, plant] : {std::pair{kPine, plants[0]}, std::pair{kPlane, plants[1]}}) {
+    std::optional<scene::MeshAsset> a = scene::ops::makePlantAsset(plant.asset, plant.params, error);
     if (!a) return false;
     a->id = id;
     fullTriangles.push_back(a->data->triangleCount());
@@ -211,12 +192,6 @@ render::RenderView grazing(const Options& o, double side) {
   return v;
 }
 
-size_t registryBytes(const render::Renderer& r) {
-  size_t n = 0;
-  for (const render::GpuAllocation& a : r.resourceRegistry()) n += a.bytes;
-  return n;
-}
-
 struct Row {
   double frameMs = 0.0, cpuMs = 0.0, cullGpuMs = -1.0, cullCpuMs = 0.0;
   int64_t instances = -1, triangles = -1;
@@ -241,7 +216,7 @@ Row measure(render::OffscreenRenderer& r, const scene::SceneState& s, const std:
     r.renderOnly(s, v);
     r.renderOnly(s, v);
     r.renderer().setDrawSources({});
-    return registryBytes(r.renderer());
+    return bench::registryBytes(r.renderer());
   }();
   // One source a set, named as foliage_sources.h names the document's.
   std::vector<std::shared_ptr<render::InstancedSource>> sources;
@@ -296,9 +271,9 @@ Row measure(render::OffscreenRenderer& r, const scene::SceneState& s, const std:
     for (size_t l = 0; l < levels.size(); ++l) row.byLevel[l] += levels[l];
   }
   row.sources = sources.size();
-  row.bytesPerInstance =
-      double(registryBytes(r.renderer()) - std::min(registryBytes(r.renderer()), baseline)) / double(count);
-  row.rssMb = residentMb("VmRSS:");
+  const size_t bytes = bench::registryBytes(r.renderer());
+  row.bytesPerInstance = double(bytes - std::min(bytes, baseline)) / double(count);
+  row.rssMb = bench::statusKiB("VmRSS:") / 1024.0;
   r.renderer().setDrawSources({});
   return row;
 }
@@ -398,6 +373,6 @@ int main(int argc, char** argv) {
     }
     std::fflush(stdout);
   }
-  std::printf("\n# peak RSS %.0f MB\n", residentMb("VmHWM:"));
+  std::printf("\n# peak RSS %.0f MB\n", bench::statusKiB("VmHWM:") / 1024.0);
   return 0;
 }

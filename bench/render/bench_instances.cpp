@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "bench/common/bench_util.h"
+#include "bench/common/gpu_bytes.h"
 #include "mesh/primitives.h"
 #include "render/instanced_source.h"
 #include "render/offscreen_renderer.h"
@@ -123,12 +124,6 @@ render::RenderView topView(const Options& o) {
   return v;
 }
 
-size_t registryBytes(const render::Renderer& r) {
-  size_t n = 0;
-  for (const render::GpuAllocation& a : r.resourceRegistry()) n += a.bytes;
-  return n;
-}
-
 struct Row {
   std::string mode;
   size_t count = 0;
@@ -159,8 +154,8 @@ Row measure(render::OffscreenRenderer& r, const scene::SceneState& s, const std:
   row.cpuMs = bench::median(cpu);
   row.drawCalls = st.drawCalls;
   row.visible = src ? src->lastVisible() : int64_t(st.instancesDrawn);
-  row.bytesPerInstance = double(registryBytes(r.renderer()) - std::min(registryBytes(r.renderer()), baselineBytes)) /
-                         double(count);
+  const size_t bytes = bench::registryBytes(r.renderer());
+  row.bytesPerInstance = double(bytes - std::min(bytes, baselineBytes)) / double(count);
   r.renderer().setDrawSources({});
   return row;
 }
@@ -198,7 +193,7 @@ int main(int argc, char** argv) {
   std::printf("|---:|---|---:|---:|---:|---:|---:|---:|\n");
   const scene::SceneState base = baseScene(o);
   r.renderOnly(base, topView(o));
-  const size_t baseline = registryBytes(r.renderer());
+  const size_t baseline = bench::registryBytes(r.renderer());
   for (double countD : o.counts) {
     const size_t count = size_t(countD);
     const std::vector<glm::dvec3> places = field(count);
