@@ -49,6 +49,7 @@ struct FoliageType {
   double cullDistance = 1000.0;  // metres: not drawn beyond (0: never culled)
   double fadeLength = 50.0;      // metres before the cull distance over which it fades out
   bool castShadows = true;
+  bool impostor = true;          // far instances drawn as an octahedral impostor (the renderer's far level)
   double windResponse = 1.0;     // 0: stiff (a rock); 1: a tree's sway; up to 10
 
   bool operator==(const FoliageType&) const = default;

@@ -18,6 +18,7 @@ std::vector<InstanceSet> foliageInstanceSets(const scene::SceneState& state, siz
     it.fadeLength = float(std::min(t.fadeLength, t.cullDistance));
     it.windResponse = float(t.windResponse);
     it.castShadows = t.castShadows;
+    it.impostor = t.impostor;
     types.push_back(it);
   }
   std::vector<foliage::CellKey> keys;

@@ -8,9 +8,12 @@
 
 #include "render/frame_context.h"
 #include "render/gpu_mesh_cache.h"
+#include "render/impostor_atlas.h"
+#include "render/impostor_cache.h"
 #include "render/material_binding.h"
 #include "render/material_table.h"
 #include "render/mesh_lod.h"
+#include "render/render_resources.h"
 
 namespace hs::render {
 namespace {
@@ -146,12 +149,18 @@ InstancedSource::~InstancedSource() = default;
 void InstancedSource::setInstances(InstanceSet set) {
   set_ = std::move(set);
   maxId_ = 0;
-  for (const GpuInstance& g : set_.instances) maxId_ = std::max(maxId_, g.id);
+  minScale_.assign(set_.types.size(), std::numeric_limits<float>::infinity());
+  for (const GpuInstance& g : set_.instances) {
+    maxId_ = std::max(maxId_, g.id);
+    const size_t type = g.typeAndCell & 0xFFFFu;
+    if (type < minScale_.size()) minScale_[type] = std::min(minScale_[type], float(maxAbsScale(instanceScale(g))));
+  }
   ++revision_;
 }
 
 bool InstancedSource::wanted(const Part& part, SurfaceSet surfaces) const {
   if (surfaces == SurfaceSet::All) return true;
+  if (!groups_[part.group].mesh) return surfaces == SurfaceSet::Opaque;  // an impostor: cut out, opaque
   return materials_->forDraw(groups_[part.group].materialDraw, part.submesh).translucent ==
          (surfaces == SurfaceSet::Translucent);
 }
@@ -198,6 +207,28 @@ void InstancedSource::addMaterials(FrameContext& frame, std::vector<DrawItem>& d
       for (size_t s = 0; s < subs.size(); ++s)
         parts_.push_back({group, uint32_t(t), subs[s].firstIndex, subs[s].indexCount, uint32_t(s)});
     }
+    // The impostor after the mesh levels (instanced_source.h), where an
+    // instance can reach it: from `reach` metres (the LOD rule's distance
+    // for its error) at the type's smallest scale, within its cull distance.
+    const InstanceType& type = set_.types[t];
+    const double bound = frame.settings.meshLodErrorPixels;
+    const double pixelsPerMetreAt1m = double(frame.lodView.height) / (2.0 * std::tan(0.5 * frame.lodView.fovY));
+    if (type.impostor && !base->bounds.empty && base->bounds.radius() > 0.0f && bound > 0 &&
+        frame.lodView.fovY > 0 && frame.settings.depthOfField != scene::DepthOfField::Layered) {
+      const double error = std::max(impostorError(base->bounds.radius()), tf.errors.back());
+      const double reach = error * pixelsPerMetreAt1m / bound * double(minScale_[t]);
+      if (!(type.cullDistance > 0.0f) || reach < double(type.cullDistance)) {
+        tf.errors.push_back(error);
+        const auto& subs = base->data->submeshes;
+        for (size_t s = 1; s < subs.size(); ++s)
+          if (subs[s].indexCount > subs[tf.impostorSubmesh].indexCount) tf.impostorSubmesh = uint32_t(s);
+        const uint32_t group = uint32_t(groups_.size());
+        groups_.push_back({uint32_t(t), tf.levels, nullptr, groups_[tf.firstGroup].materialDraw});
+        parts_.push_back({group, uint32_t(t), 0, 6, 0});  // the card: two triangles (ImpostorCache::cardVao)
+        ++tf.levels;
+        tf.hasImpostor = true;
+      }
+    }
     // Float rounding of a centre far from the mesh origin: a hair more.
     tf.cullRadius *= 1.0f + 1e-6f;
   }
@@ -208,6 +239,17 @@ void InstancedSource::addMaterials(FrameContext& frame, std::vector<DrawItem>& d
 
 void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
   if (!active_) return;
+  // Atlases for the types that may draw an impostor (baked on first need;
+  // the frame's material block is bound by now).
+  for (size_t t = 0; t < types_.size(); ++t) {
+    TypeFrame& tf = types_[t];
+    if (!tf.hasImpostor) continue;
+    const Group& level0 = groups_[tf.firstGroup];
+    std::vector<DrawMaterial> materials;
+    for (size_t s = 0; s < level0.mesh->data->submeshes.size(); ++s)
+      materials.push_back(materials_->forDraw(level0.materialDraw, s));
+    tf.impostor = frame.res.impostors.get(frame.res, set_.types[t].mesh, *level0.mesh, materials);
+  }
   const size_t n = set_.instances.size(), types = types_.size(), groups = groups_.size();
   cameraViews_ = frame.views ? frame.views->size() : 0;
   const size_t views = cameraViews_ + frame.shadowViews.size();
@@ -538,6 +580,7 @@ void InstancedSource::drawParts(FrameContext& frame, const PassResources& r, siz
     if (call.variant == DrawVariant::Surface && !wanted(part, call.surfaces)) continue;
     if (call.variant == DrawVariant::Depth && !type.castShadows) continue;
     const Group& group = groups_[part.group];
+    if (!group.mesh) continue;  // an impostor: drawImpostors
     const DrawMaterial& mat = materials_->forDraw(group.materialDraw, part.submesh);
     GlProgram* p = nullptr;
     if (call.variant == DrawVariant::Pick) {
@@ -581,7 +624,66 @@ void InstancedSource::drawParts(FrameContext& frame, const PassResources& r, siz
     glEnableVertexArrayAttrib(vao, 7);
   }
   binding.finish();
+  drawImpostors(frame, view, call, ditherOffset);
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
+// View `view`'s impostors: one card per instance (shaders/impostor.vert),
+// lit, picked or cast by shaders/impostor.frag's variant for the call.
+void InstancedSource::drawImpostors(FrameContext& frame, size_t view, const DrawCall& call, glm::ivec2 ditherOffset) {
+  // A pass's own fragment shader (the A-buffer's capture passes) takes
+  // mesh surfaces; a frame with one has no impostor level (addMaterials).
+  if (call.variant == DrawVariant::Surface && (!call.fragment.empty() || call.surfaces == SurfaceSet::Translucent))
+    return;
+  const size_t n = set_.instances.size(), groups = groups_.size();
+  std::vector<std::string> defines = {"IMPOSTOR_FRAMES " + std::to_string(kImpostorFrames),
+                                      "IMPOSTOR_FRAME_PIXELS " + std::to_string(kImpostorFramePixels)};
+  if (call.variant == DrawVariant::Pick) defines.push_back("IMPOSTOR_PICK");
+  else if (call.variant == DrawVariant::Depth) defines.push_back("IMPOSTOR_DEPTH");
+  else defines.insert(defines.end(), call.defines.begin(), call.defines.end());
+  bool bound = false;
+  for (size_t k = 0; k < parts_.size(); ++k) {
+    const Part& part = parts_[k];
+    const Group& group = groups_[part.group];
+    const TypeFrame& tf = types_[part.type];
+    const InstanceType& type = set_.types[part.type];
+    if (group.mesh || !tf.impostor) continue;
+    if (call.variant == DrawVariant::Depth && !type.castShadows) continue;
+    GlProgram& p = frame.res.program({"impostor.vert", "impostor.frag", "", defines});
+    if (!bound) {
+      p.use();
+      glBindVertexArray(frame.res.impostors.cardVao());
+      bound = true;
+    }
+    p.set("uInstanceBase", unsigned(view * n));
+    p.set("uGroup", part.group);
+    p.set("uLodEye", lodEye_);
+    p.set("uInstanceType", glm::vec4(type.cullDistance, type.fadeLength, 0.0f, 0.0f));
+    p.set("uDitherOffset", ditherOffset);
+    p.set("uImpostorSphere", tf.impostor->sphere);
+    p.set("uImpostorFacing", call.variant == DrawVariant::Depth ? 1 : 0);
+    p.set("uMaterial", unsigned(materials_->forDraw(group.materialDraw, tf.impostorSubmesh).index));
+    if (call.variant == DrawVariant::Pick) p.set("uPickBase", call.pickBase);
+    glBindTextureUnit(3, tf.impostor->albedo.id());
+    glBindTextureUnit(4, tf.impostor->normalDepth.id());
+    if (commands_.valid()) {
+      glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                                  reinterpret_cast<const void*>((view * parts_.size() + k) * kCommandBytes), 1, 0);
+      ++frame.stats.drawCalls;
+    } else if (const uint32_t count = cpuCounts_[view * groups + part.group]) {
+      glDrawElementsInstanced(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT, nullptr, GLsizei(count));
+      ++frame.stats.drawCalls;
+      if (call.variant == DrawVariant::Surface && call.surfaces == SurfaceSet::Opaque) {
+        frame.stats.trianglesDrawn += size_t(count) * (part.indexCount / 3);
+        frame.stats.instancesDrawn += count;
+      }
+    }
+  }
+  if (bound) {
+    glBindTextureUnit(3, 0);
+    glBindTextureUnit(4, 0);
+    glBindVertexArray(0);
+  }
 }
 
 void InstancedSource::draw(FrameContext& frame, const DrawCall& call, const PassResources& r) {

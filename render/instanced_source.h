@@ -6,7 +6,15 @@
 //   - its level of detail, from its type's mesh asset's LOD chain by the
 //     rule of mesh_lod.h chooseMeshLod, seen from the frame's LOD view
 //     (FrameContext::lodView), so both eyes and every shadow view draw the
-//     level a mesh entity at that place would draw;
+//     level a mesh entity at that place would draw; past the chain's last
+//     level, an octahedral impostor (impostor_atlas.h, baked by
+//     impostor_cache.h, drawn by shaders/impostor.vert and .frag: one card
+//     an instance) whose error is impostorError of level 0's bounding
+//     radius (at least the last level's). A type has that level only where
+//     some instance can reach it: the pixel bound is above 0, no layered
+//     depth of field (its capture takes mesh surfaces only) and the
+//     distance the impostor's error passes from, at the type's smallest
+//     instance scale, within its cull distance; else no atlas is baked;
 //   - whether it is beyond its type's cull distance from the LOD eye (then
 //     no view draws it); over the last InstanceType::fadeLength metres
 //     before it, mesh.vert gives it a fade share and every fragment shader
@@ -49,6 +57,7 @@
 namespace hs::render {
 
 class MaterialTable;
+struct ImpostorAtlas;
 
 // One instance (std430, shaders/instances.glsl), 32 bytes.
 struct GpuInstance {
@@ -116,6 +125,9 @@ struct InstanceType {
   // 0: stiff (a rock, no displacement at all); 1: a tree's sway; up to 10.
   float windResponse = 0.0f;
   bool castShadows = true;  // false: left out of every shadow view
+  // Beyond the last mesh level, an octahedral impostor (the foliage's
+  // types: FoliageType::impostor); false: the mesh levels only, however far.
+  bool impostor = false;
 };
 
 // The most instances one source culls on the GPU: its compute passes run
@@ -177,6 +189,9 @@ class InstancedSource final : public DrawSource {
   void draw(FrameContext& frame, const DrawCall& call, const PassResources& resources) override;
   size_t triangles(SurfaceSet surfaces) const override;
   uint32_t pickIds() const override { return maxId_ + 1; }
+  // Whether the last frame drew (could draw) type `type` as an impostor:
+  // the type has that level this frame and its atlas is baked.
+  bool impostorLevel(size_t type) const { return type < types_.size() && types_[type].impostor != nullptr; }
   PickedItem picked(uint32_t k) const override { return {set_.entity, k}; }
 
  private:
@@ -192,18 +207,25 @@ class InstancedSource final : public DrawSource {
     float cullRadius = 0.0f;
     float height = 0.0f;           // level 0's bounds top above the origin (m, mesh space; 0: no wind)
     float windPerScaleZ = 0.0f;    // instanceWindMargin per unit |scale z|
-    std::vector<double> errors;    // MeshAsset::lodErrors()
+    std::vector<double> errors;    // MeshAsset::lodErrors(), then the impostor's
+    // The impostor level (the last, group firstGroup + levels - 1) when the
+    // type has one this frame: its atlas (baked by addPreparePasses) and
+    // the submesh of level 0 whose material lights it (the largest).
+    bool hasImpostor = false;
+    const ImpostorAtlas* impostor = nullptr;
+    uint32_t impostorSubmesh = 0;
   };
   struct Group {
     uint32_t type = 0, level = 0;
-    const GpuMesh* mesh = nullptr;  // the level's (level 0's where the cache has no such level)
-    size_t materialDraw = 0;        // its draw in the MaterialTable
+    const GpuMesh* mesh = nullptr;  // the level's (level 0's where the cache has no such level); null: the impostor
+    size_t materialDraw = 0;        // its draw in the MaterialTable (the impostor: level 0's)
   };
   struct Part {
     uint32_t group = 0, type = 0, firstIndex = 0, indexCount = 0, submesh = 0;
   };
   bool wanted(const Part& part, SurfaceSet surfaces) const;
   void drawParts(FrameContext& frame, const PassResources& r, size_t view, const DrawCall& call);
+  void drawImpostors(FrameContext& frame, size_t view, const DrawCall& call, glm::ivec2 ditherOffset);
   void bindInstances(const PassResources& r) const;
 
   std::string name_, bufferName_;
@@ -219,6 +241,7 @@ class InstancedSource final : public DrawSource {
   const MaterialTable* materials_ = nullptr;
   glm::vec3 lodEye_{0.0f};
   std::vector<uint32_t> cpuCounts_;  // Cpu: visible per view and group
+  std::vector<float> minScale_;      // per type: its instances' smallest largest |scale| factor
   size_t cameraViews_ = 0;
   bool anyCaster_ = false;
   BufferRef instanceBuffer_, cells_, visible_, groupBase_, commands_;

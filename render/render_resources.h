@@ -12,6 +12,7 @@
 #include "render/gl/shader_library.h"
 #include "render/environment_maps.h"
 #include "render/gpu_mesh_cache.h"
+#include "render/impostor_cache.h"
 #include "render/material_table.h"
 #include "render/resource_pool.h"
 #include "render/local_shadows.h"
@@ -44,6 +45,7 @@ struct RenderResources {
   gl::ShaderLibrary shaders;
   ResourcePool pool;
   GpuMeshCache meshes;
+  ImpostorCache impostors;      // instanced types' far level (instanced_source.h), baked on first need
   MaterialTable materials;      // the frame's materials and standalone textures
   GrowingBuffer materialBlock;  // GpuMaterial[] at kMaterialBufferBinding
   TerrainPass terrain;  // runs only for scenes with a visible terrain

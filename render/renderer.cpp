@@ -463,6 +463,7 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
   if (const size_t t = res.terrain.gpuBytes()) out.push_back({"terrains", "terrains", t, false});
   if (const size_t t = res.materials.gpuBytes()) out.push_back({"material_textures", "textures", t, false});
   if (const size_t t = res.meshes.tangentBytes()) out.push_back({"mesh_tangents", "buffer", t, false});
+  if (const size_t t = res.impostors.gpuBytes()) out.push_back({"impostor_atlases", "textures", t, false});
   if (const size_t f = res.fogBlock.capacity) out.push_back({"fog_block", "buffer", f, false});
   return out;
 }
@@ -588,6 +589,7 @@ void Renderer::setDrawSources(std::vector<std::shared_ptr<DrawSource>> sources) 
 
 void Renderer::collectGarbage(const scene::SceneState& state) {
   d_->res.meshes.collect(state);
+  d_->res.impostors.collect(state);
   d_->res.materials.collect(state);
 }
 
@@ -802,6 +804,7 @@ void Renderer::shutdown() {
   d_->frames.clear();
   d_->kept.clear();
   d_->res.meshes.clear();
+  d_->res.impostors.clear();
   d_->res.materials.clear();
   d_->res.terrain.release();
   d_->res.pool.clear();

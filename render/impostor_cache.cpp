@@ -1,0 +1,140 @@
+#include "render/impostor_cache.h"
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+
+#include "render/gpu_mesh_cache.h"
+#include "render/impostor_atlas.h"
+#include "render/render_resources.h"
+
+namespace hs::render {
+namespace {
+
+constexpr int kAtlasPixels = kImpostorFrames * kImpostorFramePixels;
+// Mip levels down to 4 pixels a frame: below that a texel would average
+// neighbouring frames.
+constexpr int kAtlasLevels = 5;
+static_assert(kImpostorFramePixels >> (kAtlasLevels - 1) >= 4);
+
+gl::Texture atlasTexture(GLenum format) {
+  gl::Texture t = gl::createTexture(GL_TEXTURE_2D);
+  glTextureStorage2D(t.id(), kAtlasLevels, format, kAtlasPixels, kAtlasPixels);
+  glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t.id(), GL_TEXTURE_MAX_LEVEL, kAtlasLevels - 1);
+  return t;
+}
+
+size_t atlasBytes() {
+  size_t bytes = 0;
+  for (int l = 0; l < kAtlasLevels; ++l) bytes += size_t(kAtlasPixels >> l) * size_t(kAtlasPixels >> l) * 4;
+  return 2 * bytes;
+}
+
+}  // namespace
+
+GLuint ImpostorCache::cardVao() {
+  if (!cardVao_) {
+    const uint32_t indices[6] = {0, 1, 2, 2, 1, 3};
+    cardIndices_ = gl::createBuffer();
+    glNamedBufferStorage(cardIndices_.id(), sizeof indices, indices, 0);
+    cardVao_ = gl::createVertexArray();
+    glVertexArrayElementBuffer(cardVao_.id(), cardIndices_.id());
+  }
+  return cardVao_.id();
+}
+
+const ImpostorAtlas* ImpostorCache::get(RenderResources& res, scene::AssetId asset, const GpuMesh& mesh,
+                                        const std::vector<DrawMaterial>& materials) {
+  if (mesh.bounds.empty || !(mesh.bounds.radius() > 0.0f) || !mesh.data) return nullptr;
+  auto it = atlases_.find(asset);
+  if (it != atlases_.end() && it->second.meshHash == mesh.hash) return &it->second;
+  const auto started = std::chrono::steady_clock::now();
+  ImpostorAtlas atlas;
+  atlas.sphere = glm::vec4(mesh.bounds.center(), mesh.bounds.radius());
+  atlas.meshHash = mesh.hash;
+  atlas.albedo = atlasTexture(GL_SRGB8_ALPHA8);
+  atlas.normalDepth = atlasTexture(GL_RGBA8);
+  atlas.bytes = atlasBytes();
+  if (!fbo_) {
+    fbo_ = gl::createFramebuffer();
+    depth_ = gl::createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, kAtlasPixels, kAtlasPixels);
+    glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fbo_.id(), 2, buffers);
+  }
+  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, atlas.albedo.id(), 0);
+  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT1, atlas.normalDepth.id(), 0);
+
+  // The state the frame had, given back after.
+  GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0};
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  const GLboolean culling = glIsEnabled(GL_CULL_FACE);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+  const float zeros[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const float far = 0.0f;  // reversed depth
+  glDepthMask(GL_TRUE);
+  glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zeros);
+  glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, zeros);
+  glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &far);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDisable(GL_CULL_FACE);  // a frame sees one-sided backs only behind fronts; leaf cards from both sides
+  glEnable(GL_FRAMEBUFFER_SRGB);  // linear colour into the sRGB albedo
+  GlProgram& p = res.program({"impostor_bake.vert", "impostor_bake.frag", "", {}});
+  p.use();
+  p.set("uSphere", atlas.sphere);
+  glBindVertexArray(mesh.vao);
+  const auto& subs = mesh.data->submeshes;
+  for (int i = 0; i < kImpostorFrames; ++i)
+    for (int j = 0; j < kImpostorFrames; ++j) {
+      const glm::dvec3 d = impostorFrameDirection(i, j);
+      const ImpostorBasis b = impostorBasis(d);
+      glViewport(i * kImpostorFramePixels, j * kImpostorFramePixels, kImpostorFramePixels, kImpostorFramePixels);
+      p.set("uFrameDir", glm::vec3(d));
+      p.set("uFrameRight", glm::vec3(b.right));
+      p.set("uFrameUp", glm::vec3(b.up));
+      for (size_t s = 0; s < subs.size() && s < materials.size(); ++s) {
+        const DrawMaterial& mat = materials[s];
+        p.set("uMaterial", unsigned(mat.index));
+        p.set("uUvBounds", mat.uvBounds);
+        glBindTextureUnit(kMaterialTextureUnit, mat.textures[0]);
+        glDrawElements(GL_TRIANGLES, GLsizei(subs[s].indexCount), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(uintptr_t(subs[s].firstIndex) * sizeof(uint32_t)));
+      }
+    }
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glGenerateTextureMipmap(atlas.albedo.id());
+  glGenerateTextureMipmap(atlas.normalDepth.id());
+  glBindTextureUnit(kMaterialTextureUnit, 0);
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
+  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  if (culling) glEnable(GL_CULL_FACE);
+  // The atlas textures stay attached to nothing: the next bake attaches its own.
+  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, 0, 0);
+  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT1, 0, 0);
+  atlas.bakeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+  ++bakes_;
+  ImpostorAtlas& slot = atlases_[asset];
+  slot = std::move(atlas);
+  return &slot;
+}
+
+void ImpostorCache::collect(const scene::SceneState& state) {
+  std::erase_if(atlases_, [&](const auto& kv) { return state.findAsset(kv.first) == nullptr; });
+}
+
+size_t ImpostorCache::gpuBytes() const {
+  size_t n = 0;
+  for (const auto& [id, a] : atlases_) n += a.bytes;
+  return n;
+}
+
+}  // namespace hs::render
