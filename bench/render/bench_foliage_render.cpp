@@ -39,6 +39,11 @@
 //
 //   bench_foliage_render [--counts 2000,100000,1000000,10000000] [--frames N] [--size WxH] [--cap S]
 //                        [--lod-pixels P]   (the culled way's LOD bound; 1: the project's default)
+//
+// With --lod-table B1,B2,... (e.g. 1,2,4,8,16) it prints instead the error
+// against run time table of the LOD chain and the octahedral impostors
+// (render/impostor_atlas.h): the field of --table-count trees (2000) at
+// each bound, impostors off and on, against full detail (see lodTable).
 #include <QCoreApplication>
 
 #include <algorithm>
@@ -76,7 +81,11 @@ struct Options {
   int frames = 3, width = 1920, height = 1080;
   std::vector<double> counts = {2e3, 1e5, 1e6, 1e7};
   double capSeconds = 60.0;
-  double lodPixels = 1.0;    // the culled way's mesh LOD bound (settings.meshLodErrorPixels; the project's default)  // the full way is skipped where a frame is expected to take longer
+  double lodPixels = 1.0;    // the culled way's mesh LOD bound (settings.meshLodErrorPixels; the project's default)
+  // --lod-table: the error against run time table instead (the bounds of
+  // its rows; empty: the count table), over a field of tableCount trees.
+  std::vector<double> lodTable;
+  size_t tableCount = 2000;
 };
 
 // The demo's pine and plane tree (scene::demoPlants), a few thousand
@@ -101,11 +110,12 @@ double fieldSide(size_t n) { return std::ceil(std::sqrt(double(n))) * kSpacing; 
 // other tree (by a hash, not a pattern) a plane tree. Whole rows of the grid
 // per set, at most kMaxInstancesPerSource each (one source culls no more:
 // instanced_source.h), as foliage_instances.h splits the document's.
-std::vector<render::InstanceSet> forest(size_t n, bool culled) {
+std::vector<render::InstanceSet> forest(size_t n, bool culled, bool impostors = false) {
   render::InstanceSet proto;
   for (scene::AssetId mesh : {kPine, kPlane}) {
     render::InstanceType t;
     t.mesh = mesh;
+    t.impostor = impostors;
     t.cullDistance = culled ? float(kCullDistance) : 0.0f;
     t.fadeLength = culled ? float(kFade) : 0.0f;
     t.windResponse = 1.0f;
@@ -278,6 +288,69 @@ Row measure(render::OffscreenRenderer& r, const scene::SceneState& s, const std:
   return row;
 }
 
+// The error against run time table (--lod-table): the field of
+// o.tableCount trees, culled, at each mesh LOD bound of the list, without
+// and with impostors, against the same frame at full detail (bound 0:
+// level 0 everywhere): frame time, instances per level (the impostor is
+// the level after the chain), triangles, and the image error: the share
+// of pixels of the 8-bit output any channel of which differs by more than
+// 8 (of 255) from full detail, and the mean absolute difference over all
+// pixels and channels.
+int lodTable(render::OffscreenRenderer& r, const scene::SceneState& plants, const Options& o) {
+  const double side = fieldSide(o.tableCount);
+  const render::RenderView v = grazing(o, side);
+  auto frame = [&](double bound, bool impostors, Row& row) {
+    const scene::SceneState s = sceneFor(plants, side, bound);
+    row = measure(r, s, forest(o.tableCount, true, impostors), true, v, side, o.frames);
+    std::vector<std::shared_ptr<render::DrawSource>> draw;
+    for (const render::InstanceSet& set : forest(o.tableCount, true, impostors)) {
+      auto src = std::make_shared<render::InstancedSource>("foliage", render::InstancedSource::Culling::Gpu);
+      src->setInstances(set);
+      draw.push_back(src);
+    }
+    r.renderer().setDrawSources(draw);
+    Image img = r.render(s, v);
+    r.renderer().setDrawSources({});
+    return img;
+  };
+  Row fullRow;
+  const Image full = frame(0.0, false, fullRow);
+  std::printf("| LOD bound px | impostors | frame ms | frame vs full detail | drawn by level (last: impostor) | "
+              "triangles drawn | pixels off (> 8/255) | mean abs difference (/255) |\n");
+  std::printf("|---:|---|---:|---:|---|---:|---:|---:|\n");
+  auto levels = [](const Row& row) {
+    std::string t;
+    for (size_t l = 0; l < row.byLevel.size(); ++l)
+      t += (l ? ", " : "") + std::to_string(l) + ": " + std::to_string(row.byLevel[l]);
+    return t;
+  };
+  std::printf("| 0 (full detail) | - | %.1f | 1x | %s | %lld | 0 | 0 |\n", fullRow.frameMs, levels(fullRow).c_str(),
+              static_cast<long long>(fullRow.triangles));
+  std::fflush(stdout);
+  for (double bound : o.lodTable)
+    for (bool impostors : {false, true}) {
+      Row row;
+      const Image img = frame(bound, impostors, row);
+      size_t off = 0;
+      double sum = 0.0;
+      for (size_t p = 0; p < img.pixelCount(); ++p) {
+        int worst = 0;
+        for (int c = 0; c < 3; ++c) {
+          const int d = std::abs(int(img.rgba8[p * 4 + size_t(c)]) - int(full.rgba8[p * 4 + size_t(c)]));
+          worst = std::max(worst, d);
+          sum += d;
+        }
+        off += worst > 8;
+      }
+      std::printf("| %g | %s | %.1f | %.3fx | %s | %lld | %.2f %% | %.3f |\n", bound, impostors ? "on" : "off",
+                  row.frameMs, row.frameMs / fullRow.frameMs, levels(row).c_str(),
+                  static_cast<long long>(row.triangles), 100.0 * double(off) / double(img.pixelCount()),
+                  sum / (3.0 * double(img.pixelCount())));
+      std::fflush(stdout);
+    }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -290,8 +363,11 @@ int main(int argc, char** argv) {
     else if (a == "--size" && i + 1 < argc) std::sscanf(argv[++i], "%dx%d", &o.width, &o.height);
     else if (a == "--cap" && i + 1 < argc) o.capSeconds = std::atof(argv[++i]);
     else if (a == "--lod-pixels" && i + 1 < argc) o.lodPixels = std::atof(argv[++i]);
+    else if (a == "--lod-table" && i + 1 < argc) o.lodTable = bench::numberList(argv[++i]);
+    else if (a == "--table-count" && i + 1 < argc) o.tableCount = size_t(std::atof(argv[++i]));
     else {
-      std::fprintf(stderr, "usage: bench_foliage_render [--counts A,B,C] [--frames N] [--size WxH] [--cap S] [--lod-pixels P]\n");
+      std::fprintf(stderr, "usage: bench_foliage_render [--counts A,B,C] [--frames N] [--size WxH] [--cap S] [--lod-pixels P]\n"
+                           "                            [--lod-table B1,B2,.. [--table-count N]]\n");
       return 2;
     }
   }
@@ -310,6 +386,7 @@ int main(int argc, char** argv) {
               o.width, o.height, kSpacing, o.frames, fullTriangles[0], fullTriangles[1], bench::nowSeconds() - t0,
               kCullDistance, kFade, o.lodPixels, r.glDescription().c_str(), bench::threadsText().c_str(),
               bench::loadAverageLine().c_str());
+  if (!o.lodTable.empty()) return lodTable(r, plants, o);
   std::printf("| instances | way | frame ms | CPU ms | instances drawn | triangles drawn | GPU bytes / instance | "
               "RSS MB | frame vs full |\n");
   std::printf("|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
