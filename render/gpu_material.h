@@ -21,7 +21,7 @@ struct GpuMaterial {
   glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f};  // rgb linear, a: opacity
   glm::vec4 emission{0.0f, 0.0f, 0.0f, 0.5f};   // rgb: colour x strength, a: cut-out threshold
   glm::vec4 surface{0.5f, 0.0f, 0.5f, 32.0f};   // roughness, metallic, specular, shininess
-  glm::vec4 detail{1.0f, 0.0f, 0.0f, 0.0f};     // normal strength, height scale (m), unused x2
+  glm::vec4 detail{1.0f, 0.0f, 0.0f, 0.0f};     // normal strength, height scale (m), transmission, unused
   glm::uvec4 kind{0u, kMatTwoSided, 0u, 0u};    // x: lighting model, y: MaterialFlag bits
 };
 static_assert(sizeof(GpuMaterial) == 5 * 16);

@@ -16,7 +16,8 @@ GpuMaterial gpuMaterialOf(const scene::Material& m) {
   g.baseColor = glm::vec4(m.baseColor, m.opacity);
   g.emission = glm::vec4(m.emission * m.emissionStrength, m.alphaThreshold);
   g.surface = glm::vec4(m.roughness, m.metallic, m.specular, m.shininess);
-  g.detail = glm::vec4(m.normalStrength, m.heightScale, 0.0f, 0.0f);
+  // Transmission only through two-sided surfaces: a one-sided one's back is culled.
+  g.detail = glm::vec4(m.normalStrength, m.heightScale, m.twoSided ? m.transmission : 0.0f, 0.0f);
   uint32_t flags = 0;
   if (m.alphaCutout) flags |= kMatAlphaCutout;
   if (m.twoSided) flags |= kMatTwoSided;

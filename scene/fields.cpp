@@ -442,6 +442,8 @@ std::vector<MaterialField> buildMaterialFields() {
       doubleField<M>("alpha_threshold", "Cut-out threshold", 0.0, 1.0, 0.01, "",
                      [](M& m) -> float& { return m.alphaThreshold; }),
       boolField<M>("two_sided", "Two-sided", [](M& m) -> bool& { return m.twoSided; }),
+      doubleField<M>("transmission", "Transmission", 0.0, 1.0, 0.01, "",
+                     [](M& m) -> float& { return m.transmission; }),
       boolField<M>("unlit", "Unlit", [](M& m) -> bool& { return m.unlit; }),
       enumField<M>("model", "Lighting model", {"pbr", "lambert", "phong", "blinn_phong"},
                    [](M& m) -> LightingModel& { return m.model; }),

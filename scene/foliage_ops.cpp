@@ -158,6 +158,9 @@ void applyPlantLook(Material& m) {
   m.alphaCutout = card;
   m.alphaThreshold = 0.5f;
   m.roughness = 0.8f;
+  // A leaf lets about a third of the light through (back-lit crowns glow);
+  // bark none.
+  m.transmission = card ? 0.3f : 0.0f;
 }
 
 AssetId addPlantAsset(Document& doc, const std::string& name, const foliage::PlantParams& params,

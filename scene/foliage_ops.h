@@ -49,7 +49,8 @@ FoliageOutcome eraseFoliage(Document& doc, const std::optional<foliage::Region2>
 std::optional<MeshAsset> makePlantAsset(const std::string& name, const foliage::PlantParams& params,
                                         std::string& error, foliage::PlantStats* stats = nullptr);
 // A plant material's look: leaves and blades (textured: their alpha is the
-// outline) cut out and two-sided; bark and rock opaque and one-sided.
+// outline) cut out, two-sided and letting 30 % of the light through (transmission);
+// bark and rock opaque and one-sided.
 void applyPlantLook(Material& m);
 
 // A generated plant (foliage/plants.h) with its LOD chain as a mesh asset

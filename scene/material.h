@@ -47,6 +47,11 @@ struct Material {
   bool alphaCutout = false;     // discard where opacity x texture alpha < threshold
   float alphaThreshold = 0.5f;
   bool twoSided = true;         // scans are open surfaces seen from behind
+  // Share of the diffuse light a thin two-sided surface (a leaf) lets
+  // through to its other side (shaders/brdf.glsl): lit from behind it glows
+  // with transmission x albedo, and its lit side reflects 1 - transmission
+  // of its diffuse light. 0: opaque, as every surface before.
+  float transmission = 0.0f;
   bool unlit = false;           // photogrammetry textures already hold their light
   LightingModel model = LightingModel::Pbr;
   ShadingMode shading = ShadingMode::Phong;

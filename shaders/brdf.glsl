@@ -22,6 +22,14 @@
 // distribution, height-correlated Smith visibility, Schlick's Fresnel, and
 // a Lambert diffuse part weighted by what the specular reflection and the
 // metal leave (energy conserving), as in Filament and Unreal.
+//
+// Transmission (Surface.transmission t, thin two-sided surfaces: leaves):
+// of the diffuse light, t passes through and 1 - t is reflected. Lit from
+// the other side (N.L < 0) the surface returns t x albedo x |N.L| / pi,
+// Lambert on the far side (a leaf's scattering blurs any direction); lit
+// from the eye's side its diffuse part (Lambert's, or PBR's) is 1 - t of
+// an opaque one's, the specular part unchanged. t = 0 is the opaque
+// surface, bit for bit.
 #ifndef HS_BRDF_GLSL
 #define HS_BRDF_GLSL
 #include "surface.glsl"
@@ -59,13 +67,15 @@ vec3 pbrReflect(Surface s, vec3 l, float ndl) {
   vec3 f = schlickFresnel(f0, vdh);
   vec3 spec = ggxDistribution(ndh, a) * smithVisibility(ndv, ndl, a) * f;
   vec3 diffuse = (vec3(1.0) - f) * (1.0 - s.metallic) * s.albedo / HS_PI;
+  if (s.transmission > 0.0) diffuse *= 1.0 - s.transmission;
   return (diffuse + spec) * ndl;
 }
 
 vec3 reflectLight(Surface s, vec3 l) {
   float ndl = dot(s.normal, l);
-  if (ndl <= 0.0) return vec3(0.0);
+  if (ndl <= 0.0) return s.transmission > 0.0 ? s.albedo * (s.transmission * -ndl / HS_PI) : vec3(0.0);
   vec3 lambert = s.albedo * (ndl / HS_PI);
+  if (s.transmission > 0.0) lambert *= 1.0 - s.transmission;
   if (s.model == MODEL_LAMBERT) return lambert;
   if (s.model == MODEL_PHONG) {
     vec3 r = reflect(-l, s.normal);

@@ -38,6 +38,7 @@ vec3 lightSurface(vec3 albedo, vec3 p, vec3 n, float shininess, float specular) 
   s.specular = specular;
   s.shininess = shininess;
   s.emission = vec3(0.0);
+  s.transmission = 0.0;
   s.model = MODEL_BLINN_PHONG;
   return shadeSurface(s);
 }

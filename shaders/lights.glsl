@@ -31,6 +31,14 @@ float spotAttenuation(Light light, vec3 l) {
   return t * t;
 }
 
+// The normal the shadow lookup offsets along: the side the light arrives
+// on. Light a surface lets through (brdf.glsl, transmission) arrives on its
+// far side: offset along the eye's side's normal, the lookup would lie
+// behind the surface itself as the light sees it, in its own shadow.
+vec3 visibilityNormal(Surface s, vec3 l) {
+  return s.transmission > 0.0 && dot(s.normal, l) < 0.0 ? -s.normal : s.normal;
+}
+
 // Light `i` of the light buffer on surface `s`.
 vec3 pointOrSpotLight(Surface s, int i) {
   vec3 toLight = lights[i].position.xyz - view.eyeOffset.xyz - s.position;
@@ -38,13 +46,14 @@ vec3 pointOrSpotLight(Surface s, int i) {
   vec3 l = toLight / max(d, 1e-4);
   float atten = distanceAttenuation(d, lights[i].position.w) * spotAttenuation(lights[i], l);
   if (atten <= 0.0) return vec3(0.0);
-  return reflectLight(s, l) * lights[i].color.rgb * atten * localLightVisibility(i, s.position, s.normal);
+  return reflectLight(s, l) * lights[i].color.rgb * atten * localLightVisibility(i, s.position, visibilityNormal(s, l));
 }
 
 vec3 directLighting(Surface s) {
   vec3 color = vec3(0.0);
   if (frame.sunDir.w > 0.5)
-    color += reflectLight(s, frame.sunDir.xyz) * frame.sunColor.rgb * sunVisibility(s.position, s.normal);
+    color += reflectLight(s, frame.sunDir.xyz) * frame.sunColor.rgb *
+             sunVisibility(s.position, visibilityNormal(s, frame.sunDir.xyz));
 #ifdef LIGHTS_CLUSTERED
   // The lights of this pixel's cluster (light_clusters.glsl; fragment
   // shaders only: the tile comes from gl_FragCoord).

@@ -16,7 +16,7 @@ struct Material {
   vec4 baseColor;  // rgb linear, a: opacity
   vec4 emission;   // rgb: colour x strength, a: alpha cut-out threshold
   vec4 surface;    // roughness, metallic, specular, shininess
-  vec4 detail;     // normal strength, height scale (m), uv scale of the height map (1/m), unused
+  vec4 detail;     // normal strength, height scale (m), transmission (two-sided only), unused
   uvec4 kind;      // x: lighting model (MODEL_*), y: MAT_* flags
 };
 layout(std430, binding = 4) readonly buffer MaterialBlock { Material materials[]; };

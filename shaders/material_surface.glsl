@@ -16,6 +16,7 @@ Surface materialSurface(Material m, vec3 albedo, vec3 p, vec3 n) {
   s.specular = m.surface.z;
   s.shininess = m.surface.w;
   s.emission = m.emission.rgb;
+  s.transmission = m.detail.z;
   s.model = int(m.kind.x);
   return s;
 }

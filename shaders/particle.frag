@@ -69,6 +69,7 @@ void main() {
     s.specular = 0.0;
     s.shininess = 1.0;
     s.emission = vec3(0.0);
+    s.transmission = 0.0;
     s.model = MODEL_LAMBERT;
     colour = shadeSurface(s);
   } else {

@@ -20,6 +20,7 @@ struct Surface {
   float specular;  // Phong/Blinn-Phong: specular strength; PBR: dielectric F0 scale (0.5 = 4%)
   float shininess; // Phong/Blinn-Phong exponent
   vec3 emission;   // linear, added unlit
+  float transmission;  // share of the diffuse light let through from the other side (brdf.glsl); 0: opaque
   int model;
 };
 

@@ -245,6 +245,40 @@ class TestMaterialRender : public QObject {
     }
   }
 
+  // A thin two-sided surface (a leaf) with transmission t, the sun behind
+  // it and then in front, sun shadows on, no ambient light: lit from behind
+  // it returns t x albedo x |N.L| / pi (and is not in its own shadow), lit
+  // from the front (1 - t) x albedo x N.L / pi; t = 0 is the opaque
+  // surface, black from behind (Lambert: exact by hand).
+  void transmissionLetsLightThroughThinSurfaces() {
+    scene::Material m = modelMaterial(LightingModel::Lambert);
+    m.twoSided = true;
+    const double pi = 3.14159265358979;
+    for (const double side : {-1.0, 1.0}) {  // -1: the sun behind the plane (seen from -Y), 1: in front
+      for (const float t : {0.0f, 0.3f, 0.8f}) {
+        m.transmission = t;
+        test::MaterialScene ms = test::materialScene(facingPlane(3.0f), m, 64);
+        scene::Entity& sun = ms.state.entities.at(2);
+        sun.light->castsShadows = true;
+        // Shining along (0, 0.8 side', -0.6): from above, behind or in front.
+        sun.transform.rotation = scene::fromEulerDegrees({side < 0 ? -53.130102 : 53.130102, 0, 0});
+        const glm::dvec3 toSun = -glm::normalize(sun.transform.rotation * glm::dvec3(0, 0, -1));
+        const double ndl = glm::dot(glm::dvec3(0, -1, 0), toSun);  // the face the camera sees
+        QVERIFY(std::abs(std::abs(ndl) - 0.8) < 1e-6 && ndl * side > 0.0);
+        const hs::Image hdr = r_.render(ms.state, ms.view, true);
+        const glm::dvec3 albedo(m.baseColor);
+        const glm::dvec3 want = (ndl > 0 ? (1.0 - t) : double(t)) * albedo * std::abs(ndl) / pi * glm::dvec3(ms.sunColor);
+        for (const glm::ivec2 p : {glm::ivec2(32, 32), glm::ivec2(20, 40), glm::ivec2(44, 24)}) {
+          const glm::dvec3 got(hdrAt(hdr, p.x, p.y));
+          for (int c = 0; c < 3; ++c)
+            QVERIFY2(std::abs(got[c] - want[c]) <= 2e-3 + 4e-3 * want[c],
+                     qPrintable(QString("sun %1, t %2, channel %3: %4, want %5")
+                                    .arg(side < 0 ? "behind" : "in front").arg(t).arg(c).arg(got[c]).arg(want[c])));
+        }
+      }
+    }
+  }
+
   void emissionAddsItsLight() {
     scene::Material m = modelMaterial(LightingModel::Lambert);
     test::MaterialScene dark = test::materialScene(mesh::uvSphere(1.0f, 32, 16), m, 64);
