@@ -29,8 +29,11 @@
 #include "app/main_window.h"
 #include "app/message_panel.h"
 #include "app/prompts.h"
+#include "app/status_bar.h"
 #include "app/viewport_widget.h"
 #include "foliage/foliage_operations.h"
+#include "foliage/instance.h"
+#include "render/instance_format.h"
 #include "scene/foliage_data.h"
 #include "scene/foliage_ops.h"
 #include "scene/terrain_asset.h"
@@ -50,6 +53,9 @@ struct BusyCursor {
 };
 
 QString number(size_t n) { return QLocale().toString(qulonglong(n)); }
+
+// What an instance holds: its record in the store and its GPU copy.
+constexpr size_t kInstanceBytes = sizeof(foliage::PackedInstance) + render::kGpuInstanceBytes;
 
 }  // namespace
 
@@ -104,7 +110,7 @@ void FoliagePanel::buildUi() {
 
   list_ = new QTreeWidget(content);
   list_->setObjectName("foliageTypes");
-  list_->setHeaderLabels({"Type", "Mesh", "Instances"});
+  list_->setHeaderLabels({"Type", "Mesh", "Instances", "Memory"});
   list_->setRootIsDecorated(false);
   list_->setSelectionMode(QAbstractItemView::SingleSelection);
   list_->setToolTip("The scene's foliage types. The brush works on the selected type, or on every checked one "
@@ -113,6 +119,7 @@ void FoliagePanel::buildUi() {
   list_->header()->setSectionResizeMode(0, QHeaderView::Stretch);
   list_->header()->setSectionResizeMode(1, QHeaderView::Stretch);
   list_->header()->setSectionResizeMode(2, QHeaderView::ResizeToContents);
+  list_->header()->setSectionResizeMode(3, QHeaderView::ResizeToContents);
   list_->setMinimumHeight(120);
   connect(list_, &QTreeWidget::currentItemChanged, this, [this] {
     if (updating_) return;
@@ -275,13 +282,22 @@ void FoliagePanel::refresh() {
     it->setFlags(it->flags() | Qt::ItemIsUserCheckable);
     it->setCheckState(0, Qt::Unchecked);
     it->setTextAlignment(2, Qt::AlignRight | Qt::AlignVCenter);
+    it->setTextAlignment(3, Qt::AlignRight | Qt::AlignVCenter);
   }
   for (size_t i = 0; i < n; ++i) {
     const foliage::FoliageType& t = store->type(i);
     QTreeWidgetItem* it = list_->topLevelItem(int(i));
     it->setText(0, QString::fromStdString(t.name));
     it->setText(1, QString::fromStdString(t.mesh));
-    it->setText(2, number(store->instanceCount(uint16_t(i))));
+    const size_t count = store->instanceCount(uint16_t(i));
+    it->setText(2, number(count));
+    it->setText(3, formatBytes(count * kInstanceBytes));
+    it->setToolTip(3, QString("%1 in the scene's store and %2 on the GPU (%3 + %4 bytes an instance); the mesh "
+                              "and its levels are the asset's, shared by every instance")
+                          .arg(formatBytes(count * sizeof(foliage::PackedInstance)))
+                          .arg(formatBytes(count * render::kGpuInstanceBytes))
+                          .arg(sizeof(foliage::PackedInstance))
+                          .arg(render::kGpuInstanceBytes));
     it->setToolTip(1, scene::foliageTypeAsset(doc_.state(), t) == scene::kNoAsset
                           ? QString("No mesh asset of this name in the scene: the type draws nothing")
                           : QString());

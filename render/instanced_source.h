@@ -52,6 +52,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "render/draw_source.h"
+#include "render/instance_format.h"
 #include "render/visible_set.h"
 
 namespace hs::render {
@@ -71,7 +72,7 @@ struct GpuInstance {
   uint32_t typeAndCell = 0;                 // type | cell << 16
   uint32_t id = 0;                          // stable: picking, the transparency key
 };
-static_assert(sizeof(GpuInstance) == 32);
+static_assert(sizeof(GpuInstance) == kGpuInstanceBytes);
 
 // Packs an instance; `rotation` is normalised first. `scaleXyZ`: x the
 // factor across (mesh x and y), y the factor along the height (mesh z).

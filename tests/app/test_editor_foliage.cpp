@@ -29,6 +29,7 @@
 #include "app/foliage_tool.h"
 #include "app/main_window.h"
 #include "app/message_panel.h"
+#include "app/status_bar.h"
 #include "app/param_form.h"
 #include "app/selection.h"
 #include "app/terrain_panel.h"
@@ -187,6 +188,8 @@ class EditorFoliageTest : public QObject {
     qInfo("scatter: %zu instances", n);
     auto* list = panel_->findChild<QTreeWidget*>("foliageTypes");
     QCOMPARE(list->topLevelItem(0)->text(2), QLocale().toString(qulonglong(n)));
+    // Memory: 16 bytes in the store and 32 on the GPU an instance.
+    QCOMPARE(list->topLevelItem(0)->text(3), app::formatBytes(n * 48));
     doc().undoStack()->undo();
     QCOMPARE(store().instanceCount(), size_t(0));
     QCOMPARE(list->topLevelItem(0)->text(2), QString("0"));
