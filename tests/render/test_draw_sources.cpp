@@ -28,7 +28,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "look_from.h"
+#include "view_from.h"
 #include "mesh/primitives.h"
 #include "render/instanced_source.h"
 #include "render/mesh_lod.h"
@@ -154,13 +154,7 @@ void addEntities(scene::SceneState& s, const std::vector<Placed>& placed, const 
 }
 
 render::RenderView camera() {
-  render::RenderView v;
-  v.width = 160;
-  v.height = 120;
-  v.fovY = glm::radians(50.0);
-  v.eye = kUtm + glm::dvec3(5.0, -9.0, 9.0);
-  v.orientation = test::lookFrom(v.eye, kUtm + glm::dvec3(5.0, 5.0, 0.0)).rotation;
-  return v;
+  return test::viewFrom(kUtm + glm::dvec3(5.0, -9.0, 9.0), kUtm + glm::dvec3(5.0, 5.0, 0.0), 160, 120, 50.0);
 }
 
 // Where a (stored) instance is for the choices the source makes: its

@@ -21,7 +21,7 @@
 #include "foliage/instance.h"
 #include "foliage/tools.h"
 #include "image_compare.h"
-#include "look_from.h"
+#include "view_from.h"
 #include "mesh/primitives.h"
 #include "render/foliage_instances.h"
 #include "render/instanced_source.h"
@@ -109,15 +109,7 @@ scene::SceneState asEntities(const scene::SceneState& with) {
   return s;
 }
 
-render::RenderView camera() {
-  render::RenderView v;
-  v.width = 200;
-  v.height = 150;
-  v.fovY = glm::radians(55.0);
-  v.eye = kUtm + glm::dvec3(0.0, -30.0, 18.0);
-  v.orientation = test::lookFrom(v.eye, kUtm).rotation;
-  return v;
-}
+render::RenderView camera() { return test::viewFrom(kUtm + glm::dvec3(0.0, -30.0, 18.0), kUtm, 200, 150, 55.0); }
 
 // A field of generated conifers (foliage/plants.h, with their LOD chain)
 // on a flat ground 400 m across at UTM, cull distance 150 m with a 20 m
@@ -166,13 +158,7 @@ scene::SceneState pineField() {
 // Low over the field, looking along it at a grazing angle: instances
 // behind, beside, beyond the cull distance and in view.
 render::RenderView grazing() {
-  render::RenderView v;
-  v.width = 240;
-  v.height = 135;
-  v.fovY = glm::radians(50.0);
-  v.eye = kUtm + glm::dvec3(-20.0, -110.0, 7.0);
-  v.orientation = test::lookFrom(v.eye, kUtm + glm::dvec3(15.0, 0.0, 0.0)).rotation;
-  return v;
+  return test::viewFrom(kUtm + glm::dvec3(-20.0, -110.0, 7.0), kUtm + glm::dvec3(15.0, 0.0, 0.0), 240, 135, 50.0);
 }
 
 // The brute-force reference, written from the documented rule alone
