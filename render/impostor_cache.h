@@ -7,11 +7,12 @@
 //   albedo        sRGB RGBA8: base colour x coverage, coverage
 //   normalDepth   RGBA8: (mesh-space normal x 0.5 + 0.5, depth) x coverage
 // (shaders/impostor_bake.frag writes them; shaders/impostor.frag reads).
-// The bake draws level 0 once per frame with its materials' base colour
-// and cut-out: a few milliseconds for a generated tree on llvmpipe,
-// cheaper than reading stored atlases back would be, so they are not kept
-// in the .hscene (docs/rendering.md "Impostors"). Include only inside
-// render/.
+// The bake draws level 0 once per frame of the atlas with its materials'
+// base colour and cut-out, on the render thread, in the first frame that
+// needs it: that frame took 1.2 s on llvmpipe in test_impostors (the
+// programs' first compile included; the next frame 10 ms). The atlases are
+// not kept in the .hscene (docs/rendering.md "Impostors"). Include only
+// inside render/.
 #include <cstdint>
 #include <map>
 #include <vector>
