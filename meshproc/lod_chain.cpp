@@ -12,6 +12,11 @@ double projectedErrorPixels(double errorMetres, double distance, double fovY, do
   return errorMetres * viewportHeight / (2.0 * distance * std::tan(0.5 * fovY));
 }
 
+double lodDistance(double errorMetres, double fovY, double viewportHeight, double thresholdPixels) {
+  if (!(thresholdPixels > 0) || !(fovY > 0) || !(viewportHeight > 0)) return HUGE_VAL;
+  return errorMetres * viewportHeight / (2.0 * std::tan(0.5 * fovY) * thresholdPixels);
+}
+
 int selectLod(const std::vector<double>& errors, double distance, double fovY, double viewportHeight,
               double thresholdPixels) {
   int chosen = 0;

@@ -50,6 +50,10 @@ LodChain buildLodChain(const MeshData& base, const LodOptions& options, const Pr
 // `distance` metres with a vertical field of view `fovY` (radians) on a
 // viewport `viewportHeight` pixels tall (perspective projection).
 double projectedErrorPixels(double errorMetres, double distance, double fovY, double viewportHeight);
+// Its inverse: the distance from which `errorMetres` projects to at most
+// `thresholdPixels` (infinity where no distance does: a threshold or field
+// of view that is not positive).
+double lodDistance(double errorMetres, double fovY, double viewportHeight, double thresholdPixels);
 
 // Index of the coarsest level whose projected error is at most
 // `thresholdPixels` (errors are per level, finest first, non-decreasing);

@@ -6,6 +6,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "meshproc/lod_chain.h"
 #include "render/frame_context.h"
 #include "render/gpu_mesh_cache.h"
 #include "render/impostor_atlas.h"
@@ -211,13 +212,13 @@ void InstancedSource::addMaterials(FrameContext& frame, std::vector<DrawItem>& d
     // instance can reach it: from `reach` metres (the LOD rule's distance
     // for its error) at the type's smallest scale, within its cull distance.
     const InstanceType& type = set_.types[t];
-    const double bound = frame.settings.meshLodErrorPixels;
-    const double pixelsPerMetreAt1m = double(frame.lodView.height) / (2.0 * std::tan(0.5 * frame.lodView.fovY));
-    if (type.impostor && !base->bounds.empty && base->bounds.radius() > 0.0f && bound > 0 &&
-        frame.lodView.fovY > 0 && frame.settings.depthOfField != scene::DepthOfField::Layered) {
+    if (type.impostor && !base->bounds.empty && base->bounds.radius() > 0.0f &&
+        frame.settings.depthOfField != scene::DepthOfField::Layered) {
       const double error = std::max(impostorError(base->bounds.radius()), tf.errors.back());
-      const double reach = error * pixelsPerMetreAt1m / bound * double(minScale_[t]);
-      if (!(type.cullDistance > 0.0f) || reach < double(type.cullDistance)) {
+      const double reach = mesh::lodDistance(error, frame.lodView.fovY, double(frame.lodView.height),
+                                             frame.settings.meshLodErrorPixels) *
+                           double(minScale_[t]);
+      if (std::isfinite(reach) && (!(type.cullDistance > 0.0f) || reach < double(type.cullDistance))) {
         tf.errors.push_back(error);
         const auto& subs = base->data->submeshes;
         for (size_t s = 1; s < subs.size(); ++s)
@@ -265,14 +266,11 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
   // The LOD view (mesh_lod.h): its eye relative to the frame origin, and
   // for each group the distance (in the mesh's own metres: divided by the
   // instance's largest scale) from which its level's error projects within
-  // the pixel bound. mesh::projectedErrorPixels(e, d) <= bound is
-  // d >= e x height / (2 tan(fovY / 2) bound): the GPU compares, the CPU
-  // asks chooseMeshLod itself.
+  // the pixel bound (mesh::lodDistance): the GPU compares, the CPU asks
+  // chooseMeshLod itself.
   const RenderView& lodView = frame.lodView;
   const glm::dvec3 lodEyeD = lodView.eye - frame.visible.origin;
   lodEye_ = glm::vec3(lodEyeD);
-  const double bound = frame.settings.meshLodErrorPixels;
-  const double pixelsPerMetreAt1m = double(lodView.height) / (2.0 * std::tan(0.5 * lodView.fovY));
   std::vector<float> lodDistances(groups, std::numeric_limits<float>::infinity());
   std::vector<GpuTypeCull> typeCull(types);
   for (size_t t = 0; t < types; ++t) {
@@ -280,8 +278,9 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
     if (!tf.asset) continue;
     for (uint32_t l = 0; l < tf.levels; ++l)
       if (l == 0) lodDistances[tf.firstGroup] = 0.0f;
-      else if (bound > 0 && lodView.fovY > 0 && pixelsPerMetreAt1m > 0)
-        lodDistances[tf.firstGroup + l] = float(tf.errors[l] * pixelsPerMetreAt1m / bound);
+      else
+        lodDistances[tf.firstGroup + l] = float(mesh::lodDistance(tf.errors[l], lodView.fovY, double(lodView.height),
+                                                                  frame.settings.meshLodErrorPixels));
     typeCull[t].sphere = tf.lodSphere;
     typeCull[t].cull = glm::vec4(tf.cullRadius, set_.types[t].cullDistance, tf.windPerScaleZ, 0.0f);
     typeCull[t].info = glm::uvec4(tf.firstGroup, tf.levels, set_.types[t].castShadows ? 1u : 0u, 0u);
@@ -305,7 +304,7 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
       const glm::dvec3 s(instanceScale(g));
       const glm::dvec3 centre = origin + glm::mat3_cast(glm::dquat(instanceRotation(g))) * (glm::dvec3(tf.lodSphere) * s);
       level[i] = uint32_t(chooseMeshLod(tf.errors, centre - lodEyeD, double(tf.lodSphere.w),
-                                        maxAbsScale(glm::vec3(s)), lodView, bound)
+                                        maxAbsScale(glm::vec3(s)), lodView, frame.settings.meshLodErrorPixels)
                               .level);
       ++totals[tf.firstGroup + level[i]];
     }

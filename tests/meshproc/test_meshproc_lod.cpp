@@ -53,6 +53,13 @@ class TestMeshprocLod : public QObject {
     QCOMPARE(selectLod(errors, d1 * 1.01 * 2, fov, height, 2.0), 2);  // a 2-pixel budget
     QCOMPARE(selectLod(errors, 0.0, fov, height), 0);
     QCOMPARE(selectLod({}, 10.0, fov, height), 0);
+    // lodDistance inverts projectedErrorPixels: d1 for one pixel, twice d1 for half a pixel.
+    QVERIFY(std::abs(lodDistance(0.01, fov, height, 1.0) / d1 - 1.0) < 1e-12);
+    QVERIFY(std::abs(lodDistance(0.01, fov, height, 0.5) / (2.0 * d1) - 1.0) < 1e-12);
+    QVERIFY(std::abs(projectedErrorPixels(0.04, lodDistance(0.04, fov, height, 3.0), fov, height) - 3.0) < 1e-12);
+    QVERIFY(std::isinf(lodDistance(0.01, fov, height, 0.0)));  // no bound: never coarser
+    QVERIFY(std::isinf(lodDistance(0.01, 0.0, height, 1.0)));
+    QVERIFY(std::isinf(lodDistance(0.01, fov, height, std::nan(""))));
   }
 
   void cancelStopsTheChain() {
