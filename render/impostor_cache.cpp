@@ -1,7 +1,6 @@
 #include "render/impostor_cache.h"
 
 #include <algorithm>
-#include <chrono>
 #include <string>
 
 #include "render/gpu_mesh_cache.h"
@@ -52,23 +51,22 @@ const ImpostorAtlas* ImpostorCache::get(RenderResources& res, scene::AssetId ass
   if (mesh.bounds.empty || !(mesh.bounds.radius() > 0.0f) || !mesh.data) return nullptr;
   auto it = atlases_.find(asset);
   if (it != atlases_.end() && it->second.meshHash == mesh.hash) return &it->second;
-  const auto started = std::chrono::steady_clock::now();
   ImpostorAtlas atlas;
   atlas.sphere = glm::vec4(mesh.bounds.center(), mesh.bounds.radius());
   atlas.meshHash = mesh.hash;
   atlas.albedo = atlasTexture(GL_SRGB8_ALPHA8);
   atlas.normalDepth = atlasTexture(GL_RGBA8);
   atlas.bytes = atlasBytes();
-  if (!fbo_) {
-    fbo_ = gl::createFramebuffer();
-    depth_ = gl::createTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, kAtlasPixels, kAtlasPixels);
-    glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(fbo_.id(), 2, buffers);
-  }
-  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, atlas.albedo.id(), 0);
-  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT1, atlas.normalDepth.id(), 0);
+  // The framebuffer and its depth (2.3 MB) live for the bake only: bakes
+  // are rare, and nothing would count them while kept.
+  const gl::Framebuffer fbo = gl::createFramebuffer();
+  const gl::Texture depth = gl::createTexture(GL_TEXTURE_2D);
+  glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, kAtlasPixels, kAtlasPixels);
+  glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+  const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(fbo.id(), 2, buffers);
+  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, atlas.albedo.id(), 0);
+  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT1, atlas.normalDepth.id(), 0);
 
   // The state the frame had, given back after.
   GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0};
@@ -76,13 +74,13 @@ const ImpostorAtlas* ImpostorCache::get(RenderResources& res, scene::AssetId ass
   glGetIntegerv(GL_VIEWPORT, viewport);
   const GLboolean culling = glIsEnabled(GL_CULL_FACE);
 
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
   const float zeros[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   const float far = 0.0f;  // reversed depth
   glDepthMask(GL_TRUE);
-  glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zeros);
-  glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, zeros);
-  glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &far);
+  glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, zeros);
+  glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 1, zeros);
+  glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &far);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);
   glDisable(GL_CULL_FACE);  // a frame sees one-sided backs only behind fronts; leaf cards from both sides
@@ -117,11 +115,6 @@ const ImpostorAtlas* ImpostorCache::get(RenderResources& res, scene::AssetId ass
   glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
   glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
   if (culling) glEnable(GL_CULL_FACE);
-  // The atlas textures stay attached to nothing: the next bake attaches its own.
-  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, 0, 0);
-  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT1, 0, 0);
-  atlas.bakeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
-  ++bakes_;
   ImpostorAtlas& slot = atlases_[asset];
   slot = std::move(atlas);
   return &slot;

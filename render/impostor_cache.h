@@ -32,7 +32,6 @@ struct ImpostorAtlas {
   gl::Texture albedo, normalDepth;
   glm::vec4 sphere{0.0f};  // level 0's bounds: centre (mesh space), radius
   uint64_t meshHash = 0;   // GpuMesh::hash of the level 0 baked
-  double bakeMs = 0.0;     // CPU wall time of the bake's commands (the GPU finishes later)
   size_t bytes = 0;
 };
 
@@ -48,7 +47,6 @@ class ImpostorCache {
   void collect(const scene::SceneState& state);
   void clear() { atlases_.clear(); }
   size_t gpuBytes() const;
-  size_t bakes() const { return bakes_; }  // atlases baked since start (tests: none when none is needed)
   // The card every impostor draws: an element buffer of two triangles over
   // corners 0..3 (shaders/impostor.vert builds them from gl_VertexID).
   GLuint cardVao();
@@ -57,9 +55,6 @@ class ImpostorCache {
   std::map<scene::AssetId, ImpostorAtlas> atlases_;
   gl::VertexArray cardVao_;
   gl::Buffer cardIndices_;
-  gl::Framebuffer fbo_;
-  gl::Texture depth_;
-  size_t bakes_ = 0;
 };
 
 }  // namespace hs::render
