@@ -565,7 +565,7 @@ size_t InstancedSource::triangles(SurfaceSet surfaces) const {
 // Draws view `view`'s visible instances of every wanted part: one program
 // per material variant (or the pass's fragment), mesh.vert's INSTANCED.
 void InstancedSource::drawParts(FrameContext& frame, const PassResources& r, size_t view, const DrawCall& call) {
-  const size_t n = set_.instances.size(), groups = groups_.size();
+  const size_t n = set_.instances.size();
   bindInstances(r);
   std::vector<std::string> defines = call.defines;
   defines.push_back("INSTANCED");
@@ -607,24 +607,31 @@ void InstancedSource::drawParts(FrameContext& frame, const PassResources& r, siz
     // Attribute 7 is the document meshes' object index (divisor 1): off,
     // so no instance reads past its buffer.
     glDisableVertexArrayAttrib(vao, 7);
-    const void* indices = reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t));
-    if (commands_.valid()) {
-      glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
-                                  reinterpret_cast<const void*>((view * parts_.size() + k) * kCommandBytes), 1, 0);
-      ++frame.stats.drawCalls;
-    } else if (const uint32_t count = cpuCounts_[view * groups + part.group]) {
-      glDrawElementsInstanced(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT, indices, GLsizei(count));
-      ++frame.stats.drawCalls;
-      if (call.variant == DrawVariant::Surface && call.surfaces == SurfaceSet::Opaque) {
-        frame.stats.trianglesDrawn += size_t(count) * (part.indexCount / 3);
-        frame.stats.instancesDrawn += count;
-      }
-    }
+    drawPart(frame, view, k, call, part.firstIndex);
     glEnableVertexArrayAttrib(vao, 7);
   }
   binding.finish();
   drawImpostors(frame, view, call, ditherOffset);
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
+// Part `k` of view `view` with the bound program and vertex array: by its
+// indirect command (GPU culling) or with the CPU's count for its group.
+void InstancedSource::drawPart(FrameContext& frame, size_t view, size_t k, const DrawCall& call, uint32_t firstIndex) {
+  const Part& part = parts_[k];
+  if (commands_.valid()) {
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                                reinterpret_cast<const void*>((view * parts_.size() + k) * kCommandBytes), 1, 0);
+    ++frame.stats.drawCalls;
+  } else if (const uint32_t count = cpuCounts_[view * groups_.size() + part.group]) {
+    glDrawElementsInstanced(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
+                            reinterpret_cast<const void*>(uintptr_t(firstIndex) * sizeof(uint32_t)), GLsizei(count));
+    ++frame.stats.drawCalls;
+    if (call.variant == DrawVariant::Surface && call.surfaces == SurfaceSet::Opaque) {
+      frame.stats.trianglesDrawn += size_t(count) * (part.indexCount / 3);
+      frame.stats.instancesDrawn += count;
+    }
+  }
 }
 
 // View `view`'s impostors: one card per instance (shaders/impostor.vert),
@@ -634,7 +641,7 @@ void InstancedSource::drawImpostors(FrameContext& frame, size_t view, const Draw
   // mesh surfaces; a frame with one has no impostor level (addMaterials).
   if (call.variant == DrawVariant::Surface && (!call.fragment.empty() || call.surfaces == SurfaceSet::Translucent))
     return;
-  const size_t n = set_.instances.size(), groups = groups_.size();
+  const size_t n = set_.instances.size();
   std::vector<std::string> defines = {"IMPOSTOR_FRAMES " + std::to_string(kImpostorFrames),
                                       "IMPOSTOR_FRAME_PIXELS " + std::to_string(kImpostorFramePixels)};
   if (call.variant == DrawVariant::Pick) defines.push_back("IMPOSTOR_PICK");
@@ -665,18 +672,7 @@ void InstancedSource::drawImpostors(FrameContext& frame, size_t view, const Draw
     if (call.variant == DrawVariant::Pick) p.set("uPickBase", call.pickBase);
     glBindTextureUnit(3, tf.impostor->albedo.id());
     glBindTextureUnit(4, tf.impostor->normalDepth.id());
-    if (commands_.valid()) {
-      glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
-                                  reinterpret_cast<const void*>((view * parts_.size() + k) * kCommandBytes), 1, 0);
-      ++frame.stats.drawCalls;
-    } else if (const uint32_t count = cpuCounts_[view * groups + part.group]) {
-      glDrawElementsInstanced(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT, nullptr, GLsizei(count));
-      ++frame.stats.drawCalls;
-      if (call.variant == DrawVariant::Surface && call.surfaces == SurfaceSet::Opaque) {
-        frame.stats.trianglesDrawn += size_t(count) * (part.indexCount / 3);
-        frame.stats.instancesDrawn += count;
-      }
-    }
+    drawPart(frame, view, k, call, 0);
   }
   if (bound) {
     glBindTextureUnit(3, 0);

@@ -226,6 +226,7 @@ class InstancedSource final : public DrawSource {
   };
   bool wanted(const Part& part, SurfaceSet surfaces) const;
   void drawParts(FrameContext& frame, const PassResources& r, size_t view, const DrawCall& call);
+  void drawPart(FrameContext& frame, size_t view, size_t k, const DrawCall& call, uint32_t firstIndex);
   void drawImpostors(FrameContext& frame, size_t view, const DrawCall& call, glm::ivec2 ditherOffset);
   void bindInstances(const PassResources& r) const;
 
