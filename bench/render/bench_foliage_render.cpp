@@ -67,6 +67,7 @@
 #include "scene/mesh_materials.h"
 #include "scene/scene_state.h"
 #include "sequencer/camera_path.h"
+#include "tests/common/plant_asset.h"
 #include "tests/common/scene_parts.h"
 
 using namespace hs;
@@ -90,18 +91,12 @@ struct Options {
 
 // The demo's pine and plane tree (scene::demoPlants), a few thousand
 // triangles at full detail, with their LOD chains and leaf materials.
-bool addPlants(scene::SceneState& s, std::string& error, std::vector<size_t>& fullTriangles) {
+void addPlants(scene::SceneState& s, std::vector<size_t>& fullTriangles) {
   const std::vector<scene::DemoPlant> plants = scene::demoPlants();
   for (auto [id, plant] : {std::pair{kPine, plants[0]}, std::pair{kPlane, plants[1]}}) {
-    std::optional<scene::MeshAsset> a = scene::ops::makePlantAsset(plant.asset, plant.params, error);
-    if (!a) return false;
-    a->id = id;
-    fullTriangles.push_back(a->data->triangleCount());
-    s.assets.emplace(id, std::move(*a));
-    scene::addMeshMaterials(s, id);
-    for (scene::MaterialId m : s.assets.at(id).materialSlots) scene::ops::applyPlantLook(s.materials.at(m));
+    test::addPlantAsset(s, id, plant.asset, plant.params, true);
+    fullTriangles.push_back(s.assets.at(id).data->triangleCount());
   }
-  return true;
 }
 
 double fieldSide(size_t n) { return std::ceil(std::sqrt(double(n))) * kSpacing; }
@@ -163,18 +158,9 @@ scene::SceneState plantScene(std::vector<size_t>& fullTriangles) {
   s.settings.showGrid = false;
   s.settings.shadows = false;
   test::addMeshAsset(s, kGround, "Ground", mesh::gridPlane(100.0f, 8), {0.35f, 0.4f, 0.25f});
-  scene::Entity ground;
-  ground.id = 1;
-  ground.name = "Ground";
-  ground.mesh = scene::MeshInstance{kGround};
-  s.entities.emplace(ground.id, ground);
-  s.roots.push_back(ground.id);
+  test::addMeshEntity(s, 1, "Ground", kGround);
   test::addSun(s, 2, {50, 0, -35});
-  std::string error;
-  if (!addPlants(s, error, fullTriangles)) {
-    std::fprintf(stderr, "bench_foliage_render: %s\n", error.c_str());
-    std::exit(1);
-  }
+  addPlants(s, fullTriangles);
   return s;
 }
 

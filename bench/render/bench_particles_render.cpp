@@ -38,12 +38,7 @@ scene::SceneState dustScene(double live, bool gpu, scene::Transparency mode) {
   s.settings.particlesOnGpu = gpu;
   s.settings.oitMemoryMb = 2048.0;
   test::addMeshAsset(s, 1, "Ground", mesh::gridPlane(400.0f, 4), {0.5f, 0.5f, 0.48f});
-  scene::Entity ground;
-  ground.id = 1;
-  ground.name = "Ground";
-  ground.mesh = scene::MeshInstance{1};
-  s.entities.emplace(ground.id, ground);
-  s.roots.push_back(ground.id);
+  test::addMeshEntity(s, 1, "Ground", 1);
   test::addSun(s, 1, {50, 0, -35});
   std::string error;
   std::vector<particles::EmitterDesc> dust =

@@ -1,6 +1,7 @@
 #pragma once
 // Parts the render suites and benchmarks build their scenes from (one copy
-// each): a mesh asset with a material of its own, and a sun.
+// each): a mesh asset with a material of its own, an entity showing it, and
+// a sun.
 #include <memory>
 #include <string>
 
@@ -32,6 +33,18 @@ inline void addMeshAsset(scene::SceneState& s, scene::AssetId id, const std::str
   a.materialSlots.assign(scene::materialSlotCount(*a.data), m.id);
   s.materials.emplace(m.id, m);
   s.assets.emplace(a.id, a);
+}
+
+// A root entity `id` named `name` showing mesh asset `asset` at `translation`.
+inline void addMeshEntity(scene::SceneState& s, scene::EntityId id, const std::string& name, scene::AssetId asset,
+                          glm::dvec3 translation = glm::dvec3(0.0)) {
+  scene::Entity e;
+  e.id = id;
+  e.name = name;
+  e.mesh = scene::MeshInstance{asset};
+  e.transform.translation = translation;
+  s.entities.emplace(e.id, e);
+  s.roots.push_back(e.id);
 }
 
 // A root sun entity `id` turned by `eulerDegrees`, at `relative` times the

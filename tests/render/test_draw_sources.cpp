@@ -67,13 +67,7 @@ scene::SceneState baseScene(float opacity) {
   s.settings.shadows = true;
   test::addMeshAsset(s, 1, "Ground", mesh::gridPlane(40.0f, 4), {0.6f, 0.6f, 0.55f});
   test::addMeshAsset(s, kSphere, "Sphere", mesh::uvSphere(kSphereRadius, 32, 32), {0.8f, 0.25f, 0.2f}, opacity);
-  scene::Entity ground;
-  ground.id = 1;
-  ground.name = "Ground";
-  ground.mesh = scene::MeshInstance{1};
-  ground.transform.translation = kUtm + glm::dvec3(5.0, 5.0, 0.0);
-  s.entities.emplace(ground.id, ground);
-  s.roots.push_back(ground.id);
+  test::addMeshEntity(s, 1, "Ground", 1, kUtm + glm::dvec3(5.0, 5.0, 0.0));
   test::addSun(s, 1000, {50, 0, -35}, true);
   return s;
 }

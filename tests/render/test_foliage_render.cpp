@@ -29,6 +29,7 @@
 #include "scene/foliage_ground.h"
 #include "scene/foliage_ops.h"
 #include "scene/scene_state.h"
+#include "plant_asset.h"
 #include "scene_parts.h"
 #include "terrain/terrain.h"
 
@@ -43,13 +44,7 @@ constexpr scene::AssetId kRock = 5, kGround = 1;
 
 // The ground asset kGround as an entity at kUtm, and a sun.
 void addGroundAndSun(scene::SceneState& s) {
-  scene::Entity ground;
-  ground.id = 1;
-  ground.name = "Ground";
-  ground.mesh = scene::MeshInstance{kGround};
-  ground.transform.translation = kUtm;
-  s.entities.emplace(ground.id, ground);
-  s.roots.push_back(ground.id);
+  test::addMeshEntity(s, 1, "Ground", kGround, kUtm);
   test::addSun(s, 1000, {45, 0, -30});
 }
 
@@ -127,12 +122,7 @@ scene::SceneState pineField() {
   pine.branches = 12;
   pine.leavesPerBranch = 6;
   pine.sides = 5;
-  std::string error;
-  std::optional<scene::MeshAsset> a = scene::ops::makePlantAsset("Pine", pine, error);
-  if (!a) qFatal("plant: %s", error.c_str());
-  a->id = kPine;
-  s.assets.emplace(kPine, std::move(*a));
-  scene::addMeshMaterials(s, kPine);
+  test::addPlantAsset(s, kPine, "Pine", pine);
   addGroundAndSun(s);
   foliage::FoliageStore& store = scene::foliageOf(s).store();
   foliage::FoliageType t;

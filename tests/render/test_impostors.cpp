@@ -26,6 +26,7 @@
 #include "render/offscreen_renderer.h"
 #include "scene/foliage_ops.h"
 #include "scene/scene_state.h"
+#include "plant_asset.h"
 #include "scene_parts.h"
 
 using namespace hs;
@@ -42,21 +43,9 @@ scene::SceneState treeScene() {
   s.settings.showGrid = false;
   s.settings.antialiasing = scene::Antialiasing::None;
   test::addMeshAsset(s, kGround, "Ground", mesh::gridPlane(200.0f, 4), {0.45f, 0.5f, 0.4f});
-  scene::Entity ground;
-  ground.id = 1;
-  ground.name = "Ground";
-  ground.mesh = scene::MeshInstance{kGround};
-  ground.transform.translation = kUtm;
-  s.entities.emplace(ground.id, ground);
-  s.roots.push_back(ground.id);
+  test::addMeshEntity(s, 1, "Ground", kGround, kUtm);
   test::addSun(s, 1000, {50, 0, -100}, true);  // from the left: shadows fall to the right, on open ground
-  foliage::PlantParams tree = foliage::defaultPlant(foliage::PlantKind::Broadleaf, 5);
-  std::string error;
-  std::optional<scene::MeshAsset> a = scene::ops::makePlantAsset("Tree", tree, error);
-  if (!a) qFatal("plant: %s", error.c_str());
-  a->id = kTree;
-  s.assets.emplace(kTree, std::move(*a));
-  scene::addMeshMaterials(s, kTree);
+  test::addPlantAsset(s, kTree, "Tree", foliage::defaultPlant(foliage::PlantKind::Broadleaf, 5));
   return s;
 }
 
