@@ -88,6 +88,8 @@ class TestCliMaterial : public QObject {
          "material 'Bumpy / default': opacity: '1.5' is out of range: Opacity must be from 0 to 1"},
         {{"material", "set", "Bumpy / default", "roughness", "nan", scene}, 1,
          "material 'Bumpy / default': roughness: 'nan' is not a finite number"},
+        {{"material", "set", "Bumpy / default", "transmission", "-0.2", scene}, 1,
+         "material 'Bumpy / default': transmission: '-0.2' is out of range: Transmission must be from 0 to 1"},
         {{"material", "set", "Bumpy / default", "model", "toon", scene}, 1,
          "material 'Bumpy / default': model: 'toon' is not one of: pbr lambert phong blinn_phong"},
         {{"material", "set", "Bumpy / default", "normal_map", "7", scene}, 1,

@@ -155,6 +155,8 @@ class TestSceneMaterials : public QObject {
         {"roughness", nan, "material 'Wall / red': roughness: is not a finite number"},
         {"base_color", glm::dvec3(0.5, -1, 0.5), "material 'Wall / red': base_color: -1 is out of range (0 to 1000)"},
         {"height_scale", 2.0, "material 'Wall / red': height_scale: 2 is out of range (0 to 0.5 m)"},
+        {"transmission", 1.5, "material 'Wall / red': transmission: 1.5 is out of range (0 to 1)"},
+        {"transmission", nan, "material 'Wall / red': transmission: is not a finite number"},
         {"normal_map", int64_t(99), "material 'Wall / red': normal_map: no texture 99 in this scene (0 for none)"},
         {"name", std::string(" "), "material 'Wall / red': name: a material needs a name"},
     };
