@@ -41,8 +41,43 @@
 namespace hs::app {
 namespace {
 
-const FoliageToolKind kKinds[] = {FoliageToolKind::Off, FoliageToolKind::Paint, FoliageToolKind::Erase,
-                                  FoliageToolKind::Select};
+// The tools in the panel's two rows: what adds and removes, then what selects and moves.
+const FoliageToolKind kKinds[] = {FoliageToolKind::Off,    FoliageToolKind::Paint, FoliageToolKind::Erase,
+                                  FoliageToolKind::Fill,   FoliageToolKind::Select, FoliageToolKind::Lasso,
+                                  FoliageToolKind::Move};
+constexpr int kToolsPerRow = 4;
+
+// Each tool's tooltip and its Foliage menu entry.
+QString toolTipOf(FoliageToolKind k) {
+  switch (k) {
+    case FoliageToolKind::Off: return "No foliage tool: clicks select entities and the gizmo moves them";
+    case FoliageToolKind::Paint:
+      return "Paint instances of the brush's types up to their density (one undo step per stroke)";
+    case FoliageToolKind::Erase: return "Erase the brush's types (with none chosen: every type) under the brush";
+    case FoliageToolKind::Fill:
+      return "Draw a loop on the ground: the brush's types fill it up to their density times the brush's (one "
+             "undo step)";
+    case FoliageToolKind::Select:
+      return "Click: the nearest instance within the radius; drag: every instance under the brush; Shift adds to "
+             "the selection";
+    case FoliageToolKind::Lasso:
+      return "Draw a loop on the ground: selects the instances inside it (of the brush's types, with none chosen "
+             "every type); Shift adds to the selection";
+    case FoliageToolKind::Move:
+      return "Drag: the selection follows the ground under the cursor, each instance put back on the surface "
+             "under its new place (one undo step)";
+  }
+  return {};
+}
+QString menuText(FoliageToolKind k) {
+  switch (k) {
+    case FoliageToolKind::Off: return "Foliage Tool &Off";
+    case FoliageToolKind::Lasso: return "&Lasso Select";
+    case FoliageToolKind::Fill: return "&Fill Area";
+    case FoliageToolKind::Move: return "&Move Selected Instances";
+    default: return QString("%1 Brush").arg(foliageToolLabel(k));
+  }
+}
 
 // The busy cursor over work done on the UI thread (see foliage_panel.h).
 struct BusyCursor {
@@ -154,7 +189,7 @@ void FoliagePanel::buildUi() {
 
   auto* brush = new QGroupBox("Brush", content);
   auto* bl = new QVBoxLayout(brush);
-  auto* row = new QHBoxLayout;
+  auto* row = new QGridLayout;
   tools_ = new QButtonGroup(this);
   tools_->setExclusive(true);
   for (int i = 0; i < int(std::size(kKinds)); ++i) {
@@ -163,14 +198,10 @@ void FoliagePanel::buildUi() {
     b->setCheckable(true);
     b->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
     b->setMinimumWidth(0);
+    b->setToolTip(toolTipOf(kKinds[i]));
     tools_->addButton(b, i);
-    row->addWidget(b);
+    row->addWidget(b, i / kToolsPerRow, i % kToolsPerRow);
   }
-  tools_->button(0)->setToolTip("No foliage brush: clicks select entities and the gizmo moves them");
-  tools_->button(1)->setToolTip("Paint instances of the brush's types up to their density (one undo step per stroke)");
-  tools_->button(2)->setToolTip("Erase the brush's types (with none chosen: every type) under the brush");
-  tools_->button(3)->setToolTip("Click: the nearest instance within the radius; drag: every instance under the "
-                                "brush; Shift adds to the selection");
   connect(tools_, &QButtonGroup::idClicked, this, [this](int id) { tool_->setKind(kKinds[id]); });
   bl->addLayout(row);
   auto* form = new QFormLayout;
@@ -233,8 +264,7 @@ void FoliagePanel::populateMenu(QMenu* menu) {
   menu->addSeparator();
   auto* group = new QActionGroup(this);
   for (FoliageToolKind k : kKinds) {
-    const QString text = k == FoliageToolKind::Off ? QString("Brush &Off") : QString("%1 Brush").arg(foliageToolLabel(k));
-    QAction* a = menu->addAction(text, this, [this, k] { tool_->setKind(k); });
+    QAction* a = menu->addAction(menuText(k), this, [this, k] { tool_->setKind(k); });
     a->setCheckable(true);
     a->setChecked(tool_->kind() == k);
     group->addAction(a);
@@ -344,7 +374,7 @@ void FoliagePanel::brushFromWidgets() {
 
 void FoliagePanel::refreshSelection() {
   const size_t n = tool_->selection().size();
-  selectionInfo_->setText(n ? QString("%1 selected").arg(number(n)) : QString("None (the Select brush picks them)"));
+  selectionInfo_->setText(n ? QString("%1 selected").arg(number(n)) : QString("None (the Select and Lasso tools pick them)"));
   for (QPushButton* b : {deleteSelection_, reapply_, deselect_}) b->setEnabled(n > 0);
 }
 

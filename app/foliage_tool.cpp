@@ -6,6 +6,8 @@
 #include <limits>
 
 #include <QCoreApplication>
+#include <QCursor>
+#include <QGuiApplication>
 #include <QKeyEvent>
 #include <QKeySequence>
 
@@ -24,6 +26,13 @@ constexpr double kFarMetres = 1e6;
 // Ticks drawn at most, so a brush over a dense meadow stays cheap to draw.
 constexpr size_t kMaxTicksUnderBrush = 4000;
 constexpr size_t kMaxSelectedTicks = 20000;
+// A lasso or fill polygon: a point where the drag has gone this far (XY,
+// metres) from the last, and this many points at most (a long drag keeps
+// its shape to a few centimetres either way).
+constexpr double kPolygonStep = 0.05;
+constexpr size_t kMaxPolygonPoints = 8192;
+// Warnings listed one by one at most; the rest are counted.
+constexpr size_t kMaxListedWarnings = 3;
 
 // A dab's seed: different for every dab of every stroke, the same for the
 // same brush seed, stroke and dab (so a session replays the same way).
@@ -42,9 +51,14 @@ const char* foliageToolLabel(FoliageToolKind k) {
     case FoliageToolKind::Paint: return "Paint";
     case FoliageToolKind::Erase: return "Erase";
     case FoliageToolKind::Select: return "Select";
+    case FoliageToolKind::Lasso: return "Lasso";
+    case FoliageToolKind::Fill: return "Fill";
+    case FoliageToolKind::Move: return "Move";
   }
   return "?";
 }
+
+bool foliageToolDrawsPolygon(FoliageToolKind k) { return k == FoliageToolKind::Lasso || k == FoliageToolKind::Fill; }
 
 FoliageTool::FoliageTool(scene::Document& doc, FoliageGroundCache& ground, QObject* parent)
     : QObject(parent), doc_(doc), ground_(ground) {
@@ -133,10 +147,15 @@ bool FoliageTool::begin(const glm::dvec3& origin, const glm::dvec3& direction, b
   foliage::Selection clicked;
   if (kind_ == FoliageToolKind::Select && drawn) clicked = selectDrawn(doc_.foliage().store(), *drawn, types_);
   if (!h && clicked.empty()) return false;
-  if (kind_ == FoliageToolKind::Paint && types_.empty()) {
-    emit strokeFinished("Paint foliage: no type chosen (select a type in the Foliage panel, or check several)",
+  if ((kind_ == FoliageToolKind::Paint || kind_ == FoliageToolKind::Fill) && types_.empty()) {
+    emit strokeFinished(QString("%1 foliage: no type chosen (select a type in the Foliage panel, or check several)")
+                            .arg(foliageToolLabel(kind_)),
                         true);
     return true;  // handled: the click selects no entity either
+  }
+  if (kind_ == FoliageToolKind::Move && selection_.empty()) {
+    emit strokeFinished("Move foliage: nothing selected (the Select or Lasso tool picks instances)", true);
+    return true;
   }
   stroking_ = true;
   undo_ = {};
@@ -156,6 +175,16 @@ bool FoliageTool::begin(const glm::dvec3& origin, const glm::dvec3& direction, b
     else if (const auto in = doc_.foliage().store().find(*drawn)) lastDab_ = in->position;
     return true;
   }
+  if (foliageToolDrawsPolygon(kind_)) {
+    if (kind_ == FoliageToolKind::Lasso && !extend) clearSelection();
+    polygon_ = {h->point};
+    return true;
+  }
+  if (kind_ == FoliageToolKind::Move) {
+    moveFrom_ = h->point;
+    moveOffset_ = glm::dvec3(0.0);
+    return true;
+  }
   dab(h->point);
   return true;
 }
@@ -165,6 +194,15 @@ void FoliageTool::drag(const glm::dvec3& origin, const glm::dvec3& direction) {
   const auto h = pick(origin, direction);
   if (!h) return;  // off the ground: the stroke waits where it was
   hover_ = h;
+  if (foliageToolDrawsPolygon(kind_)) {
+    if (polygon_.size() < kMaxPolygonPoints && glm::length(glm::dvec2(h->point - polygon_.back())) >= kPolygonStep)
+      polygon_.push_back(h->point);
+    return;
+  }
+  if (kind_ == FoliageToolKind::Move) {
+    moveOffset_ = h->point - moveFrom_;
+    return;
+  }
   // Dabs every half radius along the drag (in XY, as the dabs' discs are).
   const double step = std::max(brush_.radius * 0.5, 1e-3);
   const glm::dvec3 from = lastDab_;
@@ -222,6 +260,8 @@ void FoliageTool::end() {
   if (!stroking_) return;
   stroking_ = false;
   QCoreApplication::instance()->removeEventFilter(this);
+  if (foliageToolDrawsPolygon(kind_)) return endPolygon();
+  if (kind_ == FoliageToolKind::Move) return endMove();
   if (kind_ == FoliageToolKind::Select) {
     emit strokeFinished(QString("Foliage selection: %1 instance(s)").arg(selection_.size()), false);
     return;
@@ -239,18 +279,66 @@ void FoliageTool::end() {
                       false);
 }
 
+void FoliageTool::endPolygon() {
+  std::vector<glm::dvec2> points;
+  for (const glm::dvec3& p : polygon_) points.emplace_back(p);
+  polygon_.clear();
+  const bool lasso = kind_ == FoliageToolKind::Lasso;
+  const QString label = lasso ? "Foliage lasso" : "Fill foliage";
+  const foliage::Region2 area = foliage::Region2::poly(std::move(points));
+  if (area.polygon.size() < 3 || !(area.area() > 0.0)) {
+    emit strokeFinished(label + ": draw a loop around an area on the ground", true);
+    if (lasso) emit selectionChanged();
+    return;
+  }
+  foliage::FoliageStore& store = doc_.foliage().store();
+  if (lasso) {
+    addToSelection(foliage::selectRegion(store, area, types_));
+    emit strokeFinished(QString("Foliage selection: %1 instance(s)").arg(selection_.size()), false);
+    return;
+  }
+  foliage::PaintParams p;
+  p.region = area;
+  p.types = types_;
+  p.densityFactor = brush_.densityFactor;
+  p.seed = dabSeed(brush_.seed, strokes_, 0);
+  QGuiApplication::setOverrideCursor(QCursor(Qt::WaitCursor));
+  foliage::EditResult r = foliage::paint(store, ground_.ground().ground(), p);
+  QGuiApplication::restoreOverrideCursor();
+  const QString done = QString("%1: %2 placed over %3 m²").arg(label).arg(r.stats.placed).arg(area.area(), 0, 'f', 0);
+  record(std::move(r), label, true, done);
+}
+
+void FoliageTool::endMove() {
+  const glm::dvec3 offset = moveOffset_;
+  moveOffset_ = glm::dvec3(0.0);
+  if (offset == glm::dvec3(0.0) || selection_.empty()) {
+    emit strokeFinished("Move foliage: nothing moved", false);
+    return;
+  }
+  foliage::EditResult r =
+      foliage::moveSelection(doc_.foliage().store(), ground_.ground().ground(), selection_, offset, true);
+  const QString done = QString("Move foliage: %1 moved by %2 m").arg(r.stats.moved).arg(glm::length(offset), 0, 'f', 2);
+  record(std::move(r), "Move foliage", true, done);
+}
+
 void FoliageTool::clearSelection() {
   if (selection_.empty()) return;
   selection_.items.clear();
   emit selectionChanged();
 }
 
-void FoliageTool::record(foliage::EditResult r, const QString& text, bool keepsSelection) {
-  for (const std::string& m : r.stats.messages) emit strokeFinished(text + ": " + QString::fromStdString(m), true);
+void FoliageTool::record(foliage::EditResult r, const QString& text, bool keepsSelection, const QString& done) {
+  const std::vector<std::string>& warnings = r.stats.messages;
+  for (size_t i = 0; i < warnings.size() && i < kMaxListedWarnings; ++i)
+    emit strokeFinished(text + ": " + QString::fromStdString(warnings[i]), true);
+  if (warnings.size() > kMaxListedWarnings)
+    emit strokeFinished(QString("%1: %2 more warning(s) like these").arg(text).arg(warnings.size() - kMaxListedWarnings),
+                        true);
+  const QString summary =
+      !done.isEmpty() ? done : QString("%1: %2 changed, %3 removed").arg(text).arg(r.stats.changed).arg(r.stats.removed);
   const bool pushed = scene::pushFoliageEdit(doc_, std::move(r.undo), text);
-  emit strokeFinished(pushed ? QString("%1: %2 changed, %3 removed").arg(text).arg(r.stats.changed).arg(r.stats.removed)
-                             : QString("%1: nothing changed").arg(text),
-                      false);
+  emit strokeFinished(pushed ? summary : QString("%1: nothing changed").arg(text), false);
   if (!keepsSelection) selection_.items.clear();
   emit selectionChanged();
 }
@@ -293,6 +381,8 @@ void FoliageTool::drawOverlay(const scene::SceneState& state, render::Overlay& o
     const glm::vec4 cyan(0.3f, 0.9f, 1.0f, 1.0f);
     size_t drawn = 0;
     const auto& items = selection_.items;
+    // Move shows the selection where the drag would put it (before the snap).
+    const glm::dvec3 shift = kind_ == FoliageToolKind::Move && stroking_ ? moveOffset_ : glm::dvec3(0.0);
     for (size_t i = 0; i < items.size() && drawn < kMaxSelectedTicks;) {
       size_t j = i;
       while (j < items.size() && items[j].first == items[i].first) ++j;
@@ -302,7 +392,7 @@ void FoliageTool::drawOverlay(const scene::SceneState& state, render::Overlay& o
         for (const foliage::Run& r : cell->runs)
           for (const foliage::PackedInstance& p : r.items)
             if (drawn < kMaxSelectedTicks && std::binary_search(ids.begin(), ids.end(), p.id)) {
-              const glm::dvec3 at = foliage::unpackPosition(p, items[i].first);
+              const glm::dvec3 at = foliage::unpackPosition(p, items[i].first) + shift;
               overlay.line(at, at + glm::dvec3(0, 0, tick * 2.0), cyan);
               ++drawn;
             }
@@ -319,9 +409,20 @@ void FoliageTool::drawOverlay(const scene::SceneState& state, render::Overlay& o
       if (const auto z = scene::terrainSurfaceAt(state, hover_->terrain, xy)) return *z;
     return c.z;
   };
-  const glm::vec4 colour = kind_ == FoliageToolKind::Paint   ? glm::vec4(0.45f, 1.0f, 0.35f, 0.95f)
+  const bool adds = kind_ == FoliageToolKind::Paint || kind_ == FoliageToolKind::Fill;
+  const glm::vec4 colour = adds                              ? glm::vec4(0.45f, 1.0f, 0.35f, 0.95f)
                            : kind_ == FoliageToolKind::Erase ? glm::vec4(1.0f, 0.45f, 0.3f, 0.95f)
                                                              : glm::vec4(0.3f, 0.9f, 1.0f, 0.95f);
+  // Lasso, Fill and Move have no disc: a mark at the cursor, and the
+  // polygon so far closed back to its start.
+  if (foliageToolDrawsPolygon(kind_) || kind_ == FoliageToolKind::Move) {
+    overlay.line(c, c + glm::dvec3(0, 0, std::max(1.0, tick * 3.0)), colour);
+    const glm::dvec3 up(0.0, 0.0, 0.05);
+    for (size_t i = 0; i + 1 < polygon_.size(); ++i) overlay.line(polygon_[i] + up, polygon_[i + 1] + up, colour);
+    if (polygon_.size() > 2)
+      overlay.line(polygon_.back() + up, polygon_.front() + up, glm::vec4(colour.r, colour.g, colour.b, 0.5f));
+    return;
+  }
   glm::dvec3 prev{};
   for (int i = 0; i <= kCircleSegments; ++i) {
     const double a = 2.0 * M_PI * i / kCircleSegments;

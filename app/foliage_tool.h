@@ -1,5 +1,5 @@
 #pragma once
-// The foliage brush in the viewport: Paint, Erase and Select over the ground
+// The foliage tools in the viewport: Paint, Erase and Select brushes over the ground
 // under the cursor (the terrain through scene::pickTerrain, scans through
 // the ground's MeshGround::raycast; the nearer wins). A press-drag-release
 // is one stroke: dabs every half radius along the drag, each a domain tool
@@ -8,8 +8,15 @@
 // step (scene::pushFoliageEdit). Select keeps a foliage::Selection: a click
 // takes the nearest instance within the radius, a drag adds every instance
 // under the dabs (Shift adds to what was selected); Delete and Reapply act
-// on it, each one undo step. The Foliage panel sets the tool, the brush and
-// the types; the viewport forwards mouse events (viewport_foliage.cpp).
+// on it, each one undo step. Lasso and Fill draw a polygon on the ground
+// along the drag (closed at release): Lasso selects what lies inside it
+// (Shift adds), Fill paints the brush's types into it up to their density
+// (foliage::paint over the polygon: one undo step). Move drags the selection
+// over the ground by the ground offset under the cursor, each instance put
+// back on the surface under its new place (foliage::moveSelection with
+// snap: one undo step at release). The Foliage panel sets the tool, the
+// brush and the types; the viewport forwards mouse events
+// (viewport_foliage.cpp).
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,8 +31,10 @@ namespace hs::app {
 
 class FoliageGroundCache;
 
-enum class FoliageToolKind { Off, Paint, Erase, Select };
+enum class FoliageToolKind { Off, Paint, Erase, Select, Lasso, Fill, Move };
 const char* foliageToolLabel(FoliageToolKind k);
+// Lasso and Fill draw a polygon; the others dab a disc (Move: neither).
+bool foliageToolDrawsPolygon(FoliageToolKind k);
 
 struct FoliageBrush {
   double radius = 10.0;        // metres (a dab's disc in XY)
@@ -78,9 +87,14 @@ class FoliageTool : public QObject {
   bool deleteSelection();
   bool reapplySelection();
 
-  // The brush circle on the ground, ticks on the instances under it (the
-  // viewport does not draw foliage yet: they show what a dab will touch)
-  // and on the selected instances.
+  // The lasso or fill polygon being drawn (world points on the ground, in
+  // drag order; empty between strokes), and Move's offset so far.
+  const std::vector<glm::dvec3>& polygon() const { return polygon_; }
+  glm::dvec3 moveOffset() const { return moveOffset_; }
+
+  // The brush circle on the ground, ticks on the instances under it (what
+  // a dab will touch) and on the selected instances (where Move would put
+  // them while it drags), and the polygon being drawn.
   void drawOverlay(const scene::SceneState& state, render::Overlay& overlay) const;
 
  signals:
@@ -100,7 +114,9 @@ class FoliageTool : public QObject {
   std::optional<GroundHit> pick(const glm::dvec3& origin, const glm::dvec3& direction);
   void dab(const glm::dvec3& centre);
   void addToSelection(foliage::Selection more);
-  void record(foliage::EditResult r, const QString& text, bool keepsSelection);
+  void record(foliage::EditResult r, const QString& text, bool keepsSelection, const QString& done = {});
+  void endPolygon();
+  void endMove();
 
   scene::Document& doc_;
   FoliageGroundCache& ground_;
@@ -118,6 +134,8 @@ class FoliageTool : public QObject {
   std::vector<std::string> messages_;
   uint64_t strokes_ = 0;  // each stroke's dabs draw other seeds
   uint64_t dabs_ = 0;
+  std::vector<glm::dvec3> polygon_;  // Lasso, Fill
+  glm::dvec3 moveFrom_{0.0}, moveOffset_{0.0};
 };
 
 }  // namespace hs::app

@@ -36,7 +36,9 @@
 #include "app/terrain_tool.h"
 #include "app/viewport_widget.h"
 #include "editor_fixture.h"
+#include "foliage/surface.h"
 #include "scene/foliage_data.h"
+#include "scene/foliage_ground.h"
 #include "scene/terrain_ops.h"
 #include "scene/terrain_pick.h"
 
@@ -354,6 +356,106 @@ class EditorFoliageTest : public QObject {
     vp->update();
   }
 
+  // A press, moves through `corners` (each edge in 6 steps) and a release
+  // at the last: a loop on the ground for Lasso and Fill, a drag for Move.
+  void trace(const std::vector<glm::dvec2>& corners, Qt::KeyboardModifiers mods = Qt::NoModifier) {
+    app::ViewportWidget* vp = w_->viewport();
+    QTest::mousePress(vp, Qt::LeftButton, mods, pixelAt(corners[0]));
+    for (size_t c = 1; c < corners.size(); ++c)
+      for (int i = 1; i <= 6; ++i) QTest::mouseMove(vp, pixelAt(glm::mix(corners[c - 1], corners[c], i / 6.0)));
+    QTest::mouseRelease(vp, Qt::LeftButton, mods, pixelAt(corners.back()));
+  }
+
+  // Fill paints the loop drawn on the ground up to the type's density (one
+  // step); Lasso selects what lies inside its loop; Move drags the
+  // selection over the ground, each instance back on the terrain.
+  void fillLassoAndMove() {
+    // The view of paintStrokeIsOneUndoStep: 150 m above the valley's centre;
+    // a pixel there is about 0.2 m, so loops are checked to 0.5 m.
+    const size_t before = store().instanceCount();
+    QVERIFY(before > 30);
+    const int step0 = steps();
+    auto inside = [](const glm::dvec3& p, glm::dvec2 lo, glm::dvec2 hi, double margin) {
+      return p.x >= lo.x - margin && p.x <= hi.x + margin && p.y >= lo.y - margin && p.y <= hi.y + margin;
+    };
+
+    // Fill: a 30 m square west of the painted stroke, empty so far.
+    chooseTool("Fill");
+    QCOMPARE(panel_->tool()->kind(), app::FoliageToolKind::Fill);
+    const glm::dvec2 flo(-60.0, -15.0), fhi(-30.0, 15.0);
+    trace({flo, {fhi.x, flo.y}, fhi, {flo.x, fhi.y}, flo});
+    QVERIFY(panel_->tool()->polygon().empty());
+    QCOMPARE(steps(), step0 + 1);
+    const size_t filled = store().instanceCount() - before;
+    // 900 m2 at 2000 per hectare: 180, less what the 1 m spacing refuses.
+    QVERIFY2(filled > 140 && filled <= 190, qPrintable(QString::number(filled)));
+    size_t inSquare = 0;
+    for (const foliage::Instance& in : store().allInstances())
+      if (inside(in.position, flo, fhi, 0.5)) ++inSquare;
+    QCOMPARE(inSquare, filled);  // every new one inside the loop, none before there
+    qInfo("fill: %zu instances in the 30 m square", filled);
+    doc().undoStack()->undo();
+    QCOMPARE(store().instanceCount(), before);
+
+    // Lasso: a loop around part of the stroke selects what it holds.
+    chooseTool("Lasso");
+    const glm::dvec2 llo(-5.0, -15.0), lhi(15.0, 15.0);
+    trace({llo, {lhi.x, llo.y}, lhi, {llo.x, lhi.y}, llo});
+    QCOMPARE(steps(), step0);  // selecting changes no document
+    const std::vector<uint32_t> ids = panel_->tool()->selection().ids();
+    QVERIFY2(ids.size() > 5 && ids.size() < before, qPrintable(QString::number(ids.size())));
+    const std::vector<foliage::Instance> was = store().allInstances();
+    for (const foliage::Instance& in : was) {
+      const bool selected = std::binary_search(ids.begin(), ids.end(), in.id);
+      if (inside(in.position, llo, lhi, -0.5)) QVERIFY2(selected, qPrintable(QString::number(in.id)));
+      if (!inside(in.position, llo, lhi, 0.5)) QVERIFY2(!selected, qPrintable(QString::number(in.id)));
+    }
+
+    // Move: the selection 20 m north, over the hills; each instance back on the terrain.
+    chooseTool("Move");
+    const int step1 = steps();
+    app::ViewportWidget* vp = w_->viewport();
+    QTest::mousePress(vp, Qt::LeftButton, Qt::NoModifier, pixelAt({5.0, 0.0}));
+    for (int i = 1; i <= 5; ++i) QTest::mouseMove(vp, pixelAt({5.0, 4.0 * i}));
+    QVERIFY(std::abs(panel_->tool()->moveOffset().y - 20.0) < 0.5);  // the overlay's preview
+    QTest::mouseRelease(vp, Qt::LeftButton, Qt::NoModifier, pixelAt({5.0, 20.0}));
+    QCOMPARE(steps(), step1 + 1);
+    QCOMPARE(store().instanceCount(), before);
+    QCOMPARE(panel_->tool()->selection().ids(), ids);  // the selection follows them
+    const double sink = store().type(0).sinkDepth;
+    const scene::FoliageGround ground(doc().state());
+    for (const foliage::Instance& in : store().allInstances()) {
+      const auto old = std::find_if(was.begin(), was.end(), [&](const foliage::Instance& o) { return o.id == in.id; });
+      QVERIFY(old != was.end());
+      if (!std::binary_search(ids.begin(), ids.end(), in.id)) {
+        QCOMPARE(in.position, old->position);
+        continue;
+      }
+      const glm::dvec2 moved = glm::dvec2(in.position - old->position);
+      QVERIFY2(std::abs(moved.x) < 0.5 && std::abs(moved.y - 20.0) < 0.5, qPrintable(QString("%1 %2").arg(moved.x).arg(moved.y)));
+      const glm::dvec3 anchor = in.position + in.rotation * glm::dvec3(0.0, 0.0, sink);
+      // The terrain's triangles (foliage::terrainSurface: what the renderer
+      // draws), not the bilinear height terrainSurfaceAt gives the brush.
+      const auto sp = foliage::terrainSurface(ground.ground().terrain->height, glm::dvec2(anchor));
+      QVERIFY(sp);
+      QVERIFY2(std::abs(anchor.z - sp->position.z) < 1e-3, qPrintable(QString::number(anchor.z - sp->position.z)));
+    }
+    doc().undoStack()->undo();
+    const std::vector<foliage::Instance> back = store().allInstances();
+    QCOMPARE(back.size(), was.size());
+    for (size_t i = 0; i < back.size(); ++i) {
+      QCOMPARE(back[i].id, was[i].id);
+      QCOMPARE(back[i].position, was[i].position);
+    }
+
+    // Move with nothing selected: said, no step.
+    panel_->tool()->clearSelection();
+    QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, pixelAt({5.0, 0.0}));
+    QCOMPARE(steps(), step1);
+    QVERIFY(w_->messages()->lastText().contains("nothing selected"));
+    chooseTool("Off");
+  }
+
   void editTypeThroughTheDialog() {
     const foliage::FoliageType before = store().type(0);
     app::FoliageTypeDialog d(nullptr, {"Boulder"}, {}, &before);
@@ -396,7 +498,8 @@ class EditorFoliageTest : public QObject {
     QStringList texts;
     for (QAction* a : menu->actions()) texts << a->text().remove('&');
     for (const char* t : {"Generate Plant…", "New Foliage Type…", "Edit Foliage Type…", "Scatter…", "Clear Type",
-                          "Paint Brush", "Erase Brush", "Select Brush", "Brush Off", "Delete Selected Instances",
+                          "Paint Brush", "Erase Brush", "Select Brush", "Foliage Tool Off", "Lasso Select", "Fill Area",
+                          "Move Selected Instances", "Delete Selected Instances",
                           "Reapply to Selected Instances"})
       QVERIFY2(texts.contains(t), t);
     // The menu's brush entries drive the same tool as the panel's buttons.
