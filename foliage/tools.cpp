@@ -144,7 +144,7 @@ double maskedArea(const terrain::Terrain& tr, const Region2& region, const Layer
 
 void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const Region2& region, double factor,
                uint64_t seed, unsigned threads, EditResult& res, const LayerMask* mask,
-               const TypeSet& competitors = {}) {
+               const TypeSet& competitors = {}, const Progress* progress = nullptr) {
   const FoliageType& t = store.type(type);
   OpStats& st = res.stats;
   const std::string ctx = typeContext(t);
@@ -318,6 +318,12 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
   std::vector<size_t> outside(ranges), filtered(ranges);
   std::vector<uint64_t> pending;
   for (uint64_t b0 = 0; b0 < total; b0 += kBatch) {
+    // Before the store is touched: a cancel here leaves this type's cells as they were.
+    if (progress && progress->cancelled()) {
+      res.cancelled = true;
+      return;
+    }
+    reportProgress(progress, double(b0) / double(total), t.name);
     pending.resize(size_t(std::min(total, b0 + kBatch) - b0));
     for (size_t i = 0; i < pending.size(); ++i) pending[i] = b0 + i;
     for (int attempt = 0; attempt < kAttempts && !pending.empty(); ++attempt) {
@@ -364,6 +370,10 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
       pending = std::move(again);
     }
   }
+  if (progress && progress->cancelled()) {
+    res.cancelled = true;
+    return;
+  }
   // Ids in acceptance order; then into the cells, one cell at a time.
   const uint32_t firstId = store.takeIds(uint32_t(accepted.size()), &res.undo);
   std::vector<std::pair<CellKey, uint32_t>> order(accepted.size());
@@ -395,6 +405,17 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
     }
   }
   st.placed += accepted.size();
+}
+
+// A cancelled edit gives back what its earlier types placed: the store as
+// it was, nothing to undo.
+EditResult undoIfCancelled(FoliageStore& store, EditResult res) {
+  if (!res.cancelled) return res;
+  res.undo.swap(store);
+  EditResult out;
+  out.cancelled = true;
+  out.stats.messages.push_back("cancelled: nothing changed");
+  return out;
 }
 
 glm::dquat alignTo(const glm::dvec3& n, double maxDeg) {
@@ -455,14 +476,17 @@ EditResult paint(FoliageStore& store, const Ground& ground, const PaintParams& p
                                  " is out of range (0 to 10); using " +
                                  formatNumber(std::clamp(std::isnan(p.densityFactor) ? 1.0 : p.densityFactor, 0.0, 10.0)));
   const double factor = std::isnan(p.densityFactor) ? 1.0 : std::clamp(p.densityFactor, 0.0, 10.0);
-  for (uint16_t type : p.types) {
+  for (size_t i = 0; i < p.types.size() && !res.cancelled; ++i) {
+    const uint16_t type = p.types[i];
     if (type >= store.types().size()) {
       res.stats.messages.push_back("paint: no foliage type " + std::to_string(type));
       continue;
     }
-    placeType(store, ground, type, p.region, factor, key4(p.seed, type, 0xFA1Full, 0), p.threads, res, nullptr);
+    const Progress part(p.progress, double(i) / double(p.types.size()), double(i + 1) / double(p.types.size()));
+    placeType(store, ground, type, p.region, factor, key4(p.seed, type, 0xFA1Full, 0), p.threads, res, nullptr, {},
+              p.progress ? &part : nullptr);
   }
-  return res;
+  return undoIfCancelled(store, std::move(res));
 }
 
 EditResult fillLayer(FoliageStore& store, const Ground& ground, const std::string& layer, double minWeight,
@@ -497,17 +521,18 @@ EditResult fillLayer(FoliageStore& store, const Ground& ground, const std::strin
 }
 
 EditResult fill(FoliageStore& store, const Ground& ground, const Region2& area, const TypeSet& types, uint64_t seed,
-                unsigned threads) {
+                unsigned threads, const Progress* progress) {
   PaintParams p;
   p.region = area;
   p.types = types;
   p.seed = seed;
   p.threads = threads;
+  p.progress = progress;
   return paint(store, ground, p);
 }
 
 EditResult scatter(FoliageStore& store, const Ground& ground, const TypeSet& types, uint64_t seed,
-                   const std::optional<Region2>& area, unsigned threads, bool compete) {
+                   const std::optional<Region2>& area, unsigned threads, bool compete, const Progress* progress) {
   Region2 region;
   if (area) {
     region = *area;
@@ -516,16 +541,19 @@ EditResult scatter(FoliageStore& store, const Ground& ground, const TypeSet& typ
     ground.bounds(lo, hi);
     region = Region2::rect(lo, hi);
   }
-  if (!compete) return fill(store, ground, region, types, seed, threads);
+  if (!compete) return fill(store, ground, region, types, seed, threads, progress);
   EditResult res;
-  for (uint16_t type : types) {
+  for (size_t i = 0; i < types.size() && !res.cancelled; ++i) {
+    const uint16_t type = types[i];
     if (type >= store.types().size()) {
       res.stats.messages.push_back("scatter: no foliage type " + std::to_string(type));
       continue;
     }
-    placeType(store, ground, type, region, 1.0, key4(seed, type, 0xFA1Full, 0), threads, res, nullptr, types);
+    const Progress part(progress, double(i) / double(types.size()), double(i + 1) / double(types.size()));
+    placeType(store, ground, type, region, 1.0, key4(seed, type, 0xFA1Full, 0), threads, res, nullptr, types,
+              progress ? &part : nullptr);
   }
-  return res;
+  return undoIfCancelled(store, std::move(res));
 }
 
 // --- erasing and selections --------------------------------------------------------------

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.h"
 #include "foliage/store.h"
 #include "foliage/surface.h"
 
@@ -51,6 +52,7 @@ struct OpStats {
 struct EditResult {
   FoliageUndo undo;
   OpStats stats;
+  bool cancelled = false;  // by its Progress: the store is as it was, nothing to undo
 };
 
 // Types by index; empty: every type (erase, select) or none (paint).
@@ -62,6 +64,9 @@ struct PaintParams {
   double densityFactor = 1.0;  // times each type's density (0..10)
   uint64_t seed = 0;
   unsigned threads = 0;        // 0: all allowed
+  // Reports per batch of candidates and may cancel (paint, fill and
+  // scatter: a cancelled edit changes nothing).
+  const Progress* progress = nullptr;
 };
 
 // Adds instances of each type in the region up to its density: what is
@@ -71,7 +76,7 @@ EditResult paint(FoliageStore& store, const Ground& ground, const PaintParams& p
 // paint() over an area (a rectangle, a lasso polygon): the fill tool. A
 // type with a paint-layer filter fills only that layer's region.
 EditResult fill(FoliageStore& store, const Ground& ground, const Region2& area, const TypeSet& types,
-                uint64_t seed, unsigned threads = 0);
+                uint64_t seed, unsigned threads = 0, const Progress* progress = nullptr);
 // Fills a paint-layer region: the terrain where `layer` (a material name)
 // weighs at least `minWeight`, within `area` (default: the whole terrain).
 // Terrain only; the types' own filters apply too.
@@ -84,7 +89,8 @@ EditResult fillLayer(FoliageStore& store, const Ground& ground, const std::strin
 // trees, win): an instance keeps from those of every other type in the set
 // the mean of the two types' spacings (their collision radii added).
 EditResult scatter(FoliageStore& store, const Ground& ground, const TypeSet& types, uint64_t seed,
-                   const std::optional<Region2>& area = std::nullopt, unsigned threads = 0, bool compete = false);
+                   const std::optional<Region2>& area = std::nullopt, unsigned threads = 0, bool compete = false,
+                   const Progress* progress = nullptr);
 
 // Removes the instances (of `types`; empty: all) whose XY lies in the region.
 EditResult erase(FoliageStore& store, const Region2& region, const TypeSet& types = {});

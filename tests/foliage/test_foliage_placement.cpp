@@ -255,6 +255,60 @@ class TestFoliagePlacement : public QObject {
     }
   }
 
+  // A scatter cancelled through its Progress changes nothing: not before
+  // it starts, not in the second of two types (the first type's instances
+  // are given back), not in a paint; the fractions it reports only grow.
+  void cancelledScatterChangesNothing() {
+    const ht::Terrain t = terrain(129, 1.0, {0, 0, 0}, bumps);
+    Ground g{&t, {}};
+    FoliageStore s;
+    addType(s, type("Tree", 150, 6.0));
+    addType(s, type("Shrub", 2500, 1.0));
+    scatter(s, g, {0}, 3);  // some trees there already
+    const Snapshot before = snapshot(s);
+    const size_t cells = s.cellCount();
+
+    hs::Progress early;
+    early.cancel();
+    EditResult r = scatter(s, g, {0, 1}, 9, std::nullopt, 0, true, &early);
+    QVERIFY(r.cancelled && r.undo.empty() && r.stats.placed == 0);
+    QVERIFY(same(before, snapshot(s)));
+
+    double last = -1.0;
+    bool grew = true;
+    std::vector<std::string> stages;
+    hs::Progress watching([&](double f, std::string_view stage) {
+      grew = grew && f >= last;
+      last = f;
+      if (stages.empty() || stages.back() != stage) stages.emplace_back(stage);
+    });
+    r = scatter(s, g, {0, 1}, 9, std::nullopt, 0, true, &watching);
+    QVERIFY(!r.cancelled && r.stats.placed > 1000);
+    QVERIFY(grew && last >= 0.5 && last < 1.0);  // the second type in the second half
+    QCOMPARE(stages, (std::vector<std::string>{"Tree", "Shrub"}));
+    r.undo.swap(s);
+    QVERIFY(same(before, snapshot(s)));
+
+    // Cancelled once the second type's candidates start: the trees it
+    // placed first go too.
+    hs::Progress cancelling([&](double, std::string_view stage) {
+      if (stage == "Shrub") cancelling.cancel();
+    });
+    r = scatter(s, g, {0, 1}, 9, std::nullopt, 0, true, &cancelling);
+    QVERIFY(r.cancelled && r.undo.empty() && r.stats.placed == 0);
+    QCOMPARE(r.stats.messages, std::vector<std::string>{"cancelled: nothing changed"});
+    QVERIFY(same(before, snapshot(s)));
+
+    PaintParams p;
+    p.region = Region2::disc({64.0, 64.0}, 30.0);
+    p.types = {1};
+    p.progress = &early;
+    r = paint(s, g, p);
+    QVERIFY(r.cancelled && r.undo.empty());
+    QVERIFY(same(before, snapshot(s)));
+    QCOMPARE(s.cellCount(), cells);
+  }
+
   void badInputIsRefusedClearly() {
     const ht::Terrain t = terrain(65, 1.0, {0, 0, 0}, bumps);
     Ground g{&t, {}};
