@@ -20,11 +20,16 @@ FoliageGroundCache::~FoliageGroundCache() = default;
 const scene::FoliageGround& FoliageGroundCache::ground() {
   if (!ground_) {
     QGuiApplication::setOverrideCursor(QCursor(Qt::WaitCursor));
-    ground_ = std::make_unique<scene::FoliageGround>(doc_.state());
+    ground_ = std::make_shared<const scene::FoliageGround>(doc_.state());
     ++builds_;
     QGuiApplication::restoreOverrideCursor();
   }
   return *ground_;
+}
+
+std::shared_ptr<const scene::FoliageGround> FoliageGroundCache::shared() {
+  ground();
+  return ground_;
 }
 
 }  // namespace hs::app

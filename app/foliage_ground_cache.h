@@ -23,12 +23,15 @@ class FoliageGroundCache : public QObject {
   // The ground of the document as it is now (built here when stale, with
   // a busy cursor: on the UI thread, as the tools that use it are).
   const scene::FoliageGround& ground();
+  // The same, for a worker: it stays alive while the worker holds it,
+  // whatever the document does meanwhile.
+  std::shared_ptr<const scene::FoliageGround> shared();
   bool built() const { return bool(ground_); }
   int builds() const { return builds_; }  // how many times it was built (tests)
 
  private:
   scene::Document& doc_;
-  std::unique_ptr<scene::FoliageGround> ground_;
+  std::shared_ptr<const scene::FoliageGround> ground_;
   int builds_ = 0;
 };
 

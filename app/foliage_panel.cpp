@@ -23,6 +23,7 @@
 #include <QTreeWidget>
 #include <QVBoxLayout>
 
+#include "app/background_job.h"
 #include "app/foliage_dialogs.h"
 #include "app/foliage_ground_cache.h"
 #include "app/form_widgets.h"
@@ -459,12 +460,19 @@ bool FoliagePanel::scatter(const foliage::TypeSet& types, const Json& values) {
   const uint64_t seed = values.contains("seed") && values["seed"].is_number_integer()
                             ? values["seed"].get<uint64_t>()
                             : uint64_t(defaultNumber(foliage::foliageScatterOperation().param("seed")));
-  scene::ops::FoliageOutcome out;
-  {
-    // On the UI thread: see foliage_panel.h (a worker needs a store snapshot).
-    const BusyCursor busy;
-    out = scene::ops::scatterFoliage(doc_, ground_->ground(), types, seed, foliage::regionFromValues(values), rules);
-  }
+  // On a worker, into a copy of the store (the viewport draws the
+  // document's meanwhile), under a window-modal progress with Cancel; the
+  // copy's touched cells go into the document as one step at the end.
+  auto copy = std::make_shared<foliage::FoliageStore>(store);
+  auto work = std::make_shared<scene::ops::FoliageWork>();
+  std::shared_ptr<const scene::FoliageGround> ground = ground_->shared();
+  const std::optional<foliage::Region2> region = foliage::regionFromValues(values);
+  BackgroundJob job(&window_, "Scatter", "Scattering foliage…", true, 0);
+  job.start([copy, work, ground, types, seed, region, rules](const Progress& p) {
+    *work = scene::ops::scatterOnStore(*copy, *ground, types, seed, region, rules, 0, &p);
+  });
+  job.waitForFinished();
+  const scene::ops::FoliageOutcome out = scene::ops::commitFoliageWork(doc_, *copy, std::move(*work));
   return report(out.ok, out.error, out.messages, out.summary, "Scatter");
 }
 

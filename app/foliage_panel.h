@@ -12,10 +12,12 @@
 // (generatePlant, addType, editType, scatter, clear) that the request*()
 // menu commands call after their dialogs and tests call directly.
 //
-// Scatter and plant generation run on the UI thread under a busy cursor: a
-// scatter of a million instances takes a second or two. A worker job would
-// need a snapshot of the store to place into and a commit that swaps cells
-// back in (as scene/terrain_jobs.h does for tiles); not done yet.
+// Scatter runs on a worker into a copy of the store, under a window-modal
+// progress dialog with Cancel (a million instances take a second or two);
+// its cells go into the document at the end (scene::ops::commitFoliageWork,
+// which refuses if the document's foliage changed meanwhile). Plant
+// generation (a fraction of a second) runs on the UI thread under a busy
+// cursor.
 #include <QWidget>
 
 #include "app/foliage_tool.h"

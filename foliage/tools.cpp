@@ -335,6 +335,7 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
           auto& out = passed[size_t(rg)];
           out.clear();
           outside[size_t(rg)] = filtered[size_t(rg)] = 0;
+          if (progress && progress->cancelled()) continue;  // a Cancel waits for a range at most
           const size_t from = n * size_t(rg) / used, to = n * size_t(rg + 1) / used;
           Evaluated ev;
           size_t si = from < to ? stratumOf(pending[from]) : 0;
@@ -350,6 +351,12 @@ void placeType(FoliageStore& store, const Ground& ground, uint16_t type, const R
           }
         }
       });
+      if (progress && progress->cancelled()) {
+        res.cancelled = true;
+        return;
+      }
+      const double batch = double(std::min(total, b0 + kBatch) - b0);
+      reportProgress(progress, (double(b0) + batch * double(attempt + 1) / kAttempts) / double(total), t.name);
       // Accept in candidate order, on this thread.
       std::vector<uint64_t> again;
       for (size_t rg = 0; rg < used; ++rg) {

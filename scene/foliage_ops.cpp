@@ -70,16 +70,18 @@ FoliageOutcome setFoliageType(Document& doc, size_t index, const foliage::Foliag
   return out;
 }
 
-FoliageOutcome scatterFoliage(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
-                              uint64_t seed, const std::optional<foliage::Region2>& region,
-                              const std::optional<foliage::FoliageType>& rules, unsigned threads) {
-  foliage::FoliageStore& store = doc.foliage().store();
+FoliageWork scatterOnStore(foliage::FoliageStore& store, const FoliageGround& ground, const foliage::TypeSet& types,
+                           uint64_t seed, const std::optional<foliage::Region2>& region,
+                           const std::optional<foliage::FoliageType>& rules, unsigned threads,
+                           const Progress* progress) {
+  FoliageWork work;
   foliage::TypeSet set = types;
   if (set.empty())
     for (size_t t = 0; t < store.types().size(); ++t) set.push_back(uint16_t(t));
-  if (set.empty()) return refused("the scene has no foliage types (add one with `foliage type add`)");
-  if (std::string e = checkTypes(store, set); !e.empty()) return refused(e);
-  if (ground.empty()) return refused("the scene has nothing to scatter on (no visible terrain or mesh)");
+  if (set.empty()) work.error = "the scene has no foliage types (add one with `foliage type add`)";
+  else work.error = checkTypes(store, set);
+  if (work.error.empty() && ground.empty()) work.error = "the scene has nothing to scatter on (no visible terrain or mesh)";
+  if (!work.error.empty()) return work;
   // The overrides stand in for the type's rules during this scatter only.
   std::optional<foliage::FoliageType> saved;
   std::vector<std::string> warnings;
@@ -91,11 +93,47 @@ FoliageOutcome scatterFoliage(Document& doc, const FoliageGround& ground, const 
     r.scaleMode = saved->scaleMode;  // the records' encoding stays
     store.setType(set[0], r, nullptr, warnings);
   }
-  foliage::EditResult r = foliage::scatter(store, ground.ground(), set, seed, region, threads, set.size() > 1);
+  work.result = foliage::scatter(store, ground.ground(), set, seed, region, threads, set.size() > 1, progress);
   if (saved) store.setType(set[0], *saved, nullptr, warnings);
-  r.stats.messages.insert(r.stats.messages.end(), warnings.begin(), warnings.end());
+  work.result.stats.messages.insert(work.result.stats.messages.end(), warnings.begin(), warnings.end());
   const std::string name = set.size() == 1 ? store.type(set[0]).name : std::to_string(set.size()) + " types";
-  return record(doc, std::move(r), QString("Scatter %1").arg(QString::fromStdString(name)));
+  work.text = QString("Scatter %1").arg(QString::fromStdString(name));
+  return work;
+}
+
+FoliageOutcome scatterFoliage(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
+                              uint64_t seed, const std::optional<foliage::Region2>& region,
+                              const std::optional<foliage::FoliageType>& rules, unsigned threads) {
+  FoliageWork work = scatterOnStore(doc.foliage().store(), ground, types, seed, region, rules, threads);
+  if (!work.error.empty()) return refused(std::move(work.error));
+  return record(doc, std::move(work.result), work.text);
+}
+
+FoliageOutcome commitFoliageWork(Document& doc, foliage::FoliageStore& worked, FoliageWork work) {
+  if (!work.error.empty()) return refused(std::move(work.error));
+  if (work.result.cancelled) {
+    FoliageOutcome out;
+    out.stats = work.result.stats;
+    out.summary = "cancelled: nothing changed";
+    return out;
+  }
+  // The edit's undo data holds the cells as the document has them: swapped
+  // with the copy it takes the copy's new cells (and the copy is the
+  // document's again); swapped with the document's store it puts them there
+  // and holds the document's old cells, the step's undo data.
+  work.result.undo.swap(worked);
+  // The work was computed from the cells as they were copied: where the
+  // document's differ now (an edit while it ran), nothing changes.
+  foliage::FoliageStore& store = doc.foliage().store();
+  bool same = worked.nextId() == store.nextId() && worked.types() == store.types();
+  for (const foliage::CellKey& k : work.result.undo.keys()) {
+    const foliage::Cell *was = worked.cell(k), *now = store.cell(k);
+    same = same && (was == nullptr) == (now == nullptr) && (!was || *was == *now);
+  }
+  if (!same)
+    return refused(work.text.toStdString() + ": the foliage changed while it ran: nothing changed (run it again)");
+  work.result.undo.swap(store);
+  return record(doc, std::move(work.result), work.text);
 }
 
 FoliageOutcome paintFoliage(Document& doc, const FoliageGround& ground, const foliage::PaintParams& params,

@@ -36,6 +36,25 @@ FoliageOutcome scatterFoliage(Document& doc, const FoliageGround& ground, const 
                               uint64_t seed, const std::optional<foliage::Region2>& region = std::nullopt,
                               const std::optional<foliage::FoliageType>& rules = std::nullopt,
                               unsigned threads = 0);
+// scatterFoliage's work on any store (the document's, or a copy a worker
+// edits off the UI thread, reporting to `progress`, which may cancel):
+// its result and the undo step's text, or `error` with the store untouched.
+struct FoliageWork {
+  foliage::EditResult result;
+  QString text;
+  std::string error;
+};
+FoliageWork scatterOnStore(foliage::FoliageStore& store, const FoliageGround& ground, const foliage::TypeSet& types,
+                           uint64_t seed, const std::optional<foliage::Region2>& region = std::nullopt,
+                           const std::optional<foliage::FoliageType>& rules = std::nullopt, unsigned threads = 0,
+                           const Progress* progress = nullptr);
+// Puts the work a copy of the document's store (`worked`, copied while the
+// document's was as it is now) went through into the document as one undo
+// step: the cells the work touched replace the document's. `worked` is as
+// it was copied after. A cancelled work changes nothing; nor does one whose
+// cells, ids or types the document changed meanwhile (refused, saying so).
+FoliageOutcome commitFoliageWork(Document& doc, foliage::FoliageStore& worked, FoliageWork work);
+
 // A brush dab (or a fill of an area: `fill` true).
 FoliageOutcome paintFoliage(Document& doc, const FoliageGround& ground, const foliage::PaintParams& params,
                             bool fill = false, const QString& text = "Paint foliage");

@@ -15,9 +15,11 @@
 #include <QLocale>
 #include <QMenu>
 #include <QMenuBar>
+#include <QProgressDialog>
 #include <QPushButton>
 #include <QSpinBox>
 #include <QTest>
+#include <QTimer>
 #include <QToolButton>
 #include <QTreeWidget>
 
@@ -216,6 +218,29 @@ class EditorFoliageTest : public QObject {
     QCOMPARE(store().type(0).densityPerHa, 2000.0);
     doc().undoStack()->undo();
     QCOMPARE(store().instanceCount(), size_t(0));
+  }
+
+  // Scatter runs on a worker under a progress dialog: its Cancel changes
+  // nothing (a million-per-hectare override: seconds of work otherwise).
+  void scatterCancels() {
+    app::FoliageScatterDialog d(nullptr, store().types(), 0, {});
+    d.form()->setChecked("density_per_ha", true);
+    qobject_cast<QDoubleSpinBox*>(d.form()->field("density_per_ha"))->setValue(1e6);
+    const size_t before = store().instanceCount();
+    const int step0 = steps();
+    int dialogs = 0;
+    QTimer::singleShot(0, w_.get(), [&] {
+      for (QProgressDialog* p : w_->findChildren<QProgressDialog*>())
+        if (p->windowTitle() == "Scatter") {
+          ++dialogs;
+          emit p->canceled();
+        }
+    });
+    QVERIFY(panel_->scatter(d.types(), d.values()));
+    QCOMPARE(dialogs, 1);
+    QCOMPARE(steps(), step0);
+    QCOMPARE(store().instanceCount(), before);
+    QVERIFY2(w_->messages()->lastText().contains("cancelled: nothing changed"), qPrintable(w_->messages()->lastText()));
   }
 
   void paintStrokeIsOneUndoStep() {

@@ -122,6 +122,59 @@ class TestSceneFoliage : public QObject {
     QVERIFY(doc.state().foliage->store().types().empty());
   }
 
+  // The editor's worker path: a scatter on a copy of the store, committed
+  // into the document, gives the instances a scatter on the document gives,
+  // as one undo step; a commit after the document's foliage changed
+  // meanwhile is refused and changes nothing.
+  void scatterOnACopyCommitsAsOneStep() {
+    Document direct, worked;
+    for (Document* d : {&direct, &worked}) {
+      makeTerrain(*d);
+      addRockType(*d);
+    }
+    const FoliageGround g1(direct.state()), g2(worked.state());
+    // The same two scatters, the second of `worked` on a copy.
+    QVERIFY(ops::scatterFoliage(direct, g1, {0}, 3).ok);
+    QVERIFY(ops::scatterFoliage(direct, g1, {0}, 7).ok);
+    QVERIFY(ops::scatterFoliage(worked, g2, {0}, 3).ok);
+    const int before = worked.undoStack()->count();
+    const auto had = instances(worked);
+    foliage::FoliageStore copy = worked.foliage().store();
+    ops::FoliageWork work = ops::scatterOnStore(copy, g2, {0}, 7);
+    QVERIFY(instances(worked).size() == had.size());  // the document untouched while it runs
+    const ops::FoliageOutcome out = ops::commitFoliageWork(worked, copy, std::move(work));
+    QVERIFY2(out.ok, out.error.c_str());
+    QCOMPARE(worked.undoStack()->count(), before + 1);
+    QVERIFY(out.stats.placed > 0);
+    QCOMPARE(instances(worked).size(), had.size() + out.stats.placed);
+    QVERIFY(sameInstances(instances(worked), instances(direct)));
+    QVERIFY(sameInstances(copy.allInstances(), had));  // the copy as it was copied
+    worked.undoStack()->undo();
+    QVERIFY(sameInstances(instances(worked), had));
+
+    // An erase in the document while the copy's scatter ran: refused.
+    foliage::FoliageStore copy2 = worked.foliage().store();
+    ops::FoliageWork late = ops::scatterOnStore(copy2, g2, {0}, 7);
+    QVERIFY(ops::eraseFoliage(worked, foliage::Region2::disc({0.0, 0.0}, 40.0), {}).ok);
+    const auto erased = instances(worked);
+    const int steps = worked.undoStack()->count();
+    const ops::FoliageOutcome refused = ops::commitFoliageWork(worked, copy2, std::move(late));
+    QVERIFY(!refused.ok);
+    QVERIFY2(refused.error.find("changed while it ran") != std::string::npos, refused.error.c_str());
+    QCOMPARE(worked.undoStack()->count(), steps);
+    QVERIFY(sameInstances(instances(worked), erased));
+
+    // A cancelled work: nothing changes, no step.
+    foliage::FoliageStore copy3 = worked.foliage().store();
+    Progress cancelled;
+    cancelled.cancel();
+    const ops::FoliageOutcome c =
+        ops::commitFoliageWork(worked, copy3, ops::scatterOnStore(copy3, g2, {0}, 9, std::nullopt, std::nullopt, 0, &cancelled));
+    QVERIFY(c.ok && c.summary == "cancelled: nothing changed");
+    QCOMPARE(worked.undoStack()->count(), steps);
+    QVERIFY(sameInstances(instances(worked), erased));
+  }
+
   void refusesWhatCannotBeDone() {
     Document doc;
     makeTerrain(doc);
