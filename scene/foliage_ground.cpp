@@ -9,9 +9,11 @@ mesh::MeshData worldMesh(const mesh::MeshData& local, const glm::dmat4& world) {
   out.origin = glm::dvec3(world[3]);
   out.positions.reserve(local.positions.size());
   const glm::dmat3 linear(world);
-  // p_world = M (origin + p); relative to M's translation: linear (origin + p).
-  const glm::dvec3 base = linear * local.origin;
-  for (const glm::vec3& p : local.positions) out.positions.emplace_back(base + linear * glm::dvec3(p));
+  // p_world = M p, as the renderer draws it (render/visible_set.cpp): the
+  // mesh's own origin is where an import put the entity (its translation,
+  // scene/operations.cpp), not a second offset. Relative to M's
+  // translation: linear p.
+  for (const glm::vec3& p : local.positions) out.positions.emplace_back(linear * glm::dvec3(p));
   out.indices = local.indices;
   out.submeshes = local.submeshes;
   return out;

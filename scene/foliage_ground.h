@@ -36,8 +36,10 @@ class FoliageGround {
   EntityId terrainEntity_ = kNoEntity;
 };
 
-// A mesh's triangles in world space (positions only, relative to the
-// matrix's translation).
+// A mesh's triangles in world space as the renderer draws them (the
+// entity's matrix times each position; MeshData::origin is the entity's
+// translation after an import, not added again), positions only, relative
+// to the matrix's translation.
 mesh::MeshData worldMesh(const mesh::MeshData& local, const glm::dmat4& world);
 
 }  // namespace hs::scene

@@ -13,6 +13,8 @@
 #include <sqlite3.h>
 
 #include "foliage/surface.h"
+#include "foliage/tools.h"
+#include "mesh/primitives.h"
 #include "scene/document.h"
 #include "scene/foliage_ops.h"
 #include "scene/hscene_file.h"
@@ -355,6 +357,62 @@ class TestSceneFoliage : public QObject {
     QVERIFY(sameInstances(instances(doc), placed));
     doc.undoStack()->redo();
     QVERIFY(sameInstances(instances(doc), moved));
+  }
+
+  // A scan as an import leaves it: vertices relative to the mesh's origin
+  // at UTM, the entity's translation that origin (turned and scaled here).
+  // The foliage ground is the surface where the renderer draws it (the
+  // entity's matrix times each vertex), and so is what a scatter stands on
+  // and what a brush's ray meets.
+  void scanAtUtmIsTheGroundWhereItIsDrawn() {
+    const glm::dvec3 utm(500000.0, 4400000.0, 300.0);
+    mesh::MeshData m = mesh::gridPlane(10.0f, 4);  // 10 m square, z = 0
+    for (glm::vec3& p : m.positions) p.z = 0.5f;
+    m.origin = utm;
+    SceneState st;
+    MeshAsset a;
+    a.id = 1;
+    a.name = "Ledge";
+    a.data = std::make_shared<const mesh::MeshData>(std::move(m));
+    st.assets.emplace(a.id, a);
+    Entity e;
+    e.id = 1;
+    e.name = "Ledge";
+    e.mesh = MeshInstance{a.id};
+    e.transform.translation = utm;
+    e.transform.rotation = fromEulerDegrees({0.0, 0.0, 30.0});
+    e.transform.scale = glm::dvec3(2.0);
+    st.entities.emplace(e.id, e);
+    st.roots.push_back(e.id);
+    const glm::dmat4 world = st.worldMatrix(e.id);
+    const double drawnZ = utm.z + 1.0;  // 0.5 m up, scaled twice
+    // Inside the drawn (turned) 20 m square, as M p puts it.
+    auto onDrawnSquare = [&](const glm::dvec3& p) {
+      const glm::dvec3 local = glm::inverse(world) * glm::dvec4(p, 1.0);
+      return std::abs(local.x) <= 5.0 + 1e-6 && std::abs(local.y) <= 5.0 + 1e-6 && std::abs(p.z - drawnZ) <= 1e-3;
+    };
+
+    const FoliageGround ground(st);
+    QCOMPARE(ground.ground().meshes.size(), size_t(1));
+    const glm::dvec3 target = glm::dvec3(world * glm::dvec4(3.0, -2.0, 0.5, 1.0));
+    const auto hit = ground.ground().meshes[0]->raycast(target + glm::dvec3(0.0, 0.0, 50.0), {0.0, 0.0, -1.0}, 100.0);
+    QVERIFY(hit);
+    QVERIFY2(glm::length(hit->position - target) < 1e-6, qPrintable(QString::number(glm::length(hit->position - target))));
+
+    foliage::FoliageStore store;
+    foliage::FoliageType t;
+    t.name = "Moss";
+    t.mesh = "Ledge";
+    t.densityPerHa = 2000.0;
+    t.spacing = 0.5;
+    t.surface = foliage::SurfaceFilter::Meshes;
+    std::vector<std::string> messages;
+    QCOMPARE(store.addType(t, messages), 0);
+    const foliage::EditResult r = foliage::scatter(store, ground.ground(), {0}, 4);
+    QVERIFY2(r.stats.placed > 40, qPrintable(QString::number(r.stats.placed)));  // 400 m2 at 0.2 a square metre
+    for (const foliage::Instance& in : store.allInstances())
+      QVERIFY2(onDrawnSquare(in.position), qPrintable(QString("%1 %2 %3").arg(in.position.x, 0, 'f', 3)
+                                                            .arg(in.position.y, 0, 'f', 3).arg(in.position.z, 0, 'f', 3)));
   }
 };
 
