@@ -4,6 +4,7 @@
 #include "scene/foliage_ground.h"
 #include "scene/foliage_ops.h"
 #include "scene/mesh_materials.h"
+#include "scene/world_bounds.h"
 
 namespace hs::scene {
 
@@ -24,7 +25,17 @@ std::vector<DemoPlant> demoPlants() {
   juniper.height = 1.6;
   foliage::PlantParams boulder = foliage::defaultPlant(foliage::PlantKind::Rock, 9);
   boulder.height = 1.4;
-  return {{"Black Pine", pine}, {"Plane Tree", plane}, {"Juniper", juniper}, {"Boulder", boulder}};
+  // Clumps of 16 blades (128 triangles), and a low shrub for the scan.
+  foliage::PlantParams grass = foliage::defaultPlant(foliage::PlantKind::Grass, 31);
+  grass.height = 0.5;
+  grass.branches = 16;
+  foliage::PlantParams heather = foliage::defaultPlant(foliage::PlantKind::Shrub, 17);
+  heather.height = 0.45;
+  heather.branches = 5;
+  heather.leavesPerBranch = 4;
+  heather.leafSize = 0.06;
+  return {{"Black Pine", pine}, {"Plane Tree", plane}, {"Juniper", juniper},
+          {"Boulder", boulder},   {"Grass Clump", grass}, {"Heather", heather}};
 }
 
 namespace {
@@ -73,7 +84,41 @@ std::vector<foliage::FoliageType> types() {
   boulders.cullDistance = 250.0;
   boulders.fadeLength = 40.0;
   boulders.windResponse = 0.0;
-  return {pines, planes, shrubs, boulders};
+  // Grass on the valley floor, drawn near the camera only.
+  foliage::FoliageType grass = pines;
+  grass.name = "Grass";
+  grass.mesh = "Grass Clump";
+  grass.densityPerHa = 1200.0;
+  grass.spacing = 0.8;
+  grass.scale = {0.7, 1.3};
+  grass.slopeDeg = {0.0, 25.0};
+  grass.altitude = {-100.0, 6.0};
+  grass.alignToNormal = true;
+  grass.alignMaxDeg = 20.0;
+  grass.cullDistance = 45.0;
+  grass.fadeLength = 15.0;
+  grass.castShadows = false;
+  grass.windResponse = 1.0;
+  return {pines, planes, shrubs, boulders, grass};
+}
+
+// Heather on the big scan's back and flanks (a mesh surface, at its own
+// slope), scattered after the clearing was emptied: the scan stands in it.
+foliage::FoliageType heatherOnTheScan() {
+  foliage::FoliageType t;
+  t.name = "Heather (on the scan)";
+  t.mesh = "Heather";
+  t.densityPerHa = 150000.0;  // 15 a square metre where it may grow, thinned by the spacing
+  t.spacing = 0.2;
+  t.scale = {0.6, 1.2};
+  t.slopeDeg = {0.0, 60.0};
+  t.surface = foliage::SurfaceFilter::Meshes;
+  t.alignToNormal = true;
+  t.alignMaxDeg = 30.0;
+  t.cullDistance = 150.0;
+  t.fadeLength = 30.0;
+  t.windResponse = 0.3;
+  return t;
 }
 
 }  // namespace
@@ -100,8 +145,37 @@ bool addDemoFoliage(SceneState& s, std::string& error) {
   foliage::TypeSet all;
   for (size_t t = 0; t < store.types().size(); ++t) all.push_back(uint16_t(t));
   foliage::scatter(store, ground.ground(), all, 2026, std::nullopt, 0, true);
-  // The clearing (bunnies, lights, glass, the detail samples) stays open.
-  foliage::erase(store, foliage::Region2::rect({-30.0, -40.0}, {30.0, 24.0}));
+  // The clearing (bunnies, lights, glass, the detail samples) stays open
+  // but for the grass, which grows round what stands there and not under
+  // it (through the pond, the slabs, the glass).
+  foliage::TypeSet tall;
+  for (uint16_t t : all)
+    if (store.type(t).name != "Grass") tall.push_back(t);
+  foliage::erase(store, foliage::Region2::rect({-30.0, -40.0}, {30.0, 24.0}), tall);
+  for (const auto& [id, e] : s.entities)
+    if (e.mesh) {
+      const WorldBox box = worldBounds(s, {id});
+      if (!box.empty) foliage::erase(store, foliage::Region2::rect(glm::dvec2(box.min) - 0.3, glm::dvec2(box.max) + 0.3));
+    }
+  // The big scan (the only mesh this scatter stands on: a ground of its
+  // triangles alone, with the terrain to keep its buried foot bare).
+  if (const EntityId scan = s.findByName("Stanford Bunny"); scan != kNoEntity) {
+    const Entity* e = s.find(scan);
+    const MeshAsset* a = e && e->mesh ? s.findAsset(e->mesh->mesh) : nullptr;
+    if (a && a->data) {
+      const mesh::MeshData world = worldMesh(*a->data, s.worldMatrix(scan));
+      const foliage::MeshGround scanGround(world);
+      foliage::Ground g = ground.ground();
+      g.meshes = {&scanGround};
+      const int t = store.addType(heatherOnTheScan(), messages);
+      if (t < 0) {
+        error = "demo foliage: " + messages.back();
+        return false;
+      }
+      const WorldBox box = worldBounds(s, {scan});
+      foliage::scatter(store, g, {uint16_t(t)}, 2026, foliage::Region2::rect(glm::dvec2(box.min), glm::dvec2(box.max)));
+    }
+  }
   store.markSaved();
   data.touch();
   return true;

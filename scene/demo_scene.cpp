@@ -322,7 +322,8 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
     if (e.light && e.light->type != Light::Type::Point) e.light->castsShadows = true;
   // Glass spheres and a pond, drawn by the transparency path (docs/rendering.md "Transparency").
   addDemoTranslucentSamples(s);
-  // Generated pines, plane trees, junipers and boulders scattered over the valley (docs/foliage.md).
+  // Generated pines, plane trees, junipers, boulders and grass scattered
+  // over the valley, heather on the big scan (docs/foliage.md).
   if (!addDemoFoliage(s, error)) return std::nullopt;
   // Snow, a fog bank between the pillars and a torch on the tallest (docs/particles.md).
   if (!addDemoParticles(s, error)) return std::nullopt;

@@ -242,9 +242,9 @@ class TestHsceneFile : public QObject {
     QVERIFY(tmp_.isValid());
     rich_ = richScene();
     // The demo's bunny, its two surface-detail slabs, its three glass spheres
-    // and pond (scene/demo_glass.h), its four generated plants
+    // and pond (scene/demo_glass.h), its six generated plants
     // (scene/demo_foliage.h), and three imports.
-    QCOMPARE(rich_.assets.size(), size_t(14));
+    QCOMPARE(rich_.assets.size(), size_t(16));
     QVERIFY(rich_.foliage && rich_.foliage->store().instanceCount() > 0);
     goodFile_ = path("good.hscene");
     std::string error;
@@ -278,7 +278,7 @@ class TestHsceneFile : public QObject {
         (t.encoded.empty() ? raw : encoded) += 1;
       }
     QCOMPARE(encoded, 2);
-    QCOMPARE(raw, 4);  // one import's, and the generated leaves of the demo's pine, plane tree and juniper
+    QCOMPARE(raw, 6);  // one import's, and the generated leaves of the demo's pine, plane tree, juniper, grass and heather
     // Saving what was loaded gives the same description again.
     const std::string p2 = path("roundtrip2.hscene");
     QVERIFY2(saveScene(*loaded, p2, error), error.c_str());
