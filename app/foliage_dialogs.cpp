@@ -3,17 +3,24 @@
 #include <QComboBox>
 #include <QDialogButtonBox>
 #include <QFormLayout>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
+#include <QPixmap>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QTimer>
 #include <QVBoxLayout>
 
 #include "app/param_form.h"
+#include "app/plant_preview.h"
+#include "app/preview_renderer.h"
 #include "foliage/foliage_operations.h"
 
 namespace hs::app {
 namespace {
+
+constexpr int kPreviewPixels = 220;  // the Generate Plant dialog's live preview
 
 QDialogButtonBox* okCancel(QDialog* d, const QString& okText) {
   auto* b = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, d);
@@ -115,11 +122,45 @@ PlantDialog::PlantDialog(QWidget* parent, const QString& suggestedName) : QDialo
   showKindDefaults();
   auto* note = new QLabel("Makes a mesh asset with its levels of detail (no entity): a foliage type draws it.", this);
   note->setWordWrap(true);
-  auto* v = new QVBoxLayout(this);
+  preview_ = new QLabel(this);
+  preview_->setObjectName("plantPreview");
+  preview_->setFixedSize(kPreviewPixels, kPreviewPixels);
+  preview_->setAlignment(Qt::AlignCenter);
+  preview_->setWordWrap(true);
+  preview_->setToolTip("The plant these fields grow, at full detail");
+  renderer_ = new PreviewRenderer(this);
+  connect(renderer_, &PreviewRenderer::ready, this, [this](int, const QImage& image) {
+    preview_->setPixmap(QPixmap::fromImage(image));
+    ++previewsShown_;
+  });
+  connect(renderer_, &PreviewRenderer::problem, this, [this](const QString& m) { preview_->setText(m); });
+  // A moment after the last edit: typing a number renders once.
+  previewDelay_ = new QTimer(this);
+  previewDelay_->setSingleShot(true);
+  previewDelay_->setInterval(150);
+  connect(previewDelay_, &QTimer::timeout, this, [this] { requestPreview(); });
+  connect(form_, &ParamForm::edited, previewDelay_, qOverload<>(&QTimer::start));
+  auto* v = new QVBoxLayout;
   v->addLayout(top);
   v->addWidget(form_);
   v->addWidget(note);
-  v->addWidget(okCancel(this, "Generate"));
+  auto* h = new QHBoxLayout;
+  h->addLayout(v, 1);
+  h->addWidget(preview_, 0, Qt::AlignTop);
+  auto* outer = new QVBoxLayout(this);
+  outer->addLayout(h);
+  outer->addWidget(okCancel(this, "Generate"));
+  requestPreview();
+}
+
+void PlantDialog::requestPreview() {
+  std::string error;
+  std::optional<scene::SceneState> s = plantPreviewScene(params(), error);
+  if (!s) {
+    preview_->setText(QString::fromStdString(error));
+    return;
+  }
+  renderer_->request(0, std::move(*s), kPreviewCamera, kPreviewPixels);
 }
 
 void PlantDialog::showKindDefaults() {
@@ -130,6 +171,7 @@ void PlantDialog::showKindDefaults() {
   form_->setValue("leaf_size_m", d.leafSize);
   form_->setValue("leaves_per_branch", d.leavesPerBranch);
   form_->setValue("sides", d.sides);
+  if (previewDelay_) previewDelay_->start();
 }
 
 QString PlantDialog::name() const { return name_->text().trimmed(); }

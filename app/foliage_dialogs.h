@@ -17,8 +17,11 @@
 class QComboBox;
 class QLabel;
 class QLineEdit;
+class QTimer;
 
 namespace hs::app {
+
+class PreviewRenderer;
 
 class ParamForm;
 
@@ -55,11 +58,20 @@ class PlantDialog : public QDialog {
   foliage::PlantParams params() const;
   ParamForm* form() const { return form_; }
   QLineEdit* nameField() const { return name_; }
+  // The live preview: the plant the fields grow now (drawn on a worker a
+  // moment after the last edit), or what the generator said.
+  QLabel* preview() const { return preview_; }
+  int previewsShown() const { return previewsShown_; }  // images received (tests)
 
  private:
   void showKindDefaults();
+  void requestPreview();
   QLineEdit* name_;
   ParamForm* form_;
+  QLabel* preview_ = nullptr;
+  PreviewRenderer* renderer_ = nullptr;
+  QTimer* previewDelay_ = nullptr;
+  int previewsShown_ = 0;
 };
 
 // `foliage scatter`'s options for one type (its rules may be overridden

@@ -16,6 +16,7 @@
 #include <QLabel>
 #include <QLocale>
 #include <QMenu>
+#include <QPixmap>
 #include <QPushButton>
 #include <QSettings>
 #include <QSpinBox>
@@ -25,6 +26,8 @@
 
 #include "app/background_job.h"
 #include "app/foliage_dialogs.h"
+#include "app/plant_preview.h"
+#include "app/preview_renderer.h"
 #include "app/foliage_ground_cache.h"
 #include "app/form_widgets.h"
 #include "app/main_window.h"
@@ -90,6 +93,8 @@ struct BusyCursor {
 
 QString number(size_t n) { return QLocale().toString(qulonglong(n)); }
 
+constexpr int kThumbnailPixels = 40;  // the type list's icons
+
 // What an instance holds: its record in the store and its GPU copy.
 constexpr size_t kInstanceBytes = sizeof(foliage::PackedInstance) + render::kGpuInstanceBytes;
 
@@ -147,6 +152,16 @@ void FoliagePanel::buildUi() {
   list_ = new QTreeWidget(content);
   list_->setObjectName("foliageTypes");
   list_->setHeaderLabels({"Type", "Mesh", "Instances", "Memory"});
+  list_->setIconSize(QSize(kThumbnailPixels, kThumbnailPixels));
+  thumbnails_ = new PreviewRenderer(this);
+  connect(thumbnails_, &PreviewRenderer::ready, this, [this](int key, const QImage& image) {
+    auto it = thumbs_.find(scene::AssetId(key));
+    if (it == thumbs_.end()) return;
+    it->second.icon = QIcon(QPixmap::fromImage(image));
+    refreshThumbnails();
+  });
+  connect(thumbnails_, &PreviewRenderer::problem, this,
+          [this](const QString& m) { window_.messages()->warning("Foliage thumbnails: " + m); });
   list_->setRootIsDecorated(false);
   list_->setSelectionMode(QAbstractItemView::SingleSelection);
   list_->setToolTip("The scene's foliage types. The brush works on the selected type, or on every checked one "
@@ -301,6 +316,31 @@ foliage::TypeSet FoliagePanel::brushTypes() const {
   return out;
 }
 
+void FoliagePanel::refreshThumbnails() {
+  const foliage::FoliageStore* store = scene::foliageStoreOf(doc_.state());
+  const int n = store ? int(store->types().size()) : 0;
+  for (int i = 0; i < n && i < list_->topLevelItemCount(); ++i) {
+    QTreeWidgetItem* it = list_->topLevelItem(i);
+    const scene::AssetId id = scene::foliageTypeAsset(doc_.state(), store->type(size_t(i)));
+    const scene::MeshAsset* a = doc_.state().findAsset(id);
+    if (!a) {
+      it->setIcon(0, QIcon());
+      continue;
+    }
+    auto found = thumbs_.find(id);
+    if (found == thumbs_.end() || found->second.contentHash != a->contentHash) {
+      // Not drawn for this content yet: ask once; the icon comes with ready().
+      if (std::optional<scene::SceneState> s = meshPreviewScene(doc_.state(), id)) {
+        thumbs_[id] = Thumbnail{a->contentHash, QIcon()};
+        thumbnails_->request(int(id), std::move(*s), kPreviewCamera, kThumbnailPixels);
+      }
+      it->setIcon(0, QIcon());
+      continue;
+    }
+    it->setIcon(0, found->second.icon);
+  }
+}
+
 void FoliagePanel::refresh() {
   const foliage::FoliageStore* store = scene::foliageStoreOf(doc_.state());
   const size_t n = store ? store->types().size() : 0;
@@ -335,6 +375,7 @@ void FoliagePanel::refresh() {
   }
   if (!list_->currentItem() && n > 0) list_->setCurrentItem(list_->topLevelItem(0));
   updating_ = false;
+  refreshThumbnails();
   tool_->setTypes(brushTypes());
   const bool selected = currentType() >= 0;
   editType_->setEnabled(selected);

@@ -18,6 +18,9 @@
 // which refuses if the document's foliage changed meanwhile). Plant
 // generation (a fraction of a second) runs on the UI thread under a busy
 // cursor.
+#include <map>
+
+#include <QIcon>
 #include <QWidget>
 
 #include "app/foliage_tool.h"
@@ -37,6 +40,8 @@ class QSpinBox;
 class QTreeWidget;
 
 namespace hs::app {
+
+class PreviewRenderer;
 
 class FoliageGroundCache;
 class MainWindow;
@@ -89,10 +94,20 @@ class FoliagePanel : public QWidget {
   bool report(bool ok, const std::string& error, const std::vector<std::string>& messages,
               const std::string& summary, const QString& title);
 
+  // The type list's thumbnails: each type's mesh asset drawn small on a
+  // worker (PreviewRenderer), kept per asset while its content is the same.
+  void refreshThumbnails();
+  struct Thumbnail {
+    uint64_t contentHash = 0;
+    QIcon icon;  // null until drawn
+  };
+
   MainWindow& window_;
   scene::Document& doc_;
   FoliageGroundCache* ground_;
   FoliageTool* tool_;
+  PreviewRenderer* thumbnails_ = nullptr;
+  std::map<scene::AssetId, Thumbnail> thumbs_;
   bool updating_ = false;
 
   QLabel *info_ = nullptr, *selectionInfo_ = nullptr;

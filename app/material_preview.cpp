@@ -1,26 +1,20 @@
 #include "app/material_preview.h"
 
-#include <cstring>
-
+#include "app/preview_renderer.h"
 #include "mesh/primitives.h"
-#include "render/offscreen_renderer.h"
 #include "scene/mesh_materials.h"
 #include "sequencer/camera_path.h"
 
 namespace hs::app {
 
-MaterialPreview::MaterialPreview(int size, QObject* parent) : QObject(parent), size_(size) {
-  worker_ = std::thread([this] { run(); });
+MaterialPreview::MaterialPreview(int size, QObject* parent)
+    : QObject(parent), renderer_(new PreviewRenderer(this)), size_(size) {
+  connect(renderer_, &PreviewRenderer::ready, this, [this](int, const QImage& image) { emit ready(image); });
+  connect(renderer_, &PreviewRenderer::problem, this,
+          [this](const QString& message) { emit problem(QString(message).replace("Preview: ", "Material preview: ")); });
 }
 
-MaterialPreview::~MaterialPreview() {
-  {
-    std::lock_guard lock(mutex_);
-    stop_ = true;
-  }
-  wake_.notify_all();
-  worker_.join();
-}
+MaterialPreview::~MaterialPreview() = default;
 
 scene::SceneState MaterialPreview::previewScene(const scene::SceneState& state, const scene::Material& material) {
   scene::SceneState s;
@@ -83,50 +77,7 @@ scene::SceneState MaterialPreview::previewScene(const scene::SceneState& state, 
 }
 
 void MaterialPreview::request(const scene::SceneState& state, const scene::Material& material) {
-  {
-    std::lock_guard lock(mutex_);
-    pending_ = previewScene(state, material);
-  }
-  wake_.notify_all();
-}
-
-void MaterialPreview::run() {
-  std::unique_ptr<render::OffscreenRenderer> renderer;
-  for (;;) {
-    scene::SceneState s;
-    {
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [this] { return stop_ || pending_; });
-      if (stop_) break;
-      s = std::move(*pending_);
-      pending_.reset();
-    }
-    if (!renderer) {
-      renderer = std::make_unique<render::OffscreenRenderer>();
-      std::string error;
-      if (!renderer->initialize(error)) {
-        QMetaObject::invokeMethod(
-            this, [this, e = QString::fromStdString(error)] { emit problem("Material preview: " + e); },
-            Qt::QueuedConnection);
-        renderer.reset();
-        continue;
-      }
-    }
-    const render::RenderView view = render::viewFromCamera(s, 3, size_, size_);
-    const hs::Image img = renderer->render(s, view);
-    QImage out(img.width, img.height, QImage::Format_RGBA8888);
-    for (int y = 0; y < img.height; ++y)
-      std::memcpy(out.scanLine(y), img.rgba8.data() + size_t(y) * size_t(img.width) * 4, size_t(img.width) * 4);
-    std::vector<std::string> problems = renderer->renderer().takeMaterialProblems();
-    QMetaObject::invokeMethod(
-        this,
-        [this, out, problems] {
-          emit ready(out);
-          for (const auto& p : problems) emit problem(QString::fromStdString(p));
-        },
-        Qt::QueuedConnection);
-  }
-  if (renderer) renderer->renderer().shutdown();
+  renderer_->request(0, previewScene(state, material), 3, size_);
 }
 
 }  // namespace hs::app

@@ -1,21 +1,16 @@
 #pragma once
 // The Materials panel's preview: a sphere lit by a sun, rendered with one
-// material on a worker thread with its own headless GL context (as the
-// export does: the viewport's context stays with the UI thread). Requests
-// replace each other (only the latest is rendered); the image comes back
-// through ready() on the UI thread.
-#include <condition_variable>
-#include <memory>
-#include <mutex>
-#include <optional>
-#include <thread>
-
+// material by a PreviewRenderer (its own GL context on a worker thread).
+// Requests replace each other (only the latest is rendered); the image
+// comes back through ready() on the UI thread.
 #include <QImage>
 #include <QObject>
 
 #include "scene/scene_state.h"
 
 namespace hs::app {
+
+class PreviewRenderer;
 
 class MaterialPreview : public QObject {
   Q_OBJECT
@@ -35,14 +30,8 @@ class MaterialPreview : public QObject {
   void problem(const QString& message);
 
  private:
-  void run();
-
+  PreviewRenderer* renderer_;
   int size_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::optional<scene::SceneState> pending_;
-  bool stop_ = false;
-  std::thread worker_;
 };
 
 }  // namespace hs::app

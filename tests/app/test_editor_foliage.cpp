@@ -87,6 +87,20 @@ class EditorFoliageTest : public QObject {
     b->click();
   }
 
+  // The share of a preview's pixels that differ from its corner (the
+  // backdrop): the part the drawn mesh covers.
+  static double coveredShare(const QImage& img) {
+    if (img.isNull()) return 0.0;
+    const QColor bg = img.pixelColor(0, 0);
+    size_t n = 0;
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        const QColor c = img.pixelColor(x, y);
+        if (std::abs(c.red() - bg.red()) + std::abs(c.green() - bg.green()) + std::abs(c.blue() - bg.blue()) > 24) ++n;
+      }
+    return double(n) / double(img.width() * img.height());
+  }
+
   // The number in a Messages line such as "Paint foliage: 40 placed, 0 removed in 7 dab(s)".
   int dabsInLastMessage() {
     const QString t = w_->messages()->lastText();
@@ -138,6 +152,15 @@ class EditorFoliageTest : public QObject {
     QCOMPARE(p.kind, foliage::PlantKind::Rock);
     QCOMPARE(p.height, 1.2);
     QCOMPARE(p.seed, uint64_t(7));
+    // The live preview shows the plant the fields grow: a rock against the
+    // backdrop, drawn again after an edit.
+    QTRY_VERIFY_WITH_TIMEOUT(d.previewsShown() >= 1, 30000);
+    const int shown = d.previewsShown();
+    QVERIFY(!d.preview()->pixmap().isNull());
+    QCOMPARE(coveredShare(d.preview()->pixmap().toImage()) > 0.1, true);
+    qobject_cast<QSpinBox*>(d.form()->field("seed"))->setValue(8);
+    QTRY_VERIFY_WITH_TIMEOUT(d.previewsShown() > shown, 30000);
+    qobject_cast<QSpinBox*>(d.form()->field("seed"))->setValue(7);
 
     const int before = steps();
     const scene::AssetId id = panel_->generatePlant(d.name(), p);
@@ -171,6 +194,10 @@ class EditorFoliageTest : public QObject {
     QCOMPARE(list->topLevelItem(0)->text(2), QString("0"));
     QCOMPARE(panel_->currentType(), 0);
     QCOMPARE(panel_->brushTypes(), foliage::TypeSet{0});
+    // The type's thumbnail: its mesh drawn small on a worker.
+    QTRY_VERIFY_WITH_TIMEOUT(!list->topLevelItem(0)->icon(0).isNull(), 30000);
+    const QImage thumb = list->topLevelItem(0)->icon(0).pixmap(40, 40).toImage();
+    QVERIFY2(coveredShare(thumb) > 0.1, qPrintable(QString::number(coveredShare(thumb))));
     // A type drawing a mesh the scene lacks is refused.
     t.name = "Ghosts";
     t.mesh = "No such mesh";
