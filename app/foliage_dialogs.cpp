@@ -233,4 +233,35 @@ foliage::TypeSet FoliageScatterDialog::types() const {
 
 Json FoliageScatterDialog::values() const { return form_->values(); }
 
+// --- FoliageFillDialog -----------------------------------------------------------
+
+FoliageFillDialog::FoliageFillDialog(QWidget* parent, const std::vector<foliage::FoliageType>& types, int selected,
+                                     const QStringList& layers)
+    : QDialog(parent) {
+  setWindowTitle("Fill Paint Layer");
+  setObjectName("foliageFillDialog");
+  const OperationDecl& op = foliage::foliageFillOperation();
+  auto* top = new QFormLayout;
+  which_ = new QComboBox(this);
+  which_->setObjectName("foliageFillType");
+  for (const foliage::FoliageType& t : types) which_->addItem(QString::fromStdString(t.name));
+  which_->setCurrentIndex(selected >= 0 && selected < int(types.size()) ? selected : 0);
+  top->addRow("Type", which_);
+  form_ = new ParamForm(op.params, this, {{"layer", layers}}, {"region"});
+  auto* note = new QLabel(QString::fromStdString(op.description), this);
+  note->setWordWrap(true);
+  auto* v = new QVBoxLayout(this);
+  v->addLayout(top);
+  v->addWidget(form_);
+  v->addWidget(note);
+  v->addWidget(okCancel(this, "Fill"));
+}
+
+foliage::TypeSet FoliageFillDialog::types() const {
+  const int i = which_->currentIndex();
+  return i >= 0 ? foliage::TypeSet{uint16_t(i)} : foliage::TypeSet{};
+}
+
+Json FoliageFillDialog::values() const { return form_->values(); }
+
 }  // namespace hs::app

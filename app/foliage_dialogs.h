@@ -98,4 +98,20 @@ class FoliageScatterDialog : public QDialog {
   ParamForm* form_;
 };
 
+// `foliage fill`'s options: the type (one of the list), the terrain's
+// paint layer, the minimum weight, the seed and an optional region.
+class FoliageFillDialog : public QDialog {
+  Q_OBJECT
+ public:
+  FoliageFillDialog(QWidget* parent, const std::vector<foliage::FoliageType>& types, int selected,
+                    const QStringList& layers);
+  foliage::TypeSet types() const;
+  Json values() const;
+  ParamForm* form() const { return form_; }
+
+ private:
+  QComboBox* which_;
+  ParamForm* form_;
+};
+
 }  // namespace hs::app

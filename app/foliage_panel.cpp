@@ -276,6 +276,7 @@ void FoliagePanel::populateMenu(QMenu* menu) {
   menu->addAction("&Edit Foliage Type…", this, [this] { requestEditType(); });
   menu->addSeparator();
   menu->addAction("&Scatter…", this, [this] { requestScatter(); });
+  menu->addAction("Fill Paint &Layer…", this, [this] { requestFillLayer(); });
   menu->addAction("&Clear Type", this, [this] { requestClear(); });
   menu->addSeparator();
   auto* group = new QActionGroup(this);
@@ -517,6 +518,22 @@ bool FoliagePanel::scatter(const foliage::TypeSet& types, const Json& values) {
   return report(out.ok, out.error, out.messages, out.summary, "Scatter");
 }
 
+bool FoliagePanel::fillLayer(const foliage::TypeSet& types, const Json& values) {
+  const OperationDecl& op = foliage::foliageFillOperation();
+  const std::string layer = values.value("layer", std::string());
+  const double minWeight = values.value("min_weight", defaultNumber(op.param("min_weight")));
+  const uint64_t seed = values.contains("seed") && values["seed"].is_number_integer()
+                            ? values["seed"].get<uint64_t>()
+                            : uint64_t(defaultNumber(op.param("seed")));
+  scene::ops::FoliageOutcome out;
+  {
+    const BusyCursor busy;  // a layer over a whole valley: a second or so
+    out = scene::ops::fillFoliageLayer(doc_, ground_->ground(), types, layer, minWeight, seed,
+                                       foliage::regionFromValues(values));
+  }
+  return report(out.ok, out.error, out.messages, out.summary, "Fill Paint Layer");
+}
+
 bool FoliagePanel::clear(int index) {
   if (index < 0 || size_t(index) >= doc_.foliage().store().types().size()) return false;
   const std::string name = doc_.foliage().store().type(size_t(index)).name;
@@ -573,6 +590,19 @@ void FoliagePanel::requestScatter() {
   FoliageScatterDialog d(&window_, types, currentType(), layerNames());
   if (d.exec() != QDialog::Accepted) return;
   scatter(d.types(), d.values());
+}
+
+void FoliagePanel::requestFillLayer() {
+  const std::vector<foliage::FoliageType> types = doc_.foliage().store().types();
+  if (types.empty()) return;
+  const QStringList layers = layerNames();
+  if (layers.isEmpty()) {
+    report(false, "the scene has no terrain with paint layers", {}, {}, "Fill Paint Layer");
+    return;
+  }
+  FoliageFillDialog d(&window_, types, currentType(), layers);
+  if (d.exec() != QDialog::Accepted) return;
+  fillLayer(d.types(), d.values());
 }
 
 void FoliagePanel::requestClear() { clear(currentType()); }

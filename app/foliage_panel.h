@@ -73,6 +73,8 @@ class FoliagePanel : public QWidget {
   // `values`: `foliage scatter`'s options keyed by declaration (seed,
   // overrides of a single type's rules, region).
   bool scatter(const foliage::TypeSet& types, const Json& values);
+  // `values`: `foliage fill`'s options (layer, min_weight, seed, region).
+  bool fillLayer(const foliage::TypeSet& types, const Json& values);
   // Removes every instance of the type.
   bool clear(int index);
 
@@ -81,6 +83,7 @@ class FoliagePanel : public QWidget {
   void requestNewType();
   void requestEditType();
   void requestScatter();
+  void requestFillLayer();
   void requestClear();
 
  private:

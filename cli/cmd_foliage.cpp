@@ -98,6 +98,28 @@ int runScatter(int argc, char** argv) {
   return save(args, doc, path, code) ? 0 : code;
 }
 
+int runFill(int argc, char** argv) {
+  OperationArgs args(foliage::foliageFillOperation());
+  if (auto code = args.parse(argc, argv)) return *code;
+  if (args.positionals().size() != 2) return args.usage("expected a foliage type and a scene file");
+  const std::string name = args.positionals()[0], path = args.positionals()[1];
+  std::string error;
+  scene::Document doc;
+  if (!terrain_cli::openScene(path, doc, error)) return args.fail(error);
+  int code = 0;
+  const int t = typeIndex(args, doc, name, code);
+  if (t < 0) return code;
+  const Json values = givenValues(args);
+  const scene::FoliageGround ground(doc.state(), false);  // terrain only
+  const scene::ops::FoliageOutcome out =
+      scene::ops::fillFoliageLayer(doc, ground, {uint16_t(t)}, values.at("layer").get<std::string>(),
+                                   values.value("min_weight", 0.5), uint64_t(args.integer("seed")),
+                                   foliage::regionFromValues(values));
+  if (!out.ok) return args.fail(out.error);
+  printOutcome(out);
+  return save(args, doc, path, code) ? 0 : code;
+}
+
 int runClear(int argc, char** argv) {
   OperationArgs args(foliage::foliageClearOperation());
   if (auto code = args.parse(argc, argv)) return *code;
@@ -141,6 +163,7 @@ const Subcommand kSubs[] = {
     {"plant", foliage::foliagePlantOperation, runPlant},
     {"type", foliage::foliageTypeAddOperation, runType},
     {"scatter", foliage::foliageScatterOperation, runScatter},
+    {"fill", foliage::foliageFillOperation, runFill},
     {"clear", foliage::foliageClearOperation, runClear},
 };
 

@@ -72,6 +72,30 @@ const OperationDecl& foliageScatterOperation() {
   return op;
 }
 
+const OperationDecl& foliageFillOperation() {
+  static const OperationDecl op = [] {
+    OperationDecl o{.name = "foliage fill",
+                    .summary = "fill a terrain paint layer's region with a foliage type",
+                    .usage = "<type> <scene.hscene> --layer <name> [options]",
+                    .description = "Paints a type to its density wherever the terrain's paint layer weighs at "
+                                   "least the minimum weight (the type's own filters apply too): a forest where "
+                                   "the forest layer was painted. Terrain only. One undo step.",
+                    .positionals = {{.name = "type", .help = "the foliage type"}, kScene}};
+    o.params = {
+        {.key = "layer", .option = "layer", .label = "Paint layer", .type = ParamType::Text,
+         .help = "the terrain paint layer (its material's name)", .valueName = "NAME", .required = true,
+         .editor = true},
+        {.key = "min_weight", .option = "min-weight", .label = "Minimum weight", .min = 0.0, .max = 1.0,
+         .defaultValue = 0.5, .help = "the layer's weight from which the region counts", .valueName = "W",
+         .editor = true},
+        regionParam(),
+        seedParam(),
+    };
+    return o;
+  }();
+  return op;
+}
+
 const OperationDecl& foliageClearOperation() {
   static const OperationDecl op = [] {
     OperationDecl o{.name = "foliage clear",

@@ -22,6 +22,10 @@ const OperationDecl& foliageTypeAddOperation();
 // [--seed S]`: the rule-based scatter of one type, the options overriding
 // the type's own rules for this scatter.
 const OperationDecl& foliageScatterOperation();
+// `foliage fill TYPE SCENE --layer NAME [--min-weight W] [--region
+// x0,y0,x1,y1] [--seed S]`: the type painted to its density wherever the
+// terrain's paint layer weighs at least W (the editor's Fill Paint Layer).
+const OperationDecl& foliageFillOperation();
 // `foliage clear TYPE SCENE [--region x0,y0,x1,y1]`.
 const OperationDecl& foliageClearOperation();
 // `foliage plant NAME --kind broadleaf|conifer|shrub|grass|rock [--seed S] SCENE`.

@@ -147,6 +147,19 @@ FoliageOutcome paintFoliage(Document& doc, const FoliageGround& ground, const fo
   return record(doc, std::move(r), text);
 }
 
+FoliageOutcome fillFoliageLayer(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
+                                const std::string& layer, double minWeight, uint64_t seed,
+                                const std::optional<foliage::Region2>& region) {
+  foliage::FoliageStore& store = doc.foliage().store();
+  if (types.empty()) return refused("no foliage type chosen to fill");
+  if (std::string e = checkTypes(store, types); !e.empty()) return refused(e);
+  if (!ground.ground().terrain) return refused("fill: the scene has no visible terrain");
+  if (foliage::terrainLayerIndex(*ground.ground().terrain, layer) < 0)
+    return refused("fill: the terrain has no paint layer \"" + layer + "\"");
+  foliage::EditResult r = foliage::fillLayer(store, ground.ground(), layer, minWeight, types, seed, region);
+  return record(doc, std::move(r), QString("Fill paint layer %1").arg(QString::fromStdString(layer)));
+}
+
 FoliageOutcome eraseFoliage(Document& doc, const std::optional<foliage::Region2>& region,
                             const foliage::TypeSet& types, const QString& text) {
   foliage::FoliageStore& store = doc.foliage().store();

@@ -58,6 +58,12 @@ FoliageOutcome commitFoliageWork(Document& doc, foliage::FoliageStore& worked, F
 // A brush dab (or a fill of an area: `fill` true).
 FoliageOutcome paintFoliage(Document& doc, const FoliageGround& ground, const foliage::PaintParams& params,
                             bool fill = false, const QString& text = "Paint foliage");
+// foliage::fillLayer as one undo step: `types` painted to their density
+// where the terrain's paint layer `layer` weighs at least `minWeight`
+// (within `region`, else the whole terrain).
+FoliageOutcome fillFoliageLayer(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
+                                const std::string& layer, double minWeight, uint64_t seed,
+                                const std::optional<foliage::Region2>& region = std::nullopt);
 // Removes the types' (or every type's) instances in the region (nullopt:
 // everywhere).
 FoliageOutcome eraseFoliage(Document& doc, const std::optional<foliage::Region2>& region,

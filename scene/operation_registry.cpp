@@ -33,6 +33,7 @@ const std::vector<const OperationDecl*>& sharedOperations() {
       &lightAddOperation(),
       &foliage::foliageTypeAddOperation(),
       &foliage::foliageScatterOperation(),
+      &foliage::foliageFillOperation(),
       &foliage::foliageClearOperation(),
       &foliage::foliagePlantOperation(),
       &particles::particlesAddOperation(),

@@ -508,6 +508,26 @@ class EditorFoliageTest : public QObject {
     chooseTool("Off");
   }
 
+  // Fill Paint Layer: the type painted where the grass layer (put there by
+  // the terrain's paint rules) weighs at least half, one undo step; a
+  // layer the terrain lacks is refused by name.
+  void fillPaintLayerThroughThePanel() {
+    QVERIFY(w_->terrainPanel()->applyPaintRules(true));
+    const size_t before = store().instanceCount();
+    const int step0 = steps();
+    QVERIFY(panel_->fillLayer({0}, Json{{"layer", "Grass"}, {"min_weight", 0.5}, {"seed", 3}}));
+    QCOMPARE(steps(), step0 + 1);
+    const size_t filled = store().instanceCount() - before;
+    QVERIFY2(filled > 50, qPrintable(QString::number(filled)));
+    QVERIFY(w_->messages()->lastText().contains("Fill Paint Layer"));
+    doc().undoStack()->undo();
+    QCOMPARE(store().instanceCount(), before);
+    QVERIFY(!panel_->fillLayer({0}, Json{{"layer", "Lava"}, {"min_weight", 0.5}}));
+    QVERIFY(prompts_->errors.last().contains("Lava"));
+    QCOMPARE(steps(), step0);
+    doc().undoStack()->undo();  // the paint rules
+  }
+
   void editTypeThroughTheDialog() {
     const foliage::FoliageType before = store().type(0);
     app::FoliageTypeDialog d(nullptr, {"Boulder"}, {}, &before);
@@ -549,7 +569,7 @@ class EditorFoliageTest : public QObject {
     QVERIFY(menu);
     QStringList texts;
     for (QAction* a : menu->actions()) texts << a->text().remove('&');
-    for (const char* t : {"Generate Plant…", "New Foliage Type…", "Edit Foliage Type…", "Scatter…", "Clear Type",
+    for (const char* t : {"Generate Plant…", "New Foliage Type…", "Edit Foliage Type…", "Scatter…", "Fill Paint Layer…", "Clear Type",
                           "Paint Brush", "Erase Brush", "Select Brush", "Foliage Tool Off", "Lasso Select", "Fill Area",
                           "Move Selected Instances", "Delete Selected Instances",
                           "Reapply to Selected Instances"})

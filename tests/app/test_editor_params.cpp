@@ -86,6 +86,8 @@ class EditorParamsTest : public QObject {
                                   open<app::FoliageTypeDialog>(nullptr, QStringList{"Pine"}, QStringList{}, &pines)};
     roots_["foliage scatter"] = {
         open<app::FoliageScatterDialog>(nullptr, std::vector<foliage::FoliageType>{pines}, 0, QStringList{"Grass"})};
+    roots_["foliage fill"] = {
+        open<app::FoliageFillDialog>(nullptr, std::vector<foliage::FoliageType>{pines}, 0, QStringList{"Grass"})};
     roots_["foliage plant"] = {open<app::PlantDialog>(nullptr, "Plant")};
     roots_["particles add"] = {open<app::ParticlesAddDialog>(nullptr, glm::dvec3(0.0))};
   }

@@ -1,7 +1,7 @@
 // `hybridscape-cli foliage ...` as a user runs it (the built program through
 // QProcess): a plant generated as an asset with LODs, a type added, a
-// scatter, `info --json` counting the instances per type, a clear of a
-// region, and every refusal one line on stderr naming the problem, the
+// scatter, a fill of a paint layer, `info --json` counting the instances
+// per type, a clear of a region, and every refusal one line on stderr naming the problem, the
 // scene left as it was.
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -62,6 +62,30 @@ class TestCliFoliage : public QObject {
     QVERIFY(left > 0 && left < placed);
     ok({"foliage", "clear", "Stones", f});
     QCOMPARE(foliage(f)["instances"].toInt(), 0);
+  }
+
+  // `foliage fill`: a type painted where a terrain paint layer weighs
+  // enough (the paint rules put grass on the gentle ground below 31 m), no
+  // more than a scatter over everything; refusals name the layer or option.
+  void fillAPaintLayer() {
+    const QString f = test::newSceneWithCli(path("layer.hscene"), tmp_.path());
+    ok({"terrain", "new", f, "--size", "200", "--resolution", "129", "--hills", "--height", "0,60"});
+    ok({"terrain", "paint-rules", f});
+    ok({"foliage", "plant", "Stone", "--kind", "rock", f});
+    ok({"foliage", "type", "add", "Stones", "--mesh", "Stone", "--density", "300", "--spacing", "2", f});
+    Run fill;
+    ok({"foliage", "fill", "Stones", f, "--layer", "Grass", "--min-weight", "0.5", "--seed", "3"}, &fill);
+    QVERIFY2(fill.out.contains("placed"), qPrintable(fill.out));
+    const int inLayer = foliage(f)["instances"].toInt();
+    ok({"foliage", "clear", "Stones", f});
+    ok({"foliage", "scatter", "Stones", f, "--seed", "3", "--on", "terrain"});
+    const int everywhere = foliage(f)["instances"].toInt();
+    qInfo("grass layer: %d of %d", inLayer, everywhere);
+    QVERIFY2(inLayer > 20 && inLayer < everywhere * 9 / 10, qPrintable(QString("%1 of %2").arg(inLayer).arg(everywhere)));
+    expectError({"foliage", "fill", "Stones", f, "--layer", "Nope"}, 1, {"paint layer", "Nope"});
+    expectError({"foliage", "fill", "Stones", f, "--layer", "Grass", "--min-weight", "2"}, 2, {"--min-weight"});
+    expectError({"foliage", "fill", "Stones", f}, 2, {"--layer"});
+    QCOMPARE(foliage(f)["instances"].toInt(), everywhere);  // the refusals changed nothing
   }
 
   void refusalsNameTheProblemAndChangeNothing() {

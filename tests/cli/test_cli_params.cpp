@@ -148,6 +148,7 @@ class TestCliParams : public QObject {
         {"light add", {{"light", "add", missing_, "--type", "spot"}, missing_}},
         {"foliage type add", {{"foliage", "type", "add", "T", "--mesh", "M", missing_}, missing_}},
         {"foliage scatter", {{"foliage", "scatter", "T", missing_}, missing_}},
+        {"foliage fill", {{"foliage", "fill", "T", missing_, "--layer", "Grass"}, missing_}},
         {"foliage clear", {{"foliage", "clear", "T", missing_}, missing_}},
         {"foliage plant", {{"foliage", "plant", "P", "--kind", "rock", missing_}, missing_}},
         {"particles add", {{"particles", "add", "snow", missing_}, missing_}},
