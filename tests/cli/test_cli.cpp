@@ -220,11 +220,11 @@ class TestCli : public QObject {
     }
     // Assets: the bunny, with the triangle count of the scan's OBJ file,
     // then the two surface-detail slabs (scene/demo_materials.h) and the
-    // three glass spheres and the pond (scene/demo_glass.h), then the four
-    // generated plants its foliage draws (scene/demo_foliage.h).
+    // three glass spheres and the pond (scene/demo_glass.h), then the six
+    // generated plants its foliage draws (scene/demo_foliage.h), one type each.
     const QJsonArray assets = info["assets"].toArray();
-    QCOMPARE(assets.size(), 11);
-    QCOMPARE(info["foliage"].toObject()["types"].toArray().size(), 4);
+    QCOMPARE(assets.size(), 13);
+    QCOMPARE(info["foliage"].toObject()["types"].toArray().size(), 6);
     QVERIFY(info["foliage"].toObject()["instances"].toInt() > 1000);
     const std::string bunny = readFile(HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj");
     size_t faces = 0;
