@@ -18,11 +18,7 @@ MaterialPreview::~MaterialPreview() = default;
 
 scene::SceneState MaterialPreview::previewScene(const scene::SceneState& state, const scene::Material& material) {
   scene::SceneState s;
-  s.settings.showGrid = false;
-  s.settings.antialiasing = scene::Antialiasing::Fxaa;
-  s.settings.skyZenith = s.settings.skyHorizon = glm::vec3(0.16f, 0.17f, 0.19f);  // a neutral backdrop
-  s.settings.groundColor = glm::vec3(0.1f);
-  s.settings.ambientIntensity = 0.6f;
+  PreviewRenderer::addStage(s);
   static const auto sphere = std::make_shared<const mesh::MeshData>(mesh::uvSphere(1.0f, 64, 32));
   scene::MeshAsset a;
   a.id = 1;
@@ -57,12 +53,6 @@ scene::SceneState MaterialPreview::previewScene(const scene::SceneState& state, 
   e.name = "Preview";
   e.mesh = scene::MeshInstance{1};
   s.entities.emplace(1, e);
-  scene::Entity sun;
-  sun.id = 2;
-  sun.name = "Sun";
-  sun.light = scene::Light{};
-  sun.transform.rotation = scene::fromEulerDegrees({45, 0, -35});
-  s.entities.emplace(2, sun);
   scene::Entity cam;
   cam.id = 3;
   cam.name = "Camera";

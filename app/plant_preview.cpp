@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/preview_renderer.h"
 #include "scene/foliage_ops.h"
 #include "scene/mesh_materials.h"
 #include "sequencer/camera_path.h"
@@ -15,23 +16,13 @@ constexpr double kFovDeg = 30.0;
 // `s` holds the asset (id 1) and its materials: adds the entity showing
 // it, a sun and the camera framing its bounding sphere.
 scene::SceneState framed(scene::SceneState s, const mesh::MeshData& data) {
-  s.settings.showGrid = false;
-  s.settings.antialiasing = scene::Antialiasing::Fxaa;
-  s.settings.skyZenith = s.settings.skyHorizon = glm::vec3(0.16f, 0.17f, 0.19f);  // a neutral backdrop
-  s.settings.groundColor = glm::vec3(0.1f);
-  s.settings.ambientIntensity = 0.6f;
+  PreviewRenderer::addStage(s);
   s.settings.meshLodErrorPixels = 0.0;  // the plant as generated
   scene::Entity e;
   e.id = 1;
   e.name = "Preview";
   e.mesh = scene::MeshInstance{1};
   s.entities.emplace(1, e);
-  scene::Entity sun;
-  sun.id = 2;
-  sun.name = "Sun";
-  sun.light = scene::Light{};
-  sun.transform.rotation = scene::fromEulerDegrees({45, 0, -35});
-  s.entities.emplace(2, sun);
   const mesh::Bounds b = data.bounds();
   const glm::dvec3 centre = b.empty ? glm::dvec3(0.0) : glm::dvec3(b.center());
   const double radius = std::max(b.empty ? 1.0 : double(b.radius()), 1e-3);

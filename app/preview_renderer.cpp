@@ -29,6 +29,20 @@ void PreviewRenderer::request(int key, scene::SceneState scene, scene::EntityId 
   wake_.notify_all();
 }
 
+void PreviewRenderer::addStage(scene::SceneState& s) {
+  s.settings.showGrid = false;
+  s.settings.antialiasing = scene::Antialiasing::Fxaa;
+  s.settings.skyZenith = s.settings.skyHorizon = glm::vec3(0.16f, 0.17f, 0.19f);
+  s.settings.groundColor = glm::vec3(0.1f);
+  s.settings.ambientIntensity = 0.6f;
+  scene::Entity sun;
+  sun.id = 2;
+  sun.name = "Sun";
+  sun.light = scene::Light{};
+  sun.transform.rotation = scene::fromEulerDegrees({45, 0, -35});
+  s.entities.emplace(2, sun);
+}
+
 void PreviewRenderer::run() {
   std::unique_ptr<render::OffscreenRenderer> renderer;
   for (;;) {

@@ -1,9 +1,10 @@
 // hybridscape-cli foliage: plants as mesh assets, foliage types, the
-// rule-based scatter and clearing, through the operations the editor's
+// rule-based scatter, paint-layer fill and clearing, through the operations the editor's
 // Foliage panel uses (scene/foliage_ops.h; declared once in
 // foliage/foliage_operations.h). The scene file is saved after each
 // command (only the foliage cells that changed are written).
 #include <cstdio>
+#include <optional>
 #include <thread>
 
 #include "cli/commands.h"
@@ -46,6 +47,24 @@ int typeIndex(const OperationArgs& args, const scene::Document& doc, const std::
   return t;
 }
 
+// The commands on one type (`foliage scatter|fill|clear TYPE SCENE ...`):
+// the options parsed, the scene opened and the type found. Returns the
+// exit code when the command ends here (help, a usage error, no scene or
+// no such type); else nullopt with `doc`, `path` and `type` set.
+std::optional<int> openTypeCommand(OperationArgs& args, int argc, char** argv, scene::Document& doc,
+                                   std::string& path, uint16_t& type) {
+  if (auto code = args.parse(argc, argv)) return *code;
+  if (args.positionals().size() != 2) return args.usage("expected a foliage type and a scene file");
+  path = args.positionals()[1];
+  std::string error;
+  if (!terrain_cli::openScene(path, doc, error)) return args.fail(error);
+  int code = 0;
+  const int t = typeIndex(args, doc, args.positionals()[0], code);
+  if (t < 0) return code;
+  type = uint16_t(t);
+  return std::nullopt;
+}
+
 int runTypeAdd(int argc, char** argv) {
   OperationArgs args(foliage::foliageTypeAddOperation());
   if (auto code = args.parse(argc, argv)) return *code;
@@ -75,66 +94,53 @@ int runType(int argc, char** argv) {
 
 int runScatter(int argc, char** argv) {
   OperationArgs args(foliage::foliageScatterOperation());
-  if (auto code = args.parse(argc, argv)) return *code;
-  if (args.positionals().size() != 2) return args.usage("expected a foliage type and a scene file");
-  const std::string name = args.positionals()[0], path = args.positionals()[1];
-  std::string error;
   scene::Document doc;
-  if (!terrain_cli::openScene(path, doc, error)) return args.fail(error);
-  int code = 0;
-  const int t = typeIndex(args, doc, name, code);
-  if (t < 0) return code;
+  std::string path;
+  uint16_t t = 0;
+  if (auto done = openTypeCommand(args, argc, argv, doc, path, t)) return *done;
   const Json values = givenValues(args);
-  const foliage::FoliageType rules = foliage::scatterRules(doc.state().foliage->store().type(size_t(t)), values);
+  const foliage::FoliageType rules = foliage::scatterRules(doc.state().foliage->store().type(t), values);
   if (const std::vector<std::string> problems = foliage::validate(rules); !problems.empty())
     return args.usage(problems.front());
   const bool meshes = rules.surface != foliage::SurfaceFilter::Terrain;
   const scene::FoliageGround ground(doc.state(), meshes);
   const scene::ops::FoliageOutcome out =
-      scene::ops::scatterFoliage(doc, ground, {uint16_t(t)}, uint64_t(args.integer("seed")),
-                                 foliage::regionFromValues(values), rules);
+      scene::ops::scatterFoliage(doc, ground, {t}, uint64_t(args.integer("seed")), foliage::regionFromValues(values),
+                                 rules);
   if (!out.ok) return args.fail(out.error);
   printOutcome(out);
+  int code = 0;
   return save(args, doc, path, code) ? 0 : code;
 }
 
 int runFill(int argc, char** argv) {
   OperationArgs args(foliage::foliageFillOperation());
-  if (auto code = args.parse(argc, argv)) return *code;
-  if (args.positionals().size() != 2) return args.usage("expected a foliage type and a scene file");
-  const std::string name = args.positionals()[0], path = args.positionals()[1];
-  std::string error;
   scene::Document doc;
-  if (!terrain_cli::openScene(path, doc, error)) return args.fail(error);
-  int code = 0;
-  const int t = typeIndex(args, doc, name, code);
-  if (t < 0) return code;
+  std::string path;
+  uint16_t t = 0;
+  if (auto done = openTypeCommand(args, argc, argv, doc, path, t)) return *done;
   const Json values = givenValues(args);
   const scene::FoliageGround ground(doc.state(), false);  // terrain only
   const scene::ops::FoliageOutcome out =
-      scene::ops::fillFoliageLayer(doc, ground, {uint16_t(t)}, values.at("layer").get<std::string>(),
+      scene::ops::fillFoliageLayer(doc, ground, {t}, values.at("layer").get<std::string>(),
                                    values.value("min_weight", 0.5), uint64_t(args.integer("seed")),
                                    foliage::regionFromValues(values));
   if (!out.ok) return args.fail(out.error);
   printOutcome(out);
+  int code = 0;
   return save(args, doc, path, code) ? 0 : code;
 }
 
 int runClear(int argc, char** argv) {
   OperationArgs args(foliage::foliageClearOperation());
-  if (auto code = args.parse(argc, argv)) return *code;
-  if (args.positionals().size() != 2) return args.usage("expected a foliage type and a scene file");
-  const std::string name = args.positionals()[0], path = args.positionals()[1];
-  std::string error;
   scene::Document doc;
-  if (!terrain_cli::openScene(path, doc, error)) return args.fail(error);
-  int code = 0;
-  const int t = typeIndex(args, doc, name, code);
-  if (t < 0) return code;
-  const scene::ops::FoliageOutcome out =
-      scene::ops::eraseFoliage(doc, foliage::regionFromValues(givenValues(args)), {uint16_t(t)});
+  std::string path;
+  uint16_t t = 0;
+  if (auto done = openTypeCommand(args, argc, argv, doc, path, t)) return *done;
+  const scene::ops::FoliageOutcome out = scene::ops::eraseFoliage(doc, foliage::regionFromValues(givenValues(args)), {t});
   if (!out.ok) return args.fail(out.error);
   printOutcome(out);
+  int code = 0;
   return save(args, doc, path, code) ? 0 : code;
 }
 
