@@ -1,7 +1,6 @@
 #include "app/foliage_ground_cache.h"
 
-#include <QCursor>
-#include <QGuiApplication>
+#include "app/busy_cursor.h"
 
 namespace hs::app {
 
@@ -19,10 +18,9 @@ FoliageGroundCache::~FoliageGroundCache() = default;
 
 const scene::FoliageGround& FoliageGroundCache::ground() {
   if (!ground_) {
-    QGuiApplication::setOverrideCursor(QCursor(Qt::WaitCursor));
+    const BusyCursor busy;
     ground_ = std::make_shared<const scene::FoliageGround>(doc_.state());
     ++builds_;
-    QGuiApplication::restoreOverrideCursor();
   }
   return *ground_;
 }

@@ -9,8 +9,6 @@
 #include <QFormLayout>
 #include <QGridLayout>
 #include <QGroupBox>
-#include <QCursor>
-#include <QGuiApplication>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
@@ -25,13 +23,14 @@
 #include <QVBoxLayout>
 
 #include "app/background_job.h"
+#include "app/busy_cursor.h"
 #include "app/foliage_dialogs.h"
-#include "app/plant_preview.h"
-#include "app/preview_renderer.h"
 #include "app/foliage_ground_cache.h"
 #include "app/form_widgets.h"
 #include "app/main_window.h"
 #include "app/message_panel.h"
+#include "app/plant_preview.h"
+#include "app/preview_renderer.h"
 #include "app/prompts.h"
 #include "app/status_bar.h"
 #include "app/viewport_widget.h"
@@ -83,13 +82,11 @@ QString menuText(FoliageToolKind k) {
   }
 }
 
-// The busy cursor over work done on the UI thread (see foliage_panel.h).
-struct BusyCursor {
-  BusyCursor() { QGuiApplication::setOverrideCursor(QCursor(Qt::WaitCursor)); }
-  ~BusyCursor() { QGuiApplication::restoreOverrideCursor(); }
-  BusyCursor(const BusyCursor&) = delete;
-  BusyCursor& operator=(const BusyCursor&) = delete;
-};
+// An operation's seed from its checked values, else the declared default.
+uint64_t seedOf(const Json& values, const OperationDecl& op) {
+  return values.contains("seed") && values["seed"].is_number_integer() ? values["seed"].get<uint64_t>()
+                                                                       : uint64_t(defaultNumber(op.param("seed")));
+}
 
 QString number(size_t n) { return QLocale().toString(qulonglong(n)); }
 
@@ -499,9 +496,7 @@ bool FoliagePanel::scatter(const foliage::TypeSet& types, const Json& values) {
     if (const std::vector<std::string> problems = foliage::validate(*rules); !problems.empty())
       return report(false, problems.front(), {}, {}, "Scatter");
   }
-  const uint64_t seed = values.contains("seed") && values["seed"].is_number_integer()
-                            ? values["seed"].get<uint64_t>()
-                            : uint64_t(defaultNumber(foliage::foliageScatterOperation().param("seed")));
+  const uint64_t seed = seedOf(values, foliage::foliageScatterOperation());
   // On a worker, into a copy of the store (the viewport draws the
   // document's meanwhile), under a window-modal progress with Cancel; the
   // copy's touched cells go into the document as one step at the end.
@@ -522,9 +517,7 @@ bool FoliagePanel::fillLayer(const foliage::TypeSet& types, const Json& values) 
   const OperationDecl& op = foliage::foliageFillOperation();
   const std::string layer = values.value("layer", std::string());
   const double minWeight = values.value("min_weight", defaultNumber(op.param("min_weight")));
-  const uint64_t seed = values.contains("seed") && values["seed"].is_number_integer()
-                            ? values["seed"].get<uint64_t>()
-                            : uint64_t(defaultNumber(op.param("seed")));
+  const uint64_t seed = seedOf(values, op);
   scene::ops::FoliageOutcome out;
   {
     const BusyCursor busy;  // a layer over a whole valley: a second or so

@@ -6,11 +6,10 @@
 #include <limits>
 
 #include <QCoreApplication>
-#include <QCursor>
-#include <QGuiApplication>
 #include <QKeyEvent>
 #include <QKeySequence>
 
+#include "app/busy_cursor.h"
 #include "app/foliage_ground_cache.h"
 #include "scene/foliage_command.h"
 #include "scene/foliage_data.h"
@@ -302,9 +301,11 @@ void FoliageTool::endPolygon() {
   p.types = types_;
   p.densityFactor = brush_.densityFactor;
   p.seed = dabSeed(brush_.seed, strokes_, 0);
-  QGuiApplication::setOverrideCursor(QCursor(Qt::WaitCursor));
-  foliage::EditResult r = foliage::paint(store, ground_.ground().ground(), p);
-  QGuiApplication::restoreOverrideCursor();
+  foliage::EditResult r;
+  {
+    const BusyCursor busy;
+    r = foliage::paint(store, ground_.ground().ground(), p);
+  }
   const QString done = QString("%1: %2 placed over %3 m²").arg(label).arg(r.stats.placed).arg(area.area(), 0, 'f', 0);
   record(std::move(r), label, true, done);
 }

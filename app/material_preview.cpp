@@ -54,20 +54,20 @@ scene::SceneState MaterialPreview::previewScene(const scene::SceneState& state, 
   e.mesh = scene::MeshInstance{1};
   s.entities.emplace(1, e);
   scene::Entity cam;
-  cam.id = 3;
+  cam.id = kPreviewCamera;
   cam.name = "Camera";
   cam.camera = scene::Camera{};
   cam.camera->verticalFovDeg = 32.0;
   cam.camera->nearClip = 0.05;
   cam.transform.translation = {0.0, -3.8, 0.6};
   cam.transform.rotation = sequencer::lookRotation(-cam.transform.translation);
-  s.entities.emplace(3, cam);
-  s.roots = {1, 2, 3};
+  s.entities.emplace(kPreviewCamera, cam);
+  s.roots = {1, 2, kPreviewCamera};
   return s;
 }
 
 void MaterialPreview::request(const scene::SceneState& state, const scene::Material& material) {
-  renderer_->request(0, previewScene(state, material), 3, size_);
+  renderer_->request(0, previewScene(state, material), kPreviewCamera, size_);
 }
 
 }  // namespace hs::app

@@ -3,16 +3,15 @@
 // the Generate Plant dialog's live preview and the Foliage panel's type
 // thumbnails. A mesh asset with its materials and textures at full detail,
 // lit by a sun over a neutral backdrop, framed whole by the camera (entity
-// kPreviewCamera) from the south-west and a little above.
+// kPreviewCamera, preview_renderer.h) from the south-west and a little above.
 #include <optional>
 #include <string>
 
+#include "app/preview_renderer.h"
 #include "foliage/plants.h"
 #include "scene/scene_state.h"
 
 namespace hs::app {
-
-constexpr scene::EntityId kPreviewCamera = 3;
 
 // Mesh asset `asset` of `from` (with the materials on its slots and their
 // textures); empty when `from` has no such asset with data.

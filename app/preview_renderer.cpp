@@ -1,7 +1,6 @@
 #include "app/preview_renderer.h"
 
 #include <cstring>
-#include <optional>
 
 #include "render/offscreen_renderer.h"
 #include "render/render_view.h"

@@ -18,6 +18,9 @@
 
 namespace hs::app {
 
+// The previews' camera entity (PreviewRenderer::addStage has the sun at 2).
+constexpr scene::EntityId kPreviewCamera = 3;
+
 class PreviewRenderer : public QObject {
   Q_OBJECT
  public:
