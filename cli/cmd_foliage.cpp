@@ -122,8 +122,8 @@ int runFill(int argc, char** argv) {
   const Json values = givenValues(args);
   const scene::FoliageGround ground(doc.state(), false);  // terrain only
   const scene::ops::FoliageOutcome out =
-      scene::ops::fillFoliageLayer(doc, ground, {t}, values.at("layer").get<std::string>(),
-                                   values.value("min_weight", 0.5), uint64_t(args.integer("seed")),
+      scene::ops::fillFoliageLayer(doc, ground, {t}, args.text("layer"), args.number("min_weight"),
+                                   uint64_t(args.integer("seed")),
                                    foliage::regionFromValues(values));
   if (!out.ok) return args.fail(out.error);
   printOutcome(out);

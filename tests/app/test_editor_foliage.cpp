@@ -449,6 +449,19 @@ class EditorFoliageTest : public QObject {
     doc().undoStack()->undo();
     QCOMPARE(store().instanceCount(), before);
 
+    // A click without a loop (one point, no area) fills nothing and says why.
+    trace({flo, flo});
+    QCOMPARE(steps(), step0);
+    QVERIFY(w_->messages()->lastText().contains("draw a loop"));
+    // Fill with no type chosen: refused at the first click, before any loop.
+    const foliage::TypeSet types = panel_->tool()->types();
+    panel_->tool()->setTypes({});
+    trace({flo, {fhi.x, flo.y}, fhi, {flo.x, fhi.y}, flo});
+    QCOMPARE(steps(), step0);
+    QCOMPARE(store().instanceCount(), before);
+    QVERIFY(w_->messages()->lastText().contains("no type chosen"));
+    panel_->tool()->setTypes(types);
+
     // Lasso: a loop around part of the stroke selects what it holds.
     chooseTool("Lasso");
     const glm::dvec2 llo(-5.0, -15.0), lhi(15.0, 15.0);
