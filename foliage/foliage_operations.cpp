@@ -109,6 +109,24 @@ const OperationDecl& foliageClearOperation() {
   return op;
 }
 
+const OperationDecl& foliageImpostorsOperation() {
+  static const OperationDecl op = [] {
+    OperationDecl o{.name = "foliage impostors",
+                    .summary = "bake the foliage's impostors into the scene",
+                    .usage = "<scene.hscene> [--all]",
+                    .description = "Bakes the octahedral impostor (the far level) of every mesh a foliage type draws "
+                                   "with one, where the scene stores none or a stale one (its mesh or materials "
+                                   "changed), and stores them in the scene: it then opens and renders without "
+                                   "baking, and every render node draws the same picture. Needs OpenGL. One undo "
+                                   "step.",
+                    .positionals = {kScene}};
+    o.params = {{.key = "all", .option = "all", .label = "All", .type = ParamType::Flag,
+                 .help = "bake every one again, current or not", .editor = false}};
+    return o;
+  }();
+  return op;
+}
+
 const OperationDecl& foliagePlantOperation() {
   static const OperationDecl op = [] {
     OperationDecl o{.name = "foliage plant",

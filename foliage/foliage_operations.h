@@ -28,6 +28,9 @@ const OperationDecl& foliageScatterOperation();
 const OperationDecl& foliageFillOperation();
 // `foliage clear TYPE SCENE [--region x0,y0,x1,y1]`.
 const OperationDecl& foliageClearOperation();
+// `foliage impostors SCENE [--all]`: bake and store the impostors of the
+// meshes foliage types draw with one (scene/impostor_ops.h).
+const OperationDecl& foliageImpostorsOperation();
 // `foliage plant NAME --kind broadleaf|conifer|shrub|grass|rock [--seed S] SCENE`.
 const OperationDecl& foliagePlantOperation();
 

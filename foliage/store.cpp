@@ -1,13 +1,12 @@
 #include "foliage/store.h"
 
-#include <libdeflate.h>
-
 #include <algorithm>
 #include <cstring>
 #include <memory>
 
 #include "core/content_hash.h"
 #include "core/parallel.h"
+#include "foliage/zlib_bytes.h"
 
 namespace hs::foliage {
 
@@ -50,16 +49,6 @@ T get(const uint8_t* p) {
   return v;
 }
 
-struct Deflater {
-  libdeflate_compressor* c;
-  explicit Deflater(int level) : c(libdeflate_alloc_compressor(level)) {}
-  ~Deflater() { libdeflate_free_compressor(c); }
-};
-struct Inflater {
-  libdeflate_decompressor* d = libdeflate_alloc_decompressor();
-  ~Inflater() { libdeflate_free_decompressor(d); }
-};
-
 std::vector<uint8_t> rawPayload(const Cell& cell) {
   std::vector<uint8_t> raw;
   raw.reserve(cell.runs.size() * 8 + cell.count() * 16);
@@ -95,12 +84,6 @@ uint64_t rawPayloadHash(const Cell& cell) {
 
 std::vector<uint8_t> encodeCell(const CellKey& key, const Cell& cell, int level) {
   const std::vector<uint8_t> raw = rawPayload(cell);
-  thread_local std::unique_ptr<Deflater> deflater;
-  thread_local int deflaterLevel = -1;
-  if (!deflater || deflaterLevel != level) {
-    deflater = std::make_unique<Deflater>(level);
-    deflaterLevel = level;
-  }
   std::vector<uint8_t> out;
   put<uint32_t>(out, 0x43465348u);  // "HSFC"
   put<uint16_t>(out, 1);
@@ -110,15 +93,10 @@ std::vector<uint8_t> encodeCell(const CellKey& key, const Cell& cell, int level)
   put<int32_t>(out, key.z);
   put<uint32_t>(out, uint32_t(cell.count()));
   put<uint32_t>(out, uint32_t(raw.size()));
-  const size_t bound = libdeflate_zlib_compress_bound(deflater->c, raw.size());
-  const size_t sizeAt = out.size();
-  put<uint32_t>(out, 0);
+  const std::vector<uint8_t> payload = deflateBytes(raw.data(), raw.size(), level);
+  put<uint32_t>(out, uint32_t(payload.size()));
   put<uint64_t>(out, contentHash(raw.data(), raw.size()));
-  out.resize(kCellHeaderBytes + bound);
-  const size_t n = libdeflate_zlib_compress(deflater->c, raw.data(), raw.size(), out.data() + kCellHeaderBytes, bound);
-  out.resize(kCellHeaderBytes + n);
-  const uint32_t n32 = uint32_t(n);
-  std::memcpy(out.data() + sizeAt, &n32, 4);
+  out.insert(out.end(), payload.begin(), payload.end());
   return out;
 }
 
@@ -150,13 +128,9 @@ Status decodeCell(std::span<const uint8_t> blob, const CellKey& expected, size_t
     return fail(kCellHeaderBytes + payload, std::to_string(blob.size() - kCellHeaderBytes - payload) +
                                                 " bytes after the payload's end");
   std::vector<uint8_t> raw(rawBytes);
-  thread_local Inflater inflater;
-  size_t got = 0;
-  const libdeflate_result r =
-      libdeflate_zlib_decompress(inflater.d, b + kCellHeaderBytes, payload, raw.data(), raw.size(), &got);
-  if (r != LIBDEFLATE_SUCCESS || got != rawBytes)
+  if (!inflateBytes(b + kCellHeaderBytes, payload, raw.data(), raw.size()))
     return fail(kCellHeaderBytes, "the compressed payload (bytes 40 to " + std::to_string(kCellHeaderBytes + payload) +
-                                      ") is corrupt" + (r == LIBDEFLATE_SUCCESS ? " (wrong size)" : ""));
+                                      ") is corrupt or of the wrong size");
   if (contentHash(raw.data(), raw.size()) != hash)
     return fail(32, "content hash mismatch (stored " + toHex(hash) + ", payload hashes to " +
                         toHex(contentHash(raw.data(), raw.size())) + ")");

@@ -1,10 +1,12 @@
 // Foliage types (declarations, validation, JSON), the 16-byte instance
 // record (its error bounds, at UTM coordinates too), cell blobs (round
-// trip, corrupt and truncated blobs), dirty tracking, stable ids, undo.
+// trip, corrupt and truncated blobs), dirty tracking, stable ids, undo;
+// impostor atlas blobs (round trip, every damage named).
 #include <map>
 #include <random>
 
 #include "foliage/foliage_operations.h"
+#include "foliage/impostor_images.h"
 #include "foliage/manifest.h"
 #include "foliage_fixtures.h"
 
@@ -273,6 +275,84 @@ class TestFoliageStorage : public QObject {
     QCOMPARE(t.instanceCount(), size_t(0));
   }
 
+  // An impostor's blob gives back every byte of both images, packs a
+  // mostly empty atlas tight, and refuses damage naming the place.
+  void impostorBlobRoundTripAndDamage() {
+    ImpostorImages im;
+    im.frames = 6;
+    im.framePixels = 16;
+    im.sphere = glm::vec4(0.5f, -1.0f, 4.0f, 3.25f);
+    im.sourceKey = 0x123456789abcdef0ull;
+    im.albedo.assign(im.imageBytes(), 0);
+    im.normalDepth.assign(im.imageBytes(), 0);
+    // A disc per frame with smooth colour, empty around it (as a baked plant).
+    std::mt19937 rng(7);
+    const int side = im.side();
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) {
+        const double fx = (x % im.framePixels + 0.5) / im.framePixels - 0.5, fy = (y % im.framePixels + 0.5) / im.framePixels - 0.5;
+        if (fx * fx + fy * fy > 0.16) continue;
+        uint8_t* a = &im.albedo[size_t(y * side + x) * 4];
+        uint8_t* n = &im.normalDepth[size_t(y * side + x) * 4];
+        a[0] = uint8_t(60 + x % 40), a[1] = uint8_t(120 + y % 30), a[2] = uint8_t(rng() % 8), a[3] = 255;
+        n[0] = uint8_t(128 + 100 * fx), n[1] = uint8_t(128 + 100 * fy), n[2] = 200, n[3] = uint8_t(rng() % 256);
+      }
+    const std::vector<uint8_t> blob = encodeImpostor(im);
+    QVERIFY2(blob.size() * 3 < 2 * im.imageBytes(), qPrintable(QString::number(blob.size())));
+    std::string error;
+    auto back = decodeImpostor(blob, "pine impostor", error);
+    QVERIFY2(back, error.c_str());
+    QCOMPARE(back->frames, 6);
+    QCOMPARE(back->framePixels, 16);
+    QCOMPARE(back->sphere, im.sphere);
+    QCOMPARE(back->sourceKey, im.sourceKey);
+    QVERIFY(back->albedo == im.albedo);
+    QVERIFY(back->normalDepth == im.normalDepth);
+    QCOMPARE(back->contentHash(), im.contentHash());
+    ImpostorImages other = im;
+    other.normalDepth[100] ^= 1;
+    QVERIFY(other.contentHash() != im.contentHash());
+
+    auto refused = [&](std::vector<uint8_t> b, const char* part) {
+      std::string e;
+      const bool ok = decodeImpostor(b, "pine impostor", e).has_value();
+      const bool named = e.find("pine impostor: byte offset") == 0 && e.find(part) != std::string::npos;
+      if (ok || !named) qWarning("%s: %s", part, e.c_str());
+      return !ok && named;
+    };
+    QVERIFY(refused({}, "truncated"));
+    QVERIFY(refused(std::vector<uint8_t>(blob.begin(), blob.begin() + 30), "truncated"));
+    QVERIFY(refused(std::vector<uint8_t>(blob.begin(), blob.end() - 10), "truncated"));
+    std::vector<uint8_t> b = blob;
+    b[0] = 'X';
+    QVERIFY(refused(b, "signature"));
+    b = blob;
+    b[4] = 9;
+    QVERIFY(refused(b, "format version 9"));
+    b = blob;
+    b[6] = 0;
+    QVERIFY(refused(b, "0 frames"));
+    b = blob;
+    b[9] = 0x40;  // 16384 pixels a frame
+    QVERIFY(refused(b, "pixels a frame"));
+    b = blob;
+    const float nan = std::nanf("");
+    std::memcpy(&b[24], &nan, 4);  // the radius
+    QVERIFY(refused(b, "bounding sphere"));
+    b = blob;
+    b[36] ^= 4;
+    QVERIFY(refused(b, "raw size"));
+    b = blob;
+    b.push_back(0);
+    QVERIFY(refused(b, "after the payload"));
+    b = blob;
+    b[b.size() / 2] ^= 0x5a;
+    QVERIFY(refused(b, "corrupt") || refused(b, "hash mismatch"));
+    b = blob;
+    b[47] ^= 1;  // the stored hash
+    QVERIFY(refused(b, "hash mismatch"));
+  }
+
   void dirtyTrackingWritesOnlyChangedCells() {
     FoliageStore s = filled(5000, 6, glm::dvec3(0.0));
     QCOMPARE(s.dirtyCount(), s.cellCount());
@@ -378,7 +458,8 @@ class TestFoliageStorage : public QObject {
   // option, and turned into the domain's structs.
   void operationsAreDeclaredOnce() {
     for (const hs::OperationDecl* op : {&foliageTypeAddOperation(), &foliageScatterOperation(),
-                                        &foliageClearOperation(), &foliagePlantOperation()}) {
+                                        &foliageClearOperation(), &foliagePlantOperation(),
+                                        &foliageImpostorsOperation()}) {
       QVERIFY(!op->name.empty() && !op->positionals.empty());
       for (const hs::ParamDecl& p : op->params) {
         std::string error;
