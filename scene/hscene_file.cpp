@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "core/content_hash.h"
+#include "foliage/impostor_images.h"
 #include "scene/foliage_file.h"
 #include "scene/hscene_recovery.h"
 #include "scene/hscene_schema.h"
@@ -39,6 +40,8 @@ CREATE TABLE IF NOT EXISTS blobs(key TEXT NOT NULL, part INTEGER NOT NULL, hash 
 std::string meshKey(AssetId id) { return "mesh/" + std::to_string(id); }
 // LOD levels 1, 2, ... of an asset; level 0 is meshKey (files before LODs had only that).
 std::string lodKey(AssetId id, size_t level) { return meshKey(id) + "/lod" + std::to_string(level); }
+// An asset's baked impostor (format 12, foliage/impostor_images.h).
+std::string impostorKey(AssetId id) { return meshKey(id) + "/impostor"; }
 
 // Standalone textures (a mesh's own stay in its blob, material.h).
 std::string textureKey(TextureId id) { return "texture/" + std::to_string(id); }
@@ -115,6 +118,8 @@ std::map<std::string, BlobSource> wantedBlobs(const SceneState& s) {
     for (size_t k = 0; k < a.lods.size(); ++k)
       if (const auto& data = a.lods[k].data)
         out[lodKey(id, k + 1)] = {toHex(a.lods[k].contentHash), [data] { return encodeMesh(*data); }, false};
+    if (a.impostor)
+      out[impostorKey(id)] = {toHex(a.impostorHash), [im = a.impostor] { return foliage::encodeImpostor(*im); }, false};
   }
   for (const auto& [id, t] : s.textures)
     if (t.standalone() && t.image)
@@ -483,6 +488,28 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
       if (!loadMesh(lodKey(id, k + 1), what + ", LOD " + std::to_string(k + 1), asset.lods[k].contentHash,
                     asset.lods[k].data, asset.data->textures.size()))
         return std::nullopt;
+    // The impostor is derived data the renderer can bake again: a damaged
+    // or missing one is dropped with a warning, the scene still opens.
+    if (asset.impostorHash != 0) {
+      std::vector<uint8_t> bytes;
+      std::optional<foliage::ImpostorImages> im;
+      const std::string iw = what + ", impostor";
+      std::string ie;
+      if (!readBlob(impostorKey(id), iw, bytes)) {
+        ie = error;
+        error.clear();
+      } else if (!(im = foliage::decodeImpostor(bytes, iw, ie))) {
+      } else if (im->contentHash() != asset.impostorHash) {
+        ie = iw + ": its images do not match the description's hash";
+      }
+      if (ie.empty()) {
+        asset.impostor = std::make_shared<const foliage::ImpostorImages>(std::move(*im));
+      } else {
+        report->warnings.push_back(ie + "; it was dropped (the renderer bakes it again, "
+                                        "`hybridscape-cli foliage impostors` stores it)");
+        asset.impostorHash = 0;
+      }
+    }
     if (version < kFirstXxh3Format) {  // checked by the old hash; the document holds the current one
       asset.contentHash = mesh::contentHash(*asset.data);
       for (auto& lod : asset.lods) lod.contentHash = mesh::contentHash(*lod.data);

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "core/content_hash.h"
+#include "foliage/impostor_images.h"
 #include "scene/demo_scene.h"
 #include "scene/hscene_file.h"
 #include "scene/legacy_hashes.h"
@@ -66,8 +67,6 @@ int formatVersion(SqliteDb& db) {
   }
 }
 
-// One logical mesh blob read part by part; nullopt with `why` when a part
-// is missing or unreadable, it does not decode, or it does not match `hash`.
 // One logical blob's bytes, its parts in order; false with `why`.
 bool readBlobBytes(SqliteDb& db, const std::string& key, std::vector<uint8_t>& bytes, std::string& why) {
   SqliteStmt q(db, "SELECT part, data FROM blobs WHERE key = ?1 ORDER BY part");
@@ -97,33 +96,13 @@ bool readBlobBytes(SqliteDb& db, const std::string& key, std::vector<uint8_t>& b
   return true;
 }
 
+// One logical mesh blob read part by part; nullopt with `why` when a part
+// is missing or unreadable, it does not decode, or it does not match `hash`.
 std::optional<mesh::MeshData> readMesh(SqliteDb& db, const std::string& key, uint64_t hash, int version,
                                        std::string& why) {
-  SqliteStmt q(db, "SELECT part, data FROM blobs WHERE key = ?1 ORDER BY part");
-  if (!q.ok()) {
-    why = "the blobs table cannot be read (" + db.lastError() + ")";
-    return std::nullopt;
-  }
-  q.bind(1, key);
   std::vector<uint8_t> bytes;
-  int64_t expected = 0;
+  if (!readBlobBytes(db, key, bytes, why)) return std::nullopt;
   std::string e;
-  while (q.step(e)) {
-    if (q.integer(0) != expected++) {
-      why = "a part of its data is missing";
-      return std::nullopt;
-    }
-    const auto b = q.blob(1);
-    bytes.insert(bytes.end(), b.begin(), b.end());
-  }
-  if (!e.empty()) {
-    why = "its data cannot be read (" + e + ")";
-    return std::nullopt;
-  }
-  if (expected == 0) {
-    why = "its data is missing from the file";
-    return std::nullopt;
-  }
   std::optional<mesh::MeshData> m = decodeMesh(bytes.data(), bytes.size(), key, e);
   if (!m) {
     why = "its data does not decode (" + e + ")";
@@ -226,6 +205,18 @@ void salvageMeshes(SqliteDb& db, SceneState& s, int version, RepairReport& r) {
         break;
       }
       a.lods[k].data = std::make_shared<const mesh::MeshData>(std::move(*lod));
+    }
+    if (a.impostorHash != 0) {  // derived data: dropped if it does not verify, baked again later
+      std::vector<uint8_t> bytes;
+      std::optional<foliage::ImpostorImages> im;
+      if (readBlobBytes(db, "mesh/" + std::to_string(a.id) + "/impostor", bytes, why) &&
+          (im = foliage::decodeImpostor(bytes, "impostor", why)) && im->contentHash() == a.impostorHash) {
+        a.impostor = std::make_shared<const foliage::ImpostorImages>(std::move(*im));
+      } else {
+        r.dropped.push_back(what + ": its impostor (" + (im ? std::string("its hash does not match") : why) +
+                            "); the renderer bakes it again");
+        a.impostorHash = 0;
+      }
     }
     if (version < 4) {
       a.contentHash = mesh::contentHash(*a.data);

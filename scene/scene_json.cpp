@@ -98,6 +98,9 @@ Json assetToJson(const MeshAsset& a) {
   if (!a.processReport.is_null()) o["process_report"] = a.processReport;
   // Format 5: the document material of each slot (mesh_materials.h).
   if (!a.materialSlots.empty()) o["material_slots"] = a.materialSlots;
+  // Format 12: the stored impostor's hash; its images are the blob
+  // "mesh/<id>/impostor" (foliage/impostor_images.h).
+  if (a.impostorHash != 0) o["impostor_hash"] = toHex(a.impostorHash);
   return o;
 }
 
@@ -372,6 +375,8 @@ struct Reader : JsonReader {
       if (!id(&(*slots)[k], jsonIndex(jsonPath(p, "material_slots"), k), m)) return false;
       a.materialSlots.push_back(m);
     }
+    if (const Json* ih = member(o, "impostor_hash"); ih && !hash(ih, jsonPath(p, "impostor_hash"), a.impostorHash))
+      return false;
     return !failed();
   }
 

@@ -50,7 +50,10 @@ namespace hs::scene {
 // JSON, particles/emitter.h). A version-9 reader refuses the unknown component.
 // 11: the emitter's "space" and "draw_mesh" (a format-10 emitter takes their
 // defaults: local space, sprites). A version-10 reader refuses the keys.
-constexpr int kSceneFormatVersion = 11;
+// 12: a mesh asset's baked impostor (its "impostor_hash", blob
+// "mesh/<id>/impostor"). A version-11 reader ignores both and its next save
+// drops the impostor, which the renderer then bakes again when drawing.
+constexpr int kSceneFormatVersion = 12;
 constexpr int kFirstPhysicalLightsFormat = 6;
 constexpr int kFirstPerLightShadowsFormat = 7;
 constexpr int kFirstPhysicalBrdfFormat = 8;

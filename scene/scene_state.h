@@ -19,6 +19,10 @@
 #include "scene/terrain_asset.h"
 #include "sequencer/sequence.h"
 
+namespace hs::foliage {
+struct ImpostorImages;
+}
+
 namespace hs::scene {
 
 // A coarser level of detail of a mesh asset (levels 1, 2, ...; level 0 is
@@ -53,10 +57,16 @@ struct MeshAsset {
   // The document material of each material slot (scene/material_slots.h):
   // one per mesh::Material, plus one for submeshes without a material.
   std::vector<MaterialId> materialSlots;
+  // The far level the renderer baked from this mesh, an octahedral impostor
+  // (foliage/impostor_images.h; blob "mesh/<id>/impostor"); null when none
+  // is stored. Stale when its sourceKey is not impostorSourceKey(state,
+  // *this) (scene/impostor_key.h): the renderer then bakes its own.
+  std::shared_ptr<const foliage::ImpostorImages> impostor;
+  uint64_t impostorHash = 0;  // impostor->contentHash() (0: none), what the description keeps
   bool operator==(const MeshAsset& o) const {
     return id == o.id && name == o.name && sourcePath == o.sourcePath &&
            contentHash == o.contentHash && importReport == o.importReport && lods == o.lods &&
-           processReport == o.processReport && materialSlots == o.materialSlots;
+           processReport == o.processReport && materialSlots == o.materialSlots && impostorHash == o.impostorHash;
   }
 };
 

@@ -4,7 +4,8 @@
 // dab writes only the touched cells; a damaged cell blob is dropped with a
 // warning naming it while the rest loads), ground following as part of a
 // terrain stroke's undo step (measured against the terrain's own surface),
-// generated plants as assets with LODs and cut-out leaves.
+// generated plants as assets with LODs and cut-out leaves; stored impostors
+// (undo, file round trip, staleness, a damaged blob dropped alone).
 #include <QtTest>
 
 #include <filesystem>
@@ -17,7 +18,10 @@
 #include "mesh/primitives.h"
 #include "scene/document.h"
 #include "scene/foliage_ops.h"
+#include "scene/edit.h"
 #include "scene/hscene_file.h"
+#include "scene/impostor_key.h"
+#include "scene/impostor_ops.h"
 #include "scene/scene_json.h"
 #include "scene/terrain_edits.h"
 #include "scene/terrain_ops.h"
@@ -310,6 +314,94 @@ class TestSceneFoliage : public QObject {
     QVERIFY2(named, lr.warnings.empty() ? "no warning" : lr.warnings.front().c_str());
     // Ids of the lost instances are never handed out again.
     QCOMPARE(loaded->foliage->store().nextId(), store.nextId());
+  }
+
+  // A baked impostor (here made up: the bake needs GL, tests/render's
+  // test_impostors bakes real ones) stored in its asset is one undo step,
+  // survives the file (written once, not again when unchanged), goes stale
+  // when the leaves' material changes, and a damaged blob loses only it.
+  void impostorIsStoredUndoneAndSurvivesTheFile() {
+    Document doc;
+    addRockType(doc);
+    const AssetId rock = foliageTypeAsset(doc.state(), doc.state().foliage->store().type(0));
+    QVERIFY(rock != kNoAsset);
+    QCOMPARE(ops::impostorsToBake(doc.state(), false), std::vector<AssetId>{rock});
+    QCOMPARE(impostorStatus(doc.state(), *doc.state().findAsset(rock)), ImpostorStatus::None);
+
+    auto images = [&](uint64_t key) {
+      auto im = std::make_shared<foliage::ImpostorImages>();
+      im->frames = foliage::kImpostorFrames;
+      im->framePixels = foliage::kImpostorFramePixels;
+      im->sphere = glm::vec4(0.0f, 0.0f, 0.5f, 1.0f);
+      im->sourceKey = key;
+      im->albedo.assign(im->imageBytes(), 0);
+      im->normalDepth.assign(im->imageBytes(), 0);
+      for (size_t i = 0; i < im->albedo.size(); i += 4 * 97) im->albedo[i] = 200, im->albedo[i + 3] = 255;
+      return std::shared_ptr<const foliage::ImpostorImages>(im);
+    };
+    const uint64_t key = impostorSourceKey(doc.state(), *doc.state().findAsset(rock));
+    // Images baked from something else (the asset changed during the bake) are refused.
+    ops::StoredImpostors st = ops::storeImpostors(doc, {{rock, images(key + 1)}});
+    QCOMPARE(st.stored, size_t(0));
+    QVERIFY(!st.skipped.empty() && st.skipped[0].find("Rock") != std::string::npos);
+    const int steps = doc.undoStack()->count();
+    st = ops::storeImpostors(doc, {{rock, images(key)}, {12345, images(key)}});
+    QCOMPARE(st.stored, size_t(1));
+    QCOMPARE(st.skipped.size(), size_t(1));  // the asset that is not there
+    QCOMPARE(doc.undoStack()->count(), steps + 1);
+    QCOMPARE(impostorStatus(doc.state(), *doc.state().findAsset(rock)), ImpostorStatus::Stored);
+    QVERIFY(ops::impostorsToBake(doc.state(), false).empty());
+    QCOMPARE(ops::impostorsToBake(doc.state(), true), std::vector<AssetId>{rock});
+
+    const std::string path = tempPath("impostor.hscene").toStdString();
+    std::string error;
+    SaveReport first, second;
+    QVERIFY2(saveScene(doc.state(), path, error, &first), error.c_str());
+    QVERIFY2(saveScene(doc.state(), path, error, &second), error.c_str());
+    QCOMPARE(second.blobsWritten, size_t(0));  // nothing changed: the impostor is not written again
+    LoadReport lr;
+    auto loaded = loadScene(path, error, nullptr, &lr);
+    QVERIFY2(loaded, error.c_str());
+    QVERIFY2(lr.warnings.empty(), lr.warnings.empty() ? "" : lr.warnings.front().c_str());
+    const MeshAsset& back = *loaded->findAsset(rock);
+    QVERIFY(back.impostor);
+    QVERIFY(back.impostor->albedo == doc.state().findAsset(rock)->impostor->albedo);
+    QCOMPARE(back.impostorHash, doc.state().findAsset(rock)->impostorHash);
+    QCOMPARE(impostorStatus(*loaded, back), ImpostorStatus::Stored);
+    QCOMPARE(canonicalJson(*loaded), canonicalJson(doc.state()));
+
+    // The leaves' colour changed: stale, and listed for a bake again.
+    {
+      Edit e(doc, "Darker");
+      e.material(doc.state().findAsset(rock)->materialSlots.front()).baseColor *= 0.5f;
+      QVERIFY(e.commit());
+    }
+    QCOMPARE(impostorStatus(doc.state(), *doc.state().findAsset(rock)), ImpostorStatus::Stale);
+    QCOMPARE(ops::impostorsToBake(doc.state(), false), std::vector<AssetId>{rock});
+    doc.undoStack()->undo();
+    doc.undoStack()->undo();  // the store itself
+    QVERIFY(!doc.state().findAsset(rock)->impostor);
+
+    // A damaged impostor blob: the scene opens without it, saying so.
+    {
+      sqlite3* db = nullptr;
+      QCOMPARE(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+      const std::string sql = "UPDATE blobs SET data = CAST(substr(data, 1, 60) || X'DEADBEEF' || substr(data, 65) AS "
+                              "BLOB) WHERE key = 'mesh/" + std::to_string(rock) + "/impostor'";
+      QCOMPARE(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+      QCOMPARE(sqlite3_changes(db), 1);
+      sqlite3_close(db);
+    }
+    lr = {};
+    loaded = loadScene(path, error, nullptr, &lr);
+    QVERIFY2(loaded, error.c_str());
+    QVERIFY(!loaded->findAsset(rock)->impostor);
+    QCOMPARE(loaded->findAsset(rock)->impostorHash, uint64_t(0));
+    QVERIFY(loaded->findAsset(rock)->data);  // the mesh itself is kept
+    QCOMPARE(lr.warnings.size(), size_t(1));
+    QVERIFY2(lr.warnings[0].find(path) != std::string::npos && lr.warnings[0].find("'Rock'") != std::string::npos &&
+                 lr.warnings[0].find("impostor") != std::string::npos && lr.warnings[0].find("dropped") != std::string::npos,
+             lr.warnings[0].c_str());
   }
 
   void foliageFollowsASculptedGroundInTheSameUndoStep() {
