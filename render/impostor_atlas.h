@@ -24,10 +24,14 @@
 
 #include <glm/glm.hpp>
 
+#include "foliage/impostor_images.h"
+
 namespace hs::render {
 
-inline constexpr int kImpostorFrames = 12;       // per side of the grid: 144 frames
-inline constexpr int kImpostorFramePixels = 64;  // per side of a frame: a 768 x 768 atlas
+// Per side of the grid (144 frames) and of a frame (a 768 x 768 atlas):
+// declared with the stored images, which must have this layout.
+using foliage::kImpostorFrames;
+using foliage::kImpostorFramePixels;
 
 // The grid point (each coordinate in [0, 1]) of unit direction `d` (below
 // the horizon: projected onto it).

@@ -46,14 +46,12 @@ GLuint ImpostorCache::cardVao() {
   return cardVao_.id();
 }
 
-const ImpostorAtlas* ImpostorCache::get(RenderResources& res, scene::AssetId asset, const GpuMesh& mesh,
-                                        const std::vector<DrawMaterial>& materials) {
-  if (mesh.bounds.empty || !(mesh.bounds.radius() > 0.0f) || !mesh.data) return nullptr;
-  auto it = atlases_.find(asset);
-  if (it != atlases_.end() && it->second.meshHash == mesh.hash) return &it->second;
+ImpostorAtlas ImpostorCache::bake(RenderResources& res, uint64_t sourceKey, const GpuMesh& mesh,
+                                  const std::vector<DrawMaterial>& materials) {
+  ++bakes_;
   ImpostorAtlas atlas;
   atlas.sphere = glm::vec4(mesh.bounds.center(), mesh.bounds.radius());
-  atlas.meshHash = mesh.hash;
+  atlas.sourceKey = sourceKey;
   atlas.albedo = atlasTexture(GL_SRGB8_ALPHA8);
   atlas.normalDepth = atlasTexture(GL_RGBA8);
   atlas.bytes = atlasBytes();
@@ -68,11 +66,22 @@ const ImpostorAtlas* ImpostorCache::get(RenderResources& res, scene::AssetId ass
   glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, atlas.albedo.id(), 0);
   glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT1, atlas.normalDepth.id(), 0);
 
-  // The state the frame had, given back after.
+  // The state the frame had, given back after (a frame that bakes draws as
+  // one that does not: test_impostors compares them).
   GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0};
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
   glGetIntegerv(GL_VIEWPORT, viewport);
-  const GLboolean culling = glIsEnabled(GL_CULL_FACE);
+  const GLboolean culling = glIsEnabled(GL_CULL_FACE), depthTest = glIsEnabled(GL_DEPTH_TEST);
+  GLint depthFunc = GL_LESS;
+  GLboolean depthMask = GL_TRUE;
+  glGetIntegerv(GL_DEPTH_FUNC, &depthFunc);
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask);
+  // The bake's depth is [0, 1] as a frame's (reversed): outside a frame
+  // (Renderer::bakeImpostor) the context has GL's default [-1, 1].
+  GLint clipOrigin = GL_LOWER_LEFT, clipDepth = GL_NEGATIVE_ONE_TO_ONE;
+  glGetIntegerv(GL_CLIP_ORIGIN, &clipOrigin);
+  glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth);
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
 
   glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
   const float zeros[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -115,9 +124,82 @@ const ImpostorAtlas* ImpostorCache::get(RenderResources& res, scene::AssetId ass
   glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
   glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
   if (culling) glEnable(GL_CULL_FACE);
-  ImpostorAtlas& slot = atlases_[asset];
-  slot = std::move(atlas);
+  if (!depthTest) glDisable(GL_DEPTH_TEST);
+  glDepthFunc(GLenum(depthFunc));
+  glDepthMask(depthMask);
+  glClipControl(GLenum(clipOrigin), GLenum(clipDepth));
+  return atlas;
+}
+
+// Stored images of the current layout: level 0 uploaded, the mips rebuilt
+// as after a bake. The pixel buffer bindings are cleared so the upload
+// reads client memory whatever a pass left bound.
+ImpostorAtlas ImpostorCache::upload(const foliage::ImpostorImages& images) {
+  ImpostorAtlas atlas;
+  atlas.sphere = images.sphere;
+  atlas.sourceKey = images.sourceKey;
+  atlas.stored = true;
+  atlas.albedo = atlasTexture(GL_SRGB8_ALPHA8);
+  atlas.normalDepth = atlasTexture(GL_RGBA8);
+  atlas.bytes = atlasBytes();
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  glTextureSubImage2D(atlas.albedo.id(), 0, 0, 0, kAtlasPixels, kAtlasPixels, GL_RGBA, GL_UNSIGNED_BYTE,
+                      images.albedo.data());
+  glTextureSubImage2D(atlas.normalDepth.id(), 0, 0, 0, kAtlasPixels, kAtlasPixels, GL_RGBA, GL_UNSIGNED_BYTE,
+                      images.normalDepth.data());
+  glGenerateTextureMipmap(atlas.albedo.id());
+  glGenerateTextureMipmap(atlas.normalDepth.id());
+  return atlas;
+}
+
+const ImpostorAtlas* ImpostorCache::get(RenderResources& res, const scene::MeshAsset& asset, uint64_t sourceKey,
+                                        const GpuMesh& mesh, const std::vector<DrawMaterial>& materials) {
+  if (mesh.bounds.empty || !(mesh.bounds.radius() > 0.0f) || !mesh.data) return nullptr;
+  auto it = atlases_.find(asset.id);
+  if (it != atlases_.end() && it->second.sourceKey == sourceKey) return &it->second;
+  const foliage::ImpostorImages* stored = asset.impostor.get();
+  const bool usable = stored && stored->sourceKey == sourceKey && stored->frames == kImpostorFrames &&
+                      stored->framePixels == kImpostorFramePixels && stored->albedo.size() == stored->imageBytes() &&
+                      stored->normalDepth.size() == stored->imageBytes();
+  ImpostorAtlas& slot = atlases_[asset.id];
+  if (usable) {
+    ++uploads_;
+    slot = upload(*stored);
+  } else {
+    slot = bake(res, sourceKey, mesh, materials);
+  }
   return &slot;
+}
+
+std::optional<foliage::ImpostorImages> ImpostorCache::bakeAndRead(RenderResources& res, scene::AssetId asset,
+                                                                  uint64_t sourceKey, const GpuMesh& mesh,
+                                                                  const std::vector<DrawMaterial>& materials) {
+  if (mesh.bounds.empty || !(mesh.bounds.radius() > 0.0f) || !mesh.data) return std::nullopt;
+  ImpostorAtlas& slot = atlases_[asset];
+  slot = bake(res, sourceKey, mesh, materials);
+  foliage::ImpostorImages images;
+  images.frames = kImpostorFrames;
+  images.framePixels = kImpostorFramePixels;
+  images.sphere = slot.sphere;
+  images.sourceKey = sourceKey;
+  images.albedo.resize(images.imageBytes());
+  images.normalDepth.resize(images.imageBytes());
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+  // The sRGB albedo is read through an RGBA8 view of it: its bytes as
+  // stored (the upload writes them back as they are), where a read of the
+  // sRGB texture itself may decode them to linear.
+  GLuint view = 0;
+  glGenTextures(1, &view);
+  glTextureView(view, GL_TEXTURE_2D, slot.albedo.id(), GL_RGBA8, 0, 1, 0, 1);
+  glGetTextureImage(view, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(images.albedo.size()), images.albedo.data());
+  glDeleteTextures(1, &view);
+  glGetTextureImage(slot.normalDepth.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(images.normalDepth.size()),
+                    images.normalDepth.data());
+  return images;
 }
 
 void ImpostorCache::collect(const scene::SceneState& state) {

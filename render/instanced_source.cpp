@@ -11,6 +11,7 @@
 #include "render/gpu_mesh_cache.h"
 #include "render/impostor_atlas.h"
 #include "render/impostor_cache.h"
+#include "scene/impostor_key.h"
 #include "render/material_binding.h"
 #include "render/material_table.h"
 #include "render/mesh_lod.h"
@@ -240,7 +241,7 @@ void InstancedSource::addMaterials(FrameContext& frame, std::vector<DrawItem>& d
 
 void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
   if (!active_) return;
-  // Atlases for the types that may draw an impostor (baked on first need;
+  // Atlases for the types that may draw an impostor (stored, or baked on first need;
   // the frame's material block is bound by now).
   for (size_t t = 0; t < types_.size(); ++t) {
     TypeFrame& tf = types_[t];
@@ -249,7 +250,10 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
     std::vector<DrawMaterial> materials;
     for (size_t s = 0; s < level0.mesh->data->submeshes.size(); ++s)
       materials.push_back(materials_->forDraw(level0.materialDraw, s));
-    tf.impostor = frame.res.impostors.get(frame.res, set_.types[t].mesh, *level0.mesh, materials);
+    const scene::MeshAsset* asset = frame.world.state->findAsset(set_.types[t].mesh);
+    if (!asset) continue;
+    tf.impostor = frame.res.impostors.get(frame.res, *asset, scene::impostorSourceKey(*frame.world.state, *asset),
+                                          *level0.mesh, materials);
   }
   const size_t n = set_.instances.size(), types = types_.size(), groups = groups_.size();
   cameraViews_ = frame.views ? frame.views->size() : 0;

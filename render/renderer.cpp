@@ -28,6 +28,7 @@
 #include "render/foliage_sources.h"
 #include "render/particle_source.h"
 #include "render/render_resources.h"
+#include "scene/impostor_key.h"
 #include "scene/light_units.h"
 
 namespace hs::render {
@@ -592,6 +593,33 @@ void Renderer::collectGarbage(const scene::SceneState& state) {
   d_->res.impostors.collect(state);
   d_->res.materials.collect(state);
 }
+
+std::optional<foliage::ImpostorImages> Renderer::bakeImpostor(const scene::SceneState& state, scene::AssetId id,
+                                                              std::string& error) {
+  const scene::MeshAsset* asset = state.findAsset(id);
+  if (!asset) {
+    error = "mesh asset " + std::to_string(id) + " is not in the scene";
+    return std::nullopt;
+  }
+  RenderResources& res = d_->res;
+  const GpuMesh* mesh = res.meshes.get(*asset, 0);
+  if (!mesh || mesh->bounds.empty || !(mesh->bounds.radius() > 0.0f)) {
+    error = "mesh asset '" + asset->name + "' has no triangles to bake";
+    return std::nullopt;
+  }
+  // The frame's material table and block serve the bake (the next frame
+  // builds its own): one draw, the asset's level 0.
+  const std::vector<DrawItem> draws = {{0, mesh, asset}};
+  res.materials.build(state, draws, {draws.size(), draws.size()}, res.meshes, res.materialBlock);
+  std::vector<DrawMaterial> materials;
+  for (size_t s = 0; s < mesh->data->submeshes.size(); ++s) materials.push_back(res.materials.forDraw(0, s));
+  auto images = res.impostors.bakeAndRead(res, id, scene::impostorSourceKey(state, *asset), *mesh, materials);
+  if (!images) error = "mesh asset '" + asset->name + "' has no bounds to bake";
+  return images;
+}
+
+size_t Renderer::impostorsBaked() const { return d_->res.impostors.bakes(); }
+size_t Renderer::impostorsUploaded() const { return d_->res.impostors.uploads(); }
 
 TerrainUpload Renderer::syncTerrain(const scene::TerrainData& data, bool measureGpu) {
   gl::Query query;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "foliage/impostor_images.h"
 #include "render/overlay.h"
 #include "render/render_view.h"
 #include "render/terrain_lod.h"
@@ -272,6 +273,17 @@ class Renderer {
 
   // Frees GPU copies of assets that left the scene.
   void collectGarbage(const scene::SceneState& state);
+
+  // Bakes the octahedral impostor of mesh asset `asset` as a frame would
+  // (its level 0 with its document materials, render/impostor_cache.h) and
+  // reads it back for the scene to store (scene/impostor_ops.h); the atlas
+  // stays on the GPU for the next frames. Nullopt with `error` for an asset
+  // that is not there or has no drawable mesh. Call between frames.
+  std::optional<foliage::ImpostorImages> bakeImpostor(const scene::SceneState& state, scene::AssetId asset,
+                                                      std::string& error);
+  // Impostor atlases baked here and uploaded from stored images so far.
+  size_t impostorsBaked() const;
+  size_t impostorsUploaded() const;
 
   // Terrains (terrain_pass.h). Uploads what changed in `data` since the GPU
   // copy was last synced, without drawing (render() does this itself; the

@@ -11,7 +11,9 @@
 // the outline, colour, depth under a pixel and picking agree within the
 // stated tolerances; the
 // GPU and CPU culling paths draw the same impostor image; no atlas is
-// baked where no instance can reach the impostor level.
+// baked where no instance can reach the impostor level; an atlas read back
+// and stored in the scene draws what the frame's own bake draws, without a
+// bake, until a material edit makes it stale.
 #include <QElapsedTimer>
 #include <QtTest>
 
@@ -25,6 +27,7 @@
 #include "render/instanced_source.h"
 #include "render/offscreen_renderer.h"
 #include "scene/foliage_ops.h"
+#include "scene/impostor_key.h"
 #include "scene/scene_state.h"
 #include "plant_asset.h"
 #include "scene_parts.h"
@@ -361,6 +364,68 @@ class TestImpostors : public QObject {
     float worst = 0.0f;
     for (size_t i = 0; i < a.rgbaF.size(); ++i) worst = std::max(worst, std::abs(a.rgbaF[i] - b.rgbaF[i]));
     QVERIFY2(worst <= 1e-4f, qPrintable(QString::number(worst)));
+  }
+
+  // A bake read back and stored in the scene (Renderer::bakeImpostor, as
+  // `foliage impostors` does) draws, on a renderer that never baked, the
+  // same image as a frame's own bake, uploaded instead of baked; after a
+  // material edit the stored images are stale and that renderer bakes.
+  void storedImpostorDrawsWhatTheBakeDraws() {
+    scene::SceneState s = treeScene();
+    s.settings.meshLodErrorPixels = 1e6;  // every tree an impostor
+    auto source = [] {
+      auto src = std::make_shared<render::InstancedSource>("trees", render::InstancedSource::Culling::Gpu);
+      src->setInstances(fiveTrees());
+      return src;
+    };
+    auto draw = [&](render::OffscreenRenderer& r, const scene::SceneState& state) {
+      r.renderer().setDrawSources({source()});
+      Image img = r.render(state, camera(), true);
+      r.renderer().setDrawSources({});
+      return img;
+    };
+    std::string error;
+    render::OffscreenRenderer baking, storing;
+    QVERIFY2(baking.initialize(error) && storing.initialize(error), error.c_str());
+    const Image baked = draw(baking, s);  // the frame bakes its own
+    QCOMPARE(baking.renderer().impostorsBaked(), size_t(1));
+    QCOMPARE(baking.renderer().impostorsUploaded(), size_t(0));
+
+    QVERIFY(r_.makeCurrent());
+    QElapsedTimer clock;
+    clock.start();
+    std::optional<foliage::ImpostorImages> images = r_.renderer().bakeImpostor(s, kTree, error);
+    QVERIFY2(images, error.c_str());
+    qInfo("bake and read back: %lld ms; blob %zu KiB for %zu KiB of images", clock.elapsed(),
+          foliage::encodeImpostor(*images).size() / 1024, 2 * images->imageBytes() / 1024);
+    QCOMPARE(images->sourceKey, scene::impostorSourceKey(s, s.assets.at(kTree)));
+    QCOMPARE(images->frames, render::kImpostorFrames);
+    size_t covered = 0;
+    for (size_t i = 3; i < images->albedo.size(); i += 4) covered += images->albedo[i] > 0;
+    QVERIFY2(covered > images->imageBytes() / 4 / 20, qPrintable(QString::number(covered)));  // the crowns are there (measured: 9 %)
+    QVERIFY(!r_.renderer().bakeImpostor(s, 999, error));
+    QVERIFY(error.find("999") != std::string::npos);
+
+    scene::MeshAsset& tree = s.assets.at(kTree);
+    tree.impostor = std::make_shared<const foliage::ImpostorImages>(std::move(*images));
+    tree.impostorHash = tree.impostor->contentHash();
+    QCOMPARE(scene::impostorStatus(s, tree), scene::ImpostorStatus::Stored);
+    clock.restart();
+    const Image stored = draw(storing, s);
+    qInfo("first frame with the stored impostor: %lld ms", clock.elapsed());
+    QCOMPARE(storing.renderer().impostorsBaked(), size_t(0));
+    QCOMPARE(storing.renderer().impostorsUploaded(), size_t(1));
+    float worst = 0.0f;
+    for (size_t i = 0; i < baked.rgbaF.size(); ++i) worst = std::max(worst, std::abs(baked.rgbaF[i] - stored.rgbaF[i]));
+    QVERIFY2(worst <= 1e-4f, qPrintable(QString::number(worst)));
+
+    // The leaves' colour changed: the key moves, the stored images are
+    // stale and are not drawn; the renderer bakes the new look.
+    for (scene::MaterialId m : tree.materialSlots) s.materials.at(m).baseColor *= 0.5f;
+    QCOMPARE(scene::impostorStatus(s, tree), scene::ImpostorStatus::Stale);
+    draw(storing, s);
+    QCOMPARE(storing.renderer().impostorsBaked(), size_t(1));
+    QCOMPARE(storing.renderer().impostorsUploaded(), size_t(1));
   }
 };
 
