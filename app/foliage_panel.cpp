@@ -37,8 +37,11 @@
 #include "foliage/foliage_operations.h"
 #include "foliage/instance.h"
 #include "render/instance_format.h"
+#include "render/offscreen_renderer.h"
+#include "render/renderer.h"
 #include "scene/foliage_data.h"
 #include "scene/foliage_ops.h"
+#include "scene/impostor_ops.h"
 #include "scene/terrain_asset.h"
 
 namespace hs::app {
@@ -275,6 +278,7 @@ void FoliagePanel::populateMenu(QMenu* menu) {
   menu->addAction("&Scatter…", this, [this] { requestScatter(); });
   menu->addAction("Fill Paint &Layer…", this, [this] { requestFillLayer(); });
   menu->addAction("&Clear Type", this, [this] { requestClear(); });
+  menu->addAction("Bake &Impostors", this, [this] { bakeImpostors(false); });
   menu->addSeparator();
   auto* group = new QActionGroup(this);
   for (FoliageToolKind k : kKinds) {
@@ -511,6 +515,39 @@ bool FoliagePanel::scatter(const foliage::TypeSet& types, const Json& values) {
   job.waitForFinished();
   const scene::ops::FoliageOutcome out = scene::ops::commitFoliageWork(doc_, *copy, std::move(*work));
   return report(out.ok, out.error, out.messages, out.summary, "Scatter");
+}
+
+bool FoliagePanel::bakeImpostors(bool all) {
+  const QString title = "Bake Impostors";
+  const std::vector<scene::AssetId> ids = scene::ops::impostorsToBake(doc_.state(), all);
+  if (ids.empty())
+    return report(true, {}, {}, "every impostor a foliage type draws is stored and current; nothing baked", title);
+  // On a worker with a GL context of its own (the viewport's stays with the
+  // UI thread), from a copy of the state: assets and materials are shared
+  // immutable values. storeImpostors refuses what changed meanwhile.
+  const scene::SceneState state = doc_.state();
+  auto baked = std::make_shared<std::vector<scene::ops::BakedImpostor>>();
+  auto error = std::make_shared<std::string>();
+  BackgroundJob job(&window_, title, "Baking impostors…", true, 0);
+  job.start([state, ids, baked, error](const Progress& p) {
+    render::OffscreenRenderer renderer;
+    if (!renderer.initialize(*error)) {
+      *error = "cannot start headless OpenGL: " + *error;
+      return;
+    }
+    for (size_t i = 0; i < ids.size() && !p.cancelled(); ++i) {
+      p.report(double(i) / double(ids.size()), state.findAsset(ids[i])->name);
+      auto images = renderer.renderer().bakeImpostor(state, ids[i], *error);
+      if (!images) return;
+      baked->emplace_back(ids[i], std::make_shared<const foliage::ImpostorImages>(std::move(*images)));
+    }
+  });
+  job.waitForFinished();
+  if (job.cancelRequested()) return report(true, {}, {}, "cancelled; nothing stored", title);
+  if (!error->empty() && baked->size() < ids.size()) return report(false, *error, {}, {}, title);
+  const scene::ops::StoredImpostors stored = scene::ops::storeImpostors(doc_, *baked);
+  return report(stored.stored > 0 || stored.skipped.empty(), stored.skipped.empty() ? "" : stored.skipped.front(),
+                stored.skipped, std::to_string(stored.stored) + " impostor(s) baked and stored in the scene", title);
 }
 
 bool FoliagePanel::fillLayer(const foliage::TypeSet& types, const Json& values) {

@@ -77,6 +77,11 @@ class FoliagePanel : public QWidget {
   bool fillLayer(const foliage::TypeSet& types, const Json& values);
   // Removes every instance of the type.
   bool clear(int index);
+  // Bakes the impostors foliage types draw that the scene does not store
+  // current (every one with `all`) on a worker with its own headless GL,
+  // under a progress dialog with Cancel, and stores them as one step
+  // (`foliage impostors`'s operation, scene/impostor_ops.h).
+  bool bakeImpostors(bool all);
 
   // --- with their dialogs ---------------------------------------------------
   void requestGeneratePlant();

@@ -171,6 +171,7 @@ const Subcommand kSubs[] = {
     {"scatter", foliage::foliageScatterOperation, runScatter},
     {"fill", foliage::foliageFillOperation, runFill},
     {"clear", foliage::foliageClearOperation, runClear},
+    {"impostors", foliage::foliageImpostorsOperation, runFoliageImpostors},
 };
 
 }  // namespace
@@ -178,7 +179,7 @@ const Subcommand kSubs[] = {
 int runFoliage(int argc, char** argv) {
   return runSubcommands("foliage",
                         "Foliage of a scene: generated plants, foliage types drawing mesh assets, the\n"
-                        "rule-based scatter and clearing, through the same operations as the editor's\n"
+                        "rule-based scatter and clearing, baked impostors, through the same operations as the editor's\n"
                         "Foliage panel. The scene file is saved after each command (only the foliage\n"
                         "cells that changed are written).\n",
                         kSubs, argc, argv);

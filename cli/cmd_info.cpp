@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 
 #include "cli/commands.h"
@@ -10,6 +11,8 @@
 #include "core/json.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
+#include "scene/impostor_key.h"
+#include "scene/impostor_ops.h"
 #include "scene/mesh_report_text.h"
 #include "scene/object_tracks.h"
 #include "scene/particle_world.h"
@@ -42,6 +45,21 @@ Json lodsJson(const scene::MeshAsset& a) {
     out.push_back(std::move(l));
   }
   return out;
+}
+
+// The stored impostor's state ("stored", "stale"), "none" for a mesh a
+// foliage type draws with an impostor level that the scene does not store
+// (`drawnWithImpostor`: scene::ops::impostorsToBake(state, true)), null
+// when the asset has nothing to do with impostors.
+const char* impostorWord(const scene::SceneState& s, const scene::MeshAsset& a,
+                         const std::vector<scene::AssetId>& drawnWithImpostor) {
+  switch (scene::impostorStatus(s, a)) {
+    case scene::ImpostorStatus::Stored: return "stored";
+    case scene::ImpostorStatus::Stale: return "stale";
+    case scene::ImpostorStatus::None: break;
+  }
+  return std::find(drawnWithImpostor.begin(), drawnWithImpostor.end(), a.id) != drawnWithImpostor.end() ? "none"
+                                                                                                        : nullptr;
 }
 
 void printLods(const scene::MeshAsset& a) {
@@ -180,6 +198,7 @@ Json infoJson(const std::string& path, const scene::SceneState& s, double time) 
   }
   o["entities"] = std::move(entities);
   Json assets = Json::array();
+  const std::vector<scene::AssetId> needImpostor = scene::ops::impostorsToBake(s, true);
   for (const auto& [id, a] : s.assets) {
     Json ja = Json::object();
     ja["id"] = id;
@@ -195,6 +214,7 @@ Json infoJson(const std::string& path, const scene::SceneState& s, double time) 
       ja["origin"] = arr(a.data->origin);
       ja["lods"] = lodsJson(a);
     }
+    if (const char* im = impostorWord(s, a, needImpostor)) ja["impostor"] = im;
     if (!a.processReport.is_null()) ja["process_report"] = a.processReport;
     assets.push_back(std::move(ja));
   }
@@ -301,6 +321,7 @@ int runInfo(int argc, char** argv) {
     std::printf("extent: %.3f x %.3f x %.3f m\n", size.x, size.y, size.z);
   }
   if (!s->assets.empty()) std::printf("mesh assets:\n");
+  const std::vector<scene::AssetId> needImpostor = scene::ops::impostorsToBake(*s, true);
   for (const auto& [id, a] : s->assets) {
     if (!a.data) continue;
     const mesh::Bounds b = a.data->bounds();
@@ -310,6 +331,9 @@ int runInfo(int argc, char** argv) {
                 a.data->textures.size(), double(sz.x), double(sz.y), double(sz.z), a.data->origin.x, a.data->origin.y,
                 a.data->origin.z, a.sourcePath.c_str());
     printLods(a);
+    if (const char* im = impostorWord(*s, a, needImpostor))
+      std::printf("    impostor: %s%s\n", scene::impostorStatusText(scene::impostorStatus(*s, a)).c_str(),
+                  std::string(im) == "stored" ? "" : " (`hybridscape-cli foliage impostors` bakes and stores it)");
     if (const std::string summary = scene::processReportSummary(a.processReport); !summary.empty())
       std::printf("    processed: %s\n", summary.c_str());
   }

@@ -25,6 +25,7 @@ int runSet(int argc, char** argv);
 int runMaterial(int argc, char** argv);
 int runTerrain(int argc, char** argv);
 int runFoliage(int argc, char** argv);
+int runFoliageImpostors(int argc, char** argv);  // `foliage impostors` (cmd_foliage_impostors.cpp)
 int runParticles(int argc, char** argv);
 int runMesh(int argc, char** argv);
 int runLight(int argc, char** argv);

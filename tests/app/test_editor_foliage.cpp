@@ -41,6 +41,8 @@
 #include "foliage/surface.h"
 #include "scene/foliage_data.h"
 #include "scene/foliage_ground.h"
+#include "scene/impostor_key.h"
+#include "scene/impostor_ops.h"
 #include "scene/terrain_ops.h"
 #include "scene/terrain_pick.h"
 
@@ -575,6 +577,25 @@ class EditorFoliageTest : public QObject {
     QVERIFY(!d.findChild<QLabel*>("foliageTypeError")->isHidden());
   }
 
+  // Bake Impostors: the types' meshes baked on a worker and stored as one
+  // step; a second bake finds nothing to do; undo takes them out.
+  void bakeImpostorsStoresThemAsOneStep() {
+    const std::vector<scene::AssetId> ids = scene::ops::impostorsToBake(doc().state(), false);
+    QVERIFY(!ids.empty());
+    const int step0 = steps();
+    QVERIFY(panel_->bakeImpostors(false));
+    QCOMPARE(steps(), step0 + 1);
+    for (scene::AssetId id : ids)
+      QCOMPARE(scene::impostorStatus(doc().state(), *doc().state().findAsset(id)), scene::ImpostorStatus::Stored);
+    QVERIFY2(w_->messages()->lastText().contains(QString("%1 impostor(s) baked").arg(ids.size())),
+             qPrintable(w_->messages()->lastText()));
+    QVERIFY(panel_->bakeImpostors(false));
+    QCOMPARE(steps(), step0 + 1);
+    QVERIFY(w_->messages()->lastText().contains("nothing baked"));
+    doc().undoStack()->undo();
+    QCOMPARE(scene::impostorStatus(doc().state(), *doc().state().findAsset(ids.front())), scene::ImpostorStatus::None);
+  }
+
   void foliageMenuOffersEveryCommand() {
     QMenu* menu = nullptr;
     for (QAction* a : w_->menuBar()->actions())
@@ -583,7 +604,7 @@ class EditorFoliageTest : public QObject {
     QStringList texts;
     for (QAction* a : menu->actions()) texts << a->text().remove('&');
     for (const char* t : {"Generate Plant…", "New Foliage Type…", "Edit Foliage Type…", "Scatter…", "Fill Paint Layer…", "Clear Type",
-                          "Paint Brush", "Erase Brush", "Select Brush", "Foliage Tool Off", "Lasso Select", "Fill Area",
+                          "Bake Impostors", "Paint Brush", "Erase Brush", "Select Brush", "Foliage Tool Off", "Lasso Select", "Fill Area",
                           "Move Selected Instances", "Delete Selected Instances",
                           "Reapply to Selected Instances"})
       QVERIFY2(texts.contains(t), t);

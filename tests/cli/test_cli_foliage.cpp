@@ -1,7 +1,8 @@
 // `hybridscape-cli foliage ...` as a user runs it (the built program through
 // QProcess): a plant generated as an asset with LODs, a type added, a
 // scatter, a fill of a paint layer, `info --json` counting the instances
-// per type, a clear of a region, and every refusal one line on stderr naming the problem, the
+// per type, a clear of a region, impostors baked and stored (then stale
+// after a material edit), and every refusal one line on stderr naming the problem, the
 // scene left as it was.
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -62,6 +63,39 @@ class TestCliFoliage : public QObject {
     QVERIFY(left > 0 && left < placed);
     ok({"foliage", "clear", "Stones", f});
     QCOMPARE(foliage(f)["instances"].toInt(), 0);
+  }
+
+  // `foliage impostors`: the far level of each type's mesh baked and stored
+  // (`info` says "none", then "stored"); a second run bakes nothing; a
+  // recoloured material makes it stale and --all or a plain run bakes again.
+  void impostorsBakedAndStored() {
+    const QString f = test::newSceneWithCli(path("impostors.hscene"), tmp_.path());
+    ok({"foliage", "plant", "Stone", "--kind", "rock", "--seed", "4", f});
+    ok({"foliage", "type", "add", "Stones", "--mesh", "Stone", f});
+    auto impostorOf = [&](const QString& asset) {
+      const Run r = cli({"info", f, "--json"});
+      for (const QJsonValue a : QJsonDocument::fromJson(r.out.toUtf8()).object()["assets"].toArray())
+        if (a.toObject()["name"].toString() == asset) return a.toObject()["impostor"].toString();
+      return QString("no such asset");
+    };
+    QCOMPARE(impostorOf("Stone"), QString("none"));
+    Run bake;
+    ok({"foliage", "impostors", f}, &bake);
+    QVERIFY2(bake.out.contains("impostor of \"Stone\": 12 x 12 frames of 64 px") &&
+                 bake.out.contains("1 impostor(s) stored"),
+             qPrintable(bake.out));
+    QCOMPARE(impostorOf("Stone"), QString("stored"));
+    Run text;
+    ok({"info", f}, &text);
+    QVERIFY2(text.out.contains("impostor: stored"), qPrintable(text.out));
+    Run again;
+    ok({"foliage", "impostors", f}, &again);
+    QVERIFY2(again.out.contains("nothing baked"), qPrintable(again.out));
+    ok({"material", "set", "Stone / rock", "base_color", "0.2,0.2,0.2", f});
+    QCOMPARE(impostorOf("Stone"), QString("stale"));
+    ok({"foliage", "impostors", f, "--all"}, &bake);
+    QVERIFY2(bake.out.contains("1 impostor(s) stored"), qPrintable(bake.out));
+    QCOMPARE(impostorOf("Stone"), QString("stored"));
   }
 
   // `foliage fill`: a type painted where a terrain paint layer weighs
