@@ -86,6 +86,18 @@ void FoliageTool::setBrush(const FoliageBrush& b) {
   emit settingsChanged();
 }
 
+void FoliageTool::scaleRadius(double factor) {
+  FoliageBrush b = brush_;
+  b.radius *= factor;
+  setBrush(b);
+}
+
+void FoliageTool::scaleDensity(double factor) {
+  FoliageBrush b = brush_;
+  b.densityFactor = std::max(b.densityFactor, 0.05) * factor;  // from 0 too
+  setBrush(b);
+}
+
 std::optional<FoliageTool::GroundHit> FoliageTool::pick(const glm::dvec3& origin, const glm::dvec3& direction) {
   const glm::dvec3 dir = glm::normalize(direction);
   std::optional<GroundHit> best;

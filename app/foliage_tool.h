@@ -56,6 +56,10 @@ class FoliageTool : public QObject {
   bool active() const { return kind_ != FoliageToolKind::Off; }
   const FoliageBrush& brush() const { return brush_; }
   void setBrush(const FoliageBrush& b);
+  // The brush shortcuts ([ and ], with Shift: the density factor; they act
+  // on whichever brush is active, terrain_panel.cpp).
+  void scaleRadius(double factor);
+  void scaleDensity(double factor);
   // The types the brush works on (indices into the store's types). Paint
   // needs one at least; Erase and Select with none act on every type.
   void setTypes(foliage::TypeSet types) { types_ = std::move(types); }

@@ -25,6 +25,8 @@
 #include <QVBoxLayout>
 
 #include "app/background_job.h"
+#include "app/foliage_panel.h"
+#include "app/foliage_tool.h"
 #include "app/field_editors.h"
 #include "app/form_widgets.h"
 #include "app/main_window.h"
@@ -274,13 +276,29 @@ void TerrainPanel::populateMenu(QMenu* menu) {
     a->setShortcuts(keys);
     window_.addAction(a);  // active wherever the focus is in the window
   };
-  shortcut("Brush Radius Smaller", {QKeySequence(Qt::Key_BracketLeft)}, [this] { tool_->scaleRadius(1.0 / 1.25); });
-  shortcut("Brush Radius Larger", {QKeySequence(Qt::Key_BracketRight)}, [this] { tool_->scaleRadius(1.25); });
+  // One set of keys for whichever brush is active (one at a time): the
+  // foliage brush when its tool is on (its density factor for strength),
+  // else the terrain's. Two window-wide actions on the same keys would
+  // cancel each other out.
+  auto foliage = [this]() -> FoliageTool* {
+    FoliageTool* f = window_.foliagePanel() ? window_.foliagePanel()->tool() : nullptr;
+    return f && f->active() ? f : nullptr;
+  };
+  auto radius = [this, foliage](double k) {
+    if (FoliageTool* f = foliage()) f->scaleRadius(k);
+    else tool_->scaleRadius(k);
+  };
+  auto strength = [this, foliage](double k) {
+    if (FoliageTool* f = foliage()) f->scaleDensity(k);
+    else tool_->scaleStrength(k);
+  };
+  shortcut("Brush Radius Smaller", {QKeySequence(Qt::Key_BracketLeft)}, [radius] { radius(1.0 / 1.25); });
+  shortcut("Brush Radius Larger", {QKeySequence(Qt::Key_BracketRight)}, [radius] { radius(1.25); });
   // Shift+[ is '{' on most layouts: both are listed.
   shortcut("Brush Strength Lower", {QKeySequence(Qt::SHIFT | Qt::Key_BracketLeft), QKeySequence(Qt::Key_BraceLeft)},
-           [this] { tool_->scaleStrength(1.0 / 1.25); });
+           [strength] { strength(1.0 / 1.25); });
   shortcut("Brush Strength Higher", {QKeySequence(Qt::SHIFT | Qt::Key_BracketRight), QKeySequence(Qt::Key_BraceRight)},
-           [this] { tool_->scaleStrength(1.25); });
+           [strength] { strength(1.25); });
 }
 
 void TerrainPanel::refreshBrush() {

@@ -333,7 +333,7 @@ int runInfo(int argc, char** argv) {
     printLods(a);
     if (const char* im = impostorWord(*s, a, needImpostor))
       std::printf("    impostor: %s%s\n", scene::impostorStatusText(scene::impostorStatus(*s, a)).c_str(),
-                  std::string(im) == "stored" ? "" : " (`hybridscape-cli foliage impostors` bakes and stores it)");
+                  std::string(im) == "stored" ? "" : "; `hybridscape-cli foliage impostors` bakes and stores it");
     if (const std::string summary = scene::processReportSummary(a.processReport); !summary.empty())
       std::printf("    processed: %s\n", summary.c_str());
   }

@@ -342,6 +342,11 @@ std::optional<Instance> FoliageStore::find(uint32_t id) const {
 
 void FoliageStore::touch(const CellKey& k) { revision_[k] = ++clock_; }
 
+uint64_t FoliageStore::cellRevision(const CellKey& k) const {
+  const auto it = revision_.find(k);
+  return it == revision_.end() ? 0 : it->second;
+}
+
 void FoliageStore::setCell(const CellKey& k, std::optional<Cell> c) {
   const bool had = cells_.count(k) != 0;
   if (c) {

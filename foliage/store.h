@@ -127,6 +127,11 @@ class FoliageStore {
   std::vector<CellKey> cellsIn(const glm::dvec2& lo, const glm::dvec2& hi) const;
   // Every instance decoded (type and surface filled in), in cell key order.
   std::vector<Instance> allInstances() const;
+  // A number that changes with every change of cell `k` (an edit, an undo,
+  // its removal) and never goes back to an earlier value, so a renderer
+  // that kept the number with its copy of the cell knows whether the copy
+  // is current. 0 for a cell never changed since the store was made.
+  uint64_t cellRevision(const CellKey& k) const;
   std::optional<Instance> find(uint32_t id) const;
 
   // --- edits (the tools' building blocks) ------------------------------------

@@ -13,20 +13,62 @@
 // layer high) becomes several sets, one source each; and a source culls at
 // most kMaxInstancesPerSource (about 4.2M) instances, so a store with more
 // becomes several sets too (whole cells each).
+//
+// Paged sets (what the renderer keeps, foliage_sources.h): each cell gets
+// a slot of room, its instances then spare ones (kSpareInstance: a type no
+// set has, which culling skips and nothing draws), so an edit rewrites the
+// slots of the cells it touched in place and the frame uploads those
+// ranges, not the set.
+#include <unordered_map>
 #include <vector>
 
+#include "foliage/instance.h"
 #include "render/instanced_source.h"
 #include "scene/scene_state.h"
 
 namespace hs::render {
 
 constexpr size_t kMaxCellsPerSet = 65536;
+// An unused place in a cell's slot: type 0xFFFF (the store allows 65,535
+// types, 0 .. 65,534), so the culling passes skip it.
+inline const GpuInstance kSpareInstance = [] {
+  GpuInstance g;
+  g.typeAndCell = 0xFFFFu;
+  return g;
+}();
 
-// The sets the state's foliage draws as (empty: none). Cells in key order,
-// so the result is the same for the same store.
+// Per foliage type of the state, how it is drawn (empty: no foliage).
+std::vector<InstanceType> foliageInstanceTypes(const scene::SceneState& state);
+
+// The sets the state's foliage draws as (empty: none), tight (no spare
+// places). Cells in key order, so the result is the same for the same store.
 // `maxInstances`: the instances a set holds at most (tests make it small);
 // a cell with more than that alone is a set of its own.
 std::vector<InstanceSet> foliageInstanceSets(const scene::SceneState& state,
                                              size_t maxInstances = kMaxInstancesPerSource);
+
+// Where a cell's instances sit in a paged set: places [first, first +
+// room) of set `set`'s instances, the first `count` live, the rest spare;
+// `cell` its index in the set's cells; `revision` the store's
+// cellRevision it was packed from.
+struct CellSlot {
+  size_t set = 0;
+  uint16_t cell = 0;
+  size_t first = 0, count = 0, room = 0;
+  uint64_t revision = 0;
+};
+using CellSlots = std::unordered_map<foliage::CellKey, CellSlot, foliage::CellKeyHash>;
+// The room a cell of `count` instances gets: a quarter more and 16, so
+// most brush dabs fit without a rebuild.
+size_t cellRoom(size_t count);
+// The paged sets of the state's foliage, and every cell's slot in them.
+std::vector<InstanceSet> foliagePagedSets(const scene::SceneState& state, CellSlots& slots,
+                                          size_t maxInstances = kMaxInstancesPerSource);
+// Cell `key` as the store has it now, packed for its slot into `out`
+// (slot.room places: its instances, then spare ones; none left: it was
+// removed), the slot's count and revision updated. False, changing
+// nothing, when they no longer fit its room.
+bool repackCell(const foliage::FoliageStore& store, const foliage::CellKey& key, CellSlot& slot,
+                std::vector<GpuInstance>& out);
 
 }  // namespace hs::render

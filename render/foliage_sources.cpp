@@ -1,29 +1,65 @@
 #include "render/foliage_sources.h"
 
-#include "render/foliage_instances.h"
+#include <algorithm>
 
 namespace hs::render {
 
 const std::vector<std::shared_ptr<InstancedSource>>& FoliageSources::update(const scene::SceneState& state) {
+  lastRepacked_ = 0;
+  lastRebuilt_ = false;
   const scene::FoliageData* data = state.foliage.get();
-  std::vector<scene::AssetId> meshes;
-  if (data)
-    for (const foliage::FoliageType& t : data->store().types()) meshes.push_back(scene::foliageTypeAsset(state, t));
-  if (data == data_ && (!data || data->revision() == revision_) && meshes == meshes_) return sources_;
-  data_ = data;
+  // Types as the sets would have them now (a mesh asset found by name may
+  // have been renamed, added or removed without the store changing).
+  const std::vector<InstanceType> types = foliageInstanceTypes(state);
+  const bool sameSets = data_.lock().get() == data && types == types_;
+  if (sameSets && (!data || data->revision() == revision_)) return sources_;
+  data_ = state.foliage;
   revision_ = data ? data->revision() : 0;
-  meshes_ = std::move(meshes);
-  std::vector<InstanceSet> sets = foliageInstanceSets(state);
+  if (sameSets && data && !sources_.empty() && repack(data->store())) return sources_;
+  types_ = types;
+  rebuild(state);
+  return sources_;
+}
+
+bool FoliageSources::repack(const foliage::FoliageStore& store) {
+  // A cell the sets do not have needs a slot: rebuild.
+  for (const auto& [k, c] : store.cells())
+    if (!slots_.count(k)) return false;
+  struct Change {
+    foliage::CellKey key;
+    CellSlot* slot;
+  };
+  std::vector<Change> changed;
+  for (auto& [k, slot] : slots_)
+    if (store.cellRevision(k) != slot.revision) {
+      const foliage::Cell* c = store.cell(k);
+      size_t count = 0;
+      if (c)
+        for (const foliage::Run& r : c->runs) count += r.items.size();
+      if (count > slot.room) return false;  // grown past its room: rebuild
+      changed.push_back({k, &slot});
+    }
+  std::vector<GpuInstance> packed;
+  for (const Change& ch : changed) {
+    repackCell(store, ch.key, *ch.slot, packed);
+    sources_[ch.slot->set]->updateInstances(ch.slot->first, packed.data(), packed.size());
+  }
+  lastRepacked_ = changed.size();
+  return true;
+}
+
+void FoliageSources::rebuild(const scene::SceneState& state) {
+  lastRebuilt_ = true;
+  std::vector<InstanceSet> sets = foliagePagedSets(state, slots_);
   sources_.resize(sets.size());
   for (size_t i = 0; i < sets.size(); ++i) {
-    // A source keeps its pool buffer's name across updates, so an edit
-    // re-uploads into the same buffer instead of allocating another.
+    // A source keeps its pool buffer's name across updates, so a rebuild
+    // uploads into the same buffer instead of allocating another.
     if (!sources_[i])
       sources_[i] = std::make_shared<InstancedSource>("foliage" + (i ? std::to_string(i) : std::string()),
                                                       InstancedSource::Culling::Gpu);
     sources_[i]->setInstances(std::move(sets[i]));
   }
-  return sources_;
 }
 
 }  // namespace hs::render

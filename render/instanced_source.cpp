@@ -158,6 +158,22 @@ void InstancedSource::setInstances(InstanceSet set) {
     if (type < minScale_.size()) minScale_[type] = std::min(minScale_[type], float(maxAbsScale(instanceScale(g))));
   }
   ++revision_;
+  pending_.clear();
+}
+
+void InstancedSource::updateInstances(size_t first, const GpuInstance* items, size_t n) {
+  if (n == 0 || first + n > set_.instances.size()) return;
+  std::copy(items, items + n, set_.instances.begin() + std::ptrdiff_t(first));
+  // The bounds only widen: an instance that left may have been the
+  // smallest (a smaller minimum scale only lets the impostor start later).
+  for (size_t i = 0; i < n; ++i) {
+    const GpuInstance& g = items[i];
+    const size_t type = g.typeAndCell & 0xFFFFu;
+    if (type >= minScale_.size()) continue;  // a spare slot (kSpareInstance)
+    maxId_ = std::max(maxId_, g.id);
+    minScale_[type] = std::min(minScale_[type], float(maxAbsScale(instanceScale(g))));
+  }
+  pending_.emplace_back(first, n);
 }
 
 bool InstancedSource::wanted(const Part& part, SurfaceSet surfaces) const {
@@ -379,7 +395,17 @@ void InstancedSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
         if (r.fresh(d.instances) || uploaded_ != revision_) {
           upload(r.buffer(d.instances), set_.instances);
           uploaded_ = revision_;
+          *lastUploadBytes_ = set_.instances.size() * sizeof(GpuInstance);
+        } else {
+          size_t bytes = 0;
+          for (const auto& [first, count] : pending_) {
+            glNamedBufferSubData(r.buffer(d.instances), GLintptr(first * sizeof(GpuInstance)),
+                                 GLsizeiptr(count * sizeof(GpuInstance)), set_.instances.data() + first);
+            bytes += count * sizeof(GpuInstance);
+          }
+          *lastUploadBytes_ = bytes;
         }
+        pending_.clear();
         upload(r.buffer(d.cells), cells);
         if (d.visible.valid()) upload(r.buffer(d.visible), cpuVisible);
         if (d.groupBase.valid()) upload(r.buffer(d.groupBase), cpuGroupBase);

@@ -129,6 +129,7 @@ struct InstanceType {
   // Beyond the last mesh level, an octahedral impostor (the foliage's
   // types: FoliageType::impostor); false: the mesh levels only, however far.
   bool impostor = false;
+  bool operator==(const InstanceType&) const = default;
 };
 
 // The most instances one source culls on the GPU: its compute passes run
@@ -153,6 +154,13 @@ class InstancedSource final : public DrawSource {
 
   // Replaces the instances (uploaded by the next frame that draws them).
   void setInstances(InstanceSet set);
+  // Replaces instances [first, first + n) in place (an edit of a few cells,
+  // foliage_sources.h): the next frame uploads those ranges into the buffer
+  // it keeps instead of the whole set. The types and cells stay.
+  void updateInstances(size_t first, const GpuInstance* items, size_t n);
+  // Bytes of instances the last frame that drew this source uploaded (the
+  // whole set after setInstances or a new buffer, else the updated ranges).
+  size_t lastUploadBytes() const { return *lastUploadBytes_; }
   const InstanceSet& instances() const { return set_; }
   Culling culling() const { return culling_; }
   // Visible instances summed over the camera views of a frame that has been
@@ -234,6 +242,9 @@ class InstancedSource final : public DrawSource {
   Culling culling_;
   InstanceSet set_;
   uint64_t revision_ = 1, uploaded_ = 0;
+  // Ranges (first, count) updateInstances changed since the last upload.
+  std::vector<std::pair<size_t, size_t>> pending_;
+  std::shared_ptr<size_t> lastUploadBytes_ = std::make_shared<size_t>(0);
   uint32_t maxId_ = 0;
   // This frame's types, groups and parts, the MaterialTable, the LOD eye
   // relative to the frame origin, and the frame's resources.

@@ -596,6 +596,36 @@ class EditorFoliageTest : public QObject {
     QCOMPARE(scene::impostorStatus(doc().state(), *doc().state().findAsset(ids.front())), scene::ImpostorStatus::None);
   }
 
+  // [ and ] (and with Shift) scale the active brush: the foliage one while
+  // a foliage tool is on (its density factor for strength), the terrain's
+  // otherwise, never both.
+  void brushShortcutsScaleTheActiveBrush() {
+    auto trigger = [&](const char* text) {
+      for (QAction* a : w_->actions())
+        if (a->text().remove('&') == text) {
+          a->trigger();
+          return true;
+        }
+      return false;
+    };
+    chooseTool("Paint");
+    const double radius = panel_->tool()->brush().radius, density = panel_->tool()->brush().densityFactor;
+    const double terrainRadius = w_->terrainPanel()->tool()->settings().radius;
+    QVERIFY(trigger("Brush Radius Larger"));
+    QVERIFY(trigger("Brush Strength Lower"));
+    QCOMPARE(panel_->tool()->brush().radius, radius * 1.25);
+    QCOMPARE(panel_->tool()->brush().densityFactor, density / 1.25);
+    QCOMPARE(w_->terrainPanel()->tool()->settings().radius, terrainRadius);
+    auto* spin = panel_->findChild<QDoubleSpinBox*>("foliageRadius");
+    QVERIFY(spin);
+    QVERIFY(std::abs(spin->value() - radius * 1.25) < 0.01);  // the panel shows it
+    chooseTool("Off");
+    QVERIFY(trigger("Brush Radius Smaller"));
+    QCOMPARE(panel_->tool()->brush().radius, radius * 1.25);
+    QCOMPARE(w_->terrainPanel()->tool()->settings().radius, terrainRadius / 1.25);
+    QVERIFY(trigger("Brush Radius Larger"));  // the terrain's back as it was
+  }
+
   void foliageMenuOffersEveryCommand() {
     QMenu* menu = nullptr;
     for (QAction* a : w_->menuBar()->actions())

@@ -3,7 +3,9 @@
 // scale, type and id, at UTM coordinates), a scattered store renders as
 // the same rocks placed as ordinary mesh entities at the decoded places (an
 // independent path: the mesh source), an erase shows on the next frame of
-// the same renderer (the sources follow the store's revision) and a store
+// the same renderer (the sources follow the store's revision), an edit
+// uploads only the slots of the cells it touched and draws what sources
+// built afresh draw, and a store
 // of more than 65,536 cells (or more instances than a source culls)
 // becomes several sets, the wind makes frame t the same image whether
 // rendered alone or after the frames before it, the GPU culling keeps
@@ -24,6 +26,7 @@
 #include "view_from.h"
 #include "mesh/primitives.h"
 #include "render/foliage_instances.h"
+#include "render/foliage_sources.h"
 #include "render/instanced_source.h"
 #include "render/offscreen_renderer.h"
 #include "scene/foliage_ground.h"
@@ -358,6 +361,103 @@ class TestFoliageRender : public QObject {
     QVERIFY(test::compareImages(toTest(before), toTest(after), 2).differingShare > 0.02);
     const test::CompareResult cmp = test::compareImages(toTest(after), toTest(none), 0);
     QVERIFY2(cmp.maxChannelDiff == 0, cmp.summary().c_str());
+  }
+
+  // An edit inside existing cells (an erase dab, a paint dab, its undo)
+  // packs only the cells it touched again and the frame uploads only their
+  // slots; the image equals that of sources built afresh from the store,
+  // byte for byte. A new cell rebuilds the sets.
+  void anEditUploadsOnlyItsCells() {
+    scene::SceneState s = forest(foliage::ScaleMode::Uniform);
+    scene::SceneState bare = s;  // drawn by the sources given, not the renderer's own
+    bare.foliage.reset();
+    render::FoliageSources kept;
+    auto draw = [&](const std::vector<std::shared_ptr<render::InstancedSource>>& sources) {
+      std::vector<std::shared_ptr<render::DrawSource>> ds(sources.begin(), sources.end());
+      r_.renderer().setDrawSources(ds);
+      Image img = r_.render(bare, camera());
+      r_.renderer().setDrawSources({});
+      return img;
+    };
+    // Sources built afresh from the store as it is: the reference.
+    auto fresh = [&] {
+      render::FoliageSources f;
+      return draw(f.update(s));
+    };
+    auto liveIds = [](const std::vector<std::shared_ptr<render::InstancedSource>>& sources) {
+      std::vector<uint32_t> ids;
+      for (const auto& src : sources)
+        for (const render::GpuInstance& g : src->instances().instances)
+          if ((g.typeAndCell & 0xFFFFu) != 0xFFFFu) ids.push_back(g.id);
+      std::sort(ids.begin(), ids.end());
+      return ids;
+    };
+    auto storeIds = [&] {
+      std::vector<uint32_t> ids;
+      for (const foliage::Instance& in : s.foliage->store().allInstances()) ids.push_back(in.id);
+      std::sort(ids.begin(), ids.end());
+      return ids;
+    };
+    auto sameAsFresh = [&](const Image& img) {
+      const test::CompareResult c = test::compareImages(toTest(img), toTest(fresh()), 0);
+      if (c.maxChannelDiff != 0) qWarning("%s", c.summary().c_str());
+      return c.maxChannelDiff == 0;
+    };
+
+    const auto& sources = kept.update(s);
+    QVERIFY(kept.lastRebuilt());
+    QCOMPARE(sources.size(), size_t(1));
+    draw(sources);
+    const size_t whole = sources[0]->lastUploadBytes();
+    QCOMPARE(whole, sources[0]->instances().instances.size() * sizeof(render::GpuInstance));
+    QVERIFY(liveIds(sources) == storeIds());
+    const size_t cells = s.foliage->store().cellCount();
+    QVERIFY(cells >= 2);
+
+    // Erase a dab: one cell's slot uploaded.
+    const glm::dvec2 at = glm::dvec2(kUtm) + glm::dvec2(-12.0, 10.0);
+    foliage::EditResult e = foliage::erase(s.foliage->store(), foliage::Region2::disc(at, 4.0));
+    QVERIFY(e.stats.removed > 0);
+    s.foliage->touch();
+    kept.update(s);
+    QVERIFY(!kept.lastRebuilt());
+    QCOMPARE(kept.lastRepackedCells(), e.undo.cellCount());
+    Image img = draw(sources);
+    const size_t dab = sources[0]->lastUploadBytes();
+    qInfo("%zu cells, %zu bytes uploaded at first; an erase of %zu instances in %zu cell(s) uploads %zu bytes",
+          cells, whole, size_t(e.stats.removed), e.undo.cellCount(), dab);
+    QVERIFY(dab > 0 && dab < whole);
+    QVERIFY(liveIds(sources) == storeIds());
+    QVERIFY(sameAsFresh(img));
+
+    // Paint it back (within the cell's room), then undo the paint.
+    const scene::FoliageGround g(s);
+    foliage::PaintParams p;
+    p.region = foliage::Region2::disc(at, 4.0);
+    p.types = {0};
+    p.seed = 5;
+    foliage::EditResult painted = foliage::paint(s.foliage->store(), g.ground(), p);
+    QVERIFY(painted.stats.placed > 0);
+    s.foliage->touch();
+    kept.update(s);
+    QVERIFY(!kept.lastRebuilt());
+    QVERIFY(sameAsFresh(draw(sources)));
+    QVERIFY(liveIds(sources) == storeIds());
+    painted.undo.swap(s.foliage->store());
+    s.foliage->touch();
+    kept.update(s);
+    QVERIFY(!kept.lastRebuilt());
+    QVERIFY(sameAsFresh(draw(sources)));
+    QVERIFY(liveIds(sources) == storeIds());
+
+    // An instance in a cell the sets do not have: rebuilt.
+    foliage::Instance far;
+    far.position = kUtm + glm::dvec3(0.0, 0.0, 0.0) + glm::dvec3(3.0 * foliage::kCellSize, 0.0, 0.0);
+    s.foliage->store().add(far, nullptr);
+    s.foliage->touch();
+    kept.update(s);
+    QVERIFY(kept.lastRebuilt());
+    QVERIFY(liveIds(sources) == storeIds());
   }
 
   // More cells than a GpuInstance can name: several sets, every record once.
