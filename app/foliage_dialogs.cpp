@@ -264,4 +264,23 @@ foliage::TypeSet FoliageFillDialog::types() const {
 
 Json FoliageFillDialog::values() const { return form_->values(); }
 
+FoliageMoveDialog::FoliageMoveDialog(QWidget* parent, size_t selected) : QDialog(parent) {
+  setWindowTitle("Move Selected Instances");
+  setObjectName("foliageMoveDialog");
+  const OperationDecl& op = foliage::foliageMoveOperation();
+  form_ = new ParamForm(op.params, this, {}, {"region"});
+  auto* note = new QLabel(QString("%1 selected instance(s). ").arg(selected) +
+                              QString::fromStdString(op.description).replace("every instance of a type (or those in "
+                                                                             "a region)",
+                                                                             "the selected instances"),
+                          this);
+  note->setWordWrap(true);
+  auto* v = new QVBoxLayout(this);
+  v->addWidget(form_);
+  v->addWidget(note);
+  v->addWidget(okCancel(this, "Move"));
+}
+
+Json FoliageMoveDialog::values() const { return form_->values(); }
+
 }  // namespace hs::app

@@ -114,4 +114,17 @@ class FoliageFillDialog : public QDialog {
   ParamForm* form_;
 };
 
+// Move Selected Instances By…: `foliage move`'s offset and keep-height
+// (its region is the selection), declared once (foliage_operations.h).
+class FoliageMoveDialog : public QDialog {
+  Q_OBJECT
+ public:
+  FoliageMoveDialog(QWidget* parent, size_t selected);
+  Json values() const;
+  ParamForm* form() const { return form_; }
+
+ private:
+  ParamForm* form_;
+};
+
 }  // namespace hs::app

@@ -289,6 +289,7 @@ void FoliagePanel::populateMenu(QMenu* menu) {
     toolActions_ << a;
   }
   menu->addSeparator();
+  menu->addAction("Move Selected Instances &By…", this, [this] { requestMoveSelection(); });
   menu->addAction("&Delete Selected Instances", this, [this] { tool_->deleteSelection(); });
   menu->addAction("&Reapply to Selected Instances", this, [this] { tool_->reapplySelection(); });
   menu->addAction("Deselect Instances", this, [this] { tool_->clearSelection(); });
@@ -636,5 +637,22 @@ void FoliagePanel::requestFillLayer() {
 }
 
 void FoliagePanel::requestClear() { clear(currentType()); }
+
+bool FoliagePanel::moveSelectionBy(const Json& values) {
+  const Json o = values.value("offset_m", Json::array({0.0, 0.0, 0.0}));
+  if (!o.is_array() || o.size() != 3) return report(false, "the offset needs three numbers", {}, {}, "Move Foliage");
+  const glm::dvec3 offset(o[0].get<double>(), o[1].get<double>(), o[2].get<double>());
+  return tool_->moveSelectionBy(offset, !values.value("keep_height", false));
+}
+
+void FoliagePanel::requestMoveSelection() {
+  if (tool_->selection().empty()) {
+    report(false, "nothing selected (the Select or Lasso tool picks instances)", {}, {}, "Move Foliage");
+    return;
+  }
+  FoliageMoveDialog d(&window_, tool_->selection().size());
+  if (d.exec() != QDialog::Accepted) return;
+  moveSelectionBy(d.values());
+}
 
 }  // namespace hs::app

@@ -82,6 +82,8 @@ class FoliagePanel : public QWidget {
   // under a progress dialog with Cancel, and stores them as one step
   // (`foliage impostors`'s operation, scene/impostor_ops.h).
   bool bakeImpostors(bool all);
+  // `values`: `foliage move`'s offset_m and keep_height, for the selection.
+  bool moveSelectionBy(const Json& values);
 
   // --- with their dialogs ---------------------------------------------------
   void requestGeneratePlant();
@@ -90,6 +92,7 @@ class FoliagePanel : public QWidget {
   void requestScatter();
   void requestFillLayer();
   void requestClear();
+  void requestMoveSelection();
 
  private:
   void buildUi();

@@ -325,14 +325,20 @@ void FoliageTool::endPolygon() {
 void FoliageTool::endMove() {
   const glm::dvec3 offset = moveOffset_;
   moveOffset_ = glm::dvec3(0.0);
-  if (offset == glm::dvec3(0.0) || selection_.empty()) {
+  moveSelectionBy(offset, true);
+}
+
+bool FoliageTool::moveSelectionBy(const glm::dvec3& offset, bool snap) {
+  if (offset == glm::dvec3(0.0) || selection_.empty() || !std::isfinite(glm::length(offset))) {
     emit strokeFinished("Move foliage: nothing moved", false);
-    return;
+    return false;
   }
   foliage::EditResult r =
-      foliage::moveSelection(doc_.foliage().store(), ground_.ground().ground(), selection_, offset, true);
-  const QString done = QString("Move foliage: %1 moved by %2 m").arg(r.stats.moved).arg(glm::length(offset), 0, 'f', 2);
+      foliage::moveSelection(doc_.foliage().store(), ground_.ground().ground(), selection_, offset, snap);
+  const size_t moved = r.stats.moved;
+  const QString done = QString("Move foliage: %1 moved by %2 m").arg(moved).arg(glm::length(offset), 0, 'f', 2);
   record(std::move(r), "Move foliage", true, done);
+  return moved > 0;
 }
 
 void FoliageTool::clearSelection() {

@@ -88,6 +88,10 @@ class FoliageTool : public QObject {
   // Delete the selected instances; draw their rotation, scale and sink
   // again from their type's settings (those its filters now refuse go).
   // Each one undo step; false when nothing changed.
+  // Moves the selection by exactly `offset` (with `snap` each back on the
+  // ground under its new place), one undo step: the Move tool's drag at
+  // release, and Move Selected Instances By….
+  bool moveSelectionBy(const glm::dvec3& offset, bool snap);
   bool deleteSelection();
   bool reapplySelection();
 

@@ -144,6 +144,25 @@ int runClear(int argc, char** argv) {
   return save(args, doc, path, code) ? 0 : code;
 }
 
+int runMove(int argc, char** argv) {
+  OperationArgs args(foliage::foliageMoveOperation());
+  scene::Document doc;
+  std::string path;
+  uint16_t t = 0;
+  if (auto done = openTypeCommand(args, argc, argv, doc, path, t)) return *done;
+  const std::vector<double> o = args.numbers("offset_m");
+  const bool snap = !args.flag("keep_height");
+  const scene::FoliageGround ground(doc.state(), snap && doc.foliage().store().type(t).surface !=
+                                                              foliage::SurfaceFilter::Terrain);
+  const scene::ops::FoliageOutcome out =
+      scene::ops::moveFoliage(doc, ground, {t}, foliage::regionFromValues(givenValues(args)),
+                              glm::dvec3(o.at(0), o.at(1), o.at(2)), snap);
+  if (!out.ok) return args.fail(out.error);
+  printOutcome(out);
+  int code = 0;
+  return save(args, doc, path, code) ? 0 : code;
+}
+
 int runPlant(int argc, char** argv) {
   OperationArgs args(foliage::foliagePlantOperation());
   if (auto code = args.parse(argc, argv)) return *code;
@@ -171,6 +190,7 @@ const Subcommand kSubs[] = {
     {"scatter", foliage::foliageScatterOperation, runScatter},
     {"fill", foliage::foliageFillOperation, runFill},
     {"clear", foliage::foliageClearOperation, runClear},
+    {"move", foliage::foliageMoveOperation, runMove},
     {"impostors", foliage::foliageImpostorsOperation, runFoliageImpostors},
 };
 

@@ -109,6 +109,28 @@ const OperationDecl& foliageClearOperation() {
   return op;
 }
 
+const OperationDecl& foliageMoveOperation() {
+  static const OperationDecl op = [] {
+    OperationDecl o{.name = "foliage move",
+                    .summary = "move a foliage type's instances by an exact offset",
+                    .usage = "<type> <scene.hscene> --offset dx,dy,dz [--region x0,y0,x1,y1] [--keep-height]",
+                    .description = "Moves every instance of a type (or those in a region) by an offset in metres; "
+                                   "each is put back on the surface under its new place (the offset's height is "
+                                   "then unused) unless --keep-height. Ids stay. One undo step.",
+                    .positionals = {{.name = "type", .help = "the foliage type"}, kScene}};
+    o.params = {
+        {.key = "offset_m", .option = "offset", .label = "Offset", .unit = Unit::Metres, .min = -1e6, .max = 1e6,
+         .defaultValue = Json::array({0.0, 0.0, 0.0}), .help = "east, north and up, in metres",
+         .valueName = "DX,DY,DZ", .count = 3, .required = true, .editor = true, .decimals = 3, .step = 0.1},
+        {.key = "keep_height", .option = "keep-height", .label = "Keep height", .type = ParamType::Flag,
+         .help = "move by the offset's height too instead of putting each back on the ground", .editor = true},
+        regionParam(),
+    };
+    return o;
+  }();
+  return op;
+}
+
 const OperationDecl& foliageImpostorsOperation() {
   static const OperationDecl op = [] {
     OperationDecl o{.name = "foliage impostors",

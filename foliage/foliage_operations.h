@@ -28,6 +28,11 @@ const OperationDecl& foliageScatterOperation();
 const OperationDecl& foliageFillOperation();
 // `foliage clear TYPE SCENE [--region x0,y0,x1,y1]`.
 const OperationDecl& foliageClearOperation();
+// `foliage move TYPE SCENE --offset dx,dy,dz [--region x0,y0,x1,y1]
+// [--keep-height]`: the type's instances (in the region) moved by an exact
+// offset, each put back on the ground unless --keep-height (the editor's
+// Move Selected Instances By… takes the same offset for its selection).
+const OperationDecl& foliageMoveOperation();
 // `foliage impostors SCENE [--all]`: bake and store the impostors of the
 // meshes foliage types draw with one (scene/impostor_ops.h).
 const OperationDecl& foliageImpostorsOperation();

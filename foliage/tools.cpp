@@ -638,8 +638,27 @@ namespace {
 
 // Takes the selected instances out of their cells (decoded), recording undo.
 std::vector<Instance> takeSelected(FoliageStore& store, const Selection& sel, FoliageUndo& undo) {
-  std::map<CellKey, std::vector<uint32_t>> byCell;
-  for (const auto& [k, id] : sel.items) byCell[k].push_back(id);
+  // Each id where it is now: in the cell the selection names, or, for one
+  // an undo or redo moved since it was selected, in the cell that holds it
+  // now (one pass over the store, only when some are elsewhere).
+  std::map<CellKey, std::vector<uint32_t>> listed, byCell;
+  for (const auto& [k, id] : sel.items) listed[k].push_back(id);
+  std::vector<uint32_t> elsewhere;
+  for (const auto& [k, ids] : listed) {
+    std::vector<uint32_t> have;
+    if (const Cell* c = store.cell(k))
+      for (const Run& r : c->runs)
+        for (const PackedInstance& p : r.items) have.push_back(p.id);
+    std::sort(have.begin(), have.end());
+    for (uint32_t id : ids) (std::binary_search(have.begin(), have.end(), id) ? byCell[k] : elsewhere).push_back(id);
+  }
+  if (!elsewhere.empty()) {
+    std::sort(elsewhere.begin(), elsewhere.end());
+    for (const auto& [k, c] : store.cells())
+      for (const Run& r : c.runs)
+        for (const PackedInstance& p : r.items)
+          if (std::binary_search(elsewhere.begin(), elsewhere.end(), p.id)) byCell[k].push_back(p.id);
+  }
   std::vector<Instance> out;
   for (auto& [k, ids] : byCell) {
     if (!store.cell(k)) continue;

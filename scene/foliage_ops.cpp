@@ -1,5 +1,7 @@
 #include "scene/foliage_ops.h"
 
+#include <cmath>
+
 #include "scene/edit.h"
 #include "scene/foliage_command.h"
 #include "scene/mesh_materials.h"
@@ -160,23 +162,45 @@ FoliageOutcome fillFoliageLayer(Document& doc, const FoliageGround& ground, cons
   return record(doc, std::move(r), QString("Fill paint layer %1").arg(QString::fromStdString(layer)));
 }
 
+namespace {
+
+// The region, or everywhere: the rectangle around every cell.
+foliage::Region2 areaOf(const foliage::FoliageStore& store, const std::optional<foliage::Region2>& region) {
+  if (region) return *region;
+  if (store.cells().empty()) return foliage::Region2::rect(glm::dvec2(0.0), glm::dvec2(0.0));
+  glm::dvec2 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+  for (const auto& [k, c] : store.cells()) {
+    lo = glm::min(lo, glm::dvec2(k.origin()));
+    hi = glm::max(hi, glm::dvec2(k.origin()) + foliage::kCellSize);
+  }
+  return foliage::Region2::rect(lo, hi);
+}
+
+}  // namespace
+
 FoliageOutcome eraseFoliage(Document& doc, const std::optional<foliage::Region2>& region,
                             const foliage::TypeSet& types, const QString& text) {
   foliage::FoliageStore& store = doc.foliage().store();
   if (std::string e = checkTypes(store, types); !e.empty()) return refused(e);
-  // Everywhere: the rectangle around every cell.
-  foliage::Region2 area = foliage::Region2::rect(glm::dvec2(0.0), glm::dvec2(0.0));
-  if (region) {
-    area = *region;
-  } else if (!store.cells().empty()) {
-    glm::dvec2 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
-    for (const auto& [k, c] : store.cells()) {
-      lo = glm::min(lo, glm::dvec2(k.origin()));
-      hi = glm::max(hi, glm::dvec2(k.origin()) + foliage::kCellSize);
-    }
-    area = foliage::Region2::rect(lo, hi);
+  return record(doc, foliage::erase(store, areaOf(store, region), types), text);
+}
+
+FoliageOutcome moveFoliage(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
+                           const std::optional<foliage::Region2>& region, const glm::dvec3& offset, bool snap) {
+  foliage::FoliageStore& store = doc.foliage().store();
+  if (std::string e = checkTypes(store, types); !e.empty()) return refused(e);
+  if (!std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(offset.z))
+    return refused("the offset is not a finite number of metres");
+  foliage::Selection selection = foliage::selectRegion(store, areaOf(store, region), types);
+  if (selection.empty() || offset == glm::dvec3(0.0)) {
+    FoliageOutcome out;
+    out.summary = "nothing moved";
+    return out;
   }
-  return record(doc, foliage::erase(store, area, types), text);
+  FoliageOutcome out = record(doc, foliage::moveSelection(store, ground.ground(), selection, offset, snap), "Move foliage");
+  out.summary = count(out.stats.moved, "moved") + "; " + count(store.instanceCount(), "instances") + " in " +
+                count(store.cellCount(), "cells");
+  return out;
 }
 
 std::optional<MeshAsset> makePlantAsset(const std::string& name, const foliage::PlantParams& params,

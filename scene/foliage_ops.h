@@ -69,6 +69,12 @@ FoliageOutcome fillFoliageLayer(Document& doc, const FoliageGround& ground, cons
 FoliageOutcome eraseFoliage(Document& doc, const std::optional<foliage::Region2>& region,
                             const foliage::TypeSet& types, const QString& text = "Erase foliage");
 
+// Moves the types' (or every type's) instances in the region (nullopt:
+// everywhere) by `offset`; with `snap` each is put back on `ground` under
+// its new place (foliage::moveSelection). One undo step.
+FoliageOutcome moveFoliage(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
+                           const std::optional<foliage::Region2>& region, const glm::dvec3& offset, bool snap);
+
 // A generated plant's asset (foliage/plants.h: its mesh and LOD chain, no
 // id, no materials yet); `error` when the generator failed.
 std::optional<MeshAsset> makePlantAsset(const std::string& name, const foliage::PlantParams& params,

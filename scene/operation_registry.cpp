@@ -36,6 +36,7 @@ const std::vector<const OperationDecl*>& sharedOperations() {
       &foliage::foliageFillOperation(),
       &foliage::foliageClearOperation(),
       &foliage::foliagePlantOperation(),
+      &foliage::foliageMoveOperation(),
       &foliage::foliageImpostorsOperation(),
       &particles::particlesAddOperation(),
   };

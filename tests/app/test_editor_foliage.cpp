@@ -515,6 +515,23 @@ class EditorFoliageTest : public QObject {
       QCOMPARE(back[i].position, was[i].position);
     }
 
+    // Move Selected Instances By…: an exact offset (multiples of the
+    // store's 2^-10 m grid, so exact), kept height: up by exactly 2 m. The
+    // selection still names the cells the undone drag put them in: the
+    // move finds them where they are now.
+    QVERIFY(panel_->moveSelectionBy(Json{{"offset_m", {3.25, -1.5, 2.0}}, {"keep_height", true}}));
+    QCOMPARE(steps(), step1 + 1);
+    for (const foliage::Instance& in : store().allInstances()) {
+      const auto old = std::find_if(was.begin(), was.end(), [&](const foliage::Instance& o) { return o.id == in.id; });
+      QVERIFY(old != was.end());
+      const glm::dvec3 expect = std::binary_search(ids.begin(), ids.end(), in.id)
+                                    ? old->position + glm::dvec3(3.25, -1.5, 2.0)
+                                    : old->position;
+      QVERIFY2(glm::length(in.position - expect) < 1e-9, qPrintable(QString::number(in.id)));
+    }
+    doc().undoStack()->undo();
+    QCOMPARE(store().allInstances().front().position, was.front().position);
+
     // Move with nothing selected: said, no step.
     panel_->tool()->clearSelection();
     QTest::mouseClick(vp, Qt::LeftButton, Qt::NoModifier, pixelAt({5.0, 0.0}));
@@ -635,7 +652,7 @@ class EditorFoliageTest : public QObject {
     for (QAction* a : menu->actions()) texts << a->text().remove('&');
     for (const char* t : {"Generate Plant…", "New Foliage Type…", "Edit Foliage Type…", "Scatter…", "Fill Paint Layer…", "Clear Type",
                           "Bake Impostors", "Paint Brush", "Erase Brush", "Select Brush", "Foliage Tool Off", "Lasso Select", "Fill Area",
-                          "Move Selected Instances", "Delete Selected Instances",
+                          "Move Selected Instances", "Move Selected Instances By…", "Delete Selected Instances",
                           "Reapply to Selected Instances"})
       QVERIFY2(texts.contains(t), t);
     // The menu's brush entries drive the same tool as the panel's buttons.

@@ -89,6 +89,7 @@ class EditorParamsTest : public QObject {
     roots_["foliage fill"] = {
         open<app::FoliageFillDialog>(nullptr, std::vector<foliage::FoliageType>{pines}, 0, QStringList{"Grass"})};
     roots_["foliage plant"] = {open<app::PlantDialog>(nullptr, "Plant")};
+    roots_["foliage move"] = {open<app::FoliageMoveDialog>(nullptr, size_t(3))};
     roots_["particles add"] = {open<app::ParticlesAddDialog>(nullptr, glm::dvec3(0.0))};
   }
 

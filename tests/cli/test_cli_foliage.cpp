@@ -1,7 +1,7 @@
 // `hybridscape-cli foliage ...` as a user runs it (the built program through
 // QProcess): a plant generated as an asset with LODs, a type added, a
 // scatter, a fill of a paint layer, `info --json` counting the instances
-// per type, a clear of a region, impostors baked and stored (then stale
+// per type, an exact move, a clear of a region, impostors baked and stored (then stale
 // after a material edit), and every refusal one line on stderr naming the problem, the
 // scene left as it was.
 #include <QJsonArray>
@@ -58,6 +58,13 @@ class TestCliFoliage : public QObject {
     Run text;
     ok({"info", f}, &text);
     QVERIFY2(text.out.contains("Stones: mesh \"Stone\", " + QString::number(placed) + " instances"), qPrintable(text.out));
+    // An exact move of those in the west half: every one moved, none lost.
+    Run move;
+    ok({"foliage", "move", "Stones", f, "--offset", "3.5,-2,0", "--region", "-100,-100,0,100"}, &move);
+    const int movedCount = move.out.section(' ', 0, 0).toInt();
+    QVERIFY2(movedCount > 50 && move.out.contains(" moved;"), qPrintable(move.out));
+    QCOMPARE(foliage(f)["instances"].toInt(), placed);
+    expectError({"foliage", "move", "Stones", f, "--offset", "1,2"}, 2, {"--offset"});
     ok({"foliage", "clear", "Stones", f, "--region", "-100,-100,0,100"});
     const int left = foliage(f)["instances"].toInt();
     QVERIFY(left > 0 && left < placed);

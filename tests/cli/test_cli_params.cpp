@@ -151,6 +151,7 @@ class TestCliParams : public QObject {
         {"foliage fill", {{"foliage", "fill", "T", missing_, "--layer", "Grass"}, missing_}},
         {"foliage clear", {{"foliage", "clear", "T", missing_}, missing_}},
         {"foliage plant", {{"foliage", "plant", "P", "--kind", "rock", missing_}, missing_}},
+        {"foliage move", {{"foliage", "move", "T", missing_, "--offset", "1,2,0"}, missing_}},
         {"foliage impostors", {{"foliage", "impostors", missing_}, missing_}},
         {"particles add", {{"particles", "add", "snow", missing_}, missing_}},
     };

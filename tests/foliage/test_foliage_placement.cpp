@@ -2,6 +2,7 @@
 // strokes (brute force), density, filters at their exact limits, erase,
 // selections, undo and redo of every tool, ground following within 1 mm
 // and over holes, instances on a mesh at UTM coordinates.
+#include <map>
 #include <random>
 
 #include "foliage/ground_follow.h"
@@ -428,7 +429,7 @@ class TestFoliagePlacement : public QObject {
     scatter(s, g, {0}, 5);
     Selection sel = selectRegion(s, Region2::rect({10, 10}, {40, 40}));
     const auto ids = sel.ids();
-    moveSelection(s, g, sel, {50.0, 60.0, 0.0}, true);
+    EditResult moved = moveSelection(s, g, sel, {50.0, 60.0, 0.0}, true);
     QCOMPARE(sel.ids(), ids);
     for (uint32_t id : ids) {
       const auto in = s.find(id);
@@ -436,6 +437,14 @@ class TestFoliagePlacement : public QObject {
       QVERIFY(in->position.x >= 60 && in->position.y >= 70);
       QVERIFY(std::abs(in->position.z - terrainSurface(t.height, glm::dvec2(in->position))->position.z) <= kMaxPositionError);
     }
+    // Undone, the selection still names the cells the move put them in; a
+    // second move finds every one where it is now (by id), exactly.
+    std::map<uint32_t, glm::dvec3> before;
+    moved.undo.swap(s);
+    for (uint32_t id : ids) before[id] = s.find(id)->position;
+    const EditResult again = moveSelection(s, g, sel, {1.0, -2.0, 0.5}, false);
+    QCOMPARE(again.stats.moved, ids.size());
+    for (uint32_t id : ids) QCOMPARE(s.find(id)->position, before[id] + glm::dvec3(1.0, -2.0, 0.5));
   }
 
   // After a sculpt (an analytic plane, then bumps) and a new hole, the

@@ -258,12 +258,13 @@ class TestSceneParticles : public QObject {
     {
       sqlite3* db = nullptr;
       QCOMPARE(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-      auto exec = [&](const char* sql) {
-        QCOMPARE(sqlite3_exec(db, sql, nullptr, nullptr, nullptr), SQLITE_OK);
+      auto exec = [&](const std::string& sql) {
+        QCOMPARE(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
         QCOMPARE(sqlite3_changes(db), 1);
       };
       exec("UPDATE document SET json = replace(replace(replace(json, '\"space\": \"local\",', ''), "
-           "'\"draw_mesh\": \"\",', ''), '\"version\": 11', '\"version\": 10') "
+           "'\"draw_mesh\": \"\",', ''), '\"version\": " + std::to_string(kSceneFormatVersion) +
+           "', '\"version\": 10') "
            "WHERE instr(json, '\"draw_mesh\": \"\",') > 0 AND instr(json, '\"space\": \"local\",') > 0");
       exec("UPDATE meta SET value = '10' WHERE key = 'format_version'");
       sqlite3_close(db);
