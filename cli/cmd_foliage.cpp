@@ -41,6 +41,16 @@ void printOutcome(const scene::ops::FoliageOutcome& out) {
   if (!out.summary.empty()) std::printf("%s\n", out.summary.c_str());
 }
 
+// What every command that changes the foliage ends with: a refusal, or its
+// warnings and summary and the scene saved. The exit status.
+int finish(const OperationArgs& args, const scene::Document& doc, const std::string& path,
+           const scene::ops::FoliageOutcome& out) {
+  if (!out.ok) return args.fail(out.error);
+  printOutcome(out);
+  int code = 0;
+  return save(args, doc, path, code) ? 0 : code;
+}
+
 int typeIndex(const OperationArgs& args, const scene::Document& doc, const std::string& name, int& code) {
   const int t = doc.state().foliage ? doc.state().foliage->store().findType(name) : -1;
   if (t < 0) code = args.fail("no foliage type named \"" + name + "\" in the scene (see hybridscape-cli info)");
@@ -81,10 +91,7 @@ int runTypeAdd(int argc, char** argv) {
   foliage::FoliageType type;
   if (!foliage::typeFromValues(name, givenValues(args), type, error)) return args.usage(error);
   const scene::ops::FoliageOutcome out = scene::ops::addFoliageType(doc, type);
-  if (!out.ok) return args.fail(out.error);
-  printOutcome(out);
-  int code = 0;
-  return save(args, doc, path, code) ? 0 : code;
+  return finish(args, doc, path, out);
 }
 
 int runType(int argc, char** argv) {
@@ -107,10 +114,7 @@ int runScatter(int argc, char** argv) {
   const scene::ops::FoliageOutcome out =
       scene::ops::scatterFoliage(doc, ground, {t}, uint64_t(args.integer("seed")), foliage::regionFromValues(values),
                                  rules);
-  if (!out.ok) return args.fail(out.error);
-  printOutcome(out);
-  int code = 0;
-  return save(args, doc, path, code) ? 0 : code;
+  return finish(args, doc, path, out);
 }
 
 int runFill(int argc, char** argv) {
@@ -125,10 +129,7 @@ int runFill(int argc, char** argv) {
       scene::ops::fillFoliageLayer(doc, ground, {t}, args.text("layer"), args.number("min_weight"),
                                    uint64_t(args.integer("seed")),
                                    foliage::regionFromValues(values));
-  if (!out.ok) return args.fail(out.error);
-  printOutcome(out);
-  int code = 0;
-  return save(args, doc, path, code) ? 0 : code;
+  return finish(args, doc, path, out);
 }
 
 int runClear(int argc, char** argv) {
@@ -138,10 +139,7 @@ int runClear(int argc, char** argv) {
   uint16_t t = 0;
   if (auto done = openTypeCommand(args, argc, argv, doc, path, t)) return *done;
   const scene::ops::FoliageOutcome out = scene::ops::eraseFoliage(doc, foliage::regionFromValues(givenValues(args)), {t});
-  if (!out.ok) return args.fail(out.error);
-  printOutcome(out);
-  int code = 0;
-  return save(args, doc, path, code) ? 0 : code;
+  return finish(args, doc, path, out);
 }
 
 int runMove(int argc, char** argv) {
@@ -157,10 +155,7 @@ int runMove(int argc, char** argv) {
   const scene::ops::FoliageOutcome out =
       scene::ops::moveFoliage(doc, ground, {t}, foliage::regionFromValues(givenValues(args)),
                               glm::dvec3(o.at(0), o.at(1), o.at(2)), snap);
-  if (!out.ok) return args.fail(out.error);
-  printOutcome(out);
-  int code = 0;
-  return save(args, doc, path, code) ? 0 : code;
+  return finish(args, doc, path, out);
 }
 
 int runPlant(int argc, char** argv) {

@@ -1,9 +1,9 @@
 #include "foliage/impostor_images.h"
 
 #include <cmath>
-#include <cstring>
 
 #include "core/content_hash.h"
+#include "foliage/byte_io.h"
 #include "foliage/zlib_bytes.h"
 
 namespace hs::foliage {
@@ -13,18 +13,8 @@ constexpr uint32_t kMagic = 0x4D495348u;  // "HSIM"
 constexpr size_t kHeaderBytes = 52;
 constexpr int kMaxFrames = 64, kMaxFramePixels = 1024, kMaxSide = 8192;
 
-template <class T>
-void put(std::vector<uint8_t>& out, T v) {
-  const size_t at = out.size();
-  out.resize(at + sizeof(T));
-  std::memcpy(out.data() + at, &v, sizeof(T));  // little-endian hosts (x86-64, arm64)
-}
-template <class T>
-T get(const uint8_t* p) {
-  T v;
-  std::memcpy(&v, p, sizeof(T));
-  return v;
-}
+using byte_io::get;
+using byte_io::put;
 
 // Both images, each channel a plane, each byte less its left neighbour in
 // its row (the first of a row kept): the filter named in the header.

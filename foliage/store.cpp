@@ -6,6 +6,7 @@
 
 #include "core/content_hash.h"
 #include "core/parallel.h"
+#include "foliage/byte_io.h"
 #include "foliage/zlib_bytes.h"
 
 namespace hs::foliage {
@@ -36,18 +37,8 @@ std::string cellBlobKey(const CellKey& k) {
 
 namespace {
 
-template <class T>
-void put(std::vector<uint8_t>& out, T v) {
-  uint8_t b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));  // little-endian hosts (x86-64, arm64)
-  out.insert(out.end(), b, b + sizeof(T));
-}
-template <class T>
-T get(const uint8_t* p) {
-  T v;
-  std::memcpy(&v, p, sizeof(T));
-  return v;
-}
+using byte_io::get;
+using byte_io::put;
 
 std::vector<uint8_t> rawPayload(const Cell& cell) {
   std::vector<uint8_t> raw;

@@ -1,9 +1,9 @@
 #include "scene/impostor_key.h"
 
-#include <cstring>
 #include <vector>
 
 #include "core/content_hash.h"
+#include "foliage/byte_io.h"
 #include "foliage/impostor_images.h"
 
 namespace hs::scene {
@@ -12,38 +12,33 @@ namespace {
 // Bumped when the bake's output changes for the same inputs (its shaders).
 constexpr uint64_t kBakeVersion = 1;
 
-template <class T>
-void add(std::vector<uint8_t>& bytes, const T& v) {
-  const size_t at = bytes.size();
-  bytes.resize(at + sizeof(T));
-  std::memcpy(bytes.data() + at, &v, sizeof(T));
-}
+using foliage::byte_io::put;
 
 }  // namespace
 
 uint64_t impostorSourceKey(const SceneState& state, const MeshAsset& asset) {
   std::vector<uint8_t> bytes;
-  add(bytes, kBakeVersion);
-  add(bytes, int32_t(foliage::kImpostorFrames));
-  add(bytes, int32_t(foliage::kImpostorFramePixels));
-  add(bytes, asset.contentHash);
+  put(bytes, kBakeVersion);
+  put(bytes, int32_t(foliage::kImpostorFrames));
+  put(bytes, int32_t(foliage::kImpostorFramePixels));
+  put(bytes, asset.contentHash);
   for (MaterialId id : asset.materialSlots) {
     const Material* m = state.findMaterial(id);
-    add(bytes, uint8_t(m != nullptr));
+    put(bytes, uint8_t(m != nullptr));
     if (!m) continue;
-    add(bytes, m->baseColor);
-    add(bytes, m->opacity);
-    add(bytes, uint8_t(m->alphaCutout));
-    add(bytes, m->alphaThreshold);
+    put(bytes, m->baseColor);
+    put(bytes, m->opacity);
+    put(bytes, uint8_t(m->alphaCutout));
+    put(bytes, m->alphaThreshold);
     const TextureAsset* t = m->baseColorTexture != kNoTexture ? state.findTexture(m->baseColorTexture) : nullptr;
-    add(bytes, uint8_t(t != nullptr));
+    put(bytes, uint8_t(t != nullptr));
     if (!t) continue;
     if (t->standalone()) {
-      add(bytes, t->contentHash);
+      put(bytes, t->contentHash);
     } else {  // a mesh's texture: its mesh's hash stands for it
       const MeshAsset* owner = state.findAsset(t->asset);
-      add(bytes, owner ? owner->contentHash : uint64_t(0));
-      add(bytes, int32_t(t->meshTexture));
+      put(bytes, owner ? owner->contentHash : uint64_t(0));
+      put(bytes, int32_t(t->meshTexture));
     }
   }
   return contentHash(bytes.data(), bytes.size());
