@@ -26,6 +26,7 @@
 #include "app/busy_cursor.h"
 #include "app/foliage_dialogs.h"
 #include "app/foliage_ground_cache.h"
+#include "app/foliage_work.h"
 #include "app/form_widgets.h"
 #include "app/main_window.h"
 #include "app/message_panel.h"
@@ -107,6 +108,7 @@ FoliagePanel::FoliagePanel(MainWindow& window)
       ground_(new FoliageGroundCache(doc_, this)),
       tool_(new FoliageTool(doc_, *ground_, this)) {
   setObjectName("foliagePanel");
+  tool_->setDialogParent(&window_);
   // The brush of the last session.
   QSettings s;
   FoliageBrush b;
@@ -502,19 +504,13 @@ bool FoliagePanel::scatter(const foliage::TypeSet& types, const Json& values) {
       return report(false, problems.front(), {}, {}, "Scatter");
   }
   const uint64_t seed = seedOf(values, foliage::foliageScatterOperation());
-  // On a worker, into a copy of the store (the viewport draws the
-  // document's meanwhile), under a window-modal progress with Cancel; the
-  // copy's touched cells go into the document as one step at the end.
-  auto copy = std::make_shared<foliage::FoliageStore>(store);
-  auto work = std::make_shared<scene::ops::FoliageWork>();
   std::shared_ptr<const scene::FoliageGround> ground = ground_->shared();
   const std::optional<foliage::Region2> region = foliage::regionFromValues(values);
-  BackgroundJob job(&window_, "Scatter", "Scattering foliage…", true, 0);
-  job.start([copy, work, ground, types, seed, region, rules](const Progress& p) {
-    *work = scene::ops::scatterOnStore(*copy, *ground, types, seed, region, rules, 0, &p);
-  });
-  job.waitForFinished();
-  const scene::ops::FoliageOutcome out = scene::ops::commitFoliageWork(doc_, *copy, std::move(*work));
+  const scene::ops::FoliageOutcome out = runFoliageWork(
+      &window_, doc_, "Scatter", "Scattering foliage…",
+      [ground, types, seed, region, rules](foliage::FoliageStore& copy, const Progress& p) {
+        return scene::ops::scatterOnStore(copy, *ground, types, seed, region, rules, 0, &p);
+      });
   return report(out.ok, out.error, out.messages, out.summary, "Scatter");
 }
 
@@ -556,12 +552,14 @@ bool FoliagePanel::fillLayer(const foliage::TypeSet& types, const Json& values) 
   const std::string layer = values.value("layer", std::string());
   const double minWeight = values.value("min_weight", defaultNumber(op.param("min_weight")));
   const uint64_t seed = seedOf(values, op);
-  scene::ops::FoliageOutcome out;
-  {
-    const BusyCursor busy;  // a layer over a whole valley: a second or so
-    out = scene::ops::fillFoliageLayer(doc_, ground_->ground(), types, layer, minWeight, seed,
-                                       foliage::regionFromValues(values));
-  }
+  std::shared_ptr<const scene::FoliageGround> ground = ground_->shared();
+  const std::optional<foliage::Region2> region = foliage::regionFromValues(values);
+  // A layer over a whole valley: seconds, on a worker.
+  const scene::ops::FoliageOutcome out = runFoliageWork(
+      &window_, doc_, "Fill Paint Layer", "Filling the paint layer…",
+      [ground, types, layer, minWeight, seed, region](foliage::FoliageStore& copy, const Progress& p) {
+        return scene::ops::fillLayerOnStore(copy, *ground, types, layer, minWeight, seed, region, &p);
+      });
   return report(out.ok, out.error, out.messages, out.summary, "Fill Paint Layer");
 }
 

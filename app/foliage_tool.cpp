@@ -9,8 +9,8 @@
 #include <QKeyEvent>
 #include <QKeySequence>
 
-#include "app/busy_cursor.h"
 #include "app/foliage_ground_cache.h"
+#include "app/foliage_work.h"
 #include "scene/foliage_command.h"
 #include "scene/foliage_data.h"
 #include "scene/terrain_pick.h"
@@ -25,6 +25,9 @@ constexpr double kFarMetres = 1e6;
 // Ticks drawn at most, so a brush over a dense meadow stays cheap to draw.
 constexpr size_t kMaxTicksUnderBrush = 4000;
 constexpr size_t kMaxSelectedTicks = 20000;
+// Fill and Reapply on their worker show a progress dialog only when they
+// take longer than this (a small fill ends first: no flashing dialog).
+constexpr int kShowWorkAfterMs = 250;
 // A lasso or fill polygon: a point where the drag has gone this far (XY,
 // metres) from the last, and this many points at most (a long drag keeps
 // its shape to a few centimetres either way).
@@ -152,7 +155,7 @@ foliage::Selection selectDrawn(const foliage::FoliageStore& store, uint32_t id, 
 
 bool FoliageTool::begin(const glm::dvec3& origin, const glm::dvec3& direction, bool extend,
                         std::optional<uint32_t> drawn) {
-  if (!active() || stroking_) return false;
+  if (!active() || stroking_ || working_) return false;
   const auto h = pick(origin, direction);
   hover_ = h;
   foliage::Selection clicked;
@@ -308,18 +311,29 @@ void FoliageTool::endPolygon() {
     emit strokeFinished(QString("Foliage selection: %1 instance(s)").arg(selection_.size()), false);
     return;
   }
+  // A fill over a valley places millions: on a worker, into a copy
+  // (foliage_work.h); a small one ends before its dialog would show.
   foliage::PaintParams p;
   p.region = area;
   p.types = types_;
   p.densityFactor = brush_.densityFactor;
   p.seed = dabSeed(brush_.seed, strokes_, 0);
-  foliage::EditResult r;
-  {
-    const BusyCursor busy;
-    r = foliage::paint(store, ground_.ground().ground(), p);
-  }
-  const QString done = QString("%1: %2 placed over %3 m²").arg(label).arg(r.stats.placed).arg(area.area(), 0, 'f', 0);
-  record(std::move(r), label, true, done);
+  std::shared_ptr<const scene::FoliageGround> ground = ground_.shared();
+  working_ = true;
+  const scene::ops::FoliageOutcome out = runFoliageWork(
+      dialogParent_, doc_, label, "Filling the area…",
+      [ground, p, label](foliage::FoliageStore& copy, const Progress& progress) {
+        scene::ops::FoliageWork work;
+        foliage::PaintParams params = p;
+        params.progress = &progress;
+        work.result = foliage::paint(copy, ground->ground(), params);
+        work.text = label;
+        return work;
+      },
+      kShowWorkAfterMs);
+  working_ = false;
+  announce(out, label,
+           QString("%1: %2 placed over %3 m²").arg(label).arg(out.stats.placed).arg(area.area(), 0, 'f', 0));
 }
 
 void FoliageTool::endMove() {
@@ -371,13 +385,47 @@ bool FoliageTool::deleteSelection() {
 }
 
 bool FoliageTool::reapplySelection() {
-  if (selection_.empty() || stroking_) return false;
-  // The selection follows the instances (their ids stay; cells may change).
-  foliage::EditResult r =
-      foliage::reapply(doc_.foliage().store(), ground_.ground().ground(), selection_, brush_.seed);
-  const bool changed = !r.undo.empty();
-  record(std::move(r), "Reapply foliage", true);
+  if (selection_.empty() || stroking_ || working_) return false;
+  // Thousands of surface queries for a large selection: on a worker, into a
+  // copy (foliage_work.h). The selection follows the instances (their ids
+  // stay; cells may change): the worker's copy of it is taken at the end.
+  std::shared_ptr<const scene::FoliageGround> ground = ground_.shared();
+  auto selection = std::make_shared<foliage::Selection>(selection_);
+  const uint64_t seed = brush_.seed;
+  const QString text = "Reapply foliage";
+  working_ = true;
+  const scene::ops::FoliageOutcome out = runFoliageWork(
+      dialogParent_, doc_, text, "Reapplying the type settings…",
+      [ground, selection, seed, text](foliage::FoliageStore& copy, const Progress& progress) {
+        scene::ops::FoliageWork work;
+        work.result = foliage::reapply(copy, ground->ground(), *selection, seed, &progress);
+        work.text = text;
+        return work;
+      },
+      kShowWorkAfterMs);
+  working_ = false;
+  const bool changed = out.ok && !out.cancelled && (out.stats.changed > 0 || out.stats.removed > 0);
+  if (changed) selection_ = *selection;
+  announce(out, text, QString("%1: %2 changed, %3 removed").arg(text).arg(out.stats.changed).arg(out.stats.removed));
+  emit selectionChanged();
   return changed;
+}
+
+void FoliageTool::announce(const scene::ops::FoliageOutcome& out, const QString& text, const QString& done) {
+  if (!out.ok) {
+    emit strokeFinished(text + ": " + QString::fromStdString(out.error), true);
+    return;
+  }
+  for (size_t i = 0; i < out.messages.size() && i < kMaxListedWarnings; ++i)
+    emit strokeFinished(text + ": " + QString::fromStdString(out.messages[i]), true);
+  if (out.messages.size() > kMaxListedWarnings)
+    emit strokeFinished(
+        QString("%1: %2 more warning(s) like these").arg(text).arg(out.messages.size() - kMaxListedWarnings), true);
+  const bool changed = out.stats.placed + out.stats.removed + out.stats.changed + out.stats.moved > 0;
+  emit strokeFinished(out.cancelled ? text + ": cancelled; nothing changed"
+                      : changed     ? done
+                                    : QString("%1: nothing changed").arg(text),
+                      false);
 }
 
 bool FoliageTool::eventFilter(QObject* watched, QEvent* event) {

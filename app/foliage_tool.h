@@ -23,9 +23,12 @@
 
 #include <QObject>
 
+class QWidget;
+
 #include "foliage/tools.h"
 #include "render/overlay.h"
 #include "scene/document.h"
+#include "scene/foliage_ops.h"
 
 namespace hs::app {
 
@@ -50,6 +53,10 @@ class FoliageTool : public QObject {
 
   FoliageTool(scene::Document& doc, FoliageGroundCache& ground, QObject* parent = nullptr);
   ~FoliageTool() override;
+  // Fill and Reapply run on a worker (foliage_work.h) under a progress
+  // dialog over this window; no stroke starts while one runs.
+  void setDialogParent(QWidget* w) { dialogParent_ = w; }
+  bool working() const { return working_; }
 
   FoliageToolKind kind() const { return kind_; }
   void setKind(FoliageToolKind k);
@@ -123,11 +130,16 @@ class FoliageTool : public QObject {
   void dab(const glm::dvec3& centre);
   void addToSelection(foliage::Selection more);
   void record(foliage::EditResult r, const QString& text, bool keepsSelection, const QString& done = {});
+  // A worker's outcome (foliage_work.h) to Messages: its warnings, then
+  // `done` (or what refused or cancelled it).
+  void announce(const scene::ops::FoliageOutcome& out, const QString& text, const QString& done);
   void endPolygon();
   void endMove();
 
   scene::Document& doc_;
   FoliageGroundCache& ground_;
+  QWidget* dialogParent_ = nullptr;
+  bool working_ = false;
   FoliageToolKind kind_ = FoliageToolKind::Off;
   FoliageBrush brush_;
   foliage::TypeSet types_;

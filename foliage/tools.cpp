@@ -497,7 +497,8 @@ EditResult paint(FoliageStore& store, const Ground& ground, const PaintParams& p
 }
 
 EditResult fillLayer(FoliageStore& store, const Ground& ground, const std::string& layer, double minWeight,
-                     const TypeSet& types, uint64_t seed, const std::optional<Region2>& area, unsigned threads) {
+                     const TypeSet& types, uint64_t seed, const std::optional<Region2>& area, unsigned threads,
+                     const Progress* progress) {
   EditResult res;
   if (!ground.terrain) {
     res.stats.messages.push_back("fill: paint layer \"" + layer + "\": there is no terrain");
@@ -517,14 +518,17 @@ EditResult fillLayer(FoliageStore& store, const Ground& ground, const std::strin
     const glm::dvec2 o(ground.terrain->height.origin());
     region = Region2::rect(o, o + ground.terrain->height.sizeMetres());
   }
-  for (uint16_t type : types) {
+  for (size_t i = 0; i < types.size() && !res.cancelled; ++i) {
+    const uint16_t type = types[i];
     if (type >= store.types().size()) {
       res.stats.messages.push_back("fill: no foliage type " + std::to_string(type));
       continue;
     }
-    placeType(store, ground, type, region, 1.0, key4(seed, type, 0xF111ull, 0), threads, res, &mask);
+    const Progress part(progress, double(i) / double(types.size()), double(i + 1) / double(types.size()));
+    placeType(store, ground, type, region, 1.0, key4(seed, type, 0xF111ull, 0), threads, res, &mask, {},
+              progress ? &part : nullptr);
   }
-  return res;
+  return undoIfCancelled(store, std::move(res));
 }
 
 EditResult fill(FoliageStore& store, const Ground& ground, const Region2& area, const TypeSet& types, uint64_t seed,
@@ -735,11 +739,23 @@ EditResult deleteSelection(FoliageStore& store, Selection& sel) {
   return res;
 }
 
-EditResult reapply(FoliageStore& store, const Ground& ground, Selection& sel, uint64_t seed) {
+EditResult reapply(FoliageStore& store, const Ground& ground, Selection& sel, uint64_t seed,
+                   const Progress* progress) {
   EditResult res;
+  const Selection before = sel;
   std::vector<Instance> taken = takeSelected(store, sel, res.undo);
   sel.items.clear();
-  for (const Instance& old : taken) {
+  for (size_t i = 0; i < taken.size(); ++i) {
+    // A surface query per instance: a large selection takes seconds.
+    if (progress && i % 4096 == 0) {
+      progress->report(double(i) / double(taken.size()), "reapply");
+      if (progress->cancelled()) {
+        res.cancelled = true;
+        sel = before;
+        return undoIfCancelled(store, std::move(res));
+      }
+    }
+    const Instance& old = taken[i];
     const FoliageType& t = store.type(old.type);
     const glm::dvec3 up = old.rotation * glm::dvec3(0, 0, 1);
     // The surface point it was placed at: its anchor, before the sink.

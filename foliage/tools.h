@@ -82,7 +82,7 @@ EditResult fill(FoliageStore& store, const Ground& ground, const Region2& area, 
 // Terrain only; the types' own filters apply too.
 EditResult fillLayer(FoliageStore& store, const Ground& ground, const std::string& layer, double minWeight,
                      const TypeSet& types, uint64_t seed, const std::optional<Region2>& area = std::nullopt,
-                     unsigned threads = 0);
+                     unsigned threads = 0, const Progress* progress = nullptr);
 // The rule-based scatter: each type over the whole ground (or `area`), by
 // its own rules (density, spacing, slope, altitude, layer, surface). With
 // `compete`, the types compete for room in the order given (the first, the
@@ -117,7 +117,9 @@ EditResult deleteSelection(FoliageStore& store, Selection& selection);
 // Re-evaluates the selected instances with their type's current settings:
 // rotation, scale and sink drawn again (from `seed` and each id), the
 // surface under them sampled again, and those the filters now refuse removed.
-EditResult reapply(FoliageStore& store, const Ground& ground, Selection& selection, uint64_t seed);
+// `progress` may cancel: then the store and the selection are as they were.
+EditResult reapply(FoliageStore& store, const Ground& ground, Selection& selection, uint64_t seed,
+                   const Progress* progress = nullptr);
 
 // The instance a type places at surface point `sp` (exposed for tests):
 // rotation from yaw, pitch and alignment, scale, sink; from (seed, key).

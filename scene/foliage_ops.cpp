@@ -117,6 +117,7 @@ FoliageOutcome commitFoliageWork(Document& doc, foliage::FoliageStore& worked, F
     FoliageOutcome out;
     out.stats = work.result.stats;
     out.summary = "cancelled: nothing changed";
+    out.cancelled = true;
     return out;
   }
   // The edit's undo data holds the cells as the document has them: swapped
@@ -152,14 +153,24 @@ FoliageOutcome paintFoliage(Document& doc, const FoliageGround& ground, const fo
 FoliageOutcome fillFoliageLayer(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
                                 const std::string& layer, double minWeight, uint64_t seed,
                                 const std::optional<foliage::Region2>& region) {
-  foliage::FoliageStore& store = doc.foliage().store();
-  if (types.empty()) return refused("no foliage type chosen to fill");
-  if (std::string e = checkTypes(store, types); !e.empty()) return refused(e);
-  if (!ground.ground().terrain) return refused("fill: the scene has no visible terrain");
-  if (foliage::terrainLayerIndex(*ground.ground().terrain, layer) < 0)
-    return refused("fill: the terrain has no paint layer \"" + layer + "\"");
-  foliage::EditResult r = foliage::fillLayer(store, ground.ground(), layer, minWeight, types, seed, region);
-  return record(doc, std::move(r), QString("Fill paint layer %1").arg(QString::fromStdString(layer)));
+  FoliageWork work = fillLayerOnStore(doc.foliage().store(), ground, types, layer, minWeight, seed, region);
+  if (!work.error.empty()) return refused(std::move(work.error));
+  return record(doc, std::move(work.result), work.text);
+}
+
+FoliageWork fillLayerOnStore(foliage::FoliageStore& store, const FoliageGround& ground, const foliage::TypeSet& types,
+                             const std::string& layer, double minWeight, uint64_t seed,
+                             const std::optional<foliage::Region2>& region, const Progress* progress) {
+  FoliageWork work;
+  if (types.empty()) work.error = "no foliage type chosen to fill";
+  else work.error = checkTypes(store, types);
+  if (work.error.empty() && !ground.ground().terrain) work.error = "fill: the scene has no visible terrain";
+  if (work.error.empty() && foliage::terrainLayerIndex(*ground.ground().terrain, layer) < 0)
+    work.error = "fill: the terrain has no paint layer \"" + layer + "\"";
+  if (!work.error.empty()) return work;
+  work.result = foliage::fillLayer(store, ground.ground(), layer, minWeight, types, seed, region, 0, progress);
+  work.text = QString("Fill paint layer %1").arg(QString::fromStdString(layer));
+  return work;
 }
 
 namespace {

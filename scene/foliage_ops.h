@@ -21,6 +21,7 @@ struct FoliageOutcome {
   std::vector<std::string> messages;  // warnings (clamped values, caps)
   foliage::OpStats stats;
   std::string summary;                // one line: what changed
+  bool cancelled = false;             // commitFoliageWork: the work was cancelled, nothing changed
 };
 
 // Adds a type drawing the mesh asset `type.mesh` (which must exist).
@@ -64,6 +65,12 @@ FoliageOutcome paintFoliage(Document& doc, const FoliageGround& ground, const fo
 FoliageOutcome fillFoliageLayer(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
                                 const std::string& layer, double minWeight, uint64_t seed,
                                 const std::optional<foliage::Region2>& region = std::nullopt);
+// fillFoliageLayer's work on any store (as scatterOnStore: a copy a worker
+// edits, `progress` may cancel); commitFoliageWork puts it in the document.
+FoliageWork fillLayerOnStore(foliage::FoliageStore& store, const FoliageGround& ground, const foliage::TypeSet& types,
+                             const std::string& layer, double minWeight, uint64_t seed,
+                             const std::optional<foliage::Region2>& region = std::nullopt,
+                             const Progress* progress = nullptr);
 // Removes the types' (or every type's) instances in the region (nullopt:
 // everywhere).
 FoliageOutcome eraseFoliage(Document& doc, const std::optional<foliage::Region2>& region,

@@ -41,6 +41,7 @@
 #include "foliage/surface.h"
 #include "scene/foliage_data.h"
 #include "scene/foliage_ground.h"
+#include "scene/foliage_ops.h"
 #include "scene/impostor_key.h"
 #include "scene/impostor_ops.h"
 #include "scene/terrain_ops.h"
@@ -552,6 +553,16 @@ class EditorFoliageTest : public QObject {
     const size_t filled = store().instanceCount() - before;
     QVERIFY2(filled > 50, qPrintable(QString::number(filled)));
     QVERIFY(w_->messages()->lastText().contains("Fill Paint Layer"));
+    // The panel's fill ran on a worker, into a copy: it placed what the
+    // operation on the document itself places.
+    const std::vector<foliage::Instance> worked = store().allInstances();
+    doc().undoStack()->undo();
+    QCOMPARE(store().instanceCount(), before);
+    QVERIFY(scene::ops::fillFoliageLayer(doc(), scene::FoliageGround(doc().state()), {0}, "Grass", 0.5, 3).ok);
+    const std::vector<foliage::Instance> direct = store().allInstances();
+    QCOMPARE(direct.size(), worked.size());
+    for (size_t i = 0; i < direct.size(); ++i)
+      QVERIFY(direct[i].id == worked[i].id && direct[i].position == worked[i].position);
     doc().undoStack()->undo();
     QCOMPARE(store().instanceCount(), before);
     QVERIFY(!panel_->fillLayer({0}, Json{{"layer", "Lava"}, {"min_weight", 0.5}}));

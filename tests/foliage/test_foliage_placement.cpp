@@ -310,6 +310,60 @@ class TestFoliagePlacement : public QObject {
     QCOMPARE(s.cellCount(), cells);
   }
 
+  // The layer fill and reapply run on the editor's worker too: cancelled,
+  // they change nothing, the selection included; the progress a reapply
+  // reports only grows, and a reapply watched to the end does what one
+  // without a Progress does.
+  void cancelledFillLayerAndReapplyChangeNothing() {
+    ht::Terrain t = terrain(129, 1.0, {0, 0, 0}, bumps);
+    for (int y = 0; y < 129; ++y)
+      for (int x = 0; x < 129; ++x)
+        if (std::hypot(x - 64.0, y - 64.0) < 50.0) t.paint.blend(x, y, 2, 1.0f);
+    Ground g{&t, {}};
+    FoliageStore s;
+    addType(s, type("Heather", 4000, 0.5));
+    scatter(s, g, {0}, 3);
+    const Snapshot before = snapshot(s);
+    hs::Progress early;
+    early.cancel();
+    EditResult r = fillLayer(s, g, t.paint.material(2).name, 0.5, {0}, 5, std::nullopt, 0, &early);
+    QVERIFY(r.cancelled && r.undo.empty() && r.stats.placed == 0);
+    QVERIFY(same(before, snapshot(s)));
+
+    Selection sel = selectRegion(s, Region2::rect({0.0, 0.0}, {128.0, 128.0}));
+    QVERIFY(sel.size() > 4096);  // past one progress batch
+    FoliageType changed = s.type(0);
+    changed.scale = {1.5, 2.0};
+    std::vector<std::string> warnings;
+    s.setType(0, changed, nullptr, warnings);
+    const Snapshot retyped = snapshot(s);
+    const Selection selected = sel;
+    // Cancelled after its first batch: the instances it had redrawn go back.
+    hs::Progress cancelling([&](double f, std::string_view) {
+      if (f > 0.0) cancelling.cancel();
+    });
+    r = reapply(s, g, sel, 4, &cancelling);
+    QVERIFY(r.cancelled && r.undo.empty() && r.stats.changed == 0);
+    QVERIFY(same(retyped, snapshot(s)));
+    QVERIFY(sel.items == selected.items);
+
+    double last = -1.0;
+    bool grew = true;
+    hs::Progress watching([&](double f, std::string_view) {
+      grew = grew && f >= last;
+      last = f;
+    });
+    FoliageStore plain = s;
+    Selection plainSel = sel;
+    r = reapply(s, g, sel, 4, &watching);
+    const EditResult q = reapply(plain, g, plainSel, 4);
+    QVERIFY(!r.cancelled && r.stats.changed == q.stats.changed && r.stats.removed == q.stats.removed);
+    QCOMPARE(r.stats.changed + r.stats.removed, selected.size());
+    QVERIFY(r.stats.changed > selected.size() / 2);
+    QVERIFY(grew && last > 0.0 && last < 1.0);
+    QVERIFY(same(snapshot(plain), snapshot(s)) && sel.items == plainSel.items);
+  }
+
   void badInputIsRefusedClearly() {
     const ht::Terrain t = terrain(65, 1.0, {0, 0, 0}, bumps);
     Ground g{&t, {}};
