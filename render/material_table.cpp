@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh/alpha_coverage_mips.h"
 #include "render/gpu_mesh_cache.h"
 #include "render/render_resources.h"
 #include "render/visible_set.h"
@@ -24,6 +25,32 @@ GpuMaterial gpuMaterialOf(const scene::Material& m) {
   if (m.unlit) flags |= kMatUnlit;
   g.kind = glm::uvec4(uint32_t(m.model), flags, 0u, 0u);
   return g;
+}
+
+// `t` with the mip levels given (coverage-preserving ones for a cut-out).
+// No anisotropic filter: its extra taps average alpha over the footprint
+// as a coarser level would (on llvmpipe a leaf plane 16 px across kept a
+// quarter of the cover the level holds), undoing what the levels keep.
+GLuint uploadWithMips(const mesh::Texture& t, bool srgb, const std::vector<mesh::MipLevel>& mips) {
+  GLuint tex = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+  glTextureStorage2D(tex, GLsizei(mips.size() + 1), srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width, t.height);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(tex, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+  for (size_t i = 0; i < mips.size(); ++i)
+    glTextureSubImage2D(tex, GLint(i + 1), 0, 0, mips[i].width, mips[i].height, GL_RGBA, GL_UNSIGNED_BYTE,
+                        mips[i].rgba.data());
+  glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return tex;
+}
+
+bool hasTransparency(const mesh::Texture& t) {
+  for (size_t i = 3; i < t.rgba.size(); i += 4)
+    if (t.rgba[i] != 255) return true;
+  return false;
 }
 
 GLuint uploadStandalone(const mesh::Texture& t, bool srgb) {
@@ -62,8 +89,28 @@ std::vector<std::string> MaterialTable::takeProblems() {
   return out;
 }
 
+GLuint MaterialTable::cutoutTexture(scene::TextureId id, const std::shared_ptr<const mesh::Texture>& image, bool srgb,
+                                    float threshold) {
+  const int key = int(std::lround(std::clamp(threshold, 0.0f, 1.0f) * 255.0f));
+  CutoutCopy& c = cutout_[{id, key}];
+  if (c.image != image) {
+    if (c.texture) glDeleteTextures(1, &c.texture);
+    c = {};
+    c.image = image;
+    // An image opaque everywhere keeps its coverage at every level: no
+    // copy (remembered, so the image is scanned once).
+    if (hasTransparency(*image)) {
+      c.texture = uploadWithMips(*image, srgb, mesh::coveragePreservingMips(*image, float(key) / 255.0f));
+      c.bytes = size_t(image->width) * size_t(image->height) * 4 * 4 / 3;
+    }
+  }
+  c.used = true;
+  return c.texture;
+}
+
 GLuint MaterialTable::texture(const scene::SceneState& state, const scene::Material& m, const char* field,
-                              scene::TextureId id, const GpuMesh& mesh, GpuMeshCache& meshes, bool normalMap) {
+                              scene::TextureId id, const GpuMesh& mesh, GpuMeshCache& meshes, bool normalMap,
+                              float cutout) {
   if (id == scene::kNoTexture) return 0;
   const std::string where = "material '" + m.name + "': " + field + ": ";
   const scene::TextureAsset* t = state.findTexture(id);
@@ -93,6 +140,8 @@ GLuint MaterialTable::texture(const scene::SceneState& state, const scene::Mater
     report(named + "has one channel (grey); a normal map needs three (x, y, z in red, green, blue); drawn without it");
     return 0;
   }
+  if (cutout > 0.0f && cutout < 1.0f)
+    if (const GLuint copy = cutoutTexture(id, t->image, t->standalone() ? t->srgb : true, cutout)) return copy;
   if (!t->standalone()) {
     // The mesh's own upload (LOD levels share level 0's textures).
     const GpuMesh* owner = &mesh;
@@ -150,7 +199,8 @@ void MaterialTable::build(const scene::SceneState& state, const std::vector<Draw
           GpuMaterial g = gpuMaterialOf(*m);
           const bool castsCutout = m->alphaCutout || m->opacity < 1.0f;
           if (drawnLit || castsCutout)
-            dm.textures[0] = texture(state, *m, "base_color_texture", m->baseColorTexture, *it.mesh, meshes, false);
+            dm.textures[0] = texture(state, *m, "base_color_texture", m->baseColorTexture, *it.mesh, meshes, false,
+                                     m->alphaCutout ? m->alphaThreshold : -1.0f);
           if (drawnLit) {
             dm.textures[1] = texture(state, *m, "normal_map", m->normalMap, *it.mesh, meshes, true);
             dm.textures[2] = texture(state, *m, "height_map", m->heightMap, *it.mesh, meshes, false);
@@ -213,6 +263,17 @@ void MaterialTable::build(const scene::SceneState& state, const std::vector<Draw
 }
 
 void MaterialTable::collect(const scene::SceneState& state) {
+  // Cut-out copies the last frame did not use (the texture gone or
+  // changed, the material no longer cut out or at another threshold).
+  for (auto it = cutout_.begin(); it != cutout_.end();) {
+    if (!it->second.used) {
+      if (it->second.texture) glDeleteTextures(1, &it->second.texture);
+      it = cutout_.erase(it);
+    } else {
+      it->second.used = false;
+      ++it;
+    }
+  }
   for (auto it = standalone_.begin(); it != standalone_.end();) {
     const scene::TextureAsset* t = state.findTexture(it->first);
     if (!t || t->contentHash != it->second.hash) {
@@ -227,6 +288,9 @@ void MaterialTable::collect(const scene::SceneState& state) {
 void MaterialTable::clear() {
   for (auto& [id, s] : standalone_) glDeleteTextures(1, &s.texture);
   standalone_.clear();
+  for (auto& [key, c] : cutout_)
+    if (c.texture) glDeleteTextures(1, &c.texture);
+  cutout_.clear();
   perDraw_.clear();
   byId_.clear();
 }
@@ -234,6 +298,7 @@ void MaterialTable::clear() {
 size_t MaterialTable::gpuBytes() const {
   size_t n = 0;
   for (const auto& [id, s] : standalone_) n += s.bytes;
+  for (const auto& [key, c] : cutout_) n += c.bytes;
   return n;
 }
 

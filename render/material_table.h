@@ -5,11 +5,16 @@
 // mesh::Material) as an index into the MaterialBlock storage buffer and
 // its textures (base colour, normal map, height map: units 0-2). Textures
 // of a mesh are its GpuMesh's; standalone ones are uploaded here, keyed by
-// id and content hash. A texture that cannot be drawn (missing, empty,
+// id and content hash. The base colour texture of an alpha cut-out
+// material gets a copy of its own, keyed by the texture and the threshold,
+// whose mip levels keep level 0's alpha coverage at that threshold
+// (mesh/alpha_coverage_mips.h: far leaves do not vanish); a texture whose
+// alpha is 255 everywhere needs none. A texture that cannot be drawn (missing, empty,
 // larger than the GPU allows, damaged, a grey "normal map") is left out of
 // the draw and reported once, naming the material and the field; the
 // frame still renders. Include only inside render/.
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -75,14 +80,27 @@ class MaterialTable {
     GLuint texture = 0;
     size_t bytes = 0;
   };
+  // `cutout`: the material's alpha threshold when it is cut out (the
+  // coverage-preserving copy), else negative.
   GLuint texture(const scene::SceneState& state, const scene::Material& m, const char* field, scene::TextureId id,
-                 const GpuMesh& mesh, GpuMeshCache& meshes, bool normalMap);
+                 const GpuMesh& mesh, GpuMeshCache& meshes, bool normalMap, float cutout = -1.0f);
+  struct CutoutCopy {
+    // The image it was made from, held so that a new image is never at the
+    // same address (the copy is made again when the texture's image changes).
+    std::shared_ptr<const mesh::Texture> image;
+    GLuint texture = 0;
+    size_t bytes = 0;
+    bool used = false;            // by the last build (collect frees the others)
+  };
+  GLuint cutoutTexture(scene::TextureId id, const std::shared_ptr<const mesh::Texture>& image, bool srgb,
+                       float threshold);
   void report(const std::string& problem);
 
   std::vector<GpuMaterial> block_;
   std::map<scene::MaterialId, DrawMaterial> byId_;  // this frame's
   std::vector<std::vector<DrawMaterial>> perDraw_;  // [draw][submesh]
   std::map<scene::TextureId, Standalone> standalone_;
+  std::map<std::pair<scene::TextureId, int>, CutoutCopy> cutout_;  // (texture, threshold x 255)
   std::set<std::string> reported_;
   std::vector<std::string> problems_;
   int maxTextureSize_ = 0;

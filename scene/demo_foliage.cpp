@@ -9,17 +9,21 @@
 namespace hs::scene {
 
 // Sizes kept modest (a few thousand triangles at full resolution) so the
-// demo renders quickly on a CPU rasteriser with LODs off (the goldens).
+// demo renders quickly on a CPU rasteriser with LODs off (the goldens):
+// fewer branches, so each leaf card stands for a spray of needles or a
+// cluster of leaves (bigger cards), or the crowns look bare from afar.
 std::vector<DemoPlant> demoPlants() {
   foliage::PlantParams pine = foliage::defaultPlant(foliage::PlantKind::Conifer, 11);
   pine.height = 11.0;
   pine.branches = 20;
   pine.leavesPerBranch = 8;
+  pine.leafSize = 0.9;
   pine.sides = 6;
   foliage::PlantParams plane = foliage::defaultPlant(foliage::PlantKind::Broadleaf, 23);
   plane.height = 9.0;
   plane.branches = 14;
   plane.leavesPerBranch = 8;
+  plane.leafSize = 0.75;
   plane.sides = 6;
   foliage::PlantParams juniper = foliage::defaultPlant(foliage::PlantKind::Shrub, 5);
   juniper.height = 1.6;

@@ -9,8 +9,10 @@
 namespace hs::scene {
 namespace {
 
-// Bumped when the bake's output changes for the same inputs (its shaders).
-constexpr uint64_t kBakeVersion = 1;
+// Bumped when the bake's output changes for the same inputs (its shaders,
+// the textures it samples). 2: cut-out textures' mips keep their alpha
+// coverage (render/material_table.h).
+constexpr uint64_t kBakeVersion = 2;
 
 using foliage::byte_io::put;
 

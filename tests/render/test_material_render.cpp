@@ -9,7 +9,9 @@
 #include "image_compare.h"
 #include "render_golden.h"
 #include "mesh/procedural_textures.h"
+#include "foliage/plants.h"
 #include "material_scenes.h"
+#include "mesh/alpha_coverage_mips.h"
 #include "render/offscreen_renderer.h"
 #include "scene/demo_scene.h"
 
@@ -324,6 +326,40 @@ class TestMaterialRender : public QObject {
       if (cutout) QVERIFY2(left < 1e-3f, qPrintable(QString::number(left)));  // background
       else QVERIFY2(left > 0.9f, qPrintable(QString::number(left)));         // drawn (opaque pass)
     }
+  }
+
+  // A cut-out leaf texture seen far away (512 texels over 16 pixels: mip
+  // level 5) keeps the cover it has close up: its mips keep level 0's
+  // alpha coverage (mesh/alpha_coverage_mips.h). With GL's box-filtered
+  // mips, as before, the needles fell under the threshold (none left four
+  // levels down). Measured: 30 % of the plane's pixels for 24 % of level
+  // 0's texels (pixel centres on texel centres: the level's texels). The plane's own pixels come
+  // from the same plane with an opaque texture.
+  void cutoutKeepsItsCoverageFarAway() {
+    // The generated conifer's needles: thin lines, what box-filtered mips
+    // lose first (test_alpha_mips).
+    const mesh::Texture leaves = foliage::leafTexture(foliage::PlantKind::Conifer, 512);
+    const double c0 = mesh::alphaCoverage(leaves.rgba, 0.5f);
+    mesh::Texture opaque = leaves;
+    for (size_t i = 3; i < opaque.rgba.size(); i += 4) opaque.rgba[i] = 255;
+    scene::Material m = modelMaterial(LightingModel::Lambert);
+    m.unlit = true;
+    m.baseColor = glm::vec3(1.0f);
+    m.alphaCutout = true;
+    m.twoSided = true;
+    size_t counts[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+      test::MaterialScene ms = test::materialScene(facingPlane(2.0f), m, 64, 12.3);
+      addMaterialTexture(ms.state, ms.material, 0, k == 0 ? leaves : opaque, 7);
+      const hs::Image hdr = r_.render(ms.state, ms.view, true);
+      for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) counts[k] += hdrAt(hdr, x, y).g > 0.02f;
+    }
+    const double cover = double(counts[0]) / double(std::max<size_t>(counts[1], 1));
+    qInfo("cut-out leaves 16 px across: %zu of the plane's %zu pixels (%.3f); level 0 covers %.3f", counts[0],
+          counts[1], cover, c0);
+    QVERIFY2(counts[1] > 150 && counts[1] < 400, qPrintable(QString::number(counts[1])));  // about 16 x 16
+    QVERIFY2(std::abs(cover - c0) < 0.12, qPrintable(QString::number(cover)));
   }
 
   void oneSidedFacesAreCulledFromBehind() {
