@@ -69,7 +69,7 @@ void sizePool(ABufferInfo& info, size_t capBytes, bool tail) {
     info.pixelCounts = {};
     info.capacity = capacity;
     info.overflow = over;
-    info.bytes = fixed + capacity * kABufferNodeBytes + (tail ? std::max<size_t>(tailBytes, 32) : 0);
+    info.bytes = fixed + capacity * kABufferNodeBytes + (tail ? std::max<size_t>(tailBytes, kOitTailBytesPerPixel) : 0);
     return;
   }
   // Buffers are made in size classes (resource_pool.h), at most 1/8 over
@@ -86,7 +86,8 @@ void sizePool(ABufferInfo& info, size_t capBytes, bool tail) {
   info.pixelCounts = {};
   info.capacity = capacity;
   info.overflow = info.fragments > capacity ? info.fragments - capacity : 0;
-  info.bytes = fixed + std::max<size_t>(capacity, 1) * kABufferNodeBytes + (tail ? std::max<size_t>(tailBytes, 32) : 0);
+  info.bytes = fixed + std::max<size_t>(capacity, 1) * kABufferNodeBytes +
+               (tail ? std::max<size_t>(tailBytes, kOitTailBytesPerPixel) : 0);
 }
 
 }  // namespace
@@ -193,7 +194,7 @@ ABuffer addABufferCapture(FrameGraph& graph, FrameContext& frame, const ViewCont
         });
         if (request.tail)
           d.tail = b.createSized(v.named(request.name + "_tail"), [info, pixels] {
-            return BufferDesc{info->overflow ? pixels * kOitTailBytesPerPixel : 32};
+            return BufferDesc{info->overflow ? pixels * kOitTailBytesPerPixel : kOitTailBytesPerPixel};
           });
         readShadowMaps(b, frame);
         readLightGrid(b, frame);

@@ -51,13 +51,13 @@ enum ABufferBinding : unsigned {
   kABufferCountsImage = 1,       // image unit: r32ui fragments per pixel
   kABufferNodesBinding = 12,     // buffer: uvec4 nodes
   kABufferCountersBinding = 13,  // buffer: ABufferCounters
-  kOitTailBinding = 14,          // buffer: tail sums (two uvec4 per pixel)
+  kOitTailBinding = 14,          // buffer: tail sums (three uvec4 per pixel: shaders/oit_tail.glsl)
   kABufferStartsBinding = 15,    // buffer: uint per pixel and one more, row-major: where each pixel's range starts
   kABufferCursorBinding = 16,    // buffer: uint per pixel, the key pass's next node (the capture's alone)
 };
 constexpr uint32_t kABufferNoCap = 0xFFFFFFFFu;
 constexpr size_t kABufferNodeBytes = 16;
-constexpr size_t kOitTailBytesPerPixel = 32;
+constexpr size_t kOitTailBytesPerPixel = 48;
 
 // The std430 ABufferCounters block (shaders/abuffer.glsl), member for member.
 struct ABufferCounters {

@@ -8,6 +8,7 @@
 // the frame's sources for its draws of one variant; a source records them
 // from CPU lists or from indirect command buffers a compute pass wrote.
 // Include only inside render/.
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -93,6 +94,11 @@ class DrawSource {
   // Triangles of one drawing of `surfaces` (a surface drawn by several
   // passes, count, keys and lit, is counted once by its owner).
   virtual size_t triangles(SurfaceSet surfaces) const { (void)surfaces; return 0; }
+  // The nearest depth (metres along `view`'s axis) of what it draws into
+  // `view`, after its setup: the depth of field sizes its largest blur from
+  // it (passes/dof_passes.h). +inf: nothing near (the default; a terrain's
+  // reach to the camera is the world's, RenderWorld::terrains).
+  virtual double nearestDepth(const RenderView& view) const { (void)view; return INFINITY; }
   // Picking: the ids it writes (pickBase .. pickBase + pickIds() - 1) and
   // what id pickBase + k names.
   virtual uint32_t pickIds() const { return 0; }

@@ -29,9 +29,10 @@ void packCell(const foliage::FoliageStore& store, const foliage::Cell& c, uint16
 // The sets, each cell given room(count) places; `slots` (may be null)
 // gets each cell's.
 std::vector<InstanceSet> buildSets(const scene::SceneState& state, size_t maxInstances,
-                                   size_t (*room)(size_t), CellSlots* slots) {
+                                   size_t (*room)(size_t), CellSlots* slots, std::vector<size_t>* tails) {
   std::vector<InstanceSet> out;
   if (slots) slots->clear();
+  if (tails) tails->clear();
   const foliage::FoliageStore* store = scene::foliageStoreOf(state);
   if (!store || store->cellCount() == 0) return out;
   const std::vector<InstanceType> types = foliageInstanceTypes(state);
@@ -50,7 +51,8 @@ std::vector<InstanceSet> buildSets(const scene::SceneState& state, size_t maxIns
       places += more;
       ++last;
     }
-    set.instances.assign(places, kSpareInstance);
+    set.instances.assign(places + (tails ? setTail(places, maxInstances) : 0), kSpareInstance);
+    if (tails) tails->push_back(places);
     size_t at = 0;
     for (size_t i = first; i < last; ++i) {
       const foliage::CellKey& k = keys[i];
@@ -91,12 +93,17 @@ std::vector<InstanceType> foliageInstanceTypes(const scene::SceneState& state) {
 
 size_t cellRoom(size_t count) { return count + count / 4 + 16; }
 
-std::vector<InstanceSet> foliageInstanceSets(const scene::SceneState& state, size_t maxInstances) {
-  return buildSets(state, maxInstances, tight, nullptr);
+size_t setTail(size_t places, size_t maxInstances) {
+  return places >= maxInstances ? 0 : std::min(places / 8 + 4096, maxInstances - places);
 }
 
-std::vector<InstanceSet> foliagePagedSets(const scene::SceneState& state, CellSlots& slots, size_t maxInstances) {
-  return buildSets(state, maxInstances, cellRoom, &slots);
+std::vector<InstanceSet> foliageInstanceSets(const scene::SceneState& state, size_t maxInstances) {
+  return buildSets(state, maxInstances, tight, nullptr, nullptr);
+}
+
+std::vector<InstanceSet> foliagePagedSets(const scene::SceneState& state, CellSlots& slots,
+                                          std::vector<size_t>& tails, size_t maxInstances) {
+  return buildSets(state, maxInstances, cellRoom, &slots, &tails);
 }
 
 bool repackCell(const foliage::FoliageStore& store, const foliage::CellKey& key, CellSlot& slot,

@@ -18,7 +18,8 @@
 // a slot of room, its instances then spare ones (kSpareInstance: a type no
 // set has, which culling skips and nothing draws), so an edit rewrites the
 // slots of the cells it touched in place and the frame uploads those
-// ranges, not the set.
+// ranges, not the set; and each set ends in a tail of spare places from
+// which a cell painted later takes its slot.
 #include <unordered_map>
 #include <vector>
 
@@ -61,8 +62,14 @@ using CellSlots = std::unordered_map<foliage::CellKey, CellSlot, foliage::CellKe
 // The room a cell of `count` instances gets: a quarter more and 16, so
 // most brush dabs fit without a rebuild.
 size_t cellRoom(size_t count);
-// The paged sets of the state's foliage, and every cell's slot in them.
+// The spare places a paged set of `places` (its cells' rooms) keeps at
+// its end for cells painted later: an eighth more and 4096, within
+// `maxInstances`.
+size_t setTail(size_t places, size_t maxInstances);
+// The paged sets of the state's foliage, and every cell's slot in them;
+// `tails` gets each set's first spare place of its tail (setTail).
 std::vector<InstanceSet> foliagePagedSets(const scene::SceneState& state, CellSlots& slots,
+                                          std::vector<size_t>& tails,
                                           size_t maxInstances = kMaxInstancesPerSource);
 // Cell `key` as the store has it now, packed for its slot into `out`
 // (slot.room places: its instances, then spare ones; none left: it was

@@ -22,9 +22,36 @@ const std::vector<std::shared_ptr<InstancedSource>>& FoliageSources::update(cons
 }
 
 bool FoliageSources::repack(const foliage::FoliageStore& store) {
-  // A cell the sets do not have needs a slot: rebuild.
-  for (const auto& [k, c] : store.cells())
-    if (!slots_.count(k)) return false;
+  // A cell the sets do not have gets a slot from the first tail with room
+  // for it (and a cell index to spare): all of them, or a rebuild.
+  struct NewCell {
+    foliage::CellKey key;
+    size_t set, first, room;
+  };
+  std::vector<NewCell> added;
+  std::vector<size_t> tails = tails_;
+  std::vector<size_t> cells(sources_.size());
+  for (size_t i = 0; i < sources_.size(); ++i) cells[i] = sources_[i]->instances().cells.size();
+  for (const auto& [k, c] : store.cells()) {
+    if (slots_.count(k)) continue;
+    size_t count = 0;
+    for (const foliage::Run& r : c.runs) count += r.items.size();
+    const size_t room = cellRoom(count);
+    size_t set = 0;
+    while (set < sources_.size() &&
+           (tails[set] + room > sources_[set]->instances().instances.size() || cells[set] >= kMaxCellsPerSet))
+      ++set;
+    if (set == sources_.size()) return false;
+    added.push_back({k, set, tails[set], room});
+    tails[set] += room;
+    ++cells[set];
+  }
+  for (const NewCell& n : added) {
+    const uint16_t cell = sources_[n.set]->addCell(n.key.origin());
+    // No revision yet: packed below with the changed cells.
+    slots_[n.key] = {n.set, cell, n.first, 0, n.room, UINT64_MAX};
+  }
+  tails_ = std::move(tails);
   struct Change {
     foliage::CellKey key;
     CellSlot* slot;
@@ -50,7 +77,7 @@ bool FoliageSources::repack(const foliage::FoliageStore& store) {
 
 void FoliageSources::rebuild(const scene::SceneState& state) {
   lastRebuilt_ = true;
-  std::vector<InstanceSet> sets = foliagePagedSets(state, slots_);
+  std::vector<InstanceSet> sets = foliagePagedSets(state, slots_, tails_);
   sources_.resize(sets.size());
   for (size_t i = 0; i < sets.size(); ++i) {
     // A source keeps its pool buffer's name across updates, so a rebuild

@@ -7,8 +7,12 @@
 //     room: only those slots are packed again and only they are uploaded
 //     (InstancedSource::updateInstances), a brush dab's few cells instead
 //     of the whole forest;
-//   - a new cell, a cell grown past its room, a type added or changed, a
-//     mesh renamed, another store: the paged sets are rebuilt and uploaded.
+//   - a new cell (the first dab on bare ground) takes a slot from a set's
+//     spare tail (foliage_instances.h setTail) and its cell is appended
+//     (InstancedSource::addCell): only that slot is uploaded;
+//   - a cell grown past its room, a new cell no tail has room for, a type
+//     added or changed, a mesh renamed, another store: the paged sets are
+//     rebuilt and uploaded.
 // GPU culling (the compute passes of instanced_source.h). Include only
 // inside render/.
 #include <memory>
@@ -30,8 +34,9 @@ class FoliageSources {
   bool lastRebuilt() const { return lastRebuilt_; }
 
  private:
-  // Packs the changed cells again in place; false when that cannot be done
-  // (a new cell, one past its room): the caller rebuilds.
+  // Packs the changed cells again in place, new ones into a tail; false
+  // when that cannot be done (a cell past its room, a new cell no tail
+  // has room for): the caller rebuilds.
   bool repack(const foliage::FoliageStore& store);
   void rebuild(const scene::SceneState& state);
 
@@ -41,6 +46,7 @@ class FoliageSources {
   uint64_t revision_ = 0;
   std::vector<InstanceType> types_;  // what the sets were built with
   CellSlots slots_;
+  std::vector<size_t> tails_;  // per set: its tail's first spare place
   std::vector<std::shared_ptr<InstancedSource>> sources_;
   size_t lastRepacked_ = 0;
   bool lastRebuilt_ = false;

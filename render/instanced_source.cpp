@@ -148,15 +148,26 @@ InstancedSource::InstancedSource(std::string name, Culling culling) : name_(std:
 }
 InstancedSource::~InstancedSource() = default;
 
+void InstancedSource::widen(const GpuInstance& g) {
+  const size_t type = g.typeAndCell & 0xFFFFu, cell = g.typeAndCell >> 16;
+  if (type >= minScale_.size()) return;  // a spare place (kSpareInstance)
+  maxId_ = std::max(maxId_, g.id);
+  const float scale = float(maxAbsScale(instanceScale(g)));
+  minScale_[type] = std::min(minScale_[type], scale);
+  maxScale_ = std::max(maxScale_, scale);
+  if (cell >= cellBoxes_.size()) return;
+  cellBoxes_[cell].first = glm::min(cellBoxes_[cell].first, g.position);
+  cellBoxes_[cell].second = glm::max(cellBoxes_[cell].second, g.position);
+}
+
 void InstancedSource::setInstances(InstanceSet set) {
   set_ = std::move(set);
   maxId_ = 0;
+  maxScale_ = 0.0f;
   minScale_.assign(set_.types.size(), std::numeric_limits<float>::infinity());
-  for (const GpuInstance& g : set_.instances) {
-    maxId_ = std::max(maxId_, g.id);
-    const size_t type = g.typeAndCell & 0xFFFFu;
-    if (type < minScale_.size()) minScale_[type] = std::min(minScale_[type], float(maxAbsScale(instanceScale(g))));
-  }
+  cellBoxes_.assign(set_.cells.size(), {glm::vec3(std::numeric_limits<float>::infinity()),
+                                        glm::vec3(-std::numeric_limits<float>::infinity())});
+  for (const GpuInstance& g : set_.instances) widen(g);
   ++revision_;
   pending_.clear();
 }
@@ -165,15 +176,38 @@ void InstancedSource::updateInstances(size_t first, const GpuInstance* items, si
   if (n == 0 || first + n > set_.instances.size()) return;
   std::copy(items, items + n, set_.instances.begin() + std::ptrdiff_t(first));
   // The bounds only widen: an instance that left may have been the
-  // smallest (a smaller minimum scale only lets the impostor start later).
-  for (size_t i = 0; i < n; ++i) {
-    const GpuInstance& g = items[i];
-    const size_t type = g.typeAndCell & 0xFFFFu;
-    if (type >= minScale_.size()) continue;  // a spare slot (kSpareInstance)
-    maxId_ = std::max(maxId_, g.id);
-    minScale_[type] = std::min(minScale_[type], float(maxAbsScale(instanceScale(g))));
-  }
+  // smallest (a smaller minimum scale only lets the impostor start later),
+  // or the nearest (a nearer bound only blurs less).
+  for (size_t i = 0; i < n; ++i) widen(items[i]);
   pending_.emplace_back(first, n);
+}
+
+uint16_t InstancedSource::addCell(const glm::dvec3& origin) {
+  set_.cells.push_back(origin);  // the cells go up every frame (small): nothing else to do
+  cellBoxes_.push_back({glm::vec3(std::numeric_limits<float>::infinity()),
+                        glm::vec3(-std::numeric_limits<float>::infinity())});
+  return uint16_t(set_.cells.size() - 1);
+}
+
+double InstancedSource::nearestDepth(const RenderView& view) const {
+  if (!active_) return INFINITY;
+  double reach = 0.0;
+  for (const TypeFrame& tf : types_)
+    if (tf.asset)
+      reach = std::max(reach, double(glm::length(glm::vec3(tf.lodSphere)) + tf.cullRadius + tf.windPerScaleZ));
+  reach *= double(maxScale_);
+  const glm::dvec3 fwd = view.forward();
+  double nearest = INFINITY;
+  for (size_t c = 0; c < cellBoxes_.size() && c < set_.cells.size(); ++c) {
+    const auto& [lo, hi] = cellBoxes_[c];
+    if (lo.x > hi.x) continue;
+    const glm::dvec3 o = set_.cells[c] - view.eye;
+    for (int k = 0; k < 8; ++k) {
+      const glm::dvec3 p(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+      nearest = std::min(nearest, glm::dot(o + p, fwd));
+    }
+  }
+  return nearest - reach;
 }
 
 bool InstancedSource::wanted(const Part& part, SurfaceSet surfaces) const {
@@ -229,8 +263,7 @@ void InstancedSource::addMaterials(FrameContext& frame, std::vector<DrawItem>& d
     // instance can reach it: from `reach` metres (the LOD rule's distance
     // for its error) at the type's smallest scale, within its cull distance.
     const InstanceType& type = set_.types[t];
-    if (type.impostor && !base->bounds.empty && base->bounds.radius() > 0.0f &&
-        frame.settings.depthOfField != scene::DepthOfField::Layered) {
+    if (type.impostor && !base->bounds.empty && base->bounds.radius() > 0.0f) {
       const double error = std::max(impostorError(base->bounds.radius()), tf.errors.back());
       const double reach = mesh::lodDistance(error, frame.lodView.fovY, double(frame.lodView.height),
                                              frame.settings.meshLodErrorPixels) *
@@ -667,15 +700,22 @@ void InstancedSource::drawPart(FrameContext& frame, size_t view, size_t k, const
 // View `view`'s impostors: one card per instance (shaders/impostor.vert),
 // lit, picked or cast by shaders/impostor.frag's variant for the call.
 void InstancedSource::drawImpostors(FrameContext& frame, size_t view, const DrawCall& call, glm::ivec2 ditherOffset) {
-  // A pass's own fragment shader (the A-buffer's capture passes) takes
-  // mesh surfaces; a frame with one has no impostor level (addMaterials).
-  if (call.variant == DrawVariant::Surface && (!call.fragment.empty() || call.surfaces == SurfaceSet::Translucent))
-    return;
+  // Impostors are cut out, opaque: none in the transparency passes. The
+  // capture of every surface (the layered depth of field's A-buffer,
+  // SurfaceSet::All) takes them with impostor.frag's own variants of the
+  // A-buffer's count and key shaders, and its lit HS_OIT one.
+  const bool capture = call.variant == DrawVariant::Surface && call.surfaces == SurfaceSet::All;
+  if (call.variant == DrawVariant::Surface && call.surfaces == SurfaceSet::Translucent) return;
+  const char* captureVariant = nullptr;
+  if (capture && call.fragment == "abuffer_count.frag") captureVariant = "IMPOSTOR_ABUFFER_COUNT";
+  else if (capture && call.fragment == "abuffer_keys.frag") captureVariant = "IMPOSTOR_ABUFFER_KEYS";
+  else if (call.variant == DrawVariant::Surface && !call.fragment.empty()) return;  // a pass's shader for meshes only
   const size_t n = set_.instances.size();
   std::vector<std::string> defines = {"IMPOSTOR_FRAMES " + std::to_string(kImpostorFrames),
                                       "IMPOSTOR_FRAME_PIXELS " + std::to_string(kImpostorFramePixels)};
   if (call.variant == DrawVariant::Pick) defines.push_back("IMPOSTOR_PICK");
   else if (call.variant == DrawVariant::Depth) defines.push_back("IMPOSTOR_DEPTH");
+  else if (captureVariant) defines.push_back(captureVariant);
   else defines.insert(defines.end(), call.defines.begin(), call.defines.end());
   bool bound = false;
   for (size_t k = 0; k < parts_.size(); ++k) {

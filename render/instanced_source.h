@@ -11,10 +11,11 @@
 //     impostor_cache.h, drawn by shaders/impostor.vert and .frag: one card
 //     an instance) whose error is impostorError of level 0's bounding
 //     radius (at least the last level's). A type has that level only where
-//     some instance can reach it: the pixel bound is above 0, no layered
-//     depth of field (its capture takes mesh surfaces only) and the
+//     some instance can reach it: the pixel bound is above 0 and the
 //     distance the impostor's error passes from, at the type's smallest
-//     instance scale, within its cull distance; else no atlas is baked;
+//     instance scale, within its cull distance; else no atlas is baked
+//     (the layered depth of field's capture takes impostors too, with
+//     impostor.frag's A-buffer variants);
 //   - whether it is beyond its type's cull distance from the LOD eye (then
 //     no view draws it); over the last InstanceType::fadeLength metres
 //     before it, mesh.vert gives it a fade share and every fragment shader
@@ -158,6 +159,10 @@ class InstancedSource final : public DrawSource {
   // foliage_sources.h): the next frame uploads those ranges into the buffer
   // it keeps instead of the whole set. The types and cells stay.
   void updateInstances(size_t first, const GpuInstance* items, size_t n);
+  // Appends a cell (its world origin) for instances updateInstances puts
+  // in spare places to name: a new foliage cell in a set's spare tail
+  // (foliage_sources.h), no upload of the set. Returns its index.
+  uint16_t addCell(const glm::dvec3& origin);
   // Bytes of instances the last frame that drew this source uploaded (the
   // whole set after setInstances or a new buffer, else the updated ranges).
   size_t lastUploadBytes() const { return *lastUploadBytes_; }
@@ -197,6 +202,10 @@ class InstancedSource final : public DrawSource {
   void declare(PassBuilder& builder, DrawVariant variant) const override;
   void draw(FrameContext& frame, const DrawCall& call, const PassResources& resources) override;
   size_t triangles(SurfaceSet surfaces) const override;
+  // The nearest corner of its cells' instance boxes, less the farthest
+  // reach of a type's mesh (its bounds and wind margin at the largest
+  // scale): conservative, from the CPU's copy of the set.
+  double nearestDepth(const RenderView& view) const override;
   uint32_t pickIds() const override { return maxId_ + 1; }
   // Whether the last frame drew (could draw) type `type` as an impostor:
   // the type has that level this frame and its atlas is baked.
@@ -255,6 +264,11 @@ class InstancedSource final : public DrawSource {
   glm::vec3 lodEye_{0.0f};
   std::vector<uint32_t> cpuCounts_;  // Cpu: visible per view and group
   std::vector<float> minScale_;      // per type: its instances' smallest largest |scale| factor
+  float maxScale_ = 0.0f;            // every instance's largest |scale| factor
+  // Per cell: the box its instances' positions lie in (relative to the
+  // cell's origin; min > max: none yet). Widened by updates, never shrunk.
+  std::vector<std::pair<glm::vec3, glm::vec3>> cellBoxes_;
+  void widen(const GpuInstance& g);
   size_t cameraViews_ = 0;
   bool anyCaster_ = false;
   BufferRef instanceBuffer_, cells_, visible_, groupBase_, commands_;

@@ -64,7 +64,9 @@ struct ViewVolume {
 // path moving a world-space emitter, a mesh shape without its surface):
 // it may always be seen.
 bool mayBeSeen(const scene::PlacedEmitter& pe, double t, const particles::Evaluator& ev,
-               const std::vector<ViewVolume>& volumes, const glm::dvec3& frameOrigin, scene::ParticleWorld* world) {
+               const std::vector<ViewVolume>& volumes, const glm::dvec3& frameOrigin, scene::ParticleWorld* world,
+               glm::dvec4* sphere = nullptr) {
+  if (sphere) *sphere = glm::dvec4(0.0, 0.0, 0.0, -1.0);  // none known
   const std::optional<scene::PlacedBound> b = scene::placedBound(pe, t, world, ev.inputs().surface);
   if (!b) return true;
   const particles::EmitterDesc& d = b->desc;  // widened by its spawn tracks
@@ -74,6 +76,7 @@ bool mayBeSeen(const scene::PlacedEmitter& pe, double t, const particles::Evalua
   if (d.facing == particles::Facing::Velocity)
     reach += 0.5 * double(kStretchSeconds) * particles::speedBound(d, d.lifetimeMax);
   const glm::dvec3 c = d.origin + b->bound.centre - frameOrigin;  // double, then relative
+  if (sphere) *sphere = glm::dvec4(d.origin + b->bound.centre, b->bound.radius + reach);
   for (const ViewVolume& v : volumes)
     if (v.frustum.intersectsSphere(c - v.eye, b->bound.radius + reach)) return true;
   return false;
@@ -82,20 +85,24 @@ bool mayBeSeen(const scene::PlacedEmitter& pe, double t, const particles::Evalua
 }  // namespace
 
 ParticleSource::ParticleSource(ParticleSprites& sprites, std::vector<particles::PackedParticle> particles,
-                               std::vector<ParticleGpuJob> gpuJobs, std::vector<ParticleDraw> draws, size_t views)
+                               std::vector<ParticleGpuJob> gpuJobs, std::vector<ParticleDraw> draws, size_t views,
+                               const glm::dvec3& origin, std::vector<glm::dvec4> gpuBounds)
     : sprites_(sprites),
       particles_(std::move(particles)),
       gpuJobs_(std::move(gpuJobs)),
       draws_(std::move(draws)),
-      views_(views) {
+      views_(views),
+      origin_(origin),
+      gpuBounds_(std::move(gpuBounds)) {
   records_ = particles_.size();
   for (const ParticleGpuJob& j : gpuJobs_) records_ += j.data.candidates;
 }
 
 bool ParticleSource::has(DrawVariant variant, SurfaceSet surfaces) const {
-  // Translucent surfaces only: no shadows (Depth), no picking, not in the
-  // opaque pass, not in the layered depth of field's capture (All).
-  return variant == DrawVariant::Surface && surfaces == SurfaceSet::Translucent && records_ > 0;
+  // Translucent surfaces: the transparency passes and the layered depth of
+  // field's capture of every surface (All), which blurs each particle by
+  // its own depth. No shadows (Depth), no picking, not in the opaque pass.
+  return variant == DrawVariant::Surface && surfaces != SurfaceSet::Opaque && records_ > 0;
 }
 
 void ParticleSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
@@ -132,8 +139,26 @@ void ParticleSource::declare(PassBuilder& builder, DrawVariant variant) const {
   if (variant == DrawVariant::Surface && buffer_.valid()) builder.read(buffer_);
 }
 
+double ParticleSource::nearestDepth(const RenderView& view) const {
+  const glm::dvec3 fwd = view.forward(), eye = view.eye - origin_;
+  double nearest = INFINITY;
+  // A velocity-aligned quad stretches along its velocity (particle.vert).
+  bool stretched = false;
+  for (const ParticleDraw& d : draws_) stretched = stretched || d.alongVelocity;
+  for (const particles::PackedParticle& q : particles_) {
+    const glm::dvec3 c(q.position[0], q.position[1], q.position[2]);
+    double radius = 0.5 * std::sqrt(2.0) * double(q.size);
+    if (stretched)
+      radius += 0.5 * double(kStretchSeconds) * glm::length(glm::dvec3(q.velocity[0], q.velocity[1], q.velocity[2]));
+    nearest = std::min(nearest, glm::dot(c - eye, fwd) - radius);
+  }
+  for (const glm::dvec4& b : gpuBounds_)
+    nearest = std::min(nearest, b.w < 0.0 ? view.nearClip : glm::dot(glm::dvec3(b) - view.eye, fwd) - b.w);
+  return nearest;
+}
+
 size_t ParticleSource::triangles(SurfaceSet surfaces) const {
-  return surfaces == SurfaceSet::Translucent ? records_ * 2 * views_ : 0;
+  return surfaces != SurfaceSet::Opaque ? records_ * 2 * views_ : 0;
 }
 
 void ParticleSource::draw(FrameContext& frame, const DrawCall& call, const PassResources& r) {
@@ -253,6 +278,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
   std::vector<particles::PackedParticle> all;
   std::vector<ParticleDraw> draws, gpuDraws;
   std::vector<ParticleGpuJob> jobs;
+  std::vector<glm::dvec4> gpuBounds;
   uint32_t gpuRecords = 0;
   uint32_t index = 0;
   for (const scene::PlacedEmitter& pe : placed) {
@@ -284,7 +310,9 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     // Nothing born in the live window: the emitter costs nothing at t.
     if (e.evaluator->candidates(t) == 0) continue;
     // Out of every view: it costs nothing either (no evaluation, no upload).
-    if (!mayBeSeen(pe, t, *e.evaluator, volumes, origin, world_ && needsWorld(pe.desc) ? world_.get() : nullptr)) {
+    glm::dvec4 sphere;
+    if (!mayBeSeen(pe, t, *e.evaluator, volumes, origin, world_ && needsWorld(pe.desc) ? world_.get() : nullptr,
+                   &sphere)) {
       ++frame.stats.emittersOutOfView;
       continue;
     }
@@ -305,6 +333,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
       gpuRecords += d.count;
       jobs.push_back(std::move(job));
       gpuDraws.push_back(d);
+      gpuBounds.push_back(sphere);
       continue;
     }
     const particles::Frame& f = frameAt(e, t);
@@ -340,7 +369,8 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
   }
   frame.stats.particlesDrawn += all.size() + gpuRecords;
   const size_t views = frame.views ? frame.views->size() : 1;
-  source_ = std::make_unique<ParticleSource>(sprites_, std::move(all), std::move(jobs), std::move(draws), views);
+  source_ = std::make_unique<ParticleSource>(sprites_, std::move(all), std::move(jobs), std::move(draws), views, origin,
+                                             std::move(gpuBounds));
   return source_.get();
 }
 

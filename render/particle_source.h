@@ -8,8 +8,8 @@
 // buffer that every view (both eyes) draws from. Billboards are pulled from
 // that buffer in shaders/particle.vert; they are translucent surfaces only:
 // they draw in the frame's transparency passes, every mode, so they sort
-// against glass, water and each other. No shadows, no picking, not in the
-// layered depth of field's capture. A frame without a live particle in
+// against glass, water and each other, and in the layered depth of field's
+// capture (each blurred by its own depth). No shadows, no picking. A frame without a live particle in
 // view adds no pass, buffer or texture. Emitters with a draw_mesh draw
 // their particles as that entity's mesh instead, through a second source
 // (particle_mesh.h: instances, lit, casting shadows), made only in a frame
@@ -51,13 +51,19 @@ struct ParticleGpuJob {
 // records first, then the compute pass's.
 class ParticleSource final : public DrawSource {
  public:
+  // `origin`: the frame origin the records are relative to; `gpuBounds`:
+  // per GPU job a sphere (world centre, radius; radius below 0: none
+  // known) that holds its particles.
   ParticleSource(ParticleSprites& sprites, std::vector<particles::PackedParticle> particles,
-                 std::vector<ParticleGpuJob> gpuJobs, std::vector<ParticleDraw> draws, size_t views);
+                 std::vector<ParticleGpuJob> gpuJobs, std::vector<ParticleDraw> draws, size_t views,
+                 const glm::dvec3& origin, std::vector<glm::dvec4> gpuBounds);
   bool has(DrawVariant variant, SurfaceSet surfaces) const override;
   void addPreparePasses(FrameGraph& graph, FrameContext& frame) override;
   void declare(PassBuilder& builder, DrawVariant variant) const override;
   void draw(FrameContext& frame, const DrawCall& call, const PassResources& resources) override;
   size_t triangles(SurfaceSet surfaces) const override;
+  // The nearest particle's depth (its quad's half diagonal before it).
+  double nearestDepth(const RenderView& view) const override;
   size_t recordCount() const { return records_; }
 
  private:
@@ -67,6 +73,8 @@ class ParticleSource final : public DrawSource {
   size_t records_ = 0;  // the CPU's and the compute pass's
   std::vector<ParticleDraw> draws_;
   size_t views_ = 1;
+  glm::dvec3 origin_{0.0};
+  std::vector<glm::dvec4> gpuBounds_;
   BufferRef buffer_{};
 };
 

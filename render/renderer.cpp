@@ -363,8 +363,12 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
     // Transparency over the opaque colour, tested against a single-sample depth.
     TextureRef singleDepth;
     if (translucent || options.keepDepth) singleDepth = addDepthResolvePass(*graph, frame, v, scene);
-    hdr = addTransparencyPasses(*graph, frame, v, SurfaceSet::Translucent, singleDepth, hdr, options.oitCounts,
-                                oitViews[v.index]);
+    // The layered depth of field captures the translucent surfaces itself
+    // and composites them over the colour before them: no transparency
+    // pass for the view then (each surface counted once).
+    if (!layeredDepthOfField(frame, v.view))
+      hdr = addTransparencyPasses(*graph, frame, v, SurfaceSet::Translucent, singleDepth, hdr, options.oitCounts,
+                                  oitViews[v.index]);
     if (options.depthComplexity && translucent)
       hdr = addDepthComplexityPass(*graph, frame, v, SurfaceSet::Translucent, singleDepth, hdr);
     hdr = addDepthOfFieldPasses(*graph, frame, v, scene, hdr);       // none with DoF off or no blur
@@ -688,7 +692,11 @@ std::optional<FrameStats> Renderer::renderLensReference(const scene::SceneState&
   std::vector<DofLens> lenses(targets.size());
   bool any = false;
   for (size_t i = 0; i < targets.size(); ++i)
-    if (!depthOfFieldNeeded(state.settings, res, world, visible, views[i], &lenses[i])) lenses[i].valid = false;
+    // The sources are not made yet: the meshes' nearest depth decides (a
+    // particle or a tree nearer than every mesh with the rest in focus and
+    // no terrain or sky to blur: no reference).
+    if (!depthOfFieldNeeded(state.settings, res, views[i], nearestDrawnDepth(world, visible, views[i]), &lenses[i]))
+      lenses[i].valid = false;
     else any = true;
   if (!any) return std::nullopt;
 

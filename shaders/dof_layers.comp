@@ -9,7 +9,8 @@
 // dof_composite.frag.
 //
 // Surfaces the capture does not draw (terrains, the sky) come from the
-// opaque image: its front surface joins the list at its depth when no
+// opaque image (before the transparency passes: the capture has the
+// translucent surfaces and particles): its front surface joins the list at its depth when no
 // captured fragment is there (the sky at infinity). Where the front
 // fragment is the list's first, its colour is taken from the opaque image
 // (with ambient occlusion and MSAA), so the in-focus image is the pinhole one.
@@ -37,6 +38,12 @@ int layerOf(float coc) {
 void addFragment(vec4 c, float depth) {
   float coc = dofCocRadius(depth);
   int k = layerOf(coc);
+  if (c.a < 0.0) {
+    // Additive (oit_composite.glsl: a particle's light): it adds its
+    // colour, dimmed by what lies before it in the layer, and covers nothing.
+    layerColor[k].rgb += (1.0 - layerColor[k].a) * c.rgb;
+    return;
+  }
   float t = (1.0 - layerColor[k].a) * clamp(c.a, 0.0, 1.0);
   layerColor[k] += vec4(c.rgb * t, t);
   layerCoc[k] += coc * t;

@@ -12,14 +12,38 @@
 // where the mesh would, and each eye of a stereo pair sees its own depth.
 // Variants: (none) lit, the opaque surface pass's defines; IMPOSTOR_PICK
 // the id pass (pick.frag's output); IMPOSTOR_DEPTH shadow maps (depth
-// only). Every variant drops the fade's pixels (instance_fade.glsl).
+// only). The layered depth of field's A-buffer capture of every surface
+// (render/abuffer.h) has three, each keyed by the depth computed here, not
+// the card's: IMPOSTOR_ABUFFER_COUNT (abuffer_count.frag's work),
+// IMPOSTOR_ABUFFER_KEYS (abuffer_keys.frag's) and HS_OIT with
+// HS_OIT_ABUFFER (lit, stored opaque in its node: oit_store.glsl). Every
+// variant drops the same pixels: under half coverage, and the fade's
+// (instance_fade.glsl).
+#if defined(IMPOSTOR_ABUFFER_COUNT) || defined(IMPOSTOR_ABUFFER_KEYS)
+#define IMPOSTOR_CAPTURE
+#endif
 #include "frame_blocks.glsl"
 #include "impostor.glsl"
 #include "instance_fade.glsl"
-#if !defined(IMPOSTOR_PICK) && !defined(IMPOSTOR_DEPTH)
+// The A-buffer's declarations and its key, outside any #if: the shader
+// library expands a file once, where it is first included (oit_output.glsl
+// includes them too, inside its own #if). Unused, they cost nothing.
+// Impostors never reach the K-buffer's slots: the key alone.
+#include "abuffer.glsl"
+#define OIT_KEY_ONLY
+#include "oit_kbuffer.glsl"
+#include "abuffer_key_store.glsl"
+#if !defined(IMPOSTOR_PICK) && !defined(IMPOSTOR_DEPTH) && !defined(IMPOSTOR_CAPTURE)
 #include "lighting.glsl"
 #include "material_surface.glsl"
+#ifdef HS_OIT
+#include "oit_output.glsl"
+#undef main  // oit_output.glsl renames mesh.frag's main; this shader has its own
+#endif
 layout(location = 0) out vec4 outColor;
+#ifdef HS_OIT
+#include "oit_store.glsl"
+#endif
 #endif
 #ifdef IMPOSTOR_PICK
 uniform uint uPickBase;
@@ -78,14 +102,32 @@ void main() {
 #endif
   vec3 p = vRotation * (pMesh * vScale) + vOrigin - view.eyeOffset.xyz;
   vec4 clip = view.projection * (view.viewRotation * vec4(p, 1.0));
-  gl_FragDepth = clamp(clip.z / clip.w, 0.0, 1.0);
-#ifdef IMPOSTOR_PICK
+  const float depth = clamp(clip.z / clip.w, 0.0, 1.0);
+#if defined(IMPOSTOR_CAPTURE)
+  // The capture stores nothing from a helper invocation (oit_main.glsl).
+  if (gl_HelperInvocation) return;
+#ifdef IMPOSTOR_ABUFFER_COUNT
+  abufferCountFragment(ivec2(gl_FragCoord.xy));
+#else
+  abufferKeyFragment(ivec2(gl_FragCoord.xy), depth, oitKey(depth, vObject, uint(gl_PrimitiveID)));
+#endif
+#elif defined(IMPOSTOR_PICK)
+  gl_FragDepth = depth;
   outId = uPickBase + vObject;
-#elif !defined(IMPOSTOR_DEPTH)
+#elif defined(IMPOSTOR_DEPTH)
+  gl_FragDepth = depth;
+#else
   vec3 n = vRotation * (normal / vScale);
   n = dot(n, n) > 1e-12 ? normalize(n) : normalize(-p);
   if (dot(n, p) > 0.0) n = -n;  // the side the eye sees, as two-sided leaves are lit
   Material m = materials[uMaterial];
   outColor = vec4(shadeSurface(materialSurface(m, colour / coverage, p, n)), hsAmbientShare);
+#ifdef HS_OIT
+  // Cut out, so opaque where it covers.
+  if (gl_HelperInvocation) return;
+  oitStoreAt(vec4(outColor.rgb, 1.0), vObject, length(p), depth);
+#else
+  gl_FragDepth = depth;
+#endif
 #endif
 }

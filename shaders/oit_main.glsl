@@ -4,9 +4,12 @@
 #include "mesh_uv.glsl"
 
 // The material's opacity x the base texture's alpha (mesh.frag's own
-// `base.a`; parallax-shifted UVs are not followed here).
+// `base.a`; parallax-shifted UVs are not followed here). A cut-out
+// material is opaque where it is not cut (the layered depth of field
+// captures it): its alpha only decides the cut, in mesh.frag.
 float oitOpacity() {
   Material m = materials[uMaterial];
+  if (hasFlag(m, MAT_ALPHA_CUTOUT)) return 1.0;
   float a = m.baseColor.a;
   if (hasFlag(m, MAT_BASE_TEXTURE)) a *= texture(uBaseColorTexture, meshUv(vUv)).a;
   return clamp(a, 0.0, 1.0);

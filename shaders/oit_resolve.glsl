@@ -88,6 +88,8 @@ void main() {
 #endif
 #ifdef OIT_HAS_TAIL
   if (uOitTail) {
+    // The tail's additive light, in front of its mean layer.
+    s.color += s.transmittance * oitTailLight(abufferPixel(p));
     const vec4 t = oitTailLayer(abufferPixel(p));
     if (t.a > 0.0) {
       const float share = s.transmittance * t.a;

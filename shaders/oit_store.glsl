@@ -4,7 +4,9 @@
 // the K-buffer, weighted OIT's targets or a peel the same way. `c` is the
 // straight linear colour with its opacity (an opacity below 0 marks an
 // additive layer, oit_composite.glsl); `object` goes into the sort key with
-// gl_PrimitiveID; `eyeDistance` (metres) weighs weighted OIT's layers.
+// gl_PrimitiveID; `eyeDistance` (metres) weighs weighted OIT's layers;
+// `depth` is the fragment's (gl_FragCoord.z but where the shader computes
+// its own, as impostor.frag does: the key pass used the same).
 // Needs oit_output.glsl's declarations and the shader's outColor.
 #ifndef HS_OIT_STORE_GLSL
 #define HS_OIT_STORE_GLSL
@@ -19,15 +21,15 @@ void oitOverflow(vec4 c) {
 }
 #endif
 
-void oitStore(vec4 c, uint object, float eyeDistance) {
+void oitStoreAt(vec4 c, uint object, float eyeDistance, float depth) {
   const ivec2 p = ivec2(gl_FragCoord.xy);
 #if defined(HS_OIT_ABUFFER)
   // The key pass gave this fragment a node holding its depth and key, in
   // its pixel's sorted range (abuffer_keys.frag): find it by binary search
   // in the range's order. No node (over the cap, or a full tie whose twin
   // took it): the tail.
-  const uint key = oitKey(gl_FragCoord.z, object, uint(gl_PrimitiveID));
-  const uvec2 me = uvec2(floatBitsToUint(gl_FragCoord.z), key);
+  const uint key = oitKey(depth, object, uint(gl_PrimitiveID));
+  const uvec2 me = uvec2(floatBitsToUint(depth), key);
   const uint pixel = abufferPixel(p), begin = abufferStarts[pixel];
   const uint range = abufferStarts[pixel + 1u] - begin, count = imageLoad(uABufferCounts, p).x;
   const bool byKey = count > range;  // abufferByKey
@@ -42,11 +44,11 @@ void oitStore(vec4 c, uint object, float eyeDistance) {
   }
   const uvec4 found = lo < end ? abufferNodes[lo] : uvec4(0u);
   if (lo < end && found.w == key && (byKey || found.z == me.x) && !abufferWritten(found))
-    abufferNodes[lo] = abufferNode(c, gl_FragCoord.z, key);
+    abufferNodes[lo] = abufferNode(c, depth, key);
   else
     oitOverflow(c);
 #elif defined(HS_OIT_KBUFFER)
-  const uint key = oitKey(gl_FragCoord.z, object, uint(gl_PrimitiveID));
+  const uint key = oitKey(depth, object, uint(gl_PrimitiveID));
   for (int i = 0; i < OIT_K; ++i) {
     const uint slot = imageLoad(uOitSlots, ivec3(p, i)).x;
     if (slot == key) {
@@ -75,5 +77,7 @@ void oitStore(vec4 c, uint object, float eyeDistance) {
   outColor = c;
 #endif
 }
+
+void oitStore(vec4 c, uint object, float eyeDistance) { oitStoreAt(c, object, eyeDistance, gl_FragCoord.z); }
 
 #endif

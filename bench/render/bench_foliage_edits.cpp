@@ -3,11 +3,14 @@
 // way every edit did before. A store of --counts instances (rocks, 2 m
 // apart on a jittered grid, in the store's 64 m cells) is drawn through
 // FoliageSources; then an erase dab and a paint dab (radius --radius m, in
-// the field's middle) each followed by:
+// the field's middle) and a paint dab on bare ground beside the field (new
+// cells), each followed by:
 //   per cell   the kept sources' update: the touched cells packed again in
-//              their slots, only those slots uploaded (the renderer's way)
+//              their slots, new cells given slots from a set's spare tail,
+//              only those slots uploaded (the renderer's way)
 //   rebuild    sources built afresh from the store and uploaded whole
-//              (the way before per-cell slots; also what a new cell costs)
+//              (the way before per-cell slots; also what a cell grown past
+//              its room costs)
 // Columns: the update's CPU time (packing), the bytes the next frame
 // uploaded, that frame's wall time (the view looks away from the field,
 // so culling and the upload dominate, not drawing), and the ratio of
@@ -75,7 +78,7 @@ int main(int argc, char** argv) {
     const size_t side = size_t(std::ceil(std::sqrt(double(n))));
     const double half = 0.5 * double(side) * kSpacing;
     // The ground the paint dab places on: a plane under the field.
-    test::addMeshAsset(s, kGround, "Ground", mesh::gridPlane(float(2.0 * half + 20.0), 4), {0.5f, 0.5f, 0.45f});
+    test::addMeshAsset(s, kGround, "Ground", mesh::gridPlane(float(2.0 * half + 300.0), 4), {0.5f, 0.5f, 0.45f});
     test::addMeshEntity(s, 1, "Ground", kGround, glm::dvec3(0.0));
     foliage::FoliageStore& store = scene::foliageOf(s).store();
     foliage::FoliageType t;
@@ -112,8 +115,10 @@ int main(int argc, char** argv) {
     size_t bytes = 0;
     frame(kept.update(s), bytes);  // the first build and upload
     const scene::FoliageGround ground(s);
-    for (const char* edit : {"erase", "paint"}) {
-      const glm::dvec2 at(7.0, 3.0);
+    for (const char* edit : {"erase", "paint", "paint on bare ground"}) {
+      // Bare ground: past the field's edge by more than the dab, in cells
+      // the store does not have.
+      const glm::dvec2 at = std::string(edit) == "paint on bare ground" ? glm::dvec2(half + 100.0, 3.0) : glm::dvec2(7.0, 3.0);
       size_t touched = 0;
       if (std::string(edit) == "erase") {
         touched = foliage::erase(store, foliage::Region2::disc(at, radius)).undo.cellCount();
@@ -136,7 +141,7 @@ int main(int argc, char** argv) {
       full.frameMs = frame(rebuilt, full.bytes);
       const std::string ratio = per.bytes ? std::to_string(int(double(full.bytes) / double(per.bytes) + 0.5)) + "x" : "-";
       std::printf("| %zu | %s, %zu cell(s) | per cell%s | %.2f | %zu | %.1f | %s |\n", n, edit, touched,
-                  kept.lastRebuilt() ? " (rebuilt: a new cell)" : "", per.updateMs, per.bytes, per.frameMs,
+                  kept.lastRebuilt() ? " (rebuilt)" : "", per.updateMs, per.bytes, per.frameMs,
                   ratio.c_str());
       std::printf("| %zu | %s | rebuild | %.2f | %zu | %.1f | |\n", n, edit, full.updateMs, full.bytes, full.frameMs);
       std::fflush(stdout);

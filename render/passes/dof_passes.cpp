@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/draw_source.h"
 #include "render/gpu_mesh_cache.h"
 #include "render/passes/dof_layered.h"
 #include "render/passes/fullscreen_pass.h"
@@ -76,8 +77,14 @@ double nearestDrawnDepth(const RenderWorld& world, const VisibleSet& visible, co
   return std::max(nearest, view.nearClip);
 }
 
-bool depthOfFieldNeeded(const scene::SceneSettings& settings, RenderResources& res, const RenderWorld& world,
-                        const VisibleSet& visible, const RenderView& view, DofLens* out) {
+double framesNearestDepth(const FrameContext& frame, const RenderView& view) {
+  double nearest = nearestDrawnDepth(frame.world, frame.visible, view);
+  for (const DrawSource* s : frame.sources) nearest = std::min(nearest, s->nearestDepth(view));
+  return std::max(nearest, view.nearClip);
+}
+
+bool depthOfFieldNeeded(const scene::SceneSettings& settings, RenderResources& res, const RenderView& view,
+                        double nearest, DofLens* out) {
   if (settings.depthOfField == scene::DepthOfField::Off) return false;
   const DofLens lens = dofLensOf(view);
   if (!lens.problem.empty() && lens.problem != res.lastDofProblem) {
@@ -88,7 +95,13 @@ bool depthOfFieldNeeded(const scene::SceneSettings& settings, RenderResources& r
   if (!lens.valid) return false;
   if (out) *out = lens;
   // The blur's diameter reaches half a pixel somewhere in view.
-  return maxCocPixels(lens, nearestDrawnDepth(world, visible, view)) >= 0.5;
+  return maxCocPixels(lens, nearest) >= 0.5;
+}
+
+bool layeredDepthOfField(FrameContext& frame, const RenderView& view) {
+  return frame.settings.depthOfField == scene::DepthOfField::Layered &&
+         depthOfFieldNeeded(frame.settings, frame.res, view, framesNearestDepth(frame, view)) &&
+         anySource(frame, DrawVariant::Surface, SurfaceSet::All);
 }
 
 TextureRef addDepthOfFieldPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v,
@@ -96,8 +109,8 @@ TextureRef addDepthOfFieldPasses(FrameGraph& graph, FrameContext& frame, const V
   const scene::DepthOfField mode = frame.settings.depthOfField;
   if (mode != scene::DepthOfField::Gather && mode != scene::DepthOfField::Layered) return hdr;
   DofLens lens;
-  if (!depthOfFieldNeeded(frame.settings, frame.res, frame.world, frame.visible, v.view, &lens)) return hdr;
-  const double nearest = nearestDrawnDepth(frame.world, frame.visible, v.view);
+  const double nearest = framesNearestDepth(frame, v.view);
+  if (!depthOfFieldNeeded(frame.settings, frame.res, v.view, nearest, &lens)) return hdr;
   // Layered needs meshes to capture; without one in view the opaque image
   // is the only layer, which is what gather blurs.
   if (mode == scene::DepthOfField::Layered && anySource(frame, DrawVariant::Surface, SurfaceSet::All))

@@ -15,12 +15,22 @@ namespace hs::render {
 // reported through frame.res.dofProblems), and the largest circle of
 // confusion in view reaches half a pixel (the nearest surface of the
 // visible set, and the sky behind it). No: no pass and no buffer.
-bool depthOfFieldNeeded(const scene::SceneSettings& settings, RenderResources& res, const RenderWorld& world,
-                        const VisibleSet& visible, const RenderView& view, DofLens* lens = nullptr);
+// `nearest`: the nearest drawn depth in `view` (nearestDrawnDepth, and the
+// frame's sources' when they are known: framesNearestDepth).
+bool depthOfFieldNeeded(const scene::SceneSettings& settings, RenderResources& res, const RenderView& view,
+                        double nearest, DofLens* lens = nullptr);
 
 // The nearest view depth (metres) of anything the frame draws in `view`:
 // the visible meshes' bounding spheres, the near plane with a terrain.
 double nearestDrawnDepth(const RenderWorld& world, const VisibleSet& visible, const RenderView& view);
+// nearestDrawnDepth with the frame's draw sources too (foliage instances,
+// particles: DrawSource::nearestDepth).
+double framesNearestDepth(const FrameContext& frame, const RenderView& view);
+
+// Will `view` of the frame take the layered depth of field? Then its
+// capture has the translucent surfaces (and particles): the renderer adds
+// no transparency pass for the view and hands it the colour before them.
+bool layeredDepthOfField(FrameContext& frame, const RenderView& view);
 
 // Adds the gather or layered passes after the HDR colour `hdr` and returns
 // the blurred colour (`hdr` itself when depth of field is off or not needed).

@@ -366,7 +366,8 @@ class TestFoliageRender : public QObject {
   // An edit inside existing cells (an erase dab, a paint dab, its undo)
   // packs only the cells it touched again and the frame uploads only their
   // slots; the image equals that of sources built afresh from the store,
-  // byte for byte. A new cell rebuilds the sets.
+  // byte for byte. A dab on bare ground (a new cell) takes a slot from the
+  // set's spare tail; more than the tail holds rebuilds the sets.
   void anEditUploadsOnlyItsCells() {
     scene::SceneState s = forest(foliage::ScaleMode::Uniform);
     scene::SceneState bare = s;  // drawn by the sources given, not the renderer's own
@@ -450,10 +451,47 @@ class TestFoliageRender : public QObject {
     QVERIFY(sameAsFresh(draw(sources)));
     QVERIFY(liveIds(sources) == storeIds());
 
-    // An instance in a cell the sets do not have: rebuilt.
-    foliage::Instance far;
-    far.position = kUtm + glm::dvec3(0.0, 0.0, 0.0) + glm::dvec3(3.0 * foliage::kCellSize, 0.0, 0.0);
-    s.foliage->store().add(far, nullptr);
+    // Instances in a cell the sets do not have (a dab on bare ground): its
+    // slot comes from the set's spare tail, only that slot is uploaded, and
+    // the image is what sources built afresh draw.
+    const size_t setSize = sources[0]->instances().instances.size();
+    const glm::dvec3 bareAt = kUtm + glm::dvec3(-33.0, 26.0, 0.0);  // the cell west of the forest's, in view
+    QVERIFY(!s.foliage->store().cell(foliage::cellOf(bareAt)));
+    foliage::EditResult fresh1;
+    for (int i = 0; i < 12; ++i) {
+      foliage::Instance in;
+      in.position = bareAt + glm::dvec3(0.0, 2.0 * i, 0.0);
+      in.scale = glm::dvec3(1.5);
+      s.foliage->store().add(in, &fresh1.undo);
+      ++fresh1.stats.placed;
+    }
+    QCOMPARE(s.foliage->store().cellCount(), cells + 1);
+    s.foliage->touch();
+    kept.update(s);
+    QVERIFY(!kept.lastRebuilt());
+    QCOMPARE(sources[0]->instances().instances.size(), setSize);  // the tail had room
+    QCOMPARE(sources[0]->instances().cells.size(), cells + 1);
+    img = draw(sources);
+    const size_t newCell = sources[0]->lastUploadBytes();
+    qInfo("%zu instances in a new cell upload %zu bytes", size_t(fresh1.stats.placed), newCell);
+    QVERIFY(newCell > 0 && newCell < whole / 4);
+    QVERIFY(liveIds(sources) == storeIds());
+    QVERIFY(sameAsFresh(img));
+    // Its undo empties the slot in place.
+    fresh1.undo.swap(s.foliage->store());
+    s.foliage->touch();
+    kept.update(s);
+    QVERIFY(!kept.lastRebuilt());
+    QVERIFY(sameAsFresh(draw(sources)));
+    QVERIFY(liveIds(sources) == storeIds());
+
+    // More new instances than the tail holds: rebuilt.
+    for (size_t i = 0; i < setSize; ++i) {
+      foliage::Instance far;
+      far.position = kUtm + glm::dvec3(3.0 * foliage::kCellSize + double(i % 200) * 0.25,
+                                       double(i / 200) * 0.25, 0.0);
+      s.foliage->store().add(far, nullptr);
+    }
     s.foliage->touch();
     kept.update(s);
     QVERIFY(kept.lastRebuilt());
