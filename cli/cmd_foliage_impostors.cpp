@@ -3,15 +3,13 @@
 // headless context) and stores them in the scene (scene/impostor_ops.h),
 // so the scene opens and renders without baking and every render node
 // draws the same far level.
-#include <chrono>
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "cli/impostor_bake.h"
 #include "cli/operation_options.h"
 #include "cli/terrain_cli.h"
 #include "foliage/foliage_operations.h"
-#include "render/offscreen_renderer.h"
-#include "render/renderer.h"
 #include "scene/hscene_file.h"
 #include "scene/impostor_ops.h"
 
@@ -30,25 +28,11 @@ int runFoliageImpostors(int argc, char** argv) {
     std::printf("%s: every impostor a foliage type draws is stored and current; nothing baked\n", path.c_str());
     return 0;
   }
-  render::OffscreenRenderer renderer;
-  if (!renderer.initialize(error)) return args.fail("cannot start headless OpenGL: " + error);
-  std::vector<scene::ops::BakedImpostor> baked;
-  for (scene::AssetId id : ids) {
-    const auto start = std::chrono::steady_clock::now();
-    auto images = renderer.renderer().bakeImpostor(doc.state(), id, error);
-    if (!images) return args.fail(error);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const size_t blob = foliage::encodeImpostor(*images).size();
-    std::printf("impostor of \"%s\": %d x %d frames of %d px, %.0f KiB stored (%.2f s)\n",
-                doc.state().findAsset(id)->name.c_str(), images->frames, images->frames, images->framePixels,
-                double(blob) / 1024.0, seconds);
-    baked.emplace_back(id, std::make_shared<const foliage::ImpostorImages>(std::move(*images)));
-  }
-  const scene::ops::StoredImpostors stored = scene::ops::storeImpostors(doc, baked);
-  for (const std::string& s : stored.skipped) std::fprintf(stderr, "warning: %s\n", s.c_str());
+  const ImpostorBake bake = bakeImpostors(doc, args.flag("all"));
+  if (!bake.ok) return args.fail(bake.error);
   scene::SaveReport r;
   if (!scene::saveScene(doc.state(), path, error, &r)) return args.fail(error);
-  std::printf("saved %s: %zu impostor(s) stored\n", path.c_str(), stored.stored);
+  std::printf("saved %s: %zu impostor(s) stored\n", path.c_str(), bake.stored);
   return 0;
 }
 

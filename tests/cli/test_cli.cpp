@@ -226,6 +226,21 @@ class TestCli : public QObject {
     QCOMPARE(assets.size(), 13);
     QCOMPARE(info["foliage"].toObject()["types"].toArray().size(), 6);
     QVERIFY(info["foliage"].toObject()["instances"].toInt() > 1000);
+    // The far level of every mesh the foliage draws with an impostor: baked
+    // by `demo` and stored in the file (with --no-impostors, not stored).
+    const Run plain = cli({"demo", path("demo_plain.hscene"), "--no-impostors"});
+    QVERIFY2(plain.code == 0, qPrintable(plain.err));
+    const QJsonArray plainAssets = infoJson(path("demo_plain.hscene"))["assets"].toArray();
+    QCOMPARE(plainAssets.size(), assets.size());
+    int impostors = 0;
+    for (qsizetype i = 0; i < assets.size(); ++i) {
+      const QJsonObject a = assets[i].toObject();
+      if (!a.contains("impostor")) continue;
+      ++impostors;
+      QVERIFY2(a["impostor"].toString() == "stored", qPrintable(a["name"].toString()));
+      QCOMPARE(plainAssets[i].toObject()["impostor"].toString(), QString("none"));
+    }
+    QVERIFY(impostors >= 2);
     const std::string bunny = readFile(HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj");
     size_t faces = 0;
     for (size_t pos = 0; (pos = bunny.find("\nf ", pos)) != std::string::npos; ++pos) ++faces;
