@@ -27,23 +27,30 @@ GpuMaterial gpuMaterialOf(const scene::Material& m) {
   return g;
 }
 
+// A 2D texture of `levels` levels holding `t` as level 0, trilinear and
+// repeating; the caller fills the levels below.
+GLuint createTexture(const mesh::Texture& t, bool srgb, int levels) {
+  GLuint tex = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+  glTextureStorage2D(tex, levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width, t.height);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(tex, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+  glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return tex;
+}
+
 // `t` with the mip levels given (coverage-preserving ones for a cut-out).
 // No anisotropic filter: its extra taps average alpha over the footprint
 // as a coarser level would (on llvmpipe a leaf plane 16 px across kept a
 // quarter of the cover the level holds), undoing what the levels keep.
 GLuint uploadWithMips(const mesh::Texture& t, bool srgb, const std::vector<mesh::MipLevel>& mips) {
-  GLuint tex = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-  glTextureStorage2D(tex, GLsizei(mips.size() + 1), srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width, t.height);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(tex, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+  const GLuint tex = createTexture(t, srgb, int(mips.size()) + 1);
   for (size_t i = 0; i < mips.size(); ++i)
     glTextureSubImage2D(tex, GLint(i + 1), 0, 0, mips[i].width, mips[i].height, GL_RGBA, GL_UNSIGNED_BYTE,
                         mips[i].rgba.data());
-  glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
   return tex;
 }
 
@@ -54,17 +61,9 @@ bool hasTransparency(const mesh::Texture& t) {
 }
 
 GLuint uploadStandalone(const mesh::Texture& t, bool srgb) {
-  GLuint tex = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-  const int levels = 1 + int(std::floor(std::log2(double(std::max(t.width, t.height)))));
-  glTextureStorage2D(tex, levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width, t.height);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(tex, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+  const GLuint tex =
+      createTexture(t, srgb, 1 + int(std::floor(std::log2(double(std::max(t.width, t.height))))));
   glGenerateTextureMipmap(tex);
-  glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
   return tex;
 }
 

@@ -2,6 +2,7 @@
 
 #include "foliage/surface.h"
 #include "scene/document.h"
+#include "scene/operations.h"
 #include "scene/foliage_ground.h"
 #include "scene/particle_ops.h"
 #include "scene/sequence_edits.h"
@@ -64,12 +65,63 @@ bool addDemoEmitters(Document& doc, std::string& error) {
   // A torch on the tallest pillar's top (-12, 140), 1.2 m above its rock.
   const glm::dvec3 top(-12.0, 140.0, groundAt(doc.state(), -12.0, 140.0) + 1.2);
   particles::PresetOptions torch{.name = "Monastery torch", .at = top, .seed = 5};
-  return addPreset(doc, "torch", torch, true, error);
+  if (!addPreset(doc, "torch", torch, true, error)) return false;
+  // Dust kicked up behind the running bunny: a world-space emitter under
+  // the keyed instance, so the puffs stay where they were born and trail
+  // behind it (docs/particles.md, "Simulation space").
+  const EntityId runner = doc.state().findByName("Bunny (instance)");
+  if (runner != kNoEntity) {
+    const glm::dvec3 at = glm::dvec3(doc.state().worldMatrix(runner)[3]);
+    particles::PresetOptions dust{.name = "Bunny dust", .at = at, .area = glm::dvec4(at.x - 0.4, at.y - 0.4, at.x + 0.4, at.y + 0.4),
+                                  .rate = 25.0, .seed = 13};
+    if (!addPreset(doc, "dust", dust, true, error)) return false;
+    const EntityId trail = doc.state().findByName("Bunny dust");
+    if (!ops::reparent(doc, trail, runner) || !setValue(doc, trail, "space", "world", error) ||
+        !setValue(doc, trail, "size_m", Json::array({0.3, 0.8}), error) ||
+        !setValue(doc, trail, "lifetime_s", Json::array({2.0, 4.0}), error))
+      return false;
+  }
+  // Rocks falling from the pillar's rim, bouncing down to the valley floor:
+  // mesh particles (draw_mesh) drawing the hidden "Rockfall stone", the
+  // demo's boulder, scaled to each particle's size, colliding with the terrain.
+  const EntityId rockfall = ops::addParticles(doc, "dust", {.name = "Rockfall", .at = top, .rate = 2.0, .seed = 17},
+                                             true, error);
+  if (rockfall == kNoEntity) {
+    error = "demo particles: Rockfall: " + error;
+    return false;
+  }
+  const glm::dvec3 rim = top + glm::dvec3(6.0, -6.0, -1.0);
+  return setValue(doc, rockfall, "origin_m", Json::array({rim.x, rim.y, rim.z}), error) &&
+         setValue(doc, rockfall, "box_half_m", Json::array({2.0, 2.0, 0.2}), error) &&
+         setValue(doc, rockfall, "speed_m_per_s", Json::array({1.0, 3.0}), error) &&
+         setValue(doc, rockfall, "spread_deg", 40.0, error) &&
+         setValue(doc, rockfall, "lifetime_s", Json::array({8.0, 10.0}), error) &&
+         setValue(doc, rockfall, "size_m", Json::array({0.3, 0.7}), error) &&
+         setValue(doc, rockfall, "drag_per_s", 0.0, error) &&
+         setValue(doc, rockfall, "wind_m_per_s", Json::array({0.0, 0.0, 0.0}), error) &&
+         setValue(doc, rockfall, "turbulence_m_per_s2", 0.0, error) &&
+         setValue(doc, rockfall, "gravity_m_per_s2", Json::array({0.0, 0.0, -9.81}), error) &&
+         setValue(doc, rockfall, "collision", "bounce", error) &&
+         setValue(doc, rockfall, "restitution", 0.35, error) && setValue(doc, rockfall, "friction", 0.5, error) &&
+         setValue(doc, rockfall, "draw_mesh", "Rockfall stone", error);
 }
 
 }  // namespace
 
 bool addDemoParticles(SceneState& s, std::string& error) {
+  // The rockfall's stone: the demo's boulder, hidden (drawn only as the
+  // emitter's particles).
+  for (const auto& [id, a] : s.assets)
+    if (a.name == "Boulder") {
+      Entity stone;
+      stone.id = s.maxEntityId() + 1;
+      stone.name = "Rockfall stone";
+      stone.mesh = MeshInstance{id};
+      stone.visible = false;
+      s.entities.emplace(stone.id, stone);
+      s.roots.push_back(stone.id);
+      break;
+    }
   Document doc;
   doc.reset(std::move(s), QString());
   const bool ok = addDemoEmitters(doc, error);

@@ -53,6 +53,7 @@ Box vertexBox(const scene::SceneState& s, const std::string& onlyEntity = {}) {
   Box b;
   for (const auto& [id, e] : s.entities) {
     if (!e.mesh || (!onlyEntity.empty() && e.name != onlyEntity)) continue;
+    if (onlyEntity.empty() && !s.effectivelyVisible(id)) continue;  // info's bounds are of what is drawn
     const scene::MeshAsset* a = s.findAsset(e.mesh->mesh);
     const glm::dmat4 w = s.worldMatrix(id);
     for (const auto& p : a->data->positions) b.add(glm::dvec3(w * glm::dvec4(glm::dvec3(p), 1.0)));

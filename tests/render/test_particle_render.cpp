@@ -212,6 +212,21 @@ class TestParticleRender : public QObject {
   Q_OBJECT
   render::OffscreenRenderer r_;
 
+  // `s` drawn in transparency mode `mode` against `reference` (depth
+  // peeling): the largest channel difference; over 2, both images are kept
+  // as `name` for a look.
+  int fromPeeling(scene::SceneState& s, const render::RenderView& view, scene::Transparency mode,
+                  const Image& reference, const std::string& name, render::FrameStats* stats = nullptr) {
+    s.settings.transparency = mode;
+    const Image img = r_.render(s, view, false, stats);
+    const int m = maxDiff(img, reference);
+    if (m > 2) {
+      keep(name + "_reference", reference);
+      keep(name + "_mode" + std::to_string(int(mode)), img);
+    }
+    return m;
+  }
+
  private slots:
   void initTestCase() {
     std::string error;
@@ -325,8 +340,7 @@ class TestParticleRender : public QObject {
                           particles::Sprite::Smoke, particles::Blend::Alpha, 4),
                     still("Sparks", {0.0, 0.5, 1.0}, {0.6, 0.2, 0.3}, 20, 0.3, {3.0, 1.2, 0.3, 1.0},
                           particles::Sprite::Spark, particles::Blend::Additive, 5)});
-    // The K-buffer keeps every layer (more go to its tail, which drops
-    // additive ones: docs/rendering.md, "Particles").
+    // The K-buffer keeps every layer (K = 32: none in its tail).
     s.settings.kbufferK = 32;
     s.settings.transparency = scene::Transparency::Reference;
     render::FrameStats stats;
@@ -334,13 +348,7 @@ class TestParticleRender : public QObject {
     QCOMPARE(stats.particlesDrawn, size_t(44));
     QVERIFY(stats.oit.peels >= 3);
     for (auto mode : {scene::Transparency::ABuffer, scene::Transparency::ABufferFixed, scene::Transparency::KBuffer}) {
-      s.settings.transparency = mode;
-      const Image img = r_.render(s, view);
-      const int m = maxDiff(img, reference);
-      if (m > 2) {
-        keep("particles_sort_reference", reference);
-        keep("particles_sort_mode" + std::to_string(int(mode)), img);
-      }
+      const int m = fromPeeling(s, view, mode, reference, "particles_sort");
       QVERIFY2(m <= 2, qPrintable(QString("mode %1: max difference %2 from depth peeling").arg(int(mode)).arg(m)));
     }
     // The pane moved behind every particle: a different image, so the
@@ -381,16 +389,10 @@ class TestParticleRender : public QObject {
     addEmitters(s, {still("Stack", {0.0, 0.0, 1.0}, {0.08, 0.6, 0.08}, 24, 0.9, {0.03, 0.02, 0.012, 1.0},
                           particles::Sprite::Spark, particles::Blend::Additive, 9)});
     for (auto mode : {scene::Transparency::KBuffer, scene::Transparency::ABufferFixed}) {
-      s.settings.transparency = mode;
-      const Image img = r_.render(s, view, false, &stats);
-      const int m = maxDiff(img, reference);
+      const int m = fromPeeling(s, view, mode, reference, "particles_tail", &stats);
       qInfo("mode %d: %llu fragments in the tail, max difference %d from depth peeling", int(mode),
             static_cast<unsigned long long>(stats.oit.overflow), m);
       QVERIFY(stats.oit.overflow > 0);  // the tail was used
-      if (m > 2) {
-        keep("particles_tail_reference", reference);
-        keep("particles_tail_mode" + std::to_string(int(mode)), img);
-      }
       QVERIFY2(m <= 2, qPrintable(QString("mode %1: max difference %2 from depth peeling").arg(int(mode)).arg(m)));
     }
   }

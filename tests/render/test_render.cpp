@@ -11,6 +11,7 @@
 #include "mesh/mesh_import.h"
 #include "render/offscreen_renderer.h"
 #include "scene/demo_scene.h"
+#include "scene/particle_world.h"
 #include "scene/light_units.h"
 #include "scene/world_bounds.h"
 
@@ -129,17 +130,34 @@ class TestRender : public QObject {
     QCOMPARE(img.height, 360);
     // Three instances of the 69,451-triangle bunny and the four translucent
     // samples (three glass spheres and the pond, scene/demo_glass.cpp), all
-    // in view, and two triangles per particle in view (the snow, the fog);
-    // the detail samples are behind the camera.
+    // in view, two triangles per sprite particle in view (the snow, the
+    // fog, the dust) and the rockfall's stones at full detail (mesh
+    // particles: instances too); the detail samples are behind the camera.
     const scene::EntityId glass = s->findByName("Translucent samples");
     QVERIFY(glass != scene::kNoEntity);
     size_t glassTriangles = 0;
     for (scene::EntityId c : s->find(glass)->children)
       glassTriangles += s->findAsset(s->find(c)->mesh->mesh)->data->triangleCount();
     QCOMPARE(s->find(glass)->children.size(), size_t(4));
-    QCOMPARE(stats.instancesDrawn, size_t(3 + 4));
-    QVERIFY(stats.particlesDrawn > 100);
-    QCOMPARE(stats.trianglesDrawn - stats.terrainTriangles, size_t(3 * 69451) + glassTriangles + 2 * stats.particlesDrawn);
+    const scene::EntityId stone = s->findByName("Rockfall stone");
+    QVERIFY(stone != scene::kNoEntity);
+    const size_t stoneTriangles = s->findAsset(s->find(stone)->mesh->mesh)->data->triangleCount();
+    QVERIFY(stats.instancesDrawn > size_t(3 + 4));  // some stones in view
+    const size_t stones = stats.instancesDrawn - (3 + 4);
+    // particlesDrawn counts every live stone (handed to the instanced
+    // source, which culls them), the sprites in view: the live stones from
+    // the emitter's own evaluation.
+    scene::ParticleWorld world(*s);
+    const std::optional<scene::PlacedEmitter> rockfall = scene::placedEmitter(*s, s->findByName("Rockfall"));
+    QVERIFY(rockfall);
+    std::string evalError;
+    const std::optional<particles::Evaluator> ev = world.evaluator(*rockfall, evalError);
+    QVERIFY2(ev, evalError.c_str());
+    const size_t liveStones = ev->frame(s->time.seconds).particles.size();
+    QVERIFY(liveStones >= stones);
+    QVERIFY(stats.particlesDrawn > 100 + liveStones);
+    QCOMPARE(stats.trianglesDrawn - stats.terrainTriangles,
+             size_t(3 * 69451) + glassTriangles + 2 * (stats.particlesDrawn - liveStones) + stones * stoneTriangles);
     QVERIFY(stats.oit.active);  // drawn through the transparency path
     QCOMPARE(stats.instancesAtCoarserLod, size_t(0));
     QVERIFY(stats.terrainTriangles > 0);  // and the valley they stand in
