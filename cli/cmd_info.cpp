@@ -254,8 +254,11 @@ void printParticlesInfo(const scene::SceneState& s, double time) {
     if (!c.error.empty())
       std::printf("  %s: problem: %s\n", c.name.c_str(), c.error.c_str());
     else
-      std::printf("  %s: %s %s, %s particles live (rate %g per s, lifetime %g..%g s, max %lld)\n", c.name.c_str(),
-                  particles::spriteName(d.sprite), particles::blendName(d.blend),
+      // A mesh-drawing emitter names its mesh, not the sprite it does not draw.
+      std::printf("  %s: %s, %s particles live (rate %g per s, lifetime %g..%g s, max %lld)\n", c.name.c_str(),
+                  d.drawMesh.empty()
+                      ? (std::string(particles::spriteName(d.sprite)) + " " + particles::blendName(d.blend)).c_str()
+                      : ("mesh \"" + d.drawMesh + "\"").c_str(),
                   (c.estimated ? "about " + std::to_string(c.live) : std::to_string(c.live)).c_str(), d.rateAt(time),
                   d.lifetimeMin, d.lifetimeMax, static_cast<long long>(d.maxLive));
   }

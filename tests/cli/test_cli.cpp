@@ -295,6 +295,8 @@ class TestCli : public QObject {
     QVERIFY(text.out.contains("69451 triangles"));
     QVERIFY2(text.out.contains(QString("tracks: %1").arg(expectedTracks)), qPrintable(text.out));
     QVERIFY(text.out.contains("transform.rotation: 13 keys"));
+    // The rockfall draws a mesh, and says so instead of its sprite.
+    QVERIFY2(text.out.contains("Rockfall: mesh \"Rockfall stone\""), qPrintable(text.out));
   }
 
   void importWithOptions() {
