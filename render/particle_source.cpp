@@ -9,6 +9,7 @@
 #include "particles/bounds.h"
 #include "render/frame_context.h"
 #include "render/render_view.h"
+#include "scene/world_bounds.h"
 
 namespace hs::render {
 namespace {
@@ -55,30 +56,93 @@ struct ViewVolume {
   glm::dvec3 eye;
 };
 
-// Whether any view may see a particle of the sprite emitter: its bound
-// (particles/bounds.h: every particle it can have, proven) grown by the
-// largest sprite's reach (the quad's half-diagonal at the largest size,
-// plus half the velocity stretch at the largest speed) against each view.
-// scene::placedBound widens it by the emitter's spawn tracks and its
-// motion over the births of the particles alive at t. No bound (a camera
-// path moving a world-space emitter, a mesh shape without its surface):
-// it may always be seen.
-bool mayBeSeen(const scene::PlacedEmitter& pe, double t, const particles::Evaluator& ev,
-               const std::vector<ViewVolume>& volumes, const glm::dvec3& frameOrigin, scene::ParticleWorld* world,
-               glm::dvec4* sphere = nullptr) {
-  if (sphere) *sphere = glm::dvec4(0.0, 0.0, 0.0, -1.0);  // none known
+// The sphere (world centre, radius) that holds every particle the emitter
+// can have alive at t: its bound (particles/bounds.h: proven), widened by
+// scene::placedBound for its spawn tracks and its motion over the births
+// of the particles alive at t, grown by the largest particle's reach (a
+// sprite: the quad's half-diagonal at the largest size, plus half the
+// velocity stretch at the largest speed; a mesh: half the diagonal of the
+// cube its longest side is scaled to). None (a camera path moving a
+// world-space emitter, a mesh shape without its surface): unbounded.
+std::optional<glm::dvec4> boundSphere(const scene::PlacedEmitter& pe, double t, const particles::Evaluator& ev,
+                                      scene::ParticleWorld* world) {
   const std::optional<scene::PlacedBound> b = scene::placedBound(pe, t, world, ev.inputs().surface);
-  if (!b) return true;
+  if (!b) return std::nullopt;
   const particles::EmitterDesc& d = b->desc;  // widened by its spawn tracks
   double sizeScale = d.sizeOverLife.keys.empty() ? 1.0 : 0.0;
   for (const particles::CurveKey& k : d.sizeOverLife.keys) sizeScale = std::max(sizeScale, k.value);
-  double reach = 0.5 * std::sqrt(2.0) * d.sizeMax * sizeScale;
-  if (d.facing == particles::Facing::Velocity)
+  double reach = 0.5 * std::sqrt(d.drawMesh.empty() ? 2.0 : 3.0) * d.sizeMax * sizeScale;
+  if (d.drawMesh.empty() && d.facing == particles::Facing::Velocity)
     reach += 0.5 * double(kStretchSeconds) * particles::speedBound(d, d.lifetimeMax);
-  const glm::dvec3 c = d.origin + b->bound.centre - frameOrigin;  // double, then relative
-  if (sphere) *sphere = glm::dvec4(d.origin + b->bound.centre, b->bound.radius + reach);
+  return glm::dvec4(d.origin + b->bound.centre, b->bound.radius + reach);
+}
+
+// Whether any view may see a particle inside `sphere` (none: always).
+bool mayBeSeen(const std::optional<glm::dvec4>& sphere, const std::vector<ViewVolume>& volumes,
+               const glm::dvec3& frameOrigin) {
+  if (!sphere) return true;
+  const glm::dvec3 c = glm::dvec3(*sphere) - frameOrigin;  // double, then relative
   for (const ViewVolume& v : volumes)
-    if (v.frustum.intersectsSphere(c - v.eye, b->bound.radius + reach)) return true;
+    if (v.frustum.intersectsSphere(c - v.eye, sphere->w)) return true;
+  return false;
+}
+
+// Whether a sphere of radius r swept from `a` to `b` (relative to the
+// view's eye) may meet the frustum: no plane leaves both ends outside by
+// more than r (conservative: a few corner cases are kept).
+bool sweptMayMeet(const Frustum& f, const glm::dvec3& a, const glm::dvec3& b, double r) {
+  for (const glm::dvec4& p : f.planes) {
+    const glm::dvec3 n(p);
+    if (glm::dot(n, a) + p.w < -r && glm::dot(n, b) + p.w < -r) return false;
+  }
+  return true;
+}
+
+// The lowest point a shadow in view can fall on: the meshes the views draw
+// (their boxes' corners) and the terrains (their whole boxes).
+double lowestReceiverZ(const FrameContext& frame) {
+  double z = INFINITY;
+  const VisibleSet& visible = frame.visible;
+  for (size_t d = 0; d < visible.inView; ++d) {
+    const DrawItem& it = visible.draws[d];
+    const glm::dmat4 m(visible.objects[it.object].model);
+    const mesh::Bounds& b = it.mesh->bounds;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 local(c & 1 ? b.max.x : b.min.x, c & 2 ? b.max.y : b.min.y, c & 4 ? b.max.z : b.min.z);
+      z = std::min(z, visible.origin.z + (m * glm::dvec4(local, 1.0)).z);
+    }
+  }
+  for (scene::EntityId t : frame.world.terrains) {
+    const scene::WorldBox box = scene::worldBounds(*frame.world.state, {t});
+    if (!box.empty) z = std::min(z, box.min.z);
+  }
+  return z;
+}
+
+// Mesh particles cast shadows, so one no view sees may still darken a view:
+// kept when `sphere` meets a view, or its shadow does (the sphere swept
+// along the sun's light up to the shadow distance, and no lower than the
+// scene's lowest point, `floorZ`: nothing below it receives a shadow), or a
+// shadow-casting point or spot light reaches it. Only what can matter is
+// evaluated.
+bool meshesMayMatter(const std::optional<glm::dvec4>& sphere, const std::vector<ViewVolume>& volumes,
+                     const FrameContext& frame, double floorZ) {
+  const glm::dvec3 origin = frame.visible.origin;
+  if (mayBeSeen(sphere, volumes, origin)) return true;
+  if (!frame.settings.shadows) return false;
+  const glm::dvec3 c = glm::dvec3(*sphere) - origin;
+  if (const auto& sun = frame.world.sun; sun && sun->castsShadows) {
+    double length = frame.settings.shadowDistance;
+    if (!std::isfinite(floorZ)) return false;  // nothing in view to fall on
+    if (sun->direction.z < -1e-9)
+      length = std::min(length, std::max(0.0, (sphere->z + sphere->w - floorZ) / -sun->direction.z));
+    for (const ViewVolume& v : volumes)
+      if (sweptMayMeet(v.frustum, c - v.eye, c - v.eye + sun->direction * length, sphere->w)) return true;
+  }
+  for (const WorldLight& l : frame.world.lights)
+    if (l.castsShadows && l.type != scene::Light::Type::Sun &&
+        glm::length(glm::dvec3(*sphere) - l.position) < double(l.range) + sphere->w)
+      return true;
   return false;
 }
 
@@ -279,6 +343,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
   std::vector<ParticleDraw> draws, gpuDraws;
   std::vector<ParticleGpuJob> jobs;
   std::vector<glm::dvec4> gpuBounds;
+  std::optional<double> floorZ;  // the scene's lowest point, found when a mesh emitter needs it
   uint32_t gpuRecords = 0;
   uint32_t index = 0;
   for (const scene::PlacedEmitter& pe : placed) {
@@ -292,13 +357,21 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
       // Mesh particles (particle_mesh.h): instances of the named entity's
       // mesh, evaluated on the CPU whatever the GPU setting (the instances
       // are made from the particles), culled per view by the instanced
-      // source (a particle out of every camera view may cast a shadow into one).
+      // source (a particle out of every camera view may cast a shadow into
+      // one: meshesMayMatter).
       const scene::MeshAsset* asset = scene::drawMeshAsset(state, pe.desc.drawMesh);
       if (!asset) {
         errors_.push_back(scene::drawMeshProblem(pe.desc));
         continue;
       }
       if (e.evaluator->candidates(t) == 0) continue;
+      // Out of every view, its shadows too: nothing evaluated.
+      if (!floorZ) floorZ = lowestReceiverZ(frame);
+      if (!meshesMayMatter(boundSphere(pe, t, *e.evaluator, world_ && needsWorld(pe.desc) ? world_.get() : nullptr),
+                           volumes, frame, *floorZ)) {
+        ++frame.stats.emittersOutOfView;
+        continue;
+      }
       const particles::Frame& f = frameAt(e, t);
       if (f.particles.empty()) continue;
       if (!meshes_) meshes_ = std::make_unique<MeshParticleSource>();
@@ -310,9 +383,10 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     // Nothing born in the live window: the emitter costs nothing at t.
     if (e.evaluator->candidates(t) == 0) continue;
     // Out of every view: it costs nothing either (no evaluation, no upload).
-    glm::dvec4 sphere;
-    if (!mayBeSeen(pe, t, *e.evaluator, volumes, origin, world_ && needsWorld(pe.desc) ? world_.get() : nullptr,
-                   &sphere)) {
+    const std::optional<glm::dvec4> bound =
+        boundSphere(pe, t, *e.evaluator, world_ && needsWorld(pe.desc) ? world_.get() : nullptr);
+    const glm::dvec4 sphere = bound.value_or(glm::dvec4(0.0, 0.0, 0.0, -1.0));  // radius < 0: none known
+    if (!mayBeSeen(bound, volumes, origin)) {
       ++frame.stats.emittersOutOfView;
       continue;
     }

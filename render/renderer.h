@@ -76,7 +76,7 @@ struct FrameStats {
   size_t drawCalls = 0;
   size_t instancesDrawn = 0;
   size_t particlesDrawn = 0;     // particles in the frame's buffer (render/particle_source.h), each view draws them
-  size_t emittersOutOfView = 0;  // emitters skipped unevaluated: their bound (particles/bounds.h) is in no view
+  size_t emittersOutOfView = 0;  // emitters skipped unevaluated: their bound (particles/bounds.h) is in no view (mesh particles: nor their shadow)
   size_t instancesCulled = 0;
   size_t instancesAtCoarserLod = 0;  // drawn with a mesh LOD level above 0 (mesh_lod.h)
   size_t terrainTriangles = 0;   // included in trianglesDrawn

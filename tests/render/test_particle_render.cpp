@@ -4,7 +4,8 @@
 // composite as depth peeling does in the A-buffer, fixed array and
 // K-buffer, additive ones past their layers too (the tail sums them); a frame is the same alone or after a run of frames (replay
 // cache); no emitter, or one behind the camera, costs no pass, buffer or
-// draw; mesh particles (draw_mesh) draw as a mesh entity placed at the
+// draw, nor one drawing meshes whose shadow cannot reach the view either;
+// mesh particles (draw_mesh) draw as a mesh entity placed at the
 // particle would, a missing draw_mesh is reported and loses nothing else,
 // and particlesDrawn counts them. Scenes at UTM coordinates
 // (camera-relative drawing).
@@ -717,6 +718,55 @@ class TestParticleRender : public QObject {
         onRock += hit == emitter;
       }
     QVERIFY2(onRock >= 5, qPrintable(QString::number(onRock)));
+  }
+
+  // Mesh particles cast shadows: an emitter out of every view is evaluated
+  // only when its shadow can reach one (its bound swept along the sun's
+  // light). High above the ground on the sun's ray through the view's
+  // middle: out of view, its shadow in it: evaluated, and the shadow shows;
+  // without shadows, or moved aside so its shadow misses the view too,
+  // nothing is evaluated (emittersOutOfView, no particle handed over).
+  void meshParticlesOutOfViewOnlyWhereTheirShadowReaches() {
+    scene::SceneState s = ground();
+    s.materials[kGroundAsset].unlit = false;
+    s.materials[kGroundAsset].baseColor = {0.5f, 0.5f, 0.5f};
+    s.settings.shadows = true;
+    s.entities[1000].light->castsShadows = true;
+    s.time.seconds = 1.5;
+    addHiddenRock(s, 3);
+    // Looking steeply down: nothing higher than the camera is in view.
+    const render::RenderView view = camera({0.0, -3.0, 8.0}, {0.0, 0.0, 0.0});
+    const glm::dvec3 toSun = -(s.entities[1000].transform.rotation * glm::dvec3(0, 0, -1));
+    QVERIFY(toSun.z > 0.1);
+    // 25 m up the sun's ray from the ground the camera looks at.
+    const glm::dvec3 high = toSun * (25.0 / toSun.z);
+    particles::EmitterDesc d = still("Debris", high, glm::dvec3(0.5), 6, 1.5, {0, 1, 0, 1});
+    d.drawMesh = "Rock";
+    render::FrameStats stats;
+    const Image bare = r_.render(s, view, false, &stats);
+    const size_t groundInstances = stats.instancesDrawn;
+    addEmitters(s, {d});
+    const Image shadowed = r_.render(s, view, false, &stats);
+    QVERIFY(r_.renderer().particleErrors().empty());
+    QCOMPARE(stats.emittersOutOfView, size_t(0));
+    QCOMPARE(stats.particlesDrawn, size_t(6));
+    QCOMPARE(stats.instancesDrawn, groundInstances);  // no rock in view: only their shadows
+    const size_t shade = pixelsApart(shadowed, bare, 8);
+    qInfo("rocks %.0f m up the sun's ray: out of view, their shadow on %zu pixels", glm::length(high), shade);
+    QVERIFY2(shade > 20, qPrintable(QString::number(shade)));
+    // Without shadows: nothing it does can be seen.
+    s.settings.shadows = false;
+    r_.render(s, view, false, &stats);
+    QCOMPARE(stats.emittersOutOfView, size_t(1));
+    QCOMPARE(stats.particlesDrawn, size_t(0));
+    // With shadows, moved 200 m aside: its shadow misses the view too.
+    s.settings.shadows = true;
+    removeEmitters(s);
+    d.origin += glm::dvec3(200.0, 0.0, 0.0);
+    addEmitters(s, {d});
+    r_.render(s, view, false, &stats);
+    QCOMPARE(stats.emittersOutOfView, size_t(1));
+    QCOMPARE(stats.particlesDrawn, size_t(0));
   }
 
   // A draw_mesh naming no mesh entity (an empty entity of that name, or
