@@ -62,8 +62,8 @@ struct ViewVolume {
 // of the particles alive at t, grown by the largest particle's reach (a
 // sprite: the quad's half-diagonal at the largest size, plus half the
 // velocity stretch at the largest speed; a mesh: half the diagonal of the
-// cube its longest side is scaled to). None (a camera path moving a
-// world-space emitter, a mesh shape without its surface): unbounded.
+// cube its longest side is scaled to). None (a mesh shape without its
+// surface): unbounded.
 std::optional<glm::dvec4> boundSphere(const scene::PlacedEmitter& pe, double t, const particles::Evaluator& ev,
                                       scene::ParticleWorld* world) {
   const std::optional<scene::PlacedBound> b = scene::placedBound(pe, t, world, ev.inputs().surface);

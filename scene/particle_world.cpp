@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "foliage/surface.h"
+#include "sequencer/camera_path.h"
 #include "sequencer/track.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -95,7 +96,6 @@ glm::dvec3 EmitterMotion::originAt(double t) const {
 }
 
 std::optional<particles::OriginBox> EmitterMotion::originRange(double t0, double t1) const {
-  if (compiled_) return std::nullopt;
   if (t1 < t0) std::swap(t0, t1);
   // The box (centre c, half extents h) of the chain's translation so far,
   // from the entity up: a parent maps x to T + R S x.
@@ -106,6 +106,22 @@ std::optional<particles::OriginBox> EmitterMotion::originRange(double t0, double
     glm::dvec3 sLo = level.transform.scale, sHi = sLo;
     glm::dquat rotation = level.transform.rotation;
     bool turns = false;
+    if (level.binding) {
+      // A scale track: the range the path's level below may need too.
+      for (const sequencer::Track& track : level.binding->tracks)
+        if (const auto* v = std::get_if<sequencer::VectorTrack>(&track); v && v->property == "transform.scale")
+          if (const auto r = sequencer::valueRange(*v, t0, t1)) std::tie(sLo, sHi) = *r;
+    }
+    if (level.binding && level.binding->path) {
+      // A path places this level anywhere on its curve (the whole curve's
+      // box: its progress keys are not followed here) and turns it any way
+      // (its aim): what lies below is a ball about the curve (originAt).
+      const auto [lo, hi] = sequencer::PathSampler(level.binding->path->path.points).box();
+      const glm::dvec3 sMax = glm::max(glm::abs(sLo), glm::abs(sHi));
+      const double r = i == 0 ? 0.0 : std::max({sMax.x, sMax.y, sMax.z}) * (glm::length(c) + glm::length(h));
+      const glm::dvec3 pad(r + 1e-12 * (glm::length(lo) + glm::length(hi) + r));
+      return particles::OriginBox{lo - pad + offset_, hi + pad + offset_};
+    }
     if (level.binding) {
       for (const sequencer::Track& track : level.binding->tracks) {
         if (const auto* v = std::get_if<sequencer::VectorTrack>(&track)) {

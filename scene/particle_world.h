@@ -40,7 +40,9 @@ class EmitterMotion {
   // A box holding originAt(t) for every t in [t0, t1], proven from the
   // tracks' value ranges (sequencer::valueRange): each parent maps the box
   // exactly while it does not turn or scale, and into a ball while it does.
-  // nullopt with a camera path in the chain (its curve is not enclosed here).
+  // A camera path in the chain: its whole curve's box (sequencer::
+  // PathSampler::box, the spans' Bézier hulls), with what lies below it as
+  // a ball (the path's aim may turn it any way).
   std::optional<particles::OriginBox> originRange(double t0, double t1) const;
   bool operator==(const EmitterMotion& o) const;
 

@@ -84,6 +84,22 @@ glm::dvec3 PathSampler::positionAtParameter(double tau) const {
   return origin_ + rel;
 }
 
+std::pair<glm::dvec3, glm::dvec3> PathSampler::box() const {
+  if (points_.empty()) return {glm::dvec3(0.0), glm::dvec3(0.0)};
+  glm::dvec3 lo = points_.front(), hi = lo;
+  for (size_t i = 0; i + 1 < points_.size(); ++i) {
+    const double h = knots_[i + 1] - knots_[i];
+    const glm::dvec3 chord = (points_[i + 1] - points_[i]) / h;
+    const glm::dvec3 d0 = chord - h / 6.0 * (2.0 * second_[i] + second_[i + 1]);  // dP/dtau at the span's start
+    const glm::dvec3 d1 = chord + h / 6.0 * (second_[i] + 2.0 * second_[i + 1]);  // and at its end
+    for (const glm::dvec3& b : {points_[i] + h / 3.0 * d0, points_[i + 1] - h / 3.0 * d1, points_[i + 1]}) {
+      lo = glm::min(lo, b);
+      hi = glm::max(hi, b);
+    }
+  }
+  return {origin_ + lo, origin_ + hi};
+}
+
 glm::dvec3 PathSampler::derivative(double tau) const {
   const Local l = locate(tau);
   return (points_[l.span + 1] - points_[l.span]) / l.h - (3.0 * l.a * l.a - 1.0) / 6.0 * l.h * second_[l.span] +

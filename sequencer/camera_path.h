@@ -4,6 +4,7 @@
 // at a point or at an entity, optionally banking into turns.
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -47,6 +48,10 @@ class PathSampler {
   double parameterAt(double s) const;
   double parameterLength() const { return knots_.empty() ? 0.0 : knots_.back(); }
   glm::dvec3 positionAtParameter(double tau) const;
+  // A box that holds the whole curve, world space: each cubic span lies in
+  // the convex hull of its Bézier control points (its ends, and a third of
+  // the span along the end tangents). A single point: that point.
+  std::pair<glm::dvec3, glm::dvec3> box() const;
 
  private:
   struct Local {

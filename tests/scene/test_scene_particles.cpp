@@ -482,7 +482,7 @@ class TestSceneParticles : public QObject {
   // time that matters, and the bound every particle a brute-force
   // evaluation finds, with sizes and speeds under the widened emitter's.
   // Without the widening some particles lie outside (the test can tell).
-  // A camera path in the chain gives no bound.
+  // A camera path in the chain (its curve overshooting its points) too.
   void boundsFollowTheMotionAndTheSpawnTracks() {
     Document doc;
     particles::EmitterDesc d = small(25.0);
@@ -588,15 +588,39 @@ class TestSceneParticles : public QObject {
     qInfo("%zu particles inside their bound (farthest at %.3f of its radius); %zu outside the unwidened one", n,
           farthest, outsideUnwidened);
     QVERIFY(n > 200 && outsideUnwidened > 0);
-    // A camera path moving the chain: no enclosure of its curve, no bound.
-    QVERIFY(ops::setPath(doc, cart, sequencer::makePathFollow({{0, 0, 0}, {20, 0, 0}, {20, 20, 0}}, 0.0, 4.0),
+    // A camera path moving the chain (a turn that overshoots its points,
+    // the aim turning the torch's offset under the cart): the box holds
+    // the origin at every birth time, and the bound every particle.
+    QVERIFY(ops::setPath(doc, cart, sequencer::makePathFollow({{0, 0, 0}, {20, 0, 0}, {20, 20, 0}, {0, 22, 3}}, 0.0, 4.0),
                          "Follow path"));
-    const SceneState at = animatedState(doc.state(), compileSequence(doc.state()), 2.0);
-    const std::vector<PlacedEmitter> placed = visibleEmitters(at);
-    QVERIFY(placed.size() == 1 && placed[0].motion);
-    QVERIFY(!placed[0].motion->originRange(0.0, 2.0));
-    ParticleWorld world(at);
-    QVERIFY(!placedBound(placed[0], 2.0, &world, nullptr));
+    {
+      Edit e(doc, "Offset");
+      e.entity(torch).transform.translation = {0.0, 2.0, 0.5};  // turned by the path's aim
+      e.commit();
+    }
+    size_t onPath = 0;
+    for (double t : {1.0, 2.5, 4.5}) {
+      const SceneState at = animatedState(doc.state(), compileSequence(doc.state()), t);
+      const std::vector<PlacedEmitter> placed = visibleEmitters(at);
+      QVERIFY(placed.size() == 1 && placed[0].motion);
+      const std::optional<particles::OriginBox> box = placed[0].motion->originRange(t - d.lifetimeMax, t);
+      QVERIFY(box);
+      for (int i = 0; i <= 1000; ++i) {
+        const glm::dvec3 o = placed[0].motion->originAt(t - d.lifetimeMax * i / 1000.0);
+        QVERIFY2(glm::all(glm::lessThanEqual(box->lo, o)) && glm::all(glm::lessThanEqual(o, box->hi)),
+                 qPrintable(QString("t %1: origin %2 %3 %4 outside the path's box").arg(t).arg(o.x).arg(o.y).arg(o.z)));
+      }
+      ParticleWorld world(at);
+      const std::optional<PlacedBound> b = placedBound(placed[0], t, &world, nullptr);
+      QVERIFY(b);
+      auto ev = world.evaluator(placed[0], error);
+      QVERIFY2(ev, error.c_str());
+      for (const particles::Particle& p : ev->frame(t).particles) {
+        QVERIFY(glm::length(p.position - b->bound.centre) <= b->bound.radius * (1.0 + 1e-12));
+        ++onPath;
+      }
+    }
+    QVERIFY(onPath > 50);
   }
 
   // A spawn value keyed on the timeline: each particle takes the track's
