@@ -102,16 +102,7 @@ bool sweptMayMeet(const Frustum& f, const glm::dvec3& a, const glm::dvec3& b, do
 // (their boxes' corners) and the terrains (their whole boxes).
 double lowestReceiverZ(const FrameContext& frame) {
   double z = INFINITY;
-  const VisibleSet& visible = frame.visible;
-  for (size_t d = 0; d < visible.inView; ++d) {
-    const DrawItem& it = visible.draws[d];
-    const glm::dmat4 m(visible.objects[it.object].model);
-    const mesh::Bounds& b = it.mesh->bounds;
-    for (int c = 0; c < 8; ++c) {
-      const glm::dvec3 local(c & 1 ? b.max.x : b.min.x, c & 2 ? b.max.y : b.min.y, c & 4 ? b.max.z : b.min.z);
-      z = std::min(z, visible.origin.z + (m * glm::dvec4(local, 1.0)).z);
-    }
-  }
+  forEachInViewCorner(frame.visible, [&](const glm::dvec3& p) { z = std::min(z, p.z); });
   for (scene::EntityId t : frame.world.terrains) {
     const scene::WorldBox box = scene::worldBounds(*frame.world.state, {t});
     if (!box.empty) z = std::min(z, box.min.z);

@@ -80,4 +80,16 @@ uint32_t addCasterDraw(VisibleSet& set, const RenderWorld& world, GpuMeshCache& 
   return addDraw(set, world.meshes[instance], b, cache);
 }
 
+void forEachInViewCorner(const VisibleSet& set, const std::function<void(const glm::dvec3&)>& f) {
+  for (size_t d = 0; d < set.inView; ++d) {
+    const DrawItem& it = set.draws[d];
+    const glm::dmat4 m(set.objects[it.object].model);
+    const mesh::Bounds& b = it.mesh->bounds;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 local(c & 1 ? b.max.x : b.min.x, c & 2 ? b.max.y : b.min.y, c & 4 ? b.max.z : b.min.z);
+      f(set.origin + glm::dvec3(m * glm::dvec4(local, 1.0)));
+    }
+  }
+}
+
 }  // namespace hs::render

@@ -6,6 +6,7 @@
 // alone, so both eyes and every shadow view draw the same level. Object
 // data (matrices relative to the frame origin, tints) is laid out here for
 // one upload per frame.
+#include <functional>
 #include <cstddef>
 #include <vector>
 
@@ -50,6 +51,11 @@ struct VisibleSet {
 // (usually the frame's mono camera; views[0] when null).
 VisibleSet buildVisibleSet(const RenderWorld& world, GpuMeshCache& cache, const std::vector<RenderView>& views,
                            const RenderView* lodView, double lodErrorPixels);
+
+// The world-space corners (double) of every in-view draw's mesh box, eight
+// a draw, each handed to `f`: the depth of field's nearest depth and the
+// mesh particles' lowest receiver read them.
+void forEachInViewCorner(const VisibleSet& set, const std::function<void(const glm::dvec3&)>& f);
 
 // The draw of world.meshes[instance], made (a caster outside every view) if
 // it has none yet; its index in set.draws.

@@ -64,16 +64,7 @@ double nearestDrawnDepth(const RenderWorld& world, const VisibleSet& visible, co
   const glm::dvec3 fwd = view.forward();
   // The nearest corner of each drawn mesh's box (tighter than its sphere
   // for long thin things).
-  for (size_t d = 0; d < visible.inView; ++d) {
-    const DrawItem& it = visible.draws[d];
-    const glm::dmat4 m(visible.objects[it.object].model);
-    const mesh::Bounds& b = it.mesh->bounds;
-    for (int c = 0; c < 8; ++c) {
-      const glm::dvec3 local(c & 1 ? b.max.x : b.min.x, c & 2 ? b.max.y : b.min.y, c & 4 ? b.max.z : b.min.z);
-      const glm::dvec3 p = visible.origin + glm::dvec3(m * glm::dvec4(local, 1.0));
-      nearest = std::min(nearest, glm::dot(p - view.eye, fwd));
-    }
-  }
+  forEachInViewCorner(visible, [&](const glm::dvec3& p) { nearest = std::min(nearest, glm::dot(p - view.eye, fwd)); });
   return std::max(nearest, view.nearClip);
 }
 

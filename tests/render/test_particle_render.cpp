@@ -157,6 +157,19 @@ void addHiddenRock(scene::SceneState& s, scene::EntityId id) {
   s.roots.push_back(e.id);
 }
 
+// ground() lit (grey), the sun casting shadows, the hidden "Rock" for
+// mesh particles, at 1.5 s.
+scene::SceneState shadowedGroundWithRock() {
+  scene::SceneState s = ground();
+  s.materials[kGroundAsset].unlit = false;
+  s.materials[kGroundAsset].baseColor = {0.5f, 0.5f, 0.5f};
+  s.settings.shadows = true;
+  s.entities[1000].light->castsShadows = true;
+  s.time.seconds = 1.5;
+  addHiddenRock(s, 3);
+  return s;
+}
+
 double lum(const Image& img, int x, int y) {  // top row first; 0..255
   const uint8_t* p = &img.rgba8[(size_t(y) * img.width + x) * 4];
   return (double(p[0]) + p[1] + p[2]) / 3.0;
@@ -617,13 +630,7 @@ class TestParticleRender : public QObject {
   // (0.05 %), so a few edge pixels may flip: at most 0.5 % of the channels
   // differ by more than 2/255 and the mean difference is under 0.05/255.
   void meshParticleEqualsMeshEntityAtItsTransform() {
-    scene::SceneState s = ground();
-    s.materials[kGroundAsset].unlit = false;
-    s.materials[kGroundAsset].baseColor = {0.5f, 0.5f, 0.5f};
-    s.settings.shadows = true;
-    s.entities[1000].light->castsShadows = true;
-    s.time.seconds = 1.5;
-    addHiddenRock(s, 3);
+    scene::SceneState s = shadowedGroundWithRock();
     particles::EmitterDesc d = still("Debris", {0.2, 0.3, 1.0}, glm::dvec3(0.0), 1, 0.9, {0, 1, 0, 1});
     d.rotationMinDeg = d.rotationMaxDeg = 35.0;
     d.spinMinDegPerS = d.spinMaxDegPerS = 40.0;
@@ -727,13 +734,7 @@ class TestParticleRender : public QObject {
   // without shadows, or moved aside so its shadow misses the view too,
   // nothing is evaluated (emittersOutOfView, no particle handed over).
   void meshParticlesOutOfViewOnlyWhereTheirShadowReaches() {
-    scene::SceneState s = ground();
-    s.materials[kGroundAsset].unlit = false;
-    s.materials[kGroundAsset].baseColor = {0.5f, 0.5f, 0.5f};
-    s.settings.shadows = true;
-    s.entities[1000].light->castsShadows = true;
-    s.time.seconds = 1.5;
-    addHiddenRock(s, 3);
+    scene::SceneState s = shadowedGroundWithRock();
     // Looking steeply down: nothing higher than the camera is in view.
     const render::RenderView view = camera({0.0, -3.0, 8.0}, {0.0, 0.0, 0.0});
     const glm::dvec3 toSun = -(s.entities[1000].transform.rotation * glm::dvec3(0, 0, -1));
