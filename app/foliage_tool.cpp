@@ -361,13 +361,16 @@ void FoliageTool::clearSelection() {
   emit selectionChanged();
 }
 
-void FoliageTool::record(foliage::EditResult r, const QString& text, bool keepsSelection, const QString& done) {
-  const std::vector<std::string>& warnings = r.stats.messages;
+void FoliageTool::announceWarnings(const std::vector<std::string>& warnings, const QString& text) {
   for (size_t i = 0; i < warnings.size() && i < kMaxListedWarnings; ++i)
     emit strokeFinished(text + ": " + QString::fromStdString(warnings[i]), true);
   if (warnings.size() > kMaxListedWarnings)
     emit strokeFinished(QString("%1: %2 more warning(s) like these").arg(text).arg(warnings.size() - kMaxListedWarnings),
                         true);
+}
+
+void FoliageTool::record(foliage::EditResult r, const QString& text, bool keepsSelection, const QString& done) {
+  announceWarnings(r.stats.messages, text);
   const QString summary =
       !done.isEmpty() ? done : QString("%1: %2 changed, %3 removed").arg(text).arg(r.stats.changed).arg(r.stats.removed);
   const bool pushed = scene::pushFoliageEdit(doc_, std::move(r.undo), text);
@@ -416,11 +419,7 @@ void FoliageTool::announce(const scene::ops::FoliageOutcome& out, const QString&
     emit strokeFinished(text + ": " + QString::fromStdString(out.error), true);
     return;
   }
-  for (size_t i = 0; i < out.messages.size() && i < kMaxListedWarnings; ++i)
-    emit strokeFinished(text + ": " + QString::fromStdString(out.messages[i]), true);
-  if (out.messages.size() > kMaxListedWarnings)
-    emit strokeFinished(
-        QString("%1: %2 more warning(s) like these").arg(text).arg(out.messages.size() - kMaxListedWarnings), true);
+  announceWarnings(out.messages, text);
   const bool changed = out.stats.placed + out.stats.removed + out.stats.changed + out.stats.moved > 0;
   emit strokeFinished(out.cancelled ? text + ": cancelled; nothing changed"
                       : changed     ? done

@@ -130,6 +130,8 @@ class FoliageTool : public QObject {
   void dab(const glm::dvec3& centre);
   void addToSelection(foliage::Selection more);
   void record(foliage::EditResult r, const QString& text, bool keepsSelection, const QString& done = {});
+  // An edit's warnings to Messages: the first few, then how many more.
+  void announceWarnings(const std::vector<std::string>& warnings, const QString& text);
   // A worker's outcome (foliage_work.h) to Messages: its warnings, then
   // `done` (or what refused or cancelled it).
   void announce(const scene::ops::FoliageOutcome& out, const QString& text, const QString& done);

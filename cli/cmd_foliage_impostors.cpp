@@ -11,7 +11,6 @@
 #include "cli/terrain_cli.h"
 #include "foliage/foliage_operations.h"
 #include "scene/hscene_file.h"
-#include "scene/impostor_ops.h"
 
 namespace hs::cli {
 
@@ -23,13 +22,12 @@ int runFoliageImpostors(int argc, char** argv) {
   std::string error;
   scene::Document doc;
   if (!terrain_cli::openScene(path, doc, error)) return args.fail(error);
-  const std::vector<scene::AssetId> ids = scene::ops::impostorsToBake(doc.state(), args.flag("all"));
-  if (ids.empty()) {
+  const ImpostorBake bake = bakeImpostors(doc, args.flag("all"));
+  if (!bake.ok) return args.fail(bake.error);
+  if (bake.baked == 0) {
     std::printf("%s: every impostor a foliage type draws is stored and current; nothing baked\n", path.c_str());
     return 0;
   }
-  const ImpostorBake bake = bakeImpostors(doc, args.flag("all"));
-  if (!bake.ok) return args.fail(bake.error);
   scene::SaveReport r;
   if (!scene::saveScene(doc.state(), path, error, &r)) return args.fail(error);
   std::printf("saved %s: %zu impostor(s) stored\n", path.c_str(), bake.stored);

@@ -13,7 +13,7 @@ namespace hs::cli {
 struct ImpostorBake {
   bool ok = true;
   std::string error;  // !ok: headless GL or a bake failed; the document is unchanged
-  size_t baked = 0, stored = 0;
+  size_t baked = 0, stored = 0;  // baked 0: every one stored and current, nothing to do (no GL started)
 };
 ImpostorBake bakeImpostors(scene::Document& doc, bool all);
 

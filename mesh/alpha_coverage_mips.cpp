@@ -93,9 +93,8 @@ void scaleToCoverage(MipLevel& level, float threshold, double targetShare) {
   const size_t n = size_t(level.width) * size_t(level.height) * 4;
   const double target = targetShare * double(n);
   auto passing = [&](double scale) {
-    MipLevel m = level;
-    m.rgba = scaledAlpha(level, scale);
-    return filteredAlphaCoverage(m, threshold) * double(n);
+    return filteredAlphaCoverage(MipLevel{level.width, level.height, scaledAlpha(level, scale)}, threshold) *
+           double(n);
   };
   const double asIs = passing(1.0);
   if (std::abs(asIs - target) < 0.5) return;  // as near as can be (an opaque texture): left alone

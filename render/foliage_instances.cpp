@@ -5,12 +5,6 @@
 namespace hs::render {
 namespace {
 
-size_t cellCount(const foliage::Cell& c) {
-  size_t n = 0;
-  for (const foliage::Run& run : c.runs) n += run.items.size();
-  return n;
-}
-
 // Cell `cell`'s instances packed at `out` (as many as it has).
 void packCell(const foliage::FoliageStore& store, const foliage::Cell& c, uint16_t cell, GpuInstance* out) {
   for (const foliage::Run& run : c.runs) {
@@ -46,7 +40,7 @@ std::vector<InstanceSet> buildSets(const scene::SceneState& state, size_t maxIns
     // Whole cells while both limits hold (at least one cell a set).
     size_t last = first, places = 0;
     while (last < keys.size() && last - first < kMaxCellsPerSet) {
-      const size_t more = room(cellCount(*store->cell(keys[last])));
+      const size_t more = room(store->cell(keys[last])->count());
       if (last > first && places + more > maxInstances) break;
       places += more;
       ++last;
@@ -58,7 +52,7 @@ std::vector<InstanceSet> buildSets(const scene::SceneState& state, size_t maxIns
       const foliage::CellKey& k = keys[i];
       const foliage::Cell& c = *store->cell(k);
       const uint16_t cell = uint16_t(i - first);
-      const size_t count = cellCount(c), r = room(count);
+      const size_t count = c.count(), r = room(count);
       set.cells.push_back(k.origin());
       packCell(*store, c, cell, set.instances.data() + at);
       if (slots) (*slots)[k] = {out.size(), cell, at, count, r, store->cellRevision(k)};
@@ -109,7 +103,7 @@ std::vector<InstanceSet> foliagePagedSets(const scene::SceneState& state, CellSl
 bool repackCell(const foliage::FoliageStore& store, const foliage::CellKey& key, CellSlot& slot,
                 std::vector<GpuInstance>& out) {
   const foliage::Cell* c = store.cell(key);
-  const size_t count = c ? cellCount(*c) : 0;
+  const size_t count = c ? c->count() : 0;
   if (count > slot.room) return false;
   out.assign(slot.room, kSpareInstance);
   if (c) packCell(store, *c, slot.cell, out.data());

@@ -34,9 +34,7 @@ bool FoliageSources::repack(const foliage::FoliageStore& store) {
   for (size_t i = 0; i < sources_.size(); ++i) cells[i] = sources_[i]->instances().cells.size();
   for (const auto& [k, c] : store.cells()) {
     if (slots_.count(k)) continue;
-    size_t count = 0;
-    for (const foliage::Run& r : c.runs) count += r.items.size();
-    const size_t room = cellRoom(count);
+    const size_t room = cellRoom(c.count());
     size_t set = 0;
     while (set < sources_.size() &&
            (tails[set] + room > sources_[set]->instances().instances.size() || cells[set] >= kMaxCellsPerSet))
@@ -60,10 +58,7 @@ bool FoliageSources::repack(const foliage::FoliageStore& store) {
   for (auto& [k, slot] : slots_)
     if (store.cellRevision(k) != slot.revision) {
       const foliage::Cell* c = store.cell(k);
-      size_t count = 0;
-      if (c)
-        for (const foliage::Run& r : c->runs) count += r.items.size();
-      if (count > slot.room) return false;  // grown past its room: rebuild
+      if (c && c->count() > slot.room) return false;  // grown past its room: rebuild
       changed.push_back({k, &slot});
     }
   std::vector<GpuInstance> packed;

@@ -87,6 +87,15 @@ bool mayBeSeen(const std::optional<glm::dvec4>& sphere, const std::vector<ViewVo
   return false;
 }
 
+// A billboard's reach about its centre: the quad's half-diagonal, and half
+// its streak when it faces along its velocity (particle.vert).
+double quadReach(const particles::PackedParticle& q, bool alongVelocity) {
+  double radius = 0.5 * std::sqrt(2.0) * double(q.size);
+  if (alongVelocity)
+    radius += 0.5 * double(kStretchSeconds) * glm::length(glm::dvec3(q.velocity[0], q.velocity[1], q.velocity[2]));
+  return radius;
+}
+
 // Whether a sphere of radius r swept from `a` to `b` (relative to the
 // view's eye) may meet the frustum: no plane leaves both ends outside by
 // more than r (conservative: a few corner cases are kept).
@@ -197,15 +206,11 @@ void ParticleSource::declare(PassBuilder& builder, DrawVariant variant) const {
 double ParticleSource::nearestDepth(const RenderView& view) const {
   const glm::dvec3 fwd = view.forward(), eye = view.eye - origin_;
   double nearest = INFINITY;
-  // A velocity-aligned quad stretches along its velocity (particle.vert).
-  bool stretched = false;
+  bool stretched = false;  // any emitter's quads stretch along their velocity
   for (const ParticleDraw& d : draws_) stretched = stretched || d.alongVelocity;
   for (const particles::PackedParticle& q : particles_) {
     const glm::dvec3 c(q.position[0], q.position[1], q.position[2]);
-    double radius = 0.5 * std::sqrt(2.0) * double(q.size);
-    if (stretched)
-      radius += 0.5 * double(kStretchSeconds) * glm::length(glm::dvec3(q.velocity[0], q.velocity[1], q.velocity[2]));
-    nearest = std::min(nearest, glm::dot(c - eye, fwd) - radius);
+    nearest = std::min(nearest, glm::dot(c - eye, fwd) - quadReach(q, stretched));
   }
   for (const glm::dvec4& b : gpuBounds_)
     nearest = std::min(nearest, b.w < 0.0 ? view.nearClip : glm::dot(glm::dvec3(b) - view.eye, fwd) - b.w);
@@ -409,8 +414,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     for (const particles::PackedParticle& q : packed) {
       if (!(q.colour[3] > 0.0f) || !(q.size > 0.0f)) continue;
       const glm::dvec3 c(q.position[0], q.position[1], q.position[2]);
-      double radius = 0.5 * std::sqrt(2.0) * double(q.size);
-      if (along) radius += 0.5 * double(kStretchSeconds) * glm::length(glm::dvec3(q.velocity[0], q.velocity[1], q.velocity[2]));
+      const double radius = quadReach(q, along);
       bool seen = false;
       for (const ViewVolume& v : volumes) seen = seen || v.frustum.intersectsSphere(c - v.eye, radius);
       if (seen) all.push_back(q);

@@ -30,6 +30,12 @@ FoliageOutcome record(Document& doc, foliage::EditResult r, const QString& text)
   return out;
 }
 
+// Work done on the document's own store: refused, or recorded as one step.
+FoliageOutcome recordWork(Document& doc, FoliageWork work) {
+  if (!work.error.empty()) return refused(std::move(work.error));
+  return record(doc, std::move(work.result), work.text);
+}
+
 std::string checkTypes(const foliage::FoliageStore& store, const foliage::TypeSet& types) {
   for (uint16_t t : types)
     if (t >= store.types().size()) return "foliage type " + std::to_string(t) + " does not exist";
@@ -106,9 +112,7 @@ FoliageWork scatterOnStore(foliage::FoliageStore& store, const FoliageGround& gr
 FoliageOutcome scatterFoliage(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
                               uint64_t seed, const std::optional<foliage::Region2>& region,
                               const std::optional<foliage::FoliageType>& rules, unsigned threads) {
-  FoliageWork work = scatterOnStore(doc.foliage().store(), ground, types, seed, region, rules, threads);
-  if (!work.error.empty()) return refused(std::move(work.error));
-  return record(doc, std::move(work.result), work.text);
+  return recordWork(doc, scatterOnStore(doc.foliage().store(), ground, types, seed, region, rules, threads));
 }
 
 FoliageOutcome commitFoliageWork(Document& doc, foliage::FoliageStore& worked, FoliageWork work) {
@@ -153,9 +157,7 @@ FoliageOutcome paintFoliage(Document& doc, const FoliageGround& ground, const fo
 FoliageOutcome fillFoliageLayer(Document& doc, const FoliageGround& ground, const foliage::TypeSet& types,
                                 const std::string& layer, double minWeight, uint64_t seed,
                                 const std::optional<foliage::Region2>& region) {
-  FoliageWork work = fillLayerOnStore(doc.foliage().store(), ground, types, layer, minWeight, seed, region);
-  if (!work.error.empty()) return refused(std::move(work.error));
-  return record(doc, std::move(work.result), work.text);
+  return recordWork(doc, fillLayerOnStore(doc.foliage().store(), ground, types, layer, minWeight, seed, region));
 }
 
 FoliageWork fillLayerOnStore(foliage::FoliageStore& store, const FoliageGround& ground, const foliage::TypeSet& types,
