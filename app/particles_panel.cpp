@@ -21,6 +21,7 @@
 #include "app/message_panel.h"
 #include "app/param_form.h"
 #include "app/selection.h"
+#include "app/time_keys_editor.h"
 #include "app/timeline_clock.h"
 #include "app/viewport_widget.h"
 #include "particles/emitter.h"
@@ -29,6 +30,7 @@
 #include "scene/particle_ops.h"
 #include "scene/particle_world.h"
 #include "scene/sequence_edits.h"
+#include "sequencer/frame_range.h"
 
 namespace hs::app {
 namespace {
@@ -170,6 +172,19 @@ void ParticlesPanel::buildUi() {
       listsForm->addRow("", curve);
       curves_.emplace_back(k, curve);
     }
+    // The lists over scene time too, against the playback range and the playhead.
+    if (k == "rate_keys" || k == "bursts" || k == "wind_keys") {
+      auto* keys = new TimeKeysEditor(k == "rate_keys"   ? TimeKeysEditor::Kind::Rate
+                                      : k == "wind_keys" ? TimeKeysEditor::Kind::Wind
+                                                         : TimeKeysEditor::Kind::Bursts,
+                                      fields_);
+      keys->setObjectName(QString("particles_") + key + "_curve");
+      connect(keys, &TimeKeysEditor::edited, this, [this, k](const Json& rows) {
+        if (!updating_ && current_ != scene::kNoEntity) setValue(current_, k, rows, false);
+      });
+      listsForm->addRow("", keys);
+      timeKeys_.emplace_back(k, keys);
+    }
   }
   fv->addLayout(listsForm);
 
@@ -179,10 +194,17 @@ void ParticlesPanel::buildUi() {
   auto* keyRow = new QHBoxLayout;
   keyField_ = new QComboBox(fields_);
   keyField_->setObjectName("particlesKeyField");
+  // The rate and the wind first (keys of the emitter's own lists), then the
+  // spawn values (timeline tracks).
+  for (const char* k : {"rate_per_s", "wind_m_per_s"})
+    keyField_->addItem(QString::fromStdString(paramIn(particles::emitterParamDecls(), k).label),
+                       QString::fromStdString(std::string(scene::kEmitterTrackPrefix) + k));
   for (const std::string& k : particles::spawnKeys())
     keyField_->addItem(QString::fromStdString(paramIn(particles::emitterParamDecls(), k).label),
                        QString::fromStdString(std::string(scene::kEmitterTrackPrefix) + k));
-  keyField_->setToolTip("A spawn value to key: each particle takes its value at its birth");
+  keyField_->setToolTip("A value to key at the playhead: the rate and the wind as keys of the emitter's lists "
+                        "(rate_keys, wind_keys); a spawn value on the timeline, each particle taking its value "
+                        "at its birth");
   auto* key = new QPushButton("Key at Playhead", fields_);
   key->setObjectName("particlesKey");
   key->setToolTip("Key the chosen field's value (a MIN,MAX pair: its centre) at the playhead: one undo step");
@@ -199,7 +221,28 @@ void ParticlesPanel::buildUi() {
 void ParticlesPanel::followClock(TimelineClock* clock) {
   // The live counts follow the playhead (scrubbing, playing, edits).
   connect(clock, &TimelineClock::stateChanged, this, &ParticlesPanel::refreshCounts);
+  connect(clock, &TimelineClock::stateChanged, this, &ParticlesPanel::refreshTimeKeys);
   refreshCounts();
+  refreshTimeKeys();
+}
+
+void ParticlesPanel::refreshTimeKeys() {
+  // The span: the playback range, widened to the keys and the playhead.
+  const sequencer::Sequence& seq = doc_.state().sequence;
+  const double now = playheadSeconds();
+  double t0 = std::min(sequencer::frameTime(seq.startFrame, seq.rate), now);
+  double t1 = std::max(sequencer::frameTime(seq.endFrame, seq.rate), now);
+  for (auto& [key, editor] : timeKeys_)
+    for (const Json& row : editor->keys()) {
+      t0 = std::min(t0, row[0].get<double>());
+      t1 = std::max(t1, row[0].get<double>());
+    }
+  if (!(t1 - t0 >= 1.0)) t1 = t0 + 1.0;
+  const double margin = 0.02 * (t1 - t0);
+  for (auto& [key, editor] : timeKeys_) {
+    editor->setSpan(t0 - margin, t1 + margin);
+    editor->setPlayhead(now);
+  }
 }
 
 void ParticlesPanel::populateMenu(QMenu* menu) {
@@ -275,7 +318,16 @@ void ParticlesPanel::refreshForm() {
     if (j.contains(key)) edit->setText(QString::fromStdString(j[key].dump()));
   for (auto& [key, curve] : curves_)
     if (j.contains(key)) curve->setKeys(j[key]);
+  for (auto& [key, editor] : timeKeys_) {
+    std::vector<double> constant;
+    const Json c = key == "rate_keys" ? j["rate_per_s"] : key == "wind_keys" ? j["wind_m_per_s"] : Json();
+    if (c.is_number()) constant.push_back(c.get<double>());
+    if (c.is_array())
+      for (const Json& v : c) constant.push_back(v.get<double>());
+    if (j.contains(key)) editor->setKeys(j[key], constant);
+  }
   updating_ = false;
+  refreshTimeKeys();
 }
 
 void ParticlesPanel::formEdited() {
@@ -308,6 +360,18 @@ void ParticlesPanel::listEdited(const std::string& key, QLineEdit* edit) {
 bool ParticlesPanel::keyAtPlayhead(const std::string& property) {
   const scene::Entity* e = doc_.state().find(current_);
   std::string error;
+  // The rate and the wind: a key of the emitter's own list, the form's value.
+  const std::string_view prefix = scene::kEmitterTrackPrefix;
+  const std::string field = property.rfind(prefix, 0) == 0 ? property.substr(prefix.size()) : std::string();
+  if (!scene::ops::keyedListOf(field).empty()) {
+    const Json value = e && e->particles ? particles::emitterToJson(e->particles->desc)[field] : Json();
+    if (!e || !scene::ops::keyEmitterField(doc_, current_, field, playheadSeconds(), value, error)) {
+      showProblem(e ? error : "no emitter to key");
+      return false;
+    }
+    error_->hide();
+    return true;
+  }
   const std::optional<scene::AnimTarget> target = scene::animationTarget(property, error);
   if (!e || !target) {
     if (target) error = "no emitter to key";

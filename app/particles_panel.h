@@ -4,7 +4,9 @@
 // dialog made from `particles add`'s declaration, placed at the view's pivot
 // unless a position is given), Remove, and the current emitter's fields: a
 // form made from emitterParamDecls() (particles/emitter.h) and its keyed
-// lists (rate and wind keys, bursts, size and colour over life) as JSON. Every
+// lists (rate and wind keys, bursts, size and colour over life) as JSON,
+// each also drawn and dragged (the over-life curves, and the lists over
+// scene time against the playback range and the playhead). Every
 // change goes through scene/particle_ops.h, as `hybridscape-cli set EMITTER
 // particles.FIELD` does: one undo step (a spin box's drag merges into one),
 // refused values named in Messages with emitter and field, the document
@@ -66,8 +68,11 @@ class ParticlesPanel : public QWidget {
   // `merge`: successive values of the field merge into one undo step (a
   // spin box's drag); a curve's gesture is a step of its own.
   bool setValue(scene::EntityId id, const std::string& key, const Json& value, bool merge = true);
-  // Keys the current emitter's spawn value `property` ("particles.size_m")
-  // at the playhead with its value now; false (reported) if refused.
+  // Keys the current emitter's `property` at the playhead with its value in
+  // the form: "particles.rate_per_s" and "particles.wind_m_per_s" as keys
+  // of the emitter's rate_keys and wind_keys (scene::ops::keyEmitterField),
+  // a spawn value ("particles.size_m") on the timeline. false (reported)
+  // if refused.
   bool keyAtPlayhead(const std::string& property);
 
   // --- with its dialog --------------------------------------------------------
@@ -78,6 +83,7 @@ class ParticlesPanel : public QWidget {
   void refresh();        // the list and the form
   void refreshCounts();  // live particles at the playhead
   void refreshForm();
+  void refreshTimeKeys();  // the time curves' span and playhead
   void formEdited();
   void listEdited(const std::string& key, QLineEdit* edit);
   double playheadSeconds() const;
@@ -96,6 +102,7 @@ class ParticlesPanel : public QWidget {
   ParamForm* form_ = nullptr;
   std::vector<std::pair<std::string, QLineEdit*>> lists_;
   std::vector<std::pair<std::string, class LifeCurveEditor*>> curves_;  // size and colour over life
+  std::vector<std::pair<std::string, class TimeKeysEditor*>> timeKeys_;  // rate and wind keys, bursts
   Json shown_;  // the form's values as refreshForm() left them
 };
 

@@ -43,6 +43,7 @@ class HeightFieldCollider : public Collider {
   std::optional<Hit> raycast(const glm::dvec3& from, const glm::dvec3& to) const override;
   double height(double x, double y) const { return height_(x, y); }
   glm::dvec3 normal(double x, double y) const;
+  double spacing() const { return spacing_; }  // between the segment's samples, metres
 
  private:
   std::function<double(double, double)> height_;

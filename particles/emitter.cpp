@@ -204,22 +204,23 @@ const std::vector<ParamDecl>& emitterParamDecls() {
   return decls;
 }
 
-namespace {
-
 // Declarations of the values inside the lists (not fields of their own).
 const ParamDecl& keyTimeDecl() {
   static const ParamDecl d{.key = "t", .label = "Key time", .unit = Unit::Seconds, .min = -1e7, .max = 1e7,
                            .help = "scene time of a rate key or a burst"};
   return d;
 }
-const ParamDecl& lifeFractionDecl() {
-  static const ParamDecl d{.key = "x", .label = "Life fraction", .min = 0.0, .max = 1.0,
-                           .help = "age / lifetime of an over-life key"};
-  return d;
-}
 const ParamDecl& burstCountDecl() {
   static const ParamDecl d{.key = "count", .label = "Burst count", .min = 0, .max = 1e7, .integer = true,
                            .help = "particles a burst makes"};
+  return d;
+}
+
+namespace {
+
+const ParamDecl& lifeFractionDecl() {
+  static const ParamDecl d{.key = "x", .label = "Life fraction", .min = 0.0, .max = 1.0,
+                           .help = "age / lifetime of an over-life key"};
   return d;
 }
 const ParamDecl& sizeMultiplierDecl() {

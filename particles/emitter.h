@@ -175,6 +175,10 @@ struct EmitterDesc {
 // sprite blend facing soft_m lit, and since format 11 (emitterKeyAddedAfter)
 // space draw_mesh.
 const std::vector<ParamDecl>& emitterParamDecls();
+// The values inside the keyed lists: a key's scene time (rate_keys,
+// wind_keys, bursts) and a burst's count.
+const ParamDecl& keyTimeDecl();
+const ParamDecl& burstCountDecl();
 
 // A declared parameter bound to its EmitterDesc member: the one table the
 // JSON reader/writer, validate() and the CLI's `set` go through.

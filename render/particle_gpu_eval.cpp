@@ -1,6 +1,8 @@
 #include "render/particle_gpu_eval.h"
 
 #include <algorithm>
+#include <limits>
+#include <string>
 
 #include <epoxy/gl.h>
 
@@ -15,12 +17,24 @@ enum : size_t {
   D_OFFSET = 0, D_T = 3, D_LIFE = 4, D_SIZE = 6, D_ROT = 8, D_SPIN = 10, D_SPEED = 12, D_DIR = 14, D_SPREAD = 17,
   D_BOX = 18, D_RADIUS = 21, D_CONE = 22, D_GRAVITY = 23, D_DRAG = 26, D_WIND = 27, D_SEGMENTS = 32,
   MAX_SEGMENTS = 64, D_SIZE_KEYS = 224, MAX_KEYS = 16, D_COLOUR_KEYS = 256, D_BURST_BIRTH = 352,
-  MAX_BURSTS = 64, D_COUNT = D_BURST_BIRTH + MAX_BURSTS + 1,
+  MAX_BURSTS = 64, D_TURBULENCE = D_BURST_BIRTH + MAX_BURSTS + 1, D_STEP = D_TURBULENCE + 3, D_ORIGIN = D_STEP + 1,
+  D_TERRAIN = D_ORIGIN + 3, D_COLLIDE = D_TERRAIN + 6, D_COUNT = D_COLLIDE + 3,
 };
 enum : size_t {
   U_SEED = 0, U_SHAPE = 1, U_SURFACE_ONLY = 2, U_ALONG_NORMAL = 3, U_FLIPBOOK = 4, U_SIZE_KEYS = 5,
-  U_COLOUR_KEYS = 6, U_RANGES = 7, U_PACK_SEED = 8, U_SEGMENTS = 9, U_RANGE0 = 16,
+  U_COLOUR_KEYS = 6, U_RANGES = 7, U_PACK_SEED = 8, U_SEGMENTS = 9, U_REPLAY = 10, U_COLLIDE = 11,
+  U_TERRAIN_NX = 12, U_TERRAIN_NY = 13, U_RANGE0 = 16,
 };
+static_assert(D_TURBULENCE == 417 && D_STEP == 420 && D_ORIGIN == 421 && D_TERRAIN == 424 && D_COLLIDE == 430,
+              "particle_eval.comp's slots");
+static_assert(int(particles::CollisionMode::Bounce) == 1 && int(particles::CollisionMode::Kill) == 2 &&
+                  int(particles::CollisionMode::Stick) == 3,
+              "particle_eval.comp's C_ constants");
+
+// The most replay steps one particle may take in the pass: a dispatch must
+// end (a desktop's watchdog), and past this the CPU's cache (one frame's
+// steps, not the life's) is the better path.
+constexpr double kMaxGpuReplaySteps = 20000.0;
 
 // The rate's segments as SpawnSchedule's constructor makes them (spawn.cpp),
 // the same arithmetic in the same order, so the shader's inverse starts
@@ -40,13 +54,41 @@ void segments(const particles::EmitterDesc& e, std::vector<double>& at, std::vec
 
 }  // namespace
 
-bool gpuEvaluable(const particles::Evaluator& ev, double t, std::string* why) {
+std::vector<float> gpuTerrainHeights(const terrain::Heightfield& hf) {
+  const int nx = hf.samplesX(), ny = hf.samplesY();
+  std::vector<float> out(size_t(nx) * size_t(ny));
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x)
+      out[size_t(y) * size_t(nx) + size_t(x)] = hf.isHole(x, y) ? std::numeric_limits<float>::quiet_NaN() : hf.at(x, y);
+  return out;
+}
+
+bool collidesWithTerrain(const particles::Evaluator& ev, const GpuTerrainCollider* terrain) {
+  if (ev.desc().collision == particles::CollisionMode::None || !terrain || !terrain->collider) return false;
+  for (const particles::Collider* c : ev.inputs().colliders)
+    if (c == terrain->collider) return true;
+  return false;
+}
+
+bool gpuEvaluable(const particles::Evaluator& ev, double t, std::string* why, const GpuTerrainCollider* terrain) {
   const particles::EmitterDesc& e = ev.desc();
-  auto no = [&](const char* reason) {
+  auto no = [&](const std::string& reason) {
     if (why) *why = reason;
     return false;
   };
-  if (ev.replays()) return no("turbulence or collision (the replay)");
+  if (e.collision != particles::CollisionMode::None)
+    for (const particles::Collider* c : ev.inputs().colliders)
+      if (!terrain || c != terrain->collider || !terrain->heightfield)
+        return no("collision with a collider the pass does not have (a mesh's BVH, or a terrain it was not "
+                  "given): replayed on the CPU");
+  // The oldest candidate's age: at most the longest lifetime, and no older
+  // than the emitter's first birth.
+  double first = e.start;
+  for (const particles::Burst& b : e.bursts) first = std::min(first, b.t);
+  const double oldest = std::min(e.lifetimeMax, std::max(0.0, t - first));
+  if (ev.replays() && oldest / e.replayStep > kMaxGpuReplaySteps)
+    return no("more than " + std::to_string(int(kMaxGpuReplaySteps)) +
+              " replay steps for its oldest particle (the CPU's cache resumes them)");
   if (e.shape == particles::Shape::Mesh || e.shape == particles::Shape::Terrain) return no("a mesh or terrain shape");
   if (!e.windKeys.empty()) return no("keyed wind");
   if (ev.movesInWorld()) return no("world space on a moving entity");
@@ -61,7 +103,7 @@ bool gpuEvaluable(const particles::Evaluator& ev, double t, std::string* why) {
 }
 
 GpuEmitterData gpuEmitterData(const particles::Evaluator& ev, double t, const glm::dvec3& relativeTo,
-                              uint32_t packSeed) {
+                              uint32_t packSeed, const GpuTerrainCollider* terrain) {
   const particles::EmitterDesc& e = ev.desc();
   GpuEmitterData g;
   std::vector<double>& d = g.doubles;
@@ -84,6 +126,19 @@ GpuEmitterData gpuEmitterData(const particles::Evaluator& ev, double t, const gl
   put3(D_GRAVITY, e.gravity);
   d[D_DRAG] = e.drag;
   put3(D_WIND, e.wind);
+  d[D_TURBULENCE] = e.turbulence, d[D_TURBULENCE + 1] = e.turbulenceFrequency;
+  d[D_TURBULENCE + 2] = e.turbulenceEvolution;
+  d[D_STEP] = e.replayStep;
+  put3(D_ORIGIN, e.origin);
+  const bool collide = collidesWithTerrain(ev, terrain);
+  if (collide) {
+    const terrain::Heightfield& hf = *terrain->heightfield;
+    put3(D_TERRAIN, hf.origin());
+    d[D_TERRAIN + 3] = hf.spacing().x, d[D_TERRAIN + 4] = hf.spacing().y;
+    d[D_TERRAIN + 5] = terrain->collider->spacing();
+    d[D_COLLIDE] = e.restitution, d[D_COLLIDE + 1] = e.friction, d[D_COLLIDE + 2] = e.restSpeed;
+    g.terrainHeights = terrain->heights;
+  }
   std::vector<double> at, rate, cum;
   segments(e, at, rate, cum);
   for (size_t i = 0; i < at.size(); ++i) {
@@ -111,6 +166,12 @@ GpuEmitterData gpuEmitterData(const particles::Evaluator& ev, double t, const gl
   u[U_COLOUR_KEYS] = uint32_t(e.colourOverLife.keys.size());
   u[U_PACK_SEED] = packSeed;
   u[U_SEGMENTS] = uint32_t(at.size());
+  u[U_REPLAY] = ev.replays() ? 1u : 0u;
+  if (collide) {
+    u[U_COLLIDE] = uint32_t(e.collision);
+    u[U_TERRAIN_NX] = uint32_t(terrain->heightfield->samplesX());
+    u[U_TERRAIN_NY] = uint32_t(terrain->heightfield->samplesY());
+  }
   // The candidates in the CPU's order: the rate's window (t - lifetime_max, t],
   // then each burst in it (Evaluator::candidates).
   auto range = [&](uint32_t stream, uint64_t first, uint64_t count, double birth) {
@@ -135,14 +196,33 @@ void dispatchGpuEvaluation(GlProgram& program, const GpuEmitterData& data, unsig
   gl::Buffer doubles = gl::createBuffer(), ints = gl::createBuffer();
   glNamedBufferStorage(doubles.id(), GLsizeiptr(data.doubles.size() * sizeof(double)), data.doubles.data(), 0);
   glNamedBufferStorage(ints.id(), GLsizeiptr(data.ints.size() * sizeof(uint32_t)), data.ints.data(), 0);
+  // Storage bindings 0-3 are the frame's too (frame_blocks.h: the lights,
+  // the objects): what was bound there is bound again after the dispatch.
+  struct Bound {
+    GLint buffer = 0;
+    GLint64 start = 0, size = 0;
+  } saved[4];
+  for (GLuint i = 0; i < 4; ++i) {
+    glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &saved[i].buffer);
+    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, i, &saved[i].start);
+    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, i, &saved[i].size);
+  }
   program.use();
   program.set("uFirst", first);
   program.set("uCount", data.candidates);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, doubles.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, ints.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, out);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, data.terrainHeights);
   glDispatchCompute((data.candidates + 63) / 64, 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  for (GLuint i = 0; i < 4; ++i) {
+    if (saved[i].buffer != 0 && saved[i].size > 0)
+      glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, GLuint(saved[i].buffer), GLintptr(saved[i].start),
+                        GLsizeiptr(saved[i].size));
+    else
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, GLuint(saved[i].buffer));
+  }
 }
 
 }  // namespace hs::render

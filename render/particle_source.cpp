@@ -186,7 +186,7 @@ void ParticleSource::addPreparePasses(FrameGraph& graph, FrameContext& frame) {
       });
   buffer_ = up.particles;
   if (gpuJobs_.empty()) return;
-  // The emitters without replay: evaluated into the rest of the buffer.
+  // The emitters gpuEvaluable takes: evaluated into the rest of the buffer.
   struct Evaluate {
     BufferRef particles;
   };
@@ -299,6 +299,16 @@ ParticleSources::Entry& ParticleSources::entryFor(const scene::SceneState& state
   return e;
 }
 
+unsigned ParticleSources::terrainHeightsFor(const terrain::Heightfield& hf) {
+  if (!terrainHeights_ || terrainHeightsKey_ != worldKey_) {
+    const std::vector<float> heights = gpuTerrainHeights(hf);
+    terrainHeights_ = gl::createBuffer();
+    glNamedBufferStorage(terrainHeights_.id(), GLsizeiptr(heights.size() * sizeof(float)), heights.data(), 0);
+    terrainHeightsKey_ = worldKey_;
+  }
+  return terrainHeights_.id();
+}
+
 const particles::Frame& ParticleSources::frameAt(Entry& e, double t) {
   if (!e.evaluated || e.time != t) {
     e.frame = e.evaluator->frame(t, &e.cache);
@@ -324,6 +334,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     world_.reset();
     worldState_ = nullptr;
     meshes_.reset();
+    terrainHeights_ = gl::Buffer();
     return nullptr;
   }
   // Every view of the frame (both eyes): a particle any of them sees is kept.
@@ -342,6 +353,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
   std::optional<double> floorZ;  // the scene's lowest point, found when a mesh emitter needs it
   uint32_t gpuRecords = 0;
   uint32_t index = 0;
+  bool terrainUsed = false;  // a GPU job collides with the terrain
   for (const scene::PlacedEmitter& pe : placed) {
     const uint32_t object = kObjectBase + index++;
     Entry& e = entryFor(state, pe);
@@ -394,10 +406,20 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     d.alongVelocity = pe.desc.facing == particles::Facing::Velocity;
     d.softDistance = float(pe.desc.softDistance);
     d.object = object;
-    if ((frame.options.gpuParticles || frame.settings.particlesOnGpu) && gpuEvaluable(*e.evaluator, t)) {
+    GpuTerrainCollider terrain;
+    if (world_ && needsWorld(pe.desc)) {
+      terrain.collider = world_->terrainCollider();
+      terrain.heightfield = world_->terrainHeights();
+    }
+    if ((frame.options.gpuParticles || frame.settings.particlesOnGpu) &&
+        gpuEvaluable(*e.evaluator, t, nullptr, &terrain)) {
       // The compute pass evaluates every candidate (the dead ones draw
       // nothing); no per-particle culling on the CPU.
-      ParticleGpuJob job{gpuEmitterData(*e.evaluator, t, origin, pe.desc.seed), gpuRecords};
+      if (collidesWithTerrain(*e.evaluator, &terrain)) {
+        terrain.heights = terrainHeightsFor(*terrain.heightfield);
+        terrainUsed = true;
+      }
+      ParticleGpuJob job{gpuEmitterData(*e.evaluator, t, origin, pe.desc.seed, &terrain), gpuRecords};
       d.first = gpuRecords;  // after the CPU's records: moved below
       d.count = job.data.candidates;
       gpuRecords += d.count;
@@ -423,6 +445,7 @@ DrawSource* ParticleSources::update(const scene::SceneState& state, FrameContext
     if (d.count == 0) continue;
     draws.push_back(d);
   }
+  if (!terrainUsed) terrainHeights_ = gl::Buffer();
   if (meshes_) {
     const size_t instances = meshes_->commit();
     meshesActive_ = instances > 0;

@@ -113,7 +113,14 @@ class ParticleSources {
   // view group or a lens sample of the same frame reuses them).
   const particles::Frame& frameAt(Entry& e, double t);
 
+  // The terrain's samples for the compute pass's collisions (uploaded for
+  // the collision world `terrainHeightsKey_` when a GPU job first collides
+  // with the terrain; freed after a frame where none does).
+  unsigned terrainHeightsFor(const terrain::Heightfield& hf);
+
   std::map<scene::EntityId, Entry> entries_;
+  gl::Buffer terrainHeights_;
+  uint64_t terrainHeightsKey_ = 0;
   std::unique_ptr<scene::ParticleWorld> world_;
   const scene::SceneState* worldState_ = nullptr;
   uint64_t worldKey_ = 0;

@@ -117,7 +117,7 @@ struct RenderOptions {
   const RenderView* lodView = nullptr;
   bool passTimings = false;      // GPU timestamps per pass; waits for them (stats, benchmarks)
   bool keepDepth = false;        // keep a single-sample depth for readDepth()
-  // Emitters without replay evaluated by a compute pass (render/
+  // Emitters that collide with nothing evaluated by a compute pass (render/
   // particle_gpu_eval.h) instead of on the CPU; not culled per particle.
   bool gpuParticles = false;
   // Meshes write their shading normal (world axes, after normal and

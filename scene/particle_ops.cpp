@@ -172,4 +172,53 @@ bool setEmitterValue(Document& doc, EntityId id, std::string_view key, const Jso
                       mergeKey, error, changed);
 }
 
+std::string_view keyedListOf(std::string_view field) {
+  if (field == "rate_per_s") return "rate_keys";
+  if (field == "wind_m_per_s") return "wind_keys";
+  return {};
+}
+
+bool keyEmitterField(Document& doc, EntityId id, std::string_view field, double t, const Json& value,
+                     std::string& error, bool* changed) {
+  if (changed) *changed = false;
+  const Entity* ent = emitterEntity(doc, id, error);
+  if (!ent) return false;
+  const std::string_view list = keyedListOf(field);
+  if (list.empty()) {
+    error = "emitter '" + ent->name + "', field '" + std::string(field) +
+            "': not keyed as a list of the emitter (rate_per_s and wind_m_per_s are)";
+    return false;
+  }
+  particles::EmitterDesc d = ent->particles->desc;
+  d.name = ent->name;
+  if (!checkParam(particles::keyTimeDecl(), Json(t), error) ||
+      !particles::setEmitterField(d, field, value, error)) {  // the value's range, by the field's declaration
+    if (error.rfind("emitter '", 0) != 0) error = "emitter '" + d.name + "', field '" + std::string(field) + "': " + error;
+    return false;
+  }
+  Json row = Json::array({t});
+  if (value.is_array())
+    for (const Json& v : value) row.push_back(v);
+  else
+    row.push_back(value);
+  Json j = particles::emitterToJson(d);
+  Json rows = Json::array();
+  bool placed = false;
+  for (const Json& r : j[std::string(list)]) {
+    const double rt = r[0].get<double>();
+    if (rt == t) continue;  // replaced
+    if (!placed && rt > t) {
+      rows.push_back(row);
+      placed = true;
+    }
+    rows.push_back(r);
+  }
+  if (!placed) rows.push_back(row);
+  j[std::string(list)] = rows;
+  std::optional<particles::EmitterDesc> read = particles::emitterFromJson(j, error);
+  if (!read) return false;
+  return storeEmitter(doc, *ent, std::move(*read), QString("Key %1").arg(QString::fromStdString(std::string(field))),
+                      {}, error, changed);
+}
+
 }  // namespace hs::scene::ops

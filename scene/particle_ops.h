@@ -54,6 +54,19 @@ std::optional<Json> parseEmitterValue(const std::string& emitter, std::string_vi
 bool setEmitter(Document& doc, EntityId id, const particles::EmitterDesc& desc, std::string& error,
                 const QString& mergeKey = {});
 
+// The fields whose values over scene time are a keyed list of the emitter
+// itself (rate_per_s -> rate_keys, wind_m_per_s -> wind_keys; spawn values
+// are keyed as timeline tracks instead: scene/emitter_tracks.h). Empty:
+// `field` has no such list.
+std::string_view keyedListOf(std::string_view field);
+// Keys `field` (keyedListOf) at scene time t: its list gets [t, value...]
+// (value: the field's JSON, a number or [x, y, z]), replacing a key at t,
+// as one undo step ("Key rate_per_s"): what `key EMITTER
+// particles.rate_per_s T VALUE` and the panel's Key at Playhead do. false
+// with `error` naming the emitter and the field, the document untouched.
+bool keyEmitterField(Document& doc, EntityId id, std::string_view field, double t, const Json& value,
+                     std::string& error, bool* changed = nullptr);
+
 // The list keys an emitter has besides its declared fields.
 const std::vector<std::string>& emitterListKeys();
 

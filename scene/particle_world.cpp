@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 #include "foliage/surface.h"
@@ -233,7 +234,8 @@ void ParticleWorld::buildTerrain() {
   if (!t) return;
   const terrain::Heightfield* hf = &t->height;
   // Off the grid or over a hole there is nothing to meet: far below.
-  terrain_ = std::make_unique<particles::HeightFieldCollider>(
+  Boxed<particles::HeightFieldCollider> b;
+  b.collider = std::make_unique<particles::HeightFieldCollider>(
       [hf](double x, double y) {
         const auto p = foliage::terrainSurface(*hf, {x, y});
         return p ? p->position.z : -1e30;
@@ -243,6 +245,23 @@ void ParticleWorld::buildTerrain() {
         return p ? p->normal : glm::dvec3(0.0, 0.0, 1.0);
       },
       std::min(0.25, 0.5 * std::min(hf->spacing().x, hf->spacing().y)));
+  // Met over its footprint from its highest sample down: a particle below
+  // the surface is met where it is (HeightFieldCollider).
+  const terrain::HeightRange r = hf->range();
+  b.lo = {hf->origin().x, hf->origin().y, -std::numeric_limits<double>::infinity()};
+  b.hi = {hf->origin().x + hf->sizeMetres().x, hf->origin().y + hf->sizeMetres().y, hf->origin().z + double(r.max)};
+  terrain_ = std::move(b);
+}
+
+const particles::HeightFieldCollider* ParticleWorld::terrainCollider() {
+  buildTerrain();
+  return terrain_ ? terrain_->collider.get() : nullptr;
+}
+
+const terrain::Heightfield* ParticleWorld::terrainHeights() {
+  buildTerrain();
+  const terrain::Terrain* t = terrainGround_ ? terrainGround_->ground().terrain : nullptr;
+  return t ? &t->height : nullptr;
 }
 
 std::optional<std::pair<double, double>> ParticleWorld::groundRange() {
@@ -258,8 +277,16 @@ void ParticleWorld::buildMeshes() {
   if (meshesBuilt_) return;
   meshesBuilt_ = true;
   meshGround_ = std::make_unique<FoliageGround>(state_, true);
-  for (const foliage::MeshGround* m : meshGround_->ground().meshes)
-    meshes_.push_back(std::make_unique<particles::RaycastCollider>(
+  for (const foliage::MeshGround* m : meshGround_->ground().meshes) {
+    Boxed<particles::RaycastCollider> b;
+    b.lo = glm::dvec3(std::numeric_limits<double>::infinity());
+    b.hi = -b.lo;
+    const mesh::MeshData& md = m->mesh();
+    for (const glm::vec3& p : md.positions) {
+      b.lo = glm::min(b.lo, md.origin + glm::dvec3(p));
+      b.hi = glm::max(b.hi, md.origin + glm::dvec3(p));
+    }
+    b.collider = std::make_unique<particles::RaycastCollider>(
         [m](const glm::dvec3& from, const glm::dvec3& to) -> std::optional<particles::Hit> {
           const glm::dvec3 d = to - from;
           const double len = glm::length(d);
@@ -271,7 +298,9 @@ void ParticleWorld::buildMeshes() {
           h.fraction = std::clamp(glm::length(p->position - from) / len, 0.0, 1.0);
           h.normal = glm::dot(p->normal, from - p->position) < 0.0 ? -p->normal : p->normal;
           return h;
-        }));
+        });
+    meshes_.push_back(std::move(b));
+  }
 }
 
 bool PlacedEmitter::sameAs(const PlacedEmitter& o) const {
@@ -284,17 +313,11 @@ void addTimeInputs(const PlacedEmitter& placed, particles::EvaluatorInputs& in) 
   if (placed.spawn) in.spawnAt = [s = placed.spawn](double birth, particles::SpawnValues& v) { s->apply(birth, v); };
 }
 
-particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& desc, bool colliders) {
+particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& desc, bool colliders, bool fixed) {
   particles::EvaluatorInputs in;
-  if (colliders && desc.collision != particles::CollisionMode::None) {
-    buildTerrain();
-    buildMeshes();
-    if (terrain_) in.colliders.push_back(terrain_.get());
-    for (const auto& m : meshes_) in.colliders.push_back(m.get());
-  }
   if (desc.shape == particles::Shape::Terrain) {
     buildTerrain();
-    in.ground = terrain_.get();
+    in.ground = terrain_ ? terrain_->collider.get() : nullptr;
   }
   if (desc.shape == particles::Shape::Mesh) {
     for (EntityId id : state_.depthFirstOrder()) {
@@ -312,6 +335,27 @@ particles::EvaluatorInputs ParticleWorld::inputs(const particles::EmitterDesc& d
       break;
     }
   }
+  if (colliders && desc.collision != particles::CollisionMode::None) {
+    buildTerrain();
+    buildMeshes();
+    // Where its particles can be (world), widened by 1 m; none: everywhere.
+    std::optional<particles::ParticleBound> reach;
+    if (fixed) {
+      particles::BoundInputs b;
+      b.surface = in.surface;
+      if (desc.shape == particles::Shape::Terrain) b.groundRange = groundRange();
+      reach = particles::particleBound(desc, b);
+    }
+    auto mayMeet = [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+      if (!reach) return true;
+      const glm::dvec3 c = desc.origin + reach->centre;
+      const glm::dvec3 nearest = glm::clamp(c, lo, hi);
+      return glm::length(nearest - c) <= reach->radius + 1.0;
+    };
+    if (terrain_ && mayMeet(terrain_->lo, terrain_->hi)) in.colliders.push_back(terrain_->collider.get());
+    for (const auto& m : meshes_)
+      if (mayMeet(m.lo, m.hi)) in.colliders.push_back(m.collider.get());
+  }
   return in;
 }
 
@@ -322,7 +366,7 @@ std::optional<particles::Evaluator> ParticleWorld::evaluator(const particles::Em
 
 std::optional<particles::Evaluator> ParticleWorld::evaluator(const PlacedEmitter& placed, std::string& error,
                                                              bool colliders) {
-  particles::EvaluatorInputs in = inputs(placed.desc, colliders);
+  particles::EvaluatorInputs in = inputs(placed.desc, colliders, !placed.motion && !placed.spawn);
   addTimeInputs(placed, in);
   return particles::Evaluator::create(placed.desc, std::move(in), error);
 }

@@ -101,12 +101,26 @@ class ParticleWorld {
   // then refuses with "the mesh '...' is missing").
   // `colliders` false: none even for a colliding emitter (counting the live
   // particles needs no replay, so no BVH).
-  particles::EvaluatorInputs inputs(const particles::EmitterDesc& desc, bool colliders = true);
+  // Only the colliders its particles can reach: a collider whose box misses
+  // the sphere that holds every particle the emitter can have
+  // (particles::particleBound, widened by 1 m) is left out, which changes no
+  // result (no step's segment can meet it: both ends are in the sphere) and
+  // saves its ray casts, and an emitter with nothing in reach is not
+  // replayed for collisions at all (closed form without turbulence; the
+  // compute pass can take it). `fixed` false: the emitter moves or has
+  // spawn tracks (PlacedEmitter::motion, ::spawn), whose particles that
+  // bound does not hold: every collider.
+  particles::EvaluatorInputs inputs(const particles::EmitterDesc& desc, bool colliders = true, bool fixed = true);
   // The evaluator for `desc`, or nullopt with `error` naming emitter and field.
   // The terrain's world z range (its lowest and highest sample), what
   // particles::particleBound needs for a `terrain` shape; nullopt without a
   // visible terrain.
   std::optional<std::pair<double, double>> groundRange();
+  // The terrain collider inputs() gives (null: no visible terrain) and the
+  // heights it reads (world: origin, spacing, samples, holes), what a GPU
+  // evaluation of the same collisions uploads.
+  const particles::HeightFieldCollider* terrainCollider();
+  const terrain::Heightfield* terrainHeights();
   std::optional<particles::Evaluator> evaluator(const particles::EmitterDesc& desc, std::string& error,
                                                 bool colliders = true);
   // With the placed emitter's time inputs (addTimeInputs).
@@ -120,8 +134,14 @@ class ParticleWorld {
   const SceneState& state_;
   std::unique_ptr<FoliageGround> terrainGround_, meshGround_;  // in world space
   bool terrainBuilt_ = false, meshesBuilt_ = false;
-  std::unique_ptr<particles::HeightFieldCollider> terrain_;
-  std::vector<std::unique_ptr<particles::RaycastCollider>> meshes_;
+  // A collider with the world box it can be met in.
+  template <class C>
+  struct Boxed {
+    std::unique_ptr<C> collider;
+    glm::dvec3 lo{0.0}, hi{0.0};
+  };
+  std::optional<Boxed<particles::HeightFieldCollider>> terrain_;
+  std::vector<Boxed<particles::RaycastCollider>> meshes_;
   std::vector<std::unique_ptr<particles::TriangleSurface>> surfaces_;  // kept for evaluators made here
 };
 

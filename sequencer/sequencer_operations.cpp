@@ -72,14 +72,17 @@ const OperationDecl& keyOperation() {
             "the key goes on a numeric or colour field of the material of that name (as `material list` prints "
             "it: roughness, opacity, emission_strength, ...), and there is no <entity>; with --settings, on a "
             "numeric or colour field of the scene settings (exposure_ev100, fog_density, ao_strength, ... as "
-            "`set --help` lists them). Values outside a field's range are refused.",
+            "`set --help` lists them). An emitter's particles.rate_per_s and particles.wind_m_per_s are keyed into "
+            "its own rate_keys and wind_keys (linear between keys, no --interp); its spawn values (particles.size_m, "
+            "particles.speed_m_per_s, ...) are keyed as timeline tracks. Values outside a field's range are refused.",
         .notes = "Examples:\n"
                  "  key \"Main Camera\" camera.fov_deg 0 50 scene.hscene\n"
                  "  key \"Main Camera\" camera.fov_deg 120f 30 scene.hscene --interp linear\n"
                  "  key Bunny transform.translation 2.5 1,0,0 scene.hscene\n"
                  "  key Bunny transform.rotation_deg 5 0,0,90 scene.hscene\n"
                  "  key --material \"Bunny / default\" roughness 2 0.3 scene.hscene\n"
-                 "  key --settings fog_density 10 0.002 scene.hscene",
+                 "  key --settings fog_density 10 0.002 scene.hscene\n"
+                 "  key Snow particles.rate_per_s 20 4000 scene.hscene",
         .positionals = {{.name = "entity", .help = "a name or an id (not with --material or --settings)"},
                         {.name = "property", .help = "an animatable field"},
                         {.name = "time", .help = "seconds (2.5) or a frame (150f)"},

@@ -10,7 +10,15 @@
 // the CPU path's. `reference` (depth peeling) runs only at the smallest
 // count: it peels once per layer.
 //
-//   bench_particles_render [--counts 100000,1000000] [--size 1920x1080] [--frames N]
+// A second table, the replay: the same dust with its preset's turbulence
+// (steps of 1/30 s, lives of 4-8 s), weighted transparency, frames 1/60 s
+// apart: on the CPU cold (the emitter's seed changed every frame, so its
+// replay cache is empty: every particle replays from its birth, the cost
+// of a farm node's first frame, frame 30,000 of the film or another), on
+// the CPU warm (each frame resumes the last one's steps) and in the
+// compute pass (which replays from the birth every frame: no cache).
+//
+//   bench_particles_render [--counts 100000,1000000] [--replay-counts 10000,100000] [--size 1920x1080] [--frames N]
 #include <QCoreApplication>
 
 #include <cstdio>
@@ -30,7 +38,8 @@ using namespace hs;
 
 namespace {
 
-scene::SceneState dustScene(double live, bool gpu, scene::Transparency mode) {
+scene::SceneState dustScene(double live, bool gpu, scene::Transparency mode, bool turbulent = false,
+                            uint32_t seed = 4) {
   scene::SceneState s;
   s.settings.showGrid = false;
   s.settings.shadows = false;
@@ -44,8 +53,9 @@ scene::SceneState dustScene(double live, bool gpu, scene::Transparency mode) {
   std::vector<particles::EmitterDesc> dust =
       particles::makePreset("dust", {.area = glm::dvec4(-100, -100, 100, 100), .seed = 4}, error);
   particles::EmitterDesc d = dust.front();
-  d.turbulence = 0.0;  // closed form: both paths take it
-  d.collision = particles::CollisionMode::None;
+  if (!turbulent) d.turbulence = 0.0;  // closed form
+  d.collision = particles::CollisionMode::None;  // both paths take it
+  d.seed = seed;
   d.rate = live / (0.5 * (d.lifetimeMin + d.lifetimeMax));  // steady: rate x mean lifetime
   d.maxLive = int64_t(4.0 * live);
   d.origin = glm::dvec3(0.0, 0.0, 0.3);
@@ -63,11 +73,12 @@ scene::SceneState dustScene(double live, bool gpu, scene::Transparency mode) {
 
 int main(int argc, char** argv) {
   QCoreApplication app(argc, argv);
-  std::vector<double> counts = {1e5, 1e6};
+  std::vector<double> counts = {1e5, 1e6}, replayCounts = {1e4, 1e5};
   int width = 1920, height = 1080, frames = 3;
   for (int i = 1; i + 1 < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--counts") counts = bench::numberList(argv[++i]);
+    if (a == "--replay-counts") replayCounts = bench::numberList(argv[++i]);
     if (a == "--frames") frames = std::max(1, std::atoi(argv[++i]));
     if (a == "--size" && std::sscanf(argv[i + 1], "%dx%d", &width, &height) == 2) ++i;
   }
@@ -114,6 +125,34 @@ int main(int argc, char** argv) {
                     bench::median(cpu), drawn, gpu ? (std::to_string(ms / cpuPath).substr(0, 5)).c_str() : "");
         std::fflush(stdout);
       }
+    }
+  }
+
+  std::printf("\nreplay (turbulence, steps of 1/30 s), weighted transparency, frames 1/60 s apart\n");
+  std::printf("%10s %-10s %10s %10s %12s %9s\n", "live", "eval", "frame ms", "CPU ms", "particles", "/CPU warm");
+  enum class Path { CpuCold, CpuWarm, Gpu };
+  const std::pair<Path, const char*> paths[] = {{Path::CpuWarm, "CPU warm"}, {Path::CpuCold, "CPU cold"},
+                                                {Path::Gpu, "GPU"}};
+  for (double live : replayCounts) {
+    double warm = 0.0;
+    for (const auto& [path, name] : paths) {
+      std::vector<double> wall, cpu;
+      size_t drawn = 0;
+      for (int f = 0; f < frames + 1; ++f) {  // the first builds programs (and the warm path's cache)
+        scene::SceneState s = dustScene(live, path == Path::Gpu, scene::Transparency::Weighted, true,
+                                        path == Path::CpuCold ? uint32_t(100 + f) : 4u);
+        s.time.seconds = 30.0 + f / 60.0;
+        const double t0 = bench::nowSeconds();
+        const render::FrameStats st = r.renderOnly(s, v);
+        if (f == 0) continue;
+        wall.push_back(bench::nowSeconds() - t0);
+        cpu.push_back(st.cpuMs);
+        drawn = st.particlesDrawn;
+      }
+      const double ms = bench::median(wall) * 1e3;
+      if (path == Path::CpuWarm) warm = ms;
+      std::printf("%10.0f %-10s %10.1f %10.1f %12zu %9.2f\n", live, name, ms, bench::median(cpu), drawn, ms / warm);
+      std::fflush(stdout);
     }
   }
   return 0;

@@ -5,6 +5,8 @@
 // values merged), a refused value named in Messages with the document
 // unchanged, a keyed list typed as JSON, the over-life curves dragged with
 // the mouse (a key added, moved, removed; one undo step per gesture), the
+// rate, wind and burst lists over scene time dragged the same way and the
+// rate keyed at the playhead, the
 // emitter's shape and bound drawn in the viewport's overlay, the live counts following the
 // playhead (against scene::liveParticleCounts at that time), Remove with
 // Undo, the Particles menu, and the selection choosing the current emitter.
@@ -29,6 +31,7 @@
 #include "app/param_form.h"
 #include "app/particles_panel.h"
 #include "app/selection.h"
+#include "app/time_keys_editor.h"
 #include "app/timeline_clock.h"
 #include "app/viewport_widget.h"
 #include "editor_fixture.h"
@@ -207,6 +210,82 @@ class EditorParticlesTest : public QObject {
     QVERIFY2(std::abs(c0.rgba.a - 0.5) <= 1.0 / (colour->height() - 28) * 1.5, qPrintable(QString::number(c0.rgba.a)));
     QCOMPARE(c0.rgba.r, 1.0);
     QCOMPARE(current().colourOverLife.keys[1].rgba.g, 0.25);
+  }
+
+  // The lists over scene time: a rate key added and dragged, a wind key's
+  // x dragged (its y and z kept), a burst added last and removed, each one
+  // undo step; the rate keyed at the playhead with the form's value.
+  void timeListsDraggedAndKeyedAtThePlayhead() {
+    auto* rate = panel_->findChild<app::TimeKeysEditor*>("particles_rate_keys_curve");
+    auto* wind = panel_->findChild<app::TimeKeysEditor*>("particles_wind_keys_curve");
+    auto* bursts = panel_->findChild<app::TimeKeysEditor*>("particles_bursts_curve");
+    QVERIFY(rate && wind && bursts);
+    for (app::TimeKeysEditor* c : {rate, wind, bursts})
+      if (c->width() < 200 || c->height() < 80) c->resize(260, 100);
+    const int start = steps();
+    const particles::EmitterDesc atStart = current();
+    const scene::EntityId id = panel_->currentEmitter();
+    QVERIFY(panel_->setValue(id, "rate_keys", Json::parse("[[0, 100], [60, 100]]"), false));
+    QCOMPARE(rate->keys().size(), size_t(2));
+    // The span holds the playback range (0 to 35999 frames at 60 fps).
+    QVERIFY(rate->spanStart() <= 0.0 && rate->spanEnd() >= 599.98);
+    const double px = (rate->spanEnd() - rate->spanStart()) / (rate->width() - 16);
+
+    int n = steps();
+    const QPoint from = rate->pointAt(30.0, 20.0).toPoint(), to = rate->pointAt(45.0, 110.0).toPoint();
+    QTest::mousePress(rate, Qt::LeftButton, {}, from);
+    QTest::mouseMove(rate, to);
+    QTest::mouseRelease(rate, Qt::LeftButton, {}, to);
+    QCOMPARE(steps(), n + 1);
+    QCOMPARE(current().rateKeys.keys.size(), size_t(3));
+    const particles::CurveKey k1 = current().rateKeys.keys[1];
+    const double py = 125.0 / (rate->height() - 12);  // the range: 0 to 1.25 x the largest value
+    QVERIFY2(std::abs(k1.t - 45.0) <= 1.5 * px && std::abs(k1.value - 110.0) <= 1.5 * py,
+             qPrintable(QString("%1 %2").arg(k1.t).arg(k1.value)));
+    doc().undoStack()->undo();
+    QCOMPARE(current().rateKeys.keys.size(), size_t(2));
+
+    QVERIFY(panel_->setValue(id, "wind_keys", Json::parse("[[0, 1, 0, 0], [60, 1, 0, 0]]"), false));
+    n = steps();
+    const QPoint grab = wind->keyPoint(1, 0).toPoint(), drop = wind->pointAt(60.0, -0.5).toPoint();
+    QTest::mousePress(wind, Qt::LeftButton, {}, grab);
+    QTest::mouseMove(wind, drop);
+    QTest::mouseRelease(wind, Qt::LeftButton, {}, drop);
+    QCOMPARE(steps(), n + 1);
+    const particles::WindKey w1 = current().windKeys[1];
+    QVERIFY2(std::abs(w1.wind.x + 0.5) <= 1.5 * 2.5 / (wind->height() - 12), qPrintable(QString::number(w1.wind.x)));
+    QCOMPARE(w1.wind.y, 0.0);
+    QCOMPARE(w1.wind.z, 0.0);
+
+    QVERIFY(panel_->setValue(id, "bursts", Json::parse("[[100, 40], [20, 5]]"), false));
+    n = steps();
+    QTest::mouseClick(bursts, Qt::LeftButton, {}, bursts->pointAt(300.0, 8.0).toPoint());
+    QCOMPARE(steps(), n + 1);
+    QCOMPARE(current().bursts.size(), size_t(3));
+    QCOMPARE(current().bursts[0].count, int64_t(40));  // the others keep their places (their particles)
+    QVERIFY(std::abs(current().bursts[2].t - 300.0) <= 1.5 * px);
+    QTest::mouseClick(bursts, Qt::RightButton, {}, bursts->keyPoint(2).toPoint());
+    QCOMPARE(steps(), n + 2);
+    QCOMPARE(current().bursts.size(), size_t(2));
+
+    // Key at Playhead with the rate: the form's rate at 2 s (frame 120).
+    app::TimelineClock* clock = w_->timelineClock();
+    clock->setFrame(120);
+    QVERIFY(panel_->setValue(id, "rate_per_s", 250.0, false));
+    auto* field = panel_->findChild<QComboBox*>("particlesKeyField");
+    auto* key = panel_->findChild<QPushButton*>("particlesKey");
+    field->setCurrentIndex(field->findData("particles.rate_per_s"));
+    QVERIFY(field->currentIndex() >= 0);
+    n = steps();
+    key->click();
+    QCOMPARE(steps(), n + 1);
+    QCOMPARE(current().rateKeys.keys.size(), size_t(3));
+    QCOMPARE(current().rateKeys.keys[1].t, clock->time());
+    QCOMPARE(current().rateKeys.keys[1].value, 250.0);
+    QCOMPARE(rate->keys().size(), size_t(3));  // the curve follows the document
+    clock->setFrame(0);
+    while (steps() > start) doc().undoStack()->undo();
+    QVERIFY(current() == atStart);
   }
 
   // The viewport draws where an emitter's particles are born (its shape at

@@ -100,6 +100,30 @@ class TestCliParticles : public QObject {
     test::verifyCliError(cli(noEmitter), noEmitter, 1, {"Camera", "particles"});
     QVERIFY2(test::readFile(f.toStdString()) == before, "a refused key changed the file");
 
+    // The rate and the wind go into the emitter's own lists: a key at 2 s
+    // and one at 6 s (frame 360 at 60 fps), then 2 s again replaced.
+    ok({"set", "Puff", "particles.lifetime_s", "100,100", f});
+    ok({"set", "Puff", "particles.start_s", "0", f});
+    ok({"key", "Puff", "particles.rate_per_s", "2", "10", f});
+    ok({"key", "Puff", "particles.rate_per_s", "360f", "50", f});
+    const Run rate = ok({"key", "Puff", "particles.rate_per_s", "2", "30", f});
+    QVERIFY2(rate.out.contains("rate_keys has 2 key(s)"), qPrintable(rate.out));
+    const QJsonObject puff = emitterNamed(particles(f, "6"), "Puff")["emitter"].toObject();
+    QCOMPARE(puff["rate_keys"].toArray().size(), 2);
+    QCOMPARE(puff["rate_keys"].toArray()[0].toArray()[1].toDouble(), 30.0);
+    // Born by 6 s: 30 per second held from 0 to 2, then the ramp to 50 (the exact integral).
+    QCOMPARE(emitterNamed(particles(f, "6"), "Puff")["live"].toDouble(), 2 * 30.0 + 4 * 40.0);
+    ok({"key", "Puff", "particles.wind_m_per_s", "3", "4,0,0", f});
+    QCOMPARE(emitterNamed(particles(f), "Puff")["emitter"].toObject()["wind_keys"].toArray().size(), 1);
+    const std::string keyed = test::readFile(f.toStdString());
+    const QStringList badRate = {"key", "Puff", "particles.rate_per_s", "4", "-3", f};
+    test::verifyCliError(cli(badRate), badRate, 1, {"Puff", "rate_per_s"});
+    const QStringList badWind = {"key", "Puff", "particles.wind_m_per_s", "4", "1,2", f};
+    test::verifyCliError(cli(badWind), badWind, 1, {"Puff", "wind_m_per_s"});
+    const QStringList withInterp = {"key", "Puff", "particles.rate_per_s", "4", "3", f, "--interp", "cubic"};
+    test::verifyCliError(cli(withInterp), withInterp, 2, {"--interp", "linear"});
+    QVERIFY2(test::readFile(f.toStdString()) == keyed, "a refused key changed the file");
+
     // A draw_mesh naming no mesh entity: `info` names emitter and field.
     ok({"set", "Puff", "particles.draw_mesh", "Pebble", f});
     const Run info = ok({"info", f, "--time", "1"});

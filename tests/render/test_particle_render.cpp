@@ -411,11 +411,11 @@ class TestParticleRender : public QObject {
     }
   }
 
-  // RenderOptions::gpuParticles: the emitters without replay (the fog
-  // bank, alpha puffs, additive sparks) evaluated by the compute pass draw
-  // what the CPU's records draw, within 2/255 (positions agree to a few
-  // micrometres: test_particle_gpu_eval); an emitter with replay stays on
-  // the CPU.
+  // RenderOptions::gpuParticles: the emitters the compute pass takes (the
+  // fog bank, alpha puffs, additive sparks, sparks with turbulence)
+  // evaluated there draw what the CPU's records draw, within 2/255
+  // (positions agree to micrometres: test_particle_gpu_eval); an emitter
+  // that collides with the ground stays on the CPU in the same frame.
   void gpuEvaluationDrawsTheSame() {
     scene::SceneState s = ground();
     s.time.seconds = 30.0;
@@ -436,6 +436,10 @@ class TestParticleRender : public QObject {
     turbulent.origin += glm::dvec3(0, 0, 0.8);
     turbulent.turbulence = 1.0;
     descs.push_back(turbulent);
+    particles::EmitterDesc falling = still("Falling", {0.0, 0.5, 1.5}, {0.6, 0.3, 0.2}, 20, 0.15, {0.9, 0.9, 1.0, 0.9});
+    falling.gravity = {0, 0, -9.81};
+    falling.collision = particles::CollisionMode::Stick;
+    descs.push_back(falling);
     addEmitters(s, descs);
     render::FrameStats cpuStats, gpuStats;
     const Image cpu = r_.render(s, view, false, &cpuStats);

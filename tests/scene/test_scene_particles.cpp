@@ -222,6 +222,62 @@ class TestSceneParticles : public QObject {
     QVERIFY2(error.find("bursts") != std::string::npos, error.c_str());
   }
 
+  // Keying the rate and the wind at a time (the panel's Key at Playhead,
+  // `key EMITTER particles.rate_per_s`): a row of the emitter's own list,
+  // in time order, one at a time replaced, each one undo step; refused
+  // values and fields named, nothing changed.
+  void rateAndWindKeyedIntoTheirLists() {
+    Document doc;
+    const EntityId id = addPreset(doc, "dust", {.name = "Road dust"});
+    const int steps = doc.undoStack()->count();
+    std::string error;
+    QVERIFY2(ops::keyEmitterField(doc, id, "rate_per_s", 5.0, 400.0, error), error.c_str());
+    QVERIFY2(ops::keyEmitterField(doc, id, "rate_per_s", 1.0, 10.0, error), error.c_str());
+    QVERIFY2(ops::keyEmitterField(doc, id, "rate_per_s", 3.0, 50.0, error), error.c_str());
+    bool changed = true;
+    QVERIFY2(ops::keyEmitterField(doc, id, "rate_per_s", 3.0, 80.0, error, &changed), error.c_str());  // replaces
+    QVERIFY(changed);
+    QCOMPARE(doc.undoStack()->count(), steps + 4);
+    const particles::EmitterDesc* d = &doc.state().find(id)->particles->desc;
+    QCOMPARE(d->rateKeys.keys.size(), size_t(3));
+    QCOMPARE(d->rateKeys.keys[0].t, 1.0);
+    QCOMPARE(d->rateKeys.keys[1].value, 80.0);
+    QCOMPARE(d->rateKeys.keys[2].t, 5.0);
+    QCOMPARE(d->rateAt(4.0), 80.0 + 0.5 * 320.0);
+    QVERIFY(ops::keyEmitterField(doc, id, "rate_per_s", 3.0, 80.0, error, &changed));  // the same key again
+    QVERIFY(!changed);
+    QCOMPARE(doc.undoStack()->count(), steps + 4);
+    QVERIFY2(ops::keyEmitterField(doc, id, "wind_m_per_s", 2.0, Json::array({1.0, 0.0, 0.5}), error), error.c_str());
+    d = &doc.state().find(id)->particles->desc;
+    QCOMPARE(d->windKeys.size(), size_t(1));
+    QCOMPARE(d->windKeys[0].wind, glm::dvec3(1.0, 0.0, 0.5));
+    doc.undoStack()->undo();
+    QVERIFY(doc.state().find(id)->particles->desc.windKeys.empty());
+
+    const particles::EmitterDesc before = doc.state().find(id)->particles->desc;
+    const int now = doc.undoStack()->count();
+    struct Case {
+      const char* field;
+      double t;
+      Json value;
+      const char* says;
+    };
+    const Case cases[] = {
+        {"rate_per_s", 2.0, -5.0, "rate_per_s"},
+        {"rate_per_s", 2.0, std::nan(""), "rate_per_s"},
+        {"rate_per_s", std::nan(""), 5.0, "Key time"},
+        {"rate_per_s", 1e9, 5.0, "Key time"},
+        {"wind_m_per_s", 2.0, Json::array({1.0, 2.0}), "wind_m_per_s"},
+        {"drag_per_s", 2.0, 1.0, "drag_per_s"},
+    };
+    for (const Case& c : cases) {
+      QVERIFY2(!ops::keyEmitterField(doc, id, c.field, c.t, c.value, error), c.field);
+      QVERIFY2(error.find(c.says) != std::string::npos && error.find("Road dust") != std::string::npos, error.c_str());
+    }
+    QCOMPARE(doc.undoStack()->count(), now);
+    QVERIFY(doc.state().find(id)->particles->desc == before);
+  }
+
   void fileRoundTripKeepsEveryEmitter() {
     Document doc;
     addPreset(doc, "campfire", {.at = {3, 4, 5}, .seed = 9});
@@ -332,6 +388,70 @@ class TestSceneParticles : public QObject {
     }
     QVERIFY2(worst < 1e-3, std::to_string(worst).c_str());
     QVERIFY2(resting > 100, std::to_string(resting).c_str());
+  }
+
+  // Only the colliders an emitter's particles can reach are given to it:
+  // dropping the others changes no particle (the frame equals, bit for bit,
+  // the one evaluated with every collider), and an emitter that can reach
+  // none is not replayed at all.
+  void collidersOutOfReachAreLeftOut() {
+    std::string error;
+    auto demo = buildDemoScene(error);
+    QVERIFY2(demo, error.c_str());
+    Document doc;
+    doc.reset(std::move(*demo), QString());
+    const FoliageGround ground(doc.state(), true);
+    const foliage::MeshGround* bunny = nullptr;
+    for (const foliage::MeshGround* m : ground.ground().meshes)
+      if (m->triangleCount() == 69451 && glm::length(m->mesh().origin) < 50.0 && !bunny) bunny = m;
+    QVERIFY(bunny);
+    glm::dvec3 top(0.0, 0.0, -1e30);  // its highest vertex
+    for (const glm::vec3& p : bunny->mesh().positions)
+      if (bunny->mesh().origin.z + double(p.z) > top.z) top = bunny->mesh().origin + glm::dvec3(p);
+
+    // Sparks falling onto the bunny, sticking where they land: short lives,
+    // so the sphere that holds them (about 2.6 m) misses the demo's other
+    // meshes.
+    particles::EmitterDesc d = small(400.0);
+    d.lifetimeMin = d.lifetimeMax = 0.5;
+    d.speedMin = d.speedMax = 0.2;
+    d.direction = {0, 0, -1};
+    d.collision = particles::CollisionMode::Stick;
+    d.shape = particles::Shape::Disc;
+    d.radius = 0.1;
+    d.gravity = {0, 0, -9.81};
+    const EntityId id = addEmitter(doc, "Bunny sparks", top + glm::dvec3(0, 0, 0.3), d);
+    ParticleWorld world(doc.state());
+    const auto placed = emitterInWorld(doc.state(), id);
+    const particles::EvaluatorInputs all = world.inputs(*placed, true, false);
+    const particles::EvaluatorInputs reached = world.inputs(*placed);
+    qInfo("colliders: %zu in the scene, %zu in reach", all.colliders.size(), reached.colliders.size());
+    QVERIFY(all.colliders.size() >= 4);
+    QVERIFY(!reached.colliders.empty() && reached.colliders.size() < all.colliders.size());
+    auto pruned = particles::Evaluator::create(*placed, reached, error);
+    auto every = particles::Evaluator::create(*placed, all, error);
+    QVERIFY2(pruned && every, error.c_str());
+    size_t resting = 0;
+    for (double t : {0.7, 1.5, 2.9}) {
+      const particles::Frame a = pruned->frame(t), b = every->frame(t);
+      QCOMPARE(a.particles.size(), b.particles.size());
+      QVERIFY(a.particles == b.particles);
+      for (const particles::Particle& p : a.particles) resting += p.fate == particles::Fate::Resting;
+    }
+    QVERIFY2(resting > 50, qPrintable(QString::number(resting)));  // they did meet something
+
+    // 1 km above the scene, rising: nothing in reach, no replay.
+    particles::EmitterDesc up = small(50.0);
+    up.collision = particles::CollisionMode::Bounce;
+    up.gravity = glm::dvec3(0.0);
+    up.direction = {0, 0, 1};
+    const EntityId high = addEmitter(doc, "High sparks", top + glm::dvec3(0, 0, 1000.0), up);
+    ParticleWorld world2(doc.state());
+    const auto highPlaced = emitterInWorld(doc.state(), high);
+    QVERIFY(world2.inputs(*highPlaced).colliders.empty());
+    auto highEv = world2.evaluator(*highPlaced, error);
+    QVERIFY2(highEv, error.c_str());
+    QVERIFY(!highEv->replays());
   }
 
   void meshShapeIsBornOnItsEntitysSurface() {
