@@ -39,8 +39,13 @@ const std::vector<gl::ProgramDesc>& allPrograms() {
   static const std::vector<gl::ProgramDesc> programs = {
       {"mesh.vert", "mesh.frag", "", {}},         {"mesh.vert", "pick.frag", "", {}},
       {"fullscreen.vert", "sky.frag", "", {}},    {"grid.vert", "grid.frag", "", {}},
-      {"overlay.vert", "overlay.frag", "", {}},   {"fullscreen.vert", "tonemap.frag", "", {}},
+      {"overlay.vert", "overlay.frag", "", {}},   {"fullscreen.vert", "tonemap.frag", "", {"HS_TONEMAP_ACES"}},
       {"fullscreen.vert", "fxaa.frag", "", {}},
+      // The post chain: every per-pixel effect at once (each is checked), bloom's levels
+      {"fullscreen.vert", "tonemap.frag", "", {"HS_TONEMAP_AGX", "HS_BLOOM", "HS_CA", "HS_GRADE", "HS_VIGNETTE", "HS_GRAIN"}},
+      {"fullscreen.vert", "tonemap.frag", "", {"HS_TONEMAP_NEUTRAL"}},
+      {"fullscreen.vert", "bloom_down.frag", "", {"HS_BLOOM_PREFILTER"}},
+      {"fullscreen.vert", "bloom_down.frag", "", {}},     {"fullscreen.vert", "bloom_up.frag", "", {}},
       // Sky and environment
       {"fullscreen.vert", "sky.frag", "", {"SKY_ANALYTIC"}}, {"", "", "env_sky_cube.comp", {}},
       {"", "", "env_sh.comp", {}},                           {"", "", "env_prefilter.comp", {}},

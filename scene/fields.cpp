@@ -90,6 +90,25 @@ FieldInfo<Target> enumField(std::string key, std::string label, std::vector<std:
   return f;
 }
 
+// Three numbers in [min, max] each (a grade's lift, gamma or gain per channel).
+template <class Target, class Access>
+FieldInfo<Target> boundedVec3Field(std::string key, std::string label, double min, double max, Access access) {
+  FieldInfo<Target> f;
+  f.key = std::move(key);
+  f.label = std::move(label);
+  f.type = FieldType::Vec3;
+  f.min = min;
+  f.max = max;
+  f.step = 0.01;
+  f.get = [access](const Target& t) { return FieldValue(glm::dvec3(access(const_cast<Target&>(t)))); };
+  f.set = [access, min, max](Target& t, const FieldValue& v) {
+    auto& ref = access(t);
+    const glm::dvec3 c = std::get<glm::dvec3>(v);
+    for (int i = 0; i < 3; ++i) ref[i] = float(clampFinite(c[i], min, max, double(ref[i])));
+  };
+  return f;
+}
+
 EntityField vec3Field(std::string key, std::string label, std::string unit, double step,
                       std::function<glm::dvec3(const Entity&)> get,
                       std::function<void(Entity&, glm::dvec3)> set) {
@@ -336,7 +355,39 @@ std::vector<SettingsField> buildSettingsFields() {
       boolField<S>("show_grid", "Ground grid", [](S& s) -> bool& { return s.showGrid; }),
       enumField<S>("antialiasing", "Anti-aliasing", {"None", "FXAA", "MSAA 4x"},
                    [](S& s) -> Antialiasing& { return s.antialiasing; }),
-      enumField<S>("tonemap", "Tone mapping", {"ACES", "None"}, [](S& s) -> Tonemap& { return s.tonemap; }),
+      enumField<S>("tonemap", "Tone mapping", {"ACES", "None", "AgX", "PBR Neutral"},
+                   [](S& s) -> Tonemap& { return s.tonemap; }),
+      // The post chain (PostSettings, docs/rendering.md "Post-processing"):
+      // settings.post.EFFECT.FIELD, each effect off until enabled.
+      boolField<S>("post.bloom.enabled", "Bloom", [](S& s) -> bool& { return s.post.bloom; }),
+      doubleField<S>("post.bloom.intensity", "Bloom intensity", 0.0, 10.0, 0.01, "",
+                     [](S& s) -> float& { return s.post.bloomIntensity; }),
+      doubleField<S>("post.bloom.threshold", "Bloom threshold", 0.0, 1e4, 0.05, "",
+                     [](S& s) -> float& { return s.post.bloomThreshold; }),
+      doubleField<S>("post.bloom.radius", "Bloom radius", 0.0, 1.0, 0.05, "",
+                     [](S& s) -> float& { return s.post.bloomRadius; }),
+      boolField<S>("post.chromatic_aberration.enabled", "Chromatic aberration",
+                   [](S& s) -> bool& { return s.post.chromaticAberration; }),
+      doubleField<S>("post.chromatic_aberration.px", "Chromatic aberration (corner)", 0.0, 50.0, 0.1, "px",
+                     [](S& s) -> float& { return s.post.chromaticAberrationPx; }),
+      boolField<S>("post.grade.enabled", "Colour grade", [](S& s) -> bool& { return s.post.grade; }),
+      doubleField<S>("post.grade.temperature", "White balance temperature", -1.0, 1.0, 0.01, "",
+                     [](S& s) -> float& { return s.post.temperature; }),
+      doubleField<S>("post.grade.tint", "White balance tint", -1.0, 1.0, 0.01, "",
+                     [](S& s) -> float& { return s.post.tint; }),
+      boundedVec3Field<S>("post.grade.lift", "Lift", -1.0, 1.0, [](S& s) -> glm::vec3& { return s.post.lift; }),
+      boundedVec3Field<S>("post.grade.gamma", "Gamma", 0.1, 10.0, [](S& s) -> glm::vec3& { return s.post.gamma; }),
+      boundedVec3Field<S>("post.grade.gain", "Gain", 0.0, 10.0, [](S& s) -> glm::vec3& { return s.post.gain; }),
+      doubleField<S>("post.grade.saturation", "Saturation", 0.0, 4.0, 0.01, "",
+                     [](S& s) -> float& { return s.post.saturation; }),
+      boolField<S>("post.vignette.enabled", "Vignette", [](S& s) -> bool& { return s.post.vignette; }),
+      doubleField<S>("post.vignette.intensity", "Vignette intensity", 0.0, 1.0, 0.01, "",
+                     [](S& s) -> float& { return s.post.vignetteIntensity; }),
+      boolField<S>("post.grain.enabled", "Film grain", [](S& s) -> bool& { return s.post.grain; }),
+      doubleField<S>("post.grain.intensity", "Grain intensity", 0.0, 1.0, 0.005, "",
+                     [](S& s) -> float& { return s.post.grainIntensity; }),
+      doubleField<S>("post.grain.size_px", "Grain size", 0.5, 8.0, 0.1, "px",
+                     [](S& s) -> float& { return s.post.grainSizePx; }),
       // Screen-space error of mesh LODs (mesh/lod_chain.h selectLod); 0 draws full resolution.
       doubleField<S>("mesh_lod_error_px", "Mesh LOD error bound", 0.0, 64.0, 0.1, "px",
                      [](S& s) -> double& { return s.meshLodErrorPixels; }),
@@ -525,7 +576,8 @@ std::string fieldValueProblem(const FieldInfo<Target>& field, const FieldValue& 
       const glm::dvec3 x = std::get<glm::dvec3>(v);
       for (int i = 0; i < 3; ++i) {
         if (!std::isfinite(x[i])) return "must be three finite numbers";
-        if (field.type == FieldType::Color && (x[i] < field.min || x[i] > field.max)) return "each channel " + range();
+        const bool bounded = field.type == FieldType::Color || field.min > -1e300 || field.max < 1e300;
+        if (bounded && (x[i] < field.min || x[i] > field.max)) return "each channel " + range();
       }
       break;
     }

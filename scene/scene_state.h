@@ -71,9 +71,49 @@ struct MeshAsset {
 };
 
 enum class Antialiasing { None = 0, Fxaa = 1, Msaa4 = 2 };
-// ACES: filmic curve (highlights roll off); None: exposure then clamp, for
-// reference renders and colour checks.
-enum class Tonemap { Aces = 0, None = 1 };
+// The tone map (docs/rendering.md "Post-processing"): ACES: filmic curve
+// (highlights roll off); None: exposure then clamp, for reference renders
+// and colour checks; AgX: Sobotka's log-encoded sigmoid (highlights
+// desaturate towards white instead of skewing hue); PbrNeutral: Khronos
+// PBR Neutral (base colours kept exactly up to 0.76, only highlights
+// compressed).
+enum class Tonemap { Aces = 0, None = 1, AgX = 2, PbrNeutral = 3 };
+
+// The post chain from the scene's HDR colour to the output
+// (docs/rendering.md "Post-processing"), in this order: exposure, bloom,
+// chromatic aberration (on the scene's light, as a lens makes it), the tone
+// map, the grade, the vignette, grain, then FXAA. Each effect runs only
+// when enabled: with all off the chain is the tone map alone, no pass or
+// texture more.
+struct PostSettings {
+  // Bloom: exposed light above the threshold (soft knee), spread by a
+  // downsample/upsample chain and added back.
+  bool bloom = false;
+  float bloomIntensity = 0.05f;  // share of the spread light added
+  float bloomThreshold = 1.0f;   // exposed luminance where it starts
+  float bloomRadius = 0.7f;      // 0..1: how far it spreads (the weight of the coarser levels)
+  // Chromatic aberration: red and blue scaled about the image centre.
+  bool chromaticAberration = false;
+  float chromaticAberrationPx = 2.0f;  // fringe width at the image's corner, pixels per 1080 lines
+  // Colour grade, display-linear after the tone map: white balance, lift /
+  // gamma / gain per channel (ASC CDL-like: out = (gain*x + lift*(1-x))^(1/gamma)), saturation.
+  bool grade = false;
+  float temperature = 0.0f;  // -1 cool (blue) .. 1 warm (orange)
+  float tint = 0.0f;         // -1 green .. 1 magenta
+  glm::vec3 lift{0.0f};
+  glm::vec3 gamma{1.0f};
+  glm::vec3 gain{1.0f};
+  float saturation = 1.0f;
+  // Vignette: the image darkened towards its corners (cos^4-like falloff).
+  bool vignette = false;
+  float vignetteIntensity = 0.35f;  // darkening at the corner, 0..1
+  // Film grain: luminance noise seeded by the frame number (the same
+  // pattern in both eyes).
+  bool grain = false;
+  float grainIntensity = 0.05f;
+  float grainSizePx = 1.5f;  // grain size, pixels per 1080 lines
+  bool operator==(const PostSettings&) const = default;
+};
 // Shadow presets (docs/rendering.md "Shadows"): map size, cascades and PCF
 // kernel together; Custom takes SceneSettings::shadowResolution etc.
 enum class ShadowQuality { Low = 0, Medium = 1, High = 2, Custom = 3 };
@@ -116,6 +156,7 @@ struct SceneSettings {
   bool showGrid = true;
   Antialiasing antialiasing = Antialiasing::Msaa4;
   Tonemap tonemap = Tonemap::Aces;
+  PostSettings post{};
   // Mesh LODs: each instance draws the coarsest level whose error, projected
   // to the screen, is at most this many pixels (0: always full resolution).
   double meshLodErrorPixels = 1.0;

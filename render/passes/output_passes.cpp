@@ -1,5 +1,11 @@
 #include "render/passes/output_passes.h"
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "render/passes/bloom_passes.h"
 #include "render/passes/fullscreen_pass.h"
 #include "scene/light_units.h"
 
@@ -49,22 +55,69 @@ TextureRef addDepthResolvePass(FrameGraph& graph, FrameContext& frame, const Vie
       .to;
 }
 
+std::vector<std::string> postDefines(const scene::SceneSettings& settings) {
+  const scene::PostSettings& post = settings.post;
+  std::vector<std::string> d;
+  switch (settings.tonemap) {
+    case scene::Tonemap::Aces: d.push_back("HS_TONEMAP_ACES"); break;
+    case scene::Tonemap::AgX: d.push_back("HS_TONEMAP_AGX"); break;
+    case scene::Tonemap::PbrNeutral: d.push_back("HS_TONEMAP_NEUTRAL"); break;
+    case scene::Tonemap::None: break;
+  }
+  if (post.bloom && post.bloomIntensity > 0.0f) d.push_back("HS_BLOOM");
+  if (post.chromaticAberration && post.chromaticAberrationPx > 0.0f) d.push_back("HS_CA");
+  if (post.grade) d.push_back("HS_GRADE");
+  if (post.vignette && post.vignetteIntensity > 0.0f) d.push_back("HS_VIGNETTE");
+  if (post.grain && post.grainIntensity > 0.0f) d.push_back("HS_GRAIN");
+  return d;
+}
+
+glm::vec3 whiteBalanceGains(float temperature, float tint) {
+  // Warm raises red and lowers blue, tint trades green for magenta; the
+  // gains are scaled so that white keeps its luminance (Rec.709 weights).
+  const glm::vec3 g(1.0f + 0.3f * temperature, 1.0f - 0.3f * tint, 1.0f - 0.3f * temperature);
+  return g / glm::dot(g, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+}
+
 void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef hdr) {
   const bool fxaa = frame.settings.antialiasing == scene::Antialiasing::Fxaa;
+  const scene::PostSettings& post = frame.settings.post;
   FullscreenPass tm;
   tm.name = v.named("tonemap");
   tm.fragment = "tonemap.frag";
+  tm.defines = postDefines(frame.settings);
   tm.inputs = {{0, hdr}};
+  BloomChain bloom;
+  if (post.bloom && post.bloomIntensity > 0.0f) {
+    bloom = addBloomPasses(graph, frame, v, hdr);
+    if (bloom.light.valid()) tm.inputs.push_back({1, bloom.light});
+    else std::erase(tm.defines, std::string("HS_BLOOM"));
+  }
   if (fxaa) {
     tm.outputName = v.named("ldr_color");
     tm.output = TextureDesc{v.view.width, v.view.height, GL_RGBA8};
   } else {
     tm.toTarget = true;  // draws into the caller's framebuffer
   }
-  tm.uniforms = [&frame, fxaa](GlProgram& p) {
+  const float diagonal = std::hypot(float(v.view.width), float(v.view.height));
+  const float lines = float(v.view.height) / 1080.0f;  // the pixel sizes are per 1080 lines
+  tm.uniforms = [&frame, fxaa, post, diagonal, lines, w = v.view.width, h = v.view.height,
+                 bloomWeight = bloom.weightSum](GlProgram& p) {
     p.set("uExposure", float(scene::exposureMultiplier(frame.settings.exposureEv100)));
-    p.set("uFilmic", frame.settings.tonemap == scene::Tonemap::Aces);
     p.set("uLumaInAlpha", fxaa);
+    p.set("uBloomIntensity", post.bloomIntensity / bloomWeight);
+    // The corner is half the diagonal from the centre: a fringe of px there.
+    p.set("uCaScale", post.chromaticAberrationPx * lines / (0.5f * diagonal));
+    p.set("uWhiteBalance", whiteBalanceGains(post.temperature, post.tint));
+    p.set("uLift", post.lift);
+    p.set("uGamma", post.gamma);
+    p.set("uGain", post.gain);
+    p.set("uSaturation", post.saturation);
+    p.set("uVignette", post.vignetteIntensity);
+    const glm::vec2 aspect(float(w) / float(h), 1.0f);
+    p.set("uAspect", aspect / glm::length(aspect));
+    p.set("uGrain", post.grainIntensity);
+    p.set("uGrainCell", std::max(1.0f, post.grainSizePx * lines));
   };
   const TextureRef ldr = addFullscreenPass(graph, frame, v, std::move(tm));
   if (!fxaa) return;

@@ -1,6 +1,9 @@
 #pragma once
 // The passes from the scene's HDR colour to the caller's framebuffer:
-// MSAA resolve (only with MSAA), tone mapping with sRGB encoding, FXAA
+// MSAA resolve (only with MSAA), the post chain (docs/rendering.md
+// "Post-processing": bloom's levels only with bloom, then one pass for
+// exposure, chromatic aberration, the tone map, the grade, the vignette,
+// grain and sRGB encoding, each a shader define only when enabled), FXAA
 // (only with FXAA), and a single-sample copy of the depth for the frames
 // whose depth is read back (the stereo comfort check). Include only inside
 // render/.
@@ -13,8 +16,12 @@ TextureRef addResolvePass(FrameGraph& graph, FrameContext& frame, const ViewCont
 // Single-sample depth (a copy, one sample per pixel, with MSAA).
 TextureRef addDepthResolvePass(FrameGraph& graph, FrameContext& frame, const ViewContext& view,
                                const SceneTargets& targets);
-// Tone maps `hdr` into the view's target framebuffer, or, with FXAA, into
-// an LDR texture that the FXAA pass then draws into the target.
+// The post chain on `hdr` into the view's target framebuffer, or, with
+// FXAA, into an LDR texture that the FXAA pass then draws into the target.
 void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& view, TextureRef hdr);
+// The tone map pass's defines for `settings` (one per enabled effect).
+std::vector<std::string> postDefines(const scene::SceneSettings& settings);
+// White balance as per-channel gains (settings.post.grade.temperature, .tint).
+glm::vec3 whiteBalanceGains(float temperature, float tint);
 
 }  // namespace hs::render

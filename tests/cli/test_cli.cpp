@@ -391,8 +391,15 @@ class TestCli : public QObject {
     QCOMPARE(cli({"set", "Stanford Bunny", "transform.translation", "10,0,-1.5", f}).code, 0);
     QCOMPARE(cli({"set", "settings.antialiasing", "fxaa", f}).code, 0);
     QCOMPARE(cli({"set", "settings.exposure_ev100", "14.5", f}).code, 0);
+    // The post chain's settings (docs/rendering.md "Post-processing").
+    QCOMPARE(cli({"set", "settings.post.bloom.enabled", "true", f}).code, 0);
+    QCOMPARE(cli({"set", "settings.post.grade.gain", "1.1,1,0.9", f}).code, 0);
+    QCOMPARE(cli({"set", "settings.tonemap", "agx", f}).code, 0);
     auto s = load(f);
     QVERIFY(s);
+    QVERIFY(s->settings.post.bloom);
+    QCOMPARE(s->settings.post.gain, glm::vec3(1.1f, 1.0f, 0.9f));
+    QVERIFY(s->settings.tonemap == scene::Tonemap::AgX);
     const scene::EntityId sun = s->findByName("Sun");
     QCOMPARE(cli({"set", QString::number(sun), "entity.visible", "false", f}).code, 0);  // by id
     s = load(f);
@@ -414,6 +421,8 @@ class TestCli : public QObject {
     expectError({"set", "Sun", "camera.fov_deg", "35", f}, 1, {"Sun", "camera"});
     expectError({"set", "settings.colour", "1", f}, 1, {"colour"});
     expectError({"set", "settings.antialiasing", "ssaa", f}, 1, {"ssaa"});
+    expectError({"set", "settings.post.grade.gain", "1,2,11", f}, 1, {"post.grade.gain", "0 to 10"});
+    expectError({"set", "settings.post.bloom.intensity", "-1", f}, 1, {"post.bloom.intensity"});
     expectError({"set", "Stanford Bunny", "mesh.asset", "99", f}, 1, {"mesh.asset"});
     expectError({"set", "99999999999999999999999", "entity.visible", "true", f}, 1, {"99999999999999999999999"});
     expectError({"set", "Main Camera", "camera.fov_deg", f}, 2, {"expected"});

@@ -1,0 +1,111 @@
+// bench_post: the post chain's cost per effect (docs/rendering.md
+// "Post-processing"), one eye at 1920x1080 by default: a frame of a small
+// lit scene with every effect off (the tone map pass alone), then with
+// each effect on alone, then all of them; per row the GPU time of the
+// post passes (the tone map pass and bloom's levels, timestamp queries),
+// their count, and the frame's wall time over the all-off frame's. The
+// all-off row against a frame with the tone map only is the claim that
+// the chain costs nothing when off: the same pass, the same time.
+//
+//   bench_post [--size 1920x1080] [--frames N]
+#include <QCoreApplication>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "bench/common/bench_util.h"
+#include "mesh/primitives.h"
+#include "render/offscreen_renderer.h"
+#include "render/renderer.h"
+#include "scene/scene_state.h"
+#include "sequencer/camera_path.h"
+#include "tests/common/scene_parts.h"
+
+using namespace hs;
+
+namespace {
+
+scene::SceneState baseScene() {
+  scene::SceneState s;
+  s.settings.showGrid = false;
+  s.settings.antialiasing = scene::Antialiasing::None;
+  s.settings.tonemap = scene::Tonemap::AgX;
+  test::addMeshAsset(s, 1, "Ground", mesh::gridPlane(200.0f, 4), {0.4f, 0.4f, 0.38f});
+  test::addMeshEntity(s, 1, "Ground", 1);
+  test::addMeshAsset(s, 2, "Ball", mesh::uvSphere(1.0f, 32, 16), {0.8f, 0.3f, 0.2f});
+  test::addMeshEntity(s, 2, "Ball", 2, {0.0, 0.0, 1.0});
+  test::addSun(s, 3, {50, 0, -30});
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  QCoreApplication app(argc, argv);
+  int width = 1920, height = 1080, frames = 3;
+  for (int i = 1; i + 1 < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--frames") frames = std::max(1, std::atoi(argv[++i]));
+    if (a == "--size" && std::sscanf(argv[i + 1], "%dx%d", &width, &height) == 2) ++i;
+  }
+  render::OffscreenRenderer r;
+  std::string error;
+  if (!r.initialize(error)) {
+    std::fprintf(stderr, "bench_post: %s\n", error.c_str());
+    return 1;
+  }
+  std::printf("bench_post: %dx%d, %s; %s; load %.2f\n", width, height, r.glDescription().c_str(),
+              bench::threadsText().c_str(), bench::loadAverage());
+  render::RenderView v;
+  v.width = width;
+  v.height = height;
+  v.fovY = glm::radians(50.0);
+  v.eye = {0.0, -8.0, 2.5};
+  v.orientation = sequencer::lookRotation(glm::dvec3(0.0, 8.0, -1.5));
+  struct Row {
+    const char* name;
+    void (*set)(scene::PostSettings&);
+  };
+  const Row rows[] = {
+      {"all off", [](scene::PostSettings&) {}},
+      {"bloom", [](scene::PostSettings& p) { p.bloom = true; }},
+      {"chromatic aberration", [](scene::PostSettings& p) { p.chromaticAberration = true; }},
+      {"grade", [](scene::PostSettings& p) { p.grade = true, p.saturation = 1.2f; }},
+      {"vignette", [](scene::PostSettings& p) { p.vignette = true; }},
+      {"grain", [](scene::PostSettings& p) { p.grain = true; }},
+      {"all on", [](scene::PostSettings& p) {
+         p.bloom = p.chromaticAberration = p.grade = p.vignette = p.grain = true;
+       }},
+  };
+  std::printf("%-22s %8s %12s %12s %10s\n", "effect", "passes", "post GPU ms", "frame ms", "/all off");
+  render::RenderOptions o;
+  o.passTimings = true;
+  double offFrame = 0.0;
+  for (const Row& row : rows) {
+    scene::SceneState s = baseScene();
+    row.set(s.settings.post);
+    std::vector<double> post, wall;
+    size_t passes = 0;
+    for (int f = 0; f < frames + 1; ++f) {  // the first builds programs
+      const double t0 = bench::nowSeconds();
+      const render::FrameStats st = r.renderOnly(s, v, o);
+      const double ms = (bench::nowSeconds() - t0) * 1e3;
+      if (f == 0) continue;
+      double gpu = 0.0;
+      passes = 0;
+      for (const render::PassStats& p : st.passes)
+        if (p.name.rfind("tonemap", 0) == 0 || p.name.rfind("bloom", 0) == 0) {
+          gpu += std::max(0.0, p.gpuMs);
+          ++passes;
+        }
+      post.push_back(gpu);
+      wall.push_back(ms);
+    }
+    const double frame = bench::median(wall);
+    if (offFrame == 0.0) offFrame = frame;
+    std::printf("%-22s %8zu %12.2f %12.1f %10.3f\n", row.name, passes, bench::median(post), frame, frame / offFrame);
+    std::fflush(stdout);
+  }
+  return 0;
+}

@@ -1,0 +1,237 @@
+// The post chain (docs/rendering.md "Post-processing"; render/passes/
+// output_passes.h, bloom_passes.h, shaders/tonemap.frag) against a CPU
+// reference of its arithmetic (tests/common/post_reference.h) applied to
+// the renderer's own HDR image: every tone map (none, ACES, AgX, PBR
+// Neutral), the grade, the vignette, chromatic aberration and grain, alone
+// and together, within 2/255. With every effect off the chain is the tone
+// map alone (no other pass, no texture) and its image does not change when
+// the disabled effects' parameters do. Grain follows the frame number and
+// is the same in both eyes; bloom spreads a highlight's light symmetrically,
+// further with a larger radius, and costs nothing when off.
+#include <QtTest>
+
+#include <cmath>
+
+#include "mesh/primitives.h"
+#include "render/offscreen_renderer.h"
+#include "render/renderer.h"
+#include "look_from.h"
+#include "post_reference.h"
+#include "scene_parts.h"
+
+using namespace hs;
+
+namespace {
+
+// A lit grey ground, balls from dark to a bright emitter (exposed values
+// from about 0.01 to 30) and an HDR sky: every part of each tone curve.
+scene::SceneState hdrScene() {
+  scene::SceneState s;
+  s.settings.showGrid = false;
+  s.settings.antialiasing = scene::Antialiasing::None;
+  s.settings.skyZenith = {6.0f, 9.0f, 14.0f};
+  s.settings.skyHorizon = {0.6f, 0.7f, 0.8f};
+  test::addMeshAsset(s, 1, "Ground", mesh::gridPlane(60.0f, 1), {0.4f, 0.4f, 0.38f});
+  test::addMeshEntity(s, 1, "Ground", 1);
+  const glm::vec3 colours[] = {{0.02f, 0.02f, 0.03f}, {0.8f, 0.2f, 0.1f}, {0.1f, 0.7f, 0.2f}, {0.9f, 0.9f, 0.9f}};
+  for (int i = 0; i < 4; ++i) {
+    test::addMeshAsset(s, 10 + i, "Ball " + std::to_string(i), mesh::uvSphere(0.8f, 24, 12), colours[i]);
+    test::addMeshEntity(s, 10 + i, "Ball " + std::to_string(i), 10 + i, {-3.0 + 2.0 * i, 0.0, 0.8});
+  }
+  // An emitter: exposed radiance far above 1 (highlights to compress, light to bloom).
+  test::addMeshAsset(s, 20, "Lamp", mesh::uvSphere(0.3f, 16, 8), {0.0f, 0.0f, 0.0f});
+  scene::Material& lamp = s.materials.at(20);
+  lamp.emission = {1.0f, 0.6f, 0.3f};
+  lamp.emissionStrength = 40.0f;
+  test::addMeshEntity(s, 20, "Lamp", 20, {0.0, -1.5, 2.2});
+  test::addSun(s, 100, {50, 0, -30});
+  return s;
+}
+
+render::RenderView view(int w = 192, int h = 108) {
+  render::RenderView v;
+  v.width = w;
+  v.height = h;
+  v.fovY = glm::radians(55.0);
+  v.eye = {0.0, -9.0, 2.5};
+  v.orientation = test::lookFrom(v.eye, {0.0, 0.0, 1.2}).rotation;
+  return v;
+}
+
+bool passRan(const render::FrameStats& s, const std::string& part) {
+  for (const render::PassStats& p : s.passes)
+    if (p.name.find(part) != std::string::npos) return true;
+  return false;
+}
+
+// Largest channel difference and the share of channels more than 1 apart.
+std::pair<int, double> compare8(const Image& a, const Image& b) {
+  int worst = 0;
+  size_t over = 0, n = 0;
+  for (size_t i = 0; i < a.rgba8.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const int d = std::abs(int(a.rgba8[i]) - int(b.rgba8[i]));
+    worst = std::max(worst, d);
+    over += d > 1;
+    ++n;
+  }
+  return {worst, double(over) / double(std::max<size_t>(n, 1))};
+}
+
+double luminanceAt(const Image& img, int x, int y) {
+  const size_t i = (size_t(y) * size_t(img.width) + size_t(x)) * 4;
+  return 0.2126 * img.rgba8[i] + 0.7152 * img.rgba8[i + 1] + 0.0722 * img.rgba8[i + 2];
+}
+
+}  // namespace
+
+class TestPostChain : public QObject {
+  Q_OBJECT
+  render::OffscreenRenderer r_;
+
+  // The renderer's output for `s` against the CPU reference on its HDR image.
+  bool matchesTheReference(const scene::SceneState& s, const char* what, const render::RenderView& v = view()) {
+    const Image hdr = r_.render(s, v, true);
+    const Image out = r_.render(s, v, false);
+    const Image ref = test::postReference(hdr, s.settings, s.time.frame);
+    const auto [worst, over] = compare8(out, ref);
+    qInfo("%s: largest difference %d/255, %.3f%% of the channels more than 1 apart", what, worst, 100.0 * over);
+    return worst <= 2 && over < 0.01;
+  }
+
+ private slots:
+  void initTestCase() {
+    std::string error;
+    QVERIFY2(r_.initialize(error), error.c_str());
+  }
+
+  void everyToneMapMatchesTheCpu() {
+    for (auto t : {scene::Tonemap::None, scene::Tonemap::Aces, scene::Tonemap::AgX, scene::Tonemap::PbrNeutral}) {
+      scene::SceneState s = hdrScene();
+      s.settings.tonemap = t;
+      QVERIFY2(matchesTheReference(s, ("tone map " + std::to_string(int(t))).c_str()), "tone map");
+    }
+    // The curves differ where they should: highlights.
+    scene::SceneState a = hdrScene(), b = hdrScene();
+    a.settings.tonemap = scene::Tonemap::AgX;
+    b.settings.tonemap = scene::Tonemap::PbrNeutral;
+    QVERIFY(compare8(r_.render(a, view()), r_.render(b, view())).first > 20);
+  }
+
+  void eachEffectMatchesTheCpu() {
+    struct Case {
+      const char* name;
+      void (*set)(scene::PostSettings&);
+    };
+    const Case cases[] = {
+        {"grade", [](scene::PostSettings& p) {
+           p.grade = true;
+           p.temperature = 0.4f, p.tint = -0.2f;
+           p.lift = {0.03f, 0.0f, 0.01f}, p.gamma = {1.1f, 1.0f, 0.9f}, p.gain = {1.1f, 1.0f, 0.95f};
+           p.saturation = 1.3f;
+         }},
+        {"vignette", [](scene::PostSettings& p) { p.vignette = true, p.vignetteIntensity = 0.6f; }},
+        {"chromatic aberration", [](scene::PostSettings& p) {
+           p.chromaticAberration = true, p.chromaticAberrationPx = 6.0f;
+         }},
+        {"grain", [](scene::PostSettings& p) { p.grain = true, p.grainIntensity = 0.2f, p.grainSizePx = 3.0f; }},
+        {"all together", [](scene::PostSettings& p) {
+           p.grade = true, p.saturation = 0.7f, p.temperature = -0.3f;
+           p.vignette = true, p.chromaticAberration = true, p.grain = true;
+         }},
+    };
+    for (const Case& c : cases) {
+      scene::SceneState s = hdrScene();
+      s.settings.tonemap = scene::Tonemap::AgX;
+      s.time.frame = 77;
+      c.set(s.settings.post);
+      QVERIFY2(matchesTheReference(s, c.name), c.name);
+      // And it did something.
+      QVERIFY2(compare8(r_.render(s, view()), r_.render(hdrScene(), view())).first > 4, c.name);
+    }
+  }
+
+  // Off: the tone map pass alone, whatever the disabled effects hold.
+  void chainOffIsTheToneMapAlone() {
+    scene::SceneState s = hdrScene();
+    render::FrameStats stats;
+    const Image plain = r_.render(s, view(), false, &stats);
+    QVERIFY(passRan(stats, "tonemap"));
+    QVERIFY(!passRan(stats, "bloom"));
+    scene::PostSettings& p = s.settings.post;
+    p.bloomIntensity = 3.0f, p.saturation = 0.0f, p.gain = glm::vec3(4.0f), p.vignetteIntensity = 1.0f;
+    p.grainIntensity = 1.0f, p.chromaticAberrationPx = 30.0f, p.temperature = 1.0f;
+    const Image disabled = r_.render(s, view(), false, &stats);
+    QVERIFY(plain.rgba8 == disabled.rgba8);
+    QVERIFY(!passRan(stats, "bloom"));
+    size_t passes = 0;
+    for (const render::PassStats& ps : stats.passes) passes += ps.name.find("tonemap") != std::string::npos;
+    QCOMPARE(passes, size_t(1));
+    // Enabled with nothing to do: no pass either.
+    p.bloom = true;
+    p.bloomIntensity = 0.0f;
+    r_.render(s, view(), false, &stats);
+    QVERIFY(!passRan(stats, "bloom"));
+  }
+
+  // Grain: a function of the frame number, the same pattern in both eyes.
+  void grainFollowsTheFrameAndBothEyesShareIt() {
+    scene::SceneState s;
+    s.settings.showGrid = false;
+    s.settings.antialiasing = scene::Antialiasing::None;
+    s.settings.tonemap = scene::Tonemap::None;
+    s.settings.skyZenith = s.settings.skyHorizon = s.settings.groundColor = glm::vec3(0.2f);
+    s.settings.exposureEv100 = float(scene::kReferenceEv100);
+    s.settings.post.grain = true;
+    s.settings.post.grainIntensity = 0.3f;
+    s.time.frame = 10;
+    render::RenderView left = view(), right = view();
+    left.eye.x -= 0.03, right.eye.x += 0.03;  // a uniform sky: the eyes see the same light
+    const Image l = r_.render(s, left), r = r_.render(s, right), again = r_.render(s, left);
+    QVERIFY(l.rgba8 == again.rgba8);  // a pure function of the frame
+    QVERIFY(l.rgba8 == r.rgba8);      // the same pattern in both eyes
+    s.time.frame = 11;
+    QVERIFY(compare8(r_.render(s, left), l).first > 4);  // the next frame's grain
+    s.settings.post.grain = false;
+    QVERIFY(compare8(r_.render(s, left), l).first > 4);
+  }
+
+  // Bloom: the lamp's light spread around it, left and right alike, further
+  // with a larger radius; its passes and levels only when on.
+  void bloomSpreadsHighlightsSymmetrically() {
+    scene::SceneState s = hdrScene();
+    s.settings.skyZenith = s.settings.skyHorizon = glm::vec3(0.0f);
+    s.settings.tonemap = scene::Tonemap::AgX;
+    const render::RenderView v = view(256, 144);
+    const Image off = r_.render(s, v);
+    s.settings.post.bloom = true;
+    s.settings.post.bloomIntensity = 0.3f;
+    s.settings.post.bloomThreshold = 1.0f;
+    s.settings.post.bloomRadius = 0.5f;
+    render::FrameStats stats;
+    const Image on = r_.render(s, v, false, &stats);
+    QVERIFY(passRan(stats, "bloom_down0") && passRan(stats, "bloom_up0"));
+    s.settings.post.bloomRadius = 1.0f;
+    const Image wide = r_.render(s, v);
+    // The lamp's pixel (the brightest of the image without bloom).
+    int lx = 0, ly = 0;
+    double best = -1.0;
+    for (int y = 0; y < off.height; ++y)
+      for (int x = 0; x < off.width; ++x)
+        if (luminanceAt(off, x, y) > best) best = luminanceAt(off, x, y), lx = x, ly = y;
+    // Around it, 12 px away (off the lamp): brighter with bloom, about as
+    // much left as right, more with the wider radius.
+    const int d = 12;
+    QVERIFY(lx - d >= 0 && lx + d < off.width);
+    const double gainL = luminanceAt(on, lx - d, ly) - luminanceAt(off, lx - d, ly);
+    const double gainR = luminanceAt(on, lx + d, ly) - luminanceAt(off, lx + d, ly);
+    const double wideL = luminanceAt(wide, lx - d, ly) - luminanceAt(off, lx - d, ly);
+    qInfo("bloom 12 px from the lamp: +%.1f left, +%.1f right; radius 1: +%.1f", gainL, gainR, wideL);
+    QVERIFY(gainL > 3.0 && gainR > 3.0);
+    QVERIFY(std::abs(gainL - gainR) < 0.35 * std::max(gainL, gainR));
+    QVERIFY(wideL > gainL);
+  }
+};
+
+QTEST_MAIN(TestPostChain)
+#include "test_post_chain.moc"
