@@ -10,6 +10,8 @@
 #include <QPainter>
 #include <QPainterPath>
 
+#include "app/curve_plot.h"
+
 namespace hs::app {
 
 namespace {
@@ -87,28 +89,8 @@ QPointF LifeCurveEditor::pointAt(double x, double value) const {
 QPointF LifeCurveEditor::keyPoint(int i) const { return pointAt(rows_[size_t(i)][0], valueOf(rows_[size_t(i)])); }
 
 std::vector<double> LifeCurveEditor::sample(double x) const {
-  // The emitter's rule: held before the first key and after the last, linear between.
   if (rows_.empty()) return kind_ == Kind::Size ? std::vector<double>{x, 1.0} : std::vector<double>{x, 1, 1, 1, 1};
-  if (x <= rows_.front()[0]) {
-    auto r = rows_.front();
-    r[0] = x;
-    return r;
-  }
-  if (x >= rows_.back()[0]) {
-    auto r = rows_.back();
-    r[0] = x;
-    return r;
-  }
-  for (size_t i = 1; i < rows_.size(); ++i) {
-    if (x > rows_[i][0]) continue;
-    const auto &a = rows_[i - 1], &b = rows_[i];
-    const double s = (x - a[0]) / (b[0] - a[0]);
-    std::vector<double> r(a.size());
-    for (size_t c = 0; c < a.size(); ++c) r[c] = a[c] + (b[c] - a[c]) * s;
-    r[0] = x;
-    return r;
-  }
-  return rows_.back();
+  return rowAt(rows_, x);
 }
 
 int LifeCurveEditor::keyNear(const QPointF& p) const {
@@ -200,7 +182,7 @@ void LifeCurveEditor::mouseDoubleClickEvent(QMouseEvent* e) {
 }
 
 void LifeCurveEditor::keyPressEvent(QKeyEvent* e) {
-  if ((e->key() == Qt::Key_Delete || e->key() == Qt::Key_Backspace) && selected_ >= 0) return removeKey(selected_);
+  if (isDeleteKey(e) && selected_ >= 0) return removeKey(selected_);
   QWidget::keyPressEvent(e);
 }
 
@@ -208,11 +190,8 @@ void LifeCurveEditor::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.setRenderHint(QPainter::Antialiasing);
   const QRectF r = plot();
-  p.fillRect(rect(), palette().color(QPalette::Base));
-  p.setPen(QPen(palette().color(QPalette::Mid), 1));
-  for (int i = 0; i <= 4; ++i) p.drawLine(QPointF(r.left() + r.width() * i / 4, r.top()), QPointF(r.left() + r.width() * i / 4, r.bottom()));
+  paintPlotBackground(p, *this, r);
   p.drawLine(pointAt(0, 1.0), pointAt(1, 1.0));  // multiplier 1 / opacity 1
-  p.drawLine(r.bottomLeft(), r.bottomRight());
 
   // The curve, held outside its keys; no keys: the fallback (1).
   QPainterPath path;

@@ -38,6 +38,10 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
       addHeading("Depth of field", "dofHeading",
                  "The camera's lens (focal length, f-stop, focus distance in Properties); "
                  "View > Pick Focus Distance sets the focus from a click in the viewport");
+    if (f.key == "post.bloom.enabled")
+      addHeading("Post-processing", "postHeading",
+                 "The chain after the scene's light, in order: exposure, bloom, chromatic aberration, the tone "
+                 "map, the grade, the vignette, grain; each effect runs only when enabled");
     if (f.key == "transparency")
       addHeading("Transparency", "oitHeading",
                  "How translucent materials (opacity under 1) are composited; View > Depth Complexity "

@@ -1,6 +1,6 @@
 #pragma once
 // The Scene Settings dock: sky, lighting, exposure, grid, anti-aliasing,
-// depth of field and transparency (with the last frame's OIT figures),
+// the tone map and post-processing, depth of field and transparency (with the last frame's OIT figures),
 // generated from scene::settingsFields(); edits go through
 // scene::ops::setSettingsField (undoable, one step per gesture).
 #include <map>

@@ -8,6 +8,8 @@
 #include <QPainter>
 #include <QPainterPath>
 
+#include "app/curve_plot.h"
+
 #include "core/params.h"
 #include "particles/emitter.h"
 
@@ -123,27 +125,9 @@ QPointF TimeKeysEditor::keyPoint(int i, int channel) const {
 
 std::vector<double> TimeKeysEditor::sample(double t) const {
   if (kind_ == Kind::Bursts) return {t, kNewBurst};
-  // The emitter's rule: held before the first key and after the last, linear between.
-  std::vector<double> r(size_t(1 + channels()));
-  r[0] = t;
-  if (rows_.empty()) {
-    for (int c = 0; c < channels(); ++c) r[size_t(1 + c)] = constant_[size_t(c)];
-    return r;
-  }
-  const auto& first = rows_.front();
-  const auto& last = rows_.back();
-  if (t <= first[0] || t >= last[0]) {
-    r = t <= first[0] ? first : last;
-    r[0] = t;
-    return r;
-  }
-  for (size_t i = 1; i < rows_.size(); ++i) {
-    if (t > rows_[i][0]) continue;
-    const auto &a = rows_[i - 1], &b = rows_[i];
-    const double s = (t - a[0]) / (b[0] - a[0]);
-    for (size_t c = 1; c < a.size(); ++c) r[c] = a[c] + (b[c] - a[c]) * s;
-    return r;
-  }
+  if (!rows_.empty()) return rowAt(rows_, t);
+  std::vector<double> r{t};
+  r.insert(r.end(), constant_.begin(), constant_.end());  // no keys: the constant
   return r;
 }
 
@@ -241,7 +225,7 @@ void TimeKeysEditor::mouseReleaseEvent(QMouseEvent* e) {
 }
 
 void TimeKeysEditor::keyPressEvent(QKeyEvent* e) {
-  if ((e->key() == Qt::Key_Delete || e->key() == Qt::Key_Backspace) && selected_ >= 0) return removeKey(selected_);
+  if (isDeleteKey(e) && selected_ >= 0) return removeKey(selected_);
   QWidget::keyPressEvent(e);
 }
 
@@ -249,12 +233,8 @@ void TimeKeysEditor::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.setRenderHint(QPainter::Antialiasing);
   const QRectF r = plot();
-  p.fillRect(rect(), palette().color(QPalette::Base));
-  p.setPen(QPen(palette().color(QPalette::Mid), 1));
-  for (int i = 0; i <= 4; ++i)
-    p.drawLine(QPointF(r.left() + r.width() * i / 4, r.top()), QPointF(r.left() + r.width() * i / 4, r.bottom()));
+  paintPlotBackground(p, *this, r);
   p.drawLine(pointAt(t0_, 0.0), pointAt(t1_, 0.0));  // zero
-  p.drawLine(r.bottomLeft(), r.bottomRight());
   p.setPen(palette().color(QPalette::PlaceholderText));
   p.drawText(r.adjusted(2, 0, -2, 0), Qt::AlignTop | Qt::AlignRight, QString::number(hi_, 'g', 3));
   p.drawText(r.adjusted(2, 0, -2, 0), Qt::AlignBottom | Qt::AlignLeft, QString("%1 s").arg(t0_, 0, 'g', 4));

@@ -69,6 +69,30 @@ scene::SceneState dustScene(double live, bool gpu, scene::Transparency mode, boo
   return s;
 }
 
+// Frames 1..frames of `sceneAt(f)` (frame 0 builds programs and caches):
+// the median wall time (ms), the median CPU part and the particles drawn.
+struct Timing {
+  double ms = 0.0, cpuMs = 0.0;
+  size_t drawn = 0;
+};
+template <class SceneAt>
+Timing timeFrames(render::OffscreenRenderer& r, const render::RenderView& v, int frames, SceneAt sceneAt) {
+  std::vector<double> wall, cpu;
+  Timing t;
+  for (int f = 0; f < frames + 1; ++f) {
+    const scene::SceneState s = sceneAt(f);
+    const double t0 = bench::nowSeconds();
+    const render::FrameStats st = r.renderOnly(s, v);
+    if (f == 0) continue;
+    wall.push_back(bench::nowSeconds() - t0);
+    cpu.push_back(st.cpuMs);
+    t.drawn = st.particlesDrawn;
+  }
+  t.ms = bench::median(wall) * 1e3;
+  t.cpuMs = bench::median(cpu);
+  return t;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -109,20 +133,10 @@ int main(int argc, char** argv) {
       double cpuPath = 0.0;
       for (bool gpu : {false, true}) {
         const scene::SceneState s = dustScene(live, gpu, mode);
-        std::vector<double> wall, cpu;
-        size_t drawn = 0;
-        for (int f = 0; f < frames + 1; ++f) {  // the first builds programs and caches
-          const double t0 = bench::nowSeconds();
-          const render::FrameStats st = r.renderOnly(s, v);
-          if (f == 0) continue;
-          wall.push_back(bench::nowSeconds() - t0);
-          cpu.push_back(st.cpuMs);
-          drawn = st.particlesDrawn;
-        }
-        const double ms = bench::median(wall) * 1e3;
-        if (!gpu) cpuPath = ms;
-        std::printf("%10.0f %-14s %-4s %10.1f %10.1f %12zu %9s\n", live, name, gpu ? "GPU" : "CPU", ms,
-                    bench::median(cpu), drawn, gpu ? (std::to_string(ms / cpuPath).substr(0, 5)).c_str() : "");
+        const Timing t = timeFrames(r, v, frames, [&](int) { return s; });
+        if (!gpu) cpuPath = t.ms;
+        std::printf("%10.0f %-14s %-4s %10.1f %10.1f %12zu %9s\n", live, name, gpu ? "GPU" : "CPU", t.ms, t.cpuMs,
+                    t.drawn, gpu ? (std::to_string(t.ms / cpuPath).substr(0, 5)).c_str() : "");
         std::fflush(stdout);
       }
     }
@@ -136,22 +150,15 @@ int main(int argc, char** argv) {
   for (double live : replayCounts) {
     double warm = 0.0;
     for (const auto& [path, name] : paths) {
-      std::vector<double> wall, cpu;
-      size_t drawn = 0;
-      for (int f = 0; f < frames + 1; ++f) {  // the first builds programs (and the warm path's cache)
+      // Frame 0 also fills the warm path's cache.
+      const Timing t = timeFrames(r, v, frames, [&, path = path](int f) {
         scene::SceneState s = dustScene(live, path == Path::Gpu, scene::Transparency::Weighted, true,
                                         path == Path::CpuCold ? uint32_t(100 + f) : 4u);
         s.time.seconds = 30.0 + f / 60.0;
-        const double t0 = bench::nowSeconds();
-        const render::FrameStats st = r.renderOnly(s, v);
-        if (f == 0) continue;
-        wall.push_back(bench::nowSeconds() - t0);
-        cpu.push_back(st.cpuMs);
-        drawn = st.particlesDrawn;
-      }
-      const double ms = bench::median(wall) * 1e3;
-      if (path == Path::CpuWarm) warm = ms;
-      std::printf("%10.0f %-10s %10.1f %10.1f %12zu %9.2f\n", live, name, ms, bench::median(cpu), drawn, ms / warm);
+        return s;
+      });
+      if (path == Path::CpuWarm) warm = t.ms;
+      std::printf("%10.0f %-10s %10.1f %10.1f %12zu %9.2f\n", live, name, t.ms, t.cpuMs, t.drawn, t.ms / warm);
       std::fflush(stdout);
     }
   }
