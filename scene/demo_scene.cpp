@@ -327,6 +327,11 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   if (!addDemoFoliage(s, error)) return std::nullopt;
   // Snow, a fog bank between the pillars and a torch on the tallest (docs/particles.md).
   if (!addDemoParticles(s, error)) return std::nullopt;
+  // Bloom (docs/rendering.md "Post-processing"): the torch's flames and the
+  // sunlit snow above the threshold glow; the other post effects stay off.
+  s.settings.post.bloom = true;
+  s.settings.post.bloomIntensity = 0.04f;
+  s.settings.post.bloomThreshold = 1.0f;
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

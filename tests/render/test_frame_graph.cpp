@@ -709,12 +709,14 @@ class TestFrameGraph : public QObject {
     OffscreenRenderer fresh;
     std::string error;
     QVERIFY2(fresh.initialize(error), error.c_str());
-    // The demo as it was then: its foliage and particles came later (their
-    // passes and buffers are the instanced source's, test_draw_sources, and
-    // the particle source's, test_particle_render).
+    // The demo as it was then: its foliage, particles and bloom came later
+    // (their passes and buffers are the instanced source's, test_draw_sources,
+    // the particle source's, test_particle_render, and the post chain's,
+    // test_post_chain).
     scene::SceneState then = demo_;
     then.foliage.reset();
     for (auto& [id, e] : then.entities) e.particles.reset();
+    then.settings.post = scene::PostSettings{};
     fresh.render(then, v, false, &st, o);
     std::vector<std::string> passes;
     for (const auto& p : before["passes"]) passes.push_back(p.get<std::string>());
