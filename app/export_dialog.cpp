@@ -20,6 +20,7 @@
 #include "app/stereo_preview.h"
 #include "render/export_job_tag.h"
 #include "render/stereo_views.h"
+#include "scene/camera_cut_ops.h"
 #include "sequencer/ffmpeg_writer.h"
 #include "sequencer/image_writer.h"
 #include "sequencer/output_pattern.h"
@@ -69,6 +70,7 @@ ExportDialog::ExportDialog(scene::Document& doc, StereoPreviewSettings& stereo, 
                       QString::fromStdString(rangeText(sequencer::frameNumberDecl())));
   form->addRow(paramLabel(frames), frames_);
   camera_ = new QComboBox(this);
+  camera_->setObjectName("exportCamera");
   form->addRow("Camera", camera_);
   const ParamDecl& layout = paramIn(decls, "layout");
   layout_ = paramCombo(layout, this);
@@ -157,12 +159,16 @@ void ExportDialog::resetFromDocument() {
   frames_->setText(QString("%1-%2").arg(s.sequence.startFrame).arg(s.sequence.endFrame));
   camera_->clear();
   const scene::EntityId shot = render::shotCamera(s);
+  // With camera cuts the default follows them (id 0: StereoFrameSource
+  // chooses each frame's camera); a camera picked below overrides them.
+  if (!s.sequence.cuts.empty())
+    camera_->addItem(QString("Camera cuts (%1)").arg(s.sequence.cuts.size()), QVariant::fromValue<qulonglong>(0));
   for (scene::EntityId id : s.cameras()) {
     const scene::Entity* e = s.find(id);
     QString label = QString::fromStdString(e->name);
     if (e->camera && e->camera->stereo == scene::Camera::Stereo::Mono) label += " (mono)";
     camera_->addItem(label, QVariant::fromValue<qulonglong>(id));
-    if (id == shot) camera_->setCurrentIndex(camera_->count() - 1);
+    if (id == shot && s.sequence.cuts.empty()) camera_->setCurrentIndex(camera_->count() - 1);
   }
   const QString base = doc_.filePath().isEmpty() ? QDir::home().filePath("hybridscape")
                                                  : QFileInfo(doc_.filePath()).absolutePath() + "/" +
@@ -258,7 +264,12 @@ bool ExportDialog::startExport() {
     req.frame.comfort->budget = stereo_.budget();
     s.resume = false;  // kept frames would not be checked
   }
-  if (req.frame.camera == scene::kNoEntity) return refuse("The scene has no camera to export through");
+  if (req.frame.camera == scene::kNoEntity && req.scene.sequence.cuts.empty())
+    return refuse("The scene has no camera to export through");
+  if (req.frame.camera == scene::kNoEntity) {
+    if (const std::string p = scene::cutsProblem(req.scene); !p.empty())
+      return refuse(QString("The camera cuts cannot be rendered: %1").arg(QString::fromStdString(p)));
+  }
   s.jobTag = render::exportJobTag(req.scene, req.frame.camera, s, req.frame);
   total_ = s.frames.count();
   bar_->setValue(0);

@@ -142,6 +142,7 @@ void MainWindow::createDocks() {
   outliner_ = new OutlinerPanel(doc_, *selection_, this);
   properties_ = new PropertyPanel(doc_, *selection_, this);
   settings_ = new SettingsPanel(doc_, this);
+  settings_->setPrompts([this]() -> Prompts& { return *prompts_; });
   messages_ = new MessagePanel(this);
   QDockWidget* outlinerDock = dock("Outliner", "outlinerDock", outliner_, Qt::LeftDockWidgetArea);
   QDockWidget* propertiesDock = dock("Properties", "propertiesDock", properties_, Qt::RightDockWidgetArea);

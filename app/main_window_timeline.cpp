@@ -27,6 +27,7 @@
 #include "app/stereo_preview.h"
 #include "app/timeline_clock.h"
 #include "app/timeline_keying.h"
+#include "app/timeline_cut_track.h"
 #include "app/timeline_panel.h"
 #include "app/viewport_widget.h"
 #include "scene/sequence_edits.h"
@@ -94,7 +95,8 @@ void MainWindow::createTimeline() {
   // warnings and errors, and an error brings it to the front.
   if (QDockWidget* messages = findChild<QDockWidget*>("messagesDock")) {
     tabifyDockWidget(messages, dock);
-    resizeDocks({dock}, {260}, Qt::Vertical);  // the rows it showed before the tab bar came
+    // The rows it showed before the tab bar came, and the camera-cut strip over them.
+    resizeDocks({dock}, {260 + TimelineCutTrack::kHeight}, Qt::Vertical);
     dock->raise();
     connect(messages_, &MessagePanel::countsChanged, messages, [this, messages] {
       const int w = messages_->count(MessageLevel::Warning), e = messages_->count(MessageLevel::Error);

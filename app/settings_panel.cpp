@@ -1,16 +1,21 @@
 #include "app/settings_panel.h"
 
+#include <QFileInfo>
 #include <QFormLayout>
+#include <QHBoxLayout>
 #include <QLabel>
+#include <QPushButton>
 #include <QLayout>
 #include <QScrollArea>
 #include <QVBoxLayout>
 
 #include "app/field_editors.h"
 #include "app/form_widgets.h"
+#include "app/prompts.h"
 #include "app/status_bar.h"
 #include "app/timeline_clock.h"
 #include "app/timeline_keying.h"
+#include "scene/color_lut.h"
 #include "scene/object_tracks.h"
 #include "scene/operations.h"
 
@@ -41,7 +46,7 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
     if (f.key == "post.bloom.enabled")
       addHeading("Post-processing", "postHeading",
                  "The chain after the scene's light, in order: exposure, bloom, chromatic aberration, the tone "
-                 "map, the grade, the vignette, grain; each effect runs only when enabled");
+                 "map, the grade, the LUT, the vignette, grain; each effect runs only when enabled");
     if (f.key == "transparency")
       addHeading("Transparency", "oitHeading",
                  "How translucent materials (opacity under 1) are composited; View > Depth Complexity "
@@ -68,6 +73,7 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
     rows_.emplace_back(field, ed);
     byKey_[f.key] = ed;
     rowOf_[f.key] = row;
+    if (f.key == "post.lut.intensity") addLutRow(content, form);
     if (f.key == "oit_memory_mb") {  // the last transparency field: what the last frame used
       oitStats_ = new QLabel(content);
       oitStats_->setObjectName("oitStats");
@@ -84,6 +90,48 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
     if (c.settings || c.reset) refresh();
   });
   refresh();
+}
+
+void SettingsPanel::addLutRow(QWidget* content, QFormLayout* form) {
+  // The stored LUT (post.lut) with Import LUT... and Remove: a file, not a
+  // value, so not a field editor (scene/color_lut.h).
+  auto* row = new QWidget(content);
+  auto* layout = new QHBoxLayout(row);
+  layout->setContentsMargins(0, 0, 0, 0);
+  lutName_ = new QLabel(row);
+  lutName_->setObjectName("lutName");
+  auto* import = new QPushButton("Import LUT...", row);
+  import->setObjectName("lutImport");
+  import->setToolTip(QString::fromStdString(scene::lutImportOperation().description));
+  lutRemove_ = new QPushButton("Remove", row);
+  lutRemove_->setObjectName("lutRemove");
+  lutRemove_->setToolTip(QString::fromStdString(scene::lutClearOperation().description));
+  layout->addWidget(lutName_, 1);
+  layout->addWidget(import);
+  layout->addWidget(lutRemove_);
+  connect(import, &QPushButton::clicked, this, [this] {
+    if (!prompts_) return;
+    QString filter = "LUT files (";
+    for (const std::string& e : scene::lutFileExtensions()) filter += QString(" *.%1").arg(QString::fromStdString(e));
+    filter += ");;All files (*)";
+    const QString path = prompts_().askOpenFile(this, "Import LUT", QString(), filter);
+    if (!path.isEmpty()) importLut(path);
+  });
+  connect(lutRemove_, &QPushButton::clicked, this, [this] { scene::ops::setLut(doc_, {}); });
+  auto* label = new QLabel("LUT file", content);
+  label->setStyleSheet("QLabel { color: #a9aaae; }");
+  form->addRow(label, row);
+}
+
+bool SettingsPanel::importLut(const QString& path) {
+  std::string error;
+  const std::optional<scene::LutData> lut = scene::readLutFile(path.toStdString(), error);
+  if (!lut) {
+    if (prompts_) prompts_().showError(this, "Import LUT", QString::fromStdString(error));
+    return false;
+  }
+  scene::ops::setLut(doc_, *lut);
+  return true;
 }
 
 FieldEditor* SettingsPanel::editorFor(const std::string& key) const {
@@ -120,6 +168,13 @@ const scene::SceneState& SettingsPanel::shown() const { return clock_ ? clock_->
 
 void SettingsPanel::refresh() {
   for (const auto& [field, editor] : rows_) editor->setValue(field->get(shown().settings));
+  if (lutName_) {
+    const scene::LutData& lut = doc_.state().settings.post.lut;
+    lutName_->setText(lut.empty() ? QString("none")
+                                  : QString("%1 (%2)").arg(QString::fromStdString(lut.fileName),
+                                                           formatBytes(lut.bytes ? lut.bytes->size() : 0)));
+    lutRemove_->setEnabled(!lut.empty());
+  }
 }
 
 }  // namespace hs::app

@@ -3,6 +3,7 @@
 // the tone map and post-processing, depth of field and transparency (with the last frame's OIT figures),
 // generated from scene::settingsFields(); edits go through
 // scene::ops::setSettingsField (undoable, one step per gesture).
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -12,7 +13,9 @@
 #include "scene/document.h"
 #include "scene/fields.h"
 
+class QFormLayout;
 class QLabel;
+class QPushButton;
 
 namespace hs::render {
 struct OitStats;
@@ -23,6 +26,7 @@ namespace hs::app {
 class FieldEditor;
 class KeyButton;
 class Keying;
+class Prompts;
 class TimelineClock;
 
 class SettingsPanel : public QWidget {
@@ -40,9 +44,17 @@ class SettingsPanel : public QWidget {
   // (mode, OIT memory, fragments per pixel, overflow: app/status_bar.h's
   // oitSummary); MainWindow passes every rendered frame's.
   void showTransparencyStats(const render::OitStats& stats);
+  // Where Import LUT... asks for its file and reports a file it refuses
+  // (MainWindow's prompts, which tests answer).
+  void setPrompts(std::function<Prompts&()> prompts) { prompts_ = std::move(prompts); }
+  // Import LUT...'s work: reads `path` (scene/color_lut.h) and grades the
+  // scene with it as one undo step; a refused file is shown as an error
+  // naming it and the scene is left as it was. False if refused.
+  bool importLut(const QString& path);
 
  private:
   void refresh();
+  void addLutRow(QWidget* content, QFormLayout* form);
   const scene::SceneState& shown() const;
 
   scene::Document& doc_;
@@ -51,6 +63,9 @@ class SettingsPanel : public QWidget {
   std::map<std::string, QWidget*> rowOf_;  // the editor's row, where a key button goes
   std::map<std::string, KeyButton*> keyButtons_;
   QLabel* oitStats_ = nullptr;
+  QLabel* lutName_ = nullptr;      // the stored LUT's file name, or "none"
+  QPushButton* lutRemove_ = nullptr;
+  std::function<Prompts&()> prompts_;
   Keying* keying_ = nullptr;
   TimelineClock* clock_ = nullptr;
   int editCounter_ = 0;

@@ -31,6 +31,13 @@ QString StereoPreviewSettings::modeName(StereoPreviewMode m) {
 scene::EntityId StereoPreviewSettings::activeCamera(const scene::SceneState& state, const Selection& selection) const {
   const scene::Entity* e = state.find(selection.primary());
   if (e && e->camera) return e->id;
+  // The camera cuts' camera at the shown frame (`state` is the timeline's);
+  // during a transition the stronger shot (the export combines both).
+  if (const auto shot = sequencer::shotAt(state.sequence.cuts, state.time.frame)) {
+    const auto [outgoing, incoming] = shot->weights();
+    const scene::Entity* c = state.find(scene::EntityId(shot->incoming && incoming > outgoing ? shot->incoming : shot->camera));
+    if (c && c->camera) return c->id;
+  }
   return render::shotCamera(state);
 }
 

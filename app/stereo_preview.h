@@ -26,7 +26,9 @@ class StereoPreviewSettings : public QObject {
   StereoPreviewMode mode() const { return mode_; }
   const sequencer::ComfortBudget& budget() const { return budget_; }
   double outputAspect() const { return aspect_; }
-  // The camera the preview looks through.
+  // The camera the preview looks through: the selected camera, else the
+  // camera cuts' at the state's frame (a transition: its stronger shot),
+  // else the shot camera.
   scene::EntityId activeCamera(const scene::SceneState& state, const Selection& selection) const;
   static QString modeName(StereoPreviewMode m);
 

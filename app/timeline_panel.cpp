@@ -14,6 +14,7 @@
 #include "app/param_widgets.h"
 #include "app/selection.h"
 #include "app/stereo_preview.h"
+#include "app/timeline_cut_track.h"
 #include "scene/sequence_edits.h"
 #include "sequencer/sequencer_operations.h"
 
@@ -131,11 +132,23 @@ TimelinePanel::TimelinePanel(scene::Document& doc, TimelineClock& clock, Keying&
 
   dopeSheet_ = new TimelineDopeSheet(*actions_, *window_, selection_, this);
   curveView_ = new TimelineCurveView(*actions_, *window_, this);
+  // The camera-cut track over the dope sheet, on its time axis.
+  auto* sheet = new QWidget(this);
+  auto* sheetLayout = new QVBoxLayout(sheet);
+  sheetLayout->setContentsMargins(0, 0, 0, 0);
+  sheetLayout->setSpacing(0);
+  cutTrack_ = new TimelineCutTrack(doc_, *window_, clock_, selection_, sheet);
+  sheetLayout->addWidget(cutTrack_);
+  sheetLayout->addWidget(dopeSheet_, 1);
   auto* split = new QSplitter(Qt::Horizontal, this);
-  split->addWidget(dopeSheet_);
+  split->addWidget(sheet);
   split->addWidget(curveView_);
   split->setStretchFactor(0, 3);
   split->setStretchFactor(1, 2);
+  // The sheet (cut track and dope sheet) never collapses to nothing.
+  sheet->setMinimumWidth(TimelineDopeSheet::kNamesWidth + 120);
+  split->setCollapsible(0, false);
+  split->setSizes({600, 400});  // 3 : 2 from the start, as the stretch keeps it
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->setSpacing(0);

@@ -23,6 +23,7 @@ namespace hs::app {
 
 class Selection;
 class StereoPreviewSettings;
+class TimelineCutTrack;
 
 class TimelinePanel : public QWidget {
   Q_OBJECT
@@ -31,6 +32,7 @@ class TimelinePanel : public QWidget {
                 StereoPreviewSettings& stereo, QWidget* parent = nullptr);
 
   TimelineDopeSheet* dopeSheet() const { return dopeSheet_; }
+  TimelineCutTrack* cutTrack() const { return cutTrack_; }
   TimelineCurveView* curveView() const { return curveView_; }
   TimelineActions& actions() { return *actions_; }
   KeySelection& keySelection() { return *keys_; }
@@ -58,6 +60,7 @@ class TimelinePanel : public QWidget {
   TimelineActions* actions_ = nullptr;
   TimeWindow* window_ = nullptr;
   TimelineDopeSheet* dopeSheet_ = nullptr;
+  TimelineCutTrack* cutTrack_ = nullptr;
   TimelineCurveView* curveView_ = nullptr;
   QToolButton* play_ = nullptr;
   QSpinBox* frame_ = nullptr;

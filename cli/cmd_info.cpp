@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "cli/cut_info.h"
 #include "cli/material_info.h"
 #include "cli/operation_options.h"
 #include "cli/scene_open.h"
@@ -227,6 +228,7 @@ Json infoJson(const std::string& path, const scene::SceneState& s, double time) 
   o["foliage"] = s.foliage ? foliage::infoJson(s.foliage->store()) : Json(nullptr);
   o["particles"] = particlesJson(s, time);
   o["sequence"] = sequenceJson(s);
+  o["cuts"] = cutsJson(s);
   o["tracks"] = tracksJson(s);
   const scene::WorldBox box = scene::worldBounds(s);
   Json bounds = Json::object();
@@ -323,6 +325,11 @@ int runInfo(int argc, char** argv) {
     const glm::dvec3 size = box.size();
     std::printf("extent: %.3f x %.3f x %.3f m\n", size.x, size.y, size.z);
   }
+  if (!s->sequence.cuts.empty()) printCuts(*s);
+  if (const scene::PostSettings& post = s->settings.post; !post.lut.empty())
+    std::printf("LUT: %s (%zu bytes, stored in the scene), %s, intensity %g\n", post.lut.fileName.c_str(),
+                post.lut.bytes ? post.lut.bytes->size() : size_t(0), post.lutEnabled ? "on" : "off",
+                double(post.lutIntensity));
   if (!s->assets.empty()) std::printf("mesh assets:\n");
   const std::vector<scene::AssetId> needImpostor = scene::ops::impostorsToBake(*s, true);
   for (const auto& [id, a] : s->assets) {

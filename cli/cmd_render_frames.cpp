@@ -11,6 +11,7 @@
 #include "render/export_job_tag.h"
 #include "render/offscreen_renderer.h"
 #include "render/stereo_frame_source.h"
+#include "scene/camera_cuts_check.h"
 #include "scene/hscene_file.h"
 #include "sequencer/ffmpeg_writer.h"
 
@@ -123,7 +124,15 @@ int renderFrames(const OperationArgs& args) {
     return args.fail(s.output + ": direct video needs ffmpeg, which is not installed (apt-get install ffmpeg)");
 
   render::StereoFrameOptions frameOptions;
-  frameOptions.camera = camera;
+  // The camera cuts choose each frame's camera unless one is named.
+  const bool followCuts = !args.has("camera") && !state->sequence.cuts.empty();
+  frameOptions.camera = followCuts ? scene::kNoEntity : camera;
+  if (followCuts) {
+    if (const std::string p = scene::cutsProblem(*state); !p.empty())
+      return args.fail(scenePath + ": the camera cuts cannot be rendered: " + p);
+    std::printf("following %zu camera cut(s) (frames outside them: '%s')\n", state->sequence.cuts.size(),
+                cam.name.c_str());
+  }
   frameOptions.showGrid = !args.flag("no_grid");
   frameOptions.displayBits16 = s.image.png16;
   if (args.flag("comfort")) {
@@ -131,7 +140,7 @@ int renderFrames(const OperationArgs& args) {
     co.budget = budget;
     frameOptions.comfort = co;
   }
-  s.jobTag = render::exportJobTag(*state, camera, s, frameOptions);
+  s.jobTag = render::exportJobTag(*state, frameOptions.camera, s, frameOptions);
   if (!film && (frameOptions.comfort || !s.resume)) {
     // Frames kept by resume are not rendered again, so the comfort check
     // would not see them: a comfort run renders every frame.

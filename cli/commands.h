@@ -29,6 +29,8 @@ int runFoliageImpostors(int argc, char** argv);  // `foliage impostors` (cmd_fol
 int runParticles(int argc, char** argv);
 int runMesh(int argc, char** argv);
 int runLight(int argc, char** argv);
+int runLut(int argc, char** argv);
+int runCut(int argc, char** argv);
 int runKey(int argc, char** argv);
 int runSequence(int argc, char** argv);
 int runPath(int argc, char** argv);

@@ -9,6 +9,8 @@ find_package(SQLite3 REQUIRED)
 find_package(Threads REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
+# Colour management (LUTs, scene/color_lut.h): libopencolorio-dev 2.1.
+pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO)
 
 # Debian's OpenImageIO 2.4 config lists /usr/include/opencv4 among its include
 # directories although libopenimageio-dev does not depend on OpenCV; CMake

@@ -17,10 +17,11 @@ std::string infoLog(GLuint object, bool program) {
   return log.data();
 }
 
-GLuint compile(GLenum type, const std::string& file, const std::vector<std::string>& defines, std::string& error) {
+GLuint compile(GLenum type, const std::string& file, const std::vector<std::string>& defines, std::string& error,
+               std::string_view generated = {}) {
   std::string src;
   std::vector<std::string> files;
-  if (!gl::preprocessShader(file, defines, src, files, error)) return 0;
+  if (!gl::preprocessShader(file, defines, src, files, error, generated)) return 0;
   const GLuint s = glCreateShader(type);
   const char* p = src.c_str();
   glShaderSource(s, 1, &p, nullptr);
@@ -51,7 +52,8 @@ bool GlProgram::build(const gl::ProgramDesc& desc, std::string& error) {
   std::vector<GLuint> stages;
   auto add = [&](GLenum type, const std::string& file) {
     if (file.empty()) return true;
-    const GLuint s = compile(type, file, desc.defines, error);
+    const GLuint s = compile(type, file, desc.defines, error,
+                             type == GL_VERTEX_SHADER ? std::string_view() : std::string_view(desc.generated));
     if (!s) return false;
     stages.push_back(s);
     return true;

@@ -10,6 +10,7 @@
 #include "render/frame_blocks.h"
 #include "render/gl/gl_handle.h"
 #include "render/gl/shader_library.h"
+#include "render/color_lut.h"
 #include "render/environment_maps.h"
 #include "render/gpu_mesh_cache.h"
 #include "render/impostor_cache.h"
@@ -65,6 +66,8 @@ struct RenderResources {
   GrowingBuffer overlayVertices;
 
   EnvironmentMaps environment;  // the analytic sky's image-based light (none with the gradient sky)
+  GpuLutCache luts;             // the grading LUT's tables (none without a LUT)
+  std::string lastLutProblem;   // reported once on stderr until it changes
 
   // Clustered lights (passes/light_culling.h): clusters over the cap are
   // reported once until a frame has none again.

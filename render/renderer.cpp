@@ -848,6 +848,7 @@ void Renderer::shutdown() {
   d_->res.impostors.clear();
   d_->res.materials.clear();
   d_->res.terrain.release();
+  d_->res.luts.release();
   d_->res.pool.clear();
   d_->res.shaders.release();
   d_ = std::make_unique<Impl>();  // every remaining handle deletes its object now

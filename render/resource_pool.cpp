@@ -19,6 +19,7 @@ size_t bytesPerTexel(GLenum format) {
     case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_DEPTH_COMPONENT24: case GL_R11F_G11F_B10F:
     case GL_RGB10_A2: return 4;
     case GL_RGBA16F: case GL_RGBA16: case GL_RG32F: case GL_RG32UI: return 8;
+    case GL_RGB32F: return 12;  // grading LUTs (color_lut.h)
     case GL_RGBA32F: case GL_RGBA32UI: return 16;
     default: return 0;
   }

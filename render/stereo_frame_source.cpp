@@ -12,6 +12,7 @@
 #include "render/pixel_readback.h"
 #include "render/stereo_views.h"
 #include "scene/animation.h"
+#include "scene/camera_cuts_check.h"
 
 namespace hs::render {
 
@@ -72,14 +73,18 @@ struct StereoFrameSource::Impl {
   StereoFrameOptions options;
   sequencer::CompiledSequence compiled;
   scene::EntityId camera = scene::kNoEntity;
+  bool followCuts = false;  // no camera given and the scene has cuts
+  std::string cutsProblem;  // why they cannot be rendered ("" when sound)
 
   // The output framebuffer the renderer tone-maps into, per eye size.
   OutputTarget output[2];  // one per view: both eyes render in one frame
+  OutputTarget groupOutput[2][2];  // a transition's two shots, each tone mapped alone too
 
   struct Slot {
     PixelReadback buffer;
     int64_t frame = -1;
     int views = 0;          // 1 (mono) or 2 (eyes)
+    int depthBase = 0;      // the renderer's kept view of view 0's depth (a transition: the stronger shot's)
     bool duplicate = false; // a mono camera in a stereo layout: the one view is both eyes
     PixelKind kind = PixelKind::Display8;
     int width = 0, height = 0;
@@ -97,8 +102,20 @@ struct StereoFrameSource::Impl {
   Impl(OffscreenRenderer& r, const scene::SceneState& s, const StereoFrameOptions& o)
       : offscreen(r), base(s), options(o), compiled(scene::compileSequence(s)) {
     camera = o.camera != scene::kNoEntity ? o.camera : shotCamera(s);
+    followCuts = o.camera == scene::kNoEntity && !s.sequence.cuts.empty();
+    if (followCuts) cutsProblem = scene::cutsProblem(s);
     for (const std::string& p : compiled.problems()) warn(p);
   }
+
+  RenderOptions renderOptions(const Slot& slot, const RenderView& lodView) const {
+    RenderOptions ro;
+    ro.lodView = &lodView;  // both eyes: their camera's levels of detail
+    ro.showGrid = options.showGrid;
+    ro.keepHdr = slot.kind == PixelKind::LinearFloat;
+    ro.keepDepth = slot.depth;
+    return ro;
+  }
+  static const char* eyeName(size_t count, size_t i) { return count == 2 ? (i == 0 ? "left" : "right") : ""; }
 
   void warn(const std::string& w) {
     if (seenWarnings.insert(w).second) warnings.push_back(w);
@@ -117,20 +134,47 @@ struct StereoFrameSource::Impl {
   // the slot's buffer. Levels of detail come from `lodView`.
   void renderViews(const scene::SceneState& state, const std::vector<RenderView>& views, Slot& slot,
                    const RenderView& lodView) {
-    RenderOptions ro;
-    ro.lodView = &lodView;  // both eyes: their camera's levels of detail
-    ro.showGrid = options.showGrid;
-    ro.keepHdr = slot.kind == PixelKind::LinearFloat;
-    ro.keepDepth = slot.depth;
     std::vector<ViewTarget> targets;
-    for (size_t i = 0; i < views.size(); ++i)
-      targets.push_back({views[i], output[i].fbo(), views.size() == 2 ? (i == 0 ? "left" : "right") : ""});
-    offscreen.renderer().renderViews(state, targets, ro);
+    for (size_t i = 0; i < views.size(); ++i) targets.push_back({views[i], output[i].fbo(), eyeName(views.size(), i)});
+    offscreen.renderer().renderViews(state, targets, renderOptions(slot, lodView));
+    slot.depthBase = 0;  // the frame's own views
+    queueReads(slot, 0);
+  }
+
+  // A transition's frame: both shots' views (`shots[g]`, the same count
+  // each) as two view groups of one frame, their light combined with
+  // `weights` into the outputs; LODs per shot from its own mono view.
+  void renderTransition(const scene::SceneState& state, const std::vector<RenderView> shots[2],
+                        const RenderView* lodViews[2], std::pair<float, float> weights, Slot& slot) {
+    std::vector<ViewGroup> groups(2);
+    for (size_t g = 0; g < 2; ++g) {
+      for (size_t i = 0; i < shots[g].size(); ++i) {
+        groupOutput[g][i].ensure(slot.width, slot.height, slot.kind == PixelKind::Display16 ? GL_RGBA16 : GL_RGBA8);
+        groups[g].targets.push_back({shots[g][i], groupOutput[g][i].fbo(), eyeName(shots[g].size(), i)});
+      }
+      groups[g].lodView = lodViews[g];
+    }
+    GroupCombine combine;
+    for (size_t i = 0; i < shots[0].size(); ++i)
+      combine.targets.push_back({shots[1][i], output[i].fbo(), eyeName(shots[0].size(), i)});
+    combine.weights = {weights.first, weights.second};
+    RenderOptions ro = renderOptions(slot, *lodViews[0]);
+    offscreen.renderer().renderGroups(state, groups, ro, &combine);
+    // Kept views: each group's, then the combined ones. Depth (the comfort
+    // check) is the stronger shot's: what a viewer's eyes converge on.
+    const int views = int(shots[0].size());
+    slot.depthBase = weights.second > weights.first ? views : 0;
+    queueReads(slot, 2 * views);
+  }
+
+  // Queues the reads of the slot's colour (from the outputs, or the kept
+  // HDR views from `hdrBase` on) and depth into its buffer.
+  void queueReads(Slot& slot, int hdrBase) {
     slot.buffer.bindForPack();
-    for (size_t i = 0; i < views.size(); ++i) {
+    for (size_t i = 0; i < size_t(slot.views); ++i) {
       auto* colorAt = reinterpret_cast<void*>(colorOffset(slot, int(i)));
       if (slot.kind == PixelKind::LinearFloat) {
-        offscreen.renderer().readHdrInto(colorAt, colorBytes(slot), i);
+        offscreen.renderer().readHdrInto(colorAt, colorBytes(slot), size_t(hdrBase) + i);
       } else {
         glBindFramebuffer(GL_READ_FRAMEBUFFER, output[i].fbo());
         glPixelStorei(GL_PACK_ALIGNMENT, 4);
@@ -138,7 +182,8 @@ struct StereoFrameSource::Impl {
                      slot.kind == PixelKind::Display16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE, colorAt);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
       }
-      if (slot.depth) offscreen.renderer().readDepth(reinterpret_cast<void*>(depthOffset(slot, int(i))), i);
+      if (slot.depth)
+        offscreen.renderer().readDepth(reinterpret_cast<void*>(depthOffset(slot, int(i))), size_t(slot.depthBase) + i);
     }
     PixelReadback::unbindPack();
   }
@@ -167,14 +212,24 @@ bool StereoFrameSource::begin(const sequencer::FrameJob& job, std::string& error
     error = "the headless OpenGL context could not be made current";
     return false;
   }
-  if (d.camera == scene::kNoEntity || !d.base.find(d.camera) || !d.base.find(d.camera)->camera) {
+  if (!d.cutsProblem.empty()) {
+    error = "the camera cuts cannot be rendered: " + d.cutsProblem;
+    return false;
+  }
+  // The frame's shot: its cut's camera, or two during a transition.
+  const std::optional<sequencer::Shot> shot =
+      d.followCuts ? sequencer::shotAt(d.base.sequence.cuts, job.frame) : std::nullopt;
+  const scene::EntityId camera = shot ? scene::EntityId(shot->camera) : d.camera;
+  if (camera == scene::kNoEntity || !d.base.find(camera) || !d.base.find(camera)->camera) {
     error = "the scene has no camera to render through (add one, or name one with --camera)";
     return false;
   }
   std::vector<std::string> warnings;
   const scene::SceneState state = scene::animatedState(d.base, d.compiled, job.time, &warnings);
   for (const std::string& w : warnings) d.warn(w);
-  const EyeViews views = eyeViews(state, d.camera, job.eyeWidth, job.eyeHeight);
+  const EyeViews views = eyeViews(state, camera, job.eyeWidth, job.eyeHeight);
+  std::optional<EyeViews> incoming;
+  if (shot && shot->incoming) incoming = eyeViews(state, scene::EntityId(shot->incoming), job.eyeWidth, job.eyeHeight);
 
   Impl::Slot& slot = d.slots[d.begun % 2];
   slot.buffer.unmap();
@@ -183,16 +238,28 @@ bool StereoFrameSource::begin(const sequencer::FrameJob& job, std::string& error
                               : d.options.displayBits16 ? PixelKind::Display16 : PixelKind::Display8;
   slot.width = job.eyeWidth;
   slot.height = job.eyeHeight;
-  const bool twoViews = job.bothEyes && views.stereo;
+  // A transition between a stereo and a mono camera renders the mono one
+  // for both eyes, so the two shots combine eye by eye.
+  const bool twoViews = job.bothEyes && (views.stereo || (incoming && incoming->stereo));
   slot.views = twoViews ? 2 : 1;
-  slot.duplicate = job.bothEyes && !views.stereo;
+  slot.duplicate = job.bothEyes && !twoViews;
   slot.depth = d.options.comfort.has_value();
-  slot.eyes = views.eyes;
+  const bool incomingStronger = incoming && shot->weights().second > shot->weights().first;
+  slot.eyes = incomingStronger ? incoming->eyes : views.eyes;
   for (int i = 0; i < slot.views; ++i)
     d.output[i].ensure(job.eyeWidth, job.eyeHeight, slot.kind == PixelKind::Display16 ? GL_RGBA16 : GL_RGBA8);
   slot.buffer.reserve(d.colorBytes(slot) * size_t(slot.views) + (slot.depth ? d.depthBytes(slot) * size_t(slot.views) : 0));
-  if (twoViews) d.renderViews(state, {views.left, views.right}, slot, views.mono);
-  else d.renderViews(state, {views.mono}, slot, views.mono);
+  auto viewsOf = [&](const EyeViews& e) {
+    return twoViews ? (e.stereo ? std::vector<RenderView>{e.left, e.right} : std::vector<RenderView>{e.mono, e.mono})
+                    : std::vector<RenderView>{e.mono};
+  };
+  if (incoming) {
+    const std::vector<RenderView> shots[2] = {viewsOf(views), viewsOf(*incoming)};
+    const RenderView* lods[2] = {&views.mono, &incoming->mono};
+    d.renderTransition(state, shots, lods, shot->weights(), slot);
+  } else {
+    d.renderViews(state, viewsOf(views), slot, views.mono);
+  }
   slot.buffer.fence();
   ++d.begun;
   const GLenum err = glGetError();

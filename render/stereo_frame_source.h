@@ -22,7 +22,12 @@
 namespace hs::render {
 
 struct StereoFrameOptions {
-  scene::EntityId camera = scene::kNoEntity;  // kNoEntity: shotCamera() of the scene
+  // kNoEntity: the scene's camera cuts (sequencer/camera_cuts.h) choose each
+  // frame's camera, a transition's frames render both shots as two view
+  // groups combined (Renderer::renderGroups); frames outside every cut,
+  // and scenes without cuts, look through shotCamera(). A camera named
+  // here is used for every frame, cuts or not.
+  scene::EntityId camera = scene::kNoEntity;
   bool showGrid = true;          // AND-ed with the scene's own grid setting, as for a single frame
   // Display pixels at 16 bits (for 16-bit PNG), handed over as linear float
   // so layouts and the writer keep the precision. Without FXAA only: its
@@ -45,6 +50,7 @@ class StereoFrameSource final : public sequencer::FrameSource {
   bool finish(const sequencer::FrameJob& job, sequencer::EyeImages& out, std::string& error) override;
   int framesInFlight() const override;
 
+  // The camera of frames outside every cut (or of every frame without cuts).
   scene::EntityId camera() const;
   // Per finished frame, in order, when options.comfort is set.
   const std::vector<sequencer::FrameComfort>& comfort() const;

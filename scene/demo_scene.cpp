@@ -13,6 +13,7 @@
 #include "scene/demo_glass.h"
 #include "scene/demo_materials.h"
 #include "scene/demo_particles.h"
+#include "scene/demo_post.h"
 #include "scene/demo_terrain.h"
 #include "scene/mesh_materials.h"
 #include "scene/object_tracks.h"
@@ -327,11 +328,28 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
   if (!addDemoFoliage(s, error)) return std::nullopt;
   // Snow, a fog bank between the pillars and a torch on the tallest (docs/particles.md).
   if (!addDemoParticles(s, error)) return std::nullopt;
-  // Bloom (docs/rendering.md "Post-processing"): the torch's flames and the
-  // sunlit snow above the threshold glow; the other post effects stay off.
-  s.settings.post.bloom = true;
-  s.settings.post.bloomIntensity = 0.04f;
-  s.settings.post.bloomThreshold = 1.0f;
+  // Bloom and a LUT grade (docs/rendering.md "Post-processing").
+  addDemoPost(s);
+  // Camera cuts (docs/sequencer.md "Camera cuts"): the stereo flight for
+  // 7 s, then a 1 s crossfade to a second rig high on the far side of the
+  // bunnies for the last 3 s. Its convergence and height keep the nearest
+  // ground in view (about 6 m) inside the comfort budget.
+  {
+    Entity crane;
+    crane.name = "Crane Camera";
+    const glm::dvec3 eye(7.0, 9.0, 3.2), target(0.3, 1.2, 0.9);
+    crane.transform.translation = eye;
+    crane.transform.rotation = sequencer::lookRotation(target - eye);
+    crane.camera = Camera{};
+    crane.camera->verticalFovDeg = 40.0;
+    crane.camera->stereo = Camera::Stereo::OffAxis;
+    crane.camera->interaxial = 0.065;
+    crane.camera->convergence = 10.0;
+    const EntityId craneId = add(s, crane);
+    s.sequence.cuts = {sequencer::CameraCut{s.findByName("Flight Camera"), 0, 419},
+                       sequencer::CameraCut{craneId, 420, 599, sequencer::Transition::Crossfade, 60,
+                                            sequencer::Ease::InOut}};
+  }
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

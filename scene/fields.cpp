@@ -380,6 +380,11 @@ std::vector<SettingsField> buildSettingsFields() {
       boundedVec3Field<S>("post.grade.gain", "Gain", 0.0, 10.0, [](S& s) -> glm::vec3& { return s.post.gain; }),
       doubleField<S>("post.grade.saturation", "Saturation", 0.0, 4.0, 0.01, "",
                      [](S& s) -> float& { return s.post.saturation; }),
+      // The LUT itself (post.lut) comes from `lut import` / Import LUT...
+      // (scene/color_lut.h); these turn it on and mix it in.
+      boolField<S>("post.lut.enabled", "LUT", [](S& s) -> bool& { return s.post.lutEnabled; }),
+      doubleField<S>("post.lut.intensity", "LUT intensity", 0.0, 1.0, 0.01, "",
+                     [](S& s) -> float& { return s.post.lutIntensity; }),
       boolField<S>("post.vignette.enabled", "Vignette", [](S& s) -> bool& { return s.post.vignette; }),
       doubleField<S>("post.vignette.intensity", "Vignette intensity", 0.0, 1.0, 0.01, "",
                      [](S& s) -> float& { return s.post.vignetteIntensity; }),

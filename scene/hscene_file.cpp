@@ -14,6 +14,7 @@
 
 #include "core/content_hash.h"
 #include "foliage/impostor_images.h"
+#include "scene/color_lut.h"
 #include "scene/foliage_file.h"
 #include "scene/hscene_recovery.h"
 #include "scene/hscene_schema.h"
@@ -124,6 +125,10 @@ std::map<std::string, BlobSource> wantedBlobs(const SceneState& s) {
   for (const auto& [id, t] : s.textures)
     if (t.standalone() && t.image)
       out[textureKey(id)] = {toHex(t.contentHash), [image = t.image] { return encodeTexture(*image); }, false};
+  if (const LutData& lut = s.settings.post.lut; !lut.empty() && lut.bytes)
+    out[lutBlobKey(lut.contentHash)] = {toHex(lut.contentHash), [bytes = lut.bytes] {
+                                          return std::vector<uint8_t>(bytes->begin(), bytes->end());
+                                        }, false};
   addTerrainBlobs(s, out);
   addFoliageBlobs(s, out);
   return out;
@@ -539,6 +544,29 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
         return std::nullopt;
       }
       t.image = std::make_shared<const mesh::Texture>(std::move(*image));
+    }
+  }
+  // The grading LUT (format 13): a missing or damaged one is dropped with a
+  // warning and the scene renders ungraded; the rest opens.
+  if (LutData& lut = state->settings.post.lut; !lut.empty()) {
+    const std::string what = path + ": LUT '" + lut.fileName + "'";
+    std::vector<uint8_t> bytes;
+    std::string problem;
+    if (!readBlob(lutBlobKey(lut.contentHash), what, bytes)) {
+      problem = error;
+      error.clear();
+    } else {
+      auto text = std::make_shared<const std::string>(bytes.begin(), bytes.end());
+      if (contentHash(text->data(), text->size()) != lut.contentHash)
+        problem = what + ": its data does not match its checksum (damaged file)";
+      else if (problem = lutProblem(what, lut.fileName, *text); problem.empty())
+        lut.bytes = std::move(text);
+    }
+    if (!problem.empty()) {
+      report->warnings.push_back(problem + "; the scene renders without it (`hybridscape-cli lut import` "
+                                           "stores a LUT again)");
+      lut = {};
+      state->settings.post.lutEnabled = false;
     }
   }
   // Terrains' tiles, checked against their hashes and the description.

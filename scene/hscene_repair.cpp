@@ -9,6 +9,7 @@
 
 #include "core/content_hash.h"
 #include "foliage/impostor_images.h"
+#include "scene/color_lut.h"
 #include "scene/demo_scene.h"
 #include "scene/hscene_file.h"
 #include "scene/legacy_hashes.h"
@@ -233,6 +234,26 @@ void salvageMeshes(SqliteDb& db, SceneState& s, int version, RepairReport& r) {
   salvageMaterials(db, s, lost, r);
 }
 
+// The grading LUT: kept when its blob verifies, else dropped and noted
+// (the scene renders ungraded until a LUT is imported again).
+void salvageLut(SqliteDb& db, SceneState& s, RepairReport& r) {
+  LutData& lut = s.settings.post.lut;
+  if (lut.empty()) return;
+  std::vector<uint8_t> bytes;
+  std::string why;
+  if (readBlobBytes(db, lutBlobKey(lut.contentHash), bytes, why)) {
+    auto text = std::make_shared<const std::string>(bytes.begin(), bytes.end());
+    if (contentHash(text->data(), text->size()) == lut.contentHash) {
+      lut.bytes = std::move(text);
+      return;
+    }
+    why = "its hash does not match";
+  }
+  r.dropped.push_back("the LUT '" + lut.fileName + "' (" + why + "); `hybridscape-cli lut import` stores one again");
+  lut = {};
+  s.settings.post.lutEnabled = false;
+}
+
 // Without a description, meshes are found by their blob keys ("mesh/<id>")
 // and checked against the hash stored beside them; each becomes an entity
 // at the origin of a starter scene, so its data is not lost.
@@ -329,6 +350,7 @@ bool repairScene(const std::string& damaged, const std::string& out, RepairRepor
     for (const std::string& c : clamped) r.notes.push_back(damaged + ": " + c);
     if (state) {
       salvageMeshes(db, *state, version, r);
+      salvageLut(db, *state, r);
       if (!state->terrains.empty() && !loadTerrainTiles(db, *state, damaged, version, e, nullptr)) {
         r.dropped.push_back(std::to_string(state->terrains.size()) + " terrain(s): " + named(e));
         state->terrains.clear();

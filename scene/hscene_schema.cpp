@@ -7,6 +7,7 @@
 #include <set>
 #include <utility>
 
+#include "scene/color_lut.h"
 #include "scene/foliage_file.h"
 
 namespace hs::scene {
@@ -80,6 +81,7 @@ std::vector<std::string> danglingBlobKeys(SqliteDb& db, const SceneState& state,
     if (const auto id = idAfter(key, "mesh/"); id && state.assets.count(AssetId(*id))) continue;
     if (const auto id = idAfter(key, "terrain/"); id && state.terrains.count(TerrainId(*id))) continue;
     if (cells.count(key)) continue;  // a foliage cell (foliage_file.h)
+    if (!state.settings.post.lut.empty() && key == lutBlobKey(state.settings.post.lut.contentHash)) continue;
     // A standalone texture's bytes (format 5; a mesh's textures live in its mesh blob).
     if (const auto id = idAfter(key, "texture/"); id) {
       const TextureAsset* t = state.findTexture(TextureId(*id));

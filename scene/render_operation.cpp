@@ -21,7 +21,8 @@ std::vector<ParamDecl> frameParams() {
   return {size,
           text("camera", "Camera",
                "camera entity to render from (one frame: the first camera, or with none a view that frames the "
-               "whole scene; a sequence: the first camera the timeline animates, else the first camera)",
+               "whole scene; a sequence: its camera cuts (`cut add`), else the first camera the timeline "
+               "animates, else the first camera; a camera named here is used for every frame, cuts or not)",
                "NAME"),
           {.key = "aa", .option = "aa", .label = "Anti-aliasing", .type = ParamType::Choice, .choices = kAntialiasing,
            .help = "override the scene's anti-aliasing setting", .valueName = "A"},

@@ -409,6 +409,12 @@ struct Reader : JsonReader {
     }
     return hash(member(o, "hash"), jsonPath(p, "hash"), t.contentHash) && optBoolean(o, p, "srgb", t.srgb);
   }
+  // settings."post.lut": {"file", "hash"}; the bytes come from blob "lut/<hash>".
+  bool lut(const Json& o, const std::string& p, LutData& out) {
+    if (!object(o, p) || !optString(o, p, "file", out.fileName)) return false;
+    if (out.fileName.empty()) return fail(jsonPath(p, "file"), "missing: a LUT needs its file name");
+    return hash(member(o, "hash"), jsonPath(p, "hash"), out.contentHash);
+  }
 };
 
 // A bad value fails `r`; a description whose parts do not fit together
@@ -430,6 +436,9 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
       if (!v) continue;  // older files: keep the default
       if (!r.field(f, *v, jsonPath("settings", f.key), s.settings)) return std::nullopt;
     }
+    if (const Json* lut = JsonReader::member(*settings, "post.lut");
+        lut && !lut->is_null() && !r.lut(*lut, jsonPath("settings", "post.lut"), s.settings.post.lut))
+      return std::nullopt;
   }
 
   const Json* roots = r.optArray(json, "", "roots");
@@ -557,6 +566,8 @@ Json sceneToJson(const SceneState& state) {
   root["version"] = kSceneFormatVersion;
   Json settings = Json::object();
   for (const auto& f : settingsFields()) settings[f.key] = fieldToJson(f, state.settings);
+  if (const LutData& lut = state.settings.post.lut; !lut.empty())
+    settings["post.lut"] = Json{{"file", lut.fileName}, {"hash", toHex(lut.contentHash)}};
   root["settings"] = std::move(settings);
   root["roots"] = state.roots;
   Json entities = Json::array();

@@ -53,7 +53,10 @@ namespace hs::scene {
 // 12: a mesh asset's baked impostor (its "impostor_hash", blob
 // "mesh/<id>/impostor"). A version-11 reader ignores both and its next save
 // drops the impostor, which the renderer then bakes again when drawing.
-constexpr int kSceneFormatVersion = 12;
+// 13: a colour grading LUT (settings "post.lut": file name and hash, blob
+// "lut/<hash>" with the file's bytes; scene/color_lut.h). A version-12
+// reader ignores both and its next save drops the LUT.
+constexpr int kSceneFormatVersion = 13;
 constexpr int kFirstPhysicalLightsFormat = 6;
 constexpr int kFirstPerLightShadowsFormat = 7;
 constexpr int kFirstPhysicalBrdfFormat = 8;

@@ -79,10 +79,24 @@ enum class Antialiasing { None = 0, Fxaa = 1, Msaa4 = 2 };
 // compressed).
 enum class Tonemap { Aces = 0, None = 1, AgX = 2, PbrNeutral = 3 };
 
+// A colour look-up table held by the document (docs/rendering.md
+// "Post-processing", LUTs): the bytes of the file as imported, in any format
+// OpenColorIO reads (.cube, .3dl, .spi3d, .csp, ...; its name's extension
+// says which), so a scene grades the same on a farm node as on the machine
+// that imported it. Stored in the .hscene as blob "lut/<hash>". Compared by
+// name and content hash, not by the bytes.
+struct LutData {
+  std::string fileName;                        // "teal_orange.cube" (no folder); empty: none
+  std::shared_ptr<const std::string> bytes{};  // null while a loaded description waits for its blob
+  uint64_t contentHash = 0;                    // XXH3 of the bytes (core/content_hash.h)
+  bool empty() const { return fileName.empty(); }
+  bool operator==(const LutData& o) const { return fileName == o.fileName && contentHash == o.contentHash; }
+};
+
 // The post chain from the scene's HDR colour to the output
 // (docs/rendering.md "Post-processing"), in this order: exposure, bloom,
 // chromatic aberration (on the scene's light, as a lens makes it), the tone
-// map, the grade, the vignette, grain, then FXAA. Each effect runs only
+// map, the grade, the LUT, the vignette, grain, then FXAA. Each effect runs only
 // when enabled: with all off the chain is the tone map alone, no pass or
 // texture more.
 struct PostSettings {
@@ -112,6 +126,11 @@ struct PostSettings {
   bool grain = false;
   float grainIntensity = 0.05f;
   float grainSizePx = 1.5f;  // grain size, pixels per 1080 lines
+  // A look-up table after the grade (scene/color_lut.h), applied by
+  // OpenColorIO's GPU shader to the sRGB-encoded image, mixed in by intensity.
+  bool lutEnabled = false;
+  float lutIntensity = 1.0f;
+  LutData lut{};
   bool operator==(const PostSettings&) const = default;
 };
 // Shadow presets (docs/rendering.md "Shadows"): map size, cascades and PCF

@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "sequencer/camera_cuts.h"
 #include "sequencer/camera_path.h"
 #include "sequencer/frame_range.h"
 #include "sequencer/track.h"
@@ -37,6 +38,9 @@ struct Sequence {
   int64_t startFrame = 0;     // playback and export range, inclusive
   int64_t endFrame = 35999;
   std::vector<Binding> bindings;
+  // The camera-cut track (camera_cuts.h), sorted by start; empty: the
+  // render's own camera throughout.
+  std::vector<CameraCut> cuts;
   bool operator==(const Sequence&) const = default;
 
   Binding* findBinding(uint64_t entity);

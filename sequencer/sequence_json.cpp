@@ -327,7 +327,7 @@ Json sequenceToJson(const Sequence& s) {
   // open in builds from before material and settings tracks.
   bool entitiesOnly = true;
   for (const Binding& b : s.bindings) entitiesOnly = entitiesOnly && isEntityTarget(b.entity);
-  o["version"] = entitiesOnly ? 1 : kSequenceFormatVersion;
+  o["version"] = !s.cuts.empty() ? 3 : entitiesOnly ? 1 : 2;
   o["rate"] = Json::array({s.rate.num, s.rate.den});
   o["start"] = s.startFrame;
   o["end"] = s.endFrame;
@@ -347,6 +347,19 @@ Json sequenceToJson(const Sequence& s) {
     bindings.push_back(std::move(bj));
   }
   o["bindings"] = std::move(bindings);
+  if (!s.cuts.empty()) {
+    Json cuts = Json::array();
+    for (const CameraCut& c : s.cuts) {
+      Json cj = {{"camera", c.camera}, {"start", c.start}, {"end", c.end}};
+      if (c.transition != Transition::Cut) {
+        cj["transition"] = transitionName(c.transition);
+        cj["frames"] = c.transitionFrames;
+        cj["ease"] = easeName(c.ease);
+      }
+      cuts.push_back(std::move(cj));
+    }
+    o["cuts"] = std::move(cuts);
+  }
   return o;
 }
 
@@ -365,6 +378,43 @@ bool readSequence(JsonReader& r, const Json& j, const std::string& path, Sequenc
     Binding b;
     if (!readBinding(r, (*bindings)[i], jsonIndex(bp, i), version, b)) return false;
     s.bindings.push_back(std::move(b));
+  }
+  // Camera cuts (version 3): their values read here; whether they fit
+  // together and name cameras is camera_cuts.h's cutsProblem, asked where
+  // they are rendered (a file with a cut on a deleted camera still opens).
+  if (const Json* cuts = JsonReader::member(j, "cuts"); cuts && !cuts->is_null()) {
+    const std::string cp = jsonPath(path, "cuts");
+    if (!r.array(*cuts, cp)) return false;
+    for (size_t i = 0; i < cuts->size(); ++i) {
+      const Json& cj = (*cuts)[i];
+      const std::string p = jsonIndex(cp, i);
+      CameraCut c;
+      int64_t camera = 0;
+      if (!r.object(cj, p)) return false;
+      for (auto [key, out] : {std::pair{"camera", &camera}, {"start", &c.start}, {"end", &c.end}}) {
+        const Json* v = r.required(cj, p, key);
+        if (!v || !r.integer(*v, jsonPath(p, key), *out, key == std::string("camera") ? 1 : -kMaxExact, kMaxExact))
+          return false;
+      }
+      c.camera = uint64_t(camera);
+      if (const Json* t = JsonReader::member(cj, "transition")) {
+        std::string name;
+        if (!r.string(*t, jsonPath(p, "transition"), name)) return false;
+        const std::optional<Transition> kind = transitionFromName(name);
+        if (!kind) return r.fail(jsonPath(p, "transition"), "unknown transition '" + name + "' (" + transitionNames() + ")");
+        c.transition = *kind;
+        const Json* frames = r.required(cj, p, "frames");
+        if (!frames || !r.integer(*frames, jsonPath(p, "frames"), c.transitionFrames, 0, kMaxExact)) return false;
+        if (const Json* e = JsonReader::member(cj, "ease")) {
+          std::string ease;
+          if (!r.string(*e, jsonPath(p, "ease"), ease)) return false;
+          const std::optional<Ease> value = easeFromName(ease);
+          if (!value) return r.fail(jsonPath(p, "ease"), "unknown ease '" + ease + "' (none, in, out, in_out)");
+          c.ease = *value;
+        }
+      }
+      s.cuts.push_back(c);
+    }
   }
   return true;
 }

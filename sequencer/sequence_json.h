@@ -31,8 +31,12 @@
 
 namespace hs::sequencer {
 
-// 1: entity bindings; 2: material and settings bindings too.
-inline constexpr int kSequenceFormatVersion = 2;
+// 1: entity bindings; 2: material and settings bindings too; 3: camera
+// cuts ("cuts": [{"camera": 3, "start": 0, "end": 599, "transition":
+// "crossfade", "frames": 30, "ease": "in_out"}], camera_cuts.h; the
+// transition members only when it is not a plain cut). A sequence is
+// written with the lowest version that holds it.
+inline constexpr int kSequenceFormatVersion = 3;
 
 Json sequenceToJson(const Sequence& sequence);
 // nullopt with `error` naming the place: "bindings[0].tracks[2].keys[5].interp:

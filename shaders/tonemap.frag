@@ -3,7 +3,7 @@
 // post chain's per-pixel effects in one pass, in the chain's order:
 // exposure, bloom (added from the bloom chain's last upsample), chromatic
 // aberration (on the scene's light), the tone map, the colour grade, the
-// vignette, film grain, then sRGB encoding (done here, so any 8-bit
+// LUT, the vignette, film grain, then sRGB encoding (done here, so any 8-bit
 // target, the Qt widget's included, shows correct sRGB). Each effect is a
 // define, set only when enabled: with none the pass is exposure, the tone
 // map and the encoding alone. When FXAA follows, luma goes to alpha for
@@ -26,6 +26,7 @@ uniform float uVignette;        // HS_VIGNETTE
 uniform vec2 uAspect;           // (width / height, 1) / its length: the corner at distance 1
 uniform float uGrain;           // HS_GRAIN
 uniform float uGrainCell;       // pixels per grain cell
+uniform float uLutIntensity;    // HS_LUT: OpenColorIO's hsLut (render/color_lut.h), mixed in by this
 layout(location = 0) out vec4 outColor;
 
 vec3 acesFitted(vec3 x) {
@@ -109,6 +110,13 @@ void main() {
   c = pow(c, 1.0 / uGamma);
   const float luma = dot(c, vec3(0.2126, 0.7152, 0.0722));
   c = max(mix(vec3(luma), c, uSaturation), 0.0);
+#endif
+#ifdef HS_LUT
+  // A grading LUT maps display code values (what .cube looks are made
+  // for): encoded to sRGB, looked up, decoded back to display-linear.
+  const vec3 encoded = linearToSrgb(c);
+  const vec3 looked = hsLut(vec4(encoded, 1.0)).rgb;
+  c = srgbToLinear(clamp(mix(encoded, looked, uLutIntensity), 0.0, 1.0));
 #endif
 #ifdef HS_VIGNETTE
   // cos^4 of the angle a pinhole sees the corner at, scaled to the

@@ -1,11 +1,13 @@
 // bench_post: the post chain's cost per effect (docs/rendering.md
 // "Post-processing"), one eye at 1920x1080 by default: a frame of a small
 // lit scene with every effect off (the tone map pass alone), then with
-// each effect on alone, then all of them; per row the GPU time of the
+// each effect on alone (the LUT at 33^3 and 65^3), then all of them; per row the GPU time of the
 // post passes (the tone map pass and bloom's levels, timestamp queries),
 // their count, and the frame's wall time over the all-off frame's. The
 // all-off row against a frame with the tone map only is the claim that
-// the chain costs nothing when off: the same pass, the same time.
+// the chain costs nothing when off: the same pass, the same time. Last, a
+// transition's frame (two shots as two view groups, combined) against a
+// plain one.
 //
 //   bench_post [--size 1920x1080] [--frames N]
 #include <QCoreApplication>
@@ -17,7 +19,9 @@
 #include "bench/common/bench_util.h"
 #include "mesh/primitives.h"
 #include "render/offscreen_renderer.h"
+#include "core/content_hash.h"
 #include "render/renderer.h"
+#include "scene/demo_post.h"
 #include "scene/scene_state.h"
 #include "sequencer/camera_path.h"
 #include "tests/common/scene_parts.h"
@@ -63,6 +67,14 @@ int main(int argc, char** argv) {
   v.fovY = glm::radians(50.0);
   v.eye = {0.0, -8.0, 2.5};
   v.orientation = sequencer::lookRotation(glm::dvec3(0.0, 8.0, -1.5));
+  // The demo's LUT (scene/demo_post.h) at two sizes: OpenColorIO's shader
+  // with a tetrahedral lookup into a 33^3 or 65^3 3D texture.
+  auto lutOf = [](int size) {
+    auto bytes = std::make_shared<const std::string>(scene::demoLutCube(size));
+    const uint64_t hash = contentHash(bytes->data(), bytes->size());
+    return scene::LutData{"bench_" + std::to_string(size) + ".cube", bytes, hash};
+  };
+  static const scene::LutData lut33 = lutOf(33), lut65 = lutOf(65);
   struct Row {
     const char* name;
     void (*set)(scene::PostSettings&);
@@ -74,8 +86,11 @@ int main(int argc, char** argv) {
       {"grade", [](scene::PostSettings& p) { p.grade = true, p.saturation = 1.2f; }},
       {"vignette", [](scene::PostSettings& p) { p.vignette = true; }},
       {"grain", [](scene::PostSettings& p) { p.grain = true; }},
+      {"LUT 33^3", [](scene::PostSettings& p) { p.lut = lut33, p.lutEnabled = true; }},
+      {"LUT 65^3", [](scene::PostSettings& p) { p.lut = lut65, p.lutEnabled = true; }},
       {"all on", [](scene::PostSettings& p) {
          p.bloom = p.chromaticAberration = p.grade = p.vignette = p.grain = true;
+         p.lut = lut33, p.lutEnabled = true;
        }},
   };
   std::printf("%-22s %8s %12s %12s %10s\n", "effect", "passes", "post GPU ms", "frame ms", "/all off");
@@ -106,6 +121,29 @@ int main(int argc, char** argv) {
     if (offFrame == 0.0) offFrame = frame;
     std::printf("%-22s %8zu %12.2f %12.1f %10.3f\n", row.name, passes, bench::median(post), frame, frame / offFrame);
     std::fflush(stdout);
+  }
+  // A transition's frame (sequencer/camera_cuts.h): both shots rendered as
+  // two view groups and combined, against one shot's frame.
+  {
+    render::RenderView other = v;
+    other.eye = {6.0, -6.0, 3.0};
+    other.orientation = sequencer::lookRotation(glm::dvec3(-6.0, 6.0, -2.0));
+    const scene::SceneState s = baseScene();
+    std::vector<double> plain, mixed;
+    for (int f = 0; f < frames + 1; ++f) {
+      double t0 = bench::nowSeconds();
+      r.renderOnly(s, v, o);
+      const double one = (bench::nowSeconds() - t0) * 1e3;
+      t0 = bench::nowSeconds();
+      r.renderMix(s, {v, other}, {0.5f, 0.5f}, false, nullptr, o);
+      const double two = (bench::nowSeconds() - t0) * 1e3;
+      if (f == 0) continue;
+      plain.push_back(one);
+      mixed.push_back(two);
+    }
+    std::printf("\n%-22s %12s %12s %10s\n", "frame", "plain ms", "transition", "/plain");
+    std::printf("%-22s %12.1f %12.1f %10.3f\n", "crossfade (2 shots)", bench::median(plain), bench::median(mixed),
+                bench::median(mixed) / bench::median(plain));
   }
   return 0;
 }

@@ -60,6 +60,7 @@ std::string ProgramDesc::key() const {
   std::vector<std::string> d = defines;
   std::sort(d.begin(), d.end());
   for (const auto& x : d) k += "|" + x;
+  if (!generated.empty()) k += "|generated:" + generated;
   return k;
 }
 
@@ -74,7 +75,7 @@ std::string ProgramDesc::name() const {
 }
 
 bool preprocessShader(std::string_view file, const std::vector<std::string>& defines, std::string& out,
-                      std::vector<std::string>& files, std::string& error) {
+                      std::vector<std::string>& files, std::string& error, std::string_view generated) {
   const std::string_view src = embeddedShader(file);
   if (src.empty()) {
     error = "shader source shaders/" + std::string(file) + " is not in this build";
@@ -89,6 +90,12 @@ bool preprocessShader(std::string_view file, const std::vector<std::string>& def
   out.assign(first);
   out += "\n";
   for (const auto& d : defines) out += "#define " + d + "\n";
+  if (!generated.empty()) {
+    out += "#line 1 " + std::to_string(files.size()) + "\n";
+    files.push_back("<generated>");
+    out.append(generated);
+    out += "\n";
+  }
   std::set<std::string> done;
   std::vector<std::string> stack;
   return expand(file, out, files, done, stack, error);

@@ -22,6 +22,9 @@ struct ProgramDesc {
   std::string fragment;  // empty for a compute program
   std::string compute;
   std::vector<std::string> defines;  // "NAME" or "NAME VALUE"
+  // GLSL made at run time (OpenColorIO's LUT function, render/color_lut.h),
+  // put into the fragment (or compute) stage after the defines; part of the key.
+  std::string generated{};
 
   std::string key() const;
   std::string name() const;  // for messages: "mesh.vert + mesh.frag [SHADING_GOURAUD]"
@@ -32,8 +35,10 @@ struct ProgramDesc {
 // compiler messages pointing at the right file and line: GLSL names a
 // source by number, so `files` receives the file of each number.
 // False with `error` for a missing file or an include cycle.
+// `generated` (ProgramDesc::generated) follows the defines as source
+// "<generated>".
 bool preprocessShader(std::string_view file, const std::vector<std::string>& defines, std::string& out,
-                      std::vector<std::string>& files, std::string& error);
+                      std::vector<std::string>& files, std::string& error, std::string_view generated = {});
 
 // The text of an include file (frame_blocks.glsl) with its own includes
 // expanded, for a program written outside shaders/ that must read the

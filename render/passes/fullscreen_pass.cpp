@@ -13,7 +13,7 @@ void drawFullscreen(RenderResources& res, const FullscreenDraw& draw) {
     glDisable(GL_DEPTH_TEST);
   }
   if (draw.view >= 0) res.bindView(size_t(draw.view));
-  GlProgram& p = res.program({"fullscreen.vert", draw.fragment, "", draw.defines});
+  GlProgram& p = res.program({"fullscreen.vert", draw.fragment, "", draw.defines, draw.generated});
   p.use();
   if (draw.uniforms) draw.uniforms(p);
   for (const auto& [unit, texture] : draw.textures) glBindTextureUnit(unit, texture);
@@ -46,6 +46,7 @@ TextureRef addFullscreenPass(FrameGraph& graph, FrameContext& frame, const ViewC
             FullscreenDraw draw;
             draw.fragment = p.fragment;
             draw.defines = p.defines;
+            draw.generated = p.generated;
             draw.framebuffer = p.toTarget ? target : r.framebuffer({d.out});
             draw.width = p.toTarget ? w : p.output.width;
             draw.height = p.toTarget ? h : p.output.height;

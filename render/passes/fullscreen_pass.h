@@ -20,6 +20,7 @@ namespace hs::render {
 struct FullscreenDraw {
   std::string fragment;                          // "tonemap.frag"
   std::vector<std::string> defines{};
+  std::string generated{};                       // gl::ProgramDesc::generated
   GLuint framebuffer = 0;
   int width = 0, height = 0;                     // the viewport
   std::vector<std::pair<unsigned, GLuint>> textures{};  // (texture unit, texture)
@@ -38,6 +39,7 @@ struct FullscreenPass {
   std::string name;                   // the pass's name, with the view's suffix
   std::string fragment;
   std::vector<std::string> defines{};
+  std::string generated{};
   std::vector<std::pair<unsigned, TextureRef>> inputs{};  // (texture unit, what it samples)
   // The output: a new texture `outputName` of `output`, or with `toTarget`
   // the view's framebuffer (a side effect) at the view's size.

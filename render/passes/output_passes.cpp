@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "render/color_lut.h"
 #include "render/passes/bloom_passes.h"
 #include "render/passes/fullscreen_pass.h"
 #include "scene/light_units.h"
@@ -79,6 +81,28 @@ glm::vec3 whiteBalanceGains(float temperature, float tint) {
   return g / glm::dot(g, glm::vec3(0.2126f, 0.7152f, 0.0722f));
 }
 
+namespace {
+// The GPU form of the scene's LUT when it is on and can be drawn; a LUT
+// that cannot is reported once (stderr) and the frame is drawn without it.
+const GpuLut* lutForFrame(FrameContext& frame, const std::vector<std::string>& toneMapDefines) {
+  const scene::PostSettings& post = frame.settings.post;
+  if (!post.lutEnabled || post.lut.empty() || !post.lut.bytes) return nullptr;
+  std::string error;
+  const GpuLut* lut = frame.res.luts.get(post.lut, error);
+  if (lut) {
+    // Built here, before the frame draws, so that a program OpenColorIO's
+    // text breaks leaves the LUT out instead of stopping the renderer.
+    std::vector<std::string> defines = toneMapDefines;
+    defines.push_back("HS_LUT");
+    if (!frame.res.shaders.get({"fullscreen.vert", "tonemap.frag", "", defines, lut->shaderText}, error)) lut = nullptr;
+  }
+  if (!lut && error != frame.res.lastLutProblem)
+    std::fprintf(stderr, "hybridscape: the grading LUT is left out of the frame: %s\n", error.c_str());
+  frame.res.lastLutProblem = lut ? std::string() : error;
+  return lut;
+}
+}  // namespace
+
 void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef hdr) {
   const bool fxaa = frame.settings.antialiasing == scene::Antialiasing::Fxaa;
   const scene::PostSettings& post = frame.settings.post;
@@ -93,6 +117,29 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
     if (bloom.light.valid()) tm.inputs.push_back({1, bloom.light});
     else std::erase(tm.defines, std::string("HS_BLOOM"));
   }
+  // The grading LUT: OpenColorIO's function goes into the program, its
+  // 3D (and 2D) tables into the graph as imported textures from unit 2 on;
+  // 1D tables (shapers of 1D LUTs) are bound beside them.
+  struct LutTable {
+    std::string sampler;
+    unsigned unit;
+    GLuint texture1d;  // nonzero: bound by the uniforms, not an input
+  };
+  std::vector<LutTable> lutTables;
+  if (const GpuLut* lut = lutForFrame(frame, tm.defines)) {
+    tm.defines.push_back("HS_LUT");
+    tm.generated = lut->shaderText;
+    unsigned unit = 2;
+    for (size_t i = 0; i < lut->tables.size(); ++i, ++unit) {
+      const GpuLut::Table& t = lut->tables[i];
+      if (t.target == GL_TEXTURE_1D) {
+        lutTables.push_back({t.sampler, unit, t.texture});
+      } else {
+        tm.inputs.push_back({unit, graph.importTexture(v.named("lut_table" + std::to_string(i)), t.texture, t.desc)});
+        lutTables.push_back({t.sampler, unit, 0});
+      }
+    }
+  }
   if (fxaa) {
     tm.outputName = v.named("ldr_color");
     tm.output = TextureDesc{v.view.width, v.view.height, GL_RGBA8};
@@ -102,7 +149,7 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
   const float diagonal = std::hypot(float(v.view.width), float(v.view.height));
   const float lines = float(v.view.height) / 1080.0f;  // the pixel sizes are per 1080 lines
   tm.uniforms = [&frame, fxaa, post, diagonal, lines, w = v.view.width, h = v.view.height,
-                 bloomWeight = bloom.weightSum](GlProgram& p) {
+                 bloomWeight = bloom.weightSum, lutTables](GlProgram& p) {
     p.set("uExposure", float(scene::exposureMultiplier(frame.settings.exposureEv100)));
     p.set("uLumaInAlpha", fxaa);
     p.set("uBloomIntensity", post.bloomIntensity / bloomWeight);
@@ -118,6 +165,14 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
     p.set("uAspect", aspect / glm::length(aspect));
     p.set("uGrain", post.grainIntensity);
     p.set("uGrainCell", std::max(1.0f, post.grainSizePx * lines));
+    p.set("uLutIntensity", post.lutIntensity);
+    for (const LutTable& t : lutTables) {
+      p.set(t.sampler.c_str(), int(t.unit));
+      glBindSampler(t.unit, 0);  // the texture's own filtering, as OpenColorIO asks
+      // (A 1D table stays bound on its unit after the draw: no other pass
+      // samples a 1D texture.)
+      if (t.texture1d) glBindTextureUnit(t.unit, t.texture1d);
+    }
   };
   const TextureRef ldr = addFullscreenPass(graph, frame, v, std::move(tm));
   if (!fxaa) return;

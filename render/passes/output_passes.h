@@ -2,8 +2,8 @@
 // The passes from the scene's HDR colour to the caller's framebuffer:
 // MSAA resolve (only with MSAA), the post chain (docs/rendering.md
 // "Post-processing": bloom's levels only with bloom, then one pass for
-// exposure, chromatic aberration, the tone map, the grade, the vignette,
-// grain and sRGB encoding, each a shader define only when enabled), FXAA
+// exposure, chromatic aberration, the tone map, the grade, the LUT (its
+// OpenColorIO function and tables), the vignette, grain and sRGB encoding, each a shader define only when enabled), FXAA
 // (only with FXAA), and a single-sample copy of the depth for the frames
 // whose depth is read back (the stereo comfort check). Include only inside
 // render/.

@@ -248,7 +248,7 @@ class TestCli : public QObject {
     QCOMPARE(size_t(assets[0].toObject()["triangles"].toDouble()), faces);
     QVERIFY(assets[0].toObject()["vertices"].toDouble() > 30000);
     // Cameras.
-    QCOMPARE(info["cameras"].toArray(), (QJsonArray{"Main Camera", "Flight Camera"}));  // the stereo flight's too
+    QCOMPARE(info["cameras"].toArray(), (QJsonArray{"Main Camera", "Flight Camera", "Crane Camera"}));  // the stereo flight's and the cut to the crane's too
     // Bounds: hold every vertex of every instance, and the size is max - min.
     const QJsonObject bounds = info["bounds_m"].toObject();
     const glm::dvec3 bmin = vec3(bounds["min"]), bmax = vec3(bounds["max"]), bsize = vec3(bounds["size"]);

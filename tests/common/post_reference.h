@@ -3,12 +3,14 @@
 // "Post-processing"; shaders/tonemap.frag is the GPU side): exposure,
 // chromatic aberration (bilinear taps of the HDR image as GL samples them),
 // the tone maps (none, ACES fitted, AgX, Khronos PBR Neutral), the grade,
-// the vignette and grain, then sRGB encoding to 8 bits. Bloom is not here
+// the LUT (given as a function), the vignette and grain, then sRGB
+// encoding to 8 bits. Bloom is not here
 // (its tests check what it does, not its arithmetic). What test_post_chain
 // holds the renderer's output against.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 
 #include <glm/glm.hpp>
 
@@ -100,10 +102,21 @@ inline double bilinearRef(const Image& img, glm::dvec2 uv, int ch) {
   return (1 - ty) * ((1 - tx) * at(ix, iy) + tx * at(ix + 1, iy)) + ty * ((1 - tx) * at(ix, iy + 1) + tx * at(ix + 1, iy + 1));
 }
 
+inline double srgbToLinearRef(double s) {
+  s = std::clamp(s, 0.0, 1.0);
+  return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+}
+
+// A LUT on sRGB-encoded values in [0, 1] (OpenColorIO's CPU processor in
+// test_post_lut).
+using LutRef = std::function<glm::dvec3(glm::dvec3)>;
+
 // The output (sRGB, 8 bits, top row first) of `hdr` (the renderer's linear
 // HDR, before exposure) through the chain `settings` asks for, bloom left
-// out, at frame number `frame`.
-inline Image postReference(const Image& hdr, const scene::SceneSettings& settings, int64_t frame) {
+// out, at frame number `frame`; `lut` stands for the stored LUT when
+// settings.post.lutEnabled.
+inline Image postReference(const Image& hdr, const scene::SceneSettings& settings, int64_t frame,
+                           const LutRef& lut = {}) {
   const scene::PostSettings& post = settings.post;
   const double exposure = scene::exposureMultiplier(settings.exposureEv100);
   const bool ca = post.chromaticAberration && post.chromaticAberrationPx > 0.0f;
@@ -132,6 +145,12 @@ inline Image postReference(const Image& hdr, const scene::SceneSettings& setting
         for (int k = 0; k < 3; ++k) c[k] = std::pow(c[k], 1.0 / double(post.gamma[k]));
         const double luma = glm::dot(c, glm::dvec3(0.2126, 0.7152, 0.0722));
         c = glm::max(glm::mix(glm::dvec3(luma), c, double(post.saturation)), 0.0);
+      }
+      if (post.lutEnabled && lut) {
+        glm::dvec3 e;
+        for (int k = 0; k < 3; ++k) e[k] = srgbRef(c[k]);
+        const glm::dvec3 looked = glm::mix(e, lut(e), double(post.lutIntensity));
+        for (int k = 0; k < 3; ++k) c[k] = srgbToLinearRef(looked[k]);
       }
       if (vignette) {
         const double r = glm::length((uv - 0.5) * 2.0 * aspect);

@@ -128,6 +128,7 @@ size_t assetBlobs(const SceneState& s) {
   for (const auto& [id, a] : s.assets) n += 1 + a.lods.size();
   // Standalone textures (the demo's slabs) have a blob each; a mesh's live in its blob.
   for (const auto& [id, t] : s.textures) n += t.standalone() ? 1 : 0;
+  n += s.settings.post.lut.empty() ? 0 : 1;  // the grading LUT (the demo's)
   return n;
 }
 

@@ -112,6 +112,7 @@ class TestViewGroups : public QObject {
     scene::SceneState s = demo_;
     s.settings.tonemap = scene::Tonemap::None;
     s.settings.antialiasing = scene::Antialiasing::None;
+    s.settings.post.lutEnabled = false;  // the demo's LUT is test_post_lut's; here the sum alone
     render::ViewGroup ga{{target(0, a_)}, nullptr};
     render::ViewGroup gb{{target(1, b_)}, nullptr};
     render::GroupCombine combine;

@@ -1,0 +1,118 @@
+#include "render/color_lut.h"
+
+#include <OpenColorIO/OpenColorIO.h>
+
+#include "scene/lut_processor.h"
+
+namespace OCIO = OCIO_NAMESPACE;
+
+namespace hs::render {
+namespace {
+
+// As OpenColorIO's own OpenGL helpers set them: nearest only where the
+// LUT asks for it (its tetrahedral lookup reads texel centres itself).
+void setSampling(GLuint texture, OCIO::Interpolation interpolation, bool volume) {
+  const GLint filter = interpolation == OCIO::INTERP_NEAREST ? GL_NEAREST : GL_LINEAR;
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, filter);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, filter);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  if (volume) glTextureParameteri(texture, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+}
+
+std::unique_ptr<GpuLut> makeGpuLut(const scene::LutData& lut, std::string& error) {
+  const OCIO::ConstProcessorRcPtr processor = scene::lutProcessor(lut, error);
+  if (!processor) return nullptr;
+  auto out = std::make_unique<GpuLut>();
+  try {
+    OCIO::GpuShaderDescRcPtr desc = OCIO::GpuShaderDesc::CreateShaderDesc();
+    desc->setLanguage(OCIO::GPU_LANGUAGE_GLSL_4_0);
+    desc->setFunctionName("hsLut");
+    desc->setResourcePrefix("hs_lut_");
+    processor->getDefaultGPUProcessor()->extractGpuShaderInfo(desc);
+    if (desc->getNumUniforms() != 0) {
+      // A file transform has none; dynamic properties (exposure, contrast
+      // of a config's look) are not what a stored LUT can hold.
+      error = lut.fileName + ": OpenColorIO's shader for it needs uniforms, which a stored LUT cannot have";
+      return nullptr;
+    }
+    out->shaderText = desc->getShaderText();
+    for (unsigned i = 0; i < desc->getNum3DTextures(); ++i) {
+      const char *name = nullptr, *sampler = nullptr;
+      unsigned edge = 0;
+      OCIO::Interpolation interpolation = OCIO::INTERP_LINEAR;
+      desc->get3DTexture(i, name, sampler, edge, interpolation);
+      const float* values = nullptr;
+      desc->get3DTextureValues(i, values);
+      GpuLut::Table t{sampler, 0, GL_TEXTURE_3D, TextureDesc{}};
+      t.desc.width = t.desc.height = t.desc.depth = int(edge);
+      t.desc.format = GL_RGB32F;
+      glCreateTextures(GL_TEXTURE_3D, 1, &t.texture);
+      glTextureStorage3D(t.texture, 1, GL_RGB32F, GLsizei(edge), GLsizei(edge), GLsizei(edge));
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      glTextureSubImage3D(t.texture, 0, 0, 0, 0, GLsizei(edge), GLsizei(edge), GLsizei(edge), GL_RGB, GL_FLOAT,
+                          values);
+      setSampling(t.texture, interpolation, true);
+      out->bytes += t.desc.bytes();
+      out->tables.push_back(std::move(t));
+    }
+    for (unsigned i = 0; i < desc->getNumTextures(); ++i) {
+      const char *name = nullptr, *sampler = nullptr;
+      unsigned width = 0, height = 0;
+      OCIO::GpuShaderDesc::TextureType channel = OCIO::GpuShaderDesc::TEXTURE_RGB_CHANNEL;
+      OCIO::Interpolation interpolation = OCIO::INTERP_LINEAR;
+      desc->getTexture(i, name, sampler, width, height, channel, interpolation);
+      const float* values = nullptr;
+      desc->getTextureValues(i, values);
+      const bool red = channel == OCIO::GpuShaderDesc::TEXTURE_RED_CHANNEL;
+      const GLenum internal = red ? GL_R32F : GL_RGB32F, format = red ? GL_RED : GL_RGB;
+      // OpenColorIO declares a table one texel high as a sampler1D.
+      GpuLut::Table t{sampler, 0, height > 1 ? GLenum(GL_TEXTURE_2D) : GLenum(GL_TEXTURE_1D), TextureDesc{}};
+      t.desc.width = int(width);
+      t.desc.height = int(height);
+      t.desc.format = internal;
+      glCreateTextures(t.target, 1, &t.texture);
+      if (t.target == GL_TEXTURE_2D) {
+        glTextureStorage2D(t.texture, 1, internal, GLsizei(width), GLsizei(height));
+        glTextureSubImage2D(t.texture, 0, 0, 0, GLsizei(width), GLsizei(height), format, GL_FLOAT, values);
+      } else {
+        glTextureStorage1D(t.texture, 1, internal, GLsizei(width));
+        glTextureSubImage1D(t.texture, 0, 0, GLsizei(width), format, GL_FLOAT, values);
+      }
+      setSampling(t.texture, interpolation, false);
+      out->bytes += t.desc.bytes();
+      out->tables.push_back(std::move(t));
+    }
+  } catch (const std::exception& e) {
+    error = lut.fileName + ": OpenColorIO cannot make its GPU shader: " + e.what();
+    for (const GpuLut::Table& t : out->tables) glDeleteTextures(1, &t.texture);
+    return nullptr;
+  }
+  return out;
+}
+
+}  // namespace
+
+const GpuLut* GpuLutCache::get(const scene::LutData& lut, std::string& error) {
+  if (hash_ == lut.contentHash && fileName_ == lut.fileName && (lut_ || !failure_.empty())) {
+    error = failure_;  // a LUT that failed is not tried again every frame
+    return lut_.get();
+  }
+  release();
+  lut_ = makeGpuLut(lut, error);
+  hash_ = lut.contentHash;
+  fileName_ = lut.fileName;
+  if (!lut_) failure_ = error.empty() ? lut.fileName + ": no GPU form" : error;
+  return lut_.get();
+}
+
+void GpuLutCache::release() {
+  if (lut_)
+    for (const GpuLut::Table& t : lut_->tables) glDeleteTextures(1, &t.texture);
+  lut_.reset();
+  hash_ = 0;
+  fileName_.clear();
+  failure_.clear();
+}
+
+}  // namespace hs::render

@@ -1,0 +1,223 @@
+#include "scene/color_lut.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/content_hash.h"
+#include "scene/edit.h"
+#include "scene/lut_processor.h"
+
+namespace OCIO = OCIO_NAMESPACE;
+
+namespace hs::scene {
+namespace {
+
+std::string extensionOf(const std::string& fileName) {
+  const std::string ext = std::filesystem::path(fileName).extension().string();
+  return ext.empty() ? std::string() : ext.substr(1);
+}
+
+// A text format holds its numbers as words; one that reads as a number but
+// is not finite ("nan", "inf", "1e999") would reach the GPU as NaN.
+std::string nonFiniteNumber(const std::string& where, const std::string& bytes) {
+  if (bytes.find('\0') != std::string::npos) return "";  // a binary format: the lattice check covers it
+  std::istringstream in(bytes);
+  std::string line;
+  for (size_t number = 1; std::getline(in, line); ++number) {
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream words(line);
+    std::string w;
+    while (words >> w) {
+      char* end = nullptr;
+      const double v = std::strtod(w.c_str(), &end);
+      if (end == w.c_str() + w.size() && !std::isfinite(v))
+        return where + ":" + std::to_string(number) + ": '" + w + "' is not a finite number";
+    }
+  }
+  return "";
+}
+
+// OpenColorIO's message names the cache file; the user knows the LUT by its name.
+std::string userMessage(std::string message, const std::string& cachePath, const std::string& where) {
+  for (size_t at; !cachePath.empty() && (at = message.find(cachePath)) != std::string::npos;)
+    message.replace(at, cachePath.size(), where);
+  return message;
+}
+
+}  // namespace
+
+std::string lutBlobKey(uint64_t hash) { return "lut/" + toHex(hash); }
+
+std::vector<std::string> lutFileExtensions() {
+  std::vector<std::string> out;
+  for (int i = 0; i < OCIO::FileTransform::GetNumFormats(); ++i) {
+    const std::string ext = OCIO::FileTransform::GetFormatExtensionByIndex(i);
+    if (std::find(out.begin(), out.end(), ext) == out.end()) out.push_back(ext);
+  }
+  return out;
+}
+
+std::string lutCacheFile(const LutData& lut, std::string& error) {
+  if (!lut.bytes) {
+    error = lut.fileName + ": the LUT's data is not loaded";
+    return {};
+  }
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path dir = fs::temp_directory_path(ec) / ("hybridscape-luts-" + std::to_string(getuid()));
+  fs::create_directories(dir, ec);
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(lut.contentHash));
+  const std::string ext = extensionOf(lut.fileName);
+  const fs::path file = dir / (std::string(hex) + (ext.empty() ? "" : "." + ext));
+  if (fs::exists(file, ec) && fs::file_size(file, ec) == lut.bytes->size()) return file.string();
+  // Written under a name of its own, then renamed: render nodes sharing a
+  // temporary folder never read half a file.
+  static std::atomic<int> counter{0};
+  const fs::path part = dir / (std::string(hex) + ".part" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+  {
+    std::ofstream out(part, std::ios::binary);
+    out.write(lut.bytes->data(), std::streamsize(lut.bytes->size()));
+    if (!out) {
+      error = lut.fileName + ": cannot write the LUT for OpenColorIO to " + part.string();
+      fs::remove(part, ec);
+      return {};
+    }
+  }
+  fs::rename(part, file, ec);
+  if (ec) {
+    error = lut.fileName + ": cannot write the LUT for OpenColorIO to " + file.string() + ": " + ec.message();
+    fs::remove(part, ec);
+    return {};
+  }
+  return file.string();
+}
+
+OCIO::ConstProcessorRcPtr lutProcessor(const LutData& lut, std::string& error) {
+  const std::string path = lutCacheFile(lut, error);
+  if (path.empty()) return {};
+  try {
+    OCIO::FileTransformRcPtr file = OCIO::FileTransform::Create();
+    file->setSrc(path.c_str());
+    file->setInterpolation(OCIO::INTERP_BEST);
+    file->setDirection(OCIO::TRANSFORM_DIR_FORWARD);
+    return OCIO::Config::CreateRaw()->getProcessor(file);
+  } catch (const std::exception& e) {
+    error = userMessage(e.what(), path, lut.fileName);
+    return {};
+  }
+}
+
+std::string lutProblem(const std::string& where, const std::string& fileName, const std::string& bytes) {
+  if (bytes.empty()) return where + ": the file is empty";
+  if (bytes.size() > kMaxLutFileBytes)
+    return where + ": " + std::to_string(bytes.size() >> 20) + " MB, larger than the " +
+           std::to_string(kMaxLutFileBytes >> 20) + " MB a LUT may have";
+  if (std::string p = nonFiniteNumber(where, bytes); !p.empty()) return p;
+  LutData lut{fileName, std::make_shared<const std::string>(bytes), contentHash(bytes.data(), bytes.size())};
+  std::string error;
+  const OCIO::ConstProcessorRcPtr processor = lutProcessor(lut, error);
+  if (!processor) {
+    // OpenColorIO says per format it tried why (with the line for text
+    // formats), over several lines: kept whole, on one.
+    std::string oneLine;
+    for (char c : error)
+      if (!std::isspace(static_cast<unsigned char>(c))) oneLine += c;
+      else if (!oneLine.empty() && oneLine.back() != ' ') oneLine += ' ';
+    return where + ": OpenColorIO cannot read it as a LUT: " + oneLine;
+  }
+  try {
+    const OCIO::ConstCPUProcessorRcPtr cpu = processor->getDefaultCPUProcessor();
+    constexpr int n = 17;
+    for (int b = 0; b < n; ++b)
+      for (int g = 0; g < n; ++g)
+        for (int r = 0; r < n; ++r) {
+          float rgb[3] = {float(r) / (n - 1), float(g) / (n - 1), float(b) / (n - 1)};
+          cpu->applyRGB(rgb);
+          if (!std::isfinite(rgb[0]) || !std::isfinite(rgb[1]) || !std::isfinite(rgb[2]))
+            return where + ": gives a non-finite colour for the input (" + std::to_string(float(r) / (n - 1)) +
+                   ", " + std::to_string(float(g) / (n - 1)) + ", " + std::to_string(float(b) / (n - 1)) + ")";
+        }
+  } catch (const std::exception& e) {
+    return where + ": OpenColorIO cannot apply it: " + e.what();
+  }
+  return "";
+}
+
+std::optional<LutData> readLutFile(const std::string& path, std::string& error) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) {
+    error = path + ": a folder, not a LUT file";
+    return std::nullopt;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = path + ": cannot open it";
+    return std::nullopt;
+  }
+  const uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > kMaxLutFileBytes) {
+    error = path + ": " + std::to_string(size >> 20) + " MB, larger than the " + std::to_string(kMaxLutFileBytes >> 20) +
+            " MB a LUT may have";
+    return std::nullopt;
+  }
+  std::ostringstream read;
+  read << in.rdbuf();
+  std::string bytes = std::move(read).str();
+  const std::string name = fs::path(path).filename().string();
+  if (std::string p = lutProblem(path, name, bytes); !p.empty()) {
+    error = p;
+    return std::nullopt;
+  }
+  const uint64_t hash = contentHash(bytes.data(), bytes.size());
+  return LutData{name, std::make_shared<const std::string>(std::move(bytes)), hash};
+}
+
+const OperationDecl& lutImportOperation() {
+  static const OperationDecl op{
+      .name = "lut import",
+      .summary = "grade the scene with a LUT file (stored in the scene)",
+      .usage = "<lut-file> <scene.hscene>",
+      .description = "Reads a colour look-up table with OpenColorIO (.cube, .3dl, .spi3d, .spi1d, .csp, .clf and "
+                     "the other formats it reads), stores its bytes in the scene (a render node needs no copy of "
+                     "the file) and turns settings.post.lut.enabled on. The LUT maps sRGB-encoded display values "
+                     "after the tone map and the grade (docs/rendering.md, \"Post-processing\"). A scene holds "
+                     "one LUT: importing another replaces it.",
+      .notes = "Mix it in with: hybridscape-cli set settings.post.lut.intensity 0.5 scene.hscene",
+      .positionals = {{.name = "lut-file", .help = "the LUT file"}, {.name = "scene.hscene", .help = "the scene file"}},
+  };
+  return op;
+}
+
+const OperationDecl& lutClearOperation() {
+  static const OperationDecl op{
+      .name = "lut clear",
+      .summary = "remove the scene's LUT",
+      .usage = "<scene.hscene>",
+      .description = "Removes the stored LUT and turns settings.post.lut.enabled off.",
+      .positionals = {{.name = "scene.hscene", .help = "the scene file"}},
+  };
+  return op;
+}
+
+namespace ops {
+bool setLut(Document& doc, const LutData& lut) {
+  Edit e(doc, lut.empty() ? QString("Remove LUT") : QString("Import LUT %1").arg(QString::fromStdString(lut.fileName)));
+  e.settings().post.lut = lut;
+  e.settings().post.lutEnabled = !lut.empty();
+  return e.commit();
+}
+}  // namespace ops
+
+}  // namespace hs::scene

@@ -1,0 +1,15 @@
+#pragma once
+// The demo's post chain (docs/rendering.md "Post-processing"): bloom on the
+// torch's flames and the brightest sunlit surfaces, and a grade with a LUT
+// stored in the scene ("meteora_dusk.cube", made here: warm highlights on
+// the sandstone, slightly cooler shadows, a gentle S curve), mixed in at
+// 70 %. The other effects stay off.
+#include "scene/scene_state.h"
+
+namespace hs::scene {
+
+// The demo's LUT as .cube text: `size` points per axis.
+std::string demoLutCube(int size = 33);
+void addDemoPost(SceneState& state);
+
+}  // namespace hs::scene

@@ -1,0 +1,114 @@
+// The grading LUT in the editor, under Xvfb: the Scene Settings dock's LUT
+// row (Import LUT..., the stored file's name, Remove) after the LUT fields.
+// Importing a .cube is one undo step and changes the viewport's picture; a
+// file OpenColorIO refuses is shown as an error naming the file and line,
+// and the scene stays as it was.
+#include <QLabel>
+#include <QPushButton>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include "app/main_window.h"
+#include "app/settings_panel.h"
+#include "editor_fixture.h"
+#include "lut_files.h"
+
+using namespace hs;
+using hs::app::MainWindow;
+
+class LutEditorTest : public QObject {
+  Q_OBJECT
+ public:
+  static void initMain() { test::initEditorMain(); }
+
+ private slots:
+  void initTestCase() {
+    app::initApplicationSettings();
+    QVERIFY(app::settingsSandboxed());
+    QVERIFY(tmp_.isValid());
+    w_ = std::make_unique<MainWindow>();
+    prompts_ = test::setQuietPrompts(*w_);
+    w_->resize(1100, 760);
+    w_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w_.get()));
+    panel_ = w_->findChild<app::SettingsPanel*>("settingsPanel");
+    QVERIFY(panel_);
+    test::waitForNextFrame(*w_->viewport());
+  }
+
+  void theRowIsThere() {
+    QVERIFY(panel_->editorFor("post.lut.enabled"));
+    QVERIFY(panel_->editorFor("post.lut.intensity"));
+    QLabel* name = panel_->findChild<QLabel*>("lutName");
+    QVERIFY(name);
+    QCOMPARE(name->text(), QString("none"));
+    QVERIFY(!panel_->findChild<QPushButton*>("lutRemove")->isEnabled());
+  }
+
+  void importGradesTheViewportAsOneStep() {
+    const QImage before = w_->viewport()->grabFramebuffer();
+    const QString file = tmp_.filePath("look.cube");
+    QVERIFY(test::writeText(file.toStdString(), test::cube3dText(17, test::tealOrangeLook)));
+    prompts_->openAnswer = file;
+    const int steps = doc().undoStack()->index();
+    panel_->findChild<QPushButton*>("lutImport")->click();
+    QVERIFY(prompts_->errors.isEmpty());
+    QCOMPARE(doc().undoStack()->index(), steps + 1);
+    QCOMPARE(doc().state().settings.post.lut.fileName, std::string("look.cube"));
+    QVERIFY(doc().state().settings.post.lutEnabled);
+    QVERIFY(panel_->findChild<QLabel*>("lutName")->text().startsWith("look.cube ("));
+    QVERIFY(panel_->findChild<QPushButton*>("lutRemove")->isEnabled());
+    test::waitForNextFrame(*w_->viewport());
+    const QImage after = w_->viewport()->grabFramebuffer();
+    QCOMPARE(after.size(), before.size());
+    int worst = 0;
+    for (int y = 0; y < after.height(); y += 4)
+      for (int x = 0; x < after.width(); x += 4) {
+        const QRgb a = before.pixel(x, y), b = after.pixel(x, y);
+        worst = std::max({worst, std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)),
+                          std::abs(qBlue(a) - qBlue(b))});
+      }
+    QVERIFY2(worst > 10, qPrintable(QString("the graded viewport differs by %1 at most").arg(worst)));
+    doc().undoStack()->undo();
+    QVERIFY(doc().state().settings.post.lut.empty());
+    QCOMPARE(panel_->findChild<QLabel*>("lutName")->text(), QString("none"));
+    doc().undoStack()->redo();
+  }
+
+  void aRefusedFileIsShownAndChangesNothing() {
+    const QString file = tmp_.filePath("broken.cube");
+    std::string text = test::cube3dText(4, test::identityLook);
+    text.replace(text.find("0.333333 0.000000 0.000000"), 8, "nan");
+    QVERIFY(test::writeText(file.toStdString(), text));
+    prompts_->openAnswer = file;
+    const int steps = doc().undoStack()->index();
+    panel_->findChild<QPushButton*>("lutImport")->click();
+    QCOMPARE(prompts_->errors.size(), 1);
+    QVERIFY2(prompts_->errors[0].contains("broken.cube:5: 'nan' is not a finite number"), qPrintable(prompts_->errors[0]));
+    QCOMPARE(doc().undoStack()->index(), steps);
+    QCOMPARE(doc().state().settings.post.lut.fileName, std::string("look.cube"));  // the one before stays
+    prompts_->errors.clear();
+    // Cancelled: nothing.
+    prompts_->openAnswer.clear();
+    panel_->findChild<QPushButton*>("lutImport")->click();
+    QCOMPARE(doc().undoStack()->index(), steps);
+    // Remove: one step, the row says none.
+    panel_->findChild<QPushButton*>("lutRemove")->click();
+    QCOMPARE(doc().undoStack()->index(), steps + 1);
+    QVERIFY(doc().state().settings.post.lut.empty());
+    QVERIFY(!doc().state().settings.post.lutEnabled);
+    QCOMPARE(panel_->findChild<QLabel*>("lutName")->text(), QString("none"));
+  }
+
+  void cleanupTestCase() { w_.reset(); }
+
+ private:
+  scene::Document& doc() { return w_->document(); }
+  QTemporaryDir tmp_;
+  std::unique_ptr<MainWindow> w_;
+  test::QuietPrompts* prompts_ = nullptr;
+  app::SettingsPanel* panel_ = nullptr;
+};
+
+QTEST_MAIN(LutEditorTest)
+#include "test_editor_lut.moc"

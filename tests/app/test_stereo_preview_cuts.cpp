@@ -1,0 +1,58 @@
+// The editor's stereo preview follows the camera cuts
+// (app/stereo_preview.h activeCamera): with nothing selected it looks
+// through the cut's camera at the shown frame, the stronger shot during a
+// transition, the shot camera outside every cut or where a cut's camera is
+// gone; a selected camera still wins.
+#include <QtTest>
+
+#include "app/selection.h"
+#include "app/stereo_preview.h"
+#include "editor_fixture.h"
+#include "render/stereo_views.h"
+
+using namespace hs;
+
+class StereoPreviewCutsTest : public QObject {
+  Q_OBJECT
+ public:
+  static void initMain() { test::initEditorMain(); }
+
+ private slots:
+  void initTestCase() { app::initApplicationSettings(); }
+
+  void followsTheCutAtTheFrame() {
+    scene::SceneState s;
+    for (scene::EntityId id : {1, 2, 3}) {
+      scene::Entity cam;
+      cam.id = id;
+      cam.name = "Camera " + std::to_string(id);
+      cam.camera = scene::Camera{};
+      s.entities[id] = cam;
+      s.roots.push_back(id);
+    }
+    using sequencer::CameraCut, sequencer::Transition;
+    s.sequence.cuts = {CameraCut{2, 10, 49}, CameraCut{3, 50, 99, Transition::Crossfade, 10, sequencer::Ease::None}};
+    app::StereoPreviewSettings preview;
+    app::Selection selection;
+    auto at = [&](int64_t frame) {
+      s.time.frame = frame;
+      return preview.activeCamera(s, selection);
+    };
+    const scene::EntityId shot = at(0);  // outside every cut: the shot camera
+    QCOMPARE(shot, render::shotCamera(s));
+    QCOMPARE(at(10), scene::EntityId(2));
+    QCOMPARE(at(50), scene::EntityId(2));  // the crossfade's first frame: the shot before
+    QCOMPARE(at(54), scene::EntityId(2));  // weights 0.6 / 0.4
+    QCOMPARE(at(56), scene::EntityId(3));  // 0.4 / 0.6: the incoming shot is stronger
+    QCOMPARE(at(99), scene::EntityId(3));
+    QCOMPARE(at(100), shot);
+    selection.set({1});  // a selected camera wins
+    QCOMPARE(at(60), scene::EntityId(1));
+    selection.clear();
+    s.entities.at(3).camera.reset();  // the cut's camera is no camera any more
+    QCOMPARE(at(70), shot);
+  }
+};
+
+QTEST_MAIN(StereoPreviewCutsTest)
+#include "test_stereo_preview_cuts.moc"
