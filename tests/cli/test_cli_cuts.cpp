@@ -10,9 +10,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
-#include <OpenImageIO/imageio.h>
-
 #include "cli_runner.h"
+#include "file_pixels.h"
 #include "file_bytes.h"
 #include "look_from.h"
 #include "mesh/primitives.h"
@@ -24,14 +23,7 @@ using namespace hs;
 
 namespace {
 
-std::vector<unsigned char> pixels(const QString& path) {
-  auto in = OIIO::ImageInput::open(path.toStdString());
-  if (!in) return {};
-  const OIIO::ImageSpec& spec = in->spec();
-  std::vector<unsigned char> out(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, out.data())) return {};
-  return out;
-}
+std::vector<unsigned char> pixels(const QString& path) { return hs::test::filePixels(path.toStdString()); }
 
 // Two cameras looking at two differently coloured boxes; 10 frames a second.
 scene::SceneState twoShots() {

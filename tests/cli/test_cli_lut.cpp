@@ -6,9 +6,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
-#include <OpenImageIO/imageio.h>
-
 #include "cli_runner.h"
+#include "file_pixels.h"
 #include "file_bytes.h"
 #include "lut_files.h"
 #include "scene/hscene_file.h"
@@ -17,14 +16,7 @@ using namespace hs;
 
 namespace {
 
-std::vector<unsigned char> pixels(const QString& path) {
-  auto in = OIIO::ImageInput::open(path.toStdString());
-  if (!in) return {};
-  const OIIO::ImageSpec& spec = in->spec();
-  std::vector<unsigned char> out(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, out.data())) return {};
-  return out;
-}
+std::vector<unsigned char> pixels(const QString& path) { return hs::test::filePixels(path.toStdString()); }
 
 int largestDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b) {
   if (a.size() != b.size() || a.empty()) return 1000;

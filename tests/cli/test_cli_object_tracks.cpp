@@ -13,9 +13,8 @@
 #include <filesystem>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
-
 #include "cli_runner.h"
+#include "file_pixels.h"
 #include "file_bytes.h"
 #include "scene/scene_state.h"
 
@@ -36,14 +35,7 @@ const QString kMaterial = "box / default";
 // text that reads back to the same float.
 const QString kDefaultExposure = QString::number(double(scene::SceneSettings{}.exposureEv100), 'g', 9);
 
-std::vector<unsigned char> pixels(const QString& path) {
-  auto in = OIIO::ImageInput::open(path.toStdString());
-  if (!in) return {};
-  const OIIO::ImageSpec& spec = in->spec();
-  std::vector<unsigned char> out(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, out.data())) return {};
-  return out;
-}
+std::vector<unsigned char> pixels(const QString& path) { return hs::test::filePixels(path.toStdString()); }
 
 }  // namespace
 
