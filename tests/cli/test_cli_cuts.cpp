@@ -3,7 +3,8 @@
 // them: a frame inside a cut is that camera's frame exactly (against
 // `--camera`), a crossfade's first frame is the shot before exactly, its
 // last the next shot exactly, the frames between lie between the two and
-// are identical in separate runs and split ranges. Unsound cuts (reversed,
+// are identical in separate runs and split ranges; a dip to black is black
+// at its middle. Unsound cuts (reversed,
 // overlapping, a transition longer than its shots or after a gap, a cut on
 // a light, a cut whose camera was deleted) are refused with the cut named
 // and the file left as it was.
@@ -122,6 +123,28 @@ class TestCliCuts : public QObject {
     QVERIFY(again[0] == cut[4]);
   }
 
+  // A dip to black: the shot before exactly, black at the middle (both
+  // weights 0), the next shot exactly at its end.
+  void dipToBlack() {
+    test::CliRun r = cli({"cut", "add", "A", "30f", "39f", scene_, "--transition", "dip_to_black", "--duration", "4f",
+                          "--ease", "none"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const auto dip = frames("dip", 30, 34);
+    const auto a = frames("dip_a", 34, 34, {"--camera", "A"});
+    const auto b = frames("dip_b", 30, 30, {"--camera", "B"});
+    QVERIFY(dip[0] == b[0]);
+    QVERIFY(dip[4] == a[0]);
+    int brightest = 0;
+    for (size_t i = 0; i < dip[2].size(); ++i)
+      if (i % 4 != 3) brightest = std::max(brightest, int(dip[2][i]));
+    QCOMPARE(brightest, 0);
+    // A quarter in: the shot before at half its light, darker than itself.
+    long sumQuarter = 0, sumBefore = 0;
+    for (size_t i = 0; i < dip[1].size(); ++i)
+      if (i % 4 != 3) sumQuarter += dip[1][i], sumBefore += b[0][i];
+    QVERIFY(sumQuarter > 0 && sumQuarter < sumBefore);
+  }
+
   void unsoundCutsAreRefused() {
     const std::string before = test::readFile(scene_.toStdString());
     struct Case {
@@ -130,8 +153,8 @@ class TestCliCuts : public QObject {
     } cases[] = {
         {{"A", "5f", "12f"}, "overlaps cut 1 (frames 0-9)"},
         {{"A", "40f", "35f"}, "its end is before its start"},
-        {{"B", "30f", "35f", "--transition", "dip_to_black", "--duration", "10f"}, "longer than this shot"},
-        {{"A", "32f", "39f", "--transition", "crossfade", "--duration", "2f"}, "needs cut 2 to end on frame 31"},
+        {{"B", "40f", "45f", "--transition", "dip_to_black", "--duration", "10f"}, "longer than this shot"},
+        {{"B", "42f", "49f", "--transition", "crossfade", "--duration", "2f"}, "needs cut 3 to end on frame 41"},
         {{"Sun", "30f", "35f"}, "is not a camera"},
         {{"B", "30f", "35f", "--transition", "crossfade"}, "needs --duration"},
     };
@@ -155,7 +178,7 @@ class TestCliCuts : public QObject {
       QVERIFY(e.commit());
     }
     QVERIFY(scene::saveScene(doc.state(), copy.toStdString(), error));
-    QVERIFY2(doc.state().sequence.cuts.size() == 2, "the cut stays (nothing lost), named when rendered");
+    QVERIFY2(doc.state().sequence.cuts.size() == 3, "the cut stays (nothing lost), named when rendered");
     test::CliRun r = cli({"render", copy, "--frames", "0-1", "--size", "32x18", "--out", path("deleted_%03d.png")});
     QVERIFY(r.code != 0);
     QVERIFY2(r.err.contains("cut 2 (frames 10-29): camera #21 is not a camera of the scene"), qPrintable(r.err));
@@ -167,9 +190,9 @@ class TestCliCuts : public QObject {
     test::CliRun r = cli({"cut", "remove", "1", scene_});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     r = cli({"cut", "list", scene_});
-    QVERIFY2(r.out.contains("cuts: 1") && r.out.contains("1  B"), qPrintable(r.out));
-    // B's crossfade lost the shot before it: now a plain cut.
-    QVERIFY(!r.out.contains("crossfade"));
+    QVERIFY2(r.out.contains("cuts: 2") && r.out.contains("1  B"), qPrintable(r.out));
+    // B's crossfade lost the shot before it: now a plain cut; A's dip stays.
+    QVERIFY(!r.out.contains("crossfade") && r.out.contains("dip_to_black"));
     QVERIFY(cli({"cut", "remove", "5", scene_}).err.contains("no cut 5"));
   }
 };
