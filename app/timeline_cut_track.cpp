@@ -15,6 +15,9 @@ namespace hs::app {
 
 namespace {
 constexpr double kEdgePx = 5.0;  // how near an end a press trims instead of moving
+constexpr const char* kUsage =
+    "Camera cuts: drag a cut to move it, its ends to trim it, a transition's end to lengthen it; "
+    "right-click to add a cut for the selected camera, set a transition or its ease, or remove";
 }
 
 TimelineCutTrack::TimelineCutTrack(scene::Document& doc, TimeWindow& window, TimelineClock& clock,
@@ -23,8 +26,7 @@ TimelineCutTrack::TimelineCutTrack(scene::Document& doc, TimeWindow& window, Tim
   setObjectName("timelineCutTrack");
   setFixedHeight(kHeight);
   setMouseTracking(true);
-  setToolTip("Camera cuts: drag a cut to move it, its ends to trim it, a transition's end to lengthen it; "
-             "right-click to add a cut for the selected camera, set a transition or remove");
+  setToolTip(kUsage);
   connect(&window_, &TimeWindow::changed, this, qOverload<>(&QWidget::update));
   connect(&clock_, &TimelineClock::frameChanged, this, qOverload<>(&QWidget::update));
   connect(&doc_, &scene::Document::changed, this, qOverload<>(&QWidget::update));
@@ -85,7 +87,8 @@ void TimelineCutTrack::paintEvent(QPaintEvent*) {
     const QString label = QString::fromStdString(cam ? cam->name : "#" + std::to_string(c.camera) + " (missing)");
     p.drawText(r.adjusted(6, 0, -4, 0), Qt::AlignVCenter | Qt::AlignLeft, label);
   }
-  if (!problem.empty()) setToolTip(QString::fromStdString("Camera cuts: " + problem));
+  // The track's problem while it has one, the usage otherwise.
+  setToolTip(problem.empty() ? QString(kUsage) : QString::fromStdString("Camera cuts: " + problem));
   // The playhead.
   const double x = axis().x(sequencer::frameTime(clock_.frame(), rate));
   p.setPen(QPen(QColor(255, 90, 74), 1.5));
@@ -184,6 +187,13 @@ bool TimelineCutTrack::setTransition(size_t i, sequencer::Transition kind, int64
   return apply(std::move(cuts), "Cut Transition");
 }
 
+bool TimelineCutTrack::setEase(size_t i, sequencer::Ease ease) {
+  std::vector<sequencer::CameraCut> cuts = doc_.state().sequence.cuts;
+  if (i >= cuts.size() || cuts[i].transition == sequencer::Transition::Cut) return false;
+  cuts[i].ease = ease;
+  return apply(std::move(cuts), "Transition Ease");
+}
+
 bool TimelineCutTrack::removeCut(size_t i) {
   std::string error;
   return scene::ops::removeCut(doc_, i, error);
@@ -205,6 +215,15 @@ void TimelineCutTrack::contextMenuEvent(QContextMenuEvent* e) {
     for (auto kind : {sequencer::Transition::Cut, sequencer::Transition::Crossfade, sequencer::Transition::DipToBlack}) {
       QAction* a = menu.addAction(QString("Transition: %1").arg(sequencer::transitionName(kind)));
       connect(a, &QAction::triggered, this, [this, i, kind, length] { setTransition(i, kind, length); });
+    }
+    if (doc_.state().sequence.cuts[i].transition != sequencer::Transition::Cut) {
+      QMenu* ease = menu.addMenu("Transition Ease");
+      for (auto e : {sequencer::Ease::None, sequencer::Ease::In, sequencer::Ease::Out, sequencer::Ease::InOut}) {
+        QAction* a = ease->addAction(sequencer::easeName(e));
+        a->setCheckable(true);
+        a->setChecked(doc_.state().sequence.cuts[i].ease == e);
+        connect(a, &QAction::triggered, this, [this, i, e] { setEase(i, e); });
+      }
     }
     menu.addSeparator();
     connect(menu.addAction("Remove Cut"), &QAction::triggered, this, [this, i] { removeCut(i); });

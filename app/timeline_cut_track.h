@@ -4,7 +4,7 @@
 // by its camera, its transition a ramp at its start. Drag a bar to move
 // it, its ends to trim it, the ramp's right end to lengthen the
 // transition; right-click for Add Cut (the selected camera from the
-// playhead), the transition and Remove. Each gesture is one undo step; a
+// playhead), the transition, its ease and Remove. Each gesture is one undo step; a
 // position that would leave the track unsound (an overlap, a transition
 // longer than its shots) is not taken: the bar stays at the last sound one.
 #include <optional>
@@ -34,6 +34,7 @@ class TimelineCutTrack : public QWidget {
   // selected camera from the playhead to the next cut's start (or 5 s on).
   bool addCutAtPlayhead();
   bool setTransition(size_t i, sequencer::Transition kind, int64_t frames);
+  bool setEase(size_t i, sequencer::Ease ease);  // a transition's progress over its frames
   bool removeCut(size_t i);
 
  protected:

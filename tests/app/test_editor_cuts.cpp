@@ -74,6 +74,9 @@ class CutsEditorTest : public QObject {
     QCOMPARE(cuts[1].end, int64_t(79));
     QVERIFY(track_->setTransition(1, sequencer::Transition::Crossfade, 10));
     QCOMPARE(doc().state().sequence.cuts[1].transitionFrames, int64_t(10));
+    QVERIFY(track_->setEase(1, sequencer::Ease::Out));
+    QCOMPARE(doc().state().sequence.cuts[1].ease, sequencer::Ease::Out);
+    QVERIFY(!track_->setEase(0, sequencer::Ease::In));  // a plain cut has no transition to ease
     // Longer than the shot before (29 frames after its first): refused, nothing changes.
     QVERIFY(!track_->setTransition(1, sequencer::Transition::DipToBlack, 40));
     QCOMPARE(doc().state().sequence.cuts[1].transition, sequencer::Transition::Crossfade);
