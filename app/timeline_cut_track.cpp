@@ -113,16 +113,8 @@ std::optional<TimelineCutTrack::Hit> TimelineCutTrack::hitAt(const QPointF& pos)
 }
 
 bool TimelineCutTrack::apply(std::vector<sequencer::CameraCut> cuts, const QString& text, const QString& mergeKey) {
-  const scene::SceneState& s = doc_.state();
-  const std::string problem = sequencer::cutsProblem(
-      cuts,
-      [&](uint64_t id) {
-        const scene::Entity* e = s.find(scene::EntityId(id));
-        return e && e->camera.has_value();
-      },
-      [](uint64_t id) { return "#" + std::to_string(id); });
-  if (!problem.empty()) return false;
-  sequencer::Sequence seq = s.sequence;
+  if (!scene::cutsProblem(doc_.state(), cuts).empty()) return false;
+  sequencer::Sequence seq = doc_.state().sequence;
   seq.cuts = std::move(cuts);
   return scene::ops::replaceSequence(doc_, std::move(seq), text, mergeKey);
 }
@@ -169,14 +161,10 @@ bool TimelineCutTrack::addCutAtPlayhead() {
   if (!cam || !cam->camera) return false;
   const int64_t start = clock_.frame();
   int64_t end = start + int64_t(std::llround(5.0 * s.sequence.rate.fps())) - 1;
-  std::vector<sequencer::CameraCut> cuts = s.sequence.cuts;
-  for (const sequencer::CameraCut& c : cuts)
+  for (const sequencer::CameraCut& c : s.sequence.cuts)
     if (c.start > start) end = std::min(end, c.start - 1);
-  sequencer::CameraCut cut{cam->id, start, end};
-  cuts.insert(std::upper_bound(cuts.begin(), cuts.end(), cut,
-                               [](const sequencer::CameraCut& a, const sequencer::CameraCut& b) { return a.start < b.start; }),
-              cut);
-  return apply(std::move(cuts), QString("Add Cut to %1").arg(QString::fromStdString(cam->name)));
+  return apply(scene::withCut(s.sequence.cuts, sequencer::CameraCut{cam->id, start, end}),
+               QString("Add Cut to %1").arg(QString::fromStdString(cam->name)));
 }
 
 bool TimelineCutTrack::setTransition(size_t i, sequencer::Transition kind, int64_t frames) {
@@ -217,12 +205,12 @@ void TimelineCutTrack::contextMenuEvent(QContextMenuEvent* e) {
       connect(a, &QAction::triggered, this, [this, i, kind, length] { setTransition(i, kind, length); });
     }
     if (doc_.state().sequence.cuts[i].transition != sequencer::Transition::Cut) {
-      QMenu* ease = menu.addMenu("Transition Ease");
-      for (auto e : {sequencer::Ease::None, sequencer::Ease::In, sequencer::Ease::Out, sequencer::Ease::InOut}) {
-        QAction* a = ease->addAction(sequencer::easeName(e));
+      QMenu* eases = menu.addMenu("Transition Ease");
+      for (auto ease : {sequencer::Ease::None, sequencer::Ease::In, sequencer::Ease::Out, sequencer::Ease::InOut}) {
+        QAction* a = eases->addAction(sequencer::easeName(ease));
         a->setCheckable(true);
-        a->setChecked(doc_.state().sequence.cuts[i].ease == e);
-        connect(a, &QAction::triggered, this, [this, i, e] { setEase(i, e); });
+        a->setChecked(doc_.state().sequence.cuts[i].ease == ease);
+        connect(a, &QAction::triggered, this, [this, i, ease] { setEase(i, ease); });
       }
     }
     menu.addSeparator();

@@ -6,9 +6,9 @@
 
 namespace hs::scene {
 
-std::string cutsProblem(const SceneState& state) {
+std::string cutsProblem(const SceneState& state, const std::vector<sequencer::CameraCut>& cuts) {
   return sequencer::cutsProblem(
-      state.sequence.cuts,
+      cuts,
       [&](uint64_t id) {
         const Entity* e = state.find(EntityId(id));
         return e && e->camera.has_value();
@@ -19,23 +19,26 @@ std::string cutsProblem(const SceneState& state) {
       });
 }
 
-namespace ops {
-
-bool addCut(Document& doc, const sequencer::CameraCut& cut, std::string& error) {
-  SceneState after = doc.state();
-  std::vector<sequencer::CameraCut>& cuts = after.sequence.cuts;
+std::vector<sequencer::CameraCut> withCut(std::vector<sequencer::CameraCut> cuts, const sequencer::CameraCut& cut) {
   cuts.insert(std::upper_bound(cuts.begin(), cuts.end(), cut,
                                [](const sequencer::CameraCut& a, const sequencer::CameraCut& b) {
                                  return a.start < b.start;
                                }),
               cut);
-  if (std::string p = cutsProblem(after); !p.empty()) {
+  return cuts;
+}
+
+namespace ops {
+
+bool addCut(Document& doc, const sequencer::CameraCut& cut, std::string& error) {
+  std::vector<sequencer::CameraCut> cuts = withCut(doc.state().sequence.cuts, cut);
+  if (std::string p = cutsProblem(doc.state(), cuts); !p.empty()) {
     error = p;
     return false;
   }
   const Entity* camera = doc.state().find(EntityId(cut.camera));
   Edit e(doc, QString("Add Cut to %1").arg(QString::fromStdString(camera ? camera->name : std::string("camera"))));
-  e.sequence().cuts = cuts;
+  e.sequence().cuts = std::move(cuts);
   return e.commit();
 }
 

@@ -12,6 +12,10 @@
 
 namespace hs::scene {
 
+// `cuts` with `cut` inserted in its place by start frame (after cuts that
+// start on the same frame).
+std::vector<sequencer::CameraCut> withCut(std::vector<sequencer::CameraCut> cuts, const sequencer::CameraCut& cut);
+
 namespace ops {
 // Adds `cut` in its place by start frame. Refused, changing nothing, when
 // the track would not be sound.

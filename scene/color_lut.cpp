@@ -6,7 +6,6 @@
 #include <atomic>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -76,15 +75,14 @@ std::string lutCacheFile(const LutData& lut, std::string& error) {
   std::error_code ec;
   const fs::path dir = fs::temp_directory_path(ec) / ("hybridscape-luts-" + std::to_string(getuid()));
   fs::create_directories(dir, ec);
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(lut.contentHash));
+  const std::string hex = toHex(lut.contentHash);
   const std::string ext = extensionOf(lut.fileName);
-  const fs::path file = dir / (std::string(hex) + (ext.empty() ? "" : "." + ext));
+  const fs::path file = dir / (hex + (ext.empty() ? "" : "." + ext));
   if (fs::exists(file, ec) && fs::file_size(file, ec) == lut.bytes->size()) return file.string();
   // Written under a name of its own, then renamed: render nodes sharing a
   // temporary folder never read half a file.
   static std::atomic<int> counter{0};
-  const fs::path part = dir / (std::string(hex) + ".part" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+  const fs::path part = dir / (hex + ".part" + std::to_string(getpid()) + "_" + std::to_string(counter++));
   {
     std::ofstream out(part, std::ios::binary);
     out.write(lut.bytes->data(), std::streamsize(lut.bytes->size()));
@@ -118,13 +116,14 @@ OCIO::ConstProcessorRcPtr lutProcessor(const LutData& lut, std::string& error) {
   }
 }
 
-std::string lutProblem(const std::string& where, const std::string& fileName, const std::string& bytes) {
+std::string lutProblem(const std::string& where, const LutData& lut) {
+  if (!lut.bytes) return where + ": the LUT's data is not loaded";
+  const std::string& bytes = *lut.bytes;
   if (bytes.empty()) return where + ": the file is empty";
   if (bytes.size() > kMaxLutFileBytes)
     return where + ": " + std::to_string(bytes.size() >> 20) + " MB, larger than the " +
            std::to_string(kMaxLutFileBytes >> 20) + " MB a LUT may have";
   if (std::string p = nonFiniteNumber(where, bytes); !p.empty()) return p;
-  LutData lut{fileName, std::make_shared<const std::string>(bytes), contentHash(bytes.data(), bytes.size())};
   std::string error;
   const OCIO::ConstProcessorRcPtr processor = lutProcessor(lut, error);
   if (!processor) {
@@ -174,14 +173,14 @@ std::optional<LutData> readLutFile(const std::string& path, std::string& error) 
   }
   std::ostringstream read;
   read << in.rdbuf();
-  std::string bytes = std::move(read).str();
-  const std::string name = fs::path(path).filename().string();
-  if (std::string p = lutProblem(path, name, bytes); !p.empty()) {
+  auto bytes = std::make_shared<const std::string>(std::move(read).str());
+  const uint64_t hash = contentHash(bytes->data(), bytes->size());
+  LutData lut{fs::path(path).filename().string(), std::move(bytes), hash};
+  if (std::string p = lutProblem(path, lut); !p.empty()) {
     error = p;
     return std::nullopt;
   }
-  const uint64_t hash = contentHash(bytes.data(), bytes.size());
-  return LutData{name, std::make_shared<const std::string>(std::move(bytes)), hash};
+  return lut;
 }
 
 const OperationDecl& lutImportOperation() {

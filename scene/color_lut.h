@@ -26,13 +26,14 @@ constexpr size_t kMaxLutFileBytes = size_t(512) << 20;
 // line where the fault is on one).
 std::optional<LutData> readLutFile(const std::string& path, std::string& error);
 
-// Why `bytes` (the content of a file named `fileName`) is no LUT the
-// renderer can apply, as a message starting with `where`; "" if it is one.
+// Why `lut` (its bytes and their hash, from a file named lut.fileName) is
+// no LUT the renderer can apply, as a message starting with `where`; "" if
+// it is one.
 // Checks: not empty, under kMaxLutFileBytes, no non-finite number in a text
 // format (named with its line), OpenColorIO parses it (its message, which
 // names the line for text formats), and every output over a 17^3 lattice of
 // inputs in [0, 1] is finite.
-std::string lutProblem(const std::string& where, const std::string& fileName, const std::string& bytes);
+std::string lutProblem(const std::string& where, const LutData& lut);
 
 // The file OpenColorIO reads `lut` from: <temp>/hybridscape-luts-<user>/
 // <hash>.<ext>, written (atomically) when missing. Empty with `error` when

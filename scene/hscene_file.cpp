@@ -556,11 +556,11 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
       problem = error;
       error.clear();
     } else {
-      auto text = std::make_shared<const std::string>(bytes.begin(), bytes.end());
-      if (contentHash(text->data(), text->size()) != lut.contentHash)
+      LutData loaded{lut.fileName, std::make_shared<const std::string>(bytes.begin(), bytes.end()), lut.contentHash};
+      if (contentHash(loaded.bytes->data(), loaded.bytes->size()) != lut.contentHash)
         problem = what + ": its data does not match its checksum (damaged file)";
-      else if (problem = lutProblem(what, lut.fileName, *text); problem.empty())
-        lut.bytes = std::move(text);
+      else if ((problem = lutProblem(what, loaded)).empty())
+        lut = std::move(loaded);
     }
     if (!problem.empty()) {
       report->warnings.push_back(problem + "; the scene renders without it (`hybridscape-cli lut import` "
