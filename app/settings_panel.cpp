@@ -46,7 +46,8 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
     if (f.key == "post.bloom.enabled")
       addHeading("Post-processing", "postHeading",
                  "The chain after the scene's light, in order: exposure, bloom, chromatic aberration, the tone "
-                 "map, the grade, the LUT, the vignette, grain; each effect runs only when enabled");
+                 "map, the grade, the LUT, the vignette, grain, FXAA, then the stylised effects (Kuwahara, comic, "
+                 "outlines, CRT, dithering); each effect runs only when enabled");
     if (f.key == "transparency")
       addHeading("Transparency", "oitHeading",
                  "How translucent materials (opacity under 1) are composited; View > Depth Complexity "

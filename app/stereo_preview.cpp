@@ -32,13 +32,27 @@ scene::EntityId StereoPreviewSettings::activeCamera(const scene::SceneState& sta
   const scene::Entity* e = state.find(selection.primary());
   if (e && e->camera) return e->id;
   // The camera cuts' camera at the shown frame (`state` is the timeline's);
-  // during a transition the stronger shot (the export combines both).
+  // during a transition the stronger shot (the one the comfort readout
+  // speaks of; the preview combines both, activeTransition).
   if (const auto shot = sequencer::shotAt(state.sequence.cuts, state.time.frame)) {
     const auto [outgoing, incoming] = shot->weights();
     const scene::Entity* c = state.find(scene::EntityId(shot->incoming && incoming > outgoing ? shot->incoming : shot->camera));
     if (c && c->camera) return c->id;
   }
   return render::shotCamera(state);
+}
+
+std::optional<sequencer::Shot> StereoPreviewSettings::activeTransition(const scene::SceneState& state,
+                                                                       const Selection& selection) const {
+  const scene::Entity* e = state.find(selection.primary());
+  if (e && e->camera) return std::nullopt;
+  const auto shot = sequencer::shotAt(state.sequence.cuts, state.time.frame);
+  if (!shot || !shot->incoming) return std::nullopt;
+  for (uint64_t id : {shot->camera, shot->incoming}) {
+    const scene::Entity* c = state.find(scene::EntityId(id));
+    if (!c || !c->camera) return std::nullopt;
+  }
+  return shot;
 }
 
 void StereoPreviewSettings::setMode(StereoPreviewMode mode) {

@@ -8,8 +8,10 @@
 // and farthest parallax, red when outside the budget.
 #include <QLabel>
 #include <QObject>
+#include <optional>
 
 #include "scene/scene_state.h"
+#include "sequencer/camera_cuts.h"
 #include "sequencer/comfort_check.h"
 
 namespace hs::app {
@@ -30,6 +32,10 @@ class StereoPreviewSettings : public QObject {
   // camera cuts' at the state's frame (a transition: its stronger shot),
   // else the shot camera.
   scene::EntityId activeCamera(const scene::SceneState& state, const Selection& selection) const;
+  // With no camera selected, the camera cuts' transition at the state's
+  // frame, if one is running there and both its cameras exist: the preview
+  // then shows both shots combined, as the export does.
+  std::optional<sequencer::Shot> activeTransition(const scene::SceneState& state, const Selection& selection) const;
   static QString modeName(StereoPreviewMode m);
 
  public slots:

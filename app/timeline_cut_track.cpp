@@ -82,6 +82,14 @@ void TimelineCutTrack::paintEvent(QPaintEvent*) {
       ramp << QPointF(r.left(), r.bottom()) << QPointF(xe, r.top()) << QPointF(xe, r.bottom());
       p.setBrush(c.transition == sequencer::Transition::DipToBlack ? QColor(10, 10, 12, 160) : QColor(255, 255, 255, 60));
       p.drawPolygon(ramp);
+      if (sequencer::isPatterned(c.transition)) {
+        // A stylised transition names itself on its ramp (when it fits).
+        p.setPen(QColor(20, 20, 22));
+        const QRectF on(r.left(), r.top(), xe - r.left(), r.height());
+        const QString kind = QString::fromStdString(sequencer::transitionName(c.transition));
+        if (p.fontMetrics().horizontalAdvance(kind) + 8 < on.width())
+          p.drawText(on.adjusted(4, 0, -4, 0), Qt::AlignBottom | Qt::AlignRight, kind);
+      }
     }
     p.setPen(QColor(235, 236, 240));
     const QString label = QString::fromStdString(cam ? cam->name : "#" + std::to_string(c.camera) + " (missing)");
@@ -200,8 +208,13 @@ void TimelineCutTrack::contextMenuEvent(QContextMenuEvent* e) {
     const int64_t second = int64_t(std::llround(doc_.state().sequence.rate.fps()));
     const int64_t current = doc_.state().sequence.cuts[i].transitionFrames;
     const int64_t length = current > 0 ? current : second;
-    for (auto kind : {sequencer::Transition::Cut, sequencer::Transition::Crossfade, sequencer::Transition::DipToBlack}) {
-      QAction* a = menu.addAction(QString("Transition: %1").arg(sequencer::transitionName(kind)));
+    QMenu* kinds = menu.addMenu("Transition");
+    kinds->setObjectName("cutTransitionMenu");
+    for (const std::string& name : sequencer::transitionNameList()) {
+      const sequencer::Transition kind = *sequencer::transitionFromName(name);
+      QAction* a = kinds->addAction(QString::fromStdString(name));
+      a->setCheckable(true);
+      a->setChecked(doc_.state().sequence.cuts[i].transition == kind);
       connect(a, &QAction::triggered, this, [this, i, kind, length] { setTransition(i, kind, length); });
     }
     if (doc_.state().sequence.cuts[i].transition != sequencer::Transition::Cut) {

@@ -29,7 +29,13 @@ bool ViewportWidget::stereoPreviewActive() const { return stereo_ && stereo_->mo
 bool ViewportWidget::paintStereo() {
   if (!stereoPreviewActive()) return false;
   const scene::SceneState& state = displayedState();
-  const scene::EntityId cam = stereo_->activeCamera(state, selection_);
+  scene::EntityId cam = stereo_->activeCamera(state, selection_);
+  // During a camera cuts' transition both shots, combined as the export does.
+  std::optional<render::PreviewTransition> transition;
+  if (const auto shot = stereo_->activeTransition(state, selection_)) {
+    transition = render::PreviewTransition{scene::EntityId(shot->incoming), *shot, state.time.frame};
+    cam = scene::EntityId(shot->camera);
+  }
   if (cam == scene::kNoEntity) {
     if (comfortReadout_) comfortReadout_->hide();
     return false;  // no camera to look through: the free view
@@ -49,8 +55,9 @@ bool ViewportWidget::paintStereo() {
   }
   sequencer::ComfortOptions comfort;
   comfort.budget = stereo_->budget();
-  const render::StereoPreviewResult r = stereoRenderer_.draw(renderer_, state, cam, mode, stereo_->outputAspect(),
-                                                             defaultFramebufferObject(), w, h, &comfort);
+  const render::StereoPreviewResult r =
+      stereoRenderer_.draw(renderer_, state, cam, mode, stereo_->outputAspect(), defaultFramebufferObject(), w, h,
+                           &comfort, transition ? &*transition : nullptr);
   stats_ = r.stats;
   ++frames_;
   lastComfort_ = r.comfort;
@@ -58,7 +65,7 @@ bool ViewportWidget::paintStereo() {
     comfortReadout_ = new ComfortReadout(this);
     comfortReadout_->move(8, 8);
   }
-  const scene::Entity* camera = state.find(cam);
+  const scene::Entity* camera = state.find(stereo_->activeCamera(state, selection_));
   if (r.comfort) comfortReadout_->showResult(*r.comfort, stereo_->budget(), camera && camera->camera &&
                                                  camera->camera->stereo != scene::Camera::Stereo::Mono);
   emit frameRendered(stats_);

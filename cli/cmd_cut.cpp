@@ -36,7 +36,7 @@ const OperationDecl& cutAddDecl() {
                       {.name = "end", .help = "last frame (inclusive): seconds or 150f"},
                       {.name = "scene.hscene", .help = "the scene file"}},
       .params = {{.key = "transition", .option = "transition", .label = "Transition", .type = ParamType::Choice,
-                  .choices = {"cut", "crossfade", "dip_to_black"}, .help = "how the cut begins (default cut)"},
+                  .choices = sequencer::transitionNameList(), .help = "how the cut begins (default cut)"},
                  {.key = "duration", .option = "duration", .label = "Duration", .type = ParamType::Text,
                   .help = "the transition's length: seconds or frames (30f)", .valueName = "T"},
                  {.key = "ease", .option = "ease", .label = "Ease", .type = ParamType::Choice,

@@ -13,6 +13,8 @@
 #include "scene/hscene_file.h"
 #include "scene/render_operation.h"
 #include "scene/world_bounds.h"
+#include "sequencer/camera_cuts.h"
+#include "sequencer/frame_range.h"
 #include "sequencer/image_writer.h"
 
 namespace hs::cli {
@@ -24,7 +26,8 @@ int runRender(int argc, char** argv) {
   if (isSequenceRender(args)) {
     if (args.has("stats")) return args.usage("--stats applies to one frame, not a sequence");
     if (args.has("time_s")) return args.usage("--at applies to one frame; a sequence's frames have their own times");
-    if (args.has("mix_camera")) return args.usage("--mix-camera applies to one frame (a sequence's cuts and transitions come from its timeline)");
+    if (args.has("mix_camera") || args.has("mix_transition"))
+      return args.usage("--mix-camera and --transition apply to one frame (a sequence's cuts and transitions come from its timeline)");
     return renderFrames(args);
   }
   if (args.positionals().size() != 1) return args.usage("expected one scene file");
@@ -47,6 +50,8 @@ int runRender(int argc, char** argv) {
     for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
   applyAntialiasing(args, *state);
+  if (args.has("mix_transition") && !args.has("mix_camera"))
+    return args.usage("--transition draws a transition into --mix-camera's shot: give --mix-camera too");
 
   // A camera by name, or why there is none.
   auto namedCamera = [&](const std::string& name, std::string& why) -> scene::EntityId {
@@ -92,9 +97,18 @@ int runRender(int argc, char** argv) {
     const scene::EntityId id = namedCamera(name, error);
     if (id == scene::kNoEntity) return args.fail(error);
     const float mix = float(args.number("mix"));
-    img = renderer.renderMix(*state, {view, render::viewFromCamera(*state, id, width, height)}, {1.0f - mix, mix}, hdr,
-                             &stats, options);
-    from += " mixed with camera '" + name + "' (" + std::to_string(mix).substr(0, 4) + ")";
+    // A transition's pattern at progress --mix (the glitch seeded by the
+    // timeline's frame at --at), or the plain crossfade of the weights.
+    render::GroupCombine pattern;
+    const std::string kind = args.text("mix_transition");
+    pattern.transition = sequencer::transitionFromName(kind).value_or(sequencer::Transition::Crossfade);
+    pattern.progress = mix;
+    pattern.frame = args.has("time_s") ? sequencer::frameAtTime(args.number("time_s"), state->sequence.rate) : 0;
+    sequencer::Shot shot{0, 1, pattern.transition, mix};
+    const auto [w0, w1] = shot.weights();
+    img = renderer.renderMix(*state, {view, render::viewFromCamera(*state, id, width, height)}, {w0, w1}, hdr,
+                             &stats, options, &pattern);
+    from += " mixed with camera '" + name + "' (" + kind + " at " + std::to_string(mix).substr(0, 4) + ")";
   } else {
     img = renderer.render(*state, view, hdr, &stats, options);
   }

@@ -48,7 +48,7 @@ Image OffscreenRenderer::render(const scene::SceneState& state, const RenderView
 
 Image OffscreenRenderer::renderMix(const scene::SceneState& state, const std::vector<RenderView>& views,
                                    const std::vector<float>& weights, bool hdr, FrameStats* stats,
-                                   const RenderOptions& options) {
+                                   const RenderOptions& options, const GroupCombine* pattern) {
   d_->egl.makeCurrent();
   if (views.empty()) return {};
   std::vector<ViewGroup> groups;
@@ -59,6 +59,7 @@ Image OffscreenRenderer::renderMix(const scene::SceneState& state, const std::ve
   }
   d_->output.ensure(views[0].width, views[0].height);
   GroupCombine combine;
+  if (pattern) combine = *pattern;
   combine.targets = {ViewTarget{views[0], d_->output.fbo(), {}}};
   combine.weights = weights;
   RenderOptions o = options;

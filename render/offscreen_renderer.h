@@ -29,9 +29,11 @@ class OffscreenRenderer {
                FrameStats* stats = nullptr, const RenderOptions& options = {});
   // Several shots in one frame (Renderer::renderGroups), mixed by
   // `weights` (one per view) into one image, read back like render()'s.
+  // `pattern`'s transition, progress and frame (not its targets or
+  // weights) combine the first two by a patterned transition instead.
   Image renderMix(const scene::SceneState& state, const std::vector<RenderView>& views,
                   const std::vector<float>& weights, bool hdr = false, FrameStats* stats = nullptr,
-                  const RenderOptions& options = {});
+                  const RenderOptions& options = {}, const GroupCombine* pattern = nullptr);
   // Renders without reading back (benchmarks of the GPU side); waits for the GPU.
   FrameStats renderOnly(const scene::SceneState& state, const RenderView& view, const RenderOptions& options = {});
   // The same for several views of one frame (Renderer::renderViews: the two

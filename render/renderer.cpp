@@ -803,7 +803,8 @@ std::vector<FrameStats> Renderer::renderGroups(const scene::SceneState& state, c
                                                  TextureDesc{k.size.x, k.size.y, GL_RGBA16F}),
                             combine->weights[g]);
       }
-      const TextureRef mixed = addGroupCombinePass(*graph, frame, v, images);
+      const TextureRef mixed =
+          addGroupCombinePass(*graph, frame, v, images, {combine->transition, combine->progress, combine->frame});
       addToneMapPasses(*graph, frame, v, mixed);
       Impl::Kept k;
       k.size = {t.view.width, t.view.height};

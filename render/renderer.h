@@ -24,6 +24,7 @@
 #include "render/render_view.h"
 #include "render/terrain_lod.h"
 #include "scene/scene_state.h"
+#include "sequencer/camera_cuts.h"
 
 namespace hs::render {
 
@@ -189,10 +190,17 @@ struct ViewGroup {
 // How renderGroups combines its groups' images: view i of every group
 // (linear HDR, exposure applied), weighted and summed, then tone mapped
 // into targets[i] like a frame's own output (a cross-fade between two
-// shots: weights 1 - a and a).
+// shots: weights 1 - a and a). With a patterned `transition`
+// (sequencer::isPatterned) the first two groups (outgoing, incoming) are
+// combined by its pattern at `progress` instead of the weights; `frame`
+// seeds the patterns that change from frame to frame (glitch). Both eyes
+// get the same pattern in screen space (docs/sequencer.md "Transitions").
 struct GroupCombine {
   std::vector<ViewTarget> targets;  // one per view of a group; every group has as many
   std::vector<float> weights;       // one per group
+  sequencer::Transition transition = sequencer::Transition::Crossfade;
+  float progress = 0.0f;  // eased, in (0, 1)
+  int64_t frame = 0;
 };
 
 class Renderer {

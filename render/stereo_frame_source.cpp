@@ -142,10 +142,12 @@ struct StereoFrameSource::Impl {
   }
 
   // A transition's frame: both shots' views (`shots[g]`, the same count
-  // each) as two view groups of one frame, their light combined with
-  // `weights` into the outputs; LODs per shot from its own mono view.
+  // each) as two view groups of one frame, combined by the shot's
+  // transition (its weights, or its pattern at its progress) into the
+  // outputs; LODs per shot from its own mono view.
   void renderTransition(const scene::SceneState& state, const std::vector<RenderView> shots[2],
-                        const RenderView* lodViews[2], std::pair<float, float> weights, Slot& slot) {
+                        const RenderView* lodViews[2], const sequencer::Shot& shot, int64_t frame, Slot& slot) {
+    const std::pair<float, float> weights = shot.weights();
     std::vector<ViewGroup> groups(2);
     for (size_t g = 0; g < 2; ++g) {
       for (size_t i = 0; i < shots[g].size(); ++i) {
@@ -158,6 +160,9 @@ struct StereoFrameSource::Impl {
     for (size_t i = 0; i < shots[0].size(); ++i)
       combine.targets.push_back({shots[1][i], output[i].fbo(), eyeName(shots[0].size(), i)});
     combine.weights = {weights.first, weights.second};
+    combine.transition = shot.transition;
+    combine.progress = float(shot.progress);
+    combine.frame = frame;
     RenderOptions ro = renderOptions(slot, *lodViews[0]);
     offscreen.renderer().renderGroups(state, groups, ro, &combine);
     // Kept views: each group's, then the combined ones. Depth (the comfort
@@ -256,7 +261,7 @@ bool StereoFrameSource::begin(const sequencer::FrameJob& job, std::string& error
   if (incoming) {
     const std::vector<RenderView> shots[2] = {viewsOf(views), viewsOf(*incoming)};
     const RenderView* lods[2] = {&views.mono, &incoming->mono};
-    d.renderTransition(state, shots, lods, shot->weights(), slot);
+    d.renderTransition(state, shots, lods, *shot, job.frame, slot);
   } else {
     d.renderViews(state, viewsOf(views), slot, views.mono);
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include <epoxy/gl.h>
 
@@ -74,7 +75,8 @@ void StereoPreviewRenderer::ensureAnaglyph(int w, int h) {
 StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene::SceneState& state,
                                                 scene::EntityId camera, StereoPreviewMode mode, double outputAspect,
                                                 unsigned targetFbo, int targetWidth, int targetHeight,
-                                                const sequencer::ComfortOptions* comfort) {
+                                                const sequencer::ComfortOptions* comfort,
+                                                const PreviewTransition* transition) {
   StereoPreviewResult result;
   if (!renderer.initialized() || targetWidth <= 0 || targetHeight <= 0) return result;
   // Side by side shows two eyes of the output aspect next to each other.
@@ -97,17 +99,48 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
   std::vector<ViewTarget> targets;
   if (needLeft) targets.push_back({views.left, eyes_[0].target.fbo(), "left"});
   if (needRight) targets.push_back({views.right, eyes_[1].target.fbo(), "right"});
-  result.stats = renderer.renderViews(state, targets, options);
+  size_t depthBase = 0;                 // the first view whose depth the comfort check reads
+  const EyeViews* checked = &views;     // and whose eyes it checks
+  std::optional<EyeViews> incoming;
+  if (transition && transition->incoming != scene::kNoEntity && state.find(transition->incoming)) {
+    // Both shots as two view groups, combined into the eyes' targets as an
+    // export combines them (render/stereo_frame_source.cpp).
+    incoming = eyeViews(state, transition->incoming, eyeW, eyeH);
+    const EyeViews& in = *incoming;
+    std::vector<ViewGroup> groups(2);
+    GroupCombine combine;
+    for (size_t i = 0; i < targets.size(); ++i) {
+      const bool left = targets[i].fbo == eyes_[0].target.fbo();
+      Eye& eye = eyes_[left ? 0 : 1];
+      for (OutputTarget& g : eye.groups) g.ensure(eyeW, eyeH);
+      groups[0].targets.push_back({targets[i].view, eye.groups[0].fbo(), targets[i].name});
+      groups[1].targets.push_back({left ? in.left : in.right, eye.groups[1].fbo(), targets[i].name});
+      combine.targets.push_back({left ? in.left : in.right, targets[i].fbo, targets[i].name});
+    }
+    groups[0].lodView = &views.mono;
+    groups[1].lodView = &in.mono;
+    const auto [w0, w1] = transition->shot.weights();
+    combine.weights = {w0, w1};
+    combine.transition = transition->shot.transition;
+    combine.progress = float(transition->shot.progress);
+    combine.frame = transition->frame;
+    const std::vector<FrameStats> stats = renderer.renderGroups(state, groups, options, &combine);
+    if (!stats.empty()) result.stats = stats.back();
+    if (w1 > w0) depthBase = targets.size(), checked = &in;
+  } else {
+    result.stats = renderer.renderViews(state, targets, options);
+  }
   if (comfort && needLeft) {
-    depth[0] = readDepth(renderer, eyeW, eyeH, 0);
-    if (needRight && views.eyes.mode == sequencer::StereoMode::ToeIn) depth[1] = readDepth(renderer, eyeW, eyeH, 1);
+    depth[0] = readDepth(renderer, eyeW, eyeH, depthBase);
+    if (needRight && checked->eyes.mode == sequencer::StereoMode::ToeIn && targets.size() > 1)
+      depth[1] = readDepth(renderer, eyeW, eyeH, depthBase + 1);
   }
   if (comfort && !depth[0].empty()) {
     auto image = [&](const std::vector<float>& d, const sequencer::CameraModel& c) {
       return sequencer::DepthImage{eyeW, eyeH, d.data(), sequencer::DepthKind::ReversedZ, c.nearClip, c.farClip};
     };
-    const sequencer::DepthImage l = image(depth[0], views.eyes.left), r = image(depth[1], views.eyes.right);
-    result.comfort = sequencer::checkComfort(views.eyes, l, depth[1].empty() ? nullptr : &r, *comfort);
+    const sequencer::DepthImage l = image(depth[0], checked->eyes.left), r = image(depth[1], checked->eyes.right);
+    result.comfort = sequencer::checkComfort(checked->eyes, l, depth[1].empty() ? nullptr : &r, *comfort);
   }
 
   // Letterbox bars, then the picture.
@@ -147,7 +180,10 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
 }
 
 void StereoPreviewRenderer::release() {
-  for (Eye& e : eyes_) e.target.release();
+  for (Eye& e : eyes_) {
+    e.target.release();
+    for (OutputTarget& g : e.groups) g.release();
+  }
   if (anaglyphFbo_) glDeleteFramebuffers(1, &anaglyphFbo_);
   if (anaglyphTexture_) glDeleteTextures(1, &anaglyphTexture_);
   anaglyphFbo_ = anaglyphTexture_ = 0;

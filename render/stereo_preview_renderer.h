@@ -10,11 +10,19 @@
 #include "render/output_target.h"
 #include "render/renderer.h"
 #include "render/stereo_views.h"
+#include "sequencer/camera_cuts.h"
 #include "sequencer/comfort_check.h"
 
 namespace hs::render {
 
 enum class StereoPreviewMode { Left, Right, SideBySide, Anaglyph };
+
+// A transition into `incoming` at this frame (sequencer::Shot).
+struct PreviewTransition {
+  scene::EntityId incoming = scene::kNoEntity;
+  sequencer::Shot shot;
+  int64_t frame = 0;
+};
 
 struct StereoPreviewResult {
   bool drawn = false;
@@ -32,9 +40,14 @@ class StereoPreviewRenderer {
   // Draws the preview of `camera` in `state` into framebuffer `targetFbo` of
   // targetWidth x targetHeight, for frames of aspect `outputAspect` (eye
   // width / height of the export). Needs the renderer's context current.
+  // With `transition` (a camera cut's transition at this frame), `camera`
+  // is the outgoing shot and both are rendered and combined eye by eye as
+  // the export combines them (two view groups); the comfort check reads
+  // the stronger shot's depth.
   StereoPreviewResult draw(Renderer& renderer, const scene::SceneState& state, scene::EntityId camera,
                            StereoPreviewMode mode, double outputAspect, unsigned targetFbo, int targetWidth,
-                           int targetHeight, const sequencer::ComfortOptions* comfort = nullptr);
+                           int targetHeight, const sequencer::ComfortOptions* comfort = nullptr,
+                           const PreviewTransition* transition = nullptr);
 
   // Frees the GL objects (context current); no GL in the destructor.
   void release();
@@ -42,6 +55,7 @@ class StereoPreviewRenderer {
  private:
   struct Eye {
     OutputTarget target;
+    OutputTarget groups[2];  // a transition's two shots, before they are combined
   };
   void ensureEyes(int width, int height);
   void ensureAnaglyph(int width, int height);

@@ -1,5 +1,9 @@
 #include "scene/render_operation.h"
 
+#include <string>
+#include <vector>
+
+#include "sequencer/camera_cuts.h"
 #include "sequencer/export_loop.h"
 
 namespace hs::scene {
@@ -71,8 +75,17 @@ const OperationDecl& renderOperation() {
                         .valueName = "NAME"});
     o.params.push_back({.key = "mix", .option = "mix", .label = "Mix", .min = 0.0, .max = 1.0, .defaultValue = 0.5,
                         .help = "the second camera's share of the mixed frame (0: the first camera's image, 1: the "
-                                "second's), summed in linear light before the tone map",
+                                "second's), summed in linear light before the tone map; with --transition, the "
+                                "transition's progress",
                         .valueName = "0..1"});
+    // A transition's frame as a still (docs/sequencer.md "Transitions").
+    std::vector<std::string> kinds = sequencer::transitionNameList();
+    std::erase(kinds, std::string("cut"));
+    o.params.push_back({.key = "mix_transition", .option = "transition", .label = "Transition",
+                        .type = ParamType::Choice, .defaultValue = "crossfade", .choices = kinds,
+                        .help = "how --mix-camera's shot comes in: a transition drawn at progress --mix (the glitch "
+                                "seeded by the frame at --at)",
+                        .valueName = "KIND"});
     for (const ParamDecl& p : sequencer::exportParamDecls())
       if (p.key != "size_px" && p.key != "quality") o.params.push_back(p);
     return o;

@@ -99,6 +99,8 @@ struct LutData {
 // map, the grade, the LUT, the vignette, grain, then FXAA. Each effect runs only
 // when enabled: with all off the chain is the tone map alone, no pass or
 // texture more.
+// Dithering (PostSettings::dither): the threshold pattern.
+enum class DitherMode { Off = 0, Bayer = 1, BlueNoise = 2 };
 struct PostSettings {
   // Bloom: exposed light above the threshold (soft knee), spread by a
   // downsample/upsample chain and added back.
@@ -131,6 +133,32 @@ struct PostSettings {
   bool lutEnabled = false;
   float lutIntensity = 1.0f;
   LutData lut{};
+  // Stylised effects (docs/rendering.md "Stylised effects"), on the
+  // display-referred image after the vignette and grain, in this order.
+  // Kuwahara, anisotropic (Kyprianidis, Kang & Doellner 2009): each pixel
+  // the weighted mean of eight sectors of an ellipse laid along the local
+  // structure, the least varied weighing most (painted strokes).
+  bool kuwahara = false;
+  float kuwaharaRadiusPx = 6.0f;   // the ellipse's radius, pixels per 1080 lines
+  float kuwaharaSharpness = 8.0f;  // q: how much the least varied sectors win
+  // Comic: colours posterised to a few levels, halftone dots in the shadows.
+  bool comic = false;
+  float comicLevels = 5.0f;  // levels per channel
+  float comicDotPx = 6.0f;   // halftone cell, pixels per 1080 lines
+  // Outlines: Sobel edges of the luminance drawn in a colour.
+  bool outlines = false;
+  float outlineThreshold = 0.25f;  // gradient (luminance per pixel, Sobel-scaled) where lines start
+  glm::vec3 outlineColor{0.0f};
+  // CRT: barrel curvature, scanlines, an aperture-grille mask.
+  bool crt = false;
+  float crtCurvature = 0.08f;   // barrel distortion at the corner
+  float crtScanlines = 0.5f;    // darkening between the lines, 0..1
+  float crtLinesPer1080 = 270.0f;  // scanlines per 1080 rows
+  float crtMask = 0.3f;         // the mask's strength, 0..1
+  // Dithering to `ditherLevels` per channel with an ordered (Bayer 8x8) or
+  // blue-noise threshold.
+  DitherMode dither = DitherMode::Off;
+  float ditherLevels = 4.0f;
   bool operator==(const PostSettings&) const = default;
 };
 // Shadow presets (docs/rendering.md "Shadows"): map size, cascades and PCF

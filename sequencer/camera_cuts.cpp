@@ -8,7 +8,17 @@ namespace hs::sequencer {
 
 namespace {
 constexpr std::pair<Transition, const char*> kNames[] = {
-    {Transition::Cut, "cut"}, {Transition::Crossfade, "crossfade"}, {Transition::DipToBlack, "dip_to_black"}};
+    {Transition::Cut, "cut"},
+    {Transition::Crossfade, "crossfade"},
+    {Transition::DipToBlack, "dip_to_black"},
+    {Transition::CrossfadeBlur, "crossfade_blur"},
+    {Transition::Swipe, "swipe"},
+    {Transition::WaterDrop, "water_drop"},
+    {Transition::PixelDissolve, "pixel_dissolve"},
+    {Transition::Glitch, "glitch"},
+    {Transition::ZoomBlur, "zoom_blur"},
+    {Transition::RadialWipe, "radial_wipe"},
+};
 
 std::string range(const CameraCut& c) { return std::to_string(c.start) + "-" + std::to_string(c.end); }
 }  // namespace
@@ -25,19 +35,30 @@ std::optional<Transition> transitionFromName(std::string_view s) {
   return std::nullopt;
 }
 
+std::vector<std::string> transitionNameList() {
+  std::vector<std::string> out;
+  for (const auto& [k, n] : kNames) out.emplace_back(n);
+  return out;
+}
+
 std::string transitionNames() {
   std::string out;
   for (const auto& [k, n] : kNames) out += (out.empty() ? "" : ", ") + std::string(n);
   return out;
 }
 
+bool isPatterned(Transition t) {
+  return t != Transition::Cut && t != Transition::Crossfade && t != Transition::DipToBlack;
+}
+
 std::pair<float, float> Shot::weights() const {
   if (incoming == 0) return {1.0f, 0.0f};
   const double p = progress;
+  if (isPatterned(transition)) return {float(1.0 - p), float(p)};
   switch (transition) {
     case Transition::Crossfade: return {float(1.0 - p), float(p)};
     case Transition::DipToBlack: return p < 0.5 ? std::pair{float(1.0 - 2.0 * p), 0.0f} : std::pair{0.0f, float(2.0 * p - 1.0)};
-    case Transition::Cut: break;
+    default: break;
   }
   return {0.0f, 1.0f};
 }

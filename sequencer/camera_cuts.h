@@ -26,11 +26,33 @@ namespace hs::sequencer {
 
 // How a cut begins. Cut: at once. Crossfade: the two shots' light mixed,
 // (1 - p) and p. DipToBlack: the outgoing shot to black by the middle,
-// then the incoming one up from black.
-enum class Transition : uint8_t { Cut, Crossfade, DipToBlack };
-const char* transitionName(Transition t);                     // "cut", "crossfade", "dip_to_black"
+// then the incoming one up from black. The rest are stylised, drawn as a
+// pattern over the screen (shaders/group_combine.frag, docs/sequencer.md
+// "Transitions"): CrossfadeBlur (both shots blurred towards the middle),
+// Swipe (an edge across the screen), WaterDrop (a ring spreading from the
+// centre with a ripple ahead of it), PixelDissolve (blocks growing to the
+// middle, each switching at its own moment), Glitch (bands displaced and
+// split by channel, switching band by band, seeded by the frame), ZoomBlur
+// (a radial blur that peaks at the middle), RadialWipe (a clock hand).
+enum class Transition : uint8_t {
+  Cut,
+  Crossfade,
+  DipToBlack,
+  CrossfadeBlur,
+  Swipe,
+  WaterDrop,
+  PixelDissolve,
+  Glitch,
+  ZoomBlur,
+  RadialWipe,
+};
+const char* transitionName(Transition t);                     // "cut", "crossfade", "dip_to_black", ...
 std::optional<Transition> transitionFromName(std::string_view s);
-std::string transitionNames();                                 // "cut, crossfade, dip_to_black"
+std::string transitionNames();                                 // "cut, crossfade, dip_to_black, ..."
+std::vector<std::string> transitionNameList();                 // the same, one by one (CLI choices, menus)
+// Whether the two shots are combined by a pattern over the screen rather
+// than by weights alone (everything but Cut, Crossfade and DipToBlack).
+bool isPatterned(Transition t);
 
 struct CameraCut {
   uint64_t camera = 0;  // scene::EntityId of a camera entity
@@ -49,7 +71,9 @@ struct Shot {
   uint64_t incoming = 0;  // 0: one camera
   Transition transition = Transition::Cut;
   double progress = 0.0;  // eased
-  // The two cameras' weights in the combined light (outgoing, incoming).
+  // The two cameras' weights in the combined light (outgoing, incoming);
+  // for a patterned transition, the share of the screen each covers
+  // (1 - p, p), which is also how "the stronger shot" is chosen.
   std::pair<float, float> weights() const;
 };
 

@@ -1,13 +1,14 @@
 // bench_post: the post chain's cost per effect (docs/rendering.md
 // "Post-processing"), one eye at 1920x1080 by default: a frame of a small
 // lit scene with every effect off (the tone map pass alone), then with
-// each effect on alone (the LUT at 33^3 and 65^3), then all of them; per row the GPU time of the
-// post passes (the tone map pass and bloom's levels, timestamp queries),
-// their count, and the frame's wall time over the all-off frame's. The
-// all-off row against a frame with the tone map only is the claim that
-// the chain costs nothing when off: the same pass, the same time. Last, a
-// transition's frame (two shots as two view groups, combined) against a
-// plain one.
+// each effect on alone (the LUT at 33^3 and 65^3), then all of them, then
+// each stylised effect; per row the GPU time of the post passes (the tone
+// map pass, bloom's levels, the stylised passes; timestamp queries), their
+// count, and the frame's wall time over the all-off frame's. The all-off
+// row against a frame with the tone map only is the claim that the chain
+// costs nothing when off: the same pass, the same time. Last, a
+// transition's frame of each kind (two shots as two view groups, combined
+// by weights or a stylised pattern at its middle) against a plain one.
 //
 //   bench_post [--size 1920x1080] [--frames N]
 #include <QCoreApplication>
@@ -23,6 +24,7 @@
 #include "render/renderer.h"
 #include "scene/demo_post.h"
 #include "scene/scene_state.h"
+#include "sequencer/camera_cuts.h"
 #include "sequencer/camera_path.h"
 #include "tests/common/scene_parts.h"
 
@@ -92,6 +94,17 @@ int main(int argc, char** argv) {
          p.bloom = p.chromaticAberration = p.grade = p.vignette = p.grain = true;
          p.lut = lut33, p.lutEnabled = true;
        }},
+      // The stylised effects (render/passes/stylised_passes.h).
+      {"kuwahara r=6", [](scene::PostSettings& p) { p.kuwahara = true; }},
+      {"comic", [](scene::PostSettings& p) { p.comic = true; }},
+      {"outlines", [](scene::PostSettings& p) { p.outlines = true; }},
+      {"crt", [](scene::PostSettings& p) { p.crt = true; }},
+      {"dither bayer", [](scene::PostSettings& p) { p.dither = scene::DitherMode::Bayer; }},
+      {"dither blue noise", [](scene::PostSettings& p) { p.dither = scene::DitherMode::BlueNoise; }},
+      {"outlines+crt+dither", [](scene::PostSettings& p) {
+         p.outlines = p.crt = true;
+         p.dither = scene::DitherMode::Bayer;
+       }},
   };
   std::printf("%-22s %8s %12s %12s %10s\n", "effect", "passes", "post GPU ms", "frame ms", "/all off");
   render::RenderOptions o;
@@ -110,7 +123,8 @@ int main(int argc, char** argv) {
       double gpu = 0.0;
       passes = 0;
       for (const render::PassStats& p : st.passes)
-        if (p.name.rfind("tonemap", 0) == 0 || p.name.rfind("bloom", 0) == 0) {
+        if (p.name.rfind("tonemap", 0) == 0 || p.name.rfind("bloom", 0) == 0 || p.name.rfind("kuwahara", 0) == 0 ||
+            p.name.rfind("stylise", 0) == 0 || p.name.rfind("blue_noise", 0) == 0) {
           gpu += std::max(0.0, p.gpuMs);
           ++passes;
         }
@@ -122,28 +136,45 @@ int main(int argc, char** argv) {
     std::printf("%-22s %8zu %12.2f %12.1f %10.3f\n", row.name, passes, bench::median(post), frame, frame / offFrame);
     std::fflush(stdout);
   }
-  // A transition's frame (sequencer/camera_cuts.h): both shots rendered as
-  // two view groups and combined, against one shot's frame.
+  // Transition frames (sequencer/camera_cuts.h): both shots rendered as
+  // two view groups and combined (a weighted sum, or a stylised
+  // transition's pattern at its middle), against one shot's frame; both
+  // read back.
   {
     render::RenderView other = v;
     other.eye = {6.0, -6.0, 3.0};
     other.orientation = sequencer::lookRotation(glm::dvec3(-6.0, 6.0, -2.0));
     const scene::SceneState s = baseScene();
-    std::vector<double> plain, mixed;
-    for (int f = 0; f < frames + 1; ++f) {
-      double t0 = bench::nowSeconds();
-      r.renderOnly(s, v, o);
-      const double one = (bench::nowSeconds() - t0) * 1e3;
-      t0 = bench::nowSeconds();
-      r.renderMix(s, {v, other}, {0.5f, 0.5f}, false, nullptr, o);
-      const double two = (bench::nowSeconds() - t0) * 1e3;
-      if (f == 0) continue;
-      plain.push_back(one);
-      mixed.push_back(two);
+    std::printf("\n%-22s %12s %12s %10s %14s\n", "transition frame", "plain ms", "transition", "/plain", "combine GPU ms");
+    for (const std::string& name : sequencer::transitionNameList()) {
+      const sequencer::Transition t = *sequencer::transitionFromName(name);
+      if (t == sequencer::Transition::Cut) continue;
+      render::GroupCombine pattern;
+      pattern.transition = t;
+      pattern.progress = 0.5f;
+      pattern.frame = 7;
+      const auto [w0, w1] = sequencer::Shot{0, 1, t, 0.5}.weights();
+      std::vector<double> plain, mixed, combine;
+      for (int f = 0; f < frames + 1; ++f) {
+        double t0 = bench::nowSeconds();
+        r.render(s, v, false, nullptr, o);
+        const double one = (bench::nowSeconds() - t0) * 1e3;
+        t0 = bench::nowSeconds();
+        render::FrameStats st;
+        r.renderMix(s, {v, other}, {w0, w1}, false, &st, o, &pattern);
+        const double two = (bench::nowSeconds() - t0) * 1e3;
+        if (f == 0) continue;
+        plain.push_back(one);
+        mixed.push_back(two);
+        double gpu = 0.0;
+        for (const render::PassStats& p : st.passes)
+          if (p.name.rfind("group_combine", 0) == 0) gpu += std::max(0.0, p.gpuMs);
+        combine.push_back(gpu);
+      }
+      std::printf("%-22s %12.1f %12.1f %10.3f %14.2f\n", name.c_str(), bench::median(plain), bench::median(mixed),
+                  bench::median(mixed) / bench::median(plain), bench::median(combine));
+      std::fflush(stdout);
     }
-    std::printf("\n%-22s %12s %12s %10s\n", "frame", "plain ms", "transition", "/plain");
-    std::printf("%-22s %12.1f %12.1f %10.3f\n", "crossfade (2 shots)", bench::median(plain), bench::median(mixed),
-                bench::median(mixed) / bench::median(plain));
   }
   return 0;
 }

@@ -7,7 +7,8 @@
 namespace hs::render {
 
 TextureRef addGroupCombinePass(FrameGraph& graph, FrameContext& frame, const ViewContext& v,
-                               const std::vector<std::pair<TextureRef, float>>& images) {
+                               const std::vector<std::pair<TextureRef, float>>& images,
+                               const CombinePattern& pattern) {
   FullscreenPass pass;
   pass.name = v.named("group_combine");
   pass.fragment = "group_combine.frag";
@@ -19,9 +20,14 @@ TextureRef addGroupCombinePass(FrameGraph& graph, FrameContext& frame, const Vie
   }
   pass.outputName = v.named("group_combined");
   pass.output = TextureDesc{v.view.width, v.view.height, GL_RGBA16F};
-  pass.uniforms = [weights, n](GlProgram& p) {
+  // A pattern needs both shots; with fewer images the weights alone.
+  const int mode = sequencer::isPatterned(pattern.transition) && n >= 2 ? int(pattern.transition) : 0;
+  pass.uniforms = [weights, n, mode, pattern](GlProgram& p) {
     p.set("uWeights", weights);
     p.set("uImages", int(n));
+    p.set("uPattern", mode);
+    p.set("uProgress", pattern.progress);
+    p.set("uFrame", unsigned(uint64_t(pattern.frame)));
   };
   return addFullscreenPass(graph, frame, v, std::move(pass));
 }

@@ -9,6 +9,7 @@
 #include "render/color_lut.h"
 #include "render/passes/bloom_passes.h"
 #include "render/passes/fullscreen_pass.h"
+#include "render/passes/stylised_passes.h"
 #include "scene/light_units.h"
 
 namespace hs::render {
@@ -140,11 +141,14 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
       }
     }
   }
-  if (fxaa) {
+  // The last pass of the chain draws into the caller's framebuffer; the
+  // tone map does when neither FXAA nor a stylised effect follows.
+  const bool stylised = stylisedEffectsOn(post);
+  if (fxaa || stylised) {
     tm.outputName = v.named("ldr_color");
     tm.output = TextureDesc{v.view.width, v.view.height, GL_RGBA8};
   } else {
-    tm.toTarget = true;  // draws into the caller's framebuffer
+    tm.toTarget = true;
   }
   const float diagonal = std::hypot(float(v.view.width), float(v.view.height));
   const float lines = float(v.view.height) / 1080.0f;  // the pixel sizes are per 1080 lines
@@ -174,17 +178,26 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
       if (t.texture1d) glBindTextureUnit(t.unit, t.texture1d);
     }
   };
-  const TextureRef ldr = addFullscreenPass(graph, frame, v, std::move(tm));
-  if (!fxaa) return;
-  FullscreenPass aa;
-  aa.name = v.named("fxaa");
-  aa.fragment = "fxaa.frag";
-  aa.inputs = {{0, ldr}};
-  aa.toTarget = true;
-  aa.uniforms = [w = v.view.width, h = v.view.height](GlProgram& p) {
-    p.set("uTexel", glm::vec2(1.0f / float(w), 1.0f / float(h)));
-  };
-  addFullscreenPass(graph, frame, v, std::move(aa));
+  TextureRef ldr = addFullscreenPass(graph, frame, v, std::move(tm));
+  if (fxaa) {
+    // Anti-aliasing before the stylised effects: it smooths the rendered
+    // edges, not the dither's or the halftone's pattern.
+    FullscreenPass aa;
+    aa.name = v.named("fxaa");
+    aa.fragment = "fxaa.frag";
+    aa.inputs = {{0, ldr}};
+    if (stylised) {
+      aa.outputName = v.named("ldr_antialiased");
+      aa.output = TextureDesc{v.view.width, v.view.height, GL_RGBA8};
+    } else {
+      aa.toTarget = true;
+    }
+    aa.uniforms = [w = v.view.width, h = v.view.height](GlProgram& p) {
+      p.set("uTexel", glm::vec2(1.0f / float(w), 1.0f / float(h)));
+    };
+    ldr = addFullscreenPass(graph, frame, v, std::move(aa));
+  }
+  if (stylised) addStylisedPasses(graph, frame, v, ldr);
 }
 
 }  // namespace hs::render

@@ -80,6 +80,14 @@ class CutsEditorTest : public QObject {
     // Longer than the shot before (29 frames after its first): refused, nothing changes.
     QVERIFY(!track_->setTransition(1, sequencer::Transition::DipToBlack, 40));
     QCOMPARE(doc().state().sequence.cuts[1].transition, sequencer::Transition::Crossfade);
+    // A stylised transition, one undo step, drawn named on its ramp.
+    const int before = doc().undoStack()->index();
+    QVERIFY(track_->setTransition(1, sequencer::Transition::WaterDrop, 10));
+    QCOMPARE(doc().state().sequence.cuts[1].transition, sequencer::Transition::WaterDrop);
+    track_->grab();  // paints the ramp with its name
+    doc().undoStack()->undo();
+    QCOMPARE(doc().undoStack()->index(), before);
+    QCOMPARE(doc().state().sequence.cuts[1].transition, sequencer::Transition::Crossfade);
     // No camera selected: nothing to add.
     w_->selection().clear();
     QVERIFY(!track_->addCutAtPlayhead());

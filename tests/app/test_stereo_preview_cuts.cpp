@@ -2,7 +2,9 @@
 // (app/stereo_preview.h activeCamera): with nothing selected it looks
 // through the cut's camera at the shown frame, the stronger shot during a
 // transition, the shot camera outside every cut or where a cut's camera is
-// gone; a selected camera still wins.
+// gone; a selected camera still wins. During a transition (strictly between
+// its first and last frames) it reports the transition to combine
+// (activeTransition; the combined picture is test_transitions').
 #include <QtTest>
 
 #include "app/selection.h"
@@ -46,11 +48,22 @@ class StereoPreviewCutsTest : public QObject {
     QCOMPARE(at(56), scene::EntityId(3));  // 0.4 / 0.6: the incoming shot is stronger
     QCOMPARE(at(99), scene::EntityId(3));
     QCOMPARE(at(100), shot);
+    // The transition the preview combines: only between its first and last frames.
+    auto running = [&](int64_t frame) {
+      s.time.frame = frame;
+      return preview.activeTransition(s, selection);
+    };
+    QVERIFY(!running(50) && !running(60) && !running(20));
+    const auto mid = running(55);
+    QVERIFY(mid && mid->camera == 2 && mid->incoming == 3 && mid->transition == Transition::Crossfade);
+    QCOMPARE(mid->progress, 0.5);
     selection.set({1});  // a selected camera wins
     QCOMPARE(at(60), scene::EntityId(1));
+    QVERIFY(!running(55));
     selection.clear();
     s.entities.at(3).camera.reset();  // the cut's camera is no camera any more
     QCOMPARE(at(70), shot);
+    QVERIFY(!running(55));
   }
 };
 

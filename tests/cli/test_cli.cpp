@@ -610,7 +610,7 @@ class TestCli : public QObject {
     QVERIFY2(bad.err.contains("no camera named 'Nobody'") && bad.err.contains("Main Camera"), qPrintable(bad.err));
     const Run seq = cli({"render", demo_, "--out", path("f_%05d.png"), "--frames", "0-1", "--mix-camera", "Flight Camera"});
     QCOMPARE(seq.code, 2);
-    QVERIFY2(seq.err.contains("--mix-camera applies to one frame"), qPrintable(seq.err));
+    QVERIFY2(seq.err.contains("--mix-camera and --transition apply to one frame"), qPrintable(seq.err));
   }
 
   void renderToUnknownExtension() {

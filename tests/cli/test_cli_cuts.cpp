@@ -62,8 +62,9 @@ class TestCliCuts : public QObject {
   test::CliRun cli(QStringList args) { return test::runCli(args, tmp_.path()); }
   QString path(const QString& name) const { return tmp_.filePath(name); }
   // Frames first..last as `render --frames` writes them (extra arguments after).
-  std::vector<std::vector<unsigned char>> frames(const QString& name, int first, int last, QStringList extra = {}) {
-    const test::CliRun r = cli(QStringList{"render", scene_, "--frames", QString("%1-%2").arg(first).arg(last),
+  std::vector<std::vector<unsigned char>> frames(const QString& name, int first, int last, QStringList extra = {},
+                                                 QString scene = {}) {
+    const test::CliRun r = cli(QStringList{"render", scene.isEmpty() ? scene_ : scene, "--frames", QString("%1-%2").arg(first).arg(last),
                                            "--size", "64x36", "--aa", "none", "--out", path(name + "_%03d.png")} +
                                extra);
     if (r.code != 0) qWarning("%s", qPrintable(r.err));
@@ -184,6 +185,55 @@ class TestCliCuts : public QObject {
     QVERIFY2(r.err.contains("cut 2 (frames 10-29): camera #21 is not a camera of the scene"), qPrintable(r.err));
     r = cli({"cut", "list", copy});
     QVERIFY(r.out.contains("problem: cut 2"));
+  }
+
+  // A stylised transition through the timeline: a swipe without easing is
+  // half-way at its middle frame: in each eye the incoming shot on the
+  // left, the outgoing one on the right, each as that camera renders it.
+  void swipeThroughTheTimeline() {
+    const QString swipe = path("swipe.hscene");
+    std::string error;
+    QVERIFY2(scene::saveScene(twoShots(), swipe.toStdString(), error), error.c_str());
+    QVERIFY(cli({"cut", "add", "A", "0f", "9f", swipe}).code == 0);
+    test::CliRun r = cli({"cut", "add", "B", "10f", "29f", swipe, "--transition", "swipe", "--duration", "4f",
+                          "--ease", "none"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("after a swipe of 4 frames"), qPrintable(r.out));
+    QVERIFY(cli({"cut", "list", swipe}).out.contains("swipe of 4 frames"));
+    const auto mid = frames("swipe", 12, 12, {}, swipe);
+    const auto a = frames("swipe_a", 12, 12, {"--camera", "A"}, swipe);
+    const auto b = frames("swipe_b", 12, 12, {"--camera", "B"}, swipe);
+    QVERIFY(!mid[0].empty() && a[0] != b[0]);
+    // The frames are side by side, two eyes of 64 x 36: the swipe in each eye.
+    const size_t width = 128, channels = mid[0].size() / width / 36;
+    QVERIFY(channels >= 3 && mid[0].size() == width * 36 * channels);
+    int leftOff = 0, rightOff = 0;
+    for (size_t y = 0; y < 36; ++y)
+      for (size_t x = 0; x < width; ++x)
+        for (size_t c = 0; c < 3; ++c) {
+          const size_t i = (y * width + x) * channels + c;
+          if (x % 64 < 26) leftOff = std::max(leftOff, std::abs(int(mid[0][i]) - int(b[0][i])));
+          if (x % 64 >= 38) rightOff = std::max(rightOff, std::abs(int(mid[0][i]) - int(a[0][i])));
+        }
+    QVERIFY2(leftOff <= 1 && rightOff <= 1, qPrintable(QString("left %1, right %2").arg(leftOff).arg(rightOff)));
+    QVERIFY(mid[0] != a[0] && mid[0] != b[0]);
+  }
+
+  // The same as a still: `render --mix-camera B --mix P --transition KIND`.
+  void transitionStill() {
+    auto still = [&](const QString& name, QStringList extra) {
+      const test::CliRun r = cli(QStringList{"render", scene_, "--camera", "A", "--size", "64x36", "--aa", "none",
+                                             "--out", path(name)} + extra);
+      if (r.code != 0) qWarning("%s", qPrintable(r.err));
+      return pixels(path(name));
+    };
+    const auto fade = still("still_fade.png", {"--mix-camera", "B", "--mix", "0.5"});
+    const auto drop = still("still_drop.png", {"--mix-camera", "B", "--mix", "0.5", "--transition", "water_drop"});
+    QVERIFY(!fade.empty() && !drop.empty() && fade != drop);
+    test::CliRun r = cli({"render", scene_, "--transition", "glitch", "--out", path("no.png")});
+    QVERIFY(r.code != 0 && r.err.contains("give --mix-camera too"));
+    r = cli({"render", scene_, "--mix-camera", "B", "--transition", "melt", "--out", path("no.png")});
+    QVERIFY2(r.code != 0 && r.err.contains("radial_wipe"), qPrintable(r.err));
   }
 
   void removeRenumbers() {

@@ -17,46 +17,15 @@
 #include "render/renderer.h"
 #include "look_from.h"
 #include "post_reference.h"
+#include "post_scene.h"
 #include "scene_parts.h"
 
 using namespace hs;
 
 namespace {
 
-// A lit grey ground, balls from dark to a bright emitter (exposed values
-// from about 0.01 to 30) and an HDR sky: every part of each tone curve.
-scene::SceneState hdrScene() {
-  scene::SceneState s;
-  s.settings.showGrid = false;
-  s.settings.antialiasing = scene::Antialiasing::None;
-  s.settings.skyZenith = {6.0f, 9.0f, 14.0f};
-  s.settings.skyHorizon = {0.6f, 0.7f, 0.8f};
-  test::addMeshAsset(s, 1, "Ground", mesh::gridPlane(60.0f, 1), {0.4f, 0.4f, 0.38f});
-  test::addMeshEntity(s, 1, "Ground", 1);
-  const glm::vec3 colours[] = {{0.02f, 0.02f, 0.03f}, {0.8f, 0.2f, 0.1f}, {0.1f, 0.7f, 0.2f}, {0.9f, 0.9f, 0.9f}};
-  for (int i = 0; i < 4; ++i) {
-    test::addMeshAsset(s, 10 + i, "Ball " + std::to_string(i), mesh::uvSphere(0.8f, 24, 12), colours[i]);
-    test::addMeshEntity(s, 10 + i, "Ball " + std::to_string(i), 10 + i, {-3.0 + 2.0 * i, 0.0, 0.8});
-  }
-  // An emitter: exposed radiance far above 1 (highlights to compress, light to bloom).
-  test::addMeshAsset(s, 20, "Lamp", mesh::uvSphere(0.3f, 16, 8), {0.0f, 0.0f, 0.0f});
-  scene::Material& lamp = s.materials.at(20);
-  lamp.emission = {1.0f, 0.6f, 0.3f};
-  lamp.emissionStrength = 40.0f;
-  test::addMeshEntity(s, 20, "Lamp", 20, {0.0, -1.5, 2.2});
-  test::addSun(s, 100, {50, 0, -30});
-  return s;
-}
-
-render::RenderView view(int w = 192, int h = 108) {
-  render::RenderView v;
-  v.width = w;
-  v.height = h;
-  v.fovY = glm::radians(55.0);
-  v.eye = {0.0, -9.0, 2.5};
-  v.orientation = test::lookFrom(v.eye, {0.0, 0.0, 1.2}).rotation;
-  return v;
-}
+scene::SceneState hdrScene() { return test::postTestScene(); }
+render::RenderView view(int w = 192, int h = 108) { return test::postTestView(w, h); }
 
 bool passRan(const render::FrameStats& s, const std::string& part) {
   for (const render::PassStats& p : s.passes)

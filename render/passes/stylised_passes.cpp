@@ -1,0 +1,125 @@
+#include "render/passes/stylised_passes.h"
+
+#include <algorithm>
+
+#include "core/blue_noise.h"
+#include "core/srgb.h"
+#include "render/passes/fullscreen_pass.h"
+
+namespace hs::render {
+
+namespace {
+
+bool kuwaharaOn(const scene::PostSettings& post) { return post.kuwahara && post.kuwaharaRadiusPx > 0.0f; }
+
+// The blue-noise map as thresholds (rank + 0.5) / count: computed once per
+// process (a pure function), uploaded into a texture that lives across
+// frames in the pool.
+const std::vector<float>& blueNoiseThresholds() {
+  static const std::vector<float> values = [] {
+    const std::vector<uint32_t> ranks = blueNoiseRanks(kBlueNoiseSide);
+    std::vector<float> v(ranks.size());
+    for (size_t i = 0; i < ranks.size(); ++i) v[i] = (float(ranks[i]) + 0.5f) / float(ranks.size());
+    return v;
+  }();
+  return values;
+}
+
+TextureRef addBlueNoise(FrameGraph& graph, const ViewContext& v) {
+  struct Data {
+    TextureRef map;
+  };
+  // Kept 600 frames without use before the pool frees it (32 KB).
+  const TextureRef kept =
+      graph.persistentTexture(v.named("blue_noise"), TextureDesc{kBlueNoiseSide, kBlueNoiseSide, GL_R32F}, 600);
+  return graph
+      .addPass<Data>(
+          v.named("blue_noise"), [&](PassBuilder& b, Data& d) { d.map = b.write(b.read(kept)); },
+          [](const Data& d, const PassResources& r) {
+            if (!r.fresh(d.map)) return;  // filled once
+            glTextureSubImage2D(r.texture(d.map), 0, 0, 0, kBlueNoiseSide, kBlueNoiseSide, GL_RED, GL_FLOAT,
+                                blueNoiseThresholds().data());
+          })
+      .map;
+}
+
+}  // namespace
+
+bool stylisedEffectsOn(const scene::PostSettings& post) {
+  return kuwaharaOn(post) || !stylisePassDefines(post).empty();
+}
+
+std::vector<std::string> stylisePassDefines(const scene::PostSettings& post) {
+  std::vector<std::string> d;
+  if (post.comic) d.push_back("HS_COMIC");  // draws the outlines itself
+  else if (post.outlines) d.push_back("HS_OUTLINES");
+  if (post.crt) d.push_back("HS_CRT");
+  if (post.dither == scene::DitherMode::Bayer) d.push_back("HS_DITHER_BAYER");
+  if (post.dither == scene::DitherMode::BlueNoise) d.push_back("HS_DITHER_BLUE");
+  return d;
+}
+
+void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr) {
+  const scene::PostSettings& post = frame.settings.post;
+  const int w = v.view.width, h = v.view.height;
+  const float lines = float(h) / 1080.0f;
+  const std::vector<std::string> defines = stylisePassDefines(post);
+  if (kuwaharaOn(post)) {
+    FullscreenPass tensor;
+    tensor.name = v.named("kuwahara_tensor");
+    tensor.fragment = "kuwahara_tensor.frag";
+    tensor.inputs = {{0, ldr}};
+    tensor.outputName = v.named("kuwahara_tensor");
+    tensor.output = TextureDesc{w, h, GL_RGBA16F};
+    FullscreenPass orient;
+    orient.name = v.named("kuwahara_orient");
+    orient.fragment = "kuwahara_orient.frag";
+    orient.inputs = {{0, addFullscreenPass(graph, frame, v, std::move(tensor))}};
+    orient.outputName = v.named("kuwahara_orientation");
+    orient.output = TextureDesc{w, h, GL_RGBA16F};
+    FullscreenPass filter;
+    filter.name = v.named("kuwahara");
+    filter.fragment = "kuwahara.frag";
+    filter.inputs = {{0, ldr}, {1, addFullscreenPass(graph, frame, v, std::move(orient))}};
+    filter.uniforms = [radius = std::max(1.0f, post.kuwaharaRadiusPx * lines),
+                       q = std::clamp(post.kuwaharaSharpness, 1.0f, 16.0f)](GlProgram& p) {
+      p.set("uRadius", radius);
+      p.set("uQ", q);
+    };
+    if (defines.empty()) {
+      filter.toTarget = true;
+      addFullscreenPass(graph, frame, v, std::move(filter));
+      return;
+    }
+    filter.outputName = v.named("kuwahara_color");
+    filter.output = TextureDesc{w, h, GL_RGBA8};
+    ldr = addFullscreenPass(graph, frame, v, std::move(filter));
+  }
+  if (defines.empty()) return;
+  FullscreenPass pass;
+  pass.name = v.named("stylise");
+  pass.fragment = "stylise.frag";
+  pass.defines = defines;
+  pass.inputs = {{0, ldr}};
+  if (post.dither == scene::DitherMode::BlueNoise) pass.inputs.push_back({1, addBlueNoise(graph, v)});
+  pass.toTarget = true;
+  const glm::vec3 outline(linearToSrgbFloat(post.outlineColor.r), linearToSrgbFloat(post.outlineColor.g),
+                          linearToSrgbFloat(post.outlineColor.b));
+  pass.uniforms = [post, lines, outline](GlProgram& p) {
+    p.set("uLines", lines);
+    p.set("uLevels", post.comicLevels);
+    p.set("uDotCell", std::max(2.0f, post.comicDotPx * lines));
+    p.set("uOutlineThreshold", std::max(1e-3f, post.outlineThreshold));
+    p.set("uOutlineColor", outline);
+    p.set("uCurvature", post.crtCurvature);
+    p.set("uScanlines", post.crtScanlines);
+    // At least 3 rows a line: finer lines than that alias into moiré (a
+    // small viewport shows fewer lines than the film, not a pattern).
+    p.set("uScanCount", std::clamp(post.crtLinesPer1080, 1.0f, std::max(1.0f, lines * 360.0f)));
+    p.set("uMask", post.crtMask);
+    p.set("uDitherLevels", post.ditherLevels);
+  };
+  addFullscreenPass(graph, frame, v, std::move(pass));
+}
+
+}  // namespace hs::render

@@ -1,0 +1,291 @@
+// The stylised effects (docs/rendering.md "Stylised effects";
+// render/passes/stylised_passes.h) against their CPU twin
+// (tests/common/stylised_reference.h) applied to the renderer's own image
+// with the effects off: comic, outlines, CRT, Bayer and blue-noise
+// dithering alone and together, the anisotropic Kuwahara filter. Goldens
+// per effect. Off costs nothing (no pass, no texture); the blue-noise map
+// is blue (little low-frequency energy against white noise's) and holds
+// every rank once; both eyes dither with the same screen pattern; a stiff Kuwahara (sharpness 16 on grain at
+// full strength) stays finite and keeps the picture.
+#include <QtTest>
+
+#include <cmath>
+#include <complex>
+#include <random>
+
+#include "core/blue_noise.h"
+#include "render/offscreen_renderer.h"
+#include "render/output_target.h"
+#include "render/renderer.h"
+#include "scene/demo_scene.h"
+#include "render_golden.h"
+#include "post_scene.h"
+#include "stylised_reference.h"
+
+using namespace hs;
+
+namespace {
+
+constexpr int kNoiseSide = 64;  // render/passes/stylised_passes.h kBlueNoiseSide
+
+std::vector<float> thresholds() {
+  const std::vector<uint32_t> ranks = blueNoiseRanks(kNoiseSide);
+  std::vector<float> v(ranks.size());
+  for (size_t i = 0; i < ranks.size(); ++i) v[i] = (float(ranks[i]) + 0.5f) / float(ranks.size());
+  return v;
+}
+
+// Largest channel difference and the share of pixels more than `tol` off.
+std::pair<int, double> compare8(const Image& a, const Image& b, int tol) {
+  int worst = 0;
+  size_t over = 0;
+  const size_t pixels = a.rgba8.size() / 4;
+  for (size_t p = 0; p < pixels; ++p) {
+    int d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(a.rgba8[p * 4 + c]) - int(b.rgba8[p * 4 + c])));
+    worst = std::max(worst, d);
+    over += d > tol;
+  }
+  return {worst, double(over) / double(std::max<size_t>(pixels, 1))};
+}
+
+bool passRan(const render::FrameStats& s, const std::string& part) {
+  for (const render::PassStats& p : s.passes)
+    if (p.name.find(part) != std::string::npos) return true;
+  return false;
+}
+
+// The share of a threshold map's spectral energy at the lowest
+// frequencies (radius <= side / 8, the DC term left out).
+double lowFrequencyShare(const std::vector<float>& map, int side) {
+  double low = 0, all = 0, mean = 0;
+  for (float v : map) mean += v;
+  mean /= double(map.size());
+  for (int v = 0; v < side; ++v)
+    for (int u = 0; u < side; ++u) {
+      if (u == 0 && v == 0) continue;
+      std::complex<double> sum = 0;
+      for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x)
+          sum += double(map[size_t(y * side + x)] - mean) *
+                 std::polar(1.0, -2.0 * M_PI * (double(u * x) + double(v * y)) / side);
+      const double e = std::norm(sum);
+      const int fu = std::min(u, side - u), fv = std::min(v, side - v);
+      all += e;
+      if (fu * fu + fv * fv <= (side / 8) * (side / 8)) low += e;
+    }
+  return low / all;
+}
+
+}  // namespace
+
+class TestStylised : public QObject {
+  Q_OBJECT
+  render::OffscreenRenderer r_;
+  scene::SceneState base_ = test::postTestScene();
+
+  // The renderer's output with `post`'s stylised effects, and the same
+  // frame without them.
+  std::pair<Image, Image> withAndWithout(const scene::PostSettings& post, const render::RenderView& v,
+                                         render::FrameStats* stats = nullptr) {
+    scene::SceneState plain = base_, styled = base_;
+    styled.settings.post = post;
+    return {r_.render(styled, v, false, stats), r_.render(plain, v, false)};
+  }
+
+ private slots:
+  void initTestCase() {
+    std::string error;
+    QVERIFY2(r_.initialize(error), error.c_str());
+    base_.settings.tonemap = scene::Tonemap::Aces;
+  }
+
+  void blueNoiseIsBlue() {
+    const std::vector<float> blue = thresholds();
+    std::vector<float> white(blue.size());
+    std::mt19937 rng(7);
+    for (float& v : white) v = std::uniform_real_distribution<float>(0.0f, 1.0f)(rng);
+    const double b = lowFrequencyShare(blue, kNoiseSide), w = lowFrequencyShare(white, kNoiseSide);
+    qInfo("low-frequency energy: blue noise %.4f, white noise %.4f", b, w);
+    QVERIFY(b < 0.25 * w);
+    // Every rank once.
+    std::vector<uint32_t> ranks = blueNoiseRanks(kNoiseSide);
+    std::sort(ranks.begin(), ranks.end());
+    for (size_t i = 0; i < ranks.size(); ++i) QCOMPARE(ranks[i], uint32_t(i));
+    QVERIFY(blueNoiseRanks(kNoiseSide) == blueNoiseRanks(kNoiseSide));
+  }
+
+  void perPixelEffectsMatchTheCpu_data() {
+    QTest::addColumn<int>("which");
+    QTest::newRow("comic") << 0;
+    QTest::newRow("outlines") << 1;
+    QTest::newRow("crt") << 2;
+    QTest::newRow("bayer") << 3;
+    QTest::newRow("blue_noise") << 4;
+    QTest::newRow("outlines_crt_bayer") << 5;
+  }
+  void perPixelEffectsMatchTheCpu() {
+    QFETCH(int, which);
+    scene::PostSettings post;
+    switch (which) {
+      case 0: post.comic = true, post.comicLevels = 4, post.comicDotPx = 30, post.outlineThreshold = 0.15f; break;
+      case 1: post.outlines = true, post.outlineThreshold = 0.1f, post.outlineColor = {0.9f, 0.1f, 0.1f}; break;
+      case 2: post.crt = true, post.crtCurvature = 0.12f, post.crtLinesPer1080 = 60, post.crtMask = 0.4f; break;
+      case 3: post.dither = scene::DitherMode::Bayer, post.ditherLevels = 3; break;
+      case 4: post.dither = scene::DitherMode::BlueNoise, post.ditherLevels = 4; break;
+      default:
+        post.outlines = true, post.crt = true, post.dither = scene::DitherMode::Bayer, post.ditherLevels = 6;
+        break;
+    }
+    const render::RenderView v = test::postTestView(192, 108);
+    render::FrameStats stats;
+    const auto [styled, plain] = withAndWithout(post, v, &stats);
+    QVERIFY(passRan(stats, "stylise"));
+    const Image ref = test::stylisePassReference(plain, post, thresholds(), kNoiseSide);
+    // A dither level is a whole step: a pixel whose value sits on a
+    // threshold within float rounding may land a step apart; the rest
+    // within 2/255 (the CRT's bilinear reads: the GPU's 8-bit weights).
+    const auto [worst, over] = compare8(styled, ref, 2);
+    qInfo("largest difference %d/255, %.3f%% of pixels more than 2 apart", worst, 100.0 * over);
+    QVERIFY2(over <= 0.005, qPrintable(QString::number(100.0 * over) + "%"));
+    // It did something (outlines touch the edges alone: a few percent).
+    QVERIFY(compare8(styled, plain, 2).second > (which == 1 ? 0.005 : 0.05));
+  }
+
+  void kuwaharaMatchesTheCpu() {
+    scene::PostSettings post;
+    post.kuwahara = true;
+    post.kuwaharaRadiusPx = 36.0f;  // 3.6 px at 108 rows
+    post.kuwaharaSharpness = 8.0f;
+    const render::RenderView v = test::postTestView(192, 108);
+    render::FrameStats stats;
+    const auto [styled, plain] = withAndWithout(post, v, &stats);
+    QVERIFY(passRan(stats, "kuwahara_tensor") && passRan(stats, "kuwahara_orient") && passRan(stats, "kuwahara"));
+    QVERIFY(!passRan(stats, "stylise"));
+    const Image ref = test::kuwaharaReference(plain, 3.6, 8.0);
+    // The tensor and orientation pass through half floats: an ellipse a
+    // hair different moves a few sector means by a level or two.
+    const auto [worst, over] = compare8(styled, ref, 3);
+    qInfo("largest difference %d/255, %.3f%% of pixels more than 3 apart", worst, 100.0 * over);
+    QVERIFY2(over <= 0.01, qPrintable(QString::number(100.0 * over) + "%"));
+    QVERIFY(compare8(styled, plain, 2).second > 0.05);
+  }
+
+  // Sharpness 16 (the field's largest) on full-strength grain: every
+  // sector's variance large, the weights small but not zero; the image
+  // stays the picture (not black, not NaN turned black) and smooths the
+  // grain.
+  void stiffKuwaharaStaysFinite() {
+    scene::SceneState s = base_;
+    s.settings.post.grain = true;
+    s.settings.post.grainIntensity = 1.0f;
+    const render::RenderView v = test::postTestView(192, 108);
+    const Image grainy = r_.render(s, v);
+    s.settings.post.kuwahara = true;
+    s.settings.post.kuwaharaRadiusPx = 60.0f;
+    s.settings.post.kuwaharaSharpness = 16.0f;
+    const Image painted = r_.render(s, v);
+    auto black = [](const Image& img) {
+      size_t n = 0;
+      for (size_t p = 0; p < img.rgba8.size(); p += 4) n += img.rgba8[p] + img.rgba8[p + 1] + img.rgba8[p + 2] == 0;
+      return n;
+    };
+    QVERIFY2(black(painted) <= black(grainy), qPrintable(QString("%1 black pixels, %2 before").arg(black(painted)).arg(black(grainy))));
+    // Smoother: the mean absolute difference between horizontal neighbours drops.
+    auto roughness = [](const Image& img) {
+      double sum = 0;
+      for (int y = 0; y < img.height; ++y)
+        for (int x = 1; x < img.width; ++x)
+          for (int c = 0; c < 3; ++c)
+            sum += std::abs(int(img.rgba8[(size_t(y) * size_t(img.width) + size_t(x)) * 4 + size_t(c)]) -
+                            int(img.rgba8[(size_t(y) * size_t(img.width) + size_t(x) - 1) * 4 + size_t(c)]));
+      return sum;
+    };
+    qInfo("roughness: grain %.0f, painted %.0f", roughness(grainy), roughness(painted));
+    QVERIFY(roughness(painted) < 0.5 * roughness(grainy));
+  }
+
+  void offCostsNothing() {
+    scene::SceneState s = base_;
+    s.settings.post.outlineThreshold = 0.7f;  // parameters of disabled effects change nothing
+    s.settings.post.ditherLevels = 3;
+    s.settings.post.crtCurvature = 0.4f;
+    // A renderer of its own: the pool keeps what earlier frames made.
+    render::OffscreenRenderer fresh;
+    std::string error;
+    QVERIFY2(fresh.initialize(error), error.c_str());
+    render::FrameStats stats;
+    const Image a = fresh.render(s, test::postTestView(), false, &stats);
+    const Image b = fresh.render(base_, test::postTestView());
+    QVERIFY(a.rgba8 == b.rgba8);
+    for (const char* pass : {"stylise", "kuwahara", "blue_noise"}) QVERIFY2(!passRan(stats, pass), pass);
+    for (const render::GpuAllocation& g : fresh.renderer().resourceRegistry())
+      for (const char* name : {"ldr_color", "kuwahara", "blue_noise"}) QVERIFY2(g.name.find(name) == std::string::npos, g.name.c_str());
+    r_.makeCurrent();
+  }
+
+  // Both eyes of a pair dither with the same pattern at the same screen
+  // place: each eye's image is its plain image through the one reference.
+  void bothEyesDitherAlike() {
+    const render::RenderView v = test::postTestView(128, 72);
+    render::RenderView left = v, right = v;
+    const glm::dvec3 side = glm::dvec3(glm::transpose(v.viewRotation())[0]);
+    left.eye -= side * 0.05;
+    right.eye += side * 0.05;
+    r_.makeCurrent();
+    render::OutputTarget outs[2];
+    std::vector<render::ViewTarget> targets;
+    for (int i = 0; i < 2; ++i) {
+      outs[i].ensure(v.width, v.height);
+      targets.push_back({i ? right : left, outs[i].fbo(), i ? "right" : "left"});
+    }
+    auto eyes = [&](const scene::SceneState& s) {
+      r_.renderer().renderViews(s, targets);
+      return std::pair{r_.renderer().readDisplay(outs[0].fbo(), v.width, v.height),
+                       r_.renderer().readDisplay(outs[1].fbo(), v.width, v.height)};
+    };
+    scene::SceneState s = base_;
+    const auto [plainL, plainR] = eyes(s);
+    s.settings.post.dither = scene::DitherMode::BlueNoise;
+    s.settings.post.ditherLevels = 2;
+    const auto [l, r] = eyes(s);
+    QVERIFY(plainL.rgba8 != plainR.rgba8);
+    for (const auto& [styled, plain] : {std::pair{&l, &plainL}, std::pair{&r, &plainR}}) {
+      const auto [worst, over] = compare8(*styled, test::stylisePassReference(*plain, s.settings.post, thresholds(), kNoiseSide), 2);
+      QVERIFY2(over <= 0.005, qPrintable(QString::number(100.0 * over) + "%"));
+    }
+  }
+
+  void goldens_data() {
+    QTest::addColumn<int>("which");
+    QTest::newRow("comic") << 0;
+    QTest::newRow("outlines") << 1;
+    QTest::newRow("crt") << 2;
+    QTest::newRow("dither_bayer") << 3;
+    QTest::newRow("dither_blue_noise") << 4;
+    QTest::newRow("kuwahara") << 5;
+  }
+  // On the demo scene (terrain, trees, water, figures: every kind of edge and shade).
+  void goldens() {
+    QFETCH(int, which);
+    std::string error;
+    static const std::optional<scene::SceneState> demo = scene::buildDemoScene(error);
+    QVERIFY2(demo, error.c_str());
+    scene::SceneState s = *demo;
+    s.settings.antialiasing = scene::Antialiasing::None;
+    scene::PostSettings& p = s.settings.post;
+    switch (which) {
+      case 0: p.comic = true; break;
+      case 1: p.outlines = true; break;
+      case 2: p.crt = true; break;
+      case 3: p.dither = scene::DitherMode::Bayer; break;
+      case 4: p.dither = scene::DitherMode::BlueNoise; break;
+      default: p.kuwahara = true; break;
+    }
+    const render::RenderView v = render::viewFromCamera(s, s.cameras().front(), 256, 144);
+    test::verifyGolden(std::string("stylised_") + QTest::currentDataTag(), r_.render(s, v));
+  }
+};
+
+QTEST_GUILESS_MAIN(TestStylised)
+#include "test_stylised.moc"
