@@ -83,9 +83,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
           [this](const QString& gl) { messages_->info("OpenGL: " + gl); });
   connect(viewport_, &ViewportWidget::rendererFailed, this,
           [this](const QString& error) { messages_->error("The viewport cannot render: " + error); });
-  // OpenGL's debug output (debug builds, HS_GL_DEBUG) after each frame.
+  // OpenGL's debug output (debug builds, HS_GL_DEBUG) and what the renderer
+  // refused or clamped (each once) after each frame.
   connect(viewport_, &ViewportWidget::frameRendered, this, [this] {
-    for (const std::string& m : viewport_->takeGlMessages()) messages_->warning(QString::fromStdString(m));
+    for (const std::string& m : viewport_->takeRendererMessages()) messages_->warning(QString::fromStdString(m));
   });
 
   autosave_ = new Autosave(doc_, this);
@@ -261,6 +262,12 @@ void MainWindow::createActions() {
     viewport_->setShowDepthComplexity(on);
   }, "Show how many translucent surfaces each pixel sees, blue (one) to red (the most), instead of the scene");
   depthComplexityAct_->setCheckable(true);
+  // The post chain judged: the left half without its effects (render/renderer.h postSplit).
+  postSplitAct_ = make("&Post Before/After", QKeySequence(), [this](bool on) { viewport_->setPostSplit(on); },
+                       "Show the left half of the viewport without the post effects (grade, LUT, bloom, stylised "
+                       "effects...), the right half with them");
+  postSplitAct_->setCheckable(true);
+  postSplitAct_->setObjectName("postSplitAction");
   resetLayoutAct_ = make("&Reset Layout", QKeySequence(), [this] { resetLayout(); });
 
   auto* modes = new QActionGroup(this);
@@ -352,6 +359,7 @@ void MainWindow::createMenus() {
   view->addSeparator();
   view->addAction(gridAct_);
   view->addAction(depthComplexityAct_);
+  view->addAction(postSplitAct_);
   view->addAction(viewport_->focusPickAction());  // depth of field: app/viewport_focus.cpp
   view->addSeparator();
   addTimelineMenus(file, view);

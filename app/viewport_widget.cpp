@@ -17,6 +17,7 @@
 #include "app/terrain_tool.h"
 #include "app/timeline_clock.h"
 #include "app/timeline_path_overlay.h"
+#include "render/render_problems.h"
 #include "scene/sequence_edits.h"
 #include "scene/world_bounds.h"
 
@@ -134,6 +135,7 @@ void ViewportWidget::paintGL() {
   options.passTimings = frames_ % 30 == 0;
   options.oitCounts = options.passTimings;  // fragments per pixel for the status bar, with the timings
   options.depthComplexity = showDepthComplexity_;
+  options.postSplit = postSplit_ ? 0.5f : 0.0f;
   stats_ = renderer_.render(state, view, defaultFramebufferObject(), options);
   ++frames_;
   emit frameRendered(stats_);
@@ -142,6 +144,18 @@ void ViewportWidget::paintGL() {
 void ViewportWidget::setShowDepthComplexity(bool show) {
   if (show == showDepthComplexity_) return;
   showDepthComplexity_ = show;
+  update();
+}
+
+std::vector<std::string> ViewportWidget::takeRendererMessages() {
+  std::vector<std::string> out = renderer_.takeGlMessages();
+  for (std::string& p : render::takeRenderProblems(renderer_)) out.push_back(std::move(p));
+  return out;
+}
+
+void ViewportWidget::setPostSplit(bool on) {
+  if (on == postSplit_) return;
+  postSplit_ = on;
   update();
 }
 

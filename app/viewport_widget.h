@@ -44,12 +44,17 @@ class ViewportWidget : public QOpenGLWidget {
   // Terrain material textures the renderer could not read, found since the
   // last call (the Terrain panel passes them to Messages after each frame).
   std::vector<std::string> takeTerrainMaterialProblems() { return renderer_.takeTerrainMaterialProblems(); }
-  std::vector<std::string> takeGlMessages() { return renderer_.takeGlMessages(); }
+  // OpenGL's debug output and what the renderer refused or clamped
+  // (render/render_problems.h) since the last call.
+  std::vector<std::string> takeRendererMessages();
   bool showGrid() const { return showGrid_; }
   void setShowGrid(bool show);
   // The depth-complexity view mode (RenderOptions::depthComplexity).
   bool showDepthComplexity() const { return showDepthComplexity_; }
   void setShowDepthComplexity(bool show);
+  // The before/after split of the post chain: the left half without effects.
+  bool postSplit() const { return postSplit_; }
+  void setPostSplit(bool on);
 
   // The entity under a widget position (logical pixels): a camera/light
   // glyph, else a mesh through the renderer's id pass. Makes the context
@@ -145,6 +150,7 @@ class ViewportWidget : public QOpenGLWidget {
   int frames_ = 0;
   bool showGrid_ = true;
   bool showDepthComplexity_ = false;
+  bool postSplit_ = false;
   bool collectGarbage_ = false;
   bool needsViewReset_ = true;
 

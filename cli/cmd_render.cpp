@@ -9,6 +9,7 @@
 
 #include "render/frame_stats_json.h"
 #include "render/offscreen_renderer.h"
+#include "render/render_problems.h"
 #include "scene/animation.h"
 #include "scene/hscene_file.h"
 #include "scene/render_operation.h"
@@ -113,6 +114,8 @@ int runRender(int argc, char** argv) {
     img = renderer.render(*state, view, hdr, &stats, options);
   }
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  for (const std::string& p : render::takeRenderProblems(renderer.renderer()))
+    std::fprintf(stderr, "warning: %s\n", p.c_str());
   hs::ImageView iv{img.width, img.height, img.rgba8.empty() ? nullptr : img.rgba8.data(),
                           img.rgbaF.empty() ? nullptr : img.rgbaF.data()};
   if (!sequencer::writeImage(out, iv, error, writeOptions)) return args.fail(error);

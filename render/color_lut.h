@@ -43,6 +43,8 @@ class GpuLutCache {
   // (the LUT was checked on import and on load, so this is rare).
   const GpuLut* get(const scene::LutData& lut, std::string& error);
   void release();
+  // The kept LUT's texture memory (the renderer's registry lists it).
+  size_t gpuBytes() const { return lut_ ? lut_->bytes : 0; }
 
  private:
   uint64_t hash_ = 0;

@@ -475,6 +475,7 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
   if (const size_t t = res.meshes.tangentBytes()) out.push_back({"mesh_tangents", "buffer", t, false});
   if (const size_t t = res.impostors.gpuBytes()) out.push_back({"impostor_atlases", "textures", t, false});
   if (const size_t f = res.fogBlock.capacity) out.push_back({"fog_block", "buffer", f, false});
+  if (const size_t l = res.luts.gpuBytes()) out.push_back({"lut_tables", "textures", l, false});
   return out;
 }
 

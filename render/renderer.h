@@ -134,6 +134,11 @@ struct RenderOptions {
   // instead of the scene (the viewport's view mode).
   bool oitCounts = false;
   bool depthComplexity = false;
+  // The editor's before/after split (View > Post Before/After): in (0, 1),
+  // the share of the width, from the left, that shows the frame without
+  // its post effects (exposure, the tone map and sRGB only), with a line
+  // at the border; 0 (or no effect on): the frame as it is.
+  float postSplit = 0.0f;
 };
 
 // One view of a frame and the framebuffer it ends in.

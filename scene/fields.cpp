@@ -419,7 +419,7 @@ std::vector<SettingsField> buildSettingsFields() {
                      [](S& s) -> float& { return s.post.crtLinesPer1080; }),
       doubleField<S>("post.crt.mask", "Aperture mask", 0.0, 1.0, 0.05, "",
                      [](S& s) -> float& { return s.post.crtMask; }),
-      enumField<S>("post.dither.mode", "Dithering", {"Off", "Bayer", "Blue noise"},
+      enumField<S>("post.dither.mode", "Dithering", {"Off", "Bayer", "Blue noise", "Error diffusion"},
                    [](S& s) -> DitherMode& { return s.post.dither; }),
       doubleField<S>("post.dither.levels", "Dither levels", 2.0, 256.0, 1.0, "",
                      [](S& s) -> float& { return s.post.ditherLevels; }),

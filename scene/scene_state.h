@@ -99,8 +99,9 @@ struct LutData {
 // map, the grade, the LUT, the vignette, grain, then FXAA. Each effect runs only
 // when enabled: with all off the chain is the tone map alone, no pass or
 // texture more.
-// Dithering (PostSettings::dither): the threshold pattern.
-enum class DitherMode { Off = 0, Bayer = 1, BlueNoise = 2 };
+// Dithering (PostSettings::dither): an ordered threshold pattern (Bayer,
+// blue noise), or Floyd-Steinberg error diffusion.
+enum class DitherMode { Off = 0, Bayer = 1, BlueNoise = 2, ErrorDiffusion = 3 };
 struct PostSettings {
   // Bloom: exposed light above the threshold (soft knee), spread by a
   // downsample/upsample chain and added back.
@@ -153,10 +154,11 @@ struct PostSettings {
   bool crt = false;
   float crtCurvature = 0.08f;   // barrel distortion at the corner
   float crtScanlines = 0.5f;    // darkening between the lines, 0..1
-  float crtLinesPer1080 = 270.0f;  // scanlines per 1080 rows
+  float crtLinesPer1080 = 270.0f;  // scanlines over the frame's height (at most one per 3 rows)
   float crtMask = 0.3f;         // the mask's strength, 0..1
   // Dithering to `ditherLevels` per channel with an ordered (Bayer 8x8) or
-  // blue-noise threshold.
+  // blue-noise threshold, or by diffusing each pixel's error to its
+  // neighbours (Floyd-Steinberg, a compute pass).
   DitherMode dither = DitherMode::Off;
   float ditherLevels = 4.0f;
   bool operator==(const PostSettings&) const = default;

@@ -101,6 +101,7 @@ int main(int argc, char** argv) {
       {"crt", [](scene::PostSettings& p) { p.crt = true; }},
       {"dither bayer", [](scene::PostSettings& p) { p.dither = scene::DitherMode::Bayer; }},
       {"dither blue noise", [](scene::PostSettings& p) { p.dither = scene::DitherMode::BlueNoise; }},
+      {"dither error diff.", [](scene::PostSettings& p) { p.dither = scene::DitherMode::ErrorDiffusion; }},
       {"outlines+crt+dither", [](scene::PostSettings& p) {
          p.outlines = p.crt = true;
          p.dither = scene::DitherMode::Bayer;
@@ -124,7 +125,8 @@ int main(int argc, char** argv) {
       passes = 0;
       for (const render::PassStats& p : st.passes)
         if (p.name.rfind("tonemap", 0) == 0 || p.name.rfind("bloom", 0) == 0 || p.name.rfind("kuwahara", 0) == 0 ||
-            p.name.rfind("stylise", 0) == 0 || p.name.rfind("blue_noise", 0) == 0) {
+            p.name.rfind("stylise", 0) == 0 || p.name.rfind("blue_noise", 0) == 0 ||
+            p.name.rfind("error_diffusion", 0) == 0 || p.name.rfind("dither_copy", 0) == 0) {
           gpu += std::max(0.0, p.gpuMs);
           ++passes;
         }

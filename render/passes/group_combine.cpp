@@ -1,6 +1,7 @@
 #include "render/passes/group_combine.h"
 
 #include <algorithm>
+#include <string>
 
 #include "render/passes/fullscreen_pass.h"
 
@@ -20,12 +21,19 @@ TextureRef addGroupCombinePass(FrameGraph& graph, FrameContext& frame, const Vie
   }
   pass.outputName = v.named("group_combined");
   pass.output = TextureDesc{v.view.width, v.view.height, GL_RGBA16F};
-  // A pattern needs both shots; with fewer images the weights alone.
-  const int mode = sequencer::isPatterned(pattern.transition) && n >= 2 ? int(pattern.transition) : 0;
-  pass.uniforms = [weights, n, mode, pattern](GlProgram& p) {
+  // A pattern needs both shots; with fewer images the weights alone. Each
+  // pattern is a program of its own (HS_PATTERN = the enum's value, which
+  // the shader's #if blocks spell out).
+  using T = sequencer::Transition;
+  static_assert(int(T::CrossfadeBlur) == 3 && int(T::Swipe) == 4 && int(T::WaterDrop) == 5 &&
+                    int(T::PixelDissolve) == 6 && int(T::Glitch) == 7 && int(T::ZoomBlur) == 8 &&
+                    int(T::RadialWipe) == 9,
+                "shaders/group_combine.frag numbers the patterns so");
+  if (sequencer::isPatterned(pattern.transition) && n >= 2)
+    pass.defines.push_back("HS_PATTERN " + std::to_string(int(pattern.transition)));
+  pass.uniforms = [weights, n, pattern](GlProgram& p) {
     p.set("uWeights", weights);
     p.set("uImages", int(n));
-    p.set("uPattern", mode);
     p.set("uProgress", pattern.progress);
     p.set("uFrame", unsigned(uint64_t(pattern.frame)));
   };

@@ -178,6 +178,26 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
       if (t.texture1d) glBindTextureUnit(t.unit, t.texture1d);
     }
   };
+  // The editor's before/after split: the same exposure and tone map with
+  // no effect, drawn over the left part at the end. Only when some effect
+  // is on (otherwise both halves are the same frame).
+  const float split = frame.options.postSplit;
+  std::vector<std::string> curveOnly = postDefines(frame.settings);
+  std::erase_if(curveOnly, [](const std::string& d) { return d.rfind("HS_TONEMAP_", 0) != 0; });
+  const bool splitShown = split > 0.0f && split < 1.0f &&
+                          (tm.defines != curveOnly || fxaa || stylised || !tm.generated.empty());
+  TextureRef before;
+  if (splitShown) {
+    FullscreenPass plain;
+    plain.name = v.named("post_before");
+    plain.fragment = "tonemap.frag";
+    plain.defines = curveOnly;
+    plain.inputs = {{0, hdr}};
+    plain.outputName = v.named("post_before");
+    plain.output = TextureDesc{v.view.width, v.view.height, GL_RGBA8};
+    plain.uniforms = tm.uniforms;
+    before = addFullscreenPass(graph, frame, v, std::move(plain));
+  }
   TextureRef ldr = addFullscreenPass(graph, frame, v, std::move(tm));
   if (fxaa) {
     // Anti-aliasing before the stylised effects: it smooths the rendered
@@ -198,6 +218,15 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
     ldr = addFullscreenPass(graph, frame, v, std::move(aa));
   }
   if (stylised) addStylisedPasses(graph, frame, v, ldr);
+  if (splitShown) {
+    FullscreenPass over;
+    over.name = v.named("post_split");
+    over.fragment = "post_split.frag";
+    over.inputs = {{0, before}};
+    over.toTarget = true;
+    over.uniforms = [x = split * float(v.view.width)](GlProgram& p) { p.set("uSplitX", x); };
+    addFullscreenPass(graph, frame, v, std::move(over));
+  }
 }
 
 }  // namespace hs::render

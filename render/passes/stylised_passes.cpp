@@ -43,10 +43,40 @@ TextureRef addBlueNoise(FrameGraph& graph, const ViewContext& v) {
       .map;
 }
 
+// Floyd-Steinberg on `ldr` into a new texture (shaders/error_diffusion.comp:
+// one workgroup, a wavefront of rows).
+TextureRef addErrorDiffusion(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr) {
+  struct Data {
+    TextureRef in, out;
+    BufferRef carry;
+  };
+  const int w = v.view.width, h = v.view.height;
+  return graph
+      .addPass<Data>(
+          v.named("error_diffusion"),
+          [&](PassBuilder& b, Data& d) {
+            d.in = b.read(ldr);
+            d.out = b.create(v.named("dithered"), TextureDesc{w, h, GL_RGBA8}, Usage::Storage);
+            d.carry = b.create(v.named("dither_carry"), BufferDesc{size_t(w) * 2 * 16});
+          },
+          [&frame, levels = frame.settings.post.ditherLevels](const Data& d, const PassResources& r) {
+            GlProgram& p = frame.res.program({"", "", "error_diffusion.comp", {}});
+            p.set("uLevels", levels);
+            p.use();
+            glBindTextureUnit(0, r.texture(d.in));
+            glBindImageTexture(0, r.texture(d.out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, r.buffer(d.carry));
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            glDispatchCompute(1, 1, 1);
+            glBindTextureUnit(0, 0);
+          })
+      .out;
+}
+
 }  // namespace
 
 bool stylisedEffectsOn(const scene::PostSettings& post) {
-  return kuwaharaOn(post) || !stylisePassDefines(post).empty();
+  return kuwaharaOn(post) || !stylisePassDefines(post).empty() || post.dither == scene::DitherMode::ErrorDiffusion;
 }
 
 std::vector<std::string> stylisePassDefines(const scene::PostSettings& post) {
@@ -64,6 +94,18 @@ void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext
   const int w = v.view.width, h = v.view.height;
   const float lines = float(h) / 1080.0f;
   const std::vector<std::string> defines = stylisePassDefines(post);
+  const bool diffuse = post.dither == scene::DitherMode::ErrorDiffusion;
+  // A full-screen stage of the chain: into the target when nothing follows,
+  // else into a new texture the next stage reads.
+  auto stage = [&](FullscreenPass pass, bool last, const char* output) {
+    if (last) {
+      pass.toTarget = true;
+    } else {
+      pass.outputName = v.named(output);
+      pass.output = TextureDesc{w, h, GL_RGBA8};
+    }
+    return addFullscreenPass(graph, frame, v, std::move(pass));
+  };
   if (kuwaharaOn(post)) {
     FullscreenPass tensor;
     tensor.name = v.named("kuwahara_tensor");
@@ -86,40 +128,41 @@ void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext
       p.set("uRadius", radius);
       p.set("uQ", q);
     };
-    if (defines.empty()) {
-      filter.toTarget = true;
-      addFullscreenPass(graph, frame, v, std::move(filter));
-      return;
-    }
-    filter.outputName = v.named("kuwahara_color");
-    filter.output = TextureDesc{w, h, GL_RGBA8};
-    ldr = addFullscreenPass(graph, frame, v, std::move(filter));
+    ldr = stage(std::move(filter), defines.empty() && !diffuse, "kuwahara_color");
   }
-  if (defines.empty()) return;
-  FullscreenPass pass;
-  pass.name = v.named("stylise");
-  pass.fragment = "stylise.frag";
-  pass.defines = defines;
-  pass.inputs = {{0, ldr}};
-  if (post.dither == scene::DitherMode::BlueNoise) pass.inputs.push_back({1, addBlueNoise(graph, v)});
-  pass.toTarget = true;
-  const glm::vec3 outline(linearToSrgbFloat(post.outlineColor.r), linearToSrgbFloat(post.outlineColor.g),
-                          linearToSrgbFloat(post.outlineColor.b));
-  pass.uniforms = [post, lines, outline](GlProgram& p) {
-    p.set("uLines", lines);
-    p.set("uLevels", post.comicLevels);
-    p.set("uDotCell", std::max(2.0f, post.comicDotPx * lines));
-    p.set("uOutlineThreshold", std::max(1e-3f, post.outlineThreshold));
-    p.set("uOutlineColor", outline);
-    p.set("uCurvature", post.crtCurvature);
-    p.set("uScanlines", post.crtScanlines);
-    // At least 3 rows a line: finer lines than that alias into moiré (a
-    // small viewport shows fewer lines than the film, not a pattern).
-    p.set("uScanCount", std::clamp(post.crtLinesPer1080, 1.0f, std::max(1.0f, lines * 360.0f)));
-    p.set("uMask", post.crtMask);
-    p.set("uDitherLevels", post.ditherLevels);
-  };
-  addFullscreenPass(graph, frame, v, std::move(pass));
+  if (!defines.empty()) {
+    FullscreenPass pass;
+    pass.name = v.named("stylise");
+    pass.fragment = "stylise.frag";
+    pass.defines = defines;
+    pass.inputs = {{0, ldr}};
+    if (post.dither == scene::DitherMode::BlueNoise) pass.inputs.push_back({1, addBlueNoise(graph, v)});
+    const glm::vec3 outline(linearToSrgbFloat(post.outlineColor.r), linearToSrgbFloat(post.outlineColor.g),
+                            linearToSrgbFloat(post.outlineColor.b));
+    pass.uniforms = [post, lines, outline](GlProgram& p) {
+      p.set("uLines", lines);
+      p.set("uLevels", post.comicLevels);
+      p.set("uDotCell", std::max(2.0f, post.comicDotPx * lines));
+      p.set("uOutlineThreshold", std::max(1e-3f, post.outlineThreshold));
+      p.set("uOutlineColor", outline);
+      p.set("uCurvature", post.crtCurvature);
+      p.set("uScanlines", post.crtScanlines);
+      // At least 3 rows a line: finer lines than that alias into moiré (a
+      // small viewport shows fewer lines than the film, not a pattern).
+      p.set("uScanCount", std::clamp(post.crtLinesPer1080, 1.0f, std::max(1.0f, lines * 360.0f)));
+      p.set("uMask", post.crtMask);
+      p.set("uDitherLevels", post.ditherLevels);
+    };
+    ldr = stage(std::move(pass), !diffuse, "stylised_color");
+  }
+  if (diffuse) {
+    // A compute pass cannot draw into the caller's framebuffer: a copy ends the chain.
+    FullscreenPass copy;
+    copy.name = v.named("dither_copy");
+    copy.fragment = "copy.frag";
+    copy.inputs = {{0, addErrorDiffusion(graph, frame, v, ldr)}};
+    stage(std::move(copy), true, "");
+  }
 }
 
 }  // namespace hs::render

@@ -2,9 +2,11 @@
 // The stylised effects after the post chain (docs/rendering.md "Stylised
 // effects"), on the display-encoded image: the anisotropic Kuwahara filter
 // (three passes: structure tensor, its smoothing and orientation, the
-// filter) and one pass for the per-pixel effects (comic, outlines, CRT,
-// dithering; shaders/stylise.frag), each only when enabled, the last
-// drawing into the view's framebuffer. Include only inside render/.
+// filter), one pass for the per-pixel effects (comic, outlines, CRT,
+// ordered dithering; shaders/stylise.frag), and Floyd-Steinberg error
+// diffusion (a compute pass, then a copy into the target), each only when
+// enabled, the last drawing into the view's framebuffer. Include only
+// inside render/.
 #include <string>
 #include <vector>
 

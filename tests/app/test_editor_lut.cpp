@@ -2,13 +2,18 @@
 // row (Import LUT..., the stored file's name, Remove) after the LUT fields.
 // Importing a .cube is one undo step and changes the viewport's picture; a
 // file OpenColorIO refuses is shown as an error naming the file and line,
-// and the scene stays as it was.
+// and the scene stays as it was. View > Post Before/After splits the
+// viewport into the frame without and with its effects.
 #include <QLabel>
 #include <QPushButton>
 #include <QTemporaryDir>
 #include <QTest>
 
+#include <QAction>
+#include <algorithm>
+
 #include "app/main_window.h"
+#include "app/viewport_widget.h"
 #include "app/settings_panel.h"
 #include "editor_fixture.h"
 #include "lut_files.h"
@@ -73,6 +78,25 @@ class LutEditorTest : public QObject {
     QVERIFY(doc().state().settings.post.lut.empty());
     QCOMPARE(panel_->findChild<QLabel*>("lutName")->text(), QString("none"));
     doc().undoStack()->redo();
+  }
+
+  // View > Post Before/After: the viewport draws the frame without its
+  // effects over its left half (the demo's LUT and bloom are on).
+  void beforeAfterSplit() {
+    QAction* split = w_->findChild<QAction*>("postSplitAction");
+    QVERIFY(split && split->isCheckable());
+    split->trigger();
+    QVERIFY(w_->viewport()->postSplit());
+    QTRY_VERIFY_WITH_TIMEOUT(std::any_of(w_->viewport()->lastStats().passes.begin(),
+                                         w_->viewport()->lastStats().passes.end(),
+                                         [](const render::PassStats& p) { return p.name == "post_split"; }),
+                             30000);
+    split->trigger();
+    QVERIFY(!w_->viewport()->postSplit());
+    QTRY_VERIFY_WITH_TIMEOUT(std::none_of(w_->viewport()->lastStats().passes.begin(),
+                                          w_->viewport()->lastStats().passes.end(),
+                                          [](const render::PassStats& p) { return p.name == "post_split"; }),
+                             30000);
   }
 
   void aRefusedFileIsShownAndChangesNothing() {

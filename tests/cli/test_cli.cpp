@@ -565,6 +565,30 @@ class TestCli : public QObject {
     QVERIFY(!fs::exists(path("c.png").toStdString()));
   }
 
+  // What the renderer refuses or clamps reaches the user: 140 point lights
+  // in one place overflow the light clusters' cap of 128, and `render`
+  // says so on stderr (render/render_problems.h), and still renders.
+  void renderPrintsTheRenderersProblems() {
+    scene::SceneState s;
+    s.settings.showGrid = false;
+    for (int i = 0; i < 140; ++i) {
+      scene::Entity lamp;
+      lamp.id = scene::EntityId(100 + i);
+      lamp.name = "Lamp " + std::to_string(i);
+      lamp.light = scene::Light{};
+      lamp.light->type = scene::Light::Type::Point;
+      lamp.transform.translation = {0.01 * i, 0.0, 1.0};
+      s.entities.emplace(lamp.id, lamp);
+      s.roots.push_back(lamp.id);
+    }
+    const QString file = path("lamps.hscene");
+    std::string error;
+    QVERIFY2(scene::saveScene(s, file.toStdString(), error), error.c_str());
+    const Run r = cli({"render", file, "--out", path("lamps.png"), "--size", "64x36"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.err.contains("warning: lights:") && r.err.contains("more than 128"), qPrintable(r.err));
+  }
+
   // --mix-camera: two shots in one frame (the renderer's view groups),
   // mixed in linear light. --mix 0 is the first camera's frame and --mix 1
   // the second's, pixel for pixel (EXR, linear); 0.5 is their mean.

@@ -156,6 +156,42 @@ inline Image stylisePassReference(const Image& in, const scene::PostSettings& po
   return out;
 }
 
+// Floyd-Steinberg error diffusion to `levels` per channel on `in`, rows in
+// the order the GPU's wavefront finishes them (bottom row first, as GL
+// numbers them), each left to right, in float with the additions in the
+// shader's order.
+inline Image errorDiffusionReference(const Image& in, double levels) {
+  const int w = in.width, h = in.height;
+  const float steps = float(std::max(levels, 2.0) - 1.0);
+  std::vector<std::array<float, 3>> below(size_t(w) * 2, {0.0f, 0.0f, 0.0f});
+  Image out;
+  out.width = w;
+  out.height = h;
+  out.rgba8.assign(size_t(w) * size_t(h) * 4, 255);
+  for (int y = 0; y < h; ++y) {
+    std::array<float, 3> right{0.0f, 0.0f, 0.0f};
+    const size_t row = size_t(h - 1 - y) * size_t(w);
+    for (int x = 0; x < w; ++x) {
+      std::array<float, 3> e{};
+      for (size_t c = 0; c < 3; ++c) {
+        float v = float(in.rgba8[(row + size_t(x)) * 4 + c]) / 255.0f + right[c];
+        if (y > 0) {
+          const size_t prev = size_t((y - 1) & 1) * size_t(w);
+          if (x + 1 < w) v += below[prev + size_t(x) + 1][c] * (3.0f / 16.0f);
+          v += below[prev + size_t(x)][c] * (5.0f / 16.0f);
+          if (x > 0) v += below[prev + size_t(x) - 1][c] * (1.0f / 16.0f);
+        }
+        const float q = std::clamp(std::floor(std::clamp(v, 0.0f, 1.0f) * steps + 0.5f), 0.0f, steps) / steps;
+        e[c] = v - q;
+        right[c] = e[c] * (7.0f / 16.0f);
+        out.rgba8[(row + size_t(x)) * 4 + c] = uint8_t(std::lround(q * 255.0f));
+      }
+      below[size_t(y & 1) * size_t(w) + size_t(x)] = e;
+    }
+  }
+  return out;
+}
+
 // The anisotropic Kuwahara filter (three steps: structure tensor, its
 // smoothing and eigenvectors, the eight-sector filter) on `in`.
 inline Image kuwaharaReference(const Image& in, double radius, double q) {

@@ -2,7 +2,8 @@
 // render/passes/stylised_passes.h) against their CPU twin
 // (tests/common/stylised_reference.h) applied to the renderer's own image
 // with the effects off: comic, outlines, CRT, Bayer and blue-noise
-// dithering alone and together, the anisotropic Kuwahara filter. Goldens
+// dithering alone and together, the anisotropic Kuwahara filter, error
+// diffusion (against the sequential scan). The editor's before/after split. Goldens
 // per effect. Off costs nothing (no pass, no texture); the blue-noise map
 // is blue (little low-frequency energy against white noise's) and holds
 // every rank once; both eyes dither with the same screen pattern; a stiff Kuwahara (sharpness 16 on grain at
@@ -169,6 +170,96 @@ class TestStylised : public QObject {
     qInfo("largest difference %d/255, %.3f%% of pixels more than 3 apart", worst, 100.0 * over);
     QVERIFY2(over <= 0.01, qPrintable(QString::number(100.0 * over) + "%"));
     QVERIFY(compare8(styled, plain, 2).second > 0.05);
+  }
+
+  // Floyd-Steinberg on the GPU (a wavefront of rows in one workgroup)
+  // against the sequential scan on the CPU; only the levels asked for;
+  // the local mean kept (what error diffusion is for); the same in two runs.
+  void errorDiffusionMatchesTheScan() {
+    scene::PostSettings post;
+    post.dither = scene::DitherMode::ErrorDiffusion;
+    post.ditherLevels = 2;
+    // Taller than a workgroup's band of 256 rows: bands hand over.
+    const render::RenderView v = test::postTestView(320, 300);
+    render::FrameStats stats;
+    const auto [styled, plain] = withAndWithout(post, v, &stats);
+    QVERIFY(passRan(stats, "error_diffusion") && passRan(stats, "dither_copy") && !passRan(stats, "stylise"));
+    for (size_t i = 0; i < styled.rgba8.size(); ++i)
+      if (i % 4 != 3) QVERIFY2(styled.rgba8[i] == 0 || styled.rgba8[i] == 255, "two levels only");
+    const Image ref = test::errorDiffusionReference(plain, 2);
+    // The same arithmetic in the same order, but error diffusion is
+    // chaotic: where a value sits on the threshold within the GPU's
+    // rounding (a fused multiply-add), one pixel flips and the errors
+    // after it differ. So: identical for the first rows of the scan (a
+    // different algorithm would differ within a few pixels), and a small
+    // share overall.
+    int firstRow = v.height;
+    for (int gy = 0; gy < v.height && firstRow == v.height; ++gy)
+      for (int x = 0; x < v.width; ++x) {
+        const size_t i = (size_t(v.height - 1 - gy) * size_t(v.width) + size_t(x)) * 4;
+        if (styled.rgba8[i] != ref.rgba8[i] || styled.rgba8[i + 1] != ref.rgba8[i + 1] ||
+            styled.rgba8[i + 2] != ref.rgba8[i + 2]) {
+          firstRow = gy;
+          break;
+        }
+      }
+    const auto [worst, over] = compare8(styled, ref, 2);
+    qInfo("against the sequential scan: identical for the first %d of %d rows, %.3f%% of pixels differ", firstRow,
+          v.height, 100.0 * over);
+    QVERIFY(firstRow >= 16);
+    QVERIFY2(over <= 0.10, qPrintable(QString::number(100.0 * over) + "%"));
+    // The mean over 8 x 8 blocks kept within a few percent.
+    double worstBlock = 0.0, sum = 0.0;
+    int blocks = 0;
+    for (int by = 0; by + 8 <= v.height; by += 8)
+      for (int bx = 0; bx + 8 <= v.width; bx += 8) {
+        double a = 0.0, b = 0.0;
+        for (int y = by; y < by + 8; ++y)
+          for (int x = bx; x < bx + 8; ++x)
+            for (int c = 0; c < 3; ++c) {
+              const size_t i = (size_t(y) * size_t(v.width) + size_t(x)) * 4 + size_t(c);
+              a += styled.rgba8[i], b += plain.rgba8[i];
+            }
+        const double d = std::abs(a - b) / (64.0 * 3.0 * 255.0);
+        worstBlock = std::max(worstBlock, d);
+        sum += d;
+        ++blocks;
+      }
+    qInfo("8x8 block means: mean difference %.4f, worst %.4f", sum / blocks, worstBlock);
+    QVERIFY(sum / blocks < 0.03);
+    scene::SceneState s = base_;
+    s.settings.post = post;
+    QVERIFY(r_.render(s, v).rgba8 == styled.rgba8);
+  }
+
+  // The editor's before/after split: the left half is the frame without
+  // its effects, the right half the frame with them, a line between.
+  void beforeAfterSplit() {
+    const render::RenderView v = test::postTestView(192, 108);
+    scene::SceneState s = base_;
+    s.settings.post.comic = true;
+    s.settings.post.vignette = true;
+    render::RenderOptions o;
+    o.postSplit = 0.5f;
+    render::FrameStats stats;
+    const Image split = r_.render(s, v, false, &stats, o);
+    QVERIFY(passRan(stats, "post_before") && passRan(stats, "post_split"));
+    const Image after = r_.render(s, v);
+    const Image before = r_.render(base_, v);
+    int leftOff = 0, rightOff = 0;
+    for (int y = 0; y < v.height; ++y)
+      for (int x = 0; x < v.width; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const size_t i = (size_t(y) * size_t(v.width) + size_t(x)) * 4 + size_t(c);
+          if (x < 94) leftOff = std::max(leftOff, std::abs(int(split.rgba8[i]) - int(before.rgba8[i])));
+          if (x > 97) rightOff = std::max(rightOff, std::abs(int(split.rgba8[i]) - int(after.rgba8[i])));
+        }
+    QCOMPARE(leftOff, 0);
+    QCOMPARE(rightOff, 0);
+    QVERIFY(before.rgba8 != after.rgba8);
+    // Nothing to compare without effects: no extra pass, the same frame.
+    const Image plain = r_.render(base_, v, false, &stats, o);
+    QVERIFY(!passRan(stats, "post_split") && plain.rgba8 == before.rgba8);
   }
 
   // Sharpness 16 (the field's largest) on full-strength grain: every
