@@ -143,13 +143,16 @@ void MainWindow::createDocks() {
   outliner_ = new OutlinerPanel(doc_, *selection_, this);
   properties_ = new PropertyPanel(doc_, *selection_, this);
   settings_ = new SettingsPanel(doc_, this);
-  settings_->setPrompts([this]() -> Prompts& { return *prompts_; });
+  post_ = new SettingsPanel(doc_, this, SettingsSection::Post);
+  post_->setPrompts([this]() -> Prompts& { return *prompts_; });
   messages_ = new MessagePanel(this);
   QDockWidget* outlinerDock = dock("Outliner", "outlinerDock", outliner_, Qt::LeftDockWidgetArea);
   QDockWidget* propertiesDock = dock("Properties", "propertiesDock", properties_, Qt::RightDockWidgetArea);
   QDockWidget* settingsDock = dock("Scene Settings", "settingsDock", settings_, Qt::RightDockWidgetArea);
   QDockWidget* messagesDock = dock("Messages", "messagesDock", messages_, Qt::BottomDockWidgetArea);
   splitDockWidget(propertiesDock, settingsDock, Qt::Vertical);
+  // Post: the post chain, a tab beside Scene Settings.
+  tabifyDockWidget(settingsDock, dock("Post", "postDock", post_, Qt::RightDockWidgetArea));
   // Terrain: a tab beside Scene Settings; its brush draws in the viewport.
   terrain_ = new TerrainPanel(*this);
   tabifyDockWidget(settingsDock, dock("Terrain", "terrainDock", terrain_, Qt::RightDockWidgetArea));

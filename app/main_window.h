@@ -63,6 +63,7 @@ class MainWindow : public QMainWindow {
   OutlinerPanel* outliner() const { return outliner_; }
   PropertyPanel* properties() const { return properties_; }
   SettingsPanel* sceneSettings() const { return settings_; }
+  SettingsPanel* postSettings() const { return post_; }
   MaterialsPanel* materialsPanel() const { return materials_; }
   LightsPanel* lightsPanel() const { return lights_; }
   MessagePanel* messages() const { return messages_; }
@@ -190,6 +191,7 @@ class MainWindow : public QMainWindow {
   OutlinerPanel* outliner_ = nullptr;
   PropertyPanel* properties_ = nullptr;
   SettingsPanel* settings_ = nullptr;
+  SettingsPanel* post_ = nullptr;  // the Post dock
   MaterialsPanel* materials_ = nullptr;
   LightsPanel* lights_ = nullptr;
   MessagePanel* messages_ = nullptr;

@@ -58,6 +58,7 @@ void MainWindow::createTimeline() {
   // The same for material fields and the scene settings (scene/object_tracks.h).
   materials_->enableKeying(*keying_, *clock_);
   settings_->enableKeying(*keying_, *clock_);
+  post_->enableKeying(*keying_, *clock_);
   lights_->setStateSource([this]() -> const scene::SceneState& { return clock_->state(); });
   lights_->setEditedHook([this](scene::EntityId id, const std::string& path, const QString& key) {
     keying_->afterEdit({id}, {path}, key);

@@ -21,8 +21,12 @@
 
 namespace hs::app {
 
-SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(parent), doc_(doc) {
-  setObjectName("settingsPanel");
+bool SettingsPanel::inPostPanel(const std::string& key) { return key == "tonemap" || key.rfind("post.", 0) == 0; }
+
+SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent, SettingsSection section)
+    : QWidget(parent), doc_(doc) {
+  const bool post = section == SettingsSection::Post;
+  setObjectName(post ? "postPanel" : "settingsPanel");
   auto* content = new QWidget;
   auto* form = new QFormLayout(content);
   form->setContentsMargins(8, 8, 8, 8);
@@ -36,7 +40,19 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
     heading->setToolTip(tip);
     form->addRow(heading);
   };
+  if (post) {
+    auto* intro = new QLabel(
+        "The chain after the scene's light, in order: exposure (Scene Settings), bloom, chromatic aberration, "
+        "the tone map, the grade, the LUT, the vignette, grain, anti-aliasing (Scene Settings), then the "
+        "stylised effects. Each runs only when enabled. View > Post Before/After compares.",
+        content);
+    intro->setObjectName("postIntro");
+    intro->setWordWrap(true);
+    intro->setStyleSheet("QLabel { color: #a9aaae; }");
+    form->addRow(intro);
+  }
   for (const auto& f : scene::settingsFields()) {
+    if (inPostPanel(f.key) != post) continue;
     // Depth of field and transparency: blocks of their own (their fields
     // follow in the declarations, scene/fields.cpp).
     if (f.key == "depth_of_field")
@@ -44,10 +60,12 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent) : QWidget(pa
                  "The camera's lens (focal length, f-stop, focus distance in Properties); "
                  "View > Pick Focus Distance sets the focus from a click in the viewport");
     if (f.key == "post.bloom.enabled")
-      addHeading("Post-processing", "postHeading",
-                 "The chain after the scene's light, in order: exposure, bloom, chromatic aberration, the tone "
-                 "map, the grade, the LUT, the vignette, grain, FXAA, then the stylised effects (Kuwahara, comic, "
-                 "outlines, CRT, dithering); each effect runs only when enabled");
+      addHeading("Effects", "postHeading",
+                 "In the chain's order; the tone map above runs between chromatic aberration and the grade");
+    if (f.key == "post.kuwahara.enabled")
+      addHeading("Stylised effects", "stylisedHeading",
+                 "After the chain and anti-aliasing, on the display image, in this order: Kuwahara, comic (with "
+                 "its outlines) or outlines, CRT, dithering");
     if (f.key == "transparency")
       addHeading("Transparency", "oitHeading",
                  "How translucent materials (opacity under 1) are composited; View > Depth Complexity "

@@ -1,8 +1,11 @@
 #pragma once
-// The Scene Settings dock: sky, lighting, exposure, grid, anti-aliasing,
-// the tone map and post-processing, depth of field and transparency (with the last frame's OIT figures),
-// generated from scene::settingsFields(); edits go through
-// scene::ops::setSettingsField (undoable, one step per gesture).
+// The Scene Settings dock (sky, lighting, exposure, grid, anti-aliasing,
+// fog, depth of field and transparency, with the last frame's OIT
+// figures) and the Post dock (the post chain in its order: the tone map,
+// then every settings.post.* effect with its enable box and parameters,
+// the stored LUT): two panels generated from scene::settingsFields(),
+// split by key (inPostPanel). Edits go through scene::ops::setSettingsField
+// (undoable, one step per gesture).
 #include <functional>
 #include <map>
 #include <string>
@@ -29,10 +32,16 @@ class Keying;
 class Prompts;
 class TimelineClock;
 
+enum class SettingsSection { Scene, Post };
+
 class SettingsPanel : public QWidget {
   Q_OBJECT
  public:
-  explicit SettingsPanel(scene::Document& doc, QWidget* parent = nullptr);
+  // `section`: which fields it shows (objectName "settingsPanel" or "postPanel").
+  explicit SettingsPanel(scene::Document& doc, QWidget* parent = nullptr,
+                         SettingsSection section = SettingsSection::Scene);
+  // Whether settings field `key` belongs to the Post dock.
+  static bool inPostPanel(const std::string& key);
   FieldEditor* editorFor(const std::string& key) const;
   // Key buttons beside each animatable field, values shown at the
   // timeline's frame, and edits of animated fields keyed in the same undo

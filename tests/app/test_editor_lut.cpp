@@ -2,8 +2,9 @@
 // row (Import LUT..., the stored file's name, Remove) after the LUT fields.
 // Importing a .cube is one undo step and changes the viewport's picture; a
 // file OpenColorIO refuses is shown as an error naming the file and line,
-// and the scene stays as it was. View > Post Before/After splits the
-// viewport into the frame without and with its effects.
+// and the scene stays as it was. The Post dock holds the whole chain.
+// View > Post Before/After splits the viewport into the frame without and
+// with its effects.
 #include <QLabel>
 #include <QPushButton>
 #include <QTemporaryDir>
@@ -16,6 +17,7 @@
 #include "app/viewport_widget.h"
 #include "app/settings_panel.h"
 #include "editor_fixture.h"
+#include "scene/fields.h"
 #include "lut_files.h"
 
 using namespace hs;
@@ -36,9 +38,25 @@ class LutEditorTest : public QObject {
     w_->resize(1100, 760);
     w_->show();
     QVERIFY(QTest::qWaitForWindowExposed(w_.get()));
-    panel_ = w_->findChild<app::SettingsPanel*>("settingsPanel");
+    panel_ = w_->findChild<app::SettingsPanel*>("postPanel");
     QVERIFY(panel_);
     test::waitForNextFrame(*w_->viewport());
+  }
+
+  // The Post dock holds the chain (the tone map and every post.* field, in
+  // their declared order), Scene Settings the rest; each field in one of them.
+  void thePostDockHoldsTheChain() {
+    QCOMPARE(panel_, w_->postSettings());
+    app::SettingsPanel* scene = w_->sceneSettings();
+    for (const auto& f : scene::settingsFields()) {
+      const bool post = app::SettingsPanel::inPostPanel(f.key);
+      QVERIFY2(bool(panel_->editorFor(f.key)) == post, f.key.c_str());
+      QVERIFY2(bool(scene->editorFor(f.key)) == !post, f.key.c_str());
+    }
+    for (const char* key : {"tonemap", "post.bloom.enabled", "post.kuwahara.radius_px", "post.dither.mode",
+                            "post.outlines.color"})
+      QVERIFY2(panel_->editorFor(key), key);
+    QVERIFY(panel_->findChild<QLabel*>("stylisedHeading"));
   }
 
   void theRowIsThere() {
