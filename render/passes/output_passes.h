@@ -4,9 +4,10 @@
 // "Post-processing": bloom's levels only with bloom, then one pass for
 // exposure, chromatic aberration, the tone map, the grade, the LUT (its
 // OpenColorIO function and tables), the vignette, grain and sRGB encoding, each a shader define only when enabled), FXAA
-// (only with FXAA), and a single-sample copy of the depth for the frames
-// whose depth is read back (the stereo comfort check). Include only inside
-// render/.
+// (only with FXAA), the stylised effects (stylised_passes.h, only when one
+// is on), the editor's before/after split (RenderOptions::postSplit), and a
+// single-sample copy of the depth for the frames whose depth is read back
+// (the stereo comfort check). Include only inside render/.
 #include "render/passes/scene_passes.h"
 
 namespace hs::render {
