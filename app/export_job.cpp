@@ -7,6 +7,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 
 #include "render/offscreen_renderer.h"
+#include "render/render_problems.h"
 
 namespace hs::app {
 
@@ -57,6 +58,8 @@ void ExportJob::start(ExportRequest request) {
     outcome->result = sequencer::runExport(request.settings, source, callbacks);
     outcome->comfort = source.comfort();
     outcome->warnings = source.warnings();
+    // What the renderer refused or clamped along the way (each once).
+    for (std::string& p : render::takeRenderProblems(renderer.renderer())) outcome->warnings.push_back(std::move(p));
   }));
 }
 

@@ -10,6 +10,7 @@
 #include "cli/sequence_options.h"
 #include "render/export_job_tag.h"
 #include "render/offscreen_renderer.h"
+#include "render/render_problems.h"
 #include "render/stereo_frame_source.h"
 #include "scene/camera_cuts_check.h"
 #include "scene/hscene_file.h"
@@ -178,6 +179,7 @@ int renderFrames(const OperationArgs& args) {
   // Notes and warnings go to stdout: stderr carries progress and, on
   // failure, exactly one line with the reason.
   for (const std::string& w : source.warnings()) std::printf("warning: %s\n", w.c_str());
+  for (const std::string& p : render::takeRenderProblems(renderer.renderer())) std::printf("warning: %s\n", p.c_str());
   for (const std::string& n : r.notes) std::printf("%s\n", n.c_str());
   if (frameOptions.comfort) {
     const std::vector<int64_t> bad = sequencer::framesOutsideBudget(source.comfort());

@@ -14,6 +14,7 @@
 
 #include "cli_runner.h"
 #include "file_bytes.h"
+#include "look_from.h"
 #include "scene/hscene_file.h"
 #include "scene/object_tracks.h"
 #include "scene/scene_json.h"
@@ -567,7 +568,8 @@ class TestCli : public QObject {
 
   // What the renderer refuses or clamps reaches the user: 140 point lights
   // in one place overflow the light clusters' cap of 128, and `render`
-  // says so on stderr (render/render_problems.h), and still renders.
+  // says so (render/render_problems.h) and still renders: a still on
+  // stderr, a sequence with its notes on stdout.
   void renderPrintsTheRenderersProblems() {
     scene::SceneState s;
     s.settings.showGrid = false;
@@ -581,12 +583,23 @@ class TestCli : public QObject {
       s.entities.emplace(lamp.id, lamp);
       s.roots.push_back(lamp.id);
     }
+    scene::Entity cam;  // sequences render through a camera
+    cam.id = 1;
+    cam.name = "Camera";
+    cam.camera = scene::Camera{};
+    cam.transform = test::lookFrom({0.0, -8.0, 1.0}, {0.0, 0.0, 1.0});
+    s.entities.emplace(cam.id, cam);
+    s.roots.push_back(cam.id);
     const QString file = path("lamps.hscene");
     std::string error;
     QVERIFY2(scene::saveScene(s, file.toStdString(), error), error.c_str());
     const Run r = cli({"render", file, "--out", path("lamps.png"), "--size", "64x36"});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY2(r.err.contains("warning: lights:") && r.err.contains("more than 128"), qPrintable(r.err));
+    // A sequence says it too (with its other notes, on stdout).
+    const Run seq = cli({"render", file, "--frames", "0-1", "--out", path("lamps_%03d.png"), "--size", "64x36"});
+    QVERIFY2(seq.code == 0, qPrintable(seq.err));
+    QVERIFY2(seq.out.contains("warning: lights:") && seq.out.contains("more than 128"), qPrintable(seq.out));
   }
 
   // --mix-camera: two shots in one frame (the renderer's view groups),
