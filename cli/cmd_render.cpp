@@ -11,6 +11,7 @@
 #include "render/offscreen_renderer.h"
 #include "render/render_problems.h"
 #include "scene/animation.h"
+#include "scene/camera_cuts_check.h"
 #include "scene/hscene_file.h"
 #include "scene/render_operation.h"
 #include "scene/world_bounds.h"
@@ -64,6 +65,15 @@ int runRender(int argc, char** argv) {
           (known.empty() ? " (it has no cameras)" : " (cameras: " + known + ")");
     return scene::kNoEntity;
   };
+  // With --at and no --camera, the timeline's camera cuts choose the shot at
+  // that frame, as a sequence's frame would (a transition: both shots).
+  std::optional<sequencer::Shot> cut;
+  if (!args.has("camera") && args.has("time_s") && !state->sequence.cuts.empty()) {
+    if (const std::string problem = scene::cutsProblem(*state); !problem.empty())
+      return args.fail(args.positionals()[0] + ": the camera cuts cannot be rendered: " + problem +
+                       " (name a camera with --camera)");
+    cut = sequencer::shotAt(state->sequence.cuts, sequencer::frameAtTime(args.number("time_s"), state->sequence.rate));
+  }
   render::RenderView view;
   std::string from;
   if (args.has("camera")) {
@@ -72,6 +82,9 @@ int runRender(int argc, char** argv) {
     if (id == scene::kNoEntity) return args.fail(error);
     view = render::viewFromCamera(*state, id, width, height);
     from = "camera '" + name + "'";
+  } else if (cut) {
+    view = render::viewFromCamera(*state, scene::EntityId(cut->camera), width, height);
+    from = "camera '" + state->find(scene::EntityId(cut->camera))->name + "' (the camera cuts)";
   } else if (const auto cams = state->cameras(); !cams.empty()) {
     view = render::viewFromCamera(*state, cams.front(), width, height);
     from = "camera '" + state->find(cams.front())->name + "'";
@@ -110,6 +123,18 @@ int runRender(int argc, char** argv) {
     img = renderer.renderMix(*state, {view, render::viewFromCamera(*state, id, width, height)}, {w0, w1}, hdr,
                              &stats, options, &pattern);
     from += " mixed with camera '" + name + "' (" + kind + " at " + std::to_string(mix).substr(0, 4) + ")";
+  } else if (cut && cut->incoming) {
+    // The frame is inside a transition: both shots, as the sequence renders it.
+    render::GroupCombine pattern;
+    pattern.transition = cut->transition;
+    pattern.progress = float(cut->progress);
+    pattern.frame = sequencer::frameAtTime(args.number("time_s"), state->sequence.rate);
+    const auto [w0, w1] = cut->weights();
+    const scene::EntityId incoming(cut->incoming);
+    img = renderer.renderMix(*state, {view, render::viewFromCamera(*state, incoming, width, height)}, {w0, w1}, hdr,
+                             &stats, options, &pattern);
+    from += " in a " + std::string(sequencer::transitionName(cut->transition)) + " into camera '" +
+            state->find(incoming)->name + "' (" + std::to_string(cut->progress).substr(0, 4) + ")";
   } else {
     img = renderer.render(*state, view, hdr, &stats, options);
   }

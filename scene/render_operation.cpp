@@ -66,7 +66,8 @@ const OperationDecl& renderOperation() {
     o.params.push_back({.key = "time_s", .option = "at", .label = "Time", .unit = Unit::Seconds, .min = 0.0,
                         .max = 1e7,
                         .help = "render the scene as its timeline has it at this time (one frame; the same pixels "
-                                "as that frame of a sequence render). Without it: the document as it is, at t = 0",
+                                "as that frame of a sequence render, through the camera cuts' shot there unless "
+                                "--camera names one). Without it: the document as it is, at t = 0",
                         .valueName = "SECONDS"});
     // Two shots in one frame (the renderer's view groups): a cross-fade still.
     o.params.push_back({.key = "mix_camera", .option = "mix-camera", .label = "Mix camera", .type = ParamType::Text,

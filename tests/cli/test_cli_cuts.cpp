@@ -219,6 +219,30 @@ class TestCliCuts : public QObject {
     QVERIFY(mid[0] != a[0] && mid[0] != b[0]);
   }
 
+  // A still with --at follows the cuts as the sequence does: cut A's
+  // camera inside it, B's after the swipe, the swipe itself in between
+  // (the same image as the explicit --mix-camera still); --camera wins.
+  void stillAtATimeFollowsTheCuts() {
+    const QString swipe = path("swipe.hscene");  // swipeThroughTheTimeline's: A 0-9, a swipe into B 10-29
+    auto still = [&](const QString& name, QStringList extra) {
+      const test::CliRun r = cli(QStringList{"render", swipe, "--size", "64x36", "--aa", "none", "--out",
+                                             path(name)} + extra);
+      if (r.code != 0) qWarning("%s", qPrintable(r.err));
+      return std::pair{r, pixels(path(name))};
+    };
+    const auto [r5, at5] = still("at5.png", {"--at", "0.5"});
+    const auto a5 = still("a5.png", {"--at", "0.5", "--camera", "A"}).second;
+    QVERIFY2(r5.out.contains("camera 'A' (the camera cuts)"), qPrintable(r5.out));
+    QVERIFY(!at5.empty() && at5 == a5);
+    const auto b20 = still("b20.png", {"--at", "2", "--camera", "B"}).second;
+    QVERIFY(still("at20.png", {"--at", "2"}).second == b20);
+    const auto [r12, at12] = still("at12.png", {"--at", "1.2"});
+    QVERIFY2(r12.out.contains("in a swipe into camera 'B'"), qPrintable(r12.out));
+    const auto mixed = still("mix12.png", {"--at", "1.2", "--camera", "A", "--mix-camera", "B", "--mix", "0.5",
+                                           "--transition", "swipe"}).second;
+    QVERIFY(!at12.empty() && at12 == mixed && at12 != a5);
+  }
+
   // The same as a still: `render --mix-camera B --mix P --transition KIND`.
   void transitionStill() {
     auto still = [&](const QString& name, QStringList extra) {
