@@ -11,21 +11,18 @@
 #include <vector>
 
 #include "core/image.h"
+#include "particles/rng.h"
 #include "sequencer/camera_cuts.h"
 
 namespace hs::test {
 
 namespace transition_detail {
 
-inline uint32_t hash(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
+// The shader's hash is the particles' (lowbias32): the same bits.
+inline double rand3(uint32_t a, uint32_t b, uint32_t c) {
+  using particles::hashU32;
+  return double(hashU32(a ^ hashU32(b ^ hashU32(c))) >> 8) / 16777216.0;
 }
-inline double rand3(uint32_t a, uint32_t b, uint32_t c) { return double(hash(a ^ hash(b ^ hash(c))) >> 8) / 16777216.0; }
 
 struct Rgba {
   double v[4] = {0, 0, 0, 0};

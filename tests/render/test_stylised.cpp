@@ -22,6 +22,7 @@
 #include "render_golden.h"
 #include "post_scene.h"
 #include "stylised_reference.h"
+#include "two_shots.h"
 
 using namespace hs;
 
@@ -319,10 +320,7 @@ class TestStylised : public QObject {
   // place: each eye's image is its plain image through the one reference.
   void bothEyesDitherAlike() {
     const render::RenderView v = test::postTestView(128, 72);
-    render::RenderView left = v, right = v;
-    const glm::dvec3 side = glm::dvec3(glm::transpose(v.viewRotation())[0]);
-    left.eye -= side * 0.05;
-    right.eye += side * 0.05;
+    const render::RenderView left = test::shiftedSideways(v, -0.05), right = test::shiftedSideways(v, 0.05);
     r_.makeCurrent();
     render::OutputTarget outs[2];
     std::vector<render::ViewTarget> targets;

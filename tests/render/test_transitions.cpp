@@ -17,6 +17,7 @@
 #include "render_golden.h"
 #include "scene/demo_scene.h"
 #include "transition_reference.h"
+#include "two_shots.h"
 
 using namespace hs;
 using sequencer::Transition;
@@ -114,9 +115,7 @@ class TestTransitions : public QObject {
     // 288 x 162: a sixth of 1080 rows, so the patterns' sizes (per 1080
     // rows) are whole pixels: blocks of 4, glitch bands of 2.
     a_ = render::viewFromCamera(demo_, cams.front(), 288, 162);
-    b_ = a_;
-    b_.eye += glm::dvec3(60.0, 40.0, 15.0);
-    b_.orientation = glm::angleAxis(glm::radians(150.0), glm::dvec3(0, 0, 1)) * a_.orientation;
+    b_ = test::otherSideOfTheValley(a_);
     r_.makeCurrent();
     r_.render(demo_, a_);  // the environment maps first, as every later frame finds them
   }
@@ -180,12 +179,8 @@ class TestTransitions : public QObject {
       outs[i].ensure(v.width, v.height);
       return render::ViewTarget{v, outs[i].fbo(), name};
     };
-    auto shifted = [](render::RenderView v, double metres) {
-      v.eye += glm::dvec3(glm::transpose(v.viewRotation())[0]) * metres;
-      return v;
-    };
-    const render::RenderView al = shifted(a_, -0.03), ar = shifted(a_, 0.03);
-    const render::RenderView bl = shifted(b_, -0.03), br = shifted(b_, 0.03);
+    const render::RenderView al = test::shiftedSideways(a_, -0.03), ar = test::shiftedSideways(a_, 0.03);
+    const render::RenderView bl = test::shiftedSideways(b_, -0.03), br = test::shiftedSideways(b_, 0.03);
     render::ViewGroup ga{{target(0, al, "left"), target(1, ar, "right")}, &a_};
     render::ViewGroup gb{{target(2, bl, "left"), target(3, br, "right")}, &b_};
     render::GroupCombine combine;

@@ -13,6 +13,7 @@
 #include "render/output_target.h"
 #include "render/renderer.h"
 #include "scene/demo_scene.h"
+#include "two_shots.h"
 
 using namespace hs;
 
@@ -23,13 +24,6 @@ double maxDifference(const Image& a, const Image& b) {
   double worst = 0.0;
   for (size_t i = 0; i < a.rgbaF.size(); ++i) worst = std::max(worst, std::abs(double(a.rgbaF[i]) - double(b.rgbaF[i])));
   return worst;
-}
-
-// An eye offset sideways by `metres` (a stereo pair without its rig's toe-in).
-render::RenderView shifted(render::RenderView v, double metres) {
-  const glm::dvec3 right = glm::dvec3(glm::transpose(v.viewRotation())[0]);
-  v.eye += right * metres;
-  return v;
 }
 
 }  // namespace
@@ -68,10 +62,7 @@ class TestViewGroups : public QObject {
     const auto cams = demo_.cameras();
     QVERIFY(!cams.empty());
     a_ = render::viewFromCamera(demo_, cams.front(), 192, 108);
-    // The second shot: from the other side of the valley, looking back.
-    b_ = a_;
-    b_.eye += glm::dvec3(60.0, 40.0, 15.0);
-    b_.orientation = glm::angleAxis(glm::radians(150.0), glm::dvec3(0, 0, 1)) * a_.orientation;
+    b_ = test::otherSideOfTheValley(a_);
     r_.makeCurrent();
     // One frame first: the environment pass runs when the sky changed, so
     // the frames compared below all start from the same maps.
@@ -82,7 +73,7 @@ class TestViewGroups : public QObject {
     const Image aAlone = alone({a_})[0];
     // One frame: group 0 the mono shot, group 1 a stereo pair.
     render::ViewGroup ga{{target(0, a_)}, nullptr};
-    const render::RenderView bl = shifted(b_, -0.03), br = shifted(b_, 0.03);
+    const render::RenderView bl = test::shiftedSideways(b_, -0.03), br = test::shiftedSideways(b_, 0.03);
     render::ViewGroup gb{{target(1, bl, "left"), target(2, br, "right")}, &b_};
     render::RenderOptions o;
     o.keepHdr = true;
