@@ -42,17 +42,24 @@ scene::EntityId StereoPreviewSettings::activeCamera(const scene::SceneState& sta
   return render::shotCamera(state);
 }
 
-std::optional<sequencer::Shot> StereoPreviewSettings::activeTransition(const scene::SceneState& state,
-                                                                       const Selection& selection) const {
+std::optional<sequencer::Shot> StereoPreviewSettings::activeShot(const scene::SceneState& state,
+                                                                 const Selection& selection) const {
   const scene::Entity* e = state.find(selection.primary());
   if (e && e->camera) return std::nullopt;
   const auto shot = sequencer::shotAt(state.sequence.cuts, state.time.frame);
-  if (!shot || !shot->incoming) return std::nullopt;
-  for (uint64_t id : {shot->camera, shot->incoming}) {
+  if (!shot) return std::nullopt;
+  auto isCamera = [&](uint64_t id) {
     const scene::Entity* c = state.find(scene::EntityId(id));
-    if (!c || !c->camera) return std::nullopt;
-  }
+    return c && c->camera;
+  };
+  if (!isCamera(shot->camera) || (shot->incoming && !isCamera(shot->incoming))) return std::nullopt;
   return shot;
+}
+
+std::optional<sequencer::Shot> StereoPreviewSettings::activeTransition(const scene::SceneState& state,
+                                                                       const Selection& selection) const {
+  const auto shot = activeShot(state, selection);
+  return shot && shot->incoming ? shot : std::nullopt;
 }
 
 void StereoPreviewSettings::setMode(StereoPreviewMode mode) {

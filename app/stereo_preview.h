@@ -32,9 +32,12 @@ class StereoPreviewSettings : public QObject {
   // camera cuts' at the state's frame (a transition: its stronger shot),
   // else the shot camera.
   scene::EntityId activeCamera(const scene::SceneState& state, const Selection& selection) const;
-  // With no camera selected, the camera cuts' transition at the state's
-  // frame, if one is running there and both its cameras exist: the preview
-  // then shows both shots combined, as the export does.
+  // With no camera selected, the camera cuts' shot at the state's frame,
+  // if a cut covers it and its cameras exist (automatic exposure adapts
+  // from the shot's start, as the export's).
+  std::optional<sequencer::Shot> activeShot(const scene::SceneState& state, const Selection& selection) const;
+  // The same shot if a transition is running there: the preview then shows
+  // both shots combined, as the export does.
   std::optional<sequencer::Shot> activeTransition(const scene::SceneState& state, const Selection& selection) const;
   static QString modeName(StereoPreviewMode m);
 

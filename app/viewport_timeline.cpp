@@ -8,6 +8,7 @@
 #include "app/stereo_preview.h"
 #include "app/timeline_clock.h"
 #include "app/viewport_widget.h"
+#include "scene/animation.h"
 
 namespace hs::app {
 
@@ -28,14 +29,28 @@ bool ViewportWidget::stereoPreviewActive() const { return stereo_ && stereo_->mo
 
 bool ViewportWidget::paintStereo() {
   if (!stereoPreviewActive()) return false;
-  const scene::SceneState& state = displayedState();
-  scene::EntityId cam = stereo_->activeCamera(state, selection_);
+  const scene::SceneState& shown = displayedState();
+  scene::EntityId cam = stereo_->activeCamera(shown, selection_);
   // During a camera cuts' transition both shots, combined as the export does.
+  const std::optional<sequencer::Shot> shot = stereo_->activeShot(shown, selection_);
   std::optional<render::PreviewTransition> transition;
-  if (const auto shot = stereo_->activeTransition(state, selection_)) {
-    transition = render::PreviewTransition{scene::EntityId(shot->incoming), *shot, state.time.frame};
+  if (shot && shot->incoming) {
+    transition = render::PreviewTransition{scene::EntityId(shot->incoming), *shot, shown.time.frame};
     cam = scene::EntityId(shot->camera);
   }
+  // Automatic exposure adapted over the shot's probes as the export's
+  // (render/auto_exposure.h): the same frame shows the same exposure.
+  scene::SceneState exposed;
+  if (shown.settings.post.autoExposure && cam != scene::kNoEntity) {
+    const render::StateAtTime stateAt = [this, &shown](double t) {
+      return clock_ ? scene::animatedState(doc_.state(), clock_->compiled(), t, nullptr) : shown;
+    };
+    exposed = shown;
+    exposed.settings.exposureEv100 =
+        float(exposure_.frameEv100(renderer_, stateAt, shown, cam, shot, shown.sequence.rate, shown.time.seconds,
+                                   stereo_->outputAspect()));
+  }
+  const scene::SceneState& state = shown.settings.post.autoExposure && cam != scene::kNoEntity ? exposed : shown;
   if (cam == scene::kNoEntity) {
     if (comfortReadout_) comfortReadout_->hide();
     return false;  // no camera to look through: the free view

@@ -59,6 +59,7 @@ void ViewportWidget::releaseGl() {
   if (haveContext) makeCurrent();
   // Without a current context there is nothing left to free GL objects in.
   if (haveContext) stereoRenderer_.release();
+  if (haveContext) exposure_.release();
   if (haveContext) renderer_.shutdown();
   if (haveContext) doneCurrent();
 }
@@ -113,7 +114,15 @@ void ViewportWidget::paintGL() {
     return;
   }
   if (paintStereo()) return;
-  const scene::SceneState& state = displayedState();
+  const scene::SceneState& shown = displayedState();
+  // Automatic exposure: the free view is no camera's, so it has no history
+  // to adapt over; it meters its own probe (render/auto_exposure.h).
+  scene::SceneState exposed;
+  if (shown.settings.post.autoExposure) {
+    exposed = shown;
+    exposed.settings.exposureEv100 = float(exposure_.viewEv100(renderer_, shown, camera_.view(), exposureEpoch_));
+  }
+  const scene::SceneState& state = shown.settings.post.autoExposure ? exposed : shown;
   if (collectGarbage_) {
     renderer_.collectGarbage(state);
     collectGarbage_ = false;
@@ -171,6 +180,8 @@ void ViewportWidget::onDocumentChanged(const scene::ChangeSet& changes) {
     resetViewForDocument();
   }
   if (changes.assets) collectGarbage_ = true;
+  ++exposureEpoch_;
+  exposure_.forget();
   update();
 }
 

@@ -11,6 +11,7 @@
 
 #include "app/camera_controller.h"
 #include "app/gizmo.h"
+#include "render/auto_exposure.h"
 #include "render/renderer.h"
 #include "render/stereo_preview_renderer.h"
 #include "scene/document.h"
@@ -54,6 +55,8 @@ class ViewportWidget : public QOpenGLWidget {
   void setShowDepthComplexity(bool show);
   // The before/after split of the post chain: the left half without effects.
   bool postSplit() const { return postSplit_; }
+  // Automatic exposure's probe renders so far (render/auto_exposure.h).
+  size_t exposureProbes() const { return exposure_.probesRendered(); }
   void setPostSplit(bool on);
 
   // The entity under a widget position (logical pixels): a camera/light
@@ -152,6 +155,11 @@ class ViewportWidget : public QOpenGLWidget {
   bool showDepthComplexity_ = false;
   bool postSplit_ = false;
   bool collectGarbage_ = false;
+  // Automatic exposure (post.auto_exposure): the stereo preview adapts as
+  // the export does (probes kept by camera and time); the free view meters
+  // its own probe. Every document change makes the probes stale.
+  render::AutoExposure exposure_;
+  uint64_t exposureEpoch_ = 0;
   bool needsViewReset_ = true;
 
   Drag drag_ = Drag::None;

@@ -7,6 +7,7 @@
 #include "cli/sequence_options.h"
 #include <fstream>
 
+#include "render/auto_exposure.h"
 #include "render/frame_stats_json.h"
 #include "render/offscreen_renderer.h"
 #include "render/render_problems.h"
@@ -45,10 +46,16 @@ int runRender(int argc, char** argv) {
   std::string error;
   std::optional<scene::SceneState> state = openScene(args.positionals()[0], error);
   if (!state) return args.fail(error);
+  // The document as opened and its timeline: automatic exposure's probes
+  // evaluate it at the times before --at.
+  std::optional<scene::SceneState> document;
+  std::optional<sequencer::CompiledSequence> compiled;
   if (args.has("time_s")) {
     // The timeline at t: what a sequence render's frame at t sees (scene::animatedState).
     std::vector<std::string> warnings;
-    *state = scene::animatedState(*state, scene::compileSequence(*state), args.number("time_s"), &warnings);
+    document = *state;
+    compiled = scene::compileSequence(*document);
+    *state = scene::animatedState(*document, *compiled, args.number("time_s"), &warnings);
     for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
   applyAntialiasing(args, *state);
@@ -76,22 +83,28 @@ int runRender(int argc, char** argv) {
   }
   render::RenderView view;
   std::string from;
+  scene::EntityId viewCamera = scene::kNoEntity;  // none: a view framing the scene
   if (args.has("camera")) {
     const std::string name = args.text("camera");
-    const scene::EntityId id = namedCamera(name, error);
-    if (id == scene::kNoEntity) return args.fail(error);
-    view = render::viewFromCamera(*state, id, width, height);
+    viewCamera = namedCamera(name, error);
+    if (viewCamera == scene::kNoEntity) return args.fail(error);
     from = "camera '" + name + "'";
   } else if (cut) {
-    view = render::viewFromCamera(*state, scene::EntityId(cut->camera), width, height);
-    from = "camera '" + state->find(scene::EntityId(cut->camera))->name + "' (the camera cuts)";
+    viewCamera = scene::EntityId(cut->camera);
+    from = "camera '" + state->find(viewCamera)->name + "' (the camera cuts)";
   } else if (const auto cams = state->cameras(); !cams.empty()) {
-    view = render::viewFromCamera(*state, cams.front(), width, height);
-    from = "camera '" + state->find(cams.front())->name + "'";
+    viewCamera = cams.front();
+    from = "camera '" + state->find(viewCamera)->name + "'";
   } else {
     const scene::WorldBox box = scene::worldBounds(*state);
     view = render::frameBox(box.empty ? glm::dvec3(-5) : box.min, box.empty ? glm::dvec3(5) : box.max, width, height);
     from = "a view framing the scene";
+  }
+  if (viewCamera != scene::kNoEntity) view = render::viewFromCamera(*state, viewCamera, width, height);
+  scene::EntityId mixCamera = scene::kNoEntity;
+  if (args.has("mix_camera")) {
+    mixCamera = namedCamera(args.text("mix_camera"), error);
+    if (mixCamera == scene::kNoEntity) return args.fail(error);
   }
 
   render::OffscreenRenderer renderer;
@@ -104,12 +117,32 @@ int runRender(int argc, char** argv) {
   options.passTimings = args.has("stats");
   options.oitCounts = args.has("stats");  // fragments per pixel in every transparency mode
   const bool hdr = *format == sequencer::ImageFormat::Exr;
+  if (state->settings.post.autoExposure) {
+    // Metered from probes of the shot before --at as a sequence's frame
+    // (render/auto_exposure.h); a view of no camera from its one probe.
+    render::AutoExposure exposure;
+    const render::StateAtTime stateAt = [&](double t) {
+      return document ? scene::animatedState(*document, *compiled, t, nullptr) : *state;
+    };
+    std::optional<sequencer::Shot> shot = cut;
+    if (mixCamera != scene::kNoEntity)
+      shot = sequencer::Shot{viewCamera, mixCamera, sequencer::Transition::Crossfade, args.number("mix")};
+    const double ev = viewCamera == scene::kNoEntity
+                          ? exposure.viewEv100(renderer.renderer(), *state, view, 0)
+                          : exposure.frameEv100(renderer.renderer(), stateAt, *state, viewCamera, shot,
+                                                state->sequence.rate, args.has("time_s") ? args.number("time_s") : 0.0,
+                                                double(width) / double(height));
+    exposure.release();
+    state->settings.exposureEv100 = float(ev);
+    char text[96];
+    std::snprintf(text, sizeof text, ", automatic exposure EV100 %.2f (%zu probes)", ev, exposure.probesRendered());
+    from += text;
+  }
   hs::Image img;
   if (args.has("mix_camera")) {
     // Two shots in one frame, mixed in linear light (Renderer::renderGroups).
     const std::string name = args.text("mix_camera");
-    const scene::EntityId id = namedCamera(name, error);
-    if (id == scene::kNoEntity) return args.fail(error);
+    const scene::EntityId id = mixCamera;
     const float mix = float(args.number("mix"));
     // A transition's pattern at progress --mix (the glitch seeded by the
     // timeline's frame at --at), or the plain crossfade of the weights.

@@ -8,6 +8,7 @@
 #include <epoxy/gl.h>
 
 #include "core/srgb.h"
+#include "render/auto_exposure.h"
 #include "render/output_target.h"
 #include "render/pixel_readback.h"
 #include "render/stereo_views.h"
@@ -79,6 +80,7 @@ struct StereoFrameSource::Impl {
   // The output framebuffer the renderer tone-maps into, per eye size.
   OutputTarget output[2];  // one per view: both eyes render in one frame
   OutputTarget groupOutput[2][2];  // a transition's two shots, each tone mapped alone too
+  AutoExposure exposure;           // its probes are kept through the run (post.auto_exposure)
 
   struct Slot {
     PixelReadback buffer;
@@ -202,6 +204,7 @@ StereoFrameSource::~StereoFrameSource() {
   if (d_->offscreen.makeCurrent()) {
     for (auto& s : d_->slots) s.buffer.release();
     for (auto& o : d_->output) o.release();
+    d_->exposure.release();
   }
 }
 
@@ -230,8 +233,14 @@ bool StereoFrameSource::begin(const sequencer::FrameJob& job, std::string& error
     return false;
   }
   std::vector<std::string> warnings;
-  const scene::SceneState state = scene::animatedState(d.base, d.compiled, job.time, &warnings);
+  scene::SceneState state = scene::animatedState(d.base, d.compiled, job.time, &warnings);
   for (const std::string& w : warnings) d.warn(w);
+  if (state.settings.post.autoExposure) {
+    const StateAtTime stateAt = [&d](double t) { return scene::animatedState(d.base, d.compiled, t, nullptr); };
+    state.settings.exposureEv100 =
+        float(d.exposure.frameEv100(d.offscreen.renderer(), stateAt, state, camera, shot, d.base.sequence.rate,
+                                    job.time, double(job.eyeWidth) / double(std::max(job.eyeHeight, 1))));
+  }
   const EyeViews views = eyeViews(state, camera, job.eyeWidth, job.eyeHeight);
   std::optional<EyeViews> incoming;
   if (shot && shot->incoming) incoming = eyeViews(state, scene::EntityId(shot->incoming), job.eyeWidth, job.eyeHeight);

@@ -359,6 +359,29 @@ std::vector<SettingsField> buildSettingsFields() {
                    [](S& s) -> Tonemap& { return s.tonemap; }),
       // The post chain (PostSettings, docs/rendering.md "Post-processing"):
       // settings.post.EFFECT.FIELD, each effect off until enabled.
+      // Automatic exposure (core/exposure_meter.h): the metered EV100 is
+      // clamped to [min, max]; the percentiles leave the darkest and the
+      // brightest pixels out of the mean; speeds are per second.
+      boolField<S>("post.auto_exposure.enabled", "Automatic exposure",
+                   [](S& s) -> bool& { return s.post.autoExposure; }),
+      doubleField<S>("post.auto_exposure.min_ev100", "Auto exposure minimum", -10.0, 30.0, 0.1, "EV",
+                     [](S& s) -> float& { return s.post.autoExposureMinEv100; }),
+      doubleField<S>("post.auto_exposure.max_ev100", "Auto exposure maximum", -10.0, 30.0, 0.1, "EV",
+                     [](S& s) -> float& { return s.post.autoExposureMaxEv100; }),
+      doubleField<S>("post.auto_exposure.compensation", "Exposure compensation", -10.0, 10.0, 0.1, "EV",
+                     [](S& s) -> float& { return s.post.autoExposureCompensation; }),
+      doubleField<S>("post.auto_exposure.low_percent", "Metering low percentile", 0.0, 100.0, 1.0, "%",
+                     [](S& s) -> float& { return s.post.autoExposureLowPercent; }),
+      doubleField<S>("post.auto_exposure.high_percent", "Metering high percentile", 0.0, 100.0, 1.0, "%",
+                     [](S& s) -> float& { return s.post.autoExposureHighPercent; }),
+      doubleField<S>("post.auto_exposure.speed_up", "Adaptation to brighter", 0.01, 1000.0, 0.1, "/s",
+                     [](S& s) -> float& { return s.post.autoExposureSpeedUp; }),
+      doubleField<S>("post.auto_exposure.speed_down", "Adaptation to darker", 0.01, 1000.0, 0.1, "/s",
+                     [](S& s) -> float& { return s.post.autoExposureSpeedDown; }),
+      // Probe renders per second of film: how finely the adaptation samples
+      // the scene (its error against run time: bench_post).
+      notAnimated(doubleField<S>("post.auto_exposure.probes_per_second", "Exposure probes per second", 0.5, 60.0,
+                                 0.5, "/s", [](S& s) -> float& { return s.post.autoExposureProbesPerSecond; })),
       boolField<S>("post.bloom.enabled", "Bloom", [](S& s) -> bool& { return s.post.bloom; }),
       doubleField<S>("post.bloom.intensity", "Bloom intensity", 0.0, 10.0, 0.01, "",
                      [](S& s) -> float& { return s.post.bloomIntensity; }),

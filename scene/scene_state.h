@@ -94,7 +94,8 @@ struct LutData {
 };
 
 // The post chain from the scene's HDR colour to the output
-// (docs/rendering.md "Post-processing"), in this order: exposure, bloom,
+// (docs/rendering.md "Post-processing"), in this order: exposure (manual
+// or automatic), bloom,
 // chromatic aberration (on the scene's light, as a lens makes it), the tone
 // map, the grade, the LUT, the vignette, grain, then FXAA. Each effect runs only
 // when enabled: with all off the chain is the tone map alone, no pass or
@@ -103,6 +104,20 @@ struct LutData {
 // blue noise), or Floyd-Steinberg error diffusion.
 enum class DitherMode { Off = 0, Bayer = 1, BlueNoise = 2, ErrorDiffusion = 3 };
 struct PostSettings {
+  // Automatic exposure (docs/rendering.md "Automatic exposure"): the
+  // exposure metered from small renders of the shot at fixed times before
+  // the frame (a luminance histogram each, core/exposure_meter.h) and
+  // adapted over them, instead of settings.exposure_ev100; a pure function
+  // of the time, so a frame alone equals the same frame of a sequence.
+  bool autoExposure = false;
+  float autoExposureMinEv100 = -2.0f;     // the range the metered exposure is clamped to
+  float autoExposureMaxEv100 = 20.0f;
+  float autoExposureCompensation = 0.0f;  // EV; positive: a brighter image
+  float autoExposureLowPercent = 10.0f;   // the darkest pixels left out of the mean
+  float autoExposureHighPercent = 90.0f;  // the brightest beyond this left out
+  float autoExposureSpeedUp = 3.0f;       // per second, towards a brighter scene
+  float autoExposureSpeedDown = 1.0f;     // per second, towards a darker scene
+  float autoExposureProbesPerSecond = 4.0f;  // probe renders per second of film (the adaptation's step)
   // Bloom: exposed light above the threshold (soft knee), spread by a
   // downsample/upsample chain and added back.
   bool bloom = false;

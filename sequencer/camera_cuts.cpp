@@ -72,13 +72,16 @@ std::optional<Shot> shotAt(const std::vector<CameraCut>& cuts, int64_t frame) {
   if (frame > cut.end) return std::nullopt;
   Shot shot;
   shot.camera = cut.camera;
+  shot.cameraSince = cut.start;
   if (cut.transition == Transition::Cut || cut.transitionFrames <= 0 || it - 1 == cuts.begin()) return shot;
   const int64_t into = frame - cut.start;
   if (into >= cut.transitionFrames) return shot;  // done: this cut's camera alone
   const CameraCut& before = *(it - 2);
   shot.camera = before.camera;
+  shot.cameraSince = before.start;
   if (into == 0) return shot;  // the first frame of a transition is the shot before, exactly
   shot.incoming = cut.camera;
+  shot.incomingSince = cut.start;
   shot.transition = cut.transition;
   shot.progress = easeValue(cut.ease, double(into) / double(cut.transitionFrames));
   return shot;

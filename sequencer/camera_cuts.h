@@ -71,6 +71,10 @@ struct Shot {
   uint64_t incoming = 0;  // 0: one camera
   Transition transition = Transition::Cut;
   double progress = 0.0;  // eased
+  // The first frame of each camera's cut (`camera`'s, `incoming`'s): where
+  // a shot's history begins (automatic exposure adapts from there).
+  int64_t cameraSince = 0;
+  int64_t incomingSince = 0;
   // The two cameras' weights in the combined light (outgoing, incoming);
   // for a patterned transition, the share of the screen each covers
   // (1 - p, p), which is also how "the stronger shot" is chosen.

@@ -9,6 +9,10 @@
 // costs nothing when off: the same pass, the same time. Last, a
 // transition's frame of each kind (two shots as two view groups, combined
 // by weights or a stylised pattern at its middle) against a plain one.
+// Automatic exposure: a probe's time against a frame's, and the
+// adaptation's error against run time per probe rate (core/exposure_meter.h,
+// on a flight's target: a slow swing and a 4 EV step into shade, against
+// the same equation sampled 1000 times a second).
 //
 //   bench_post [--size 1920x1080] [--frames N]
 #include <QCoreApplication>
@@ -18,6 +22,8 @@
 #include <vector>
 
 #include "bench/common/bench_util.h"
+#include "core/exposure_meter.h"
+#include "render/auto_exposure.h"
 #include "mesh/primitives.h"
 #include "render/offscreen_renderer.h"
 #include "core/content_hash.h"
@@ -176,6 +182,58 @@ int main(int argc, char** argv) {
       std::printf("%-22s %12.1f %12.1f %10.3f %14.2f\n", name.c_str(), bench::median(plain), bench::median(mixed),
                   bench::median(mixed) / bench::median(plain), bench::median(combine));
       std::fflush(stdout);
+    }
+  }
+  // Automatic exposure (render/auto_exposure.h): one probe (72 rows) per
+  // grid step; a sequence renders probes_per_second of them per second of
+  // film, a still its whole window.
+  {
+    scene::SceneState s = baseScene();
+    s.settings.post.autoExposure = true;
+    render::AutoExposure ae;
+    std::vector<double> probe, frame;
+    for (int f = 0; f < frames + 1; ++f) {
+      double t0 = bench::nowSeconds();
+      ae.viewEv100(r.renderer(), s, v, uint64_t(f));  // a new epoch: a new probe
+      const double p = (bench::nowSeconds() - t0) * 1e3;
+      t0 = bench::nowSeconds();
+      r.renderOnly(s, v);
+      const double one = (bench::nowSeconds() - t0) * 1e3;
+      if (f == 0) continue;
+      probe.push_back(p);
+      frame.push_back(one);
+    }
+    ae.release();
+    const double probeMs = bench::median(probe), frameMs = bench::median(frame);
+    std::printf("\nautomatic exposure: probe %dx%d %.1f ms, frame %.1f ms (probe/frame %.3f)\n",
+                int(std::lround(render::AutoExposure::kProbeRows * v.aspect())), render::AutoExposure::kProbeRows,
+                probeMs, frameMs, probeMs / frameMs);
+    // The adaptation's error per probe rate on a flight's target: a swing of
+    // ±2 EV over 8 s and a 4 EV step into shade at 5.1 s; the reference is
+    // the same equation sampled 1000 times a second. Speeds: the defaults.
+    auto flight = [](double t) { return 12.0 + 2.0 * std::sin(0.8 * t) - (t >= 5.1 ? 4.0 : 0.0); };
+    auto adapted = [&](double rate, double t) {
+      ExposureAdaptation a;
+      a.probesPerSecond = rate;
+      a.maxProbes = 1 << 20;
+      return adaptedEv100(t, a, [&](int64_t g) { return flight(double(g) / rate); });
+    };
+    std::printf("%-10s %12s %12s %16s %16s %14s %12s\n", "probes/s", "max err EV", "mean err EV", "probes/frame@60",
+                "seq. ms/frame", "still probes", "still ms");
+    for (double rate : {1.0, 2.0, 4.0, 8.0, 16.0, 30.0}) {
+      double worst = 0.0, sum = 0.0;
+      int n = 0;
+      for (double t = 0.0; t <= 12.0; t += 1.0 / 60.0, ++n) {
+        const double e = std::abs(adapted(rate, t) - adapted(1000.0, t));
+        worst = std::max(worst, e);
+        sum += e;
+      }
+      ExposureAdaptation a;
+      a.probesPerSecond = rate;
+      const AdaptationWindow w = adaptationWindow(60.0, a);
+      const double stillProbes = double(w.last - w.first + 1);
+      std::printf("%-10.0f %12.3f %12.4f %16.3f %16.2f %14.0f %12.0f\n", rate, worst, sum / n, rate / 60.0,
+                  rate / 60.0 * probeMs, stillProbes, stillProbes * probeMs);
     }
   }
   return 0;

@@ -4,7 +4,8 @@
 // file OpenColorIO refuses is shown as an error naming the file and line,
 // and the scene stays as it was. The Post dock holds the whole chain.
 // View > Post Before/After splits the viewport into the frame without and
-// with its effects.
+// with its effects. Automatic exposure from the dock meters the viewport.
+#include <QCheckBox>
 #include <QLabel>
 #include <QPushButton>
 #include <QTemporaryDir>
@@ -13,6 +14,7 @@
 #include <QAction>
 #include <algorithm>
 
+#include "app/field_editors.h"
 #include "app/main_window.h"
 #include "app/viewport_widget.h"
 #include "app/settings_panel.h"
@@ -115,6 +117,34 @@ class LutEditorTest : public QObject {
                                           w_->viewport()->lastStats().passes.end(),
                                           [](const render::PassStats& p) { return p.name == "post_split"; }),
                              30000);
+  }
+
+  // Automatic exposure's box in the Post dock: one undo step; the viewport
+  // then meters its view with a probe and shows another exposure.
+  void automaticExposureFromThePostDock() {
+    test::waitForNextFrame(*w_->viewport());
+    const QImage before = w_->viewport()->grabFramebuffer();
+    QVERIFY(panel_->editorFor("post.auto_exposure.speed_up"));
+    auto* box = panel_->editorFor("post.auto_exposure.enabled")->findChild<QCheckBox*>();
+    QVERIFY(box);
+    const int steps = doc().undoStack()->index();
+    const size_t probes = w_->viewport()->exposureProbes();
+    box->click();
+    QVERIFY(doc().state().settings.post.autoExposure);
+    QCOMPARE(doc().undoStack()->index(), steps + 1);
+    test::waitForNextFrame(*w_->viewport());
+    QTRY_VERIFY_WITH_TIMEOUT(w_->viewport()->exposureProbes() > probes, 30000);
+    const QImage after = w_->viewport()->grabFramebuffer();
+    double meanBefore = 0.0, meanAfter = 0.0;
+    for (int y = 0; y < after.height(); y += 4)
+      for (int x = 0; x < after.width(); x += 4) {
+        meanBefore += qGray(before.pixel(x, y));
+        meanAfter += qGray(after.pixel(x, y));
+      }
+    QVERIFY2(std::abs(meanAfter - meanBefore) > 0.01 * meanBefore,
+             qPrintable(QString("mean grey %1 before, %2 after").arg(meanBefore).arg(meanAfter)));
+    doc().undoStack()->undo();
+    QVERIFY(!doc().state().settings.post.autoExposure);
   }
 
   void aRefusedFileIsShownAndChangesNothing() {

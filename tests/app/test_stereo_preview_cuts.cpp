@@ -4,7 +4,8 @@
 // transition, the shot camera outside every cut or where a cut's camera is
 // gone; a selected camera still wins. During a transition (strictly between
 // its first and last frames) it reports the transition to combine
-// (activeTransition; the combined picture is test_transitions').
+// (activeTransition; the combined picture is test_transitions'). The shot
+// (activeShot) says where each camera's cut began.
 #include <QtTest>
 
 #include "app/selection.h"
@@ -57,9 +58,20 @@ class StereoPreviewCutsTest : public QObject {
     const auto mid = running(55);
     QVERIFY(mid && mid->camera == 2 && mid->incoming == 3 && mid->transition == Transition::Crossfade);
     QCOMPARE(mid->progress, 0.5);
+    // Each camera's shot begins at its cut (automatic exposure adapts from there).
+    QCOMPARE(mid->cameraSince, int64_t(10));
+    QCOMPARE(mid->incomingSince, int64_t(50));
+    auto shotAt = [&](int64_t frame) {
+      s.time.frame = frame;
+      return preview.activeShot(s, selection);
+    };
+    QVERIFY(!shotAt(5));  // outside every cut
+    QVERIFY(shotAt(30) && shotAt(30)->camera == 2 && shotAt(30)->cameraSince == 10 && !shotAt(30)->incoming);
+    QVERIFY(shotAt(70) && shotAt(70)->camera == 3 && shotAt(70)->cameraSince == 50);
     selection.set({1});  // a selected camera wins
     QCOMPARE(at(60), scene::EntityId(1));
     QVERIFY(!running(55));
+    QVERIFY(!shotAt(30));
     selection.clear();
     s.entities.at(3).camera.reset();  // the cut's camera is no camera any more
     QCOMPARE(at(70), shot);

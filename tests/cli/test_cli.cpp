@@ -650,6 +650,31 @@ class TestCli : public QObject {
     QVERIFY2(seq.err.contains("--mix-camera and --transition apply to one frame"), qPrintable(seq.err));
   }
 
+  // post.auto_exposure (render/auto_exposure.h) through the CLI: a still
+  // says the exposure it metered; a sequence's frame rendered alone is the
+  // same file as after the frames before it (a pure function of the time).
+  void renderWithAutomaticExposure() {
+    const QString file = path("auto_exposure.hscene");
+    QFile::remove(file);
+    QVERIFY(QFile::copy(demo_, file));
+    const Run set = cli({"set", "settings.post.auto_exposure.enabled", "true", file});
+    QVERIFY2(set.code == 0, qPrintable(set.err));
+    const Run still = cli({"render", file, "--out", path("auto.png"), "--size", "64x36", "--at", "2",
+                           "--camera", "Main Camera"});
+    QVERIFY2(still.code == 0, qPrintable(still.err));
+    QVERIFY2(still.out.contains("automatic exposure EV100") && still.out.contains("(9 probes)"), qPrintable(still.out));
+    QDir().mkpath(path("auto_run"));
+    QDir().mkpath(path("auto_alone"));
+    const QStringList common = {"--size", "64x36", "--camera", "Main Camera", "--layout", "mono"};
+    const Run run = cli(QStringList{"render", file, "--frames", "117-120", "--out", path("auto_run/f_%05d.png")} + common);
+    const Run alone = cli(QStringList{"render", file, "--frames", "120-120", "--out", path("auto_alone/f_%05d.png")} + common);
+    QVERIFY2(run.code == 0 && alone.code == 0, qPrintable(run.err + alone.err));
+    const std::string a = test::readFile(path("auto_run/f_00120.png").toStdString());
+    const std::string b = test::readFile(path("auto_alone/f_00120.png").toStdString());
+    QVERIFY(!a.empty());
+    QVERIFY(a == b);
+  }
+
   void renderToUnknownExtension() {
     expectError({"render", demo_, "--out", path("frame.bmp")}, 1, {"frame.bmp", ".png"});
     expectError({"render", demo_, "--out", path("frame")}, 1, {"frame"});

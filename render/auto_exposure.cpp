@@ -1,0 +1,147 @@
+#include "render/auto_exposure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "core/exposure_meter.h"
+#include "render/output_target.h"
+#include "render/renderer.h"
+#include "scene/light_units.h"
+
+namespace hs::render {
+
+namespace {
+
+ExposureMetering meteringOf(const scene::PostSettings& p) {
+  return {.minEv100 = double(p.autoExposureMinEv100),
+          .maxEv100 = double(p.autoExposureMaxEv100),
+          .lowPercent = double(p.autoExposureLowPercent),
+          .highPercent = double(p.autoExposureHighPercent),
+          .compensationEv = double(p.autoExposureCompensation)};
+}
+
+ExposureAdaptation adaptationOf(const scene::PostSettings& p) {
+  ExposureAdaptation a;
+  a.speedUp = double(p.autoExposureSpeedUp);
+  a.speedDown = double(p.autoExposureSpeedDown);
+  a.probesPerSecond = double(p.autoExposureProbesPerSecond);
+  return a;
+}
+
+}  // namespace
+
+scene::SceneState probeState(scene::SceneState state) {
+  state.settings.post = scene::PostSettings{};
+  state.settings.exposureEv100 = float(scene::kReferenceEv100);
+  state.settings.depthOfField = scene::DepthOfField::Off;
+  state.settings.antialiasing = scene::Antialiasing::None;
+  state.settings.showGrid = false;
+  return state;
+}
+
+struct AutoExposure::Impl {
+  OutputTarget target;
+  // Probes by (camera, the shot's start, the grid's step, probe width, grid
+  // index): the histogram, so metering settings can change without renders.
+  std::map<std::tuple<uint64_t, double, double, int, int64_t>, ExposureHistogram> probes;
+  size_t rendered = 0;
+  // The free view's last probe.
+  struct Last {
+    RenderView view;
+    double seconds = -1.0;
+    uint64_t epoch = 0;
+    int width = 0;
+    ExposureHistogram histogram;
+    bool valid = false;
+  } last;
+
+  ExposureHistogram probe(Renderer& renderer, const scene::SceneState& state, RenderView view) {
+    view.height = kProbeRows;
+    view.lens = CameraLens{};
+    target.ensure(view.width, view.height);
+    RenderOptions o;
+    o.showGrid = false;
+    o.keepHdr = true;
+    renderer.render(probeState(state), view, target.fbo(), o);
+    const Image hdr = renderer.readHdr(0);
+    ++rendered;
+    // Scene units at the reference exposure (multiplier 1) back to cd/m².
+    const double nitsPerValue =
+        1.0 / (scene::sceneUnitsPerNit() * scene::exposureMultiplier(float(scene::kReferenceEv100)));
+    return luminanceHistogram(hdr.rgbaF.data(), hdr.pixelCount(), nitsPerValue);
+  }
+
+  double adapted(Renderer& renderer, const StateAtTime& stateAt, const scene::PostSettings& post,
+                 scene::EntityId camera, double since, double seconds, double aspect) {
+    const ExposureAdaptation a = adaptationOf(post);
+    const ExposureMetering m = meteringOf(post);
+    const double step = adaptationWindow(0.0, a).step;
+    const int width = std::clamp(int(std::lround(kProbeRows * aspect)), 1, 16 * kProbeRows);
+    if (probes.size() > 4096) probes.clear();  // a long scrub: start again rather than grow
+    return adaptedEv100(seconds - since, a, [&](int64_t g) {
+      const auto key = std::make_tuple(uint64_t(camera), since, step, width, g);
+      auto it = probes.find(key);
+      if (it == probes.end()) {
+        const double t = since + double(g) * step;
+        const scene::SceneState state = stateAt(t);
+        it = probes.emplace(key, probe(renderer, state, viewFromCamera(state, camera, width, kProbeRows))).first;
+      }
+      return meteredEv100(it->second, m);
+    });
+  }
+};
+
+AutoExposure::AutoExposure() : d_(std::make_unique<Impl>()) {}
+AutoExposure::~AutoExposure() = default;
+
+double AutoExposure::frameEv100(Renderer& renderer, const StateAtTime& stateAt, const scene::SceneState& frame,
+                                scene::EntityId camera, const std::optional<sequencer::Shot>& shot,
+                                sequencer::FrameRate rate, double seconds, double aspect) {
+  const scene::PostSettings& post = frame.settings.post;
+  if (!post.autoExposure) return double(frame.settings.exposureEv100);
+  if (!shot) return d_->adapted(renderer, stateAt, post, camera, 0.0, seconds, aspect);
+  const double outgoing = d_->adapted(renderer, stateAt, post, scene::EntityId(shot->camera),
+                                      sequencer::frameTime(shot->cameraSince, rate), seconds, aspect);
+  if (!shot->incoming) return outgoing;
+  const double incoming = d_->adapted(renderer, stateAt, post, scene::EntityId(shot->incoming),
+                                      sequencer::frameTime(shot->incomingSince, rate), seconds, aspect);
+  return outgoing + (incoming - outgoing) * std::clamp(shot->progress, 0.0, 1.0);
+}
+
+double AutoExposure::viewEv100(Renderer& renderer, const scene::SceneState& state, const RenderView& view,
+                               uint64_t sceneEpoch) {
+  const scene::PostSettings& post = state.settings.post;
+  if (!post.autoExposure) return double(state.settings.exposureEv100);
+  Impl::Last& l = d_->last;
+  const int width = std::clamp(int(std::lround(kProbeRows * view.aspect())), 1, 16 * kProbeRows);
+  const bool same = l.valid && l.seconds == state.time.seconds && l.epoch == sceneEpoch && l.width == width &&
+                    l.view.eye == view.eye && l.view.orientation == view.orientation && l.view.fovY == view.fovY &&
+                    l.view.projectionShift == view.projectionShift;
+  if (!same) {
+    RenderView v = view;
+    v.width = width;
+    l.histogram = d_->probe(renderer, state, v);
+    l.view = view;
+    l.seconds = state.time.seconds;
+    l.epoch = sceneEpoch;
+    l.width = width;
+    l.valid = true;
+  }
+  return meteredEv100(l.histogram, meteringOf(post));
+}
+
+size_t AutoExposure::probesRendered() const { return d_->rendered; }
+
+void AutoExposure::forget() {
+  d_->probes.clear();
+  d_->last.valid = false;
+}
+
+void AutoExposure::release() {
+  d_->target.release();
+  forget();
+}
+
+}  // namespace hs::render
