@@ -109,7 +109,7 @@ inline Image stylisePassReference(const Image& in, const scene::PostSettings& po
       bool off = false;
       if (post.crt) {
         double cx = px / w * 2 - 1, cy = py / h * 2 - 1;
-        const double k = 1 + post.crtCurvature * (cx * cx + cy * cy);
+        const double k = 1 + double(post.crtCurvature) * (cx * cx + cy * cy);
         cx *= k, cy *= k;
         px = (cx * 0.5 + 0.5) * w, py = (cy * 0.5 + 0.5) * h;
         off = cx < -1 || cx > 1 || cy < -1 || cy > 1;
@@ -119,7 +119,7 @@ inline Image stylisePassReference(const Image& in, const scene::PostSettings& po
         const double levels = std::max(double(post.comicLevels), 2.0) - 1.0;
         const double shade = luma(c);
         for (double& v : c) v = std::floor(v * levels + 0.5) / levels;
-        const double cell = std::max(2.0, post.comicDotPx * lines);
+        const double cell = std::max(2.0, double(post.comicDotPx) * lines);
         const double fx = x + 0.5, fy = y + 0.5;
         // The grid turned 45 degrees (GLSL's mat2 is column by column).
         const double rx = (0.70710678 * fx - 0.70710678 * fy) / cell, ry = (0.70710678 * fx + 0.70710678 * fy) / cell;
@@ -138,15 +138,15 @@ inline Image stylisePassReference(const Image& in, const scene::PostSettings& po
         const double row = py / h * count;
         const double beam = 0.5 - 0.5 * std::cos(2 * M_PI * row);
         for (int i = 0; i < 3; ++i) {
-          c[i] *= 1 - post.crtScanlines * (1 - beam);
-          if (i != x % 3) c[i] *= 1 - post.crtMask;
+          c[i] *= 1 - double(post.crtScanlines) * (1 - beam);
+          if (i != x % 3) c[i] *= 1 - double(post.crtMask);
         }
         if (off) c = {0, 0, 0};
       }
       if (post.dither != scene::DitherMode::Off) {
         const double t = post.dither == scene::DitherMode::Bayer
                              ? (bayer[size_t(y % 8)][size_t(x % 8)] + 0.5) / 64.0
-                             : blueNoise[size_t(y % noiseSide) * size_t(noiseSide) + size_t(x % noiseSide)];
+                             : double(blueNoise[size_t(y % noiseSide) * size_t(noiseSide) + size_t(x % noiseSide)]);
         const double steps = std::max(double(post.ditherLevels), 2.0) - 1.0;
         for (double& v : c) v = std::min(std::floor(std::clamp(v, 0.0, 1.0) * steps + t), steps) / steps;
       }

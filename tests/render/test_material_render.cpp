@@ -269,7 +269,7 @@ class TestMaterialRender : public QObject {
         QVERIFY(std::abs(std::abs(ndl) - 0.8) < 1e-6 && ndl * side > 0.0);
         const hs::Image hdr = r_.render(ms.state, ms.view, true);
         const glm::dvec3 albedo(m.baseColor);
-        const glm::dvec3 want = (ndl > 0 ? (1.0 - t) : double(t)) * albedo * std::abs(ndl) / pi * glm::dvec3(ms.sunColor);
+        const glm::dvec3 want = (ndl > 0 ? (1.0 - double(t)) : double(t)) * albedo * std::abs(ndl) / pi * glm::dvec3(ms.sunColor);
         for (const glm::ivec2 p : {glm::ivec2(32, 32), glm::ivec2(20, 40), glm::ivec2(44, 24)}) {
           const glm::dvec3 got(hdrAt(hdr, p.x, p.y));
           for (int c = 0; c < 3; ++c)

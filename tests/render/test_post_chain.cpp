@@ -7,15 +7,19 @@
 // map alone (no other pass, no texture) and its image does not change when
 // the disabled effects' parameters do. Grain follows the frame number and
 // is the same in both eyes; bloom spreads a highlight's light symmetrically,
-// further with a larger radius, and costs nothing when off.
+// further with a larger radius, and costs nothing when off. A golden per
+// effect (and per tone map) on the demo.
 #include <QtTest>
 
 #include <cmath>
 
 #include "mesh/primitives.h"
+#include "render/auto_exposure.h"
 #include "render/offscreen_renderer.h"
 #include "render/renderer.h"
+#include "scene/demo_scene.h"
 #include "look_from.h"
+#include "render_golden.h"
 #include "post_reference.h"
 #include "post_scene.h"
 #include "scene_parts.h"
@@ -199,6 +203,56 @@ class TestPostChain : public QObject {
     QVERIFY(gainL > 3.0 && gainR > 3.0);
     QVERIFY(std::abs(gainL - gainR) < 0.35 * std::max(gainL, gainR));
     QVERIFY(wideL > gainL);
+  }
+
+  // A golden per effect of the chain on the demo scene (its own bloom, grade
+  // and LUT turned off first, so each image shows one effect): the tone
+  // maps, bloom, chromatic aberration, the grade, the demo's LUT, the
+  // vignette, grain at frame 7 and automatic exposure. The CPU-reference
+  // tests above check the arithmetic; these catch a change in the look.
+  void goldens_data() {
+    QTest::addColumn<int>("which");
+    const char* names[] = {"tonemap_none", "tonemap_aces", "tonemap_agx", "tonemap_pbr_neutral", "bloom",
+                           "chromatic_aberration", "grade", "lut", "vignette", "grain", "auto_exposure"};
+    for (int i = 0; i < int(std::size(names)); ++i) QTest::newRow(names[i]) << i;
+  }
+  void goldens() {
+    QFETCH(int, which);
+    std::string error;
+    static const std::optional<scene::SceneState> demo = scene::buildDemoScene(error);
+    QVERIFY2(demo, error.c_str());
+    scene::SceneState s = *demo;
+    s.settings.antialiasing = scene::Antialiasing::None;
+    s.settings.tonemap = scene::Tonemap::Aces;
+    const scene::LutData lut = s.settings.post.lut;
+    scene::PostSettings& p = s.settings.post;
+    p = scene::PostSettings{};
+    switch (which) {
+      case 0: s.settings.tonemap = scene::Tonemap::None; break;
+      case 1: break;
+      case 2: s.settings.tonemap = scene::Tonemap::AgX; break;
+      case 3: s.settings.tonemap = scene::Tonemap::PbrNeutral; break;
+      case 4: p.bloom = true, p.bloomIntensity = 0.1f; break;
+      case 5: p.chromaticAberration = true, p.chromaticAberrationPx = 4.0f; break;
+      case 6:
+        p.grade = true, p.temperature = 0.3f, p.saturation = 1.3f;
+        p.lift = {0.02f, 0.0f, 0.03f}, p.gain = {1.1f, 1.0f, 0.9f};
+        break;
+      case 7:
+        QVERIFY(!lut.empty());
+        p.lut = lut, p.lutEnabled = true;
+        break;
+      case 8: p.vignette = true, p.vignetteIntensity = 0.5f; break;
+      case 9: p.grain = true, p.grainIntensity = 0.15f, s.time.frame = 7; break;
+      default: p.autoExposure = true; break;
+    }
+    const render::RenderView v = render::viewFromCamera(s, s.cameras().front(), 256, 144);
+    if (p.autoExposure) {
+      render::AutoExposure ae;
+      s.settings.exposureEv100 = float(ae.viewEv100(r_.renderer(), s, v, 0));
+      ae.release();
+    }
+    test::verifyGolden(std::string("post_") + QTest::currentDataTag(), r_.render(s, v));
   }
 };
 

@@ -61,7 +61,7 @@ bool passRan(const render::FrameStats& s, const std::string& part) {
 // frequencies (radius <= side / 8, the DC term left out).
 double lowFrequencyShare(const std::vector<float>& map, int side) {
   double low = 0, all = 0, mean = 0;
-  for (float v : map) mean += v;
+  for (float v : map) mean += double(v);
   mean /= double(map.size());
   for (int v = 0; v < side; ++v)
     for (int u = 0; u < side; ++u) {
@@ -69,7 +69,7 @@ double lowFrequencyShare(const std::vector<float>& map, int side) {
       std::complex<double> sum = 0;
       for (int y = 0; y < side; ++y)
         for (int x = 0; x < side; ++x)
-          sum += double(map[size_t(y * side + x)] - mean) *
+          sum += (double(map[size_t(y * side + x)]) - mean) *
                  std::polar(1.0, -2.0 * M_PI * (double(u * x) + double(v * y)) / side);
       const double e = std::norm(sum);
       const int fu = std::min(u, side - u), fv = std::min(v, side - v);
