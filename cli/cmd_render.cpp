@@ -106,6 +106,15 @@ int runRender(int argc, char** argv) {
     mixCamera = namedCamera(args.text("mix_camera"), error);
     if (mixCamera == scene::kNoEntity) return args.fail(error);
   }
+  // The timeline's frame at --at (it seeds the glitch's pattern).
+  const int64_t frame = args.has("time_s") ? sequencer::frameAtTime(args.number("time_s"), state->sequence.rate) : 0;
+  // The shot: the cuts' at --at, or --mix-camera's two at progress --mix
+  // (combined by --transition's pattern, or crossfaded).
+  std::optional<sequencer::Shot> shot = cut;
+  if (mixCamera != scene::kNoEntity)
+    shot = sequencer::Shot{viewCamera, mixCamera,
+                           sequencer::transitionFromName(args.text("mix_transition")).value_or(sequencer::Transition::Crossfade),
+                           args.number("mix")};
 
   render::OffscreenRenderer renderer;
   if (!renderer.initialize(error)) return args.fail("cannot start headless OpenGL: " + error);
@@ -124,9 +133,6 @@ int runRender(int argc, char** argv) {
     const render::StateAtTime stateAt = [&](double t) {
       return document ? scene::animatedState(*document, *compiled, t, nullptr) : *state;
     };
-    std::optional<sequencer::Shot> shot = cut;
-    if (mixCamera != scene::kNoEntity)
-      shot = sequencer::Shot{viewCamera, mixCamera, sequencer::Transition::Crossfade, args.number("mix")};
     const double ev = viewCamera == scene::kNoEntity
                           ? exposure.viewEv100(renderer.renderer(), *state, view, 0)
                           : exposure.frameEv100(renderer.renderer(), stateAt, *state, viewCamera, shot,
@@ -139,35 +145,20 @@ int runRender(int argc, char** argv) {
     from += text;
   }
   hs::Image img;
-  if (args.has("mix_camera")) {
-    // Two shots in one frame, mixed in linear light (Renderer::renderGroups).
-    const std::string name = args.text("mix_camera");
-    const scene::EntityId id = mixCamera;
-    const float mix = float(args.number("mix"));
-    // A transition's pattern at progress --mix (the glitch seeded by the
-    // timeline's frame at --at), or the plain crossfade of the weights.
-    render::GroupCombine pattern;
-    const std::string kind = args.text("mix_transition");
-    pattern.transition = sequencer::transitionFromName(kind).value_or(sequencer::Transition::Crossfade);
-    pattern.progress = mix;
-    pattern.frame = args.has("time_s") ? sequencer::frameAtTime(args.number("time_s"), state->sequence.rate) : 0;
-    sequencer::Shot shot{0, 1, pattern.transition, mix};
-    const auto [w0, w1] = shot.weights();
-    img = renderer.renderMix(*state, {view, render::viewFromCamera(*state, id, width, height)}, {w0, w1}, hdr,
-                             &stats, options, &pattern);
-    from += " mixed with camera '" + name + "' (" + kind + " at " + std::to_string(mix).substr(0, 4) + ")";
-  } else if (cut && cut->incoming) {
-    // The frame is inside a transition: both shots, as the sequence renders it.
-    render::GroupCombine pattern;
-    pattern.transition = cut->transition;
-    pattern.progress = float(cut->progress);
-    pattern.frame = sequencer::frameAtTime(args.number("time_s"), state->sequence.rate);
-    const auto [w0, w1] = cut->weights();
-    const scene::EntityId incoming(cut->incoming);
-    img = renderer.renderMix(*state, {view, render::viewFromCamera(*state, incoming, width, height)}, {w0, w1}, hdr,
-                             &stats, options, &pattern);
-    from += " in a " + std::string(sequencer::transitionName(cut->transition)) + " into camera '" +
-            state->find(incoming)->name + "' (" + std::to_string(cut->progress).substr(0, 4) + ")";
+  if (shot && shot->incoming) {
+    // Two shots in one frame (Renderer::renderGroups), combined as a
+    // sequence's transition frame is.
+    const render::GroupCombine pattern = render::combineOf(*shot, frame);
+    const scene::EntityId incoming(shot->incoming);
+    img = renderer.renderMix(*state, {view, render::viewFromCamera(*state, incoming, width, height)}, pattern.weights,
+                             hdr, &stats, options, &pattern);
+    const std::string progress = std::to_string(shot->progress).substr(0, 4);
+    if (mixCamera != scene::kNoEntity)
+      from += " mixed with camera '" + args.text("mix_camera") + "' (" + args.text("mix_transition") + " at " +
+              progress + ")";
+    else
+      from += " in a " + std::string(sequencer::transitionName(shot->transition)) + " into camera '" +
+              state->find(incoming)->name + "' (" + progress + ")";
   } else {
     img = renderer.render(*state, view, hdr, &stats, options);
   }

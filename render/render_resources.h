@@ -67,7 +67,13 @@ struct RenderResources {
 
   EnvironmentMaps environment;  // the analytic sky's image-based light (none with the gradient sky)
   GpuLutCache luts;             // the grading LUT's tables (none without a LUT)
-  std::string lastLutProblem;   // reported once on stderr until it changes
+  // A LUT left out: reported once (lutProblems, Renderer::takeLutProblems)
+  // until the problem changes; a program that did not build is not built
+  // again for the same LUT (its content hash) every frame.
+  std::string lastLutProblem;
+  std::vector<std::string> lutProblems;
+  uint64_t lutProgramRefused = 0;
+  std::string lutProgramError;
 
   // Clustered lights (passes/light_culling.h): clusters over the cap are
   // reported once until a frame has none again.

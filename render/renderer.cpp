@@ -673,6 +673,12 @@ std::vector<BuiltProgram> Renderer::builtPrograms() const {
   return out;
 }
 
+std::vector<std::string> Renderer::takeLutProblems() {
+  std::vector<std::string> out;
+  out.swap(d_->res.lutProblems);
+  return out;
+}
+
 std::vector<std::string> Renderer::takeDofProblems() {
   std::vector<std::string> out;
   out.swap(d_->res.dofProblems);

@@ -208,6 +208,13 @@ struct GroupCombine {
   int64_t frame = 0;
 };
 
+// How a transition's `shot` at `frame` combines (its weights, kind and
+// progress); the caller adds the targets.
+inline GroupCombine combineOf(const sequencer::Shot& shot, int64_t frame) {
+  const auto [outgoing, incoming] = shot.weights();
+  return GroupCombine{{}, {outgoing, incoming}, shot.transition, float(shot.progress), frame};
+}
+
 class Renderer {
  public:
   Renderer();
@@ -327,6 +334,9 @@ class Renderer {
   // that is not a positive number), each naming the camera and the field,
   // reported once; the frame renders without depth of field.
   std::vector<std::string> takeDofProblems();
+  // A grading LUT left out of the frame (its tables or its program could
+  // not be made), naming the file, reported once until the problem changes.
+  std::vector<std::string> takeLutProblems();
   // Every program built since initialize(), initialisation's included.
   std::vector<BuiltProgram> builtPrograms() const;
   // The sun's cascades of the last frame (empty: no sun shadow).

@@ -158,13 +158,9 @@ struct StereoFrameSource::Impl {
       }
       groups[g].lodView = lodViews[g];
     }
-    GroupCombine combine;
+    GroupCombine combine = combineOf(shot, frame);
     for (size_t i = 0; i < shots[0].size(); ++i)
       combine.targets.push_back({shots[1][i], output[i].fbo(), eyeName(shots[0].size(), i)});
-    combine.weights = {weights.first, weights.second};
-    combine.transition = shot.transition;
-    combine.progress = float(shot.progress);
-    combine.frame = frame;
     RenderOptions ro = renderOptions(slot, *lodViews[0]);
     offscreen.renderer().renderGroups(state, groups, ro, &combine);
     // Kept views: each group's, then the combined ones. Depth (the comfort

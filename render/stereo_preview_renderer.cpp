@@ -108,7 +108,7 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
     incoming = eyeViews(state, transition->incoming, eyeW, eyeH);
     const EyeViews& in = *incoming;
     std::vector<ViewGroup> groups(2);
-    GroupCombine combine;
+    GroupCombine combine = combineOf(transition->shot, transition->frame);
     for (size_t i = 0; i < targets.size(); ++i) {
       const bool left = targets[i].fbo == eyes_[0].target.fbo();
       Eye& eye = eyes_[left ? 0 : 1];
@@ -119,14 +119,9 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
     }
     groups[0].lodView = &views.mono;
     groups[1].lodView = &in.mono;
-    const auto [w0, w1] = transition->shot.weights();
-    combine.weights = {w0, w1};
-    combine.transition = transition->shot.transition;
-    combine.progress = float(transition->shot.progress);
-    combine.frame = transition->frame;
     const std::vector<FrameStats> stats = renderer.renderGroups(state, groups, options, &combine);
     if (!stats.empty()) result.stats = stats.back();
-    if (w1 > w0) depthBase = targets.size(), checked = &in;
+    if (combine.weights[1] > combine.weights[0]) depthBase = targets.size(), checked = &in;
   } else {
     result.stats = renderer.renderViews(state, targets, options);
   }

@@ -157,11 +157,8 @@ int main(int argc, char** argv) {
     for (const std::string& name : sequencer::transitionNameList()) {
       const sequencer::Transition t = *sequencer::transitionFromName(name);
       if (t == sequencer::Transition::Cut) continue;
-      render::GroupCombine pattern;
-      pattern.transition = t;
-      pattern.progress = 0.5f;
-      pattern.frame = 7;
-      const auto [w0, w1] = sequencer::Shot{0, 1, t, 0.5}.weights();
+      const render::GroupCombine pattern = render::combineOf(sequencer::Shot{0, 1, t, 0.5}, 7);
+      const auto [w0, w1] = std::pair{pattern.weights[0], pattern.weights[1]};
       std::vector<double> plain, mixed, combine;
       for (int f = 0; f < frames + 1; ++f) {
         double t0 = bench::nowSeconds();

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -84,21 +83,30 @@ glm::vec3 whiteBalanceGains(float temperature, float tint) {
 
 namespace {
 // The GPU form of the scene's LUT when it is on and can be drawn; a LUT
-// that cannot is reported once (stderr) and the frame is drawn without it.
+// that cannot is reported once (Renderer::takeLutProblems) and the frame
+// is drawn without it.
 const GpuLut* lutForFrame(FrameContext& frame, const std::vector<std::string>& toneMapDefines) {
   const scene::PostSettings& post = frame.settings.post;
   if (!post.lutEnabled || post.lut.empty() || !post.lut.bytes) return nullptr;
   std::string error;
   const GpuLut* lut = frame.res.luts.get(post.lut, error);
-  if (lut) {
+  if (lut && frame.res.lutProgramRefused == post.lut.contentHash) {
+    lut = nullptr;  // its program did not build: not tried again every frame
+    error = frame.res.lutProgramError;
+  } else if (lut) {
     // Built here, before the frame draws, so that a program OpenColorIO's
     // text breaks leaves the LUT out instead of stopping the renderer.
     std::vector<std::string> defines = toneMapDefines;
     defines.push_back("HS_LUT");
-    if (!frame.res.shaders.get({"fullscreen.vert", "tonemap.frag", "", defines, lut->shaderText}, error)) lut = nullptr;
+    if (!frame.res.shaders.get({"fullscreen.vert", "tonemap.frag", "", defines, lut->shaderText}, error)) {
+      lut = nullptr;
+      frame.res.lutProgramRefused = post.lut.contentHash;
+      frame.res.lutProgramError = error;
+    }
   }
   if (!lut && error != frame.res.lastLutProblem)
-    std::fprintf(stderr, "hybridscape: the grading LUT is left out of the frame: %s\n", error.c_str());
+    frame.res.lutProblems.push_back("post.lut '" + post.lut.fileName + "': the grading LUT is left out of the frame: " +
+                                    error);
   frame.res.lastLutProblem = lut ? std::string() : error;
   return lut;
 }

@@ -185,6 +185,28 @@ class TestPostLut : public QObject {
     s.settings.post.lut.bytes.reset();
     QVERIFY(fresh.render(s, view()).rgba8 == plain.rgba8);
   }
+
+  // A LUT the renderer cannot make (bytes OpenColorIO refuses, as a damaged
+  // blob would hold): the frame is drawn without it and the problem,
+  // naming the file, reaches the user once (Renderer::takeLutProblems, the
+  // CLI's warnings and the editor's Messages through render_problems.h).
+  void aLutThatCannotBeDrawnIsReportedOnce() {
+    scene::SceneState s = colourScene();
+    const Image plain = r_.render(s, view());
+    (void)r_.renderer().takeLutProblems();
+    const std::string bytes = "LUT_3D_SIZE 2\n0 0 0\n";  // four entries short
+    s.settings.post.lut = scene::LutData{"damaged.cube", std::make_shared<const std::string>(bytes), 0x5eed};
+    s.settings.post.lutEnabled = true;
+    QVERIFY(r_.render(s, view()).rgba8 == plain.rgba8);
+    const std::vector<std::string> problems = r_.renderer().takeLutProblems();
+    QCOMPARE(problems.size(), size_t(1));
+    QVERIFY2(problems[0].find("damaged.cube") != std::string::npos, problems[0].c_str());
+    QVERIFY(r_.render(s, view()).rgba8 == plain.rgba8);
+    QVERIFY(r_.renderer().takeLutProblems().empty());  // once, not every frame
+    s.settings.post.lut = {};
+    s.settings.post.lutEnabled = false;
+    r_.render(s, view());
+  }
 };
 
 QTEST_GUILESS_MAIN(TestPostLut)
