@@ -116,13 +116,16 @@ void ViewportWidget::paintGL() {
   if (paintStereo()) return;
   const scene::SceneState& shown = displayedState();
   // Automatic exposure: the free view is no camera's, so it has no history
-  // to adapt over; it meters its own probe (render/auto_exposure.h).
+  // to adapt over. It meters the picture it drew (a probe would cost a
+  // frame's CPU work again) and shows that exposure from the next paint,
+  // asking for one more when it moved (render/auto_exposure.h).
+  const bool autoExposure = shown.settings.post.autoExposure;
   scene::SceneState exposed;
-  if (shown.settings.post.autoExposure) {
+  if (autoExposure) {
     exposed = shown;
-    exposed.settings.exposureEv100 = float(exposure_.viewEv100(renderer_, shown, camera_.view(), exposureEpoch_));
+    if (std::isfinite(freeViewEv_)) exposed.settings.exposureEv100 = freeViewEv_;
   }
-  const scene::SceneState& state = shown.settings.post.autoExposure ? exposed : shown;
+  const scene::SceneState& state = autoExposure ? exposed : shown;
   if (collectGarbage_) {
     renderer_.collectGarbage(state);
     collectGarbage_ = false;
@@ -145,7 +148,19 @@ void ViewportWidget::paintGL() {
   options.oitCounts = options.passTimings;  // fragments per pixel for the status bar, with the timings
   options.depthComplexity = showDepthComplexity_;
   options.postSplit = postSplit_ ? 0.5f : 0.0f;
+  options.keepHdr = autoExposure;
   stats_ = renderer_.render(state, view, defaultFramebufferObject(), options);
+  if (autoExposure) {
+    const float metered =
+        float(render::meteredEv100Of(renderer_.readHdr(0), shown.settings.post));
+    ++freeViewMeterings_;
+    if (!(std::abs(metered - state.settings.exposureEv100) < 0.01f)) {
+      freeViewEv_ = metered;
+      update();
+    }
+  } else {
+    freeViewEv_ = std::numeric_limits<float>::quiet_NaN();
+  }
   ++frames_;
   emit frameRendered(stats_);
 }
@@ -180,7 +195,6 @@ void ViewportWidget::onDocumentChanged(const scene::ChangeSet& changes) {
     resetViewForDocument();
   }
   if (changes.assets) collectGarbage_ = true;
-  ++exposureEpoch_;
   exposure_.forget();
   update();
 }

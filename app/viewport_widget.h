@@ -9,6 +9,8 @@
 #include <QOpenGLWidget>
 #include <QTimer>
 
+#include <limits>
+
 #include "app/camera_controller.h"
 #include "app/gizmo.h"
 #include "render/auto_exposure.h"
@@ -55,8 +57,9 @@ class ViewportWidget : public QOpenGLWidget {
   void setShowDepthComplexity(bool show);
   // The before/after split of the post chain: the left half without effects.
   bool postSplit() const { return postSplit_; }
-  // Automatic exposure's probe renders so far (render/auto_exposure.h).
-  size_t exposureProbes() const { return exposure_.probesRendered(); }
+  // Automatic exposure's meterings so far: the stereo preview's probe
+  // renders and the free view's frames (render/auto_exposure.h).
+  size_t exposureMeterings() const { return exposure_.probesRendered() + freeViewMeterings_; }
   void setPostSplit(bool on);
 
   // The entity under a widget position (logical pixels): a camera/light
@@ -156,10 +159,11 @@ class ViewportWidget : public QOpenGLWidget {
   bool postSplit_ = false;
   bool collectGarbage_ = false;
   // Automatic exposure (post.auto_exposure): the stereo preview adapts as
-  // the export does (probes kept by camera and time); the free view meters
-  // its own probe. Every document change makes the probes stale.
+  // the export does (probes kept by camera and time; every document change
+  // makes them stale); the free view meters what it drew (NaN: not yet).
   render::AutoExposure exposure_;
-  uint64_t exposureEpoch_ = 0;
+  float freeViewEv_ = std::numeric_limits<float>::quiet_NaN();
+  size_t freeViewMeterings_ = 0;
   bool needsViewReset_ = true;
 
   Drag drag_ = Drag::None;

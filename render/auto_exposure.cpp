@@ -30,11 +30,19 @@ ExposureAdaptation adaptationOf(const scene::PostSettings& p) {
   return a;
 }
 
+// The kept HDR is in scene units (before the exposure): back to cd/m².
+ExposureHistogram histogramOf(const Image& hdr) {
+  return luminanceHistogram(hdr.rgbaF.data(), hdr.pixelCount(), 1.0 / scene::sceneUnitsPerNit());
+}
+
 }  // namespace
+
+double meteredEv100Of(const Image& hdr, const scene::PostSettings& post) {
+  return meteredEv100(histogramOf(hdr), meteringOf(post));
+}
 
 scene::SceneState probeState(scene::SceneState state) {
   state.settings.post = scene::PostSettings{};
-  state.settings.exposureEv100 = float(scene::kReferenceEv100);
   state.settings.depthOfField = scene::DepthOfField::Off;
   state.settings.antialiasing = scene::Antialiasing::None;
   state.settings.showGrid = false;
@@ -71,12 +79,8 @@ struct AutoExposure::Impl {
     o.showGrid = false;
     o.keepHdr = true;
     renderer.render(probeState(state), view, target.fbo(), o);
-    const Image hdr = renderer.readHdr(0);
     ++rendered;
-    // Scene units at the reference exposure (multiplier 1) back to cd/m².
-    const double nitsPerValue =
-        1.0 / (scene::sceneUnitsPerNit() * scene::exposureMultiplier(float(scene::kReferenceEv100)));
-    return luminanceHistogram(hdr.rgbaF.data(), hdr.pixelCount(), nitsPerValue);
+    return histogramOf(renderer.readHdr(0));
   }
 
   double adapted(Renderer& renderer, const StateAtTime& stateAt, const scene::PostSettings& post,

@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 
+#include "core/image.h"
 #include "render/render_view.h"
 #include "scene/scene_state.h"
 #include "sequencer/camera_cuts.h"
@@ -65,9 +66,14 @@ class AutoExposure {
   std::unique_ptr<Impl> d_;
 };
 
+// The EV100 metered from `hdr`, a frame's linear HDR as Renderer::readHdr
+// gives it (scene units, before the exposure), by `post`'s metering
+// settings: the editor's free view meters the picture it drew.
+double meteredEv100Of(const Image& hdr, const scene::PostSettings& post);
+
 // The state a probe renders: `state` with its post chain, depth of field
-// and anti-aliasing off and the reference exposure, so its HDR is the
-// scene's light in scene units (tests meter the same way).
+// and anti-aliasing off and cheaper shadows, AO and transparency (tests
+// meter the same way).
 scene::SceneState probeState(scene::SceneState state);
 
 }  // namespace hs::render

@@ -193,7 +193,7 @@ struct ViewGroup {
 };
 
 // How renderGroups combines its groups' images: view i of every group
-// (linear HDR, exposure applied), weighted and summed, then tone mapped
+// (linear HDR, before the exposure), weighted and summed, then tone mapped
 // into targets[i] like a frame's own output (a cross-fade between two
 // shots: weights 1 - a and a). With a patterned `transition`
 // (sequencer::isPatterned) the first two groups (outgoing, incoming) are
@@ -254,8 +254,9 @@ class Renderer {
 
   // Reads back what the last render() wrote to `targetFbo`.
   Image readDisplay(unsigned targetFbo, int width, int height) const;
-  // Linear HDR (exposure applied, before tone mapping) of view `view` of the
-  // last frame rendered with keepHdr.
+  // Linear HDR of view `view` of the last frame rendered with keepHdr: the
+  // scene's light in scene units (scene/light_units.h), before the exposure
+  // and the tone map, which the tone map pass applies.
   Image readHdr(size_t view = 0) const;
   // The same into `dst`, or, with a GL_PIXEL_PACK_BUFFER bound, at offset
   // `dst` in it without waiting (the export's asynchronous readback).

@@ -120,7 +120,7 @@ class LutEditorTest : public QObject {
   }
 
   // Automatic exposure's box in the Post dock: one undo step; the viewport
-  // then meters its view with a probe and shows another exposure.
+  // then meters what it drew and shows another exposure.
   void automaticExposureFromThePostDock() {
     test::waitForNextFrame(*w_->viewport());
     const QImage before = w_->viewport()->grabFramebuffer();
@@ -128,12 +128,12 @@ class LutEditorTest : public QObject {
     auto* box = panel_->editorFor("post.auto_exposure.enabled")->findChild<QCheckBox*>();
     QVERIFY(box);
     const int steps = doc().undoStack()->index();
-    const size_t probes = w_->viewport()->exposureProbes();
+    const size_t probes = w_->viewport()->exposureMeterings();
     box->click();
     QVERIFY(doc().state().settings.post.autoExposure);
     QCOMPARE(doc().undoStack()->index(), steps + 1);
     test::waitForNextFrame(*w_->viewport());
-    QTRY_VERIFY_WITH_TIMEOUT(w_->viewport()->exposureProbes() > probes, 30000);
+    QTRY_VERIFY_WITH_TIMEOUT(w_->viewport()->exposureMeterings() > probes, 30000);
     const QImage after = w_->viewport()->grabFramebuffer();
     double meanBefore = 0.0, meanAfter = 0.0;
     for (int y = 0; y < after.height(); y += 4)

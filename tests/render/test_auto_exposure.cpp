@@ -118,6 +118,15 @@ class TestAutoExposure : public QObject {
     QCOMPARE(ae.probesRendered(), size_t(1));
     ae.viewEv100(r_.renderer(), s, view, 1);  // the scene changed
     QCOMPARE(ae.probesRendered(), size_t(2));
+    // Metering a frame as drawn (the editor's free view): its HDR is before
+    // the exposure, so frames drawn at two exposures meter alike, as the
+    // probe does.
+    for (float drawnAt : {11.0f, 16.5f}) {
+      scene::SceneState drawn = render::probeState(s);
+      drawn.settings.exposureEv100 = drawnAt;
+      const double metered = render::meteredEv100Of(r_.render(drawn, view, true), s.settings.post);
+      QVERIFY2(std::abs(metered - byHand) < 0.12, qPrintable(QString("drawn at %1: %2").arg(drawnAt).arg(metered)));
+    }
     // Compensation shifts the result by itself, without a new probe.
     scene::SceneState brighter = s;
     brighter.settings.post.autoExposureCompensation = 2.0f;

@@ -17,8 +17,8 @@
 #include "render/auto_exposure.h"
 #include "render/offscreen_renderer.h"
 #include "render/renderer.h"
-#include "scene/demo_scene.h"
 #include "look_from.h"
+#include "demo_once.h"
 #include "render_golden.h"
 #include "post_reference.h"
 #include "post_scene.h"
@@ -218,9 +218,8 @@ class TestPostChain : public QObject {
   }
   void goldens() {
     QFETCH(int, which);
-    std::string error;
-    static const std::optional<scene::SceneState> demo = scene::buildDemoScene(error);
-    QVERIFY2(demo, error.c_str());
+    const scene::SceneState* demo = test::demoOnce();
+    QVERIFY(demo);
     scene::SceneState s = *demo;
     s.settings.antialiasing = scene::Antialiasing::None;
     s.settings.tonemap = scene::Tonemap::Aces;

@@ -18,7 +18,7 @@
 #include "render/offscreen_renderer.h"
 #include "render/output_target.h"
 #include "render/renderer.h"
-#include "scene/demo_scene.h"
+#include "demo_once.h"
 #include "render_golden.h"
 #include "post_scene.h"
 #include "stylised_reference.h"
@@ -357,9 +357,8 @@ class TestStylised : public QObject {
   // On the demo scene (terrain, trees, water, figures: every kind of edge and shade).
   void goldens() {
     QFETCH(int, which);
-    std::string error;
-    static const std::optional<scene::SceneState> demo = scene::buildDemoScene(error);
-    QVERIFY2(demo, error.c_str());
+    const scene::SceneState* demo = test::demoOnce();
+    QVERIFY(demo);
     scene::SceneState s = *demo;
     s.settings.antialiasing = scene::Antialiasing::None;
     scene::PostSettings& p = s.settings.post;
