@@ -42,8 +42,8 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent, SettingsSect
   };
   if (post) {
     auto* intro = new QLabel(
-        "The chain after the scene's light, in order: exposure (Scene Settings), bloom, chromatic aberration, "
-        "the tone map, the grade, the LUT, the vignette, grain, anti-aliasing (Scene Settings), then the "
+        "The chain after the scene's light, in order: exposure (manual in Scene Settings, automatic here), bloom, "
+        "chromatic aberration, the tone map, the grade, the LUT, the vignette, grain, anti-aliasing (Scene Settings), then the "
         "stylised effects. Each runs only when enabled. View > Post Before/After compares.",
         content);
     intro->setObjectName("postIntro");

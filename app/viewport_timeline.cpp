@@ -40,8 +40,9 @@ bool ViewportWidget::paintStereo() {
   }
   // Automatic exposure adapted over the shot's probes as the export's
   // (render/auto_exposure.h): the same frame shows the same exposure.
+  const bool autoExposure = shown.settings.post.autoExposure && cam != scene::kNoEntity;
   scene::SceneState exposed;
-  if (shown.settings.post.autoExposure && cam != scene::kNoEntity) {
+  if (autoExposure) {
     const render::StateAtTime stateAt = [this, &shown](double t) {
       return clock_ ? scene::animatedState(doc_.state(), clock_->compiled(), t, nullptr) : shown;
     };
@@ -50,7 +51,7 @@ bool ViewportWidget::paintStereo() {
         float(exposure_.frameEv100(renderer_, stateAt, shown, cam, shot, shown.sequence.rate, shown.time.seconds,
                                    stereo_->outputAspect()));
   }
-  const scene::SceneState& state = shown.settings.post.autoExposure && cam != scene::kNoEntity ? exposed : shown;
+  const scene::SceneState& state = autoExposure ? exposed : shown;
   if (cam == scene::kNoEntity) {
     if (comfortReadout_) comfortReadout_->hide();
     return false;  // no camera to look through: the free view

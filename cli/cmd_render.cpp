@@ -134,7 +134,7 @@ int runRender(int argc, char** argv) {
       return document ? scene::animatedState(*document, *compiled, t, nullptr) : *state;
     };
     const double ev = viewCamera == scene::kNoEntity
-                          ? exposure.viewEv100(renderer.renderer(), *state, view, 0)
+                          ? exposure.viewEv100(renderer.renderer(), *state, view)
                           : exposure.frameEv100(renderer.renderer(), stateAt, *state, viewCamera, shot,
                                                 state->sequence.rate, args.has("time_s") ? args.number("time_s") : 0.0,
                                                 double(width) / double(height));

@@ -30,6 +30,12 @@ ExposureAdaptation adaptationOf(const scene::PostSettings& p) {
   return a;
 }
 
+// A probe's width: kProbeRows tall at the frame's aspect.
+int probeWidth(double aspect) {
+  constexpr int rows = AutoExposure::kProbeRows;
+  return std::clamp(int(std::lround(rows * aspect)), 1, 16 * rows);
+}
+
 // The kept HDR is in scene units (before the exposure): back to cd/m².
 ExposureHistogram histogramOf(const Image& hdr) {
   return luminanceHistogram(hdr.rgbaF.data(), hdr.pixelCount(), 1.0 / scene::sceneUnitsPerNit());
@@ -61,15 +67,6 @@ struct AutoExposure::Impl {
   // index): the histogram, so metering settings can change without renders.
   std::map<std::tuple<uint64_t, double, double, int, int64_t>, ExposureHistogram> probes;
   size_t rendered = 0;
-  // The free view's last probe.
-  struct Last {
-    RenderView view;
-    double seconds = -1.0;
-    uint64_t epoch = 0;
-    int width = 0;
-    ExposureHistogram histogram;
-    bool valid = false;
-  } last;
 
   ExposureHistogram probe(Renderer& renderer, const scene::SceneState& state, RenderView view) {
     view.height = kProbeRows;
@@ -88,7 +85,7 @@ struct AutoExposure::Impl {
     const ExposureAdaptation a = adaptationOf(post);
     const ExposureMetering m = meteringOf(post);
     const double step = adaptationWindow(0.0, a).step;
-    const int width = std::clamp(int(std::lround(kProbeRows * aspect)), 1, 16 * kProbeRows);
+    const int width = probeWidth(aspect);
     if (probes.size() > 4096) probes.clear();  // a long scrub: start again rather than grow
     return adaptedEv100(seconds - since, a, [&](int64_t g) {
       const auto key = std::make_tuple(uint64_t(camera), since, step, width, g);
@@ -120,34 +117,17 @@ double AutoExposure::frameEv100(Renderer& renderer, const StateAtTime& stateAt, 
   return outgoing + (incoming - outgoing) * std::clamp(shot->progress, 0.0, 1.0);
 }
 
-double AutoExposure::viewEv100(Renderer& renderer, const scene::SceneState& state, const RenderView& view,
-                               uint64_t sceneEpoch) {
+double AutoExposure::viewEv100(Renderer& renderer, const scene::SceneState& state, const RenderView& view) {
   const scene::PostSettings& post = state.settings.post;
   if (!post.autoExposure) return double(state.settings.exposureEv100);
-  Impl::Last& l = d_->last;
-  const int width = std::clamp(int(std::lround(kProbeRows * view.aspect())), 1, 16 * kProbeRows);
-  const bool same = l.valid && l.seconds == state.time.seconds && l.epoch == sceneEpoch && l.width == width &&
-                    l.view.eye == view.eye && l.view.orientation == view.orientation && l.view.fovY == view.fovY &&
-                    l.view.projectionShift == view.projectionShift;
-  if (!same) {
-    RenderView v = view;
-    v.width = width;
-    l.histogram = d_->probe(renderer, state, v);
-    l.view = view;
-    l.seconds = state.time.seconds;
-    l.epoch = sceneEpoch;
-    l.width = width;
-    l.valid = true;
-  }
-  return meteredEv100(l.histogram, meteringOf(post));
+  RenderView v = view;
+  v.width = probeWidth(view.aspect());
+  return meteredEv100(d_->probe(renderer, state, v), meteringOf(post));
 }
 
 size_t AutoExposure::probesRendered() const { return d_->rendered; }
 
-void AutoExposure::forget() {
-  d_->probes.clear();
-  d_->last.valid = false;
-}
+void AutoExposure::forget() { d_->probes.clear(); }
 
 void AutoExposure::release() {
   d_->target.release();

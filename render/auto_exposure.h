@@ -47,9 +47,9 @@ class AutoExposure {
                     scene::EntityId camera, const std::optional<sequencer::Shot>& shot, sequencer::FrameRate rate, double seconds,
                     double aspect);
   // The EV100 metered from one probe of `view` of `state`, no adaptation:
-  // a view that is no camera's (the editor's free view) has no history.
-  // Kept while view, time and `sceneEpoch` stay the same.
-  double viewEv100(Renderer& renderer, const scene::SceneState& state, const RenderView& view, uint64_t sceneEpoch);
+  // a view that is no camera's (a CLI still framing the scene) has no
+  // history. (The editor's free view meters what it drew: meteredEv100Of.)
+  double viewEv100(Renderer& renderer, const scene::SceneState& state, const RenderView& view);
 
   // Probes rendered since the start (tests, benchmarks, the status bar).
   size_t probesRendered() const;

@@ -191,7 +191,7 @@ int main(int argc, char** argv) {
     std::vector<double> probe, frame;
     for (int f = 0; f < frames + 1; ++f) {
       double t0 = bench::nowSeconds();
-      ae.viewEv100(r.renderer(), s, v, uint64_t(f));  // a new epoch: a new probe
+      ae.viewEv100(r.renderer(), s, v);  // a probe
       const double p = (bench::nowSeconds() - t0) * 1e3;
       t0 = bench::nowSeconds();
       r.renderOnly(s, v);

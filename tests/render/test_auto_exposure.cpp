@@ -108,15 +108,13 @@ class TestAutoExposure : public QObject {
     const scene::SceneState s = at(0.0);
     const render::RenderView view = render::viewFromCamera(s, kCamera, 384, 216);
     render::AutoExposure ae;
-    const double probe = ae.viewEv100(r_.renderer(), s, view, 0);
+    const double probe = ae.viewEv100(r_.renderer(), s, view);
     const double byHand = meterByHand(r_.render(render::probeState(s), view, true), s.settings.post);
     qInfo("metered EV100 %.3f from a %d-row probe, %.3f by hand at 216 rows", probe, render::AutoExposure::kProbeRows,
           byHand);
     QVERIFY(std::abs(probe - byHand) < 0.3);
     QCOMPARE(ae.probesRendered(), size_t(1));
-    QCOMPARE(ae.viewEv100(r_.renderer(), s, view, 0), probe);  // kept
-    QCOMPARE(ae.probesRendered(), size_t(1));
-    ae.viewEv100(r_.renderer(), s, view, 1);  // the scene changed
+    QCOMPARE(ae.viewEv100(r_.renderer(), s, view), probe);  // a probe again: the same
     QCOMPARE(ae.probesRendered(), size_t(2));
     // Metering a frame as drawn (the editor's free view): its HDR is before
     // the exposure, so frames drawn at two exposures meter alike, as the
@@ -127,11 +125,11 @@ class TestAutoExposure : public QObject {
       const double metered = render::meteredEv100Of(r_.render(drawn, view, true), s.settings.post);
       QVERIFY2(std::abs(metered - byHand) < 0.12, qPrintable(QString("drawn at %1: %2").arg(drawnAt).arg(metered)));
     }
-    // Compensation shifts the result by itself, without a new probe.
+    // Compensation shifts the result by itself.
     scene::SceneState brighter = s;
     brighter.settings.post.autoExposureCompensation = 2.0f;
-    QCOMPARE(ae.viewEv100(r_.renderer(), brighter, view, 1), probe - 2.0);  // 2.0f is exact
-    QCOMPARE(ae.probesRendered(), size_t(2));
+    QCOMPARE(ae.viewEv100(r_.renderer(), brighter, view), probe - 2.0);  // 2.0f is exact
+    QCOMPARE(ae.probesRendered(), size_t(3));
     ae.release();
   }
 
@@ -212,7 +210,7 @@ class TestAutoExposure : public QObject {
     // is its own target, whatever came before.
     const double atCut = ev(ae, 1.0, kSkyCamera, incoming);
     render::AutoExposure fresh;
-    QCOMPARE(atCut, fresh.viewEv100(r_.renderer(), at(1.0), render::viewFromCamera(at(1.0), kSkyCamera, 128, 72), 0));
+    QCOMPARE(atCut, fresh.viewEv100(r_.renderer(), at(1.0), render::viewFromCamera(at(1.0), kSkyCamera, 128, 72)));
     ae.release();
     fresh.release();
   }
@@ -224,7 +222,7 @@ class TestAutoExposure : public QObject {
     render::AutoExposure ae;
     QCOMPARE(ae.frameEv100(r_.renderer(), stateAt(), manual, kCamera, std::nullopt, doc_.sequence.rate, 2.0, 1.0),
              11.25);
-    QCOMPARE(ae.viewEv100(r_.renderer(), manual, render::viewFromCamera(manual, kCamera, 64, 36), 0), 11.25);
+    QCOMPARE(ae.viewEv100(r_.renderer(), manual, render::viewFromCamera(manual, kCamera, 64, 36)), 11.25);
     QCOMPARE(ae.probesRendered(), size_t(0));
   }
 };

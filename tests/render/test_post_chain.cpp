@@ -248,7 +248,7 @@ class TestPostChain : public QObject {
     const render::RenderView v = render::viewFromCamera(s, s.cameras().front(), 256, 144);
     if (p.autoExposure) {
       render::AutoExposure ae;
-      s.settings.exposureEv100 = float(ae.viewEv100(r_.renderer(), s, v, 0));
+      s.settings.exposureEv100 = float(ae.viewEv100(r_.renderer(), s, v));
       ae.release();
     }
     test::verifyGolden(std::string("post_") + QTest::currentDataTag(), r_.render(s, v));
