@@ -10,6 +10,7 @@
 #include "cli/time_arg.h"
 #include "foliage/manifest.h"
 #include "core/json.h"
+#include "scene/camera_post.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
 #include "scene/impostor_key.h"
@@ -177,6 +178,34 @@ Json particlesJson(const scene::SceneState& s, double time) {
   return o;
 }
 
+// The post settings each camera overrides (scene/camera_post.h), as text:
+// {"Crane Camera": {"grade.enabled": "true", "vignette.intensity": "0.35"}}.
+Json cameraPostJson(const scene::SceneState& s) {
+  Json out = Json::object();
+  for (scene::EntityId id : s.cameras()) {
+    const scene::Entity& e = *s.find(id);
+    if (e.camera->post.empty()) continue;
+    Json post = Json::object();
+    for (const auto& [key, value] : e.camera->post)
+      if (const scene::EntityField* f = scene::findCameraPostField(key))
+        post[key] = scene::formatFieldValue(f->type, value, f->enumNames, 6);
+    out[e.name] = std::move(post);
+  }
+  return out;
+}
+
+void printCameraPost(const scene::SceneState& s) {
+  const Json post = cameraPostJson(s);
+  if (post.empty()) return;
+  std::printf("camera post settings (over the scene's):\n");
+  for (auto it = post.begin(); it != post.end(); ++it) {
+    std::string line;
+    for (auto kv = it.value().begin(); kv != it.value().end(); ++kv)
+      line += (line.empty() ? "" : ", ") + kv.key() + " " + kv.value().get<std::string>();
+    std::printf("  %s: %s\n", it.key().c_str(), line.c_str());
+  }
+}
+
 Json infoJson(const std::string& path, const scene::SceneState& s, double time) {
   Json o = Json::object();
   o["file"] = path;
@@ -224,6 +253,7 @@ Json infoJson(const std::string& path, const scene::SceneState& s, double time) 
   Json cameras = Json::array();
   for (scene::EntityId id : s.cameras()) cameras.push_back(s.find(id)->name);
   o["cameras"] = std::move(cameras);
+  o["camera_post"] = cameraPostJson(s);
   o["terrains"] = terrainInfoJson(s);
   o["foliage"] = s.foliage ? foliage::infoJson(s.foliage->store()) : Json(nullptr);
   o["particles"] = particlesJson(s, time);
@@ -326,6 +356,7 @@ int runInfo(int argc, char** argv) {
     std::printf("extent: %.3f x %.3f x %.3f m\n", size.x, size.y, size.z);
   }
   if (!s->sequence.cuts.empty()) printCuts(*s);
+  printCameraPost(*s);
   if (const scene::PostSettings& post = s->settings.post; !post.lut.empty())
     std::printf("LUT: %s (%zu bytes, stored in the scene), %s, intensity %g\n", post.lut.fileName.c_str(),
                 post.lut.bytes ? post.lut.bytes->size() : size_t(0), post.lutEnabled ? "on" : "off",

@@ -5,6 +5,7 @@
 #include "cli/operation_options.h"
 #include "cli/scene_open.h"
 #include "core/escape_control.h"
+#include "scene/camera_post.h"
 #include "scene/document.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
@@ -22,6 +23,8 @@ std::string fieldList() {
   for (const auto& c : scene::entityComponents())
     for (const auto& f : c.fields) out += "\n  " + c.key + "." + f.key + "  (" + f.label + ")";
   for (const auto& f : scene::settingsFields()) out += "\n  settings." + f.key + "  (" + f.label + ")";
+  out += "\nA camera's own post settings (override the scene's; the value 'inherit' removes one):";
+  for (const auto& f : scene::cameraPostFields()) out += "\n  camera." + f.key + "  (" + f.label + ")";
   // An emitter's own table (particles/emitter.h): declared fields and lists.
   for (const ParamDecl& d : particles::emitterParamDecls())
     out += "\n  particles." + d.key + "  (" + d.label + (d.count > 1 ? ", " + d.valueName : std::string()) + ")";
@@ -63,6 +66,8 @@ int runSet(int argc, char** argv) {
                      "  set \"Main Camera\" camera.fov_deg 35 scene.hscene\n"
                      "  set Bunny transform.translation 10,0,0 scene.hscene\n"
                      "  set settings.antialiasing fxaa scene.hscene\n"
+                     "  set \"Main Camera\" camera.post.tonemap agx scene.hscene\n"
+                     "  set \"Main Camera\" camera.post.bloom.intensity inherit scene.hscene\n"
                      "  set Snow particles.rate_per_s 4000 scene.hscene\n"
                      "  set Snow particles.rate_keys \"[[0, 500], [30, 4000]]\" scene.hscene",
       .notes = fieldList(),
@@ -105,6 +110,16 @@ int runSet(int argc, char** argv) {
     const scene::ComponentInfo* c = scene::findComponent(comp);
     if (c && c->optional && !c->has(*doc.state().find(id)))
       return args.fail("entity '" + who + "' has no " + comp + " component");
+    // A camera's override removed: the scene's value shows through again.
+    if (positional[1].rfind("camera.post.", 0) == 0 && positional[2] == "inherit") {
+      if (!scene::ops::clearCameraPost(doc, id, positional[1].substr(12))) {
+        std::printf("unchanged (camera '%s' did not override %s)\n", who.c_str(), positional[1].c_str());
+        return 0;
+      }
+      if (!scene::saveScene(doc.state(), scenePath, error)) return args.fail(error);
+      std::printf("removed %s from %s in %s\n", positional[1].c_str(), who.c_str(), scenePath.c_str());
+      return 0;
+    }
     const auto v = scene::parseFieldValue(*f, positional[2], error);
     if (!v) return args.fail(positional[1] + ": " + error);
     // Rules between fields (far beyond near), against this entity's values.

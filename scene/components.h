@@ -3,9 +3,13 @@
 // components, which is what undo snapshots rely on. Their fields are listed
 // in fields.cpp, from which the property panel, the JSON file format and
 // animation tracks all work.
+#include <map>
+#include <string>
+
 #include <glm/glm.hpp>
 
 #include "particles/emitter.h"
+#include "scene/field_value.h"
 #include "scene/ids.h"
 
 namespace hs::scene {
@@ -61,6 +65,11 @@ struct Camera {
   double interaxial = 0.065;    // metres between the eyes
   double convergence = 10.0;    // metres to the zero-parallax plane
   Pivot pivot = Pivot::Centre;
+  // The scene's post settings this camera overrides, per field (as in
+  // Unreal's camera post-process settings): key "bloom.intensity" for the
+  // setting "post.bloom.intensity", "tonemap" for "tonemap"; the fields
+  // are "camera.post.<key>" (scene/camera_post.h, which applies them).
+  std::map<std::string, FieldValue> post;
   bool operator==(const Camera&) const = default;
 };
 

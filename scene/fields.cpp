@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "scene/camera_post.h"
+
 namespace hs::scene {
 namespace {
 
@@ -590,6 +592,8 @@ const ComponentInfo* findComponent(std::string_view key) {
 }
 
 const EntityField* findEntityField(std::string_view path) {
+  // A camera's post overrides are fields of their own (camera_post.h).
+  if (path.substr(0, 12) == "camera.post.") return findCameraPostField(path.substr(12));
   const size_t dot = path.find('.');
   if (dot == std::string_view::npos) return nullptr;
   const ComponentInfo* c = findComponent(path.substr(0, dot));

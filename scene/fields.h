@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/entity.h"
+#include "scene/field_value.h"
 #include "scene/scene_state.h"
 
 namespace hs::scene {
@@ -25,8 +26,6 @@ enum class FieldType {
   String,   // std::string
   AssetRef  // int64 asset id
 };
-
-using FieldValue = std::variant<double, bool, int64_t, glm::dvec3, std::string>;
 
 template <class Target>
 struct FieldInfo {

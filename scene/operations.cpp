@@ -164,6 +164,15 @@ bool setField(Document& doc, EntityId id, const EntityField& field, const FieldV
   return stored;
 }
 
+bool clearCameraPost(Document& doc, EntityId id, const std::string& key) {
+  const Entity* now = doc.state().find(id);
+  if (!now || !now->camera || !now->camera->post.count(key)) return false;
+  const EntityField* field = findEntityField("camera.post." + key);
+  Edit e(doc, QString("Reset %1").arg(QString::fromStdString(field ? field->label : key)));
+  e.entity(id).camera->post.erase(key);
+  return e.commit();
+}
+
 bool setSettingsField(Document& doc, const SettingsField& field, const FieldValue& value,
                       const QString& mergeKey, FieldChange* change) {
   Edit e(doc, QString("Set %1").arg(QString::fromStdString(field.label)), mergeKey);

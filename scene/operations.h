@@ -60,6 +60,10 @@ bool setField(Document& doc, EntityId id, const EntityField& field, const FieldV
               const QString& mergeKey = {}, FieldChange* change = nullptr);
 bool setSettingsField(Document& doc, const SettingsField& field, const FieldValue& value,
                       const QString& mergeKey = {}, FieldChange* change = nullptr);
+// Removes camera `id`'s override of a post setting ("bloom.intensity",
+// scene/camera_post.h): the camera shows the scene's value again. False if
+// it had none. A track keying "camera.post.<key>" sets it again at its times.
+bool clearCameraPost(Document& doc, EntityId id, const std::string& key);
 bool addComponent(Document& doc, EntityId id, const ComponentInfo& component);
 bool removeComponent(Document& doc, EntityId id, const ComponentInfo& component);
 bool reparent(Document& doc, EntityId id, EntityId newParent, int index = -1);

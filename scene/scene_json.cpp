@@ -9,6 +9,7 @@
 #include "particles/emitter.h"
 #include "scene/asset_reports.h"
 #include "scene/emitter_tracks.h"
+#include "scene/camera_post.h"
 #include "scene/fields.h"
 #include "scene/key_value_ranges.h"
 #include "scene/light_units.h"
@@ -66,6 +67,13 @@ Json entityToJson(const Entity& e) {
       if (f.serialized) co[f.key] = fieldToJson(f, e);
     // A reference, not a field (fields.cpp says why).
     if (c.key == "terrain") co["terrain_id"] = e.terrain->terrain;
+    // The scene settings this camera overrides (camera_post.h), when any.
+    if (c.key == "camera" && !e.camera->post.empty()) {
+      Json post = Json::object();
+      for (const auto& [key, value] : e.camera->post)
+        if (const EntityField* f = findCameraPostField(key)) post[key] = fieldToJson(*f, e);
+      co["post"] = std::move(post);
+    }
     // An emitter is its own declared table (particles/emitter.h, fields.cpp says why).
     if (c.key == "particles") co = particles::emitterToJson(e.particles->desc);
     components[c.key] = std::move(co);
@@ -239,6 +247,27 @@ struct Reader : JsonReader {
     return true;
   }
 
+  // A camera's "post" object: each member a setting it overrides, read
+  // and checked as that field; a key this build does not know (a newer
+  // build's setting) is dropped with a warning.
+  bool cameraPost(const Json& co, const std::string& p, Entity& e) {
+    const Json* post = member(co, "post");
+    if (!post) return true;
+    const std::string path = jsonPath(p, "post");
+    if (!object(*post, path)) return false;
+    for (auto it = post->begin(); it != post->end(); ++it) {
+      const EntityField* f = findCameraPostField(it.key());
+      if (!f) {
+        if (warnings)
+          warnings->push_back(entityLabel(e) + "camera.post." + it.key() +
+                              ": no such post setting a camera overrides; dropped");
+        continue;
+      }
+      if (!field(*f, it.value(), jsonPath(path, it.key()), e)) return false;
+    }
+    return true;
+  }
+
   // The rules between an entity's fields (the clip planes) and its name,
   // which is read apart from the fields.
   void checkEntity(Entity& e) {
@@ -295,6 +324,7 @@ struct Reader : JsonReader {
         const Json* v = member(co, f.key);
         if (v && !field(f, *v, jsonPath(p, f.key), e)) return false;
       }
+      if (key == "camera" && !cameraPost(co, p, e)) return false;
       if (key == "terrain" && member(co, "terrain_id") &&
           !id(member(co, "terrain_id"), jsonPath(p, "terrain_id"), e.terrain->terrain))
         return false;

@@ -56,7 +56,10 @@ namespace hs::scene {
 // 13: a colour grading LUT (settings "post.lut": file name and hash, blob
 // "lut/<hash>" with the file's bytes; scene/color_lut.h). A version-12
 // reader ignores both and its next save drops the LUT.
-constexpr int kSceneFormatVersion = 13;
+// 14: a camera's own post settings (the camera component's "post" object;
+// scene/camera_post.h). A version-13 reader ignores it and its next save
+// drops the overrides.
+constexpr int kSceneFormatVersion = 14;
 constexpr int kFirstPhysicalLightsFormat = 6;
 constexpr int kFirstPerLightShadowsFormat = 7;
 constexpr int kFirstPhysicalBrdfFormat = 8;
