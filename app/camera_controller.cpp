@@ -25,6 +25,9 @@ void CameraController::setView(const render::RenderView& v, double pivotDistance
   view_ = v;
   view_.width = w;
   view_.height = h;
+  // The free view is no camera's, even when it starts where one stands: a
+  // camera's own post settings show only through it (the stereo preview).
+  view_.camera = scene::kNoEntity;
   // Reversed float depth keeps precision from a few cm to the far plane, so
   // the editor can afford a generous range whatever it was given.
   view_.nearClip = std::min(view_.nearClip, 0.05);

@@ -40,7 +40,7 @@ bool ViewportWidget::paintStereo() {
   }
   // Automatic exposure adapted over the shot's probes as the export's
   // (render/auto_exposure.h): the same frame shows the same exposure.
-  const bool autoExposure = shown.settings.post.autoExposure && cam != scene::kNoEntity;
+  const bool autoExposure = cam != scene::kNoEntity && render::autoExposureOn(shown, cam, shot);
   scene::SceneState exposed;
   if (autoExposure) {
     const render::StateAtTime stateAt = [this, &shown](double t) {

@@ -126,7 +126,7 @@ int runRender(int argc, char** argv) {
   options.passTimings = args.has("stats");
   options.oitCounts = args.has("stats");  // fragments per pixel in every transparency mode
   const bool hdr = *format == sequencer::ImageFormat::Exr;
-  if (state->settings.post.autoExposure) {
+  if (render::autoExposureOn(*state, viewCamera, shot)) {
     // Metered from probes of the shot before --at as a sequence's frame
     // (render/auto_exposure.h); a view of no camera from its one probe.
     render::AutoExposure exposure;

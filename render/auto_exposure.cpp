@@ -8,6 +8,7 @@
 #include "core/exposure_meter.h"
 #include "render/output_target.h"
 #include "render/renderer.h"
+#include "scene/camera_post.h"
 #include "scene/light_units.h"
 
 namespace hs::render {
@@ -71,6 +72,7 @@ struct AutoExposure::Impl {
   ExposureHistogram probe(Renderer& renderer, const scene::SceneState& state, RenderView view) {
     view.height = kProbeRows;
     view.lens = CameraLens{};
+    view.camera = scene::kNoEntity;  // the probe's own settings, not the camera's post chain
     target.ensure(view.width, view.height);
     RenderOptions o;
     o.showGrid = false;
@@ -103,26 +105,37 @@ struct AutoExposure::Impl {
 AutoExposure::AutoExposure() : d_(std::make_unique<Impl>()) {}
 AutoExposure::~AutoExposure() = default;
 
+bool autoExposureOn(const scene::SceneState& frame, scene::EntityId camera,
+                    const std::optional<sequencer::Shot>& shot) {
+  const auto on = [&frame](uint64_t c) { return scene::settingsFor(frame, scene::EntityId(c)).post.autoExposure; };
+  if (!shot) return on(camera);
+  return on(shot->camera) || (shot->incoming && on(shot->incoming));
+}
+
 double AutoExposure::frameEv100(Renderer& renderer, const StateAtTime& stateAt, const scene::SceneState& frame,
                                 scene::EntityId camera, const std::optional<sequencer::Shot>& shot,
                                 sequencer::FrameRate rate, double seconds, double aspect) {
-  const scene::PostSettings& post = frame.settings.post;
-  if (!post.autoExposure) return double(frame.settings.exposureEv100);
-  if (!shot) return d_->adapted(renderer, stateAt, post, camera, 0.0, seconds, aspect);
-  const double outgoing = d_->adapted(renderer, stateAt, post, scene::EntityId(shot->camera),
-                                      sequencer::frameTime(shot->cameraSince, rate), seconds, aspect);
+  // One camera's: its settings say whether and how to meter.
+  const auto exposureOf = [&](scene::EntityId c, double since) {
+    const scene::SceneSettings s = scene::settingsFor(frame, c);
+    return s.post.autoExposure ? d_->adapted(renderer, stateAt, s.post, c, since, seconds, aspect)
+                               : double(s.exposureEv100);
+  };
+  if (!shot) return exposureOf(camera, 0.0);
+  const double outgoing =
+      exposureOf(scene::EntityId(shot->camera), sequencer::frameTime(shot->cameraSince, rate));
   if (!shot->incoming) return outgoing;
-  const double incoming = d_->adapted(renderer, stateAt, post, scene::EntityId(shot->incoming),
-                                      sequencer::frameTime(shot->incomingSince, rate), seconds, aspect);
+  const double incoming =
+      exposureOf(scene::EntityId(shot->incoming), sequencer::frameTime(shot->incomingSince, rate));
   return outgoing + (incoming - outgoing) * std::clamp(shot->progress, 0.0, 1.0);
 }
 
 double AutoExposure::viewEv100(Renderer& renderer, const scene::SceneState& state, const RenderView& view) {
-  const scene::PostSettings& post = state.settings.post;
-  if (!post.autoExposure) return double(state.settings.exposureEv100);
+  const scene::SceneSettings settings = scene::settingsFor(state, view.camera);
+  if (!settings.post.autoExposure) return double(settings.exposureEv100);
   RenderView v = view;
   v.width = probeWidth(view.aspect());
-  return meteredEv100(d_->probe(renderer, state, v), meteringOf(post));
+  return meteredEv100(d_->probe(renderer, state, v), meteringOf(settings.post));
 }
 
 size_t AutoExposure::probesRendered() const { return d_->rendered; }

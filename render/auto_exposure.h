@@ -28,6 +28,11 @@ class Renderer;
 // The scene at a time (scene::animatedState of the document).
 using StateAtTime = std::function<scene::SceneState(double seconds)>;
 
+// True where the frame through `camera` (or `shot`'s cameras) meters its
+// exposure: post.auto_exposure on in the scene's settings or a camera's.
+bool autoExposureOn(const scene::SceneState& frame, scene::EntityId camera,
+                    const std::optional<sequencer::Shot>& shot);
+
 class AutoExposure {
  public:
   AutoExposure();
@@ -37,9 +42,10 @@ class AutoExposure {
 
   // The EV100 the frame at `seconds` renders with through `camera` (or,
   // with `shot`, through the shot's camera, or its two cameras during a
-  // transition: their adapted exposures mixed by its progress), or the
-  // manual exposure_ev100 when `frame`'s post.auto_exposure is off.
-  // `frame` is the state at `seconds` (its settings say how to meter);
+  // transition: their exposures mixed by its progress): adapted where the
+  // camera's settings (the scene's, with its overrides:
+  // scene/camera_post.h) have post.auto_exposure on, their manual
+  // exposure_ev100 where off. `frame` is the state at `seconds`;
   // `rate` turns the cuts' frames into times; `aspect` is the frame's
   // width / height. Renders probes it does not have: call between frames,
   // with the renderer's context current.

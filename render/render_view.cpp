@@ -56,6 +56,7 @@ RenderView viewFromCamera(const scene::SceneState& state, scene::EntityId camera
     v.nearClip = e->camera->nearClip;
     v.farClip = e->camera->farClip;
     v.lens = {true, e->camera->focusDistance, e->camera->fStop, e->name};
+    v.camera = camera;
   }
   return v;
 }

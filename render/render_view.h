@@ -30,6 +30,9 @@ struct RenderView {
   int height = 1;
   glm::dvec2 projectionShift{0.0};  // NDC offset (off-axis frusta)
   CameraLens lens;                  // depth of field; both eyes of a pair share the camera's
+  // The camera entity the view is taken from: its own post settings apply
+  // (scene/camera_post.h). kNoEntity for a view that is no camera's.
+  scene::EntityId camera = scene::kNoEntity;
 
   double aspect() const { return double(width) / double(std::max(height, 1)); }
   glm::dvec3 forward() const { return orientation * glm::dvec3(0, 0, -1); }

@@ -28,6 +28,7 @@
 #include "render/foliage_sources.h"
 #include "render/particle_source.h"
 #include "render/render_resources.h"
+#include "scene/camera_post.h"
 #include "scene/impostor_key.h"
 #include "scene/light_units.h"
 
@@ -277,7 +278,9 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   const auto t0 = std::chrono::steady_clock::now();
   Impl& d = *d_;
   RenderResources& res = d.res;
-  const scene::SceneSettings& settings = state.settings;
+  // A camera's own post settings apply to the views through it (both eyes
+  // of a pair are the same camera's).
+  const scene::SceneSettings settings = scene::settingsFor(state, targets.front().view.camera);
 
   GLuint timer = 0;
   if (options.measureGpuTime && !d.inGroups) {
@@ -747,7 +750,8 @@ std::optional<FrameStats> Renderer::renderLensReference(const scene::SceneState&
   // Tone map the sums into the targets.
   auto graph = std::make_unique<FrameGraph>(res.pool);
   FrameStats finalStats;
-  FrameContext frame{res, world, visible, state.settings, options, lodView, finalStats};
+  const scene::SceneSettings settings = scene::settingsFor(state, targets.front().view.camera);
+  FrameContext frame{res, world, visible, settings, options, lodView, finalStats};
   for (size_t i = 0; i < targets.size(); ++i) {
     const ViewContext v{targets[i].view, i, targets[i].fbo, d.suffix(targets[i].name)};
     const TextureRef sum = lensSumTexture(*graph, v);
@@ -788,19 +792,33 @@ std::vector<FrameStats> Renderer::renderGroups(const scene::SceneState& state, c
     d.groupKept = d.kept.size();
   }
   if (combine && !combine->targets.empty()) {
-    // The last graph: view i of every group, weighted and summed, tone
-    // mapped into combine->targets[i].
+    // The last graph. With one post chain for every group (no camera of
+    // them overrides a post setting differently): view i of every group,
+    // weighted and summed in linear light, run through that chain into
+    // combine->targets[i]. With differing chains, each group's finished
+    // picture (its own chain, already in its targets) is combined instead,
+    // as an editor cuts between graded shots; the HDR mix is still what
+    // keepHdr keeps.
+    std::vector<scene::SceneSettings> groupSettings;
+    for (const ViewGroup& g : groups) {
+      const scene::EntityId camera = g.targets.empty() ? scene::kNoEntity : g.targets.front().view.camera;
+      groupSettings.push_back(scene::settingsFor(state, camera));
+    }
+    bool oneChain = true;
+    for (const scene::SceneSettings& gs : groupSettings)
+      oneChain = oneChain && scene::samePostChain(gs, groupSettings[0]);
     auto graph = std::make_unique<FrameGraph>(d.res.pool);
     // Its passes (the combine, the tone map) read the settings alone: no
     // world or visible set is built for them.
     const RenderWorld world;
     const VisibleSet visible;
     FrameStats stats;
-    FrameContext frame{d.res, world, visible, state.settings, options, combine->targets.front().view, stats};
+    FrameContext frame{d.res, world, visible, groupSettings[0], options, combine->targets.front().view, stats};
+    const CombinePattern pattern{combine->transition, combine->progress, combine->frame};
     for (size_t i = 0; i < combine->targets.size(); ++i) {
       const ViewTarget& t = combine->targets[i];
       const ViewContext v{t.view, i, t.fbo, t.name.empty() ? "" : "[" + t.name + "]"};
-      std::vector<std::pair<TextureRef, float>> images;
+      std::vector<std::pair<TextureRef, float>> images, pictures;
       for (size_t g = 0, first = 0; g < groups.size(); first += groups[g].targets.size(), ++g) {
         if (i >= groups[g].targets.size() || g >= combine->weights.size()) continue;
         const Impl::Kept& k = d.kept[first + i];
@@ -809,16 +827,22 @@ std::vector<FrameStats> Renderer::renderGroups(const scene::SceneState& state, c
         images.emplace_back(graph->importTexture(v.named("group" + std::to_string(g)), tex,
                                                  TextureDesc{k.size.x, k.size.y, GL_RGBA16F}),
                             combine->weights[g]);
+        if (!oneChain)
+          pictures.emplace_back(addTargetCopyPass(*graph, frame, v, groups[g].targets[i].fbo,
+                                                  "group" + std::to_string(g) + "_picture"),
+                                combine->weights[g]);
       }
-      const TextureRef mixed =
-          addGroupCombinePass(*graph, frame, v, images, {combine->transition, combine->progress, combine->frame});
-      addToneMapPasses(*graph, frame, v, mixed);
       Impl::Kept k;
       k.size = {t.view.width, t.view.height};
-      if (options.keepHdr) {
-        k.hdrGraph = graph.get();
-        graph->keep(k.hdr = mixed);
+      if (oneChain) {
+        const TextureRef mixed = addGroupCombinePass(*graph, frame, v, images, pattern);
+        addToneMapPasses(*graph, frame, v, mixed);
+        if (options.keepHdr) graph->keep(k.hdr = mixed);
+      } else {
+        addGroupCombinePass(*graph, frame, v, pictures, pattern, true);
+        if (options.keepHdr) graph->keep(k.hdr = addGroupCombinePass(*graph, frame, v, images, pattern));
       }
+      if (options.keepHdr) k.hdrGraph = graph.get();
       d.kept.push_back(k);
     }
     graph->execute(options.passTimings);

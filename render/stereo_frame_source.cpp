@@ -231,7 +231,7 @@ bool StereoFrameSource::begin(const sequencer::FrameJob& job, std::string& error
   std::vector<std::string> warnings;
   scene::SceneState state = scene::animatedState(d.base, d.compiled, job.time, &warnings);
   for (const std::string& w : warnings) d.warn(w);
-  if (state.settings.post.autoExposure) {
+  if (autoExposureOn(state, camera, shot)) {
     const StateAtTime stateAt = [&d](double t) { return scene::animatedState(d.base, d.compiled, t, nullptr); };
     state.settings.exposureEv100 =
         float(d.exposure.frameEv100(d.offscreen.renderer(), stateAt, state, camera, shot, d.base.sequence.rate,

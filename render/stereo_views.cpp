@@ -81,6 +81,7 @@ EyeViews eyeViews(const scene::SceneState& state, scene::EntityId camera, int wi
   out.left = viewOfEye(out.eyes.left, width, height);
   out.right = viewOfEye(out.eyes.right, width, height);
   out.left.lens = out.right.lens = out.mono.lens;  // one focus for both eyes (depth of field)
+  out.left.camera = out.right.camera = camera;     // and one post chain (the camera's overrides)
   return out;
 }
 

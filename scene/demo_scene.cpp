@@ -1,12 +1,14 @@
 #include "scene/demo_scene.h"
 
 #include <cmath>
+#include <utility>
 
 #include <QFile>
 
 #include "mesh/mesh_import.h"
 #include "meshproc/mesh_process.h"
 #include "scene/asset_reports.h"
+#include "scene/camera_post.h"
 #include "scene/demo_dof.h"
 #include "scene/demo_lights.h"
 #include "scene/demo_foliage.h"
@@ -345,6 +347,13 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
     crane.camera->stereo = Camera::Stereo::OffAxis;
     crane.camera->interaxial = 0.065;
     crane.camera->convergence = 10.0;
+    // Its own look over the scene's (docs/rendering.md "Post settings on
+    // cameras"): a cooler grade and a vignette, so the crossfade into it
+    // combines two differently graded pictures.
+    for (const auto& [key, value] : {std::pair<const char*, FieldValue>{"grade.enabled", true},
+                                     {"grade.temperature", -0.25}, {"vignette.enabled", true},
+                                     {"vignette.intensity", 0.35}})
+      findEntityField(std::string("camera.post.") + key)->set(crane, value);
     const EntityId craneId = add(s, crane);
     s.sequence.cuts = {sequencer::CameraCut{s.findByName("Flight Camera"), 0, 419},
                        sequencer::CameraCut{craneId, 420, 599, sequencer::Transition::Crossfade, 60,

@@ -8,7 +8,9 @@
 // row against a frame with the tone map only is the claim that the chain
 // costs nothing when off: the same pass, the same time. Last, a
 // transition's frame of each kind (two shots as two view groups, combined
-// by weights or a stylised pattern at its middle) against a plain one.
+// by weights or a stylised pattern at its middle) against a plain one, and
+// a crossfade into a camera graded apart (its own post settings: each
+// shot's finished picture combined).
 // Automatic exposure: a probe's time against a frame's, and the
 // adaptation's error against run time per probe rate (core/exposure_meter.h,
 // on a flight's target: a slow swing and a 4 EV step into shade, against
@@ -28,6 +30,7 @@
 #include "render/offscreen_renderer.h"
 #include "core/content_hash.h"
 #include "render/renderer.h"
+#include "scene/fields.h"
 #include "scene/demo_post.h"
 #include "scene/scene_state.h"
 #include "sequencer/camera_cuts.h"
@@ -153,33 +156,54 @@ int main(int argc, char** argv) {
     other.eye = {6.0, -6.0, 3.0};
     other.orientation = sequencer::lookRotation(glm::dvec3(-6.0, 6.0, -2.0));
     const scene::SceneState s = baseScene();
+    // The incoming shot through a camera with its own grade
+    // (scene/camera_post.h): the chains differ, so each shot runs its own
+    // and the finished pictures are combined (two copies, one combine).
+    scene::SceneState graded = s;
+    constexpr scene::EntityId kGraded = 9001;
+    scene::Entity cam;
+    cam.id = kGraded;
+    cam.name = "Graded camera";
+    cam.camera = scene::Camera{};
+    scene::findEntityField("camera.post.grade.enabled")->set(cam, true);
+    scene::findEntityField("camera.post.grade.temperature")->set(cam, -0.3);
+    graded.entities.emplace(kGraded, cam);
+    graded.roots.push_back(kGraded);
+    render::RenderView otherGraded = other;
+    otherGraded.camera = kGraded;
     std::printf("\n%-22s %12s %12s %10s %14s\n", "transition frame", "plain ms", "transition", "/plain", "combine GPU ms");
-    for (const std::string& name : sequencer::transitionNameList()) {
-      const sequencer::Transition t = *sequencer::transitionFromName(name);
-      if (t == sequencer::Transition::Cut) continue;
+    const auto row = [&](const std::string& label, const scene::SceneState& state, const render::RenderView& in,
+                         sequencer::Transition t) {
       const render::GroupCombine pattern = render::combineOf(sequencer::Shot{0, 1, t, 0.5}, 7);
       const auto [w0, w1] = std::pair{pattern.weights[0], pattern.weights[1]};
       std::vector<double> plain, mixed, combine;
       for (int f = 0; f < frames + 1; ++f) {
         double t0 = bench::nowSeconds();
-        r.render(s, v, false, nullptr, o);
+        r.render(state, v, false, nullptr, o);
         const double one = (bench::nowSeconds() - t0) * 1e3;
         t0 = bench::nowSeconds();
         render::FrameStats st;
-        r.renderMix(s, {v, other}, {w0, w1}, false, &st, o, &pattern);
+        r.renderMix(state, {v, in}, {w0, w1}, false, &st, o, &pattern);
         const double two = (bench::nowSeconds() - t0) * 1e3;
         if (f == 0) continue;
         plain.push_back(one);
         mixed.push_back(two);
         double gpu = 0.0;
         for (const render::PassStats& p : st.passes)
-          if (p.name.rfind("group_combine", 0) == 0) gpu += std::max(0.0, p.gpuMs);
+          if (p.name.rfind("group_combine", 0) == 0 || p.name.rfind("picture_combine", 0) == 0 ||
+              p.name.find("_picture_copy") != std::string::npos)
+            gpu += std::max(0.0, p.gpuMs);
         combine.push_back(gpu);
       }
-      std::printf("%-22s %12.1f %12.1f %10.3f %14.2f\n", name.c_str(), bench::median(plain), bench::median(mixed),
+      std::printf("%-22s %12.1f %12.1f %10.3f %14.2f\n", label.c_str(), bench::median(plain), bench::median(mixed),
                   bench::median(mixed) / bench::median(plain), bench::median(combine));
       std::fflush(stdout);
+    };
+    for (const std::string& name : sequencer::transitionNameList()) {
+      const sequencer::Transition t = *sequencer::transitionFromName(name);
+      if (t != sequencer::Transition::Cut) row(name, s, other, t);
     }
+    row("crossfade, graded apart", graded, otherGraded, sequencer::Transition::Crossfade);
   }
   // Automatic exposure (render/auto_exposure.h): one probe (72 rows) per
   // grid step; a sequence renders probes_per_second of them per second of

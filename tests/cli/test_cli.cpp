@@ -675,6 +675,75 @@ class TestCli : public QObject {
     QVERIFY(a == b);
   }
 
+  // A camera's own post settings (scene/camera_post.h): set, keyed and
+  // given back to the scene with `inherit`; a still through the camera is
+  // the still of a scene whose own settings hold those values (the same
+  // PNG), a view of another camera is not changed.
+  void cameraPostSettings() {
+    const QString file = path("camera_post.hscene");
+    QFile::remove(file);
+    QVERIFY(QFile::copy(demo_, file));
+    Run r = cli({"set", "Main Camera", "camera.post.tonemap", "none", file});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    r = cli({"set", "Main Camera", "camera.post.vignette.enabled", "true", file});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    r = cli({"set", "Main Camera", "camera.post.bloom.intensity", "0.3", file});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    r = cli({"key", "Main Camera", "camera.post.vignette.intensity", "0", "0.7", file});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    auto s = load(file);
+    QVERIFY(s);
+    const scene::EntityId cam = s->findByName("Main Camera");
+    const auto& post = s->find(cam)->camera->post;
+    QCOMPARE(post.size(), size_t(3));
+    QCOMPARE(std::get<int64_t>(post.at("tonemap")), int64_t(scene::Tonemap::None));
+    QCOMPARE(sequencer::keyTimes(s->sequence, cam, "camera.post.vignette.intensity"), std::vector<double>{0.0});
+    // `info` lists them per camera (the demo's crane shot is graded apart too).
+    r = cli({"info", file, "--json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const QJsonObject cameraPost = parseJson(r.out.toUtf8())["camera_post"].toObject();
+    QCOMPARE(cameraPost["Main Camera"].toObject()["tonemap"].toString(), QString("None"));
+    QCOMPARE(cameraPost["Crane Camera"].toObject()["vignette.enabled"].toString(), QString("true"));
+    r = cli({"info", file});
+    QVERIFY2(r.out.contains("camera post settings") && r.out.contains("Main Camera: ") &&
+                 r.out.contains("tonemap None"),
+             qPrintable(r.out));
+    // Removed: the scene's value shows again; a second time says so.
+    r = cli({"set", "Main Camera", "camera.post.bloom.intensity", "inherit", file});
+    QVERIFY2(r.code == 0 && r.out.contains("removed"), qPrintable(r.out + r.err));
+    r = cli({"set", "Main Camera", "camera.post.bloom.intensity", "inherit", file});
+    QVERIFY2(r.code == 0 && r.out.contains("unchanged"), qPrintable(r.out + r.err));
+    QCOMPARE(load(file)->find(cam)->camera->post.count("bloom.intensity"), size_t(0));
+    const std::string before = readFile(file.toStdString());
+    expectError({"set", "Sun", "camera.post.tonemap", "agx", file}, 1, {"Sun", "camera"});
+    expectError({"set", "Main Camera", "camera.post.shadows", "true", file}, 1, {"camera.post.shadows"});
+    expectError({"set", "Main Camera", "camera.post.bloom.intensity", "-1", file}, 1, {"camera.post.bloom.intensity"});
+    expectError({"set", "Main Camera", "camera.post.tonemap", "sepia", file}, 1, {"sepia"});
+    QCOMPARE(readFile(file.toStdString()), before);
+
+    // The same picture as the scene's own settings with those values.
+    const QString scene = path("camera_post_scene.hscene");
+    QFile::remove(scene);
+    QVERIFY(QFile::copy(demo_, scene));
+    for (const QStringList& set : {QStringList{"settings.tonemap", "none"}, QStringList{"settings.post.vignette.enabled", "true"},
+                                   QStringList{"settings.post.vignette.intensity", "0.7"}}) {
+      r = cli({"set", set[0], set[1], scene});
+      QVERIFY2(r.code == 0, qPrintable(r.err));
+    }
+    // At t = 0, where the key holds the vignette's intensity.
+    const QStringList still = {"--size", "96x54", "--camera", "Main Camera", "--at", "0"};
+    r = cli(QStringList{"render", file, "--out", path("through_camera.png")} + still);
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    r = cli(QStringList{"render", scene, "--out", path("scene_settings.png")} + still);
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    r = cli(QStringList{"render", demo_, "--out", path("demo_settings.png")} + still);
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    const std::string through = test::readFile(path("through_camera.png").toStdString());
+    QVERIFY(!through.empty());
+    QVERIFY(through == test::readFile(path("scene_settings.png").toStdString()));
+    QVERIFY(through != test::readFile(path("demo_settings.png").toStdString()));
+  }
+
   void renderToUnknownExtension() {
     expectError({"render", demo_, "--out", path("frame.bmp")}, 1, {"frame.bmp", ".png"});
     expectError({"render", demo_, "--out", path("frame")}, 1, {"frame"});

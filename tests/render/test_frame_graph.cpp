@@ -694,7 +694,7 @@ class TestFrameGraph : public QObject {
   // passes' own copies of the casters' object data (`sun_shadow_casters`,
   // `local_shadow_casters`), now a part of the frame's one object buffer.
   void plainFrameListsTheSamePassesAndResources() {
-    std::ifstream in(std::string(HS_TEST_DATA_DIR) + "/demo_frame_registry_stop39.json");
+    std::ifstream in(std::string(HS_RENDER_TEST_DATA_DIR) + "/demo_frame_registry_stop39.json");
     QVERIFY(in.good());
     const Json before = Json::parse(in);
     const auto cams = demo_.cameras();
