@@ -66,6 +66,8 @@ std::string PropertyPanel::structureKey() const {
   if (!e) return "none";
   std::string key = std::to_string(e->id) + ":" + std::to_string(selection_.size());
   for (const auto& c : scene::entityComponents()) key += c.has(*e) ? "1" : "0";
+  if (e->camera)  // its post overrides are rows of their own
+    for (const auto& [post, value] : e->camera->post) key += "|" + post;
   return key;
 }
 
@@ -128,6 +130,7 @@ QWidget* PropertyPanel::buildSection(const scene::ComponentInfo& c, const scene:
     rows_.push_back({comp, field, ed});
     byPath_[path] = ed;
   }
+  if (c.key == "camera") buildCameraPost(form, body, c, e);
   // Which terrain it shows is a reference, not a field: its own row.
   if (c.key == "terrain") form->insertRow(0, "Terrain", new TerrainPicker(doc_, e.id, newTerrain_, body));
   // An emitter's forty fields and its lists are the Particles panel's

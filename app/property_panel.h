@@ -16,6 +16,7 @@
 #include "scene/document.h"
 #include "scene/fields.h"
 
+class QFormLayout;
 class QLabel;
 class QPushButton;
 class QToolButton;
@@ -80,6 +81,8 @@ class PropertyPanel : public QWidget {
   void apply(const scene::EntityField& field, const scene::ComponentInfo& component, const scene::FieldValue& v,
              int vectorComponent, const QString& mergeKey);
   QWidget* buildSection(const scene::ComponentInfo& c, const scene::Entity& e);
+  // The camera section's own post settings (property_panel_camera_post.cpp).
+  void buildCameraPost(QFormLayout* form, QWidget* body, const scene::ComponentInfo& camera, const scene::Entity& e);
 
   scene::Document& doc_;
   Selection& selection_;

@@ -6,6 +6,8 @@
 // View > Post Before/After splits the viewport into the frame without and
 // with its effects. Automatic exposure from the dock meters the viewport.
 #include <QCheckBox>
+#include <QComboBox>
+#include <QToolButton>
 #include <QLabel>
 #include <QPushButton>
 #include <QTemporaryDir>
@@ -16,10 +18,13 @@
 
 #include "app/field_editors.h"
 #include "app/main_window.h"
+#include "app/property_panel.h"
+#include "app/selection.h"
 #include "app/viewport_widget.h"
 #include "app/settings_panel.h"
 #include "editor_fixture.h"
 #include "scene/fields.h"
+#include "scene/operations.h"
 #include "lut_files.h"
 
 using namespace hs;
@@ -170,6 +175,47 @@ class LutEditorTest : public QObject {
     QVERIFY(doc().state().settings.post.lut.empty());
     QVERIFY(!doc().state().settings.post.lutEnabled);
     QCOMPARE(panel_->findChild<QLabel*>("lutName")->text(), QString("none"));
+  }
+
+  // The Camera section's post settings: choosing one to override copies
+  // the scene's value to the camera (one undo step) and shows its row;
+  // editing the row changes the camera, not the scene; its reset button
+  // gives it back to the scene (one more step).
+  void aCameraOverridesAPostSetting() {
+    const scene::EntityId cam = scene::ops::addCamera(doc(), "Shot camera", scene::Transform{});
+    QVERIFY(cam != scene::kNoEntity);
+    w_->selection().select(cam);
+    auto* add = w_->properties()->findChild<QComboBox*>("overridePost");
+    QVERIFY(add);
+    const int index = add->findData(QString("vignette.intensity"));
+    QVERIFY(index > 0);
+    const double sceneValue = double(doc().state().settings.post.vignetteIntensity);
+    const int steps = doc().undoStack()->index();
+    emit add->activated(index);
+    QCOMPARE(doc().undoStack()->index(), steps + 1);
+    const auto& post = [this, cam]() -> const std::map<std::string, scene::FieldValue>& {
+      return doc().state().find(cam)->camera->post;
+    };
+    QCOMPARE(std::get<double>(post().at("vignette.intensity")), sceneValue);
+    QTRY_VERIFY(w_->properties()->editorFor("camera.post.vignette.intensity"));
+    // The list no longer offers it.
+    QTRY_VERIFY(w_->properties()->findChild<QComboBox*>("overridePost") &&
+                w_->properties()->findChild<QComboBox*>("overridePost")->findData(QString("vignette.intensity")) < 0);
+    auto* spin = w_->properties()->findChild<app::ScrubSpinBox*>("camera.post.vignette.intensity");
+    QVERIFY(spin);
+    spin->setValue(0.65);
+    emit spin->editingFinished();
+    QCOMPARE(std::get<double>(post().at("vignette.intensity")), double(0.65f));  // held as the setting holds it
+    QCOMPARE(double(doc().state().settings.post.vignetteIntensity), sceneValue);
+    QTRY_VERIFY(w_->properties()->findChild<QToolButton*>("resetPost_vignette.intensity"));
+    const int before = doc().undoStack()->index();
+    w_->properties()->findChild<QToolButton*>("resetPost_vignette.intensity")->click();
+    QVERIFY(post().empty());
+    QCOMPARE(doc().undoStack()->index(), before + 1);
+    doc().undoStack()->undo();
+    QCOMPARE(std::get<double>(post().at("vignette.intensity")), double(0.65f));  // held as the setting holds it
+    while (doc().undoStack()->index() > steps) doc().undoStack()->undo();
+    QVERIFY(post().empty());
   }
 
   void cleanupTestCase() { w_.reset(); }
