@@ -24,6 +24,15 @@ using namespace hs::scene;
 
 namespace {
 
+// A camera with this field of view and these clip planes, the rest default.
+Camera cameraOf(double fovDeg, double nearM, double farM) {
+  Camera c;
+  c.verticalFovDeg = fovDeg;
+  c.nearClip = nearM;
+  c.farClip = farM;
+  return c;
+}
+
 // What undo must give back: the canonical description, plus which mesh data
 // each asset points at (undo shares the immutable data, it never copies it).
 struct Snapshot {
@@ -108,7 +117,7 @@ class RandomEditor {
         return true;
       case 1:
         kind = "addCamera";
-        ops::addCamera(doc_, "Cam", randomTransform(), Camera{double(pick(10, 90)), 0.1, 1000.0});
+        ops::addCamera(doc_, "Cam", randomTransform(), cameraOf(double(pick(10, 90)), 0.1, 1000.0));
         return true;
       case 2:
         kind = "addLight";
@@ -315,7 +324,7 @@ class TestSceneEdits : public QObject {
     const Snapshot empty = snapshot(doc.state());
     QSignalSpy changed(&doc, &Document::changed);
     const EntityId e = ops::addEmpty(doc, "Group", makeTransform({1, 2, 3}));
-    const EntityId cam = ops::addCamera(doc, "Cam", makeTransform({0, 0, 5}), Camera{35.0, 0.5, 900.0});
+    const EntityId cam = ops::addCamera(doc, "Cam", makeTransform({0, 0, 5}), cameraOf(35.0, 0.5, 900.0));
     const EntityId sun = ops::addLight(doc, "Sun", makeTransform({}), Light{Light::Type::Point});
     const EntityId child = ops::addEmpty(doc, "Child", {}, e);
     QCOMPARE(doc.undoStack()->count(), 4);
