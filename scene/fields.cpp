@@ -355,7 +355,7 @@ std::vector<SettingsField> buildSettingsFields() {
       doubleField<S>("exposure_ev100", "Exposure (EV100)", -10.0, 30.0, 0.1, "EV",
                      [](S& s) -> float& { return s.exposureEv100; }),
       boolField<S>("show_grid", "Ground grid", [](S& s) -> bool& { return s.showGrid; }),
-      enumField<S>("antialiasing", "Anti-aliasing", {"None", "FXAA", "MSAA 4x"},
+      enumField<S>("antialiasing", "Anti-aliasing", {"None", "FXAA", "MSAA 4x", "SMAA"},
                    [](S& s) -> Antialiasing& { return s.antialiasing; }),
       enumField<S>("tonemap", "Tone mapping", {"ACES", "None", "AgX", "PBR Neutral"},
                    [](S& s) -> Tonemap& { return s.tonemap; }),

@@ -9,7 +9,7 @@
 namespace hs::scene {
 namespace {
 
-const std::vector<std::string> kAntialiasing = {"none", "fxaa", "msaa4"};  // Antialiasing's order
+const std::vector<std::string> kAntialiasing = {"none", "fxaa", "msaa4", "smaa"};  // Antialiasing's order
 
 ParamDecl text(const char* key, const char* label, const char* help, const char* valueName) {
   return {.key = key, .option = key, .label = label, .type = ParamType::Text, .help = help, .valueName = valueName};

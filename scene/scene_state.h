@@ -70,7 +70,10 @@ struct MeshAsset {
   }
 };
 
-enum class Antialiasing { None = 0, Fxaa = 1, Msaa4 = 2 };
+// Anti-aliasing (docs/rendering.md "Anti-aliasing"): MSAA 4x on the scene's
+// geometry, or one of two filters on the tone-mapped picture: FXAA, or SMAA
+// (render/passes/smaa_passes.h: edge lines' shapes, sharper than FXAA).
+enum class Antialiasing { None = 0, Fxaa = 1, Msaa4 = 2, Smaa = 3 };
 // The tone map (docs/rendering.md "Post-processing"): ACES: filmic curve
 // (highlights roll off); None: exposure then clamp, for reference renders
 // and colour checks; AgX: Sobotka's log-encoded sigmoid (highlights

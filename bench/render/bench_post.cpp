@@ -6,7 +6,8 @@
 // map pass, bloom's levels, the stylised passes; timestamp queries), their
 // count, and the frame's wall time over the all-off frame's. The all-off
 // row against a frame with the tone map only is the claim that the chain
-// costs nothing when off: the same pass, the same time. Last, a
+// costs nothing when off: the same pass, the same time. Then the
+// anti-aliasing modes (none, FXAA, SMAA, MSAA 4x). Last, a
 // transition's frame of each kind (two shots as two view groups, combined
 // by weights or a stylised pattern at its middle) against a plain one, and
 // a crossfade into a camera graded apart (its own post settings: each
@@ -146,6 +147,35 @@ int main(int argc, char** argv) {
     if (offFrame == 0.0) offFrame = frame;
     std::printf("%-22s %8zu %12.2f %12.1f %10.3f\n", row.name, passes, bench::median(post), frame, frame / offFrame);
     std::fflush(stdout);
+  }
+  // Anti-aliasing (settings.antialiasing): the frame and the GPU time of
+  // the filter's passes (FXAA's one, SMAA's three) against none; MSAA's cost
+  // is in the scene passes (4 samples), so only its frame time says it.
+  {
+    std::printf("\n%-22s %12s %12s %10s\n", "anti-aliasing", "AA GPU ms", "frame ms", "/none");
+    double none = 0.0;
+    for (const auto& [name, aa] : {std::pair{"none", scene::Antialiasing::None}, std::pair{"FXAA", scene::Antialiasing::Fxaa},
+                                   std::pair{"SMAA", scene::Antialiasing::Smaa},
+                                   std::pair{"MSAA 4x", scene::Antialiasing::Msaa4}}) {
+      scene::SceneState s = baseScene();
+      s.settings.antialiasing = aa;
+      std::vector<double> gpu, wall;
+      for (int f = 0; f < frames + 1; ++f) {
+        const double t0 = bench::nowSeconds();
+        const render::FrameStats st = r.renderOnly(s, v, o);
+        const double ms = (bench::nowSeconds() - t0) * 1e3;
+        if (f == 0) continue;
+        double g = 0.0;
+        for (const render::PassStats& p : st.passes)
+          if (p.name.rfind("fxaa", 0) == 0 || p.name.rfind("smaa", 0) == 0) g += std::max(0.0, p.gpuMs);
+        gpu.push_back(g);
+        wall.push_back(ms);
+      }
+      const double frame = bench::median(wall);
+      if (none == 0.0) none = frame;
+      std::printf("%-22s %12.2f %12.1f %10.3f\n", name, bench::median(gpu), frame, frame / none);
+      std::fflush(stdout);
+    }
   }
   // Transition frames (sequencer/camera_cuts.h): both shots rendered as
   // two view groups and combined (a weighted sum, or a stylised

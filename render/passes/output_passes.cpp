@@ -8,6 +8,7 @@
 #include "render/color_lut.h"
 #include "render/passes/bloom_passes.h"
 #include "render/passes/fullscreen_pass.h"
+#include "render/passes/smaa_passes.h"
 #include "render/passes/stylised_passes.h"
 #include "scene/light_units.h"
 
@@ -114,6 +115,7 @@ const GpuLut* lutForFrame(FrameContext& frame, const std::vector<std::string>& t
 
 void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef hdr) {
   const bool fxaa = frame.settings.antialiasing == scene::Antialiasing::Fxaa;
+  const bool smaa = frame.settings.antialiasing == scene::Antialiasing::Smaa;
   const scene::PostSettings& post = frame.settings.post;
   FullscreenPass tm;
   tm.name = v.named("tonemap");
@@ -152,7 +154,7 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
   // The last pass of the chain draws into the caller's framebuffer; the
   // tone map does when neither FXAA nor a stylised effect follows.
   const bool stylised = stylisedEffectsOn(post);
-  if (fxaa || stylised) {
+  if (fxaa || smaa || stylised) {
     tm.outputName = v.named("ldr_color");
     tm.output = TextureDesc{v.view.width, v.view.height, GL_RGBA8};
   } else {
@@ -193,7 +195,7 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
   std::vector<std::string> curveOnly = postDefines(frame.settings);
   std::erase_if(curveOnly, [](const std::string& d) { return d.rfind("HS_TONEMAP_", 0) != 0; });
   const bool splitShown = split > 0.0f && split < 1.0f &&
-                          (tm.defines != curveOnly || fxaa || stylised || !tm.generated.empty());
+                          (tm.defines != curveOnly || fxaa || smaa || stylised || !tm.generated.empty());
   TextureRef before;
   if (splitShown) {
     FullscreenPass plain;
@@ -225,6 +227,7 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
     };
     ldr = addFullscreenPass(graph, frame, v, std::move(aa));
   }
+  if (smaa) ldr = addSmaaPasses(graph, frame, v, ldr, !stylised);  // before the stylised effects too
   if (stylised) addStylisedPasses(graph, frame, v, ldr);
   if (splitShown) {
     FullscreenPass over;

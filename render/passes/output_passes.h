@@ -4,7 +4,7 @@
 // "Post-processing": bloom's levels only with bloom, then one pass for
 // exposure, chromatic aberration, the tone map, the grade, the LUT (its
 // OpenColorIO function and tables), the vignette, grain and sRGB encoding, each a shader define only when enabled), FXAA
-// (only with FXAA), the stylised effects (stylised_passes.h, only when one
+// or SMAA (only when chosen; smaa_passes.h), the stylised effects (stylised_passes.h, only when one
 // is on), the editor's before/after split (RenderOptions::postSplit), and a
 // single-sample copy of the depth for the frames whose depth is read back
 // (the stereo comfort check). Include only inside render/.
@@ -18,7 +18,7 @@ TextureRef addResolvePass(FrameGraph& graph, FrameContext& frame, const ViewCont
 TextureRef addDepthResolvePass(FrameGraph& graph, FrameContext& frame, const ViewContext& view,
                                const SceneTargets& targets);
 // The post chain on `hdr` into the view's target framebuffer, or, with
-// FXAA, into an LDR texture that the FXAA pass then draws into the target.
+// FXAA or SMAA, into an LDR texture that their passes draw into the target.
 void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& view, TextureRef hdr);
 // The tone map pass's defines for `settings` (one per enabled effect).
 std::vector<std::string> postDefines(const scene::SceneSettings& settings);

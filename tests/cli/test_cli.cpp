@@ -436,6 +436,7 @@ class TestCli : public QObject {
     QTest::newRow("png") << "png" << "msaa4";
     QTest::newRow("jpg") << "jpg" << "fxaa";
     QTest::newRow("tif") << "tif" << "none";
+    QTest::newRow("png-smaa") << "png" << "smaa";
     QTest::newRow("exr") << "exr" << "msaa4";
   }
   void renderFormats() {
