@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pass_stats.h"
 #include "render/offscreen_renderer.h"
 #include "render/renderer.h"
 #include "render/stereo_views.h"
@@ -21,6 +22,7 @@
 #include "transition_reference.h"
 
 using namespace hs;
+using test::passRan;
 
 namespace {
 
@@ -80,10 +82,6 @@ double worstDifference(const Image& a, const Image& b) {
   return worst;
 }
 
-bool ran(const render::FrameStats& stats, const std::string& name) {
-  return std::any_of(stats.passes.begin(), stats.passes.end(),
-                     [&](const render::PassStats& p) { return p.name.rfind(name, 0) == 0; });
-}
 
 }  // namespace
 
@@ -137,9 +135,9 @@ class TestCameraPostRender : public QObject {
     for (size_t i = 0; i < sum.rgbaF.size(); ++i) sum.rgbaF[i] = 0.65f * pictureA.rgbaF[i] + 0.35f * pictureB.rgbaF[i];
     const double worst = worstDifference(mixed, sum);
     QVERIFY2(worst <= 1.0 / 255.0 + 1e-6, qPrintable(QString("worst %1").arg(worst * 255.0)));
-    QVERIFY(ran(stats, "picture_combine"));
-    QVERIFY(ran(stats, "group0_picture_copy"));
-    QVERIFY(ran(stats, "group1_picture_copy"));
+    QVERIFY(passRan(stats, "picture_combine"));
+    QVERIFY(passRan(stats, "group0_picture_copy"));
+    QVERIFY(passRan(stats, "group1_picture_copy"));
 
     render::GroupCombine swipe;
     swipe.transition = sequencer::Transition::Swipe;
@@ -161,9 +159,9 @@ class TestCameraPostRender : public QObject {
     render::FrameStats stats;
     const Image mixed = r_.renderMix(both, {through(both, kShotA), through(both, kShotB)}, {0.4f, 0.6f}, false, &stats);
     QVERIFY(mixed == r_.renderMix(byScene, {through(byScene, kShotA), through(byScene, kShotB)}, {0.4f, 0.6f}));
-    QVERIFY(ran(stats, "group_combine"));
-    QVERIFY(!ran(stats, "group0_picture_copy"));
-    QVERIFY(!ran(stats, "picture_combine"));
+    QVERIFY(passRan(stats, "group_combine"));
+    QVERIFY(!passRan(stats, "group0_picture_copy"));
+    QVERIFY(!passRan(stats, "picture_combine"));
     // The linear mix differs from a mix of the pictures (what tells the two apart).
     const Image pictures = r_.renderMix(gradedShotB(), {through(both, kShotA), through(both, kShotB)}, {0.4f, 0.6f});
     QVERIFY(pictures != mixed);

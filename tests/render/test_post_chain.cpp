@@ -13,6 +13,7 @@
 
 #include <cmath>
 
+#include "pass_stats.h"
 #include "mesh/primitives.h"
 #include "render/auto_exposure.h"
 #include "render/offscreen_renderer.h"
@@ -31,11 +32,7 @@ namespace {
 scene::SceneState hdrScene() { return test::postTestScene(); }
 render::RenderView view(int w = 192, int h = 108) { return test::postTestView(w, h); }
 
-bool passRan(const render::FrameStats& s, const std::string& part) {
-  for (const render::PassStats& p : s.passes)
-    if (p.name.find(part) != std::string::npos) return true;
-  return false;
-}
+using test::passRan;
 
 // Largest channel difference and the share of channels more than 1 apart.
 std::pair<int, double> compare8(const Image& a, const Image& b) {

@@ -11,12 +11,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "pass_stats.h"
 #include "render/offscreen_renderer.h"
 #include "render/renderer.h"
 #include "post_scene.h"
 #include "smaa_reference.h"
 
 using namespace hs;
+using test::passRan;
 
 namespace {
 
@@ -96,10 +98,6 @@ double errorAtEdges(const Image& img, const Image& aliased, const std::vector<do
   return n ? sum / double(n) : 0.0;
 }
 
-bool ran(const render::FrameStats& s, const char* prefix) {
-  return std::any_of(s.passes.begin(), s.passes.end(),
-                     [&](const render::PassStats& p) { return p.name.rfind(prefix, 0) == 0; });
-}
 
 }  // namespace
 
@@ -143,7 +141,7 @@ class TestSmaa : public QObject {
       s.settings.antialiasing = aa;
       render::FrameStats stats;
       r_.render(s, test::postTestView(), false, &stats);
-      QVERIFY(!ran(stats, "smaa"));
+      QVERIFY(!passRan(stats, "smaa"));
       for (const render::GpuAllocation& a : r_.renderer().resourceRegistry())
         QVERIFY2(a.name.find("smaa") == std::string::npos, a.name.c_str());
     }
@@ -159,7 +157,7 @@ class TestSmaa : public QObject {
     s.settings.antialiasing = scene::Antialiasing::Smaa;
     render::FrameStats stats;
     const Image smaa = r_.render(s, v, false, &stats);
-    QVERIFY(ran(stats, "smaa_edges") && ran(stats, "smaa_weights") && ran(stats, "smaa_blend"));
+    QVERIFY(passRan(stats, "smaa_edges") && passRan(stats, "smaa_weights") && passRan(stats, "smaa_blend"));
     const Image twin = test::smaaReference(aliased);
     size_t off = 0, changed = 0;
     int worst = 0;

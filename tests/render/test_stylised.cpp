@@ -14,6 +14,7 @@
 #include <complex>
 #include <random>
 
+#include "pass_stats.h"
 #include "core/blue_noise.h"
 #include "render/offscreen_renderer.h"
 #include "render/output_target.h"
@@ -51,11 +52,7 @@ std::pair<int, double> compare8(const Image& a, const Image& b, int tol) {
   return {worst, double(over) / double(std::max<size_t>(pixels, 1))};
 }
 
-bool passRan(const render::FrameStats& s, const std::string& part) {
-  for (const render::PassStats& p : s.passes)
-    if (p.name.find(part) != std::string::npos) return true;
-  return false;
-}
+using test::passRan;
 
 // The share of a threshold map's spectral energy at the lowest
 // frequencies (radius <= side / 8, the DC term left out).
