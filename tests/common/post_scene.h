@@ -44,4 +44,18 @@ inline render::RenderView postTestView(int w = 192, int h = 108) {
   return v;
 }
 
+// A root camera entity `id` at `eye` looking at `at`, with postTestView's
+// field of view (the tests of cameras' exposure and post settings).
+inline void addPostTestCamera(scene::SceneState& s, scene::EntityId id, const char* name, glm::dvec3 eye,
+                              glm::dvec3 at) {
+  scene::Entity c;
+  c.id = id;
+  c.name = name;
+  c.camera = scene::Camera{};
+  c.camera->verticalFovDeg = 55.0;
+  c.transform = lookFrom(eye, at);
+  s.entities.emplace(c.id, c);
+  s.roots.push_back(c.id);
+}
+
 }  // namespace hs::test

@@ -28,27 +28,14 @@ namespace {
 constexpr scene::EntityId kSun = 100, kCamera = 200, kSkyCamera = 201;
 constexpr double kDrop = 1.0;  // seconds: the sun falls to 1 % (a grid step at 4 probes a second)
 
-scene::Entity camera(scene::EntityId id, const char* name, glm::dvec3 eye, glm::dvec3 at) {
-  scene::Entity c;
-  c.id = id;
-  c.name = name;
-  c.camera = scene::Camera{};
-  c.camera->verticalFovDeg = 55.0;
-  c.transform = test::lookFrom(eye, at);
-  return c;
-}
-
 // The post tests' scene under a plain sky with two cameras (one down on
 // the balls, one up at the sky) and the sun keyed from its full light to 1 % at kDrop.
 scene::SceneState sunDropScene() {
   scene::SceneState s = test::postTestScene();
   s.settings.skyZenith = {0.16f, 0.32f, 0.62f};  // a plain sky: the sunlit ground weighs in the metering
   s.settings.skyHorizon = {0.62f, 0.72f, 0.82f};
-  for (const scene::Entity& c : {camera(kCamera, "Camera", {0.0, -9.0, 4.0}, {0.0, 0.0, 0.0}),
-                                 camera(kSkyCamera, "Sky camera", {0.0, -9.0, 2.5}, {0.0, 0.0, 9.0})}) {
-    s.entities.emplace(c.id, c);
-    s.roots.push_back(c.id);
-  }
+  test::addPostTestCamera(s, kCamera, "Camera", {0.0, -9.0, 4.0}, {0.0, 0.0, 0.0});
+  test::addPostTestCamera(s, kSkyCamera, "Sky camera", {0.0, -9.0, 2.5}, {0.0, 0.0, 9.0});
   const double lux = double(s.entities.at(kSun).light->intensity);
   sequencer::ScalarTrack intensity;
   intensity.property = "light.intensity";

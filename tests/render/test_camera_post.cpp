@@ -17,7 +17,6 @@
 #include "render/renderer.h"
 #include "render/stereo_views.h"
 #include "scene/camera_post.h"
-#include "look_from.h"
 #include "post_scene.h"
 #include "transition_reference.h"
 
@@ -29,24 +28,11 @@ namespace {
 constexpr scene::EntityId kShotA = 200, kShotB = 201;
 constexpr int kW = 160, kH = 90;
 
-scene::Entity camera(scene::EntityId id, const char* name, glm::dvec3 eye, glm::dvec3 at) {
-  scene::Entity c;
-  c.id = id;
-  c.name = name;
-  c.camera = scene::Camera{};
-  c.camera->verticalFovDeg = 55.0;
-  c.transform = test::lookFrom(eye, at);
-  return c;
-}
-
 // The post tests' scene with two cameras; shot B overrides nothing yet.
 scene::SceneState twoShots() {
   scene::SceneState s = test::postTestScene();
-  for (const scene::Entity& c : {camera(kShotA, "Shot A", {0.0, -9.0, 2.5}, {0.0, 0.0, 1.2}),
-                                 camera(kShotB, "Shot B", {7.0, -6.0, 3.0}, {0.0, 0.0, 1.0})}) {
-    s.entities.emplace(c.id, c);
-    s.roots.push_back(c.id);
-  }
+  test::addPostTestCamera(s, kShotA, "Shot A", {0.0, -9.0, 2.5}, {0.0, 0.0, 1.2});
+  test::addPostTestCamera(s, kShotB, "Shot B", {7.0, -6.0, 3.0}, {0.0, 0.0, 1.0});
   return s;
 }
 
