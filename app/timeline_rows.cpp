@@ -8,7 +8,12 @@ namespace hs::app {
 QString propertyLabel(const std::string& property) {
   if (property == "transform.rotation") return "Rotation";
   if (property == sequencer::kPathProgress) return "Path progress";
-  if (const scene::EntityField* f = scene::findEntityField(property)) return QString::fromStdString(f->label);
+  if (const scene::EntityField* f = scene::findEntityField(property)) {
+    // A camera's own post setting (scene/camera_post.h) shares the scene
+    // setting's label: say whose it is.
+    const bool cameraPost = property.rfind("camera.post.", 0) == 0;
+    return (cameraPost ? QString("Post: ") : QString()) + QString::fromStdString(f->label);
+  }
   if (const scene::MaterialField* f = scene::findMaterialTrackField(property)) return QString::fromStdString(f->label);
   if (const scene::SettingsField* f = scene::findSettingsTrackField(property)) return QString::fromStdString(f->label);
   return QString::fromStdString(property);

@@ -22,6 +22,7 @@
 #include "app/selection.h"
 #include "app/viewport_widget.h"
 #include "app/settings_panel.h"
+#include "app/timeline_rows.h"
 #include "editor_fixture.h"
 #include "scene/fields.h"
 #include "scene/operations.h"
@@ -216,6 +217,9 @@ class LutEditorTest : public QObject {
     QCOMPARE(std::get<double>(post().at("vignette.intensity")), double(0.65f));  // held as the setting holds it
     while (doc().undoStack()->index() > steps) doc().undoStack()->undo();
     QVERIFY(post().empty());
+    // A track on an override is named as the camera's, not the scene's setting.
+    QCOMPARE(app::propertyLabel("camera.post.vignette.intensity"), QString("Post: Vignette intensity"));
+    QCOMPARE(app::propertyLabel("camera.fov_deg"), QString("Vertical field of view"));
   }
 
   void cleanupTestCase() { w_.reset(); }
