@@ -65,7 +65,7 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent, SettingsSect
     if (f.key == "post.kuwahara.enabled")
       addHeading("Stylised effects", "stylisedHeading",
                  "After the chain and anti-aliasing, on the display image, in this order: Kuwahara, comic (with "
-                 "its outlines) or outlines, CRT, dithering");
+                 "its outlines) or outlines, CRT, ordered dithering, stippling, error diffusion");
     if (f.key == "transparency")
       addHeading("Transparency", "oitHeading",
                  "How translucent materials (opacity under 1) are composited; View > Depth Complexity "

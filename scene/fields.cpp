@@ -448,6 +448,15 @@ std::vector<SettingsField> buildSettingsFields() {
                    [](S& s) -> DitherMode& { return s.post.dither; }),
       doubleField<S>("post.dither.levels", "Dither levels", 2.0, 256.0, 1.0, "",
                      [](S& s) -> float& { return s.post.ditherLevels; }),
+      // Stippling runs after the per-pixel effects above (so outlines come
+      // out as dense dots) and before error diffusion.
+      boolField<S>("post.stipple.enabled", "Stippling", [](S& s) -> bool& { return s.post.stipple; }),
+      doubleField<S>("post.stipple.spacing_px", "Stipple spacing", 2.0, 32.0, 0.5, "px",
+                     [](S& s) -> float& { return s.post.stippleSpacingPx; }),
+      doubleField<S>("post.stipple.dot_px", "Stipple dot radius", 0.25, 8.0, 0.05, "px",
+                     [](S& s) -> float& { return s.post.stippleDotPx; }),
+      doubleField<S>("post.stipple.iterations", "Stipple relaxation steps", 0.0, 50.0, 1.0, "",
+                     [](S& s) -> int& { return s.post.stippleIterations; }),
       // Screen-space error of mesh LODs (mesh/lod_chain.h selectLod); 0 draws full resolution.
       doubleField<S>("mesh_lod_error_px", "Mesh LOD error bound", 0.0, 64.0, 0.1, "px",
                      [](S& s) -> double& { return s.meshLodErrorPixels; }),

@@ -179,6 +179,14 @@ struct PostSettings {
   // neighbours (Floyd-Steinberg, a compute pass).
   DitherMode dither = DitherMode::Off;
   float ditherLevels = 4.0f;
+  // Weighted Voronoi stippling (Secord 2002), after the per-pixel effects
+  // and before error diffusion: black dots on white paper, as many per area
+  // as the image is dark, spread by Lloyd relaxation towards the centroids
+  // of their darkness-weighted Voronoi cells (render/passes/stipple_passes.h).
+  bool stipple = false;
+  float stippleSpacingPx = 5.0f;  // distance between dots where the image is black, pixels per 1080 rows
+  float stippleDotPx = 1.2f;      // a dot's radius, pixels per 1080 rows
+  int stippleIterations = 8;      // Lloyd steps (0: the dots where the candidates were accepted)
   bool operator==(const PostSettings&) const = default;
 };
 // Shadow presets (docs/rendering.md "Shadows"): map size, cascades and PCF

@@ -21,11 +21,13 @@
 #include <QCoreApplication>
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "bench/common/bench_util.h"
 #include "core/exposure_meter.h"
+#include "core/stipple_layout.h"
 #include "render/auto_exposure.h"
 #include "mesh/primitives.h"
 #include "render/offscreen_renderer.h"
@@ -37,6 +39,7 @@
 #include "sequencer/camera_cuts.h"
 #include "sequencer/camera_path.h"
 #include "tests/common/scene_parts.h"
+#include "tests/common/stipple_reference.h"
 
 using namespace hs;
 
@@ -176,6 +179,57 @@ int main(int argc, char** argv) {
       std::printf("%-22s %12.2f %12.1f %10.3f\n", name, bench::median(gpu), frame, frame / none);
       std::fflush(stdout);
     }
+  }
+  // Weighted Voronoi stippling (render/passes/stipple_passes.h): its
+  // passes' GPU time and the frame per count of Lloyd steps, against the
+  // frame without it, and the error those steps leave: the sites' mean
+  // distance to their cells' darkness-weighted centroids (0 at a centroidal
+  // tessellation), from the CPU twin (exact cells) on this frame's picture.
+  {
+    const render::RenderView sv = v;
+    const scene::SceneState plain = baseScene();
+    const Image picture = r.render(plain, sv);
+    const StippleLayout layout = stippleLayout(plain.settings.post.stippleSpacingPx, plain.settings.post.stippleDotPx,
+                                               sv.width, sv.height);
+    const std::vector<double> gaps = test::stippleTwin(picture, layout, 16).gapPerStep;
+    std::printf("\n%-22s %12s %12s %10s %16s %14s\n", "stippling", "GPU ms", "frame ms", "/none", "centroid gap",
+                "vs exact cells");
+    double none = 0.0;
+    for (int steps : {-1, 0, 1, 2, 4, 8, 16}) {
+      scene::SceneState s = plain;
+      s.settings.post.stipple = steps >= 0;
+      s.settings.post.stippleIterations = std::max(steps, 0);
+      std::vector<double> gpu, wall;
+      for (int f = 0; f < frames + 1; ++f) {
+        const double t0 = bench::nowSeconds();
+        const render::FrameStats st = r.renderOnly(s, sv, o);
+        const double ms = (bench::nowSeconds() - t0) * 1e3;
+        if (f == 0) continue;
+        double g = 0.0;
+        for (const render::PassStats& p : st.passes)
+          if (p.name.rfind("stipple", 0) == 0) g += std::max(0.0, p.gpuMs);
+        gpu.push_back(g);
+        wall.push_back(ms);
+      }
+      const double frame = bench::median(wall);
+      if (none == 0.0) none = frame;
+      const std::string name = steps < 0 ? "off" : std::to_string(steps) + " steps";
+      // The share of pixels more than 8/255 from the twin's dots (exact
+      // cells where the renderer floods): jump flooding's error.
+      double differ = 0.0;
+      if (steps >= 0) {
+        const Image dots = r.render(s, sv);
+        const Image exact = test::stippledPicture(test::stippleTwin(picture, layout, steps), sv.width, sv.height);
+        size_t off = 0;
+        for (size_t i = 0; i < dots.pixelCount(); ++i) off += std::abs(int(dots.rgba8[i * 4]) - int(exact.rgba8[i * 4])) > 8;
+        differ = 100.0 * double(off) / double(dots.pixelCount());
+      }
+      std::printf("%-22s %12.2f %12.1f %10.3f %13.4f cells %13.3f%%\n", name.c_str(), bench::median(gpu), frame,
+                  frame / none, steps < 0 ? 0.0 : gaps[size_t(steps)], differ);
+      std::fflush(stdout);
+    }
+    std::printf("(%u candidates on a %dx%d grid, spacing %.2f cells)\n", layout.candidates, layout.gridWidth,
+                layout.gridHeight, double(layout.spacingCells));
   }
   // Transition frames (sequencer/camera_cuts.h): both shots rendered as
   // two view groups and combined (a weighted sum, or a stylised

@@ -5,6 +5,7 @@
 #include "core/blue_noise.h"
 #include "core/srgb.h"
 #include "render/passes/fullscreen_pass.h"
+#include "render/passes/stipple_passes.h"
 
 namespace hs::render {
 
@@ -76,7 +77,8 @@ TextureRef addErrorDiffusion(FrameGraph& graph, FrameContext& frame, const ViewC
 }  // namespace
 
 bool stylisedEffectsOn(const scene::PostSettings& post) {
-  return kuwaharaOn(post) || !stylisePassDefines(post).empty() || post.dither == scene::DitherMode::ErrorDiffusion;
+  return kuwaharaOn(post) || !stylisePassDefines(post).empty() || post.stipple ||
+         post.dither == scene::DitherMode::ErrorDiffusion;
 }
 
 std::vector<std::string> stylisePassDefines(const scene::PostSettings& post) {
@@ -128,7 +130,7 @@ void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext
       p.set("uRadius", radius);
       p.set("uQ", q);
     };
-    ldr = stage(std::move(filter), defines.empty() && !diffuse, "kuwahara_color");
+    ldr = stage(std::move(filter), defines.empty() && !post.stipple && !diffuse, "kuwahara_color");
   }
   if (!defines.empty()) {
     FullscreenPass pass;
@@ -153,8 +155,9 @@ void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext
       p.set("uMask", post.crtMask);
       p.set("uDitherLevels", post.ditherLevels);
     };
-    ldr = stage(std::move(pass), !diffuse, "stylised_color");
+    ldr = stage(std::move(pass), !post.stipple && !diffuse, "stylised_color");
   }
+  if (post.stipple) ldr = addStipplePasses(graph, frame, v, ldr, !diffuse);
   if (diffuse) {
     // A compute pass cannot draw into the caller's framebuffer: a copy ends the chain.
     FullscreenPass copy;

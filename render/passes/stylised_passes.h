@@ -3,7 +3,8 @@
 // effects"), on the display-encoded image: the anisotropic Kuwahara filter
 // (three passes: structure tensor, its smoothing and orientation, the
 // filter), one pass for the per-pixel effects (comic, outlines, CRT,
-// ordered dithering; shaders/stylise.frag), and Floyd-Steinberg error
+// ordered dithering; shaders/stylise.frag), weighted Voronoi stippling
+// (stipple_passes.h), and Floyd-Steinberg error
 // diffusion (a compute pass, then a copy into the target), each only when
 // enabled, the last drawing into the view's framebuffer. Include only
 // inside render/.

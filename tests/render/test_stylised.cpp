@@ -350,6 +350,7 @@ class TestStylised : public QObject {
     QTest::newRow("dither_bayer") << 3;
     QTest::newRow("dither_blue_noise") << 4;
     QTest::newRow("kuwahara") << 5;
+    QTest::newRow("stipple") << 6;
   }
   // On the demo scene (terrain, trees, water, figures: every kind of edge and shade).
   void goldens() {
@@ -365,7 +366,8 @@ class TestStylised : public QObject {
       case 2: p.crt = true; break;
       case 3: p.dither = scene::DitherMode::Bayer; break;
       case 4: p.dither = scene::DitherMode::BlueNoise; break;
-      default: p.kuwahara = true; break;
+      case 5: p.kuwahara = true; break;
+      default: p.stipple = true; break;
     }
     const render::RenderView v = render::viewFromCamera(s, s.cameras().front(), 256, 144);
     test::verifyGolden(std::string("stylised_") + QTest::currentDataTag(), r_.render(s, v));
