@@ -1,7 +1,8 @@
 #version 450 core
 // SMAA, pass 2 of 3 (render/passes/smaa_passes.h): blending weights from
-// the edge lines' shapes (orthogonal patterns, as SMAA 1x without its
-// diagonal and corner modules). For the edge on the pixel's top side (and
+// the edge lines' shapes (SMAA 1x's orthogonal and diagonal patterns,
+// without its corner module). A pixel on a diagonal run takes its weights
+// from that (diagonalOffset below); otherwise, for the edge on the pixel's top side (and
 // on its left side, the same turned), the line of edges is followed both
 // ways up to uMaxSearch pixels, ending where the edge stops or a crossing
 // edge meets it; a crossing edge at an end says the real outline passes
@@ -52,11 +53,88 @@ vec2 lineArea(float s, float t, float h1, float h2, float x) {
   return segmentArea(s, h1, t, h2, x, x + 1.0);
 }
 
+// Diagonal patterns (SMAA's diagonal module, rebuilt the MLAA way in the
+// frame turned 45°; the CPU twin's diagonalOffset says it at length): q on
+// the lower side of a staircase of one-pixel steps, edges on its top and
+// its left (or, `mirrored`, its right: a slope of -1), the run of such
+// pixels followed along the diagonal both ways. A step at an end with the
+// outline going on beyond it (another run, or a line the same way; not the
+// picture's border) says how the line leaves the diagonal: horizontal
+// (shallower than 45°; that step is a column of its own, the last of the
+// run before it) or vertical (steeper). The outline's height over the
+// staircase's midpoint line is +-0.5 there and goes linearly through 0 at
+// the middle (one end known: to 0 at the other); both ends the same way
+// (a bend) are left to the orthogonal patterns. `offset`: the height at
+// q's corner triangle (a quarter column before its centre) and at the
+// pixel above's (a quarter after).
+const int kMinDiagonal = 3;
+bool edgeLeft(ivec2 q) { return edgeAt(q).r > 0.5; }
+bool edgeTop(ivec2 q) { return edgeAt(q).g > 0.5; }
+bool topOf(ivec2 q, bool mirrored, int dx, int dy) { return edgeTop(q + ivec2(mirrored ? -dx : dx, dy)); }
+bool leftOf(ivec2 q, bool mirrored, int dx, int dy) {
+  return mirrored ? edgeLeft(q + ivec2(1 - dx, dy)) : edgeLeft(q + ivec2(dx, dy));
+}
+bool lowerSide(ivec2 q, bool mirrored, int dx, int dy) {
+  return topOf(q, mirrored, dx, dy) && leftOf(q, mirrored, dx, dy) && !leftOf(q, mirrored, dx + 1, dy) &&
+         !topOf(q, mirrored, dx, dy - 1);
+}
+bool diagonalOffset(ivec2 q, bool mirrored, out vec2 offset) {
+  offset = vec2(0.0);
+  if (!lowerSide(q, mirrored, 0, 0)) return false;
+  int back = 0, ahead = 0;
+  while (back < uMaxSearch && lowerSide(q, mirrored, -back - 1, -back - 1)) ++back;
+  while (ahead < uMaxSearch && lowerSide(q, mirrored, ahead + 1, ahead + 1)) ++ahead;
+  const int n = back + ahead + 1;
+  if (n < kMinDiagonal) return false;
+  const int a = -back, b = ahead;
+  float h1 = 0.0, h2 = 0.0, start = 0.0;
+  const float end = float(n);
+  if (back < uMaxSearch) {
+    if (topOf(q, mirrored, a - 1, a - 1) && !leftOf(q, mirrored, a - 1, a - 1) &&
+        (lowerSide(q, mirrored, a - 2, a - 1) || topOf(q, mirrored, a - 2, a - 1))) {
+      h1 = 0.5;
+      start = -1.0;
+    } else if (leftOf(q, mirrored, a, a - 1) && !topOf(q, mirrored, a, a - 1) &&
+               (lowerSide(q, mirrored, a - 1, a - 2) || leftOf(q, mirrored, a, a - 2))) {
+      h1 = -0.5;
+    }
+  }
+  if (ahead < uMaxSearch) {
+    if (topOf(q, mirrored, b + 1, b) && !leftOf(q, mirrored, b + 1, b) &&
+        (lowerSide(q, mirrored, b + 2, b + 1) || topOf(q, mirrored, b + 2, b)))
+      h2 = -0.5;
+    else if (leftOf(q, mirrored, b + 1, b + 1) && !topOf(q, mirrored, b + 1, b + 1) &&
+             (lowerSide(q, mirrored, b + 1, b + 2) || leftOf(q, mirrored, b + 1, b + 2)))
+      h2 = 0.5;
+  }
+  // Both ends leaving the same way (a U: a curve's silhouette bending):
+  // how far it bulges is not in the run; the orthogonal patterns do better.
+  if (h1 != 0.0 && h1 == h2) return false;
+  const float mid = 0.5 * (start + end);
+  for (int i = 0; i < 2; ++i) {
+    const float t = float(back) + (i == 0 ? 0.25 : 0.75);
+    float h = 0.0;
+    if (h1 != 0.0 && h2 != 0.0) h = t < mid ? h1 * (mid - t) / (mid - start) : h2 * (t - mid) / (end - mid);
+    else if (h1 != 0.0) h = h1 * (end - t) / (end - start);
+    else if (h2 != 0.0) h = h2 * (t - start) / (end - start);
+    offset[i] = h;
+  }
+  return true;
+}
+
 void main() {
   gSize = textureSize(uEdges, 0);
   const ivec2 p = ivec2(gl_FragCoord.xy);
   const vec2 e = edgeAt(p);
   vec4 w = vec4(0.0);
+  vec2 offset;
+  if (e.g > 0.5 && (diagonalOffset(p, false, offset) || diagonalOffset(p, true, offset))) {
+    // The outline y = x + 0.5 + offset over this pixel (the lower side) and
+    // the one above: their corner triangles. Only the vertical pair blends;
+    // the side edge's weights stay 0.
+    outWeights = vec4(0.5 * (0.5 - offset.x) * (0.5 - offset.x), 0.5 * (0.5 + offset.y) * (0.5 + offset.y), 0.0, 0.0);
+    return;
+  }
   if (e.g > 0.5) {
     // The line between rows y and y + 1; crossing edges at the boundary
     // between columns c - 1 and c are the left edges of (c, y) (this row)
@@ -88,6 +166,9 @@ void main() {
     const float h1 = endHeight(edgeAt(s + ivec2(0, -1)).g > 0.5, edgeAt(s + ivec2(-1, -1)).g > 0.5);
     const float h2 = endHeight(edgeAt(t + ivec2(0, -1)).g > 0.5, edgeAt(t + ivec2(-1, -1)).g > 0.5);
     w.ba = lineArea(float(s.y), float(t.y), h1, h2, float(p.y));
+    // The right side of a pixel on a slope -1 run: that run blends it
+    // vertically, not across this edge.
+    if (diagonalOffset(p + ivec2(-1, 0), true, offset)) w.ba = vec2(0.0);
   }
   outWeights = w;
 }

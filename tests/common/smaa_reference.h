@@ -72,12 +72,82 @@ inline Areas lineArea(float s, float t, float h1, float h2, float x) {
   return segmentArea(s, h1, t, h2, x, x + 1.0f);
 }
 
+// SMAA's diagonal patterns, rebuilt here the MLAA way in the frame turned
+// 45°: `p` on the lower side of a staircase of one-pixel steps (edges on
+// its top and on its left, or with `mirror` on its right: a slope of +1 or
+// -1), the run of such pixels followed along the diagonal both ways. A
+// break at an end says how the line leaves the diagonal: a horizontal step
+// (the line shallower than 45°) or a vertical one (steeper); the outline's
+// offset from the staircase's midpoint line is +-0.5 there and, as in an
+// orthogonal Z, goes linearly through 0 at the run's middle (one end
+// known: from it to 0 at the other). Both ends the same way (a U: a bend,
+// a curve's silhouette) are left to the orthogonal patterns: how far the
+// outline bulges is not in the run (tested: on the post scene's spheres
+// the orthogonal patterns alone are nearer to supersampling). Returns
+// whether p is on such a run of at least kSmaaMinDiagonal pixels (shorter
+// ones: the orthogonal patterns do as well); then `offset` holds the outline's height
+// over the midpoint line (in pixels, -0.5..0.5) at p's corner triangle
+// and at the pixel above's.
+constexpr int kSmaaMinDiagonal = 3;
+inline bool diagonalOffset(const Edges& e, int x, int y, bool mirror, int maxSearch, float* offset) {
+  const int sx = mirror ? -1 : 1;
+  // Edges in the mirrored frame: left is the right side when mirrored.
+  const auto top = [&](int dx, int dy) { return e.t(x + sx * dx, y + dy); };
+  const auto left = [&](int dx, int dy) { return mirror ? e.l(x - dx + 1, y + dy) : e.l(x + dx, y + dy); };
+  const auto lower = [&](int dx, int dy) {
+    return top(dx, dy) && left(dx, dy) && !left(dx + 1, dy) && !top(dx, dy - 1);
+  };
+  if (!lower(0, 0)) return false;
+  int back = 0, ahead = 0;
+  while (back < maxSearch && lower(-back - 1, -back - 1)) ++back;
+  while (ahead < maxSearch && lower(ahead + 1, ahead + 1)) ++ahead;
+  const int n = back + ahead + 1;
+  if (n < kSmaaMinDiagonal) return false;
+  const int a = -back, b = ahead;  // the run's first and last pixel, along the diagonal
+  // Start: a horizontal step before it (the pixel before on the diagonal
+  // has its top edge only) or a vertical one (the pixel below the first has
+  // its left edge only). End: a horizontal step after (the pixel right of
+  // the last, top only) or a vertical one (the next on the diagonal, left
+  // only). A step counts only with the outline going on beyond it (another
+  // run, or a line the same way): the picture's border says nothing.
+  // A horizontal step is a column of its own, the last of the run before
+  // it (the outline keeps falling through it): after one, the outline
+  // reaches +0.5 a whole column before the run (a vertical step takes none).
+  float h1 = 0.0f, h2 = 0.0f, start = 0.0f, end = float(n);
+  if (back < maxSearch) {
+    if (top(a - 1, a - 1) && !left(a - 1, a - 1) && (lower(a - 2, a - 1) || top(a - 2, a - 1)))
+      h1 = 0.5f, start = -1.0f;
+    else if (left(a, a - 1) && !top(a, a - 1) && (lower(a - 1, a - 2) || left(a, a - 2)))
+      h1 = -0.5f;
+  }
+  if (ahead < maxSearch) {
+    if (top(b + 1, b) && !left(b + 1, b) && (lower(b + 2, b + 1) || top(b + 2, b))) h2 = -0.5f;
+    else if (left(b + 1, b + 1) && !top(b + 1, b + 1) && (lower(b + 1, b + 2) || left(b + 1, b + 2))) h2 = 0.5f;
+  }
+  // Both ends leaving the same way (a U: the outline bends, a curve's
+  // silhouette): how far it bulges is not in the run; the orthogonal
+  // patterns, which see the bend's own steps, do better there.
+  if (h1 != 0.0f && h1 == h2) return false;
+  const float mid = 0.5f * (start + end);
+  const auto height = [&](float t) {
+    if (h1 != 0.0f && h2 != 0.0f) return t < mid ? h1 * (mid - t) / (mid - start) : h2 * (t - mid) / (end - mid);
+    if (h1 != 0.0f) return h1 * (end - t) / (end - start);
+    if (h2 != 0.0f) return h2 * (t - start) / (end - start);
+    return 0.0f;
+  };
+  // This pixel's corner triangle lies left of its centre, the pixel
+  // above's right of it: the outline's height where each is.
+  offset[0] = height(float(back) + 0.25f);
+  offset[1] = height(float(back) + 0.75f);
+  return true;
+}
+
 inline float q8(float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f; }
 
 }  // namespace smaa_detail
 
 // SMAA of `in` (8-bit) with a luma threshold and a search length in pixels.
-inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearch = 16) {
+inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearch = 16, bool diagonal = true) {
   using namespace smaa_detail;
   const int w = in.width, h = in.height;
   const Picture pic{in, w, h};
@@ -102,6 +172,16 @@ inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearc
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       float* o = &wts[(size_t(y) * size_t(w) + size_t(x)) * 4];
+      float offset[2] = {0.0f, 0.0f};
+      if (diagonal && (diagonalOffset(e, x, y, false, maxSearch, offset) ||
+                       diagonalOffset(e, x, y, true, maxSearch, offset))) {
+        // The outline y = x + 0.5 + offset over this pixel (lower side) and
+        // the one above: the corner triangles' areas. Only the vertical
+        // pair blends; the side edge's weights stay 0.
+        o[0] = q8(0.5f * (0.5f - offset[0]) * (0.5f - offset[0]));
+        o[1] = q8(0.5f * (0.5f + offset[1]) * (0.5f + offset[1]));
+        continue;
+      }
       if (e.t(x, y)) {
         int left = 0, right = 0;
         while (left < maxSearch && e.t(x - left - 1, y) && !e.l(x - left, y) && !e.l(x - left, y + 1)) ++left;
@@ -122,6 +202,9 @@ inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearc
                                  endHeight(e.t(x, t - 1), e.t(x - 1, t - 1)), float(y));
         o[2] = q8(a.below);
         o[3] = q8(a.above);
+        // The right side of a pixel on a slope -1 run: that run blends it
+        // vertically, not across this edge.
+        if (diagonal && diagonalOffset(e, x - 1, y, true, maxSearch, offset)) o[2] = o[3] = 0.0f;
       }
     }
   Image out = Image::make8(w, h);
