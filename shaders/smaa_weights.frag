@@ -1,7 +1,7 @@
 #version 450 core
 // SMAA, pass 2 of 3 (render/passes/smaa_passes.h): blending weights from
-// the edge lines' shapes (SMAA 1x's orthogonal and diagonal patterns,
-// without its corner module). A pixel on a diagonal run takes its weights
+// the edge lines' shapes (SMAA 1x's orthogonal and diagonal patterns and
+// its corner detection). A pixel on a diagonal run takes its weights
 // from that (diagonalOffset below); otherwise, for the edge on the pixel's top side (and
 // on its left side, the same turned), the line of edges is followed both
 // ways up to uMaxSearch pixels, ending where the edge stops or a crossing
@@ -51,6 +51,20 @@ vec2 lineArea(float s, float t, float h1, float h2, float x) {
     return segmentArea(s, h1, m, 0.0, x, x + 1.0) + segmentArea(m, 0.0, t, h2, x, x + 1.0);
   }
   return segmentArea(s, h1, t, h2, x, x + 1.0);
+}
+
+// SMAA's corner module: where a line's end meets a crossing edge that
+// goes on past the one-pixel step a staircase would make, the outline has
+// a real corner there; the part of the line that end shapes (the nearer
+// end of a Z or U, the known end of an L) keeps a quarter of its areas
+// (SMAA's corner rounding, 25 %) instead of being rounded off.
+const float kCornerKeep = 0.25;
+float cornerFactor(bool corner1, bool corner2, float h1, float h2, float s, float t, float x) {
+  bool corner = false;
+  if (h1 != 0.0 && h2 != 0.0) corner = x + 0.5 < 0.5 * (s + t) ? corner1 : corner2;
+  else if (h1 != 0.0) corner = corner1;
+  else if (h2 != 0.0) corner = corner2;
+  return corner ? kCornerKeep : 1.0;
 }
 
 // Diagonal patterns (SMAA's diagonal module, rebuilt the MLAA way in the
@@ -149,7 +163,12 @@ void main() {
     const ivec2 s = p + ivec2(-left, 0), t = p + ivec2(right + 1, 0);
     const float h1 = endHeight(edgeAt(s).r > 0.5, edgeAt(s + ivec2(0, 1)).r > 0.5);
     const float h2 = endHeight(edgeAt(t).r > 0.5, edgeAt(t + ivec2(0, 1)).r > 0.5);
-    w.rg = lineArea(float(s.x), float(t.x), h1, h2, float(p.x));
+    // Corners: the crossing edge going on below (this row's side) or above
+    // (the other's).
+    const bool c1 = h1 < 0.0 ? edgeAt(s + ivec2(0, -1)).r > 0.5 : (h1 > 0.0 && edgeAt(s + ivec2(0, 2)).r > 0.5);
+    const bool c2 = h2 < 0.0 ? edgeAt(t + ivec2(0, -1)).r > 0.5 : (h2 > 0.0 && edgeAt(t + ivec2(0, 2)).r > 0.5);
+    w.rg = lineArea(float(s.x), float(t.x), h1, h2, float(p.x)) *
+           cornerFactor(c1, c2, h1, h2, float(s.x), float(t.x), float(p.x));
   }
   if (e.r > 0.5) {
     // The line between columns x - 1 and x; crossing edges at the boundary
@@ -165,7 +184,12 @@ void main() {
     const ivec2 s = p + ivec2(0, -down), t = p + ivec2(0, up + 1);
     const float h1 = endHeight(edgeAt(s + ivec2(0, -1)).g > 0.5, edgeAt(s + ivec2(-1, -1)).g > 0.5);
     const float h2 = endHeight(edgeAt(t + ivec2(0, -1)).g > 0.5, edgeAt(t + ivec2(-1, -1)).g > 0.5);
-    w.ba = lineArea(float(s.y), float(t.y), h1, h2, float(p.y));
+    // Corners: the crossing edge going on right of this column (its side)
+    // or left of the column before (the other's).
+    const bool c1 = h1 < 0.0 ? edgeAt(s + ivec2(1, -1)).g > 0.5 : (h1 > 0.0 && edgeAt(s + ivec2(-2, -1)).g > 0.5);
+    const bool c2 = h2 < 0.0 ? edgeAt(t + ivec2(1, -1)).g > 0.5 : (h2 > 0.0 && edgeAt(t + ivec2(-2, -1)).g > 0.5);
+    w.ba = lineArea(float(s.y), float(t.y), h1, h2, float(p.y)) *
+           cornerFactor(c1, c2, h1, h2, float(s.y), float(t.y), float(p.y));
     // The right side of a pixel on a slope -1 run: that run blends it
     // vertically, not across this edge.
     if (diagonalOffset(p + ivec2(-1, 0), true, offset)) w.ba = vec2(0.0);

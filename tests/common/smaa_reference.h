@@ -142,12 +142,28 @@ inline bool diagonalOffset(const Edges& e, int x, int y, bool mirror, int maxSea
   return true;
 }
 
+// SMAA's corner module: where a line's end meets a crossing edge that goes
+// on past the one-pixel step a staircase would make, the outline has a
+// real corner there, not a shallow slope; MLAA's rebuild would round it.
+// The part of the line that end shapes keeps kSmaaCornerKeep of its areas
+// (SMAA's corner rounding, 25 %). Which end shapes pixel x: the nearer one
+// of a Z or U, the known one of an L.
+constexpr float kSmaaCornerKeep = 0.25f;
+inline float cornerFactor(bool corner1, bool corner2, float h1, float h2, float s, float t, float x) {
+  bool corner = false;
+  if (h1 != 0.0f && h2 != 0.0f) corner = x + 0.5f < 0.5f * (s + t) ? corner1 : corner2;
+  else if (h1 != 0.0f) corner = corner1;
+  else if (h2 != 0.0f) corner = corner2;
+  return corner ? kSmaaCornerKeep : 1.0f;
+}
+
 inline float q8(float v) { return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f; }
 
 }  // namespace smaa_detail
 
 // SMAA of `in` (8-bit) with a luma threshold and a search length in pixels.
-inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearch = 16, bool diagonal = true) {
+inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearch = 16, bool diagonal = true,
+                           bool corners = true) {
   using namespace smaa_detail;
   const int w = in.width, h = in.height;
   const Picture pic{in, w, h};
@@ -188,8 +204,18 @@ inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearc
         while (right < maxSearch && e.t(x + right + 1, y) && !e.l(x + right + 1, y) && !e.l(x + right + 1, y + 1))
           ++right;
         const int s = x - left, t = x + right + 1;
-        const Areas a = lineArea(float(s), float(t), endHeight(e.l(s, y), e.l(s, y + 1)),
-                                 endHeight(e.l(t, y), e.l(t, y + 1)), float(x));
+        const float h1 = endHeight(e.l(s, y), e.l(s, y + 1)), h2 = endHeight(e.l(t, y), e.l(t, y + 1));
+        Areas a = lineArea(float(s), float(t), h1, h2, float(x));
+        if (corners) {
+          // A crossing edge going on past the step (below on this row's
+          // side, above on the other's) is a corner of the shape.
+          const auto corner = [&](int c, float hh) {
+            return hh < 0.0f ? e.l(c, y - 1) : hh > 0.0f ? e.l(c, y + 2) : false;
+          };
+          const float k = cornerFactor(corner(s, h1), corner(t, h2), h1, h2, float(s), float(t), float(x));
+          a.below *= k;
+          a.above *= k;
+        }
         o[0] = q8(a.below);
         o[1] = q8(a.above);
       }
@@ -198,8 +224,17 @@ inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearc
         while (down < maxSearch && e.l(x, y - down - 1) && !e.t(x, y - down - 1) && !e.t(x - 1, y - down - 1)) ++down;
         while (up < maxSearch && e.l(x, y + up + 1) && !e.t(x, y + up) && !e.t(x - 1, y + up)) ++up;
         const int s = y - down, t = y + up + 1;
-        const Areas a = lineArea(float(s), float(t), endHeight(e.t(x, s - 1), e.t(x - 1, s - 1)),
-                                 endHeight(e.t(x, t - 1), e.t(x - 1, t - 1)), float(y));
+        const float h1 = endHeight(e.t(x, s - 1), e.t(x - 1, s - 1)), h2 = endHeight(e.t(x, t - 1), e.t(x - 1, t - 1));
+        Areas a = lineArea(float(s), float(t), h1, h2, float(y));
+        if (corners) {
+          // Right of this column on its side, left of the column before on the other's.
+          const auto corner = [&](int r, float hh) {
+            return hh < 0.0f ? e.t(x + 1, r - 1) : hh > 0.0f ? e.t(x - 2, r - 1) : false;
+          };
+          const float k = cornerFactor(corner(s, h1), corner(t, h2), h1, h2, float(s), float(t), float(y));
+          a.below *= k;
+          a.above *= k;
+        }
         o[2] = q8(a.below);
         o[3] = q8(a.above);
         // The right side of a pixel on a slope -1 run: that run blends it
