@@ -21,18 +21,11 @@ layout(location = 0) out vec4 outColor;
 
 const float kPi = 3.14159265358979;
 
-// A 32-bit integer hash (Wellons' lowbias32): the same bits on the GPU and
-// in the CPU twin, so patterns that switch on it match exactly.
-uint hash(uint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
+// The stylised transitions' patterns hash with lowbias32: the same bits on
+// the GPU and in the CPU twin, so patterns that switch on it match exactly.
+#include "lowbias32.glsl"
 // In [0, 1), 24 bits: exact in a float.
-float rand3(uint a, uint b, uint c) { return float(hash(a ^ hash(b ^ hash(c))) >> 8) / 16777216.0; }
+float rand3(uint a, uint b, uint c) { return float(lowbias32(a ^ lowbias32(b ^ lowbias32(c))) >> 8) / 16777216.0; }
 
 vec2 gSize;
 vec4 at0(vec2 px) { return texture(uImage0, px / gSize); }  // bilinear, px in pixels (centres at +0.5)

@@ -52,15 +52,8 @@ mat3 instanceRotation(Instance i) {
 // The instance's origin relative to the frame origin.
 vec3 instanceOrigin(Instance i) { return instanceCells[instanceCell(i)].xyz + i.positionScale.xyz; }
 
-// lowbias32: the wind's phase per instance id.
-uint instanceHash(uint h) {
-  h ^= h >> 16;
-  h *= 0x7FEB352Du;
-  h ^= h >> 15;
-  h *= 0x846CA68Bu;
-  h ^= h >> 16;
-  return h;
-}
+// The wind's phase per instance id: lowbias32.glsl.
+#include "lowbias32.glsl"
 
 // The wind's move of a vertex `height` metres above the instance's origin
 // (mesh z, before scale) of a mesh `meshHeight` tall on an instance scaled
@@ -75,7 +68,7 @@ vec3 instanceWindOffset(float response, float height, float meshHeight, float sc
   const float tau = 6.28318531;
   float h = clamp(height / meshHeight, 0.0, 1.0);
   float worldHeight = meshHeight * abs(scaleZ);
-  float phase = tau * float(instanceHash(id) >> 8) * (1.0 / 16777216.0);
+  float phase = tau * float(lowbias32(id) >> 8) * (1.0 / 16777216.0);
   float t = mod(round(time.x - time.z), 60.0) + time.z;
   float bend = 0.6 + 0.4 * sin(tau * fract(0.5 * t) + phase);
   float gust = 0.3 * sin(tau * fract(1.3 * t) + 1.7 * phase) * (0.5 + 0.5 * sin(tau * fract(0.2 * t) + 0.5 * phase));

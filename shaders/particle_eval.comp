@@ -56,13 +56,9 @@ const uint A_JITTER = 1u, A_LIFETIME = 2u, A_SPEED = 3u, A_SPREAD_A = 4u, A_SPRE
            A_SHAPE_B = 7u, A_SHAPE_C = 8u, A_SIZE = 9u, A_ROTATION = 10u, A_SPIN = 11u, A_VARIANT = 12u;
 const double PI = 3.14159265358979323846LF;
 
-uint hsHash(uint x) {  // "lowbias32" (C. Wellons), as particles/rng.h
-  x ^= x >> 16; x *= 0x7feb352dU;
-  x ^= x >> 15; x *= 0x846ca68bU;
-  x ^= x >> 16; return x;
-}
+#include "lowbias32.glsl"  // as particles/rng.h
 uint hsKey(uint seed, uint stream, uint index, uint attr) {
-  return hsHash(hsHash(hsHash(hsHash(seed) ^ stream) ^ index) ^ attr);
+  return lowbias32(lowbias32(lowbias32(lowbias32(seed) ^ stream) ^ index) ^ attr);
 }
 double hsUnit(uint h) { return double(h >> 8) * (1.0LF / 16777216.0LF); }
 
@@ -139,7 +135,7 @@ const dvec3 kCorner[12] = dvec3[12](dvec3(1, 1, 0), dvec3(-1, 1, 0), dvec3(1, -1
                                     dvec3(1, 0, 1), dvec3(-1, 0, 1), dvec3(1, 0, -1), dvec3(-1, 0, -1),
                                     dvec3(0, 1, 1), dvec3(0, -1, 1), dvec3(0, 1, -1), dvec3(0, -1, -1));
 dvec3 cornerGradient(uint ix, uint iy, uint iz, uint seed) {
-  return kCorner[(hsHash(hsHash(hsHash(hsHash(seed) ^ ix) ^ iy) ^ iz) >> 8) % 12u];
+  return kCorner[(lowbias32(lowbias32(lowbias32(lowbias32(seed) ^ ix) ^ iy) ^ iz) >> 8) % 12u];
 }
 uint lattice(double v) { return uint(v - 4294967296.0LF * floor(v / 4294967296.0LF)); }  // v mod 2^32, as int64 -> uint32
 dvec3 noiseGradient(dvec3 p, uint seed) {
@@ -167,9 +163,9 @@ dvec3 noiseGradient(dvec3 p, uint seed) {
 dvec3 turbulenceAt(dvec3 x, double t) {
   const uint seed = u[U_SEED];
   const dvec3 p = x * d[D_TURBULENCE + 1] + (t * d[D_TURBULENCE + 2]) * dvec3(0.37LF, 0.59LF, 0.71LF);
-  const dvec3 d1 = noiseGradient(p, hsHash(seed ^ 0x1u));
-  const dvec3 d2 = noiseGradient(p, hsHash(seed ^ 0x2u));
-  const dvec3 d3v = noiseGradient(p, hsHash(seed ^ 0x3u));
+  const dvec3 d1 = noiseGradient(p, lowbias32(seed ^ 0x1u));
+  const dvec3 d2 = noiseGradient(p, lowbias32(seed ^ 0x2u));
+  const dvec3 d3v = noiseGradient(p, lowbias32(seed ^ 0x3u));
   return d[D_TURBULENCE] * dvec3(d3v.y - d2.z, d1.z - d3v.x, d2.x - d1.y);
 }
 

@@ -40,14 +40,7 @@ uniform int uStep;     // jump flooding's step, cells
 
 const uint kNone = 0xffffffffu;
 
-uint lowbias32(uint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
+#include "lowbias32.glsl"
 
 uint darknessAt(ivec2 c) { return uint(texelFetch(uDensity, c, 0).r * 255.0 + 0.5); }
 

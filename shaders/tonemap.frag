@@ -73,15 +73,11 @@ vec3 pbrNeutral(vec3 c) {
 
 // A value in [-1, 1) per grain cell and frame number (lowbias32, as
 // particles/rng.h): the same in both eyes, screen-fixed as on a film print.
-uint hashU32(uint x) {
-  x ^= x >> 16; x *= 0x7feb352dU;
-  x ^= x >> 15; x *= 0x846ca68bU;
-  x ^= x >> 16; return x;
-}
+#include "lowbias32.glsl"
 float grainAt(vec2 pixel) {
   const uvec2 cell = uvec2(floor(pixel / uGrainCell));
   const uint frameNumber = uint(frame.time.y);  // the FrameBlock's: a pure function of the timeline
-  const uint h = hashU32(hashU32(hashU32(frameNumber) ^ cell.x) ^ (cell.y * 0x9e3779b9U));
+  const uint h = lowbias32(lowbias32(lowbias32(frameNumber) ^ cell.x) ^ (cell.y * 0x9e3779b9U));
   return float(h >> 8) * (2.0 / 16777216.0) - 1.0;
 }
 
