@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "scene/asset_reports.h"
+#include "scene/camera_post.h"
 #include "scene/edit.h"
 #include "scene/import_pipeline.h"
 #include "scene/mesh_materials.h"
@@ -167,7 +168,7 @@ bool setField(Document& doc, EntityId id, const EntityField& field, const FieldV
 bool clearCameraPost(Document& doc, EntityId id, const std::string& key) {
   const Entity* now = doc.state().find(id);
   if (!now || !now->camera || !now->camera->post.count(key)) return false;
-  const EntityField* field = findEntityField("camera.post." + key);
+  const EntityField* field = findCameraPostField(key);
   Edit e(doc, QString("Reset %1").arg(QString::fromStdString(field ? field->label : key)));
   e.entity(id).camera->post.erase(key);
   return e.commit();

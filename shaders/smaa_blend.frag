@@ -15,9 +15,13 @@ void main() {
   const ivec2 p = ivec2(gl_FragCoord.xy);
   const ivec2 size = textureSize(uWeights, 0);
   const vec4 own = texelFetch(uWeights, p, 0);
-  float top = own.r, left = own.b;
+  // b = 1 marks a pixel on a diagonal run (smaa_weights.frag): it blends
+  // vertically only, and the pixel right of it not across to it.
+  const bool diagonal = own.b > 0.75;
+  float top = own.r, left = diagonal ? 0.0 : own.b;
   float bottom = p.y > 0 ? texelFetch(uWeights, p + ivec2(0, -1), 0).g : 0.0;
-  float right = p.x + 1 < size.x ? texelFetch(uWeights, p + ivec2(1, 0), 0).a : 0.0;
+  float right = !diagonal && p.x + 1 < size.x ? texelFetch(uWeights, p + ivec2(1, 0), 0).a : 0.0;
+  if (p.x > 0 && texelFetch(uWeights, p + ivec2(-1, 0), 0).b > 0.75) left = 0.0;
   if (max(left, right) > max(top, bottom)) {
     top = 0.0;
     bottom = 0.0;

@@ -11,7 +11,11 @@
 // point to the far end; a Z or U: from each end to the line's middle) and
 // its area inside this pixel's part of the line is integrated exactly.
 // r: how much this pixel takes of the pixel above, g: how much the pixel
-// above takes of this one; b, a: the same with the pixel to the left.
+// above takes of this one; b, a: the same with the pixel to the left (b =
+// 1: the pixel is on a diagonal run, a is 0). The diagonal search is in the
+// shader once: llvmpipe runs the code of an if for every pixel of a block,
+// taken or not, so each copy costs every pixel (two copies made the pass
+// 3x dearer than none; the blend reads the mark instead of a second one).
 layout(binding = 0) uniform sampler2D uEdges;
 uniform int uMaxSearch;
 layout(location = 0) out vec4 outWeights;
@@ -142,14 +146,25 @@ void main() {
   const vec2 e = edgeAt(p);
   vec4 w = vec4(0.0);
   vec2 offset;
-  if (e.g > 0.5 && (diagonalOffset(p, false, offset) || diagonalOffset(p, true, offset))) {
-    // The outline y = x + 0.5 + offset over this pixel (the lower side) and
-    // the one above: their corner triangles. Only the vertical pair blends;
-    // the side edge's weights stay 0.
-    outWeights = vec4(0.5 * (0.5 - offset.x) * (0.5 - offset.x), 0.5 * (0.5 + offset.y) * (0.5 + offset.y), 0.0, 0.0);
-    return;
+  // On a diagonal run a pixel has its top edge, one side edge (left: slope
+  // +1, right: -1) and none below: checked here first, so the search (one,
+  // for the side it has) runs only there.
+  // On a diagonal run a pixel has its top edge, one side edge (left: slope
+  // +1, right: -1) and none below: checked first, so the search (one, for
+  // the side it has) runs only there.
+  const bool rightEdge = edgeAt(p + ivec2(1, 0)).r > 0.5;
+  bool diagonal = e.g > 0.5 && (e.r > 0.5) != rightEdge && edgeAt(p + ivec2(0, -1)).g < 0.5;
+  if (diagonal) diagonal = diagonalOffset(p, rightEdge, offset);
+  if (diagonal) {
+    // The outline y = x + 0.5 + offset over this pixel (the lower side)
+    // and the one above: their corner triangles. Only the vertical pair
+    // blends; the side edge's weights stay 0.
+    // b = 1 (never an area: those stay under 0.5) marks the pixel as on a
+    // run for the blend, which then keeps it and its right-hand neighbour
+    // from blending across the side edge.
+    w = vec4(0.5 * (0.5 - offset.x) * (0.5 - offset.x), 0.5 * (0.5 + offset.y) * (0.5 + offset.y), 1.0, 0.0);
   }
-  if (e.g > 0.5) {
+  if (!diagonal && e.g > 0.5) {
     // The line between rows y and y + 1; crossing edges at the boundary
     // between columns c - 1 and c are the left edges of (c, y) (this row)
     // and (c, y + 1) (the row above).
@@ -170,7 +185,7 @@ void main() {
     w.rg = lineArea(float(s.x), float(t.x), h1, h2, float(p.x)) *
            cornerFactor(c1, c2, h1, h2, float(s.x), float(t.x), float(p.x));
   }
-  if (e.r > 0.5) {
+  if (!diagonal && e.r > 0.5) {
     // The line between columns x - 1 and x; crossing edges at the boundary
     // between rows b - 1 and b are the top edges of (x, b - 1) (this
     // column) and (x - 1, b - 1) (the column to the left).
@@ -190,9 +205,6 @@ void main() {
     const bool c2 = h2 < 0.0 ? edgeAt(t + ivec2(1, -1)).g > 0.5 : (h2 > 0.0 && edgeAt(t + ivec2(-2, -1)).g > 0.5);
     w.ba = lineArea(float(s.y), float(t.y), h1, h2, float(p.y)) *
            cornerFactor(c1, c2, h1, h2, float(s.y), float(t.y), float(p.y));
-    // The right side of a pixel on a slope -1 run: that run blends it
-    // vertically, not across this edge.
-    if (diagonalOffset(p + ivec2(-1, 0), true, offset)) w.ba = vec2(0.0);
   }
   outWeights = w;
 }

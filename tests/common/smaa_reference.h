@@ -196,6 +196,7 @@ inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearc
         // pair blends; the side edge's weights stay 0.
         o[0] = q8(0.5f * (0.5f - offset[0]) * (0.5f - offset[0]));
         o[1] = q8(0.5f * (0.5f + offset[1]) * (0.5f + offset[1]));
+        o[2] = 1.0f;  // the mark: on a diagonal run (no area reaches it)
         continue;
       }
       if (e.t(x, y)) {
@@ -237,9 +238,6 @@ inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearc
         }
         o[2] = q8(a.below);
         o[3] = q8(a.above);
-        // The right side of a pixel on a slope -1 run: that run blends it
-        // vertically, not across this edge.
-        if (diagonal && diagonalOffset(e, x - 1, y, true, maxSearch, offset)) o[2] = o[3] = 0.0f;
       }
     }
   Image out = Image::make8(w, h);
@@ -248,8 +246,11 @@ inline Image smaaReference(const Image& in, float threshold = 0.1f, int maxSearc
   };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const float top0 = weight(x, y, 0), left0 = weight(x, y, 2), bottom0 = weight(x, y - 1, 1),
-                  right0 = weight(x + 1, y, 3);
+      // A pixel marked as on a diagonal run blends vertically only, and the
+      // pixel right of it not across to it.
+      const bool onRun = weight(x, y, 2) > 0.75f;
+      const float top0 = weight(x, y, 0), left0 = onRun || weight(x - 1, y, 2) > 0.75f ? 0.0f : weight(x, y, 2),
+                  bottom0 = weight(x, y - 1, 1), right0 = onRun ? 0.0f : weight(x + 1, y, 3);
       // The stronger direction's pair alone, as the renderer (and SMAA) blends.
       float top = top0, bottom = bottom0, left = left0, right = right0;
       if (std::max(left, right) > std::max(top, bottom)) top = bottom = 0.0f;
