@@ -21,13 +21,13 @@ void main() {
   const vec2 near = vec2(lumaAt(p + ivec2(-1, 0)), lumaAt(p + ivec2(0, 1)));
   const vec2 delta = abs(l - near);
   vec2 edges = step(uThreshold, delta);
-  if (edges.x + edges.y == 0.0) {
-    outEdges = vec4(0.0);
-    return;
-  }
+  // No edge: nothing written (the target starts at 0) and, above all, no
+  // depth: the weights pass runs only where this pass wrote its depth.
+  if (edges.x + edges.y == 0.0) discard;
   const vec2 across = abs(l - vec2(lumaAt(p + ivec2(1, 0)), lumaAt(p + ivec2(0, -1))));
   const vec2 beyond = abs(near - vec2(lumaAt(p + ivec2(-2, 0)), lumaAt(p + ivec2(0, 2))));
   const vec2 strongest = max(max(delta, across), beyond);
   edges *= step(max(strongest.x, strongest.y), 2.0 * delta);
+  if (edges.x + edges.y == 0.0) discard;
   outEdges = vec4(edges, 0.0, 0.0);
 }

@@ -8,7 +8,7 @@ void drawFullscreen(RenderResources& res, const FullscreenDraw& draw) {
   if (draw.depthFunc) {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(draw.depthFunc);
-    glDepthMask(GL_FALSE);
+    glDepthMask(draw.depthWrite ? GL_TRUE : GL_FALSE);
   } else {
     glDisable(GL_DEPTH_TEST);
   }

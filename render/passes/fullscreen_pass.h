@@ -29,6 +29,9 @@ struct FullscreenDraw {
   // 0: no depth test. Else the test against the framebuffer's depth, not
   // writing it (the sky: GL_EQUAL where the cleared far value is left).
   GLenum depthFunc = 0;
+  // With depthFunc: write the depth too (a mask that a later pass's
+  // GL_EQUAL test shades only where this one drew: SMAA's edge pixels).
+  bool depthWrite = false;
 };
 // Leaves the depth test on, writing, GL_GREATER (the frame's default) and
 // blending as it was. Needs only the renderer's resources, so paths outside

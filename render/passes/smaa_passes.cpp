@@ -4,25 +4,85 @@
 
 namespace hs::render {
 
+namespace {
+
+// The edges and a depth mask of the edge pixels: the edge shader discards
+// the others, so only edge pixels get the full-screen triangle's depth (the
+// far value, 0) over a clear of 1. The weights pass tests GL_EQUAL against
+// it and shades the edge pixels alone (as SMAA does with a stencil): on
+// llvmpipe the test comes before the shader and a block without an edge
+// costs nothing.
+struct Edges {
+  TextureRef edges, mask;
+};
+
+Edges addEdges(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr) {
+  struct Data {
+    TextureRef in;
+    Edges out;
+  };
+  const int w = v.view.width, h = v.view.height;
+  return graph
+      .addPass<Data>(
+          v.named("smaa_edges"),
+          [&](PassBuilder& b, Data& d) {
+            d.in = b.read(ldr);
+            d.out.edges = b.create(v.named("smaa_edges"), TextureDesc{w, h, GL_RG8});
+            d.out.mask = b.create(v.named("smaa_edge_mask"), TextureDesc{w, h, GL_DEPTH_COMPONENT16});
+          },
+          [&frame, w, h](const Data& d, const PassResources& r) {
+            FullscreenDraw draw;
+            draw.fragment = "smaa_edges.frag";
+            draw.framebuffer = r.framebuffer({d.out.edges}, d.out.mask);
+            draw.width = w;
+            draw.height = h;
+            draw.textures = {{0, r.texture(d.in)}};
+            draw.uniforms = [](GlProgram& p) { p.set("uThreshold", kSmaaThreshold); };
+            draw.depthFunc = GL_ALWAYS;
+            draw.depthWrite = true;
+            const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f}, cleared = 1.0f;
+            glDepthMask(GL_TRUE);  // a clear obeys the depth mask
+            glClearNamedFramebufferfv(draw.framebuffer, GL_COLOR, 0, none);
+            glClearNamedFramebufferfv(draw.framebuffer, GL_DEPTH, 0, &cleared);
+            drawFullscreen(frame.res, draw);
+          })
+      .out;
+}
+
+TextureRef addWeights(FrameGraph& graph, FrameContext& frame, const ViewContext& v, const Edges& edges) {
+  struct Data {
+    TextureRef edges, mask, weights;
+  };
+  const int w = v.view.width, h = v.view.height;
+  return graph
+      .addPass<Data>(
+          v.named("smaa_weights"),
+          [&](PassBuilder& b, Data& d) {
+            d.edges = b.read(edges.edges);
+            d.mask = b.read(edges.mask, Usage::RenderTarget);
+            d.weights = b.create(v.named("smaa_weights"), TextureDesc{w, h, GL_RGBA8});
+          },
+          [&frame, w, h](const Data& d, const PassResources& r) {
+            FullscreenDraw draw;
+            draw.fragment = "smaa_weights.frag";
+            draw.framebuffer = r.framebuffer({d.weights}, d.mask);
+            draw.width = w;
+            draw.height = h;
+            draw.textures = {{0, r.texture(d.edges)}};
+            draw.uniforms = [](GlProgram& p) { p.set("uMaxSearch", kSmaaMaxSearch); };
+            draw.depthFunc = GL_EQUAL;  // edge pixels only; the rest keep the clear's 0
+            const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+            glClearNamedFramebufferfv(draw.framebuffer, GL_COLOR, 0, none);
+            drawFullscreen(frame.res, draw);
+          })
+      .weights;
+}
+
+}  // namespace
+
 TextureRef addSmaaPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr, bool toTarget) {
   const int w = v.view.width, h = v.view.height;
-  FullscreenPass edges;
-  edges.name = v.named("smaa_edges");
-  edges.fragment = "smaa_edges.frag";
-  edges.inputs = {{0, ldr}};
-  edges.outputName = v.named("smaa_edges");
-  edges.output = TextureDesc{w, h, GL_RG8};
-  edges.uniforms = [](GlProgram& p) { p.set("uThreshold", kSmaaThreshold); };
-  const TextureRef edgeTex = addFullscreenPass(graph, frame, v, std::move(edges));
-
-  FullscreenPass weights;
-  weights.name = v.named("smaa_weights");
-  weights.fragment = "smaa_weights.frag";
-  weights.inputs = {{0, edgeTex}};
-  weights.outputName = v.named("smaa_weights");
-  weights.output = TextureDesc{w, h, GL_RGBA8};
-  weights.uniforms = [](GlProgram& p) { p.set("uMaxSearch", kSmaaMaxSearch); };
-  const TextureRef weightTex = addFullscreenPass(graph, frame, v, std::move(weights));
+  const TextureRef weightTex = addWeights(graph, frame, v, addEdges(graph, frame, v, ldr));
 
   FullscreenPass blend;
   blend.name = v.named("smaa_blend");
