@@ -24,16 +24,11 @@
 // GPU agree bit for bit on it.
 #include <cstdint>
 
+#include "core/lowbias32.h"
+
 namespace hs::particles {
 
-constexpr uint32_t hashU32(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return x;
-}
+constexpr uint32_t hashU32(uint32_t x) { return lowbias32(x); }
 
 constexpr uint32_t hashKey(uint32_t seed, uint32_t stream, uint32_t index, uint32_t attr) {
   return hashU32(hashU32(hashU32(hashU32(seed) ^ stream) ^ index) ^ attr);

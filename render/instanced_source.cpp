@@ -6,6 +6,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "core/lowbias32.h"
 #include "meshproc/lod_chain.h"
 #include "render/frame_context.h"
 #include "render/gpu_mesh_cache.h"
@@ -49,15 +50,8 @@ uint32_t packSnorm2x16(float a, float b) {
 
 float unpackSnorm16(uint32_t bits) { return std::max(float(int16_t(uint16_t(bits))) / 32767.0f, -1.0f); }
 
-// shaders/instances.glsl instanceHash: lowbias32.
-uint32_t windHash(uint32_t h) {
-  h ^= h >> 16;
-  h *= 0x7FEB352Du;
-  h ^= h >> 15;
-  h *= 0x846CA68Bu;
-  h ^= h >> 16;
-  return h;
-}
+// The wind's phase per instance id, as shaders/instances.glsl hashes it.
+uint32_t windHash(uint32_t h) { return lowbias32(h); }
 
 // The largest |factor| of a scale, as chooseMeshLod and the sphere take it.
 double maxAbsScale(const glm::vec3& s) { return std::max({std::abs(double(s.x)), std::abs(double(s.y)), std::abs(double(s.z))}); }

@@ -32,6 +32,7 @@
 #include <sys/resource.h>
 
 #include "bench/common/bench_util.h"
+#include "core/lowbias32.h"
 #include "sequencer/export_loop.h"
 #include "sequencer/ffmpeg_writer.h"
 #include "sequencer/image_writer.h"
@@ -51,14 +52,7 @@ double seconds(Clock::time_point t0) { return std::chrono::duration<double>(Cloc
 
 constexpr int kCores = 2;  // the project's machines
 
-uint32_t hash(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return x;
-}
+uint32_t hash(uint32_t x) { return hs::lowbias32(x); }
 
 float lattice(int x, int y, uint32_t seed) {
   return float(hash(uint32_t(x) * 73856093U ^ uint32_t(y) * 19349663U ^ seed) & 0xffff) / 65535.0f;

@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "core/image.h"
+#include "core/lowbias32.h"
 #include "render/passes/output_passes.h"
 #include "scene/light_units.h"
 #include "scene/scene_state.h"
@@ -77,10 +78,7 @@ inline glm::dvec3 toneMapRef(scene::Tonemap t, glm::dvec3 c) {
   return c;
 }
 
-inline uint32_t hashRef(uint32_t x) {
-  x ^= x >> 16, x *= 0x7feb352du, x ^= x >> 15, x *= 0x846ca68bu, x ^= x >> 16;
-  return x;
-}
+inline uint32_t hashRef(uint32_t x) { return lowbias32(x); }
 
 inline double srgbRef(double c) {
   c = std::clamp(c, 0.0, 1.0);

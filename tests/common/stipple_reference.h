@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/lowbias32.h"
 #include "core/stipple_layout.h"
 
 namespace hs::test {
@@ -31,15 +32,6 @@ struct StippleTwin {
 };
 
 namespace stipple_detail {
-
-inline uint32_t lowbias32(uint32_t v) {
-  v ^= v >> 16;
-  v *= 0x7feb352du;
-  v ^= v >> 15;
-  v *= 0x846ca68bu;
-  v ^= v >> 16;
-  return v;
-}
 
 inline float radicalInverse(uint32_t i, uint32_t base) {
   const float inv = 1.0f / float(base);
