@@ -4,6 +4,8 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "scene/camera_post.h"
 
@@ -34,8 +36,19 @@ FieldInfo<Target> doubleField(std::string key, std::string label, double min, do
   f.set = [access, min, max](Target& t, const FieldValue& v) {
     auto& ref = access(t);
     using T = std::remove_reference_t<decltype(ref)>;
-    ref = T(clampFinite(std::get<double>(v), min, max, double(ref)));
+    const double held = clampFinite(std::get<double>(v), min, max, double(ref));
+    if constexpr (std::is_integral_v<T>) ref = T(std::llround(held));  // 4.6 steps: 5, not 4
+    else ref = T(held);
   };
+  // A whole-number field (an int behind it) says when it rounds. Set here,
+  // before any caller's own check: none of those fields has one.
+  using Held = std::remove_reference_t<decltype(access(std::declval<Target&>()))>;
+  if constexpr (std::is_integral_v<Held>) {
+    f.check = [](const FieldValue& v, const Target*) {
+      const double d = std::get<double>(v);
+      return std::isfinite(d) && d != std::round(d) ? std::string("must be a whole number") : std::string();
+    };
+  }
   return f;
 }
 

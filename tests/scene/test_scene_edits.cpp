@@ -540,6 +540,16 @@ class TestSceneEdits : public QObject {
     QVERIFY(ops::setSettingsField(sc.doc, *exposure, 99.0, {}, &change));
     QCOMPARE(std::get<double>(change.value), 30.0);
     QVERIFY2(change.message.rfind("Exposure (EV100) 99 must be from -10 to 30", 0) == 0, change.message.c_str());
+    // A whole-number field rounds a fraction to the nearest and says so.
+    const SettingsField* steps = findSettingsField("post.stipple.iterations");
+    QVERIFY(steps);
+    QVERIFY(ops::setSettingsField(sc.doc, *steps, 4.6, {}, &change));
+    QCOMPARE(s.settings.post.stippleIterations, 5);
+    QCOMPARE(std::get<double>(change.value), 5.0);
+    QVERIFY2(change.message.find("must be a whole number; set to 5") != std::string::npos, change.message.c_str());
+    QVERIFY(ops::setSettingsField(sc.doc, *steps, 7.0, {}, &change));
+    QCOMPARE(s.settings.post.stippleIterations, 7);
+    QVERIFY(change.message.empty());
   }
 
   void meshAssetFieldMustNameAnAsset() {
