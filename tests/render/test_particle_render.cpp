@@ -19,6 +19,7 @@
 #include "particles/evaluate.h"
 #include "particles/presets.h"
 #include "particles/rng.h"
+#include "pass_stats.h"
 #include "render/offscreen_renderer.h"
 #include "render/particle_mesh.h"
 #include "render_golden.h"
@@ -27,6 +28,7 @@
 #include "scene_parts.h"
 
 using namespace hs;
+using test::passRan;
 
 namespace {
 
@@ -202,12 +204,6 @@ size_t pixelsApart(const Image& a, const Image& b, int threshold) {
 void keep(const std::string& name, const Image& img) {
   QDir().mkpath(HS_TEST_OUT_DIR);
   test::writePng(std::string(HS_TEST_OUT_DIR) + "/" + name + ".png", test::toTest(img));
-}
-
-bool passRan(const render::FrameStats& s, const std::string& part) {
-  for (const render::PassStats& p : s.passes)
-    if (p.name.find(part) != std::string::npos) return true;
-  return false;
 }
 
 size_t particleAllocations(const render::Renderer& r) {
@@ -851,8 +847,8 @@ class TestParticleRender : public QObject {
     removeEmitters(s);
     for (int k = 0; k < 8; ++k) r_.render(s, view, false, &stats);
     QVERIFY(!passRan(stats, "particle_meshes"));
-    for (const render::GpuAllocation& a : r_.renderer().resourceRegistry())
-      QVERIFY2(a.name.find("particle_meshes") == std::string::npos, a.name.c_str());
+    const std::string held = test::allocationNamed(r_.renderer(), "particle_meshes");
+    QVERIFY2(held.empty(), held.c_str());
   }
 };
 

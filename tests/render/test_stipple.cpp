@@ -65,8 +65,8 @@ class TestStipple : public QObject {
     render::FrameStats stats;
     r_.render(s, test::postTestView(), false, &stats);
     QVERIFY(!passRan(stats, "stipple"));
-    for (const render::GpuAllocation& a : r_.renderer().resourceRegistry())
-      QVERIFY2(a.name.find("stipple") == std::string::npos, a.name.c_str());
+    const std::string held = test::allocationNamed(r_.renderer(), "stipple");
+    QVERIFY2(held.empty(), held.c_str());
   }
 
   // The renderer's dots against the twin's on the renderer's own picture:
