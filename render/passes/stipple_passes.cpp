@@ -30,10 +30,13 @@ TextureRef addRelaxation(FrameGraph& graph, FrameContext& frame, const ViewConte
             d.density = b.read(density);
             d.map = b.create(v.named("stipple_sites_map"), TextureDesc{gw, gh, GL_RG32F}, Usage::Storage);
             d.sites = b.create(v.named("stipple_sites"), BufferDesc{size_t(layout.candidates) * 8});
-            d.seeds = b.create(v.named("stipple_seeds"), BufferDesc{cells * 4});
             d.ownerA = b.create(v.named("stipple_owner_a"), BufferDesc{cells * 4});
             d.ownerB = b.create(v.named("stipple_owner_b"), BufferDesc{cells * 4});
-            d.sums = b.create(v.named("stipple_sums"), BufferDesc{size_t(layout.candidates) * 20});
+            // The Lloyd steps' buffers: none without a step.
+            if (iterations > 0) {
+              d.seeds = b.create(v.named("stipple_seeds"), BufferDesc{cells * 4});
+              d.sums = b.create(v.named("stipple_sums"), BufferDesc{size_t(layout.candidates) * 20});
+            }
           },
           [&frame, layout, iterations](const Data& d, const PassResources& r) {
             const glm::ivec2 size(layout.gridWidth, layout.gridHeight);
@@ -49,7 +52,7 @@ TextureRef addRelaxation(FrameGraph& graph, FrameContext& frame, const ViewConte
             auto barrier = [] { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); };
             glBindTextureUnit(0, r.texture(d.density));
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, r.buffer(d.sites));
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, r.buffer(d.sums));
+            if (iterations > 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, r.buffer(d.sums));
             stage("HS_STIPPLE_SEED");
             glDispatchCompute(siteGroups, 1, 1);
             barrier();
@@ -57,7 +60,7 @@ TextureRef addRelaxation(FrameGraph& graph, FrameContext& frame, const ViewConte
             // ones); owners[1]: the other half of the ping-pong; seeds: the
             // splat of the sites where they are now.
             GLuint owners[2] = {r.buffer(d.ownerA), r.buffer(d.ownerB)};
-            const GLuint seeds = r.buffer(d.seeds);
+            const GLuint seeds = iterations > 0 ? r.buffer(d.seeds) : 0;  // used from the second flood on
             int first = 1;
             while (first * 2 < std::max(size.x, size.y)) first *= 2;
             // The first flood: jump flooding from the seeds, steps from half

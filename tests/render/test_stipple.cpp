@@ -81,6 +81,11 @@ class TestStipple : public QObject {
       render::FrameStats stats;
       const Image dots = r_.render(s, v, false, &stats);
       QVERIFY(passRan(stats, "stipple_density") && passRan(stats, "stipple_relax"));
+      if (iterations == 0)  // no Lloyd step: no seeds or sums buffer (the first frame with stippling)
+        for (const char* name : {"stipple_seeds", "stipple_sums"}) {
+          const std::string held = test::allocationNamed(r_.renderer(), name);
+          QVERIFY2(held.empty(), held.c_str());
+        }
       const StippleLayout layout = stippleLayout(s.settings.post.stippleSpacingPx, s.settings.post.stippleDotPx, w, h);
       const test::StippleTwin twin = test::stippleTwin(before, layout, iterations);
       const Image ref = test::stippledPicture(twin, w, h);
