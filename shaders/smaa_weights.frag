@@ -2,8 +2,8 @@
 // SMAA, pass 2 of 3 (render/passes/smaa_passes.h): blending weights from
 // the edge lines' shapes (SMAA 1x's orthogonal and diagonal patterns and
 // its corner detection). A pixel on a diagonal run takes its weights
-// from that (diagonalOffset below); otherwise, for the edge on the pixel's top side (and
-// on its left side, the same turned), the line of edges is followed both
+// from that (diagonalOffset below); otherwise, for the edge on the pixel's
+// top side (and on its left side, the same turned), the line of edges is followed both
 // ways up to uMaxSearch pixels, ending where the edge stops or a crossing
 // edge meets it; a crossing edge at an end says the real outline passes
 // through that crossing edge's middle (half a pixel into the row it is
@@ -12,10 +12,11 @@
 // its area inside this pixel's part of the line is integrated exactly.
 // r: how much this pixel takes of the pixel above, g: how much the pixel
 // above takes of this one; b, a: the same with the pixel to the left (b =
-// 1: the pixel is on a diagonal run, a is 0). The diagonal search is in the
+// 1: the pixel is on a diagonal run, a is 0). The pass runs at edge pixels
+// only (smaa_passes.cpp's depth mask). The diagonal search is in the
 // shader once: llvmpipe runs the code of an if for every pixel of a block,
-// taken or not, so each copy costs every pixel (two copies made the pass
-// 3x dearer than none; the blend reads the mark instead of a second one).
+// taken or not, so each copy costs every shaded pixel (the blend reads the
+// mark instead of a second search from the neighbour).
 layout(binding = 0) uniform sampler2D uEdges;
 uniform int uMaxSearch;
 layout(location = 0) out vec4 outWeights;
@@ -146,9 +147,6 @@ void main() {
   const vec2 e = edgeAt(p);
   vec4 w = vec4(0.0);
   vec2 offset;
-  // On a diagonal run a pixel has its top edge, one side edge (left: slope
-  // +1, right: -1) and none below: checked here first, so the search (one,
-  // for the side it has) runs only there.
   // On a diagonal run a pixel has its top edge, one side edge (left: slope
   // +1, right: -1) and none below: checked first, so the search (one, for
   // the side it has) runs only there.

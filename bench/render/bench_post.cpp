@@ -191,7 +191,6 @@ int main(int argc, char** argv) {
     const Image picture = r.render(plain, sv);
     const StippleLayout layout = stippleLayout(plain.settings.post.stippleSpacingPx, plain.settings.post.stippleDotPx,
                                                sv.width, sv.height);
-    const std::vector<double> gaps = test::stippleTwin(picture, layout, 16).gapPerStep;
     std::printf("\n%-22s %12s %12s %10s %16s %14s\n", "stippling", "GPU ms", "frame ms", "/none", "centroid gap",
                 "vs exact cells");
     double none = 0.0;
@@ -214,18 +213,21 @@ int main(int argc, char** argv) {
       const double frame = bench::median(wall);
       if (none == 0.0) none = frame;
       const std::string name = steps < 0 ? "off" : std::to_string(steps) + " steps";
-      // The share of pixels more than 8/255 from the twin's dots (exact
-      // cells where the renderer floods): jump flooding's error.
-      double differ = 0.0;
+      // The twin after as many steps: its distance to the centroids, and the
+      // share of pixels more than 8/255 from its dots (exact cells where the
+      // renderer floods): jump flooding's error.
+      double differ = 0.0, gap = 0.0;
       if (steps >= 0) {
         const Image dots = r.render(s, sv);
-        const Image exact = test::stippledPicture(test::stippleTwin(picture, layout, steps), sv.width, sv.height);
+        const test::StippleTwin twin = test::stippleTwin(picture, layout, steps);
+        gap = twin.centroidGap;
+        const Image exact = test::stippledPicture(twin, sv.width, sv.height);
         size_t off = 0;
         for (size_t i = 0; i < dots.pixelCount(); ++i) off += std::abs(int(dots.rgba8[i * 4]) - int(exact.rgba8[i * 4])) > 8;
         differ = 100.0 * double(off) / double(dots.pixelCount());
       }
       std::printf("%-22s %12.2f %12.1f %10.3f %13.4f cells %13.3f%%\n", name.c_str(), bench::median(gpu), frame,
-                  frame / none, steps < 0 ? 0.0 : gaps[size_t(steps)], differ);
+                  frame / none, gap, differ);
       std::fflush(stdout);
     }
     std::printf("(%u candidates on a %dx%d grid, spacing %.2f cells)\n", layout.candidates, layout.gridWidth,

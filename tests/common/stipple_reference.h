@@ -28,7 +28,6 @@ struct StippleTwin {
   // centroid of its cell (how far from a centroidal Voronoi tessellation),
   // weighted by the cell's darkness.
   double centroidGap = 0.0;
-  std::vector<double> gapPerStep;  // centroidGap before each step, then after the last
 };
 
 namespace stipple_detail {
@@ -147,17 +146,18 @@ inline StippleTwin stippleTwin(const Image& image, const StippleLayout& layout, 
       *cx = sxf / (2.0f * float(sw[s]));
       *cy = syf / (2.0f * float(sw[s]));
     };
-    double gap = 0.0, weight = 0.0;
-    for (uint32_t s = 0; s < candidates; ++s) {
-      if (t.x[s] < 0.0f || sw[s] == 0) continue;
-      float cx, cy;
-      centroid(s, &cx, &cy);
-      gap += double(sw[s]) * std::hypot(double(cx - t.x[s]), double(cy - t.y[s]));
-      weight += double(sw[s]);
+    if (it == iterations) {
+      double gap = 0.0, weight = 0.0;
+      for (uint32_t s = 0; s < candidates; ++s) {
+        if (t.x[s] < 0.0f || sw[s] == 0) continue;
+        float cx, cy;
+        centroid(s, &cx, &cy);
+        gap += double(sw[s]) * std::hypot(double(cx - t.x[s]), double(cy - t.y[s]));
+        weight += double(sw[s]);
+      }
+      t.centroidGap = weight > 0.0 ? gap / weight : 0.0;
+      break;
     }
-    t.centroidGap = weight > 0.0 ? gap / weight : 0.0;
-    t.gapPerStep.push_back(t.centroidGap);
-    if (it == iterations) break;
     for (uint32_t s = 0; s < candidates; ++s)
       if (t.x[s] >= 0.0f && sw[s] > 0) centroid(s, &t.x[s], &t.y[s]);
   }
