@@ -146,15 +146,46 @@ class StringEditor : public FieldEditor {
       shown_ = text;
       edited(scene::FieldValue(text.toStdString()), -1, {});
     });
+    choices_ = new QComboBox(this);
+    choices_->setObjectName(QString::fromStdString(spec.path + ".choices"));
+    choices_->hide();
+    l->addWidget(choices_);
+    connect(choices_, &QComboBox::activated, this, [this](int index) {
+      const QString value = choices_->itemData(index).toString();
+      if (value == shown_) return;
+      shown_ = value;
+      edited(scene::FieldValue(value.toStdString()), -1, {});
+    });
   }
   void setValue(const scene::FieldValue& v) override {
     const QString text = QString::fromStdString(std::get<std::string>(v));
     shown_ = text;
     if (edit_->text() != text && !edit_->hasFocus()) edit_->setText(text);
+    showInChoices();
+  }
+  void setChoices(const std::vector<std::pair<std::string, std::string>>& choices) override {
+    const QSignalBlocker block(choices_);
+    choices_->clear();
+    for (const auto& [value, text] : choices)
+      choices_->addItem(QString::fromStdString(text), QString::fromStdString(value));
+    choices_->setVisible(!choices.empty());
+    edit_->setVisible(choices.empty());
+    showInChoices();
   }
 
  private:
+  void showInChoices() {
+    const QSignalBlocker block(choices_);
+    int at = choices_->findData(shown_);
+    if (at < 0 && choices_->count() > 0) {
+      // A value the list lacks (a config changed under it) stays visible as such.
+      choices_->addItem(QString("%1 (not in the list)").arg(shown_), shown_);
+      at = choices_->count() - 1;
+    }
+    choices_->setCurrentIndex(at);
+  }
   QLineEdit* edit_;
+  QComboBox* choices_;
   QString shown_;
 };
 

@@ -77,6 +77,10 @@ class FieldEditor : public QWidget {
   virtual void setValue(const scene::FieldValue& value) = 0;
   // Only the asset picker needs the document's asset list.
   virtual void setAssets(const scene::SceneState&) {}
+  // A text field whose values come from a list (an OpenColorIO config's
+  // displays and views): a drop-down of (value, shown text) pairs instead
+  // of free text; an empty list gives the free text back.
+  virtual void setChoices(const std::vector<std::pair<std::string, std::string>>&) {}
 
  protected:
   void edited(const scene::FieldValue& value, int component, const QString& key) {

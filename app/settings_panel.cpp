@@ -16,6 +16,7 @@
 #include "app/timeline_clock.h"
 #include "app/timeline_keying.h"
 #include "scene/color_lut.h"
+#include "scene/ocio_config.h"
 #include "scene/object_tracks.h"
 #include "scene/operations.h"
 
@@ -93,6 +94,7 @@ SettingsPanel::SettingsPanel(scene::Document& doc, QWidget* parent, SettingsSect
     byKey_[f.key] = ed;
     rowOf_[f.key] = row;
     if (f.key == "post.lut.intensity") addLutRow(content, form);
+    if (f.key == "post.view_transform.enabled") addOcioRow(content, form);
     if (f.key == "oit_memory_mb") {  // the last transparency field: what the last frame used
       oitStats_ = new QLabel(content);
       oitStats_->setObjectName("oitStats");
@@ -140,6 +142,68 @@ void SettingsPanel::addLutRow(QWidget* content, QFormLayout* form) {
   auto* label = new QLabel("LUT file", content);
   label->setStyleSheet("QLabel { color: #a9aaae; }");
   form->addRow(label, row);
+}
+
+void SettingsPanel::addOcioRow(QWidget* content, QFormLayout* form) {
+  // The stored OpenColorIO config (post.ocio_config) with Import OCIO
+  // config... and Remove; its displays and views fill the Display and View
+  // boxes below (refreshOcioChoices).
+  auto* row = new QWidget(content);
+  auto* layout = new QHBoxLayout(row);
+  layout->setContentsMargins(0, 0, 0, 0);
+  ocioName_ = new QLabel(row);
+  ocioName_->setObjectName("ocioName");
+  auto* import = new QPushButton("Import OCIO config...", row);
+  import->setObjectName("ocioImport");
+  import->setToolTip(QString::fromStdString(scene::ocioImportOperation().description));
+  ocioRemove_ = new QPushButton("Remove", row);
+  ocioRemove_->setObjectName("ocioRemove");
+  ocioRemove_->setToolTip(QString::fromStdString(scene::ocioClearOperation().description));
+  layout->addWidget(ocioName_, 1);
+  layout->addWidget(import);
+  layout->addWidget(ocioRemove_);
+  connect(import, &QPushButton::clicked, this, [this] {
+    if (!prompts_) return;
+    const QString path =
+        prompts_().askOpenFile(this, "Import OpenColorIO config", QString(), "OpenColorIO configs (*.ocio);;All files (*)");
+    if (!path.isEmpty()) importOcioConfig(path);
+  });
+  connect(ocioRemove_, &QPushButton::clicked, this, [this] { scene::ops::setOcioConfig(doc_, {}); });
+  auto* label = new QLabel("OCIO config", content);
+  label->setStyleSheet("QLabel { color: #a9aaae; }");
+  form->addRow(label, row);
+}
+
+bool SettingsPanel::importOcioConfig(const QString& path) {
+  std::string error;
+  const std::optional<scene::OcioConfigData> config = scene::readOcioConfig(path.toStdString(), error);
+  if (!config) {
+    if (prompts_) prompts_().showError(this, "Import OpenColorIO config", QString::fromStdString(error));
+    return false;
+  }
+  scene::ops::setOcioConfig(doc_, *config);
+  return true;
+}
+
+void SettingsPanel::refreshOcioChoices() {
+  FieldEditor* display = editorFor("post.view_transform.display");
+  FieldEditor* view = editorFor("post.view_transform.view");
+  if (!display || !view) return;
+  const scene::PostSettings& post = shown().settings.post;
+  std::vector<std::pair<std::string, std::string>> displays, views;
+  if (!post.ocioConfig.empty() && post.ocioConfig.loaded()) {
+    const scene::OcioConfigSummary s = scene::ocioSummary(post.ocioConfig);
+    const std::string chosen = post.display.empty() ? s.defaultDisplay : post.display;
+    if (s.error.empty()) displays.push_back({"", "Default (" + s.defaultDisplay + ")"});
+    for (const scene::OcioDisplay& d : s.displays) {
+      displays.push_back({d.name, d.name});
+      if (d.name != chosen) continue;
+      views.push_back({"", "Default (" + d.defaultView + ")"});
+      for (const std::string& v : d.views) views.push_back({v, v});
+    }
+  }
+  display->setChoices(displays);
+  view->setChoices(views);
 }
 
 bool SettingsPanel::importLut(const QString& path) {
@@ -193,6 +257,18 @@ void SettingsPanel::refresh() {
                                   : QString("%1 (%2)").arg(QString::fromStdString(lut.fileName),
                                                            formatBytes(lut.bytes ? lut.bytes->size() : 0)));
     lutRemove_->setEnabled(!lut.empty());
+  }
+  if (ocioName_) {
+    const scene::OcioConfigData& config = doc_.state().settings.post.ocioConfig;
+    size_t bytes = 0;
+    for (const scene::OcioFile& f : config.files) bytes += f.bytes ? f.bytes->size() : 0;
+    ocioName_->setText(config.empty() ? QString("none")
+                                      : QString("%1 (%2 files, %3)")
+                                            .arg(QString::fromStdString(config.fileName))
+                                            .arg(config.files.size())
+                                            .arg(formatBytes(bytes)));
+    ocioRemove_->setEnabled(!config.empty());
+    refreshOcioChoices();
   }
 }
 

@@ -60,10 +60,17 @@ class SettingsPanel : public QWidget {
   // scene with it as one undo step; a refused file is shown as an error
   // naming it and the scene is left as it was. False if refused.
   bool importLut(const QString& path);
+  // Import OCIO config...'s work: reads the config at `path` with the LUTs
+  // under its search paths (scene/ocio_config.h) and views the scene
+  // through its default display and view as one undo step; a refused
+  // config is shown as an error naming it. False if refused.
+  bool importOcioConfig(const QString& path);
 
  private:
   void refresh();
   void addLutRow(QWidget* content, QFormLayout* form);
+  void addOcioRow(QWidget* content, QFormLayout* form);
+  void refreshOcioChoices();
   const scene::SceneState& shown() const;
 
   scene::Document& doc_;
@@ -74,6 +81,8 @@ class SettingsPanel : public QWidget {
   QLabel* oitStats_ = nullptr;
   QLabel* lutName_ = nullptr;      // the stored LUT's file name, or "none"
   QPushButton* lutRemove_ = nullptr;
+  QLabel* ocioName_ = nullptr;     // the stored OpenColorIO config's name, or "none"
+  QPushButton* ocioRemove_ = nullptr;
   std::function<Prompts&()> prompts_;
   Keying* keying_ = nullptr;
   TimelineClock* clock_ = nullptr;

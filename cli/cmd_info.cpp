@@ -16,6 +16,7 @@
 #include "scene/impostor_key.h"
 #include "scene/impostor_ops.h"
 #include "scene/mesh_report_text.h"
+#include "scene/ocio_config.h"
 #include "scene/object_tracks.h"
 #include "scene/particle_world.h"
 #include "scene/scene_json.h"
@@ -361,6 +362,13 @@ int runInfo(int argc, char** argv) {
     std::printf("LUT: %s (%zu bytes, stored in the scene), %s, intensity %g\n", post.lut.fileName.c_str(),
                 post.lut.bytes ? post.lut.bytes->size() : size_t(0), post.lutEnabled ? "on" : "off",
                 double(post.lutIntensity));
+  if (const scene::PostSettings& post = s->settings.post; !post.ocioConfig.empty()) {
+    std::string e;
+    const scene::DisplayView dv = scene::resolveDisplayView(post.ocioConfig, post.display, post.view, e);
+    std::printf("OpenColorIO config: %s (%zu files, stored in the scene), view transform %s, %s\n",
+                post.ocioConfig.fileName.c_str(), post.ocioConfig.files.size(), post.viewTransform ? "on" : "off",
+                e.empty() ? ("display '" + dv.display + "', view '" + dv.view + "'").c_str() : e.c_str());
+  }
   if (!s->assets.empty()) std::printf("mesh assets:\n");
   const std::vector<scene::AssetId> needImpostor = scene::ops::impostorsToBake(*s, true);
   for (const auto& [id, a] : s->assets) {

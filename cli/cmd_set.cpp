@@ -98,6 +98,9 @@ int runSet(int argc, char** argv) {
     if (!f) return args.fail("no scene setting '" + key + "' (see --help)");
     const auto v = scene::parseFieldValue(*f, positional[1], error);
     if (!v) return args.fail("settings." + key + ": " + error);
+    // Rules against the scene's other settings (a display its OpenColorIO config lacks).
+    if (const std::string problem = scene::fieldValueProblem(*f, *v, &doc.state().settings); !problem.empty())
+      return args.fail("settings." + key + ": '" + positional[1] + "' is refused: " + f->label + " " + problem);
     changed = scene::ops::setSettingsField(doc, *f, *v, {}, &change);
   } else {
     const std::string& who = positional[0];

@@ -26,6 +26,7 @@ const std::vector<Command>& commands() {
       {"mesh", "meshes: export (OBJ, PLY, GLB)", runMesh},
       {"light", "lights: add a sun, point or spot light", runLight},
       {"lut", "the grading LUT: import (OpenColorIO formats, stored in the scene), clear", runLut},
+      {"ocio", "the OpenColorIO config and its view transform: import (stored in the scene), list, clear", runOcio},
       {"key", sequencer::keyOperation().summary.c_str(), runKey},
       {"cut", "camera cuts: add (with a transition), list, remove", runCut},
       {"sequence", sequencer::sequenceOperation().summary.c_str(), runSequence},

@@ -30,6 +30,7 @@ int runParticles(int argc, char** argv);
 int runMesh(int argc, char** argv);
 int runLight(int argc, char** argv);
 int runLut(int argc, char** argv);
+int runOcio(int argc, char** argv);
 int runCut(int argc, char** argv);
 int runKey(int argc, char** argv);
 int runSequence(int argc, char** argv);

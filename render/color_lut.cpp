@@ -20,20 +20,23 @@ void setSampling(GLuint texture, OCIO::Interpolation interpolation, bool volume)
   if (volume) glTextureParameteri(texture, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
 }
 
-std::unique_ptr<GpuLut> makeGpuLut(const scene::LutData& lut, std::string& error) {
-  const OCIO::ConstProcessorRcPtr processor = scene::lutProcessor(lut, error);
+// `processor` as GLSL function `function` with its resources named from
+// `prefix`; `name` (the LUT's or the config's) for messages.
+std::unique_ptr<GpuLut> makeGpuTransform(const OCIO::ConstProcessorRcPtr& processor, const char* function,
+                                         const char* prefix, const std::string& name, std::string& error) {
   if (!processor) return nullptr;
   auto out = std::make_unique<GpuLut>();
   try {
     OCIO::GpuShaderDescRcPtr desc = OCIO::GpuShaderDesc::CreateShaderDesc();
     desc->setLanguage(OCIO::GPU_LANGUAGE_GLSL_4_0);
-    desc->setFunctionName("hsLut");
-    desc->setResourcePrefix("hs_lut_");
+    desc->setFunctionName(function);
+    desc->setResourcePrefix(prefix);
     processor->getDefaultGPUProcessor()->extractGpuShaderInfo(desc);
     if (desc->getNumUniforms() != 0) {
       // A file transform has none; dynamic properties (exposure, contrast
-      // of a config's look) are not what a stored LUT can hold.
-      error = lut.fileName + ": OpenColorIO's shader for it needs uniforms, which a stored LUT cannot have";
+      // of a config's look) are not what a stored transform can hold.
+      error = name + ": OpenColorIO's shader for it needs uniforms (dynamic properties), which a stored "
+                     "transform cannot have";
       return nullptr;
     }
     out->shaderText = desc->getShaderText();
@@ -84,7 +87,7 @@ std::unique_ptr<GpuLut> makeGpuLut(const scene::LutData& lut, std::string& error
       out->tables.push_back(std::move(t));
     }
   } catch (const std::exception& e) {
-    error = lut.fileName + ": OpenColorIO cannot make its GPU shader: " + e.what();
+    error = name + ": OpenColorIO cannot make its GPU shader: " + e.what();
     for (const GpuLut::Table& t : out->tables) glDeleteTextures(1, &t.texture);
     return nullptr;
   }
@@ -94,15 +97,36 @@ std::unique_ptr<GpuLut> makeGpuLut(const scene::LutData& lut, std::string& error
 }  // namespace
 
 const GpuLut* GpuLutCache::get(const scene::LutData& lut, std::string& error) {
-  if (hash_ == lut.contentHash && fileName_ == lut.fileName && (lut_ || !failure_.empty())) {
-    error = failure_;  // a LUT that failed is not tried again every frame
+  return cached(
+      lut.fileName + '\n' + std::to_string(lut.contentHash),
+      [&](std::string& e) {
+        return makeGpuTransform(scene::lutProcessor(lut, e), "hsLut", "hs_lut_", lut.fileName, e);
+      },
+      lut.fileName, error);
+}
+
+const GpuLut* GpuLutCache::get(const scene::OcioConfigData& config, const std::string& display,
+                               const std::string& view, std::string& error) {
+  return cached(
+      config.fileName + '\n' + std::to_string(config.contentHash) + '\n' + display + '\n' + view,
+      [&](std::string& e) {
+        return makeGpuTransform(scene::viewTransformProcessor(config, display, view, e), "hsView", "hs_view_",
+                                config.fileName, e);
+      },
+      config.fileName, error);
+}
+
+const GpuLut* GpuLutCache::cached(const std::string& key,
+                                  const std::function<std::unique_ptr<GpuLut>(std::string&)>& make,
+                                  const std::string& name, std::string& error) {
+  if (key_ == key && (lut_ || !failure_.empty())) {
+    error = failure_;  // a transform that failed is not tried again every frame
     return lut_.get();
   }
   release();
-  lut_ = makeGpuLut(lut, error);
-  hash_ = lut.contentHash;
-  fileName_ = lut.fileName;
-  if (!lut_) failure_ = error.empty() ? lut.fileName + ": no GPU form" : error;
+  lut_ = make(error);
+  key_ = key;
+  if (!lut_) failure_ = error.empty() ? name + ": no GPU form" : error;
   return lut_.get();
 }
 
@@ -110,8 +134,7 @@ void GpuLutCache::release() {
   if (lut_)
     for (const GpuLut::Table& t : lut_->tables) glDeleteTextures(1, &t.texture);
   lut_.reset();
-  hash_ = 0;
-  fileName_.clear();
+  key_.clear();
   failure_.clear();
 }
 

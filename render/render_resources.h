@@ -67,13 +67,16 @@ struct RenderResources {
 
   EnvironmentMaps environment;  // the analytic sky's image-based light (none with the gradient sky)
   GpuLutCache luts;             // the grading LUT's tables (none without a LUT)
-  // A LUT left out: reported once (lutProblems, Renderer::takeLutProblems)
-  // until the problem changes; a program that did not build is not built
-  // again for the same LUT (its content hash) every frame.
-  std::string lastLutProblem;
+  GpuLutCache viewTransforms;   // the OpenColorIO view transform's tables (none without one)
+  // A LUT or view transform left out: reported once (lutProblems,
+  // Renderer::takeLutProblems) until the problem changes; a program that
+  // did not build is not built again for the same transform every frame.
+  std::string lastLutProblem, lastViewProblem;
   std::vector<std::string> lutProblems;
   uint64_t lutProgramRefused = 0;
   std::string lutProgramError;
+  std::string viewProgramRefused;  // config hash, display and view
+  std::string viewProgramError;
 
   // Clustered lights (passes/light_culling.h): clusters over the cap are
   // reported once until a frame has none again.

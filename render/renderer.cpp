@@ -479,6 +479,7 @@ std::vector<GpuAllocation> Renderer::resourceRegistry() const {
   if (const size_t t = res.impostors.gpuBytes()) out.push_back({"impostor_atlases", "textures", t, false});
   if (const size_t f = res.fogBlock.capacity) out.push_back({"fog_block", "buffer", f, false});
   if (const size_t l = res.luts.gpuBytes()) out.push_back({"lut_tables", "textures", l, false});
+  if (const size_t l = res.viewTransforms.gpuBytes()) out.push_back({"view_transform_tables", "textures", l, false});
   return out;
 }
 
@@ -881,6 +882,7 @@ void Renderer::shutdown() {
   d_->res.materials.clear();
   d_->res.terrain.release();
   d_->res.luts.release();
+  d_->res.viewTransforms.release();
   d_->res.pool.clear();
   d_->res.shaders.release();
   d_ = std::make_unique<Impl>();  // every remaining handle deletes its object now

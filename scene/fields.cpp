@@ -1,4 +1,5 @@
 #include "scene/fields.h"
+#include "scene/ocio_config.h"
 
 #include <algorithm>
 #include <charconv>
@@ -49,6 +50,18 @@ FieldInfo<Target> doubleField(std::string key, std::string label, double min, do
       return std::isfinite(d) && d != std::round(d) ? std::string("must be a whole number") : std::string();
     };
   }
+  return f;
+}
+
+template <class Target, class Access>
+FieldInfo<Target> stringField(std::string key, std::string label, Access access) {
+  FieldInfo<Target> f;
+  f.key = std::move(key);
+  f.label = std::move(label);
+  f.type = FieldType::String;
+  f.animatable = false;  // a name: no value between two keys
+  f.get = [access](const Target& t) { return FieldValue(std::string(access(const_cast<Target&>(t)))); };
+  f.set = [access](Target& t, const FieldValue& v) { access(t) = std::get<std::string>(v); };
   return f;
 }
 
@@ -372,6 +385,45 @@ std::vector<SettingsField> buildSettingsFields() {
                    [](S& s) -> Antialiasing& { return s.antialiasing; }),
       enumField<S>("tonemap", "Tone mapping", {"ACES", "None", "AgX", "PBR Neutral"},
                    [](S& s) -> Tonemap& { return s.tonemap; }),
+      // An OpenColorIO view transform in the tone map's place; the config
+      // itself (post.ocio_config) comes from `ocio import` / Import OCIO
+      // config... (scene/ocio_config.h). An empty display or view is the
+      // config's default.
+      boolField<S>("post.view_transform.enabled", "View transform (OCIO)",
+                   [](S& s) -> bool& { return s.post.viewTransform; }),
+      [] {
+        SettingsField f = stringField<S>("post.view_transform.display", "Display",
+                                         [](S& s) -> std::string& { return s.post.display; });
+        f.check = [](const FieldValue& v, const S* current) {
+          return current ? displayViewProblem(current->post.ocioConfig, std::get<std::string>(v), "") : "";
+        };
+        f.repair = [](S& s) { s.post.display.clear(); };
+        // A view the new display lacks gives way to its default (as
+        // Blender's view box does when the display changes).
+        f.set = [](S& s, const FieldValue& v) {
+          // A name the stored config lacks is not taken (the check says why).
+          if (!displayViewProblem(s.post.ocioConfig, std::get<std::string>(v), "").empty()) return;
+          s.post.display = std::get<std::string>(v);
+          if (!s.post.view.empty() && displayViewProblem(s.post.ocioConfig, s.post.display, "").empty() &&
+              !displayViewProblem(s.post.ocioConfig, s.post.display, s.post.view).empty())
+            s.post.view.clear();
+        };
+        return f;
+      }(),
+      [] {
+        SettingsField f = stringField<S>("post.view_transform.view", "View",
+                                         [](S& s) -> std::string& { return s.post.view; });
+        f.check = [](const FieldValue& v, const S* current) {
+          return current ? displayViewProblem(current->post.ocioConfig, current->post.display, std::get<std::string>(v))
+                         : "";
+        };
+        f.repair = [](S& s) { s.post.view.clear(); };
+        f.set = [](S& s, const FieldValue& v) {
+          if (displayViewProblem(s.post.ocioConfig, s.post.display, std::get<std::string>(v)).empty())
+            s.post.view = std::get<std::string>(v);
+        };
+        return f;
+      }(),
       // The post chain (PostSettings, docs/rendering.md "Post-processing"):
       // settings.post.EFFECT.FIELD, each effect off until enabled.
       // Automatic exposure (core/exposure_meter.h): the metered EV100 is

@@ -15,6 +15,7 @@
 #include "core/content_hash.h"
 #include "foliage/impostor_images.h"
 #include "scene/color_lut.h"
+#include "scene/ocio_config.h"
 #include "scene/foliage_file.h"
 #include "scene/hscene_recovery.h"
 #include "scene/hscene_schema.h"
@@ -129,6 +130,12 @@ std::map<std::string, BlobSource> wantedBlobs(const SceneState& s) {
     out[lutBlobKey(lut.contentHash)] = {toHex(lut.contentHash), [bytes = lut.bytes] {
                                           return std::vector<uint8_t>(bytes->begin(), bytes->end());
                                         }, false};
+  if (const OcioConfigData& ocio = s.settings.post.ocioConfig; !ocio.empty())
+    for (const OcioFile& f : ocio.files)
+      if (f.bytes)
+        out[ocioBlobKey(f.contentHash)] = {toHex(f.contentHash), [bytes = f.bytes] {
+                                             return std::vector<uint8_t>(bytes->begin(), bytes->end());
+                                           }, false};
   addTerrainBlobs(s, out);
   addFoliageBlobs(s, out);
   return out;
@@ -567,6 +574,40 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
                                            "stores a LUT again)");
       lut = {};
       state->settings.post.lutEnabled = false;
+    }
+  }
+  // The OpenColorIO config (format 15): as the LUT, a missing or damaged
+  // file drops the config with a warning and the scene renders with its
+  // tone map; a display or view the config lacks falls back to its default.
+  if (OcioConfigData& ocio = state->settings.post.ocioConfig; !ocio.empty()) {
+    const std::string what = path + ": OpenColorIO config '" + ocio.fileName + "'";
+    std::string problem;
+    for (OcioFile& f : ocio.files) {
+      std::vector<uint8_t> bytes;
+      if (!readBlob(ocioBlobKey(f.contentHash), what + ", file '" + f.path + "'", bytes)) {
+        problem = error;
+        error.clear();
+        break;
+      }
+      auto loaded = std::make_shared<const std::string>(bytes.begin(), bytes.end());
+      if (contentHash(loaded->data(), loaded->size()) != f.contentHash) {
+        problem = what + ", file '" + f.path + "': its data does not match its checksum (damaged file)";
+        break;
+      }
+      f.bytes = std::move(loaded);
+    }
+    if (problem.empty()) problem = ocioConfigProblem(what, ocio);
+    if (!problem.empty()) {
+      report->warnings.push_back(problem + "; the scene renders with its tone map (`hybridscape-cli ocio import` "
+                                           "stores a config again)");
+      ocio = {};
+      state->settings.post.viewTransform = false;
+    } else if (std::string unknown;
+               resolveDisplayView(ocio, state->settings.post.display, state->settings.post.view, unknown),
+               !unknown.empty()) {
+      report->warnings.push_back(what + ": " + unknown + "; its default display and view are used");
+      state->settings.post.display.clear();
+      state->settings.post.view.clear();
     }
   }
   // Terrains' tiles, checked against their hashes and the description.

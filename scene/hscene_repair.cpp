@@ -10,6 +10,7 @@
 #include "core/content_hash.h"
 #include "foliage/impostor_images.h"
 #include "scene/color_lut.h"
+#include "scene/ocio_config.h"
 #include "scene/demo_scene.h"
 #include "scene/hscene_file.h"
 #include "scene/legacy_hashes.h"
@@ -254,6 +255,32 @@ void salvageLut(SqliteDb& db, SceneState& s, RepairReport& r) {
   s.settings.post.lutEnabled = false;
 }
 
+// The OpenColorIO config: kept when every file's blob verifies, else
+// dropped and noted (the scene renders with its tone map).
+void salvageOcioConfig(SqliteDb& db, SceneState& s, RepairReport& r) {
+  OcioConfigData& ocio = s.settings.post.ocioConfig;
+  if (ocio.empty()) return;
+  std::string why;
+  for (OcioFile& f : ocio.files) {
+    std::vector<uint8_t> bytes;
+    if (!readBlobBytes(db, ocioBlobKey(f.contentHash), bytes, why)) {
+      why = "'" + f.path + "': " + why;
+      break;
+    }
+    auto text = std::make_shared<const std::string>(bytes.begin(), bytes.end());
+    if (contentHash(text->data(), text->size()) != f.contentHash) {
+      why = "'" + f.path + "': its hash does not match";
+      break;
+    }
+    f.bytes = std::move(text);
+  }
+  if (why.empty()) return;
+  r.dropped.push_back("the OpenColorIO config '" + ocio.fileName + "' (" + why +
+                      "); `hybridscape-cli ocio import` stores one again");
+  ocio = {};
+  s.settings.post.viewTransform = false;
+}
+
 // Without a description, meshes are found by their blob keys ("mesh/<id>")
 // and checked against the hash stored beside them; each becomes an entity
 // at the origin of a starter scene, so its data is not lost.
@@ -351,6 +378,7 @@ bool repairScene(const std::string& damaged, const std::string& out, RepairRepor
     if (state) {
       salvageMeshes(db, *state, version, r);
       salvageLut(db, *state, r);
+      salvageOcioConfig(db, *state, r);
       if (!state->terrains.empty() && !loadTerrainTiles(db, *state, damaged, version, e, nullptr)) {
         r.dropped.push_back(std::to_string(state->terrains.size()) + " terrain(s): " + named(e));
         state->terrains.clear();

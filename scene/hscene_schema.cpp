@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "scene/color_lut.h"
+#include "scene/ocio_config.h"
 #include "scene/foliage_file.h"
 
 namespace hs::scene {
@@ -75,6 +76,8 @@ SchemaCheck checkSchema(SqliteDb& db, std::string& error) {
 std::vector<std::string> danglingBlobKeys(SqliteDb& db, const SceneState& state, std::string& error) {
   std::vector<std::string> out;
   const std::set<std::string> cells = foliageCellKeys(state);
+  std::set<std::string> ocioKeys;
+  for (const OcioFile& f : state.settings.post.ocioConfig.files) ocioKeys.insert(ocioBlobKey(f.contentHash));
   SqliteStmt q(db, "SELECT DISTINCT key FROM blobs ORDER BY key");
   while (q.step(error)) {
     const std::string key = q.text(0);
@@ -82,6 +85,7 @@ std::vector<std::string> danglingBlobKeys(SqliteDb& db, const SceneState& state,
     if (const auto id = idAfter(key, "terrain/"); id && state.terrains.count(TerrainId(*id))) continue;
     if (cells.count(key)) continue;  // a foliage cell (foliage_file.h)
     if (!state.settings.post.lut.empty() && key == lutBlobKey(state.settings.post.lut.contentHash)) continue;
+    if (ocioKeys.count(key)) continue;  // a file of the OpenColorIO config (ocio_config.h)
     // A standalone texture's bytes (format 5; a mesh's textures live in its mesh blob).
     if (const auto id = idAfter(key, "texture/"); id) {
       const TextureAsset* t = state.findTexture(TextureId(*id));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <filesystem>
 #include <cmath>
 #include <type_traits>
 
@@ -13,6 +14,7 @@
 #include "scene/fields.h"
 #include "scene/key_value_ranges.h"
 #include "scene/light_units.h"
+#include "scene/ocio_config.h"
 #include "scene/object_tracks.h"
 #include "scene/foliage_file.h"
 #include "scene/terrain_json.h"
@@ -445,6 +447,33 @@ struct Reader : JsonReader {
     if (out.fileName.empty()) return fail(jsonPath(p, "file"), "missing: a LUT needs its file name");
     return hash(member(o, "hash"), jsonPath(p, "hash"), out.contentHash);
   }
+  // settings."post.ocio_config": {"file", "hash", "files": [{"path", "hash"}]};
+  // each file's bytes come from blob "ocio/<hash>".
+  bool ocioConfig(const Json& o, const std::string& p, OcioConfigData& out) {
+    if (!object(o, p) || !optString(o, p, "file", out.fileName)) return false;
+    if (out.fileName.empty()) return fail(jsonPath(p, "file"), "missing: a config needs its file name");
+    if (!hash(member(o, "hash"), jsonPath(p, "hash"), out.contentHash)) return false;
+    const Json* files = optArray(o, p, "files");
+    if (failed()) return false;
+    if (!files || files->empty()) return fail(jsonPath(p, "files"), "missing: a config needs at least its own file");
+    for (size_t i = 0; i < files->size(); ++i) {
+      const std::string fp = jsonIndex(jsonPath(p, "files"), i);
+      OcioFile f;
+      if (!object((*files)[i], fp) || !optString((*files)[i], fp, "path", f.path) ||
+          !hash(member((*files)[i], "hash"), jsonPath(fp, "hash"), f.contentHash))
+        return false;
+      const std::filesystem::path path(f.path);
+      bool inside = !f.path.empty() && path.is_relative();
+      for (const auto& part : path) inside &= part != "..";
+      if (!inside) return fail(jsonPath(fp, "path"), "'" + f.path + "' is not a path inside the config's bundle");
+      out.files.push_back(std::move(f));
+    }
+    if (out.files.front().path != kOcioConfigEntry)
+      return fail(jsonPath(p, "files"), std::string("the first file must be the config, '") + kOcioConfigEntry + "'");
+    if (ocioBundleHash(out.files) != out.contentHash)
+      return fail(jsonPath(p, "hash"), "does not match the files listed (damaged description)");
+    return true;
+  }
 };
 
 // A bad value fails `r`; a description whose parts do not fit together
@@ -468,6 +497,10 @@ std::optional<SceneState> readScene(const Json& json, Reader& r, std::string& in
     }
     if (const Json* lut = JsonReader::member(*settings, "post.lut");
         lut && !lut->is_null() && !r.lut(*lut, jsonPath("settings", "post.lut"), s.settings.post.lut))
+      return std::nullopt;
+    if (const Json* ocio = JsonReader::member(*settings, "post.ocio_config");
+        ocio && !ocio->is_null() &&
+        !r.ocioConfig(*ocio, jsonPath("settings", "post.ocio_config"), s.settings.post.ocioConfig))
       return std::nullopt;
   }
 
@@ -598,6 +631,12 @@ Json sceneToJson(const SceneState& state) {
   for (const auto& f : settingsFields()) settings[f.key] = fieldToJson(f, state.settings);
   if (const LutData& lut = state.settings.post.lut; !lut.empty())
     settings["post.lut"] = Json{{"file", lut.fileName}, {"hash", toHex(lut.contentHash)}};
+  if (const OcioConfigData& ocio = state.settings.post.ocioConfig; !ocio.empty()) {
+    Json files = Json::array();
+    for (const OcioFile& f : ocio.files) files.push_back(Json{{"path", f.path}, {"hash", toHex(f.contentHash)}});
+    settings["post.ocio_config"] =
+        Json{{"file", ocio.fileName}, {"hash", toHex(ocio.contentHash)}, {"files", std::move(files)}};
+  }
   root["settings"] = std::move(settings);
   root["roots"] = state.roots;
   Json entities = Json::array();

@@ -59,7 +59,11 @@ namespace hs::scene {
 // 14: a camera's own post settings (the camera component's "post" object;
 // scene/camera_post.h). A version-13 reader ignores it and its next save
 // drops the overrides.
-constexpr int kSceneFormatVersion = 14;
+// 15: an OpenColorIO config (settings "post.ocio_config": file name, bundle
+// hash and its files' paths and hashes, a blob "ocio/<hash>" per file;
+// scene/ocio_config.h) and its view transform's settings. A version-14
+// reader ignores the config and its next save drops it.
+constexpr int kSceneFormatVersion = 15;
 constexpr int kFirstPhysicalLightsFormat = 6;
 constexpr int kFirstPerLightShadowsFormat = 7;
 constexpr int kFirstPhysicalBrdfFormat = 8;

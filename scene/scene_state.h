@@ -96,11 +96,36 @@ struct LutData {
   bool operator==(const LutData& o) const { return fileName == o.fileName && contentHash == o.contentHash; }
 };
 
+// An OpenColorIO config held by the document (scene/ocio_config.h): the
+// config's text and the LUT files under its search paths, so a scene
+// renders through the studio's view transform on a farm node that has no
+// copy of the studio's folder. Each file is a blob "ocio/<hash>" in the
+// .hscene. Compared by name and content hash, not by the bytes.
+struct OcioFile {
+  // Relative to the bundle: "config.ocio" for the config itself, then
+  // "search<i>/<path under the config's i-th search path>".
+  std::string path;
+  std::shared_ptr<const std::string> bytes{};  // null while a loaded description waits for its blob
+  uint64_t contentHash = 0;                    // XXH3 of the bytes
+};
+struct OcioConfigData {
+  std::string fileName;        // the config's name as imported ("studio.ocio"); empty: none
+  std::vector<OcioFile> files;  // files[0] is the config ("config.ocio")
+  uint64_t contentHash = 0;     // over every file's path and hash (scene/ocio_config.h)
+  bool empty() const { return fileName.empty(); }
+  bool loaded() const {
+    for (const OcioFile& f : files)
+      if (!f.bytes) return false;
+    return !files.empty();
+  }
+  bool operator==(const OcioConfigData& o) const { return fileName == o.fileName && contentHash == o.contentHash; }
+};
+
 // The post chain from the scene's HDR colour to the output
 // (docs/rendering.md "Post-processing"), in this order: exposure (manual
 // or automatic), bloom,
 // chromatic aberration (on the scene's light, as a lens makes it), the tone
-// map, the grade, the LUT, the vignette, grain, then FXAA. Each effect runs only
+// map (or an OpenColorIO view transform), the grade, the LUT, the vignette, grain, then FXAA. Each effect runs only
 // when enabled: with all off the chain is the tone map alone, no pass or
 // texture more.
 // Dithering (PostSettings::dither): an ordered threshold pattern (Bayer,
@@ -152,6 +177,14 @@ struct PostSettings {
   bool lutEnabled = false;
   float lutIntensity = 1.0f;
   LutData lut{};
+  // OpenColorIO's display/view transform from a stored config in the tone
+  // map's place (settings.tonemap is then not used): scene-linear in,
+  // display code values out, decoded to display-linear for the grade and
+  // the rest of the chain. An empty display or view: the config's default.
+  bool viewTransform = false;
+  std::string display;
+  std::string view;
+  OcioConfigData ocioConfig{};
   // Stylised effects (docs/rendering.md "Stylised effects"), on the
   // display-referred image after the vignette and grain, in this order.
   // Kuwahara, anisotropic (Kyprianidis, Kang & Doellner 2009): each pixel

@@ -27,6 +27,7 @@ uniform vec2 uAspect;           // (width / height, 1) / its length: the corner 
 uniform float uGrain;           // HS_GRAIN
 uniform float uGrainCell;       // pixels per grain cell
 uniform float uLutIntensity;    // HS_LUT: OpenColorIO's hsLut (render/color_lut.h), mixed in by this
+                                // HS_VIEW_TRANSFORM: OpenColorIO's hsView replaces the tone curve
 layout(location = 0) out vec4 outColor;
 
 vec3 acesFitted(vec3 x) {
@@ -93,7 +94,13 @@ void main() {
 #ifdef HS_BLOOM
   c += uBloomIntensity * texture(uBloom, vUv).rgb;
 #endif
-#if defined(HS_TONEMAP_ACES)
+#if defined(HS_VIEW_TRANSFORM)
+  // OpenColorIO's display/view transform (render/color_lut.h) in the tone
+  // curve's place: scene-linear light in, display code values out, decoded
+  // to display-linear for the grade and the rest (encoded again below, so
+  // with nothing between the output is the transform's code values).
+  c = srgbToLinear(clamp(hsView(vec4(c, 1.0)).rgb, 0.0, 1.0));
+#elif defined(HS_TONEMAP_ACES)
   c = acesFitted(c);
 #elif defined(HS_TONEMAP_AGX)
   c = agx(c);

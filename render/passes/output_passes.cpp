@@ -83,33 +83,102 @@ glm::vec3 whiteBalanceGains(float temperature, float tint) {
 }
 
 namespace {
-// The GPU form of the scene's LUT when it is on and can be drawn; a LUT
-// that cannot is reported once (Renderer::takeLutProblems) and the frame
-// is drawn without it.
-const GpuLut* lutForFrame(FrameContext& frame, const std::vector<std::string>& toneMapDefines) {
+// Whether the tone map pass's program builds with `defines` and
+// OpenColorIO's `generated` text (built here, before the frame draws, so
+// that a program OpenColorIO's text breaks leaves the transform out
+// instead of stopping the renderer).
+bool programBuilds(FrameContext& frame, const std::vector<std::string>& defines, const std::string& generated,
+                   std::string& error) {
+  return frame.res.shaders.get({"fullscreen.vert", "tonemap.frag", "", defines, generated}, error) != nullptr;
+}
+
+// Reports a colour transform left out of the frame once until the problem
+// changes (Renderer::takeLutProblems).
+void reportColourProblem(FrameContext& frame, std::string& last, const std::string& problem) {
+  if (!problem.empty() && problem != last) frame.res.lutProblems.push_back(problem);
+  last = problem;
+}
+
+// The GPU form of the config's view transform when it is on and can be
+// drawn; `defines` then has HS_VIEW_TRANSFORM in the tone curve's place.
+const GpuLut* viewTransformForFrame(FrameContext& frame, std::vector<std::string>& defines) {
+  const scene::PostSettings& post = frame.settings.post;
+  RenderResources& res = frame.res;
+  if (!post.viewTransform) {
+    res.lastViewProblem.clear();
+    return nullptr;
+  }
+  if (post.ocioConfig.empty() || !post.ocioConfig.loaded()) {
+    reportColourProblem(frame, res.lastViewProblem,
+                        "post.view_transform: on, but the scene stores no OpenColorIO config (`hybridscape-cli ocio "
+                        "import`); the frame uses its tone map");
+    return nullptr;
+  }
+  std::string error;
+  const GpuLut* view = res.viewTransforms.get(post.ocioConfig, post.display, post.view, error);
+  const std::string key = std::to_string(post.ocioConfig.contentHash) + '\n' + post.display + '\n' + post.view;
+  std::vector<std::string> with = defines;
+  std::erase_if(with, [](const std::string& d) { return d.rfind("HS_TONEMAP_", 0) == 0; });
+  with.push_back("HS_VIEW_TRANSFORM");
+  if (view && res.viewProgramRefused == key) {
+    view = nullptr;  // its program did not build: not tried again every frame
+    error = res.viewProgramError;
+  } else if (view && !programBuilds(frame, with, view->shaderText, error)) {
+    view = nullptr;
+    res.viewProgramRefused = key;
+    res.viewProgramError = error;
+  }
+  reportColourProblem(frame, res.lastViewProblem,
+                      view ? std::string()
+                           : "post.view_transform ('" + post.ocioConfig.fileName +
+                                 "'): the view transform is left out of the frame, which uses its tone map: " + error);
+  if (view) defines = std::move(with);
+  return view;
+}
+
+// The GPU form of the scene's LUT when it is on and can be drawn (after
+// the view transform's text `before` in the program); a LUT that cannot is
+// reported once and the frame is drawn without it.
+const GpuLut* lutForFrame(FrameContext& frame, const std::vector<std::string>& defines, const std::string& before) {
   const scene::PostSettings& post = frame.settings.post;
   if (!post.lutEnabled || post.lut.empty() || !post.lut.bytes) return nullptr;
   std::string error;
   const GpuLut* lut = frame.res.luts.get(post.lut, error);
+  std::vector<std::string> with = defines;
+  with.push_back("HS_LUT");
   if (lut && frame.res.lutProgramRefused == post.lut.contentHash) {
     lut = nullptr;  // its program did not build: not tried again every frame
     error = frame.res.lutProgramError;
-  } else if (lut) {
-    // Built here, before the frame draws, so that a program OpenColorIO's
-    // text breaks leaves the LUT out instead of stopping the renderer.
-    std::vector<std::string> defines = toneMapDefines;
-    defines.push_back("HS_LUT");
-    if (!frame.res.shaders.get({"fullscreen.vert", "tonemap.frag", "", defines, lut->shaderText}, error)) {
-      lut = nullptr;
-      frame.res.lutProgramRefused = post.lut.contentHash;
-      frame.res.lutProgramError = error;
+  } else if (lut && !programBuilds(frame, with, before + lut->shaderText, error)) {
+    lut = nullptr;
+    frame.res.lutProgramRefused = post.lut.contentHash;
+    frame.res.lutProgramError = error;
+  }
+  reportColourProblem(frame, frame.res.lastLutProblem,
+                      lut ? std::string()
+                          : "post.lut '" + post.lut.fileName + "': the grading LUT is left out of the frame: " + error);
+  return lut;
+}
+
+// An OpenColorIO transform's tables as the tone map pass takes them: 3D
+// and 2D ones imported into the graph as inputs, 1D ones (shapers) bound
+// by the uniforms beside them, on units from `unit` on.
+struct LutTable {
+  std::string sampler;
+  unsigned unit;
+  GLuint texture1d;  // nonzero: bound by the uniforms, not an input
+};
+void addTables(FrameGraph& graph, const ViewContext& v, const GpuLut& gpu, const std::string& prefix, unsigned& unit,
+               std::vector<std::pair<unsigned, TextureRef>>& inputs, std::vector<LutTable>& tables) {
+  for (size_t i = 0; i < gpu.tables.size(); ++i, ++unit) {
+    const GpuLut::Table& t = gpu.tables[i];
+    if (t.target == GL_TEXTURE_1D) {
+      tables.push_back({t.sampler, unit, t.texture});
+    } else {
+      inputs.push_back({unit, graph.importTexture(v.named(prefix + std::to_string(i)), t.texture, t.desc)});
+      tables.push_back({t.sampler, unit, 0});
     }
   }
-  if (!lut && error != frame.res.lastLutProblem)
-    frame.res.lutProblems.push_back("post.lut '" + post.lut.fileName + "': the grading LUT is left out of the frame: " +
-                                    error);
-  frame.res.lastLutProblem = lut ? std::string() : error;
-  return lut;
 }
 }  // namespace
 
@@ -128,28 +197,24 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
     if (bloom.light.valid()) tm.inputs.push_back({1, bloom.light});
     else std::erase(tm.defines, std::string("HS_BLOOM"));
   }
-  // The grading LUT: OpenColorIO's function goes into the program, its
-  // 3D (and 2D) tables into the graph as imported textures from unit 2 on;
-  // 1D tables (shapers of 1D LUTs) are bound beside them.
-  struct LutTable {
-    std::string sampler;
-    unsigned unit;
-    GLuint texture1d;  // nonzero: bound by the uniforms, not an input
-  };
+  // OpenColorIO's transforms: the config's view transform (in the tone
+  // curve's place) and the grading LUT. Their functions go into the
+  // program, their 3D (and 2D) tables into the graph as imported textures
+  // from unit 2 on; 1D tables (shapers) are bound beside them.
   std::vector<LutTable> lutTables;
-  if (const GpuLut* lut = lutForFrame(frame, tm.defines)) {
+  std::vector<std::pair<unsigned, TextureRef>> viewInputs;
+  unsigned unit = 2;
+  std::string viewText;
+  if (const GpuLut* view = viewTransformForFrame(frame, tm.defines)) {
+    viewText = view->shaderText;
+    addTables(graph, v, *view, "view_table", unit, viewInputs, lutTables);
+    tm.inputs.insert(tm.inputs.end(), viewInputs.begin(), viewInputs.end());
+  }
+  tm.generated = viewText;
+  if (const GpuLut* lut = lutForFrame(frame, tm.defines, viewText)) {
     tm.defines.push_back("HS_LUT");
-    tm.generated = lut->shaderText;
-    unsigned unit = 2;
-    for (size_t i = 0; i < lut->tables.size(); ++i, ++unit) {
-      const GpuLut::Table& t = lut->tables[i];
-      if (t.target == GL_TEXTURE_1D) {
-        lutTables.push_back({t.sampler, unit, t.texture});
-      } else {
-        tm.inputs.push_back({unit, graph.importTexture(v.named("lut_table" + std::to_string(i)), t.texture, t.desc)});
-        lutTables.push_back({t.sampler, unit, 0});
-      }
-    }
+    tm.generated += lut->shaderText;
+    addTables(graph, v, *lut, "lut_table", unit, tm.inputs, lutTables);
   }
   // The last pass of the chain draws into the caller's framebuffer; the
   // tone map does when neither FXAA nor a stylised effect follows.
@@ -191,18 +256,22 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
   // The editor's before/after split: the same exposure and tone map with
   // no effect, drawn over the left part at the end. Only when some effect
   // is on (otherwise both halves are the same frame).
+  // (The view transform is the tone curve there too.)
   const float split = frame.options.postSplit;
-  std::vector<std::string> curveOnly = postDefines(frame.settings);
-  std::erase_if(curveOnly, [](const std::string& d) { return d.rfind("HS_TONEMAP_", 0) != 0; });
+  std::vector<std::string> curveOnly = tm.defines;
+  std::erase_if(curveOnly,
+                [](const std::string& d) { return d.rfind("HS_TONEMAP_", 0) != 0 && d != "HS_VIEW_TRANSFORM"; });
   const bool splitShown = split > 0.0f && split < 1.0f &&
-                          (tm.defines != curveOnly || fxaa || smaa || stylised || !tm.generated.empty());
+                          (tm.defines != curveOnly || fxaa || smaa || stylised || tm.generated != viewText);
   TextureRef before;
   if (splitShown) {
     FullscreenPass plain;
     plain.name = v.named("post_before");
     plain.fragment = "tonemap.frag";
     plain.defines = curveOnly;
+    plain.generated = viewText;
     plain.inputs = {{0, hdr}};
+    plain.inputs.insert(plain.inputs.end(), viewInputs.begin(), viewInputs.end());
     plain.outputName = v.named("post_before");
     plain.output = TextureDesc{v.view.width, v.view.height, GL_RGBA8};
     plain.uniforms = tm.uniforms;

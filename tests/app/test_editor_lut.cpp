@@ -5,6 +5,9 @@
 // and the scene stays as it was. The Post dock holds the whole chain.
 // View > Post Before/After splits the viewport into the frame without and
 // with its effects. Automatic exposure from the dock meters the viewport.
+// Import OCIO config... stores a studio config as one undo step, fills the
+// Display and View boxes with the config's names and changes the viewport;
+// choosing a view from the box is a settings edit.
 #include <QCheckBox>
 #include <QComboBox>
 #include <QToolButton>
@@ -27,6 +30,7 @@
 #include "scene/fields.h"
 #include "scene/operations.h"
 #include "lut_files.h"
+#include "ocio_files.h"
 
 using namespace hs;
 using hs::app::MainWindow;
@@ -151,6 +155,52 @@ class LutEditorTest : public QObject {
              qPrintable(QString("mean grey %1 before, %2 after").arg(meanBefore).arg(meanAfter)));
     doc().undoStack()->undo();
     QVERIFY(!doc().state().settings.post.autoExposure);
+  }
+
+  void ocioConfigFromThePostDock() {
+    test::waitForNextFrame(*w_->viewport());
+    const QImage before = w_->viewport()->grabFramebuffer();
+    QCOMPARE(panel_->findChild<QLabel*>("ocioName")->text(), QString("none"));
+    // Without a config the display is free text.
+    QVERIFY(!panel_->findChild<QComboBox*>("settings.post.view_transform.display.choices")->isVisibleTo(panel_));
+    prompts_->openAnswer = QString::fromStdString(test::writeStudioConfig(tmp_.filePath("studio").toStdString()));
+    const int steps = doc().undoStack()->index();
+    panel_->findChild<QPushButton*>("ocioImport")->click();
+    QVERIFY2(prompts_->errors.isEmpty(), qPrintable(prompts_->errors.join("\n")));
+    QCOMPARE(doc().undoStack()->index(), steps + 1);
+    QVERIFY(doc().state().settings.post.viewTransform);
+    QVERIFY(panel_->findChild<QLabel*>("ocioName")->text().startsWith("studio.ocio (2 files"));
+    auto* displays = panel_->findChild<QComboBox*>("settings.post.view_transform.display.choices");
+    auto* views = panel_->findChild<QComboBox*>("settings.post.view_transform.view.choices");
+    QVERIFY(displays && views && displays->isVisibleTo(panel_));
+    QCOMPARE(displays->count(), 3);  // the default, then both displays
+    QCOMPARE(displays->itemText(0), QString("Default (Studio sRGB)"));
+    QCOMPARE(views->count(), 3);  // the default, Film, Raw
+    test::waitForNextFrame(*w_->viewport());
+    const QImage after = w_->viewport()->grabFramebuffer();
+    int worst = 0;
+    for (int y = 0; y < after.height(); y += 4)
+      for (int x = 0; x < after.width(); x += 4)
+        worst = std::max(worst, std::abs(qGray(before.pixel(x, y)) - qGray(after.pixel(x, y))));
+    QVERIFY2(worst > 10, qPrintable(QString("the viewed viewport differs by %1 at most").arg(worst)));
+    // The Raw view from the box: one settings edit.
+    const int raw = views->findData(QString("Raw"));
+    QVERIFY(raw > 0);
+    emit views->activated(raw);
+    QCOMPARE(doc().state().settings.post.view, std::string("Raw"));
+    QCOMPARE(doc().undoStack()->index(), steps + 2);
+    // Projector has no Raw view: the view goes back to its default, the
+    // box offers Film only.
+    emit displays->activated(displays->findData(QString("Projector")));
+    QCOMPARE(doc().state().settings.post.display, std::string("Projector"));
+    QVERIFY(doc().state().settings.post.view.empty());
+    QCOMPARE(views->count(), 2);
+    QCOMPARE(views->currentIndex(), 0);
+    doc().undoStack()->undo();
+    doc().undoStack()->undo();
+    doc().undoStack()->undo();
+    QVERIFY(doc().state().settings.post.ocioConfig.empty());
+    QCOMPARE(panel_->findChild<QLabel*>("ocioName")->text(), QString("none"));
   }
 
   void aRefusedFileIsShownAndChangesNothing() {

@@ -2,14 +2,20 @@
 // (tests/common/cli_runner.h): a .cube imported and stored (the render
 // still grades after the file is gone), mixed in by `set
 // settings.post.lut.intensity`, a refused LUT that leaves the scene as it
-// was, and clearing it.
+// was, and clearing it. `ocio import|list|clear` likewise: a studio config
+// with its LUT stored (the folder can go), its displays and views listed
+// with the chosen pair, the view transform changing the render, a display
+// it lacks refused by `set`, a bad config refused with the scene untouched.
 #include <QTemporaryDir>
 #include <QtTest>
+
+#include <filesystem>
 
 #include "cli_runner.h"
 #include "file_pixels.h"
 #include "file_bytes.h"
 #include "lut_files.h"
+#include "ocio_files.h"
 #include "scene/hscene_file.h"
 
 using namespace hs;
@@ -96,6 +102,48 @@ class TestCliLut : public QObject {
     QVERIFY(!cli({"info", scene_}).out.contains("LUT:"));
     r = cli({"lut", "clear", scene_});
     QVERIFY(r.code == 0 && r.out.contains("unchanged"));
+  }
+
+  void ocioImportListsAndViews() {
+    const QString scene = path("viewed.hscene");
+    QCOMPARE(cli({"new", scene}).code, 0);
+    scene_ = scene;
+    const std::vector<unsigned char> plain = render("untransformed");
+    const std::filesystem::path studio = std::filesystem::path(tmp_.path().toStdString()) / "studio";
+    const std::string config = test::writeStudioConfig(studio);
+    test::CliRun r = cli({"ocio", "import", QString::fromStdString(config), scene});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("'studio.ocio' (2 files") && r.out.contains("display 'Studio sRGB', view 'Film'"),
+             qPrintable(r.out));
+    std::filesystem::remove_all(studio);  // the scene holds it
+    r = cli({"ocio", "list", scene});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY2(r.out.contains("enters as 'scene_linear'; view transform on"), qPrintable(r.out));
+    QVERIFY(r.out.contains("display 'Studio sRGB' (default)") && r.out.contains("display 'Projector'"));
+    QVERIFY(r.out.contains("view 'Film' (default)  <- chosen") && r.out.contains("search0/film.spi1d"));
+    r = cli({"info", scene});
+    QVERIFY2(r.out.contains("OpenColorIO config: studio.ocio (2 files, stored in the scene), view transform on"),
+             qPrintable(r.out));
+    QVERIFY(largestDifference(render("film"), plain) > 10);
+    // A display the config lacks: refused with what it has, the file untouched.
+    const std::string before = test::readFile(scene.toStdString());
+    r = cli({"set", "settings.post.view_transform.display", "Cinema", scene});
+    QVERIFY2(r.code != 0 && r.err.contains("no display 'Cinema' (it has 'Studio sRGB', 'Projector')"),
+             qPrintable(r.err));
+    QVERIFY(test::readFile(scene.toStdString()) == before);
+    r = cli({"set", "settings.post.view_transform.view", "Raw", scene});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    QVERIFY(cli({"ocio", "list", scene}).out.contains("view 'Raw'  <- chosen"));
+    // A bad config leaves the scene as it was.
+    const std::string kept = test::readFile(scene.toStdString());
+    QVERIFY(test::writeText(path("broken.ocio").toStdString(), "ocio_profile_version: 2\nroles: [unclosed\n"));
+    r = cli({"ocio", "import", path("broken.ocio"), scene});
+    QVERIFY2(r.code != 0 && r.err.contains("broken.ocio: OpenColorIO cannot read it"), qPrintable(r.err));
+    QVERIFY(test::readFile(scene.toStdString()) == kept);
+    r = cli({"ocio", "clear", scene});
+    QVERIFY2(r.code == 0 && r.out.contains("removed"), qPrintable(r.err));
+    QVERIFY(!cli({"info", scene}).out.contains("OpenColorIO config:"));
+    QVERIFY(cli({"ocio", "list", scene}).out.contains("stores no OpenColorIO config"));
   }
 };
 

@@ -112,9 +112,11 @@ using LutRef = std::function<glm::dvec3(glm::dvec3)>;
 // The output (sRGB, 8 bits, top row first) of `hdr` (the renderer's linear
 // HDR, before exposure) through the chain `settings` asks for, bloom left
 // out, at frame number `frame`; `lut` stands for the stored LUT when
-// settings.post.lutEnabled.
+// settings.post.lutEnabled, `view` for the OpenColorIO view transform (in
+// the tone map's place, its display code values decoded as sRGB) when
+// settings.post.viewTransform.
 inline Image postReference(const Image& hdr, const scene::SceneSettings& settings, int64_t frame,
-                           const LutRef& lut = {}) {
+                           const LutRef& lut = {}, const LutRef& view = {}) {
   const scene::PostSettings& post = settings.post;
   const double exposure = scene::exposureMultiplier(settings.exposureEv100);
   const bool ca = post.chromaticAberration && post.chromaticAberrationPx > 0.0f;
@@ -136,7 +138,12 @@ inline Image postReference(const Image& hdr, const scene::SceneSettings& setting
         c.r = bilinearRef(hdr, glm::dvec2(0.5) + (uv - 0.5) * (1.0 + caScale), 0);
         c.b = bilinearRef(hdr, glm::dvec2(0.5) + (uv - 0.5) * (1.0 - caScale), 2);
       }
-      c = toneMapRef(settings.tonemap, c * exposure);
+      if (post.viewTransform && view) {
+        const glm::dvec3 code = view(c * exposure);
+        for (int k = 0; k < 3; ++k) c[k] = srgbToLinearRef(code[k]);  // clamps to [0, 1] first
+      } else {
+        c = toneMapRef(settings.tonemap, c * exposure);
+      }
       if (post.grade) {
         c *= wb;
         c = glm::clamp(glm::dvec3(post.gain) * c + glm::dvec3(post.lift) * (1.0 - c), 0.0, 1.0);

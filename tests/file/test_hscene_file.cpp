@@ -129,6 +129,7 @@ size_t assetBlobs(const SceneState& s) {
   // Standalone textures (the demo's slabs) have a blob each; a mesh's live in its blob.
   for (const auto& [id, t] : s.textures) n += t.standalone() ? 1 : 0;
   n += s.settings.post.lut.empty() ? 0 : 1;  // the grading LUT (the demo's)
+  n += s.settings.post.ocioConfig.files.size();  // the OpenColorIO config and its LUTs (the demo's)
   return n;
 }
 

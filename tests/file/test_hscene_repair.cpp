@@ -13,10 +13,12 @@
 #include "cli_runner.h"
 #include "file_bytes.h"
 #include "hscene_sql.h"
+#include "ocio_files.h"
 #include "mesh/mesh_import.h"
 #include "scene/document.h"
 #include "scene/hscene_file.h"
 #include "scene/hscene_repair.h"
+#include "scene/ocio_config.h"
 #include "scene/operations.h"
 #include "scene/scene_json.h"
 
@@ -120,6 +122,46 @@ class TestHsceneRepair : public QObject {
     QCOMPARE(canonicalJson(*s), canonicalJson(expected));
     QCOMPARE(s->assets.size(), size_t(1));
     QCOMPARE(s->assets.begin()->second.contentHash, scene_.assets.rbegin()->second.contentHash);
+  }
+
+  // The OpenColorIO config comes through a repair whole when every file
+  // verifies, and is dropped (named, the view transform off) when one
+  // does not: never half a bundle.
+  void anOcioConfigIsKeptOrDroppedWhole() {
+    std::string error;
+    const std::optional<scene::OcioConfigData> config =
+        scene::readOcioConfig(test::writeStudioConfig(fs::path(path("studio"))), error);
+    QVERIFY2(config, error.c_str());
+    SceneState withConfig = scene_;
+    withConfig.settings.post.ocioConfig = *config;
+    withConfig.settings.post.viewTransform = true;
+    const std::string lutKey = scene::ocioBlobKey(config->files[1].contentHash);
+    for (const bool damageTheLut : {false, true}) {
+      const std::string damaged = path(damageTheLut ? "ocio-lut.hscene" : "ocio-kept.hscene");
+      QVERIFY2(saveScene(withConfig, damaged, error), error.c_str());
+      const std::string meshKey = "mesh/" + std::to_string(firstAsset());
+      std::vector<uint8_t> bytes = test::readBlob(damaged, meshKey);
+      bytes[bytes.size() / 2] ^= 0xff;  // a damaged mesh: the scene needs repairing
+      test::writeBlob(damaged, meshKey, bytes);
+      if (damageTheLut) {
+        std::vector<uint8_t> lut = test::readBlob(damaged, lutKey);
+        lut[lut.size() / 2] ^= 0xff;
+        test::writeBlob(damaged, lutKey, lut);
+      }
+      RepairReport r;
+      const auto s = repaired(damaged, path(damageTheLut ? "ocio-lut-out.hscene" : "ocio-kept-out.hscene"), r);
+      QVERIFY(s);
+      const std::string dropped = joined(r.dropped);
+      if (damageTheLut) {
+        QVERIFY2(dropped.find("the OpenColorIO config 'studio.ocio' ('search0/film.spi1d'") != std::string::npos,
+                 dropped.c_str());
+        QVERIFY(s->settings.post.ocioConfig.empty() && !s->settings.post.viewTransform);
+      } else {
+        QVERIFY2(dropped.find("OpenColorIO") == std::string::npos, dropped.c_str());
+        QVERIFY(s->settings.post.ocioConfig == *config && s->settings.post.ocioConfig.loaded());
+        QVERIFY(s->settings.post.viewTransform);
+      }
+    }
   }
 
   // A description that is not JSON: the meshes still verify against the

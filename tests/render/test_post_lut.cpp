@@ -5,7 +5,12 @@
 // within 1/255; a 3D look, a 1D table and a half-mixed look match the CPU
 // within 1/255. A stored LUT that is off costs nothing (no program with it,
 // the same image as no LUT); a LUT OpenColorIO cannot make a shader for is
-// left out of the frame, not a stop.
+// left out of the frame, not a stop. A config's view transform (the same
+// shader generator, in the tone map's place) matches OpenColorIO's CPU
+// processor within 1/255, alone and with a LUT in the same program; a raw
+// (data) view passes linear values out as code values; one stored but off
+// costs nothing; a
+// display the config lacks is reported once and the tone map used.
 #include <QtTest>
 
 #include <filesystem>
@@ -15,8 +20,11 @@
 #include "render/renderer.h"
 #include "scene/color_lut.h"
 #include "scene/lut_processor.h"
+#include "scene/ocio_config.h"
 #include "look_from.h"
 #include "lut_files.h"
+#include "ocio_files.h"
+#include "pass_stats.h"
 #include "post_reference.h"
 #include "scene_parts.h"
 
@@ -80,6 +88,44 @@ class TestPostLut : public QObject {
     std::optional<scene::LutData> lut = scene::readLutFile(path, error);
     if (!lut) qWarning("%s", error.c_str());
     return lut ? *lut : scene::LutData{};
+  }
+
+  scene::OcioConfigData studio() {
+    std::string error;
+    std::optional<scene::OcioConfigData> c = scene::readOcioConfig(test::writeStudioConfig(dir_ / "studio"), error);
+    if (!c) qWarning("%s", error.c_str());
+    return c ? *c : scene::OcioConfigData{};
+  }
+
+  // The renderer's output with the view transform `s` asks for against
+  // OpenColorIO's CPU processors (the view's, and the LUT's when one is on)
+  // in the CPU reference; the largest difference in 1/255.
+  int viewDifferenceToOcioCpu(const scene::SceneState& s, const char* what) {
+    const scene::PostSettings& post = s.settings.post;
+    std::string error;
+    const OCIO_NAMESPACE::ConstProcessorRcPtr transform =
+        scene::viewTransformProcessor(post.ocioConfig, post.display, post.view, error);
+    OCIO_NAMESPACE::ConstProcessorRcPtr lut;
+    if (post.lutEnabled) lut = scene::lutProcessor(post.lut, error);
+    if (!transform || (post.lutEnabled && !lut)) {
+      qWarning("%s", error.c_str());
+      return 1000;
+    }
+    const auto cpuOf = [](const OCIO_NAMESPACE::ConstProcessorRcPtr& p) -> test::LutRef {
+      if (!p) return {};
+      return [cpu = p->getDefaultCPUProcessor()](glm::dvec3 c) {
+        float rgb[3] = {float(c.r), float(c.g), float(c.b)};
+        cpu->applyRGB(rgb);
+        return glm::dvec3(rgb[0], rgb[1], rgb[2]);
+      };
+    };
+    const Image hdr = r_.render(s, view(), true);
+    const Image out = r_.render(s, view(), false);
+    const auto [worst, share] =
+        compare8(out, test::postReference(hdr, s.settings, s.time.frame, cpuOf(lut), cpuOf(transform)));
+    qInfo("%s: largest difference to OpenColorIO's CPU processor %d/255 (%.3f%% of the channels differ)", what,
+          worst, 100.0 * share);
+    return worst;
   }
 
   // The renderer's output with `lut` against OpenColorIO's CPU processor
@@ -206,6 +252,97 @@ class TestPostLut : public QObject {
     s.settings.post.lut = {};
     s.settings.post.lutEnabled = false;
     r_.render(s, view());
+  }
+
+  // Stored but off: the same image as none and no program with it; the
+  // registry holds no view transform table.
+  void viewTransformStoredButOffCostsNothing() {
+    render::OffscreenRenderer fresh;
+    std::string error;
+    QVERIFY2(fresh.initialize(error), error.c_str());
+    scene::SceneState s = colourScene();
+    const Image plain = fresh.render(s, view());
+    s.settings.post.ocioConfig = studio();
+    QVERIFY(!s.settings.post.ocioConfig.empty());
+    s.settings.post.viewTransform = false;
+    QVERIFY(fresh.render(s, view()).rgba8 == plain.rgba8);
+    for (const render::BuiltProgram& p : fresh.renderer().builtPrograms())
+      QVERIFY(std::find(p.defines.begin(), p.defines.end(), "HS_VIEW_TRANSFORM") == p.defines.end());
+    QVERIFY(test::allocationNamed(fresh.renderer(), "view_transform_tables").empty());
+  }
+
+  void viewTransformMatchesOpenColorIoOnTheCpu() {
+    scene::SceneState s = colourScene();
+    s.settings.exposureEv100 = 9.0f;  // a bright frame: the film curve's shoulder is used
+    const Image toneMapped = r_.render(s, view());
+    s.settings.post.ocioConfig = studio();
+    s.settings.post.viewTransform = true;
+    QVERIFY(viewDifferenceToOcioCpu(s, "film view (1D LUT under the config's search path)") <= 1);
+    // It replaced the tone map: the image is another.
+    QVERIFY(compare8(r_.render(s, view()), toneMapped).first > 10);
+    QVERIFY(!test::allocationNamed(r_.renderer(), "view_transform_tables").empty());
+    // With the grade and a 3D LUT in the same program (both OpenColorIO
+    // functions side by side), on the other display.
+    s.settings.post.display = "Projector";
+    s.settings.post.grade = true;
+    s.settings.post.saturation = 0.7f;
+    s.settings.post.lut = lutFrom("with_view.cube", test::cube3dText(17, test::tealOrangeLook));
+    s.settings.post.lutEnabled = true;
+    QVERIFY(viewDifferenceToOcioCpu(s, "film view with a grade and a 3D LUT") <= 1);
+    const Image withLut = r_.render(s, view());
+    bool both = false;  // one program holds both of OpenColorIO's functions
+    for (const render::BuiltProgram& p : r_.renderer().builtPrograms())
+      both |= std::count(p.defines.begin(), p.defines.end(), "HS_LUT") &&
+              std::count(p.defines.begin(), p.defines.end(), "HS_VIEW_TRANSFORM");
+    QVERIFY(both);
+    s.settings.post.lutEnabled = false;
+    QVERIFY(compare8(r_.render(s, view()), withLut).first > 10);  // the LUT did change it
+  }
+
+  void rawViewShowsLinearValuesAsCodeValues() {
+    // The raw view is data: scene light goes out as the display's code
+    // values unchanged (clamped), as Blender's "Raw" view shows it: the
+    // CPU reference with an identity transform, darker than no tone map
+    // (which encodes to sRGB).
+    scene::SceneState s = colourScene();
+    s.settings.post.ocioConfig = studio();
+    s.settings.post.viewTransform = true;
+    s.settings.post.view = "Raw";
+    const Image hdr = r_.render(s, view(), true);
+    const Image raw = r_.render(s, view());
+    const auto identity = [](glm::dvec3 c) { return c; };
+    const auto [worst, share] = compare8(raw, test::postReference(hdr, s.settings, s.time.frame, {}, identity));
+    qInfo("raw view against its CPU reference: largest difference %d/255 (%.3f%% of the channels)", worst,
+          100.0 * share);
+    QVERIFY(worst <= 1);
+    s.settings.post.viewTransform = false;
+    s.settings.tonemap = scene::Tonemap::None;
+    QVERIFY(compare8(raw, r_.render(s, view())).first > 10);
+  }
+
+  void anUnknownDisplayIsReportedOnce() {
+    // A camera's override can name a display the config lacks (the field
+    // check knows no config there): the frame uses its tone map, the
+    // problem reaches the user once.
+    scene::SceneState s = colourScene();
+    const Image toneMapped = r_.render(s, view());
+    (void)r_.renderer().takeLutProblems();
+    s.settings.post.ocioConfig = studio();
+    s.settings.post.viewTransform = true;
+    s.settings.post.display = "Cinema";
+    QVERIFY(r_.render(s, view()).rgba8 == toneMapped.rgba8);
+    std::vector<std::string> problems = r_.renderer().takeLutProblems();
+    QCOMPARE(problems.size(), size_t(1));
+    qInfo("%s", problems[0].c_str());
+    QVERIFY(problems[0].find("no display 'Cinema'") != std::string::npos);
+    QVERIFY(r_.render(s, view()).rgba8 == toneMapped.rgba8);
+    QVERIFY(r_.renderer().takeLutProblems().empty());
+    // On with no config stored: said once too.
+    s.settings.post.ocioConfig = {};
+    QVERIFY(r_.render(s, view()).rgba8 == toneMapped.rgba8);
+    problems = r_.renderer().takeLutProblems();
+    QCOMPARE(problems.size(), size_t(1));
+    QVERIFY(problems[0].find("stores no OpenColorIO config") != std::string::npos);
   }
 };
 
