@@ -40,6 +40,16 @@ struct FrameContext {
   // to the frame origin), which every source culled once.
   std::vector<DrawSource*> sources{};
   std::vector<Frustum> shadowViews{};
+  // Stippling in stereo (passes/stipple_passes.h): the first eye's final
+  // dots and single-sample depth, from which the second eye's dots are
+  // reprojected so that both eyes see the same dots on a surface.
+  struct StippleEye {
+    BufferRef sites{};
+    TextureRef depth{};
+    const RenderView* view = nullptr;
+    uint32_t count = 0;
+  };
+  StippleEye stippleFirstEye{};
 };
 
 // One view of the frame: its camera, its index in the view block buffer,

@@ -5,7 +5,15 @@
 //                      kept if the darkness there, 0..255, beats an integer
 //                      hash of i modulo 255 (kept with probability
 //                      darkness / 255: dots per area as the image is dark,
-//                      every one where it is black)
+//                      every one where it is black); into slot uFirst + i
+//   HS_STIPPLE_REPROJECT (the second eye of a stereo pair) per first-eye
+//                      dot i: through its depth to this eye's grid, kept
+//                      where this eye sees that surface (not occluded, in
+//                      frame); into slot i
+//   HS_STIPPLE_FILL    per own candidate (slot uFirst + i) of the second
+//                      eye: dropped where the flood of the reprojected
+//                      dots finds one nearer than the spacing the
+//                      darkness there asks for (only holes are filled)
 //   HS_STIPPLE_SPLAT   per site: its index into the owner map (atomicMin:
 //                      the lower index wins a shared cell)
 //   HS_STIPPLE_MERGE   per cell: the nearer of its seed and its owner in the
@@ -16,7 +24,8 @@
 //   HS_STIPPLE_SUM     per cell: darkness and darkness-weighted position
 //                      added into its owner's sums (integers: exact, so the
 //                      order of the atomics does not matter)
-//   HS_STIPPLE_MOVE    per site: to the centroid of its cell
+//   HS_STIPPLE_MOVE    per site from uFirst on: to the centroid of its cell
+//                      (the slots before, reprojected dots, stay)
 //   HS_STIPPLE_RESOLVE per cell: its owner's position into the map the
 //                      dots are drawn from ((-1, -1): none)
 // Positions are in grid cells, a cell's centre at (x + 0.5, y + 0.5).
@@ -33,9 +42,16 @@ layout(std430, binding = 2) buffer OwnerOut { uint ownerOut[]; };
 // 64-bit numbers (low, high): w is 0..255, 2x + 1 under 2^14, a cell of a
 // million pixels fits.
 layout(std430, binding = 3) buffer Sums { uint sums[]; };
+layout(std430, binding = 4) buffer FirstSites { vec2 firstSite[]; };  // REPROJECT: the first eye's
+layout(binding = 1) uniform sampler2D uFirstDepth;  // REPROJECT: single-sample, reversed-Z
+layout(binding = 2) uniform sampler2D uDepth;
 layout(binding = 0, rg32f) uniform writeonly image2D uMap;
 uniform ivec2 uSize;   // the grid
-uniform uint uCount;   // candidate slots
+uniform uint uCount;   // the slots a per-slot stage runs over
+uniform uint uFirst;   // SEED, FILL: where its slots start; MOVE: the first that moves
+uniform mat4 uFirstToThis;    // REPROJECT: first eye's NDC (z: depth) to this eye's clip space
+uniform vec2 uPixelsPerCell;  // REPROJECT: pixels per grid cell each way
+uniform float uSpacing;       // FILL: the dots' spacing where black, cells
 uniform int uStep;     // jump flooding's step, cells
 
 const uint kNone = 0xffffffffu;
@@ -66,20 +82,50 @@ float distance2(uint s, vec2 p) {
 }
 
 void main() {
-#if defined(HS_STIPPLE_SEED) || defined(HS_STIPPLE_SPLAT) || defined(HS_STIPPLE_MOVE)
+#if defined(HS_STIPPLE_SEED) || defined(HS_STIPPLE_SPLAT) || defined(HS_STIPPLE_MOVE) || \
+    defined(HS_STIPPLE_REPROJECT) || defined(HS_STIPPLE_FILL)
   const uint i = gl_GlobalInvocationID.x;
   if (i >= uCount) return;
 #if defined(HS_STIPPLE_SEED)
   const vec2 p = vec2(radicalInverse(i + 1u, 2u), radicalInverse(i + 1u, 3u)) * vec2(uSize);
   const ivec2 c = min(ivec2(p), uSize - 1);
-  site[i] = darknessAt(c) > lowbias32(i) % 255u ? p : vec2(-1.0);
+  site[uFirst + i] = darknessAt(c) > lowbias32(i) % 255u ? p : vec2(-1.0);
+#elif defined(HS_STIPPLE_REPROJECT)
+  const vec2 p = firstSite[i];
+  site[i] = vec2(-1.0);
+  if (p.x < 0.0) return;
+  const ivec2 pixels = textureSize(uDepth, 0);
+  const ivec2 at = clamp(ivec2(p * uPixelsPerCell), ivec2(0), pixels - 1);
+  // Depth 0 is the far plane (the sky): still a point, far away.
+  const float depth = max(texelFetch(uFirstDepth, at, 0).r, 1e-9);
+  const vec4 clip = uFirstToThis * vec4(p / vec2(uSize) * 2.0 - 1.0, depth, 1.0);
+  if (clip.w <= 0.0) return;
+  const vec3 ndc = clip.xyz / clip.w;
+  const vec2 q = (ndc.xy * 0.5 + 0.5) * vec2(uSize);
+  if (q.x < 0.0 || q.y < 0.0 || q.x >= float(uSize.x) || q.y >= float(uSize.y)) return;
+  // Occluded here: this eye sees something nearer there (reversed-Z: a
+  // larger depth), by more than 2 % of the distance.
+  const float seen = texelFetch(uDepth, min(ivec2(q * uPixelsPerCell), pixels - 1), 0).r;
+  if (seen > ndc.z * 1.02 + 1e-9) return;
+  site[i] = q;
+#elif defined(HS_STIPPLE_FILL)
+  const uint slot = uFirst + i;
+  const vec2 p = site[slot];
+  if (p.x < 0.0) return;
+  const ivec2 c = clamp(ivec2(p), ivec2(0), uSize - 1);
+  const uint owner = ownerIn[uint(c.y) * uint(uSize.x) + uint(c.x)];
+  // Accepted with probability darkness / 255, dots are about
+  // spacing / sqrt(darkness) apart: a reprojected one nearer than most of
+  // that covers this place.
+  const float darkness = max(float(darknessAt(c)), 1.0) / 255.0;
+  if (owner != kNone && distance(site[owner], p) < 0.85 * uSpacing * inversesqrt(darkness)) site[slot] = vec2(-1.0);
 #elif defined(HS_STIPPLE_SPLAT)
   const vec2 p = site[i];
   if (p.x < 0.0) return;
   const ivec2 c = clamp(ivec2(p), ivec2(0), uSize - 1);
   atomicMin(ownerIn[uint(c.y) * uint(uSize.x) + uint(c.x)], i);
 #else
-  if (site[i].x < 0.0) return;
+  if (i < uFirst || site[i].x < 0.0) return;
   const uint w = sums[i * 5u];
   if (w == 0u) return;  // a cell with no darkness (or none at all) keeps its site
   const float sx = float(sums[i * 5u + 2u]) * 4294967296.0 + float(sums[i * 5u + 1u]);

@@ -182,7 +182,8 @@ void addTables(FrameGraph& graph, const ViewContext& v, const GpuLut& gpu, const
 }
 }  // namespace
 
-void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef hdr) {
+void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef hdr,
+                      TextureRef depth) {
   const bool fxaa = frame.settings.antialiasing == scene::Antialiasing::Fxaa;
   const bool smaa = frame.settings.antialiasing == scene::Antialiasing::Smaa;
   const scene::PostSettings& post = frame.settings.post;
@@ -297,7 +298,7 @@ void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext&
     ldr = addFullscreenPass(graph, frame, v, std::move(aa));
   }
   if (smaa) ldr = addSmaaPasses(graph, frame, v, ldr, !stylised);  // before the stylised effects too
-  if (stylised) addStylisedPasses(graph, frame, v, ldr);
+  if (stylised) addStylisedPasses(graph, frame, v, ldr, depth);
   if (splitShown) {
     FullscreenPass over;
     over.name = v.named("post_split");

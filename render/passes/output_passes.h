@@ -19,7 +19,10 @@ TextureRef addDepthResolvePass(FrameGraph& graph, FrameContext& frame, const Vie
                                const SceneTargets& targets);
 // The post chain on `hdr` into the view's target framebuffer, or, with
 // FXAA or SMAA, into an LDR texture that their passes draw into the target.
-void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& view, TextureRef hdr);
+// `depth` (single-sample), where given, lets stippling attach the second
+// eye's dots to the first eye's (stereo pairs).
+void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& view, TextureRef hdr,
+                      TextureRef depth = {});
 // The tone map pass's defines for `settings` (one per enabled effect).
 std::vector<std::string> postDefines(const scene::SceneSettings& settings);
 // White balance as per-channel gains (settings.post.grade.temperature, .tint).

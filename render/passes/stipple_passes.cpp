@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "render/passes/fullscreen_pass.h"
 
 namespace hs::render {
@@ -13,54 +15,97 @@ namespace {
 
 constexpr uint32_t kNoOwner = 0xffffffffu;
 
+// The second eye of a stereo pair: the first eye's final dots and depth,
+// this eye's depth, and the map from the first eye's window coordinates
+// (x, y in NDC, z its depth) to this eye's clip space.
+struct Reprojection {
+  BufferRef sites;
+  TextureRef firstDepth, depth;
+  glm::mat4 firstToThis{1.0f};
+};
+
+// First eye's NDC -> world (camera-relative to the second eye) -> second
+// eye's clip space, in double: both views' projections (with their
+// off-axis shift) and the eyes' offset.
+glm::mat4 firstToSecond(const RenderView& a, const RenderView& b) {
+  const glm::dmat4 toWorld = glm::translate(glm::dmat4(1.0), a.eye - b.eye) * glm::dmat4(glm::mat3_cast(a.orientation));
+  return glm::mat4(b.projection() * glm::dmat4(b.viewRotation()) * toWorld * glm::inverse(a.projection()));
+}
+
 // The relaxation: one pass of many dispatches (shaders/stipple.comp), its
-// buffers its own; the sites map of the final cells out.
+// buffers its own; the sites map of the final cells out, and the sites
+// (their final positions) in `sitesOut`. With `from`, the first slots hold
+// the first eye's dots reprojected (fixed), the next ones this eye's own
+// candidates where none of those lands near.
 TextureRef addRelaxation(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef density,
-                         const StippleLayout& layout, int iterations) {
+                         const StippleLayout& layout, int iterations, const Reprojection* from, BufferRef* sitesOut) {
   struct Data {
-    TextureRef density, map;
-    BufferRef sites, seeds, ownerA, ownerB, sums;
+    TextureRef density, map, firstDepth, depth;
+    BufferRef sites, seeds, ownerA, ownerB, sums, firstSites;
   };
   const int gw = layout.gridWidth, gh = layout.gridHeight;
   const size_t cells = size_t(gw) * size_t(gh);
-  return graph
+  const uint32_t fixed = from ? layout.candidates : 0u;  // the reprojected dots' slots
+  const uint32_t total = fixed + layout.candidates;
+  // Hole filling needs a flood before the steps, and its sums buffer none.
+  const bool floods = iterations > 0 || from;
+  Data out;
+  TextureRef map = graph
       .addPass<Data>(
           v.named("stipple_relax"),
           [&](PassBuilder& b, Data& d) {
             d.density = b.read(density);
             d.map = b.create(v.named("stipple_sites_map"), TextureDesc{gw, gh, GL_RG32F}, Usage::Storage);
-            d.sites = b.create(v.named("stipple_sites"), BufferDesc{size_t(layout.candidates) * 8});
+            d.sites = b.create(v.named("stipple_sites"), BufferDesc{size_t(total) * 8});
             d.ownerA = b.create(v.named("stipple_owner_a"), BufferDesc{cells * 4});
             d.ownerB = b.create(v.named("stipple_owner_b"), BufferDesc{cells * 4});
             // The Lloyd steps' buffers: none without a step.
-            if (iterations > 0) {
-              d.seeds = b.create(v.named("stipple_seeds"), BufferDesc{cells * 4});
-              d.sums = b.create(v.named("stipple_sums"), BufferDesc{size_t(layout.candidates) * 20});
+            if (floods) d.seeds = b.create(v.named("stipple_seeds"), BufferDesc{cells * 4});
+            if (iterations > 0) d.sums = b.create(v.named("stipple_sums"), BufferDesc{size_t(total) * 20});
+            if (from) {
+              d.firstSites = b.read(from->sites);
+              d.firstDepth = b.read(from->firstDepth);
+              d.depth = b.read(from->depth);
             }
+            out = d;
           },
-          [&frame, layout, iterations](const Data& d, const PassResources& r) {
+          [&frame, layout, iterations, fixed, total, floods, toThis = from ? from->firstToThis : glm::mat4(1.0f),
+           scale = glm::vec2(float(v.view.width) / float(gw), float(v.view.height) / float(gh))](
+              const Data& d, const PassResources& r) {
             const glm::ivec2 size(layout.gridWidth, layout.gridHeight);
-            const GLuint siteGroups = (layout.candidates + 63u) / 64u;
             const GLuint gx = GLuint(size.x + 7) / 8u, gy = GLuint(size.y + 7) / 8u;
-            auto stage = [&](const char* define) -> GlProgram& {
+            // A stage over `count` slots from `first` (per-cell stages ignore them).
+            auto stage = [&](const char* define, uint32_t count = 0, uint32_t first = 0) -> GlProgram& {
               GlProgram& p = frame.res.program({"", "", "stipple.comp", {define}});
               p.set("uSize", size);
-              p.set("uCount", layout.candidates);
+              p.set("uCount", count);
+              p.set("uFirst", first);
               p.use();
               return p;
             };
+            auto groups = [](uint32_t count) { return GLuint((count + 63u) / 64u); };
             auto barrier = [] { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); };
             glBindTextureUnit(0, r.texture(d.density));
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, r.buffer(d.sites));
             if (iterations > 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, r.buffer(d.sums));
-            stage("HS_STIPPLE_SEED");
-            glDispatchCompute(siteGroups, 1, 1);
+            if (fixed > 0) {
+              // The first eye's dots where this eye sees them.
+              glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, r.buffer(d.firstSites));
+              glBindTextureUnit(1, r.texture(d.firstDepth));
+              glBindTextureUnit(2, r.texture(d.depth));
+              GlProgram& p = stage("HS_STIPPLE_REPROJECT", fixed);
+              p.set("uFirstToThis", toThis);
+              p.set("uPixelsPerCell", scale);
+              glDispatchCompute(groups(fixed), 1, 1);
+            }
+            stage("HS_STIPPLE_SEED", layout.candidates, fixed);
+            glDispatchCompute(groups(layout.candidates), 1, 1);
             barrier();
             // owners[0]: the cells being flooded (at the end, the final
             // ones); owners[1]: the other half of the ping-pong; seeds: the
             // splat of the sites where they are now.
             GLuint owners[2] = {r.buffer(d.ownerA), r.buffer(d.ownerB)};
-            const GLuint seeds = iterations > 0 ? r.buffer(d.seeds) : 0;  // used from the second flood on
+            const GLuint seeds = floods ? r.buffer(d.seeds) : 0;  // used from the second flood on
             int first = 1;
             while (first * 2 < std::max(size.x, size.y)) first *= 2;
             // The first flood: jump flooding from the seeds, steps from half
@@ -72,14 +117,14 @@ TextureRef addRelaxation(FrameGraph& graph, FrameContext& frame, const ViewConte
             int shortFirst = 1;
             while (float(shortFirst) < layout.spacingCells) shortFirst *= 2;
             bool flooded = false;
-            auto flood = [&] {
+            auto flood = [&](uint32_t count) {
               // The seeds: into the flood's buffer the first time, beside the
               // cells before (then merged with them in place) after.
               const GLuint target = flooded ? seeds : owners[0];
               glClearNamedBufferData(target, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &kNoOwner);
               glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, target);
-              stage("HS_STIPPLE_SPLAT");
-              glDispatchCompute(siteGroups, 1, 1);
+              stage("HS_STIPPLE_SPLAT", count);
+              glDispatchCompute(groups(count), 1, 1);
               barrier();
               if (flooded) {
                 glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, owners[0]);
@@ -102,30 +147,48 @@ TextureRef addRelaxation(FrameGraph& graph, FrameContext& frame, const ViewConte
               glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, owners[0]);  // the final cells
               flooded = true;
             };
+            if (fixed > 0) {
+              // This eye's own candidates only where no reprojected dot is
+              // near (by the spacing the darkness there asks for), then a
+              // whole flood again: the holes can be wider than a short one
+              // reaches.
+              flood(fixed);
+              GlProgram& fill = stage("HS_STIPPLE_FILL", layout.candidates, fixed);
+              fill.set("uSpacing", layout.spacingCells);
+              glDispatchCompute(groups(layout.candidates), 1, 1);
+              barrier();
+              flooded = false;
+            }
             for (int i = 0; i < iterations; ++i) {
-              flood();
+              flood(total);
               const uint32_t zero = 0;
               glClearNamedBufferData(r.buffer(d.sums), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
               stage("HS_STIPPLE_SUM");
               glDispatchCompute(gx, gy, 1);
               barrier();
-              stage("HS_STIPPLE_MOVE");
-              glDispatchCompute(siteGroups, 1, 1);
+              stage("HS_STIPPLE_MOVE", total, fixed);  // the reprojected dots stay
+              glDispatchCompute(groups(total), 1, 1);
               barrier();
             }
-            flood();
+            flood(total);
             glBindImageTexture(0, r.texture(d.map), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
             stage("HS_STIPPLE_RESOLVE");
             glDispatchCompute(gx, gy, 1);
             glBindTextureUnit(0, 0);
+            if (fixed > 0) {
+              glBindTextureUnit(1, 0);
+              glBindTextureUnit(2, 0);
+            }
           })
       .map;
+  if (sitesOut) *sitesOut = out.sites;
+  return map;
 }
 
 }  // namespace
 
 TextureRef addStipplePasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr,
-                            bool toTarget) {
+                            bool toTarget, TextureRef depth) {
   const scene::PostSettings& post = frame.settings.post;
   const int w = v.view.width, h = v.view.height;
   const StippleLayout layout = stippleLayout(post.stippleSpacingPx, post.stippleDotPx, w, h);
@@ -137,8 +200,16 @@ TextureRef addStipplePasses(FrameGraph& graph, FrameContext& frame, const ViewCo
   density.outputName = v.named("stipple_density");
   density.output = TextureDesc{layout.gridWidth, layout.gridHeight, GL_R8};
   const TextureRef darkness = addFullscreenPass(graph, frame, v, std::move(density));
-  const TextureRef map =
-      addRelaxation(graph, frame, v, darkness, layout, std::clamp(post.stippleIterations, 0, 50));
+  // A stereo pair: the first view keeps its dots for the second.
+  const bool pair = depth.valid() && frame.views && frame.views->size() == 2;
+  Reprojection from;
+  const FrameContext::StippleEye& first = frame.stippleFirstEye;
+  const bool second = pair && v.index == 1 && first.sites.valid() && first.count == layout.candidates;
+  if (second) from = Reprojection{first.sites, first.depth, depth, firstToSecond(*first.view, v.view)};
+  BufferRef sites;
+  const TextureRef map = addRelaxation(graph, frame, v, darkness, layout, std::clamp(post.stippleIterations, 0, 50),
+                                       second ? &from : nullptr, &sites);
+  if (pair && v.index == 0) frame.stippleFirstEye = FrameContext::StippleEye{sites, depth, &v.view, layout.candidates};
 
   FullscreenPass dots;
   dots.name = v.named("stipple");

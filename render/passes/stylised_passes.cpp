@@ -91,7 +91,8 @@ std::vector<std::string> stylisePassDefines(const scene::PostSettings& post) {
   return d;
 }
 
-void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr) {
+void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr,
+                       TextureRef depth) {
   const scene::PostSettings& post = frame.settings.post;
   const int w = v.view.width, h = v.view.height;
   const float lines = float(h) / 1080.0f;
@@ -157,7 +158,7 @@ void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext
     };
     ldr = stage(std::move(pass), !post.stipple && !diffuse, "stylised_color");
   }
-  if (post.stipple) ldr = addStipplePasses(graph, frame, v, ldr, !diffuse);
+  if (post.stipple) ldr = addStipplePasses(graph, frame, v, ldr, !diffuse, depth);
   if (diffuse) {
     // A compute pass cannot draw into the caller's framebuffer: a copy ends the chain.
     FullscreenPass copy;

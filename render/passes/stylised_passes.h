@@ -24,6 +24,7 @@ std::vector<std::string> stylisePassDefines(const scene::PostSettings& post);
 constexpr int kBlueNoiseSide = 64;
 
 // `ldr`: the display-encoded image of the view.
-void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr);
+void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr,
+                       TextureRef depth = {});
 
 }  // namespace hs::render

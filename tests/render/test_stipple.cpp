@@ -13,9 +13,14 @@
 #include "core/stipple_layout.h"
 #include "pass_stats.h"
 #include "post_scene.h"
+#include "look_from.h"
+#include "mesh/primitives.h"
 #include "render/offscreen_renderer.h"
+#include "render/output_target.h"
 #include "render/renderer.h"
+#include "scene_parts.h"
 #include "stipple_reference.h"
+#include "two_shots.h"
 
 using namespace hs;
 using test::passRan;
@@ -187,6 +192,80 @@ class TestStipple : public QObject {
 
   // The same frame twice is the same picture (integer sums: the atomics'
   // order does not matter).
+  // A stereo pair: the second eye's dots are the first eye's, reprojected
+  // by depth. On a plane facing both eyes at a distance chosen for a
+  // disparity of exactly 10 pixels, the right eye's ink is the left's
+  // moved by 10 pixels (the right eye rendered alone, with its own
+  // screen-fixed candidates, matches no better than chance there); with a
+  // box in front, the places only the right eye sees still get their
+  // dots (the ink is the right eye's own within 5 %).
+  void bothEyesSeeTheSameDotsOnASurface() {
+    constexpr int w = 320, h = 180;
+    constexpr double distance = 10.0, disparityPx = 10.0;
+    scene::SceneState s;
+    s.settings.showGrid = false;
+    s.settings.antialiasing = scene::Antialiasing::None;
+    s.settings.tonemap = scene::Tonemap::None;
+    s.settings.post.stipple = true;
+    s.settings.post.stippleSpacingPx = 60.0f;  // 10 px at 180 rows
+    s.settings.post.stippleDotPx = 15.0f;      // 2.5 px
+    s.settings.post.stippleIterations = 6;
+    test::addMeshAsset(s, 1, "Plane", mesh::gridPlane(200.0f, 1), {0.25f, 0.25f, 0.25f}, 1.0f, true);
+    test::addMeshEntity(s, 1, "Plane", 1);
+    render::RenderView v;
+    v.width = w;
+    v.height = h;
+    v.fovY = glm::radians(55.0);
+    v.eye = {0.0, 0.0, distance};
+    v.orientation = test::lookFrom(v.eye, {0.0, 0.001, 0.0}).rotation;
+    const double focalPx = 0.5 * h / std::tan(0.5 * v.fovY);
+    const double baseline = disparityPx * distance / focalPx;
+    const render::RenderView left = test::shiftedSideways(v, -0.5 * baseline);
+    const render::RenderView right = test::shiftedSideways(v, 0.5 * baseline);
+    r_.makeCurrent();
+    render::OutputTarget outs[2];
+    std::vector<render::ViewTarget> targets;
+    for (int i = 0; i < 2; ++i) {
+      outs[i].ensure(w, h);
+      targets.push_back({i ? right : left, outs[i].fbo(), i ? "right" : "left"});
+    }
+    auto pair = [&](const scene::SceneState& state) {
+      r_.renderer().renderViews(state, targets);
+      return std::pair{r_.renderer().readDisplay(outs[0].fbo(), w, h), r_.renderer().readDisplay(outs[1].fbo(), w, h)};
+    };
+    // The share of the right image's ink that the left image has `shift`
+    // pixels further right (where both are in frame).
+    auto matched = [&](const Image& l, const Image& r, int shift) {
+      size_t ink = 0, both = 0;
+      for (int y = 0; y < h; ++y)
+        for (int x = std::max(0, -shift); x < std::min(w, w - shift); ++x) {
+          if (r.rgba8[(size_t(y) * w + x) * 4] >= 128) continue;
+          ++ink;
+          both += l.rgba8[(size_t(y) * w + x + shift) * 4] < 128;
+        }
+      return double(both) / double(std::max<size_t>(ink, 1));
+    };
+    const auto [l, r] = pair(s);
+    int best = 0;
+    for (int shift = -30; shift <= 30; ++shift)
+      if (matched(l, r, shift) > matched(l, r, best)) best = shift;
+    const Image alone = r_.render(s, right);
+    qInfo("plane: best shift %d px (disparity %.0f), ink matched %.3f; the right eye alone: %.3f at the disparity",
+          best, disparityPx, matched(l, r, best), matched(l, alone, int(disparityPx)));
+    QCOMPARE(best, int(disparityPx));
+    QVERIFY(matched(l, r, best) > 0.95);
+    QVERIFY(matched(l, alone, int(disparityPx)) < 0.5);
+    // A ball between the eyes and the plane: occluded dots dropped, the
+    // disoccluded plane filled by the right eye's own candidates.
+    test::addMeshAsset(s, 2, "Ball", mesh::uvSphere(1.0f, 24, 12), {0.6f, 0.6f, 0.6f}, 1.0f, true);
+    test::addMeshEntity(s, 2, "Ball", 2, {0.0, 0.0, 5.0});
+    const auto [l2, r2] = pair(s);
+    const double inkPair = meanInk(r2), inkAlone = meanInk(r_.render(s, right));
+    qInfo("with a ball: the right eye's ink %.4f in the pair, %.4f alone", inkPair, inkAlone);
+    QVERIFY(std::abs(inkPair - inkAlone) < 0.05 * inkAlone);
+    QVERIFY(matched(l2, r2, int(disparityPx)) > 0.75);  // the plane's dots still shared
+  }
+
   void deterministic() {
     const scene::SceneState s = stippledScene(6);
     const render::RenderView v = test::postTestView(320, 180);
