@@ -40,16 +40,19 @@ struct FrameContext {
   // to the frame origin), which every source culled once.
   std::vector<DrawSource*> sources{};
   std::vector<Frustum> shadowViews{};
-  // Stippling in stereo (passes/stipple_passes.h): the first eye's final
-  // dots and single-sample depth, from which the second eye's dots are
-  // reprojected so that both eyes see the same dots on a surface.
-  struct StippleEye {
-    BufferRef sites{};
+  // A stereo pair's first eye, for the stylised effects whose pattern the
+  // second eye takes from it by depth (so both eyes see the same pattern
+  // on a surface): its single-sample depth and view, stippling's final
+  // dots (passes/stipple_passes.h) and error diffusion's output
+  // (passes/stylised_passes.h).
+  struct FirstEye {
     TextureRef depth{};
     const RenderView* view = nullptr;
-    uint32_t count = 0;
+    BufferRef stippleSites{};
+    uint32_t stippleCount = 0;
+    TextureRef dithered{};
   };
-  StippleEye stippleFirstEye{};
+  FirstEye firstEye{};
 };
 
 // One view of the frame: its camera, its index in the view block buffer,

@@ -371,10 +371,11 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
     // Transparency over the opaque colour, tested against a single-sample depth.
     TextureRef singleDepth;
     if (translucent || options.keepDepth) singleDepth = addDepthResolvePass(*graph, frame, v, scene);
-    // Stippling in stereo reprojects the first eye's dots by depth.
-    TextureRef stippleDepth;
-    if (settings.post.stipple && viewContexts.size() == 2)
-      stippleDepth = singleDepth.valid() ? singleDepth : addDepthResolvePass(*graph, frame, v, scene);
+    // Stippling and error diffusion in stereo take the first eye's pattern by depth.
+    TextureRef pairDepth;
+    if ((settings.post.stipple || settings.post.dither == scene::DitherMode::ErrorDiffusion) &&
+        viewContexts.size() == 2)
+      pairDepth = singleDepth.valid() ? singleDepth : addDepthResolvePass(*graph, frame, v, scene);
     // The layered depth of field captures the translucent surfaces itself
     // and composites them over the colour before them: no transparency
     // pass for the view then (each surface counted once).
@@ -387,7 +388,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
     // A lens sample of the depth of field's reference adds its image to
     // the sums instead of showing it.
     if (d.lensSampling) addLensSamplePass(*graph, frame, v, hdr, d.lensSample == 0, d.lensWeight);
-    else addToneMapPasses(*graph, frame, v, hdr, stippleDepth);
+    else addToneMapPasses(*graph, frame, v, hdr, pairDepth);
     Impl::Kept k;
     k.hdrGraph = k.depthGraph = graph.get();
     k.size = {v.view.width, v.view.height};

@@ -1,6 +1,13 @@
 #include "render/stereo_views.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 namespace hs::render {
+
+glm::mat4 windowToClip(const RenderView& a, const RenderView& b) {
+  const glm::dmat4 toWorld = glm::translate(glm::dmat4(1.0), a.eye - b.eye) * glm::dmat4(glm::mat3_cast(a.orientation));
+  return glm::mat4(b.projection() * glm::dmat4(b.viewRotation()) * toWorld * glm::inverse(a.projection()));
+}
 
 scene::EntityId shotCamera(const scene::SceneState& state) {
   const std::vector<scene::EntityId> cams = state.cameras();

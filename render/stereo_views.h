@@ -34,6 +34,14 @@ struct EyeViews {
 EyeViews eyeViews(const scene::SceneState& state, scene::EntityId camera, int width, int height);
 
 sequencer::CameraModel cameraModelOf(const RenderView& view);
+
+// From view `a`'s window coordinates (x, y in NDC, z its reversed-Z depth)
+// to view `b`'s clip space: a's inverse projection, the views' rotations
+// and the offset between their eyes, b's projection, composed in double
+// (positions are camera-relative; the offset is small). The stylised
+// effects that attach one eye's pattern to the other's surfaces
+// (stippling, error diffusion) reproject with it.
+glm::mat4 windowToClip(const RenderView& a, const RenderView& b);
 // A view from an eye camera of the rig (position, orientation, NDC shift).
 RenderView viewOfEye(const sequencer::CameraModel& eye, int width, int height);
 

@@ -16,6 +16,12 @@ layout(binding = 0, rgba8) uniform writeonly image2D uOut;
 // The error each pixel of the last two rows passes down: [row & 1][x].
 layout(std430, binding = 0) coherent buffer Carry { vec4 below[]; };
 uniform float uLevels;
+#ifdef HS_DITHER_FORCED
+// The second eye of a stereo pair: the first eye's level where it sees the
+// same surface (alpha 1; shaders/dither_reproject.frag), taken instead of
+// the nearest level; its error is passed on as any pixel's.
+layout(binding = 1) uniform sampler2D uForced;
+#endif
 
 void main() {
   const ivec2 size = textureSize(uImage, 0);
@@ -39,8 +45,17 @@ void main() {
           v += below[prev + x].rgb * (5.0 / 16.0);
           if (x > 0) v += below[prev + x - 1].rgb * (1.0 / 16.0);
         }
-        const vec3 q = clamp(floor(clamp(v, 0.0, 1.0) * steps + 0.5), 0.0, steps) / steps;
+        vec3 q = clamp(floor(clamp(v, 0.0, 1.0) * steps + 0.5), 0.0, steps) / steps;
         e = v - q;
+#ifdef HS_DITHER_FORCED
+        const vec4 forced = texelFetch(uForced, ivec2(x, y), 0);
+        if (forced.a > 0.5) {
+          q = floor(forced.rgb * steps + 0.5) / steps;  // the level the 8-bit texel holds
+          // Bounded: a run of taken levels that differ from this eye's
+          // colour (a highlight one eye sees) cannot pile error up.
+          e = clamp(v, 0.0, 1.0) - q;
+        }
+#endif
         right = e * (7.0 / 16.0);
         imageStore(uOut, ivec2(x, y), vec4(q, 1.0));
         wrote = true;

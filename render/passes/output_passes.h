@@ -19,8 +19,8 @@ TextureRef addDepthResolvePass(FrameGraph& graph, FrameContext& frame, const Vie
                                const SceneTargets& targets);
 // The post chain on `hdr` into the view's target framebuffer, or, with
 // FXAA or SMAA, into an LDR texture that their passes draw into the target.
-// `depth` (single-sample), where given, lets stippling attach the second
-// eye's dots to the first eye's (stereo pairs).
+// `depth` (single-sample), where given, lets stippling and error diffusion
+// attach the second eye's pattern to the first eye's (stereo pairs).
 void addToneMapPasses(FrameGraph& graph, FrameContext& frame, const ViewContext& view, TextureRef hdr,
                       TextureRef depth = {});
 // The tone map pass's defines for `settings` (one per enabled effect).

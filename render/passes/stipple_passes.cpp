@@ -5,9 +5,8 @@
 #include <utility>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "render/passes/fullscreen_pass.h"
+#include "render/stereo_views.h"
 
 namespace hs::render {
 
@@ -23,14 +22,6 @@ struct Reprojection {
   TextureRef firstDepth, depth;
   glm::mat4 firstToThis{1.0f};
 };
-
-// First eye's NDC -> world (camera-relative to the second eye) -> second
-// eye's clip space, in double: both views' projections (with their
-// off-axis shift) and the eyes' offset.
-glm::mat4 firstToSecond(const RenderView& a, const RenderView& b) {
-  const glm::dmat4 toWorld = glm::translate(glm::dmat4(1.0), a.eye - b.eye) * glm::dmat4(glm::mat3_cast(a.orientation));
-  return glm::mat4(b.projection() * glm::dmat4(b.viewRotation()) * toWorld * glm::inverse(a.projection()));
-}
 
 // The relaxation: one pass of many dispatches (shaders/stipple.comp), its
 // buffers its own; the sites map of the final cells out, and the sites
@@ -203,13 +194,18 @@ TextureRef addStipplePasses(FrameGraph& graph, FrameContext& frame, const ViewCo
   // A stereo pair: the first view keeps its dots for the second.
   const bool pair = depth.valid() && frame.views && frame.views->size() == 2;
   Reprojection from;
-  const FrameContext::StippleEye& first = frame.stippleFirstEye;
-  const bool second = pair && v.index == 1 && first.sites.valid() && first.count == layout.candidates;
-  if (second) from = Reprojection{first.sites, first.depth, depth, firstToSecond(*first.view, v.view)};
+  const FrameContext::FirstEye& first = frame.firstEye;
+  const bool second = pair && v.index == 1 && first.stippleSites.valid() && first.stippleCount == layout.candidates;
+  if (second) from = Reprojection{first.stippleSites, first.depth, depth, windowToClip(*first.view, v.view)};
   BufferRef sites;
   const TextureRef map = addRelaxation(graph, frame, v, darkness, layout, std::clamp(post.stippleIterations, 0, 50),
                                        second ? &from : nullptr, &sites);
-  if (pair && v.index == 0) frame.stippleFirstEye = FrameContext::StippleEye{sites, depth, &v.view, layout.candidates};
+  if (pair && v.index == 0) {
+    frame.firstEye.depth = depth;
+    frame.firstEye.view = &v.view;
+    frame.firstEye.stippleSites = sites;
+    frame.firstEye.stippleCount = layout.candidates;
+  }
 
   FullscreenPass dots;
   dots.name = v.named("stipple");

@@ -6,6 +6,7 @@
 #include "core/srgb.h"
 #include "render/passes/fullscreen_pass.h"
 #include "render/passes/stipple_passes.h"
+#include "render/stereo_views.h"
 
 namespace hs::render {
 
@@ -46,32 +47,61 @@ TextureRef addBlueNoise(FrameGraph& graph, const ViewContext& v) {
 
 // Floyd-Steinberg on `ldr` into a new texture (shaders/error_diffusion.comp:
 // one workgroup, a wavefront of rows).
-TextureRef addErrorDiffusion(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr) {
+TextureRef addErrorDiffusion(FrameGraph& graph, FrameContext& frame, const ViewContext& v, TextureRef ldr,
+                             TextureRef depth) {
   struct Data {
-    TextureRef in, out;
+    TextureRef in, forced, out;
     BufferRef carry;
   };
   const int w = v.view.width, h = v.view.height;
-  return graph
-      .addPass<Data>(
-          v.named("error_diffusion"),
-          [&](PassBuilder& b, Data& d) {
-            d.in = b.read(ldr);
-            d.out = b.create(v.named("dithered"), TextureDesc{w, h, GL_RGBA8}, Usage::Storage);
-            d.carry = b.create(v.named("dither_carry"), BufferDesc{size_t(w) * 2 * 16});
-          },
-          [&frame, levels = frame.settings.post.ditherLevels](const Data& d, const PassResources& r) {
-            GlProgram& p = frame.res.program({"", "", "error_diffusion.comp", {}});
-            p.set("uLevels", levels);
-            p.use();
-            glBindTextureUnit(0, r.texture(d.in));
-            glBindImageTexture(0, r.texture(d.out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, r.buffer(d.carry));
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            glDispatchCompute(1, 1, 1);
-            glBindTextureUnit(0, 0);
-          })
-      .out;
+  // A stereo pair (depth given, two views): the second eye takes the first
+  // eye's levels where it sees the same surface.
+  const bool pair = depth.valid() && frame.views && frame.views->size() == 2;
+  const FrameContext::FirstEye& first = frame.firstEye;
+  TextureRef forced;
+  if (pair && v.index == 1 && first.dithered.valid() && first.depth.valid() && first.view) {
+    FullscreenPass reproject;
+    reproject.name = v.named("dither_reproject");
+    reproject.fragment = "dither_reproject.frag";
+    reproject.inputs = {{0, depth}, {1, first.depth}, {2, first.dithered}};
+    reproject.outputName = v.named("dither_forced");
+    reproject.output = TextureDesc{w, h, GL_RGBA8};
+    reproject.uniforms = [m = windowToClip(v.view, *first.view)](GlProgram& p) { p.set("uThisToFirst", m); };
+    forced = addFullscreenPass(graph, frame, v, std::move(reproject));
+  }
+  const TextureRef out =
+      graph
+          .addPass<Data>(
+              v.named("error_diffusion"),
+              [&](PassBuilder& b, Data& d) {
+                d.in = b.read(ldr);
+                if (forced.valid()) d.forced = b.read(forced);
+                d.out = b.create(v.named("dithered"), TextureDesc{w, h, GL_RGBA8}, Usage::Storage);
+                d.carry = b.create(v.named("dither_carry"), BufferDesc{size_t(w) * 2 * 16});
+              },
+              [&frame, levels = frame.settings.post.ditherLevels](const Data& d, const PassResources& r) {
+                const bool taking = d.forced.valid();
+                GlProgram& p = frame.res.program(
+                    {"", "", "error_diffusion.comp", taking ? std::vector<std::string>{"HS_DITHER_FORCED"}
+                                                            : std::vector<std::string>{}});
+                p.set("uLevels", levels);
+                p.use();
+                glBindTextureUnit(0, r.texture(d.in));
+                if (taking) glBindTextureUnit(1, r.texture(d.forced));
+                glBindImageTexture(0, r.texture(d.out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, r.buffer(d.carry));
+                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+                glDispatchCompute(1, 1, 1);
+                glBindTextureUnit(0, 0);
+                if (taking) glBindTextureUnit(1, 0);
+              })
+          .out;
+  if (pair && v.index == 0) {
+    frame.firstEye.depth = depth;
+    frame.firstEye.view = &v.view;
+    frame.firstEye.dithered = out;
+  }
+  return out;
 }
 
 }  // namespace
@@ -164,7 +194,7 @@ void addStylisedPasses(FrameGraph& graph, FrameContext& frame, const ViewContext
     FullscreenPass copy;
     copy.name = v.named("dither_copy");
     copy.fragment = "copy.frag";
-    copy.inputs = {{0, addErrorDiffusion(graph, frame, v, ldr)}};
+    copy.inputs = {{0, addErrorDiffusion(graph, frame, v, ldr, depth)}};
     stage(std::move(copy), true, "");
   }
 }

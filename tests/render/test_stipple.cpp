@@ -3,7 +3,8 @@
 // (the same steps with exact Voronoi cells instead of jump flooding) on
 // the renderer's own picture, the tone following the picture's darkness,
 // Lloyd relaxation approaching centroidal cells, the stiff cases (white,
-// black, one-pixel views) and nothing when off.
+// black, one-pixel views) and nothing when off; in a stereo pair the
+// second eye's dots are the first eye's on the surfaces both see.
 #include <QtTest>
 
 #include <algorithm>
@@ -13,14 +14,10 @@
 #include "core/stipple_layout.h"
 #include "pass_stats.h"
 #include "post_scene.h"
-#include "look_from.h"
-#include "mesh/primitives.h"
 #include "render/offscreen_renderer.h"
-#include "render/output_target.h"
 #include "render/renderer.h"
-#include "scene_parts.h"
+#include "stereo_plane.h"
 #include "stipple_reference.h"
-#include "two_shots.h"
 
 using namespace hs;
 using test::passRan;
@@ -200,70 +197,29 @@ class TestStipple : public QObject {
   // box in front, the places only the right eye sees still get their
   // dots (the ink is the right eye's own within 5 %).
   void bothEyesSeeTheSameDotsOnASurface() {
-    constexpr int w = 320, h = 180;
-    constexpr double distance = 10.0, disparityPx = 10.0;
-    scene::SceneState s;
-    s.settings.showGrid = false;
-    s.settings.antialiasing = scene::Antialiasing::None;
-    s.settings.tonemap = scene::Tonemap::None;
+    constexpr int disparity = 10;
+    test::StereoPlane plane(disparity);
+    scene::SceneState& s = plane.scene;
     s.settings.post.stipple = true;
     s.settings.post.stippleSpacingPx = 60.0f;  // 10 px at 180 rows
     s.settings.post.stippleDotPx = 15.0f;      // 2.5 px
     s.settings.post.stippleIterations = 6;
-    test::addMeshAsset(s, 1, "Plane", mesh::gridPlane(200.0f, 1), {0.25f, 0.25f, 0.25f}, 1.0f, true);
-    test::addMeshEntity(s, 1, "Plane", 1);
-    render::RenderView v;
-    v.width = w;
-    v.height = h;
-    v.fovY = glm::radians(55.0);
-    v.eye = {0.0, 0.0, distance};
-    v.orientation = test::lookFrom(v.eye, {0.0, 0.001, 0.0}).rotation;
-    const double focalPx = 0.5 * h / std::tan(0.5 * v.fovY);
-    const double baseline = disparityPx * distance / focalPx;
-    const render::RenderView left = test::shiftedSideways(v, -0.5 * baseline);
-    const render::RenderView right = test::shiftedSideways(v, 0.5 * baseline);
-    r_.makeCurrent();
-    render::OutputTarget outs[2];
-    std::vector<render::ViewTarget> targets;
-    for (int i = 0; i < 2; ++i) {
-      outs[i].ensure(w, h);
-      targets.push_back({i ? right : left, outs[i].fbo(), i ? "right" : "left"});
-    }
-    auto pair = [&](const scene::SceneState& state) {
-      r_.renderer().renderViews(state, targets);
-      return std::pair{r_.renderer().readDisplay(outs[0].fbo(), w, h), r_.renderer().readDisplay(outs[1].fbo(), w, h)};
-    };
-    // The share of the right image's ink that the left image has `shift`
-    // pixels further right (where both are in frame).
-    auto matched = [&](const Image& l, const Image& r, int shift) {
-      size_t ink = 0, both = 0;
-      for (int y = 0; y < h; ++y)
-        for (int x = std::max(0, -shift); x < std::min(w, w - shift); ++x) {
-          if (r.rgba8[(size_t(y) * w + x) * 4] >= 128) continue;
-          ++ink;
-          both += l.rgba8[(size_t(y) * w + x + shift) * 4] < 128;
-        }
-      return double(both) / double(std::max<size_t>(ink, 1));
-    };
-    const auto [l, r] = pair(s);
-    int best = 0;
-    for (int shift = -30; shift <= 30; ++shift)
-      if (matched(l, r, shift) > matched(l, r, best)) best = shift;
-    const Image alone = r_.render(s, right);
-    qInfo("plane: best shift %d px (disparity %.0f), ink matched %.3f; the right eye alone: %.3f at the disparity",
-          best, disparityPx, matched(l, r, best), matched(l, alone, int(disparityPx)));
-    QCOMPARE(best, int(disparityPx));
-    QVERIFY(matched(l, r, best) > 0.95);
-    QVERIFY(matched(l, alone, int(disparityPx)) < 0.5);
+    const auto [l, r] = test::renderPair(r_, s, plane.left, plane.right);
+    const int best = test::bestInkShift(l, r);
+    const Image alone = r_.render(s, plane.right);
+    qInfo("plane: best shift %d px (disparity %d), ink matched %.3f; the right eye alone: %.3f at the disparity",
+          best, disparity, test::inkMatched(l, r, best), test::inkMatched(l, alone, disparity));
+    QCOMPARE(best, disparity);
+    QVERIFY(test::inkMatched(l, r, best) > 0.95);
+    QVERIFY(test::inkMatched(l, alone, disparity) < 0.5);
     // A ball between the eyes and the plane: occluded dots dropped, the
     // disoccluded plane filled by the right eye's own candidates.
-    test::addMeshAsset(s, 2, "Ball", mesh::uvSphere(1.0f, 24, 12), {0.6f, 0.6f, 0.6f}, 1.0f, true);
-    test::addMeshEntity(s, 2, "Ball", 2, {0.0, 0.0, 5.0});
-    const auto [l2, r2] = pair(s);
-    const double inkPair = meanInk(r2), inkAlone = meanInk(r_.render(s, right));
+    plane.addBall();
+    const auto [l2, r2] = test::renderPair(r_, s, plane.left, plane.right);
+    const double inkPair = meanInk(r2), inkAlone = meanInk(r_.render(s, plane.right));
     qInfo("with a ball: the right eye's ink %.4f in the pair, %.4f alone", inkPair, inkAlone);
     QVERIFY(std::abs(inkPair - inkAlone) < 0.05 * inkAlone);
-    QVERIFY(matched(l2, r2, int(disparityPx)) > 0.75);  // the plane's dots still shared
+    QVERIFY(test::inkMatched(l2, r2, disparity) > 0.75);  // the plane's dots still shared
   }
 
   void deterministic() {

@@ -6,7 +6,8 @@
 // diffusion (against the sequential scan). The editor's before/after split. Goldens
 // per effect. Off costs nothing (no pass, no texture); the blue-noise map
 // is blue (little low-frequency energy against white noise's) and holds
-// every rank once; both eyes dither with the same screen pattern; a stiff Kuwahara (sharpness 16 on grain at
+// every rank once; both eyes dither with the same screen pattern, and
+// error diffusion's pattern sits on the surfaces in both eyes; a stiff Kuwahara (sharpness 16 on grain at
 // full strength) stays finite and keeps the picture.
 #include <QtTest>
 
@@ -22,6 +23,7 @@
 #include "demo_once.h"
 #include "render_golden.h"
 #include "post_scene.h"
+#include "stereo_plane.h"
 #include "stylised_reference.h"
 #include "two_shots.h"
 
@@ -76,6 +78,15 @@ double lowFrequencyShare(const std::vector<float>& map, int side) {
   return low / all;
 }
 
+}  // namespace
+
+namespace {
+// The share of pixels that are ink (red under 128).
+double inkShare(const Image& img) {
+  size_t ink = 0;
+  for (size_t p = 0; p < img.pixelCount(); ++p) ink += img.rgba8[p * 4] < 128;
+  return double(ink) / double(std::max<size_t>(img.pixelCount(), 1));
+}
 }  // namespace
 
 class TestStylised : public QObject {
@@ -312,6 +323,37 @@ class TestStylised : public QObject {
       const std::string held = test::allocationNamed(fresh.renderer(), name);
       QVERIFY2(held.empty(), held.c_str());
     }
+    r_.makeCurrent();
+  }
+
+  // Error diffusion in a stereo pair: the second eye takes the first eye's
+  // levels where it sees the same surface and diffuses its own error, so a
+  // plane at a disparity of 10 pixels shows the left eye's pattern moved by
+  // 10 pixels in the right eye (rendered alone, the right eye's pattern is
+  // its own), with the right eye's tone kept, a ball in front included.
+  void errorDiffusionFollowsTheSurfacesInStereo() {
+    constexpr int disparity = 10;
+    test::StereoPlane plane(disparity, glm::vec3(0.06f));
+    scene::SceneState& s = plane.scene;
+    s.settings.post.dither = scene::DitherMode::ErrorDiffusion;
+    s.settings.post.ditherLevels = 2;
+    const auto [l, r] = test::renderPair(r_, s, plane.left, plane.right);
+    const Image alone = r_.render(s, plane.right);
+    const int best = test::bestInkShift(l, r);
+    qInfo("plane: best shift %d px (disparity %d), ink matched %.3f; the right eye alone: %.3f at the disparity; "
+          "ink %.4f in the pair, %.4f alone",
+          best, disparity, test::inkMatched(l, r, best), test::inkMatched(l, alone, disparity), inkShare(r),
+          inkShare(alone));
+    QCOMPARE(best, disparity);
+    QVERIFY(test::inkMatched(l, r, best) > 0.95);
+    QVERIFY(test::inkMatched(l, alone, disparity) < 0.8);  // chance: the ink's share, 0.73
+    QVERIFY(std::abs(inkShare(r) - inkShare(alone)) < 0.02 * inkShare(alone));
+    plane.addBall();
+    const auto [l2, r2] = test::renderPair(r_, s, plane.left, plane.right);
+    const double pair = inkShare(r2), own = inkShare(r_.render(s, plane.right));
+    qInfo("with a ball: the right eye's ink %.4f in the pair, %.4f alone", pair, own);
+    QVERIFY(std::abs(pair - own) < 0.03 * own);
+    QVERIFY(test::inkMatched(l2, r2, disparity) > 0.75);
     r_.makeCurrent();
   }
 
