@@ -1,0 +1,363 @@
+#include "meshproc/cluster_hierarchy.h"
+
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <unordered_map>
+
+#include "core/parallel.h"
+#include "meshproc/decimate.h"
+#include "meshproc/error_metrics.h"
+
+namespace hs::mesh {
+namespace {
+
+using Triangles = std::vector<uint32_t>;  // three indices a triangle
+
+uint64_t positionKey(const glm::vec3& p) {
+  uint32_t b[3];
+  std::memcpy(b, &p, sizeof b);
+  // Exact bits (a vertex that did not move keeps them); mixed for the map.
+  return (uint64_t(b[0]) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(b[1]) * 0xC2B2AE3D27D4EB4Full) ^
+         (uint64_t(b[2]) * 0x165667B19E3779F9ull);
+}
+
+LodSphere sphereOf(const std::vector<glm::vec3>& pool, const uint32_t* indices, size_t count) {
+  if (count == 0) return {};
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (size_t i = 0; i < count; ++i) {
+    lo = glm::min(lo, pool[indices[i]]);
+    hi = glm::max(hi, pool[indices[i]]);
+  }
+  LodSphere s{0.5f * (lo + hi), 0.0f};
+  for (size_t i = 0; i < count; ++i) s.radius = std::max(s.radius, glm::length(pool[indices[i]] - s.centre));
+  return s;
+}
+
+// The smallest sphere holding both (a sphere holding the other is kept).
+LodSphere merged(const LodSphere& a, const LodSphere& b) {
+  const glm::vec3 d = b.centre - a.centre;
+  const float dist = glm::length(d);
+  if (dist + b.radius <= a.radius) return a;
+  if (dist + a.radius <= b.radius) return b;
+  LodSphere s;
+  s.radius = 0.5f * (dist + a.radius + b.radius);
+  s.centre = a.centre + d * ((s.radius - a.radius) / std::max(dist, 1e-30f));
+  s.radius *= 1.0f + 1e-6f;  // float rounding must not leave either outside
+  return s;
+}
+
+// `tris` (pool indices) cut into meshlets, each a list of pool-indexed
+// triangles, by meshoptimizer (greedy by adjacency, in index order).
+std::vector<Triangles> meshletsOf(const std::vector<glm::vec3>& pool, const Triangles& tris,
+                                  const ClusterOptions& o) {
+  std::unordered_map<uint32_t, uint32_t> local;
+  std::vector<uint32_t> toPool;
+  std::vector<float> xyz;
+  std::vector<uint32_t> idx(tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) {
+    auto [it, added] = local.try_emplace(tris[i], uint32_t(toPool.size()));
+    if (added) {
+      toPool.push_back(tris[i]);
+      const glm::vec3& p = pool[tris[i]];
+      xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    }
+    idx[i] = it->second;
+  }
+  const size_t maxTri = std::clamp<size_t>(o.maxTriangles / 4 * 4, 4, 512);
+  const size_t maxVert = std::clamp<size_t>(o.maxVertices, 3, 255);
+  std::vector<meshopt_Meshlet> meshlets(meshopt_buildMeshletsBound(idx.size(), maxVert, maxTri));
+  std::vector<unsigned> verts(meshlets.size() * maxVert);
+  std::vector<unsigned char> corners(meshlets.size() * maxTri * 3);
+  const size_t n = meshopt_buildMeshlets(meshlets.data(), verts.data(), corners.data(), idx.data(), idx.size(),
+                                         xyz.data(), toPool.size(), sizeof(float) * 3, maxVert, maxTri, 0.0f);
+  std::vector<Triangles> out(n);
+  for (size_t m = 0; m < n; ++m) {
+    const meshopt_Meshlet& ml = meshlets[m];
+    for (unsigned t = 0; t < ml.triangle_count * 3; ++t)
+      out[m].push_back(toPool[verts[ml.vertex_offset + corners[ml.triangle_offset + t]]]);
+  }
+  return out;
+}
+
+// What simplifying one group gave, before its new vertices join the pool.
+struct GroupResult {
+  bool simplified = false;
+  float error = 0.0f;
+  std::vector<glm::vec3> positions;  // the decimated group's vertices
+  std::vector<int64_t> poolIndex;    // per vertex: the pool entry it is (same position), or -1: new
+  std::vector<Triangles> clusters;   // local vertex indices
+};
+
+GroupResult simplifyGroup(const std::vector<glm::vec3>& pool, const Triangles& tris, const std::vector<uint8_t>& locked,
+                          const ClusterOptions& o) {
+  GroupResult r;
+  MeshData m;
+  std::unordered_map<uint32_t, uint32_t> local;
+  std::vector<uint32_t> toPool;
+  for (uint32_t v : tris) {
+    auto [it, added] = local.try_emplace(v, uint32_t(toPool.size()));
+    if (added) toPool.push_back(v);
+    m.indices.push_back(it->second);
+  }
+  DecimateOptions d;
+  for (uint32_t v : toPool) {
+    m.positions.push_back(pool[v]);
+    d.lockedVertices.push_back(locked[v]);
+  }
+  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
+  const size_t before = m.triangleCount();
+  d.targetTriangles = std::max<size_t>(1, before / 2);
+  d.copyTextures = false;
+  d.threads = 1;  // groups run in parallel
+  const DecimateResult dr = decimate(m, d);
+  if (!dr.ok() || double(dr.mesh.triangleCount()) > (1.0 - o.minReduction) * double(before)) return r;
+  r.simplified = true;
+  // The group's own error: a certified upper bound of the Hausdorff
+  // distance between its triangles before and after (meshproc/
+  // error_metrics.h), not the quadric's estimate, which can fall short.
+  ErrorOptions eo;
+  eo.certify = true;
+  eo.threads = 1;
+  const ErrorReport measured = measureError(m, dr.mesh, eo);
+  r.error = float(std::max({measured.hausdorffUpper, measured.hausdorff, dr.report.maxEstimatedError}));
+  r.positions = dr.mesh.positions;
+  std::unordered_map<uint64_t, uint32_t> byPosition;
+  for (uint32_t v : toPool) byPosition.emplace(positionKey(pool[v]), v);
+  r.poolIndex.assign(r.positions.size(), -1);
+  for (size_t i = 0; i < r.positions.size(); ++i)
+    if (auto it = byPosition.find(positionKey(r.positions[i])); it != byPosition.end() && pool[it->second] == r.positions[i])
+      r.poolIndex[i] = it->second;
+  // Cut into clusters on a scratch pool of the group's own vertices.
+  Triangles out(dr.mesh.indices.begin(), dr.mesh.indices.end());
+  r.clusters = meshletsOf(r.positions, out, o);
+  return r;
+}
+
+// Neighbouring clusters in groups of up to `size`, deterministically:
+// clusters in order of their centre along a Morton curve; each group grown
+// from the first ungrouped one by the ungrouped neighbour sharing the most
+// edges with it.
+std::vector<std::vector<uint32_t>> groupClusters(const ClusterHierarchy& h, const std::vector<uint32_t>& active,
+                                                 size_t size) {
+  std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> edgeOwners;  // ordered: deterministic
+  for (uint32_t a = 0; a < active.size(); ++a) {
+    const Cluster& c = h.clusters[active[a]];
+    for (uint32_t t = 0; t < c.triangleCount; ++t)
+      for (int k = 0; k < 3; ++k) {
+        uint32_t u = h.indices[c.firstIndex + t * 3 + k], v = h.indices[c.firstIndex + t * 3 + (k + 1) % 3];
+        if (u > v) std::swap(u, v);
+        std::vector<uint32_t>& owners = edgeOwners[{u, v}];
+        if (owners.empty() || owners.back() != a) owners.push_back(a);
+      }
+  }
+  std::vector<std::map<uint32_t, uint32_t>> shared(active.size());  // neighbour -> edges shared
+  for (const auto& [edge, owners] : edgeOwners)
+    for (uint32_t x : owners)
+      for (uint32_t y : owners)
+        if (x != y) ++shared[x][y];
+  // Morton order of the bounds' centres over the active set's box.
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (uint32_t id : active) {
+    lo = glm::min(lo, h.clusters[id].bounds.centre);
+    hi = glm::max(hi, h.clusters[id].bounds.centre);
+  }
+  auto spread = [](uint32_t x) {
+    uint64_t v = x & 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+  };
+  std::vector<std::pair<uint64_t, uint32_t>> order;
+  for (uint32_t a = 0; a < active.size(); ++a) {
+    const glm::vec3 u = (h.clusters[active[a]].bounds.centre - lo) / glm::max(hi - lo, glm::vec3(1e-20f));
+    const glm::uvec3 q(glm::clamp(u, 0.0f, 1.0f) * 2097151.0f);
+    order.push_back({spread(q.x) | spread(q.y) << 1 | spread(q.z) << 2, a});
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<int> groupOf(active.size(), -1);
+  std::vector<std::vector<uint32_t>> groups;
+  for (const auto& [key, a] : order) {
+    if (groupOf[a] >= 0) continue;
+    std::vector<uint32_t> g{a};
+    groupOf[a] = int(groups.size());
+    while (g.size() < size) {
+      std::map<uint32_t, uint32_t> candidates;
+      for (uint32_t m : g)
+        for (const auto& [n, edges] : shared[m])
+          if (groupOf[n] < 0) candidates[n] += edges;
+      if (candidates.empty()) break;
+      const auto best = std::max_element(candidates.begin(), candidates.end(),
+                                         [](const auto& x, const auto& y) { return x.second < y.second; });
+      groupOf[best->first] = int(groups.size());
+      g.push_back(best->first);
+    }
+    groups.push_back(std::move(g));
+  }
+  for (auto& g : groups)
+    for (uint32_t& a : g) a = active[a];  // to cluster ids
+  return groups;
+}
+
+void addCluster(ClusterHierarchy& h, const Triangles& tris, uint32_t level, const LodSphere& lodBounds, float error) {
+  Cluster c;
+  c.firstIndex = uint32_t(h.indices.size());
+  c.triangleCount = uint32_t(tris.size() / 3);
+  c.level = level;
+  h.indices.insert(h.indices.end(), tris.begin(), tris.end());
+  c.bounds = sphereOf(h.positions, tris.data(), tris.size());
+  c.lodBounds = level == 0 ? c.bounds : lodBounds;
+  c.error = error;
+  h.clusters.push_back(c);
+}
+
+}  // namespace
+
+ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOptions& options,
+                                       ClusterBuildReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  ClusterBuildReport rep;
+  ClusterHierarchy h;
+  h.origin = mesh.origin;
+  // Weld by position: UV seams and split normals do not cut the surface.
+  std::unordered_map<uint64_t, std::vector<uint32_t>> byKey;
+  std::vector<uint32_t> remap(mesh.positions.size());
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::vec3& p = mesh.positions[i];
+    std::vector<uint32_t>& same = byKey[positionKey(p)];
+    uint32_t at = UINT32_MAX;
+    for (uint32_t s : same)
+      if (h.positions[s] == p) at = s;
+    if (at == UINT32_MAX) {
+      at = uint32_t(h.positions.size());
+      h.positions.push_back(p);
+      same.push_back(at);
+    }
+    remap[i] = at;
+  }
+  Triangles tris;
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const uint32_t a = remap[mesh.indices[t]], b = remap[mesh.indices[t + 1]], c = remap[mesh.indices[t + 2]];
+    if (a != b && b != c && a != c) tris.insert(tris.end(), {a, b, c});  // welded to a sliver of none
+  }
+  if (tris.empty()) {
+    if (report) *report = rep;
+    return h;
+  }
+  // Level 0: the input in clusters, triangles in spatial order first (the
+  // meshlet builder follows the index order).
+  Triangles sorted(tris.size());
+  meshopt_spatialSortTriangles(sorted.data(), tris.data(), tris.size(), &h.positions[0].x, h.positions.size(),
+                               sizeof(glm::vec3));
+  std::vector<uint32_t> active;
+  for (const Triangles& c : meshletsOf(h.positions, sorted, options)) {
+    active.push_back(uint32_t(h.clusters.size()));
+    addCluster(h, c, 0, {}, 0.0f);
+  }
+  rep.clustersPerLevel.push_back(active.size());
+  rep.trianglesPerLevel.push_back(tris.size() / 3);
+  const unsigned threads = resolveThreads(options.threads);
+  for (uint32_t level = 1; active.size() > 1 && level < 64; ++level) {
+    const std::vector<std::vector<uint32_t>> groups = groupClusters(h, active, std::max<size_t>(2, options.groupSize));
+    // Locked: a vertex of two groups' triangles (their shared border).
+    std::vector<int> ownerGroup(h.positions.size(), -1);
+    std::vector<uint8_t> locked(h.positions.size(), 0);
+    std::vector<Triangles> groupTris(groups.size());
+    for (size_t g = 0; g < groups.size(); ++g)
+      for (uint32_t id : groups[g]) {
+        const Cluster& c = h.clusters[id];
+        for (uint32_t i = 0; i < c.triangleCount * 3; ++i) {
+          const uint32_t v = h.indices[c.firstIndex + i];
+          groupTris[g].push_back(v);
+          if (ownerGroup[v] < 0) ownerGroup[v] = int(g);
+          else if (ownerGroup[v] != int(g)) locked[v] = 1;
+        }
+      }
+    std::vector<GroupResult> results(groups.size());
+    parallelFor(int64_t(groups.size()), int(threads), 1, [&](int64_t b, int64_t e) {
+      for (int64_t g = b; g < e; ++g) results[size_t(g)] = simplifyGroup(h.positions, groupTris[size_t(g)], locked, options);
+    });
+    // Merged in group order: the pool and the clusters come out the same
+    // whatever the thread count.
+    std::vector<uint32_t> next;
+    size_t simplified = 0, levelTriangles = 0;
+    for (size_t g = 0; g < groups.size(); ++g) {
+      GroupResult& r = results[g];
+      ++rep.groups;
+      if (!r.simplified) {
+        ++rep.groupsKept;
+        next.insert(next.end(), groups[g].begin(), groups[g].end());
+        continue;
+      }
+      ++simplified;
+      LodSphere sphere = sphereOf(h.positions, groupTris[g].data(), groupTris[g].size());
+      // The distance to the input adds up along the levels (Hausdorff's
+      // triangle inequality): the children's largest plus this group's own.
+      float childError = 0.0f;
+      for (uint32_t id : groups[g]) {
+        sphere = merged(sphere, h.clusters[id].lodBounds);
+        childError = std::max(childError, h.clusters[id].error);
+      }
+      const float error = childError + r.error;  // so also monotonic up the hierarchy
+      for (uint32_t id : groups[g]) {
+        h.clusters[id].parentBounds = sphere;
+        h.clusters[id].parentError = error;
+      }
+      std::vector<uint32_t> toPool(r.positions.size());
+      for (size_t i = 0; i < r.positions.size(); ++i) {
+        if (r.poolIndex[i] >= 0) {
+          toPool[i] = uint32_t(r.poolIndex[i]);
+        } else {
+          toPool[i] = uint32_t(h.positions.size());
+          h.positions.push_back(r.positions[i]);
+        }
+      }
+      for (Triangles& c : r.clusters) {
+        for (uint32_t& v : c) v = toPool[v];
+        next.push_back(uint32_t(h.clusters.size()));
+        levelTriangles += c.size() / 3;
+        addCluster(h, c, level, sphere, error);
+      }
+    }
+    if (simplified == 0) break;  // every group held by its border: these are the roots
+    h.levels = level;
+    active = std::move(next);
+    rep.clustersPerLevel.push_back(active.size());
+    rep.trianglesPerLevel.push_back(levelTriangles);
+  }
+  ++h.levels;  // counted from 1: level 0 alone is one level
+  for (uint32_t id : active) h.clusters[id].parentError = std::numeric_limits<float>::infinity();
+  rep.roots = active.size();
+  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (report) *report = rep;
+  return h;
+}
+
+bool lodFineEnough(const LodSphere& sphere, float error, const glm::vec3& eye, float focalPx, float pixelBound) {
+  if (error <= 0.0f) return true;
+  if (!std::isfinite(error)) return false;
+  const float distance = glm::length(eye - sphere.centre) - sphere.radius;
+  if (distance <= 0.0f) return false;
+  return error * focalPx / distance <= pixelBound;
+}
+
+std::vector<uint32_t> selectClusterCut(const ClusterHierarchy& h, const glm::vec3& eye, float focalPx,
+                                       float pixelBound) {
+  std::vector<uint32_t> out;
+  for (uint32_t i = 0; i < h.clusters.size(); ++i) {
+    const Cluster& c = h.clusters[i];
+    if (lodFineEnough(c.lodBounds, c.error, eye, focalPx, pixelBound) &&
+        !lodFineEnough(c.parentBounds, c.parentError, eye, focalPx, pixelBound))
+      out.push_back(i);
+  }
+  return out;
+}
+
+}  // namespace hs::mesh

@@ -1,0 +1,98 @@
+#pragma once
+// Hierarchical cluster LOD for huge scans (issue 38, item 1; the in-core
+// builder): the mesh cut into clusters of about 128 triangles
+// (meshoptimizer's meshlet builder), neighbouring clusters grouped by four,
+// each group simplified to half by the project's own decimator with the
+// group's outer border locked, the result cut into clusters again; level by
+// level to a root. As in Nanite, every cluster carries two LOD tests: its
+// own (the error of the simplification that made it, over the sphere of
+// the group it came from) and its parent's (the error and sphere of the
+// group it was simplified in). A group's error is its children's largest
+// plus a certified upper bound of the Hausdorff distance its own
+// simplification made (meshproc/error_metrics.h): by the triangle
+// inequality no point of a cluster is further than its error from the
+// input's surface, nor the other way round. Errors only grow up the hierarchy and each
+// group's sphere holds its children's, so the projected error is monotonic
+// and a cut (selectClusterCut: a cluster drawn where its own test passes
+// and its parent's fails) takes, for every piece of surface, exactly one
+// level: group borders were locked, so clusters of different levels meet
+// on the same vertices (no crack; tests/meshproc/test_cluster_hierarchy).
+// Deterministic: groups are simplified in parallel but merged in a fixed
+// order; the result depends on the input and the options only.
+// Not here yet: UVs and textures through the hierarchy, pages, building
+// out of core (item 1's streaming input), the GPU cut.
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "mesh/mesh_data.h"
+
+namespace hs::mesh {
+
+struct ClusterOptions {
+  size_t maxTriangles = 128;  // per cluster (meshoptimizer allows 512, a multiple of 4)
+  size_t maxVertices = 128;   // per cluster (at most 255)
+  size_t groupSize = 4;       // clusters simplified together
+  // A group its locked border keeps from losing this share of its
+  // triangles is left as it is: its clusters wait for the next level's
+  // grouping (with other neighbours, other borders).
+  double minReduction = 0.15;
+  unsigned threads = 0;  // 0: every available thread; the result is the same for any count
+};
+
+struct LodSphere {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+};
+
+struct Cluster {
+  uint32_t firstIndex = 0;     // into ClusterHierarchy::indices
+  uint32_t triangleCount = 0;
+  uint32_t level = 0;          // 0: the input's triangles
+  LodSphere bounds;            // its triangles (culling)
+  // Its own LOD test: the error (metres) of the simplification that made
+  // it and the sphere of the group it was made in (level 0: 0 and its own
+  // bounds). The same for every cluster made by one group.
+  LodSphere lodBounds;
+  float error = 0.0f;
+  // Its parent's: the group it was simplified in; a root's error is
+  // infinite (no coarser level).
+  LodSphere parentBounds;
+  float parentError = std::numeric_limits<float>::infinity();
+};
+
+struct ClusterHierarchy {
+  glm::dvec3 origin{0.0};            // world position of local (0, 0, 0), as MeshData's
+  std::vector<glm::vec3> positions;  // one pool for every level: a locked border vertex is one entry
+  std::vector<uint32_t> indices;     // triangles, cluster by cluster
+  std::vector<Cluster> clusters;     // level by level
+  uint32_t levels = 0;
+};
+
+struct ClusterBuildReport {
+  std::vector<size_t> clustersPerLevel, trianglesPerLevel;
+  size_t groups = 0;
+  size_t groupsKept = 0;  // simplified less than minReduction: left for the next level
+  size_t roots = 0;
+  double seconds = 0.0;
+};
+
+// The hierarchy of `mesh` (its triangles; vertices welded by position so
+// UV seams do not cut it). An empty mesh gives no cluster.
+ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOptions& options = {},
+                                       ClusterBuildReport* report = nullptr);
+
+// Whether a simplification of `error` metres over `sphere` shows under
+// `pixelBound` pixels to a viewer at `eye` (local coordinates) whose focal
+// length is `focalPx` pixels: error * focal / distance to the sphere's
+// nearest point. No error always passes; inside the sphere only none does.
+bool lodFineEnough(const LodSphere& sphere, float error, const glm::vec3& eye, float focalPx, float pixelBound);
+
+// The clusters of the cut for that viewer: each one whose own test passes
+// and whose parent's fails, in the hierarchy's order.
+std::vector<uint32_t> selectClusterCut(const ClusterHierarchy& h, const glm::vec3& eye, float focalPx,
+                                       float pixelBound);
+
+}  // namespace hs::mesh

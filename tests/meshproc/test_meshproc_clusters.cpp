@@ -1,0 +1,200 @@
+// The cluster hierarchy (meshproc/cluster_hierarchy.h) on a bumpy closed
+// sphere: clusters within their size, every level smaller than the one
+// below, errors and spheres monotonic up the hierarchy; any cut is
+// watertight (every edge of its triangles shared by exactly two, as on the
+// closed input), whatever the viewer's place and pixel bound, with levels
+// mixed where the viewer is near one side; the finest bound draws the
+// input, the coarsest the roots; the same hierarchy for any thread count;
+// the surface of a coarse cut stays within its clusters' largest error of
+// the input (measured by sampling, meshproc/error_metrics.h); an empty mesh
+// gives none.
+#include <QtTest>
+
+#include <map>
+#include <set>
+
+#include "mesh_builders.h"
+#include "meshproc/cluster_hierarchy.h"
+#include "meshproc/error_metrics.h"
+
+using namespace hs;
+using mesh::ClusterHierarchy;
+
+namespace {
+
+// An icosphere with a few bumps (so simplifying costs some error).
+mesh::MeshData bumpySphere() {
+  mesh::MeshData m = test::icosphere(5, 10.0);
+  for (glm::vec3& p : m.positions) {
+    const glm::vec3 n = glm::normalize(p);
+    p = n * (10.0f + 0.4f * std::sin(5.0f * n.x) * std::cos(4.0f * n.y) + 0.2f * std::sin(9.0f * n.z));
+  }
+  return m;
+}
+
+// Edge -> how many of the cut's triangles use it.
+std::map<std::pair<uint32_t, uint32_t>, int> edgeUse(const ClusterHierarchy& h, const std::vector<uint32_t>& cut) {
+  std::map<std::pair<uint32_t, uint32_t>, int> use;
+  for (uint32_t id : cut) {
+    const mesh::Cluster& c = h.clusters[id];
+    for (uint32_t t = 0; t < c.triangleCount; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t u = h.indices[c.firstIndex + t * 3 + k], v = h.indices[c.firstIndex + t * 3 + (k + 1) % 3];
+        ++use[std::minmax(u, v)];
+      }
+  }
+  return use;
+}
+
+mesh::MeshData cutMesh(const ClusterHierarchy& h, const std::vector<uint32_t>& cut) {
+  mesh::MeshData m;
+  m.origin = h.origin;
+  m.positions = h.positions;
+  for (uint32_t id : cut) {
+    const mesh::Cluster& c = h.clusters[id];
+    m.indices.insert(m.indices.end(), h.indices.begin() + c.firstIndex,
+                     h.indices.begin() + c.firstIndex + c.triangleCount * 3);
+  }
+  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
+  return m;
+}
+
+bool inside(const mesh::LodSphere& a, const mesh::LodSphere& b) {
+  return glm::length(a.centre - b.centre) + a.radius <= b.radius * (1.0f + 1e-5f) + 1e-5f;
+}
+
+}  // namespace
+
+class TestMeshprocClusters : public QObject {
+  Q_OBJECT
+  mesh::MeshData sphere_;
+  ClusterHierarchy h_;
+  mesh::ClusterBuildReport report_;
+
+ private slots:
+  void initTestCase() {
+    sphere_ = bumpySphere();
+    h_ = mesh::buildClusterHierarchy(sphere_, {}, &report_);
+    QString levels;
+    for (size_t l = 0; l < report_.trianglesPerLevel.size(); ++l)
+      levels += QString(" %1/%2").arg(report_.clustersPerLevel[l]).arg(report_.trianglesPerLevel[l]);
+    qInfo("%zu triangles: %u levels (clusters/triangles:%s), %zu groups (%zu kept as they were), %zu roots, %.2f s",
+          sphere_.triangleCount(), h_.levels, qPrintable(levels), report_.groups, report_.groupsKept, report_.roots,
+          report_.seconds);
+  }
+
+  void levelsShrinkAndErrorsGrow() {
+    QVERIFY(h_.levels >= 4);
+    QVERIFY(report_.roots <= 4);
+    for (size_t l = 1; l < report_.trianglesPerLevel.size(); ++l)
+      QVERIFY(report_.trianglesPerLevel[l] < report_.trianglesPerLevel[l - 1]);
+    for (const mesh::Cluster& c : h_.clusters) {
+      QVERIFY(c.triangleCount >= 1 && c.triangleCount <= 128);
+      QVERIFY(c.parentError >= c.error);
+      if (std::isfinite(c.parentError)) QVERIFY(inside(c.lodBounds, c.parentBounds));
+      QVERIFY(c.level == 0 ? c.error == 0.0f : c.error > 0.0f);
+    }
+  }
+
+  void everyCutIsWatertight() {
+    const float focal = 1000.0f;
+    bool mixed = false;
+    size_t cuts = 0;
+    for (const glm::vec3 eye : {glm::vec3(0, -12, 0), glm::vec3(0, -15, 3), glm::vec3(30, 0, 0),
+                                glm::vec3(0, 0, 200), glm::vec3(5000, 0, 0)})
+      for (float bound : {0.25f, 1.0f, 4.0f, 32.0f}) {
+        const std::vector<uint32_t> cut = mesh::selectClusterCut(h_, eye, focal, bound);
+        QVERIFY(!cut.empty());
+        std::set<uint32_t> levels;
+        for (uint32_t id : cut) levels.insert(h_.clusters[id].level);
+        mixed |= levels.size() > 1;
+        for (const auto& [edge, n] : edgeUse(h_, cut))
+          if (n != 2)
+            QFAIL(qPrintable(QString("eye (%1, %2, %3), bound %4 px: edge %5-%6 used by %7 triangles")
+                                 .arg(eye.x).arg(eye.y).arg(eye.z).arg(bound).arg(edge.first).arg(edge.second).arg(n)));
+        ++cuts;
+      }
+    QVERIFY(mixed);  // a viewer near one side sees fine clusters there and coarse ones beyond
+    qInfo("%zu cuts, each watertight", cuts);
+  }
+
+  void finestAndCoarsest() {
+    std::vector<uint32_t> finest = mesh::selectClusterCut(h_, {0, 0, 20}, 1e9f, 1e-6f);
+    size_t triangles = 0;
+    for (uint32_t id : finest) {
+      QCOMPARE(h_.clusters[id].level, 0u);
+      triangles += h_.clusters[id].triangleCount;
+    }
+    QCOMPARE(triangles, sphere_.triangleCount());
+    const std::vector<uint32_t> coarsest = mesh::selectClusterCut(h_, {1e7f, 0, 0}, 1.0f, 1e9f);
+    QCOMPARE(coarsest.size(), report_.roots);
+    for (uint32_t id : coarsest) QVERIFY(std::isinf(h_.clusters[id].parentError));
+  }
+
+  void theSameForAnyThreadCount() {
+    mesh::ClusterOptions one;
+    one.threads = 1;
+    mesh::ClusterOptions two;
+    two.threads = 2;
+    const ClusterHierarchy a = mesh::buildClusterHierarchy(sphere_, one), b = mesh::buildClusterHierarchy(sphere_, two);
+    QVERIFY(a.positions == b.positions);
+    QVERIFY(a.indices == b.indices);
+    QCOMPARE(a.clusters.size(), b.clusters.size());
+    for (size_t i = 0; i < a.clusters.size(); ++i) {
+      QCOMPARE(a.clusters[i].error, b.clusters[i].error);
+      QCOMPARE(a.clusters[i].parentError, b.clusters[i].parentError);
+    }
+  }
+
+  void aCoarseCutStaysNearTheSurface() {
+    // A distant viewer at 2 px: the cut's largest cluster error against
+    // the distance of its surface from the input, both ways.
+    const std::vector<uint32_t> cut = mesh::selectClusterCut(h_, {0, -400, 0}, 1000.0f, 2.0f);
+    float worst = 0.0f;
+    size_t triangles = 0;
+    for (uint32_t id : cut) {
+      worst = std::max(worst, h_.clusters[id].error);
+      triangles += h_.clusters[id].triangleCount;
+    }
+    const mesh::ErrorReport e = mesh::measureError(sphere_, cutMesh(h_, cut));
+    qInfo("a cut of %zu triangles (of %zu): clusters' error at most %.4f m, measured distance %.4f m (max of both "
+          "ways)",
+          triangles, sphere_.triangleCount(), double(worst), e.hausdorff);
+    QVERIFY(triangles < sphere_.triangleCount() / 4);
+    QVERIFY(e.hausdorff <= double(worst));  // the errors bound the distance (by their construction)
+  }
+
+  void tinyAndFarMeshes() {
+    // One triangle: one cluster, a root at level 0.
+    mesh::MeshData one;
+    one.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    one.indices = {0, 1, 2};
+    one.submeshes.push_back({0, 3, -1});
+    ClusterHierarchy h = mesh::buildClusterHierarchy(one);
+    QCOMPARE(h.clusters.size(), size_t(1));
+    QCOMPARE(h.levels, 1u);
+    QCOMPARE(mesh::selectClusterCut(h, {0, 0, 5}, 1000.0f, 1.0f), std::vector<uint32_t>{0});
+    // A triangle welded to a sliver of none (two corners at one point) is dropped.
+    one.positions.push_back({0, 0, 0});
+    one.indices.insert(one.indices.end(), {3, 0, 1});
+    one.submeshes[0].indexCount = 6;
+    QCOMPARE(mesh::buildClusterHierarchy(one).indices.size(), size_t(3));
+    // A scan in UTM coordinates: positions stay local (the origin holds the
+    // 4 400 km), the hierarchy as at the origin.
+    mesh::MeshData far = sphere_;
+    far.origin = {500000.0, 4400000.0, 300.0};
+    const ClusterHierarchy f = mesh::buildClusterHierarchy(far);
+    QCOMPARE(f.origin, far.origin);
+    QVERIFY(f.indices == h_.indices && f.positions == h_.positions);
+  }
+
+  void anEmptyMeshGivesNone() {
+    mesh::ClusterBuildReport r;
+    const ClusterHierarchy h = mesh::buildClusterHierarchy(mesh::MeshData{}, {}, &r);
+    QVERIFY(h.clusters.empty() && h.indices.empty());
+    QVERIFY(mesh::selectClusterCut(h, {0, 0, 0}, 1000.0f, 1.0f).empty());
+  }
+};
+
+QTEST_GUILESS_MAIN(TestMeshprocClusters)
+#include "test_meshproc_clusters.moc"
