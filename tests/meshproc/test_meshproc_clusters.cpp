@@ -47,13 +47,20 @@ std::map<std::pair<uint32_t, uint32_t>, int> edgeUse(const ClusterHierarchy& h, 
 }
 
 mesh::MeshData cutMesh(const ClusterHierarchy& h, const std::vector<uint32_t>& cut) {
+  // Only the vertices the cut uses (the error report samples every vertex).
   mesh::MeshData m;
   m.origin = h.origin;
-  m.positions = h.positions;
+  std::vector<uint32_t> local(h.positions.size(), UINT32_MAX);
   for (uint32_t id : cut) {
     const mesh::Cluster& c = h.clusters[id];
-    m.indices.insert(m.indices.end(), h.indices.begin() + c.firstIndex,
-                     h.indices.begin() + c.firstIndex + c.triangleCount * 3);
+    for (uint32_t i = c.firstIndex; i < c.firstIndex + c.triangleCount * 3; ++i) {
+      const uint32_t v = h.indices[i];
+      if (local[v] == UINT32_MAX) {
+        local[v] = uint32_t(m.positions.size());
+        m.positions.push_back(h.positions[v]);
+      }
+      m.indices.push_back(local[v]);
+    }
   }
   m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
   return m;
