@@ -89,12 +89,13 @@ struct GroupResult {
   bool simplified = false;
   float error = 0.0f;
   std::vector<glm::vec3> positions;  // the decimated group's vertices
+  std::vector<glm::vec2> uvs;        // and their UVs (none without)
   std::vector<int64_t> poolIndex;    // per vertex: the pool entry it is (same position), or -1: new
   std::vector<Triangles> clusters;   // local vertex indices
 };
 
-GroupResult simplifyGroup(const std::vector<glm::vec3>& pool, const Triangles& tris, const std::vector<uint8_t>& locked,
-                          const ClusterOptions& o) {
+GroupResult simplifyGroup(const std::vector<glm::vec3>& pool, const std::vector<glm::vec2>& poolUvs,
+                          const Triangles& tris, const std::vector<uint8_t>& locked, const ClusterOptions& o) {
   GroupResult r;
   MeshData m;
   std::unordered_map<uint32_t, uint32_t> local;
@@ -107,6 +108,7 @@ GroupResult simplifyGroup(const std::vector<glm::vec3>& pool, const Triangles& t
   DecimateOptions d;
   for (uint32_t v : toPool) {
     m.positions.push_back(pool[v]);
+    if (!poolUvs.empty()) m.uvs.push_back(poolUvs[v]);
     d.lockedVertices.push_back(locked[v]);
   }
   m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
@@ -134,12 +136,18 @@ GroupResult simplifyGroup(const std::vector<glm::vec3>& pool, const Triangles& t
     r.error = std::max(r.error, float(bound.upper));
   }
   r.positions = dr.mesh.positions;
-  std::unordered_map<uint64_t, uint32_t> byPosition;
+  if (!poolUvs.empty()) r.uvs = dr.mesh.uvs;
+  // An output vertex the same as an input one (locked, or left where it
+  // was) is that pool entry: clusters of two levels share it.
+  std::unordered_multimap<uint64_t, uint32_t> byPosition;
   for (uint32_t v : toPool) byPosition.emplace(positionKey(pool[v]), v);
   r.poolIndex.assign(r.positions.size(), -1);
-  for (size_t i = 0; i < r.positions.size(); ++i)
-    if (auto it = byPosition.find(positionKey(r.positions[i])); it != byPosition.end() && pool[it->second] == r.positions[i])
-      r.poolIndex[i] = it->second;
+  for (size_t i = 0; i < r.positions.size(); ++i) {
+    const auto [first, last] = byPosition.equal_range(positionKey(r.positions[i]));
+    for (auto it = first; it != last; ++it)
+      if (pool[it->second] == r.positions[i] && (poolUvs.empty() || poolUvs[it->second] == r.uvs[i]))
+        r.poolIndex[i] = it->second;
+  }
   // Cut into clusters on a scratch pool of the group's own vertices.
   Triangles out(dr.mesh.indices.begin(), dr.mesh.indices.end());
   r.clusters = meshletsOf(r.positions, out, o);
@@ -234,18 +242,22 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
   ClusterBuildReport rep;
   ClusterHierarchy h;
   h.origin = mesh.origin;
-  // Weld by position: UV seams and split normals do not cut the surface.
+  // Weld where position and UV agree: split normals do not cut the
+  // surface; a UV seam stays two vertices a side.
+  const bool uvs = mesh.uvs.size() == mesh.positions.size() && !mesh.uvs.empty();
   std::unordered_map<uint64_t, std::vector<uint32_t>> byKey;
   std::vector<uint32_t> remap(mesh.positions.size());
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     const glm::vec3& p = mesh.positions[i];
+    const glm::vec2 uv = uvs ? mesh.uvs[i] : glm::vec2(0.0f);
     std::vector<uint32_t>& same = byKey[positionKey(p)];
     uint32_t at = UINT32_MAX;
     for (uint32_t s : same)
-      if (h.positions[s] == p) at = s;
+      if (h.positions[s] == p && (!uvs || h.uvs[s] == uv)) at = s;
     if (at == UINT32_MAX) {
       at = uint32_t(h.positions.size());
       h.positions.push_back(p);
+      if (uvs) h.uvs.push_back(uv);
       same.push_back(at);
     }
     remap[i] = at;
@@ -274,9 +286,11 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
   const unsigned threads = resolveThreads(options.threads);
   for (uint32_t level = 1; active.size() > 1 && level < 64; ++level) {
     const std::vector<std::vector<uint32_t>> groups = groupClusters(h, active, std::max<size_t>(2, options.groupSize));
-    // Locked: a vertex of two groups' triangles (their shared border).
-    std::vector<int> ownerGroup(h.positions.size(), -1);
-    std::vector<uint8_t> locked(h.positions.size(), 0);
+    // Locked: a vertex whose position two groups' triangles use (their
+    // shared border; by position, so both sides of a UV seam along it).
+    // Positions compared by their key: a collision locks more, never less.
+    std::unordered_map<uint64_t, int> ownerGroup;
+    std::unordered_map<uint64_t, bool> shared;
     std::vector<Triangles> groupTris(groups.size());
     for (size_t g = 0; g < groups.size(); ++g)
       for (uint32_t id : groups[g]) {
@@ -284,13 +298,17 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
         for (uint32_t i = 0; i < c.triangleCount * 3; ++i) {
           const uint32_t v = h.indices[c.firstIndex + i];
           groupTris[g].push_back(v);
-          if (ownerGroup[v] < 0) ownerGroup[v] = int(g);
-          else if (ownerGroup[v] != int(g)) locked[v] = 1;
+          const uint64_t key = positionKey(h.positions[v]);
+          auto [it, first] = ownerGroup.try_emplace(key, int(g));
+          if (!first && it->second != int(g)) shared[key] = true;
         }
       }
+    std::vector<uint8_t> locked(h.positions.size(), 0);
+    for (size_t v = 0; v < h.positions.size(); ++v) locked[v] = shared.count(positionKey(h.positions[v])) ? 1 : 0;
     std::vector<GroupResult> results(groups.size());
     parallelFor(int64_t(groups.size()), int(threads), 1, [&](int64_t b, int64_t e) {
-      for (int64_t g = b; g < e; ++g) results[size_t(g)] = simplifyGroup(h.positions, groupTris[size_t(g)], locked, options);
+      for (int64_t g = b; g < e; ++g)
+        results[size_t(g)] = simplifyGroup(h.positions, h.uvs, groupTris[size_t(g)], locked, options);
     });
     // Merged in group order: the pool and the clusters come out the same
     // whatever the thread count.
@@ -325,6 +343,7 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
         } else {
           toPool[i] = uint32_t(h.positions.size());
           h.positions.push_back(r.positions[i]);
+          if (!h.uvs.empty()) h.uvs.push_back(r.uvs[i]);
         }
       }
       for (Triangles& c : r.clusters) {

@@ -19,8 +19,8 @@
 // on the same vertices (no crack; tests/meshproc/test_cluster_hierarchy).
 // Deterministic: groups are simplified in parallel but merged in a fixed
 // order; the result depends on the input and the options only.
-// Not here yet: UVs and textures through the hierarchy, pages, building
-// out of core (item 1's streaming input), the GPU cut.
+// Not here yet: textures paged per region, pages in the scene file,
+// building out of core (item 1's streaming input), the GPU cut.
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -72,6 +72,7 @@ struct Cluster {
 struct ClusterHierarchy {
   glm::dvec3 origin{0.0};            // world position of local (0, 0, 0), as MeshData's
   std::vector<glm::vec3> positions;  // one pool for every level: a locked border vertex is one entry
+  std::vector<glm::vec2> uvs;        // one per position, or empty (the input had none)
   std::vector<uint32_t> indices;     // triangles, cluster by cluster
   std::vector<Cluster> clusters;     // level by level
   uint32_t levels = 0;
@@ -85,8 +86,11 @@ struct ClusterBuildReport {
   double seconds = 0.0;
 };
 
-// The hierarchy of `mesh` (its triangles; vertices welded by position so
-// UV seams do not cut it). An empty mesh gives no cluster.
+// The hierarchy of `mesh` (its triangles and UVs; vertices welded where
+// position and UV are the same, so a UV seam stays two vertices a side,
+// which the decimator keeps in place along their polylines). Group
+// borders are locked by position, so both sides of a seam that runs along
+// one stay. An empty mesh gives no cluster.
 ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOptions& options = {},
                                        ClusterBuildReport* report = nullptr);
 

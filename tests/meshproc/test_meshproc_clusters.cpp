@@ -5,6 +5,9 @@
 // closed input), whatever the viewer's place and pixel bound, with levels
 // mixed where the viewer is near one side; the finest bound draws the
 // input, the coarsest the roots; the same hierarchy for any thread count;
+// an open grid with a UV seam keeps its seam (two vertices a side, with
+// their UVs) and every cut of it whole at the positions' level, open only
+// along the grid's border;
 // the surface of a coarse cut stays within its clusters' largest error of
 // the input (measured by sampling, meshproc/error_metrics.h); an empty mesh
 // gives none.
@@ -12,6 +15,7 @@
 
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "mesh_builders.h"
 #include "meshproc/cluster_hierarchy.h"
@@ -169,6 +173,53 @@ class TestMeshprocClusters : public QObject {
           triangles, sphere_.triangleCount(), double(worst), e.hausdorff);
     QVERIFY(triangles < sphere_.triangleCount() / 4);
     QVERIFY(e.hausdorff <= double(worst));  // the errors bound the distance (by their construction)
+  }
+
+  void seamsAndBordersHold() {
+    // An open grid with a UV seam across it: the seam's vertices stay two
+    // a side with their UVs; at the positions' level every cut is whole
+    // (each edge inside used by two triangles, the seam included) and its
+    // open edges run between the grid's own border vertices.
+    const mesh::MeshData grid = test::curvedGrid(48, 10.0, 1.5, true);
+    mesh::ClusterBuildReport rep;
+    const ClusterHierarchy h = mesh::buildClusterHierarchy(grid, {}, &rep);
+    QVERIFY(rep.trianglesPerLevel.size() >= 4);
+    QCOMPARE(h.uvs.size(), h.positions.size());
+    std::set<std::tuple<float, float, float>> border;
+    {
+      std::map<std::pair<std::tuple<float, float, float>, std::tuple<float, float, float>>, int> use;
+      auto key = [&](uint32_t v) { const glm::vec3& p = grid.positions[v]; return std::make_tuple(p.x, p.y, p.z); };
+      for (size_t t = 0; t < grid.indices.size(); t += 3)
+        for (int k = 0; k < 3; ++k) ++use[std::minmax(key(grid.indices[t + k]), key(grid.indices[t + (k + 1) % 3]))];
+      for (const auto& [edge, n] : use)
+        if (n == 1) border.insert({edge.first, edge.second});
+    }
+    size_t seamCopies = 0;  // welded positions with two UVs
+    {
+      std::map<std::tuple<float, float, float>, int> copies;
+      for (const glm::vec3& p : h.positions) ++copies[{p.x, p.y, p.z}];
+      for (const auto& [p, n] : copies) seamCopies += n > 1;
+    }
+    QVERIFY(seamCopies >= 48);  // the seam's vertices, a copy a side
+    for (const glm::vec3 eye : {glm::vec3(1, 1, 2), glm::vec3(5, 5, 30), glm::vec3(-40, 5, 10)})
+      for (float bound : {0.5f, 2.0f, 16.0f}) {
+        const std::vector<uint32_t> cut = mesh::selectClusterCut(h, eye, 1000.0f, bound);
+        std::map<std::pair<std::tuple<float, float, float>, std::tuple<float, float, float>>, int> use;
+        auto key = [&](uint32_t v) { const glm::vec3& p = h.positions[v]; return std::make_tuple(p.x, p.y, p.z); };
+        for (uint32_t id : cut) {
+          const mesh::Cluster& c = h.clusters[id];
+          for (uint32_t i = 0; i < c.triangleCount * 3; i += 3)
+            for (int k = 0; k < 3; ++k)
+              ++use[std::minmax(key(h.indices[c.firstIndex + i + k]), key(h.indices[c.firstIndex + i + (k + 1) % 3]))];
+        }
+        for (const auto& [edge, n] : use) {
+          QVERIFY2(n <= 2, "an edge of three triangles");
+          if (n == 1)
+            QVERIFY2(border.count(edge.first) && border.count(edge.second),
+                     qPrintable(QString("eye (%1, %2, %3), %4 px: an open edge inside the grid")
+                                    .arg(eye.x).arg(eye.y).arg(eye.z).arg(bound)));
+        }
+      }
   }
 
   void tinyAndFarMeshes() {
