@@ -72,4 +72,91 @@ inline hs::mesh::MeshData quadScan(int n = 180, double size = 30.0, uint64_t see
   return m;
 }
 
+// The harder quad scan (issue 38: the real quad scan's worst case, a thin
+// feature collapsed away, is not in quadScan any more): the same grid,
+// atlas and non-manifold fins, with the features photogrammetry of rock
+// and buildings has and decimation loses first: thin walls (a ridge one
+// grid line wide, a metre high), spikes (single vertices raised 0.8 m),
+// narrow bridges (a strip two quads wide between two holes) and folds (a
+// sharp V crease) and two thin double-sided walls (two quad sheets 4 cm
+// apart). Heights in metres over a `size` metre square.
+inline hs::mesh::MeshData hardQuadScan(int n = 180, double size = 30.0, uint64_t seed = 23) {
+  using namespace detail;
+  hs::mesh::MeshData m = quadScan(n, size, seed);
+  const double cell = size / n;
+  const size_t gridVertices = m.positions.size() - 3;  // the three non-manifold fins' tops come last
+  for (size_t v = 0; v < gridVertices; ++v) {
+    glm::vec3& p = m.positions[v];
+    const int i = int(std::lround(double(p.x) / cell)), j = int(std::lround(double(p.y) / cell));
+    double dz = 0.0;
+    // Thin walls: three grid lines, a metre up, tapering at their ends.
+    for (int w = 0; w < 3; ++w) {
+      const int line = n / 6 + w * n / 3;
+      const int from = n / 8 + w * 7, to = n / 2 + w * 11;
+      if (i == line && j >= from && j <= to) dz += 1.0 * std::min(1.0, std::min(j - from, to - j) / 3.0);
+    }
+    // Folds: a sharp V crease across the grid (2 m deep over 6 m each side).
+    dz += std::min(0.0, 2.0 * (std::abs(double(p.x) - 0.62 * size) / (0.2 * size)) - 2.0) * (double(p.y) > 0.7 * size ? 1.0 : 0.0);
+    // Spikes: single vertices.
+    for (int k = 0; k < 12; ++k) {
+      const int si = int(double(n) * (0.08 + 0.84 * unit(hash3(k, 5, seed)))), sj = int(double(n) * (0.08 + 0.84 * unit(hash3(k, 6, seed))));
+      if (i == si && j == sj) dz += 0.8;
+    }
+    p.z += float(dz);
+  }
+  // Narrow bridges: two holes side by side, a strip two quads wide between.
+  std::vector<uint32_t> kept;
+  const int bj0 = int(0.15 * n), bj1 = int(0.3 * n), bi = int(0.8 * n);
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    const glm::dvec3 c = glm::dvec3(m.positions[m.indices[t]] + m.positions[m.indices[t + 1]] + m.positions[m.indices[t + 2]]) / 3.0;
+    const int i = int(c.x / cell), j = int(c.y / cell);
+    const bool hole = j >= bj0 && j < bj1 && ((i >= bi - 12 && i < bi - 1) || (i >= bi + 1 && i < bi + 12));
+    if (!hole) kept.insert(kept.end(), {m.indices[t], m.indices[t + 1], m.indices[t + 2]});
+  }
+  // The holes' inner vertices go too (an error report samples every vertex).
+  std::vector<uint32_t> remap(m.positions.size(), UINT32_MAX);
+  hs::mesh::MeshData out;
+  for (uint32_t& v : kept) {
+    if (remap[v] == UINT32_MAX) {
+      remap[v] = uint32_t(out.positions.size());
+      out.positions.push_back(m.positions[v]);
+      out.uvs.push_back(m.uvs[v]);
+    }
+    v = remap[v];
+  }
+  out.indices = std::move(kept);
+  // Thin double-sided walls standing on the ground (a balustrade, a rock
+  // flake): two quad sheets 4 cm apart, 1 m high, 3 m long, with a top and
+  // ends, not joined to the ground (an open bottom); collapsing one onto
+  // its other side costs its height.
+  for (int w = 0; w < 2; ++w) {
+    const double x0 = size * (0.3 + 0.35 * w), y0 = size * (0.55 - 0.3 * w), len = 3.0, thick = 0.04, high = 1.0;
+    const int nl = 36, nh = 12;
+    const double ground = double(out.positions[0].z) * 0.0 + 1.5;  // about the relief's height there
+    const uint32_t base = uint32_t(out.positions.size());
+    // A ring around the wall's section (two long sides, two ends) at each height.
+    std::vector<glm::dvec2> ring;
+    for (int k = 0; k <= nl; ++k) ring.push_back({x0 + len * k / nl, y0});
+    ring.push_back({x0 + len, y0 + thick});
+    for (int k = nl; k >= 0; --k) ring.push_back({x0 + len * k / nl, y0 + thick});
+    const int rn = int(ring.size());
+    for (int hgt = 0; hgt <= nh; ++hgt)
+      for (int r = 0; r < rn; ++r) {
+        out.positions.emplace_back(float(ring[size_t(r)].x), float(ring[size_t(r)].y), float(ground + high * hgt / nh));
+        out.uvs.emplace_back(float(0.5 + 0.45 * r / rn), float(0.5 + 0.45 * hgt / nh));
+      }
+    auto at = [&](int hgt, int r) { return base + uint32_t(hgt * rn + (r % rn)); };
+    for (int hgt = 0; hgt < nh; ++hgt)
+      for (int r = 0; r < rn; ++r)
+        out.indices.insert(out.indices.end(), {at(hgt, r), at(hgt, r + 1), at(hgt + 1, r + 1), at(hgt, r), at(hgt + 1, r + 1), at(hgt + 1, r)});
+    // The top: quads between the two long sides.
+    for (int k = 0; k < nl; ++k) {
+      const uint32_t a = at(nh, k), b = at(nh, k + 1), c = at(nh, rn - 2 - k), d = at(nh, rn - 1 - k);
+      out.indices.insert(out.indices.end(), {a, b, c, a, c, d});
+    }
+  }
+  out.submeshes = {{0, uint32_t(out.indices.size()), -1}};
+  return out;
+}
+
 }  // namespace hs::bench
