@@ -17,7 +17,7 @@
 //                  [--threads 2] [--plot bench_decimate.png] [--skip-terrain] [--skip-bunny]
 //                  [--terrain-runs 3] [--ratios 50,25,10,5,1] [--no-error] [--no-stock]
 //                  [--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir /tmp] [--quad-no-uv] [--pause S] [--meshopt-huge-pages]
-//                  [--quad-seed 11] [--where-max] [--bound] [--hard-quad]
+//                  [--quad-seed 11] [--where-max] [--bound] [--hard-quad] [--hard-quad-irregular]
 //                  (our output's content hash goes to stderr)
 #include <chrono>
 #include <cstdio>
@@ -303,7 +303,8 @@ int main(int argc, char** argv) {
   std::vector<double> ratios = {0.5, 0.25, 0.1, 0.05, 0.01};
   double terrainSamples = 1.0;
   unsigned threads = 2;
-  bool skipTerrain = false, skipBunny = false, noStock = false, skipQuad = false, noPeers = false, hardQuad = false;
+  bool skipTerrain = false, skipBunny = false, noStock = false, skipQuad = false, noPeers = false, hardQuad = false,
+       hardIrregular = false;
   std::string workDir = "/tmp";
   bool quadNoUv = false;  // the quad scan without UVs: what its seams cost
   bool whereMax = false;
@@ -330,6 +331,7 @@ int main(int argc, char** argv) {
     else if (a == "--skip-bunny") skipBunny = true;
     else if (a == "--skip-quad") skipQuad = true;
     else if (a == "--hard-quad") hardQuad = true;
+    else if (a == "--hard-quad-irregular") hardQuad = hardIrregular = true;
     else if (a == "--no-peers") noPeers = true;
     else if (a == "--quad-no-uv") quadNoUv = true;
     else if (a == "--where-max") whereMax = true;
@@ -340,7 +342,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "usage: %s [--bunny PATH] [--terrain-quads N] [--runs K] [--terrain-samples S] "
                            "[--stock-terrain 0.1|all|none] [--threads T] [--plot PNG] [--skip-terrain] [--skip-bunny] "
                            "[--terrain-runs K] [--ratios 50,25,10,5,1] [--no-error] [--no-stock] "
-                           "[--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir DIR] [--quad-no-uv] [--quad-seed K] [--where-max] [--bound] [--hard-quad] [--pause S] [--meshopt-huge-pages]\n", argv[0]);
+                           "[--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir DIR] [--quad-no-uv] [--quad-seed K] [--where-max] [--bound] [--hard-quad] [--hard-quad-irregular] [--pause S] [--meshopt-huge-pages]\n", argv[0]);
       return 2;
     }
   }
@@ -381,10 +383,11 @@ int main(int argc, char** argv) {
                     10.0, runs, false, true, true, false});
   }
   if (hardQuad) {
-    MeshData q = hs::bench::hardQuadScan(180, 30.0);
+    MeshData q = hs::bench::hardQuadScan(180, 30.0, 23, hardIrregular);
     q.origin = glm::dvec3(431000.0, 5402000.0, 520.0);
     recenter(q);
-    sets.push_back({"hard quad scan (32k quads, 2x2 UV atlas, thin walls, spikes, a narrow bridge, a fold, 3 fins)",
+    sets.push_back({std::string("hard quad scan (32k quads") + (hardIrregular ? ", irregular" : "") +
+                        ", 2x2 UV atlas, thin walls, spikes, a narrow bridge, a fold, thin sheets, 3 fins)",
                     "hard quad scan", std::move(q), 10.0, runs, false, true, true, false});
   }
   if (!skipTerrain) {

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <vector>
 
 #include "mesh/mesh_data.h"
@@ -80,9 +81,30 @@ inline hs::mesh::MeshData quadScan(int n = 180, double size = 30.0, uint64_t see
 // narrow bridges (a strip two quads wide between two holes) and folds (a
 // sharp V crease) and two thin double-sided walls (two quad sheets 4 cm
 // apart). Heights in metres over a `size` metre square.
-inline hs::mesh::MeshData hardQuadScan(int n = 180, double size = 30.0, uint64_t seed = 23) {
+inline hs::mesh::MeshData hardQuadScan(int n = 180, double size = 30.0, uint64_t seed = 23, bool irregular = false) {
   using namespace detail;
   hs::mesh::MeshData m = quadScan(n, size, seed);
+  if (irregular) {
+    // An irregular triangulation of irregular quads: each quad's diagonal
+    // by a hash, grid points jittered by up to 0.35 of a cell.
+    for (size_t t = 0; t + 5 < m.indices.size() - 9; t += 6) {
+      if (unit(hash3(int64_t(t), 77, seed)) < 0.5) continue;
+      const uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2], d = m.indices[t + 5];
+      m.indices[t] = a; m.indices[t + 1] = b; m.indices[t + 2] = d;
+      m.indices[t + 3] = b; m.indices[t + 4] = c; m.indices[t + 5] = d;
+    }
+    const double cellSize = size / n;
+    std::map<std::pair<int64_t, int64_t>, glm::vec2> jitter;  // the same for a point's copies on seams
+    for (size_t v = 0; v + 3 < m.positions.size(); ++v) {
+      glm::vec3& p = m.positions[v];
+      const int64_t i = std::lround(double(p.x) / cellSize), j = std::lround(double(p.y) / cellSize);
+      if (i <= 0 || j <= 0 || i >= n || j >= n) continue;
+      const glm::vec2 o(float(0.35 * cellSize * (2.0 * unit(hash3(i, j, seed + 5)) - 1.0)),
+                        float(0.35 * cellSize * (2.0 * unit(hash3(i, j, seed + 6)) - 1.0)));
+      p.x += o.x;
+      p.y += o.y;
+    }
+  }
   const double cell = size / n;
   const size_t gridVertices = m.positions.size() - 3;  // the three non-manifold fins' tops come last
   for (size_t v = 0; v < gridVertices; ++v) {
