@@ -10,15 +10,20 @@
 // along the grid's border;
 // the surface of a coarse cut stays within its clusters' largest error of
 // the input (measured by sampling, meshproc/error_metrics.h); an empty mesh
-// gives none.
+// gives none. Its pages (meshproc/cluster_pages.h) give every cluster
+// back; a truncated or damaged index or page, or errors that shrink up the
+// hierarchy, are refused with a message naming the page or cluster.
 #include <QtTest>
 
+#include <cstring>
+#include <limits>
 #include <map>
 #include <set>
 #include <tuple>
 
 #include "mesh_builders.h"
 #include "meshproc/cluster_hierarchy.h"
+#include "meshproc/cluster_pages.h"
 #include "meshproc/error_metrics.h"
 
 using namespace hs;
@@ -244,6 +249,69 @@ class TestMeshprocClusters : public QObject {
     const ClusterHierarchy f = mesh::buildClusterHierarchy(far);
     QCOMPARE(f.origin, far.origin);
     QVERIFY(f.indices == h_.indices && f.positions == h_.positions);
+  }
+
+  void pagesRoundTrip() {
+    // The hierarchy through its index and pages and back: every cluster's
+    // triangles at the same positions, pages near their size.
+    const mesh::ClusterPages pages = mesh::paginate(h_, 16 << 10);
+    QVERIFY(pages.pages.size() > 4);
+    const std::vector<uint8_t> indexBytes = mesh::encodeClusterIndex(pages.index);
+    std::string error;
+    const std::optional<mesh::ClusterIndex> index =
+        mesh::decodeClusterIndex(indexBytes.data(), indexBytes.size(), "sphere", error);
+    QVERIFY2(index, error.c_str());
+    QCOMPARE(index->clusters.size(), h_.clusters.size());
+    size_t clusters = 0;
+    for (uint32_t p = 0; p < pages.pages.size(); ++p) {
+      const std::vector<uint8_t>& bytes = pages.pages[p];
+      QVERIFY(bytes.size() <= (16u << 10) + 128 * 12 + 128 * 3 + 8);
+      const auto decoded = mesh::decodeClusterPage(bytes.data(), bytes.size(), *index, p, "sphere", error);
+      QVERIFY2(decoded, error.c_str());
+      for (const mesh::PageCluster& c : *decoded) {
+        const mesh::Cluster& o = h_.clusters[c.cluster];
+        QCOMPARE(c.triangles.size(), size_t(o.triangleCount) * 3);
+        for (size_t i = 0; i < c.triangles.size(); ++i)
+          QCOMPARE(c.positions[c.triangles[i]], h_.positions[h_.indices[o.firstIndex + i]]);
+        QCOMPARE(index->clusters[c.cluster].error, o.error);
+        ++clusters;
+      }
+    }
+    QCOMPARE(clusters, h_.clusters.size());
+  }
+
+  void damagedPagesAndIndexesAreRefusedByName() {
+    const mesh::ClusterPages pages = mesh::paginate(h_, 16 << 10);
+    const std::vector<uint8_t> indexBytes = mesh::encodeClusterIndex(pages.index);
+    std::string error;
+    // Truncated anywhere: refused, never read past the end.
+    for (size_t cut = 0; cut < indexBytes.size(); cut += 97)
+      QVERIFY(!mesh::decodeClusterIndex(indexBytes.data(), cut, "scan.hscene: clusters of asset 3", error));
+    QVERIFY2(error.find("scan.hscene: clusters of asset 3: truncated") != std::string::npos, error.c_str());
+    const std::vector<uint8_t>& page = pages.pages[1];
+    for (size_t cut = 0; cut < page.size(); cut += 31)
+      QVERIFY(!mesh::decodeClusterPage(page.data(), cut, pages.index, 1, "scan.hscene", error));
+    QVERIFY2(error.find("scan.hscene, page 1") != std::string::npos, error.c_str());
+    // Errors that shrink up the hierarchy.
+    mesh::ClusterIndex bad = pages.index;
+    bad.clusters[5].error = bad.clusters[5].parentError * 2.0f + 1.0f;
+    QVERIFY(mesh::clusterIndexProblem(bad).find("cluster 5 (level 0): its error") != std::string::npos);
+    QVERIFY(mesh::clusterIndexProblem(bad).find("larger than its parent's") != std::string::npos);
+    const std::vector<uint8_t> badBytes = mesh::encodeClusterIndex(bad);
+    QVERIFY(!mesh::decodeClusterIndex(badBytes.data(), badBytes.size(), "scan.hscene", error));
+    QVERIFY(error.find("errors must grow up the hierarchy") != std::string::npos);
+    // A NaN position, a corner past its vertices, the wrong page.
+    std::vector<uint8_t> nan = page;
+    const float q = std::numeric_limits<float>::quiet_NaN();
+    std::memcpy(nan.data() + 12 + 8, &q, 4);  // the first cluster's first x
+    QVERIFY(!mesh::decodeClusterPage(nan.data(), nan.size(), pages.index, 1, "scan.hscene", error));
+    QVERIFY2(error.find("vertex 0: a position that is not finite") != std::string::npos, error.c_str());
+    std::vector<uint8_t> corner = page;
+    corner.back() = 255;
+    QVERIFY(!mesh::decodeClusterPage(corner.data(), corner.size(), pages.index, 1, "scan.hscene", error));
+    QVERIFY2(error.find("past its") != std::string::npos, error.c_str());
+    QVERIFY(!mesh::decodeClusterPage(page.data(), page.size(), pages.index, 2, "scan.hscene", error));
+    QVERIFY2(error.find("which the index places elsewhere") != std::string::npos, error.c_str());
   }
 
   void anEmptyMeshGivesNone() {

@@ -1,0 +1,299 @@
+#include "meshproc/cluster_pages.h"
+
+#include <cmath>
+#include <cstring>
+#include <unordered_map>
+
+namespace hs::mesh {
+namespace {
+
+constexpr char kIndexMagic[4] = {'H', 'S', 'C', 'I'};
+constexpr char kPageMagic[4] = {'H', 'S', 'C', 'P'};
+constexpr uint32_t kVersion = 1;
+
+struct Writer {
+  std::vector<uint8_t> bytes;
+  template <class T>
+  void put(const T& v) {
+    const size_t at = bytes.size();
+    bytes.resize(at + sizeof(T));
+    std::memcpy(bytes.data() + at, &v, sizeof(T));
+  }
+  void sphere(const LodSphere& s) {
+    put(s.centre.x), put(s.centre.y), put(s.centre.z), put(s.radius);
+  }
+};
+
+// Reads what the writer wrote; a read past the end fails and stays failed.
+struct Reader {
+  const uint8_t* data;
+  size_t size, at = 0;
+  bool ok = true;
+  template <class T>
+  T get() {
+    T v{};
+    if (!ok || size - at < sizeof(T)) {
+      ok = false;
+      return v;
+    }
+    std::memcpy(&v, data + at, sizeof(T));
+    at += sizeof(T);
+    return v;
+  }
+  LodSphere sphere() {
+    LodSphere s;
+    s.centre.x = get<float>(), s.centre.y = get<float>(), s.centre.z = get<float>();
+    s.radius = get<float>();
+    return s;
+  }
+  bool magic(const char (&m)[4]) {
+    for (char c : m)
+      if (get<char>() != c) return false;
+    return ok;
+  }
+};
+
+bool finite(const LodSphere& s) {
+  return std::isfinite(s.centre.x) && std::isfinite(s.centre.y) && std::isfinite(s.centre.z) &&
+         std::isfinite(s.radius) && s.radius >= 0.0f;
+}
+
+bool holds(const LodSphere& outer, const LodSphere& inner) {
+  return glm::length(inner.centre - outer.centre) + inner.radius <= outer.radius * (1.0f + 1e-5f) + 1e-5f;
+}
+
+size_t clusterBytes(size_t vertices, size_t triangles, bool uvs) {
+  return 8 + vertices * (uvs ? 20 : 12) + triangles * 3;
+}
+
+}  // namespace
+
+ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes) {
+  ClusterPages out;
+  out.index.origin = h.origin;
+  out.index.hasUvs = !h.uvs.empty();
+  const bool uvs = out.index.hasUvs;
+  Writer page;
+  uint32_t inPage = 0;
+  auto finish = [&] {
+    if (inPage == 0) return;
+    // The count goes after the magic and version, written last.
+    std::memcpy(page.bytes.data() + 8, &inPage, 4);
+    out.pages.push_back(std::move(page.bytes));
+    page.bytes.clear();
+    inPage = 0;
+  };
+  for (uint32_t id = 0; id < h.clusters.size(); ++id) {
+    const Cluster& c = h.clusters[id];
+    // The cluster's own vertices, in first use order.
+    std::unordered_map<uint32_t, uint8_t> local;
+    std::vector<uint32_t> verts;
+    std::vector<uint8_t> tris;
+    for (uint32_t i = 0; i < c.triangleCount * 3; ++i) {
+      const uint32_t v = h.indices[c.firstIndex + i];
+      auto [it, added] = local.try_emplace(v, uint8_t(verts.size()));
+      if (added) verts.push_back(v);
+      tris.push_back(it->second);
+    }
+    const size_t bytes = clusterBytes(verts.size(), c.triangleCount, uvs);
+    if (inPage > 0 && page.bytes.size() + bytes > pageBytes) finish();
+    if (inPage == 0) {
+      for (char m : kPageMagic) page.put(m);
+      page.put(kVersion);
+      page.put(uint32_t(0));  // cluster count (finish)
+    }
+    page.put(id);
+    page.put(uint16_t(verts.size()));
+    page.put(uint16_t(c.triangleCount));
+    for (uint32_t v : verts) page.put(h.positions[v].x), page.put(h.positions[v].y), page.put(h.positions[v].z);
+    if (uvs)
+      for (uint32_t v : verts) page.put(h.uvs[v].x), page.put(h.uvs[v].y);
+    page.bytes.insert(page.bytes.end(), tris.begin(), tris.end());
+    ++inPage;
+    ClusterIndexEntry e;
+    e.page = uint32_t(out.pages.size());
+    e.level = c.level;
+    e.triangleCount = c.triangleCount;
+    e.bounds = c.bounds;
+    e.lodBounds = c.lodBounds;
+    e.parentBounds = c.parentBounds;
+    e.error = c.error;
+    e.parentError = c.parentError;
+    out.index.clusters.push_back(e);
+  }
+  finish();
+  out.index.pageCount = uint32_t(out.pages.size());
+  return out;
+}
+
+std::vector<uint8_t> encodeClusterIndex(const ClusterIndex& index) {
+  Writer w;
+  for (char m : kIndexMagic) w.put(m);
+  w.put(kVersion);
+  w.put(index.origin.x), w.put(index.origin.y), w.put(index.origin.z);
+  w.put(uint8_t(index.hasUvs ? 1 : 0));
+  w.put(index.pageCount);
+  w.put(uint32_t(index.clusters.size()));
+  for (const ClusterIndexEntry& e : index.clusters) {
+    w.put(e.page), w.put(e.level), w.put(e.triangleCount);
+    w.sphere(e.bounds), w.sphere(e.lodBounds), w.sphere(e.parentBounds);
+    w.put(e.error), w.put(e.parentError);
+  }
+  return std::move(w.bytes);
+}
+
+std::string clusterIndexProblem(const ClusterIndex& index) {
+  if (!std::isfinite(index.origin.x) || !std::isfinite(index.origin.y) || !std::isfinite(index.origin.z))
+    return "its origin is not finite";
+  for (size_t i = 0; i < index.clusters.size(); ++i) {
+    const ClusterIndexEntry& e = index.clusters[i];
+    const std::string who = "cluster " + std::to_string(i) + " (level " + std::to_string(e.level) + ")";
+    if (e.page >= index.pageCount)
+      return who + ": its page " + std::to_string(e.page) + " is past the " + std::to_string(index.pageCount) + " pages";
+    if (!finite(e.bounds) || !finite(e.lodBounds) || !finite(e.parentBounds))
+      return who + ": a bounding sphere is not finite (or has a negative radius)";
+    if (!std::isfinite(e.error) || e.error < 0.0f || std::isnan(e.parentError))
+      return who + ": its error is not a finite number of metres";
+    // Monotonic: what keeps a cut crack-free and its error honest.
+    if (e.parentError < e.error)
+      return who + ": its error " + std::to_string(e.error) + " m is larger than its parent's " +
+             std::to_string(e.parentError) + " m (errors must grow up the hierarchy)";
+    if (std::isfinite(e.parentError) && !holds(e.parentBounds, e.lodBounds))
+      return who + ": its sphere is not inside its parent's";
+  }
+  return "";
+}
+
+std::optional<ClusterIndex> decodeClusterIndex(const uint8_t* data, size_t size, const std::string& what,
+                                               std::string& error) {
+  Reader r{data, size};
+  if (!r.magic(kIndexMagic)) {
+    error = what + ": not a cluster index";
+    return std::nullopt;
+  }
+  if (const uint32_t v = r.get<uint32_t>(); r.ok && v != kVersion) {
+    error = what + ": cluster index version " + std::to_string(v) + ", this build reads " + std::to_string(kVersion);
+    return std::nullopt;
+  }
+  ClusterIndex index;
+  index.origin.x = r.get<double>(), index.origin.y = r.get<double>(), index.origin.z = r.get<double>();
+  index.hasUvs = r.get<uint8_t>() != 0;
+  index.pageCount = r.get<uint32_t>();
+  const uint32_t count = r.get<uint32_t>();
+  constexpr size_t kEntryBytes = 3 * 4 + 3 * 16 + 2 * 4;
+  if (r.ok && (size - r.at) / kEntryBytes < count) {
+    error = what + ": truncated: it declares " + std::to_string(count) + " clusters, the bytes hold " +
+            std::to_string((size - r.at) / kEntryBytes);
+    return std::nullopt;
+  }
+  for (uint32_t i = 0; r.ok && i < count; ++i) {
+    ClusterIndexEntry e;
+    e.page = r.get<uint32_t>(), e.level = r.get<uint32_t>(), e.triangleCount = r.get<uint32_t>();
+    e.bounds = r.sphere(), e.lodBounds = r.sphere(), e.parentBounds = r.sphere();
+    e.error = r.get<float>(), e.parentError = r.get<float>();
+    index.clusters.push_back(e);
+  }
+  if (!r.ok) {
+    error = what + ": truncated";
+    return std::nullopt;
+  }
+  if (r.at != size) {
+    error = what + ": " + std::to_string(size - r.at) + " bytes after its end (damaged)";
+    return std::nullopt;
+  }
+  if (std::string p = clusterIndexProblem(index); !p.empty()) {
+    error = what + ": " + p;
+    return std::nullopt;
+  }
+  return index;
+}
+
+std::optional<std::vector<PageCluster>> decodeClusterPage(const uint8_t* data, size_t size, const ClusterIndex& index,
+                                                          uint32_t page, const std::string& what, std::string& error) {
+  const std::string where = what + ", page " + std::to_string(page);
+  Reader r{data, size};
+  if (!r.magic(kPageMagic)) {
+    error = where + ": not a cluster page";
+    return std::nullopt;
+  }
+  if (const uint32_t v = r.get<uint32_t>(); r.ok && v != kVersion) {
+    error = where + ": page version " + std::to_string(v) + ", this build reads " + std::to_string(kVersion);
+    return std::nullopt;
+  }
+  const uint32_t count = r.get<uint32_t>();
+  std::vector<PageCluster> out;
+  std::vector<bool> seen(index.clusters.size(), false);
+  for (uint32_t k = 0; r.ok && k < count; ++k) {
+    PageCluster c;
+    c.cluster = r.get<uint32_t>();
+    const uint16_t vertices = r.get<uint16_t>(), triangles = r.get<uint16_t>();
+    if (!r.ok) break;
+    if (c.cluster >= index.clusters.size() || index.clusters[c.cluster].page != page) {
+      error = where + ": holds cluster " + std::to_string(c.cluster) + ", which the index places elsewhere";
+      return std::nullopt;
+    }
+    if (seen[c.cluster]) {
+      error = where + ": holds cluster " + std::to_string(c.cluster) + " twice";
+      return std::nullopt;
+    }
+    seen[c.cluster] = true;
+    if (triangles != index.clusters[c.cluster].triangleCount) {
+      error = where + ": cluster " + std::to_string(c.cluster) + " has " + std::to_string(triangles) +
+              " triangles, the index says " + std::to_string(index.clusters[c.cluster].triangleCount);
+      return std::nullopt;
+    }
+    if (size - r.at < clusterBytes(vertices, triangles, index.hasUvs) - 8) {
+      error = where + ": truncated in cluster " + std::to_string(c.cluster);
+      return std::nullopt;
+    }
+    for (uint16_t v = 0; v < vertices; ++v) {
+      glm::vec3 p;
+      p.x = r.get<float>(), p.y = r.get<float>(), p.z = r.get<float>();
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+        error = where + ": cluster " + std::to_string(c.cluster) + ", vertex " + std::to_string(v) +
+                ": a position that is not finite";
+        return std::nullopt;
+      }
+      c.positions.push_back(p);
+    }
+    if (index.hasUvs)
+      for (uint16_t v = 0; v < vertices; ++v) {
+        glm::vec2 uv;
+        uv.x = r.get<float>(), uv.y = r.get<float>();
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) {
+          error = where + ": cluster " + std::to_string(c.cluster) + ", vertex " + std::to_string(v) +
+                  ": a UV that is not finite";
+          return std::nullopt;
+        }
+        c.uvs.push_back(uv);
+      }
+    c.triangles.assign(data + r.at, data + r.at + size_t(triangles) * 3);
+    r.at += size_t(triangles) * 3;
+    for (uint8_t t : c.triangles)
+      if (t >= vertices) {
+        error = where + ": cluster " + std::to_string(c.cluster) + " has a triangle corner " + std::to_string(t) +
+                " past its " + std::to_string(vertices) + " vertices";
+        return std::nullopt;
+      }
+    out.push_back(std::move(c));
+  }
+  if (!r.ok) {
+    error = where + ": truncated";
+    return std::nullopt;
+  }
+  if (r.at != size) {
+    error = where + ": " + std::to_string(size - r.at) + " bytes after its last cluster (damaged)";
+    return std::nullopt;
+  }
+  // Every cluster the index puts here, once.
+  size_t expected = 0;
+  for (const ClusterIndexEntry& e : index.clusters) expected += e.page == page;
+  if (out.size() != expected) {
+    error = where + ": holds " + std::to_string(out.size()) + " clusters, the index puts " + std::to_string(expected) +
+            " there";
+    return std::nullopt;
+  }
+  return out;
+}
+
+}  // namespace hs::mesh

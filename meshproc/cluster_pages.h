@@ -1,0 +1,70 @@
+#pragma once
+// A cluster hierarchy (cluster_hierarchy.h) as pages, for storage and
+// streaming (issue 38 item 2; the scene file does not hold them yet): a
+// small index, always loaded, with every cluster's LOD tests and bounds
+// and the page it lives in (a cut is chosen from the index alone), and
+// pages of about 64 KB, each holding whole clusters in the hierarchy's
+// order (clusters of one level, neighbours along the grouping's Morton
+// order) with their own vertices, so a page decodes without any other.
+// Decoding checks everything it reads: a truncated or damaged page or
+// index, a cluster with an index past its vertices, a non-finite number,
+// or an index whose errors are not monotonic is refused with a message
+// naming the page (or the cluster) and what is wrong.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "meshproc/cluster_hierarchy.h"
+
+namespace hs::mesh {
+
+struct ClusterIndexEntry {
+  uint32_t page = 0;
+  uint32_t level = 0;
+  uint32_t triangleCount = 0;
+  LodSphere bounds, lodBounds, parentBounds;
+  float error = 0.0f, parentError = 0.0f;
+};
+
+struct ClusterIndex {
+  glm::dvec3 origin{0.0};
+  bool hasUvs = false;
+  uint32_t pageCount = 0;
+  std::vector<ClusterIndexEntry> clusters;  // the hierarchy's order
+};
+
+// One cluster as a page holds it: its own vertices and triangles.
+struct PageCluster {
+  uint32_t cluster = 0;  // into ClusterIndex::clusters
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec2> uvs;       // one per position, or none
+  std::vector<uint8_t> triangles;   // three local vertex indices a triangle
+};
+
+struct ClusterPages {
+  ClusterIndex index;
+  std::vector<std::vector<uint8_t>> pages;  // encoded (decodeClusterPage)
+};
+
+// Pages of about `pageBytes` (a cluster is never split; one larger than
+// that has a page of its own).
+ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes = size_t(64) << 10);
+
+std::vector<uint8_t> encodeClusterIndex(const ClusterIndex& index);
+// The index from its bytes; nullopt with `error` (starting with `what`)
+// when the bytes are not a whole, sound index (clusterIndexProblem).
+std::optional<ClusterIndex> decodeClusterIndex(const uint8_t* data, size_t size, const std::string& what,
+                                               std::string& error);
+// Why `index` cannot be drawn from: a page past the page count, a
+// non-finite or negative bound, an error larger than its parent's, a
+// sphere outside its parent's; "" when sound.
+std::string clusterIndexProblem(const ClusterIndex& index);
+
+// Page `page` of `index` from its bytes: its clusters, checked against the
+// index (the clusters it should hold, their triangle counts); nullopt with
+// `error` (starting with `what` and naming the page) otherwise.
+std::optional<std::vector<PageCluster>> decodeClusterPage(const uint8_t* data, size_t size, const ClusterIndex& index,
+                                                          uint32_t page, const std::string& what, std::string& error);
+
+}  // namespace hs::mesh
