@@ -9,6 +9,7 @@
 #include <QScrollArea>
 #include <QVBoxLayout>
 
+#include "app/background_job.h"
 #include "app/field_editors.h"
 #include "app/form_widgets.h"
 #include "app/prompts.h"
@@ -175,10 +176,21 @@ void SettingsPanel::addOcioRow(QWidget* content, QFormLayout* form) {
 }
 
 bool SettingsPanel::importOcioConfig(const QString& path) {
-  std::string error;
-  const std::optional<scene::OcioConfigData> config = scene::readOcioConfig(path.toStdString(), error);
+  // A config's search paths can hold hundreds of MB of LUTs: read on a
+  // worker, with progress and Cancel.
+  auto error = std::make_shared<std::string>();
+  auto read = std::make_shared<std::optional<scene::OcioConfigData>>();
+  {
+    BackgroundJob job(this, "Import OpenColorIO config", QString("Reading %1…").arg(QFileInfo(path).fileName()), true);
+    job.start([read, error, file = path.toStdString()](const Progress& p) {
+      *read = scene::readOcioConfig(file, *error, &p);
+    });
+    job.waitForFinished();
+    if (job.cancelRequested()) return false;  // the user's choice: no message
+  }
+  const std::optional<scene::OcioConfigData>& config = *read;
   if (!config) {
-    if (prompts_) prompts_().showError(this, "Import OpenColorIO config", QString::fromStdString(error));
+    if (prompts_) prompts_().showError(this, "Import OpenColorIO config", QString::fromStdString(*error));
     return false;
   }
   scene::ops::setOcioConfig(doc_, *config);
@@ -207,10 +219,18 @@ void SettingsPanel::refreshOcioChoices() {
 }
 
 bool SettingsPanel::importLut(const QString& path) {
-  std::string error;
-  const std::optional<scene::LutData> lut = scene::readLutFile(path.toStdString(), error);
+  // A LUT may be hundreds of MB of text: read and checked on a worker.
+  auto error = std::make_shared<std::string>();
+  auto read = std::make_shared<std::optional<scene::LutData>>();
+  {
+    BackgroundJob job(this, "Import LUT", QString("Reading %1…").arg(QFileInfo(path).fileName()), true);
+    job.start([read, error, file = path.toStdString()](const Progress&) { *read = scene::readLutFile(file, *error); });
+    job.waitForFinished();
+    if (job.cancelRequested()) return false;
+  }
+  const std::optional<scene::LutData>& lut = *read;
   if (!lut) {
-    if (prompts_) prompts_().showError(this, "Import LUT", QString::fromStdString(error));
+    if (prompts_) prompts_().showError(this, "Import LUT", QString::fromStdString(*error));
     return false;
   }
   scene::ops::setLut(doc_, *lut);

@@ -298,7 +298,8 @@ std::string ocioConfigProblem(const std::string& where, const OcioConfigData& co
   return "";
 }
 
-std::optional<OcioConfigData> readOcioConfig(const std::string& path, std::string& error) {
+std::optional<OcioConfigData> readOcioConfig(const std::string& path, std::string& error,
+                                             const Progress* progress) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) {
     error = path + ": a folder, not an OpenColorIO config";
@@ -344,7 +345,14 @@ std::optional<OcioConfigData> readOcioConfig(const std::string& path, std::strin
       if (found.size() + out.files.size() > kMaxOcioFiles) break;
     }
     std::sort(found.begin(), found.end());  // the same bundle (and hash) on any machine
-    for (const fs::path& file : found) {
+    for (size_t f = 0; f < found.size(); ++f) {
+      const fs::path& file = found[f];
+      reportProgress(progress, 0.8 * (double(i) + double(f) / double(found.size())) / double(searchPaths),
+                     "Reading " + file.filename().string());
+      if (isCancelled(progress)) {
+        error = path + ": the import was cancelled";
+        return std::nullopt;
+      }
       auto bytes = std::make_shared<std::string>();
       if (!readWhole(file, *bytes)) {
         error = file.string() + ": cannot read it (a LUT under search path '" + config->getSearchPath(i) + "' of " +
@@ -364,6 +372,7 @@ std::optional<OcioConfigData> readOcioConfig(const std::string& path, std::strin
     }
   }
   out.contentHash = ocioBundleHash(out.files);
+  reportProgress(progress, 0.8, "Checking the config");
   if (std::string p = ocioConfigProblem(path, out); !p.empty()) {
     error = p;
     return std::nullopt;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/params.h"
+#include "core/progress.h"
 #include "scene/scene_state.h"
 
 namespace hs::scene {
@@ -30,8 +31,10 @@ inline constexpr const char* kOcioConfigEntry = "config.ocio";
 // Reads the config at `path` with every file under its search paths that
 // OpenColorIO reads as a LUT (lutFileExtensions), after ocioConfigProblem
 // finds nothing wrong with the bundle. On failure nullopt and `error`
-// names the file (and what in it is wrong).
-std::optional<OcioConfigData> readOcioConfig(const std::string& path, std::string& error);
+// names the file (and what in it is wrong). `progress` hears of each file
+// read and of the check; cancelled, nullopt with `error` saying so.
+std::optional<OcioConfigData> readOcioConfig(const std::string& path, std::string& error,
+                                             const Progress* progress = nullptr);
 
 // The hash over a bundle's files (their paths and content hashes).
 uint64_t ocioBundleHash(const std::vector<OcioFile>& files);

@@ -217,6 +217,18 @@ class TestSceneOcio : public QObject {
     QVERIFY(!refusal("lut.ocio", test::filmSpi1d(16)).empty());
   }
 
+  void aCancelledImportReadsNothing() {
+    hs::Progress progress;
+    std::vector<double> fractions;
+    hs::Progress watched([&](double f, std::string_view) { fractions.push_back(f); });
+    std::string error;
+    QVERIFY(scene::readOcioConfig(test::writeStudioConfig(dir_ / "progress"), error, &watched));
+    QVERIFY(fractions.size() >= 2 && std::is_sorted(fractions.begin(), fractions.end()));
+    progress.cancel();
+    QVERIFY(!scene::readOcioConfig(test::writeStudioConfig(dir_ / "cancelled"), error, &progress));
+    QVERIFY2(error.find("the import was cancelled") != std::string::npos, error.c_str());
+  }
+
   void theStudioFolderCanGo() {
     // Stored in the scene: the config and its LUT are not needed again,
     // and the bundle's hash is the same wherever it is read.
