@@ -128,6 +128,13 @@ int runSet(int argc, char** argv) {
     // Rules between fields (far beyond near), against this entity's values.
     if (const std::string problem = scene::fieldValueProblem(*f, *v, doc.state().find(id)); !problem.empty())
       return args.fail(positional[1] + ": '" + positional[2] + "' is out of range: " + f->label + " " + problem);
+    // A camera's post setting, against the scene's other settings too (a
+    // display or view the scene's OpenColorIO config lacks).
+    if (positional[1].rfind("camera.post.", 0) == 0)
+      if (const scene::SettingsField* setting = scene::cameraPostSetting(positional[1].substr(12)))
+        if (const std::string problem = scene::fieldValueProblem(*setting, *v, &doc.state().settings);
+            !problem.empty())
+          return args.fail(positional[1] + ": '" + positional[2] + "' is refused: " + f->label + " " + problem);
     if (f->type == scene::FieldType::AssetRef && std::get<int64_t>(*v) > 0 &&
         !doc.state().findAsset(scene::AssetId(std::get<int64_t>(*v))))
       return args.fail(positional[1] + ": no mesh asset " + positional[2] + " in " + scenePath);

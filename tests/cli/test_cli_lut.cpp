@@ -131,6 +131,10 @@ class TestCliLut : public QObject {
     QVERIFY2(r.code != 0 && r.err.contains("no display 'Cinema' (it has 'Studio sRGB', 'Projector')"),
              qPrintable(r.err));
     QVERIFY(test::readFile(scene.toStdString()) == before);
+    // A camera's override too (its field alone knows no config).
+    r = cli({"set", "Camera", "camera.post.view_transform.view", "Nope", scene});
+    QVERIFY2(r.code != 0 && r.err.contains("has no view 'Nope' (it has 'Film', 'Raw')"), qPrintable(r.err));
+    QVERIFY(test::readFile(scene.toStdString()) == before);
     r = cli({"set", "settings.post.view_transform.view", "Raw", scene});
     QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY(cli({"ocio", "list", scene}).out.contains("view 'Raw'  <- chosen"));
