@@ -23,12 +23,9 @@ int runLutImport(int argc, char** argv) {
   // The LUT first: a bad file leaves the scene untouched.
   const std::optional<scene::LutData> lut = scene::readLutFile(lutPath, error);
   if (!lut) return args.fail(error);
-  std::optional<scene::SceneState> state = openScene(path, error);
-  if (!state) return args.fail(error);
-  scene::Document doc;
-  doc.reset(std::move(*state), QString::fromStdString(path));
-  scene::ops::setLut(doc, *lut);
-  if (!scene::saveScene(doc.state(), path, error)) return args.fail(error);
+  bool changed = false;
+  if (!editSceneFile(path, [&](scene::Document& doc) { return scene::ops::setLut(doc, *lut); }, changed, error))
+    return args.fail(error);
   std::printf("graded %s with LUT '%s' (%zu bytes, stored in the scene)\n", path.c_str(), lut->fileName.c_str(),
               lut->bytes->size());
   return 0;
@@ -40,15 +37,13 @@ int runLutClear(int argc, char** argv) {
   if (args.positionals().size() != 1) return args.usage("expected one scene file");
   const std::string& path = args.positionals()[0];
   std::string error;
-  std::optional<scene::SceneState> state = openScene(path, error);
-  if (!state) return args.fail(error);
-  scene::Document doc;
-  doc.reset(std::move(*state), QString::fromStdString(path));
-  if (!scene::ops::setLut(doc, {})) {
+  bool changed = false;
+  if (!editSceneFile(path, [](scene::Document& doc) { return scene::ops::setLut(doc, {}); }, changed, error))
+    return args.fail(error);
+  if (!changed) {
     std::printf("unchanged (%s has no LUT)\n", path.c_str());
     return 0;
   }
-  if (!scene::saveScene(doc.state(), path, error)) return args.fail(error);
   std::printf("removed the LUT from %s\n", path.c_str());
   return 0;
 }

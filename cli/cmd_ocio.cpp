@@ -24,12 +24,10 @@ int runOcioImport(int argc, char** argv) {
   // The config first: a bad one leaves the scene untouched.
   const std::optional<scene::OcioConfigData> config = scene::readOcioConfig(configPath, error);
   if (!config) return args.fail(error);
-  std::optional<scene::SceneState> state = openScene(path, error);
-  if (!state) return args.fail(error);
-  scene::Document doc;
-  doc.reset(std::move(*state), QString::fromStdString(path));
-  scene::ops::setOcioConfig(doc, *config);
-  if (!scene::saveScene(doc.state(), path, error)) return args.fail(error);
+  bool changed = false;
+  if (!editSceneFile(path, [&](scene::Document& doc) { return scene::ops::setOcioConfig(doc, *config); }, changed,
+                     error))
+    return args.fail(error);
   size_t bytes = 0;
   for (const scene::OcioFile& f : config->files) bytes += f.bytes->size();
   const scene::DisplayView dv = scene::resolveDisplayView(*config, "", "", error);
@@ -46,15 +44,13 @@ int runOcioClear(int argc, char** argv) {
   if (args.positionals().size() != 1) return args.usage("expected one scene file");
   const std::string& path = args.positionals()[0];
   std::string error;
-  std::optional<scene::SceneState> state = openScene(path, error);
-  if (!state) return args.fail(error);
-  scene::Document doc;
-  doc.reset(std::move(*state), QString::fromStdString(path));
-  if (!scene::ops::setOcioConfig(doc, {})) {
+  bool changed = false;
+  if (!editSceneFile(path, [](scene::Document& doc) { return scene::ops::setOcioConfig(doc, {}); }, changed, error))
+    return args.fail(error);
+  if (!changed) {
     std::printf("unchanged (%s has no OpenColorIO config)\n", path.c_str());
     return 0;
   }
-  if (!scene::saveScene(doc.state(), path, error)) return args.fail(error);
   std::printf("removed the OpenColorIO config from %s\n", path.c_str());
   return 0;
 }

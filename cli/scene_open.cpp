@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/escape_control.h"
+#include "scene/document.h"
 #include "scene/hscene_file.h"
 
 namespace hs::cli {
@@ -13,6 +14,16 @@ std::optional<scene::SceneState> openScene(const std::string& path, std::string&
   for (const std::string& w : report.warnings)
     std::fprintf(stderr, "warning: %s\n", escapeControlCharacters(w).c_str());
   return state;
+}
+
+bool editSceneFile(const std::string& path, const std::function<bool(scene::Document&)>& edit, bool& changed,
+                   std::string& error) {
+  std::optional<scene::SceneState> state = openScene(path, error);
+  if (!state) return false;
+  scene::Document doc;
+  doc.reset(std::move(*state), QString::fromStdString(path));
+  changed = edit(doc);
+  return !changed || scene::saveScene(doc.state(), path, error);
 }
 
 }  // namespace hs::cli

@@ -367,6 +367,27 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
   return h;
 }
 
+MeshData meshOfCut(const ClusterHierarchy& h, const std::vector<uint32_t>& cut) {
+  // Only the vertices the cut uses (an error report samples every vertex).
+  MeshData m;
+  m.origin = h.origin;
+  std::vector<uint32_t> local(h.positions.size(), UINT32_MAX);
+  for (uint32_t id : cut) {
+    const Cluster& c = h.clusters[id];
+    for (uint32_t i = c.firstIndex; i < c.firstIndex + c.triangleCount * 3; ++i) {
+      const uint32_t v = h.indices[i];
+      if (local[v] == UINT32_MAX) {
+        local[v] = uint32_t(m.positions.size());
+        m.positions.push_back(h.positions[v]);
+        if (!h.uvs.empty()) m.uvs.push_back(h.uvs[v]);
+      }
+      m.indices.push_back(local[v]);
+    }
+  }
+  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
+  return m;
+}
+
 bool lodFineEnough(const LodSphere& sphere, float error, const glm::vec3& eye, float focalPx, float pixelBound) {
   if (error <= 0.0f) return true;
   if (!std::isfinite(error)) return false;

@@ -100,6 +100,10 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
 // nearest point. No error always passes; inside the sphere only none does.
 bool lodFineEnough(const LodSphere& sphere, float error, const glm::vec3& eye, float focalPx, float pixelBound);
 
+// The triangles of `cut` as a mesh of their own vertices (with UVs where
+// the hierarchy has them): what a view of the cut shows, for measuring.
+MeshData meshOfCut(const ClusterHierarchy& h, const std::vector<uint32_t>& cut);
+
 // The clusters of the cut for that viewer: each one whose own test passes
 // and whose parent's fails, in the hierarchy's order.
 std::vector<uint32_t> selectClusterCut(const ClusterHierarchy& h, const glm::vec3& eye, float focalPx,

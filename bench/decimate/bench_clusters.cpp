@@ -23,26 +23,6 @@ using namespace hs;
 
 namespace {
 
-mesh::MeshData cutMesh(const mesh::ClusterHierarchy& h, const std::vector<uint32_t>& cut) {
-  // Only the vertices the cut uses (the error report samples every vertex).
-  mesh::MeshData m;
-  m.origin = h.origin;
-  std::vector<uint32_t> local(h.positions.size(), UINT32_MAX);
-  for (uint32_t id : cut) {
-    const mesh::Cluster& c = h.clusters[id];
-    for (uint32_t i = c.firstIndex; i < c.firstIndex + c.triangleCount * 3; ++i) {
-      const uint32_t v = h.indices[i];
-      if (local[v] == UINT32_MAX) {
-        local[v] = uint32_t(m.positions.size());
-        m.positions.push_back(h.positions[v]);
-      }
-      m.indices.push_back(local[v]);
-    }
-  }
-  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
-  return m;
-}
-
 // The tile's ground height near (x, y), from its vertices (a coarse lookup).
 float groundNear(const mesh::MeshData& m, float x, float y) {
   float best = 1e30f, z = 0.0f;
@@ -88,7 +68,7 @@ int main(int argc, char** argv) {
         worst = std::max(worst, h.clusters[id].error);
         tris += h.clusters[id].triangleCount;
       }
-      const mesh::ErrorReport e = mesh::measureError(tile, cutMesh(h, cut));
+      const mesh::ErrorReport e = mesh::measureError(tile, mesh::meshOfCut(h, cut));
       // Each drawn cluster against its own error: its vertices' and its
       // faces' centres' distance to the input (a lower bound of its true
       // distance), how many clusters are further than their error says.

@@ -55,25 +55,6 @@ std::map<std::pair<uint32_t, uint32_t>, int> edgeUse(const ClusterHierarchy& h, 
   return use;
 }
 
-mesh::MeshData cutMesh(const ClusterHierarchy& h, const std::vector<uint32_t>& cut) {
-  // Only the vertices the cut uses (the error report samples every vertex).
-  mesh::MeshData m;
-  m.origin = h.origin;
-  std::vector<uint32_t> local(h.positions.size(), UINT32_MAX);
-  for (uint32_t id : cut) {
-    const mesh::Cluster& c = h.clusters[id];
-    for (uint32_t i = c.firstIndex; i < c.firstIndex + c.triangleCount * 3; ++i) {
-      const uint32_t v = h.indices[i];
-      if (local[v] == UINT32_MAX) {
-        local[v] = uint32_t(m.positions.size());
-        m.positions.push_back(h.positions[v]);
-      }
-      m.indices.push_back(local[v]);
-    }
-  }
-  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
-  return m;
-}
 
 bool inside(const mesh::LodSphere& a, const mesh::LodSphere& b) {
   return glm::length(a.centre - b.centre) + a.radius <= b.radius * (1.0f + 1e-5f) + 1e-5f;
@@ -172,7 +153,7 @@ class TestMeshprocClusters : public QObject {
       worst = std::max(worst, h_.clusters[id].error);
       triangles += h_.clusters[id].triangleCount;
     }
-    const mesh::ErrorReport e = mesh::measureError(sphere_, cutMesh(h_, cut));
+    const mesh::ErrorReport e = mesh::measureError(sphere_, mesh::meshOfCut(h_, cut));
     qInfo("a cut of %zu triangles (of %zu): clusters' error at most %.4f m, measured distance %.4f m (max of both "
           "ways)",
           triangles, sphere_.triangleCount(), double(worst), e.hausdorff);

@@ -11,8 +11,6 @@
 // ACES2065-1 as the primaries and the Bradford adaptation say.
 #include <QtTest>
 
-#include <sqlite3.h>
-
 #include <filesystem>
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -25,6 +23,7 @@
 #include "scene/ocio_config.h"
 #include "scene/operations.h"
 #include "scene/scene_json.h"
+#include "hscene_sql.h"
 #include "ocio_files.h"
 
 using namespace hs;
@@ -79,12 +78,6 @@ class TestSceneOcio : public QObject {
     if (scene::readOcioConfig(path, error)) return "";
     qInfo("%s: %s", name.c_str(), error.c_str());
     return error;
-  }
-  static void exec(const std::string& path, const std::string& sql) {
-    sqlite3* db = nullptr;
-    QCOMPARE(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    QCOMPARE(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
-    sqlite3_close(db);
   }
 
  private slots:
@@ -273,7 +266,7 @@ class TestSceneOcio : public QObject {
                                "DELETE FROM blobs WHERE key = '%1'"}) {
       const std::string path = (dir_ / "damaged.hscene").string();
       QVERIFY(scene::saveScene(sceneWith(*c), path, error));
-      exec(path, QString(damage).arg(QString::fromStdString(key)).toStdString());
+      test::sql(path, QString(damage).arg(QString::fromStdString(key)).toStdString());
       scene::LoadReport report;
       const std::optional<scene::SceneState> s = scene::loadScene(path, error, nullptr, &report);
       QVERIFY2(s, error.c_str());
