@@ -355,8 +355,7 @@ std::optional<OcioConfigData> readOcioConfig(const std::string& path, std::strin
       }
       auto bytes = std::make_shared<std::string>();
       if (!readWhole(file, *bytes)) {
-        error = file.string() + ": cannot read it (a LUT under search path '" + config->getSearchPath(i) + "' of " +
-                path + ")";
+        error = file.string() + ": cannot read it (a LUT under search path '" + written + "' of " + path + ")";
         return std::nullopt;
       }
       total += bytes->size();
