@@ -1,5 +1,4 @@
 #include "scene/fields.h"
-#include "scene/ocio_config.h"
 
 #include <algorithm>
 #include <charconv>
@@ -9,6 +8,7 @@
 #include <utility>
 
 #include "scene/camera_post.h"
+#include "scene/ocio_config.h"
 
 namespace hs::scene {
 namespace {

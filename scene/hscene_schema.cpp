@@ -8,8 +8,8 @@
 #include <utility>
 
 #include "scene/color_lut.h"
-#include "scene/ocio_config.h"
 #include "scene/foliage_file.h"
+#include "scene/ocio_config.h"
 
 namespace hs::scene {
 namespace {

@@ -208,6 +208,11 @@ OcioConfigSummary ocioSummary(const OcioConfigData& config) {
     none.error = "no OpenColorIO config is stored";
     return none;
   }
+  if (!config.loaded()) {  // not kept: the same config, loaded, reads
+    OcioConfigSummary none;
+    none.error = config.fileName + ": the config's data is not loaded";
+    return none;
+  }
   static std::mutex mutex;
   static std::map<uint64_t, OcioConfigSummary> known;
   {
