@@ -367,6 +367,15 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
   return h;
 }
 
+CutSummary summariseCut(const ClusterHierarchy& h, const std::vector<uint32_t>& cut) {
+  CutSummary s;
+  for (uint32_t id : cut) {
+    s.triangles += h.clusters[id].triangleCount;
+    s.maxError = std::max(s.maxError, h.clusters[id].error);
+  }
+  return s;
+}
+
 MeshData meshOfCut(const ClusterHierarchy& h, const std::vector<uint32_t>& cut) {
   // Only the vertices the cut uses (an error report samples every vertex).
   MeshData m;

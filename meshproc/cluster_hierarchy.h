@@ -100,6 +100,14 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
 // nearest point. No error always passes; inside the sphere only none does.
 bool lodFineEnough(const LodSphere& sphere, float error, const glm::vec3& eye, float focalPx, float pixelBound);
 
+// How many triangles `cut` draws and the largest error among its clusters
+// (no point of the cut is further than that from the input).
+struct CutSummary {
+  size_t triangles = 0;
+  float maxError = 0.0f;
+};
+CutSummary summariseCut(const ClusterHierarchy& h, const std::vector<uint32_t>& cut);
+
 // The triangles of `cut` as a mesh of their own vertices (with UVs where
 // the hierarchy has them): what a view of the cut shows, for measuring.
 MeshData meshOfCut(const ClusterHierarchy& h, const std::vector<uint32_t>& cut);

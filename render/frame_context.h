@@ -66,4 +66,16 @@ struct ViewContext {
   std::string named(const std::string& what) const { return what + suffix; }
 };
 
+// Which eye of a stereo pair `v` is (0 or 1), given its single-sample
+// `depth` in a frame of two views; -1 for any other view. The first eye
+// records its depth and view in frame.firstEye for the second.
+inline int stereoEye(FrameContext& frame, const ViewContext& v, TextureRef depth) {
+  if (!depth.valid() || !frame.views || frame.views->size() != 2) return -1;
+  if (v.index == 0) {
+    frame.firstEye.depth = depth;
+    frame.firstEye.view = &v.view;
+  }
+  return int(v.index);
+}
+
 }  // namespace hs::render

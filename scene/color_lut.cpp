@@ -1,10 +1,7 @@
 #include "scene/color_lut.h"
 
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
-#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +11,7 @@
 #include "core/content_hash.h"
 #include "scene/edit.h"
 #include "scene/lut_processor.h"
+#include "scene/ocio_cache.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -46,13 +44,6 @@ std::string nonFiniteNumber(const std::string& where, const std::string& bytes) 
   return "";
 }
 
-// OpenColorIO's message names the cache file; the user knows the LUT by its name.
-std::string userMessage(std::string message, const std::string& cachePath, const std::string& where) {
-  for (size_t at; !cachePath.empty() && (at = message.find(cachePath)) != std::string::npos;)
-    message.replace(at, cachePath.size(), where);
-  return message;
-}
-
 }  // namespace
 
 std::string lutBlobKey(uint64_t hash) { return "lut/" + toHex(hash); }
@@ -71,31 +62,12 @@ std::string lutCacheFile(const LutData& lut, std::string& error) {
     error = lut.fileName + ": the LUT's data is not loaded";
     return {};
   }
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path dir = fs::temp_directory_path(ec) / ("hybridscape-luts-" + std::to_string(getuid()));
-  fs::create_directories(dir, ec);
-  const std::string hex = toHex(lut.contentHash);
   const std::string ext = extensionOf(lut.fileName);
-  const fs::path file = dir / (hex + (ext.empty() ? "" : "." + ext));
-  if (fs::exists(file, ec) && fs::file_size(file, ec) == lut.bytes->size()) return file.string();
-  // Written under a name of its own, then renamed: render nodes sharing a
-  // temporary folder never read half a file.
-  static std::atomic<int> counter{0};
-  const fs::path part = dir / (hex + ".part" + std::to_string(getpid()) + "_" + std::to_string(counter++));
-  {
-    std::ofstream out(part, std::ios::binary);
-    out.write(lut.bytes->data(), std::streamsize(lut.bytes->size()));
-    if (!out) {
-      error = lut.fileName + ": cannot write the LUT for OpenColorIO to " + part.string();
-      fs::remove(part, ec);
-      return {};
-    }
-  }
-  fs::rename(part, file, ec);
-  if (ec) {
-    error = lut.fileName + ": cannot write the LUT for OpenColorIO to " + file.string() + ": " + ec.message();
-    fs::remove(part, ec);
+  const std::filesystem::path file =
+      userCacheFolder("hybridscape-luts") / (toHex(lut.contentHash) + (ext.empty() ? "" : "." + ext));
+  std::string why;
+  if (!writeCacheFile(file, *lut.bytes, why)) {
+    error = lut.fileName + ": cannot write the LUT for OpenColorIO: " + why;
     return {};
   }
   return file.string();
@@ -111,7 +83,7 @@ OCIO::ConstProcessorRcPtr lutProcessor(const LutData& lut, std::string& error) {
     file->setDirection(OCIO::TRANSFORM_DIR_FORWARD);
     return OCIO::Config::CreateRaw()->getProcessor(file);
   } catch (const std::exception& e) {
-    error = userMessage(e.what(), path, lut.fileName);
+    error = ocioMessage(e.what(), path, lut.fileName);
     return {};
   }
 }
@@ -128,12 +100,8 @@ std::string lutProblem(const std::string& where, const LutData& lut) {
   const OCIO::ConstProcessorRcPtr processor = lutProcessor(lut, error);
   if (!processor) {
     // OpenColorIO says per format it tried why (with the line for text
-    // formats), over several lines: kept whole, on one.
-    std::string oneLine;
-    for (char c : error)
-      if (!std::isspace(static_cast<unsigned char>(c))) oneLine += c;
-      else if (!oneLine.empty() && oneLine.back() != ' ') oneLine += ' ';
-    return where + ": OpenColorIO cannot read it as a LUT: " + oneLine;
+    // formats): ocioMessage keeps it whole, on one line.
+    return where + ": OpenColorIO cannot read it as a LUT: " + error;
   }
   try {
     const OCIO::ConstCPUProcessorRcPtr cpu = processor->getDefaultCPUProcessor();

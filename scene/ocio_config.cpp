@@ -1,9 +1,7 @@
 #include "scene/ocio_config.h"
 
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -15,58 +13,13 @@
 #include "scene/color_lut.h"
 #include "scene/edit.h"
 #include "scene/lut_processor.h"
+#include "scene/ocio_cache.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 namespace fs = std::filesystem;
 
 namespace hs::scene {
 namespace {
-
-// OpenColorIO names the cache folder in its messages; the user knows the
-// config by its file name.
-std::string userMessage(std::string message, const std::string& folder, const std::string& name) {
-  for (size_t at; !folder.empty() && (at = message.find(folder)) != std::string::npos;)
-    message.replace(at, folder.size(), name);
-  std::string oneLine;  // its messages run over several lines: kept whole, on one
-  for (char c : message)
-    if (!std::isspace(static_cast<unsigned char>(c))) oneLine += c;
-    else if (!oneLine.empty() && oneLine.back() != ' ') oneLine += ' ';
-  return oneLine;
-}
-
-// A bundle path from a file or a description: relative, inside the bundle.
-bool safeBundlePath(const std::string& p) {
-  if (p.empty() || p.front() == '/' || p.find('\\') != std::string::npos) return false;
-  for (const auto& part : fs::path(p))
-    if (part == ".." || part == ".") return false;
-  return true;
-}
-
-bool writeAtomically(const fs::path& file, const std::string& bytes, std::string& error) {
-  std::error_code ec;
-  if (fs::exists(file, ec) && fs::file_size(file, ec) == bytes.size()) return true;
-  fs::create_directories(file.parent_path(), ec);
-  // Written under a name of its own, then renamed: render nodes sharing a
-  // temporary folder never read half a file.
-  static std::atomic<int> counter{0};
-  const fs::path part = file.string() + ".part" + std::to_string(getpid()) + "_" + std::to_string(counter++);
-  {
-    std::ofstream out(part, std::ios::binary);
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    if (!out) {
-      error = "cannot write " + part.string();
-      fs::remove(part, ec);
-      return false;
-    }
-  }
-  fs::rename(part, file, ec);
-  if (ec) {
-    error = "cannot write " + file.string() + ": " + ec.message();
-    fs::remove(part, ec);
-    return false;
-  }
-  return true;
-}
 
 bool readWhole(const fs::path& path, std::string& out) {
   std::ifstream in(path, std::ios::binary);
@@ -120,6 +73,13 @@ std::string joined(const std::vector<std::string>& names) {
 
 }  // namespace
 
+bool ocioBundlePathSafe(const std::string& p) {
+  if (p.empty() || p.front() == '/' || p.find('\\') != std::string::npos) return false;
+  for (const auto& part : fs::path(p))
+    if (part == ".." || part == ".") return false;
+  return true;
+}
+
 std::string ocioBlobKey(uint64_t fileHash) { return "ocio/" + toHex(fileHash); }
 
 uint64_t ocioBundleHash(const std::vector<OcioFile>& files) {
@@ -133,16 +93,14 @@ std::string ocioCacheFolder(const OcioConfigData& config, std::string& error) {
     error = config.fileName + ": the config's data is not loaded";
     return {};
   }
-  std::error_code ec;
-  const fs::path dir = fs::temp_directory_path(ec) / ("hybridscape-ocio-" + std::to_string(getuid())) /
-                       toHex(config.contentHash);
+  const fs::path dir = userCacheFolder("hybridscape-ocio") / toHex(config.contentHash);
   for (const OcioFile& f : config.files) {
-    if (!safeBundlePath(f.path)) {
+    if (!ocioBundlePathSafe(f.path)) {
       error = config.fileName + ": '" + f.path + "' is no path inside the config's bundle";
       return {};
     }
     std::string why;
-    if (!writeAtomically(dir / f.path, *f.bytes, why)) {
+    if (!writeCacheFile(dir / f.path, *f.bytes, why)) {
       error = config.fileName + ": cannot write the config for OpenColorIO: " + why;
       return {};
     }
@@ -164,7 +122,7 @@ OCIO::ConstConfigRcPtr ocioConfigOf(const OcioConfigData& config, std::string& e
     c->setWorkingDir(dir.c_str());
     return c;
   } catch (const std::exception& e) {
-    error = config.fileName + ": " + userMessage(e.what(), dir, config.fileName);
+    error = config.fileName + ": " + ocioMessage(e.what(), dir, config.fileName);
     return {};
   }
 }
@@ -276,7 +234,7 @@ std::string ocioConfigProblem(const std::string& where, const OcioConfigData& co
   try {
     c->validate();
   } catch (const std::exception& e) {
-    return where + ": OpenColorIO finds it invalid: " + userMessage(e.what(), "", "");
+    return where + ": OpenColorIO finds it invalid: " + ocioMessage(e.what(), "", "");
   }
   if (!c->hasRole(OCIO::ROLE_SCENE_LINEAR) && !c->hasRole(OCIO::ROLE_INTERCHANGE_SCENE))
     return where + ": it has neither a 'scene_linear' nor an 'aces_interchange' role, so the renderer's linear "
@@ -329,7 +287,7 @@ std::optional<OcioConfigData> readOcioConfig(const std::string& path, std::strin
   try {
     config = OCIO::Config::CreateFromFile(path.c_str());
   } catch (const std::exception& e) {
-    error = path + ": OpenColorIO cannot read it: " + userMessage(e.what(), "", "");
+    error = path + ": OpenColorIO cannot read it: " + ocioMessage(e.what(), "", "");
     return std::nullopt;
   }
   const std::vector<std::string> extensions = lutFileExtensions();

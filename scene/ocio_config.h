@@ -51,6 +51,10 @@ std::string ocioConfigProblem(const std::string& where, const OcioConfigData& co
 // missing. Empty with `error` when it cannot be written.
 std::string ocioCacheFolder(const OcioConfigData& config, std::string& error);
 
+// Whether `path` (a bundle file's, from a file or a description) stays
+// inside the bundle: relative, no `..` or `.`, no backslash.
+bool ocioBundlePathSafe(const std::string& path);
+
 // The .hscene blob holding one file of a bundle: "ocio/<hash in hex>".
 std::string ocioBlobKey(uint64_t fileHash);
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <climits>
-#include <filesystem>
 #include <cmath>
 #include <type_traits>
 
@@ -462,10 +461,8 @@ struct Reader : JsonReader {
       if (!object((*files)[i], fp) || !optString((*files)[i], fp, "path", f.path) ||
           !hash(member((*files)[i], "hash"), jsonPath(fp, "hash"), f.contentHash))
         return false;
-      const std::filesystem::path path(f.path);
-      bool inside = !f.path.empty() && path.is_relative();
-      for (const auto& part : path) inside &= part != "..";
-      if (!inside) return fail(jsonPath(fp, "path"), "'" + f.path + "' is not a path inside the config's bundle");
+      if (!ocioBundlePathSafe(f.path))
+        return fail(jsonPath(fp, "path"), "'" + f.path + "' is not a path inside the config's bundle");
       out.files.push_back(std::move(f));
     }
     if (out.files.front().path != kOcioConfigEntry)

@@ -62,12 +62,7 @@ int main(int argc, char** argv) {
       // A distant view of the whole tile at 1 px: a coarse cut.
       const glm::vec3 eye(500.0f, -2500.0f, 800.0f);
       const std::vector<uint32_t> cut = mesh::selectClusterCut(h, eye, focal, 1.0f);
-      float worst = 0.0f;
-      size_t tris = 0;
-      for (uint32_t id : cut) {
-        worst = std::max(worst, h.clusters[id].error);
-        tris += h.clusters[id].triangleCount;
-      }
+      const auto [tris, worst] = mesh::summariseCut(h, cut);
       const mesh::ErrorReport e = mesh::measureError(tile, mesh::meshOfCut(h, cut));
       // Each drawn cluster against its own error: its vertices' and its
       // faces' centres' distance to the input (a lower bound of its true
@@ -115,8 +110,7 @@ int main(int argc, char** argv) {
       const double t0 = bench::nowSeconds();
       const std::vector<uint32_t> cut = mesh::selectClusterCut(h, eye, focal, 1.0f);
       const double ms = (bench::nowSeconds() - t0) * 1e3;
-      size_t tris = 0;
-      for (uint32_t id : cut) tris += h.clusters[id].triangleCount;
+      const size_t tris = mesh::summariseCut(h, cut).triangles;
       char name[32];
       std::snprintf(name, sizeof name, "(%.0f, %.0f)", double(x), double(y));
       std::printf("%-16s %12zu %9.1f%% %10zu %12.2f %14zu\n", name, tris, 100.0 * double(tris) / double(tile.triangleCount()),

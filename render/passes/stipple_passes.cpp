@@ -192,17 +192,15 @@ TextureRef addStipplePasses(FrameGraph& graph, FrameContext& frame, const ViewCo
   density.output = TextureDesc{layout.gridWidth, layout.gridHeight, GL_R8};
   const TextureRef darkness = addFullscreenPass(graph, frame, v, std::move(density));
   // A stereo pair: the first view keeps its dots for the second.
-  const bool pair = depth.valid() && frame.views && frame.views->size() == 2;
+  const int eye = stereoEye(frame, v, depth);
   Reprojection from;
   const FrameContext::FirstEye& first = frame.firstEye;
-  const bool second = pair && v.index == 1 && first.stippleSites.valid() && first.stippleCount == layout.candidates;
+  const bool second = eye == 1 && first.stippleSites.valid() && first.stippleCount == layout.candidates;
   if (second) from = Reprojection{first.stippleSites, first.depth, depth, windowToClip(*first.view, v.view)};
   BufferRef sites;
   const TextureRef map = addRelaxation(graph, frame, v, darkness, layout, std::clamp(post.stippleIterations, 0, 50),
                                        second ? &from : nullptr, &sites);
-  if (pair && v.index == 0) {
-    frame.firstEye.depth = depth;
-    frame.firstEye.view = &v.view;
+  if (eye == 0) {
     frame.firstEye.stippleSites = sites;
     frame.firstEye.stippleCount = layout.candidates;
   }

@@ -56,10 +56,10 @@ TextureRef addErrorDiffusion(FrameGraph& graph, FrameContext& frame, const ViewC
   const int w = v.view.width, h = v.view.height;
   // A stereo pair (depth given, two views): the second eye takes the first
   // eye's levels where it sees the same surface.
-  const bool pair = depth.valid() && frame.views && frame.views->size() == 2;
+  const int eye = stereoEye(frame, v, depth);
   const FrameContext::FirstEye& first = frame.firstEye;
   TextureRef forced;
-  if (pair && v.index == 1 && first.dithered.valid() && first.depth.valid() && first.view) {
+  if (eye == 1 && first.dithered.valid() && first.depth.valid() && first.view) {
     FullscreenPass reproject;
     reproject.name = v.named("dither_reproject");
     reproject.fragment = "dither_reproject.frag";
@@ -96,11 +96,7 @@ TextureRef addErrorDiffusion(FrameGraph& graph, FrameContext& frame, const ViewC
                 if (taking) glBindTextureUnit(1, 0);
               })
           .out;
-  if (pair && v.index == 0) {
-    frame.firstEye.depth = depth;
-    frame.firstEye.view = &v.view;
-    frame.firstEye.dithered = out;
-  }
+  if (eye == 0) frame.firstEye.dithered = out;
   return out;
 }
 

@@ -147,12 +147,7 @@ class TestMeshprocClusters : public QObject {
     // A distant viewer at 2 px: the cut's largest cluster error against
     // the distance of its surface from the input, both ways.
     const std::vector<uint32_t> cut = mesh::selectClusterCut(h_, {0, -400, 0}, 1000.0f, 2.0f);
-    float worst = 0.0f;
-    size_t triangles = 0;
-    for (uint32_t id : cut) {
-      worst = std::max(worst, h_.clusters[id].error);
-      triangles += h_.clusters[id].triangleCount;
-    }
+    const auto [triangles, worst] = mesh::summariseCut(h_, cut);
     const mesh::ErrorReport e = mesh::measureError(sphere_, mesh::meshOfCut(h_, cut));
     qInfo("a cut of %zu triangles (of %zu): clusters' error at most %.4f m, measured distance %.4f m (max of both "
           "ways)",
