@@ -237,7 +237,7 @@ void addCluster(ClusterHierarchy& h, const Triangles& tris, uint32_t level, cons
 }  // namespace
 
 ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOptions& options,
-                                       ClusterBuildReport* report) {
+                                       ClusterBuildReport* report, const Progress* progress) {
   const auto start = std::chrono::steady_clock::now();
   ClusterBuildReport rep;
   ClusterHierarchy h;
@@ -307,9 +307,10 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
     for (size_t v = 0; v < h.positions.size(); ++v) locked[v] = shared.count(positionKey(h.positions[v])) ? 1 : 0;
     std::vector<GroupResult> results(groups.size());
     parallelFor(int64_t(groups.size()), int(threads), 1, [&](int64_t b, int64_t e) {
-      for (int64_t g = b; g < e; ++g)
+      for (int64_t g = b; g < e && !isCancelled(progress); ++g)
         results[size_t(g)] = simplifyGroup(h.positions, h.uvs, groupTris[size_t(g)], locked, options);
     });
+    if (isCancelled(progress)) return {};
     // Merged in group order: the pool and the clusters come out the same
     // whatever the thread count.
     std::vector<uint32_t> next;
@@ -332,9 +333,11 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
         childError = std::max(childError, h.clusters[id].error);
       }
       const float error = childError + r.error;  // so also monotonic up the hierarchy
+      const uint32_t groupId = h.groups++;
       for (uint32_t id : groups[g]) {
         h.clusters[id].parentBounds = sphere;
         h.clusters[id].parentError = error;
+        h.clusters[id].parentGroup = groupId;
       }
       std::vector<uint32_t> toPool(r.positions.size());
       for (size_t i = 0; i < r.positions.size(); ++i) {
@@ -351,6 +354,7 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
         next.push_back(uint32_t(h.clusters.size()));
         levelTriangles += c.size() / 3;
         addCluster(h, c, level, sphere, error);
+        h.clusters.back().group = groupId;
       }
     }
     if (simplified == 0) break;  // every group held by its border: these are the roots
@@ -358,6 +362,8 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
     active = std::move(next);
     rep.clustersPerLevel.push_back(active.size());
     rep.trianglesPerLevel.push_back(levelTriangles);
+    // Each level has about half the triangles of the one before.
+    reportProgress(progress, 1.0 - std::ldexp(1.0, -int(level)), "Building the cluster hierarchy");
   }
   ++h.levels;  // counted from 1: level 0 alone is one level
   for (uint32_t id : active) h.clusters[id].parentError = std::numeric_limits<float>::infinity();
@@ -415,6 +421,39 @@ std::vector<uint32_t> selectClusterCut(const ClusterHierarchy& h, const glm::vec
       out.push_back(i);
   }
   return out;
+}
+
+}  // namespace hs::mesh
+
+namespace hs::mesh {
+
+std::vector<uint32_t> uniformClusterCut(const ClusterHierarchy& h, size_t maxTriangles, float* errorOut) {
+  auto cutAt = [&](float e) {
+    std::vector<uint32_t> cut;
+    for (uint32_t i = 0; i < h.clusters.size(); ++i)
+      if (h.clusters[i].error <= e && h.clusters[i].parentError > e) cut.push_back(i);
+    return cut;
+  };
+  // The cut's triangles fall as the error grows: search the errors clusters
+  // were made with (the only places the cut changes).
+  std::vector<float> errors{0.0f};
+  for (const Cluster& c : h.clusters) errors.push_back(c.error);
+  std::sort(errors.begin(), errors.end());
+  errors.erase(std::unique(errors.begin(), errors.end()), errors.end());
+  auto triangles = [&](float e) {
+    size_t n = 0;
+    for (const Cluster& c : h.clusters)
+      if (c.error <= e && c.parentError > e) n += c.triangleCount;
+    return n;
+  };
+  size_t lo = 0, hi = errors.size() - 1;  // the largest error: the roots
+  while (lo < hi) {
+    const size_t mid = (lo + hi) / 2;
+    if (triangles(errors[mid]) <= maxTriangles) hi = mid;
+    else lo = mid + 1;
+  }
+  if (errorOut) *errorOut = errors[lo];
+  return cutAt(errors[lo]);
 }
 
 }  // namespace hs::mesh

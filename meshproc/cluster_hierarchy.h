@@ -27,6 +27,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/progress.h"
 #include "mesh/mesh_data.h"
 
 namespace hs::mesh {
@@ -48,6 +49,8 @@ struct ClusterOptions {
   unsigned threads = 0;  // 0: every available thread; the result is the same for any count
 };
 
+inline constexpr uint32_t kNoGroup = 0xFFFFFFFFu;
+
 struct LodSphere {
   glm::vec3 centre{0.0f};
   float radius = 0.0f;
@@ -67,6 +70,14 @@ struct Cluster {
   // infinite (no coarser level).
   LodSphere parentBounds;
   float parentError = std::numeric_limits<float>::infinity();
+  // The groups of those two tests (ids 0 .. ClusterHierarchy::groups-1):
+  // the one that made it (level 0: kNoGroup) and the one it was simplified
+  // in (a root: kNoGroup). A group's children and the clusters it made
+  // cover the same surface, inside the same locked border: a cut swaps
+  // the one set for the other (selectClusterCut), or, while the finer set
+  // is not all in memory, keeps the coarser (cluster_cut.h).
+  uint32_t group = kNoGroup;
+  uint32_t parentGroup = kNoGroup;
 };
 
 struct ClusterHierarchy {
@@ -76,6 +87,7 @@ struct ClusterHierarchy {
   std::vector<uint32_t> indices;     // triangles, cluster by cluster
   std::vector<Cluster> clusters;     // level by level
   uint32_t levels = 0;
+  uint32_t groups = 0;               // groups that made clusters (Cluster::group)
 };
 
 struct ClusterBuildReport {
@@ -91,8 +103,9 @@ struct ClusterBuildReport {
 // which the decimator keeps in place along their polylines). Group
 // borders are locked by position, so both sides of a seam that runs along
 // one stay. An empty mesh gives no cluster.
+// Cancelled through `progress`: an empty hierarchy.
 ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOptions& options = {},
-                                       ClusterBuildReport* report = nullptr);
+                                       ClusterBuildReport* report = nullptr, const Progress* progress = nullptr);
 
 // Whether a simplification of `error` metres over `sphere` shows under
 // `pixelBound` pixels to a viewer at `eye` (local coordinates) whose focal
@@ -116,5 +129,11 @@ MeshData meshOfCut(const ClusterHierarchy& h, const std::vector<uint32_t>& cut);
 // and whose parent's fails, in the hierarchy's order.
 std::vector<uint32_t> selectClusterCut(const ClusterHierarchy& h, const glm::vec3& eye, float focalPx,
                                        float pixelBound);
+
+// The cut one bound of `error` metres takes everywhere (each cluster whose
+// own error is at most that and whose parent's is over it; crack-free like
+// any cut), for the smallest error whose cut has at most `maxTriangles`
+// (the roots when none has): a coarse stand-in for the whole scan.
+std::vector<uint32_t> uniformClusterCut(const ClusterHierarchy& h, size_t maxTriangles, float* error = nullptr);
 
 }  // namespace hs::mesh

@@ -1,6 +1,7 @@
 #include "meshproc/cluster_pages.h"
 
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 #include <unordered_map>
 
@@ -9,7 +10,7 @@ namespace {
 
 constexpr char kIndexMagic[4] = {'H', 'S', 'C', 'I'};
 constexpr char kPageMagic[4] = {'H', 'S', 'C', 'P'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: groups, vertex counts, normals
 
 struct Writer {
   std::vector<uint8_t> bytes;
@@ -63,7 +64,84 @@ bool holds(const LodSphere& outer, const LodSphere& inner) {
 }
 
 size_t clusterBytes(size_t vertices, size_t triangles, bool uvs) {
-  return 8 + vertices * (uvs ? 20 : 12) + triangles * 3;
+  return 8 + vertices * (uvs ? 24 : 16) + triangles * 3;
+}
+
+// Octahedral unit vectors in two snorm16 (Cigolle et al. 2014): under
+// 0.01 degrees off, 4 bytes instead of 12.
+uint32_t packNormal(glm::vec3 n) {
+  const float len = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+  if (!(len > 0.0f)) return packNormal({0.0f, 0.0f, 1.0f});
+  n /= len;
+  glm::vec2 o(n.x, n.y);
+  if (n.z < 0.0f)
+    o = (1.0f - glm::abs(glm::vec2(o.y, o.x))) * glm::vec2(o.x >= 0.0f ? 1.0f : -1.0f, o.y >= 0.0f ? 1.0f : -1.0f);
+  auto q = [](float v) { return uint32_t(uint16_t(int16_t(std::lround(std::clamp(v, -1.0f, 1.0f) * 32767.0f)))); };
+  return q(o.x) | q(o.y) << 16;
+}
+
+glm::vec3 unpackNormal(uint32_t p) {
+  glm::vec2 o(float(int16_t(p & 0xFFFF)) / 32767.0f, float(int16_t(p >> 16)) / 32767.0f);
+  glm::vec3 n(o.x, o.y, 1.0f - std::abs(o.x) - std::abs(o.y));
+  if (n.z < 0.0f) {
+    const glm::vec2 f = (1.0f - glm::abs(glm::vec2(o.y, o.x))) *
+                        glm::vec2(o.x >= 0.0f ? 1.0f : -1.0f, o.y >= 0.0f ? 1.0f : -1.0f);
+    n.x = f.x, n.y = f.y;
+  }
+  return glm::normalize(n);
+}
+
+// Vertex normals per cluster vertex: the area-weighted face normals around
+// its position among the clusters of its own level (by position, so both
+// sides of a UV seam get one normal).
+std::vector<std::vector<glm::vec3>> levelNormals(const ClusterHierarchy& h) {
+  std::vector<std::vector<glm::vec3>> out(h.clusters.size());
+  size_t begin = 0;
+  while (begin < h.clusters.size()) {
+    size_t end = begin;
+    while (end < h.clusters.size() && h.clusters[end].level == h.clusters[begin].level) ++end;
+    std::unordered_map<uint64_t, glm::vec3> sum;
+    auto key = [&](uint32_t v) {
+      uint32_t b[3];
+      std::memcpy(b, &h.positions[v], sizeof b);
+      return (uint64_t(b[0]) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(b[1]) * 0xC2B2AE3D27D4EB4Full) ^
+             (uint64_t(b[2]) * 0x165667B19E3779F9ull);
+    };
+    for (size_t c = begin; c < end; ++c) {
+      const Cluster& cl = h.clusters[c];
+      for (uint32_t t = 0; t < cl.triangleCount; ++t) {
+        const uint32_t* i = &h.indices[cl.firstIndex + t * 3];
+        const glm::vec3 n = glm::cross(h.positions[i[1]] - h.positions[i[0]], h.positions[i[2]] - h.positions[i[0]]);
+        for (int k = 0; k < 3; ++k) sum[key(i[k])] += n;
+      }
+    }
+    for (size_t c = begin; c < end; ++c) {
+      const Cluster& cl = h.clusters[c];
+      // In the cluster's own vertex order (first use), as paginate writes them.
+      std::unordered_map<uint32_t, bool> seen;
+      for (uint32_t i = 0; i < cl.triangleCount * 3; ++i) {
+        const uint32_t v = h.indices[cl.firstIndex + i];
+        if (seen.try_emplace(v, true).second) out[c].push_back(sum[key(v)]);
+      }
+    }
+    begin = end;
+  }
+  return out;
+}
+
+// Page p's first cluster, from the entries' pages (in order).
+std::string fillPageFirst(ClusterIndex& index) {
+  index.pageFirst.assign(size_t(index.pageCount) + 1, uint32_t(index.clusters.size()));
+  uint32_t next = 0;
+  for (uint32_t i = 0; i < index.clusters.size(); ++i) {
+    const uint32_t p = index.clusters[i].page;
+    if (p >= index.pageCount)
+      return "cluster " + std::to_string(i) + ": its page " + std::to_string(p) + " is past the " +
+             std::to_string(index.pageCount) + " pages";
+    if (p + 1 < next) return "cluster " + std::to_string(i) + ": its page " + std::to_string(p) + " is out of order";
+    while (next <= p) index.pageFirst[next++] = i;
+  }
+  return "";
 }
 
 }  // namespace
@@ -83,6 +161,7 @@ ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes) {
     page.bytes.clear();
     inPage = 0;
   };
+  const std::vector<std::vector<glm::vec3>> normals = levelNormals(h);
   for (uint32_t id = 0; id < h.clusters.size(); ++id) {
     const Cluster& c = h.clusters[id];
     // The cluster's own vertices, in first use order.
@@ -106,6 +185,7 @@ ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes) {
     page.put(uint16_t(verts.size()));
     page.put(uint16_t(c.triangleCount));
     for (uint32_t v : verts) page.put(h.positions[v].x), page.put(h.positions[v].y), page.put(h.positions[v].z);
+    for (const glm::vec3& n : normals[id]) page.put(packNormal(n));
     if (uvs)
       for (uint32_t v : verts) page.put(h.uvs[v].x), page.put(h.uvs[v].y);
     page.bytes.insert(page.bytes.end(), tris.begin(), tris.end());
@@ -114,6 +194,9 @@ ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes) {
     e.page = uint32_t(out.pages.size());
     e.level = c.level;
     e.triangleCount = c.triangleCount;
+    e.vertexCount = uint32_t(verts.size());
+    e.group = c.group;
+    e.parentGroup = c.parentGroup;
     e.bounds = c.bounds;
     e.lodBounds = c.lodBounds;
     e.parentBounds = c.parentBounds;
@@ -123,6 +206,8 @@ ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes) {
   }
   finish();
   out.index.pageCount = uint32_t(out.pages.size());
+  out.index.groupCount = h.groups;
+  fillPageFirst(out.index);
   return out;
 }
 
@@ -133,23 +218,27 @@ std::vector<uint8_t> encodeClusterIndex(const ClusterIndex& index) {
   w.put(index.origin.x), w.put(index.origin.y), w.put(index.origin.z);
   w.put(uint8_t(index.hasUvs ? 1 : 0));
   w.put(index.pageCount);
+  w.put(index.groupCount);
   w.put(uint32_t(index.clusters.size()));
   for (const ClusterIndexEntry& e : index.clusters) {
-    w.put(e.page), w.put(e.level), w.put(e.triangleCount);
+    w.put(e.page), w.put(e.level), w.put(e.triangleCount), w.put(e.vertexCount), w.put(e.group), w.put(e.parentGroup);
     w.sphere(e.bounds), w.sphere(e.lodBounds), w.sphere(e.parentBounds);
     w.put(e.error), w.put(e.parentError);
   }
   return std::move(w.bytes);
 }
 
-std::string clusterIndexProblem(const ClusterIndex& index) {
+std::string clusterIndexProblem(ClusterIndex& index) {
   if (!std::isfinite(index.origin.x) || !std::isfinite(index.origin.y) || !std::isfinite(index.origin.z))
     return "its origin is not finite";
+  if (std::string p = fillPageFirst(index); !p.empty()) return p;
+  // Each group's test, from the first cluster it made; every other cluster
+  // it made, and every cluster simplified in it, must agree (the cut swaps
+  // a group's children for what it made as one).
+  std::vector<int64_t> madeBy(index.groupCount, -1);
   for (size_t i = 0; i < index.clusters.size(); ++i) {
     const ClusterIndexEntry& e = index.clusters[i];
     const std::string who = "cluster " + std::to_string(i) + " (level " + std::to_string(e.level) + ")";
-    if (e.page >= index.pageCount)
-      return who + ": its page " + std::to_string(e.page) + " is past the " + std::to_string(index.pageCount) + " pages";
     if (!finite(e.bounds) || !finite(e.lodBounds) || !finite(e.parentBounds))
       return who + ": a bounding sphere is not finite (or has a negative radius)";
     if (!std::isfinite(e.error) || e.error < 0.0f || std::isnan(e.parentError))
@@ -160,6 +249,33 @@ std::string clusterIndexProblem(const ClusterIndex& index) {
              std::to_string(e.parentError) + " m (errors must grow up the hierarchy)";
     if (std::isfinite(e.parentError) && !holds(e.parentBounds, e.lodBounds))
       return who + ": its sphere is not inside its parent's";
+    if (e.vertexCount < 3 || e.vertexCount > 256 || e.triangleCount == 0 || e.triangleCount > 512)
+      return who + ": " + std::to_string(e.vertexCount) + " vertices and " + std::to_string(e.triangleCount) +
+             " triangles (a cluster has 3-256 and 1-512)";
+    const bool root = !std::isfinite(e.parentError);
+    if ((e.group == kNoGroup) != (e.level == 0) || (e.parentGroup == kNoGroup) != root ||
+        (e.group != kNoGroup && e.group >= index.groupCount) ||
+        (e.parentGroup != kNoGroup && e.parentGroup >= index.groupCount))
+      return who + ": its group ids do not fit its level and parent (" + std::to_string(index.groupCount) + " groups)";
+    // A group is made after every group below it (cluster_cut.h walks down by id).
+    if (e.group != kNoGroup && e.parentGroup != kNoGroup && e.parentGroup <= e.group)
+      return who + ": its parent group " + std::to_string(e.parentGroup) + " comes before its own " +
+             std::to_string(e.group);
+    if (e.group != kNoGroup) {
+      if (madeBy[e.group] < 0) madeBy[e.group] = int64_t(i);
+      const ClusterIndexEntry& first = index.clusters[size_t(madeBy[e.group])];
+      if (first.error != e.error || std::memcmp(&first.lodBounds, &e.lodBounds, sizeof e.lodBounds) != 0)
+        return who + ": its group " + std::to_string(e.group) + " has another error or sphere in cluster " +
+               std::to_string(madeBy[e.group]);
+    }
+  }
+  for (size_t i = 0; i < index.clusters.size(); ++i) {
+    const ClusterIndexEntry& e = index.clusters[i];
+    if (e.parentGroup == kNoGroup) continue;
+    const int64_t m = madeBy[e.parentGroup];
+    if (m < 0 || index.clusters[size_t(m)].error != e.parentError)
+      return "cluster " + std::to_string(i) + " (level " + std::to_string(e.level) + "): its parent group " +
+             std::to_string(e.parentGroup) + (m < 0 ? " made no cluster" : " has another error");
   }
   return "";
 }
@@ -179,8 +295,9 @@ std::optional<ClusterIndex> decodeClusterIndex(const uint8_t* data, size_t size,
   index.origin.x = r.get<double>(), index.origin.y = r.get<double>(), index.origin.z = r.get<double>();
   index.hasUvs = r.get<uint8_t>() != 0;
   index.pageCount = r.get<uint32_t>();
+  index.groupCount = r.get<uint32_t>();
   const uint32_t count = r.get<uint32_t>();
-  constexpr size_t kEntryBytes = 3 * 4 + 3 * 16 + 2 * 4;
+  constexpr size_t kEntryBytes = 6 * 4 + 3 * 16 + 2 * 4;
   if (r.ok && (size - r.at) / kEntryBytes < count) {
     error = what + ": truncated: it declares " + std::to_string(count) + " clusters, the bytes hold " +
             std::to_string((size - r.at) / kEntryBytes);
@@ -189,6 +306,7 @@ std::optional<ClusterIndex> decodeClusterIndex(const uint8_t* data, size_t size,
   for (uint32_t i = 0; r.ok && i < count; ++i) {
     ClusterIndexEntry e;
     e.page = r.get<uint32_t>(), e.level = r.get<uint32_t>(), e.triangleCount = r.get<uint32_t>();
+    e.vertexCount = r.get<uint32_t>(), e.group = r.get<uint32_t>(), e.parentGroup = r.get<uint32_t>();
     e.bounds = r.sphere(), e.lodBounds = r.sphere(), e.parentBounds = r.sphere();
     e.error = r.get<float>(), e.parentError = r.get<float>();
     index.clusters.push_back(e);
@@ -222,7 +340,12 @@ std::optional<std::vector<PageCluster>> decodeClusterPage(const uint8_t* data, s
   }
   const uint32_t count = r.get<uint32_t>();
   std::vector<PageCluster> out;
-  std::vector<bool> seen(index.clusters.size(), false);
+  if (index.pageFirst.size() != size_t(index.pageCount) + 1 || page >= index.pageCount) {
+    error = where + ": there is no such page in the index";
+    return std::nullopt;
+  }
+  const uint32_t first = index.pageFirst[page];
+  std::vector<bool> seen(index.pageFirst[page + 1] - first, false);
   for (uint32_t k = 0; r.ok && k < count; ++k) {
     PageCluster c;
     c.cluster = r.get<uint32_t>();
@@ -232,14 +355,19 @@ std::optional<std::vector<PageCluster>> decodeClusterPage(const uint8_t* data, s
       error = where + ": holds cluster " + std::to_string(c.cluster) + ", which the index places elsewhere";
       return std::nullopt;
     }
-    if (seen[c.cluster]) {
+    if (seen[c.cluster - first]) {
       error = where + ": holds cluster " + std::to_string(c.cluster) + " twice";
       return std::nullopt;
     }
-    seen[c.cluster] = true;
+    seen[c.cluster - first] = true;
     if (triangles != index.clusters[c.cluster].triangleCount) {
       error = where + ": cluster " + std::to_string(c.cluster) + " has " + std::to_string(triangles) +
               " triangles, the index says " + std::to_string(index.clusters[c.cluster].triangleCount);
+      return std::nullopt;
+    }
+    if (vertices != index.clusters[c.cluster].vertexCount) {
+      error = where + ": cluster " + std::to_string(c.cluster) + " has " + std::to_string(vertices) +
+              " vertices, the index says " + std::to_string(index.clusters[c.cluster].vertexCount);
       return std::nullopt;
     }
     if (size - r.at < clusterBytes(vertices, triangles, index.hasUvs) - 8) {
@@ -256,6 +384,7 @@ std::optional<std::vector<PageCluster>> decodeClusterPage(const uint8_t* data, s
       }
       c.positions.push_back(p);
     }
+    for (uint16_t v = 0; v < vertices; ++v) c.normals.push_back(unpackNormal(r.get<uint32_t>()));
     if (index.hasUvs)
       for (uint16_t v = 0; v < vertices; ++v) {
         glm::vec2 uv;
@@ -286,8 +415,7 @@ std::optional<std::vector<PageCluster>> decodeClusterPage(const uint8_t* data, s
     return std::nullopt;
   }
   // Every cluster the index puts here, once.
-  size_t expected = 0;
-  for (const ClusterIndexEntry& e : index.clusters) expected += e.page == page;
+  const size_t expected = seen.size();
   if (out.size() != expected) {
     error = where + ": holds " + std::to_string(out.size()) + " clusters, the index puts " + std::to_string(expected) +
             " there";

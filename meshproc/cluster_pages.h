@@ -1,11 +1,14 @@
 #pragma once
 // A cluster hierarchy (cluster_hierarchy.h) as pages, for storage and
 // streaming (issue 38 item 2; the scene file does not hold them yet): a
-// small index, always loaded, with every cluster's LOD tests and bounds
-// and the page it lives in (a cut is chosen from the index alone), and
+// small index, always loaded, with every cluster's LOD tests, groups and
+// bounds and the page it lives in (a cut is chosen from the index alone), and
 // pages of about 64 KB, each holding whole clusters in the hierarchy's
 // order (clusters of one level, neighbours along the grouping's Morton
 // order) with their own vertices, so a page decodes without any other.
+// Vertex normals are stored (octahedral, 4 bytes): each from the faces
+// around its position among the clusters of its level, so neighbours of
+// one level shade without a seam whatever page they sit in.
 // Decoding checks everything it reads: a truncated or damaged page or
 // index, a cluster with an index past its vertices, a non-finite number,
 // or an index whose errors are not monotonic is refused with a message
@@ -23,6 +26,8 @@ struct ClusterIndexEntry {
   uint32_t page = 0;
   uint32_t level = 0;
   uint32_t triangleCount = 0;
+  uint32_t vertexCount = 0;  // its own vertices in its page
+  uint32_t group = kNoGroup, parentGroup = kNoGroup;  // as Cluster's
   LodSphere bounds, lodBounds, parentBounds;
   float error = 0.0f, parentError = 0.0f;
 };
@@ -31,13 +36,17 @@ struct ClusterIndex {
   glm::dvec3 origin{0.0};
   bool hasUvs = false;
   uint32_t pageCount = 0;
-  std::vector<ClusterIndexEntry> clusters;  // the hierarchy's order
+  uint32_t groupCount = 0;
+  std::vector<ClusterIndexEntry> clusters;  // the hierarchy's order, pages in order
+  // Derived (not stored): page p holds clusters [pageFirst[p], pageFirst[p + 1]).
+  std::vector<uint32_t> pageFirst;
 };
 
 // One cluster as a page holds it: its own vertices and triangles.
 struct PageCluster {
   uint32_t cluster = 0;  // into ClusterIndex::clusters
   std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;   // one per position, unit (stored as 2x16-bit octahedral)
   std::vector<glm::vec2> uvs;       // one per position, or none
   std::vector<uint8_t> triangles;   // three local vertex indices a triangle
 };
@@ -56,10 +65,12 @@ std::vector<uint8_t> encodeClusterIndex(const ClusterIndex& index);
 // when the bytes are not a whole, sound index (clusterIndexProblem).
 std::optional<ClusterIndex> decodeClusterIndex(const uint8_t* data, size_t size, const std::string& what,
                                                std::string& error);
-// Why `index` cannot be drawn from: a page past the page count, a
-// non-finite or negative bound, an error larger than its parent's, a
-// sphere outside its parent's; "" when sound.
-std::string clusterIndexProblem(const ClusterIndex& index);
+// Why `index` cannot be drawn from: a page past the page count or out of
+// order, a non-finite or negative bound, an error larger than its parent's,
+// a sphere outside its parent's, a group id out of range or whose clusters
+// disagree on its test; "" when sound. Fills index.pageFirst.
+std::string clusterIndexProblem(ClusterIndex& index);
+
 
 // Page `page` of `index` from its bytes: its clusters, checked against the
 // index (the clusters it should hold, their triangle counts); nullopt with

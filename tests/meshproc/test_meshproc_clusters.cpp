@@ -18,10 +18,12 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 #include <tuple>
 
 #include "mesh_builders.h"
+#include "meshproc/cluster_cut.h"
 #include "meshproc/cluster_hierarchy.h"
 #include "meshproc/cluster_pages.h"
 #include "meshproc/error_metrics.h"
@@ -288,6 +290,118 @@ class TestMeshprocClusters : public QObject {
     QVERIFY2(error.find("past its") != std::string::npos, error.c_str());
     QVERIFY(!mesh::decodeClusterPage(page.data(), page.size(), pages.index, 2, "scan.hscene", error));
     QVERIFY2(error.find("which the index places elsewhere") != std::string::npos, error.c_str());
+  }
+
+  // With every page in memory the resident cut is selectClusterCut's.
+  void residentCutIsTheCutWhenAllIsResident() {
+    const mesh::ClusterPages pages = mesh::paginate(h_, 16 << 10);
+    const mesh::ClusterGroups groups = mesh::clusterGroupsOf(pages.index);
+    size_t compared = 0;
+    for (const glm::vec3 eye : {glm::vec3(0, -12, 0), glm::vec3(0, -15, 3), glm::vec3(30, 0, 0), glm::vec3(5000, 0, 0)})
+      for (float bound : {0.25f, 1.0f, 8.0f}) {
+        const mesh::ResidentCut cut =
+            mesh::selectResidentCut(pages.index, groups, {eye, 1000.0f, bound}, [](uint32_t) { return true; });
+        QVERIFY(cut.complete && cut.rootsResident && cut.wanted.empty());
+        QVERIFY(cut.clusters == mesh::selectClusterCut(h_, eye, 1000.0f, bound));
+        ++compared;
+      }
+    qInfo("%zu cuts equal to selectClusterCut's", compared);
+  }
+
+  // Pages missing at random: the cut stays watertight with only resident
+  // clusters, asks for pages, and loading what it asks for converges on the
+  // full cut; without the roots' pages nothing is drawn and they are asked for.
+  void residentCutNeverHasAHole() {
+    const mesh::ClusterPages pages = mesh::paginate(h_, 8 << 10);
+    const mesh::ClusterGroups groups = mesh::clusterGroupsOf(pages.index);
+    const mesh::CutViewer viewer{glm::vec3(0, -12, 2), 1000.0f, 0.5f};
+    const std::vector<uint32_t> ideal = mesh::selectClusterCut(h_, viewer.eye, viewer.focalPx, viewer.pixelBound);
+    std::mt19937 rng(7);
+    size_t incomplete = 0;
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<uint8_t> resident(pages.index.pageCount);
+      for (auto& r : resident) r = rng() % 3 != 0;
+      for (uint32_t p : groups.rootPages) resident[p] = 1;
+      for (int step = 0;; ++step) {
+        QVERIFY(step < 64);
+        const mesh::ResidentCut cut =
+            mesh::selectResidentCut(pages.index, groups, viewer, [&](uint32_t p) { return resident[p] != 0; });
+        QVERIFY(cut.rootsResident);
+        for (uint32_t id : cut.clusters) QVERIFY(resident[pages.index.clusters[id].page]);
+        for (const auto& [edge, n] : edgeUse(h_, cut.clusters))
+          if (n != 2) QFAIL(qPrintable(QString("trial %1 step %2: edge used %3 times").arg(trial).arg(step).arg(n)));
+        for (uint32_t p : cut.wanted) QVERIFY(!resident[p]);
+        if (cut.complete) {
+          QVERIFY(cut.wanted.empty());
+          QVERIFY(cut.clusters == ideal);
+          break;
+        }
+        incomplete += step == 0;
+        QVERIFY(!cut.wanted.empty());
+        resident[cut.wanted.front()] = 1;  // the most wanted page arrives
+      }
+    }
+    QVERIFY(incomplete > 0);
+    const mesh::ResidentCut none =
+        mesh::selectResidentCut(pages.index, groups, viewer, [](uint32_t) { return false; });
+    QVERIFY(!none.rootsResident && none.clusters.empty());
+    QVERIFY(none.wanted == groups.rootPages);
+  }
+
+  // A group nobody sees is not refined: its finer pages are never asked for.
+  void invisibleGroupsStayCoarse() {
+    const mesh::ClusterPages pages = mesh::paginate(h_, 8 << 10);
+    const mesh::ClusterGroups groups = mesh::clusterGroupsOf(pages.index);
+    const mesh::CutViewer viewer{glm::vec3(0, -12, 0), 1000.0f, 0.5f};
+    auto all = [](uint32_t) { return true; };
+    // Only what lies on the viewer's side (y < 0) is seen.
+    auto front = [](const mesh::LodSphere& s) { return s.centre.y - s.radius < 0.0f; };
+    const mesh::ResidentCut seen = mesh::selectResidentCut(pages.index, groups, viewer, all, front);
+    const mesh::ResidentCut everything = mesh::selectResidentCut(pages.index, groups, viewer, all);
+    QVERIFY(seen.groupsRefined < everything.groupsRefined);
+    for (const auto& [edge, n] : edgeUse(h_, seen.clusters)) QCOMPARE(n, 2);
+    auto triangles = [&](const mesh::ResidentCut& c) {
+      size_t n = 0;
+      for (uint32_t id : c.clusters) n += pages.index.clusters[id].triangleCount;
+      return n;
+    };
+    QVERIFY(triangles(seen) < triangles(everything));
+  }
+
+  // Stored normals: unit, and on the bumpy sphere close to the radial direction.
+  void pageNormals() {
+    const mesh::ClusterPages pages = mesh::paginate(h_);
+    double worst = 1.0;
+    for (uint32_t p = 0; p < pages.index.pageCount; ++p) {
+      std::string error;
+      const auto clusters = mesh::decodeClusterPage(pages.pages[p].data(), pages.pages[p].size(), pages.index, p,
+                                                    "normals", error);
+      QVERIFY2(clusters, error.c_str());
+      for (const auto& c : *clusters) {
+        QCOMPARE(c.normals.size(), c.positions.size());
+        for (size_t v = 0; v < c.normals.size(); ++v) {
+          QVERIFY(std::abs(glm::length(c.normals[v]) - 1.0f) < 1e-4f);
+          worst = std::min(worst, double(glm::dot(c.normals[v], glm::normalize(c.positions[v]))));
+        }
+      }
+    }
+    qInfo("smallest cosine between a stored normal and the radial direction: %.3f", worst);
+    QVERIFY(worst > 0.5);
+  }
+
+  // Group ids that do not fit together are refused by name.
+  void groupsAreChecked() {
+    mesh::ClusterPages pages = mesh::paginate(h_);
+    mesh::ClusterIndex bad = pages.index;
+    size_t i = 0;
+    while (bad.clusters[i].group == mesh::kNoGroup || bad.clusters[i].parentGroup == mesh::kNoGroup) ++i;
+    bad.clusters[i].parentGroup = bad.clusters[i].group;
+    QVERIFY2(mesh::clusterIndexProblem(bad).find("cluster " + std::to_string(i)) != std::string::npos,
+             mesh::clusterIndexProblem(bad).c_str());
+    bad = pages.index;
+    bad.clusters[i].group = bad.groupCount + 3;
+    QVERIFY(mesh::clusterIndexProblem(bad).find("group ids") != std::string::npos);
+    QVERIFY(mesh::clusterIndexProblem(pages.index).empty());
   }
 
   void anEmptyMeshGivesNone() {

@@ -1,0 +1,62 @@
+#pragma once
+// A view's cut through a paged cluster hierarchy (issue 38 items 3-4;
+// cluster_pages.h) when not every page is in memory: the index alone says
+// where the view wants more detail, the pages it has say how much it can
+// draw now, and what is missing is asked for.
+//
+// Groups decide, from the roots down (a group is made after every group
+// below it, so in decreasing id order): a group is refined (its children
+// drawn or refined further instead of the clusters it made) when its own
+// test fails (its error projects over the pixel bound), every group above
+// it (those its clusters were simplified in) is refined, its sphere meets
+// a view (`visible`; a group nobody sees is never refined) and every page
+// holding one of its children is resident. A cluster is drawn when the
+// group it was simplified in is refined (a root: always) and the group
+// that made it is not (level 0: never refined). Each piece of surface then
+// has exactly one level, as with selectClusterCut: a group's children and
+// what it made cover the same surface inside the same locked border, and a
+// group only refines under refined groups. With every page resident the
+// cut is selectClusterCut's for the visible groups; with some missing, the
+// coarser level stays where the finer is not in memory (never a hole), and
+// those pages are asked for, the largest projected error first.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "meshproc/cluster_pages.h"
+
+namespace hs::mesh {
+
+// Each group's children and the clusters it made, found once per index.
+struct ClusterGroups {
+  std::vector<uint32_t> childrenFirst, children;  // CSR: clusters simplified in group g
+  std::vector<uint32_t> madeFirst, made;          // CSR: clusters group g made
+  std::vector<uint32_t> childPagesFirst, childPages;  // CSR: distinct pages of g's children
+  std::vector<uint32_t> roots;                    // clusters with no parent group
+  std::vector<uint32_t> rootPages;                // their distinct pages
+};
+ClusterGroups clusterGroupsOf(const ClusterIndex& index);
+
+struct CutViewer {
+  glm::vec3 eye{0.0f};  // in the index's local coordinates
+  float focalPx = 1.0f;
+  float pixelBound = 1.0f;
+};
+
+struct ResidentCut {
+  std::vector<uint32_t> clusters;  // drawn, in index order
+  // Pages the cut wants that are not resident, most wanted first (the
+  // largest projected error of a group waiting for them), each once.
+  std::vector<uint32_t> wanted;
+  bool rootsResident = true;  // false: some root's page is missing (nothing of the hierarchy can be drawn whole)
+  bool complete = true;       // no group held coarse for want of a page
+  size_t groupsRefined = 0;
+};
+
+// `resident(page)`: whether the page is in memory; `visible(sphere)`:
+// whether a group's sphere meets a view that draws the cut (null: all).
+ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& groups, const CutViewer& viewer,
+                              const std::function<bool(uint32_t page)>& resident,
+                              const std::function<bool(const LodSphere& sphere)>& visible = {});
+
+}  // namespace hs::mesh
