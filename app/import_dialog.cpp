@@ -172,6 +172,13 @@ ImportDialog::ImportDialog(const QStringList& files, const mesh::ImportOptions& 
   lods_->setToolTip("Each instance draws the coarsest level whose error stays under the scene's pixel bound (" +
                     QString::fromStdString(rangeText(lods)) + ")");
   procForm->addRow(paramLabel(lods), lods_);
+  const ParamDecl& clusters = scene::meshImportOperation().param("clusters");
+  clusters_ = paramCombo(clusters, procBox,
+                         {QString("Automatic (meshes of %1M triangles and more)")
+                              .arg(scene::kClusterAutoTriangles / 1000000),
+                          "Build one (pages stream from the scene file)", "None"});
+  clusters_->setObjectName("clusters");
+  procForm->addRow(paramLabel(clusters), clusters_);
   layout->addWidget(procBox);
 
   // Preview.
@@ -292,6 +299,9 @@ scene::MeshImportRequest ImportDialog::request() const {
   p.error.certify = certify_->isChecked();
   p.lodLevels = lods_->value();
   r.process = p.clean || p.decimate || p.lodLevels > 0;
+  const QString clusters = clusters_->currentData().toString();
+  using Clusters = scene::MeshImportRequest::Clusters;
+  r.clusters = clusters == "on" ? Clusters::On : clusters == "off" ? Clusters::Off : Clusters::Auto;
   return r;
 }
 

@@ -56,7 +56,7 @@ class ImportDialog : public QDialog {
   void remember() const;
 
   QStringList files_;
-  QComboBox *up_ = nullptr, *reader_ = nullptr, *targetKind_ = nullptr;
+  QComboBox *up_ = nullptr, *reader_ = nullptr, *targetKind_ = nullptr, *clusters_ = nullptr;
   QRadioButton *originAuto_ = nullptr, *originFile_ = nullptr, *originManual_ = nullptr;
   QDoubleSpinBox* origin_[3] = {nullptr, nullptr, nullptr};
   QCheckBox *clean_ = nullptr, *decimate_ = nullptr, *refine_ = nullptr, *certify_ = nullptr;

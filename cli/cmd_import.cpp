@@ -55,7 +55,13 @@ int runImport(int argc, char** argv) {
   scene::Document doc;
   doc.reset(std::move(*state), QString::fromStdString(scenePath));
   const std::string name = args.has("name") ? args.text("name") : std::filesystem::path(meshPath).stem().string();
-  const size_t tris = result.mesh->triangleCount(), verts = result.mesh->vertexCount();
+  // A clustered scan keeps a coarse cut as its mesh: say what was read.
+  const bool clustered = result.clusters != nullptr;
+  const size_t tris = clustered ? result.clusterReport.trianglesPerLevel.front() : result.mesh->triangleCount();
+  const size_t verts = clustered ? result.import.verticesOut : result.mesh->vertexCount();
+  const mesh::ClusterBuildReport clusterReport = result.clusterReport;
+  const size_t proxyTriangles = result.mesh->triangleCount();
+  const float proxyError = result.proxyError;
   const glm::dvec3 origin = result.mesh->origin;
   const mesh::ImportReport importReport = result.import;
   const Json processReport = result.processReport;
@@ -71,6 +77,13 @@ int runImport(int argc, char** argv) {
     std::printf("georeferencing offset %.3f,%.3f,%.3f from %s\n", importReport.geoOffset.x, importReport.geoOffset.y,
                 importReport.geoOffset.z, importReport.geoOffsetSource.c_str());
   printProcessReport(processReport);
+  if (clustered) {
+    std::printf("cluster hierarchy: %zu levels (", clusterReport.clustersPerLevel.size());
+    for (size_t l = 0; l < clusterReport.clustersPerLevel.size(); ++l)
+      std::printf("%s%zu clusters", l ? ", " : "", clusterReport.clustersPerLevel[l]);
+    std::printf("), %zu roots, built in %.2f s; coarse mesh %zu triangles (error %.4g m)\n", clusterReport.roots,
+                clusterReport.seconds, proxyTriangles, double(proxyError));
+  }
   for (const std::string& w : scene::processWarnings(processReport)) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return 0;
 }

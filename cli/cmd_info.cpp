@@ -11,6 +11,7 @@
 #include "foliage/manifest.h"
 #include "core/json.h"
 #include "scene/camera_post.h"
+#include "scene/cluster_asset.h"
 #include "scene/fields.h"
 #include "scene/hscene_file.h"
 #include "scene/impostor_key.h"
@@ -66,6 +67,19 @@ const char* impostorWord(const scene::SceneState& s, const scene::MeshAsset& a,
 }
 
 void printLods(const scene::MeshAsset& a) {
+  if (a.clusters) {
+    const Json c = scene::clusterSummaryJson(*a.clusters);
+    std::printf("    Cluster hierarchy: %zu triangles in %zu clusters, %zu levels, %zu pages (%.1f MiB; index %.1f MiB "
+                "always in memory, %.1f MiB of pages in memory)\n",
+                c["triangles"].get<size_t>(), c["clusters"].get<size_t>(), c["levels"].get<size_t>(),
+                c["pages"].get<size_t>(), c["page_bytes"].get<double>() / 1048576.0,
+                c["index_bytes"].get<double>() / 1048576.0, c["pages_in_memory_bytes"].get<double>() / 1048576.0);
+    std::printf("      per level:");
+    for (const Json& l : c["per_level"])
+      std::printf(" %zu: %zu clusters, %zu triangles;", l["level"].get<size_t>(), l["clusters"].get<size_t>(),
+                  l["triangles"].get<size_t>());
+    std::printf("\n");
+  }
   if (a.lods.empty()) return;
   std::printf("    LODs: 0: %zu triangles", a.data->triangleCount());
   for (size_t k = 0; k < a.lods.size(); ++k)
@@ -245,6 +259,7 @@ Json infoJson(const std::string& path, const scene::SceneState& s, double time) 
       ja["origin"] = arr(a.data->origin);
       ja["lods"] = lodsJson(a);
     }
+    ja["clusters"] = a.clusters ? scene::clusterSummaryJson(*a.clusters) : Json(nullptr);
     if (const char* im = impostorWord(s, a, needImpostor)) ja["impostor"] = im;
     if (!a.processReport.is_null()) ja["process_report"] = a.processReport;
     assets.push_back(std::move(ja));

@@ -525,6 +525,12 @@ std::vector<SettingsField> buildSettingsFields() {
       // Screen-space error of mesh LODs (mesh/lod_chain.h selectLod); 0 draws full resolution.
       doubleField<S>("mesh_lod_error_px", "Mesh LOD error bound", 0.0, 64.0, 0.1, "px",
                      [](S& s) -> double& { return s.meshLodErrorPixels; }),
+      // Cluster hierarchies' page budgets (scene/cluster_asset.h): under a
+      // few MiB nothing but the roots would stay resident.
+      doubleField<S>("clusters.gpu_budget_mb", "Cluster GPU budget", 16.0, 262144.0, 64.0, "MiB",
+                     [](S& s) -> double& { return s.clusterGpuBudgetMb; }),
+      doubleField<S>("clusters.cpu_budget_mb", "Cluster page cache", 16.0, 262144.0, 64.0, "MiB",
+                     [](S& s) -> double& { return s.clusterCpuBudgetMb; }),
       // Shadows (docs/rendering.md "Shadows"). A map under 256 texels shows
       // nothing useful; over 8192 a 4-cascade array passes 1 GB.
       boolField<S>("shadows", "Shadows", [](S& s) -> bool& { return s.shadows; }),

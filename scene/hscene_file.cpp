@@ -8,12 +8,15 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
+#include <unordered_set>
 
 #include <sqlite3.h>
 #include <unistd.h>
 
 #include "core/content_hash.h"
 #include "foliage/impostor_images.h"
+#include "scene/cluster_file.h"
 #include "scene/color_lut.h"
 #include "scene/foliage_file.h"
 #include "scene/hscene_recovery.h"
@@ -138,10 +141,12 @@ std::map<std::string, BlobSource> wantedBlobs(const SceneState& s) {
                                            }, false};
   addTerrainBlobs(s, out);
   addFoliageBlobs(s, out);
+  addClusterBlobs(s, out);
   return out;
 }
 
-bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std::string& error) {
+bool writeContent(SqliteDb& db, const SceneState& state, const std::string& path, SaveReport& report,
+                  std::string& error) {
   if (!db.exec(kSchema, error)) return false;
   {
     SqliteStmt m(db, "INSERT OR REPLACE INTO meta(key, value) VALUES (?1, ?2)");
@@ -176,14 +181,23 @@ bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std
   for (const auto& [key, source] : wanted) {
     const std::string& hash = source.hash;
     if (auto it = existing.find(key); it != existing.end() && it->second == hash) {
-      ++(source.terrainTile ? report.tilesUnchanged : source.foliageCell ? report.cellsUnchanged : report.blobsUnchanged);
+      ++(source.terrainTile   ? report.tilesUnchanged
+         : source.foliageCell ? report.cellsUnchanged
+         : source.clusterPage ? report.pagesUnchanged
+                              : report.blobsUnchanged);
       continue;
     }
     del.bind(1, key);
     del.step(error);
     del.reset();
     if (!error.empty()) return false;
-    const std::vector<uint8_t> bytes = source.bytes();
+    std::vector<uint8_t> bytes;
+    try {
+      bytes = source.bytes();  // a cluster page read from the file it came from can fail (cluster_file.h)
+    } catch (const std::exception& e) {
+      error = e.what();
+      return false;
+    }
     for (size_t off = 0, part = 0; off < bytes.size() || part == 0; off += kBlobPartBytes, ++part) {
       const size_t n = std::min(kBlobPartBytes, bytes.size() - off);
       ins.bind(1, key);
@@ -201,19 +215,28 @@ bool writeContent(SqliteDb& db, const SceneState& state, SaveReport& report, std
     } else if (source.foliageCell) {
       ++report.cellsWritten;
       report.cellBytesWritten += bytes.size();
+    } else if (source.clusterPage) {
+      ++report.pagesWritten;
     } else {
       ++report.blobsWritten;
     }
   }
+  std::optional<std::unordered_set<uint64_t>> livePages;
   for (const auto& [key, hash] : existing) {
     if (wanted.count(key)) continue;
+    if (keepClusterBlob(path, key, livePages)) {
+      ++report.pagesKept;
+      continue;
+    }
     del.bind(1, key);
     del.step(error);
     del.reset();
     if (!error.empty()) return false;
-    ++(key.rfind("terrain/", 0) == 0        ? report.tilesRemoved
+    const bool page = key.rfind("clusters/", 0) == 0 && key.rfind("clusters/index/", 0) != 0;
+    ++(key.rfind("terrain/", 0) == 0   ? report.tilesRemoved
        : key.rfind("foliage/", 0) == 0 ? report.cellsRemoved
-                                         : report.blobsRemoved);
+       : page                          ? report.pagesRemoved
+                                       : report.blobsRemoved);
   }
   return true;
 }
@@ -263,7 +286,7 @@ bool saveScene(const SceneState& state, const std::string& path, std::string& er
       return false;
     }
     report.incremental = true;
-    if (!db.exec("BEGIN IMMEDIATE", e) || !writeContent(db, state, report, e) || !db.exec("COMMIT", e)) {
+    if (!db.exec("BEGIN IMMEDIATE", e) || !writeContent(db, state, path, report, e) || !db.exec("COMMIT", e)) {
       std::string ignored;
       db.exec("ROLLBACK", ignored);
       // A large save spills pages into the file before COMMIT; after an I/O
@@ -288,7 +311,7 @@ bool saveScene(const SceneState& state, const std::string& path, std::string& er
         error = path + ": cannot create the file: " + e;
         return false;
       }
-      if (!db.exec("PRAGMA journal_mode=DELETE; BEGIN", e) || !writeContent(db, state, report, e) ||
+      if (!db.exec("PRAGMA journal_mode=DELETE; BEGIN", e) || !writeContent(db, state, path, report, e) ||
           !db.exec("COMMIT", e)) {
         db.close();
         fs::remove(tmp, ec);
@@ -304,6 +327,8 @@ bool saveScene(const SceneState& state, const std::string& path, std::string& er
       return false;
     }
   }
+  // Every page is in the file now: stores read from there, memory lets go.
+  settleClusterPages(state, path);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (reportOut) *reportOut = report;
   return true;
@@ -610,6 +635,8 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
       state->settings.post.view.clear();
     }
   }
+  // Cluster hierarchies (format 16): their indexes now, their pages on demand.
+  if (schema.hasBlobs && !loadClusterIndexes(db, *state, path, report->warnings, error)) return std::nullopt;
   // Terrains' tiles, checked against their hashes and the description.
   if (!state->terrains.empty() &&
       !loadTerrainTiles(db, *state, path, version, error, progress))

@@ -36,7 +36,13 @@ struct SaveReport {
   size_t cellsUnchanged = 0;
   size_t cellsRemoved = 0;
   uint64_t cellBytesWritten = 0;
-  uint64_t bytesWritten = 0;  // everything, tiles and cells included
+  // Cluster pages (cluster_file.h), counted apart; kept: no longer in the
+  // scene but still read by an asset undo can bring back.
+  size_t pagesWritten = 0;
+  size_t pagesUnchanged = 0;
+  size_t pagesRemoved = 0;
+  size_t pagesKept = 0;
+  uint64_t bytesWritten = 0;  // everything, tiles, cells and pages included
   bool incremental = false;  // updated an existing scene file in place
   double seconds = 0.0;
 };

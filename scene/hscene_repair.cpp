@@ -1,6 +1,7 @@
 #include "scene/hscene_repair.h"
 
 #include <cstring>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -9,6 +10,8 @@
 
 #include "core/content_hash.h"
 #include "foliage/impostor_images.h"
+#include "scene/cluster_asset.h"
+#include "scene/cluster_file.h"
 #include "scene/color_lut.h"
 #include "scene/demo_scene.h"
 #include "scene/hscene_file.h"
@@ -235,6 +238,23 @@ void salvageMeshes(SqliteDb& db, SceneState& s, int version, RepairReport& r) {
   salvageMaterials(db, s, lost, r);
 }
 
+// Cluster hierarchies: each page read and checked (a load reads none); a
+// hierarchy with a damaged or missing page is dropped and noted, its asset
+// keeping its coarse mesh (the copy could not hold the page).
+void salvageClusters(SceneState& s, RepairReport& r, const std::function<std::string(std::string)>& named) {
+  for (auto& [id, a] : s.assets) {
+    if (!a.clusters) continue;
+    std::string why;
+    for (uint32_t p = 0; p < a.clusters->pages->pageCount() && why.empty(); ++p)
+      if (!a.clusters->pages->read(p, why)) break;
+    if (why.empty()) continue;
+    r.dropped.push_back("mesh asset " + std::to_string(id) + " ('" + a.name + "'): its cluster hierarchy (" +
+                        named(why) + "); its coarse mesh is kept, importing the scan again rebuilds it");
+    a.clusters.reset();
+    a.clustersHash = 0;
+  }
+}
+
 // The grading LUT: kept when its blob verifies, else dropped and noted
 // (the scene renders ungraded until a LUT is imported again).
 void salvageLut(SqliteDb& db, SceneState& s, RepairReport& r) {
@@ -377,6 +397,12 @@ bool repairScene(const std::string& damaged, const std::string& out, RepairRepor
     for (const std::string& c : clamped) r.notes.push_back(damaged + ": " + c);
     if (state) {
       salvageMeshes(db, *state, version, r);
+      std::vector<std::string> clusterWarnings;
+      if (!loadClusterIndexes(db, *state, copy.file.string(), clusterWarnings, e)) {
+        r.dropped.push_back("cluster hierarchies: " + named(e));
+        for (auto& [id, a] : state->assets) a.clustersHash = 0;
+      }
+      for (const std::string& w : clusterWarnings) r.notes.push_back(named(w));
       salvageLut(db, *state, r);
       salvageOcioConfig(db, *state, r);
       if (!state->terrains.empty() && !loadTerrainTiles(db, *state, damaged, version, e, nullptr)) {
@@ -397,6 +423,7 @@ bool repairScene(const std::string& damaged, const std::string& out, RepairRepor
                             " terrain tile(s): without the description they cannot be placed");
     }
   }
+  salvageClusters(*state, r, named);
   r.entities = state->entities.size();
   r.meshes = state->assets.size();
   r.terrains = state->terrains.size();

@@ -84,6 +84,7 @@ std::vector<std::string> danglingBlobKeys(SqliteDb& db, const SceneState& state,
     if (const auto id = idAfter(key, "mesh/"); id && state.assets.count(AssetId(*id))) continue;
     if (const auto id = idAfter(key, "terrain/"); id && state.terrains.count(TerrainId(*id))) continue;
     if (cells.count(key)) continue;  // a foliage cell (foliage_file.h)
+    if (key.rfind("clusters/", 0) == 0) continue;  // cluster blobs: cluster_file.h accounts for them
     if (!state.settings.post.lut.empty() && key == lutBlobKey(state.settings.post.lut.contentHash)) continue;
     if (ocioKeys.count(key)) continue;  // a file of the OpenColorIO config (ocio_config.h)
     // A standalone texture's bytes (format 5; a mesh's textures live in its mesh blob).

@@ -27,6 +27,13 @@ const OperationDecl& meshImportOperation() {
     };
     appendParams(o.params, mesh::importOptionDecls());
     appendParams(o.params, mesh::processOptionDecls());
+    o.params.push_back(
+        {.key = "clusters", .option = "clusters", .label = "Cluster hierarchy", .type = ParamType::Choice,
+         .defaultValue = "auto", .choices = {"auto", "on", "off"},
+         .help = "build a cluster hierarchy (Nanite-style LOD whose pages stream from the scene file; docs/meshes.md) "
+                 "from the result: auto builds one for meshes of " +
+                 std::to_string(kClusterAutoTriangles / 1000000) + "M triangles and more; one material only",
+         .valueName = "MODE", .editor = true});
     o.params.push_back({.key = "report", .option = "report", .label = "Report", .type = ParamType::Text,
                         .help = "write the import and processing report as JSON (hausdorff_m, hausdorff_rel, "
                                 "mean_m, rms_m, p95_m, ...)",

@@ -1,8 +1,11 @@
 #include "scene/import_pipeline.h"
 
+#include "core/content_hash.h"
 #include "mesh/tile_merge.h"
+#include "meshproc/cluster_pages.h"
 #include "meshproc/report_json.h"
 #include "scene/asset_reports.h"
+#include "scene/cluster_asset.h"
 #include "scene/import_isolation.h"
 
 namespace hs::scene {
@@ -35,6 +38,38 @@ mesh::ImportReport sumTileReports(const std::vector<mesh::ImportReport>& tiles, 
   return sum;
 }
 
+// The hierarchy of out.mesh when the request asks for one (or Auto finds
+// it large enough); out.mesh becomes its coarse cut, with the input's
+// materials and textures. False when cancelled.
+bool buildClusters(ImportedMesh& out, const MeshImportRequest& request, const Progress* progress) {
+  const bool wanted = request.clusters == MeshImportRequest::Clusters::On ||
+                      (request.clusters == MeshImportRequest::Clusters::Auto &&
+                       out.mesh->triangleCount() >= kClusterAutoTriangles);
+  if (!wanted || out.mesh->triangleCount() == 0) return true;
+  // One hierarchy draws with one material: a mesh with several is kept
+  // whole by Auto and refused by On (per-material hierarchies: not yet).
+  if (out.mesh->materials.size() > 1) {
+    if (request.clusters == MeshImportRequest::Clusters::On)
+      out.error = request.files.front() + ": a cluster hierarchy takes a mesh of one material; this one has " +
+                  std::to_string(out.mesh->materials.size()) + " (import it without --clusters)";
+    return true;
+  }
+  mesh::ClusterHierarchy h = buildClusterHierarchy(*out.mesh, request.clusterOptions, &out.clusterReport, progress);
+  if (isCancelled(progress)) return false;
+  mesh::MeshData proxy = mesh::meshOfCut(h, mesh::uniformClusterCut(h, kClusterProxyTriangles, &out.proxyError));
+  proxy.materials = std::move(out.mesh->materials);
+  proxy.textures = std::move(out.mesh->textures);
+  if (!proxy.materials.empty()) proxy.submeshes.front().material = 0;
+  mesh::computeVertexNormals(proxy);
+  ClusterAsset c = clusterAssetOf(mesh::paginate(h));
+  const std::vector<uint8_t> index = encodeClusterAssetIndex(c);
+  out.clustersHash = contentHash(index.data(), index.size());
+  out.clusters = std::make_shared<const ClusterAsset>(std::move(c));
+  out.mesh = std::move(proxy);
+  out.lods.clear();  // the hierarchy is its levels of detail
+  return true;
+}
+
 }  // namespace
 
 ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* progress) {
@@ -43,7 +78,9 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
     out.error = "no mesh file given";
     return out;
   }
-  const double readShare = request.process ? 0.35 : 1.0;
+  const bool mayCluster = request.clusters != MeshImportRequest::Clusters::Off;
+  const double readShare = request.process || mayCluster ? 0.35 : 1.0;
+  const double processEnd = request.process && mayCluster ? 0.6 : 1.0;
   {
     Progress read(progress, 0.0, readShare);
     if (request.files.size() == 1) {
@@ -81,9 +118,14 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
   }
 
   out.importReport = toJson(AssetImportReport{out.import, out.tiles});
-  if (!request.process) return out;
+  if (!request.process) {
+    Progress clusters(progress, readShare, 1.0);
+    if (!buildClusters(out, request, &clusters)) out.cancelled = true;
+    if (!out.ok()) out.mesh.reset();
+    return out;
+  }
 
-  Progress work(progress, readShare, 1.0);
+  Progress work(progress, readShare, processEnd);
   mesh::ProcessResult p = mesh::processMesh(std::move(*out.mesh), request.processing, &work);
   out.mesh.reset();
   if (p.cancelled || isCancelled(progress)) {
@@ -113,6 +155,9 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
     stored.tiles = TileWeldReport{out.tiles.size(), request.tileWeldTolerance, out.tileBorderVertices,
                                   out.tileBorderVerticesSnapped, out.tileBorderVerticesMerged};
   out.processReport = toJson(stored);
+  Progress clusters(progress, processEnd, 1.0);
+  if (!buildClusters(out, request, &clusters)) out.cancelled = true;
+  if (!out.ok()) out.mesh.reset();
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include "core/params.h"
 #include "core/progress.h"
 #include "mesh/mesh_import.h"
+#include "meshproc/cluster_hierarchy.h"
 #include "meshproc/mesh_process.h"
 #include "scene/scene_state.h"
 
@@ -26,7 +27,17 @@ struct MeshImportRequest {
   // is cleaned, and decimated / given LODs as `processing` says.
   bool process = false;
   mesh::ProcessOptions processing;
+  // A cluster hierarchy (scene/cluster_asset.h) built from the result:
+  // Auto builds one for meshes of at least kClusterAutoTriangles.
+  enum class Clusters { Auto, On, Off } clusters = Clusters::Auto;
+  mesh::ClusterOptions clusterOptions;
 };
+
+// Where `import` builds a cluster hierarchy unasked: a mesh this large
+// drawn whole costs too much for one view (about 0.5 GB of GPU memory).
+constexpr size_t kClusterAutoTriangles = 4'000'000;
+// The coarse cut a clustered asset keeps as its mesh (MeshAsset::data).
+constexpr size_t kClusterProxyTriangles = 65'536;
 
 // `import` and the Import dialog, declared once (core/params.h): the
 // reader's options (mesh::importOptionDecls), the processing ones
@@ -36,6 +47,11 @@ const OperationDecl& meshImportOperation();
 struct ImportedMesh {
   std::optional<mesh::MeshData> mesh;  // level 0: as read, or cleaned and decimated
   std::vector<MeshLod> lods;           // coarser levels with their hashes and errors
+  // The hierarchy when one was built; `mesh` is then its coarse cut.
+  std::shared_ptr<const ClusterAsset> clusters;
+  uint64_t clustersHash = 0;
+  mesh::ClusterBuildReport clusterReport;
+  float proxyError = 0.0f;             // metres: the coarse cut's error
   mesh::ImportReport import;           // the file's; for tiles the counts summed (per tile in `tiles`)
   std::vector<mesh::ImportReport> tiles;  // one per file when there were several
   size_t tileBorderVertices = 0, tileBorderVerticesSnapped = 0, tileBorderVerticesMerged = 0;

@@ -67,6 +67,8 @@ EntityId addImportedMesh(Document& doc, ImportedMesh imported, const std::string
   asset.importReport = std::move(imported.importReport);
   asset.processReport = std::move(imported.processReport);
   asset.lods = std::move(imported.lods);
+  asset.clusters = std::move(imported.clusters);
+  asset.clustersHash = imported.clustersHash;
   asset.data = std::make_shared<const mesh::MeshData>(std::move(*imported.mesh));
   return addMeshAsset(doc, std::move(asset), name, placement);
 }

@@ -110,6 +110,8 @@ Json assetToJson(const MeshAsset& a) {
   // Format 12: the stored impostor's hash; its images are the blob
   // "mesh/<id>/impostor" (foliage/impostor_images.h).
   if (a.impostorHash != 0) o["impostor_hash"] = toHex(a.impostorHash);
+  // Format 16: the cluster hierarchy's index blob "clusters/<hash>" (cluster_file.h).
+  if (a.clustersHash != 0) o["clusters_hash"] = toHex(a.clustersHash);
   return o;
 }
 
@@ -407,6 +409,8 @@ struct Reader : JsonReader {
       a.materialSlots.push_back(m);
     }
     if (const Json* ih = member(o, "impostor_hash"); ih && !hash(ih, jsonPath(p, "impostor_hash"), a.impostorHash))
+      return false;
+    if (const Json* ch = member(o, "clusters_hash"); ch && !hash(ch, jsonPath(p, "clusters_hash"), a.clustersHash))
       return false;
     return !failed();
   }

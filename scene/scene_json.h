@@ -63,7 +63,12 @@ namespace hs::scene {
 // hash and its files' paths and hashes, a blob "ocio/<hash>" per file;
 // scene/ocio_config.h) and its view transform's settings. A version-14
 // reader ignores the config and its next save drops it.
-constexpr int kSceneFormatVersion = 15;
+// 16: cluster hierarchies of huge scans (a mesh asset's "clusters_hash",
+// blobs "clusters/<hash>" for its index and pages; scene/cluster_file.h)
+// and the settings "clusters.gpu_budget_mb" / "clusters.cpu_budget_mb". A
+// version-15 reader would show the asset's coarse mesh alone and its next
+// save would drop the hierarchy.
+constexpr int kSceneFormatVersion = 16;
 constexpr int kFirstPhysicalLightsFormat = 6;
 constexpr int kFirstPerLightShadowsFormat = 7;
 constexpr int kFirstPhysicalBrdfFormat = 8;

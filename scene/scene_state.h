@@ -25,6 +25,8 @@ struct ImpostorImages;
 
 namespace hs::scene {
 
+struct ClusterAsset;  // scene/cluster_asset.h
+
 // A coarser level of detail of a mesh asset (levels 1, 2, ...; level 0 is
 // MeshAsset::data). Its own blob in the file ("mesh/<id>/lod<k>"); it has no
 // textures of its own and draws with level 0's (mesh/lod_chain.h).
@@ -63,10 +65,17 @@ struct MeshAsset {
   // *this) (scene/impostor_key.h): the renderer then bakes its own.
   std::shared_ptr<const foliage::ImpostorImages> impostor;
   uint64_t impostorHash = 0;  // impostor->contentHash() (0: none), what the description keeps
+  // A huge scan as a cluster hierarchy (scene/cluster_asset.h: its index,
+  // and pages read from the scene file on demand); null for an ordinary
+  // mesh. With it, `data` is a coarse cut of the hierarchy (the scan's
+  // bounds, picking, and what a view draws until its pages arrive).
+  std::shared_ptr<const ClusterAsset> clusters;
+  uint64_t clustersHash = 0;  // the cluster index blob's hash (0: none), what the description keeps
   bool operator==(const MeshAsset& o) const {
     return id == o.id && name == o.name && sourcePath == o.sourcePath &&
            contentHash == o.contentHash && importReport == o.importReport && lods == o.lods &&
-           processReport == o.processReport && materialSlots == o.materialSlots && impostorHash == o.impostorHash;
+           processReport == o.processReport && materialSlots == o.materialSlots && impostorHash == o.impostorHash &&
+           clustersHash == o.clustersHash;
   }
 };
 
@@ -268,6 +277,12 @@ struct SceneSettings {
   // Mesh LODs: each instance draws the coarsest level whose error, projected
   // to the screen, is at most this many pixels (0: always full resolution).
   double meshLodErrorPixels = 1.0;
+  // Cluster hierarchies (huge scans, scene/cluster_asset.h) take the same
+  // pixel bound; their resident pages may take at most this much memory on
+  // the GPU and in the CPU's page cache (MiB); least recently used pages
+  // give way, and until a page arrives its parent is drawn.
+  double clusterGpuBudgetMb = 1024.0;
+  double clusterCpuBudgetMb = 2048.0;
   // Shadows (docs/rendering.md "Shadows"): sun cascades and the shadows of
   // lights that cast them. Off by default so scenes made before keep their look.
   bool shadows = false;

@@ -30,6 +30,7 @@ struct BlobSource {
   std::function<std::vector<uint8_t>()> bytes;
   bool terrainTile = false;
   bool foliageCell = false;  // foliage_file.h
+  bool clusterPage = false;  // cluster_file.h (a page; an index blob counts as an asset blob)
 };
 
 std::string terrainTileKey(TerrainId id, terrain::TileKind kind, int layer, int tileX, int tileY);
