@@ -265,6 +265,13 @@ void MainWindow::createActions() {
     viewport_->setShowDepthComplexity(on);
   }, "Show how many translucent surfaces each pixel sees, blue (one) to red (the most), instead of the scene");
   depthComplexityAct_->setCheckable(true);
+  // Huge scans (render/cluster_source.h): which level of the hierarchy draws where.
+  clusterLevelsAct_ = make("Cluster &Levels", QKeySequence(), [this](bool on) {
+    viewport_->setShowClusterLevels(on);
+  }, "Colour the clusters of huge scans by level: green the scan's own triangles, then yellow, orange, red and "
+     "magenta for coarser ones");
+  clusterLevelsAct_->setCheckable(true);
+  clusterLevelsAct_->setObjectName("clusterLevelsAction");
   // The post chain judged: the left half without its effects (render/renderer.h postSplit).
   postSplitAct_ = make("&Post Before/After", QKeySequence(), [this](bool on) { viewport_->setPostSplit(on); },
                        "Show the left half of the viewport without the post effects (grade, LUT, bloom, stylised "
@@ -362,6 +369,7 @@ void MainWindow::createMenus() {
   view->addSeparator();
   view->addAction(gridAct_);
   view->addAction(depthComplexityAct_);
+  view->addAction(clusterLevelsAct_);
   view->addAction(postSplitAct_);
   view->addAction(viewport_->focusPickAction());  // depth of field: app/viewport_focus.cpp
   view->addSeparator();

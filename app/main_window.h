@@ -223,6 +223,7 @@ class MainWindow : public QMainWindow {
           *renameAct_ = nullptr, *selectAllAct_ = nullptr, *selectNoneAct_ = nullptr;
   QAction *frameAct_ = nullptr, *frameAllAct_ = nullptr, *gridAct_ = nullptr, *resetLayoutAct_ = nullptr;
   QAction* depthComplexityAct_ = nullptr;
+  QAction* clusterLevelsAct_ = nullptr;
   QAction* postSplitAct_ = nullptr;
   QAction *selectModeAct_ = nullptr, *moveAct_ = nullptr, *rotateAct_ = nullptr, *scaleAct_ = nullptr,
           *localAct_ = nullptr, *snapAct_ = nullptr;

@@ -32,7 +32,23 @@ StatusBarInfo::StatusBarInfo(QWidget* parent) : QWidget(parent) {
                                                                              : "statusSpeed");
     l->addWidget(label);
   }
+  // Huge scans' streaming state, only while a frame draws one.
+  clusters_ = new QLabel(this);
+  clusters_->setObjectName("statusClusters");
+  clusters_->setVisible(false);
+  l->insertWidget(2, clusters_);
   refreshMemory();
+}
+
+QString clusterStreamingText(const render::ClusterStats& c) {
+  QString t = QString("%L1 clusters · %2 pages · %3")
+                  .arg(c.clusters)
+                  .arg(c.pagesResident)
+                  .arg(formatBytes(c.gpuBytes));
+  if (c.pagesLoading > 0) t += QString(" · streaming %1 pages").arg(c.pagesLoading);
+  else if (c.budgetFull) t += " · GPU budget full";
+  else if (!c.complete) t += " · coarser where pages failed";
+  return t;
 }
 
 QString passTableHtml(const render::FrameStats& stats, const std::map<std::string, double>& gpuMsByPass) {
@@ -93,7 +109,23 @@ void StatusBarInfo::setFrameStats(const render::FrameStats& s) {
   const QString gpu = s.gpuMs >= 0.0 ? QString("%1 ms").arg(s.gpuMs, 0, 'f', 1) : QString("–");
   frame_->setText(QString("CPU %1 ms · GPU %2").arg(s.cpuMs, 0, 'f', 1).arg(gpu));
   triangles_->setText(QString("%L1 triangles").arg(s.trianglesDrawn));
-  gpuBytes_ = s.gpuBytes;
+  const render::ClusterStats& c = s.clusters;
+  clusters_->setVisible(c.instances > 0 || c.pagesWanted > 0);
+  clusters_->setText(clusterStreamingText(c));
+  clusters_->setToolTip(QString("Huge scans drawn from their cluster hierarchies: %L1 clusters, %L2 triangles in the "
+                                "cut; %3 pages resident on the GPU (%4 of the budget's pool), %5 drawn; CPU page "
+                                "cache %6; cut and uploads %7 ms%8")
+                            .arg(c.clusters)
+                            .arg(c.triangles)
+                            .arg(c.pagesResident)
+                            .arg(formatBytes(c.gpuBytes))
+                            .arg(c.pagesDrawn)
+                            .arg(formatBytes(c.cpuBytes))
+                            .arg(c.cutMs, 0, 'f', 2)
+                            .arg(c.budgetFull ? "; the GPU budget holds no more than this frame draws "
+                                                "(Scene Settings: cluster GPU budget)"
+                                              : ""));
+  gpuBytes_ = s.gpuBytes + c.gpuBytes;
   refreshMemory();
 }
 

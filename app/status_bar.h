@@ -32,6 +32,7 @@ class StatusBarInfo : public QWidget {
   QLabel* frame_;
   QLabel* triangles_;
   QLabel* memory_;
+  QLabel* clusters_;
   QLabel* speed_;
   size_t gpuBytes_ = 0;
   std::map<std::string, double> passGpuMs_;  // last measured, by pass name
@@ -41,6 +42,11 @@ class StatusBarInfo : public QWidget {
 QString passTableHtml(const render::FrameStats& stats, const std::map<std::string, double>& gpuMsByPass);
 
 QString formatBytes(size_t bytes);
+
+// The status bar's line on huge scans' streaming (render/cluster_source.h):
+// clusters drawn, pages resident and their memory, then what is still
+// arriving, or that the budget is full.
+QString clusterStreamingText(const render::ClusterStats& stats);
 
 // One sentence on the frame's transparency: the mode, the OIT buffers'
 // memory, layers, fragments per pixel and what overflowed (or that no

@@ -8,6 +8,7 @@
 #include <QLabel>
 #include <QMouseEvent>
 #include <QOpenGLContext>
+#include <QTimer>
 #include <QVBoxLayout>
 #include <QWheelEvent>
 
@@ -147,6 +148,10 @@ void ViewportWidget::paintGL() {
   options.passTimings = frames_ % 30 == 0;
   options.oitCounts = options.passTimings;  // fragments per pixel for the status bar, with the timings
   options.depthComplexity = showDepthComplexity_;
+  options.clusterLevels = showClusterLevels_;
+  // Cluster pages stream in: this frame draws what is resident, and the
+  // view draws again while pages are on their way (render/cluster_source.h).
+  options.streamClusters = true;
   options.postSplit = postSplit_ ? 0.5f : 0.0f;
   options.keepHdr = autoExposure;
   stats_ = renderer_.render(state, view, defaultFramebufferObject(), options);
@@ -162,6 +167,7 @@ void ViewportWidget::paintGL() {
     freeViewEv_ = std::numeric_limits<float>::quiet_NaN();
   }
   ++frames_;
+  if (stats_.clusters.pagesLoading > 0 && !stats_.clusters.budgetFull) QTimer::singleShot(30, this, [this] { update(); });
   emit frameRendered(stats_);
 }
 
@@ -175,6 +181,12 @@ std::vector<std::string> ViewportWidget::takeRendererMessages() {
   std::vector<std::string> out = renderer_.takeGlMessages();
   for (std::string& p : render::takeRenderProblems(renderer_)) out.push_back(std::move(p));
   return out;
+}
+
+void ViewportWidget::setShowClusterLevels(bool show) {
+  if (show == showClusterLevels_) return;
+  showClusterLevels_ = show;
+  update();
 }
 
 void ViewportWidget::setPostSplit(bool on) {

@@ -55,6 +55,9 @@ class ViewportWidget : public QOpenGLWidget {
   // The depth-complexity view mode (RenderOptions::depthComplexity).
   bool showDepthComplexity() const { return showDepthComplexity_; }
   void setShowDepthComplexity(bool show);
+  // Cluster hierarchies coloured by level (RenderOptions::clusterLevels).
+  bool showClusterLevels() const { return showClusterLevels_; }
+  void setShowClusterLevels(bool show);
   // The before/after split of the post chain: the left half without effects.
   bool postSplit() const { return postSplit_; }
   // Automatic exposure's meterings so far: the stereo preview's probe
@@ -156,6 +159,7 @@ class ViewportWidget : public QOpenGLWidget {
   int frames_ = 0;
   bool showGrid_ = true;
   bool showDepthComplexity_ = false;
+  bool showClusterLevels_ = false;
   bool postSplit_ = false;
   bool collectGarbage_ = false;
   // Automatic exposure (post.auto_exposure): the stereo preview adapts as

@@ -57,21 +57,46 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
   if (!cut.rootsResident) return cut;  // the roots come first: asked for, nothing drawn yet
 
   const uint32_t groupCount = index.groupCount;
+  // Which groups the view asks to refine, from the bottom up (a group is
+  // made before every group above it: increasing ids go up): its own
+  // error over the bound where one of its children is seen, or a group
+  // below it asking (whose parents must refine first for it to). Without
+  // `visible` this is just "its error is over the bound" (monotonic).
+  std::vector<uint8_t> demand(groupCount, 0);
+  for (uint32_t g = 0; g < groupCount; ++g) {
+    const uint32_t madeBegin = groups.madeFirst[g];
+    if (madeBegin == groups.madeFirst[g + 1]) continue;  // (a sound index has none such)
+    const ClusterIndexEntry& out = index.clusters[groups.made[madeBegin]];
+    if (lodFineEnough(out.lodBounds, out.error, viewer.eye, viewer.focalPx, viewer.pixelBound)) {
+      // Fine, unless a group below asks (float rounding of a monotonic test).
+    } else if (!visible) {
+      demand[g] = 1;
+      continue;
+    } else {
+      // Refined only where a child would be seen: a group whose children
+      // all lie outside every view is drawn as it is (and culled there).
+      for (uint32_t k = groups.childrenFirst[g]; k < groups.childrenFirst[g + 1] && !demand[g]; ++k)
+        demand[g] = visible(index.clusters[groups.children[k]].bounds);
+      if (demand[g]) continue;
+    }
+    for (uint32_t k = groups.childrenFirst[g]; k < groups.childrenFirst[g + 1] && !demand[g]; ++k) {
+      const uint32_t below = index.clusters[groups.children[k]].group;
+      demand[g] = below != kNoGroup && demand[below];
+    }
+  }
   std::vector<uint8_t> refined(groupCount, 0);
   std::vector<std::pair<float, uint32_t>> waiting;  // (projected error, page)
-  // A group is made after every group below it: decreasing ids go down.
+  // Then from the roots down (decreasing ids).
   for (uint32_t g = groupCount; g-- > 0;) {
+    if (!demand[g]) continue;
     const uint32_t madeBegin = groups.madeFirst[g], madeEnd = groups.madeFirst[g + 1];
-    if (madeBegin == madeEnd) continue;  // (a sound index has none such)
     const ClusterIndexEntry& out = index.clusters[groups.made[madeBegin]];
-    if (lodFineEnough(out.lodBounds, out.error, viewer.eye, viewer.focalPx, viewer.pixelBound)) continue;
     bool above = true;
     for (uint32_t k = madeBegin; k < madeEnd && above; ++k) {
       const uint32_t pg = index.clusters[groups.made[k]].parentGroup;
       above = pg == kNoGroup || refined[pg];
     }
     if (!above) continue;
-    if (visible && !visible(out.lodBounds)) continue;
     bool all = true;
     for (uint32_t k = groups.childPagesFirst[g]; k < groups.childPagesFirst[g + 1]; ++k)
       if (!resident(groups.childPages[k])) {

@@ -8,8 +8,9 @@
 // below it, so in decreasing id order): a group is refined (its children
 // drawn or refined further instead of the clusters it made) when its own
 // test fails (its error projects over the pixel bound), every group above
-// it (those its clusters were simplified in) is refined, its sphere meets
-// a view (`visible`; a group nobody sees is never refined) and every page
+// it (those its clusters were simplified in) is refined, one of its
+// children's spheres meets a view (`visible`: a group whose children
+// nobody sees is never refined) and every page
 // holding one of its children is resident. A cluster is drawn when the
 // group it was simplified in is refined (a root: always) and the group
 // that made it is not (level 0: never refined). Each piece of surface then
@@ -54,7 +55,7 @@ struct ResidentCut {
 };
 
 // `resident(page)`: whether the page is in memory; `visible(sphere)`:
-// whether a group's sphere meets a view that draws the cut (null: all).
+// whether a cluster's sphere meets a view that draws the cut (null: all).
 ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& groups, const CutViewer& viewer,
                               const std::function<bool(uint32_t page)>& resident,
                               const std::function<bool(const LodSphere& sphere)>& visible = {});

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <algorithm>
 #include <cstring>
+#include <numeric>
 #include <unordered_map>
 
 namespace hs::mesh {
@@ -162,7 +163,18 @@ ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes) {
     inPage = 0;
   };
   const std::vector<std::vector<glm::vec3>> normals = levelNormals(h);
-  for (uint32_t id = 0; id < h.clusters.size(); ++id) {
+  // Level by level, each group's children side by side (groups in the
+  // order they were made, which follows the grouping's spatial order): a
+  // cut refines a group only with all its children resident, so siblings
+  // sharing a page keep the pages a view needs few.
+  out.order.resize(h.clusters.size());
+  std::iota(out.order.begin(), out.order.end(), 0u);
+  std::stable_sort(out.order.begin(), out.order.end(), [&](uint32_t a, uint32_t b) {
+    const Cluster &x = h.clusters[a], &y = h.clusters[b];
+    return x.level != y.level ? x.level < y.level : x.parentGroup < y.parentGroup;
+  });
+  for (uint32_t at = 0; at < out.order.size(); ++at) {
+    const uint32_t id = out.order[at];
     const Cluster& c = h.clusters[id];
     // The cluster's own vertices, in first use order.
     std::unordered_map<uint32_t, uint8_t> local;
@@ -181,7 +193,7 @@ ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes) {
       page.put(kVersion);
       page.put(uint32_t(0));  // cluster count (finish)
     }
-    page.put(id);
+    page.put(at);
     page.put(uint16_t(verts.size()));
     page.put(uint16_t(c.triangleCount));
     for (uint32_t v : verts) page.put(h.positions[v].x), page.put(h.positions[v].y), page.put(h.positions[v].z);

@@ -1,5 +1,7 @@
 #include "render/mesh_source.h"
 
+#include <algorithm>
+
 #include "render/frame_context.h"
 #include "render/gpu_mesh_cache.h"
 #include "render/material_binding.h"
@@ -16,6 +18,7 @@ void drawRange(uint32_t first, uint32_t count, uint32_t object) {
 }  // namespace
 
 bool MeshSource::wanted(size_t draw, size_t submesh, SurfaceSet surfaces) const {
+  if (visible_.byOtherSource[draw]) return false;  // a cluster hierarchy draws it (cluster_source.h)
   if (surfaces == SurfaceSet::All) return true;
   return materials_.forDraw(draw, submesh).translucent == (surfaces == SurfaceSet::Translucent);
 }
@@ -28,7 +31,9 @@ bool MeshSource::has(DrawVariant variant, SurfaceSet surfaces) const {
         if (!c.empty()) return true;
       return false;
     case DrawVariant::Surface:
-      if (surfaces != SurfaceSet::Translucent) return visible_.inView > 0;
+      if (surfaces != SurfaceSet::Translucent)
+        return std::find(visible_.byOtherSource.begin(), visible_.byOtherSource.begin() + long(visible_.inView), 0) !=
+               visible_.byOtherSource.begin() + long(visible_.inView);
       for (size_t d = 0; d < visible_.inView; ++d)
         for (size_t s = 0; s < visible_.draws[d].mesh->data->submeshes.size(); ++s)
           if (wanted(d, s, surfaces)) return true;
@@ -45,8 +50,10 @@ void MeshSource::cullShadowViews(FrameContext& frame, size_t first, size_t count
       const InstanceBounds& b = visible_.instances[i];
       // Casters are not limited to the camera views: a tree behind the
       // camera shadows the ground in front of it.
-      if (b.radius >= 0.0 && volume.intersectsSphere(b.centre, b.radius))
-        casters_[v].push_back(addCasterDraw(visible_, world_, cache_, i));
+      if (b.radius >= 0.0 && volume.intersectsSphere(b.centre, b.radius)) {
+        const uint32_t d = addCasterDraw(visible_, world_, cache_, i);
+        if (!visible_.byOtherSource[d]) casters_[v].push_back(d);  // a hierarchy casts its own cut
+      }
     }
   }
 }
@@ -72,6 +79,7 @@ void MeshSource::draw(FrameContext& frame, const DrawCall& call, const PassResou
       p.use();
       p.set("uPickBase", call.pickBase);
       for (size_t d = 0; d < visible_.inView; ++d) {
+        if (visible_.byOtherSource[d]) continue;
         const DrawItem& it = visible_.draws[d];
         glBindVertexArray(it.mesh->vao);
         for (const mesh::Submesh& sm : it.mesh->data->submeshes) drawRange(sm.firstIndex, sm.indexCount, it.object);
@@ -104,7 +112,7 @@ void MeshSource::drawSurfaceSet(FrameContext& frame, const DrawCall& call) const
       if (lit) frame.stats.trianglesDrawn += sm.indexCount / 3;
       ++frame.stats.drawCalls;
     }
-    if (lit) ++frame.stats.instancesDrawn;
+    if (lit && !visible_.byOtherSource[d]) ++frame.stats.instancesDrawn;
   }
   binding.finish();
 }

@@ -25,6 +25,7 @@
 #include "render/passes/output_passes.h"
 #include "render/passes/scene_passes.h"
 #include "render/passes/shadow_passes.h"
+#include "render/cluster_source.h"
 #include "render/foliage_sources.h"
 #include "render/particle_source.h"
 #include "render/render_resources.h"
@@ -39,6 +40,7 @@ namespace {
 const std::vector<gl::ProgramDesc>& allPrograms() {
   static const std::vector<gl::ProgramDesc> programs = {
       {"mesh.vert", "mesh.frag", "", {}},         {"mesh.vert", "pick.frag", "", {}},
+      {"mesh.vert", "cluster_level.frag", "", {}},  // the cluster level view (cluster_source.h)
       {"fullscreen.vert", "sky.frag", "", {}},    {"grid.vert", "grid.frag", "", {}},
       {"overlay.vert", "overlay.frag", "", {}},   {"fullscreen.vert", "tonemap.frag", "", {"HS_TONEMAP_ACES"}},
       {"fullscreen.vert", "fxaa.frag", "", {}},
@@ -144,6 +146,14 @@ struct Renderer::Impl {
   std::vector<std::shared_ptr<DrawSource>> extraSources;  // setDrawSources
   FoliageSources foliage;  // the document's foliage (foliage_sources.h)
   ParticleSources particles;  // the document's emitters (particle_source.h)
+  ClusterSources clusters;    // meshes with a cluster hierarchy (cluster_source.h)
+  // The mesh source, then the clustered meshes when the frame has any, then the terrains.
+  void addMeshSources(FrameContext& frame, VisibleSet& visible, const std::vector<RenderView>& views,
+                      MeshSource& meshes, TerrainSource& terrains) {
+    frame.sources = {&meshes};
+    if (DrawSource* c = clusters.update(frame, visible, views)) frame.sources.push_back(c);
+    frame.sources.push_back(&terrains);
+  }
   // The sources every frame draws after the meshes and terrains: the
   // document's foliage, its particles (the sprites when any is live in
   // view, the mesh particles when an emitter with a draw_mesh has live
@@ -344,7 +354,7 @@ FrameStats Renderer::renderViews(const scene::SceneState& state, const std::vect
   // What the frame draws (draw_source.h), in drawing order.
   MeshSource meshSource(visible, world, res.meshes, res.materials);
   TerrainSource terrainSource(world);
-  frame.sources = {&meshSource, &terrainSource};
+  d.addMeshSources(frame, visible, views, meshSource, terrainSource);
   d.addSources(state, frame);
   // Shadow views first: each source culls its casters once.
   const ShadowPlan shadows = planShadows(frame);
@@ -524,13 +534,14 @@ PickHit Renderer::pickSurface(const scene::SceneState& state, const RenderView& 
   // A frame of one pass (the id pass) over the frame's sources; each
   // source's ids follow the one before's (meshes, then terrains).
   FrameStats stats;
-  const RenderOptions options;
+  RenderOptions options;
+  options.streamClusters = true;  // a click picks what the viewport shows, without waiting for pages
   const std::vector<RenderView> views{view};
   FrameContext frame{res, world, visible, state.settings, options, view, stats};
   frame.views = &views;
   MeshSource meshSource(visible, world, res.meshes, res.materials);
   TerrainSource terrainSource(world);
-  frame.sources = {&meshSource, &terrainSource};
+  d.addMeshSources(frame, visible, views, meshSource, terrainSource);
   d.addSources(state, frame);
   d.uploadDraws(frame, visible);
   FrameGraph graph(res.pool);
@@ -687,6 +698,8 @@ std::vector<std::string> Renderer::takeLutProblems() {
   out.swap(d_->res.lutProblems);
   return out;
 }
+
+std::vector<std::string> Renderer::takeClusterProblems() { return d_->clusters.takeProblems(); }
 
 std::vector<std::string> Renderer::takeDofProblems() {
   std::vector<std::string> out;
@@ -883,6 +896,7 @@ void Renderer::shutdown() {
   d_->frames.clear();
   d_->kept.clear();
   d_->res.meshes.clear();
+  d_->clusters.clear();
   d_->res.impostors.clear();
   d_->res.materials.clear();
   d_->res.terrain.release();

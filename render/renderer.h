@@ -72,6 +72,20 @@ struct OitStats {
   int peels = 0;               // reference: layers peeled
 };
 
+// Cluster hierarchies drawn this frame (render/cluster_source.h).
+struct ClusterStats {
+  size_t instances = 0;     // instances drawn from their hierarchy (the rest: their coarse mesh)
+  size_t clusters = 0, triangles = 0;  // of their cuts (each camera view culls them further)
+  size_t pagesResident = 0;  // on the GPU
+  size_t pagesDrawn = 0;     // of which the cuts draw (what a budget must hold at least)
+  size_t pagesWanted = 0;    // the cuts want and lack (0: every cut whole)
+  size_t pagesLoading = 0;   // of which are on their way (not failed): a streaming view draws again for them
+  size_t gpuBytes = 0, cpuBytes = 0;  // the GPU pool, the CPU page cache
+  bool complete = true;      // every cut is the one the pixel bound asks for
+  bool budgetFull = false;   // a wanted page found no slot: the GPU budget holds only this frame's pages
+  double cutMs = 0.0;        // choosing the cuts and uploading pages (with waiting, when the frame waits)
+};
+
 struct FrameStats {
   size_t trianglesDrawn = 0;
   size_t drawCalls = 0;
@@ -103,6 +117,7 @@ struct FrameStats {
   size_t lightClustersOverCap = 0;
   size_t lightsMaxPerCluster = 0;
   OitStats oit;
+  ClusterStats clusters;
 };
 
 struct RenderOptions {
@@ -139,6 +154,14 @@ struct RenderOptions {
   // its post effects (exposure, the tone map and sRGB only), with a line
   // at the border; 0 (or no effect on): the frame as it is.
   float postSplit = 0.0f;
+  // Cluster hierarchies (render/cluster_source.h): the editor's viewport
+  // draws what is resident and lets pages stream in over the next frames;
+  // without it (exports, render nodes, tests) a frame waits until every
+  // page its cut wants is in memory, so it is exact in any run.
+  bool streamClusters = false;
+  // Colour every cluster of a hierarchy by its level (the viewport's view
+  // mode; shaders/cluster_level.frag) instead of its material.
+  bool clusterLevels = false;
 };
 
 // One view of a frame and the framebuffer it ends in.
@@ -338,6 +361,10 @@ class Renderer {
   // A grading LUT left out of the frame (its tables or its program could
   // not be made), naming the file, reported once until the problem changes.
   std::vector<std::string> takeLutProblems();
+  // Cluster pages that could not be read (damaged or missing), each naming
+  // the file, the asset and the page, reported once; the coarser level is
+  // drawn there.
+  std::vector<std::string> takeClusterProblems();
   // Every program built since initialize(), initialisation's included.
   std::vector<BuiltProgram> builtPrograms() const;
   // The sun's cascades of the last frame (empty: no sun shadow).

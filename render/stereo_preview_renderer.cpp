@@ -93,6 +93,7 @@ StereoPreviewResult StereoPreviewRenderer::draw(Renderer& renderer, const scene:
   RenderOptions options;
   options.showGrid = true;
   options.lodView = &views.mono;  // both eyes draw the same mesh levels (renderer.h)
+  options.streamClusters = true;  // interactive: cluster pages arrive over the next frames
   options.keepDepth = comfort != nullptr;
   // The eyes the mode shows, in one frame (what does not depend on the eye
   // is done once).

@@ -27,6 +27,7 @@ uint32_t addDraw(VisibleSet& set, const MeshInstanceRef& inst, InstanceBounds& b
   set.draws.push_back({uint32_t(set.objects.size()), g, inst.asset});
   set.objects.push_back(o);
   set.entities.push_back(inst.entity);
+  if (set.byOtherSource.size() < set.draws.size()) set.byOtherSource.resize(set.draws.size(), 0);
   return uint32_t(b.draw);
 }
 
@@ -71,6 +72,7 @@ VisibleSet buildVisibleSet(const RenderWorld& world, GpuMeshCache& cache, const 
     addDraw(set, inst, b, cache);
   }
   set.inView = set.draws.size();
+  set.byOtherSource.assign(set.inView, 0);
   return set;
 }
 

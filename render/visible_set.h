@@ -43,6 +43,9 @@ struct VisibleSet {
   std::vector<GpuObject> objects;        // one per draw
   std::vector<scene::EntityId> entities; // one per draw (picking)
   std::vector<InstanceBounds> instances; // one per RenderWorld::meshes entry
+  // Per draw: drawn by another source (a mesh with a cluster hierarchy,
+  // cluster_source.h), which the mesh source then leaves out.
+  std::vector<uint8_t> byOtherSource;
   size_t culled = 0;                     // instances outside every view
   size_t coarser = 0;                    // drawn in view at a LOD level above 0
 };
