@@ -4,7 +4,8 @@
 // Import commits a decimated mesh with 2 LODs as one undo step, shows the
 // error report and its summary in Messages; the Properties panel reopens the
 // report; undo removes everything the import added; a file that crashes
-// the reader costs an error message, not the session.
+// the reader costs an error message, not the session; an import with a
+// cluster hierarchy streams in the viewport, the status bar says so.
 #include <QApplication>
 #include <QPointer>
 #include <QPushButton>
@@ -13,6 +14,7 @@
 #include <QTableWidget>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QLabel>
 #include <QLineEdit>
 #include <QTemporaryDir>
 #include <QTest>
@@ -29,6 +31,7 @@
 #include "app/prompts.h"
 #include "app/property_panel.h"
 #include "app/selection.h"
+#include "app/status_bar.h"
 #include "app/viewport_widget.h"
 #include "editor_fixture.h"
 #include "two_material_obj.h"
@@ -283,6 +286,47 @@ class EditorImportTest : public QObject {
     QVERIFY2(w_->messages()->lastText().contains("PLY holds no materials") &&
                  w_->messages()->lastText().contains("2 materials"),
              qPrintable(w_->messages()->lastText()));
+  }
+
+  // Import with a cluster hierarchy (the dialog's Cluster hierarchy: Build
+  // one): the viewport streams its pages in, the status bar says so, and
+  // View > Cluster Levels colours it by level.
+  void clusteredImportStreamsInTheViewport() {
+    app::ImportDialog* dialog = w_->openImportDialog({kBunny});
+    QVERIFY(dialog);
+    auto* clusters = dialog->findChild<QComboBox*>("clusters");
+    QVERIFY(clusters);
+    QCOMPARE(clusters->currentData().toString(), QString("auto"));
+    QCOMPARE(dialog->request().clusters, scene::MeshImportRequest::Clusters::Auto);
+    clusters->setCurrentIndex(clusters->findData("on"));
+    QCOMPARE(dialog->request().clusters, scene::MeshImportRequest::Clusters::On);
+    const size_t assets = w_->document().state().assets.size();
+    QTest::mouseClick(dialog->findChild<QPushButton*>("importButton"), Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(!w_->isBusy() && w_->document().state().assets.size() == assets + 1, 120000);
+    const scene::Entity* e = w_->document().state().find(w_->selection().primary());
+    QVERIFY(e && e->mesh);
+    const scene::MeshAsset* a = w_->document().state().findAsset(e->mesh->mesh);
+    QVERIFY(a && a->clusters);
+    w_->viewport()->frameSelection();
+    auto* status = w_->findChild<QLabel*>("statusClusters");
+    QVERIFY(status);
+    render::ClusterStats last;
+    QObject::connect(w_->viewport(), &app::ViewportWidget::frameRendered, this,
+                     [&](const render::FrameStats& s) { last = s.clusters; });
+    test::waitForNextFrame(*w_->viewport());
+    QTRY_VERIFY_WITH_TIMEOUT(last.instances == 1 && last.pagesLoading == 0, 20000);
+    QVERIFY(status->isVisible());
+    QVERIFY2(status->text().contains("clusters") && !status->text().contains("streaming"), qPrintable(status->text()));
+    QCOMPARE(status->text(), app::clusterStreamingText(last));
+    QAction* levels = w_->findChild<QAction*>("clusterLevelsAction");
+    QVERIFY(levels);
+    levels->trigger();
+    QVERIFY(w_->viewport()->showClusterLevels());
+    test::waitForNextFrame(*w_->viewport());
+    levels->trigger();
+    QVERIFY(!w_->viewport()->showClusterLevels());
+    w_->document().undoStack()->undo();
+    QCOMPARE(w_->document().state().assets.size(), assets);
   }
 
   void cleanupTestCase() { w_.reset(); }
