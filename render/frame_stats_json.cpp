@@ -54,6 +54,17 @@ Json frameStatsJson(const FrameStats& stats, const std::vector<GpuAllocation>& r
   } else {
     j["oit"] = nullptr;
   }
+  // Cluster hierarchies (render/cluster_source.h): null when none was drawn.
+  if (const ClusterStats& c = stats.clusters; c.instances > 0 || c.pagesWanted > 0) {
+    j["clusters"] = {{"instances", c.instances},         {"clusters", c.clusters},
+                     {"triangles", c.triangles},         {"pages_resident", c.pagesResident},
+                     {"pages_drawn", c.pagesDrawn},      {"pages_wanted", c.pagesWanted},
+                     {"pages_loading", c.pagesLoading},  {"gpu_bytes", c.gpuBytes},
+                     {"cpu_bytes", c.cpuBytes},          {"complete", c.complete},
+                     {"budget_full", c.budgetFull},      {"cut_ms", c.cutMs}};
+  } else {
+    j["clusters"] = nullptr;
+  }
   j["resources"] = std::move(resources);
   return j;
 }

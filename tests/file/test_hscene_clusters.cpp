@@ -368,6 +368,15 @@ class TestHsceneClusters : public QObject {
     QCOMPARE(clusters.at("levels").get<size_t>(), asset(doc_.state()).clusters->levels());
     QCOMPARE(clusters.at("pages").get<size_t>(), asset(doc_.state()).clusters->pages->pageCount());
     QCOMPARE(clusters.at("pages_in_memory_bytes").get<size_t>(), size_t(0));
+    // A render waits for the cut's pages and says what it drew.
+    const QString png = QString::fromStdString(path("cli.png")), stats = QString::fromStdString(path("cli.json"));
+    c = test::runCli({"render", scene, "--out", png, "--size", "160x120", "--stats", stats}, tmp_.path());
+    QVERIFY2(c.code == 0, qPrintable(c.err));
+    const Json frame = Json::parse(hs::test::readFile(stats.toStdString()));
+    QVERIFY2(frame.at("clusters").is_object(), frame.dump().c_str());
+    QCOMPARE(frame.at("clusters").at("instances").get<size_t>(), size_t(1));
+    QVERIFY(frame.at("clusters").at("complete").get<bool>());
+    QCOMPARE(frame.at("clusters").at("pages_wanted").get<size_t>(), size_t(0));
     c = test::runCli({"import", QString::fromStdString(kBunny), scene, "--clusters", "sometimes"}, tmp_.path());
     QVERIFY(c.code != 0);
     QVERIFY2(c.err.contains("--clusters"), qPrintable(c.err));
