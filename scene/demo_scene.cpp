@@ -9,6 +9,7 @@
 #include "meshproc/mesh_process.h"
 #include "scene/asset_reports.h"
 #include "scene/camera_post.h"
+#include "scene/demo_clusters.h"
 #include "scene/demo_dof.h"
 #include "scene/demo_lights.h"
 #include "scene/demo_foliage.h"
@@ -359,6 +360,10 @@ std::optional<SceneState> buildDemoScene(std::string& error) {
                        sequencer::CameraCut{craneId, 420, 599, sequencer::Transition::Crossfade, 60,
                                             sequencer::Ease::InOut}};
   }
+
+  // A huge scan's cluster hierarchy, apart from the valley with its own
+  // camera (added last: the cameras and views before it stay as they were).
+  addDemoClusterScan(s, *s.assets.at(1).data);
 
   if (const std::string problem = s.validate(); !problem.empty()) {
     error = "demo scene is inconsistent: " + problem;

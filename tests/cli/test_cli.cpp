@@ -223,9 +223,15 @@ class TestCli : public QObject {
     // Assets: the bunny, with the triangle count of the scan's OBJ file,
     // then the two surface-detail slabs (scene/demo_materials.h) and the
     // three glass spheres and the pond (scene/demo_glass.h), then the six
-    // generated plants its foliage draws (scene/demo_foliage.h), one type each.
+    // generated plants its foliage draws (scene/demo_foliage.h), one type
+    // each, then the bunny again as a cluster hierarchy (scene/demo_clusters.h).
     const QJsonArray assets = info["assets"].toArray();
-    QCOMPARE(assets.size(), 13);
+    QCOMPARE(assets.size(), 14);
+    const QJsonObject clustered = assets.last().toObject()["clusters"].toObject();
+    QCOMPARE(clustered["triangles"].toInt(), assets.first().toObject()["triangles"].toInt());
+    QVERIFY(clustered["levels"].toInt() > 4 && clustered["pages"].toInt() > 10);
+    QCOMPARE(clustered["pages_in_memory_bytes"].toInt(), 0);  // opened from the file: none read yet
+    QVERIFY(assets.first().toObject()["clusters"].isNull());
     QCOMPARE(info["foliage"].toObject()["types"].toArray().size(), 6);
     QVERIFY(info["foliage"].toObject()["instances"].toInt() > 1000);
     // The far level of every mesh the foliage draws with an impostor: baked
@@ -249,7 +255,7 @@ class TestCli : public QObject {
     QCOMPARE(size_t(assets[0].toObject()["triangles"].toDouble()), faces);
     QVERIFY(assets[0].toObject()["vertices"].toDouble() > 30000);
     // Cameras.
-    QCOMPARE(info["cameras"].toArray(), (QJsonArray{"Main Camera", "Flight Camera", "Crane Camera"}));  // the stereo flight's and the cut to the crane's too
+    QCOMPARE(info["cameras"].toArray(), (QJsonArray{"Main Camera", "Flight Camera", "Crane Camera", "Scan Camera"}));  // the stereo flight's, the cut to the crane's, the clustered scan's
     // Bounds: hold every vertex of every instance, and the size is max - min.
     const QJsonObject bounds = info["bounds_m"].toObject();
     const glm::dvec3 bmin = vec3(bounds["min"]), bmax = vec3(bounds["max"]), bsize = vec3(bounds["size"]);

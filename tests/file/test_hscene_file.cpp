@@ -20,6 +20,7 @@
 #include "mesh/mesh_import.h"
 #include "mesh/primitives.h"
 #include "scene/demo_scene.h"
+#include "scene/cluster_asset.h"
 #include "scene/document.h"
 #include "scene/edit.h"
 #include "scene/hscene_file.h"
@@ -125,7 +126,7 @@ std::string stateDifference(const SceneState& a, const SceneState& b) {
 // Logical asset blobs: each mesh and each of its LOD levels (the demo bunny has three).
 size_t assetBlobs(const SceneState& s) {
   size_t n = 0;
-  for (const auto& [id, a] : s.assets) n += 1 + a.lods.size();
+  for (const auto& [id, a] : s.assets) n += 1 + a.lods.size() + (a.clustersHash != 0 ? 1 : 0);  // mesh, LODs, cluster index
   // Standalone textures (the demo's slabs) have a blob each; a mesh's live in its blob.
   for (const auto& [id, t] : s.textures) n += t.standalone() ? 1 : 0;
   n += s.settings.post.lut.empty() ? 0 : 1;  // the grading LUT (the demo's)
@@ -164,7 +165,9 @@ SceneState richScene() {
 // Asset blobs: the demo's terrain tiles have their own suite (test_terrain_file).
 // Asset blobs (meshes, levels, textures): terrain tiles and foliage cells are counted apart.
 int blobKeyCount(const std::string& path) {
-  return test::countBlobKeys(path, "key NOT LIKE 'terrain/%' AND key NOT LIKE 'foliage/%'");
+  // Cluster pages apart (the index blob counts with the assets').
+  return test::countBlobKeys(path, "key NOT LIKE 'terrain/%' AND key NOT LIKE 'foliage/%' AND (key NOT LIKE "
+                                   "'clusters/%' OR key LIKE 'clusters/index/%')");
 }
 
 // How the editor and the CLI open a file: load into a new state and replace
@@ -245,8 +248,9 @@ class TestHsceneFile : public QObject {
     rich_ = richScene();
     // The demo's bunny, its two surface-detail slabs, its three glass spheres
     // and pond (scene/demo_glass.h), its six generated plants
-    // (scene/demo_foliage.h), and three imports.
-    QCOMPARE(rich_.assets.size(), size_t(16));
+    // (scene/demo_foliage.h), its clustered bunny (scene/demo_clusters.h),
+    // and three imports.
+    QCOMPARE(rich_.assets.size(), size_t(17));
     QVERIFY(rich_.foliage && rich_.foliage->store().instanceCount() > 0);
     goodFile_ = path("good.hscene");
     std::string error;
@@ -263,6 +267,10 @@ class TestHsceneFile : public QObject {
     QVERIFY(!report.incremental);
     QCOMPARE(report.blobsWritten, assetBlobs(rich_));
     QCOMPARE(report.blobsUnchanged, size_t(0));
+    size_t pages = 0;  // the clustered bunny's, copied from the file they were saved to first
+    for (const auto& [id, a] : rich_.assets) pages += a.clusters ? a.clusters->pages->pageCount() : 0;
+    QVERIFY(pages > 0);
+    QCOMPARE(report.pagesWritten, pages);
     QVERIFY(report.bytesWritten > 1000000);  // the bunny alone is over a megabyte
     QVERIFY(!fs::exists(p + ".saving-" + std::to_string(::getpid())));  // the temporary is gone
 
