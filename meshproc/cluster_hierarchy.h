@@ -16,11 +16,12 @@
 // and a cut (selectClusterCut: a cluster drawn where its own test passes
 // and its parent's fails) takes, for every piece of surface, exactly one
 // level: group borders were locked, so clusters of different levels meet
-// on the same vertices (no crack; tests/meshproc/test_cluster_hierarchy).
+// on the same vertices (no crack; tests/meshproc/test_meshproc_clusters).
 // Deterministic: groups are simplified in parallel but merged in a fixed
 // order; the result depends on the input and the options only.
-// Not here yet: textures paged per region, pages in the scene file,
-// building out of core (item 1's streaming input), the GPU cut.
+// Pages: cluster_pages.h; the cut with pages missing: cluster_cut.h; in
+// the scene file: scene/cluster_file.h. Not here yet: textures paged per
+// region, building out of core (item 1's streaming input), the GPU cut.
 #include <cstdint>
 #include <limits>
 #include <vector>

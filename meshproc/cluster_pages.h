@@ -1,6 +1,6 @@
 #pragma once
 // A cluster hierarchy (cluster_hierarchy.h) as pages, for storage and
-// streaming (issue 38 item 2; the scene file does not hold them yet): a
+// streaming (issue 38 item 2; scene/cluster_file.h stores them): a
 // small index, always loaded, with every cluster's LOD tests, groups and
 // bounds and the page it lives in (a cut is chosen from the index alone), and
 // pages of about 16 KB, each holding whole clusters in the hierarchy's
