@@ -12,19 +12,12 @@
 #include "core/parallel.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
+#include "meshproc/position_key.h"
 
 namespace hs::mesh {
 namespace {
 
 using Triangles = std::vector<uint32_t>;  // three indices a triangle
-
-uint64_t positionKey(const glm::vec3& p) {
-  uint32_t b[3];
-  std::memcpy(b, &p, sizeof b);
-  // Exact bits (a vertex that did not move keeps them); mixed for the map.
-  return (uint64_t(b[0]) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(b[1]) * 0xC2B2AE3D27D4EB4Full) ^
-         (uint64_t(b[2]) * 0x165667B19E3779F9ull);
-}
 
 LodSphere sphereOf(const std::vector<glm::vec3>& pool, const uint32_t* indices, size_t count) {
   if (count == 0) return {};

@@ -1,10 +1,12 @@
 #include "meshproc/cluster_pages.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <numeric>
 #include <unordered_map>
+
+#include "meshproc/position_key.h"
 
 namespace hs::mesh {
 namespace {
@@ -102,12 +104,7 @@ std::vector<std::vector<glm::vec3>> levelNormals(const ClusterHierarchy& h) {
     size_t end = begin;
     while (end < h.clusters.size() && h.clusters[end].level == h.clusters[begin].level) ++end;
     std::unordered_map<uint64_t, glm::vec3> sum;
-    auto key = [&](uint32_t v) {
-      uint32_t b[3];
-      std::memcpy(b, &h.positions[v], sizeof b);
-      return (uint64_t(b[0]) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(b[1]) * 0xC2B2AE3D27D4EB4Full) ^
-             (uint64_t(b[2]) * 0x165667B19E3779F9ull);
-    };
+    auto key = [&](uint32_t v) { return positionKey(h.positions[v]); };
     for (size_t c = begin; c < end; ++c) {
       const Cluster& cl = h.clusters[c];
       for (uint32_t t = 0; t < cl.triangleCount; ++t) {
@@ -220,6 +217,18 @@ ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes) {
   out.index.pageCount = uint32_t(out.pages.size());
   out.index.groupCount = h.groups;
   fillPageFirst(out.index);
+  return out;
+}
+
+PageExtent largestPage(const ClusterIndex& index) {
+  PageExtent out;
+  for (size_t p = 0; p + 1 < index.pageFirst.size(); ++p) {
+    size_t v = 0, t = 0;
+    for (uint32_t c = index.pageFirst[p]; c < index.pageFirst[p + 1]; ++c)
+      v += index.clusters[c].vertexCount, t += index.clusters[c].triangleCount;
+    out.vertices = std::max(out.vertices, v);
+    out.indices = std::max(out.indices, t * 3);
+  }
   return out;
 }
 

@@ -67,6 +67,13 @@ struct ClusterPages {
 // scan's pages at 16 KB, 6.9% at 32 KB and 9.9% at 64 KB.
 ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes = size_t(16) << 10);
 
+// The most vertices and triangle corners any one page of `index` holds
+// (what a slot holding any page needs).
+struct PageExtent {
+  size_t vertices = 0, indices = 0;
+};
+PageExtent largestPage(const ClusterIndex& index);
+
 std::vector<uint8_t> encodeClusterIndex(const ClusterIndex& index);
 // The index from its bytes; nullopt with `error` (starting with `what`)
 // when the bytes are not a whole, sound index (clusterIndexProblem).

@@ -247,14 +247,7 @@ DrawSource* ClusterSources::update(FrameContext& frame, VisibleSet& visible, con
       as.asset = asset->clusters;
       as.what = "mesh asset " + std::to_string(asset->id) + " ('" + asset->name + "')";
       as.groups = mesh::clusterGroupsOf(as.asset->index);
-      const auto& idx = as.asset->index;
-      for (uint32_t p = 0; p < idx.pageCount; ++p) {
-        size_t v = 0, t = 0;
-        for (uint32_t c = idx.pageFirst[p]; c < idx.pageFirst[p + 1]; ++c)
-          v += idx.clusters[c].vertexCount, t += idx.clusters[c].triangleCount;
-        as.slotVertices = std::max(as.slotVertices, v);
-        as.slotIndices = std::max(as.slotIndices, t * 3);
-      }
+      as.largestPage = mesh::largestPage(as.asset->index);
     }
     as.lastFrame = frame_;
     ClusterSource::Instance in;
@@ -279,8 +272,8 @@ DrawSource* ClusterSources::update(FrameContext& frame, VisibleSet& visible, con
   // One slot size for every asset's pages; no more slots than their pages.
   size_t slotVertices = 0, slotIndices = 0, pages = 0;
   for (const auto& [key, as] : assets_) {
-    slotVertices = std::max(slotVertices, as.slotVertices);
-    slotIndices = std::max(slotIndices, as.slotIndices);
+    slotVertices = std::max(slotVertices, as.largestPage.vertices);
+    slotIndices = std::max(slotIndices, as.largestPage.indices);
     pages += as.asset->index.pageCount;
   }
   pool_.configure(slotVertices, slotIndices, size_t(frame.settings.clusterGpuBudgetMb * 1048576.0), pages);

@@ -62,7 +62,7 @@ class ClusterSources {
     std::shared_ptr<const scene::ClusterAsset> asset;
     std::string what;  // "mesh asset 3 ('Scan')", for messages
     mesh::ClusterGroups groups;
-    size_t slotVertices = 0, slotIndices = 0;  // its largest page
+    mesh::PageExtent largestPage;  // what a slot needs for its pages
     uint64_t lastFrame = 0;
   };
   ClusterPageLoader loader_;
