@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "core/content_hash.h"
+#include "scene/blob_parts.h"
 #include "scene/cluster_asset.h"
 
 namespace hs::scene {
@@ -67,26 +68,19 @@ bool loadClusterIndexes(SqliteDb& db, SceneState& state, const std::string& path
     }
   }
   std::set<std::string> used;
-  SqliteStmt q(db, "SELECT part, data FROM blobs WHERE key = ?1 ORDER BY part");
+  SqliteStmt q(db, kReadBlobPartsSql);
   for (auto& [id, a] : state.assets) {
     if (a.clustersHash == 0) continue;
     const std::string what = assetName(path, a);
     const std::string key = clusterIndexBlobKey(a.clustersHash);
     std::string problem, e;
     std::vector<uint8_t> bytes;
-    int64_t part = 0;
-    q.bind(1, key);
-    while (q.step(e)) {
-      if (q.integer(0) != part++) {
-        problem = what + ": a part of its cluster index is missing (damaged file)";
-        break;
-      }
-      const auto b = q.blob(1);
-      bytes.insert(bytes.end(), b.begin(), b.end());
+    switch (readBlobParts(q, key, bytes, e)) {
+      case BlobRead::Ok: break;
+      case BlobRead::PartMissing: problem = what + ": a part of its cluster index is missing (damaged file)"; break;
+      case BlobRead::Failed: problem = what + ": the scene file is damaged (" + e + ")"; break;
+      case BlobRead::Missing: problem = what + ": its cluster index is missing from the file"; break;
     }
-    q.reset();
-    if (problem.empty() && !e.empty()) problem = what + ": the scene file is damaged (" + e + ")";
-    if (problem.empty() && part == 0) problem = what + ": its cluster index is missing from the file";
     if (problem.empty() && contentHash(bytes.data(), bytes.size()) != a.clustersHash)
       problem = what + ": its cluster index does not match its checksum (damaged file)";
     std::vector<uint64_t> hashes;

@@ -4,6 +4,7 @@
 
 #include "core/content_hash.h"
 #include "foliage/manifest.h"
+#include "scene/blob_parts.h"
 
 namespace hs::scene {
 namespace {
@@ -62,19 +63,11 @@ std::set<std::string> foliageCellKeys(const SceneState& state) {
 
 void loadFoliageCells(SqliteDb& db, SceneState& state, const std::string& path, std::vector<std::string>& warnings) {
   if (!state.foliage || !state.foliage->pendingManifest) return;
-  SqliteStmt q(db, "SELECT part, data FROM blobs WHERE key = ?1 ORDER BY part");
+  SqliteStmt q(db, kReadBlobPartsSql);
   auto readBlob = [&](const foliage::CellKey& k) -> std::optional<std::vector<uint8_t>> {
     std::string e;
     std::vector<uint8_t> bytes;
-    int64_t expected = 0;
-    q.bind(1, foliage::cellBlobKey(k));
-    while (q.step(e)) {
-      if (q.integer(0) != expected++) break;
-      const auto b = q.blob(1);
-      bytes.insert(bytes.end(), b.begin(), b.end());
-    }
-    q.reset();
-    if (!e.empty() || expected == 0) return std::nullopt;
+    if (readBlobParts(q, foliage::cellBlobKey(k), bytes, e) != BlobRead::Ok) return std::nullopt;
     return bytes;
   };
   foliage::FoliageStore store;

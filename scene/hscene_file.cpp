@@ -16,6 +16,7 @@
 
 #include "core/content_hash.h"
 #include "foliage/impostor_images.h"
+#include "scene/blob_parts.h"
 #include "scene/cluster_file.h"
 #include "scene/color_lut.h"
 #include "scene/foliage_file.h"
@@ -468,31 +469,12 @@ std::optional<SceneState> loadScene(const std::string& path, std::string& error,
 
   // Bulk data: each asset's mesh and its LOD levels, each checked against
   // the hash the description holds.
-  SqliteStmt q(db, "SELECT part, hash, data FROM blobs WHERE key = ?1 ORDER BY part");
-  // One logical blob decoded and checked; `what` names the asset (and level).
+  SqliteStmt q(db, kReadBlobPartsSql);
   // One logical blob's bytes, its parts in order; `what` names its owner.
   auto readBlob = [&](const std::string& key, const std::string& what, std::vector<uint8_t>& bytes) {
-    int64_t expectedPart = 0;
-    q.bind(1, key);
-    while (q.step(e)) {
-      if (q.integer(0) != expectedPart++) {
-        q.reset();
-        error = what + ": a part of its data is missing (damaged file)";
-        return false;
-      }
-      const auto b = q.blob(2);
-      bytes.insert(bytes.end(), b.begin(), b.end());
-    }
-    q.reset();
-    if (!e.empty()) {
-      error = what + ": the scene file is damaged (" + e + ")";
-      return false;
-    }
-    if (expectedPart == 0) {
-      error = what + ": its data is missing from the file";
-      return false;
-    }
-    return true;
+    const BlobRead r = readBlobParts(q, key, bytes, e);
+    if (r != BlobRead::Ok) error = what + ": " + blobReadProblem(r, e);
+    return r == BlobRead::Ok;
   };
   // One mesh (or LOD level) decoded and checked.
   auto loadMesh = [&](const std::string& key, const std::string& what, uint64_t hash,

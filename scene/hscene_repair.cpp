@@ -10,6 +10,7 @@
 
 #include "core/content_hash.h"
 #include "foliage/impostor_images.h"
+#include "scene/blob_parts.h"
 #include "scene/cluster_asset.h"
 #include "scene/cluster_file.h"
 #include "scene/color_lut.h"
@@ -74,31 +75,19 @@ int formatVersion(SqliteDb& db) {
 
 // One logical blob's bytes, its parts in order; false with `why`.
 bool readBlobBytes(SqliteDb& db, const std::string& key, std::vector<uint8_t>& bytes, std::string& why) {
-  SqliteStmt q(db, "SELECT part, data FROM blobs WHERE key = ?1 ORDER BY part");
+  SqliteStmt q(db, kReadBlobPartsSql);
   if (!q.ok()) {
     why = "the blobs table cannot be read (" + db.lastError() + ")";
     return false;
   }
-  q.bind(1, key);
-  int64_t expected = 0;
   std::string e;
-  while (q.step(e)) {
-    if (q.integer(0) != expected++) {
-      why = "a part of its data is missing";
-      return false;
-    }
-    const auto b = q.blob(1);
-    bytes.insert(bytes.end(), b.begin(), b.end());
+  switch (readBlobParts(q, key, bytes, e)) {
+    case BlobRead::Ok: return true;
+    case BlobRead::PartMissing: why = "a part of its data is missing"; break;
+    case BlobRead::Failed: why = "its data cannot be read (" + e + ")"; break;
+    case BlobRead::Missing: why = "its data is missing from the file"; break;
   }
-  if (!e.empty()) {
-    why = "its data cannot be read (" + e + ")";
-    return false;
-  }
-  if (expected == 0) {
-    why = "its data is missing from the file";
-    return false;
-  }
-  return true;
+  return false;
 }
 
 // One logical mesh blob read part by part; nullopt with `why` when a part
