@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/content_hash.h"
+#include "scene/blob_parts.h"
 #include "scene/sqlite_db.h"
 
 namespace hs::scene {
@@ -112,33 +113,16 @@ std::optional<std::vector<uint8_t>> ClusterPageStore::read(uint32_t page, std::s
         error = where + ": cannot open the scene file (" + error + ")";
         return std::nullopt;
       }
-      f->read = std::make_unique<SqliteStmt>(f->db, "SELECT part, data FROM blobs WHERE key = ?1 ORDER BY part");
+      f->read = std::make_unique<SqliteStmt>(f->db, kReadBlobPartsSql);
       if (!f->read->ok()) {
         error = where + ": the scene file has no readable blob table (" + f->db.lastError() + ")";
         return std::nullopt;
       }
       file_ = std::move(f);
     }
-    SqliteStmt& q = *file_->read;
     std::string e;
-    int64_t expected = 0;
-    q.bind(1, clusterBlobKey(hashes_[page]));
-    while (q.step(e)) {
-      if (q.integer(0) != expected++) {
-        q.reset();
-        error = where + ": a part of its data is missing (damaged file)";
-        return std::nullopt;
-      }
-      const auto b = q.blob(1);
-      bytes.insert(bytes.end(), b.begin(), b.end());
-    }
-    q.reset();
-    if (!e.empty()) {
-      error = where + ": the scene file is damaged (" + e + ")";
-      return std::nullopt;
-    }
-    if (expected == 0) {
-      error = where + ": its data is missing from the file";
+    if (const BlobRead r = readBlobParts(*file_->read, clusterBlobKey(hashes_[page]), bytes, e); r != BlobRead::Ok) {
+      error = where + ": " + blobReadProblem(r, e);
       return std::nullopt;
     }
   }
@@ -160,11 +144,6 @@ size_t ClusterAsset::triangles(uint32_t level) const {
   for (const auto& c : index.clusters)
     if (c.level == level) n += c.triangleCount;
   return n;
-}
-
-size_t ClusterAsset::clusters(uint32_t level) const {
-  return size_t(std::count_if(index.clusters.begin(), index.clusters.end(),
-                              [&](const auto& c) { return c.level == level; }));
 }
 
 uint64_t ClusterAsset::totalPageBytes() const {
@@ -191,7 +170,6 @@ Json clusterSummaryJson(const ClusterAsset& a) {
   const size_t levels = a.levels();
   o["levels"] = levels;
   o["clusters"] = a.index.clusters.size();
-  o["triangles"] = a.triangles(0);
   o["pages"] = a.pageBytes.size();
   o["page_bytes"] = a.totalPageBytes();
   o["index_bytes"] = a.index.clusters.size() * sizeof(mesh::ClusterIndexEntry) + a.pageBytes.size() * 12;
@@ -200,6 +178,7 @@ Json clusterSummaryJson(const ClusterAsset& a) {
   o["file"] = file.empty() ? Json(nullptr) : Json(file);
   std::vector<size_t> clusters(levels, 0), triangles(levels, 0);
   for (const auto& c : a.index.clusters) ++clusters[c.level], triangles[c.level] += c.triangleCount;
+  o["triangles"] = levels ? triangles[0] : 0;  // level 0: the scan's own
   Json per = Json::array();
   for (size_t l = 0; l < levels; ++l)
     per.push_back(Json{{"level", l}, {"clusters", clusters[l]}, {"triangles", triangles[l]}});
@@ -277,6 +256,24 @@ std::optional<ClusterAsset> decodeClusterAssetIndex(const std::vector<uint8_t>& 
   }
   a.index = std::move(*index);
   return a;
+}
+
+uint64_t clusterIndexHash(const ClusterAsset& asset) {
+  const std::vector<uint8_t> bytes = encodeClusterAssetIndex(asset);
+  return contentHash(bytes.data(), bytes.size());
+}
+
+ClusterBuild buildClusterAsset(const mesh::MeshData& input, const mesh::ClusterOptions& options,
+                               size_t proxyTriangles, const Progress* progress) {
+  ClusterBuild b;
+  mesh::ClusterHierarchy h = mesh::buildClusterHierarchy(input, options, &b.report, progress);
+  if (isCancelled(progress)) return b;
+  b.proxy = mesh::meshOfCut(h, mesh::uniformClusterCut(h, proxyTriangles, &b.proxyError));
+  mesh::computeVertexNormals(b.proxy);
+  ClusterAsset c = clusterAssetOf(mesh::paginate(h));
+  b.clustersHash = clusterIndexHash(c);
+  b.clusters = std::make_shared<const ClusterAsset>(std::move(c));
+  return b;
 }
 
 ClusterAsset clusterAssetOf(mesh::ClusterPages built) {

@@ -75,7 +75,6 @@ struct ClusterAsset {
   std::shared_ptr<ClusterPageStore> pages;       // shared by every copy of the asset (undo)
   size_t levels() const;
   size_t triangles(uint32_t level) const;        // of every cluster of that level
-  size_t clusters(uint32_t level) const;
   uint64_t totalPageBytes() const;
   // Page `page` decoded and checked against the index; `what` names the asset.
   std::optional<std::vector<mesh::PageCluster>> loadPage(uint32_t page, const std::string& what,
@@ -105,5 +104,23 @@ std::optional<ClusterAsset> decodeClusterAssetIndex(const std::vector<uint8_t>& 
 // A freshly built hierarchy's pages as an asset (pages held in memory until
 // the first save settles them).
 ClusterAsset clusterAssetOf(mesh::ClusterPages pages);
+
+// The content hash of the asset's index blob (MeshAsset::clustersHash).
+uint64_t clusterIndexHash(const ClusterAsset& asset);
+
+// A mesh made a cluster hierarchy, as `import --clusters` stores it (and
+// the demo, the tests and bench_clusters_render): the asset with its hash,
+// and its coarse stand-in, the uniform cut of at most `proxyTriangles`
+// triangles (mesh::uniformClusterCut) with vertex normals, one submesh and
+// no materials or textures yet (the caller moves or copies the input's).
+struct ClusterBuild {
+  std::shared_ptr<const ClusterAsset> clusters;  // null when cancelled
+  uint64_t clustersHash = 0;
+  mesh::MeshData proxy;
+  float proxyError = 0.0f;  // metres: the stand-in's error
+  mesh::ClusterBuildReport report;
+};
+ClusterBuild buildClusterAsset(const mesh::MeshData& input, const mesh::ClusterOptions& options,
+                               size_t proxyTriangles, const Progress* progress = nullptr);
 
 }  // namespace hs::scene

@@ -1,8 +1,5 @@
 #include "scene/demo_clusters.h"
 
-#include "core/content_hash.h"
-#include "meshproc/cluster_hierarchy.h"
-#include "meshproc/cluster_pages.h"
 #include "scene/cluster_asset.h"
 #include "scene/import_pipeline.h"
 #include "scene/mesh_materials.h"
@@ -11,23 +8,20 @@
 namespace hs::scene {
 
 void addDemoClusterScan(SceneState& s, const mesh::MeshData& bunny) {
-  // As `import --clusters on` builds it (scene/import_pipeline.cpp), with a
-  // coarser stand-in (8k triangles) so the cut's detail shows against it.
-  mesh::ClusterHierarchy h = mesh::buildClusterHierarchy(bunny);
-  mesh::MeshData proxy = mesh::meshOfCut(h, mesh::uniformClusterCut(h, kClusterProxyTriangles / 8));
+  // As `import --clusters on` builds it, with a coarser stand-in (8k
+  // triangles) so the cut's detail shows against it.
+  ClusterBuild built = buildClusterAsset(bunny, {}, kClusterProxyTriangles / 8);
+  mesh::MeshData proxy = std::move(built.proxy);
   proxy.materials = bunny.materials;
   if (!proxy.materials.empty()) proxy.submeshes.front().material = 0;
-  mesh::computeVertexNormals(proxy);
-  ClusterAsset clusters = clusterAssetOf(mesh::paginate(h));
-  const std::vector<uint8_t> index = encodeClusterAssetIndex(clusters);
   MeshAsset a;
   a.id = s.maxAssetId() + 1;
   a.name = "Stanford Bunny (cluster hierarchy)";
   a.sourcePath = "resources/demo/stanford-bunny.obj";
   a.contentHash = mesh::contentHash(proxy);
   a.data = std::make_shared<const mesh::MeshData>(std::move(proxy));
-  a.clustersHash = contentHash(index.data(), index.size());
-  a.clusters = std::make_shared<const ClusterAsset>(std::move(clusters));
+  a.clustersHash = built.clustersHash;
+  a.clusters = std::move(built.clusters);
   const mesh::Bounds b = bunny.bounds();
   s.assets.emplace(a.id, a);
   addMeshMaterials(s, a.id);

@@ -1,8 +1,6 @@
 #include "scene/import_pipeline.h"
 
-#include "core/content_hash.h"
 #include "mesh/tile_merge.h"
-#include "meshproc/cluster_pages.h"
 #include "meshproc/report_json.h"
 #include "scene/asset_reports.h"
 #include "scene/cluster_asset.h"
@@ -54,18 +52,16 @@ bool buildClusters(ImportedMesh& out, const MeshImportRequest& request, const Pr
                   std::to_string(out.mesh->materials.size()) + " (import it without --clusters)";
     return true;
   }
-  mesh::ClusterHierarchy h = buildClusterHierarchy(*out.mesh, request.clusterOptions, &out.clusterReport, progress);
-  if (isCancelled(progress)) return false;
-  mesh::MeshData proxy = mesh::meshOfCut(h, mesh::uniformClusterCut(h, kClusterProxyTriangles, &out.proxyError));
-  proxy.materials = std::move(out.mesh->materials);
-  proxy.textures = std::move(out.mesh->textures);
-  if (!proxy.materials.empty()) proxy.submeshes.front().material = 0;
-  mesh::computeVertexNormals(proxy);
-  ClusterAsset c = clusterAssetOf(mesh::paginate(h));
-  const std::vector<uint8_t> index = encodeClusterAssetIndex(c);
-  out.clustersHash = contentHash(index.data(), index.size());
-  out.clusters = std::make_shared<const ClusterAsset>(std::move(c));
-  out.mesh = std::move(proxy);
+  ClusterBuild b = buildClusterAsset(*out.mesh, request.clusterOptions, kClusterProxyTriangles, progress);
+  out.clusterReport = b.report;
+  if (!b.clusters) return false;
+  b.proxy.materials = std::move(out.mesh->materials);
+  b.proxy.textures = std::move(out.mesh->textures);
+  if (!b.proxy.materials.empty()) b.proxy.submeshes.front().material = 0;
+  out.proxyError = b.proxyError;
+  out.clustersHash = b.clustersHash;
+  out.clusters = std::move(b.clusters);
+  out.mesh = std::move(b.proxy);
   out.lods.clear();  // the hierarchy is its levels of detail
   return true;
 }

@@ -24,9 +24,6 @@
 
 #include "bench/common/bench_util.h"
 #include "scan_terrain.h"  // bench/decimate: the generated scan tiles
-#include "core/content_hash.h"
-#include "meshproc/cluster_hierarchy.h"
-#include "meshproc/cluster_pages.h"
 #include "render/offscreen_renderer.h"
 #include "scene/cluster_asset.h"
 #include "scene/import_pipeline.h"
@@ -77,13 +74,9 @@ int main(int argc, char** argv) {
     const auto built = std::chrono::steady_clock::now();
     mesh::ClusterOptions o;
     o.certifyErrors = certify;
-    mesh::ClusterBuildReport rep;
-    mesh::ClusterHierarchy h = mesh::buildClusterHierarchy(tile, o, &rep);
-    mesh::MeshData proxy = mesh::meshOfCut(h, mesh::uniformClusterCut(h, scene::kClusterProxyTriangles));
-    mesh::computeVertexNormals(proxy);
-    scene::ClusterAsset c = scene::clusterAssetOf(mesh::paginate(h));
+    scene::ClusterBuild b = scene::buildClusterAsset(tile, o, scene::kClusterProxyTriangles);
     const double buildSeconds = secondsSince(built);
-    h = {};
+    const scene::ClusterAsset& c = *b.clusters;
     std::printf("\n%zu triangles (%.0f m tile): hierarchy of %zu levels, %zu clusters, %u pages (%.1f MiB) built in "
                 "%.1f s, peak RSS so far %.0f MiB\n",
                 tile.triangleCount(), size, c.levels(), c.index.clusters.size(), c.index.pageCount,
@@ -96,11 +89,10 @@ int main(int argc, char** argv) {
     scene::MeshAsset a;
     a.id = 1;
     a.name = "tile";
-    a.contentHash = mesh::contentHash(proxy);
-    a.data = std::make_shared<const mesh::MeshData>(std::move(proxy));
-    const std::vector<uint8_t> index = scene::encodeClusterAssetIndex(c);
-    a.clustersHash = contentHash(index.data(), index.size());
-    a.clusters = std::make_shared<const scene::ClusterAsset>(std::move(c));
+    a.contentHash = mesh::contentHash(b.proxy);
+    a.data = std::make_shared<const mesh::MeshData>(std::move(b.proxy));
+    a.clustersHash = b.clustersHash;
+    a.clusters = b.clusters;
     scene::MeshAsset w;
     w.id = 2;
     w.name = "whole";

@@ -21,7 +21,6 @@
 
 #include "image_compare.h"
 #include "look_from.h"
-#include "core/content_hash.h"
 #include "mesh/mesh_data.h"
 #include "render/offscreen_renderer.h"
 #include "scene/cluster_asset.h"
@@ -34,11 +33,6 @@ using hs::test::lookFrom;
 namespace {
 
 const std::string kBunny = HS_SOURCE_DIR "/resources/demo/stanford-bunny.obj";
-
-uint64_t indexHash(const scene::ClusterAsset& c) {
-  const std::vector<uint8_t> b = scene::encodeClusterAssetIndex(c);
-  return contentHash(b.data(), b.size());
-}
 
 // The scan twice: as a cluster hierarchy (asset 1, its coarse cut as its
 // mesh) and whole (asset 2, the reference).
@@ -54,16 +48,13 @@ Scan makeScan(mesh::MeshData input, bool certify = true) {
   s.whole.data = std::make_shared<const mesh::MeshData>(input);
   mesh::ClusterOptions o;
   o.certifyErrors = certify;
-  mesh::ClusterHierarchy h = mesh::buildClusterHierarchy(input, o);
-  mesh::MeshData proxy = mesh::meshOfCut(h, mesh::uniformClusterCut(h, scene::kClusterProxyTriangles));
-  mesh::computeVertexNormals(proxy);
-  scene::ClusterAsset c = scene::clusterAssetOf(mesh::paginate(h));
+  scene::ClusterBuild b = scene::buildClusterAsset(input, o, scene::kClusterProxyTriangles);
   s.clustered.id = 1;
   s.clustered.name = "clustered";
-  s.clustered.contentHash = mesh::contentHash(proxy);
-  s.clustered.data = std::make_shared<const mesh::MeshData>(std::move(proxy));
-  s.clustered.clustersHash = indexHash(c);
-  s.clustered.clusters = std::make_shared<const scene::ClusterAsset>(std::move(c));
+  s.clustered.contentHash = mesh::contentHash(b.proxy);
+  s.clustered.data = std::make_shared<const mesh::MeshData>(std::move(b.proxy));
+  s.clustered.clustersHash = b.clustersHash;
+  s.clustered.clusters = std::move(b.clusters);
   return s;
 }
 
@@ -266,14 +257,9 @@ class TestClusterRender : public QObject {
   // frame equals the unlimited budget's.
   void budgetOfATenth() {
     const scene::ClusterAsset& c = *valley().clustered.clusters;
-    size_t maxV = 0, maxI = 0;
-    for (uint32_t p = 0; p < c.index.pageCount; ++p) {
-      size_t v = 0, t = 0;
-      for (uint32_t k = c.index.pageFirst[p]; k < c.index.pageFirst[p + 1]; ++k)
-        v += c.index.clusters[k].vertexCount, t += c.index.clusters[k].triangleCount;
-      maxV = std::max(maxV, v), maxI = std::max(maxI, t * 3);
-    }
-    const double slotBytes = double(maxV * 32 + maxI * 4);
+    // A slot of the GPU pool holds the largest page: 32 bytes a vertex, 4 an index.
+    const mesh::PageExtent largest = mesh::largestPage(c.index);
+    const double slotBytes = double(largest.vertices * 32 + largest.indices * 4);
     const double budgetMb = slotBytes * double(c.index.pageCount) / 10.0 / 1048576.0;
     {
       std::vector<float> errors(c.levels(), 0.0f);
