@@ -4,6 +4,7 @@
 find_package(Qt6 6.4 REQUIRED COMPONENTS Core Gui Widgets OpenGL OpenGLWidgets Test Concurrent)
 find_package(glm REQUIRED)
 find_package(assimp REQUIRED)
+find_package(draco REQUIRED)  # KHR_draco_mesh_compression in 3D Tiles content (mesh/gltf_geometry.cpp)
 find_package(OpenImageIO REQUIRED)
 find_package(SQLite3 REQUIRED)
 find_package(Threads REQUIRED)

@@ -9,7 +9,7 @@ BUILD_PACKAGES=(
   libglm-dev libassimp-dev libopenimageio-dev openimageio-tools libopenmesh-dev libgdal-dev
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libsqlite3-dev libmeshoptimizer-dev
   libtbb-dev nlohmann-json3-dev libxxhash-dev libcli11-dev zlib1g-dev libdeflate-dev
-  libcgal-dev libopencolorio-dev
+  libcgal-dev libopencolorio-dev libtinygltf-dev libdraco-dev
 )
 # Tests: an X server for the GUI smoke test, Mesa for headless EGL, ffmpeg
 # (and its ffprobe) for the sequencer's direct-video export test, Slurm and

@@ -1,0 +1,377 @@
+#include "mesh/tileset_reader.h"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <cctype>
+#include <fstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/json.h"
+#include "mesh/gltf_geometry.h"
+
+namespace hs::mesh {
+namespace fs = std::filesystem;
+namespace {
+
+// A content or tileset file is read whole; larger ones are refused (glTF
+// itself stops at 2 GB).
+constexpr uint64_t kMaxFileBytes = uint64_t(2) << 30;
+
+bool readBytes(const fs::path& path, std::vector<uint8_t>& out, std::string& problem) {
+  std::error_code ec;
+  const uint64_t size = fs::file_size(path, ec);
+  if (ec) {
+    problem = fs::exists(path, ec) ? "cannot be read" : "is missing";
+    return false;
+  }
+  if (size > kMaxFileBytes) {
+    problem = "is larger than 2 GB";
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  out.resize(size);
+  if (!in || !in.read(reinterpret_cast<char*>(out.data()), std::streamsize(size))) {
+    problem = "cannot be read";
+    return false;
+  }
+  return true;
+}
+
+uint32_t le32(const uint8_t* p) {
+  uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
+
+bool finiteNumber(const Json& v) { return v.is_number() && std::isfinite(v.get<double>()); }
+
+// The rotation 3D Tiles puts between a glTF's up axis and the tileset's z.
+glm::dmat4 upAxisToZ(const std::string& up) {
+  glm::dmat4 m(1.0);
+  if (up == "Z") return m;
+  if (up == "X") {  // (x, y, z) -> (-z, y, x)
+    m[0] = {0, 0, 1, 0};
+    m[2] = {-1, 0, 0, 0};
+    return m;
+  }
+  m[1] = {0, 0, 1, 0};   // y -> z
+  m[2] = {0, -1, 0, 0};  // z -> -y
+  return m;
+}
+
+std::string shortName(const fs::path& p) { return p.string(); }
+
+struct Reader {
+  Tileset& out;
+  const Progress* progress;
+  std::vector<fs::path> stack;  // tilesets being read, outermost first (cycles)
+  size_t contentsDone = 0;
+
+  void warn(std::string text) { out.warnings.push_back(std::move(text)); }
+
+  // One content: its triangles appended to `tile`, placed by `world`.
+  // True when something came in (triangles, or an external tileset's tiles).
+  bool content(const fs::path& file, const std::vector<uint8_t>& bytes, const glm::dmat4& world,
+               const std::string& upAxis, TilesetTile& tile, int tileIndex, int depth) {
+    const std::string what = shortName(file);
+    auto glb = [&](const std::vector<uint8_t>& g, glm::dvec3 rtc) {
+      GltfGeometry geo;
+      std::string error;
+      if (!readGltfGeometry(g, file.parent_path().string(), what, geo, error)) {
+        warn(error + "; its tile is left empty");
+        return false;
+      }
+      for (auto& w : geo.warnings) warn(std::move(w));
+      if (geo.rtcCenter) rtc += *geo.rtcCenter;
+      const glm::dmat4 m = world * glm::translate(glm::dmat4(1.0), rtc) * upAxisToZ(upAxis);
+      const uint32_t first = uint32_t(tile.positions.size());
+      const bool uvsBefore = tile.positions.empty() || !tile.uvs.empty();
+      for (const glm::dvec3& p : geo.positions) tile.positions.emplace_back(m * glm::dvec4(p, 1.0));
+      if (uvsBefore && !geo.uvs.empty()) tile.uvs.insert(tile.uvs.end(), geo.uvs.begin(), geo.uvs.end());
+      else tile.uvs.clear();
+      for (uint32_t i : geo.indices) tile.indices.push_back(first + i);
+      out.trianglesDeclared += geo.declaredTriangles;
+      return true;
+    };
+    const std::string magic = bytes.size() >= 4 ? std::string(reinterpret_cast<const char*>(bytes.data()), 4) : "";
+    bool read = false;
+    if (magic == "glTF") {
+      read = glb(bytes, glm::dvec3(0.0));
+    } else if (magic == "b3dm") {
+      if (bytes.size() < 28 || le32(&bytes[8]) > bytes.size() || le32(&bytes[8]) < 28) {
+        warn(what + ": a b3dm whose header is truncated or names more bytes than the file has; its tile is left empty");
+        return false;
+      }
+      const uint64_t total = le32(&bytes[8]), ftJson = le32(&bytes[12]), ftBin = le32(&bytes[16]),
+                     btJson = le32(&bytes[20]), btBin = le32(&bytes[24]);
+      const uint64_t glbAt = 28 + ftJson + ftBin + btJson + btBin;
+      if (glbAt + 12 > total) {
+        warn(what + ": its b3dm tables run past its " + std::to_string(total) +
+             " bytes (a legacy b3dm header?); its tile is left empty");
+        return false;
+      }
+      glm::dvec3 rtc(0.0);
+      if (ftJson > 0) {
+        std::string perr;
+        const std::string text(reinterpret_cast<const char*>(&bytes[28]), size_t(ftJson));
+        std::optional<Json> ft = parseJson(text.substr(0, text.find_last_not_of(' ') + 1), perr);
+        if (!ft) {
+          warn(what + ": its b3dm feature table is not JSON (" + perr + "); read without it");
+        } else if (ft->contains("RTC_CENTER")) {
+          const Json& c = (*ft)["RTC_CENTER"];
+          if (c.is_array() && c.size() == 3 && finiteNumber(c[0]) && finiteNumber(c[1]) && finiteNumber(c[2])) {
+            rtc = {c[0].get<double>(), c[1].get<double>(), c[2].get<double>()};
+          } else if (c.is_object() && c.contains("byteOffset") && c["byteOffset"].is_number_unsigned() &&
+                     c["byteOffset"].get<uint64_t>() + 24 <= ftBin) {
+            const uint8_t* p = &bytes[28 + ftJson + c["byteOffset"].get<uint64_t>()];
+            double v[3];
+            std::memcpy(v, p, 24);
+            rtc = {v[0], v[1], v[2]};
+          } else {
+            warn(what + ": its RTC_CENTER is not three numbers; ignored");
+          }
+        }
+      }
+      read = glb(std::vector<uint8_t>(bytes.begin() + long(glbAt), bytes.begin() + long(total)), rtc);
+    } else if (magic == "cmpt") {
+      // A composite: inner tiles one after another, each with its own header.
+      if (bytes.size() < 16) {
+        warn(what + ": a truncated cmpt header; its tile is left empty");
+        return false;
+      }
+      const uint64_t total = std::min<uint64_t>(le32(&bytes[8]), bytes.size());
+      const uint32_t count = le32(&bytes[12]);
+      uint64_t at = 16;
+      bool any = false;
+      for (uint32_t i = 0; i < count; ++i) {
+        if (at + 12 > total || le32(&bytes[at + 8]) < 12 || at + le32(&bytes[at + 8]) > total) {
+          warn(what + ": inner tile " + std::to_string(i) + " of its cmpt runs past the file; the rest skipped");
+          break;
+        }
+        const uint32_t len = le32(&bytes[at + 8]);
+        any = content(file, std::vector<uint8_t>(bytes.begin() + long(at), bytes.begin() + long(at + len)), world,
+                      upAxis, tile, tileIndex, depth) || any;
+        at += len;
+      }
+      return any;
+    } else if (magic == "pnts" || magic == "i3dm" || magic == "vctr" || magic == "geom") {
+      warn(what + ": " + magic + " content (" +
+           (magic == "pnts" ? "points" : magic == "i3dm" ? "instanced models" : "vector data") +
+           ") is not read: a cluster hierarchy holds triangles");
+      return false;
+    } else if (!bytes.empty() && (bytes[0] == '{' || bytes[0] == ' ' || bytes[0] == '\n')) {
+      // JSON: an external tileset, or a glTF asset.
+      std::string perr;
+      std::optional<Json> j = parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), perr);
+      if (!j) {
+        warn(what + ": not JSON (" + perr + "); its tile is left empty");
+        return false;
+      }
+      if (j->is_object() && j->contains("root")) {
+        tileset(file, *j, world, tileIndex, depth + 1);
+        return true;
+      }
+      read = glb(bytes, glm::dvec3(0.0));
+    } else {
+      std::string shown;
+      for (size_t i = 0; i < std::min<size_t>(4, bytes.size()); ++i)
+        shown += std::isprint(bytes[i]) ? char(bytes[i]) : '?';
+      warn(what + ": an unknown tile format (it starts with \"" + shown + "\", not b3dm, glTF, cmpt or JSON); its tile is "
+           "left empty");
+      return false;
+    }
+    if (read) {
+      ++out.contentsRead;
+      if (!tile.content.empty()) tile.content += ", ";
+      tile.content += what;
+    }
+    return read;
+  }
+
+  void contentUri(const fs::path& base, const Json& c, const glm::dmat4& world, const std::string& upAxis,
+                  TilesetTile& tile, int tileIndex, int depth, const std::string& where) {
+    const char* key = c.contains("uri") ? "uri" : "url";  // "url" before 1.0
+    if (!c.is_object() || !c.contains(key) || !c[key].is_string()) {
+      warn(shortName(base) + ": " + where + ".content has no uri; skipped");
+      tile.contentMissing = true;
+      return;
+    }
+    std::string uri = c[key].get<std::string>();
+    if (uri.rfind("data:", 0) == 0) {
+      warn(shortName(base) + ": " + where + ": a data: URI content is not read");
+      tile.contentMissing = true;
+      return;
+    }
+    if (auto q = uri.find_first_of("?#"); q != std::string::npos) uri.resize(q);
+    ++out.contentsDeclared;
+    const fs::path file = base.parent_path() / uri;
+    if (isCancelled(progress)) return;
+    reportProgress(progress, 1.0 - 1.0 / (1.0 + 0.02 * double(++contentsDone)), "reading tiles");
+    // A tileset named again while it is being read: a cycle.
+    std::error_code ec;
+    const fs::path canon = fs::weakly_canonical(file, ec);
+    for (const fs::path& open : stack)
+      if (!ec && open == canon) {
+        std::string chain;
+        for (const fs::path& s : stack) chain += s.filename().string() + " -> ";
+        warn(shortName(base) + ": " + where + " names " + uri + ", a tileset already being read (cycle: " + chain +
+             canon.filename().string() + "); not followed");
+        tile.contentMissing = true;
+        return;
+      }
+    std::vector<uint8_t> bytes;
+    std::string problem;
+    if (!readBytes(file, bytes, problem)) {
+      warn(shortName(file) + " (content of " + where + " in " + shortName(base) + ") " + problem +
+           "; its tile is left empty");
+      tile.contentMissing = true;
+      return;
+    }
+    if (!content(file, bytes, world, upAxis, tile, tileIndex, depth)) tile.contentMissing = true;
+  }
+
+  // Tile `t` of tileset file `base` (JSON path `where`) under `parent`.
+  void tileNode(const fs::path& base, const Json& t, const glm::dmat4& parentWorld, int parent, bool parentAdds,
+                const std::string& upAxis, const std::string& where, int depth) {
+    if (isCancelled(progress)) return;
+    if (depth > 256) {
+      warn(shortName(base) + ": " + where + ": tiles nested deeper than 256; not read");
+      return;
+    }
+    if (!t.is_object()) {
+      warn(shortName(base) + ": " + where + " is not a tile object; skipped");
+      return;
+    }
+    glm::dmat4 world = parentWorld;
+    if (t.contains("transform")) {
+      const Json& m = t["transform"];
+      bool ok = m.is_array() && m.size() == 16;
+      for (size_t i = 0; ok && i < 16; ++i) ok = finiteNumber(m[i]);
+      if (ok) {
+        glm::dmat4 local;
+        for (int i = 0; i < 16; ++i) local[i / 4][i % 4] = m[size_t(i)].get<double>();  // column-major
+        world = parentWorld * local;
+      } else {
+        warn(shortName(base) + ": " + where + ".transform is not 16 finite numbers; ignored");
+      }
+    }
+    TilesetTile tile;
+    tile.parent = parent;
+    tile.additive = parentAdds;
+    if (t.contains("refine")) {
+      const std::string r = t["refine"].is_string() ? t["refine"].get<std::string>() : "";
+      if (r == "ADD" || r == "add") tile.additive = true;
+      else if (r == "REPLACE" || r == "replace") tile.additive = false;
+      else warn(shortName(base) + ": " + where + ".refine is neither ADD nor REPLACE; its parent's is used");
+    }
+    if (t.contains("geometricError") && finiteNumber(t["geometricError"]) && t["geometricError"].get<double>() >= 0.0) {
+      tile.geometricError = t["geometricError"].get<double>();
+    } else {
+      tile.geometricError = parent >= 0 ? out.tiles[size_t(parent)].geometricError : 0.0;
+      warn(shortName(base) + ": " + where + ".geometricError is missing or not a non-negative number; " +
+           (parent >= 0 ? "its parent's" : "0") + " is used");
+    }
+    if (t.contains("implicitTiling"))
+      warn(shortName(base) + ": " + where + " uses implicit tiling (3D Tiles 1.1), which is not read; its subtree is "
+           "left out");
+    const int index = int(out.tiles.size());
+    out.tiles.push_back(std::move(tile));
+    // Contents may append tiles (an external tileset's root becomes a child),
+    // so the tile is filled through a copy and put back.
+    TilesetTile filled = out.tiles.back();
+    if (t.contains("content"))
+      contentUri(base, t["content"], world, upAxis, filled, index, depth, where);
+    if (t.contains("contents") && t["contents"].is_array())
+      for (size_t i = 0; i < t["contents"].size(); ++i)
+        contentUri(base, t["contents"][i], world, upAxis, filled, index, depth,
+                   where + ".contents[" + std::to_string(i) + "]");
+    std::swap(out.tiles[size_t(index)].positions, filled.positions);
+    std::swap(out.tiles[size_t(index)].uvs, filled.uvs);
+    std::swap(out.tiles[size_t(index)].indices, filled.indices);
+    out.tiles[size_t(index)].content = filled.content;
+    out.tiles[size_t(index)].contentMissing = filled.contentMissing;
+    if (t.contains("children")) {
+      const Json& c = t["children"];
+      if (!c.is_array()) {
+        warn(shortName(base) + ": " + where + ".children is not an array; ignored");
+      } else {
+        for (size_t i = 0; i < c.size(); ++i)
+          tileNode(base, c[i], world, index, out.tiles[size_t(index)].additive, upAxis,
+                   where + ".children[" + std::to_string(i) + "]", depth + 1);
+      }
+    }
+  }
+
+  // A whole tileset file (the top one, or an external one whose root hangs
+  // under tile `parent`).
+  void tileset(const fs::path& file, const Json& doc, const glm::dmat4& world, int parent, int depth) {
+    std::error_code ec;
+    stack.push_back(fs::weakly_canonical(file, ec));
+    ++out.tilesetFiles;
+    std::string upAxis = "Y";
+    if (doc.contains("asset") && doc["asset"].is_object()) {
+      const Json& a = doc["asset"];
+      if (a.contains("gltfUpAxis") && a["gltfUpAxis"].is_string()) upAxis = a["gltfUpAxis"].get<std::string>();
+      const std::string v = a.contains("version") && a["version"].is_string() ? a["version"].get<std::string>() : "";
+      if (out.version.empty()) out.version = v;
+      if (v != "1.0" && v != "1.1" && v != "0.0")
+        warn(shortName(file) + ": asset.version \"" + v + "\" (this reader knows 1.0 and 1.1); read as 1.1");
+    } else {
+      warn(shortName(file) + ": it has no asset object; read as 3D Tiles 1.1");
+    }
+    const bool adds = parent >= 0 && out.tiles[size_t(parent)].additive;
+    tileNode(file, doc["root"], world, parent, adds, upAxis, "root", depth);
+    stack.pop_back();
+  }
+};
+
+}  // namespace
+
+bool isTilesetFile(const std::string& path) {
+  const fs::path p(path);
+  std::string ext = p.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".json") return false;
+  std::vector<uint8_t> bytes;
+  std::string problem;
+  if (!readBytes(p, bytes, problem)) return true;  // a .json named for import: let the reader say what is wrong
+  std::string perr;
+  const std::optional<Json> j = parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), perr);
+  return !j || (j->is_object() && j->contains("root"));
+}
+
+bool readTileset(const std::string& path, Tileset& out, std::string& error, const Progress* progress) {
+  out = Tileset{};
+  std::vector<uint8_t> bytes;
+  std::string problem;
+  if (!readBytes(path, bytes, problem)) {
+    error = path + ": the tileset " + problem;
+    return false;
+  }
+  std::string perr;
+  const std::optional<Json> doc = parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), perr);
+  if (!doc) {
+    error = path + ": not a tileset: " + perr;
+    return false;
+  }
+  if (!doc->is_object() || !doc->contains("root") || !(*doc)["root"].is_object()) {
+    error = path + ": not a 3D Tiles tileset (no \"root\" tile)";
+    return false;
+  }
+  Reader r{out, progress, {}};
+  r.tileset(fs::path(path), *doc, glm::dmat4(1.0), -1, 0);
+  if (isCancelled(progress)) return false;
+  size_t triangles = 0;
+  for (const TilesetTile& t : out.tiles) triangles += t.indices.size() / 3;
+  if (triangles == 0) {
+    error = path + ": no triangles came in (" + std::to_string(out.contentsRead) + " of " +
+            std::to_string(out.contentsDeclared) + " contents read)";
+    for (const std::string& w : out.warnings) error += "\n  " + w;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace hs::mesh
