@@ -22,6 +22,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "core/progress.h"
 #include "terrain/dem_import.h"
@@ -70,6 +71,15 @@ struct Backend {
   // Writes a tiled, deflated GeoTIFF beside `path` and renames it over it:
   // a failed export never leaves a half-written file under the user's name.
   virtual Status writeGeoTiff(const GeoTiffRaster& raster, const std::string& path) const = 0;
+  // Reprojects `points` in place from the CRS `from` to `to` (anything
+  // OSRSetFromUserInput takes: "EPSG:4978", WKT, a PROJ string; x and y in
+  // GIS order, z carried through: ECEF to a projected CRS gives heights on
+  // the ellipsoid). `to` = "utm": the WGS 84 UTM zone holding the points'
+  // centre. Fills `toDefinition` ("EPSG:n" when it has that code, else
+  // its WKT) and `toName` with the CRS reached. False with
+  // `error` for a CRS PROJ does not know or a point it cannot convert.
+  virtual bool transformPoints(const std::string& from, const std::string& to, std::vector<glm::dvec3>& points,
+                               std::string& toDefinition, std::string& toName, std::string& error) const = 0;
 };
 
 // The module's calls (loading it on the first call), or nullptr with

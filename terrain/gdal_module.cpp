@@ -18,6 +18,10 @@ struct GdalBackend final : gdal_door::Backend {
   Status writeGeoTiff(const gdal_door::GeoTiffRaster& raster, const std::string& path) const override {
     return gdal_side::writeGeoTiff(raster, path);
   }
+  bool transformPoints(const std::string& from, const std::string& to, std::vector<glm::dvec3>& points,
+                       std::string& toDefinition, std::string& toName, std::string& error) const override {
+    return gdal_side::transformPoints(from, to, points, toDefinition, toName, error);
+  }
 };
 
 }  // namespace
