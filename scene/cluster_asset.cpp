@@ -265,9 +265,20 @@ uint64_t clusterIndexHash(const ClusterAsset& asset) {
 
 ClusterBuild buildClusterAsset(const mesh::MeshData& input, const mesh::ClusterOptions& options,
                                size_t proxyTriangles, const Progress* progress) {
+  mesh::ClusterBuildReport report;
+  mesh::ClusterHierarchy h = mesh::buildClusterHierarchy(input, options, &report, progress);
+  if (isCancelled(progress)) {
+    ClusterBuild b;
+    b.report = report;
+    return b;
+  }
+  ClusterBuild b = clusterAssetOfHierarchy(h, proxyTriangles);
+  b.report = report;
+  return b;
+}
+
+ClusterBuild clusterAssetOfHierarchy(const mesh::ClusterHierarchy& h, size_t proxyTriangles) {
   ClusterBuild b;
-  mesh::ClusterHierarchy h = mesh::buildClusterHierarchy(input, options, &b.report, progress);
-  if (isCancelled(progress)) return b;
   b.proxy = mesh::meshOfCut(h, mesh::uniformClusterCut(h, proxyTriangles, &b.proxyError));
   mesh::computeVertexNormals(b.proxy);
   ClusterAsset c = clusterAssetOf(mesh::paginate(h));

@@ -122,5 +122,8 @@ struct ClusterBuild {
 };
 ClusterBuild buildClusterAsset(const mesh::MeshData& input, const mesh::ClusterOptions& options,
                                size_t proxyTriangles, const Progress* progress = nullptr);
+// The same from a hierarchy built elsewhere (a 3D Tiles import:
+// meshproc/cluster_from_tiles.h); `report` is left empty.
+ClusterBuild clusterAssetOfHierarchy(const mesh::ClusterHierarchy& h, size_t proxyTriangles);
 
 }  // namespace hs::scene

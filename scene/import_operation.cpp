@@ -9,11 +9,12 @@ const OperationDecl& meshImportOperation() {
   static const OperationDecl op = [] {
     OperationDecl o{
         .name = "import",
-        .summary = "import a mesh (OBJ, FBX, PLY, glTF, ...) into a scene",
+        .summary = "import a mesh (OBJ, FBX, PLY, glTF, 3D Tiles, ...) into a scene",
         .usage = "<mesh-file> [more tiles ...] <scene.hscene> [options]",
         .description = "Imports a mesh (OBJ, FBX, PLY, glTF/GLB, DAE, 3DS, STL) into an existing scene as a new "
                        "asset and an entity showing it, and saves the scene. Several files are the tiles of one "
-                       "scan: they share one origin, their borders are welded and they become one asset.",
+                       "scan: they share one origin, their borders are welded and they become one asset. A 3D "
+                       "Tiles tileset.json comes in as one asset whose cluster hierarchy is its tile tree.",
         .positionals = {{.name = "mesh-file", .help = "the mesh, or the tiles of one scan", .repeated = true},
                         {.name = "scene.hscene", .help = "the scene file (saved afterwards)"}}};
     o.params = {
@@ -34,6 +35,12 @@ const OperationDecl& meshImportOperation() {
                  "from the result: auto builds one for meshes of " +
                  std::to_string(kClusterAutoTriangles / 1000000) + "M triangles and more; one material only",
          .valueName = "MODE", .editor = true});
+    o.params.push_back(
+        {.key = "crs", .option = "crs", .label = "Tileset CRS", .type = ParamType::Text, .defaultValue = "auto",
+         .help = "3D Tiles: the coordinate system an ECEF tileset is converted to: auto (utm for ECEF, else its own "
+                 "frame as metres), utm (the zone of its centre, as `terrain import --crs utm`), local, or EPSG:n / "
+                 "WKT / PROJ",
+         .valueName = "CRS", .editor = true});
     o.params.push_back({.key = "report", .option = "report", .label = "Report", .type = ParamType::Text,
                         .help = "write the import and processing report as JSON (hausdorff_m, hausdorff_rel, "
                                 "mean_m, rms_m, p95_m, ...)",

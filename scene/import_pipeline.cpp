@@ -1,10 +1,12 @@
 #include "scene/import_pipeline.h"
 
 #include "mesh/tile_merge.h"
+#include "mesh/tileset_reader.h"
 #include "meshproc/report_json.h"
 #include "scene/asset_reports.h"
 #include "scene/cluster_asset.h"
 #include "scene/import_isolation.h"
+#include "scene/tileset_import.h"
 
 namespace hs::scene {
 namespace {
@@ -74,6 +76,9 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
     out.error = "no mesh file given";
     return out;
   }
+  // A 3D Tiles tileset brings its own levels of detail (tileset_import.h).
+  if (request.files.size() == 1 && mesh::isTilesetFile(request.files.front()))
+    return importTileset(request.files.front(), request, progress);
   const bool mayCluster = request.clusters != MeshImportRequest::Clusters::Off;
   const double readShare = request.process || mayCluster ? 0.35 : 1.0;
   const double processEnd = request.process && mayCluster ? 0.6 : 1.0;

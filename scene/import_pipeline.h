@@ -31,6 +31,10 @@ struct MeshImportRequest {
   // Auto builds one for meshes of at least kClusterAutoTriangles.
   enum class Clusters { Auto, On, Off } clusters = Clusters::Auto;
   mesh::ClusterOptions clusterOptions;
+  // A 3D Tiles tileset (scene/tileset_import.h): the coordinate system its
+  // ECEF frame is converted to ("auto": UTM for ECEF, else as it is;
+  // "utm", "local", or any CRS PROJ knows).
+  std::string tilesetCrs = "auto";
 };
 
 // Where `import` builds a cluster hierarchy unasked: a mesh this large

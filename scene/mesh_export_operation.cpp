@@ -1,14 +1,15 @@
 #include "scene/mesh_export_operation.h"
 
 #include "scene/mesh_target.h"
+#include "scene/tileset_export.h"
 
 namespace hs::scene {
 
 const OperationDecl& meshExportOperation() {
   static const OperationDecl op{
       .name = "mesh export",
-      .summary = "write a mesh asset or an entity's mesh as OBJ (+ MTL, textures), binary PLY or GLB",
-      .usage = "<scene.hscene> <asset-or-entity> <out.obj|.ply|.glb> [options]",
+      .summary = "write a mesh asset or an entity's mesh as OBJ (+ MTL, textures), binary PLY, GLB or 3D Tiles",
+      .usage = "<scene.hscene> <asset-or-entity> <out.obj|.ply|.glb|tileset.json> [options]",
       .description =
           "Writes a mesh for other tools. The name is an entity with a mesh (written where the entity places it: "
           "its world transform applied in double) or, if no entity has that name, a mesh asset (as imported). "
@@ -17,11 +18,14 @@ const OperationDecl& meshExportOperation() {
           "--origin auto reads it back), for every format. With --world, positions are absolute "
           "(UTM): OBJ writes every digit, PLY writes doubles, GLB puts the origin into its node's translation. "
           "OBJ writes its MTL and textures beside it; PLY keeps the first texture (MeshLab's TextureFile comment) "
-          "and no materials, and says so when the mesh has more.",
+          "and no materials, and says so when the mesh has more. 3D Tiles (tileset.json, or --format 3dtiles) "
+          "writes the asset, not an entity's placement: its cluster hierarchy as a tile tree of uniform cuts, or "
+          "its LOD chain, glb content in tiles/ beside tileset.json, placed on the globe from --crs "
+          "(docs/meshes.md).",
       .notes = "Files appear only when complete: a failed export leaves nothing half-written.",
       .positionals = {{.name = "scene.hscene", .help = "the scene file"},
                       {.name = "asset-or-entity", .help = "an entity with a mesh, or a mesh asset"},
-                      {.name = "out", .help = "the file to write (.obj, .ply, .glb)"}},
+                      {.name = "out", .help = "the file to write (.obj, .ply, .glb, or a tileset's .json)"}},
       .params = {
           {.key = "lod", .option = "lod", .label = "LOD level", .unit = Unit::Levels, .min = 0.0, .max = 31.0,
            .integer = true, .defaultValue = 0,
@@ -30,13 +34,18 @@ const OperationDecl& meshExportOperation() {
           {.key = "world", .option = "world", .label = "World coordinates", .type = ParamType::Flag,
            .defaultValue = false, .help = "write absolute (UTM) positions instead of relative ones and a sidecar"},
           {.key = "format", .option = "format", .label = "Format", .type = ParamType::Choice,
-           .defaultValue = "auto", .choices = {"auto", "obj", "ply", "glb"},
+           .defaultValue = "auto", .choices = {"auto", "obj", "ply", "glb", "3dtiles"},
            .help = "the file format (auto: from the extension)", .valueName = "F", .editor = true},
           {.key = "up", .option = "up", .label = "Up axis", .type = ParamType::Choice, .defaultValue = "auto",
            .choices = {"auto", "y", "z"},
            .help = "OBJ and PLY: the file's up axis (auto: Z with --world, as photogrammetry tools write UTM; "
                    "else Y, as DCC tools expect); GLB is always Y up",
            .valueName = "AXIS", .editor = true},
+          {.key = "crs", .option = "crs", .label = "Coordinate system", .type = ParamType::Text,
+           .defaultValue = "auto",
+           .help = "3D Tiles: the coordinate system of the asset's positions, to place the tileset on the globe "
+                   "(auto: the one its import recorded, else local; local: unplaced; or EPSG:n / WKT / PROJ)",
+           .valueName = "CRS", .editor = true},
       }};
   return op;
 }
@@ -47,6 +56,7 @@ MeshExportRequest MeshExportRequest::fromParams(const Json& v) {
   if (v.contains("world")) r.world = v["world"].get<bool>();
   if (v.contains("format") && v["format"] != "auto") r.format = v["format"].get<std::string>();
   if (v.contains("up")) r.up = v["up"].get<std::string>();
+  if (v.contains("crs")) r.crs = v["crs"].get<std::string>();
   return r;
 }
 
@@ -71,13 +81,28 @@ MeshExportOutcome exportSceneMesh(const SceneState& state, const MeshExportReque
     data = asset->lods[size_t(request.lod) - 1].data.get();
     o.what += ", LOD " + std::to_string(request.lod);
   }
+  const bool json = request.out.size() >= 5 && request.out.compare(request.out.size() - 5, 5, ".json") == 0;
+  if (request.format == "3dtiles" || (request.format.empty() && json)) {
+    if (request.lod > 0 || request.world)
+      o.result.warnings.push_back("3D Tiles holds every level and its own placement: --lod and --world are not used");
+    o.tiles3d = true;
+    o.what = "asset '" + asset->name + "'";
+    TilesetExportOptions t;
+    t.crs = request.crs;
+    std::vector<std::string> notes;
+    std::vector<std::string> warnings = std::move(o.result.warnings);
+    o.result = exportTileset(*asset, request.out, t, notes, progress);
+    o.result.warnings.insert(o.result.warnings.begin(), warnings.begin(), warnings.end());
+    o.notes = std::move(notes);
+    return o;
+  }
   std::optional<mesh::ExportFormat> format;
   if (request.format == "obj") format = mesh::ExportFormat::Obj;
   else if (request.format == "ply") format = mesh::ExportFormat::Ply;
   else if (request.format == "glb") format = mesh::ExportFormat::Glb;
   else format = mesh::exportFormatFromPath(request.out);
   if (!format) {
-    error = request.out + ": unknown mesh format; use .obj, .ply or .glb (or --format)";
+    error = request.out + ": unknown mesh format; use .obj, .ply, .glb or a tileset's .json (or --format)";
     return o;
   }
   o.format = *format;

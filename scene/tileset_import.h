@@ -1,0 +1,25 @@
+#pragma once
+// `import tileset.json SCENE` (issue 38 item 5): an OGC 3D Tiles tileset
+// (mesh/tileset_reader.h) comes in as one asset with a cluster hierarchy
+// made from its tile tree (meshproc/cluster_from_tiles.h), so scans
+// processed elsewhere keep their levels of detail and stream from the
+// scene file like a hierarchy built here.
+//
+// Placement: a tileset in ECEF (the usual case: its vertices lie near the
+// Earth's surface, 6,350-6,400 km from its centre) is converted vertex by
+// vertex through PROJ (terrain/gdal_door.h) to the UTM zone of its centre
+// ("auto"; heights on the WGS 84 ellipsoid, no geoid), the frame a DEM
+// imported with `terrain import --crs utm` has, so the two line up; or to
+// any CRS named. A tileset in a local frame is taken as metres, z up.
+// The asset's origin is the middle of its bounds in that CRS.
+#include <string>
+
+#include "core/progress.h"
+#include "scene/import_pipeline.h"
+
+namespace hs::scene {
+
+ImportedMesh importTileset(const std::string& path, const MeshImportRequest& request,
+                           const Progress* progress = nullptr);
+
+}  // namespace hs::scene
