@@ -14,6 +14,7 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QLineEdit>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QRadioButton>
@@ -179,6 +180,11 @@ ImportDialog::ImportDialog(const QStringList& files, const mesh::ImportOptions& 
                           "Build one (pages stream from the scene file)", "None"});
   clusters_->setObjectName("clusters");
   procForm->addRow(paramLabel(clusters), clusters_);
+  const ParamDecl& crs = scene::meshImportOperation().param("crs");
+  tilesetCrs_ = new QLineEdit(QString::fromStdString(crs.defaultValue.get<std::string>()), procBox);
+  tilesetCrs_->setObjectName("crs");
+  tilesetCrs_->setToolTip(QString::fromStdString(crs.help));
+  procForm->addRow(paramLabel(crs), tilesetCrs_);
   layout->addWidget(procBox);
 
   // Preview.
@@ -302,6 +308,7 @@ scene::MeshImportRequest ImportDialog::request() const {
   const QString clusters = clusters_->currentData().toString();
   using Clusters = scene::MeshImportRequest::Clusters;
   r.clusters = clusters == "on" ? Clusters::On : clusters == "off" ? Clusters::Off : Clusters::Auto;
+  r.tilesetCrs = tilesetCrs_->text().trimmed().toStdString();
   return r;
 }
 

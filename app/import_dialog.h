@@ -15,6 +15,7 @@
 
 class QCheckBox;
 class QComboBox;
+class QLineEdit;
 class QDoubleSpinBox;
 class QLabel;
 class QProgressBar;
@@ -57,6 +58,7 @@ class ImportDialog : public QDialog {
 
   QStringList files_;
   QComboBox *up_ = nullptr, *reader_ = nullptr, *targetKind_ = nullptr, *clusters_ = nullptr;
+  QLineEdit* tilesetCrs_ = nullptr;  // 3D Tiles: the CRS an ECEF tileset goes to
   QRadioButton *originAuto_ = nullptr, *originFile_ = nullptr, *originManual_ = nullptr;
   QDoubleSpinBox* origin_[3] = {nullptr, nullptr, nullptr};
   QCheckBox *clean_ = nullptr, *decimate_ = nullptr, *refine_ = nullptr, *certify_ = nullptr;

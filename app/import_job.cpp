@@ -1,5 +1,6 @@
 #include "app/import_job.h"
 
+#include <QDir>
 #include <QFileInfo>
 
 #include "app/background_job.h"
@@ -33,11 +34,15 @@ void ImportJob::cancel() { job_->cancel(); }
 QString importFileFilter() {
   QStringList patterns;
   for (const std::string& ext : mesh::supportedExtensions()) patterns << "*" + QString::fromStdString(ext);
-  return QString("Mesh files (%1);;All files (*)").arg(patterns.join(' '));
+  patterns << "tileset.json";
+  return QString("Mesh files (%1);;3D Tiles tilesets (*.json);;All files (*)").arg(patterns.join(' '));
 }
 
 QString entityNameForFile(const QString& path) {
-  const QString base = QFileInfo(path).completeBaseName();
+  const QFileInfo info(path);
+  QString base = info.completeBaseName();
+  // A 3D Tiles tileset is always tileset.json: its folder names the scan.
+  if (base == "tileset" && info.suffix() == "json") base = info.absoluteDir().dirName();
   return base.isEmpty() ? QString("Mesh") : base;
 }
 

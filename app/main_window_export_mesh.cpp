@@ -49,6 +49,7 @@ bool MainWindow::exportMesh(const scene::MeshExportRequest& request, bool wait) 
                                .arg(QString::fromStdString(outcome->what), file)
                                .arg(outcome->result.triangles);
       messages_->info(text);
+      for (const std::string& n : outcome->notes) messages_->info(QString::fromStdString(n));
       for (const std::string& w : outcome->result.warnings) messages_->warning(QString::fromStdString(w));
       statusBar()->showMessage(text, 5000);
     } else {

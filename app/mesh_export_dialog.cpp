@@ -47,12 +47,17 @@ MeshExportDialog::MeshExportDialog(const scene::SceneState& state, scene::Entity
   lod_ = paramIntSpin(op.param("lod"), this);
   lod_->setObjectName("lod");
   form->addRow(paramLabel(op.param("lod")), lod_);
-  format_ = paramCombo(op.param("format"), this, {"From the extension", "OBJ (+ MTL, textures)", "PLY (binary)", "GLB"});
+  format_ = paramCombo(op.param("format"), this,
+                       {"From the extension", "OBJ (+ MTL, textures)", "PLY (binary)", "GLB", "3D Tiles (tileset.json)"});
   format_->setObjectName("format");
   form->addRow(paramLabel(op.param("format")), format_);
   up_ = paramCombo(op.param("up"), this, {"Auto (Z with world coordinates)", "Y up", "Z up"});
   up_->setObjectName("up");
   form->addRow(paramLabel(op.param("up")), up_);
+  crs_ = new QLineEdit(QString::fromStdString(op.param("crs").defaultValue.get<std::string>()), this);
+  crs_->setObjectName("crs");
+  crs_->setToolTip(QString::fromStdString(op.param("crs").help));
+  form->addRow(paramLabel(op.param("crs")), crs_);
   world_ = new QCheckBox(paramLabel(op.param("world")), this);
   world_->setObjectName("world");
   world_->setToolTip(QString::fromStdString(paramHelp(op.param("world"))));
@@ -84,7 +89,8 @@ void MeshExportDialog::updateLodRange() {
 
 void MeshExportDialog::browse() {
   const QString p = QFileDialog::getSaveFileName(this, "Export Mesh", path_->text(),
-                                                 "Meshes (*.obj *.ply *.glb);;OBJ (*.obj);;PLY (*.ply);;GLB (*.glb)");
+                                                 "Meshes (*.obj *.ply *.glb *.json);;OBJ (*.obj);;PLY (*.ply);;GLB (*.glb);;"
+                                                 "3D Tiles (tileset.json)");
   if (!p.isEmpty()) path_->setText(p);
 }
 
@@ -93,7 +99,8 @@ scene::MeshExportRequest MeshExportDialog::request() const {
       Json{{"lod", lod_->value()},
            {"world", world_->isChecked()},
            {"format", format_->currentData().toString().toStdString()},
-           {"up", up_->currentData().toString().toStdString()}});
+           {"up", up_->currentData().toString().toStdString()},
+           {"crs", crs_->text().trimmed().toStdString()}});
   r.target = target_->currentData().toString().toStdString();
   r.out = path_->text().toStdString();
   return r;

@@ -34,6 +34,7 @@ class MeshExportDialog : public QDialog {
   QSpinBox* lod_;
   QComboBox* format_;
   QComboBox* up_;
+  QLineEdit* crs_;
   QCheckBox* world_;
 };
 

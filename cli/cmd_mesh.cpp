@@ -17,7 +17,7 @@ int runMeshExport(int argc, char** argv) {
   const std::string& path = args.positionals()[0];
   scene::MeshExportRequest request = scene::MeshExportRequest::fromParams(
       Json{{"lod", args.integer("lod")}, {"world", args.flag("world")}, {"format", args.text("format")},
-           {"up", args.text("up")}});
+           {"up", args.text("up")}, {"crs", args.text("crs")}});
   request.target = args.positionals()[1];
   request.out = args.positionals()[2];
   std::string error;
@@ -26,8 +26,10 @@ int runMeshExport(int argc, char** argv) {
   Progress progress = terminalProgress("Exporting " + request.target);
   const scene::MeshExportOutcome o = scene::exportSceneMesh(*s, request, &progress);
   if (!o.result.ok()) return args.fail(o.result.error);
-  std::printf("wrote %s as %s: %zu triangles, %zu vertices%s\n", o.what.c_str(), mesh::exportFormatName(o.format),
-              o.result.triangles, o.result.vertices, request.world ? ", world coordinates" : "");
+  std::printf("wrote %s as %s: %zu triangles, %zu vertices%s\n", o.what.c_str(),
+              o.tiles3d ? "3dtiles" : mesh::exportFormatName(o.format), o.result.triangles, o.result.vertices,
+              request.world && !o.tiles3d ? ", world coordinates" : "");
+  for (const std::string& n : o.notes) std::printf("%s\n", n.c_str());
   for (const std::string& f : o.result.written) std::printf("  %s\n", f.c_str());
   for (const std::string& w : o.result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return 0;

@@ -23,7 +23,7 @@ const std::vector<Command>& commands() {
       {"terrain", "terrains: new, import (DEM), erode, paint-rules, export", runTerrain},
       {"foliage", "foliage: plant (generate), type add, scatter, clear", runFoliage},
       {"particles", "particle emitters: add a preset (snow, fog, torch, campfire, dust)", runParticles},
-      {"mesh", "meshes: export (OBJ, PLY, GLB)", runMesh},
+      {"mesh", "meshes: export (OBJ, PLY, GLB, 3D Tiles)", runMesh},
       {"light", "lights: add a sun, point or spot light", runLight},
       {"lut", "the grading LUT: import (OpenColorIO formats, stored in the scene), clear", runLut},
       {"ocio", "the OpenColorIO config and its view transform: import (stored in the scene), list, clear", runOcio},

@@ -72,6 +72,7 @@ bool parseImportRequest(const OperationArgs& args, scene::MeshImportRequest& req
   const std::string clusters = args.text("clusters");
   using Clusters = scene::MeshImportRequest::Clusters;
   request.clusters = clusters == "on" ? Clusters::On : clusters == "off" ? Clusters::Off : Clusters::Auto;
+  request.tilesetCrs = args.text("crs");
   return true;
 }
 
