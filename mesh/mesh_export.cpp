@@ -160,7 +160,7 @@ ExportResult exportMesh(const MeshData& mesh, const std::string& path, const Exp
   switch (options.format) {
     case ExportFormat::Obj: ok = writeObj(mesh, g, path, options, files, progress, r.error); break;
     case ExportFormat::Ply: ok = writePly(mesh, g, path, options, files, progress, r.error); break;
-    case ExportFormat::Glb: ok = writeGlb(mesh, g, path, options, files, progress, r.error); break;
+    case ExportFormat::Glb: ok = writeGlb(mesh, g, path, options, files, progress, r.error, &r.quantizationError); break;
   }
   if (!ok) return r;
   // Relative positions: the placed origin beside the file as import's

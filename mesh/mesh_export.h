@@ -38,6 +38,9 @@ struct ExportOptions {
   bool world = false;         // absolute positions, else relative to the placed origin + sidecar
   bool zUp = false;           // OBJ and PLY: keep Z up (glTF is always Y-up)
   std::string comment;        // written into the file's header where the format has one
+  // GLB: KHR_draco_mesh_compression with positions quantized to this many
+  // bits (8-30; mesh/export/draco_encode.h); 0: plain accessors, exact.
+  int dracoBits = 0;
 };
 
 struct ExportResult {
@@ -46,6 +49,7 @@ struct ExportResult {
   std::vector<std::string> written; // every file written, the mesh first
   size_t vertices = 0, triangles = 0;
   glm::dvec3 origin{0.0};           // the placed origin (what a sidecar holds)
+  double quantizationError = 0.0;   // Draco: the largest distance a position moved, metres (0: exact)
   bool ok() const { return error.empty(); }
 };
 

@@ -68,6 +68,8 @@ struct Reader {
   const Progress* progress;
   std::vector<fs::path> stack;  // tilesets being read, outermost first (cycles)
   size_t contentsDone = 0;
+  int cmptDepth = 0;  // composites being read inside each other
+  static constexpr int kMaxCmptNesting = 8;
 
   void warn(std::string text) { out.warnings.push_back(std::move(text)); }
 
@@ -124,7 +126,7 @@ struct Reader {
           if (c.is_array() && c.size() == 3 && finiteNumber(c[0]) && finiteNumber(c[1]) && finiteNumber(c[2])) {
             rtc = {c[0].get<double>(), c[1].get<double>(), c[2].get<double>()};
           } else if (c.is_object() && c.contains("byteOffset") && c["byteOffset"].is_number_unsigned() &&
-                     c["byteOffset"].get<uint64_t>() + 24 <= ftBin) {
+                     ftBin >= 24 && c["byteOffset"].get<uint64_t>() <= ftBin - 24) {  // no wrap-around
             const uint8_t* p = &bytes[28 + ftJson + c["byteOffset"].get<uint64_t>()];
             double v[3];
             std::memcpy(v, p, 24);
@@ -137,6 +139,12 @@ struct Reader {
       read = glb(std::vector<uint8_t>(bytes.begin() + long(glbAt), bytes.begin() + long(total)), rtc);
     } else if (magic == "cmpt") {
       // A composite: inner tiles one after another, each with its own header.
+      // Composites inside composites are allowed; a file nesting them deeper
+      // than any exporter does is refused rather than recursed into.
+      if (cmptDepth >= kMaxCmptNesting) {
+        warn(what + ": cmpt tiles nested more than " + std::to_string(kMaxCmptNesting) + " deep; the rest skipped");
+        return false;
+      }
       if (bytes.size() < 16) {
         warn(what + ": a truncated cmpt header; its tile is left empty");
         return false;
@@ -151,8 +159,10 @@ struct Reader {
           break;
         }
         const uint32_t len = le32(&bytes[at + 8]);
+        ++cmptDepth;
         any = content(file, std::vector<uint8_t>(bytes.begin() + long(at), bytes.begin() + long(at + len)), world,
                       upAxis, tile, tileIndex, depth) || any;
+        --cmptDepth;
         at += len;
       }
       return any;
@@ -161,8 +171,9 @@ struct Reader {
            (magic == "pnts" ? "points" : magic == "i3dm" ? "instanced models" : "vector data") +
            ") is not read: a cluster hierarchy holds triangles");
       return false;
-    } else if (!bytes.empty() && (bytes[0] == '{' || bytes[0] == ' ' || bytes[0] == '\n')) {
-      // JSON: an external tileset, or a glTF asset.
+    } else if (cmptDepth == 0 && !bytes.empty() && (bytes[0] == '{' || bytes[0] == ' ' || bytes[0] == '\n')) {
+      // JSON: an external tileset, or a glTF asset (never inside a cmpt,
+      // whose inner tiles are binary with headers).
       std::string perr;
       std::optional<Json> j = parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), perr);
       if (!j) {
@@ -368,7 +379,11 @@ bool readTileset(const std::string& path, Tileset& out, std::string& error, cons
   if (triangles == 0) {
     error = path + ": no triangles came in (" + std::to_string(out.contentsRead) + " of " +
             std::to_string(out.contentsDeclared) + " contents read)";
-    for (const std::string& w : out.warnings) error += "\n  " + w;
+    // On one line: the CLI escapes line breaks in a message (file names
+    // could carry terminal controls).
+    constexpr size_t kShown = 8;
+    for (size_t i = 0; i < out.warnings.size() && i < kShown; ++i) error += (i ? "; " : ": ") + out.warnings[i];
+    if (out.warnings.size() > kShown) error += "; and " + std::to_string(out.warnings.size() - kShown) + " more";
     return false;
   }
   return true;

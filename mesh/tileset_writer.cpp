@@ -1,5 +1,6 @@
 #include "mesh/tileset_writer.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <limits>
 
@@ -74,12 +75,15 @@ ExportResult writeTileset(const std::vector<TileToWrite>& tiles, const std::stri
     ExportOptions o;
     o.format = ExportFormat::Glb;
     o.world = true;  // the tile's origin into its node's translation; floats about it
+    o.dracoBits = options.dracoBits;
     const exporting::Geometry g = exporting::placeGeometry(m, o, true);
     contentUri[i] = "tiles/" + std::to_string(i) + ".glb";
-    if (!exporting::writeGlb(m, g, (dir / contentUri[i]).string(), o, files, nullptr, r.error)) {
+    double moved = 0.0;
+    if (!exporting::writeGlb(m, g, (dir / contentUri[i]).string(), o, files, nullptr, r.error, &moved)) {
       giveUp();
       return r;
     }
+    r.quantizationError = std::max(r.quantizationError, moved);
     r.vertices += m.positions.size();
     r.triangles += m.indices.size() / 3;
   }

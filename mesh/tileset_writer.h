@@ -36,11 +36,13 @@ struct TilesetWriteOptions {
   glm::dmat4 rootTransform{1.0};
   double tilesetError = 0.0;   // the tileset's geometricError (above the root's)
   std::string generator = "Hybridscape";
+  int dracoBits = 0;           // content Draco-compressed, positions quantized to this many bits (0: exact)
 };
 
 // Writes `tiles` as `path` (tileset.json) and `tiles/<n>.glb` beside it.
-// The result lists every file written (tileset.json first) and counts
-// the vertices and triangles of every tile.
+// The result lists every file written (tileset.json first), counts the
+// vertices and triangles of every tile, and with Draco gives the largest
+// distance a position moved (quantizationError).
 ExportResult writeTileset(const std::vector<TileToWrite>& tiles, const std::string& path,
                           const TilesetWriteOptions& options, const Progress* progress = nullptr);
 

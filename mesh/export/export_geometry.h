@@ -63,7 +63,9 @@ bool writeObj(const MeshData& mesh, const Geometry& g, const std::string& path, 
               PendingFiles& files, const Progress* progress, std::string& error);
 bool writePly(const MeshData& mesh, const Geometry& g, const std::string& path, const ExportOptions& o,
               PendingFiles& files, const Progress* progress, std::string& error);
+// With `o.dracoBits`, `quantizationError` (if given) receives the largest
+// distance a position moved.
 bool writeGlb(const MeshData& mesh, const Geometry& g, const std::string& path, const ExportOptions& o,
-              PendingFiles& files, const Progress* progress, std::string& error);
+              PendingFiles& files, const Progress* progress, std::string& error, double* quantizationError = nullptr);
 
 }  // namespace hs::mesh::exporting
