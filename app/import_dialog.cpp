@@ -183,7 +183,7 @@ ImportDialog::ImportDialog(const QStringList& files, const mesh::ImportOptions& 
   const ParamDecl& crs = scene::meshImportOperation().param("crs");
   tilesetCrs_ = new QLineEdit(QString::fromStdString(crs.defaultValue.get<std::string>()), procBox);
   tilesetCrs_->setObjectName("crs");
-  tilesetCrs_->setToolTip(QString::fromStdString(crs.help));
+  tagParamWidget(tilesetCrs_, crs);
   procForm->addRow(paramLabel(crs), tilesetCrs_);
   layout->addWidget(procBox);
 

@@ -56,8 +56,12 @@ MeshExportDialog::MeshExportDialog(const scene::SceneState& state, scene::Entity
   form->addRow(paramLabel(op.param("up")), up_);
   crs_ = new QLineEdit(QString::fromStdString(op.param("crs").defaultValue.get<std::string>()), this);
   crs_->setObjectName("crs");
-  crs_->setToolTip(QString::fromStdString(op.param("crs").help));
+  tagParamWidget(crs_, op.param("crs"));
   form->addRow(paramLabel(op.param("crs")), crs_);
+  dracoBits_ = paramIntSpin(op.param("draco_bits"), this);
+  dracoBits_->setObjectName("draco_bits");
+  dracoBits_->setSpecialValueText("Off (exact)");
+  form->addRow(paramLabel(op.param("draco_bits")), dracoBits_);
   world_ = new QCheckBox(paramLabel(op.param("world")), this);
   world_->setObjectName("world");
   world_->setToolTip(QString::fromStdString(paramHelp(op.param("world"))));
@@ -100,7 +104,8 @@ scene::MeshExportRequest MeshExportDialog::request() const {
            {"world", world_->isChecked()},
            {"format", format_->currentData().toString().toStdString()},
            {"up", up_->currentData().toString().toStdString()},
-           {"crs", crs_->text().trimmed().toStdString()}});
+           {"crs", crs_->text().trimmed().toStdString()},
+           {"draco_bits", dracoBits_->value()}});
   r.target = target_->currentData().toString().toStdString();
   r.out = path_->text().toStdString();
   return r;

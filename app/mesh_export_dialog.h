@@ -35,6 +35,7 @@ class MeshExportDialog : public QDialog {
   QComboBox* format_;
   QComboBox* up_;
   QLineEdit* crs_;
+  QSpinBox* dracoBits_;
   QCheckBox* world_;
 };
 

@@ -17,7 +17,7 @@ int runMeshExport(int argc, char** argv) {
   const std::string& path = args.positionals()[0];
   scene::MeshExportRequest request = scene::MeshExportRequest::fromParams(
       Json{{"lod", args.integer("lod")}, {"world", args.flag("world")}, {"format", args.text("format")},
-           {"up", args.text("up")}, {"crs", args.text("crs")}});
+           {"up", args.text("up")}, {"crs", args.text("crs")}, {"draco_bits", args.integer("draco_bits")}});
   request.target = args.positionals()[1];
   request.out = args.positionals()[2];
   std::string error;

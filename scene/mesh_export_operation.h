@@ -23,6 +23,7 @@ struct MeshExportRequest {
   std::string format;  // "obj", "ply", "glb", "3dtiles", or empty: from the extension (.json: 3D Tiles)
   std::string crs = "auto";  // 3D Tiles: the positions' coordinate system (scene/tileset_export.h)
   std::string up = "auto";  // "y", "z", or "auto": Z up with --world (UTM), else Y up
+  int dracoBits = 0;        // GLB and 3D Tiles: Draco, positions quantized to this many bits (0: none)
   // The request from an operation's values (keys as declared).
   static MeshExportRequest fromParams(const Json& values);
 };

@@ -225,6 +225,7 @@ mesh::ExportResult exportTileset(const MeshAsset& asset, const std::string& path
     lodChainTiles(asset, tiles);
   }
   mesh::TilesetWriteOptions w;
+  w.dracoBits = options.dracoBits;
   std::string crs = options.crs.empty() ? "auto" : options.crs;
   if (crs == "auto") {
     crs = recordedCrs(asset);

@@ -31,6 +31,7 @@ namespace hs::scene {
 struct TilesetExportOptions {
   std::string crs = "auto";
   size_t maxTileTriangles = 65536;
+  int dracoBits = 0;  // content Draco-compressed with positions on a 2^bits grid per primitive (0: exact)
 };
 
 // Notes (what was assumed) go to `notes`; the result names every file.

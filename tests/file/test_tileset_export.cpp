@@ -151,6 +151,82 @@ class TestTilesetExport : public QObject {
     QVERIFY2(worst < 1e-5, qPrintable(QString("a leaf vertex %1 m from the scan's").arg(worst)));
   }
 
+  void dracoContentWithinItsReportedError() {
+    // The same tree with Draco content (14-bit positions): read back through
+    // the reader's own Draco decoding, every leaf vertex lies within the
+    // reported quantization error of the scan's, the error is what a 14-bit
+    // grid over a tile can give, and the files are smaller.
+    MeshImportRequest r;
+    r.files = {kBunny};
+    r.clusters = MeshImportRequest::Clusters::On;
+    ImportedMesh m = importMeshFiles(r);
+    QVERIFY2(m.ok(), m.error.c_str());
+    const MeshAsset asset = assetOf(std::move(m), "Bunny");
+    auto bytesOf = [](const mesh::ExportResult& w) {
+      uintmax_t total = 0;
+      for (const std::string& f : w.written) total += fs::file_size(f);
+      return total;
+    };
+    TilesetExportOptions o;
+    o.maxTileTriangles = 8000;
+    std::vector<std::string> notes;
+    const mesh::ExportResult exact = exportTileset(asset, dir("exact") + "/tileset.json", o, notes);
+    QVERIFY2(exact.ok(), exact.error.c_str());
+    QCOMPARE(exact.quantizationError, 0.0);
+    o.dracoBits = 14;
+    const std::string path = dir("draco") + "/tileset.json";
+    const mesh::ExportResult w = exportTileset(asset, path, o, notes);
+    QVERIFY2(w.ok(), w.error.c_str());
+    QCOMPARE(w.triangles, exact.triangles);
+    // Half a step of a 14-bit grid over the bunny's largest extent, on each axis.
+    const mesh::Bounds b = asset.data->bounds();
+    const glm::dvec3 extent = b.max - b.min;
+    const double bound = std::max({extent.x, extent.y, extent.z}) / ((1 << 14) - 1) * 0.5 * std::sqrt(3.0);
+    QVERIFY2(w.quantizationError > 0.0 && w.quantizationError <= bound * 1.001,
+             qPrintable(QString("reported %1 m, a 14-bit grid allows %2 m").arg(w.quantizationError).arg(bound)));
+    QVERIFY2(bytesOf(w) < bytesOf(exact) / 2,
+             qPrintable(QString("Draco %1 bytes, exact %2").arg(bytesOf(w)).arg(bytesOf(exact))));
+    mesh::Tileset back;
+    std::string error;
+    QVERIFY2(mesh::readTileset(path, back, error), error.c_str());
+    QVERIFY2(back.warnings.empty(), back.warnings.empty() ? "" : back.warnings.front().c_str());
+    std::vector<glm::dvec3> level0;
+    const mesh::ClusterIndex& index = asset.clusters->index;
+    for (uint32_t p = 0; p < index.pageCount; ++p) {
+      auto page = asset.clusters->loadPage(p, "bunny", error);
+      QVERIFY(page);
+      for (const mesh::PageCluster& c : *page)
+        if (index.clusters[c.cluster].level == 0)
+          for (const glm::vec3& v : c.positions) level0.push_back(index.origin + glm::dvec3(v));
+    }
+    std::sort(level0.begin(), level0.end(), [](auto& a, auto& c) { return a.x < c.x; });
+    std::vector<uint8_t> hasChild(back.tiles.size(), 0);
+    for (const mesh::TilesetTile& t : back.tiles)
+      if (t.parent >= 0) hasChild[size_t(t.parent)] = 1;
+    double worst = 0.0;
+    size_t checked = 0, leafTriangles = 0;
+    const double reach = w.quantizationError + 1e-6;
+    for (size_t i = 0; i < back.tiles.size(); ++i) {
+      if (hasChild[i]) continue;
+      leafTriangles += back.tiles[i].indices.size() / 3;
+      for (size_t v = 0; v < back.tiles[i].positions.size(); v += 7, ++checked) {
+        const glm::dvec3 q = back.tiles[i].positions[v];
+        double best = 1e300;
+        auto it = std::lower_bound(level0.begin(), level0.end(), q.x - reach, [](auto& a, double x) { return a.x < x; });
+        for (; it != level0.end() && it->x <= q.x + reach; ++it) best = std::min(best, glm::length(*it - q));
+        worst = std::max(worst, best);
+      }
+    }
+    QCOMPARE(leafTriangles, asset.clusters->triangles(0));
+    QVERIFY(checked > 1000);
+    // Float positions about each tile's centre add their own rounding (a
+    // few tenths of a micrometre at the bunny's size).
+    QVERIFY2(worst <= w.quantizationError + 1e-6,
+             qPrintable(QString("a decoded vertex %1 m from the scan's; reported %2 m").arg(worst).arg(w.quantizationError)));
+    QVERIFY2(worst > 0.25 * w.quantizationError, qPrintable(QString("measured %1 m, reported %2 m: the report "
+                                                                     "overstates").arg(worst).arg(w.quantizationError)));
+  }
+
   void lodChainAsNestedTiles() {
     MeshImportRequest r;
     r.files = {kBunny};
@@ -215,6 +291,19 @@ class TestTilesetExport : public QObject {
     const glm::dvec3 a = origin(first), b = origin(second);
     QVERIFY2(glm::length(a - b) < 1e-3, qPrintable(QString("origins %1 m apart").arg(glm::length(a - b))));
     QVERIFY(a.x > 100000.0 && a.y > 4000000.0);  // UTM metres, not ECEF
+    // Draco through the CLI: said with its measured error, read back.
+    const QString packed = QString::fromStdString(dir("packed") + "/tileset.json"), third = tmp_.path() + "/third.hscene";
+    c = test::runCli({"mesh", "export", first, "Pillar", packed, "--draco-bits", "20"}, tmp_.path());
+    QVERIFY2(c.code == 0, qPrintable(c.err));
+    QVERIFY2(c.out.contains("Draco: positions on a 20-bit grid, the largest move"), qPrintable(c.out));
+    QCOMPARE(test::runCli({"new", third}, tmp_.path()).code, 0);
+    c = test::runCli({"import", packed, third, "--name", "Packed"}, tmp_.path());
+    QVERIFY2(c.code == 0, qPrintable(c.err));
+    // 20 bits over a 283 m tile: a 0.27 mm grid.
+    QVERIFY2(glm::length(origin(third) - a) < 1e-3, qPrintable(QString("%1 m").arg(glm::length(origin(third) - a))));
+    c = test::runCli({"mesh", "export", first, "Pillar", packed, "--draco-bits", "5"}, tmp_.path());
+    QVERIFY(c.code != 0);
+    QVERIFY2(c.err.contains("8 to 30"), qPrintable(c.err));
   }
 };
 
