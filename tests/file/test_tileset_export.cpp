@@ -12,6 +12,7 @@
 #include <filesystem>
 
 #include "cli_runner.h"
+#include "cluster_vertices.h"
 #include "file_bytes.h"
 #include "tileset_files.h"
 #include "core/json.h"
@@ -125,26 +126,13 @@ class TestTilesetExport : public QObject {
     QCOMPARE(leafTriangles, bunnyTriangles);
     // Leaves' vertices are the scan's own, where the asset has them (its
     // local frame: the root's transform is the origin).
-    const mesh::ClusterIndex& index = asset.clusters->index;
-    std::vector<glm::dvec3> level0;
-    for (uint32_t p = 0; p < index.pageCount; ++p) {
-      auto page = asset.clusters->loadPage(p, "bunny", error);
-      QVERIFY(page);
-      for (const mesh::PageCluster& c : *page)
-        if (index.clusters[c.cluster].level == 0)
-          for (const glm::vec3& v : c.positions) level0.push_back(index.origin + glm::dvec3(v));
-    }
-    std::sort(level0.begin(), level0.end(), [](auto& a, auto& b) { return a.x < b.x; });
+    const std::vector<glm::dvec3> level0 = test::clusterLevelVertices(*asset.clusters, 0);
     double worst = 0.0;
     size_t checked = 0;
     for (size_t i = 0; i < back.tiles.size(); ++i) {
       if (hasChild[i]) continue;
       for (size_t v = 0; v < back.tiles[i].positions.size(); v += 97, ++checked) {
-        const glm::dvec3 q = back.tiles[i].positions[v];
-        double best = 1e300;
-        auto it = std::lower_bound(level0.begin(), level0.end(), q.x - 1e-3, [](auto& a, double x) { return a.x < x; });
-        for (; it != level0.end() && it->x <= q.x + 1e-3; ++it) best = std::min(best, glm::length(*it - q));
-        worst = std::max(worst, best);
+        worst = std::max(worst, test::nearestOf(level0, back.tiles[i].positions[v], 1e-3));
       }
     }
     QVERIFY(checked > 100);
@@ -190,16 +178,7 @@ class TestTilesetExport : public QObject {
     std::string error;
     QVERIFY2(mesh::readTileset(path, back, error), error.c_str());
     QVERIFY2(back.warnings.empty(), back.warnings.empty() ? "" : back.warnings.front().c_str());
-    std::vector<glm::dvec3> level0;
-    const mesh::ClusterIndex& index = asset.clusters->index;
-    for (uint32_t p = 0; p < index.pageCount; ++p) {
-      auto page = asset.clusters->loadPage(p, "bunny", error);
-      QVERIFY(page);
-      for (const mesh::PageCluster& c : *page)
-        if (index.clusters[c.cluster].level == 0)
-          for (const glm::vec3& v : c.positions) level0.push_back(index.origin + glm::dvec3(v));
-    }
-    std::sort(level0.begin(), level0.end(), [](auto& a, auto& c) { return a.x < c.x; });
+    const std::vector<glm::dvec3> level0 = test::clusterLevelVertices(*asset.clusters, 0);
     std::vector<uint8_t> hasChild(back.tiles.size(), 0);
     for (const mesh::TilesetTile& t : back.tiles)
       if (t.parent >= 0) hasChild[size_t(t.parent)] = 1;
@@ -210,11 +189,7 @@ class TestTilesetExport : public QObject {
       if (hasChild[i]) continue;
       leafTriangles += back.tiles[i].indices.size() / 3;
       for (size_t v = 0; v < back.tiles[i].positions.size(); v += 7, ++checked) {
-        const glm::dvec3 q = back.tiles[i].positions[v];
-        double best = 1e300;
-        auto it = std::lower_bound(level0.begin(), level0.end(), q.x - reach, [](auto& a, double x) { return a.x < x; });
-        for (; it != level0.end() && it->x <= q.x + reach; ++it) best = std::min(best, glm::length(*it - q));
-        worst = std::max(worst, best);
+        worst = std::max(worst, test::nearestOf(level0, back.tiles[i].positions[v], reach));
       }
     }
     QCOMPARE(leafTriangles, asset.clusters->triangles(0));

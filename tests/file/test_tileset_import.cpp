@@ -20,6 +20,7 @@
 #include <set>
 
 #include "cli_runner.h"
+#include "cluster_vertices.h"
 #include "file_bytes.h"
 #include "tileset_files.h"
 #include "core/json.h"
@@ -81,25 +82,6 @@ Json tilesetOf(Json root) {
   return {{"asset", {{"version", "1.0"}}}, {"geometricError", 100}, {"root", std::move(root)}};
 }
 
-// Every vertex of the hierarchy's clusters of `level`, in world metres.
-std::vector<glm::dvec3> worldVertices(const ClusterAsset& a, uint32_t level) {
-  std::vector<glm::dvec3> out;
-  for (uint32_t p = 0; p < a.index.pageCount; ++p) {
-    std::string error;
-    auto page = a.loadPage(p, "test", error);
-    if (!page) qFatal("%s", error.c_str());
-    for (const mesh::PageCluster& c : *page)
-      if (a.index.clusters[c.cluster].level == level)
-        for (const glm::vec3& v : c.positions) out.push_back(a.index.origin + glm::dvec3(v));
-  }
-  return out;
-}
-
-double nearest(const std::vector<glm::dvec3>& points, const glm::dvec3& q) {
-  double best = 1e300;
-  for (const glm::dvec3& p : points) best = std::min(best, glm::length(p - q));
-  return best;
-}
 
 }  // namespace
 
@@ -164,12 +146,12 @@ class TestTilesetImport : public QObject {
   void placesVerticesInUtm() {
     const ImportedMesh m = imported(goodTileset());
     QVERIFY2(m.ok(), m.error.c_str());
-    const std::vector<glm::dvec3> fine = worldVertices(*m.clusters, 0), root = worldVertices(*m.clusters, 1);
+    const std::vector<glm::dvec3> fine = test::clusterLevelVertices(*m.clusters, 0), root = test::clusterLevelVertices(*m.clusters, 1);
     double worst = 0.0;
     for (const test::TestGrid& g : {west(), east()})  // the plain glb and the Draco one
-      for (const glm::dvec3& p : g.points) worst = std::max(worst, nearest(fine, expectedUtm(p)));
+      for (const glm::dvec3& p : g.points) worst = std::max(worst, test::nearestOf(fine, expectedUtm(p), 1.0));
     for (const glm::dvec3& p : coarse().points)  // b3dm with RTC_CENTER
-      worst = std::max(worst, nearest(root, expectedUtm(p)));
+      worst = std::max(worst, test::nearestOf(root, expectedUtm(p), 1.0));
     // Float positions about an origin in the middle: 200 m spans resolve to
     // about 10 micrometres; PROJ and Bowring agree far closer than that.
     QVERIFY2(worst < 1e-3, qPrintable(QString("largest distance from the expected UTM position: %1 m").arg(worst)));
