@@ -10,20 +10,6 @@
 #include "terrain/gdal_util.h"
 
 namespace hs::terrain::gdal_side {
-namespace {
-
-struct TransformDeleter {
-  void operator()(void* t) const {
-    if (t) OCTDestroyCoordinateTransformation(static_cast<OGRCoordinateTransformationH>(t));
-  }
-};
-using TransformPtr = std::unique_ptr<void, TransformDeleter>;
-
-TransformPtr makeTransform(OGRSpatialReferenceH a, OGRSpatialReferenceH b) {
-  return TransformPtr(OCTNewCoordinateTransformation(a, b));
-}
-
-}  // namespace
 
 bool transformPoints(const std::string& from, const std::string& to, std::vector<glm::dvec3>& points,
                      std::string& toDefinition, std::string& toName, std::string& error) {

@@ -16,6 +16,18 @@ struct SrsDeleter {
 };
 using SrsPtr = std::unique_ptr<void, SrsDeleter>;
 
+struct TransformDeleter {
+  void operator()(void* t) const {
+    if (t) OCTDestroyCoordinateTransformation(static_cast<OGRCoordinateTransformationH>(t));
+  }
+};
+using TransformPtr = std::unique_ptr<void, TransformDeleter>;
+
+// PROJ's transformation from `from` to `to` (null when there is none).
+inline TransformPtr makeTransform(OGRSpatialReferenceH from, OGRSpatialReferenceH to) {
+  return TransformPtr(OCTNewCoordinateTransformation(from, to));
+}
+
 // A spatial reference with x = easting/longitude, y = northing/latitude
 // whatever the authority says (GIS axis order), from WKT, "EPSG:n", PROJ
 // strings, ... (anything OSRSetFromUserInput takes). Null on failure.

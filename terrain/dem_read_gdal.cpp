@@ -29,17 +29,6 @@ struct Fail {
 // means the CRS cannot give the terrain its true size.
 constexpr double kMaxScaleError = 0.005;
 
-struct CtDeleter {
-  void operator()(void* t) const {
-    if (t) OCTDestroyCoordinateTransformation(static_cast<OGRCoordinateTransformationH>(t));
-  }
-};
-using CtPtr = std::unique_ptr<void, CtDeleter>;
-
-CtPtr makeTransform(OGRSpatialReferenceH from, OGRSpatialReferenceH to) {
-  return CtPtr(OCTNewCoordinateTransformation(from, to));
-}
-
 struct GdalProgressData {
   const Progress* progress;
   double base, span;
@@ -64,7 +53,7 @@ double measureScaleError(OGRSpatialReferenceH srs, const double* gt, int x0, int
   SrsPtr geog(OSRCloneGeogCS(srs));
   if (!geog) return 0.0;
   OSRSetAxisMappingStrategy(static_cast<OGRSpatialReferenceH>(geog.get()), OAMS_TRADITIONAL_GIS_ORDER);
-  CtPtr ct = makeTransform(srs, static_cast<OGRSpatialReferenceH>(geog.get()));
+  TransformPtr ct = makeTransform(srs, static_cast<OGRSpatialReferenceH>(geog.get()));
   if (!ct) return 0.0;
   double worst = 0.0;
   const double cx = x0 + 0.5 * w, cy = y0 + 0.5 * h;
@@ -84,7 +73,7 @@ double measureScaleError(OGRSpatialReferenceH srs, const double* gt, int x0, int
 // pixel window (in `from`), from densified edges.
 bool innerRectangle(OGRSpatialReferenceH from, OGRSpatialReferenceH to, const double* gt, int x0, int y0, int w,
                     int h, double& xmin, double& ymin, double& xmax, double& ymax, std::string& err) {
-  CtPtr ct = makeTransform(from, to);
+  TransformPtr ct = makeTransform(from, to);
   if (!ct) {
     err = "no coordinate transformation between the DEM's CRS and the target CRS";
     return false;
@@ -253,7 +242,7 @@ void read(const std::string& path, const DemImportOptions& opt, const Progress* 
       if (win.units == DemWindow::Units::LonLat) {
         if (!src) fail("a window in degrees needs a DEM with a CRS");
         SrsPtr wgs = makeSrs("EPSG:4326");
-        CtPtr ct = makeTransform(static_cast<OGRSpatialReferenceH>(wgs.get()), src);
+        TransformPtr ct = makeTransform(static_cast<OGRSpatialReferenceH>(wgs.get()), src);
         if (!ct) fail("cannot transform the lon/lat window to the DEM's CRS");
         std::vector<double> xs, ys;
         for (int i = 0; i <= 16; ++i) {
@@ -328,7 +317,7 @@ void read(const std::string& path, const DemImportOptions& opt, const Progress* 
         // Centre of the window in lon/lat.
         SrsPtr geog(OSRCloneGeogCS(src));
         OSRSetAxisMappingStrategy(static_cast<OGRSpatialReferenceH>(geog.get()), OAMS_TRADITIONAL_GIS_ORDER);
-        CtPtr ct = makeTransform(src, static_cast<OGRSpatialReferenceH>(geog.get()));
+        TransformPtr ct = makeTransform(src, static_cast<OGRSpatialReferenceH>(geog.get()));
         glm::dvec2 c = applyGt(gt, wx0 + 0.5 * ww, wy0 + 0.5 * wh);
         if (!ct || !OCTTransform(static_cast<OGRCoordinateTransformationH>(ct.get()), 1, &c.x, &c.y, nullptr))
           fail("cannot find the DEM's centre in longitude/latitude");
