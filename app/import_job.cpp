@@ -1,10 +1,10 @@
 #include "app/import_job.h"
 
-#include <QDir>
 #include <QFileInfo>
 
 #include "app/background_job.h"
 #include "scene/operations.h"
+#include "scene/tileset_import.h"
 
 namespace hs::app {
 
@@ -39,10 +39,7 @@ QString importFileFilter() {
 }
 
 QString entityNameForFile(const QString& path) {
-  const QFileInfo info(path);
-  QString base = info.completeBaseName();
-  // A 3D Tiles tileset is always tileset.json: its folder names the scan.
-  if (base == "tileset" && info.suffix() == "json") base = info.absoluteDir().dirName();
+  const QString base = QString::fromStdString(scene::importedMeshName(path.toStdString()));
   return base.isEmpty() ? QString("Mesh") : base;
 }
 

@@ -12,6 +12,7 @@
 #include "scene/import_pipeline.h"
 #include "scene/mesh_report_text.h"
 #include "scene/operations.h"
+#include "scene/tileset_import.h"
 
 namespace hs::cli {
 
@@ -54,11 +55,7 @@ int runImport(int argc, char** argv) {
 
   scene::Document doc;
   doc.reset(std::move(*state), QString::fromStdString(scenePath));
-  // A 3D Tiles tileset is always tileset.json: its folder names the scan.
-  const std::filesystem::path file = std::filesystem::absolute(meshPath);
-  const std::string stem = file.stem() == "tileset" && file.extension() == ".json" ? file.parent_path().filename().string()
-                                                                                  : file.stem().string();
-  const std::string name = args.has("name") ? args.text("name") : stem;
+  const std::string name = args.has("name") ? args.text("name") : scene::importedMeshName(meshPath);
   // A clustered scan keeps a coarse cut as its mesh: say what was read.
   const bool clustered = result.clusters != nullptr;
   const size_t tris = clustered ? result.clusterReport.trianglesPerLevel.front() : result.mesh->triangleCount();

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 
 #include "mesh/tileset_reader.h"
 #include "meshproc/cluster_from_tiles.h"
@@ -139,6 +140,12 @@ ImportedMesh importTileset(const std::string& path, const MeshImportRequest& req
   out.clusterReport.seconds = rep.seconds;
   out.importReport = toJson(AssetImportReport{out.import, {}});
   return out;
+}
+
+std::string importedMeshName(const std::string& path) {
+  const std::filesystem::path file = std::filesystem::absolute(path);
+  if (file.stem() == "tileset" && file.extension() == ".json") return file.parent_path().filename().string();
+  return file.stem().string();
 }
 
 }  // namespace hs::scene

@@ -6,7 +6,7 @@
 // scene file like a hierarchy built here.
 //
 // Placement: a tileset in ECEF (the usual case: its vertices lie near the
-// Earth's surface, 6,350-6,400 km from its centre) is converted vertex by
+// Earth's surface, 6,300-6,400 km from its centre) is converted vertex by
 // vertex through PROJ (terrain/gdal_door.h) to the UTM zone of its centre
 // ("auto"; heights on the WGS 84 ellipsoid, no geoid), the frame a DEM
 // imported with `terrain import --crs utm` has, so the two line up; or to
@@ -21,5 +21,10 @@ namespace hs::scene {
 
 ImportedMesh importTileset(const std::string& path, const MeshImportRequest& request,
                            const Progress* progress = nullptr);
+
+// The name an imported file's asset and entity get: the file's stem, or
+// for a tileset (always tileset.json) the folder that holds it. The CLI's
+// import and the editor's use it.
+std::string importedMeshName(const std::string& path);
 
 }  // namespace hs::scene
