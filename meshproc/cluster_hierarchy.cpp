@@ -12,6 +12,7 @@
 #include "core/parallel.h"
 #include "meshproc/decimate.h"
 #include "meshproc/error_metrics.h"
+#include "meshproc/cluster_levels.h"
 #include "meshproc/cluster_parts.h"
 #include "meshproc/position_key.h"
 
@@ -158,6 +159,8 @@ std::vector<std::vector<uint32_t>> groupClusters(const ClusterHierarchy& h, cons
   return groups;
 }
 
+}  // namespace
+
 void addCluster(ClusterHierarchy& h, const Triangles& tris, uint32_t level, const LodSphere& lodBounds, float error) {
   Cluster c;
   c.firstIndex = uint32_t(h.indices.size());
@@ -170,7 +173,89 @@ void addCluster(ClusterHierarchy& h, const Triangles& tris, uint32_t level, cons
   h.clusters.push_back(c);
 }
 
-}  // namespace
+LevelStep simplifyLevel(ClusterHierarchy& h, const std::vector<uint32_t>& active, uint32_t level,
+                        const ClusterOptions& options, const ExternalLock& externalLock, const GroupedHook& onGrouped,
+                        ClusterBuildReport& rep, const Progress* progress) {
+  LevelStep step;
+  const unsigned threads = resolveThreads(options.threads);
+  const std::vector<std::vector<uint32_t>> groups = groupClusters(h, active, std::max<size_t>(2, options.groupSize));
+  if (onGrouped) onGrouped(groups);
+  // Locked: a vertex whose position two groups' triangles use (their
+  // shared border; by position, so both sides of a UV seam along it), and
+  // one the caller says is shared with what lies outside (`externalLock`).
+  // Positions compared by their key: a collision locks more, never less.
+  std::unordered_map<uint64_t, int> ownerGroup;
+  std::unordered_map<uint64_t, bool> shared;
+  std::vector<Triangles> groupTris(groups.size());
+  for (size_t g = 0; g < groups.size(); ++g)
+    for (uint32_t id : groups[g]) {
+      const Cluster& c = h.clusters[id];
+      for (uint32_t i = 0; i < c.triangleCount * 3; ++i) {
+        const uint32_t v = h.indices[c.firstIndex + i];
+        groupTris[g].push_back(v);
+        const uint64_t key = positionKey(h.positions[v]);
+        auto [it, first] = ownerGroup.try_emplace(key, int(g));
+        if (!first && it->second != int(g)) shared[key] = true;
+      }
+    }
+  std::vector<uint8_t> locked(h.positions.size(), 0);
+  for (size_t v = 0; v < h.positions.size(); ++v)
+    locked[v] = shared.count(positionKey(h.positions[v])) || (externalLock && externalLock(h.positions[v])) ? 1 : 0;
+  std::vector<GroupResult> results(groups.size());
+  parallelFor(int64_t(groups.size()), int(threads), 1, [&](int64_t b, int64_t e) {
+    for (int64_t g = b; g < e && !isCancelled(progress); ++g)
+      results[size_t(g)] = simplifyGroup(h.positions, h.uvs, groupTris[size_t(g)], locked, options);
+  });
+  if (isCancelled(progress)) {
+    step.cancelled = true;
+    return step;
+  }
+  // Merged in group order: the pool and the clusters come out the same
+  // whatever the thread count.
+  for (size_t g = 0; g < groups.size(); ++g) {
+    GroupResult& r = results[g];
+    ++rep.groups;
+    if (!r.simplified) {
+      ++rep.groupsKept;
+      step.next.insert(step.next.end(), groups[g].begin(), groups[g].end());
+      continue;
+    }
+    ++step.simplified;
+    LodSphere sphere = sphereOf(h.positions, groupTris[g].data(), groupTris[g].size());
+    // The distance to the input adds up along the levels (Hausdorff's
+    // triangle inequality): the children's largest plus this group's own.
+    float childError = 0.0f;
+    for (uint32_t id : groups[g]) {
+      sphere = merged(sphere, h.clusters[id].lodBounds);
+      childError = std::max(childError, h.clusters[id].error);
+    }
+    const float error = childError + r.error;  // so also monotonic up the hierarchy
+    const uint32_t groupId = h.groups++;
+    for (uint32_t id : groups[g]) {
+      h.clusters[id].parentBounds = sphere;
+      h.clusters[id].parentError = error;
+      h.clusters[id].parentGroup = groupId;
+    }
+    std::vector<uint32_t> toPool(r.positions.size());
+    for (size_t i = 0; i < r.positions.size(); ++i) {
+      if (r.poolIndex[i] >= 0) {
+        toPool[i] = uint32_t(r.poolIndex[i]);
+      } else {
+        toPool[i] = uint32_t(h.positions.size());
+        h.positions.push_back(r.positions[i]);
+        if (!h.uvs.empty()) h.uvs.push_back(r.uvs[i]);
+      }
+    }
+    for (Triangles& c : r.clusters) {
+      for (uint32_t& v : c) v = toPool[v];
+      step.next.push_back(uint32_t(h.clusters.size()));
+      step.triangles += c.size() / 3;
+      addCluster(h, c, level, sphere, error);
+      h.clusters.back().group = groupId;
+    }
+  }
+  return step;
+}
 
 ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOptions& options,
                                        ClusterBuildReport* report, const Progress* progress) {
@@ -197,80 +282,11 @@ ClusterHierarchy buildClusterHierarchy(const MeshData& mesh, const ClusterOption
   }
   rep.clustersPerLevel.push_back(active.size());
   rep.trianglesPerLevel.push_back(tris.size() / 3);
-  const unsigned threads = resolveThreads(options.threads);
   for (uint32_t level = 1; active.size() > 1 && level < 64; ++level) {
-    const std::vector<std::vector<uint32_t>> groups = groupClusters(h, active, std::max<size_t>(2, options.groupSize));
-    // Locked: a vertex whose position two groups' triangles use (their
-    // shared border; by position, so both sides of a UV seam along it).
-    // Positions compared by their key: a collision locks more, never less.
-    std::unordered_map<uint64_t, int> ownerGroup;
-    std::unordered_map<uint64_t, bool> shared;
-    std::vector<Triangles> groupTris(groups.size());
-    for (size_t g = 0; g < groups.size(); ++g)
-      for (uint32_t id : groups[g]) {
-        const Cluster& c = h.clusters[id];
-        for (uint32_t i = 0; i < c.triangleCount * 3; ++i) {
-          const uint32_t v = h.indices[c.firstIndex + i];
-          groupTris[g].push_back(v);
-          const uint64_t key = positionKey(h.positions[v]);
-          auto [it, first] = ownerGroup.try_emplace(key, int(g));
-          if (!first && it->second != int(g)) shared[key] = true;
-        }
-      }
-    std::vector<uint8_t> locked(h.positions.size(), 0);
-    for (size_t v = 0; v < h.positions.size(); ++v) locked[v] = shared.count(positionKey(h.positions[v])) ? 1 : 0;
-    std::vector<GroupResult> results(groups.size());
-    parallelFor(int64_t(groups.size()), int(threads), 1, [&](int64_t b, int64_t e) {
-      for (int64_t g = b; g < e && !isCancelled(progress); ++g)
-        results[size_t(g)] = simplifyGroup(h.positions, h.uvs, groupTris[size_t(g)], locked, options);
-    });
-    if (isCancelled(progress)) return {};
-    // Merged in group order: the pool and the clusters come out the same
-    // whatever the thread count.
-    std::vector<uint32_t> next;
-    size_t simplified = 0, levelTriangles = 0;
-    for (size_t g = 0; g < groups.size(); ++g) {
-      GroupResult& r = results[g];
-      ++rep.groups;
-      if (!r.simplified) {
-        ++rep.groupsKept;
-        next.insert(next.end(), groups[g].begin(), groups[g].end());
-        continue;
-      }
-      ++simplified;
-      LodSphere sphere = sphereOf(h.positions, groupTris[g].data(), groupTris[g].size());
-      // The distance to the input adds up along the levels (Hausdorff's
-      // triangle inequality): the children's largest plus this group's own.
-      float childError = 0.0f;
-      for (uint32_t id : groups[g]) {
-        sphere = merged(sphere, h.clusters[id].lodBounds);
-        childError = std::max(childError, h.clusters[id].error);
-      }
-      const float error = childError + r.error;  // so also monotonic up the hierarchy
-      const uint32_t groupId = h.groups++;
-      for (uint32_t id : groups[g]) {
-        h.clusters[id].parentBounds = sphere;
-        h.clusters[id].parentError = error;
-        h.clusters[id].parentGroup = groupId;
-      }
-      std::vector<uint32_t> toPool(r.positions.size());
-      for (size_t i = 0; i < r.positions.size(); ++i) {
-        if (r.poolIndex[i] >= 0) {
-          toPool[i] = uint32_t(r.poolIndex[i]);
-        } else {
-          toPool[i] = uint32_t(h.positions.size());
-          h.positions.push_back(r.positions[i]);
-          if (!h.uvs.empty()) h.uvs.push_back(r.uvs[i]);
-        }
-      }
-      for (Triangles& c : r.clusters) {
-        for (uint32_t& v : c) v = toPool[v];
-        next.push_back(uint32_t(h.clusters.size()));
-        levelTriangles += c.size() / 3;
-        addCluster(h, c, level, sphere, error);
-        h.clusters.back().group = groupId;
-      }
-    }
+    LevelStep step = simplifyLevel(h, active, level, options, {}, {}, rep, progress);
+    if (step.cancelled) return {};
+    std::vector<uint32_t>& next = step.next;
+    const size_t simplified = step.simplified, levelTriangles = step.triangles;
     if (simplified == 0) break;  // every group held by its border: these are the roots
     h.levels = level;
     active = std::move(next);

@@ -94,38 +94,82 @@ glm::vec3 unpackNormal(uint32_t p) {
   return glm::normalize(n);
 }
 
-// Vertex normals per cluster vertex: the area-weighted face normals around
-// its position among the clusters of its own level (by position, so both
-// sides of a UV seam get one normal).
-std::vector<std::vector<glm::vec3>> levelNormals(const ClusterHierarchy& h) {
-  std::vector<std::vector<glm::vec3>> out(h.clusters.size());
-  size_t begin = 0;
-  while (begin < h.clusters.size()) {
-    size_t end = begin;
-    while (end < h.clusters.size() && h.clusters[end].level == h.clusters[begin].level) ++end;
-    std::unordered_map<uint64_t, glm::vec3> sum;
-    auto key = [&](uint32_t v) { return positionKey(h.positions[v]); };
-    for (size_t c = begin; c < end; ++c) {
-      const Cluster& cl = h.clusters[c];
-      for (uint32_t t = 0; t < cl.triangleCount; ++t) {
-        const uint32_t* i = &h.indices[cl.firstIndex + t * 3];
-        const glm::vec3 n = glm::cross(h.positions[i[1]] - h.positions[i[0]], h.positions[i[2]] - h.positions[i[0]]);
-        for (int k = 0; k < 3; ++k) sum[key(i[k])] += n;
-      }
+}  // namespace
+
+std::unordered_map<uint64_t, glm::vec3> normalsByPosition(const ClusterHierarchy& h, const std::vector<uint32_t>& ids) {
+  std::unordered_map<uint64_t, glm::vec3> sum;
+  for (uint32_t id : ids) {
+    const Cluster& cl = h.clusters[id];
+    for (uint32_t t = 0; t < cl.triangleCount; ++t) {
+      const uint32_t* i = &h.indices[cl.firstIndex + t * 3];
+      const glm::vec3 n = glm::cross(h.positions[i[1]] - h.positions[i[0]], h.positions[i[2]] - h.positions[i[0]]);
+      for (int k = 0; k < 3; ++k) sum[positionKey(h.positions[i[k]])] += n;
     }
-    for (size_t c = begin; c < end; ++c) {
-      const Cluster& cl = h.clusters[c];
-      // In the cluster's own vertex order (first use), as paginate writes them.
-      std::unordered_map<uint32_t, bool> seen;
-      for (uint32_t i = 0; i < cl.triangleCount * 3; ++i) {
-        const uint32_t v = h.indices[cl.firstIndex + i];
-        if (seen.try_emplace(v, true).second) out[c].push_back(sum[key(v)]);
-      }
-    }
-    begin = end;
   }
-  return out;
+  return sum;
 }
+
+ClusterPageWriter::ClusterPageWriter(bool uvs, size_t pageBytes, std::function<void(std::vector<uint8_t>&&)> emit)
+    : uvs_(uvs), pageBytes_(pageBytes), emit_(std::move(emit)) {}
+
+void ClusterPageWriter::finish() {
+  if (inPage_ == 0) return;
+  // The count goes after the magic and version, written last.
+  std::memcpy(page_.data() + 8, &inPage_, 4);
+  emit_(std::move(page_));
+  page_.clear();
+  inPage_ = 0;
+  ++pages_;
+}
+
+void ClusterPageWriter::add(uint32_t at, const ClusterHierarchy& h, uint32_t id,
+                            const std::unordered_map<uint64_t, glm::vec3>& normals, ClusterIndexEntry& entry) {
+  const Cluster& c = h.clusters[id];
+  // The cluster's own vertices, in first use order.
+  std::unordered_map<uint32_t, uint8_t> local;
+  std::vector<uint32_t> verts;
+  std::vector<uint8_t> tris;
+  for (uint32_t i = 0; i < c.triangleCount * 3; ++i) {
+    const uint32_t v = h.indices[c.firstIndex + i];
+    auto [it, added] = local.try_emplace(v, uint8_t(verts.size()));
+    if (added) verts.push_back(v);
+    tris.push_back(it->second);
+  }
+  const size_t bytes = clusterBytes(verts.size(), c.triangleCount, uvs_);
+  if (inPage_ > 0 && page_.size() + bytes > pageBytes_) finish();
+  Writer w{std::move(page_)};
+  if (inPage_ == 0) {
+    for (char m : kPageMagic) w.put(m);
+    w.put(kVersion);
+    w.put(uint32_t(0));  // cluster count (finish)
+  }
+  w.put(at);
+  w.put(uint16_t(verts.size()));
+  w.put(uint16_t(c.triangleCount));
+  for (uint32_t v : verts) w.put(h.positions[v].x), w.put(h.positions[v].y), w.put(h.positions[v].z);
+  for (uint32_t v : verts) {
+    const auto it = normals.find(positionKey(h.positions[v]));
+    w.put(packNormal(it == normals.end() ? glm::vec3(0.0f) : it->second));
+  }
+  if (uvs_)
+    for (uint32_t v : verts) w.put(h.uvs[v].x), w.put(h.uvs[v].y);
+  w.bytes.insert(w.bytes.end(), tris.begin(), tris.end());
+  page_ = std::move(w.bytes);
+  ++inPage_;
+  entry.page = pages_;
+  entry.level = c.level;
+  entry.triangleCount = c.triangleCount;
+  entry.vertexCount = uint32_t(verts.size());
+  entry.group = c.group;
+  entry.parentGroup = c.parentGroup;
+  entry.bounds = c.bounds;
+  entry.lodBounds = c.lodBounds;
+  entry.parentBounds = c.parentBounds;
+  entry.error = c.error;
+  entry.parentError = c.parentError;
+}
+
+namespace {
 
 // Page p's first cluster, from the entries' pages (in order).
 std::string fillPageFirst(ClusterIndex& index) {
@@ -148,18 +192,8 @@ ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes) {
   ClusterPages out;
   out.index.origin = h.origin;
   out.index.hasUvs = !h.uvs.empty();
-  const bool uvs = out.index.hasUvs;
-  Writer page;
-  uint32_t inPage = 0;
-  auto finish = [&] {
-    if (inPage == 0) return;
-    // The count goes after the magic and version, written last.
-    std::memcpy(page.bytes.data() + 8, &inPage, 4);
-    out.pages.push_back(std::move(page.bytes));
-    page.bytes.clear();
-    inPage = 0;
-  };
-  const std::vector<std::vector<glm::vec3>> normals = levelNormals(h);
+  ClusterPageWriter writer(out.index.hasUvs, pageBytes,
+                           [&](std::vector<uint8_t>&& page) { out.pages.push_back(std::move(page)); });
   // Level by level, each group's children side by side (groups in the
   // order they were made, which follows the grouping's spatial order): a
   // cut refines a group only with all its children resident, so siblings
@@ -170,51 +204,23 @@ ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes) {
     const Cluster &x = h.clusters[a], &y = h.clusters[b];
     return x.level != y.level ? x.level < y.level : x.parentGroup < y.parentGroup;
   });
+  // Vertex normals: the faces around each position among the clusters of
+  // its own level (by position, so both sides of a UV seam get one).
+  std::unordered_map<uint64_t, glm::vec3> normals;
   for (uint32_t at = 0; at < out.order.size(); ++at) {
     const uint32_t id = out.order[at];
-    const Cluster& c = h.clusters[id];
-    // The cluster's own vertices, in first use order.
-    std::unordered_map<uint32_t, uint8_t> local;
-    std::vector<uint32_t> verts;
-    std::vector<uint8_t> tris;
-    for (uint32_t i = 0; i < c.triangleCount * 3; ++i) {
-      const uint32_t v = h.indices[c.firstIndex + i];
-      auto [it, added] = local.try_emplace(v, uint8_t(verts.size()));
-      if (added) verts.push_back(v);
-      tris.push_back(it->second);
+    if (at == 0 || h.clusters[out.order[at - 1]].level != h.clusters[id].level) {
+      std::vector<uint32_t> level;
+      for (uint32_t k = at; k < out.order.size() && h.clusters[out.order[k]].level == h.clusters[id].level; ++k)
+        level.push_back(out.order[k]);
+      normals = normalsByPosition(h, level);
     }
-    const size_t bytes = clusterBytes(verts.size(), c.triangleCount, uvs);
-    if (inPage > 0 && page.bytes.size() + bytes > pageBytes) finish();
-    if (inPage == 0) {
-      for (char m : kPageMagic) page.put(m);
-      page.put(kVersion);
-      page.put(uint32_t(0));  // cluster count (finish)
-    }
-    page.put(at);
-    page.put(uint16_t(verts.size()));
-    page.put(uint16_t(c.triangleCount));
-    for (uint32_t v : verts) page.put(h.positions[v].x), page.put(h.positions[v].y), page.put(h.positions[v].z);
-    for (const glm::vec3& n : normals[id]) page.put(packNormal(n));
-    if (uvs)
-      for (uint32_t v : verts) page.put(h.uvs[v].x), page.put(h.uvs[v].y);
-    page.bytes.insert(page.bytes.end(), tris.begin(), tris.end());
-    ++inPage;
     ClusterIndexEntry e;
-    e.page = uint32_t(out.pages.size());
-    e.level = c.level;
-    e.triangleCount = c.triangleCount;
-    e.vertexCount = uint32_t(verts.size());
-    e.group = c.group;
-    e.parentGroup = c.parentGroup;
-    e.bounds = c.bounds;
-    e.lodBounds = c.lodBounds;
-    e.parentBounds = c.parentBounds;
-    e.error = c.error;
-    e.parentError = c.parentError;
+    writer.add(at, h, id, normals, e);
     out.index.clusters.push_back(e);
   }
-  finish();
-  out.index.pageCount = uint32_t(out.pages.size());
+  writer.finish();
+  out.index.pageCount = writer.pages();
   out.index.groupCount = h.groups;
   fillPageFirst(out.index);
   return out;

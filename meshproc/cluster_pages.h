@@ -14,7 +14,9 @@
 // or an index whose errors are not monotonic is refused with a message
 // naming the page (or the cluster) and what is wrong.
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
@@ -66,6 +68,33 @@ struct ClusterPages {
 // flight (1.28M triangles, 160x120, 1 px): the cut drew from 4.3% of the
 // scan's pages at 16 KB, 6.9% at 32 KB and 9.9% at 64 KB.
 ClusterPages paginate(const ClusterHierarchy& h, size_t pageBytes = size_t(16) << 10);
+
+// Vertex normals (not normalised) by position (position_key.h): the
+// area-weighted faces of clusters `ids` around each position, so both sides
+// of a UV seam get one normal.
+std::unordered_map<uint64_t, glm::vec3> normalsByPosition(const ClusterHierarchy& h, const std::vector<uint32_t>& ids);
+
+// Clusters into pages one after another (paginate; the streamed build
+// pages each level as it is made): a page is closed and handed to `emit`
+// when the next cluster would take it past `pageBytes`, or by finish().
+class ClusterPageWriter {
+ public:
+  ClusterPageWriter(bool uvs, size_t pageBytes, std::function<void(std::vector<uint8_t>&&)> emit);
+  // Cluster `id` of `h` as index entry `at`, its vertices' normals looked
+  // up by position in `normals` (normalsByPosition); fills `entry` (its
+  // page and counts, and the cluster's tests as they are now).
+  void add(uint32_t at, const ClusterHierarchy& h, uint32_t id, const std::unordered_map<uint64_t, glm::vec3>& normals,
+           ClusterIndexEntry& entry);
+  void finish();
+  uint32_t pages() const { return pages_; }  // emitted so far
+
+ private:
+  bool uvs_;
+  size_t pageBytes_;
+  std::function<void(std::vector<uint8_t>&&)> emit_;
+  std::vector<uint8_t> page_;
+  uint32_t inPage_ = 0, pages_ = 0;
+};
 
 // The most vertices and triangle corners any one page of `index` holds
 // (what a slot holding any page needs).
