@@ -306,8 +306,7 @@ scene::MeshImportRequest ImportDialog::request() const {
   p.lodLevels = lods_->value();
   r.process = p.clean || p.decimate || p.lodLevels > 0;
   const QString clusters = clusters_->currentData().toString();
-  using Clusters = scene::MeshImportRequest::Clusters;
-  r.clusters = clusters == "on" ? Clusters::On : clusters == "off" ? Clusters::Off : Clusters::Auto;
+  r.clusters = scene::clustersMode(clusters.toStdString());
   r.tilesetCrs = tilesetCrs_->text().trimmed().toStdString();
   return r;
 }

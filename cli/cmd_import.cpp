@@ -29,6 +29,9 @@ int runImport(int argc, char** argv) {
   scene::MeshImportRequest request;
   request.files = meshPaths;
   if (!parseImportRequest(args, request, error)) return args.usage(error);
+  // A streamed build's scratch and page files beside the scene (the system's
+  // temp folder is often in memory).
+  request.scratchDir = std::filesystem::absolute(scenePath).parent_path().string();
   scene::ops::Placement placement;
   if (args.has("at_m")) {
     const std::vector<double> at = args.numbers("at_m");
@@ -61,6 +64,7 @@ int runImport(int argc, char** argv) {
   const size_t tris = clustered ? result.clusterReport.trianglesPerLevel.front() : result.mesh->triangleCount();
   const size_t verts = clustered ? result.import.verticesOut : result.mesh->vertexCount();
   const mesh::ClusterBuildReport clusterReport = result.clusterReport;
+  const std::optional<mesh::StreamedClusterReport> streamed = result.streamed;
   const size_t proxyTriangles = result.mesh->triangleCount();
   const float proxyError = result.proxyError;
   const glm::dvec3 origin = result.mesh->origin;
@@ -84,6 +88,11 @@ int runImport(int argc, char** argv) {
       std::printf("%s%zu clusters", l ? ", " : "", clusterReport.clustersPerLevel[l]);
     std::printf("), %zu roots, built in %.2f s; coarse mesh %zu triangles (error %.4g m)\n", clusterReport.roots,
                 clusterReport.seconds, proxyTriangles, double(proxyError));
+    if (streamed)
+      std::printf("built out of core: %zu cells of the spatial partition, %zu border positions, %.1f MB of scratch "
+                  "files; read %.2f s, partition %.2f s, build %.2f s\n",
+                  streamed->cells, streamed->borderPositions, double(streamed->scratchBytes) / 1e6,
+                  streamed->readSeconds, streamed->partitionSeconds, streamed->buildSeconds);
   }
   for (const std::string& w : scene::processWarnings(processReport)) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return 0;

@@ -70,8 +70,7 @@ bool parseImportRequest(const OperationArgs& args, scene::MeshImportRequest& req
   p.lodLevels = int(args.integer("lods"));
   request.process = p.decimate || p.lodLevels > 0 || args.flag("clean");
   const std::string clusters = args.text("clusters");
-  using Clusters = scene::MeshImportRequest::Clusters;
-  request.clusters = clusters == "on" ? Clusters::On : clusters == "off" ? Clusters::Off : Clusters::Auto;
+  request.clusters = scene::clustersMode(clusters);
   request.tilesetCrs = args.text("crs");
   return true;
 }

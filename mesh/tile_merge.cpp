@@ -18,9 +18,16 @@
 namespace hs::mesh {
 namespace {
 
+uint64_t cellKey(const glm::ivec3& c) {
+  return (uint64_t(uint32_t(c.x)) * 73856093u) ^ (uint64_t(uint32_t(c.y)) * 19349663u) ^
+         (uint64_t(uint32_t(c.z)) * 83492791u);
+}
+
+}  // namespace
+
 // Vertices on an open boundary of `m` (a corner with no twin at
 // position-welded level), as a flag per vertex.
-std::vector<uint8_t> boundaryVertices(const MeshData& m) {
+std::vector<uint8_t> openBoundaryVertices(const MeshData& m) {
   uint32_t n = 0;
   const std::vector<uint32_t> posOf = weldMap(m.positions, {}, {}, n);
   std::vector<uint32_t> tris(m.indices.size());
@@ -34,7 +41,31 @@ std::vector<uint8_t> boundaryVertices(const MeshData& m) {
   return out;
 }
 
-}  // namespace
+BorderSnapGrid::BorderSnapGrid(double tolerance) : tol_(tolerance), cell_(std::max(tolerance, 1e-9)) {}
+
+std::optional<BorderSnapGrid::Earlier> BorderSnapGrid::snapOrAdd(const glm::vec3& position, uint32_t id, uint32_t tile) {
+  // A vertex looks at its cell (the size of the tolerance) and the 26
+  // around it for an earlier vertex of another tile within the tolerance.
+  const glm::dvec3 p(position);
+  const glm::ivec3 c(glm::floor(p / cell_));
+  const Entry* best = nullptr;
+  double bestD = tol_ * tol_;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        const auto range = grid_.equal_range(cellKey(c + glm::ivec3(dx, dy, dz)));
+        for (auto it = range.first; it != range.second; ++it) {
+          const Entry& o = it->second;
+          if (o.tile == tile) continue;
+          const glm::dvec3 d = glm::dvec3(o.position) - p;
+          const double dd = glm::dot(d, d);
+          if (dd <= bestD && (!best || dd < bestD || o.id < best->id)) best = &o, bestD = dd;
+        }
+      }
+  if (best) return Earlier{best->id, best->position};
+  grid_.emplace(cellKey(c), Entry{position, id, tile});
+  return std::nullopt;
+}
 
 MeshData mergeTiles(std::vector<MeshData>&& tiles, double tol, TileImportResult* stats) {
   MeshData out;
@@ -54,7 +85,7 @@ MeshData mergeTiles(std::vector<MeshData>&& tiles, double tol, TileImportResult*
     MeshData& t = tiles[ti];
     const uint32_t base = uint32_t(out.positions.size());
     const glm::dvec3 shift = t.origin - out.origin;
-    const std::vector<uint8_t> border = boundaryVertices(t);
+    const std::vector<uint8_t> border = openBoundaryVertices(t);
     for (size_t v = 0; v < t.positions.size(); ++v) {
       out.positions.emplace_back(glm::dvec3(t.positions[v]) + shift);
       out.normals.push_back(v < t.normals.size() ? t.normals[v] : glm::vec3(0, 0, 1));
@@ -79,45 +110,20 @@ MeshData mergeTiles(std::vector<MeshData>&& tiles, double tol, TileImportResult*
     t = MeshData{};
   }
 
-  // Border vertices into a grid of cells the size of the tolerance; a
-  // vertex looks at its cell and the 26 around it for an earlier vertex of
-  // another tile within the tolerance and takes its position.
   size_t border = 0, snapped = 0;
-  const double cell = std::max(tol, 1e-9);
-  auto key = [&](const glm::ivec3& c) {
-    return (uint64_t(uint32_t(c.x)) * 73856093u) ^ (uint64_t(uint32_t(c.y)) * 19349663u) ^
-           (uint64_t(uint32_t(c.z)) * 83492791u);
-  };
-  std::unordered_multimap<uint64_t, uint32_t> grid;
+  BorderSnapGrid grid(tol);
   for (uint32_t v = 0; v < out.positions.size(); ++v) {
     if (!onBorder[v]) continue;
     ++border;
-    const glm::dvec3 p(out.positions[v]);
-    const glm::ivec3 c(glm::floor(p / cell));
-    uint32_t best = UINT32_MAX;
-    double bestD = tol * tol;
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto range = grid.equal_range(key(c + glm::ivec3(dx, dy, dz)));
-          for (auto it = range.first; it != range.second; ++it) {
-            const uint32_t o = it->second;
-            if (tileOf[o] == tileOf[v]) continue;
-            const glm::dvec3 d = glm::dvec3(out.positions[o]) - p;
-            const double dd = glm::dot(d, d);
-            if (dd <= bestD && (best == UINT32_MAX || dd < bestD || o < best)) best = o, bestD = dd;
-          }
-        }
-    if (best != UINT32_MAX) {
-      if (out.positions[v] != out.positions[best]) ++snapped;
-      out.positions[v] = out.positions[best];
-      // Two tiles' normals at one border point: their average, so the weld
-      // below can merge the vertices where the UVs agree too.
-      const glm::vec3 n = out.normals[v] + out.normals[best];
-      if (glm::length(n) > 0) out.normals[v] = out.normals[best] = glm::normalize(n);
-    } else {
-      grid.emplace(key(c), v);
-    }
+    const auto earlier = grid.snapOrAdd(out.positions[v], v, tileOf[v]);
+    if (!earlier) continue;
+    const uint32_t best = earlier->id;
+    if (out.positions[v] != out.positions[best]) ++snapped;
+    out.positions[v] = out.positions[best];
+    // Two tiles' normals at one border point: their average, so the weld
+    // below can merge the vertices where the UVs agree too.
+    const glm::vec3 n = out.normals[v] + out.normals[best];
+    if (glm::length(n) > 0) out.normals[v] = out.normals[best] = glm::normalize(n);
   }
   const size_t before = out.positions.size();
   weldExactDuplicates(out);

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "mesh/mesh_import.h"
@@ -47,5 +48,33 @@ TileImportResult importTiles(const std::vector<std::string>& paths, const TileIm
 // The welding step on its own, for meshes already in memory (each with its
 // own origin): returns the merged mesh.
 MeshData mergeTiles(std::vector<MeshData>&& tiles, double weldTolerance, TileImportResult* stats = nullptr);
+
+// Vertices on an open boundary of `m` (an edge with one face, positions
+// welded), as a flag per vertex.
+std::vector<uint8_t> openBoundaryVertices(const MeshData& m);
+
+// Tiles' border vertices snapped one tile after another (mergeTiles; the
+// streamed cluster build, which reads tiles one at a time and so keeps
+// only their borders): a vertex within the tolerance of an earlier one of
+// another tile takes its position (the nearest; the lowest id on a tie),
+// else it is added for later tiles to find. Positions in one common frame.
+class BorderSnapGrid {
+ public:
+  explicit BorderSnapGrid(double tolerance);
+  struct Earlier {
+    uint32_t id;
+    glm::vec3 position;
+  };
+  std::optional<Earlier> snapOrAdd(const glm::vec3& position, uint32_t id, uint32_t tile);
+  size_t size() const { return grid_.size(); }
+
+ private:
+  struct Entry {
+    glm::vec3 position;
+    uint32_t id, tile;
+  };
+  double tol_, cell_;
+  std::unordered_multimap<uint64_t, Entry> grid_;
+};
 
 }  // namespace hs::mesh

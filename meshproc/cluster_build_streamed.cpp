@@ -13,6 +13,7 @@
 #include <memory>
 #include <unordered_map>
 
+#include "mesh/tile_merge.h"
 #include "meshproc/cluster_levels.h"
 #include "meshproc/cluster_parts.h"
 #include "meshproc/position_key.h"
@@ -453,6 +454,7 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
   glm::dvec3 origin(0.0);
   std::vector<glm::vec3> samples;
   bool anyUvs = false, allUvs = true;
+  BorderSnapGrid snap(options.weldTolerance);
   rep.tiles = tiles.tileCount();
   for (size_t t = 0; t < tiles.tileCount(); ++t) {
     MeshData m;
@@ -460,6 +462,21 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
     if (!tiles.readTile(t, m, e)) return fail(e);
     if (t == 0) origin = m.origin;
     const glm::dvec3 shift = m.origin - origin;
+    // The tile in the common frame, its open border snapped onto earlier
+    // tiles' (as an in-memory multi-tile import welds them).
+    std::vector<glm::vec3> local(m.positions.size());
+    for (size_t v = 0; v < local.size(); ++v) local[v] = glm::vec3(glm::dvec3(m.positions[v]) + shift);
+    if (tiles.tileCount() > 1 && options.weldTolerance > 0.0) {
+      const std::vector<uint8_t> open = openBoundaryVertices(m);
+      for (size_t v = 0; v < local.size(); ++v) {
+        if (!open[v]) continue;
+        ++rep.tileBorderVertices;
+        if (const auto earlier = snap.snapOrAdd(local[v], uint32_t(rep.tileBorderVertices), uint32_t(t))) {
+          if (earlier->position != local[v]) ++rep.tileBorderVerticesSnapped;
+          local[v] = earlier->position;
+        }
+      }
+    }
     const bool hasUvs = m.uvs.size() == m.positions.size() && !m.positions.empty();
     anyUvs = anyUvs || hasUvs;
     allUvs = allUvs && (hasUvs || m.indices.empty());
@@ -472,7 +489,7 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
           ok = false;
           break;
         }
-        const glm::vec3 p(glm::dvec3(m.positions[v]) + shift);
+        const glm::vec3 p = local[v];
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) ok = false;
         r[k * 3] = p.x, r[k * 3 + 1] = p.y, r[k * 3 + 2] = p.z;
         const glm::vec2 uv = hasUvs ? m.uvs[v] : glm::vec2(0.0f);

@@ -5,7 +5,9 @@
 // hierarchy built cell by cell, pages written out as each level is made.
 //
 //  1. Tiles are read once (one in memory at a time) into a scratch file of
-//     triangles in one local frame, keeping the bounds and every 16th
+//     triangles in one local frame (their open borders snapped onto earlier
+//     tiles' within a tolerance, as an in-memory tile import welds them;
+//     only border vertices are kept for that), keeping every 16th
 //     triangle's centre. A k-d tree over those centres cuts the scan into
 //     cells of about `cellTriangles` (medians on the longest axis).
 //  2. Each triangle goes to the cell holding its centre. A triangle whose
@@ -60,11 +62,16 @@ struct StreamedClusterOptions {
   size_t cellTriangles = size_t(1) << 19;  // a leaf cell of the partition holds about this many
   size_t pageBytes = size_t(16) << 10;     // as paginate's
   std::string scratchDir;                  // for the triangle files (deleted after); "": the system's temp folder
+  // Metres: an open-border vertex of a tile this close to one of an earlier
+  // tile takes its position (mesh/tile_merge.h); 0: tiles join only where
+  // their vertices are the same.
+  double weldTolerance = 1e-3;
 };
 
 struct StreamedClusterReport {
   ClusterBuildReport build;  // per level: clusters and triangles made at it, over every cell
   size_t tiles = 0, triangles = 0, cells = 0;
+  size_t tileBorderVertices = 0, tileBorderVerticesSnapped = 0;  // tiles' open borders, and those moved onto another tile's
   size_t borderPositions = 0;  // positions two or more cells use
   size_t haloTriangles = 0;    // copied beside their cell for border normals
   uint64_t scratchBytes = 0;   // largest size of the scratch files at once

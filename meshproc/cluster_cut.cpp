@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "meshproc/uniform_cut.h"
+
 namespace hs::mesh {
 namespace {
 
@@ -130,6 +132,10 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
     }
   }
   return cut;
+}
+
+std::vector<uint32_t> uniformIndexCut(const ClusterIndex& index, size_t maxTriangles, float* error) {
+  return uniformCutOf(index.clusters, maxTriangles, error);
 }
 
 }  // namespace hs::mesh

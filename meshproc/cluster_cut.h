@@ -60,4 +60,9 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
                               const std::function<bool(uint32_t page)>& resident,
                               const std::function<bool(const LodSphere& sphere)>& visible = {});
 
+// The cut one bound of `error` metres takes everywhere, from the index
+// alone (as uniformClusterCut on a built hierarchy): the smallest error
+// whose cut has at most `maxTriangles`.
+std::vector<uint32_t> uniformIndexCut(const ClusterIndex& index, size_t maxTriangles, float* error = nullptr);
+
 }  // namespace hs::mesh

@@ -15,6 +15,7 @@
 #include "meshproc/cluster_levels.h"
 #include "meshproc/cluster_parts.h"
 #include "meshproc/position_key.h"
+#include "meshproc/uniform_cut.h"
 
 namespace hs::mesh {
 namespace {
@@ -358,32 +359,7 @@ std::vector<uint32_t> selectClusterCut(const ClusterHierarchy& h, const glm::vec
 namespace hs::mesh {
 
 std::vector<uint32_t> uniformClusterCut(const ClusterHierarchy& h, size_t maxTriangles, float* errorOut) {
-  auto cutAt = [&](float e) {
-    std::vector<uint32_t> cut;
-    for (uint32_t i = 0; i < h.clusters.size(); ++i)
-      if (h.clusters[i].error <= e && h.clusters[i].parentError > e) cut.push_back(i);
-    return cut;
-  };
-  // The cut's triangles fall as the error grows: search the errors clusters
-  // were made with (the only places the cut changes).
-  std::vector<float> errors{0.0f};
-  for (const Cluster& c : h.clusters) errors.push_back(c.error);
-  std::sort(errors.begin(), errors.end());
-  errors.erase(std::unique(errors.begin(), errors.end()), errors.end());
-  auto triangles = [&](float e) {
-    size_t n = 0;
-    for (const Cluster& c : h.clusters)
-      if (c.error <= e && c.parentError > e) n += c.triangleCount;
-    return n;
-  };
-  size_t lo = 0, hi = errors.size() - 1;  // the largest error: the roots
-  while (lo < hi) {
-    const size_t mid = (lo + hi) / 2;
-    if (triangles(errors[mid]) <= maxTriangles) hi = mid;
-    else lo = mid + 1;
-  }
-  if (errorOut) *errorOut = errors[lo];
-  return cutAt(errors[lo]);
+  return uniformCutOf(h.clusters, maxTriangles, errorOut);
 }
 
 }  // namespace hs::mesh

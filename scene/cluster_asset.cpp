@@ -1,11 +1,16 @@
 #include "scene/cluster_asset.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <numeric>
 
 #include "core/content_hash.h"
+#include "meshproc/cluster_cut.h"
 #include "scene/blob_parts.h"
 #include "scene/sqlite_db.h"
 
@@ -61,7 +66,30 @@ std::shared_ptr<ClusterPageStore> ClusterPageStore::inFile(const std::string& pa
   return s;
 }
 
-ClusterPageStore::~ClusterPageStore() = default;
+std::shared_ptr<ClusterPageStore> ClusterPageStore::inScratch(const std::string& scratchPath,
+                                                              std::vector<uint64_t> offsets,
+                                                              std::vector<uint32_t> sizes,
+                                                              std::vector<uint64_t> hashes) {
+  auto s = std::make_shared<ClusterPageStore>(std::vector<std::vector<uint8_t>>{}, std::move(hashes), std::string());
+  s->scratch_ = scratchPath;
+  s->scratchOffsets_ = std::move(offsets);
+  s->scratchSizes_ = std::move(sizes);
+  std::lock_guard lock(registryMutex());
+  registry().push_back(s);
+  return s;
+}
+
+ClusterPageStore::~ClusterPageStore() {
+  if (!scratch_.empty()) {
+    std::error_code ec;
+    std::filesystem::remove(scratch_, ec);
+  }
+}
+
+uint64_t ClusterPageStore::scratchBytes() const {
+  std::lock_guard lock(mutex_);
+  return scratch_.empty() ? 0 : std::accumulate(scratchSizes_.begin(), scratchSizes_.end(), uint64_t(0));
+}
 
 uint64_t ClusterPageStore::memoryBytes() const {
   std::lock_guard lock(mutex_);
@@ -79,6 +107,13 @@ void ClusterPageStore::settle(const std::string& path) {
   std::lock_guard lock(mutex_);
   memory_.clear();
   memory_.shrink_to_fit();
+  if (!scratch_.empty()) {
+    std::error_code ec;
+    std::filesystem::remove(scratch_, ec);
+    scratch_.clear();
+    scratchOffsets_ = {};
+    scratchSizes_ = {};
+  }
   const std::string key = samePathKey(path);
   if (path_ != key) file_.reset();  // the next read opens the new file
   path_ = key;
@@ -97,7 +132,8 @@ std::unordered_set<uint64_t> ClusterPageStore::inUse(const std::string& path) {
 
 std::optional<std::vector<uint8_t>> ClusterPageStore::read(uint32_t page, std::string& error) const {
   std::lock_guard lock(mutex_);
-  const std::string where = (path_.empty() ? std::string("memory") : path_) + ": cluster page " +
+  const std::string where = (!scratch_.empty() ? scratch_ : path_.empty() ? std::string("memory") : path_) +
+                            ": cluster page " +
                             std::to_string(page);
   if (page >= hashes_.size()) {
     error = where + ": there is no such page (" + std::to_string(hashes_.size()) + " pages)";
@@ -106,6 +142,16 @@ std::optional<std::vector<uint8_t>> ClusterPageStore::read(uint32_t page, std::s
   std::vector<uint8_t> bytes;
   if (!memory_.empty()) {
     bytes = memory_[page];
+  } else if (!scratch_.empty()) {
+    std::FILE* f = std::fopen(scratch_.c_str(), "rb");
+    bytes.resize(scratchSizes_[page]);
+    const bool ok = f && std::fseek(f, long(scratchOffsets_[page]), SEEK_SET) == 0 &&
+                    std::fread(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    if (f) std::fclose(f);
+    if (!ok) {
+      error = where + ": cannot read the build's page file";
+      return std::nullopt;
+    }
   } else {
     if (!file_) {
       auto f = std::make_unique<File>();
@@ -174,6 +220,7 @@ Json clusterSummaryJson(const ClusterAsset& a) {
   o["page_bytes"] = a.totalPageBytes();
   o["index_bytes"] = a.index.clusters.size() * sizeof(mesh::ClusterIndexEntry) + a.pageBytes.size() * 12;
   o["pages_in_memory_bytes"] = a.pages ? a.pages->memoryBytes() : 0;
+  o["pages_in_scratch_bytes"] = a.pages ? a.pages->scratchBytes() : 0;
   const std::string file = a.pages ? a.pages->file() : std::string();
   o["file"] = file.empty() ? Json(nullptr) : Json(file);
   std::vector<size_t> clusters(levels, 0), triangles(levels, 0);
@@ -297,6 +344,92 @@ ClusterAsset clusterAssetOf(mesh::ClusterPages built) {
   }
   a.pages = ClusterPageStore::inMemory(std::move(built.pages), std::move(hashes));
   return a;
+}
+
+namespace {
+
+// The stand-in of a paged hierarchy: the uniform cut's clusters read back
+// from their pages, with the pages' normals (each cluster its own vertices).
+mesh::MeshData proxyFromPages(const ClusterAsset& a, size_t proxyTriangles, float& error, std::string& problem) {
+  mesh::MeshData m;
+  m.origin = a.index.origin;
+  const std::vector<uint32_t> cut = mesh::uniformIndexCut(a.index, proxyTriangles, &error);
+  std::vector<uint32_t> pages;
+  for (uint32_t id : cut) pages.push_back(a.index.clusters[id].page);
+  std::sort(pages.begin(), pages.end());
+  pages.erase(std::unique(pages.begin(), pages.end()), pages.end());
+  std::vector<bool> wanted(a.index.clusters.size(), false);
+  for (uint32_t id : cut) wanted[id] = true;
+  for (uint32_t p : pages) {
+    auto clusters = a.loadPage(p, "the streamed build", problem);
+    if (!clusters) return {};
+    for (const mesh::PageCluster& c : *clusters) {
+      if (!wanted[c.cluster]) continue;
+      const uint32_t base = uint32_t(m.positions.size());
+      m.positions.insert(m.positions.end(), c.positions.begin(), c.positions.end());
+      m.normals.insert(m.normals.end(), c.normals.begin(), c.normals.end());
+      m.uvs.insert(m.uvs.end(), c.uvs.begin(), c.uvs.end());
+      for (uint8_t t : c.triangles) m.indices.push_back(base + t);
+    }
+  }
+  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
+  return m;
+}
+
+}  // namespace
+
+ClusterBuild buildClusterAssetStreamed(mesh::ScanTileSource& tiles, const mesh::StreamedClusterOptions& options,
+                                       size_t proxyTriangles, mesh::StreamedClusterReport* report,
+                                       const Progress* progress, std::string& error) {
+  ClusterBuild b;
+  static std::atomic<unsigned> serial{0};
+  const std::filesystem::path dir =
+      options.scratchDir.empty() ? std::filesystem::temp_directory_path() : std::filesystem::path(options.scratchDir);
+  const std::string path =
+      (dir / ("hs-cluster-pages-" + std::to_string(::getpid()) + "-" + std::to_string(serial++) + ".bin")).string();
+  std::FILE* out = std::fopen(path.c_str(), "wb");
+  if (!out) {
+    error = path + ": cannot create the page file";
+    return b;
+  }
+  std::vector<uint64_t> offsets, hashes;
+  std::vector<uint32_t> sizes;
+  uint64_t at = 0;
+  const mesh::PageSink sink = [&](std::vector<uint8_t>&& page, std::string& e) {
+    if (std::fwrite(page.data(), 1, page.size(), out) != page.size()) {
+      e = path + ": cannot write a page (disk full?)";
+      return false;
+    }
+    offsets.push_back(at);
+    sizes.push_back(uint32_t(page.size()));
+    hashes.push_back(contentHash(page.data(), page.size()));
+    at += page.size();
+    return true;
+  };
+  mesh::StreamedClusterReport rep;
+  std::optional<mesh::ClusterIndex> index = mesh::buildClusterPagesStreamed(tiles, options, sink, &rep, progress, error);
+  const bool closed = std::fclose(out) == 0;
+  if (report) *report = rep;
+  b.report = rep.build;
+  if (!index || !closed) {
+    if (index) error = path + ": cannot write the page file (disk full?)";
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+    return b;
+  }
+  ClusterAsset a;
+  a.index = std::move(*index);
+  a.pageBytes = sizes;
+  a.pages = ClusterPageStore::inScratch(path, std::move(offsets), std::move(sizes), std::move(hashes));
+  std::string problem;
+  b.proxy = proxyFromPages(a, proxyTriangles, b.proxyError, problem);
+  if (!problem.empty()) {
+    error = problem;
+    return b;
+  }
+  b.clustersHash = clusterIndexHash(a);
+  b.clusters = std::make_shared<const ClusterAsset>(std::move(a));
+  return b;
 }
 
 }  // namespace hs::scene

@@ -20,6 +20,7 @@
 
 #include "core/json.h"
 #include "mesh/mesh_data.h"
+#include "meshproc/cluster_build_streamed.h"
 #include "meshproc/cluster_pages.h"
 
 namespace hs::scene {
@@ -59,12 +60,22 @@ class ClusterPageStore {
   static std::shared_ptr<ClusterPageStore> inMemory(std::vector<std::vector<uint8_t>> pages,
                                                     std::vector<uint64_t> hashes);
   static std::shared_ptr<ClusterPageStore> inFile(const std::string& path, std::vector<uint64_t> hashes);
+  // Pages a streamed build wrote one after another into a scratch file
+  // (`offsets`, `sizes`): read from there until a save settles them in a
+  // scene file; the scratch file is removed then, or with the store.
+  static std::shared_ptr<ClusterPageStore> inScratch(const std::string& scratchPath, std::vector<uint64_t> offsets,
+                                                     std::vector<uint32_t> sizes, std::vector<uint64_t> hashes);
+  // Bytes of pages in a scratch file (0 once settled).
+  uint64_t scratchBytes() const;
 
  private:
   struct File;
   mutable std::mutex mutex_;
   std::vector<uint64_t> hashes_;
   std::vector<std::vector<uint8_t>> memory_;  // empty once settled
+  std::string scratch_;                       // a streamed build's page file ("" once settled)
+  std::vector<uint64_t> scratchOffsets_;
+  std::vector<uint32_t> scratchSizes_;
   std::string path_;
   mutable std::unique_ptr<File> file_;        // the open connection, made on first read
 };
@@ -88,6 +99,7 @@ std::string clusterIndexBlobKey(uint64_t hash);
 // What `info` and the editor show of a hierarchy: "levels", "clusters",
 // "triangles" (level 0's), "pages", "page_bytes" (all pages), "index_bytes"
 // (always in memory), "pages_in_memory_bytes" (before the first save),
+// "pages_in_scratch_bytes" (a streamed build's, before the first save),
 // "per_level": [{"level", "clusters", "triangles"}], "file" (where the
 // pages are read from; null: memory).
 Json clusterSummaryJson(const ClusterAsset& asset);
@@ -125,5 +137,14 @@ ClusterBuild buildClusterAsset(const mesh::MeshData& input, const mesh::ClusterO
 // The same from a hierarchy built elsewhere (a 3D Tiles import:
 // meshproc/cluster_from_tiles.h); `report` is left empty.
 ClusterBuild clusterAssetOfHierarchy(const mesh::ClusterHierarchy& h, size_t proxyTriangles);
+// The same built out of core from tiles read one at a time
+// (meshproc/cluster_build_streamed.h): pages go to a scratch file in
+// options.scratchDir (or the system's temp folder) as they are made, so
+// memory holds the index and one cell's build whatever the scan's size;
+// the stand-in is read back from the pages (their normals). Null clusters
+// with `error` when it failed, without when cancelled.
+ClusterBuild buildClusterAssetStreamed(mesh::ScanTileSource& tiles, const mesh::StreamedClusterOptions& options,
+                                       size_t proxyTriangles, mesh::StreamedClusterReport* report,
+                                       const Progress* progress, std::string& error);
 
 }  // namespace hs::scene

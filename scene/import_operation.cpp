@@ -30,10 +30,13 @@ const OperationDecl& meshImportOperation() {
     appendParams(o.params, mesh::processOptionDecls());
     o.params.push_back(
         {.key = "clusters", .option = "clusters", .label = "Cluster hierarchy", .type = ParamType::Choice,
-         .defaultValue = "auto", .choices = {"auto", "on", "off"},
+         .defaultValue = "auto", .choices = {"auto", "on", "streamed", "off"},
          .help = "build a cluster hierarchy (Nanite-style LOD whose pages stream from the scene file; docs/meshes.md) "
                  "from the result: auto builds one for meshes of " +
-                 std::to_string(kClusterAutoTriangles / 1000000) + "M triangles and more; one material only",
+                 std::to_string(kClusterAutoTriangles / 1000000) +
+                 "M triangles and more, out of core for files of " + std::to_string(kClusterStreamedAutoBytes >> 30) +
+                 " GB and more; streamed: out of core (tiles read one at a time and never held together; no "
+                 "processing); one material only",
          .valueName = "MODE", .editor = true});
     o.params.push_back(
         {.key = "crs", .option = "crs", .label = "Tileset CRS", .type = ParamType::Text, .defaultValue = "auto",
@@ -48,6 +51,12 @@ const OperationDecl& meshImportOperation() {
     return o;
   }();
   return op;
+}
+
+MeshImportRequest::Clusters clustersMode(const std::string& choice) {
+  using Clusters = MeshImportRequest::Clusters;
+  return choice == "on" ? Clusters::On : choice == "streamed" ? Clusters::Streamed : choice == "off" ? Clusters::Off
+                                                                                                     : Clusters::Auto;
 }
 
 }  // namespace hs::scene

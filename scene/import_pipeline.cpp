@@ -1,5 +1,7 @@
 #include "scene/import_pipeline.h"
 
+#include <filesystem>
+
 #include "mesh/tile_merge.h"
 #include "mesh/tileset_reader.h"
 #include "meshproc/report_json.h"
@@ -13,7 +15,8 @@ namespace {
 
 // Several tiles: one report with the counts summed, named after the first
 // tile (each tile's own report is kept beside it).
-mesh::ImportReport sumTileReports(const std::vector<mesh::ImportReport>& tiles, const mesh::MeshData& merged) {
+mesh::ImportReport sumTileReports(const std::vector<mesh::ImportReport>& tiles, size_t verticesOut,
+                                  size_t trianglesOut) {
   mesh::ImportReport sum = tiles.front();
   for (size_t i = 1; i < tiles.size(); ++i) {
     const mesh::ImportReport& t = tiles[i];
@@ -33,8 +36,8 @@ mesh::ImportReport sumTileReports(const std::vector<mesh::ImportReport>& tiles, 
     sum.warnings.insert(sum.warnings.end(), t.warnings.begin(), t.warnings.end());
     sum.seconds += t.seconds;
   }
-  sum.verticesOut = merged.vertexCount();
-  sum.trianglesOut = merged.triangleCount();
+  sum.verticesOut = verticesOut;
+  sum.trianglesOut = trianglesOut;
   return sum;
 }
 
@@ -68,6 +71,93 @@ bool buildClusters(ImportedMesh& out, const MeshImportRequest& request, const Pr
   return true;
 }
 
+// Tiles read one at a time for the streamed build, each through the
+// import worker like any file; their reports kept, the first tile's
+// materials kept for the stand-in.
+class FileTiles : public mesh::ScanTileSource {
+ public:
+  FileTiles(const MeshImportRequest& r) : request_(r) {}
+  size_t tileCount() const override { return request_.files.size(); }
+  bool readTile(size_t i, mesh::MeshData& out, std::string& error) override {
+    mesh::ImportResult r = importMeshIsolated(request_.files[i], request_.import, nullptr);
+    if (!r.mesh || !r.error.empty()) {
+      error = r.error.empty() ? request_.files[i] + ": the file could not be read" : r.error;
+      return false;
+    }
+    reports.push_back(std::move(r.report));
+    if (r.mesh->materials.size() > 1) manyMaterials = true;
+    if (i == 0) {
+      materials = std::move(r.mesh->materials);
+      textures = std::move(r.mesh->textures);
+    }
+    out = std::move(*r.mesh);
+    return true;
+  }
+  std::vector<mesh::ImportReport> reports;
+  std::vector<mesh::Material> materials;
+  std::vector<mesh::Texture> textures;
+  bool manyMaterials = false;
+
+ private:
+  const MeshImportRequest& request_;
+};
+
+ImportedMesh importStreamed(const MeshImportRequest& request, const Progress* progress) {
+  ImportedMesh out;
+  if (request.process) {
+    out.error = request.files.front() +
+                ": a streamed cluster build takes the files as read; cleaning, decimation and LODs need the whole "
+                "mesh in memory (import with --clusters on, or without the processing options)";
+    return out;
+  }
+  FileTiles tiles(request);
+  mesh::StreamedClusterOptions o;
+  o.clusters = request.clusterOptions;
+  o.scratchDir = request.scratchDir;
+  o.weldTolerance = request.tileWeldTolerance;
+  mesh::StreamedClusterReport rep;
+  ClusterBuild b = buildClusterAssetStreamed(tiles, o, kClusterProxyTriangles, &rep, progress, out.error);
+  out.streamed = rep;
+  out.clusterReport = b.report;
+  out.tileBorderVertices = rep.tileBorderVertices;
+  out.tileBorderVerticesSnapped = rep.tileBorderVerticesSnapped;
+  if (!b.clusters) {
+    if (out.error.empty()) out.cancelled = true;
+    return out;
+  }
+  const size_t triangles = rep.build.trianglesPerLevel.empty() ? 0 : rep.build.trianglesPerLevel.front();
+  size_t vertices = 0;  // as read (tiles are joined in the hierarchy's pages, not counted)
+  for (const auto& r : tiles.reports) vertices += r.verticesOut;
+  if (tiles.reports.size() > 1) out.tiles = tiles.reports;
+  out.import = sumTileReports(tiles.reports, vertices, triangles);
+  if (tiles.manyMaterials || tiles.materials.size() > 1)
+    out.import.warnings.push_back(request.files.front() +
+                                  ": a cluster hierarchy draws with one material: the first tile's first is kept");
+  if (rep.uvsDropped)
+    out.import.warnings.push_back(request.files.front() + ": some tiles have no UVs: the hierarchy keeps none");
+  b.proxy.materials = std::move(tiles.materials);
+  if (b.proxy.materials.size() > 1) b.proxy.materials.resize(1);
+  b.proxy.textures = std::move(tiles.textures);
+  if (!b.proxy.materials.empty()) b.proxy.submeshes.front().material = 0;
+  out.importReport = toJson(AssetImportReport{out.import, out.tiles});
+  out.proxyError = b.proxyError;
+  out.clustersHash = b.clustersHash;
+  out.clusters = std::move(b.clusters);
+  out.mesh = std::move(b.proxy);
+  return out;
+}
+
+// Whether the files hold kClusterStreamedAutoBytes or more.
+bool largeInput(const std::vector<std::string>& files) {
+  uint64_t bytes = 0;
+  for (const std::string& f : files) {
+    std::error_code ec;
+    const auto n = std::filesystem::file_size(f, ec);
+    if (!ec) bytes += n;
+  }
+  return bytes >= kClusterStreamedAutoBytes;
+}
+
 }  // namespace
 
 ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* progress) {
@@ -79,6 +169,9 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
   // A 3D Tiles tileset brings its own levels of detail (tileset_import.h).
   if (request.files.size() == 1 && mesh::isTilesetFile(request.files.front()))
     return importTileset(request.files.front(), request, progress);
+  if (request.clusters == MeshImportRequest::Clusters::Streamed ||
+      (request.clusters == MeshImportRequest::Clusters::Auto && !request.process && largeInput(request.files)))
+    return importStreamed(request, progress);
   const bool mayCluster = request.clusters != MeshImportRequest::Clusters::Off;
   const double readShare = request.process || mayCluster ? 0.35 : 1.0;
   const double processEnd = request.process && mayCluster ? 0.6 : 1.0;
@@ -107,7 +200,7 @@ ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* p
       out.tileBorderVertices = r.borderVertices;
       out.tileBorderVerticesSnapped = r.borderVerticesSnapped;
       out.tileBorderVerticesMerged = r.borderVerticesMerged;
-      if (r.mesh && !out.tiles.empty()) out.import = sumTileReports(out.tiles, *r.mesh);
+      if (r.mesh && !out.tiles.empty()) out.import = sumTileReports(out.tiles, r.mesh->vertexCount(), r.mesh->triangleCount());
       out.mesh = std::move(r.mesh);
     }
   }

@@ -13,6 +13,7 @@
 #include "core/params.h"
 #include "core/progress.h"
 #include "mesh/mesh_import.h"
+#include "meshproc/cluster_build_streamed.h"
 #include "meshproc/cluster_hierarchy.h"
 #include "meshproc/mesh_process.h"
 #include "scene/scene_state.h"
@@ -28,9 +29,15 @@ struct MeshImportRequest {
   bool process = false;
   mesh::ProcessOptions processing;
   // A cluster hierarchy (scene/cluster_asset.h) built from the result:
-  // Auto builds one for meshes of at least kClusterAutoTriangles.
-  enum class Clusters { Auto, On, Off } clusters = Clusters::Auto;
+  // Auto builds one for meshes of at least kClusterAutoTriangles, and
+  // streams (Streamed) when the files hold kClusterStreamedAutoBytes or
+  // more and no processing is asked for. Streamed: built out of core
+  // (meshproc/cluster_build_streamed.h), the files read one at a time and
+  // never merged in memory (tile borders snapped within tileWeldTolerance);
+  // processing is refused (it needs the whole mesh).
+  enum class Clusters { Auto, On, Streamed, Off } clusters = Clusters::Auto;
   mesh::ClusterOptions clusterOptions;
+  std::string scratchDir;  // for a streamed build's scratch and page files; "": the system's temp folder
   // A 3D Tiles tileset (scene/tileset_import.h): the coordinate system its
   // ECEF frame is converted to ("auto": UTM for ECEF, else as it is;
   // "utm", "local", or any CRS PROJ knows).
@@ -40,6 +47,9 @@ struct MeshImportRequest {
 // Where `import` builds a cluster hierarchy unasked: a mesh this large
 // drawn whole costs too much for one view (about 0.5 GB of GPU memory).
 constexpr size_t kClusterAutoTriangles = 4'000'000;
+// Where Auto builds the hierarchy out of core: files this large (about
+// 35M triangles as binary PLY) would take ~10 GB to build in memory.
+constexpr uint64_t kClusterStreamedAutoBytes = uint64_t(1) << 30;
 // The coarse cut a clustered asset keeps as its mesh (MeshAsset::data).
 constexpr size_t kClusterProxyTriangles = 65'536;
 
@@ -47,6 +57,8 @@ constexpr size_t kClusterProxyTriangles = 65'536;
 // reader's options (mesh::importOptionDecls), the processing ones
 // (mesh::processOptionDecls), and where it goes: at_m, name, report.
 const OperationDecl& meshImportOperation();
+// The "clusters" choice (auto, on, streamed, off) as the request's mode.
+MeshImportRequest::Clusters clustersMode(const std::string& choice);
 
 struct ImportedMesh {
   std::optional<mesh::MeshData> mesh;  // level 0: as read, or cleaned and decimated
@@ -55,6 +67,7 @@ struct ImportedMesh {
   std::shared_ptr<const ClusterAsset> clusters;
   uint64_t clustersHash = 0;
   mesh::ClusterBuildReport clusterReport;
+  std::optional<mesh::StreamedClusterReport> streamed;  // set when built out of core
   float proxyError = 0.0f;             // metres: the coarse cut's error
   mesh::ImportReport import;           // the file's; for tiles the counts summed (per tile in `tiles`)
   std::vector<mesh::ImportReport> tiles;  // one per file when there were several

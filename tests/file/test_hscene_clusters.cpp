@@ -7,7 +7,8 @@
 // one whose errors are not monotonic drops the hierarchy with a warning
 // naming the asset and the rest opens; an undo can bring back an asset whose
 // pages a save no longer needed; the build gives the same blobs on any
-// thread count; `import --clusters` and `info` reach it from the CLI.
+// thread count; `import --clusters` and `info` reach it from the CLI; a
+// streamed (out-of-core) build from tile files lands the same way.
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -24,6 +25,7 @@
 #include "scene/hscene_file.h"
 #include "scene/hscene_repair.h"
 #include "scene/import_pipeline.h"
+#include "mesh/mesh_import.h"
 #include "scene/operations.h"
 
 using namespace hs;
@@ -380,6 +382,91 @@ class TestHsceneClusters : public QObject {
     c = test::runCli({"import", QString::fromStdString(kBunny), scene, "--clusters", "sometimes"}, tmp_.path());
     QVERIFY(c.code != 0);
     QVERIFY2(c.err.contains("--clusters"), qPrintable(c.err));
+  }
+
+  // --clusters streamed: the bunny as two tile files (split by the side of
+  // their centre, each file in its own coordinates as a reader recentres
+  // them) built out of core; its pages in a scratch file beside the scene
+  // until the save takes them; the scene reopens and renders the whole
+  // cut. Processing options are refused with it.
+  void streamedImport() {
+    const mesh::ImportResult bunny = mesh::importMesh(kBunny);
+    QVERIFY(bunny.mesh);
+    const mesh::MeshData& m = *bunny.mesh;
+    std::string tile[2];
+    size_t triangles = 0;
+    for (size_t f = 0; f < m.triangleCount(); ++f) {
+      glm::vec3 c(0.0f);
+      for (int k = 0; k < 3; ++k) c += m.positions[m.indices[f * 3 + size_t(k)]];
+      std::string& t = tile[c.x < 0.0f ? 0 : 1];
+      t += "f";
+      for (int k = 0; k < 3; ++k) t += " " + std::to_string(m.indices[f * 3 + size_t(k)] + 1);
+      t += "\n";
+      ++triangles;
+    }
+    std::string vertices;
+    char line[96];
+    for (const glm::vec3& p : m.positions) {
+      std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
+      vertices += line;
+    }
+    const fs::path dir = fs::path(tmp_.path().toStdString()) / "streamed";
+    fs::create_directories(dir);
+    test::writeFile((dir / "a.obj").string(), vertices + tile[0]);
+    test::writeFile((dir / "b.obj").string(), vertices + tile[1]);
+
+    MeshImportRequest r;
+    r.files = {(dir / "a.obj").string(), (dir / "b.obj").string()};
+    r.clusters = MeshImportRequest::Clusters::Streamed;
+    r.scratchDir = dir.string();
+    ImportedMesh imported = importMeshFiles(r);
+    QVERIFY2(imported.ok(), imported.error.c_str());
+    QVERIFY(imported.clusters && imported.streamed);
+    QCOMPARE(imported.streamed->tiles, size_t(2));
+    QCOMPARE(imported.clusters->triangles(0), triangles);
+    QCOMPARE(imported.tiles.size(), size_t(2));
+    QVERIFY(imported.clusters->pages->memoryBytes() == 0);
+    QVERIFY(imported.clusters->pages->scratchBytes() > 0);
+    QVERIFY(imported.mesh->triangleCount() > 0 && imported.mesh->triangleCount() <= kClusterProxyTriangles);
+    auto scratchFiles = [&] {
+      size_t n = 0;
+      for (const auto& e : fs::directory_iterator(dir)) n += e.path().filename().string().rfind("hs-", 0) == 0;
+      return n;
+    };
+    QCOMPARE(scratchFiles(), size_t(1));  // the page file; the build's cell files are gone
+    Document doc;
+    doc.reset(SceneState{}, QString());
+    const EntityId id = ops::addImportedMesh(doc, std::move(imported), "Streamed bunny", r.files.front());
+    std::string error;
+    const std::string file = (dir / "streamed.hscene").string();
+    QVERIFY2(saveScene(doc.state(), file, error), error.c_str());
+    QCOMPARE(scratchFiles(), size_t(0));  // the save took the pages
+    const auto loaded = loadScene(file, error);
+    QVERIFY2(loaded, error.c_str());
+    const MeshAsset& a = *loaded->findAsset(loaded->find(id)->mesh->mesh);
+    QVERIFY(a.clusters);
+    QCOMPARE(a.clusters->triangles(0), triangles);
+
+    // The same from the CLI, then a render of the whole cut.
+    const QString scene = QString::fromStdString((dir / "cli.hscene").string());
+    QCOMPARE(test::runCli({"new", scene}, tmp_.path()).code, 0);
+    test::CliRun c = test::runCli({"import", QString::fromStdString(r.files[0]), QString::fromStdString(r.files[1]),
+                                   scene, "--clusters", "streamed"},
+                                  tmp_.path());
+    QVERIFY2(c.code == 0, qPrintable(c.err));
+    QVERIFY2(c.out.contains("built out of core") && c.out.contains(QString::number(triangles)), qPrintable(c.out));
+    const QString stats = QString::fromStdString((dir / "cli.json").string());
+    c = test::runCli({"render", scene, "--out", QString::fromStdString((dir / "cli.png").string()), "--size",
+                      "160x120", "--stats", stats},
+                     tmp_.path());
+    QVERIFY2(c.code == 0, qPrintable(c.err));
+    const Json frame = Json::parse(hs::test::readFile(stats.toStdString()));
+    QVERIFY(frame.at("clusters").at("complete").get<bool>());
+    QVERIFY(frame.at("clusters").at("triangles").get<size_t>() > 0);
+    c = test::runCli({"import", QString::fromStdString(r.files[0]), scene, "--clusters", "streamed", "--lods", "2"},
+                     tmp_.path());
+    QVERIFY(c.code != 0);
+    QVERIFY2(c.err.contains("streamed cluster build"), qPrintable(c.err));
   }
 };
 

@@ -219,6 +219,27 @@ class TestMeshprocStreamed : public QObject {
     QVERIFY(worst > 0.99999);  // octahedral 16-bit: under 0.01 degrees
   }
 
+  // Tiles each in a frame of their own (as a reader puts them, about their
+  // own centres): their floats no longer agree along tile borders until
+  // the border weld snaps them, and the cuts are watertight again.
+  void tilesInTheirOwnFramesAreWelded() {
+    std::vector<mesh::MeshData> tiles = tilesOf(sphere_);
+    for (size_t k = 0; k < tiles.size(); ++k) {
+      const glm::dvec3 offset(1000.37 * double(k), -777.1 * double(k), 3.3 * double(k));
+      tiles[k].origin += offset;
+      for (glm::vec3& p : tiles[k].positions) p = glm::vec3(glm::dvec3(p) - offset);
+    }
+    const Built b = build(tiles, 2);
+    QVERIFY2(b.index, b.error.c_str());
+    qInfo("%zu tile border vertices, %zu moved onto another tile's", b.report.tileBorderVertices,
+          b.report.tileBorderVerticesSnapped);
+    QVERIFY(b.report.tileBorderVerticesSnapped > 0);
+    const std::vector<mesh::PageCluster> all = decodeAll(b);
+    const mesh::ClusterGroups groups = mesh::clusterGroupsOf(*b.index);
+    for (const glm::vec3 eye : {glm::vec3(0, 0, 14), glm::vec3(0, -60, 10)})
+      for (const auto& [edge, n] : edgeUse(all, cutFor(*b.index, groups, eye, 1.0f))) QCOMPARE(n, 2);
+  }
+
   void theSameForAnyThreadCount() {
     const std::string scratch = QDir::tempPath().toStdString() + "/hs-streamed-test";
     std::filesystem::create_directories(scratch);
