@@ -11,9 +11,12 @@
 // scan's (share of pixels differing by more than 16/255, largest channel
 // difference): the approximation's error against its run time.
 //
-//   bench_clusters_render [--sizes 0.5,2] [--size WxH] [--frames N] [--budget-mb M] [--estimate]
+//   bench_clusters_render [--sizes 0.5,2] [--size WxH] [--frames N] [--budget-mb M] [--estimate] [--valley]
 // (--estimate: the groups' quadric estimates instead of certified errors,
-// several times faster to build.)
+// several times faster to build. --valley: a valley of 1M-triangle tiles
+// (bench/decimate/scan_valley.h) built out of core, tile by tile
+// (meshproc/cluster_build_streamed.h), pages read from the build's page
+// file; the whole scan for the comparison is the tiles merged in memory.)
 #include <QCoreApplication>
 
 #include <chrono>
@@ -23,7 +26,9 @@
 #include <vector>
 
 #include "bench/common/bench_util.h"
+#include "mesh/tile_merge.h"
 #include "scan_terrain.h"  // bench/decimate: the generated scan tiles
+#include "scan_valley.h"
 #include "render/offscreen_renderer.h"
 #include "scene/cluster_asset.h"
 #include "scene/import_pipeline.h"
@@ -47,7 +52,7 @@ int main(int argc, char** argv) {
   std::vector<double> sizes = {0.5, 2.0};
   int width = 960, height = 540, frames = 6;
   double budgetMb = 1024.0;
-  bool certify = true;
+  bool certify = true, valley = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--sizes" && i + 1 < argc) sizes = bench::numberList(argv[++i]);
@@ -55,6 +60,7 @@ int main(int argc, char** argv) {
     else if (a == "--frames" && i + 1 < argc) frames = std::max(1, std::atoi(argv[++i]));
     else if (a == "--budget-mb" && i + 1 < argc) budgetMb = std::atof(argv[++i]);
     else if (a == "--estimate") certify = false;
+    else if (a == "--valley") valley = true;
   }
   render::OffscreenRenderer clustered, whole;
   std::string error;
@@ -69,13 +75,39 @@ int main(int argc, char** argv) {
 
   for (double millions : sizes) {
     const int n = int(std::sqrt(millions * 1e6 / 2.0));
-    const double size = 1000.0 * std::sqrt(millions / 0.5);
-    mesh::MeshData tile = bench::scanTerrain(n, size);
-    const auto built = std::chrono::steady_clock::now();
+    double size = 1000.0 * std::sqrt(millions / 0.5);
+    mesh::MeshData tile;
     mesh::ClusterOptions o;
     o.certifyErrors = certify;
-    scene::ClusterBuild b = scene::buildClusterAsset(tile, o, scene::kClusterProxyTriangles);
-    const double buildSeconds = secondsSince(built);
+    scene::ClusterBuild b;
+    double buildSeconds = 0.0;
+    bench::ValleyLayout layout;
+    if (valley) {
+      layout = bench::valleyLayout(millions, 1.0);
+      std::vector<mesh::MeshData> tiles;
+      for (int tj = 0; tj < layout.tilesY; ++tj)
+        for (int ti = 0; ti < layout.tilesX; ++ti) tiles.push_back(bench::valleyTile(layout, ti, tj));
+      std::vector<const mesh::MeshData*> ptrs;
+      for (const auto& t : tiles) ptrs.push_back(&t);
+      mesh::MeshTileSource source(ptrs);
+      mesh::StreamedClusterOptions so;
+      so.clusters = o;
+      const auto built = std::chrono::steady_clock::now();
+      b = scene::buildClusterAssetStreamed(source, so, scene::kClusterProxyTriangles, nullptr, nullptr, error);
+      buildSeconds = secondsSince(built);
+      if (!b.clusters) {
+        std::fprintf(stderr, "bench_clusters_render: %s\n", error.c_str());
+        return 1;
+      }
+      tile = mesh::mergeTiles(std::move(tiles), 1e-3);
+      mesh::computeVertexNormals(tile);
+      size = layout.tilesX * layout.tileSize;
+    } else {
+      tile = bench::scanTerrain(n, size);
+      const auto built = std::chrono::steady_clock::now();
+      b = scene::buildClusterAsset(tile, o, scene::kClusterProxyTriangles);
+      buildSeconds = secondsSince(built);
+    }
     const scene::ClusterAsset& c = *b.clusters;
     std::printf("\n%zu triangles (%.0f m tile): hierarchy of %zu levels, %zu clusters, %u pages (%.1f MiB) built in "
                 "%.1f s, peak RSS so far %.0f MiB\n",
@@ -121,7 +153,9 @@ int main(int argc, char** argv) {
     for (int f = 0; f < frames; ++f) {
       // A low flight across the tile, 40 m over its middle, looking ahead and down.
       const double t = frames > 1 ? double(f) / double(frames - 1) : 0.5;
-      const glm::dvec3 eye(-0.35 * size + 0.7 * size * t, -0.1 * size, 60.0);
+      // The valley: 40 m over the ground along its length, a third of the way up.
+      const glm::dvec3 eye = valley ? layout.pointAt(0.1 + 0.6 * t, 0.3, 40.0)
+                                    : glm::dvec3(-0.35 * size + 0.7 * size * t, -0.1 * size, 60.0);
       render::RenderView v;
       v.eye = eye;
       v.orientation = sequencer::lookRotation(glm::dvec3(0.3, 1.0, -0.35));
