@@ -120,6 +120,17 @@ inline MeshData icosphere(int levels, double radius) {
   return m;
 }
 
+// The icosphere of 20480 faces and radius 10 with a few bumps (so
+// simplifying costs some error): the cluster hierarchy tests' closed surface.
+inline MeshData bumpySphere() {
+  MeshData m = icosphere(5, 10.0);
+  for (glm::vec3& p : m.positions) {
+    const glm::vec3 n = glm::normalize(p);
+    p = n * (10.0f + 0.4f * std::sin(5.0f * n.x) * std::cos(4.0f * n.y) + 0.2f * std::sin(9.0f * n.z));
+  }
+  return m;
+}
+
 // Writes `m` as OBJ with positions origin + local + `offset` printed with
 // `decimals` digits (20 prints a dyadic fraction exactly), Z-up as stored.
 inline void writeObj(const std::string& path, const MeshData& m, glm::dvec3 offset = glm::dvec3(0.0),

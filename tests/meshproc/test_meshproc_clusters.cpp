@@ -33,16 +33,6 @@ using mesh::ClusterHierarchy;
 
 namespace {
 
-// An icosphere with a few bumps (so simplifying costs some error).
-mesh::MeshData bumpySphere() {
-  mesh::MeshData m = test::icosphere(5, 10.0);
-  for (glm::vec3& p : m.positions) {
-    const glm::vec3 n = glm::normalize(p);
-    p = n * (10.0f + 0.4f * std::sin(5.0f * n.x) * std::cos(4.0f * n.y) + 0.2f * std::sin(9.0f * n.z));
-  }
-  return m;
-}
-
 // Edge -> how many of the cut's triangles use it.
 std::map<std::pair<uint32_t, uint32_t>, int> edgeUse(const ClusterHierarchy& h, const std::vector<uint32_t>& cut) {
   std::map<std::pair<uint32_t, uint32_t>, int> use;
@@ -80,7 +70,7 @@ class TestMeshprocClusters : public QObject {
 
  private slots:
   void initTestCase() {
-    sphere_ = bumpySphere();
+    sphere_ = test::bumpySphere();
     h_ = mesh::buildClusterHierarchy(sphere_, {}, &report_);
     QString levels;
     for (size_t l = 0; l < report_.trianglesPerLevel.size(); ++l)

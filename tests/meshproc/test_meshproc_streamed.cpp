@@ -27,15 +27,6 @@ using namespace hs;
 
 namespace {
 
-mesh::MeshData bumpySphere() {
-  mesh::MeshData m = test::icosphere(5, 10.0);
-  for (glm::vec3& p : m.positions) {
-    const glm::vec3 n = glm::normalize(p);
-    p = n * (10.0f + 0.4f * std::sin(5.0f * n.x) * std::cos(4.0f * n.y) + 0.2f * std::sin(9.0f * n.z));
-  }
-  return m;
-}
-
 // The sphere's triangles in three tiles by the angle of their centre (each
 // tile with all the vertices, as a tile file would not be, but harmless).
 std::vector<mesh::MeshData> tilesOf(const mesh::MeshData& m) {
@@ -127,7 +118,7 @@ class TestMeshprocStreamed : public QObject {
 
  private slots:
   void initTestCase() {
-    sphere_ = bumpySphere();
+    sphere_ = test::bumpySphere();
     built_ = build(tilesOf(sphere_), 2);
     QVERIFY2(built_.index, built_.error.c_str());
     const auto& r = built_.report;
