@@ -298,6 +298,8 @@ class EditorImportTest : public QObject {
     QVERIFY(clusters);
     QCOMPARE(clusters->currentData().toString(), QString("auto"));
     QCOMPARE(dialog->request().clusters, scene::MeshImportRequest::Clusters::Auto);
+    clusters->setCurrentIndex(clusters->findData("streamed"));
+    QCOMPARE(dialog->request().clusters, scene::MeshImportRequest::Clusters::Streamed);
     clusters->setCurrentIndex(clusters->findData("on"));
     QCOMPARE(dialog->request().clusters, scene::MeshImportRequest::Clusters::On);
     const size_t assets = w_->document().state().assets.size();
