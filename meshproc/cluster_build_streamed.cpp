@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <unordered_map>
 
@@ -455,6 +456,7 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
   std::vector<glm::vec3> samples;
   bool anyUvs = false, allUvs = true;
   BorderSnapGrid snap(options.weldTolerance);
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   rep.tiles = tiles.tileCount();
   for (size_t t = 0; t < tiles.tileCount(); ++t) {
     MeshData m;
@@ -496,6 +498,8 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
         r[9 + k * 2] = uv.x, r[10 + k * 2] = uv.y;
       }
       if (!ok) continue;
+      for (int k = 0; k < 3; ++k) lo = glm::min(lo, glm::vec3(r[k * 3], r[k * 3 + 1], r[k * 3 + 2])),
+                                  hi = glm::max(hi, glm::vec3(r[k * 3], r[k * 3 + 1], r[k * 3 + 2]));
       if (soup.count() % 16 == 0)
         samples.emplace_back((r[0] + r[3] + r[6]) / 3.0f, (r[1] + r[4] + r[7]) / 3.0f, (r[2] + r[5] + r[8]) / 3.0f);
       if (!soup.append(r, e)) return fail(e);
@@ -508,6 +512,21 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
   if (rep.triangles == 0) return fail("the tiles hold no triangle");
   const bool uvs = allUvs && anyUvs;
   rep.uvsDropped = anyUvs && !allUvs;
+
+  // The frame from here on: centred on the scan's box (to the metre), so
+  // floats keep the most precision over the whole scan whichever tile came
+  // first. Every pass below reads the triangles through `centred`: one
+  // position always maps to one float.
+  const glm::dvec3 centre = glm::round(0.5 * (glm::dvec3(lo) + glm::dvec3(hi)));
+  auto centred = [&](auto&& fn) {
+    return [&, fn](const float* r) {
+      float c[kRecord];
+      std::copy(r, r + kRecord, c);
+      for (int k = 0; k < 9; ++k) c[k] = float(double(r[k]) - centre[k % 3]);
+      fn(static_cast<const float*>(c));
+    };
+  };
+  for (glm::vec3& p : samples) p = glm::vec3(glm::dvec3(p) - centre);
 
   // 2. Cells: a k-d tree of the centres (at most 480 cells: two files
   // open for each).
@@ -532,7 +551,7 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
   };
   std::string e;
   bool ok = soup.forEach(
-      [&](const float* r) {
+      centred([&](const float* r) {
         if (!e.empty()) return;
         const uint32_t cell = centreCell(r);
         float rec[15];
@@ -549,7 +568,7 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
           border.entries.push_back({key, cell});
           border.entries.push_back({key, corner[k]});
         }
-      },
+      }),
       e);
   if (!ok || !e.empty()) return fail(e);
   std::sort(border.entries.begin(), border.entries.end());
@@ -562,7 +581,7 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
   }
   // Halo: each triangle around a border position, for the other cells using it.
   ok = soup.forEach(
-      [&](const float* r) {
+      centred([&](const float* r) {
         if (!e.empty()) return;
         const uint32_t cell = centreCell(r);
         uint32_t to[8];
@@ -580,7 +599,7 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
           if (!haloFiles[to[i]]->append(rec, e)) return;
           ++rep.haloTriangles;
         }
-      },
+      }),
       e);
   if (!ok || !e.empty()) return fail(e);
   for (uint32_t c = 0; c < tree.cells(); ++c)
@@ -603,7 +622,7 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
   rep.build.seconds = rep.readSeconds + rep.partitionSeconds + rep.buildSeconds;
 
   ClusterIndex index;
-  index.origin = origin;
+  index.origin = origin + centre;
   index.hasUvs = uvs;
   index.pageCount = b.writer.pages();
   index.groupCount = b.groups;

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "meshproc/cluster_parts.h"
 #include "meshproc/position_key.h"
 
 namespace hs::mesh {
@@ -62,8 +63,11 @@ bool finite(const LodSphere& s) {
          std::isfinite(s.radius) && s.radius >= 0.0f;
 }
 
+// Up to float rounding (a relative 1e-5 of the radius, and half of
+// merged()'s slack for the coordinates' own rounding far from the origin).
 bool holds(const LodSphere& outer, const LodSphere& inner) {
-  return glm::length(inner.centre - outer.centre) + inner.radius <= outer.radius * (1.0f + 1e-5f) + 1e-5f;
+  return glm::length(inner.centre - outer.centre) + inner.radius <=
+         outer.radius * (1.0f + 1e-5f) + 1e-5f + 0.5f * coordinateSlack(outer);
 }
 
 size_t clusterBytes(size_t vertices, size_t triangles, bool uvs) {

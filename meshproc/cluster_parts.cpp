@@ -3,6 +3,7 @@
 #include <meshoptimizer.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <unordered_map>
 
@@ -53,6 +54,11 @@ LodSphere sphereOf(const std::vector<glm::vec3>& pool, const uint32_t* indices, 
   return s;
 }
 
+float coordinateSlack(const LodSphere& s) {
+  const float scale = std::max({std::abs(s.centre.x), std::abs(s.centre.y), std::abs(s.centre.z)}) + s.radius;
+  return scale * 1e-6f;  // eight units in the last place (2^-23 each)
+}
+
 LodSphere merged(const LodSphere& a, const LodSphere& b) {
   const glm::vec3 d = b.centre - a.centre;
   const float dist = glm::length(d);
@@ -61,7 +67,10 @@ LodSphere merged(const LodSphere& a, const LodSphere& b) {
   LodSphere s;
   s.radius = 0.5f * (dist + a.radius + b.radius);
   s.centre = a.centre + d * ((s.radius - a.radius) / std::max(dist, 1e-30f));
-  s.radius *= 1.0f + 1e-6f;  // float rounding must not leave either outside
+  // Float rounding must not leave either outside: the centre is off by up
+  // to a few units in the last place of the coordinates, which far from
+  // the origin (a small sphere 2 km out) is more than a share of the radius.
+  s.radius = s.radius * (1.0f + 1e-6f) + coordinateSlack(s);
   return s;
 }
 

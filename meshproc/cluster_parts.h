@@ -32,7 +32,12 @@ std::vector<std::vector<uint32_t>> meshletsOf(const std::vector<glm::vec3>& pool
 // their box); none: an empty sphere.
 LodSphere sphereOf(const std::vector<glm::vec3>& pool, const uint32_t* indices, size_t count);
 
-// The smallest sphere holding both (a sphere holding the other is kept).
+// The smallest sphere holding both (a sphere holding the other is kept),
+// grown by coordinateSlack so float rounding leaves neither outside.
 LodSphere merged(const LodSphere& a, const LodSphere& b);
+
+// What float rounding can move a sphere's centre by: eight units in the
+// last place of its largest coordinate (the radius added).
+float coordinateSlack(const LodSphere& s);
 
 }  // namespace hs::mesh
