@@ -434,6 +434,21 @@ class TestHsceneClusters : public QObject {
       return n;
     };
     QCOMPARE(scratchFiles(), size_t(1));  // the page file; the build's cell files are gone
+    // A tile that cannot be read stops the build with the reader's message
+    // naming it, and leaves nothing behind.
+    {
+      const std::string bad = (dir / "bad.ply").string();
+      test::writeFile(bad, "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                           "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                           "\x01\x02");
+      MeshImportRequest broken = r;
+      broken.files = {r.files[0], bad};
+      const ImportedMesh failed = importMeshFiles(broken);
+      QVERIFY(!failed.ok());
+      QVERIFY2(contains(failed.error, "bad.ply"), failed.error.c_str());
+      QCOMPARE(scratchFiles(), size_t(1));  // still only the good import's page file
+      fs::remove(bad);
+    }
     Document doc;
     doc.reset(SceneState{}, QString());
     const EntityId id = ops::addImportedMesh(doc, std::move(imported), "Streamed bunny", r.files.front());
