@@ -20,8 +20,9 @@
 // Deterministic: groups are simplified in parallel but merged in a fixed
 // order; the result depends on the input and the options only.
 // Pages: cluster_pages.h; the cut with pages missing: cluster_cut.h; in
-// the scene file: scene/cluster_file.h. Not here yet: textures paged per
-// region, building out of core (item 1's streaming input), the GPU cut.
+// the scene file: scene/cluster_file.h; a scan larger than memory, built
+// cell by cell from tiles: cluster_build_streamed.h. Not here yet:
+// textures paged per region, the GPU cut.
 #include <cstdint>
 #include <limits>
 #include <vector>
