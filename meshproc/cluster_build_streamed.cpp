@@ -247,7 +247,6 @@ struct Builder {
     std::vector<uint32_t> active;
     std::vector<HaloFace> halo;
     globalOf.clear();
-    pool.clear();
     if (node.axis < 0) {
       if (!leaf(node.firstCell, h, active, halo)) return false;
     } else {
@@ -255,9 +254,9 @@ struct Builder {
       std::vector<HaloFace> ha, hb;
       if (!build(node.child[0], a, ha) || !build(node.child[1], b, hb)) return false;
       globalOf.clear();
-      pool.clear();
-      join(h, a, active);
-      join(h, b, active);
+      PositionPool pool;
+      join(h, a, active, pool);
+      join(h, b, active, pool);
       // The children's halo faces that lie beyond this node, each once (a
       // face around a position both children use was copied to both).
       ha.insert(ha.end(), hb.begin(), hb.end());
@@ -323,8 +322,10 @@ struct Builder {
 
   // A child's leftover clusters into the parent's hierarchy (vertices
   // welded where position and UV are the same, as the child had them).
-  std::unordered_map<uint64_t, std::vector<uint32_t>> pool;
-  void join(ClusterHierarchy& h, const std::vector<Leftover>& from, std::vector<uint32_t>& active) {
+  // The node's vertices by position key, for welding the two children's.
+  using PositionPool = std::unordered_map<uint64_t, std::vector<uint32_t>>;
+  void join(ClusterHierarchy& h, const std::vector<Leftover>& from, std::vector<uint32_t>& active,
+            PositionPool& pool) {
     for (const Leftover& l : from) {
       std::vector<uint32_t> tris;
       for (size_t i = 0; i < l.corners.size(); ++i) {
@@ -579,24 +580,27 @@ std::optional<ClusterIndex> buildClusterPagesStreamed(ScanTileSource& tiles, con
       if (i == 0 || border.entries[i].first != border.entries[i - 1].first) ++positions;
     rep.borderPositions = positions;
   }
+  std::vector<uint32_t> haloCells;
   // Halo: each triangle around a border position, for the other cells using it.
   ok = soup.forEach(
       centred([&](const float* r) {
         if (!e.empty()) return;
         const uint32_t cell = centreCell(r);
-        uint32_t to[8];
-        size_t n = 0;
+        // Every other cell using a corner (usually one to three; a long
+        // triangle's corner can be used by more than eight).
+        std::vector<uint32_t>& to = haloCells;
+        to.clear();
         for (int k = 0; k < 3; ++k) {
           const uint64_t key = positionKey(glm::vec3(r[k * 3], r[k * 3 + 1], r[k * 3 + 2]));
           auto it = std::lower_bound(border.entries.begin(), border.entries.end(), std::pair<uint64_t, uint32_t>(key, 0));
           for (; it != border.entries.end() && it->first == key; ++it)
-            if (it->second != cell && std::find(to, to + n, it->second) == to + n && n < 8) to[n++] = it->second;
+            if (it->second != cell && std::find(to.begin(), to.end(), it->second) == to.end()) to.push_back(it->second);
         }
         float rec[10];
         std::copy(r, r + 9, rec);
         std::memcpy(&rec[9], &cell, 4);
-        for (size_t i = 0; i < n; ++i) {
-          if (!haloFiles[to[i]]->append(rec, e)) return;
+        for (uint32_t c : to) {
+          if (!haloFiles[c]->append(rec, e)) return;
           ++rep.haloTriangles;
         }
       }),
