@@ -20,16 +20,23 @@ void buildRows(size_t keys, const std::vector<std::pair<uint32_t, uint32_t>>& pa
   for (const auto& [k, v] : pairs) values[at[k]++] = v;
 }
 
+// Sorts and drops repeated pairs, so each key's row lists each value once.
+void distinct(std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+}
+
 }  // namespace
 
 ClusterGroups clusterGroupsOf(const ClusterIndex& index) {
   ClusterGroups g;
-  std::vector<std::pair<uint32_t, uint32_t>> children, made, pages;
+  std::vector<std::pair<uint32_t, uint32_t>> children, made, pages, childGroups;
   for (uint32_t i = 0; i < index.clusters.size(); ++i) {
     const ClusterIndexEntry& e = index.clusters[i];
     if (e.parentGroup != kNoGroup) {
       children.emplace_back(e.parentGroup, i);
       pages.emplace_back(e.parentGroup, e.page);
+      if (e.group != kNoGroup) childGroups.emplace_back(e.parentGroup, e.group);
     } else {
       g.roots.push_back(i);
       g.rootPages.push_back(e.page);
@@ -39,9 +46,16 @@ ClusterGroups clusterGroupsOf(const ClusterIndex& index) {
   buildRows(index.groupCount, children, g.childrenFirst, g.children);
   buildRows(index.groupCount, made, g.madeFirst, g.made);
   // Distinct pages per group (a group's children sit in a few neighbouring pages).
-  std::sort(pages.begin(), pages.end());
-  pages.erase(std::unique(pages.begin(), pages.end()), pages.end());
+  distinct(pages);
   buildRows(index.groupCount, pages, g.childPagesFirst, g.childPages);
+  // A group under pg for each distinct (pg, group) pair: pg is one of the
+  // groups its clusters were simplified in.
+  distinct(childGroups);
+  buildRows(index.groupCount, childGroups, g.childGroupsFirst, g.childGroups);
+  g.parentsNeeded.assign(index.groupCount, 0);
+  for (const auto& [pg, below] : childGroups) ++g.parentsNeeded[below];
+  for (uint32_t k = 0; k < index.groupCount; ++k)
+    if (g.parentsNeeded[k] == 0 && g.madeFirst[k] != g.madeFirst[k + 1]) g.topGroups.push_back(k);
   std::sort(g.rootPages.begin(), g.rootPages.end());
   g.rootPages.erase(std::unique(g.rootPages.begin(), g.rootPages.end()), g.rootPages.end());
   return g;
@@ -58,47 +72,28 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
     }
   if (!cut.rootsResident) return cut;  // the roots come first: asked for, nothing drawn yet
 
+  // A group is looked at once every group above it is refined (`above`
+  // counts them in), so only groups next to the cut are ever touched.
   const uint32_t groupCount = index.groupCount;
-  // Which groups the view asks to refine, from the bottom up (a group is
-  // made before every group above it: increasing ids go up): its own
-  // error over the bound where one of its children is seen, or a group
-  // below it asking (whose parents must refine first for it to). Without
-  // `visible` this is just "its error is over the bound" (monotonic).
-  std::vector<uint8_t> demand(groupCount, 0);
-  for (uint32_t g = 0; g < groupCount; ++g) {
-    const uint32_t madeBegin = groups.madeFirst[g];
-    if (madeBegin == groups.madeFirst[g + 1]) continue;  // (a sound index has none such)
-    const ClusterIndexEntry& out = index.clusters[groups.made[madeBegin]];
-    if (lodFineEnough(out.lodBounds, out.error, viewer.eye, viewer.focalPx, viewer.pixelBound)) {
-      // Fine, unless a group below asks (float rounding of a monotonic test).
-    } else if (!visible) {
-      demand[g] = 1;
-      continue;
-    } else {
+  std::vector<uint32_t> above(groupCount, 0);
+  std::vector<uint8_t> refined(groupCount, 0);
+  std::vector<uint32_t> ready(groups.topGroups.begin(), groups.topGroups.end());
+  std::vector<uint32_t> refinedList;
+  std::vector<std::pair<float, uint32_t>> waiting;  // (projected error, page)
+  while (!ready.empty()) {
+    const uint32_t g = ready.back();
+    ready.pop_back();
+    ++cut.groupsTested;
+    const ClusterIndexEntry& out = index.clusters[groups.made[groups.madeFirst[g]]];
+    if (lodFineEnough(out.lodBounds, out.error, viewer.eye, viewer.focalPx, viewer.pixelBound)) continue;
+    if (visible) {
       // Refined only where a child would be seen: a group whose children
       // all lie outside every view is drawn as it is (and culled there).
-      for (uint32_t k = groups.childrenFirst[g]; k < groups.childrenFirst[g + 1] && !demand[g]; ++k)
-        demand[g] = visible(index.clusters[groups.children[k]].bounds);
-      if (demand[g]) continue;
+      bool seen = false;
+      for (uint32_t k = groups.childrenFirst[g]; k < groups.childrenFirst[g + 1] && !seen; ++k)
+        seen = visible(index.clusters[groups.children[k]].bounds);
+      if (!seen) continue;
     }
-    for (uint32_t k = groups.childrenFirst[g]; k < groups.childrenFirst[g + 1] && !demand[g]; ++k) {
-      const uint32_t below = index.clusters[groups.children[k]].group;
-      demand[g] = below != kNoGroup && demand[below];
-    }
-  }
-  std::vector<uint8_t> refined(groupCount, 0);
-  std::vector<std::pair<float, uint32_t>> waiting;  // (projected error, page)
-  // Then from the roots down (decreasing ids).
-  for (uint32_t g = groupCount; g-- > 0;) {
-    if (!demand[g]) continue;
-    const uint32_t madeBegin = groups.madeFirst[g], madeEnd = groups.madeFirst[g + 1];
-    const ClusterIndexEntry& out = index.clusters[groups.made[madeBegin]];
-    bool above = true;
-    for (uint32_t k = madeBegin; k < madeEnd && above; ++k) {
-      const uint32_t pg = index.clusters[groups.made[k]].parentGroup;
-      above = pg == kNoGroup || refined[pg];
-    }
-    if (!above) continue;
     bool all = true;
     for (uint32_t k = groups.childPagesFirst[g]; k < groups.childPagesFirst[g + 1]; ++k)
       if (!resident(groups.childPages[k])) {
@@ -112,13 +107,24 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
       continue;
     }
     refined[g] = 1;
-    ++cut.groupsRefined;
+    refinedList.push_back(g);
+    for (uint32_t k = groups.childGroupsFirst[g]; k < groups.childGroupsFirst[g + 1]; ++k) {
+      const uint32_t below = groups.childGroups[k];
+      if (++above[below] == groups.parentsNeeded[below]) ready.push_back(below);
+    }
   }
-  for (uint32_t i = 0; i < index.clusters.size(); ++i) {
-    const ClusterIndexEntry& e = index.clusters[i];
-    if ((e.parentGroup == kNoGroup || refined[e.parentGroup]) && (e.group == kNoGroup || !refined[e.group]))
-      cut.clusters.push_back(i);
-  }
+  cut.groupsRefined = refinedList.size();
+  // Drawn: the roots and the children of refined groups, where the group
+  // that made them is not refined (each cluster has one parent group, so
+  // none is listed twice).
+  auto draw = [&](uint32_t c) {
+    const uint32_t made = index.clusters[c].group;
+    if (made == kNoGroup || !refined[made]) cut.clusters.push_back(c);
+  };
+  for (uint32_t c : groups.roots) draw(c);
+  for (uint32_t g : refinedList)
+    for (uint32_t k = groups.childrenFirst[g]; k < groups.childrenFirst[g + 1]; ++k) draw(groups.children[k]);
+  std::sort(cut.clusters.begin(), cut.clusters.end());
   // Most wanted first, each page once (its largest error), ties by page.
   std::sort(waiting.begin(), waiting.end(), [](const auto& a, const auto& b) {
     return a.first != b.first ? a.first > b.first : a.second < b.second;

@@ -4,22 +4,31 @@
 // where the view wants more detail, the pages it has say how much it can
 // draw now, and what is missing is asked for.
 //
-// Groups decide, from the roots down (a group is made after every group
-// below it, so in decreasing id order): a group is refined (its children
+// Groups decide, from the roots down: a group is refined (its children
 // drawn or refined further instead of the clusters it made) when its own
 // test fails (its error projects over the pixel bound), every group above
 // it (those its clusters were simplified in) is refined, one of its
 // children's spheres meets a view (`visible`: a group whose children
-// nobody sees is never refined) and every page
-// holding one of its children is resident. A cluster is drawn when the
-// group it was simplified in is refined (a root: always) and the group
-// that made it is not (level 0: never refined). Each piece of surface then
-// has exactly one level, as with selectClusterCut: a group's children and
-// what it made cover the same surface inside the same locked border, and a
-// group only refines under refined groups. With every page resident the
-// cut is selectClusterCut's for the visible groups; with some missing, the
+// nobody sees is never refined) and every page holding one of its children
+// is resident. A cluster is drawn when the group it was simplified in is
+// refined (a root: always) and the group that made it is not (level 0:
+// never refined). Each piece of surface then has exactly one level, as
+// with selectClusterCut: a group's children and what it made cover the
+// same surface inside the same locked border, and a group only refines
+// under refined groups. With every page resident the cut is
+// selectClusterCut's for the visible groups; with some missing, the
 // coarser level stays where the finer is not in memory (never a hole), and
 // those pages are asked for, the largest projected error first.
+//
+// The walk starts at the groups under the roots and only looks at the
+// children of groups it refines, so a cut costs what it draws, not what
+// the index holds (a 100M-triangle scan's index has 1.7M clusters; a low
+// flight draws a few percent of them). The error test is monotonic up the
+// hierarchy (errors grow, spheres nest: clusterIndexProblem checks both),
+// so stopping at a group that is fine enough misses nothing below it but
+// float ties; visibility is not strictly monotonic (a parent's children
+// may all lie just outside a view that one of its grandchildren's meets),
+// which is why the render source widens the view it refines through.
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -33,8 +42,11 @@ struct ClusterGroups {
   std::vector<uint32_t> childrenFirst, children;  // CSR: clusters simplified in group g
   std::vector<uint32_t> madeFirst, made;          // CSR: clusters group g made
   std::vector<uint32_t> childPagesFirst, childPages;  // CSR: distinct pages of g's children
-  std::vector<uint32_t> roots;                    // clusters with no parent group
-  std::vector<uint32_t> rootPages;                // their distinct pages
+  std::vector<uint32_t> childGroupsFirst, childGroups;  // CSR: distinct groups that made g's children
+  std::vector<uint32_t> parentsNeeded;  // per group: distinct groups its clusters were simplified in
+  std::vector<uint32_t> topGroups;      // groups that made only roots (parentsNeeded 0)
+  std::vector<uint32_t> roots;          // clusters with no parent group
+  std::vector<uint32_t> rootPages;      // their distinct pages
 };
 ClusterGroups clusterGroupsOf(const ClusterIndex& index);
 
@@ -52,6 +64,7 @@ struct ResidentCut {
   bool rootsResident = true;  // false: some root's page is missing (nothing of the hierarchy can be drawn whole)
   bool complete = true;       // no group held coarse for want of a page
   size_t groupsRefined = 0;
+  size_t groupsTested = 0;  // groups whose test ran: the cut's cost (those next to it, not the index's)
 };
 
 // `resident(page)`: whether the page is in memory; `visible(sphere)`:

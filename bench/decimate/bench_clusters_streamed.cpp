@@ -18,10 +18,12 @@
 //        [--tile-millions 1] [--work-dir DIR] [--estimate]
 //   --estimate: groups' errors from the decimator's quadric estimate, not
 //   the certified bound (7x faster build; bench_clusters compares them).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -190,8 +192,12 @@ int main(int argc, char** argv) {
     char head[160];
     std::snprintf(head, sizeof head, "\n%gM triangles (%zu): a low flight, 1 px\n", millions, rep.triangles);
     std::string table = head;
-    table += "| flight point | triangles | share | clusters | cut ms | pages MB needed | of all pages | LOD chain tris |\n";
-    table += "|---|---|---|---|---|---|---|---|\n";
+    // "every cluster": the same cut from each cluster's own test over the
+    // whole index (as selectClusterCut, and a compute pass, would take it):
+    // the walk's reference in time and in what it picks.
+    table += "| flight point | triangles | share | clusters | groups tested | of all | cut ms | every cluster ms | "
+             "same cut | pages MB needed | of all pages | LOD chain tris |\n";
+    table += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (int k = 0; k < 6; ++k) {
       const double fx = 0.1 + 0.16 * k, fy = 0.15 + 0.14 * k;
       const glm::dvec3 world = layout.pointAt(fx, fy, 40.0);
@@ -202,6 +208,19 @@ int main(int argc, char** argv) {
       const double t0 = bench::nowSeconds();
       const mesh::ResidentCut cut = mesh::selectResidentCut(*index, groups, v, [](uint32_t) { return true; });
       const double ms = (bench::nowSeconds() - t0) * 1e3;
+      const double t1 = bench::nowSeconds();
+      std::vector<uint32_t> scanned;
+      for (uint32_t id = 0; id < index->clusters.size(); ++id) {
+        const mesh::ClusterIndexEntry& e = index->clusters[id];
+        if (mesh::lodFineEnough(e.lodBounds, e.error, v.eye, v.focalPx, v.pixelBound) &&
+            !mesh::lodFineEnough(e.parentBounds, e.parentError, v.eye, v.focalPx, v.pixelBound))
+          scanned.push_back(id);
+      }
+      const double scanMs = (bench::nowSeconds() - t1) * 1e3;
+      std::vector<uint32_t> onlyOne;
+      std::set_symmetric_difference(cut.clusters.begin(), cut.clusters.end(), scanned.begin(), scanned.end(),
+                                    std::back_inserter(onlyOne));
+      const std::string same = onlyOne.empty() ? "yes" : std::to_string(onlyOne.size()) + " differ";
       size_t tris = 0;
       std::vector<uint32_t> pages;
       for (uint32_t id : cut.clusters) {
@@ -212,10 +231,12 @@ int main(int argc, char** argv) {
       pages.erase(std::unique(pages.begin(), pages.end()), pages.end());
       uint64_t needed = 0;
       for (uint32_t p : pages) needed += pageSizes[p];
-      char row[256];
-      std::snprintf(row, sizeof row, "| (%.2f, %.2f) | %zu | %.2f%% | %zu | %.2f | %.1f | %.2f%% | %zu |\n", fx, fy, tris,
-                    100.0 * double(tris) / double(rep.triangles), cut.clusters.size(), ms, mb(double(needed)),
-                    100.0 * double(needed) / double(pageBytes), rep.triangles);
+      char row[320];
+      std::snprintf(row, sizeof row,
+                    "| (%.2f, %.2f) | %zu | %.2f%% | %zu | %zu | %.2f%% | %.2f | %.2f | %s | %.1f | %.2f%% | %zu |\n", fx,
+                    fy, tris, 100.0 * double(tris) / double(rep.triangles), cut.clusters.size(), cut.groupsTested,
+                    100.0 * double(cut.groupsTested) / double(std::max<uint32_t>(index->groupCount, 1)), ms, scanMs,
+                    same.c_str(), mb(double(needed)), 100.0 * double(needed) / double(pageBytes), rep.triangles);
       table += row;
     }
     flights.push_back(table);

@@ -15,6 +15,7 @@
 // hierarchy, are refused with a message naming the page or cluster.
 #include <QtTest>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -383,6 +384,51 @@ class TestMeshprocClusters : public QObject {
       return n;
     };
     QVERIFY(triangles(seen) < triangles(everything));
+  }
+
+  // The walk tests only the groups under the roots and under the groups it
+  // refines: from far away a handful, never the whole index; and with every
+  // page resident its cut is the one each cluster's own test gives.
+  void theCutCostsWhatItDraws() {
+    const mesh::ClusterPages pages = mesh::paginate(h_, 8 << 10);
+    const mesh::ClusterGroups groups = mesh::clusterGroupsOf(pages.index);
+    QVERIFY(!groups.topGroups.empty());
+    auto all = [](uint32_t) { return true; };
+    const mesh::ResidentCut far = mesh::selectResidentCut(pages.index, groups, {glm::vec3(1e5f, 0, 0), 1000.0f, 1.0f}, all);
+    QCOMPARE(far.groupsRefined, size_t(0));
+    QCOMPARE(far.groupsTested, groups.topGroups.size());
+    QVERIFY(far.groupsTested * 10 < pages.index.groupCount);
+    for (const glm::vec3 eye : {glm::vec3(0, -12, 0), glm::vec3(0, -40, 10), glm::vec3(200, 0, 0), glm::vec3(0, 0, 900)}) {
+      const mesh::ResidentCut cut = mesh::selectResidentCut(pages.index, groups, {eye, 1000.0f, 1.0f}, all);
+      // Refined: the groups the drawn clusters were simplified in, and every
+      // group above a refined one (ids grow upwards).
+      std::vector<uint8_t> refined(pages.index.groupCount, 0);
+      for (uint32_t c : cut.clusters) {
+        const uint32_t pg = pages.index.clusters[c].parentGroup;
+        if (pg != mesh::kNoGroup) refined[pg] = 1;
+      }
+      for (uint32_t g = 0; g < pages.index.groupCount; ++g)
+        for (uint32_t k = groups.madeFirst[g]; refined[g] && k < groups.madeFirst[g + 1]; ++k) {
+          const uint32_t pg = pages.index.clusters[groups.made[k]].parentGroup;
+          if (pg != mesh::kNoGroup) refined[pg] = 1;
+        }
+      QCOMPARE(size_t(std::count(refined.begin(), refined.end(), 1)), cut.groupsRefined);
+      // Tested: exactly the groups whose clusters were all simplified in
+      // refined groups (or are roots), each once.
+      size_t expected = 0;
+      for (uint32_t g = 0; g < pages.index.groupCount; ++g) {
+        bool under = true;
+        for (uint32_t k = groups.madeFirst[g]; k < groups.madeFirst[g + 1]; ++k) {
+          const uint32_t pg = pages.index.clusters[groups.made[k]].parentGroup;
+          under = under && (pg == mesh::kNoGroup || refined[pg]);
+        }
+        expected += under;
+      }
+      QCOMPARE(cut.groupsTested, expected);
+      qInfo("eye (%g, %g, %g): %zu of %u groups tested, %zu refined", eye.x, eye.y, eye.z, cut.groupsTested,
+            pages.index.groupCount, cut.groupsRefined);
+      QVERIFY(inHierarchy(pages, cut.clusters) == mesh::selectClusterCut(h_, eye, 1000.0f, 1.0f));
+    }
   }
 
   // Stored normals: unit, and on the bumpy sphere close to the radial direction.
