@@ -1,10 +1,8 @@
 #include "meshproc/cluster_build_streamed.h"
 
 #include <meshoptimizer.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +12,7 @@
 #include <memory>
 #include <unordered_map>
 
+#include "core/scratch_files.h"
 #include "mesh/tile_merge.h"
 #include "meshproc/cluster_levels.h"
 #include "meshproc/cluster_parts.h"
@@ -34,6 +33,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+
+constexpr const char* kScratchPrefix = "hs-clusters-";
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -108,9 +109,11 @@ class RecordFile {
 struct ScratchDir {
   fs::path path;
   explicit ScratchDir(const std::string& base) {
-    static std::atomic<unsigned> serial{0};
     const fs::path root = base.empty() ? fs::temp_directory_path() : fs::path(base);
-    path = root / ("hs-clusters-" + std::to_string(::getpid()) + "-" + std::to_string(serial++));
+    // What a crashed or killed build left here goes first (it can be the
+    // size of the scan).
+    sweepStaleScratch(root, kScratchPrefix);
+    path = root / scratchName(kScratchPrefix);
     std::error_code ec;
     fs::create_directories(path, ec);
   }

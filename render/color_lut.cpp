@@ -41,10 +41,10 @@ std::unique_ptr<GpuLut> makeGpuTransform(const OCIO::ConstProcessorRcPtr& proces
     }
     out->shaderText = desc->getShaderText();
     for (unsigned i = 0; i < desc->getNum3DTextures(); ++i) {
-      const char *name = nullptr, *sampler = nullptr;
+      const char *textureName = nullptr, *sampler = nullptr;
       unsigned edge = 0;
       OCIO::Interpolation interpolation = OCIO::INTERP_LINEAR;
-      desc->get3DTexture(i, name, sampler, edge, interpolation);
+      desc->get3DTexture(i, textureName, sampler, edge, interpolation);
       const float* values = nullptr;
       desc->get3DTextureValues(i, values);
       GpuLut::Table t{sampler, 0, GL_TEXTURE_3D, TextureDesc{}};
@@ -60,11 +60,11 @@ std::unique_ptr<GpuLut> makeGpuTransform(const OCIO::ConstProcessorRcPtr& proces
       out->tables.push_back(std::move(t));
     }
     for (unsigned i = 0; i < desc->getNumTextures(); ++i) {
-      const char *name = nullptr, *sampler = nullptr;
+      const char *textureName = nullptr, *sampler = nullptr;
       unsigned width = 0, height = 0;
       OCIO::GpuShaderDesc::TextureType channel = OCIO::GpuShaderDesc::TEXTURE_RGB_CHANNEL;
       OCIO::Interpolation interpolation = OCIO::INTERP_LINEAR;
-      desc->getTexture(i, name, sampler, width, height, channel, interpolation);
+      desc->getTexture(i, textureName, sampler, width, height, channel, interpolation);
       const float* values = nullptr;
       desc->getTextureValues(i, values);
       const bool red = channel == OCIO::GpuShaderDesc::TEXTURE_RED_CHANNEL;

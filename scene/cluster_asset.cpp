@@ -1,15 +1,13 @@
 #include "scene/cluster_asset.h"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <numeric>
 
 #include "core/content_hash.h"
+#include "core/scratch_files.h"
 #include "meshproc/cluster_cut.h"
 #include "scene/blob_parts.h"
 #include "scene/sqlite_db.h"
@@ -382,11 +380,11 @@ ClusterBuild buildClusterAssetStreamed(mesh::ScanTileSource& tiles, const mesh::
                                        size_t proxyTriangles, mesh::StreamedClusterReport* report,
                                        const Progress* progress, std::string& error) {
   ClusterBuild b;
-  static std::atomic<unsigned> serial{0};
   const std::filesystem::path dir =
       options.scratchDir.empty() ? std::filesystem::temp_directory_path() : std::filesystem::path(options.scratchDir);
-  const std::string path =
-      (dir / ("hs-cluster-pages-" + std::to_string(::getpid()) + "-" + std::to_string(serial++) + ".bin")).string();
+  // Page files of builds that crashed or were killed before their scene was saved.
+  sweepStaleScratch(dir, "hs-cluster-pages-");
+  const std::string path = (dir / scratchName("hs-cluster-pages-", ".bin")).string();
   std::FILE* out = std::fopen(path.c_str(), "wb");
   if (!out) {
     error = path + ": cannot create the page file";

@@ -8,15 +8,20 @@
 // its largest error of the input (sampled); level-0 normals along cell
 // borders equal the input's own area-weighted normals (the halo); the
 // pages and index come out byte for byte the same for one and two threads;
-// the scratch folder is gone afterwards; a tile that cannot be read, or
+// the scratch folder is gone afterwards, and what a killed build left there
+// is swept (this machine's dead processes' only); a tile that cannot be read, or
 // tiles with no triangle, are errors naming the tile.
 #include <QtTest>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <unordered_map>
 
+#include "core/scratch_files.h"
 #include "mesh_builders.h"
 #include "meshproc/cluster_build_streamed.h"
 #include "meshproc/cluster_cut.h"
@@ -234,7 +239,26 @@ class TestMeshprocStreamed : public QObject {
   void theSameForAnyThreadCount() {
     const std::string scratch = QDir::tempPath().toStdString() + "/hs-streamed-test";
     std::filesystem::create_directories(scratch);
+    // What a killed build left (this machine, a process that is gone) is
+    // swept; a live process's and another machine's (a shared folder) stay.
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    QVERIFY(child > 0 && ::waitpid(child, nullptr, 0) == child);
+    const std::string live = scratchName("hs-clusters-");  // <host>-<this pid>-<n>
+    const std::string mine = "-" + std::to_string(::getpid()) + "-";
+    std::string stale = live;
+    stale.replace(stale.rfind(mine), mine.size(), "-" + std::to_string(child) + "-");
+    const std::string elsewhere = "hs-clusters-render-node-7-" + std::to_string(child) + "-0";
+    for (const std::string& name : {live, stale, elsewhere}) {
+      std::filesystem::create_directories(scratch + "/" + name);
+      std::ofstream(scratch + "/" + name + "/triangles.bin") << "left behind";
+    }
     const Built one = build(tilesOf(sphere_), 1, scratch);
+    QVERIFY(!std::filesystem::exists(scratch + "/" + stale));
+    QVERIFY(std::filesystem::exists(scratch + "/" + live + "/triangles.bin"));
+    QVERIFY(std::filesystem::exists(scratch + "/" + elsewhere + "/triangles.bin"));
+    std::filesystem::remove_all(scratch + "/" + live);
+    std::filesystem::remove_all(scratch + "/" + elsewhere);
     QVERIFY2(one.index, one.error.c_str());
     QCOMPARE(one.pages.size(), built_.pages.size());
     QVERIFY(one.pages == built_.pages);
