@@ -1,6 +1,7 @@
 #include "meshproc/cluster_cut.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "meshproc/uniform_cut.h"
@@ -45,6 +46,14 @@ ClusterGroups clusterGroupsOf(const ClusterIndex& index) {
   }
   buildRows(index.groupCount, children, g.childrenFirst, g.children);
   buildRows(index.groupCount, made, g.madeFirst, g.made);
+  g.childGroup.resize(g.children.size());
+  for (size_t k = 0; k < g.children.size(); ++k) g.childGroup[k] = index.clusters[g.children[k]].group;
+  g.tests.resize(index.groupCount);
+  for (uint32_t k = 0; k < index.groupCount; ++k)
+    if (g.madeFirst[k] != g.madeFirst[k + 1]) {
+      const ClusterIndexEntry& e = index.clusters[g.made[g.madeFirst[k]]];
+      g.tests[k] = {e.lodBounds, e.error};
+    }
   // Distinct pages per group (a group's children sit in a few neighbouring pages).
   distinct(pages);
   buildRows(index.groupCount, pages, g.childPagesFirst, g.childPages);
@@ -84,8 +93,8 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
     const uint32_t g = ready.back();
     ready.pop_back();
     ++cut.groupsTested;
-    const ClusterIndexEntry& out = index.clusters[groups.made[groups.madeFirst[g]]];
-    if (lodFineEnough(out.lodBounds, out.error, viewer.eye, viewer.focalPx, viewer.pixelBound)) continue;
+    const ClusterGroups::Test& test = groups.tests[g];
+    if (lodFineEnough(test.sphere, test.error, viewer.eye, viewer.focalPx, viewer.pixelBound)) continue;
     if (visible) {
       // Refined only where a child would be seen: a group whose children
       // all lie outside every view is drawn as it is (and culled there).
@@ -98,8 +107,8 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
     for (uint32_t k = groups.childPagesFirst[g]; k < groups.childPagesFirst[g + 1]; ++k)
       if (!resident(groups.childPages[k])) {
         all = false;
-        const float d = glm::length(viewer.eye - out.lodBounds.centre) - out.lodBounds.radius;
-        const float projected = d > 0.0f ? out.error * viewer.focalPx / d : INFINITY;
+        const float d = glm::length(viewer.eye - test.sphere.centre) - test.sphere.radius;
+        const float projected = d > 0.0f ? test.error * viewer.focalPx / d : INFINITY;
         waiting.emplace_back(projected, groups.childPages[k]);
       }
     if (!all) {
@@ -116,15 +125,19 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
   cut.groupsRefined = refinedList.size();
   // Drawn: the roots and the children of refined groups, where the group
   // that made them is not refined (each cluster has one parent group, so
-  // none is listed twice).
-  auto draw = [&](uint32_t c) {
-    const uint32_t made = index.clusters[c].group;
-    if (made == kNoGroup || !refined[made]) cut.clusters.push_back(c);
+  // none is listed twice), put in index order through a bit per cluster
+  // (a sort of the tens of thousands drawn costs more).
+  std::vector<uint64_t> drawn((index.clusters.size() + 63) / 64, 0);
+  auto draw = [&](uint32_t c, uint32_t made) {
+    if (made == kNoGroup || !refined[made]) drawn[c >> 6] |= uint64_t(1) << (c & 63);
   };
-  for (uint32_t c : groups.roots) draw(c);
+  for (uint32_t c : groups.roots) draw(c, index.clusters[c].group);
   for (uint32_t g : refinedList)
-    for (uint32_t k = groups.childrenFirst[g]; k < groups.childrenFirst[g + 1]; ++k) draw(groups.children[k]);
-  std::sort(cut.clusters.begin(), cut.clusters.end());
+    for (uint32_t k = groups.childrenFirst[g]; k < groups.childrenFirst[g + 1]; ++k)
+      draw(groups.children[k], groups.childGroup[k]);
+  for (size_t w = 0; w < drawn.size(); ++w)
+    for (uint64_t bits = drawn[w]; bits; bits &= bits - 1)
+      cut.clusters.push_back(uint32_t(w * 64 + size_t(std::countr_zero(bits))));
   // Most wanted first, each page once (its largest error), ties by page.
   std::sort(waiting.begin(), waiting.end(), [](const auto& a, const auto& b) {
     return a.first != b.first ? a.first > b.first : a.second < b.second;

@@ -37,9 +37,18 @@
 
 namespace hs::mesh {
 
-// Each group's children and the clusters it made, found once per index.
+// Each group's children and the clusters it made, found once per index,
+// laid out for the walk: what a group's test reads in one place, each
+// child's own group beside it (no trip to the index entries, which are 80
+// bytes apart: at 1.7M clusters the walk is bound by memory latency).
 struct ClusterGroups {
+  struct Test {  // the group's sphere and error (every cluster it made has them)
+    LodSphere sphere;
+    float error = 0.0f;
+  };
+  std::vector<Test> tests;                        // per group
   std::vector<uint32_t> childrenFirst, children;  // CSR: clusters simplified in group g
+  std::vector<uint32_t> childGroup;               // per entry of `children`: the group that made it (kNoGroup: level 0)
   std::vector<uint32_t> madeFirst, made;          // CSR: clusters group g made
   std::vector<uint32_t> childPagesFirst, childPages;  // CSR: distinct pages of g's children
   std::vector<uint32_t> childGroupsFirst, childGroups;  // CSR: distinct groups that made g's children

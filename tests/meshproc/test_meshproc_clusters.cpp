@@ -242,7 +242,8 @@ class TestMeshprocClusters : public QObject {
     QVERIFY2(problem.empty(), problem.c_str());
     for (const mesh::Cluster& c : f.clusters) {
       if (!std::isfinite(c.parentError)) continue;
-      QVERIFY(glm::length(glm::dvec3(c.lodBounds.centre) - glm::dvec3(c.parentBounds.centre)) + c.lodBounds.radius <=
+      QVERIFY(glm::length(glm::dvec3(c.lodBounds.centre) - glm::dvec3(c.parentBounds.centre)) +
+                  double(c.lodBounds.radius) <=
               double(c.parentBounds.radius));
     }
   }
@@ -425,8 +426,8 @@ class TestMeshprocClusters : public QObject {
         expected += under;
       }
       QCOMPARE(cut.groupsTested, expected);
-      qInfo("eye (%g, %g, %g): %zu of %u groups tested, %zu refined", eye.x, eye.y, eye.z, cut.groupsTested,
-            pages.index.groupCount, cut.groupsRefined);
+      qInfo("eye (%g, %g, %g): %zu of %u groups tested, %zu refined", double(eye.x), double(eye.y), double(eye.z),
+            cut.groupsTested, pages.index.groupCount, cut.groupsRefined);
       QVERIFY(inHierarchy(pages, cut.clusters) == mesh::selectClusterCut(h_, eye, 1000.0f, 1.0f));
     }
   }
