@@ -11,6 +11,8 @@
 // streamed (out-of-core) build from tile files lands the same way.
 #include <QTemporaryDir>
 #include <QtTest>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -19,6 +21,7 @@
 #include "hscene_sql.h"
 #include "core/content_hash.h"
 #include "core/json.h"
+#include "core/scratch_files.h"
 #include "scene/cluster_asset.h"
 #include "scene/document.h"
 #include "scene/edit.h"
@@ -435,8 +438,17 @@ class TestHsceneClusters : public QObject {
     };
     QCOMPARE(scratchFiles(), size_t(1));  // the page file; the build's cell files are gone
     // A tile that cannot be read stops the build with the reader's message
-    // naming it, and leaves nothing behind.
+    // naming it, and leaves nothing behind; the build first sweeps a page
+    // file that a dead process on this machine never handed to a save.
     {
+      const pid_t child = ::fork();
+      if (child == 0) ::_exit(0);
+      QVERIFY(child > 0 && ::waitpid(child, nullptr, 0) == child);
+      std::string stale = scratchName("hs-cluster-pages-", ".bin");
+      const std::string mine = "-" + std::to_string(::getpid()) + "-";
+      stale.replace(stale.rfind(mine), mine.size(), "-" + std::to_string(child) + "-");
+      test::writeFile((dir / stale).string(), "pages of a killed import");
+      QCOMPARE(scratchFiles(), size_t(2));
       const std::string bad = (dir / "bad.ply").string();
       test::writeFile(bad, "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
