@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "core/content_hash.h"
+#include "core/scratch_files.h"
 #include "foliage/impostor_images.h"
 #include "scene/blob_parts.h"
 #include "scene/cluster_file.h"
@@ -303,8 +304,12 @@ bool saveScene(const SceneState& state, const std::string& path, std::string& er
   } else {
     // New file (or replacing something that is not a current scene): write a
     // complete database beside it, then rename over the target atomically.
-    const std::string tmp = path + ".saving-" + std::to_string(::getpid());
-    fs::remove(tmp, ec);
+    // Its name carries this machine and process, so that what a save killed
+    // part-way left (as large as the scene) goes at the next new save here.
+    const fs::path target(path);
+    const std::string prefix = target.filename().string() + ".saving-";
+    sweepStaleScratch(target.has_parent_path() ? target.parent_path() : fs::path("."), prefix);
+    const std::string tmp = (target.parent_path() / scratchName(prefix)).string();
     {
       SqliteDb db;
       std::string e;

@@ -5,6 +5,7 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <algorithm>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -13,8 +14,10 @@
 
 #include <sqlite3.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include "core/scratch_files.h"
 #include "file_bytes.h"
 #include "hscene_sql.h"
 #include "mesh/mesh_import.h"
@@ -261,9 +264,31 @@ class TestHsceneFile : public QObject {
 
   void saveLoadRoundTrip() {
     const std::string p = path("roundtrip.hscene");
+    // What a save killed part-way left beside it (a dead process on this
+    // machine) goes with the next new save; a live process's stays.
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    QVERIFY(child > 0 && ::waitpid(child, nullptr, 0) == child);
+    const std::string live = path(scratchName("roundtrip.hscene.saving-"));
+    std::string stale = live;
+    const std::string mine = "-" + std::to_string(::getpid()) + "-";
+    stale.replace(stale.rfind(mine), mine.size(), "-" + std::to_string(child) + "-");
+    writeFile(stale, "half a scene");
+    writeFile(stale + "-journal", "its journal");
+    writeFile(live, "another save of this process, under way");
+    auto temporaries = [&] {
+      std::vector<std::string> names;
+      for (const auto& e : fs::directory_iterator(tmp_.path().toStdString()))
+        if (e.path().filename().string().rfind("roundtrip.hscene.saving-", 0) == 0) names.push_back(e.path().string());
+      std::sort(names.begin(), names.end());
+      return names;
+    };
+    QCOMPARE(temporaries().size(), size_t(3));
     std::string error;
     SaveReport report;
     QVERIFY2(saveScene(rich_, p, error, &report), error.c_str());
+    QVERIFY(temporaries() == std::vector<std::string>{live});  // its own temporary renamed, the dead one's swept
+    fs::remove(live);
     QVERIFY(!report.incremental);
     QCOMPARE(report.blobsWritten, assetBlobs(rich_));
     QCOMPARE(report.blobsUnchanged, size_t(0));
@@ -272,7 +297,6 @@ class TestHsceneFile : public QObject {
     QVERIFY(pages > 0);
     QCOMPARE(report.pagesWritten, pages);
     QVERIFY(report.bytesWritten > 1000000);  // the bunny alone is over a megabyte
-    QVERIFY(!fs::exists(p + ".saving-" + std::to_string(::getpid())));  // the temporary is gone
 
     std::optional<SceneState> loaded = loadScene(p, error);
     QVERIFY2(loaded, error.c_str());
