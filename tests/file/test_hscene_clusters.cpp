@@ -11,12 +11,11 @@
 // streamed (out-of-core) build from tile files lands the same way.
 #include <QTemporaryDir>
 #include <QtTest>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <filesystem>
 
 #include "cli_runner.h"
+#include "dead_scratch.h"
 #include "file_bytes.h"
 #include "hscene_sql.h"
 #include "core/content_hash.h"
@@ -441,12 +440,8 @@ class TestHsceneClusters : public QObject {
     // naming it, and leaves nothing behind; the build first sweeps a page
     // file that a dead process on this machine never handed to a save.
     {
-      const pid_t child = ::fork();
-      if (child == 0) ::_exit(0);
-      QVERIFY(child > 0 && ::waitpid(child, nullptr, 0) == child);
-      std::string stale = scratchName("hs-cluster-pages-", ".bin");
-      const std::string mine = "-" + std::to_string(::getpid()) + "-";
-      stale.replace(stale.rfind(mine), mine.size(), "-" + std::to_string(child) + "-");
+      const std::string stale = test::asDeadProcess(scratchName("hs-cluster-pages-", ".bin")).name;
+      QVERIFY(!stale.empty());
       test::writeFile((dir / stale).string(), "pages of a killed import");
       QCOMPARE(scratchFiles(), size_t(2));
       const std::string bad = (dir / "bad.ply").string();

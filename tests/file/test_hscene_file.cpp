@@ -14,10 +14,10 @@
 
 #include <sqlite3.h>
 #include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "core/scratch_files.h"
+#include "dead_scratch.h"
 #include "file_bytes.h"
 #include "hscene_sql.h"
 #include "mesh/mesh_import.h"
@@ -266,13 +266,9 @@ class TestHsceneFile : public QObject {
     const std::string p = path("roundtrip.hscene");
     // What a save killed part-way left beside it (a dead process on this
     // machine) goes with the next new save; a live process's stays.
-    const pid_t child = ::fork();
-    if (child == 0) ::_exit(0);
-    QVERIFY(child > 0 && ::waitpid(child, nullptr, 0) == child);
     const std::string live = path(scratchName("roundtrip.hscene.saving-"));
-    std::string stale = live;
-    const std::string mine = "-" + std::to_string(::getpid()) + "-";
-    stale.replace(stale.rfind(mine), mine.size(), "-" + std::to_string(child) + "-");
+    const std::string stale = test::asDeadProcess(live).name;
+    QVERIFY(!stale.empty());
     writeFile(stale, "half a scene");
     writeFile(stale + "-journal", "its journal");
     writeFile(live, "another save of this process, under way");

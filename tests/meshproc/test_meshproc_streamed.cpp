@@ -12,8 +12,6 @@
 // is swept (this machine's dead processes' only); a tile that cannot be read, or
 // tiles with no triangle, are errors naming the tile.
 #include <QtTest>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -22,6 +20,7 @@
 #include <unordered_map>
 
 #include "core/scratch_files.h"
+#include "dead_scratch.h"
 #include "mesh_builders.h"
 #include "meshproc/cluster_build_streamed.h"
 #include "meshproc/cluster_cut.h"
@@ -241,14 +240,11 @@ class TestMeshprocStreamed : public QObject {
     std::filesystem::create_directories(scratch);
     // What a killed build left (this machine, a process that is gone) is
     // swept; a live process's and another machine's (a shared folder) stay.
-    const pid_t child = ::fork();
-    if (child == 0) ::_exit(0);
-    QVERIFY(child > 0 && ::waitpid(child, nullptr, 0) == child);
     const std::string live = scratchName("hs-clusters-");  // <host>-<this pid>-<n>
-    const std::string mine = "-" + std::to_string(::getpid()) + "-";
-    std::string stale = live;
-    stale.replace(stale.rfind(mine), mine.size(), "-" + std::to_string(child) + "-");
-    const std::string elsewhere = "hs-clusters-render-node-7-" + std::to_string(child) + "-0";
+    const test::DeadScratch dead = test::asDeadProcess(live);
+    QVERIFY(!dead.name.empty());
+    const std::string& stale = dead.name;
+    const std::string elsewhere = "hs-clusters-render-node-7-" + std::to_string(dead.pid) + "-0";
     for (const std::string& name : {live, stale, elsewhere}) {
       std::filesystem::create_directories(scratch + "/" + name);
       std::ofstream(scratch + "/" + name + "/triangles.bin") << "left behind";
