@@ -17,7 +17,7 @@
 //                  [--threads 2] [--plot bench_decimate.png] [--skip-terrain] [--skip-bunny]
 //                  [--terrain-runs 3] [--ratios 50,25,10,5,1] [--no-error] [--no-stock]
 //                  [--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir /tmp] [--quad-no-uv] [--pause S] [--meshopt-huge-pages]
-//                  [--quad-seed 11] [--where-max] [--bound] [--hard-quad] [--hard-quad-irregular]
+//                  [--quad-seed 11] [--where-max] [--bound] [--hard-quad] [--hard-quad-irregular] [--quad-object]
 //                  (our output's content hash goes to stderr)
 #include <chrono>
 #include <cstdio>
@@ -49,6 +49,7 @@
 #include "meshproc/max_error_refine.h"
 #include "bunny.h"
 #include "peers.h"
+#include "quad_object.h"
 #include "quad_scan.h"
 #include "scan_terrain.h"
 
@@ -304,7 +305,7 @@ int main(int argc, char** argv) {
   double terrainSamples = 1.0;
   unsigned threads = 2;
   bool skipTerrain = false, skipBunny = false, noStock = false, skipQuad = false, noPeers = false, hardQuad = false,
-       hardIrregular = false;
+       hardIrregular = false, quadObject = false;
   std::string workDir = "/tmp";
   bool quadNoUv = false;  // the quad scan without UVs: what its seams cost
   bool whereMax = false;
@@ -332,6 +333,7 @@ int main(int argc, char** argv) {
     else if (a == "--skip-quad") skipQuad = true;
     else if (a == "--hard-quad") hardQuad = true;
     else if (a == "--hard-quad-irregular") hardQuad = hardIrregular = true;
+    else if (a == "--quad-object") quadObject = true;
     else if (a == "--no-peers") noPeers = true;
     else if (a == "--quad-no-uv") quadNoUv = true;
     else if (a == "--where-max") whereMax = true;
@@ -342,7 +344,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "usage: %s [--bunny PATH] [--terrain-quads N] [--runs K] [--terrain-samples S] "
                            "[--stock-terrain 0.1|all|none] [--threads T] [--plot PNG] [--skip-terrain] [--skip-bunny] "
                            "[--terrain-runs K] [--ratios 50,25,10,5,1] [--no-error] [--no-stock] "
-                           "[--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir DIR] [--quad-no-uv] [--quad-seed K] [--where-max] [--bound] [--hard-quad] [--hard-quad-irregular] [--pause S] [--meshopt-huge-pages]\n", argv[0]);
+                           "[--faces-per-region N] [--skip-quad] [--no-peers] [--work-dir DIR] [--quad-no-uv] [--quad-seed K] [--where-max] [--bound] [--hard-quad] [--hard-quad-irregular] [--quad-object] [--pause S] [--meshopt-huge-pages]\n", argv[0]);
       return 2;
     }
   }
@@ -389,6 +391,13 @@ int main(int argc, char** argv) {
     sets.push_back({std::string("hard quad scan (32k quads") + (hardIrregular ? ", irregular" : "") +
                         ", 2x2 UV atlas, thin walls, spikes, a narrow bridge, a fold, thin sheets, 3 fins)",
                     "hard quad scan", std::move(q), 10.0, runs, false, true, true, false});
+  }
+  if (quadObject) {
+    MeshData q = hs::bench::quadObject();
+    q.origin = glm::dvec3(431000.0, 5402000.0, 520.0);
+    recenter(q);
+    sets.push_back({"quad-dominant object (32k quads graded 12:1, irregular, 4 UV charts, horns, flakes, a ridge, 3 fins)",
+                    "quad object", std::move(q), 10.0, runs, false, true, true, false});
   }
   if (!skipTerrain) {
     const auto t0 = Clock::now();
