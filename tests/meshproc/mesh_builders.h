@@ -131,6 +131,45 @@ inline MeshData bumpySphere() {
   return m;
 }
 
+// The bumps of bumpySphere() on a unit direction, as a radius.
+inline double bumpyRadius(const glm::dvec3& n) {
+  return 10.0 + 0.4 * std::sin(5.0 * n.x) * std::cos(4.0 * n.y) + 0.2 * std::sin(9.0 * n.z);
+}
+
+// The same bumpy sphere sampled the way a remesher or a photogrammetry
+// mesher can leave a scan: a latitude-longitude grid of nu x nv quads whose
+// spacing around varies by (1 + grading) : (1 - grading) (0.85: 12:1), so
+// the sparse side's quads are long and thin (triangles of quality well
+// under 0.1), with fans at the poles.
+inline MeshData gradedBumpySphere(int nu, int nv, double grading) {
+  const double pi = 3.14159265358979323846;
+  MeshData m;
+  auto add = [&](double theta, double phi) {
+    const glm::dvec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    m.positions.emplace_back(glm::vec3(n * bumpyRadius(n)));
+  };
+  add(0.0, 0.0);  // north pole: vertex 0
+  for (int j = 1; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const double t = double(i) / nu;
+      add(pi * j / nv, 2 * pi * (t + grading * std::sin(2 * pi * t) / (2 * pi)));
+    }
+  add(pi, 0.0);  // south pole: the last vertex
+  const uint32_t south = uint32_t(m.positions.size() - 1);
+  auto ring = [&](int j, int i) { return uint32_t(1 + (j - 1) * nu + (i % nu)); };
+  for (int i = 0; i < nu; ++i) {
+    m.indices.insert(m.indices.end(), {0u, ring(1, i), ring(1, i + 1)});
+    m.indices.insert(m.indices.end(), {south, ring(nv - 1, i + 1), ring(nv - 1, i)});
+    for (int j = 1; j + 1 < nv; ++j) {
+      const uint32_t a = ring(j, i), b = ring(j, i + 1), c = ring(j + 1, i + 1), d = ring(j + 1, i);
+      m.indices.insert(m.indices.end(), {a, d, c, a, c, b});
+    }
+  }
+  m.submeshes.push_back({0, uint32_t(m.indices.size()), -1});
+  hs::mesh::computeVertexNormals(m);
+  return m;
+}
+
 // Writes `m` as OBJ with positions origin + local + `offset` printed with
 // `decimals` digits (20 prints a dyadic fraction exactly), Z-up as stored.
 inline void writeObj(const std::string& path, const MeshData& m, glm::dvec3 offset = glm::dvec3(0.0),
