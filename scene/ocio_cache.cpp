@@ -2,9 +2,10 @@
 
 #include <unistd.h>
 
-#include <atomic>
 #include <cctype>
 #include <fstream>
+
+#include "core/scratch_files.h"
 
 namespace hs::scene {
 
@@ -16,11 +17,15 @@ fs::path userCacheFolder(const std::string& name) {
 }
 
 bool writeCacheFile(const fs::path& file, const std::string& bytes, std::string& error) {
+  // A writer killed between writing and renaming leaves its part behind
+  // (as large as the file: a LUT can be tens of MB): this machine's whose
+  // process is gone are removed by the next writer of the same file.
+  const std::string partPrefix = file.filename().string() + ".part-";
+  sweepStaleScratch(file.parent_path(), partPrefix);
   std::error_code ec;
   if (fs::exists(file, ec) && fs::file_size(file, ec) == bytes.size()) return true;
   fs::create_directories(file.parent_path(), ec);
-  static std::atomic<int> counter{0};
-  const fs::path part = file.string() + ".part" + std::to_string(getpid()) + "_" + std::to_string(counter++);
+  const fs::path part = file.parent_path() / scratchName(partPrefix);
   {
     std::ofstream out(part, std::ios::binary);
     out.write(bytes.data(), std::streamsize(bytes.size()));

@@ -11,10 +11,12 @@ namespace hs::scene {
 // <temp>/<name>-<uid>: one per user, shared by that user's processes.
 std::filesystem::path userCacheFolder(const std::string& name);
 
-// Writes `bytes` to `file` (and its folders) under a name of its own, then
-// renames it, so render nodes sharing a temporary folder never read half a
-// file; a file already there with that size is left (its name is its
-// content's hash). False with `error` naming the file.
+// Writes `bytes` to `file` (and its folders) under a name of its own
+// (core/scratch_files.h: `<file>.part-<host>-<pid>-<n>`), then renames it,
+// so render nodes sharing a temporary folder never read half a file; a file
+// already there with that size is left (its name is its content's hash).
+// First removes the parts of `file` that dead processes of this machine
+// left. False with `error` naming the file.
 bool writeCacheFile(const std::filesystem::path& file, const std::string& bytes, std::string& error);
 
 // OpenColorIO's `message` with the cache path `cachePath` replaced by

@@ -8,13 +8,16 @@
 // display the config lacks costs the config (or the choice) with a warning,
 // never the scene; the display and view fields refuse names the config
 // lacks; Import is one undo step; the ACES path converts linear Rec.709 to
-// ACES2065-1 as the primaries and the Bradford adaptation say.
+// ACES2065-1 as the primaries and the Bradford adaptation say; a part a
+// killed writer left in the cache folder is swept by the next writer.
 #include <QtTest>
 
 #include <filesystem>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "core/scratch_files.h"
+#include "dead_scratch.h"
 #include "scene/demo_post.h"
 #include "scene/document.h"
 #include "scene/fields.h"
@@ -255,6 +258,32 @@ class TestSceneOcio : public QObject {
     QVERIFY(scene::saveScene(none, path, error));
     back = scene::loadScene(path, error, nullptr, &load);
     QVERIFY(back && back->settings.post.ocioConfig.empty() && load.warnings.empty());
+  }
+
+  // The cache folder OpenColorIO reads from is written through parts
+  // renamed into place; a writer killed in between leaves its part, and the
+  // next writer of that file removes it (a live writer's stays).
+  void aKilledWritersPartIsSwept() {
+    std::string error;
+    const std::optional<scene::OcioConfigData> c = studio(error);
+    QVERIFY2(c, error.c_str());
+    const std::filesystem::path folder = scene::ocioCacheFolder(*c, error);
+    QVERIFY2(!folder.empty(), error.c_str());
+    const std::string prefix = std::string(scene::kOcioConfigEntry) + ".part-";
+    const std::string live = scratchName(prefix);
+    const test::DeadScratch dead = test::asDeadProcess(scratchName(prefix));
+    QVERIFY(!dead.name.empty());
+    test::writeText((folder / live).string(), "half a config");
+    test::writeText((folder / dead.name).string(), "half a config");
+    std::filesystem::remove(folder / scene::kOcioConfigEntry);  // so it is written again
+    QVERIFY2(!scene::ocioCacheFolder(*c, error).empty(), error.c_str());
+    QVERIFY(std::filesystem::exists(folder / scene::kOcioConfigEntry));
+    QVERIFY2(!std::filesystem::exists(folder / dead.name), dead.name.c_str());
+    QVERIFY(std::filesystem::exists(folder / live));
+    std::filesystem::remove(folder / live);
+    for (const auto& e : std::filesystem::directory_iterator(folder))
+      QVERIFY2(e.path().filename().string().find(".part") == std::string::npos, e.path().c_str());
+    QVERIFY(scene::viewTransformProcessor(*c, "Projector", "Film", error));
   }
 
   void aDamagedBlobCostsTheConfigNotTheScene() {
