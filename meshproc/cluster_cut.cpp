@@ -81,27 +81,44 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
     }
   if (!cut.rootsResident) return cut;  // the roots come first: asked for, nothing drawn yet
 
-  // A group is looked at once every group above it is refined (`above`
-  // counts them in), so only groups next to the cut are ever touched.
+  // A group is looked at once every group above it is refined or unseen
+  // (`above` counts them in), so only groups next to the cut are ever
+  // touched.
   const uint32_t groupCount = index.groupCount;
   std::vector<uint32_t> above(groupCount, 0);
   std::vector<uint8_t> refined(groupCount, 0);
   std::vector<uint32_t> ready(groups.topGroups.begin(), groups.topGroups.end());
   std::vector<uint32_t> refinedList;
   std::vector<std::pair<float, uint32_t>> waiting;  // (projected error, page)
+  auto passDown = [&](uint32_t g) {
+    for (uint32_t k = groups.childGroupsFirst[g]; k < groups.childGroupsFirst[g + 1]; ++k) {
+      const uint32_t below = groups.childGroups[k];
+      if (++above[below] == groups.parentsNeeded[below]) ready.push_back(below);
+    }
+  };
   while (!ready.empty()) {
     const uint32_t g = ready.back();
     ready.pop_back();
     ++cut.groupsTested;
     const ClusterGroups::Test& test = groups.tests[g];
+    // Fine enough: so is every group under it (errors grow upwards, spheres
+    // nest), which stays unrefined whether it is looked at or not.
     if (lodFineEnough(test.sphere, test.error, viewer.eye, viewer.focalPx, viewer.pixelBound)) continue;
     if (visible) {
       // Refined only where a child would be seen: a group whose children
       // all lie outside every view is drawn as it is (and culled there).
+      // The groups under it still count it as refined: they share clusters
+      // with seen groups, and would otherwise never be looked at, leaving
+      // the seen part coarse. Refining such a group draws its children,
+      // and this group's clusters too (not refined): they overlap only
+      // where nothing is seen.
       bool seen = false;
       for (uint32_t k = groups.childrenFirst[g]; k < groups.childrenFirst[g + 1] && !seen; ++k)
         seen = visible(index.clusters[groups.children[k]].bounds);
-      if (!seen) continue;
+      if (!seen) {
+        passDown(g);
+        continue;
+      }
     }
     bool all = true;
     for (uint32_t k = groups.childPagesFirst[g]; k < groups.childPagesFirst[g + 1]; ++k)
@@ -117,10 +134,7 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
     }
     refined[g] = 1;
     refinedList.push_back(g);
-    for (uint32_t k = groups.childGroupsFirst[g]; k < groups.childGroupsFirst[g + 1]; ++k) {
-      const uint32_t below = groups.childGroups[k];
-      if (++above[below] == groups.parentsNeeded[below]) ready.push_back(below);
-    }
+    passDown(g);
   }
   cut.groupsRefined = refinedList.size();
   // Drawn: the roots and the children of refined groups, where the group
