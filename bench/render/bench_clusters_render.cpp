@@ -12,6 +12,7 @@
 // difference): the approximation's error against its run time.
 //
 //   bench_clusters_render [--sizes 0.5,2] [--size WxH] [--frames N] [--budget-mb M] [--estimate] [--valley]
+//                         [--images DIR]
 // (--estimate: the groups' quadric estimates instead of certified errors,
 // several times faster to build. --valley: a valley of 1M-triangle tiles
 // (bench/decimate/scan_valley.h) built out of core, tile by tile
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
   int width = 960, height = 540, frames = 6;
   double budgetMb = 1024.0;
   bool certify = true, valley = false;
+  std::string imageDir;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--sizes" && i + 1 < argc) sizes = bench::numberList(argv[++i]);
@@ -61,6 +63,7 @@ int main(int argc, char** argv) {
     else if (a == "--budget-mb" && i + 1 < argc) budgetMb = std::atof(argv[++i]);
     else if (a == "--estimate") certify = false;
     else if (a == "--valley") valley = true;
+    else if (a == "--images" && i + 1 < argc) imageDir = argv[++i];
   }
   render::OffscreenRenderer clustered, whole;
   std::string error;
@@ -176,6 +179,11 @@ int main(int argc, char** argv) {
       const hs::Image wi = whole.render(wholeScene, v, false, &ws);
       const double wholeMs = secondsSince(t0) * 1e3;
       const test::CompareResult cmp = test::compareImages(toTest(ci), toTest(wi), 16);
+      if (!imageDir.empty()) {  // --images DIR: both pictures of each frame, to see where they differ
+        const std::string stem = imageDir + "/" + std::to_string(int(std::lround(millions))) + "M_frame" + std::to_string(f);
+        test::writePng(stem + "_clusters.png", toTest(ci));
+        test::writePng(stem + "_whole.png", toTest(wi));
+      }
       std::printf("%5d %10zu %8zu %8zu %8zu %10.1f %8.1f %10.0f %10zu %7.0f %10.3f %8d%s\n", f, cs.trianglesDrawn,
                   cs.clusters.clusters, cs.clusters.pagesResident, cs.clusters.pagesDrawn,
                   double(cs.clusters.gpuBytes) / 1048576.0, cs.clusters.cutMs, clusterMs, ws.trianglesDrawn, wholeMs,
