@@ -7,18 +7,24 @@
 // Groups decide, from the roots down: a group is refined (its children
 // drawn or refined further instead of the clusters it made) when its own
 // test fails (its error projects over the pixel bound), every group above
-// it (those its clusters were simplified in) is refined, one of its
-// children's spheres meets a view (`visible`: a group whose children
-// nobody sees is never refined) and every page holding one of its children
-// is resident. A cluster is drawn when the group it was simplified in is
-// refined (a root: always) and the group that made it is not (level 0:
-// never refined). Each piece of surface then has exactly one level, as
-// with selectClusterCut: a group's children and what it made cover the
-// same surface inside the same locked border, and a group only refines
-// under refined groups. With every page resident the cut is
-// selectClusterCut's for the visible groups; with some missing, the
-// coarser level stays where the finer is not in memory (never a hole), and
-// those pages are asked for, the largest projected error first.
+// it (those its clusters were simplified in) is refined or unseen, one of
+// its children's spheres meets a view (`visible`) and every page holding
+// one of its children is resident. A group whose children nobody sees is
+// not refined (its finer pages are never needed) but counts as refined for
+// the groups under it: they share clusters with seen groups, and stopping
+// there left the seen part coarse. A cluster is drawn when the group it
+// was simplified in is refined (a root: always) and the group that made it
+// is not (level 0: never refined). Where everything is seen each piece of
+// surface has exactly one level, as with selectClusterCut: a group's
+// children and what it made cover the same surface inside the same locked
+// border, and a group only refines under refined groups. Beside an unseen
+// group the clusters it made are drawn as well as the finer clusters of a
+// seen group under it: they overlap there, near the edge of what is seen,
+// and never leave a hole (shadow views draw the same cut). With every page
+// resident the seen clusters are selectClusterCut's, except a seen cluster
+// whose finer clusters are all unseen; with pages missing, the coarser
+// level stays where the finer is not in memory (never a hole), and those
+// pages are asked for, the largest projected error first.
 //
 // The walk starts at the groups under the roots and only looks at the
 // children of groups it refines, so a cut costs what it draws, not what
@@ -26,9 +32,10 @@
 // flight draws a few percent of them). The error test is monotonic up the
 // hierarchy (errors grow, spheres nest: clusterIndexProblem checks both),
 // so stopping at a group that is fine enough misses nothing below it but
-// float ties; visibility is not strictly monotonic (a parent's children
-// may all lie just outside a view that one of its grandchildren's meets),
-// which is why the render source widens the view it refines through.
+// float ties. Unseen groups are walked through where the error asks for
+// more (beside and behind the view), without their pages; the render source
+// widens the view it refines through so the overlap stays outside the
+// views it draws.
 #include <cstdint>
 #include <functional>
 #include <vector>
