@@ -109,9 +109,9 @@ ResidentCut selectResidentCut(const ClusterIndex& index, const ClusterGroups& gr
       // all lie outside every view is drawn as it is (and culled there).
       // The groups under it still count it as refined: they share clusters
       // with seen groups, and would otherwise never be looked at, leaving
-      // the seen part coarse. Refining such a group draws its children,
-      // and this group's clusters too (not refined): they overlap only
-      // where nothing is seen.
+      // the seen part coarse. Where one of them is refined, its finer
+      // clusters are drawn beside the clusters this group made (it is not
+      // refined): they overlap only near the edge of what is seen.
       bool seen = false;
       for (uint32_t k = groups.childrenFirst[g]; k < groups.childrenFirst[g + 1] && !seen; ++k)
         seen = visible(index.clusters[groups.children[k]].bounds);
