@@ -386,6 +386,9 @@ bool CollapseEngine::geometryOk(const Plan& plan) {
   // face the collapse leaves and the worst it changes or removes.
   double worstNew = HUGE_VAL, worstOld = HUGE_VAL;
   auto quality2 = [](double nSq, double lSq) { return lSq > 0 ? 12.0 * nSq / (lSq * lSq) : 0.0; };
+  auto edgesSq = [](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    return glm::dot(b - a, b - a) + glm::dot(c - a, c - a) + glm::dot(b - c, b - c);
+  };
   // 0 = fine, 1 = a face turns too far, 2 = a sliver appears
   auto check = [&](VertexHandle v) -> int {
     const glm::dvec3 pv = s_.point(v.idx());
@@ -406,10 +409,8 @@ bool CollapseEngine::geometryOk(const Plan& plan) {
           const double bound = cosMax * cosMax * newSq * oldSq;
           if (cosMax >= 0 ? (d < 0 || d * d < bound) : (d < 0 && d * d > bound)) return 1;
         }
-        const double lNew = glm::dot(pb - p, pb - p) + glm::dot(pc - p, pc - p) + glm::dot(pb - pc, pb - pc);
-        const double lOld = glm::dot(pb - pv, pb - pv) + glm::dot(pc - pv, pc - pv) + glm::dot(pb - pc, pb - pc);
-        worstNew = std::min(worstNew, quality2(newSq, lNew));
-        worstOld = std::min(worstOld, quality2(oldSq, lOld));
+        worstNew = std::min(worstNew, quality2(newSq, edgesSq(p, pb, pc)));
+        worstOld = std::min(worstOld, quality2(oldSq, edgesSq(pv, pb, pc)));
       }
       it = m_.next_halfedge_handle(m_.opposite_halfedge_handle(it));
     } while (it != start);
@@ -430,7 +431,7 @@ bool CollapseEngine::geometryOk(const Plan& plan) {
       const uint32_t* c = &s_.fv[size_t(f.idx()) * 3];
       const glm::dvec3 a = s_.point(int(c[0])), b = s_.point(int(c[1])), d = s_.point(int(c[2]));
       const glm::dvec3 n = glm::cross(b - a, d - a);
-      worstOld = std::min(worstOld, quality2(glm::dot(n, n), glm::dot(b - a, b - a) + glm::dot(d - a, d - a) + glm::dot(b - d, b - d)));
+      worstOld = std::min(worstOld, quality2(glm::dot(n, n), edgesSq(a, b, d)));
     }
     if (worstNew < minQ * minQ && worstNew < worstOld) r = 2;
   }
