@@ -10,6 +10,7 @@
 
 #include "core/json.h"
 #include "mesh/gltf_geometry.h"
+#include "mesh/implicit_tiling.h"
 
 namespace hs::mesh {
 namespace fs = std::filesystem;
@@ -70,6 +71,12 @@ struct Reader {
   size_t contentsDone = 0;
   int cmptDepth = 0;  // composites being read inside each other
   static constexpr int kMaxCmptNesting = 8;
+  // Implicit tiles expanded so far: a constant availability of 1 over deep
+  // levels names more tiles than any tileset has; beyond this the rest of
+  // every implicit tree is left out (said once).
+  size_t implicitTiles = 0;
+  bool implicitCapped = false;
+  static constexpr size_t kMaxImplicitTiles = size_t(1) << 20;
 
   void warn(std::string text) { out.warnings.push_back(std::move(text)); }
 
@@ -243,6 +250,116 @@ struct Reader {
     if (!content(file, bytes, world, upAxis, tile, tileIndex, depth)) tile.contentMissing = true;
   }
 
+  // Contents may append tiles (an external tileset's root becomes a child),
+  // so tile `index` is filled through a copy and put back.
+  template <class Fill>
+  void fillTile(int index, Fill&& fill) {
+    TilesetTile filled = out.tiles[size_t(index)];
+    fill(filled);
+    TilesetTile& into = out.tiles[size_t(index)];
+    std::swap(into.positions, filled.positions);
+    std::swap(into.uvs, filled.uvs);
+    std::swap(into.indices, filled.indices);
+    into.content = filled.content;
+    into.contentMissing = filled.contentMissing;
+  }
+
+  // An implicit tree (mesh/implicit_tiling.h): tile `t` is its root, level
+  // 0. Its tiles become explicit tiles in depth-first order, children in
+  // Morton order; each level's geometric error is half the one above, its
+  // refinement and transform the root's; contents come from the root's
+  // content templates where the subtree says they are available.
+  struct Implicit {
+    const fs::path& base;
+    std::vector<Json> contents;  // the root's content objects, uri a template
+    const glm::dmat4& world;
+    const ImplicitScheme& scheme;
+    const TilesetTile& root;     // parent, refinement and level-0 error
+    const std::string& upAxis;
+    const std::string& where;
+    int depth;
+  };
+
+  void implicitTree(const fs::path& base, const Json& t, const glm::dmat4& world, const TilesetTile& root,
+                    const ImplicitScheme& scheme, const std::string& upAxis, const std::string& where, int depth) {
+    Implicit walk{base, {}, world, scheme, root, upAxis, where, depth};
+    if (t.contains("content")) walk.contents.push_back(t["content"]);
+    if (t.contains("contents") && t["contents"].is_array())
+      for (const Json& c : t["contents"]) walk.contents.push_back(c);
+    implicitSubtree(walk, 0, 0, 0, 0, root.parent);
+  }
+
+  static std::string implicitName(int dims, int level, uint64_t x, uint64_t y, uint64_t z) {
+    return std::to_string(level) + "/" + std::to_string(x) + "/" + std::to_string(y) +
+           (dims == 3 ? "/" + std::to_string(z) : "");
+  }
+
+  // The subtree whose root is tile (level, x, y, z), hung under `parent`.
+  void implicitSubtree(const Implicit& w, int level, uint64_t x, uint64_t y, uint64_t z, int parent) {
+    if (isCancelled(progress)) return;
+    const std::string uri = expandImplicitUri(w.scheme.subtreeUri, level, x, y, z);
+    const fs::path file = w.base.parent_path() / uri;
+    std::vector<uint8_t> bytes;
+    std::string problem;
+    Subtree sub;
+    const bool readable = readBytes(file, bytes, problem);
+    if (!readable || !readSubtree(file, bytes, w.scheme, w.contents.size(), readBytes, sub, problem)) {
+      // What lies below is unknown: a tile that did not come in stands for
+      // it, so the tile above is not refined into a hole.
+      warn(shortName(file) + " (subtree " + implicitName(w.scheme.dims, level, x, y, z) + " of " + w.where + " in " +
+           shortName(w.base) + ")" + (readable ? ": " : " ") + problem + "; the tiles below it are left out");
+      TilesetTile missing = w.root;
+      missing.parent = parent;
+      missing.geometricError = std::ldexp(w.root.geometricError, -level);
+      missing.contentMissing = true;
+      out.tiles.push_back(std::move(missing));
+      return;
+    }
+    implicitTile(w, sub, 0, 0, 0, 0, level, x, y, z, parent);
+  }
+
+  // Tile (level, x, y, z), at `local` levels and (lx, ly, lz) below its subtree's root.
+  void implicitTile(const Implicit& w, const Subtree& sub, int local, uint64_t lx, uint64_t ly, uint64_t lz,
+                    int level, uint64_t x, uint64_t y, uint64_t z, int parent) {
+    if (isCancelled(progress) || implicitCapped) return;
+    const int dims = w.scheme.dims;
+    const uint64_t bit = levelOffset(dims, local) + mortonIndex(dims, lx, ly, lz);
+    if (!sub.tiles.at(bit)) return;
+    if (++implicitTiles > kMaxImplicitTiles) {
+      implicitCapped = true;
+      warn(shortName(w.base) + ": " + w.where + ": implicit tiling makes more than " +
+           std::to_string(kMaxImplicitTiles) + " tiles available; the rest are left out");
+      return;
+    }
+    TilesetTile tile = w.root;
+    tile.parent = parent;
+    tile.geometricError = std::ldexp(w.root.geometricError, -level);
+    const int index = int(out.tiles.size());
+    out.tiles.push_back(std::move(tile));
+    const std::string name = implicitName(dims, level, x, y, z);
+    fillTile(index, [&](TilesetTile& filled) {
+      for (size_t i = 0; i < w.contents.size(); ++i) {
+        if (!sub.contents[i].at(bit)) continue;
+        Json c = w.contents[i];
+        const char* key = c.is_object() && c.contains("uri") ? "uri" : "url";
+        if (c.is_object() && c.contains(key) && c[key].is_string())
+          c[key] = expandImplicitUri(c[key].get<std::string>(), level, x, y, z);
+        contentUri(w.base, c, w.world, w.upAxis, filled, index, w.depth + level,
+                   w.where + " (implicit tile " + name + (w.contents.size() > 1 ? ", content " + std::to_string(i) : "") +
+                       ")");
+      }
+    });
+    if (level + 1 >= w.scheme.availableLevels) return;
+    for (uint64_t c = 0; c < (uint64_t(1) << dims); ++c) {
+      const uint64_t cx = c & 1u, cy = (c >> 1) & 1u, cz = (c >> 2) & 1u;
+      if (local + 1 < w.scheme.subtreeLevels)
+        implicitTile(w, sub, local + 1, 2 * lx + cx, 2 * ly + cy, 2 * lz + cz, level + 1, 2 * x + cx, 2 * y + cy,
+                     2 * z + cz, index);
+      else if (sub.childSubtrees.at(mortonIndex(dims, 2 * lx + cx, 2 * ly + cy, 2 * lz + cz)))
+        implicitSubtree(w, level + 1, 2 * x + cx, 2 * y + cy, 2 * z + cz, index);
+    }
+  }
+
   // Tile `t` of tileset file `base` (JSON path `where`) under `parent`.
   void tileNode(const fs::path& base, const Json& t, const glm::dmat4& parentWorld, int parent, bool parentAdds,
                 const std::string& upAxis, const std::string& where, int depth) {
@@ -284,25 +401,33 @@ struct Reader {
       warn(shortName(base) + ": " + where + ".geometricError is missing or not a non-negative number; " +
            (parent >= 0 ? "its parent's" : "0") + " is used");
     }
-    if (t.contains("implicitTiling"))
-      warn(shortName(base) + ": " + where + " uses implicit tiling (3D Tiles 1.1), which is not read; its subtree is "
-           "left out");
+    ImplicitScheme scheme;
+    std::string implicitProblem;
+    if (parseImplicitTiling(t, scheme, implicitProblem)) {
+      implicitTree(base, t, world, tile, scheme, upAxis, where, depth);
+      if (t.contains("children"))
+        warn(shortName(base) + ": " + where + " has both implicit tiling and children (3D Tiles forbids it); the "
+             "children are ignored");
+      return;
+    }
+    if (!implicitProblem.empty()) {
+      // Its content names a template nobody can expand without the scheme.
+      warn(shortName(base) + ": " + where + ".implicitTiling: " + implicitProblem +
+           "; its implicit tree is left out and the tile is kept empty");
+      tile.contentMissing = true;
+      out.tiles.push_back(std::move(tile));
+      return;
+    }
     const int index = int(out.tiles.size());
     out.tiles.push_back(std::move(tile));
-    // Contents may append tiles (an external tileset's root becomes a child),
-    // so the tile is filled through a copy and put back.
-    TilesetTile filled = out.tiles.back();
-    if (t.contains("content"))
-      contentUri(base, t["content"], world, upAxis, filled, index, depth, where);
-    if (t.contains("contents") && t["contents"].is_array())
-      for (size_t i = 0; i < t["contents"].size(); ++i)
-        contentUri(base, t["contents"][i], world, upAxis, filled, index, depth,
-                   where + ".contents[" + std::to_string(i) + "]");
-    std::swap(out.tiles[size_t(index)].positions, filled.positions);
-    std::swap(out.tiles[size_t(index)].uvs, filled.uvs);
-    std::swap(out.tiles[size_t(index)].indices, filled.indices);
-    out.tiles[size_t(index)].content = filled.content;
-    out.tiles[size_t(index)].contentMissing = filled.contentMissing;
+    fillTile(index, [&](TilesetTile& filled) {
+      if (t.contains("content"))
+        contentUri(base, t["content"], world, upAxis, filled, index, depth, where);
+      if (t.contains("contents") && t["contents"].is_array())
+        for (size_t i = 0; i < t["contents"].size(); ++i)
+          contentUri(base, t["contents"][i], world, upAxis, filled, index, depth,
+                     where + ".contents[" + std::to_string(i) + "]");
+    });
     if (t.contains("children")) {
       const Json& c = t["children"];
       if (!c.is_array()) {

@@ -2,7 +2,8 @@
 // OGC 3D Tiles 1.0 / 1.1 tilesets (issue 38 item 5: scans processed in
 // RealityCapture, Metashape, OpenDroneMap or Cesium ion come in with their
 // levels of detail): the tile tree of a tileset.json, external tilesets it
-// names followed, each tile's content read (b3dm, glb or glTF, cmpt holding
+// names followed, implicit quadtrees and octrees expanded into the tiles
+// they stand for (mesh/implicit_tiling.h), each tile's content read (b3dm, glb or glTF, cmpt holding
 // those; Draco-compressed or not: mesh/gltf_geometry.h) and placed in the
 // tileset's frame: glTF's y up turned z up (asset.gltfUpAxis), b3dm's
 // RTC_CENTER and CESIUM_RTC added, the tile transforms applied from the
@@ -13,6 +14,8 @@
 // spoil is left out while the rest comes in: a content file that is
 // missing or unreadable (the tile is kept, empty, marked contentMissing), a tileset that names
 // itself again through external references (not followed a second time),
+// a subtree file that is missing or broken (a tile marked contentMissing
+// stands for what it would have held),
 // a content format that is not geometry (pnts, i3dm, vctr, geom) or not
 // known at all. Only a tileset.json that cannot be read, or a tileset
 // with no triangles at all, is an error.

@@ -171,6 +171,23 @@ inline std::vector<uint8_t> b3dmOf(const std::vector<uint8_t>& glb, const glm::d
   return out;
 }
 
+// A binary subtree file of 3D Tiles 1.1 implicit tiling: "subt", version
+// 1, the JSON and binary chunk lengths as 64-bit numbers, the JSON padded
+// to 8 bytes with spaces, then the binary chunk padded with zeros.
+inline std::vector<uint8_t> subtreeOf(const Json& json, std::vector<uint8_t> bin) {
+  std::string text = json.dump();
+  while (text.size() % 8) text.push_back(' ');
+  while (bin.size() % 8) bin.push_back(0);
+  std::vector<uint8_t> out = {'s', 'u', 'b', 't'};
+  appendU32(out, 1);
+  const uint64_t lengths[2] = {text.size(), bin.size()};
+  const auto* l = reinterpret_cast<const uint8_t*>(lengths);
+  out.insert(out.end(), l, l + 16);
+  out.insert(out.end(), text.begin(), text.end());
+  out.insert(out.end(), bin.begin(), bin.end());
+  return out;
+}
+
 inline void writeBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
   std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
