@@ -191,8 +191,12 @@ struct Walker {
             m.accessors[size_t(p.indices)].componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
             m.accessors[size_t(p.indices)].componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
           problem = "its indices are not unsigned integers";
-        idx.reserve(raw.size());
-        for (double d : raw) idx.push_back(uint32_t(d));
+        // Only unsigned integer indices are converted: a float accessor's
+        // NaN or 1e30 has no uint32_t (found by fuzz_tileset_content).
+        if (problem.empty()) {
+          idx.reserve(raw.size());
+          for (double d : raw) idx.push_back(uint32_t(d));
+        }
       } else if (problem.empty()) {
         for (uint32_t i = 0; i < pos.size() / 3; ++i) idx.push_back(i);
       }
