@@ -40,6 +40,25 @@ bool readBytes(const fs::path& path, std::vector<uint8_t>& out, std::string& pro
   return true;
 }
 
+// The first `n` bytes of `path` (fewer when it is shorter) and its size.
+bool peekBytes(const fs::path& path, size_t n, uint64_t& size, std::string& head, std::string& problem) {
+  std::error_code ec;
+  size = fs::file_size(path, ec);
+  if (ec) {
+    problem = fs::exists(path, ec) ? "cannot be read" : "is missing";
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  head.assign(n, '\0');
+  if (!in) {
+    problem = "cannot be read";
+    return false;
+  }
+  in.read(head.data(), std::streamsize(n));
+  head.resize(size_t(in.gcount()));
+  return true;
+}
+
 uint32_t le32(const uint8_t* p) {
   uint32_t v;
   std::memcpy(&v, p, 4);
@@ -74,6 +93,8 @@ struct Reader {
   // Implicit tiles expanded so far: a constant availability of 1 over deep
   // levels names more tiles than any tileset has; beyond this the rest of
   // every implicit tree is left out (said once).
+  // Set by readTilesetTree: binary and glTF contents are listed here, not decoded.
+  std::vector<TilesetContentRef>* listed = nullptr;
   size_t implicitTiles = 0;
   bool implicitCapped = false;
   static constexpr size_t kMaxImplicitTiles = size_t(1) << 20;
@@ -241,7 +262,38 @@ struct Reader {
       }
     std::vector<uint8_t> bytes;
     std::string problem;
-    if (!readBytes(file, bytes, problem)) {
+    if (listed) {
+      // Listing the tree: the first bytes tell what a content is. An
+      // external tileset is part of the tree (read now); triangles are listed.
+      uint64_t size = 0;
+      std::string magic;
+      if (!peekBytes(file, 4, size, magic, problem)) {
+        warn(shortName(file) + " (content of " + where + " in " + shortName(base) + ") " + problem +
+             "; its tile is left empty");
+        tile.contentMissing = true;
+        return;
+      }
+      const bool json = !magic.empty() && (magic[0] == '{' || magic[0] == ' ' || magic[0] == '\n');
+      bool listIt = magic == "glTF" || magic == "b3dm" || magic == "cmpt";
+      if (json) {
+        if (!readBytes(file, bytes, problem)) {
+          warn(shortName(file) + " (content of " + where + " in " + shortName(base) + ") " + problem +
+               "; its tile is left empty");
+          tile.contentMissing = true;
+          return;
+        }
+        std::string perr;
+        const std::optional<Json> j =
+            parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), perr);
+        listIt = j && j->is_object() && !j->contains("root");  // a glTF asset in JSON
+      }
+      if (listIt) {
+        listed->push_back({tileIndex, file.string(), where + " in " + shortName(base), world, upAxis, size});
+        return;
+      }
+      // An external tileset, or what content() names as unreadable.
+    }
+    if (bytes.empty() && !readBytes(file, bytes, problem)) {
       warn(shortName(file) + " (content of " + where + " in " + shortName(base) + ") " + problem +
            "; its tile is left empty");
       tile.contentMissing = true;
@@ -478,24 +530,77 @@ bool isTilesetFile(const std::string& path) {
   return !j || (j->is_object() && j->contains("root"));
 }
 
-bool readTileset(const std::string& path, Tileset& out, std::string& error, const Progress* progress) {
-  out = Tileset{};
+namespace {
+
+// The top tileset.json parsed; false with `error` naming it.
+std::optional<Json> topTileset(const std::string& path, std::string& error) {
   std::vector<uint8_t> bytes;
   std::string problem;
   if (!readBytes(path, bytes, problem)) {
     error = path + ": the tileset " + problem;
-    return false;
+    return std::nullopt;
   }
   std::string perr;
-  const std::optional<Json> doc = parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), perr);
+  std::optional<Json> doc = parseJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), perr);
   if (!doc) {
     error = path + ": not a tileset: " + perr;
-    return false;
+    return std::nullopt;
   }
   if (!doc->is_object() || !doc->contains("root") || !(*doc)["root"].is_object()) {
     error = path + ": not a 3D Tiles tileset (no \"root\" tile)";
+    return std::nullopt;
+  }
+  return doc;
+}
+
+// The first warnings, on one line (the CLI escapes line breaks in a
+// message: file names could carry terminal controls).
+std::string firstWarnings(const std::vector<std::string>& warnings) {
+  constexpr size_t kShown = 8;
+  std::string out;
+  for (size_t i = 0; i < warnings.size() && i < kShown; ++i) out += (i ? "; " : ": ") + warnings[i];
+  if (warnings.size() > kShown) out += "; and " + std::to_string(warnings.size() - kShown) + " more";
+  return out;
+}
+
+}  // namespace
+
+bool readTilesetTree(const std::string& path, Tileset& out, std::vector<TilesetContentRef>& contents,
+                     std::string& error, const Progress* progress) {
+  out = Tileset{};
+  contents.clear();
+  const std::optional<Json> doc = topTileset(path, error);
+  if (!doc) return false;
+  Reader r{out, progress, {}};
+  r.listed = &contents;
+  r.tileset(fs::path(path), *doc, glm::dmat4(1.0), -1, 0);
+  if (isCancelled(progress)) return false;
+  if (contents.empty()) {
+    error = path + ": no triangles came in (none of its " + std::to_string(out.contentsDeclared) +
+            " contents can hold any)" + firstWarnings(out.warnings);
     return false;
   }
+  return true;
+}
+
+bool readTilesetContent(const TilesetContentRef& ref, TilesetTile& into, Tileset& log) {
+  std::vector<uint8_t> bytes;
+  std::string problem;
+  if (!readBytes(ref.file, bytes, problem)) {
+    log.warnings.push_back(ref.file + " (content of " + ref.where + ") " + problem + "; its tile is left empty");
+    into.contentMissing = true;
+    return false;
+  }
+  Reader r{log, nullptr, {}};
+  const bool read = r.content(ref.file, bytes, ref.world, ref.upAxis, into, ref.tile, 0);
+  if (!read) into.contentMissing = true;
+  return read;
+}
+
+bool readTileset(const std::string& path, Tileset& out, std::string& error, const Progress* progress) {
+  out = Tileset{};
+  const std::optional<Json> doc = topTileset(path, error);
+  if (!doc) return false;
   Reader r{out, progress, {}};
   r.tileset(fs::path(path), *doc, glm::dmat4(1.0), -1, 0);
   if (isCancelled(progress)) return false;
@@ -503,12 +608,7 @@ bool readTileset(const std::string& path, Tileset& out, std::string& error, cons
   for (const TilesetTile& t : out.tiles) triangles += t.indices.size() / 3;
   if (triangles == 0) {
     error = path + ": no triangles came in (" + std::to_string(out.contentsRead) + " of " +
-            std::to_string(out.contentsDeclared) + " contents read)";
-    // On one line: the CLI escapes line breaks in a message (file names
-    // could carry terminal controls).
-    constexpr size_t kShown = 8;
-    for (size_t i = 0; i < out.warnings.size() && i < kShown; ++i) error += (i ? "; " : ": ") + out.warnings[i];
-    if (out.warnings.size() > kShown) error += "; and " + std::to_string(out.warnings.size() - kShown) + " more";
+            std::to_string(out.contentsDeclared) + " contents read)" + firstWarnings(out.warnings);
     return false;
   }
   return true;

@@ -53,6 +53,31 @@ struct Tileset {
 // or holds no triangle; cancelled through `progress` (false, error empty).
 bool readTileset(const std::string& path, Tileset& out, std::string& error, const Progress* progress = nullptr);
 
+// A tile's content found while reading the tree, not yet decoded (a
+// tileset too large to hold decoded: scene/tileset_import.h's streamed path).
+struct TilesetContentRef {
+  int tile = -1;             // index into Tileset::tiles
+  std::string file;          // the content file
+  std::string where;         // the tile's JSON path and tileset file, for messages
+  glm::dmat4 world{1.0};     // the tile's transform, from the root down
+  std::string upAxis = "Y";  // its tileset's asset.gltfUpAxis
+  uint64_t bytes = 0;        // its size on disk
+};
+
+// The tile tree alone: external tilesets and implicit subtrees followed as
+// readTileset does, each binary or glTF content listed in `contents` (in
+// tile order) but not decoded. What can be told without decoding is told
+// now: a missing file, a cycle, a point-cloud or unknown format (the tile
+// marked contentMissing, a warning). False with `error` when the tileset
+// cannot be read or lists no content.
+bool readTilesetTree(const std::string& path, Tileset& out, std::vector<TilesetContentRef>& contents,
+                     std::string& error, const Progress* progress = nullptr);
+
+// One listed content decoded into `into` (the tileset's frame, as
+// readTileset places it); its warnings and counts go to `log`. False when
+// nothing came in (said in `log`'s warnings).
+bool readTilesetContent(const TilesetContentRef& ref, TilesetTile& into, Tileset& log);
+
 // Whether `path` looks like a 3D Tiles tileset: a .json file whose object
 // has "asset" and "root".
 bool isTilesetFile(const std::string& path);

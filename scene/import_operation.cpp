@@ -36,7 +36,8 @@ const OperationDecl& meshImportOperation() {
                  std::to_string(kClusterAutoTriangles / 1000000) +
                  "M triangles and more, out of core for files of " + std::to_string(kClusterStreamedAutoBytes >> 30) +
                  " GB and more; streamed: out of core (tiles read one at a time and never held together; no "
-                 "processing); one material only",
+                 "processing); one material only. A 3D Tiles tileset keeps its own tile tree, except streamed "
+                 "(or auto at that size): then its finest tiles are built into a hierarchy here",
          .valueName = "MODE", .editor = true});
     o.params.push_back(
         {.key = "crs", .option = "crs", .label = "Tileset CRS", .type = ParamType::Text, .defaultValue = "auto",

@@ -8,6 +8,7 @@
 #include "meshproc/cluster_from_tiles.h"
 #include "scene/asset_reports.h"
 #include "scene/cluster_asset.h"
+#include "scene/tileset_import_streamed.h"
 #include "terrain/gdal_door.h"
 
 namespace hs::scene {
@@ -29,6 +30,20 @@ ImportedMesh importTileset(const std::string& path, const MeshImportRequest& req
     out.error = path + ": a 3D Tiles tileset comes in as a cluster hierarchy (its levels of detail); it cannot be "
                 "imported with --clusters off";
     return out;
+  }
+  // Too large to hold decoded (or asked to): built out of core from its
+  // full detail (tileset_import_streamed.h). The tree alone is cheap to read.
+  if (request.clusters != MeshImportRequest::Clusters::On) {
+    mesh::Tileset tree;
+    std::vector<mesh::TilesetContentRef> contents;
+    if (!mesh::readTilesetTree(path, tree, contents, out.error, progress)) {
+      if (out.error.empty()) out.cancelled = true;
+      return out;
+    }
+    uint64_t bytes = 0;
+    for (const mesh::TilesetContentRef& c : contents) bytes += c.bytes;
+    if (request.clusters == MeshImportRequest::Clusters::Streamed || bytes >= kClusterStreamedAutoBytes)
+      return importTilesetStreamed(path, request, std::move(tree), contents, progress);
   }
   mesh::Tileset tileset;
   {

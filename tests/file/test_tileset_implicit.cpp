@@ -4,7 +4,8 @@
 // bitstreams and constants, external buffers, child subtrees, levels past
 // availableLevels that must be ignored) read into exactly the tiles of the
 // same tree written out explicitly (every parent, error, refinement and
-// vertex), and through the CLI into the same hierarchy. Bad input: a
+// vertex), and through the CLI into the same hierarchy (streamed: its six
+// finest tiles, listed without decoding and decoded one at a time). Bad input: a
 // missing, a truncated and a short-bitstream subtree, an unknown scheme, a
 // tree that names a million tiles: named, and the rest comes in.
 #include <QTemporaryDir>
@@ -234,6 +235,22 @@ class TestTilesetImplicit : public QObject {
     QCOMPARE(implicit.tiles.size(), size_t(9));  // level 3 left out, 1/1/1 not available
     compareTiles(implicit, expl);
     QCOMPARE(implicit.contentsRead, size_t(8));
+    // The tree alone (the streamed import's first step): the same tiles,
+    // their eight contents listed with their sizes, nothing decoded.
+    mesh::Tileset tree;
+    std::vector<mesh::TilesetContentRef> listed;
+    std::string error;
+    QVERIFY2(mesh::readTilesetTree(d + "/implicit.json", tree, listed, error), error.c_str());
+    QCOMPARE(tree.tiles.size(), implicit.tiles.size());
+    QCOMPARE(listed.size(), size_t(8));
+    for (const mesh::TilesetContentRef& c : listed) {
+      QVERIFY(tree.tiles[size_t(c.tile)].positions.empty());
+      QCOMPARE(c.bytes, uint64_t(fs::file_size(c.file)));
+      mesh::TilesetTile decoded;
+      mesh::Tileset log;
+      QVERIFY(mesh::readTilesetContent(c, decoded, log));
+      QVERIFY(decoded.positions == implicit.tiles[size_t(c.tile)].positions);
+    }
     // Errors halve per level: 2/3/1 is the eighth tile.
     QCOMPARE(implicit.tiles[7].geometricError, kRootError / 4.0);
     QVERIFY2(contains(implicit.tiles[7].content, "2_3_1.glb"), implicit.tiles[7].content.c_str());
@@ -358,6 +375,16 @@ class TestTilesetImplicit : public QObject {
     implicit.erase("file");  // the scene's own
     expl.erase("file");
     QVERIFY2(implicit == expl, (implicit.dump() + " vs " + expl.dump()).c_str());
+    // Streamed: the six finest tiles' 192 triangles built into a hierarchy here.
+    const QString scene = QString::fromStdString(d + "/streamed.hscene");
+    QCOMPARE(test::runCli({"new", scene}, tmp_.path()).code, 0);
+    test::CliRun c = test::runCli({"import", QString::fromStdString(d + "/implicit.json"), scene, "--clusters", "streamed"},
+                                  tmp_.path());
+    QVERIFY2(c.code == 0, qPrintable(c.err));
+    c = test::runCli({"info", scene, "--json"}, tmp_.path());
+    QVERIFY2(c.code == 0, qPrintable(c.err));
+    const Json streamed = Json::parse(c.out.toStdString()).at("assets").at(0).at("clusters");
+    QCOMPARE(streamed.at("per_level").at(0).at("triangles").get<size_t>(), size_t(192));
   }
 };
 

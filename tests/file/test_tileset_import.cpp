@@ -10,7 +10,10 @@
 // up the tree. Bad input: a missing content file, a cyclic external
 // tileset, an unknown and a point-cloud format, a truncated b3dm, a broken
 // glb, a tileset that is not JSON or holds nothing: named, and what is
-// left comes in (or, with nothing left, the scene is untouched).
+// left comes in (or, with nothing left, the scene is untouched). Streamed
+// (`--clusters streamed`): the leaves alone decoded one at a time into a
+// hierarchy built here, at the same UTM places; a missing leaf keeps its
+// parent whole as in core.
 #include <ogr_srs_api.h>
 
 #include <QTemporaryDir>
@@ -301,6 +304,52 @@ class TestTilesetImport : public QObject {
     off.clusters = MeshImportRequest::Clusters::Off;
     m = importMeshFiles(off);
     QVERIFY2(!m.ok() && contains(m.error, "--clusters off"), m.error.c_str());
+  }
+
+  void streamedBuildsFromTheFinestTiles() {
+    // Out of core: the tree read without decoding, the leaves decoded one
+    // at a time into a hierarchy built here; the root's coarse content unused.
+    MeshImportRequest r;
+    r.files = {goodTileset()};
+    r.clusters = MeshImportRequest::Clusters::Streamed;
+    const ImportedMesh m = importMeshFiles(r);
+    QVERIFY2(m.ok(), m.error.c_str());
+    QVERIFY(m.streamed);
+    const std::string w = joined(m.import.warnings);
+    QVERIFY2(contains(w, "built out of core from the 2 contents of its full detail (1 coarser"), w.c_str());
+    QCOMPARE(m.import.geoOffsetCrs, std::string("EPSG:32634"));
+    QCOMPARE(m.clusters->triangles(0), (west().triangles.size() + east().triangles.size()) / 3);
+    QVERIFY(m.clusters->levels() >= 2);
+    mesh::ClusterIndex copy = m.clusters->index;
+    QCOMPARE(mesh::clusterIndexProblem(copy), std::string());
+    // Level 0 is the two leaves, where WGS 84 and UTM put them, both ways:
+    // every grid point has a vertex and every vertex a grid point.
+    const std::vector<glm::dvec3> fine = test::clusterLevelVertices(*m.clusters, 0);
+    std::vector<glm::dvec3> expected;
+    for (const test::TestGrid& g : {west(), east()})
+      for (const glm::dvec3& p : g.points) expected.push_back(expectedUtm(p));
+    std::sort(expected.begin(), expected.end(), [](const glm::dvec3& a, const glm::dvec3& b) { return a.x < b.x; });
+    double worst = 0.0;
+    for (const glm::dvec3& p : expected) worst = std::max(worst, test::nearestOf(fine, p, 1.0));
+    for (const glm::dvec3& p : fine) worst = std::max(worst, test::nearestOf(expected, p, 1.0));
+    QVERIFY2(worst < 1e-3, qPrintable(QString("largest distance from the expected UTM position: %1 m").arg(worst)));
+  }
+
+  void streamedMissingLeafKeepsParentWhole() {
+    const std::string d = dir("streamed-missing");
+    writeContents(d);
+    test::writeText(d + "/tileset.json",
+                    tilesetOf(tile("root.b3dm", kRootError, {tile("a.glb", 0), tile("gone.glb", 0)})).dump());
+    MeshImportRequest r;
+    r.files = {d + "/tileset.json"};
+    r.clusters = MeshImportRequest::Clusters::Streamed;
+    const ImportedMesh m = importMeshFiles(r);
+    QVERIFY2(m.ok(), m.error.c_str());
+    const std::string w = joined(m.import.warnings);
+    QVERIFY2(contains(w, "gone.glb") && contains(w, "is missing"), w.c_str());
+    QVERIFY2(contains(w, "root.b3dm: kept at its own level everywhere"), w.c_str());
+    // The root alone, as in core: refining it would open the east half.
+    QCOMPARE(m.clusters->triangles(0), coarse().triangles.size() / 3);
   }
 
   void cliImportInfoRender() {
