@@ -262,25 +262,24 @@ struct Reader {
       }
     std::vector<uint8_t> bytes;
     std::string problem;
+    auto unreadable = [&] {
+      warn(shortName(file) + " (content of " + where + " in " + shortName(base) + ") " + problem +
+           "; its tile is left empty");
+      tile.contentMissing = true;
+    };
     if (listed) {
       // Listing the tree: the first bytes tell what a content is. An
       // external tileset is part of the tree (read now); triangles are listed.
       uint64_t size = 0;
       std::string magic;
       if (!peekBytes(file, 4, size, magic, problem)) {
-        warn(shortName(file) + " (content of " + where + " in " + shortName(base) + ") " + problem +
-             "; its tile is left empty");
-        tile.contentMissing = true;
-        return;
+        return unreadable();
       }
       const bool json = !magic.empty() && (magic[0] == '{' || magic[0] == ' ' || magic[0] == '\n');
       bool listIt = magic == "glTF" || magic == "b3dm" || magic == "cmpt";
       if (json) {
         if (!readBytes(file, bytes, problem)) {
-          warn(shortName(file) + " (content of " + where + " in " + shortName(base) + ") " + problem +
-               "; its tile is left empty");
-          tile.contentMissing = true;
-          return;
+          return unreadable();
         }
         std::string perr;
         const std::optional<Json> j =
@@ -294,10 +293,7 @@ struct Reader {
       // An external tileset, or what content() names as unreadable.
     }
     if (bytes.empty() && !readBytes(file, bytes, problem)) {
-      warn(shortName(file) + " (content of " + where + " in " + shortName(base) + ") " + problem +
-           "; its tile is left empty");
-      tile.contentMissing = true;
-      return;
+      return unreadable();
     }
     if (!content(file, bytes, world, upAxis, tile, tileIndex, depth)) tile.contentMissing = true;
   }

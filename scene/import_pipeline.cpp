@@ -111,12 +111,8 @@ ImportedMesh importStreamed(const MeshImportRequest& request, const Progress* pr
     return out;
   }
   FileTiles tiles(request);
-  mesh::StreamedClusterOptions o;
-  o.clusters = request.clusterOptions;
-  o.scratchDir = request.scratchDir;
-  o.weldTolerance = request.tileWeldTolerance;
   mesh::StreamedClusterReport rep;
-  ClusterBuild b = buildClusterAssetStreamed(tiles, o, kClusterProxyTriangles, &rep, progress, out.error);
+  ClusterBuild b = buildClusterAssetStreamed(tiles, streamedClusterOptions(request), kClusterProxyTriangles, &rep, progress, out.error);
   out.streamed = rep;
   out.clusterReport = b.report;
   out.tileBorderVertices = rep.tileBorderVertices;
@@ -159,6 +155,14 @@ bool largeInput(const std::vector<std::string>& files) {
 }
 
 }  // namespace
+
+mesh::StreamedClusterOptions streamedClusterOptions(const MeshImportRequest& request) {
+  mesh::StreamedClusterOptions o;
+  o.clusters = request.clusterOptions;
+  o.scratchDir = request.scratchDir;
+  o.weldTolerance = request.tileWeldTolerance;
+  return o;
+}
 
 ImportedMesh importMeshFiles(const MeshImportRequest& request, const Progress* progress) {
   ImportedMesh out;

@@ -60,6 +60,10 @@ const OperationDecl& meshImportOperation();
 // The "clusters" choice (auto, on, streamed, off) as the request's mode.
 MeshImportRequest::Clusters clustersMode(const std::string& choice);
 
+// The out-of-core build's options as a request sets them (mesh files and
+// tilesets streamed alike).
+mesh::StreamedClusterOptions streamedClusterOptions(const MeshImportRequest& request);
+
 struct ImportedMesh {
   std::optional<mesh::MeshData> mesh;  // level 0: as read, or cleaned and decimated
   std::vector<MeshLod> lods;           // coarser levels with their hashes and errors

@@ -12,14 +12,6 @@
 #include "terrain/gdal_door.h"
 
 namespace hs::scene {
-namespace {
-
-// Vertices this far from the Earth's centre are ECEF: the WGS 84 ellipsoid
-// lies between 6,356.8 km (poles) and 6,378.1 km (equator); the band takes
-// the Dead Sea to well above the Himalaya.
-constexpr double kEcefMin = 6'300'000.0, kEcefMax = 6'400'000.0;
-
-}  // namespace
 
 ImportedMesh importTileset(const std::string& path, const MeshImportRequest& request, const Progress* progress) {
   const auto start = std::chrono::steady_clock::now();
@@ -66,7 +58,7 @@ ImportedMesh importTileset(const std::string& path, const MeshImportRequest& req
     count += t.positions.size();
   }
   mean /= double(std::max<size_t>(count, 1));
-  const bool ecef = glm::length(mean) > kEcefMin && glm::length(mean) < kEcefMax;
+  const bool ecef = nearEarthSurfaceEcef(glm::length(mean));
   std::string crs = request.tilesetCrs.empty() ? "auto" : request.tilesetCrs;
   if (crs == "auto") crs = ecef ? "utm" : "local";
   if (crs != "local") {

@@ -22,6 +22,11 @@ namespace hs::scene {
 ImportedMesh importTileset(const std::string& path, const MeshImportRequest& request,
                            const Progress* progress = nullptr);
 
+// Whether a point `metres` from the Earth's centre is ECEF: the WGS 84
+// ellipsoid lies between 6,356.8 km (poles) and 6,378.1 km (equator); the
+// band 6,300-6,400 km takes the Dead Sea to well above the Himalaya.
+inline bool nearEarthSurfaceEcef(double metres) { return metres > 6'300'000.0 && metres < 6'400'000.0; }
+
 // The name an imported file's asset and entity get: the file's stem, or
 // for a tileset (always tileset.json) the folder that holds it. The CLI's
 // import and the editor's use it.

@@ -6,13 +6,11 @@
 #include "mesh/tileset_finest.h"
 #include "scene/asset_reports.h"
 #include "scene/cluster_asset.h"
+#include "scene/tileset_import.h"
 #include "terrain/gdal_door.h"
 
 namespace hs::scene {
 namespace {
-
-// As scene/tileset_import.cpp: vertices this far from the Earth's centre are ECEF.
-constexpr double kEcefMin = 6'300'000.0, kEcefMax = 6'400'000.0;
 
 // The finest contents, decoded one at a time and placed in the scene's
 // CRS; every tile shares one origin (the first tile's centre), so the
@@ -39,7 +37,7 @@ class TilesetTiles : public mesh::ScanTileSource {
       glm::dvec3 mean(0.0);
       for (const glm::dvec3& p : t.positions) mean += p;
       mean /= double(t.positions.size());
-      ecef = glm::length(mean) > kEcefMin && glm::length(mean) < kEcefMax;
+      ecef = nearEarthSurfaceEcef(glm::length(mean));
       if (crs_ == "auto") crs_ = ecef ? "utm" : "local";
       if (crs_ != "local" && !ecef)
         warnings.push_back(path_ + ": its vertices are not near the Earth's surface in ECEF; converted to " + crs_ +
@@ -114,12 +112,8 @@ ImportedMesh importTilesetStreamed(const std::string& path, const MeshImportRequ
   }
   mesh::Tileset log;  // the decoding's warnings and counts
   TilesetTiles tiles(path, contents, finest.refs, request.tilesetCrs.empty() ? "auto" : request.tilesetCrs, log);
-  mesh::StreamedClusterOptions o;
-  o.clusters = request.clusterOptions;
-  o.scratchDir = request.scratchDir;
-  o.weldTolerance = request.tileWeldTolerance;
   mesh::StreamedClusterReport streamed;
-  ClusterBuild b = buildClusterAssetStreamed(tiles, o, kClusterProxyTriangles, &streamed, progress, out.error);
+  ClusterBuild b = buildClusterAssetStreamed(tiles, streamedClusterOptions(request), kClusterProxyTriangles, &streamed, progress, out.error);
   for (std::string& w : log.warnings) rep.warnings.push_back(std::move(w));
   for (std::string& w : tiles.warnings) rep.warnings.push_back(std::move(w));
   if (!b.clusters) {
